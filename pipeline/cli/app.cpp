@@ -1,0 +1,58 @@
+#include "geometry/core/errors.h"
+#include "pipeline/cli/commands.h"
+
+#include <fmt/format.h>
+
+#include <exception>
+#include <map>
+#include <string>
+
+namespace fabmesh::cli {
+namespace {
+
+int report_error(Streams streams, const char* kind, const std::exception& e, int code) {
+  streams.err << fmt::format("fabmesh: {}: {}\n", kind, e.what());
+  return code;
+}
+
+}  // namespace
+
+int run_app(int argc, const char* const* argv, Streams streams) {
+  CLI::App app{"fabmesh: parametric product designs to fabrication-ready meshes"};
+  app.require_subcommand(0, 1);
+  std::map<const CLI::App*, Runner> runners;
+  auto add = [&](Runner (*adder)(CLI::App&)) {
+    const std::size_t before = app.get_subcommands({}).size();
+    Runner runner = adder(app);
+    runners.emplace(app.get_subcommands({}).at(before), std::move(runner));
+  };
+  // --- commands ---
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // --help and --version are "errors" with exit code 0 in CLI11.
+    const int code = app.exit(e, streams.out, streams.err);
+    return code == 0 ? 0 : 2;
+  }
+
+  const CLI::App* chosen = nullptr;
+  for (const auto& [sub, runner] : runners) {
+    if (sub->parsed()) chosen = sub;
+  }
+  if (chosen == nullptr) {
+    streams.out << app.help();
+    return 0;
+  }
+  try {
+    return runners.at(chosen)(streams);
+  } catch (const InputError& e) {
+    return report_error(streams, "error", e, 2);
+  } catch (const ValidationFailed& e) {
+    return report_error(streams, "invalid", e, 1);
+  } catch (const std::exception& e) {
+    return report_error(streams, "internal error", e, 3);
+  }
+}
+
+}  // namespace fabmesh::cli

@@ -1,0 +1,27 @@
+#pragma once
+// The subcommands of the `fabmesh` program. Each add_*_command registers its
+// options on `app` and returns the function that runs it once parsed.
+
+#include <CLI/CLI.hpp>
+
+#include <functional>
+#include <ostream>
+
+namespace fabmesh::cli {
+
+/// Where a command writes: its result to `out`, diagnostics to `err`.
+struct Streams {
+  std::ostream& out;
+  std::ostream& err;
+};
+
+/// Runs a parsed command; returns the process exit code (0, 1, 2 or 3).
+using Runner = std::function<int(Streams)>;
+
+// --- commands ---
+
+/// Parses argv, runs the chosen command and maps exceptions to exit codes:
+/// InputError -> 2, ValidationFailed -> 1, anything else -> 3.
+int run_app(int argc, const char* const* argv, Streams streams);
+
+}  // namespace fabmesh::cli

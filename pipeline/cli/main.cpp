@@ -1,0 +1,7 @@
+#include "pipeline/cli/commands.h"
+
+#include <iostream>
+
+int main(int argc, char** argv) {
+  return fabmesh::cli::run_app(argc, argv, {std::cout, std::cerr});
+}
