@@ -27,6 +27,9 @@ int run_app(int argc, const char* const* argv, Streams streams) {
     runners.emplace(app.get_subcommands({}).at(before), std::move(runner));
   };
   // --- commands ---
+  add(&add_check_command);
+  add(&add_sample_command);
+  add(&add_optimize_command);
 
   try {
     app.parse(argc, argv);

@@ -19,6 +19,9 @@ struct Streams {
 using Runner = std::function<int(Streams)>;
 
 // --- commands ---
+Runner add_check_command(CLI::App& app);  ///< `fabmesh check MESH... [--json] [--weld-tolerance X]`
+Runner add_sample_command(CLI::App& app);
+Runner add_optimize_command(CLI::App& app);
 
 /// Parses argv, runs the chosen command and maps exceptions to exit codes:
 /// InputError -> 2, ValidationFailed -> 1, anything else -> 3.

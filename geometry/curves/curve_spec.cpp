@@ -1,0 +1,252 @@
+#include "geometry/curves/curve_spec.h"
+
+#include <fmt/format.h>
+
+#include <Eigen/Sparse>
+#include <Eigen/SparseLU>
+
+#include "geometry/core/errors.h"
+
+namespace fabmesh {
+namespace {
+
+int control_count(SegmentKind kind) { return kind == SegmentKind::Line ? 2 : 4; }
+
+std::string name_of(const SegmentSpec& s, std::size_t i) {
+  return s.label.empty() ? fmt::format("segment {}", i + 1) : s.label;
+}
+
+// Number of leading control points a segment's join computes.
+int computed_count(const CurveSpec& spec, std::size_t i) {
+  const SegmentSpec& s = spec.segments[i];
+  const bool has_predecessor = i > 0 || spec.closed;
+  if (s.kind == SegmentKind::Line) return (i > 0 || (spec.closed && s.points.size() == 1)) ? 1 : 0;
+  if (!s.join) return 0;
+  if (!has_predecessor) {
+    throw GeometryError(name_of(s, i), fmt::format("{}: the first segment of an open curve cannot have a join",
+                                                   name_of(s, i)));
+  }
+  return static_cast<int>(s.join->continuity) + 1;
+}
+
+// A segment with placeholder points, used for its basis weights.
+Segment basis_segment(const SegmentSpec& s) {
+  const std::array<Vec2, 4> probe{Vec2(0, 0), Vec2(1, 0), Vec2(2, 0), Vec2(3, 0)};
+  switch (s.kind) {
+    case SegmentKind::TBezier: return Segment::tbezier(probe, s.lambda, s.mu);
+    case SegmentKind::HBezier: return Segment::hbezier(probe, s.alpha, s.lambda, s.mu);
+    case SegmentKind::Line: return Segment::line(probe[0], probe[1]);
+    case SegmentKind::EllipseArc: return Segment::ellipse_arc(s.ellipse);
+    case SegmentKind::QuasiBSpline: return Segment::quasi_bspline_span(probe, s.lambda, s.mu);
+  }
+  throw GeometryError("segment", "unknown segment kind");
+}
+
+// Native-parameter derivative weights of order k at s.
+std::array<double, 4> native_weights(const Segment& seg, double s, int k) {
+  const BasisJet w = seg.weights(s);
+  std::array<double, 4> out = w[k];
+  const double scale = std::pow(seg.native_scale(), k);
+  for (double& x : out) x /= scale;
+  return out;
+}
+
+// Derivative factors of a join: next_d1 = c1 prev_d1; next_d2 = c2 prev_d2 + c21 prev_d1.
+struct JoinFactors {
+  double c1, c2, c21;
+};
+
+JoinFactors join_factors(const SegmentSpec& next, std::size_t i) {
+  const JoinSpec& j = *next.join;
+  if (next.kind == SegmentKind::HBezier) {
+    require_positive(fmt::format("{}: join k", name_of(next, i)), j.k);
+    require_in_range(fmt::format("{}: join m", name_of(next, i)), j.m, -1e300, 1e300);
+    return {j.k, j.k * j.k, j.m};
+  }
+  require_positive(fmt::format("{}: join alpha", name_of(next, i)), j.alpha);
+  require_in_range(fmt::format("{}: join beta", name_of(next, i)), j.beta, -1e300, 1e300);
+  const double a = j.alpha;
+  return {1.0 / a, 1.0 / (a * a), -j.beta / (a * a * a)};
+}
+
+CompositeCurve construct_quasi_bspline(const CurveSpec& spec) {
+  const auto& p = spec.bspline_points;
+  if (p.size() < 3) {
+    throw GeometryError(spec.label, fmt::format("{}: a quasi-cubic B-spline needs at least 3 points (n >= 2), got {}",
+                                                spec.label, p.size()));
+  }
+  if (spec.closed) throw GeometryError(spec.label, spec.label + ": a quasi-cubic B-spline curve is open");
+  const std::size_t n = p.size() - 1;
+  std::vector<double> lam(n + 1, 0.0);
+  lam.front() = lam.back() = 4.0;
+  if (!spec.bspline_lambdas.empty()) {
+    if (spec.bspline_lambdas.size() != n - 1) {
+      throw GeometryError(spec.label, fmt::format("{}: lambdas has {} values; {} points need n - 1 = {}", spec.label,
+                                                  spec.bspline_lambdas.size(), p.size(), n - 1));
+    }
+    for (std::size_t i = 1; i < n; ++i) {
+      lam[i] = spec.bspline_lambdas[i - 1];
+      require_in_range(fmt::format("{}: lambda_{}", spec.label, i), lam[i], -8.0, 1.0);
+    }
+  }
+  auto at = [&](long i) { return p[static_cast<std::size_t>(std::clamp<long>(i, 0, static_cast<long>(n)))]; };
+  std::vector<Segment> spans;
+  for (std::size_t i = 0; i < n; ++i) {
+    const long li = static_cast<long>(i);
+    spans.push_back(Segment::quasi_bspline_span({at(li - 1), at(li), at(li + 1), at(li + 2)}, lam[i], lam[i + 1]));
+  }
+  return CompositeCurve(std::move(spans), false);
+}
+
+}  // namespace
+
+const char* to_string(CurveFamily f) {
+  switch (f) {
+    case CurveFamily::TBezier: return "tbezier";
+    case CurveFamily::HBezier: return "hbezier";
+    case CurveFamily::QuasiBSpline: return "quasi_bspline";
+  }
+  return "unknown";
+}
+
+const char* to_string(FairMode f) {
+  switch (f) {
+    case FairMode::None: return "none";
+    case FairMode::Strain: return "strain";
+    case FairMode::CurvatureVariation: return "curvature_variation";
+  }
+  return "unknown";
+}
+
+CompositeCurve construct_curve(const CurveSpec& spec) {
+  if (spec.family == CurveFamily::QuasiBSpline) return construct_quasi_bspline(spec);
+  const std::size_t n = spec.segments.size();
+  if (n == 0) throw GeometryError(spec.label, spec.label + ": a curve needs at least one segment");
+
+  // Unknowns: every control point of every segment, one row each; x and y solved together.
+  std::vector<int> offset(n + 1, 0);
+  std::vector<Segment> bases;
+  for (std::size_t i = 0; i < n; ++i) {
+    bases.push_back(basis_segment(spec.segments[i]));
+    offset[i + 1] = offset[i] + control_count(spec.segments[i].kind);
+  }
+  const int unknowns = offset[n];
+  std::vector<Eigen::Triplet<double>> entries;
+  Eigen::MatrixX2d rhs = Eigen::MatrixX2d::Zero(unknowns, 2);
+
+  for (std::size_t i = 0; i < n; ++i) {
+    const SegmentSpec& s = spec.segments[i];
+    const int count = control_count(s.kind);
+    if (s.kind == SegmentKind::EllipseArc) {
+      if (s.join) throw GeometryError(name_of(s, i), name_of(s, i) + ": an ellipse arc cannot be joined; it is exact");
+      for (int j = 0; j < 4; ++j) {
+        entries.emplace_back(offset[i] + j, offset[i] + j, 1.0);
+        rhs.row(offset[i] + j) = bases[i].control_points()[j].transpose();
+      }
+      continue;
+    }
+    const int computed = computed_count(spec, i);
+    const int given = static_cast<int>(s.points.size());
+    if (given != count - computed) {
+      const std::string how = s.join ? fmt::format("after a {} join", to_string(s.join->continuity))
+                                     : (computed > 0 ? "continuing the previous segment" : "as an explicit segment");
+      throw GeometryError(name_of(s, i), fmt::format("{}: a {} segment {} takes {} point(s), got {}", name_of(s, i),
+                                                     to_string(s.kind), how, count - computed, given));
+    }
+    for (int j = computed; j < count; ++j) {
+      entries.emplace_back(offset[i] + j, offset[i] + j, 1.0);
+      rhs.row(offset[i] + j) = s.points[j - computed].transpose();
+    }
+    if (computed == 0) continue;
+
+    const std::size_t p = (i + n - 1) % n;
+    const JoinFactors f = s.join ? join_factors(s, i) : JoinFactors{1.0, 1.0, 0.0};
+    // Each derivative order k of the previous segment's end, as weights on its points (or constants).
+    auto add_prev = [&](int row, int k, double factor) {
+      if (spec.segments[p].kind == SegmentKind::EllipseArc) {
+        const CurveJet jet = bases[p].jet(1.0);
+        rhs.row(row) += factor * jet[k].transpose() / std::pow(bases[p].native_scale(), k);
+        return;
+      }
+      const auto w = native_weights(bases[p], 1.0, k);
+      for (int l = 0; l < control_count(spec.segments[p].kind); ++l) {
+        if (w[l] != 0.0) entries.emplace_back(row, offset[p] + l, -factor * w[l]);
+      }
+    };
+    for (int k = 0; k < computed; ++k) {
+      const int row = offset[i] + k;
+      const auto wn = native_weights(bases[i], 0.0, k);
+      for (int l = 0; l < count; ++l) {
+        if (wn[l] != 0.0) entries.emplace_back(row, offset[i] + l, wn[l]);
+      }
+      if (k == 0) add_prev(row, 0, 1.0);
+      if (k == 1) add_prev(row, 1, f.c1);
+      if (k == 2) {
+        add_prev(row, 2, f.c2);
+        add_prev(row, 1, f.c21);
+      }
+    }
+  }
+
+  Eigen::SparseMatrix<double> a(unknowns, unknowns);
+  a.setFromTriplets(entries.begin(), entries.end());
+  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
+  lu.compute(a);
+  if (lu.info() != Eigen::Success) {
+    throw GeometryError(spec.label, fmt::format("{}: the join conditions cannot be satisfied together (the closing "
+                                                "join is singular for these shape parameters)",
+                                                spec.label));
+  }
+  const Eigen::MatrixX2d x = lu.solve(rhs);
+  if (!x.allFinite()) throw GeometryError(spec.label, spec.label + ": the join conditions have no finite solution");
+
+  std::vector<Segment> segments;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (spec.segments[i].kind == SegmentKind::EllipseArc) {
+      segments.push_back(bases[i]);
+      continue;
+    }
+    std::array<Vec2, 4> pts{};
+    for (int j = 0; j < control_count(spec.segments[i].kind); ++j) pts[j] = x.row(offset[i] + j).transpose();
+    try {
+      segments.push_back(bases[i].with_points(pts));
+    } catch (const GeometryError& e) {
+      throw GeometryError(name_of(spec.segments[i], i), name_of(spec.segments[i], i) + ": " + e.what());
+    }
+  }
+  return CompositeCurve(std::move(segments), spec.closed);
+}
+
+std::vector<Continuity> declared_continuity(const CurveSpec& spec) {
+  std::vector<Continuity> out;
+  if (spec.family == CurveFamily::QuasiBSpline) {
+    // C2 by construction at every interior joint.
+    if (spec.bspline_points.size() >= 3) out.assign(spec.bspline_points.size() - 2, Continuity::G2);
+    return out;
+  }
+  auto of = [](const SegmentSpec& s) { return s.join ? s.join->continuity : s.declared; };
+  for (std::size_t i = 1; i < spec.segments.size(); ++i) out.push_back(of(spec.segments[i]));
+  if (spec.closed && !spec.segments.empty()) {
+    out.push_back(spec.segments.front().join ? spec.segments.front().join->continuity : spec.closing_declared);
+  }
+  return out;
+}
+
+void verify_declared_continuity(const CurveSpec& spec, const CompositeCurve& curve, const JointTolerances& tol) {
+  const auto declared = declared_continuity(spec);
+  const auto joints = curve.joints(tol);
+  for (std::size_t i = 0; i < joints.size() && i < declared.size(); ++i) {
+    const JointReport& j = joints[i];
+    if (static_cast<int>(j.achieved) >= static_cast<int>(declared[i])) continue;
+    const std::string where =
+        j.closing ? std::string("closing joint") : fmt::format("joint {} (segments {} -> {})", i + 1, j.before + 1,
+                                                              j.after + 1);
+    throw GeometryError(where, fmt::format("{}{}: declared {} but measured gap {:.3g}, tangent angle {:.3g} rad, "
+                                           "relative curvature jump {:.3g} ({})",
+                                           spec.label.empty() ? "" : spec.label + ": ", where, to_string(declared[i]),
+                                           j.gap, j.tangent_angle, j.curvature_jump,
+                                           j.closing && j.gap > 0 ? "the curve does not close" : to_string(j.achieved)));
+  }
+}
+
+}  // namespace fabmesh

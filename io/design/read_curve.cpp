@@ -1,0 +1,183 @@
+#include "io/design/read_curve.h"
+
+#include <fmt/format.h>
+
+namespace fabmesh {
+namespace {
+
+Continuity read_continuity(const yaml::Fields& f, const YAML::Node& node, const std::string& field) {
+  const std::string c = f.choice(node, field, {"G0", "G1", "G2"});
+  return c == "G0" ? Continuity::G0 : c == "G1" ? Continuity::G1 : Continuity::G2;
+}
+
+FairMode read_fair(const yaml::Fields& f, const YAML::Node& curve, const std::string& field) {
+  const YAML::Node n = curve["fair"];
+  if (!n.IsDefined()) return FairMode::None;
+  const std::string v = f.choice(n, field + ".fair", {"none", "strain", "curvature_variation"});
+  return v == "none" ? FairMode::None : v == "strain" ? FairMode::Strain : FairMode::CurvatureVariation;
+}
+
+JoinSpec read_join(const yaml::Fields& f, const YAML::Node& node, const std::string& field, SegmentKind kind) {
+  JoinSpec j;
+  if (kind == SegmentKind::HBezier) {
+    f.require_map(node, field, {"continuity", "k", "m"});
+    j.k = f.number_or(node, "k", field + ".k", 1.0);
+    j.m = f.number_or(node, "m", field + ".m", 0.0);
+    if (j.k <= 0.0) f.fail(node["k"], field + ".k", fmt::format("k = {} must be > 0", j.k));
+  } else {
+    f.require_map(node, field, {"continuity", "alpha", "beta"});
+    j.alpha = f.number_or(node, "alpha", field + ".alpha", 1.0);
+    j.beta = f.number_or(node, "beta", field + ".beta", 0.0);
+    if (j.alpha <= 0.0) f.fail(node["alpha"], field + ".alpha", fmt::format("alpha = {} must be > 0", j.alpha));
+  }
+  j.continuity = read_continuity(f, f.required(node, "continuity", field), field + ".continuity");
+  return j;
+}
+
+SegmentSpec read_ellipse_arc(const yaml::Fields& f, const YAML::Node& n, const std::string& field, bool circle) {
+  SegmentSpec s;
+  s.kind = SegmentKind::EllipseArc;
+  if (circle) {
+    f.require_map(n, field, {"center", "radius", "from_deg", "to_deg"});
+    s.ellipse.a = s.ellipse.b = f.number(f.required(n, "radius", field), field + ".radius");
+  } else {
+    f.require_map(n, field, {"center", "a", "b", "rotation_deg", "from_deg", "to_deg"});
+    s.ellipse.a = f.number(f.required(n, "a", field), field + ".a");
+    s.ellipse.b = f.number(f.required(n, "b", field), field + ".b");
+    s.ellipse.rotation_deg = f.number_or(n, "rotation_deg", field + ".rotation_deg", 0.0);
+  }
+  s.ellipse.center = f.point2(f.required(n, "center", field), field + ".center");
+  s.ellipse.from_deg = f.number_or(n, "from_deg", field + ".from_deg", 0.0);
+  s.ellipse.to_deg = f.number_or(n, "to_deg", field + ".to_deg", 360.0);
+  f.checked(n, field, [&] { Segment::ellipse_arc(s.ellipse); });
+  return s;
+}
+
+SegmentSpec read_segment(const yaml::Fields& f, const YAML::Node& n, const std::string& field, CurveFamily family,
+                         bool first) {
+  if (!n.IsMap()) f.fail(n, field, "expected a map describing a segment");
+  SegmentSpec s;
+  s.label = f.label(n, field);
+  if (n["line"].IsDefined()) {
+    f.require_map(n, field, {"line", "continuity"});
+    const YAML::Node l = n["line"];
+    f.require_map(l, field + ".line", {"from", "to"});
+    s.kind = SegmentKind::Line;
+    if (l["from"].IsDefined()) s.points.push_back(f.point2(l["from"], field + ".line.from"));
+    s.points.push_back(f.point2(f.required(l, "to", field + ".line"), field + ".line.to"));
+    if (first && s.points.size() != 2) f.fail(l, field + ".line", "the first segment's line needs 'from' and 'to'");
+    if (!first && s.points.size() != 1) {
+      f.fail(l["from"], field + ".line.from", "a line continues from the previous segment's end: give only 'to'");
+    }
+    if (n["continuity"].IsDefined()) s.declared = read_continuity(f, n["continuity"], field + ".continuity");
+    return s;
+  }
+  for (const char* key : {"ellipse_arc", "circle_arc"}) {
+    if (!n[key].IsDefined()) continue;
+    f.require_map(n, field, {key, "continuity"});
+    SegmentSpec e = read_ellipse_arc(f, n[key], field + "." + key, std::string(key) == "circle_arc");
+    e.label = s.label;
+    if (n["continuity"].IsDefined()) e.declared = read_continuity(f, n["continuity"], field + ".continuity");
+    return e;
+  }
+  // A cubic of the curve's family (or of the family the segment names).
+  f.require_map(n, field, {"points", "lambda", "mu", "alpha", "join", "continuity", "family"});
+  s.kind = family == CurveFamily::HBezier ? SegmentKind::HBezier : SegmentKind::TBezier;
+  if (n["family"].IsDefined()) {
+    s.kind = f.choice(n["family"], field + ".family", {"tbezier", "hbezier"}) == "hbezier" ? SegmentKind::HBezier
+                                                                                          : SegmentKind::TBezier;
+  }
+  s.lambda = f.number_or(n, "lambda", field + ".lambda", 0.0);
+  s.mu = f.number_or(n, "mu", field + ".mu", 0.0);
+  if (s.kind == SegmentKind::HBezier) {
+    s.alpha = f.number_or(n, "alpha", field + ".alpha", 1.0);
+  } else if (n["alpha"].IsDefined()) {
+    f.fail(n["alpha"], field + ".alpha", "a tbezier segment has no alpha (the join's alpha goes under 'join')");
+  }
+  // Range checks of the shape parameters, reported at the segment.
+  const std::array<Vec2, 4> probe{Vec2(0, 0), Vec2(1, 0), Vec2(2, 0), Vec2(3, 0)};
+  f.checked(n, field, [&] {
+    if (s.kind == SegmentKind::HBezier) {
+      Segment::hbezier(probe, s.alpha, s.lambda, s.mu);
+    } else {
+      Segment::tbezier(probe, s.lambda, s.mu);
+    }
+  });
+  if (n["join"].IsDefined()) s.join = read_join(f, n["join"], field + ".join", s.kind);
+  if (n["continuity"].IsDefined()) {
+    if (s.join) f.fail(n["continuity"], field + ".continuity", "give the continuity under 'join'");
+    s.declared = read_continuity(f, n["continuity"], field + ".continuity");
+  }
+  const std::size_t needed = s.join ? static_cast<std::size_t>(3 - static_cast<int>(s.join->continuity)) : 4;
+  s.points = f.points2(f.required(n, "points", field), field + ".points");
+  if (s.points.size() != needed) {
+    f.fail(n["points"], field + ".points",
+           s.join ? fmt::format("a {} join computes {} point(s); give the {} free point(s), got {}",
+                                to_string(s.join->continuity), 4 - needed, needed, s.points.size())
+                  : fmt::format("an explicit segment needs 4 control points P0..P3, got {}", s.points.size()));
+  }
+  return s;
+}
+
+}  // namespace
+
+CurveSpec read_curve(const yaml::Fields& f, const YAML::Node& node, const std::string& field) {
+  CurveSpec spec;
+  spec.label = f.label(node, field);
+  if (!node.IsMap()) f.fail(node, field, "expected a map describing a curve");
+  const std::string family =
+      f.choice(f.required(node, "family", field), field + ".family", {"tbezier", "hbezier", "quasi_bspline"});
+  spec.fair = read_fair(f, node, field);
+  if (family == "quasi_bspline") {
+    f.require_map(node, field, {"family", "points", "lambdas", "fair"});
+    spec.family = CurveFamily::QuasiBSpline;
+    const YAML::Node pts = f.required(node, "points", field);
+    spec.bspline_points = f.points2(pts, field + ".points");
+    if (spec.bspline_points.size() < 3) {
+      f.fail(pts, field + ".points",
+             fmt::format("a quasi-cubic B-spline needs at least 3 points p0..pn (n >= 2), got {}",
+                         spec.bspline_points.size()));
+    }
+    const std::size_t n = spec.bspline_points.size() - 1;
+    if (node["lambdas"].IsDefined()) {
+      const YAML::Node l = node["lambdas"];
+      f.require_list(l, field + ".lambdas");
+      if (l.size() != n - 1) {
+        f.fail(l, field + ".lambdas",
+               fmt::format("expected n - 1 = {} values lambda_1..lambda_{} for {} points, got {}", n - 1, n - 1,
+                           n + 1, l.size()));
+      }
+      for (std::size_t i = 0; i < l.size(); ++i) {
+        const std::string name = fmt::format("{}.lambdas[{}]", field, i);
+        const double v = f.number(l[i], name);
+        f.checked(l[i], name, [&] { require_in_range(fmt::format("lambda_{}", i + 1), v, -8.0, 1.0); });
+        spec.bspline_lambdas.push_back(v);
+      }
+    }
+    return spec;
+  }
+  f.require_map(node, field, {"family", "closed", "segments", "fair", "closing"});
+  spec.family = family == "hbezier" ? CurveFamily::HBezier : CurveFamily::TBezier;
+  spec.closed = f.boolean_or(node, "closed", field + ".closed", false);
+  if (node["closing"].IsDefined()) {
+    const YAML::Node c = node["closing"];
+    f.require_map(c, field + ".closing", {"continuity"});
+    if (!spec.closed) f.fail(c, field + ".closing", "only a closed curve has a closing joint");
+    spec.closing_declared = read_continuity(f, f.required(c, "continuity", field + ".closing"),
+                                            field + ".closing.continuity");
+  }
+  const YAML::Node segs = f.required(node, "segments", field);
+  f.require_list(segs, field + ".segments", 1);
+  for (std::size_t i = 0; i < segs.size(); ++i) {
+    spec.segments.push_back(read_segment(f, segs[i], fmt::format("{}.segments[{}]", field, i), spec.family, i == 0));
+  }
+  if (spec.fair == FairMode::Strain) {
+    f.fail(node["fair"], field + ".fair", "strain fairing applies to quasi_bspline curves; use curvature_variation");
+  }
+  if (spec.fair != FairMode::None && spec.family == CurveFamily::HBezier) {
+    f.fail(node["fair"], field + ".fair", "fairing is defined for tbezier and quasi_bspline curves");
+  }
+  return spec;
+}
+
+}  // namespace fabmesh

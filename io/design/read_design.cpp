@@ -1,0 +1,71 @@
+#include "io/design/read_design.h"
+
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "io/design/read_curve.h"
+#include "io/design/yaml_fields.h"
+
+namespace fabmesh {
+namespace {
+
+constexpr std::size_t kMaxDesignBytes = 64u << 20;
+
+DesignCommon read_common(const yaml::Fields& f, const YAML::Node& root) {
+  DesignCommon c;
+  c.path = f.path();
+  c.name = f.text_or(root, "name", "name", std::filesystem::path(f.path()).stem().string());
+  c.kind = f.choice(f.required(root, "kind", "kind"), "kind", {"curve", "vessel", "countertop", "surface"});
+  c.units = f.choice(root["units"].IsDefined() ? root["units"] : YAML::Node("mm"), "units", {"mm", "cm", "m", "in"});
+  c.tolerance = f.number_or(root, "tolerance", "tolerance", 0.01);
+  if (c.tolerance <= 0.0) f.fail(root["tolerance"], "tolerance", fmt::format("tolerance = {} must be > 0", c.tolerance));
+  if (root["outputs"].IsDefined()) {
+    const YAML::Node outs = root["outputs"];
+    f.require_list(outs, "outputs", 1);
+    for (std::size_t i = 0; i < outs.size(); ++i) {
+      c.outputs.push_back(f.choice(outs[i], fmt::format("outputs[{}]", i), {"stl", "drc", "obj", "ply", "off"}));
+    }
+  } else {
+    c.outputs = {"stl", "drc"};
+  }
+  return c;
+}
+
+}  // namespace
+
+Design parse_design(const std::string& text, const std::string& path) {
+  const yaml::Fields f(path);
+  YAML::Node root;
+  try {
+    root = YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    throw FileError(path, e.mark.line + 1, e.mark.column + 1,
+                    fmt::format("{}:{}:{}: invalid YAML: {}", path, e.mark.line + 1, e.mark.column + 1, e.msg));
+  }
+  if (!root.IsMap()) throw FileError(path, 0, 0, fmt::format("{}: a design file must be a YAML map", path));
+  Design d;
+  d.common = read_common(f, root);
+  if (d.common.kind == "curve") {
+    f.require_map(root, "", {"name", "kind", "units", "tolerance", "outputs", "curve"});
+    d.body = CurveDesign{read_curve(f, f.required(root, "curve", "curve"), "curve")};
+    return d;
+  }
+  f.fail(root["kind"], "kind", fmt::format("kind '{}' is not available in this version of fabmesh", d.common.kind));
+}
+
+Design read_design(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw FileError(path, 0, 0, fmt::format("{}: cannot open design file", path));
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  std::string text = buffer.str();
+  if (text.size() > kMaxDesignBytes) {
+    throw FileError(path, 0, 0, fmt::format("{}: design file is larger than {} bytes", path, kMaxDesignBytes));
+  }
+  return parse_design(text, path);
+}
+
+}  // namespace fabmesh

@@ -1,0 +1,20 @@
+#pragma once
+// Reads YAML design files into Design structs.
+
+#include <string>
+
+#include "io/design/design.h"
+
+namespace fabmesh {
+
+/// Reads and validates a design file. Every error is a FileError whose
+/// message starts with "path:line:column: field:" and names the value.
+/// Ranges checked here: tolerance > 0, shape parameters of each family,
+/// counts of control points; geometry (joins, closure) is checked when built.
+/// \throw FileError
+Design read_design(const std::string& path);
+
+/// The same from YAML text; `path` is used for messages and the default name.
+Design parse_design(const std::string& yaml_text, const std::string& path);
+
+}  // namespace fabmesh

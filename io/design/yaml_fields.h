@@ -1,0 +1,62 @@
+#pragma once
+// Typed access to YAML fields with errors that name file, line, column and
+// field. Kept out of the public design API: parsers of each design kind use it.
+
+#include <yaml-cpp/yaml.h>
+
+#include <initializer_list>
+#include <string>
+#include <vector>
+
+#include "geometry/core/errors.h"
+#include "geometry/core/types.h"
+
+namespace fabmesh::yaml {
+
+/// The file being read; makes errors and labels with locations.
+class Fields {
+ public:
+  explicit Fields(std::string path) : path_(std::move(path)) {}
+  const std::string& path() const { return path_; }
+
+  /// "path:line:column: field" for a node (1-based line and column).
+  std::string label(const YAML::Node& node, const std::string& field) const;
+  /// A FileError at `node` for `field`.
+  [[noreturn]] void fail(const YAML::Node& node, const std::string& field, const std::string& message) const;
+
+  /// The child `key` of a map; a FileError at the map when it is missing.
+  YAML::Node required(const YAML::Node& parent, const char* key, const std::string& field) const;
+  /// Requires a map whose keys are all in `allowed`.
+  void require_map(const YAML::Node& node, const std::string& field, std::initializer_list<const char*> allowed) const;
+  /// Requires a sequence of at least `min_size` entries.
+  void require_list(const YAML::Node& node, const std::string& field, std::size_t min_size = 0) const;
+
+  double number(const YAML::Node& node, const std::string& field) const;
+  double number_or(const YAML::Node& parent, const char* key, const std::string& field, double fallback) const;
+  std::string text(const YAML::Node& node, const std::string& field) const;
+  std::string text_or(const YAML::Node& parent, const char* key, const std::string& field,
+                      const std::string& fallback) const;
+  /// One of `choices`.
+  std::string choice(const YAML::Node& node, const std::string& field, std::initializer_list<const char*> choices) const;
+  bool boolean_or(const YAML::Node& parent, const char* key, const std::string& field, bool fallback) const;
+  Vec2 point2(const YAML::Node& node, const std::string& field) const;
+  std::vector<Vec2> points2(const YAML::Node& node, const std::string& field, std::size_t min_size = 0) const;
+  Vec3 point3(const YAML::Node& node, const std::string& field) const;
+
+  /// Runs `check` and turns an InputError from it into a FileError at `node`.
+  template <class F>
+  void checked(const YAML::Node& node, const std::string& field, F&& check) const {
+    try {
+      check();
+    } catch (const FileError&) {
+      throw;
+    } catch (const InputError& e) {
+      fail(node, field, e.what());
+    }
+  }
+
+ private:
+  std::string path_;
+};
+
+}  // namespace fabmesh::yaml

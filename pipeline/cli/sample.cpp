@@ -1,0 +1,62 @@
+// fabmesh sample DESIGN [--csv] [--tolerance T]: the sampled curve points.
+
+#include <fmt/format.h>
+
+#include <memory>
+
+#include "geometry/fairing/fair_curve.h"
+#include "geometry/sampling/sample_curve.h"
+#include "io/design/read_design.h"
+#include "pipeline/cli/commands.h"
+#include "pipeline/design_curves.h"
+
+namespace fabmesh::cli {
+namespace {
+
+struct SampleArgs {
+  std::string design;
+  bool csv = false;
+  double tolerance = 0.0;  // 0: the design's
+};
+
+int run_sample(const SampleArgs& args, Streams io) {
+  const Design design = read_design(args.design);
+  SampleOptions options;
+  options.tolerance = args.tolerance > 0.0 ? args.tolerance : design.common.tolerance;
+  if (args.csv) io.out << "curve,x,y\n";
+  for (const NamedCurve& nc : design_curves(design)) {
+    const BuiltCurve built = build_curve(nc.spec);
+    const Polyline2 line = sample_curve(built.curve, options);
+    if (args.csv) {
+      for (const Vec2& p : line.points) io.out << fmt::format("{},{},{}\n", nc.name, p.x(), p.y());
+      continue;
+    }
+    io.out << fmt::format("# {} {}: {} {} segment(s), {} points, max deviation {:.6g} (tolerance {})\n",
+                          design.common.name, nc.name, built.curve.closed() ? "closed" : "open", built.curve.size(),
+                          line.points.size(), line.max_deviation, options.tolerance);
+    for (std::size_t i = 0; i < built.joints.size(); ++i) {
+      const JointReport& j = built.joints[i];
+      io.out << fmt::format("# joint {} -> {}{}: declared {}, measured {} (gap {:.3g}, angle {:.3g} rad, "
+                            "curvature jump {:.3g})\n",
+                            j.before + 1, j.after + 1, j.closing ? " (closing)" : "",
+                            i < built.declared.size() ? to_string(built.declared[i]) : "-", to_string(j.achieved),
+                            j.gap, j.tangent_angle, j.curvature_jump);
+    }
+    for (const Vec2& p : line.points) io.out << fmt::format("{} {}\n", p.x(), p.y());
+  }
+  return 0;
+}
+
+}  // namespace
+
+Runner add_sample_command(CLI::App& app) {
+  auto args = std::make_shared<SampleArgs>();
+  CLI::App* cmd = app.add_subcommand("sample", "Print the sampled points of a design's curves");
+  cmd->add_option("design", args->design, "Design file (YAML)")->required();
+  cmd->add_flag("--csv", args->csv, "Print CSV with columns curve,x,y");
+  cmd->add_option("--tolerance", args->tolerance, "Sampling tolerance (default: the design's)")
+      ->check(CLI::PositiveNumber);
+  return [args](Streams io) { return run_sample(*args, io); };
+}
+
+}  // namespace fabmesh::cli

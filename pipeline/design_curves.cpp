@@ -1,0 +1,16 @@
+#include "pipeline/design_curves.h"
+
+#include <type_traits>
+
+namespace fabmesh {
+
+std::vector<NamedCurve> design_curves(const Design& design) {
+  return std::visit(
+      [](const auto& body) -> std::vector<NamedCurve> {
+        using T = std::decay_t<decltype(body)>;
+        if constexpr (std::is_same_v<T, CurveDesign>) return {{"curve", body.curve}};
+      },
+      design.body);
+}
+
+}  // namespace fabmesh
