@@ -1,0 +1,187 @@
+#include "geometry/mesh/topology.h"
+
+#include <tbb/parallel_sort.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <numeric>
+
+namespace fabmesh {
+
+void DefectCount::add(const Vec3& where, std::size_t max_examples) {
+  ++count;
+  if (examples.size() < max_examples) examples.push_back(where);
+}
+
+namespace {
+
+/// Union-find over dense indices, with path halving.
+class DisjointSets {
+ public:
+  explicit DisjointSets(std::size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0u); }
+  std::uint32_t find(std::uint32_t i) {
+    while (parent_[i] != i) {
+      parent_[i] = parent_[parent_[i]];
+      i = parent_[i];
+    }
+    return i;
+  }
+  void unite(std::uint32_t a, std::uint32_t b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) parent_[std::max(a, b)] = std::min(a, b);
+  }
+
+ private:
+  std::vector<std::uint32_t> parent_;
+};
+
+using Triangle = std::array<std::uint32_t, 3>;
+
+bool index_degenerate(const Triangle& t) { return t[0] == t[1] || t[1] == t[2] || t[2] == t[0]; }
+
+/// One directed side of a face: the undirected edge key, the face and the
+/// corner the side starts at (side k runs from corner k to corner k + 1).
+struct Side {
+  std::uint64_t key;
+  std::uint32_t face;
+  std::uint32_t corner;
+};
+
+std::vector<Side> collect_sides(const TriangleSoup& soup) {
+  std::vector<Side> sides;
+  sides.reserve(3 * soup.triangles.size());
+  for (std::uint32_t f = 0; f < soup.triangles.size(); ++f) {
+    const Triangle& t = soup.triangles[f];
+    if (index_degenerate(t)) continue;
+    for (std::uint32_t k = 0; k < 3; ++k) {
+      const std::uint64_t a = t[k];
+      const std::uint64_t b = t[(k + 1) % 3];
+      sides.push_back({std::min(a, b) << 32 | std::max(a, b), f, k});
+    }
+  }
+  tbb::parallel_sort(sides.begin(), sides.end(), [](const Side& x, const Side& y) {
+    return x.key != y.key ? x.key < y.key : x.face != y.face ? x.face < y.face : x.corner < y.corner;
+  });
+  return sides;
+}
+
+/// Walks the sorted sides edge by edge: counts boundary, non-manifold and
+/// inconsistent edges, and joins the corners of the two faces of each
+/// manifold edge into fans.
+void classify_edges(const TriangleSoup& soup, const std::vector<Side>& sides, std::size_t max_examples,
+                    Topology& topo, DisjointSets& fans, std::vector<char>& on_complex_edge) {
+  const auto& tri = soup.triangles;
+  auto midpoint = [&](std::uint64_t key) {
+    return 0.5 * (soup.vertices[key >> 32] + soup.vertices[key & 0xffffffffu]);
+  };
+  for (std::size_t i = 0; i < sides.size();) {
+    std::size_t j = i;
+    while (j < sides.size() && sides[j].key == sides[i].key) ++j;
+    const std::size_t n = j - i;
+    ++topo.edges;
+    if (n == 1) {
+      topo.boundary_edges.add(midpoint(sides[i].key), max_examples);
+    } else if (n > 2) {
+      topo.non_manifold_edges.add(midpoint(sides[i].key), max_examples);
+      on_complex_edge[sides[i].key >> 32] = 1;
+      on_complex_edge[sides[i].key & 0xffffffffu] = 1;
+    } else {
+      const Side& s = sides[i];
+      const Side& u = sides[i + 1];
+      const std::uint32_t sa = tri[s.face][s.corner];
+      const std::uint32_t ua = tri[u.face][u.corner];
+      if (sa == ua) topo.inconsistent_edges.add(midpoint(s.key), max_examples);
+      // Corner ids are 3 * face + k; join the corners that hold the same vertex.
+      const std::uint32_t s0 = 3 * s.face + s.corner;
+      const std::uint32_t s1 = 3 * s.face + (s.corner + 1) % 3;
+      const std::uint32_t u0 = 3 * u.face + u.corner;
+      const std::uint32_t u1 = 3 * u.face + (u.corner + 1) % 3;
+      if (sa == ua) {
+        fans.unite(s0, u0);
+        fans.unite(s1, u1);
+      } else {
+        fans.unite(s0, u1);
+        fans.unite(s1, u0);
+      }
+    }
+    i = j;
+  }
+}
+
+void count_duplicates(const TriangleSoup& soup, std::size_t max_examples, Topology& topo) {
+  std::vector<std::pair<Triangle, std::uint32_t>> sorted;
+  sorted.reserve(soup.triangles.size());
+  for (std::uint32_t f = 0; f < soup.triangles.size(); ++f) {
+    Triangle t = soup.triangles[f];
+    if (index_degenerate(t)) continue;
+    std::sort(t.begin(), t.end());
+    sorted.emplace_back(t, f);
+  }
+  tbb::parallel_sort(sorted.begin(), sorted.end());
+  for (std::size_t k = 1; k < sorted.size(); ++k) {
+    if (sorted[k].first != sorted[k - 1].first) continue;
+    const Triangle& t = sorted[k].first;
+    const Vec3 centroid = (soup.vertices[t[0]] + soup.vertices[t[1]] + soup.vertices[t[2]]) / 3.0;
+    topo.duplicate_faces.add(centroid, max_examples);
+  }
+}
+
+void count_components(const TriangleSoup& soup, const std::vector<Side>& sides, Topology& topo) {
+  const std::size_t nv = soup.vertices.size();
+  DisjointSets parts(nv);
+  std::vector<char> used(nv, 0);
+  for (const auto& t : soup.triangles) {
+    if (index_degenerate(t)) continue;
+    parts.unite(t[0], t[1]);
+    parts.unite(t[1], t[2]);
+    for (const std::uint32_t v : t) used[v] = 1;
+  }
+  constexpr std::uint32_t none = UINT32_MAX;
+  std::vector<std::uint32_t> component(nv, none);  // by root vertex
+  for (std::uint32_t v = 0; v < nv; ++v) {
+    if (!used[v]) continue;
+    ++topo.referenced_vertices;
+    const std::uint32_t r = parts.find(v);
+    if (component[r] == none) {
+      component[r] = static_cast<std::uint32_t>(topo.components++);
+      topo.euler_characteristics.push_back(0);
+    }
+    ++topo.euler_characteristics[component[r]];  // + V
+  }
+  for (std::size_t i = 0; i < sides.size(); ++i) {
+    if (i > 0 && sides[i].key == sides[i - 1].key) continue;
+    --topo.euler_characteristics[component[parts.find(static_cast<std::uint32_t>(sides[i].key >> 32))]];  // - E
+  }
+  for (const auto& t : soup.triangles) {
+    if (!index_degenerate(t)) ++topo.euler_characteristics[component[parts.find(t[0])]];  // + F
+  }
+}
+
+}  // namespace
+
+Topology analyse_topology(const TriangleSoup& soup, std::size_t max_examples) {
+  require_indices_in_range(soup);
+  Topology topo;
+  const std::vector<Side> sides = collect_sides(soup);
+  DisjointSets fans(3 * soup.triangles.size());
+  std::vector<char> on_complex_edge(soup.vertices.size(), 0);
+  classify_edges(soup, sides, max_examples, topo, fans, on_complex_edge);
+
+  // Each fan root is a corner; a vertex with more than one root has several fans.
+  std::vector<std::uint32_t> fan_count(soup.vertices.size(), 0);
+  for (std::uint32_t f = 0; f < soup.triangles.size(); ++f) {
+    if (index_degenerate(soup.triangles[f])) continue;
+    for (std::uint32_t k = 0; k < 3; ++k) {
+      if (fans.find(3 * f + k) == 3 * f + k) ++fan_count[soup.triangles[f][k]];
+    }
+  }
+  for (std::size_t v = 0; v < soup.vertices.size(); ++v) {
+    if (fan_count[v] > 1 || on_complex_edge[v]) topo.non_manifold_vertices.add(soup.vertices[v], max_examples);
+  }
+  count_duplicates(soup, max_examples, topo);
+  count_components(soup, sides, topo);
+  return topo;
+}
+
+}  // namespace fabmesh

@@ -1,0 +1,49 @@
+#pragma once
+// Combinatorial analysis of an indexed triangle soup: edges, fans,
+// orientation, components and Euler characteristics. Works on any soup,
+// including non-manifold ones (it builds its own edge map; nothing is refused).
+
+#include "geometry/mesh/soup.h"
+
+#include <cstddef>
+#include <vector>
+
+namespace fabmesh {
+
+/// How many times one kind of defect occurs, and where a few of them are.
+struct DefectCount {
+  std::size_t count = 0;
+  std::vector<Vec3> examples;  ///< up to the requested number of locations, model units
+
+  /// Counts one occurrence at `where`, keeping it as an example while fewer
+  /// than `max_examples` are kept.
+  void add(const Vec3& where, std::size_t max_examples);
+};
+
+/// The combinatorial facts of a soup. Index-degenerate triangles (a repeated
+/// index) are not triangles and take no part in any count here; duplicate
+/// faces do take part (their edges are shared by more than two faces).
+struct Topology {
+  std::size_t referenced_vertices = 0;  ///< vertices used by at least one counted face
+  std::size_t edges = 0;                ///< distinct undirected edges
+  DefectCount boundary_edges;           ///< edges with exactly one face (location: midpoint)
+  DefectCount non_manifold_edges;       ///< edges with three or more faces (midpoint)
+  /// Vertices whose faces form more than one fan, or that lie on a
+  /// non-manifold edge (location: the vertex).
+  DefectCount non_manifold_vertices;
+  /// Two-face edges that both faces traverse in the same direction (midpoint).
+  DefectCount inconsistent_edges;
+  /// Extra copies of a face with the same three vertices, in either
+  /// orientation (location: centroid); a face present k times counts k - 1.
+  DefectCount duplicate_faces;
+  std::size_t components = 0;  ///< connected components of faces sharing a vertex
+  /// V - E + F of each component, in order of each component's lowest vertex.
+  std::vector<long> euler_characteristics;
+};
+
+/// Analyses the connectivity of `soup` in O(n log n).
+/// \param max_examples  how many example locations to keep per defect kind
+/// \throw InputError when an index is out of range.
+Topology analyse_topology(const TriangleSoup& soup, std::size_t max_examples = 5);
+
+}  // namespace fabmesh

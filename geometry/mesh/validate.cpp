@@ -1,0 +1,208 @@
+#include "geometry/mesh/validate.h"
+
+#include "geometry/core/errors.h"
+#include "geometry/mesh/self_intersect.h"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <Eigen/Geometry>
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+
+namespace fabmesh {
+namespace {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+
+class StageTimer {
+ public:
+  explicit StageTimer(ValidationReport& report) : report_(report) {}
+  void stop(const std::string& stage) {
+    const auto now = std::chrono::steady_clock::now();
+    report_.timings_ms.emplace_back(stage, std::chrono::duration<double, std::milli>(now - start_).count());
+    start_ = now;
+  }
+
+ private:
+  ValidationReport& report_;
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+};
+
+bool finite(const Vec3& p) { return std::isfinite(p.x()) && std::isfinite(p.y()) && std::isfinite(p.z()); }
+
+void add_defect(ValidationReport& report, Defect kind, const DefectCount& found) {
+  if (found.count > 0) report.defects.push_back({kind, found.count, found.examples});
+}
+
+/// Area, signed volume and exact degeneracy; marks degenerate faces in `degenerate`.
+void measure(const TriangleSoup& soup, std::size_t max_examples, ValidationReport& report,
+             DefectCount& degenerate_found, std::vector<char>& degenerate) {
+  // Signed volume about the bounding-box centre: exact for closed meshes,
+  // and with less cancellation than about the origin.
+  Vec3 lo = Vec3::Constant(INFINITY);
+  Vec3 hi = Vec3::Constant(-INFINITY);
+  for (const Vec3& p : soup.vertices) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const Vec3 centre = soup.vertices.empty() ? Vec3::Zero() : Vec3(0.5 * (lo + hi));
+  double area = 0.0;
+  double volume6 = 0.0;
+  for (std::size_t f = 0; f < soup.triangles.size(); ++f) {
+    const auto& t = soup.triangles[f];
+    const Vec3& a = soup.vertices[t[0]];
+    const Vec3& b = soup.vertices[t[1]];
+    const Vec3& c = soup.vertices[t[2]];
+    const Vec3 n = (b - a).cross(c - a);
+    area += 0.5 * n.norm();
+    volume6 += (a - centre).dot((b - centre).cross(c - centre));
+    const bool repeated = t[0] == t[1] || t[1] == t[2] || t[2] == t[0];
+    if (repeated || CGAL::collinear(Kernel::Point_3(a.x(), a.y(), a.z()), Kernel::Point_3(b.x(), b.y(), b.z()),
+                                    Kernel::Point_3(c.x(), c.y(), c.z()))) {
+      degenerate[f] = 1;
+      degenerate_found.add((a + b + c) / 3.0, max_examples);
+    }
+  }
+  report.area = area;
+  report.volume = volume6 / 6.0;
+}
+
+void set_genus(ValidationReport& report, const Topology& topo) {
+  report.euler_characteristics = topo.euler_characteristics;
+  const bool closed_manifold = report.boundary_edges == 0 && report.non_manifold_edges == 0 &&
+                               report.non_manifold_vertices == 0 && report.consistently_oriented &&
+                               topo.components > 0;
+  if (!closed_manifold) return;
+  long genus = 0;
+  for (const long chi : topo.euler_characteristics) {
+    if (chi > 2 || (2 - chi) % 2 != 0) return;  // not a closed orientable surface
+    genus += (2 - chi) / 2;
+  }
+  report.genus = genus;
+}
+
+}  // namespace
+
+const char* to_string(Defect kind) {
+  switch (kind) {
+    case Defect::Empty: return "no faces";
+    case Defect::NonFiniteVertex: return "non-finite vertices";
+    case Defect::BoundaryEdge: return "boundary edges";
+    case Defect::NonManifoldEdge: return "non-manifold edges";
+    case Defect::NonManifoldVertex: return "non-manifold vertices";
+    case Defect::InconsistentOrientation: return "inconsistently oriented edges";
+    case Defect::InsideOut: return "inside-out (non-positive volume)";
+    case Defect::DegenerateFace: return "degenerate faces";
+    case Defect::DuplicateFace: return "duplicate faces";
+    case Defect::SelfIntersection: return "self-intersecting face pairs";
+  }
+  return "unknown defect";
+}
+
+const DefectReport* ValidationReport::find(Defect kind) const {
+  for (const DefectReport& d : defects) {
+    if (d.kind == kind) return &d;
+  }
+  return nullptr;
+}
+
+ValidationReport validate(const TriangleSoup& soup, const ValidateOptions& options) {
+  require_indices_in_range(soup);
+  ValidationReport report;
+  StageTimer timer(report);
+  report.vertices = soup.vertices.size();
+  report.triangles = soup.triangles.size();
+  const std::size_t max_examples = options.max_examples;
+  DefectCount non_finite;
+  for (const Vec3& p : soup.vertices) {
+    if (!finite(p)) non_finite.add(p, max_examples);
+  }
+  report.non_finite_vertices = non_finite.count;
+
+  const Topology topo = analyse_topology(soup, max_examples);
+  report.components = topo.components;
+  report.boundary_edges = topo.boundary_edges.count;
+  report.non_manifold_edges = topo.non_manifold_edges.count;
+  report.non_manifold_vertices = topo.non_manifold_vertices.count;
+  report.inconsistent_edges = topo.inconsistent_edges.count;
+  report.duplicate_faces = topo.duplicate_faces.count;
+  report.consistently_oriented = topo.inconsistent_edges.count == 0;
+  set_genus(report, topo);
+  timer.stop("topology");
+
+  DefectCount degenerate_found;
+  std::vector<char> degenerate(soup.triangles.size(), 0);
+  if (non_finite.count == 0) measure(soup, max_examples, report, degenerate_found, degenerate);
+  report.degenerate_faces = degenerate_found.count;
+  report.oriented_outward = report.volume > 0.0;
+  timer.stop("geometry");
+
+  DefectCount intersections;
+  if (options.check_self_intersections && non_finite.count == 0) {
+    SelfIntersectOptions si;
+    si.parallel = options.parallel;
+    si.max_pairs = max_examples;
+    const SelfIntersections found = find_self_intersections(soup, degenerate, si);
+    report.self_intersection_checked = true;
+    report.intersecting_pairs = found.count;
+    report.self_intersecting = found.count > 0;
+    intersections.count = found.count;
+    for (const auto& [f, g] : found.pairs) {
+      Vec3 mid = Vec3::Zero();
+      for (const std::uint32_t v : soup.triangles[f]) mid += soup.vertices[v];
+      for (const std::uint32_t v : soup.triangles[g]) mid += soup.vertices[v];
+      intersections.examples.push_back(mid / 6.0);  // between the two centroids
+    }
+  }
+  timer.stop("self_intersection");
+
+  if (soup.triangles.empty()) report.defects.push_back({Defect::Empty, 1, {}});
+  add_defect(report, Defect::NonFiniteVertex, non_finite);
+  add_defect(report, Defect::BoundaryEdge, topo.boundary_edges);
+  add_defect(report, Defect::NonManifoldEdge, topo.non_manifold_edges);
+  add_defect(report, Defect::NonManifoldVertex, topo.non_manifold_vertices);
+  add_defect(report, Defect::InconsistentOrientation, topo.inconsistent_edges);
+  const bool closed = !soup.triangles.empty() && report.boundary_edges == 0 && non_finite.count == 0;
+  if (closed && !report.oriented_outward) report.defects.push_back({Defect::InsideOut, 1, {}});
+  add_defect(report, Defect::DegenerateFace, degenerate_found);
+  add_defect(report, Defect::DuplicateFace, topo.duplicate_faces);
+  add_defect(report, Defect::SelfIntersection, intersections);
+  return report;
+}
+
+ValidationReport validate(const Mesh& mesh, const ValidateOptions& options) {
+  return validate(to_soup(mesh), options);
+}
+
+std::vector<std::string> describe_defects(const ValidationReport& report) {
+  std::vector<std::string> lines;
+  for (const DefectReport& d : report.defects) {
+    std::string line = d.kind == Defect::Empty || d.kind == Defect::InsideOut
+                           ? std::string(to_string(d.kind))
+                           : fmt::format("{} {}", d.count, to_string(d.kind));
+    if (d.kind == Defect::InsideOut) line += fmt::format(" (volume {:g})", report.volume);
+    if (!d.examples.empty()) {
+      line += " (e.g. at";
+      for (std::size_t i = 0; i < d.examples.size(); ++i) {
+        const Vec3& p = d.examples[i];
+        line += fmt::format("{} ({:g}, {:g}, {:g})", i == 0 ? "" : ",", p.x(), p.y(), p.z());
+      }
+      line += ")";
+    }
+    lines.push_back(std::move(line));
+  }
+  if (!report.self_intersection_checked && report.non_finite_vertices == 0) {
+    lines.emplace_back("self-intersection test not run");
+  }
+  return lines;
+}
+
+void require_valid(const ValidationReport& report, const std::string& what) {
+  if (report.valid()) return;
+  std::string message = fmt::format("{}: the mesh is not valid for fabrication", what);
+  for (const std::string& line : describe_defects(report)) message += "; " + line;
+  throw ValidationFailed(message);
+}
+
+}  // namespace fabmesh

@@ -1,0 +1,33 @@
+#pragma once
+// Welding: merge coincident vertices of a triangle soup (STL files repeat
+// every vertex once per triangle).
+
+#include "geometry/mesh/soup.h"
+
+#include <cstddef>
+
+namespace fabmesh {
+
+/// How close two vertices must be to merge.
+struct WeldOptions {
+  /// 0 (default): only exactly equal coordinates merge (+0.0 equals -0.0).
+  /// > 0: vertices within this Euclidean distance (model units) merge, and
+  /// merging is transitive (chains of close vertices become one vertex).
+  double tolerance = 0.0;
+};
+
+/// A welded soup and what welding did.
+struct WeldResult {
+  TriangleSoup soup;               ///< same triangles, indices into the merged vertices
+  std::size_t merged_vertices = 0; ///< input vertex count minus output vertex count
+};
+
+/// Merges coincident vertices of `soup`. Each merged vertex keeps the
+/// position of its lowest-index member; vertex order follows first
+/// occurrence. Triangles are kept as they are (a triangle whose corners merge
+/// becomes degenerate, for validation to report). Non-finite vertices never
+/// merge. \throw RangeError when tolerance is negative, not finite, or too
+/// small for the coordinates' magnitude; InputError when an index is out of range.
+WeldResult weld(const TriangleSoup& soup, const WeldOptions& options = {});
+
+}  // namespace fabmesh

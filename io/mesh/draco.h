@@ -1,0 +1,53 @@
+#pragma once
+// Draco (.drc): compressed triangle meshes, positions quantized.
+
+#include "geometry/core/types.h"
+#include "geometry/mesh/soup.h"
+
+#include <string>
+#include <string_view>
+
+namespace fabmesh {
+
+/// Options of the Draco writer.
+struct DracoOptions {
+  /// The largest distance (model units) any vertex may move through
+  /// float32 conversion and quantization; it chooses the quantization bits.
+  double tolerance = 0.01;
+  int encoding_speed = 5;  ///< 0 (best compression) .. 10 (fastest)
+  int decoding_speed = 5;  ///< 0 .. 10
+};
+
+/// Position quantization for one mesh: the bits and the error they allow.
+struct DracoQuantization {
+  int bits = 0;            ///< in [1, 30]
+  double max_error = 0.0;  ///< proven bound on any vertex's decoded displacement, model units
+};
+
+/// Upper bound on how far a vertex of a mesh with bounding box
+/// [lo, hi] (model units) moves when encoded with `bits` of position
+/// quantization: per axis, half a quantization step (max extent / (2^bits - 1))
+/// plus float32 rounding; times sqrt(3) for the Euclidean distance.
+double draco_max_error(const Vec3& lo, const Vec3& hi, int bits);
+
+/// The fewest quantization bits (in [1, 30]) whose draco_max_error is <=
+/// `tolerance`. \throw RangeError when tolerance is not > 0 or when even 30
+/// bits (or float32) cannot meet it for this bounding box.
+DracoQuantization draco_quantization(const Vec3& lo, const Vec3& hi, double tolerance);
+
+/// Decodes a Draco triangle mesh (positions only). \param name the path, for messages
+/// \throw FileError when the data is not a valid Draco mesh (a point cloud,
+/// corrupt data, no positions, a non-finite position).
+TriangleSoup parse_draco(std::string_view bytes, const std::string& name);
+
+/// Draco bytes of `soup`, quantized by draco_quantization(bbox, options.tolerance).
+/// \throw RangeError (tolerance), InputError (index out of range or the
+/// encoder refuses the mesh).
+std::string encode_draco(const TriangleSoup& soup, const DracoOptions& options = {});
+
+/// Writes `soup` (or `mesh`) as Draco to `path`, atomically.
+/// \throw as encode_draco, and FileError when the file cannot be written.
+void write_draco(const TriangleSoup& soup, const std::string& path, const DracoOptions& options = {});
+void write_draco(const Mesh& mesh, const std::string& path, const DracoOptions& options = {});
+
+}  // namespace fabmesh

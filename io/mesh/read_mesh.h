@@ -1,0 +1,32 @@
+#pragma once
+// Any supported mesh file in: the format is told by content.
+
+#include "geometry/mesh/soup.h"
+
+#include <string>
+#include <string_view>
+
+namespace fabmesh {
+
+/// The mesh file formats fabmesh reads.
+enum class MeshFormat { Stl, Obj, Ply, Off, Draco };
+
+/// "STL", "OBJ", "PLY", "OFF" or "Draco".
+const char* to_string(MeshFormat format);
+
+/// Tells the format of a mesh file by its content: "DRACO", "ply", "OFF"
+/// magic; a binary STL by its exact size; "solid" + text for ASCII STL; OBJ
+/// records. The extension only breaks ties (a binary STL whose size is wrong
+/// is still recognised by ".stl", to be rejected with the size mismatch).
+/// \throw FileError when the content matches no supported format.
+MeshFormat detect_format(std::string_view bytes, const std::string& path);
+
+/// Parses `bytes` in the detected format. \param path for detection ties and messages
+/// \throw FileError for anything malformed.
+TriangleSoup parse_mesh(std::string_view bytes, const std::string& path);
+
+/// Reads and parses the mesh file at `path`.
+/// \throw FileError when it cannot be read or is malformed.
+TriangleSoup read_mesh(const std::string& path);
+
+}  // namespace fabmesh

@@ -1,0 +1,173 @@
+#include "io/mesh/stl.h"
+
+#include "geometry/core/errors.h"
+#include "io/mesh/atomic_file.h"
+#include "io/mesh/text_scanner.h"
+
+#include <Eigen/Geometry>
+#include <fmt/format.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+
+namespace fabmesh {
+namespace {
+
+constexpr std::size_t kHeader = 84;
+constexpr std::size_t kRecord = 50;
+
+std::uint32_t read_u32(const char* p) {
+  unsigned char b[4];
+  std::memcpy(b, p, 4);
+  return std::uint32_t{b[0]} | std::uint32_t{b[1]} << 8 | std::uint32_t{b[2]} << 16 | std::uint32_t{b[3]} << 24;
+}
+
+float read_f32(const char* p) {
+  const std::uint32_t bits = read_u32(p);
+  float value;
+  std::memcpy(&value, &bits, 4);
+  return value;
+}
+
+void put_u32(std::string& out, std::uint32_t v) {
+  for (int i = 0; i < 4; ++i) out.push_back(static_cast<char>((v >> (8 * i)) & 0xffu));
+}
+
+void put_f32(std::string& out, float f) {
+  std::uint32_t bits;
+  std::memcpy(&bits, &f, 4);
+  put_u32(out, bits);
+}
+
+TriangleSoup parse_binary(std::string_view bytes, const std::string& name) {
+  if (bytes.size() < kHeader) {
+    throw FileError(name, 0, 0, fmt::format("{}: binary STL truncated: {} bytes, the header alone is 84", name,
+                                            bytes.size()));
+  }
+  const std::uint64_t n = read_u32(bytes.data() + 80);
+  const std::uint64_t expected = kHeader + kRecord * n;
+  if (expected != bytes.size()) {
+    throw FileError(name, 0, 0,
+                    fmt::format("{}: binary STL header says {} triangles ({} bytes) but the file has {} bytes",
+                                name, n, expected, bytes.size()));
+  }
+  if (3 * n > std::numeric_limits<std::uint32_t>::max()) {
+    throw FileError(name, 0, 0, fmt::format("{}: {} triangles are more than fabmesh can index", name, n));
+  }
+  TriangleSoup soup;
+  soup.vertices.reserve(3 * n);
+  soup.triangles.reserve(n);
+  for (std::uint64_t t = 0; t < n; ++t) {
+    const char* record = bytes.data() + kHeader + kRecord * t + 12;  // skip the normal
+    for (int c = 0; c < 3; ++c) {
+      Vec3 p;
+      for (int a = 0; a < 3; ++a) p[a] = read_f32(record + 12 * c + 4 * a);
+      if (!std::isfinite(p.x()) || !std::isfinite(p.y()) || !std::isfinite(p.z())) {
+        throw FileError(name, 0, 0, fmt::format("{}: triangle {} has a non-finite coordinate", name, t));
+      }
+      soup.vertices.push_back(p);
+    }
+    const auto v = static_cast<std::uint32_t>(3 * t);
+    soup.triangles.push_back({v, v + 1, v + 2});
+  }
+  return soup;
+}
+
+TriangleSoup parse_ascii(std::string_view bytes, const std::string& name) {
+  TextScanner scan(bytes, name);
+  TriangleSoup soup;
+  std::vector<Vec3> loop;
+  bool in_facet = false;
+  std::string_view line;
+  while (scan.next_content_line(line, '\0')) {
+    std::string_view rest = line;
+    const std::string_view key = next_token(rest);
+    if (key == "vertex") {
+      if (!in_facet) scan.fail("'vertex' outside a facet");
+      Vec3 p;
+      for (int a = 0; a < 3; ++a) p[a] = scan.to_double(next_token(rest), "vertex coordinate");
+      loop.push_back(p);
+    } else if (key == "facet") {
+      if (in_facet) scan.fail("'facet' inside another facet (missing 'endfacet')");
+      in_facet = true;
+      loop.clear();
+    } else if (key == "endfacet") {
+      if (!in_facet) scan.fail("'endfacet' without 'facet'");
+      if (loop.size() < 3) scan.fail(fmt::format("facet has {} vertices, needs at least 3", loop.size()));
+      if (soup.vertices.size() + loop.size() > std::numeric_limits<std::uint32_t>::max()) {
+        scan.fail("more vertices than fabmesh can index");
+      }
+      const auto first = static_cast<std::uint32_t>(soup.vertices.size());
+      soup.vertices.insert(soup.vertices.end(), loop.begin(), loop.end());
+      for (std::uint32_t k = 1; k + 1 < loop.size(); ++k) soup.triangles.push_back({first, first + k, first + k + 1});
+      in_facet = false;
+    } else if (key == "outer" || key == "endloop") {
+      if (!in_facet) scan.fail(fmt::format("'{}' outside a facet", key));
+    } else if (key == "solid" || key == "endsolid") {
+      if (in_facet) scan.fail(fmt::format("'{}' inside a facet", key));
+    } else {
+      scan.fail(fmt::format("unexpected '{}' in an ASCII STL", std::string(key.substr(0, 40))));
+    }
+  }
+  if (in_facet) scan.fail("file ends inside a facet (truncated)");
+  return soup;
+}
+
+}  // namespace
+
+bool is_binary_stl(std::string_view bytes) {
+  return bytes.size() >= kHeader && kHeader + kRecord * std::uint64_t{read_u32(bytes.data() + 80)} == bytes.size();
+}
+
+bool looks_like_ascii_stl(std::string_view bytes) {
+  std::size_t i = 0;
+  while (i < bytes.size() && (bytes[i] == ' ' || bytes[i] == '\t' || bytes[i] == '\r' || bytes[i] == '\n')) ++i;
+  if (bytes.substr(i, 5) != "solid") return false;
+  for (std::size_t k = 0; k < bytes.size() && k < 512; ++k) {
+    const auto c = static_cast<unsigned char>(bytes[k]);
+    if (c < 9 || (c > 13 && c < 32) || c == 127) return false;
+  }
+  return true;
+}
+
+TriangleSoup parse_stl(std::string_view bytes, const std::string& name) {
+  if (is_binary_stl(bytes)) return parse_binary(bytes, name);
+  if (looks_like_ascii_stl(bytes)) return parse_ascii(bytes, name);
+  return parse_binary(bytes, name);  // fails with the size mismatch
+}
+
+std::string encode_stl(const TriangleSoup& soup) {
+  require_indices_in_range(soup);
+  if (soup.triangles.size() > std::numeric_limits<std::uint32_t>::max()) {
+    throw InputError(fmt::format("binary STL cannot hold {} triangles", soup.triangles.size()));
+  }
+  std::string out;
+  out.reserve(kHeader + kRecord * soup.triangles.size());
+  std::string header = "binary STL written by fabmesh";
+  header.resize(80, ' ');
+  out += header;
+  put_u32(out, static_cast<std::uint32_t>(soup.triangles.size()));
+  for (const auto& t : soup.triangles) {
+    const Vec3& a = soup.vertices[t[0]];
+    const Vec3& b = soup.vertices[t[1]];
+    const Vec3& c = soup.vertices[t[2]];
+    const Vec3 n = (b - a).cross(c - a);
+    const double len = n.norm();
+    const Vec3 unit = len > 0.0 ? Vec3(n / len) : Vec3::Zero();
+    for (int k = 0; k < 3; ++k) put_f32(out, static_cast<float>(unit[k]));
+    for (const Vec3* p : {&a, &b, &c}) {
+      for (int k = 0; k < 3; ++k) put_f32(out, static_cast<float>((*p)[k]));
+    }
+    out.push_back('\0');
+    out.push_back('\0');
+  }
+  return out;
+}
+
+void write_stl(const TriangleSoup& soup, const std::string& path) { write_file_atomically(path, encode_stl(soup)); }
+
+void write_stl(const Mesh& mesh, const std::string& path) { write_stl(to_soup(mesh), path); }
+
+}  // namespace fabmesh

@@ -1,0 +1,149 @@
+// `fabmesh check MESH... [--json] [--weld-tolerance X]`: validates mesh files
+// made anywhere. Exit 0 when every mesh is valid, 1 when any is invalid, 2
+// when any cannot be read.
+
+#include "geometry/core/errors.h"
+#include "geometry/mesh/validate.h"
+#include "geometry/mesh/weld.h"
+#include "io/mesh/read_mesh.h"
+#include "pipeline/cli/commands.h"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace fabmesh::cli {
+namespace {
+
+struct CheckArgs {
+  std::vector<std::string> files;
+  bool json = false;
+  double weld_tolerance = 0.0;
+};
+
+/// The outcome for one file: a report, or why it could not be read.
+struct FileCheck {
+  std::string file;
+  std::optional<ValidationReport> report;
+  std::size_t welded_vertices = 0;
+  std::string error;
+};
+
+double ms_since(std::chrono::steady_clock::time_point& start) {
+  const auto now = std::chrono::steady_clock::now();
+  const double ms = std::chrono::duration<double, std::milli>(now - start).count();
+  start = now;
+  return ms;
+}
+
+FileCheck check_file(const std::string& path, double weld_tolerance) {
+  FileCheck result{path, std::nullopt, 0, {}};
+  try {
+    auto clock = std::chrono::steady_clock::now();
+    const TriangleSoup soup = read_mesh(path);
+    const double read_ms = ms_since(clock);
+    WeldResult welded = weld(soup, WeldOptions{weld_tolerance});
+    const double weld_ms = ms_since(clock);
+    ValidationReport report = validate(welded.soup);
+    report.timings_ms.insert(report.timings_ms.begin(), {{"read", read_ms}, {"weld", weld_ms}});
+    result.report = std::move(report);
+    result.welded_vertices = welded.merged_vertices;
+  } catch (const InputError& e) {
+    result.error = e.what();
+  }
+  return result;
+}
+
+nlohmann::ordered_json to_json(const FileCheck& check) {
+  nlohmann::ordered_json j;
+  j["file"] = check.file;
+  if (!check.report) {
+    j["error"] = check.error;
+    j["valid"] = false;
+    return j;
+  }
+  const ValidationReport& r = *check.report;
+  j["vertices"] = r.vertices;
+  j["triangles"] = r.triangles;
+  j["components"] = r.components;
+  j["boundary_edges"] = r.boundary_edges;
+  j["non_manifold_edges"] = r.non_manifold_edges;
+  j["non_manifold_vertices"] = r.non_manifold_vertices;
+  j["degenerate_faces"] = r.degenerate_faces;
+  j["duplicate_faces"] = r.duplicate_faces;
+  j["self_intersecting"] = r.self_intersecting;
+  j["oriented_outward"] = r.oriented_outward;
+  j["volume"] = r.volume;
+  j["area"] = r.area;
+  j["genus"] = r.genus ? nlohmann::ordered_json(*r.genus) : nlohmann::ordered_json(nullptr);
+  j["valid"] = r.valid();
+  j["welded_vertices"] = check.welded_vertices;
+  j["consistently_oriented"] = r.consistently_oriented;
+  j["intersecting_pairs"] = r.intersecting_pairs;
+  j["defects"] = describe_defects(r);
+  nlohmann::ordered_json timings = nlohmann::ordered_json::object();
+  for (const auto& [stage, ms] : r.timings_ms) timings[stage] = ms;
+  j["timings_ms"] = timings;
+  return j;
+}
+
+std::string human_verdict(const FileCheck& check) {
+  if (!check.report) return fmt::format("{}: UNREADABLE: {}\n", check.file, check.error);
+  const ValidationReport& r = *check.report;
+  std::string text = fmt::format("{}: {} ({} vertices, {} triangles, {} component{}", check.file,
+                                 r.valid() ? "valid" : "INVALID", r.vertices, r.triangles, r.components,
+                                 r.components == 1 ? "" : "s");
+  if (r.genus) text += fmt::format(", genus {}", *r.genus);
+  text += fmt::format(", volume {:g}, area {:g}; weld merged {} vertices)\n", r.volume, r.area, check.welded_vertices);
+  for (const std::string& line : describe_defects(r)) text += "  - " + line + "\n";
+  return text;
+}
+
+int run_check(const CheckArgs& args, Streams streams) {
+  if (args.weld_tolerance != 0.0) require_positive("--weld-tolerance", args.weld_tolerance);
+  std::vector<FileCheck> checks;
+  int code = 0;
+  for (const std::string& file : args.files) {
+    checks.push_back(check_file(file, args.weld_tolerance));
+    const FileCheck& c = checks.back();
+    if (!c.report) {
+      streams.err << fmt::format("fabmesh: error: {}\n", c.error);
+      code = 2;
+    } else if (!c.report->valid() && code == 0) {
+      code = 1;
+    }
+    if (!args.json) streams.out << human_verdict(c);
+  }
+  if (args.json) {
+    nlohmann::ordered_json out;
+    if (checks.size() == 1) {
+      out = to_json(checks.front());
+    } else {
+      out = nlohmann::ordered_json::array();
+      for (const FileCheck& c : checks) out.push_back(to_json(c));
+    }
+    streams.out << out.dump(2) << "\n";
+  }
+  return code;
+}
+
+}  // namespace
+
+Runner add_check_command(CLI::App& app) {
+  auto args = std::make_shared<CheckArgs>();
+  CLI::App* cmd = app.add_subcommand("check", "Validate mesh files (STL, OBJ, PLY, OFF, Draco) for fabrication");
+  cmd->add_option("MESH", args->files, "Mesh files to check; the format is told by content")->required();
+  cmd->add_flag("--json", args->json, "Print a JSON report per file (an array for several files)");
+  cmd->add_option("--weld-tolerance", args->weld_tolerance,
+                  "Merge vertices closer than this (model units) before judging topology; default 0: only "
+                  "exactly equal coordinates merge")
+      ->check(CLI::NonNegativeNumber);
+  return [args](Streams streams) { return run_check(*args, streams); };
+}
+
+}  // namespace fabmesh::cli
