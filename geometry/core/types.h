@@ -2,6 +2,7 @@
 // Plain value types shared by every geometry stage.
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 
 #include <vector>

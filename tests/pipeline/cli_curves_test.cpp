@@ -1,0 +1,93 @@
+#include <catch2/catch.hpp>
+
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+#include "pipeline/cli/commands.h"
+
+using namespace fabmesh;
+
+namespace {
+
+struct Result {
+  int code;
+  std::string out, err;
+};
+
+Result run(std::vector<std::string> args) {
+  args.insert(args.begin(), "fabmesh");
+  std::vector<const char*> argv;
+  for (const auto& a : args) argv.push_back(a.c_str());
+  std::ostringstream out, err;
+  const int code = cli::run_app(static_cast<int>(argv.size()), argv.data(), {out, err});
+  return {code, out.str(), err.str()};
+}
+
+std::string example(const std::string& name) { return std::string(FABMESH_SOURCE_DIR) + "/configs/examples/" + name; }
+
+std::string write_temp(const std::string& name, const std::string& text) {
+  const std::string path = std::string(FABMESH_TEST_TMP) + "/" + name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+}  // namespace
+
+TEST_CASE("cli optimize --json: Example 4 strain lambdas", "[pipeline][cli]") {
+  const Result r = run({"optimize", example("example4_profile.yaml"), "--json"});
+  REQUIRE(r.code == 0);
+  const auto j = nlohmann::json::parse(r.out);
+  CHECK(j["family"] == "quasi_bspline");
+  CHECK(j["energy_kind"] == "strain");
+  REQUIRE(j["lambdas"].size() == 3);
+  CHECK(j["lambdas"][0].get<double>() == Approx(-1.9492).margin(5e-5));
+  CHECK(j["energy"].get<double>() > 0.0);
+}
+
+TEST_CASE("cli optimize --json: T-Bezier segments with lambda, mu, energy", "[pipeline][cli]") {
+  const Result r = run({"optimize", example("tbezier_outline_g2.yaml"), "--json"});
+  REQUIRE(r.code == 0);
+  const auto j = nlohmann::json::parse(r.out);
+  CHECK(j["family"] == "tbezier");
+  REQUIRE(j["segments"].size() >= 4);
+  for (const auto& s : j["segments"]) {
+    CHECK(s["lambda"].get<double>() >= -2.0);
+    CHECK(s["lambda"].get<double>() <= 1.0);
+    CHECK(s["mu"].get<double>() >= -2.0);
+    CHECK(s["mu"].get<double>() <= 1.0);
+  }
+  // G1 joins survive fairing (joined points stay on the tangent ray).
+  for (const auto& jt : j["joints"]) {
+    if (jt["declared"] == "G1") CHECK(jt["continuity_lost"] == false);
+  }
+}
+
+TEST_CASE("cli sample --csv: every example samples within its tolerance", "[pipeline][cli]") {
+  for (const char* name : {"example4_profile.yaml", "golden_profile.yaml", "tbezier_outline_g2.yaml",
+                           "hbezier_composite.yaml", "countertop_outline_g1.yaml"}) {
+    const Result r = run({"sample", example(name), "--csv"});
+    INFO(name << ": " << r.err);
+    REQUIRE(r.code == 0);
+    CHECK(r.out.rfind("curve,x,y\n", 0) == 0);
+    CHECK(std::count(r.out.begin(), r.out.end(), '\n') > 10);
+  }
+}
+
+TEST_CASE("cli exit codes: bad input is 2 with a located message, --help is 0", "[pipeline][cli][errors]") {
+  CHECK(run({"--help"}).code == 0);
+  CHECK(run({"sample", "--help"}).code == 0);
+  const Result missing = run({"sample", "/nonexistent/design.yaml"});
+  CHECK(missing.code == 2);
+  CHECK_THAT(missing.err, Catch::Contains("cannot open"));
+  const std::string bad = write_temp("bad_lambda.yaml",
+                                     "kind: curve\ncurve:\n  family: tbezier\n  segments:\n"
+                                     "    - points: [[0,0],[1,1],[2,1],[3,0]]\n      lambda: 3\n");
+  const Result r = run({"optimize", bad});
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err, Catch::Contains("bad_lambda.yaml:5:7") && Catch::Contains("lambda = 3"));
+  CHECK(run({"sample"}).code == 2);
+  CHECK(run({"frobnicate"}).code == 2);
+}
