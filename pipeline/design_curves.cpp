@@ -9,6 +9,7 @@ std::vector<NamedCurve> design_curves(const Design& design) {
       [](const auto& body) -> std::vector<NamedCurve> {
         using T = std::decay_t<decltype(body)>;
         if constexpr (std::is_same_v<T, CurveDesign>) return {{"curve", body.curve}};
+        if constexpr (std::is_same_v<T, VesselDesign>) return {{"profile", body.profile}};
       },
       design.body);
 }

@@ -87,18 +87,22 @@ std::vector<double> sample_segment_parameters(const Segment& seg, const SampleOp
   return params;
 }
 
-Polyline2 sample_curve(const CompositeCurve& curve, const SampleOptions& options) {
+Polyline2 sample_curve(const CompositeCurve& curve, const SampleOptions& options, std::vector<CurveParam>* params) {
   require_positive("tolerance", options.tolerance);
+  if (params) params->clear();
   Polyline2 out;
   out.closed = curve.closed();
   double worst = 0.0, worst_gap = 0.0;
   const auto& segs = curve.segments();
   for (std::size_t i = 0; i < segs.size(); ++i) {
     double achieved = 0.0;
-    const auto params = sample_segment_parameters(segs[i], options, &achieved);
+    const auto seg_params = sample_segment_parameters(segs[i], options, &achieved);
     worst = std::max(worst, achieved);
     // Each segment contributes its start and interior samples; the end is the next one's start.
-    for (std::size_t k = 0; k + 1 < params.size(); ++k) out.points.push_back(segs[i].point(params[k]));
+    for (std::size_t k = 0; k + 1 < seg_params.size(); ++k) {
+      out.points.push_back(segs[i].point(seg_params[k]));
+      if (params) params->push_back({i, seg_params[k]});
+    }
     const Vec2 end = segs[i].point(1.0);
     const bool last = i + 1 == segs.size();
     if (!last || curve.closed()) {
@@ -106,6 +110,7 @@ Polyline2 sample_curve(const CompositeCurve& curve, const SampleOptions& options
       worst_gap = std::max(worst_gap, (end - next_start).norm());
     } else {
       out.points.push_back(end);
+      if (params) params->push_back({i, 1.0});
     }
     if (out.points.size() > options.max_points) {
       throw BudgetError(static_cast<double>(out.points.size()), static_cast<double>(options.max_points),

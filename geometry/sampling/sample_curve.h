@@ -24,10 +24,18 @@ struct SampleOptions {
 std::vector<double> sample_segment_parameters(const Segment& segment, const SampleOptions& options,
                                               double* achieved = nullptr);
 
+/// Where on the curve a polyline point lies: segment index and parameter s.
+struct CurveParam {
+  std::size_t segment = 0;
+  double s = 0.0;
+};
+
 /// Samples a composite curve. Joint points appear once; a closed curve's
 /// polyline does not repeat its first point. max_deviation is the proven
-/// bound actually achieved (<= tolerance, plus any joint gap).
+/// bound actually achieved (<= tolerance, plus any joint gap). When `params`
+/// is given it receives the curve parameter of every polyline point.
 /// \throw RangeError for a bad tolerance, BudgetError over the point budget.
-Polyline2 sample_curve(const CompositeCurve& curve, const SampleOptions& options);
+Polyline2 sample_curve(const CompositeCurve& curve, const SampleOptions& options,
+                       std::vector<CurveParam>* params = nullptr);
 
 }  // namespace fabmesh

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "geometry/curves/curve_spec.h"
+#include "geometry/section/vessel_section.h"
 
 namespace fabmesh {
 
@@ -24,7 +25,16 @@ struct CurveDesign {
   CurveSpec curve;
 };
 
-using DesignBody = std::variant<CurveDesign>;
+/// kind: vessel. The profile lies in the (radius, height) plane.
+struct VesselDesign {
+  CurveSpec profile;
+  BodyMode mode = BodyMode::Solid;
+  double wall = 0.0;                     ///< shell: > 0
+  double base = 0.0;                     ///< shell: > 0 (default: wall)
+  std::size_t max_triangles = 20000000;  ///< budget (key `max_triangles`)
+};
+
+using DesignBody = std::variant<CurveDesign, VesselDesign>;
 
 struct Design {
   DesignCommon common;

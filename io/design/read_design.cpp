@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -34,6 +35,36 @@ DesignCommon read_common(const yaml::Fields& f, const YAML::Node& root) {
   return c;
 }
 
+VesselDesign read_vessel(const yaml::Fields& f, const YAML::Node& root) {
+  f.require_map(root, "", {"name", "kind", "units", "tolerance", "outputs", "profile", "body", "max_triangles"});
+  VesselDesign v;
+  v.profile = read_curve(f, f.required(root, "profile", "profile"), "profile");
+  const YAML::Node body = f.required(root, "body", "body");
+  f.require_map(body, "body", {"mode", "wall", "base"});
+  const std::string mode = f.choice(f.required(body, "mode", "body"), "body.mode", {"solid", "shell"});
+  v.mode = mode == "shell" ? BodyMode::Shell : BodyMode::Solid;
+  if (v.mode == BodyMode::Shell) {
+    const YAML::Node wall = f.required(body, "wall", "body");
+    v.wall = f.number(wall, "body.wall");
+    if (v.wall <= 0.0) f.fail(wall, "body.wall", fmt::format("wall = {} must be > 0", v.wall));
+    v.base = f.number_or(body, "base", "body.base", v.wall);
+    if (v.base <= 0.0) f.fail(body["base"], "body.base", fmt::format("base = {} must be > 0", v.base));
+  } else {
+    for (const char* key : {"wall", "base"}) {
+      if (body[key].IsDefined()) f.fail(body[key], std::string("body.") + key, "a solid body has no wall or base");
+    }
+  }
+  if (root["max_triangles"].IsDefined()) {
+    const double budget = f.number(root["max_triangles"], "max_triangles");
+    if (budget < 1.0 || budget > 2e9 || budget != std::floor(budget)) {
+      f.fail(root["max_triangles"], "max_triangles", fmt::format("max_triangles = {} must be a whole number in "
+                                                                 "[1, 2e9]", budget));
+    }
+    v.max_triangles = static_cast<std::size_t>(budget);
+  }
+  return v;
+}
+
 }  // namespace
 
 Design parse_design(const std::string& text, const std::string& path) {
@@ -51,6 +82,10 @@ Design parse_design(const std::string& text, const std::string& path) {
   if (d.common.kind == "curve") {
     f.require_map(root, "", {"name", "kind", "units", "tolerance", "outputs", "curve"});
     d.body = CurveDesign{read_curve(f, f.required(root, "curve", "curve"), "curve")};
+    return d;
+  }
+  if (d.common.kind == "vessel") {
+    d.body = read_vessel(f, root);
     return d;
   }
   f.fail(root["kind"], "kind", fmt::format("kind '{}' is not available in this version of fabmesh", d.common.kind));

@@ -30,6 +30,7 @@ int run_app(int argc, const char* const* argv, Streams streams) {
   add(&add_check_command);
   add(&add_sample_command);
   add(&add_optimize_command);
+  add(&add_run_command);
 
   try {
     app.parse(argc, argv);
@@ -43,11 +44,8 @@ int run_app(int argc, const char* const* argv, Streams streams) {
   for (const auto& [sub, runner] : runners) {
     if (sub->parsed()) chosen = sub;
   }
-  if (chosen == nullptr) {
-    streams.out << app.help();
-    return 0;
-  }
   try {
+    if (chosen == nullptr) return run_bundled_example(streams);
     return runners.at(chosen)(streams);
   } catch (const InputError& e) {
     return report_error(streams, "error", e, 2);

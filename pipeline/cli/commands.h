@@ -22,6 +22,10 @@ using Runner = std::function<int(Streams)>;
 Runner add_check_command(CLI::App& app);  ///< `fabmesh check MESH... [--json] [--weld-tolerance X]`
 Runner add_sample_command(CLI::App& app);
 Runner add_optimize_command(CLI::App& app);
+Runner add_run_command(CLI::App& app);
+
+/// `fabmesh` without arguments: runs the bundled vessel example into ./out.
+int run_bundled_example(Streams streams);
 
 /// Parses argv, runs the chosen command and maps exceptions to exit codes:
 /// InputError -> 2, ValidationFailed -> 1, anything else -> 3.

@@ -1,0 +1,153 @@
+#include "pipeline/job.h"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <filesystem>
+
+#include "geometry/core/errors.h"
+#include "geometry/fairing/fair_curve.h"
+#include "geometry/mesh/constructed_validation.h"
+#include "geometry/mesh/soup.h"
+#include "geometry/mesh/vessel.h"
+#include "io/mesh/atomic_file.h"
+#include "io/mesh/draco.h"
+#include "io/mesh/obj.h"
+#include "io/mesh/off.h"
+#include "io/mesh/ply.h"
+#include "io/mesh/stl.h"
+
+namespace fabmesh {
+namespace {
+
+// Share of the tolerance kept for output quantization (Draco, float32 STL).
+constexpr double kOutputShare = 0.1;
+
+class Stopwatch {
+ public:
+  explicit Stopwatch(std::vector<std::pair<std::string, double>>& log) : log_(log) {}
+  void lap(const std::string& stage) {
+    const auto now = std::chrono::steady_clock::now();
+    log_.emplace_back(stage, std::chrono::duration<double, std::milli>(now - start_).count());
+    start_ = now;
+  }
+
+ private:
+  std::vector<std::pair<std::string, double>>& log_;
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+};
+
+struct BuiltMesh {
+  Mesh mesh;
+  double max_deviation = 0.0;
+  std::string embedding_proof;
+};
+
+BuiltMesh build_mesh(const Design& design, double tolerance, Stopwatch& watch) {
+  if (const auto* v = std::get_if<VesselDesign>(&design.body)) {
+    const BuiltCurve profile = build_curve(v->profile);
+    watch.lap("curve");
+    VesselOptions options;
+    options.mode = v->mode;
+    options.wall = v->wall;
+    options.base = v->base;
+    options.tolerance = tolerance;
+    options.max_triangles = v->max_triangles;
+    VesselMesh vessel = build_vessel(profile.curve, options);
+    watch.lap("build");
+    return {std::move(vessel.mesh), vessel.max_deviation, vessel.embedding_proof};
+  }
+  throw InputError(fmt::format("{}: a {} design has no mesh to run; use `fabmesh sample` or `fabmesh optimize`",
+                               design.common.path, design.common.kind));
+}
+
+// Draco bytes whose decoded mesh moves no vertex more than `tolerance` and is
+// still valid: quantization may not collapse or fold faces, so the decoded
+// soup is validated, with more bits until it passes.
+std::string draco_bytes(const TriangleSoup& soup, double tolerance, const std::string& what) {
+  DracoOptions options;
+  options.tolerance = tolerance;
+  for (int attempt = 0; attempt < 24; ++attempt) {
+    const std::string bytes = encode_draco(soup, options);
+    const ValidationReport decoded = validate(parse_draco(bytes, what));
+    if (decoded.valid()) return bytes;
+    options.tolerance *= 0.5;  // one more bit of quantization
+  }
+  throw ValidationFailed(what + ": no Draco quantization keeps the decoded mesh valid");
+}
+
+}  // namespace
+
+JobReport run_job(const Design& design, const JobOptions& options) {
+  JobReport report;
+  report.name = design.common.name;
+  report.kind = design.common.kind;
+  report.tolerance = design.common.tolerance;
+  Stopwatch watch(report.timings_ms);
+  const double build_tolerance = (1.0 - kOutputShare) * design.common.tolerance;
+  BuiltMesh built = build_mesh(design, build_tolerance, watch);
+  report.max_deviation = built.max_deviation;
+  report.embedding_proof = built.embedding_proof;
+
+  report.validation = built.embedding_proof.empty() ? validate(built.mesh) : validate_constructed(built.mesh, built.embedding_proof);
+  watch.lap("validate");
+  require_valid(report.validation, fmt::format("{} '{}'", design.common.kind, design.common.name));
+
+  std::error_code ec;
+  std::filesystem::create_directories(options.out_dir, ec);
+  if (ec) throw FileError(options.out_dir, 0, 0, fmt::format("{}: cannot create output folder: {}", options.out_dir, ec.message()));
+  const TriangleSoup soup = to_soup(built.mesh);
+  // The Draco encoding gets the tolerance the build left unused.
+  const double output_tolerance = design.common.tolerance - built.max_deviation;
+  std::vector<std::pair<std::string, std::string>> files;  // path, bytes: all encoded before any is written
+  for (const std::string& format : design.common.outputs) {
+    const std::string path = (std::filesystem::path(options.out_dir) / (design.common.name + "." + format)).string();
+    if (format == "stl") {
+      files.emplace_back(path, encode_stl(soup));
+    } else if (format == "drc") {
+      files.emplace_back(path, draco_bytes(soup, output_tolerance, path));
+    } else if (format == "obj") {
+      files.emplace_back(path, encode_obj(soup));
+    } else if (format == "ply") {
+      files.emplace_back(path, encode_ply(soup));
+    } else if (format == "off") {
+      files.emplace_back(path, encode_off(soup));
+    } else {
+      throw InputError(fmt::format("{}: unknown output format '{}'", design.common.path, format));
+    }
+    watch.lap("encode_" + format);
+  }
+  for (const auto& [path, bytes] : files) {
+    write_file_atomically(path, bytes);
+    report.outputs.push_back(path);
+  }
+  watch.lap("write");
+  return report;
+}
+
+nlohmann::json to_json(const JobReport& r) {
+  const ValidationReport& v = r.validation;
+  nlohmann::json timings = nlohmann::json::object();
+  for (const auto& [stage, ms] : r.timings_ms) timings[stage] = ms;
+  for (const auto& [stage, ms] : v.timings_ms) timings["validate." + stage] = ms;
+  nlohmann::json j = {{"name", r.name},
+                      {"kind", r.kind},
+                      {"outputs", r.outputs},
+                      {"vertices", v.vertices},
+                      {"triangles", v.triangles},
+                      {"volume", v.volume},
+                      {"area", v.area},
+                      {"watertight", v.boundary_edges == 0 && v.non_manifold_edges == 0},
+                      {"manifold", v.non_manifold_edges == 0 && v.non_manifold_vertices == 0},
+                      {"self_intersecting", v.self_intersecting},
+                      {"max_deviation", r.max_deviation},
+                      {"tolerance", r.tolerance},
+                      {"genus", v.genus ? nlohmann::json(*v.genus) : nlohmann::json(nullptr)},
+                      {"components", v.components},
+                      {"valid", v.valid()},
+                      {"timings_ms", timings}};
+  if (!r.embedding_proof.empty()) j["self_intersection_proof"] = r.embedding_proof;
+  return j;
+}
+
+}  // namespace fabmesh
