@@ -41,6 +41,7 @@ struct BuiltMesh {
   Mesh mesh;
   double max_deviation = 0.0;
   std::string embedding_proof;
+  nlohmann::json build;
 };
 
 BuiltMesh build_mesh(const Design& design, double tolerance, Stopwatch& watch) {
@@ -55,7 +56,10 @@ BuiltMesh build_mesh(const Design& design, double tolerance, Stopwatch& watch) {
     options.max_triangles = v->max_triangles;
     VesselMesh vessel = build_vessel(profile.curve, options);
     watch.lap("build");
-    return {std::move(vessel.mesh), vessel.max_deviation, vessel.embedding_proof};
+    nlohmann::json facts = {{"angular_segments", vessel.segments},
+                            {"section_points", vessel.section.loop.size()},
+                            {"max_radius", vessel.section.max_radius}};
+    return {std::move(vessel.mesh), vessel.max_deviation, vessel.embedding_proof, std::move(facts)};
   }
   throw InputError(fmt::format("{}: a {} design has no mesh to run; use `fabmesh sample` or `fabmesh optimize`",
                                design.common.path, design.common.kind));
@@ -88,6 +92,7 @@ JobReport run_job(const Design& design, const JobOptions& options) {
   BuiltMesh built = build_mesh(design, build_tolerance, watch);
   report.max_deviation = built.max_deviation;
   report.embedding_proof = built.embedding_proof;
+  report.build = built.build;
 
   report.validation = built.embedding_proof.empty() ? validate(built.mesh) : validate_constructed(built.mesh, built.embedding_proof);
   watch.lap("validate");
@@ -147,6 +152,7 @@ nlohmann::json to_json(const JobReport& r) {
                       {"valid", v.valid()},
                       {"timings_ms", timings}};
   if (!r.embedding_proof.empty()) j["self_intersection_proof"] = r.embedding_proof;
+  if (!r.build.is_null()) j["build"] = r.build;
   return j;
 }
 

@@ -25,6 +25,7 @@ struct JobReport {
   double max_deviation = 0.0;         ///< proven bound of the mesh against the exact surface
   double tolerance = 0.0;
   std::string embedding_proof;        ///< when self-intersection is excluded by construction
+  nlohmann::json build;               ///< builder facts, e.g. {"angular_segments": 128, "section_points": 90}
   std::vector<std::pair<std::string, double>> timings_ms;
 };
 
