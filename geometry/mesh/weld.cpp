@@ -3,6 +3,7 @@
 #include "geometry/core/errors.h"
 
 #include <fmt/format.h>
+#include <tbb/parallel_sort.h>
 
 #include <algorithm>
 #include <cmath>
@@ -28,7 +29,7 @@ std::vector<std::uint32_t> exact_groups(const std::vector<Vec3>& vertices) {
     const Vec3& p = vertices[i];
     return std::array<double, 3>{p.x() + 0.0, p.y() + 0.0, p.z() + 0.0};
   };
-  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+  tbb::parallel_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
     const auto ka = key(a);
     const auto kb = key(b);
     return ka != kb ? ka < kb : a < b;
