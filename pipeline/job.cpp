@@ -57,7 +57,12 @@ BuiltMesh build_mesh(const Design& design, double tolerance, Stopwatch& watch) {
     VesselMesh vessel = build_vessel(profile.curve, options);
     watch.lap("build");
     nlohmann::json facts = {{"angular_segments", vessel.segments},
-                            {"section_points", vessel.section.loop.size()},
+                            {"section_loops", vessel.section.loops.size()},
+                            {"section_points", [&] {
+                               std::size_t n = 0;
+                               for (const auto& l : vessel.section.loops) n += l.size();
+                               return n;
+                             }()},
                             {"max_radius", vessel.section.max_radius}};
     return {std::move(vessel.mesh), vessel.max_deviation, vessel.embedding_proof, std::move(facts)};
   }

@@ -16,35 +16,23 @@ int angular_segments(double max_radius, double tolerance) {
   return static_cast<int>(std::max(3.0, std::min(n, 1e9)));
 }
 
-std::size_t revolved_triangle_count(const std::vector<Vec2>& loop, int segments) {
+std::size_t revolved_triangle_count(const std::vector<std::vector<Vec2>>& loops, int segments) {
   std::size_t per_slice = 0;
-  for (std::size_t i = 0; i < loop.size(); ++i) {
-    const bool a = loop[i].x() == 0.0, b = loop[(i + 1) % loop.size()].x() == 0.0;
-    per_slice += (a && b) ? 0 : (a || b) ? 1 : 2;
+  for (const auto& loop : loops) {
+    for (std::size_t i = 0; i < loop.size(); ++i) {
+      const bool a = loop[i].x() == 0.0, b = loop[(i + 1) % loop.size()].x() == 0.0;
+      per_slice += (a && b) ? 0 : (a || b) ? 1 : 2;
+    }
   }
   return per_slice * static_cast<std::size_t>(segments);
 }
 
-Mesh revolve(const std::vector<Vec2>& loop, const RevolveOptions& options) {
-  if (options.segments < 3) {
-    throw RangeError("segments", options.segments, fmt::format("segments = {} must be >= 3", options.segments));
-  }
+namespace {
+
+void revolve_loop(const std::vector<Vec2>& loop, const std::vector<double>& cs, const std::vector<double>& sn,
+                  Mesh& mesh) {
   const std::size_t n = loop.size();
-  const auto m = static_cast<std::size_t>(options.segments);
-  std::vector<double> cs(m), sn(m);
-  for (std::size_t j = 0; j < m; ++j) {
-    const double theta = 2.0 * M_PI * static_cast<double>(j) / static_cast<double>(m);
-    cs[j] = std::cos(theta);
-    sn[j] = std::sin(theta);
-  }
-  Mesh mesh;
-  std::size_t vertex_count = 0;
-  for (const Vec2& p : loop) {
-    if (p.x() < 0.0) throw RangeError("radius", p.x(), fmt::format("loop vertex radius {} < 0", p.x()));
-    vertex_count += p.x() == 0.0 ? 1 : m;
-  }
-  mesh.reserve(vertex_count, 3 * revolved_triangle_count(loop, options.segments) / 2,
-               revolved_triangle_count(loop, options.segments));
+  const std::size_t m = cs.size();
   // first[i]: handle of ring i's vertex at angle 0 (its pole when on the axis).
   std::vector<Mesh::VertexHandle> first(n);
   for (std::size_t i = 0; i < n; ++i) {
@@ -72,6 +60,32 @@ Mesh revolve(const std::vector<Vec2>& loop, const RevolveOptions& options) {
       if (!b_axis) mesh.add_face(ring(i, j), ring(k, j + 1), ring(k, j));
     }
   }
+}
+
+}  // namespace
+
+Mesh revolve(const std::vector<std::vector<Vec2>>& loops, const RevolveOptions& options) {
+  if (options.segments < 3) {
+    throw RangeError("segments", options.segments, fmt::format("segments = {} must be >= 3", options.segments));
+  }
+  const auto m = static_cast<std::size_t>(options.segments);
+  std::vector<double> cs(m), sn(m);
+  for (std::size_t j = 0; j < m; ++j) {
+    const double theta = 2.0 * M_PI * static_cast<double>(j) / static_cast<double>(m);
+    cs[j] = std::cos(theta);
+    sn[j] = std::sin(theta);
+  }
+  std::size_t vertex_count = 0;
+  for (const auto& loop : loops) {
+    for (const Vec2& p : loop) {
+      if (p.x() < 0.0) throw RangeError("radius", p.x(), fmt::format("loop vertex radius {} < 0", p.x()));
+      vertex_count += p.x() == 0.0 ? 1 : m;
+    }
+  }
+  const std::size_t faces = revolved_triangle_count(loops, options.segments);
+  Mesh mesh;
+  mesh.reserve(vertex_count, 3 * faces / 2, faces);
+  for (const auto& loop : loops) revolve_loop(loop, cs, sn, mesh);
   return mesh;
 }
 

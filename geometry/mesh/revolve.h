@@ -18,15 +18,15 @@ struct RevolveOptions {
 /// \throw RangeError for tolerance <= 0.
 int angular_segments(double max_radius, double tolerance);
 
-/// Triangles the revolution of `loop` has with `segments` angular segments.
-std::size_t revolved_triangle_count(const std::vector<Vec2>& loop, int segments);
+/// Triangles the revolution of `loops` has with `segments` angular segments.
+std::size_t revolved_triangle_count(const std::vector<std::vector<Vec2>>& loops, int segments);
 
-/// Revolves a closed counter-clockwise loop (x = radius >= 0, y = height)
-/// about the z axis. Each vertex with x == 0 becomes one pole vertex; edges
+/// Revolves closed counter-clockwise loops (x = radius >= 0, y = height)
+/// about the z axis, one closed component per loop. Each vertex with x == 0 becomes one pole vertex; edges
 /// along the axis produce no faces. The result is watertight with outward
 /// normals when the loop meets the axis only along axis edges; every
 /// angular slice of it is a uniformly scaled copy of the loop.
 /// \throw RangeError for segments < 3 or a negative radius.
-Mesh revolve(const std::vector<Vec2>& loop, const RevolveOptions& options);
+Mesh revolve(const std::vector<std::vector<Vec2>>& loops, const RevolveOptions& options);
 
 }  // namespace fabmesh

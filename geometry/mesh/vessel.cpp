@@ -22,7 +22,7 @@ VesselMesh build_vessel(const CompositeCurve& profile, const VesselOptions& opti
 
   const double angular_tolerance = options.tolerance - out.section.max_deviation;
   out.segments = angular_segments(out.section.max_radius, angular_tolerance);
-  const std::size_t triangles = revolved_triangle_count(out.section.loop, out.segments);
+  const std::size_t triangles = revolved_triangle_count(out.section.loops, out.segments);
   if (triangles > options.max_triangles) {
     throw BudgetError(static_cast<double>(triangles), static_cast<double>(options.max_triangles),
                       fmt::format("tolerance {} needs {} triangles, over the budget of {} (raise max_triangles or "
@@ -31,7 +31,7 @@ VesselMesh build_vessel(const CompositeCurve& profile, const VesselOptions& opti
   }
   RevolveOptions ro;
   ro.segments = out.segments;
-  out.mesh = revolve(out.section.loop, ro);
+  out.mesh = revolve(out.section.loops, ro);
   const double sagitta = out.section.max_radius * (1.0 - std::cos(M_PI / out.segments));
   out.max_deviation = out.section.max_deviation + sagitta;
   out.embedding_proof = out.section.proof + fmt::format("; revolved in {} uniform angular steps", out.segments);

@@ -14,7 +14,74 @@ using Point = Kernel::Point_2;
 using Segment2 = Kernel::Segment_2;
 using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 2, std::size_t>;
 
-Point to_point(const Vec2& v) { return {v.x(), v.y()}; }
+struct Edge {
+  std::size_t chain;  // which polyline
+  std::size_t local;  // edge index within it
+  Segment2 segment;
+};
+
+struct Chain {
+  const std::vector<Vec2>* points;
+  bool closed;
+  std::size_t edges() const { return closed ? points->size() : points->size() - 1; }
+};
+
+// The shared end point of two edges of one chain, when they are neighbours.
+std::optional<std::size_t> shared_vertex(const Chain& c, std::size_t i, std::size_t j) {
+  if (i > j) std::swap(i, j);
+  if (j == i + 1) return j;
+  if (c.closed && i == 0 && j == c.edges() - 1 && c.edges() > 2) return std::size_t{0};
+  return std::nullopt;
+}
+
+std::optional<EdgeCrossing> find_crossing_in(const std::vector<Chain>& chains) {
+  std::vector<Edge> edges;
+  std::vector<Box> boxes;
+  std::vector<std::size_t> first_edge;  // global index of each chain's first edge
+  for (std::size_t c = 0; c < chains.size(); ++c) {
+    first_edge.push_back(edges.size());
+    const auto& pts = *chains[c].points;
+    if (pts.size() < 2) continue;
+    for (std::size_t i = 0; i < chains[c].edges(); ++i) {
+      const Vec2& a = pts[i];
+      const Vec2& b = pts[(i + 1) % pts.size()];
+      if (a == b) return EdgeCrossing{edges.size(), edges.size(), a};  // zero-length edge
+      double lo[2] = {std::min(a.x(), b.x()), std::min(a.y(), b.y())};
+      double hi[2] = {std::max(a.x(), b.x()), std::max(a.y(), b.y())};
+      boxes.emplace_back(lo, hi, edges.size());
+      edges.push_back({c, i, Segment2(Point(a.x(), a.y()), Point(b.x(), b.y()))});
+    }
+    if (chains[c].closed && chains[c].edges() == 2) {
+      return EdgeCrossing{first_edge[c], first_edge[c] + 1, pts[1]};  // a two-edge loop folds on itself
+    }
+  }
+  std::vector<std::pair<std::size_t, std::size_t>> hits;
+  CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), [&](const Box& ba, const Box& bb) {
+    std::size_t i = ba.info(), j = bb.info();
+    if (i > j) std::swap(i, j);
+    const Edge& ei = edges[i];
+    const Edge& ej = edges[j];
+    if (ei.chain == ej.chain) {
+      if (const auto v = shared_vertex(chains[ei.chain], ei.local, ej.local)) {
+        // Neighbours share one end point; they may not fold back over each other.
+        const Vec2& s = (*chains[ei.chain].points)[*v];
+        const Point sp(s.x(), s.y());
+        const Point pi = ei.segment.source() == sp ? ei.segment.target() : ei.segment.source();
+        const Point pj = ej.segment.source() == sp ? ej.segment.target() : ej.segment.source();
+        if (CGAL::collinear(pi, sp, pj) && !CGAL::collinear_are_strictly_ordered_along_line(pi, sp, pj)) {
+          hits.emplace_back(i, j);
+        }
+        return;
+      }
+    }
+    if (CGAL::do_intersect(ei.segment, ej.segment)) hits.emplace_back(i, j);
+  });
+  if (hits.empty()) return std::nullopt;
+  const auto first = *std::min_element(hits.begin(), hits.end());
+  const Segment2& s = edges[first.second].segment;
+  const Vec2 where(0.5 * (s.source().x() + s.target().x()), 0.5 * (s.source().y() + s.target().y()));
+  return EdgeCrossing{first.first, first.second, where};
+}
 
 }  // namespace
 
@@ -25,48 +92,14 @@ double signed_area2(const std::vector<Vec2>& p) {
 }
 
 std::optional<EdgeCrossing> find_crossing(const std::vector<Vec2>& points, bool closed) {
-  const std::size_t n = points.size();
-  if (n < 2) return std::nullopt;
-  const std::size_t edges = closed ? n : n - 1;
-  std::vector<Segment2> segs;
-  std::vector<Box> boxes;
-  segs.reserve(edges);
-  boxes.reserve(edges);
-  for (std::size_t i = 0; i < edges; ++i) {
-    const Vec2& a = points[i];
-    const Vec2& b = points[(i + 1) % n];
-    if (a == b) return EdgeCrossing{i, i, a};  // zero-length edge
-    segs.emplace_back(to_point(a), to_point(b));
-    double lo[2] = {std::min(a.x(), b.x()), std::min(a.y(), b.y())};
-    double hi[2] = {std::max(a.x(), b.x()), std::max(a.y(), b.y())};
-    boxes.emplace_back(lo, hi, i);
-  }
-  auto adjacent = [&](std::size_t i, std::size_t j) {
-    if (i > j) std::swap(i, j);
-    return j == i + 1 || (closed && i == 0 && j == edges - 1 && edges > 2);
-  };
-  std::vector<std::pair<std::size_t, std::size_t>> hits;
-  CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), [&](const Box& a, const Box& b) {
-    std::size_t i = a.info(), j = b.info();
-    if (i > j) std::swap(i, j);
-    if (adjacent(i, j)) {
-      // Adjacent edges share one end point; they may not overlap beyond it.
-      const std::size_t shared = (j == i + 1) ? i + 1 : 0;
-      const Point& s = to_point(points[shared % n]);
-      const Point& pi = segs[i].source() == s ? segs[i].target() : segs[i].source();
-      const Point& pj = segs[j].source() == s ? segs[j].target() : segs[j].source();
-      if (CGAL::collinear(pi, s, pj) && !CGAL::collinear_are_strictly_ordered_along_line(pi, s, pj)) {
-        hits.emplace_back(i, j);
-      }
-      return;
-    }
-    if (CGAL::do_intersect(segs[i], segs[j])) hits.emplace_back(i, j);
-  });
-  if (edges == 2 && closed) hits.emplace_back(0, 1);  // a two-edge "polygon" folds on itself
-  if (hits.empty()) return std::nullopt;
-  const auto first = *std::min_element(hits.begin(), hits.end());
-  const Vec2 where = 0.5 * (points[first.second] + points[(first.second + 1) % n]);
-  return EdgeCrossing{first.first, first.second, where};
+  if (points.size() < 2) return std::nullopt;
+  return find_crossing_in({Chain{&points, closed}});
+}
+
+std::optional<EdgeCrossing> find_crossing(const std::vector<std::vector<Vec2>>& loops) {
+  std::vector<Chain> chains;
+  for (const auto& l : loops) chains.push_back({&l, true});
+  return find_crossing_in(chains);
 }
 
 }  // namespace fabmesh

@@ -24,6 +24,10 @@ struct EdgeCrossing {
 /// predicates (CGAL Epick), O(n log n) expected via box intersection.
 std::optional<EdgeCrossing> find_crossing(const std::vector<Vec2>& points, bool closed);
 
+/// The same for several closed loops at once: an edge may not meet any edge
+/// of another loop either. Edge indices count through the loops in order.
+std::optional<EdgeCrossing> find_crossing(const std::vector<std::vector<Vec2>>& loops);
+
 /// Twice the signed area of a closed polygon (positive: counter-clockwise).
 double signed_area2(const std::vector<Vec2>& points);
 

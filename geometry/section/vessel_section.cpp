@@ -38,11 +38,29 @@ void reject_isolated_axis_contacts(const std::vector<Vec2>& loop) {
   }
 }
 
-void require_simple(const std::vector<Vec2>& loop, const char* what) {
-  if (const auto c = find_crossing(loop, true)) {
-    throw GeometryError("section", fmt::format("the {} crosses itself near {} (edges {} and {})", what, at(c->where),
-                                               c->first, c->second));
+// A solid profile split where it runs along the axis: each off-axis run,
+// closed along the axis, is one body's loop (base -> rim, then down the axis).
+std::vector<std::vector<Vec2>> solid_loops(const std::vector<Vec2>& up) {
+  std::vector<std::vector<Vec2>> loops;
+  std::vector<Vec2> run;
+  auto close_run = [&]() {
+    if (run.size() >= 2) {
+      if (run.back().x() != 0.0) run.emplace_back(0.0, run.back().y());
+      if (run.front().x() != 0.0) run.emplace_back(0.0, run.front().y());
+      loops.push_back(run);
+    }
+    run.clear();
+  };
+  for (std::size_t i = 0; i < up.size(); ++i) {
+    const bool on_axis = up[i].x() == 0.0;
+    const bool next_on_axis = i + 1 < up.size() && up[i + 1].x() == 0.0;
+    run.push_back(up[i]);
+    if (on_axis && next_on_axis) {  // an axis edge separates two bodies
+      close_run();
+    }
   }
+  close_run();
+  return loops;
 }
 
 // Inner wall: the profile offset by `wall` along its inward normal (toward
@@ -129,13 +147,13 @@ VesselSection build_vessel_section(const CompositeCurve& profile, const VesselSe
 
   VesselSection section;
   section.max_deviation = line.max_deviation;
-  std::vector<Vec2>& loop = section.loop;
+  std::vector<Vec2> loop;
 
   if (profile.closed()) {
     if (options.mode == BodyMode::Shell) {
       throw GeometryError("profile", "a closed profile is revolved as a solid ring; body.mode shell needs an open profile");
     }
-    loop = line.points;
+    section.loops = {line.points};
   } else {
     const bool upward = line.points.back().y() > line.points.front().y();
     if (line.points.back().y() == line.points.front().y()) {
@@ -147,9 +165,7 @@ VesselSection build_vessel_section(const CompositeCurve& profile, const VesselSe
     if (!upward) std::reverse(up.begin(), up.end());
     const Vec2 bottom = up.front(), top = up.back();
     if (options.mode == BodyMode::Solid) {
-      loop = up;
-      if (top.x() != 0.0) loop.emplace_back(0.0, top.y());
-      if (bottom.x() != 0.0) loop.emplace_back(0.0, bottom.y());
+      section.loops = solid_loops(up);
     } else {
       if (top.x() == 0.0) {
         throw GeometryError("profile", fmt::format("a shell is open at its rim, but the profile's upper end {} is on "
@@ -175,6 +191,7 @@ VesselSection build_vessel_section(const CompositeCurve& profile, const VesselSe
       loop = up;
       loop.insert(loop.end(), trimmed.begin(), trimmed.end());
       if (bottom.x() != 0.0) loop.emplace_back(0.0, bottom.y());
+      section.loops = {loop};
       for (const Vec2& p : loop) {
         if (p.x() < 0.0) {
           throw GeometryError("wall", fmt::format("wall {} is too thick for the profile: the inner surface crosses "
@@ -184,21 +201,24 @@ VesselSection build_vessel_section(const CompositeCurve& profile, const VesselSe
       }
     }
   }
-  remove_repeated(loop);
-  if (loop.size() < 3) throw GeometryError("profile", "the profile encloses no area with the axis");
-  if (signed_area2(loop) < 0.0) std::reverse(loop.begin(), loop.end());
-  reject_isolated_axis_contacts(loop);
-  if (options.mode == BodyMode::Shell) {
-    if (const auto c = find_crossing(loop, true)) {
+  if (section.loops.empty()) throw GeometryError("profile", "the profile encloses no area with the axis");
+  for (std::vector<Vec2>& l : section.loops) {
+    remove_repeated(l);
+    if (l.size() < 3) throw GeometryError("profile", "the profile encloses no area with the axis");
+    if (signed_area2(l) < 0.0) std::reverse(l.begin(), l.end());
+    reject_isolated_axis_contacts(l);
+    for (const Vec2& p : l) section.max_radius = std::max(section.max_radius, p.x());
+  }
+  if (const auto c = find_crossing(section.loops)) {
+    if (options.mode == BodyMode::Shell) {
       throw GeometryError("wall", fmt::format("wall {} (base {}) is too thick for the profile: the shell section "
                                               "crosses itself near {}",
                                               options.wall, options.base > 0.0 ? options.base : options.wall,
                                               at(c->where)));
     }
+    throw GeometryError("profile", fmt::format("the profile crosses itself near {}", at(c->where)));
   }
-  require_simple(loop, "profile");
-  for (const Vec2& p : loop) section.max_radius = std::max(section.max_radius, p.x());
-  section.proof = "the section is a simple polygon in r >= 0 (exact predicates), so its revolution is embedded";
+  section.proof = "the section loops are simple and disjoint in r >= 0 (exact predicates), so its revolution is embedded";
   return section;
 }
 

@@ -21,12 +21,14 @@ struct VesselSectionOptions {
   std::size_t max_points = 5000000;
 };
 
-/// A closed, simple, counter-clockwise loop in the half-plane r >= 0
-/// (x = radius, y = height). Vertices with x == 0 exactly lie on the axis;
-/// the loop meets the axis only along axis edges (both ends on it), never
-/// at an isolated vertex, so revolving it gives a closed 2-manifold.
+/// Closed, simple, counter-clockwise, pairwise disjoint loops in the
+/// half-plane r >= 0 (x = radius, y = height), one per body: a solid profile
+/// that runs along the axis between two parts makes two bodies. Vertices with
+/// x == 0 exactly lie on the axis; a loop meets the axis only along axis
+/// edges (both ends on it), never at an isolated vertex, so revolving it
+/// gives a closed 2-manifold.
 struct VesselSection {
-  std::vector<Vec2> loop;
+  std::vector<std::vector<Vec2>> loops;
   double max_deviation = 0.0;  ///< bound on the distance between the loop and the exact section boundary
   double max_radius = 0.0;
   std::string proof;           ///< why the section is simple (for reports)
@@ -35,7 +37,7 @@ struct VesselSection {
 /// Builds and checks the section. The profile runs either way; its higher
 /// end is the rim. A closed profile is revolved as it is (solid only).
 /// \throw GeometryError when the profile crosses the axis or itself, touches
-///        the axis at an isolated point, or the wall is too thick for its
+///        the axis at a single point (the body would pinch), or the wall is too thick for its
 ///        curvature or its radius; RangeError for bad wall/base/tolerance.
 VesselSection build_vessel_section(const CompositeCurve& profile, const VesselSectionOptions& options);
 
