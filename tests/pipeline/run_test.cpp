@@ -1,0 +1,157 @@
+#include <catch2/catch.hpp>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "geometry/core/errors.h"
+#include "geometry/mesh/soup.h"
+#include "geometry/mesh/validate.h"
+#include "geometry/mesh/weld.h"
+#include "io/design/read_design.h"
+#include "io/mesh/atomic_file.h"
+#include "io/mesh/draco.h"
+#include "io/mesh/stl.h"
+#include "pipeline/cli/commands.h"
+#include "pipeline/job.h"
+
+using namespace fabmesh;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string example(const std::string& name) { return std::string(FABMESH_SOURCE_DIR) + "/configs/examples/" + name; }
+
+fs::path fresh_dir(const std::string& name) {
+  const fs::path dir = fs::path(FABMESH_TEST_TMP) / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+int run_cli(std::vector<std::string> args, std::string* out = nullptr) {
+  args.insert(args.begin(), "fabmesh");
+  std::vector<const char*> argv;
+  for (const auto& a : args) argv.push_back(a.c_str());
+  std::ostringstream o, e;
+  const int code = cli::run_app(static_cast<int>(argv.size()), argv.data(), {o, e});
+  if (out) *out = o.str() + e.str();
+  return code;
+}
+
+}  // namespace
+
+TEST_CASE("run: a shell vessel is written as STL and Draco that both read back valid", "[pipeline][run]") {
+  const fs::path dir = fresh_dir("run_shell");
+  const Design design = read_design(example("vessel_golden_shell.yaml"));
+  const JobReport r = run_job(design, {dir.string()});
+  REQUIRE(r.outputs.size() == 2);
+  CHECK(r.validation.valid());
+  CHECK(r.max_deviation <= design.common.tolerance);
+
+  const TriangleSoup stl = weld(parse_stl(read_file((dir / "vessel_golden_shell.stl").string()), "stl")).soup;
+  const ValidationReport from_stl = validate(stl);
+  CHECK(from_stl.valid());
+  CHECK(from_stl.triangles == r.validation.triangles);
+  CHECK(from_stl.volume == Approx(r.validation.volume).epsilon(1e-6));
+
+  const TriangleSoup drc = parse_draco(read_file((dir / "vessel_golden_shell.drc").string()), "drc");
+  const ValidationReport from_drc = validate(drc);
+  CHECK(from_drc.valid());
+  CHECK(from_drc.triangles == r.validation.triangles);
+  // Every decoded vertex lies within the tolerance the build left unused of a built vertex.
+  const TriangleSoup built = stl;
+  double worst = 0.0;
+  for (const Vec3& p : drc.vertices) {
+    double best = INFINITY;
+    for (const Vec3& q : built.vertices) best = std::min(best, (p - q).norm());
+    worst = std::max(worst, best);
+  }
+  CHECK(worst <= design.common.tolerance - r.max_deviation);
+}
+
+TEST_CASE("draco: the default 11 bits collapse a fine mesh; fabmesh's choice keeps it valid", "[pipeline][draco]") {
+  // Rings next to a pole are short: their vertices are far closer than 11-bit steps of the bounding box.
+  const fs::path dir = fresh_dir("run_fine");
+  const Design design = parse_design(
+      "name: ball\nkind: vessel\ntolerance: 0.0005\n"
+      "profile: {family: tbezier, segments: [{circle_arc: {center: [0, 0], radius: 20, from_deg: -90, to_deg: 90}}]}\n"
+      "body: {mode: solid}\n",
+      "ball.yaml");
+  const JobReport r = run_job(design, {dir.string()});
+  REQUIRE(r.validation.valid());
+  const TriangleSoup soup = weld(parse_stl(read_file((dir / "ball.stl").string()), "stl")).soup;
+  Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
+  for (const Vec3& v : soup.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+  DracoOptions eleven;
+  eleven.tolerance = draco_max_error(lo, hi, 11);
+  REQUIRE(draco_quantization(lo, hi, eleven.tolerance).bits == 11);
+  const ValidationReport coarse = validate(parse_draco(encode_draco(soup, eleven), "11 bits"));
+  CHECK_FALSE(coarse.valid());
+  CHECK(coarse.degenerate_faces > 0);
+  CHECK(validate(parse_draco(read_file((dir / "ball.drc").string()), "drc")).valid());
+}
+
+TEST_CASE("run --json: the fields of product.md", "[pipeline][run]") {
+  const fs::path dir = fresh_dir("run_json");
+  std::string out;
+  REQUIRE(run_cli({"run", example("vessel_golden_solid.yaml"), "-o", dir.string(), "--json"}, &out) == 0);
+  const auto j = nlohmann::json::parse(out);
+  for (const char* key : {"name", "kind", "outputs", "vertices", "triangles", "volume", "area", "watertight", "manifold",
+                          "self_intersecting", "max_deviation", "timings_ms"}) {
+    CHECK(j.contains(key));
+  }
+  CHECK(j["watertight"] == true);
+  CHECK(j["manifold"] == true);
+  CHECK(j["self_intersecting"] == false);
+  CHECK(j["outputs"].size() == 2);
+  CHECK(j["max_deviation"].get<double>() <= 0.005);
+}
+
+TEST_CASE("run: bad input exits 2 and writes no file", "[pipeline][run][errors]") {
+  const fs::path dir = fresh_dir("run_bad");
+  const fs::path design = dir / "thick.yaml";
+  std::string text = read_file(example("vessel_lambdas_shell.yaml"));
+  text.replace(text.find("wall: 0.2"), 9, "wall: 0.3");
+  std::ofstream(design) << text;
+  const fs::path out_dir = dir / "out";
+  std::string out;
+  CHECK(run_cli({"run", design.string(), "-o", out_dir.string()}, &out) == 2);
+  CHECK_THAT(out, Catch::Contains("thick.yaml") && Catch::Contains("too thick"));
+  CHECK((!fs::exists(out_dir) || fs::is_empty(out_dir)));
+
+  std::ofstream(dir / "budget.yaml") << "kind: vessel\ntolerance: 0.000001\nmax_triangles: 1000\n"
+                                        "profile: {family: quasi_bspline, points: [[1.5, 6], [1, 5], [2, 4]]}\n"
+                                        "body: {mode: solid}\n";
+  CHECK(run_cli({"run", (dir / "budget.yaml").string(), "-o", out_dir.string()}, &out) == 2);
+  CHECK_THAT(out, Catch::Contains("budget"));
+  std::ofstream(dir / "few.yaml") << "kind: vessel\nprofile: {family: quasi_bspline, points: [[1.5, 6], [1, 5]]}\n"
+                                     "body: {mode: solid}\n";
+  CHECK(run_cli({"run", (dir / "few.yaml").string(), "-o", out_dir.string()}, &out) == 2);
+  CHECK_THAT(out, Catch::Contains("few.yaml:2:") && Catch::Contains("at least 3 points"));
+  CHECK((!fs::exists(out_dir) || fs::is_empty(out_dir)));
+}
+
+TEST_CASE("run: a batch reports every design and exits with the worst code", "[pipeline][run]") {
+  const fs::path dir = fresh_dir("run_batch");
+  std::ofstream(dir / "curve.yaml") << "kind: curve\ncurve: {family: quasi_bspline, points: [[0,0],[1,1],[2,0]]}\n";
+  std::string out;
+  CHECK(run_cli({"run", example("vessel_golden_solid.yaml"), (dir / "curve.yaml").string(), "-o", dir.string(),
+                 "--json"},
+                &out) == 2);
+  const auto j = nlohmann::json::parse(out.substr(0, out.rfind(']') + 1));
+  REQUIRE(j.size() == 2);
+  CHECK(j[0]["name"] == "vessel_golden_solid");
+  CHECK(j[1]["exit_code"] == 2);
+}
+
+TEST_CASE("fabmesh with no arguments runs the bundled example into ./out", "[pipeline][run]") {
+  const fs::path dir = fresh_dir("run_default");
+  const std::string cmd = "cd '" + dir.string() + "' && '" + FABMESH_BINARY + "' > log.txt 2>&1";
+  REQUIRE(std::system(cmd.c_str()) == 0);
+  CHECK(fs::exists(dir / "out" / "vessel_golden_shell.stl"));
+  CHECK(fs::exists(dir / "out" / "vessel_golden_shell.drc"));
+  CHECK_THAT(read_file((dir / "log.txt").string()), Catch::Contains("Files are in"));
+}
