@@ -67,6 +67,12 @@ TriangleSoup parse_draco(std::string_view bytes, const std::string& name) {
   const draco::PointAttribute* position = mesh->GetNamedAttribute(draco::GeometryAttribute::POSITION);
   if (position == nullptr) fail(name, "the Draco mesh has no positions");
   if (position->num_components() != 3) fail(name, "Draco positions are not 3D");
+  // Reading a BOOL attribute as numbers is undefined behaviour inside libdraco
+  // (found by fuzzing): positions must be a numeric type.
+  const draco::DataType stored = position->data_type();
+  if (stored == draco::DT_BOOL || stored == draco::DT_INVALID || stored >= draco::DT_TYPES_COUNT) {
+    fail(name, "Draco positions are not numbers");
+  }
   TriangleSoup soup;
   const draco::PointIndex::ValueType np = mesh->num_points();
   soup.vertices.reserve(np);

@@ -296,3 +296,20 @@ TEST_CASE("atomic_file: writes replace the target and leave no temporary behind"
   CHECK(dir.listing() == std::vector<std::string>{"out.stl"});
   CHECK_THROWS_AS(write_stl(test::box(), dir.file("missing/out.stl")), FileError);
 }
+
+TEST_CASE("mesh files: every fuzz seed parses; fuzzer findings are clean FileErrors", "[mesh][io]") {
+  const std::filesystem::path seeds = std::filesystem::path(FABMESH_SOURCE_DIR) / "tests/data/fuzz-seeds";
+  int parsed = 0;
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(seeds)) {
+    if (!entry.is_regular_file()) continue;
+    const std::string path = entry.path().string();
+    INFO(path);
+    if (entry.path().filename().string().rfind("regression-", 0) == 0) {
+      CHECK_THROWS_AS(read_mesh(path), FileError);
+    } else {
+      CHECK_FALSE(read_mesh(path).triangles.empty());
+      ++parsed;
+    }
+  }
+  CHECK(parsed >= 10);
+}

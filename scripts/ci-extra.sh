@@ -1,0 +1,55 @@
+#!/usr/bin/env bash
+# Extra CI, beyond the README's test command:
+#  (a) fuzz every mesh reader with libFuzzer (clang, ASan+UBSan) for a fixed
+#      time on the seeds in tests/data/fuzz-seeds/; any finding fails;
+#  (b) build everything with FABMESH_SANITIZE=ON (ASan+UBSan) and run ctest.
+# Usage: scripts/ci-extra.sh [fuzz|sanitize|all]   (default all)
+# Environment: FUZZ_SECONDS (per reader, default 20), JOBS (default 2).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+what="${1:-all}"
+FUZZ_SECONDS="${FUZZ_SECONDS:-20}"
+JOBS="${JOBS:-2}"
+readers=(stl obj ply off draco)
+
+fuzz() {
+  local dir=build-fuzz
+  cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DCMAKE_CXX_COMPILER=clang++ \
+    -DCMAKE_CXX_FLAGS="-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer" \
+    -DFABMESH_BUILD_FUZZERS=ON -DFABMESH_BUILD_TESTS=OFF
+  cmake --build "$dir" -j"$JOBS" --target "${readers[@]/#/fuzz_}"
+  for r in "${readers[@]}"; do
+    # New inputs go to a scratch corpus; the committed seeds are only read.
+    local corpus
+    corpus="$(mktemp -d)"
+    echo "ci-extra: fuzzing the $r reader for ${FUZZ_SECONDS}s"
+    # Fuzzing runs single-threaded; libFuzzer exits non-zero on a crash, a
+    # sanitizer report, a timeout (-timeout per input) or an out-of-memory.
+    "$dir/fuzz/fuzz_$r" -max_total_time="$FUZZ_SECONDS" -timeout=10 -rss_limit_mb=2048 \
+      -artifact_prefix="$dir/fuzz/finding-$r-" -print_final_stats=1 \
+      "$corpus" "tests/data/fuzz-seeds/$r" 2>&1 | tail -n 15
+    local status="${PIPESTATUS[0]}"
+    rm -rf "$corpus"
+    if [[ "$status" -ne 0 ]]; then
+      echo "ci-extra: the $r fuzzer found a problem (exit $status); see $dir/fuzz/finding-$r-*" >&2
+      exit 1
+    fi
+  done
+}
+
+sanitize() {
+  local dir=build-sanitize
+  cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFABMESH_SANITIZE=ON
+  cmake --build "$dir" -j"$JOBS"
+  ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+    ctest --test-dir "$dir" --output-on-failure -j"$JOBS"
+}
+
+case "$what" in
+  fuzz) fuzz ;;
+  sanitize) sanitize ;;
+  all) fuzz && sanitize ;;
+  *) echo "usage: $0 [fuzz|sanitize|all]" >&2; exit 2 ;;
+esac
