@@ -29,36 +29,103 @@ std::size_t revolved_triangle_count(const std::vector<std::vector<Vec2>>& loops,
 
 namespace {
 
-void revolve_loop(const std::vector<Vec2>& loop, const std::vector<double>& cs, const std::vector<double>& sn,
-                  Mesh& mesh) {
+using HalfedgeHandle = Mesh::HalfedgeHandle;
+using VertexHandle = Mesh::VertexHandle;
+
+HalfedgeHandle opposite(HalfedgeHandle h) { return HalfedgeHandle(h.idx() ^ 1); }
+
+// Every axis vertex needs exactly one neighbour on the axis: then it is the
+// apex of one fan, and axis edges (which make no faces) never chain.
+void require_axis_contacts_along_edges(const std::vector<Vec2>& loop) {
   const std::size_t n = loop.size();
-  const std::size_t m = cs.size();
-  // first[i]: handle of ring i's vertex at angle 0 (its pole when on the axis).
-  std::vector<Mesh::VertexHandle> first(n);
   for (std::size_t i = 0; i < n; ++i) {
-    const Vec2& p = loop[i];
-    if (p.x() == 0.0) {
-      first[i] = mesh.add_vertex(Mesh::Point(0.0, 0.0, p.y()));
-      continue;
-    }
-    for (std::size_t j = 0; j < m; ++j) {
-      const Mesh::VertexHandle v = mesh.add_vertex(Mesh::Point(p.x() * cs[j], p.x() * sn[j], p.y()));
-      if (j == 0) first[i] = v;
+    if (loop[i].x() != 0.0) continue;
+    const int neighbours = (loop[(i + n - 1) % n].x() == 0.0) + (loop[(i + 1) % n].x() == 0.0);
+    if (neighbours != 1) {
+      throw GeometryError("section", fmt::format("section vertex (r 0, z {}) is on the axis with {} axis neighbours; "
+                                                 "a loop may meet the axis only along single axis edges",
+                                                 loop[i].y(), neighbours));
     }
   }
-  auto ring = [&](std::size_t i, std::size_t j) {
-    if (loop[i].x() == 0.0) return first[i];
-    return Mesh::VertexHandle(first[i].idx() + static_cast<int>(j % m));
-  };
+}
+
+// Builds the halfedge structure of one revolved loop directly: the
+// connectivity of the revolution grid is known, so every halfedge gets its
+// face by index arithmetic (no searches), and the result is closed by
+// construction: each of the 2E halfedges below is used by exactly one face.
+//   R(i,j): ring edge a_j -> a_{j+1} of off-axis vertex i
+//   M(e,j): meridian a_j -> b_j of loop edge e = (a, b), unless both are on the axis
+//   D(e,j): diagonal a_j -> b_{j+1}, when both ends are off the axis
+// Faces of e at j (counter-clockwise loop, outward normals):
+//   T1 = (a_j, a_{j+1}, b_{j+1}) when a is off the axis: R(a,j), M(e,j+1), -D(e,j) (or -M(e,j) if b is a pole)
+//   T2 = (a_j, b_{j+1}, b_j)     when b is off the axis: D(e,j) (or M(e,j+1) if a is a pole), -R(b,j), -M(e,j)
+void revolve_loop(const std::vector<Vec2>& loop, const std::vector<double>& cs, const std::vector<double>& sn,
+                  Mesh& mesh) {
+  require_axis_contacts_along_edges(loop);
+  const std::size_t n = loop.size();
+  const std::size_t m = cs.size();
+  auto on_axis = [&](std::size_t i) { return loop[i].x() == 0.0; };
+
+  std::vector<int> first(n);  // vertex index of ring i at angle 0, or its pole
   for (std::size_t i = 0; i < n; ++i) {
-    const std::size_t k = (i + 1) % n;
-    const bool a_axis = loop[i].x() == 0.0, b_axis = loop[k].x() == 0.0;
-    if (a_axis && b_axis) continue;
-    for (std::size_t j = 0; j < m; ++j) {
-      // For a counter-clockwise loop, (a_j, a_j+1, b_j+1) and (a_j, b_j+1, b_j) face outward.
-      if (!a_axis) mesh.add_face(ring(i, j), ring(i, j + 1), ring(k, j + 1));
-      if (!b_axis) mesh.add_face(ring(i, j), ring(k, j + 1), ring(k, j));
+    const Vec2& p = loop[i];
+    first[i] = mesh.add_vertex(Mesh::Point(0.0, 0.0, p.y())).idx();
+    if (on_axis(i)) continue;
+    mesh.set_point(VertexHandle(first[i]), Mesh::Point(p.x() * cs[0], p.x() * sn[0], p.y()));
+    for (std::size_t j = 1; j < m; ++j) mesh.add_vertex(Mesh::Point(p.x() * cs[j], p.x() * sn[j], p.y()));
+  }
+  auto v = [&](std::size_t i, std::size_t j) {
+    return VertexHandle(on_axis(i) ? first[i] : first[i] + static_cast<int>(j % m));
+  };
+
+  // Edges, created in a fixed order; their first halfedges are remembered.
+  std::vector<int> ring(n, -1), meridian(n, -1), diagonal(n, -1);  // halfedge index at j = 0; +2 per step
+  for (std::size_t i = 0; i < n; ++i) {
+    if (on_axis(i)) continue;
+    ring[i] = mesh.new_edge(v(i, 0), v(i, 1)).idx();
+    for (std::size_t j = 1; j < m; ++j) mesh.new_edge(v(i, j), v(i, j + 1));
+  }
+  for (std::size_t e = 0; e < n; ++e) {
+    const std::size_t a = e, b = (e + 1) % n;
+    if (on_axis(a) && on_axis(b)) continue;
+    meridian[e] = mesh.new_edge(v(a, 0), v(b, 0)).idx();
+    for (std::size_t j = 1; j < m; ++j) mesh.new_edge(v(a, j), v(b, j));
+    if (on_axis(a) || on_axis(b)) continue;
+    diagonal[e] = mesh.new_edge(v(a, 0), v(b, 1)).idx();
+    for (std::size_t j = 1; j < m; ++j) mesh.new_edge(v(a, j), v(b, j + 1));
+  }
+  auto he = [&](int base, std::size_t j) { return HalfedgeHandle(base + 2 * static_cast<int>(j % m)); };
+  auto add_face = [&](HalfedgeHandle h0, HalfedgeHandle h1, HalfedgeHandle h2) {
+    const Mesh::FaceHandle f = mesh.new_face();
+    mesh.set_halfedge_handle(f, h0);
+    for (auto [h, next] : {std::pair{h0, h1}, std::pair{h1, h2}, std::pair{h2, h0}}) {
+      mesh.set_face_handle(h, f);
+      mesh.set_next_halfedge_handle(h, next);
     }
+  };
+  for (std::size_t e = 0; e < n; ++e) {
+    const std::size_t a = e, b = (e + 1) % n;
+    if (on_axis(a) && on_axis(b)) continue;
+    for (std::size_t j = 0; j < m; ++j) {
+      if (!on_axis(a)) {
+        const HalfedgeHandle back = on_axis(b) ? opposite(he(meridian[e], j)) : opposite(he(diagonal[e], j));
+        add_face(he(ring[a], j), he(meridian[e], j + 1), back);
+      }
+      if (!on_axis(b)) {
+        const HalfedgeHandle out = on_axis(a) ? he(meridian[e], j + 1) : he(diagonal[e], j);
+        add_face(out, opposite(he(ring[b], j)), opposite(he(meridian[e], j)));
+      }
+    }
+  }
+  // Each vertex's outgoing halfedge: its ring edge, or for a pole its meridian.
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!on_axis(i)) {
+      for (std::size_t j = 0; j < m; ++j) mesh.set_halfedge_handle(v(i, j), he(ring[i], j));
+      continue;
+    }
+    const std::size_t out_edge = on_axis((i + 1) % n) ? (i + n - 1) % n : i;  // the loop edge leaving the axis here
+    const HalfedgeHandle h = he(meridian[out_edge], 0);
+    mesh.set_halfedge_handle(v(i, 0), out_edge == i ? h : opposite(h));
   }
 }
 

@@ -266,3 +266,35 @@ TEST_CASE("vessel bad input: axis crossing, self-crossing, thick wall, bad toler
   budget.max_triangles = 100000;
   REQUIRE_THROWS_AS(build_vessel(golden_profile(), budget), BudgetError);
 }
+
+TEST_CASE("revolve: the directly built halfedge structure is consistent", "[mesh][revolve]") {
+  // Sphere (two poles), torus (no pole) and a shell: every halfedge has a face,
+  // prev/next/opposite agree, and circulating each vertex visits all its edges.
+  EllipseArcParams e;
+  e.center = Vec2(3, 1);
+  e.a = e.b = 1;
+  VesselOptions o;
+  o.tolerance = 0.05;
+  VesselOptions shell = o;
+  shell.mode = BodyMode::Shell;
+  shell.wall = 0.2;
+  for (const Mesh& mesh : {build_vessel(arc_profile({0, 0}, 2.0, -90, 90), o).mesh,
+                           build_vessel(CompositeCurve({Segment::ellipse_arc(e)}, true), o).mesh,
+                           build_vessel(golden_profile(), shell).mesh}) {
+    std::vector<int> outgoing(mesh.n_vertices(), 0);
+    for (const auto h : mesh.halfedges()) {
+      REQUIRE(mesh.face_handle(h).is_valid());
+      CHECK(mesh.prev_halfedge_handle(mesh.next_halfedge_handle(h)) == h);
+      CHECK(mesh.next_halfedge_handle(mesh.next_halfedge_handle(mesh.next_halfedge_handle(h))) == h);
+      CHECK(mesh.to_vertex_handle(mesh.opposite_halfedge_handle(h)) == mesh.from_vertex_handle(h));
+      CHECK(mesh.to_vertex_handle(mesh.prev_halfedge_handle(h)) == mesh.from_vertex_handle(h));
+      ++outgoing[mesh.from_vertex_handle(h).idx()];
+    }
+    for (const auto vh : mesh.vertices()) {
+      int around = 0;
+      for (auto it = mesh.cvoh_iter(vh); it.is_valid(); ++it) ++around;
+      CHECK(around == outgoing[vh.idx()]);
+      CHECK(mesh.is_manifold(vh));
+    }
+  }
+}
