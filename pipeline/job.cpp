@@ -99,14 +99,16 @@ JobReport run_job(const Design& design, const JobOptions& options) {
   report.embedding_proof = built.embedding_proof;
   report.build = built.build;
 
-  report.validation = built.embedding_proof.empty() ? validate(built.mesh) : validate_constructed(built.mesh, built.embedding_proof);
+  const TriangleSoup soup = to_soup(built.mesh);
+  report.validation = built.embedding_proof.empty() ? validate(built.mesh, soup)
+                                                    : validate_constructed(built.mesh, soup, built.embedding_proof);
+  built.mesh = Mesh();  // the soup is all the writers need: free the halfedges early
   watch.lap("validate");
   require_valid(report.validation, fmt::format("{} '{}'", design.common.kind, design.common.name));
 
   std::error_code ec;
   std::filesystem::create_directories(options.out_dir, ec);
   if (ec) throw FileError(options.out_dir, 0, 0, fmt::format("{}: cannot create output folder: {}", options.out_dir, ec.message()));
-  const TriangleSoup soup = to_soup(built.mesh);
   // The Draco encoding gets the tolerance the build left unused.
   const double output_tolerance = design.common.tolerance - built.max_deviation;
   std::vector<std::pair<std::string, std::string>> files;  // path, bytes: all encoded before any is written

@@ -1,6 +1,7 @@
 #include "geometry/mesh/validate.h"
 
 #include "geometry/core/errors.h"
+#include "geometry/mesh/halfedge_topology.h"
 #include "geometry/mesh/self_intersect.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -107,9 +108,41 @@ const DefectReport* ValidationReport::find(Defect kind) const {
   return nullptr;
 }
 
+namespace {
+
+// The stages after the connectivity analysis, shared by both entry points.
+ValidationReport validate_with(const TriangleSoup& soup, const Topology& topo, ValidationReport report,
+                               const ValidateOptions& options);
+
+}  // namespace
+
 ValidationReport validate(const TriangleSoup& soup, const ValidateOptions& options) {
   require_indices_in_range(soup);
   ValidationReport report;
+  const auto start = std::chrono::steady_clock::now();
+  const Topology topo = analyse_topology(soup, options.max_examples);
+  report.timings_ms.emplace_back(
+      "topology", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+  return validate_with(soup, topo, std::move(report), options);
+}
+
+ValidationReport validate(const Mesh& mesh, const TriangleSoup& soup, const ValidateOptions& options) {
+  ValidationReport report;
+  const auto start = std::chrono::steady_clock::now();
+  const Topology topo = analyse_topology(mesh, options.max_examples);  // linear time on the halfedges
+  report.timings_ms.emplace_back(
+      "topology", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+  return validate_with(soup, topo, std::move(report), options);
+}
+
+ValidationReport validate(const Mesh& mesh, const ValidateOptions& options) {
+  return validate(mesh, to_soup(mesh), options);
+}
+
+namespace {
+
+ValidationReport validate_with(const TriangleSoup& soup, const Topology& topo, ValidationReport report,
+                               const ValidateOptions& options) {
   StageTimer timer(report);
   report.vertices = soup.vertices.size();
   report.triangles = soup.triangles.size();
@@ -120,7 +153,6 @@ ValidationReport validate(const TriangleSoup& soup, const ValidateOptions& optio
   }
   report.non_finite_vertices = non_finite.count;
 
-  const Topology topo = analyse_topology(soup, max_examples);
   report.components = topo.components;
   report.boundary_edges = topo.boundary_edges.count;
   report.non_manifold_edges = topo.non_manifold_edges.count;
@@ -129,7 +161,6 @@ ValidationReport validate(const TriangleSoup& soup, const ValidateOptions& optio
   report.duplicate_faces = topo.duplicate_faces.count;
   report.consistently_oriented = topo.inconsistent_edges.count == 0;
   set_genus(report, topo);
-  timer.stop("topology");
 
   DefectCount degenerate_found;
   std::vector<char> degenerate(soup.triangles.size(), 0);
@@ -171,9 +202,7 @@ ValidationReport validate(const TriangleSoup& soup, const ValidateOptions& optio
   return report;
 }
 
-ValidationReport validate(const Mesh& mesh, const ValidateOptions& options) {
-  return validate(to_soup(mesh), options);
-}
+}  // namespace
 
 std::vector<std::string> describe_defects(const ValidationReport& report) {
   std::vector<std::string> lines;

@@ -84,8 +84,12 @@ struct ValidationReport {
 /// from a file first. \throw InputError when an index is out of range.
 ValidationReport validate(const TriangleSoup& soup, const ValidateOptions& options = {});
 
-/// Validates an OpenMesh mesh (through its soup: validate(to_soup(mesh))).
+/// Validates an OpenMesh mesh: its connectivity in linear time from the
+/// halfedges (analyse_topology(Mesh)), its geometry through its soup.
 ValidationReport validate(const Mesh& mesh, const ValidateOptions& options = {});
+
+/// The same when the caller already has `soup` == to_soup(mesh).
+ValidationReport validate(const Mesh& mesh, const TriangleSoup& soup, const ValidateOptions& options = {});
 
 /// One line per defect kind: "3 boundary edges (e.g. at (0, 0.5, 1))". Empty when valid.
 std::vector<std::string> describe_defects(const ValidationReport& report);
