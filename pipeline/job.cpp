@@ -37,12 +37,29 @@ class Stopwatch {
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
 
+// What a builder hands on: the validated mesh as a soup (OpenMesh meshes
+// cannot be moved, so the halfedge mesh never leaves its builder's branch).
 struct BuiltMesh {
-  Mesh mesh;
+  TriangleSoup soup;
+  ValidationReport validation;
   double max_deviation = 0.0;
   std::string embedding_proof;
   nlohmann::json build;
 };
+
+// Validates `mesh` (by its builder's embedding proof when it has one) and
+// converts it to the soup the writers take.
+BuiltMesh validated(const Mesh& mesh, double max_deviation, std::string proof, nlohmann::json facts,
+                    Stopwatch& watch) {
+  BuiltMesh out;
+  out.soup = to_soup(mesh);
+  out.validation = proof.empty() ? validate(mesh, out.soup) : validate_constructed(mesh, out.soup, proof);
+  watch.lap("validate");
+  out.max_deviation = max_deviation;
+  out.embedding_proof = std::move(proof);
+  out.build = std::move(facts);
+  return out;
+}
 
 BuiltMesh build_mesh(const Design& design, double tolerance, Stopwatch& watch) {
   if (const auto* v = std::get_if<VesselDesign>(&design.body)) {
@@ -54,17 +71,15 @@ BuiltMesh build_mesh(const Design& design, double tolerance, Stopwatch& watch) {
     options.base = v->base;
     options.tolerance = tolerance;
     options.max_triangles = v->max_triangles;
-    VesselMesh vessel = build_vessel(profile.curve, options);
+    const VesselMesh vessel = build_vessel(profile.curve, options);
     watch.lap("build");
+    std::size_t section_points = 0;
+    for (const auto& loop : vessel.section.loops) section_points += loop.size();
     nlohmann::json facts = {{"angular_segments", vessel.segments},
                             {"section_loops", vessel.section.loops.size()},
-                            {"section_points", [&] {
-                               std::size_t n = 0;
-                               for (const auto& l : vessel.section.loops) n += l.size();
-                               return n;
-                             }()},
+                            {"section_points", section_points},
                             {"max_radius", vessel.section.max_radius}};
-    return {std::move(vessel.mesh), vessel.max_deviation, vessel.embedding_proof, std::move(facts)};
+    return validated(vessel.mesh, vessel.max_deviation, vessel.embedding_proof, std::move(facts), watch);
   }
   throw InputError(fmt::format("{}: a {} design has no mesh to run; use `fabmesh sample` or `fabmesh optimize`",
                                design.common.path, design.common.kind));
@@ -98,12 +113,8 @@ JobReport run_job(const Design& design, const JobOptions& options) {
   report.max_deviation = built.max_deviation;
   report.embedding_proof = built.embedding_proof;
   report.build = built.build;
-
-  const TriangleSoup soup = to_soup(built.mesh);
-  report.validation = built.embedding_proof.empty() ? validate(built.mesh, soup)
-                                                    : validate_constructed(built.mesh, soup, built.embedding_proof);
-  built.mesh = Mesh();  // the soup is all the writers need: free the halfedges early
-  watch.lap("validate");
+  report.validation = std::move(built.validation);
+  const TriangleSoup& soup = built.soup;
   require_valid(report.validation, fmt::format("{} '{}'", design.common.kind, design.common.name));
 
   std::error_code ec;

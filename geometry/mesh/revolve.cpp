@@ -59,9 +59,13 @@ void require_axis_contacts_along_edges(const std::vector<Vec2>& loop) {
 // Faces of e at j (counter-clockwise loop, outward normals):
 //   T1 = (a_j, a_{j+1}, b_{j+1}) when a is off the axis: R(a,j), M(e,j+1), -D(e,j) (or -M(e,j) if b is a pole)
 //   T2 = (a_j, b_{j+1}, b_j)     when b is off the axis: D(e,j) (or M(e,j+1) if a is a pole), -R(b,j), -M(e,j)
+// Next free vertex, edge and face slots of a mesh sized in advance.
+struct Slots {
+  int vertex = 0, edge = 0, face = 0;
+};
+
 void revolve_loop(const std::vector<Vec2>& loop, const std::vector<double>& cs, const std::vector<double>& sn,
-                  Mesh& mesh) {
-  require_axis_contacts_along_edges(loop);
+                  Mesh& mesh, Slots& next) {
   const std::size_t n = loop.size();
   const std::size_t m = cs.size();
   auto on_axis = [&](std::size_t i) { return loop[i].x() == 0.0; };
@@ -69,34 +73,44 @@ void revolve_loop(const std::vector<Vec2>& loop, const std::vector<double>& cs, 
   std::vector<int> first(n);  // vertex index of ring i at angle 0, or its pole
   for (std::size_t i = 0; i < n; ++i) {
     const Vec2& p = loop[i];
-    first[i] = mesh.add_vertex(Mesh::Point(0.0, 0.0, p.y())).idx();
-    if (on_axis(i)) continue;
-    mesh.set_point(VertexHandle(first[i]), Mesh::Point(p.x() * cs[0], p.x() * sn[0], p.y()));
-    for (std::size_t j = 1; j < m; ++j) mesh.add_vertex(Mesh::Point(p.x() * cs[j], p.x() * sn[j], p.y()));
+    first[i] = next.vertex;
+    if (on_axis(i)) {
+      mesh.set_point(VertexHandle(next.vertex++), Mesh::Point(0.0, 0.0, p.y()));
+      continue;
+    }
+    for (std::size_t j = 0; j < m; ++j) {
+      mesh.set_point(VertexHandle(next.vertex++), Mesh::Point(p.x() * cs[j], p.x() * sn[j], p.y()));
+    }
   }
   auto v = [&](std::size_t i, std::size_t j) {
     return VertexHandle(on_axis(i) ? first[i] : first[i] + static_cast<int>(j % m));
   };
 
-  // Edges, created in a fixed order; their first halfedges are remembered.
+  // Edges, in a fixed order; each family's first halfedge is remembered.
+  auto new_edge = [&](VertexHandle from, VertexHandle to) {
+    const HalfedgeHandle h(2 * next.edge++);
+    mesh.set_vertex_handle(h, to);
+    mesh.set_vertex_handle(opposite(h), from);
+    return h.idx();
+  };
   std::vector<int> ring(n, -1), meridian(n, -1), diagonal(n, -1);  // halfedge index at j = 0; +2 per step
   for (std::size_t i = 0; i < n; ++i) {
     if (on_axis(i)) continue;
-    ring[i] = mesh.new_edge(v(i, 0), v(i, 1)).idx();
-    for (std::size_t j = 1; j < m; ++j) mesh.new_edge(v(i, j), v(i, j + 1));
+    ring[i] = new_edge(v(i, 0), v(i, 1));
+    for (std::size_t j = 1; j < m; ++j) new_edge(v(i, j), v(i, j + 1));
   }
   for (std::size_t e = 0; e < n; ++e) {
     const std::size_t a = e, b = (e + 1) % n;
     if (on_axis(a) && on_axis(b)) continue;
-    meridian[e] = mesh.new_edge(v(a, 0), v(b, 0)).idx();
-    for (std::size_t j = 1; j < m; ++j) mesh.new_edge(v(a, j), v(b, j));
+    meridian[e] = new_edge(v(a, 0), v(b, 0));
+    for (std::size_t j = 1; j < m; ++j) new_edge(v(a, j), v(b, j));
     if (on_axis(a) || on_axis(b)) continue;
-    diagonal[e] = mesh.new_edge(v(a, 0), v(b, 1)).idx();
-    for (std::size_t j = 1; j < m; ++j) mesh.new_edge(v(a, j), v(b, j + 1));
+    diagonal[e] = new_edge(v(a, 0), v(b, 1));
+    for (std::size_t j = 1; j < m; ++j) new_edge(v(a, j), v(b, j + 1));
   }
   auto he = [&](int base, std::size_t j) { return HalfedgeHandle(base + 2 * static_cast<int>(j % m)); };
   auto add_face = [&](HalfedgeHandle h0, HalfedgeHandle h1, HalfedgeHandle h2) {
-    const Mesh::FaceHandle f = mesh.new_face();
+    const Mesh::FaceHandle f(next.face++);
     mesh.set_halfedge_handle(f, h0);
     for (auto [h, next] : {std::pair{h0, h1}, std::pair{h1, h2}, std::pair{h2, h0}}) {
       mesh.set_face_handle(h, f);
@@ -131,7 +145,7 @@ void revolve_loop(const std::vector<Vec2>& loop, const std::vector<double>& cs, 
 
 }  // namespace
 
-Mesh revolve(const std::vector<std::vector<Vec2>>& loops, const RevolveOptions& options) {
+void revolve(const std::vector<std::vector<Vec2>>& loops, const RevolveOptions& options, Mesh& mesh) {
   if (options.segments < 3) {
     throw RangeError("segments", options.segments, fmt::format("segments = {} must be >= 3", options.segments));
   }
@@ -144,16 +158,21 @@ Mesh revolve(const std::vector<std::vector<Vec2>>& loops, const RevolveOptions& 
   }
   std::size_t vertex_count = 0;
   for (const auto& loop : loops) {
+    require_axis_contacts_along_edges(loop);
     for (const Vec2& p : loop) {
       if (p.x() < 0.0) throw RangeError("radius", p.x(), fmt::format("loop vertex radius {} < 0", p.x()));
       vertex_count += p.x() == 0.0 ? 1 : m;
     }
   }
   const std::size_t faces = revolved_triangle_count(loops, options.segments);
-  Mesh mesh;
-  mesh.reserve(vertex_count, 3 * faces / 2, faces);
-  for (const auto& loop : loops) revolve_loop(loop, cs, sn, mesh);
-  return mesh;
+  mesh.clean();
+  mesh.resize(vertex_count, 3 * faces / 2, faces);  // closed triangle mesh: E = 3F/2
+  Slots next;
+  for (const auto& loop : loops) revolve_loop(loop, cs, sn, mesh, next);
+  if (static_cast<std::size_t>(next.vertex) != vertex_count || static_cast<std::size_t>(next.edge) != 3 * faces / 2 ||
+      static_cast<std::size_t>(next.face) != faces) {
+    throw std::logic_error("revolve: element counts disagree with the closed-surface formula");
+  }
 }
 
 }  // namespace fabmesh

@@ -31,7 +31,7 @@ VesselMesh build_vessel(const CompositeCurve& profile, const VesselOptions& opti
   }
   RevolveOptions ro;
   ro.segments = out.segments;
-  out.mesh = revolve(out.section.loops, ro);
+  revolve(out.section.loops, ro, out.mesh);
   const double sagitta = out.section.max_radius * (1.0 - std::cos(M_PI / out.segments));
   out.max_deviation = out.section.max_deviation + sagitta;
   out.embedding_proof = out.section.proof + fmt::format("; revolved in {} uniform angular steps", out.segments);

@@ -19,6 +19,7 @@ struct VesselOptions {
   std::size_t max_triangles = 20000000;  ///< budget; more is a BudgetError
 };
 
+/// Returned by value (NRVO: built in place); OpenMesh meshes are copied, not moved.
 struct VesselMesh {
   Mesh mesh;
   VesselSection section;
