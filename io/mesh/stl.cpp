@@ -6,6 +6,8 @@
 
 #include <Eigen/Geometry>
 #include <fmt/format.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include <cmath>
 #include <cstdint>
@@ -35,10 +37,12 @@ void put_u32(std::string& out, std::uint32_t v) {
   for (int i = 0; i < 4; ++i) out.push_back(static_cast<char>((v >> (8 * i)) & 0xffu));
 }
 
-void put_f32(std::string& out, float f) {
+// A float's IEEE bits, little-endian, at `dst`.
+void store_f32_le(char* dst, float f) {
   std::uint32_t bits;
   std::memcpy(&bits, &f, 4);
-  put_u32(out, bits);
+  if constexpr (__BYTE_ORDER__ == __ORDER_BIG_ENDIAN__) bits = __builtin_bswap32(bits);
+  std::memcpy(dst, &bits, 4);
 }
 
 TriangleSoup parse_binary(std::string_view bytes, const std::string& name) {
@@ -143,26 +147,38 @@ std::string encode_stl(const TriangleSoup& soup) {
   if (soup.triangles.size() > std::numeric_limits<std::uint32_t>::max()) {
     throw InputError(fmt::format("binary STL cannot hold {} triangles", soup.triangles.size()));
   }
-  std::string out;
-  out.reserve(kHeader + kRecord * soup.triangles.size());
+  // Sized once and filled record by record: each 50-byte record depends only
+  // on its triangle, so ranges are encoded in parallel with identical bytes.
+  std::string out(kHeader + kRecord * soup.triangles.size(), '\0');
   std::string header = "binary STL written by fabmesh";
   header.resize(80, ' ');
-  out += header;
-  put_u32(out, static_cast<std::uint32_t>(soup.triangles.size()));
-  for (const auto& t : soup.triangles) {
-    const Vec3& a = soup.vertices[t[0]];
-    const Vec3& b = soup.vertices[t[1]];
-    const Vec3& c = soup.vertices[t[2]];
-    const Vec3 n = (b - a).cross(c - a);
-    const double len = n.norm();
-    const Vec3 unit = len > 0.0 ? Vec3(n / len) : Vec3::Zero();
-    for (int k = 0; k < 3; ++k) put_f32(out, static_cast<float>(unit[k]));
-    for (const Vec3* p : {&a, &b, &c}) {
-      for (int k = 0; k < 3; ++k) put_f32(out, static_cast<float>((*p)[k]));
-    }
-    out.push_back('\0');
-    out.push_back('\0');
-  }
+  std::memcpy(out.data(), header.data(), 80);
+  std::string count;
+  put_u32(count, static_cast<std::uint32_t>(soup.triangles.size()));
+  std::memcpy(out.data() + 80, count.data(), 4);
+  char* records = out.data() + kHeader;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, soup.triangles.size(), 16384),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                        const auto& t = soup.triangles[i];
+                        const Vec3& a = soup.vertices[t[0]];
+                        const Vec3& b = soup.vertices[t[1]];
+                        const Vec3& c = soup.vertices[t[2]];
+                        const Vec3 n = (b - a).cross(c - a);
+                        const double len = n.norm();
+                        const Vec3 unit = len > 0.0 ? Vec3(n / len) : Vec3::Zero();
+                        float values[12];
+                        for (int k = 0; k < 3; ++k) {
+                          values[k] = static_cast<float>(unit[k]);
+                          values[3 + k] = static_cast<float>(a[k]);
+                          values[6 + k] = static_cast<float>(b[k]);
+                          values[9 + k] = static_cast<float>(c[k]);
+                        }
+                        char* record = records + kRecord * i;
+                        for (int k = 0; k < 12; ++k) store_f32_le(record + 4 * k, values[k]);
+                        // The two attribute bytes stay zero.
+                      }
+                    });
   return out;
 }
 
