@@ -5,6 +5,11 @@
 // a hang caught by -timeout) is a finding. Small soups also go through weld
 // and validate, which must accept whatever a reader returns.
 
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <string_view>
+
 #include "geometry/core/errors.h"
 #include "geometry/mesh/validate.h"
 #include "geometry/mesh/weld.h"
@@ -13,11 +18,6 @@
 #include "io/mesh/off.h"
 #include "io/mesh/ply.h"
 #include "io/mesh/stl.h"
-
-#include <cmath>
-#include <cstddef>
-#include <cstdint>
-#include <string_view>
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view bytes(reinterpret_cast<const char*>(data), size);

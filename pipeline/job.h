@@ -2,7 +2,6 @@
 // One design through the stages: build, validate, emit, report.
 
 #include <nlohmann/json.hpp>
-
 #include <string>
 #include <utility>
 #include <vector>
@@ -22,10 +21,10 @@ struct JobReport {
   std::string kind;
   std::vector<std::string> outputs;  ///< paths written
   ValidationReport validation;
-  double max_deviation = 0.0;         ///< proven bound of the mesh against the exact surface
+  double max_deviation = 0.0;  ///< proven bound of the mesh against the exact surface
   double tolerance = 0.0;
-  std::string embedding_proof;        ///< when self-intersection is excluded by construction
-  nlohmann::json build;               ///< builder facts, e.g. {"angular_segments": 128, "section_points": 90}
+  std::string embedding_proof;  ///< when self-intersection is excluded by construction
+  nlohmann::json build;         ///< builder facts, e.g. {"angular_segments": 128, "section_points": 90}
   std::vector<std::pair<std::string, double>> timings_ms;
 };
 

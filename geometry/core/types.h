@@ -4,7 +4,6 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
-
 #include <vector>
 
 namespace fabmesh {

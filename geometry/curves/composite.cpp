@@ -9,10 +9,14 @@ namespace fabmesh {
 
 const char* to_string(Continuity c) {
   switch (c) {
-    case Continuity::None: return "none";
-    case Continuity::G0: return "G0";
-    case Continuity::G1: return "G1";
-    case Continuity::G2: return "G2";
+    case Continuity::None:
+      return "none";
+    case Continuity::G0:
+      return "G0";
+    case Continuity::G1:
+      return "G1";
+    case Continuity::G2:
+      return "G2";
   }
   return "none";
 }
@@ -42,7 +46,8 @@ Vec2 CompositeCurve::point(double g) const {
   return segments_[i].point(g - static_cast<double>(i));
 }
 
-JointReport measure_joint(const Segment& before, const Segment& after, double extent, const JointTolerances& tol) {
+JointReport measure_joint(const Segment& before, const Segment& after, double extent,
+                          const JointTolerances& tol) {
   const CurveJet a = before.jet(1.0);
   const CurveJet b = after.jet(0.0);
   JointReport r;
@@ -50,8 +55,8 @@ JointReport measure_joint(const Segment& before, const Segment& after, double ex
   r.tangent_angle = std::atan2(std::abs(cross2(a[1], b[1])), a[1].dot(b[1]));
   r.curvature_before = cross2(a[1], a[2]) / std::pow(a[1].norm(), 3);
   r.curvature_after = cross2(b[1], b[2]) / std::pow(b[1].norm(), 3);
-  const double scale = std::max({std::abs(r.curvature_before), std::abs(r.curvature_after),
-                                 extent > 0.0 ? 1.0 / extent : 1.0});
+  const double scale = std::max(
+      {std::abs(r.curvature_before), std::abs(r.curvature_after), extent > 0.0 ? 1.0 / extent : 1.0});
   r.curvature_jump = std::abs(r.curvature_before - r.curvature_after) / scale;
   const bool g0 = r.gap <= tol.gap_relative * std::max(extent, 1e-300);
   const bool g1 = g0 && r.tangent_angle <= tol.angle;

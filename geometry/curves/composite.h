@@ -15,21 +15,21 @@ const char* to_string(Continuity c);
 
 /// Thresholds that turn measured joint numbers into a continuity class.
 struct JointTolerances {
-  double gap_relative = 1e-9;       ///< position gap / curve extent
-  double angle = 1e-7;              ///< tangent angle, radians
-  double curvature_relative = 1e-6; ///< |k1 - k2| / max(|k1|, |k2|, 1 / extent)
+  double gap_relative = 1e-9;        ///< position gap / curve extent
+  double angle = 1e-7;               ///< tangent angle, radians
+  double curvature_relative = 1e-6;  ///< |k1 - k2| / max(|k1|, |k2|, 1 / extent)
 };
 
 /// Measured continuity where segment `before` ends and segment `after` starts.
 struct JointReport {
   std::size_t before = 0;
   std::size_t after = 0;
-  bool closing = false;          ///< the joint that closes a closed curve
-  double gap = 0.0;              ///< |r_before(1) - r_after(0)|, model units
-  double tangent_angle = 0.0;    ///< angle between the end tangents, radians
-  double curvature_before = 0.0; ///< signed curvature, 1 / model units
+  bool closing = false;           ///< the joint that closes a closed curve
+  double gap = 0.0;               ///< |r_before(1) - r_after(0)|, model units
+  double tangent_angle = 0.0;     ///< angle between the end tangents, radians
+  double curvature_before = 0.0;  ///< signed curvature, 1 / model units
   double curvature_after = 0.0;
-  double curvature_jump = 0.0;   ///< relative, see JointTolerances
+  double curvature_jump = 0.0;  ///< relative, see JointTolerances
   Continuity achieved = Continuity::None;
 };
 
@@ -58,6 +58,7 @@ class CompositeCurve {
 };
 
 /// Measures one joint between two segments.
-JointReport measure_joint(const Segment& before, const Segment& after, double extent, const JointTolerances& tol);
+JointReport measure_joint(const Segment& before, const Segment& after, double extent,
+                          const JointTolerances& tol);
 
 }  // namespace fabmesh

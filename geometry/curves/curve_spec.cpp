@@ -23,8 +23,9 @@ int computed_count(const CurveSpec& spec, std::size_t i) {
   if (s.kind == SegmentKind::Line) return (i > 0 || (spec.closed && s.points.size() == 1)) ? 1 : 0;
   if (!s.join) return 0;
   if (!has_predecessor) {
-    throw GeometryError(name_of(s, i), fmt::format("{}: the first segment of an open curve cannot have a join",
-                                                   name_of(s, i)));
+    throw GeometryError(
+        name_of(s, i),
+        fmt::format("{}: the first segment of an open curve cannot have a join", name_of(s, i)));
   }
   return static_cast<int>(s.join->continuity) + 1;
 }
@@ -33,11 +34,16 @@ int computed_count(const CurveSpec& spec, std::size_t i) {
 Segment basis_segment(const SegmentSpec& s) {
   const std::array<Vec2, 4> probe{Vec2(0, 0), Vec2(1, 0), Vec2(2, 0), Vec2(3, 0)};
   switch (s.kind) {
-    case SegmentKind::TBezier: return Segment::tbezier(probe, s.lambda, s.mu);
-    case SegmentKind::HBezier: return Segment::hbezier(probe, s.alpha, s.lambda, s.mu);
-    case SegmentKind::Line: return Segment::line(probe[0], probe[1]);
-    case SegmentKind::EllipseArc: return Segment::ellipse_arc(s.ellipse);
-    case SegmentKind::QuasiBSpline: return Segment::quasi_bspline_span(probe, s.lambda, s.mu);
+    case SegmentKind::TBezier:
+      return Segment::tbezier(probe, s.lambda, s.mu);
+    case SegmentKind::HBezier:
+      return Segment::hbezier(probe, s.alpha, s.lambda, s.mu);
+    case SegmentKind::Line:
+      return Segment::line(probe[0], probe[1]);
+    case SegmentKind::EllipseArc:
+      return Segment::ellipse_arc(s.ellipse);
+    case SegmentKind::QuasiBSpline:
+      return Segment::quasi_bspline_span(probe, s.lambda, s.mu);
   }
   throw GeometryError("segment", "unknown segment kind");
 }
@@ -72,8 +78,9 @@ JoinFactors join_factors(const SegmentSpec& next, std::size_t i) {
 CompositeCurve construct_quasi_bspline(const CurveSpec& spec) {
   const auto& p = spec.bspline_points;
   if (p.size() < 3) {
-    throw GeometryError(spec.label, fmt::format("{}: a quasi-cubic B-spline needs at least 3 points (n >= 2), got {}",
-                                                spec.label, p.size()));
+    throw GeometryError(spec.label,
+                        fmt::format("{}: a quasi-cubic B-spline needs at least 3 points (n >= 2), got {}",
+                                    spec.label, p.size()));
   }
   if (spec.closed) throw GeometryError(spec.label, spec.label + ": a quasi-cubic B-spline curve is open");
   const std::size_t n = p.size() - 1;
@@ -81,8 +88,8 @@ CompositeCurve construct_quasi_bspline(const CurveSpec& spec) {
   lam.front() = lam.back() = 4.0;
   if (!spec.bspline_lambdas.empty()) {
     if (spec.bspline_lambdas.size() != n - 1) {
-      throw GeometryError(spec.label, fmt::format("{}: lambdas has {} values; {} points need n - 1 = {}", spec.label,
-                                                  spec.bspline_lambdas.size(), p.size(), n - 1));
+      throw GeometryError(spec.label, fmt::format("{}: lambdas has {} values; {} points need n - 1 = {}",
+                                                  spec.label, spec.bspline_lambdas.size(), p.size(), n - 1));
     }
     for (std::size_t i = 1; i < n; ++i) {
       lam[i] = spec.bspline_lambdas[i - 1];
@@ -93,7 +100,8 @@ CompositeCurve construct_quasi_bspline(const CurveSpec& spec) {
   std::vector<Segment> spans;
   for (std::size_t i = 0; i < n; ++i) {
     const long li = static_cast<long>(i);
-    spans.push_back(Segment::quasi_bspline_span({at(li - 1), at(li), at(li + 1), at(li + 2)}, lam[i], lam[i + 1]));
+    spans.push_back(
+        Segment::quasi_bspline_span({at(li - 1), at(li), at(li + 1), at(li + 2)}, lam[i], lam[i + 1]));
   }
   return CompositeCurve(std::move(spans), false);
 }
@@ -102,18 +110,24 @@ CompositeCurve construct_quasi_bspline(const CurveSpec& spec) {
 
 const char* to_string(CurveFamily f) {
   switch (f) {
-    case CurveFamily::TBezier: return "tbezier";
-    case CurveFamily::HBezier: return "hbezier";
-    case CurveFamily::QuasiBSpline: return "quasi_bspline";
+    case CurveFamily::TBezier:
+      return "tbezier";
+    case CurveFamily::HBezier:
+      return "hbezier";
+    case CurveFamily::QuasiBSpline:
+      return "quasi_bspline";
   }
   return "unknown";
 }
 
 const char* to_string(FairMode f) {
   switch (f) {
-    case FairMode::None: return "none";
-    case FairMode::Strain: return "strain";
-    case FairMode::CurvatureVariation: return "curvature_variation";
+    case FairMode::None:
+      return "none";
+    case FairMode::Strain:
+      return "strain";
+    case FairMode::CurvatureVariation:
+      return "curvature_variation";
   }
   return "unknown";
 }
@@ -138,7 +152,8 @@ CompositeCurve construct_curve(const CurveSpec& spec) {
     const SegmentSpec& s = spec.segments[i];
     const int count = control_count(s.kind);
     if (s.kind == SegmentKind::EllipseArc) {
-      if (s.join) throw GeometryError(name_of(s, i), name_of(s, i) + ": an ellipse arc cannot be joined; it is exact");
+      if (s.join)
+        throw GeometryError(name_of(s, i), name_of(s, i) + ": an ellipse arc cannot be joined; it is exact");
       for (int j = 0; j < 4; ++j) {
         entries.emplace_back(offset[i] + j, offset[i] + j, 1.0);
         rhs.row(offset[i] + j) = bases[i].control_points()[j].transpose();
@@ -148,10 +163,12 @@ CompositeCurve construct_curve(const CurveSpec& spec) {
     const int computed = computed_count(spec, i);
     const int given = static_cast<int>(s.points.size());
     if (given != count - computed) {
-      const std::string how = s.join ? fmt::format("after a {} join", to_string(s.join->continuity))
-                                     : (computed > 0 ? "continuing the previous segment" : "as an explicit segment");
-      throw GeometryError(name_of(s, i), fmt::format("{}: a {} segment {} takes {} point(s), got {}", name_of(s, i),
-                                                     to_string(s.kind), how, count - computed, given));
+      const std::string how =
+          s.join ? fmt::format("after a {} join", to_string(s.join->continuity))
+                 : (computed > 0 ? "continuing the previous segment" : "as an explicit segment");
+      throw GeometryError(name_of(s, i),
+                          fmt::format("{}: a {} segment {} takes {} point(s), got {}", name_of(s, i),
+                                      to_string(s.kind), how, count - computed, given));
     }
     for (int j = computed; j < count; ++j) {
       entries.emplace_back(offset[i] + j, offset[i] + j, 1.0);
@@ -193,12 +210,14 @@ CompositeCurve construct_curve(const CurveSpec& spec) {
   Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
   lu.compute(a);
   if (lu.info() != Eigen::Success) {
-    throw GeometryError(spec.label, fmt::format("{}: the join conditions cannot be satisfied together (the closing "
-                                                "join is singular for these shape parameters)",
-                                                spec.label));
+    throw GeometryError(spec.label,
+                        fmt::format("{}: the join conditions cannot be satisfied together (the closing "
+                                    "join is singular for these shape parameters)",
+                                    spec.label));
   }
   const Eigen::MatrixX2d x = lu.solve(rhs);
-  if (!x.allFinite()) throw GeometryError(spec.label, spec.label + ": the join conditions have no finite solution");
+  if (!x.allFinite())
+    throw GeometryError(spec.label, spec.label + ": the join conditions have no finite solution");
 
   std::vector<Segment> segments;
   for (std::size_t i = 0; i < n; ++i) {
@@ -227,25 +246,28 @@ std::vector<Continuity> declared_continuity(const CurveSpec& spec) {
   auto of = [](const SegmentSpec& s) { return s.join ? s.join->continuity : s.declared; };
   for (std::size_t i = 1; i < spec.segments.size(); ++i) out.push_back(of(spec.segments[i]));
   if (spec.closed && !spec.segments.empty()) {
-    out.push_back(spec.segments.front().join ? spec.segments.front().join->continuity : spec.closing_declared);
+    out.push_back(spec.segments.front().join ? spec.segments.front().join->continuity
+                                             : spec.closing_declared);
   }
   return out;
 }
 
-void verify_declared_continuity(const CurveSpec& spec, const CompositeCurve& curve, const JointTolerances& tol) {
+void verify_declared_continuity(const CurveSpec& spec, const CompositeCurve& curve,
+                                const JointTolerances& tol) {
   const auto declared = declared_continuity(spec);
   const auto joints = curve.joints(tol);
   for (std::size_t i = 0; i < joints.size() && i < declared.size(); ++i) {
     const JointReport& j = joints[i];
     if (static_cast<int>(j.achieved) >= static_cast<int>(declared[i])) continue;
     const std::string where =
-        j.closing ? std::string("closing joint") : fmt::format("joint {} (segments {} -> {})", i + 1, j.before + 1,
-                                                              j.after + 1);
-    throw GeometryError(where, fmt::format("{}{}: declared {} but measured gap {:.3g}, tangent angle {:.3g} rad, "
-                                           "relative curvature jump {:.3g} ({})",
-                                           spec.label.empty() ? "" : spec.label + ": ", where, to_string(declared[i]),
-                                           j.gap, j.tangent_angle, j.curvature_jump,
-                                           j.closing && j.gap > 0 ? "the curve does not close" : to_string(j.achieved)));
+        j.closing ? std::string("closing joint")
+                  : fmt::format("joint {} (segments {} -> {})", i + 1, j.before + 1, j.after + 1);
+    throw GeometryError(
+        where, fmt::format("{}{}: declared {} but measured gap {:.3g}, tangent angle {:.3g} rad, "
+                           "relative curvature jump {:.3g} ({})",
+                           spec.label.empty() ? "" : spec.label + ": ", where, to_string(declared[i]), j.gap,
+                           j.tangent_angle, j.curvature_jump,
+                           j.closing && j.gap > 0 ? "the curve does not close" : to_string(j.achieved)));
   }
 }
 

@@ -25,7 +25,7 @@ struct JoinSpec {
   Continuity continuity = Continuity::G1;
   double alpha = 1.0;  ///< > 0 (T-Bézier convention)
   double beta = 0.0;
-  double k = 1.0;      ///< > 0 (H-Bézier convention)
+  double k = 1.0;  ///< > 0 (H-Bézier convention)
   double m = 0.0;
 };
 
@@ -67,6 +67,7 @@ std::vector<Continuity> declared_continuity(const CurveSpec& spec);
 
 /// Throws GeometryError naming the first joint whose measured continuity
 /// is below the declared one.
-void verify_declared_continuity(const CurveSpec& spec, const CompositeCurve& curve, const JointTolerances& tol = {});
+void verify_declared_continuity(const CurveSpec& spec, const CompositeCurve& curve,
+                                const JointTolerances& tol = {});
 
 }  // namespace fabmesh

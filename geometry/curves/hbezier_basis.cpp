@@ -67,7 +67,9 @@ std::array<double, 4> h2_numerator(double u, double a) {
 double sinh_minus_x(double x) {
   return std::abs(x) < kSeriesLimit ? even_odd_series(x, 1, 1) : std::sinh(x) - x;
 }
-double cosh_minus_1(double x) { return std::abs(x) < kSeriesLimit ? even_odd_series(x, 1, 0) : std::cosh(x) - 1.0; }
+double cosh_minus_1(double x) {
+  return std::abs(x) < kSeriesLimit ? even_odd_series(x, 1, 0) : std::cosh(x) - 1.0;
+}
 double cosh_minus_1_minus_half_x2(double x) {
   return std::abs(x) < kSeriesLimit ? even_odd_series(x, 2, 0) : std::cosh(x) - 1.0 - 0.5 * x * x;
 }
@@ -94,8 +96,10 @@ BasisJet hbezier_basis(double u, double alpha, double lambda, double mu) {
   const auto [s, c, d, e] = hbezier_constants(a);
   const double v = a - u;
   // Classical basis and quartic end functions with u-derivatives 0..3.
-  const std::array<double, 4> h0{sinh_minus_x(v) / s, -cosh_minus_1(v) / s, std::sinh(v) / s, -std::cosh(v) / s};
-  const std::array<double, 4> h3{sinh_minus_x(u) / s, cosh_minus_1(u) / s, std::sinh(u) / s, std::cosh(u) / s};
+  const std::array<double, 4> h0{sinh_minus_x(v) / s, -cosh_minus_1(v) / s, std::sinh(v) / s,
+                                 -std::cosh(v) / s};
+  const std::array<double, 4> h3{sinh_minus_x(u) / s, cosh_minus_1(u) / s, std::sinh(u) / s,
+                                 std::cosh(u) / s};
   const std::array<double, 4> k0{cosh_minus_1_minus_half_x2(v) / d, -sinh_minus_x(v) / d, cosh_minus_1(v) / d,
                                  -std::sinh(v) / d};
   const std::array<double, 4> k3{cosh_minus_1_minus_half_x2(u) / d, sinh_minus_x(u) / d, cosh_minus_1(u) / d,

@@ -31,11 +31,16 @@ void require_quasi_parameter(const char* name, double value) {
 
 const char* to_string(SegmentKind kind) {
   switch (kind) {
-    case SegmentKind::TBezier: return "tbezier";
-    case SegmentKind::EllipseArc: return "ellipse_arc";
-    case SegmentKind::Line: return "line";
-    case SegmentKind::HBezier: return "hbezier";
-    case SegmentKind::QuasiBSpline: return "quasi_bspline";
+    case SegmentKind::TBezier:
+      return "tbezier";
+    case SegmentKind::EllipseArc:
+      return "ellipse_arc";
+    case SegmentKind::Line:
+      return "line";
+    case SegmentKind::HBezier:
+      return "hbezier";
+    case SegmentKind::QuasiBSpline:
+      return "quasi_bspline";
   }
   return "unknown";
 }
@@ -60,7 +65,8 @@ Segment Segment::hbezier(const std::array<Vec2, 4>& points, double alpha, double
   for (auto [name, value] : {std::pair{"lambda", lambda}, std::pair{"mu", mu}}) {
     require_in_range(name, value, lo, 1.0);
     if (value == lo) {
-      throw RangeError(name, value, fmt::format("{} = {} is outside ({}, 1] for alpha = {}", name, value, lo, alpha));
+      throw RangeError(name, value,
+                       fmt::format("{} = {} is outside ({}, 1] for alpha = {}", name, value, lo, alpha));
     }
   }
   Segment seg;
@@ -75,7 +81,8 @@ Segment Segment::hbezier(const std::array<Vec2, 4>& points, double alpha, double
 Segment Segment::line(const Vec2& from, const Vec2& to) {
   require_finite_points({from, to, to, to}, 2);
   if (from == to) {
-    throw GeometryError("line", fmt::format("line from ({}, {}) to itself has zero length", from.x(), from.y()));
+    throw GeometryError("line",
+                        fmt::format("line from ({}, {}) to itself has zero length", from.x(), from.y()));
   }
   Segment seg;
   seg.kind_ = SegmentKind::Line;
@@ -92,8 +99,9 @@ Segment Segment::ellipse_arc(const EllipseArcParams& p) {
   require_in_range("to_deg", p.to_deg, -720.0, 720.0);
   const double sweep = p.to_deg - p.from_deg;
   if (sweep == 0.0 || std::abs(sweep) > 360.0) {
-    throw RangeError("to_deg", p.to_deg,
-                     fmt::format("ellipse arc sweep to_deg - from_deg = {} must be nonzero and at most 360", sweep));
+    throw RangeError(
+        "to_deg", p.to_deg,
+        fmt::format("ellipse arc sweep to_deg - from_deg = {} must be nonzero and at most 360", sweep));
   }
   Segment seg;
   seg.kind_ = SegmentKind::EllipseArc;
@@ -122,31 +130,44 @@ Segment Segment::quasi_bspline_span(const std::array<Vec2, 4>& points, double l,
 
 Segment Segment::with_shape(double lambda, double mu) const {
   switch (kind_) {
-    case SegmentKind::TBezier: return tbezier(points_, lambda, mu);
-    case SegmentKind::HBezier: return hbezier(points_, alpha_, lambda, mu);
-    case SegmentKind::QuasiBSpline: return quasi_bspline_span(points_, lambda, mu);
+    case SegmentKind::TBezier:
+      return tbezier(points_, lambda, mu);
+    case SegmentKind::HBezier:
+      return hbezier(points_, alpha_, lambda, mu);
+    case SegmentKind::QuasiBSpline:
+      return quasi_bspline_span(points_, lambda, mu);
     case SegmentKind::EllipseArc:
-    case SegmentKind::Line: break;
+    case SegmentKind::Line:
+      break;
   }
-  throw GeometryError(to_string(kind_), fmt::format("a {} segment has no shape parameters", to_string(kind_)));
+  throw GeometryError(to_string(kind_),
+                      fmt::format("a {} segment has no shape parameters", to_string(kind_)));
 }
 
 Segment Segment::with_points(const std::array<Vec2, 4>& points) const {
   switch (kind_) {
-    case SegmentKind::TBezier: return tbezier(points, lambda_, mu_);
-    case SegmentKind::HBezier: return hbezier(points, alpha_, lambda_, mu_);
-    case SegmentKind::QuasiBSpline: return quasi_bspline_span(points, lambda_, mu_);
-    case SegmentKind::Line: return line(points[0], points[1]);
-    case SegmentKind::EllipseArc: break;
+    case SegmentKind::TBezier:
+      return tbezier(points, lambda_, mu_);
+    case SegmentKind::HBezier:
+      return hbezier(points, alpha_, lambda_, mu_);
+    case SegmentKind::QuasiBSpline:
+      return quasi_bspline_span(points, lambda_, mu_);
+    case SegmentKind::Line:
+      return line(points[0], points[1]);
+    case SegmentKind::EllipseArc:
+      break;
   }
   throw GeometryError("ellipse_arc", "an ellipse arc is defined by its parameters, not by control points");
 }
 
 double Segment::native_scale() const {
   switch (kind_) {
-    case SegmentKind::EllipseArc: return t1_ - t0_;
-    case SegmentKind::HBezier: return alpha_;
-    default: return 1.0;
+    case SegmentKind::EllipseArc:
+      return t1_ - t0_;
+    case SegmentKind::HBezier:
+      return alpha_;
+    default:
+      return 1.0;
   }
 }
 
@@ -154,10 +175,18 @@ BasisJet Segment::weights(double s) const {
   BasisJet w{};
   const double scale = native_scale();
   switch (kind_) {
-    case SegmentKind::TBezier: w = tbezier_basis(s, lambda_, mu_); break;
-    case SegmentKind::EllipseArc: w = tbezier_basis(t0_ + s * scale, 0.0, 0.0); break;
-    case SegmentKind::HBezier: w = hbezier_basis(s * alpha_, alpha_, lambda_, mu_); break;
-    case SegmentKind::QuasiBSpline: w = quasi_bspline_basis(s, lambda_, mu_); break;
+    case SegmentKind::TBezier:
+      w = tbezier_basis(s, lambda_, mu_);
+      break;
+    case SegmentKind::EllipseArc:
+      w = tbezier_basis(t0_ + s * scale, 0.0, 0.0);
+      break;
+    case SegmentKind::HBezier:
+      w = hbezier_basis(s * alpha_, alpha_, lambda_, mu_);
+      break;
+    case SegmentKind::QuasiBSpline:
+      w = quasi_bspline_basis(s, lambda_, mu_);
+      break;
     case SegmentKind::Line:
       w[0] = {1.0 - s, s, 0.0, 0.0};
       w[1] = {-1.0, 1.0, 0.0, 0.0};
@@ -201,11 +230,20 @@ double Segment::fourth_derivative_bound() const {
   std::array<double, 4> b{};
   const double scale = std::abs(native_scale());
   switch (kind_) {
-    case SegmentKind::TBezier: b = tbezier_fourth_bound(lambda_, mu_); break;
-    case SegmentKind::EllipseArc: b = tbezier_fourth_bound(0.0, 0.0); break;
-    case SegmentKind::HBezier: b = hbezier_fourth_bound(alpha_, lambda_, mu_); break;
-    case SegmentKind::QuasiBSpline: b = quasi_bspline_fourth_bound(lambda_, mu_); break;
-    case SegmentKind::Line: return 0.0;
+    case SegmentKind::TBezier:
+      b = tbezier_fourth_bound(lambda_, mu_);
+      break;
+    case SegmentKind::EllipseArc:
+      b = tbezier_fourth_bound(0.0, 0.0);
+      break;
+    case SegmentKind::HBezier:
+      b = hbezier_fourth_bound(alpha_, lambda_, mu_);
+      break;
+    case SegmentKind::QuasiBSpline:
+      b = quasi_bspline_fourth_bound(lambda_, mu_);
+      break;
+    case SegmentKind::Line:
+      return 0.0;
   }
   // The weights' fourth derivatives sum to zero, so r'''' = sum_j w_j'''' (P_j - P_0).
   double bound = 0.0;

@@ -1,7 +1,6 @@
 #include "geometry/fairing/box_qp.h"
 
 #include <Eigen/Cholesky>
-
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>

@@ -32,8 +32,9 @@ BuiltCurve build_curve(const CurveSpec& spec, const JointTolerances& tol) {
   verify_declared_continuity(spec, out.curve, tol);
   out.declared = declared_continuity(spec);
   if (spec.fair != FairMode::None && spec.family == CurveFamily::HBezier) {
-    throw GeometryError(spec.label, spec.label + ": fairing is defined for tbezier and quasi_bspline curves, "
-                                                 "not for hbezier");
+    throw GeometryError(spec.label, spec.label +
+                                        ": fairing is defined for tbezier and quasi_bspline curves, "
+                                        "not for hbezier");
   }
   if (spec.fair != FairMode::None) {
     if (spec.family == CurveFamily::QuasiBSpline) {
@@ -47,9 +48,10 @@ BuiltCurve build_curve(const CurveSpec& spec, const JointTolerances& tol) {
       for (const SegmentFairing& f : out.segments) segs[f.index] = segs[f.index].with_shape(f.lambda, f.mu);
       out.curve = CompositeCurve(std::move(segs), out.curve.closed());
     } else {
-      throw GeometryError(spec.label, fmt::format("{}: fair: {} applies to quasi_bspline curves; T-Bézier curves "
-                                                  "take curvature_variation",
-                                                  spec.label, to_string(spec.fair)));
+      throw GeometryError(spec.label,
+                          fmt::format("{}: fair: {} applies to quasi_bspline curves; T-Bézier curves "
+                                      "take curvature_variation",
+                                      spec.label, to_string(spec.fair)));
     }
   }
   out.joints = out.curve.joints(tol);

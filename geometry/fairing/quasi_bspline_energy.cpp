@@ -76,10 +76,12 @@ std::vector<std::array<Vec2, 4>> span_points(const std::vector<Vec2>& p) {
 
 void check_input(const std::vector<Vec2>& points, int order) {
   if (order != 2 && order != 3) {
-    throw RangeError("order", order, fmt::format("energy order {} must be 2 (strain) or 3 (curvature variation)", order));
+    throw RangeError("order", order,
+                     fmt::format("energy order {} must be 2 (strain) or 3 (curvature variation)", order));
   }
   if (points.size() < 3) {
-    throw GeometryError("points", fmt::format("a quasi-cubic B-spline needs at least 3 points, got {}", points.size()));
+    throw GeometryError("points",
+                        fmt::format("a quasi-cubic B-spline needs at least 3 points, got {}", points.size()));
   }
 }
 
@@ -95,7 +97,8 @@ QuadraticEnergy quasi_bspline_energy(const std::vector<Vec2>& points, int order)
   e.b = Eigen::VectorXd::Zero(vars);
   for (Eigen::Index i = 0; i < n; ++i) {
     const SpanTerms s = span_terms(spans[i], order);
-    // Span i uses l = lambda_i (variable i-1, or 4 at i = 0) and m = lambda_{i+1} (variable i, or 4 at i = n-1).
+    // Span i uses l = lambda_i (variable i-1, or 4 at i = 0) and m = lambda_{i+1} (variable i, or 4 at i =
+    // n-1).
     const Eigen::Index li = i - 1, mi = i;
     const bool l_var = i > 0, m_var = i < n - 1;
     const double vv = inner(s.v, s.v), ll = inner(s.l, s.l), mm = inner(s.m, s.m);

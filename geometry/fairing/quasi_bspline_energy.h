@@ -4,7 +4,6 @@
 // (curves.md 2.1), and their box-constrained minimisers.
 
 #include <Eigen/Core>
-
 #include <vector>
 
 #include "geometry/core/types.h"

@@ -8,8 +8,10 @@ ValidationReport validate_constructed(const Mesh& mesh, const std::string& embed
   return validate_constructed(mesh, to_soup(mesh), embedding_proof);
 }
 
-ValidationReport validate_constructed(const Mesh& mesh, const TriangleSoup& soup, const std::string& embedding_proof) {
-  if (embedding_proof.empty()) throw std::logic_error("validate_constructed needs the builder's embedding proof");
+ValidationReport validate_constructed(const Mesh& mesh, const TriangleSoup& soup,
+                                      const std::string& embedding_proof) {
+  if (embedding_proof.empty())
+    throw std::logic_error("validate_constructed needs the builder's embedding proof");
   ValidateOptions options;
   options.check_self_intersections = false;
   ValidationReport report = validate(mesh, soup, options);

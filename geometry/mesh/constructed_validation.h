@@ -15,6 +15,7 @@ namespace fabmesh {
 ValidationReport validate_constructed(const Mesh& mesh, const std::string& embedding_proof);
 
 /// The same when the caller already has `soup` == to_soup(mesh).
-ValidationReport validate_constructed(const Mesh& mesh, const TriangleSoup& soup, const std::string& embedding_proof);
+ValidationReport validate_constructed(const Mesh& mesh, const TriangleSoup& soup,
+                                      const std::string& embedding_proof);
 
 }  // namespace fabmesh

@@ -36,7 +36,8 @@ Topology analyse_topology(const Mesh& mesh, std::size_t max_examples) {
     const auto f0 = mesh.face_handle(h0), f1 = mesh.face_handle(h1);
     if (!f0.is_valid() || !f1.is_valid()) {
       if (f0.is_valid() || f1.is_valid()) {
-        const auto mid = 0.5 * (mesh.point(mesh.to_vertex_handle(h0)) + mesh.point(mesh.to_vertex_handle(h1)));
+        const auto mid =
+            0.5 * (mesh.point(mesh.to_vertex_handle(h0)) + mesh.point(mesh.to_vertex_handle(h1)));
         topo.boundary_edges.add(to_vec(mid), max_examples);
       }
       continue;
@@ -97,8 +98,9 @@ Topology analyse_topology(const Mesh& mesh, std::size_t max_examples) {
   std::vector<int> lowest_vertex(static_cast<std::size_t>(faces), -1);
   for (int f = 0; f < faces; ++f) chi[root_of[f]] += 1;
   for (const auto e : mesh.edges()) {
-    const auto f = mesh.face_handle(mesh.halfedge_handle(e, 0)).is_valid() ? mesh.face_handle(mesh.halfedge_handle(e, 0))
-                                                                          : mesh.face_handle(mesh.halfedge_handle(e, 1));
+    const auto f = mesh.face_handle(mesh.halfedge_handle(e, 0)).is_valid()
+                       ? mesh.face_handle(mesh.halfedge_handle(e, 0))
+                       : mesh.face_handle(mesh.halfedge_handle(e, 1));
     if (f.is_valid()) chi[root_of[f.idx()]] -= 1;
   }
   for (const auto v : mesh.vertices()) {

@@ -1,5 +1,9 @@
 #include "geometry/mesh/revolve.h"
 
+// GCC 12 reports a false -Wmaybe-uninitialized inside OpenMesh's property
+// containers when mesh.resize() default-constructs their elements.
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+
 #include <fmt/format.h>
 
 #include <cmath>
@@ -42,9 +46,10 @@ void require_axis_contacts_along_edges(const std::vector<Vec2>& loop) {
     if (loop[i].x() != 0.0) continue;
     const int neighbours = (loop[(i + n - 1) % n].x() == 0.0) + (loop[(i + 1) % n].x() == 0.0);
     if (neighbours != 1) {
-      throw GeometryError("section", fmt::format("section vertex (r 0, z {}) is on the axis with {} axis neighbours; "
-                                                 "a loop may meet the axis only along single axis edges",
-                                                 loop[i].y(), neighbours));
+      throw GeometryError("section",
+                          fmt::format("section vertex (r 0, z {}) is on the axis with {} axis neighbours; "
+                                      "a loop may meet the axis only along single axis edges",
+                                      loop[i].y(), neighbours));
     }
   }
 }
@@ -57,8 +62,9 @@ void require_axis_contacts_along_edges(const std::vector<Vec2>& loop) {
 //   M(e,j): meridian a_j -> b_j of loop edge e = (a, b), unless both are on the axis
 //   D(e,j): diagonal a_j -> b_{j+1}, when both ends are off the axis
 // Faces of e at j (counter-clockwise loop, outward normals):
-//   T1 = (a_j, a_{j+1}, b_{j+1}) when a is off the axis: R(a,j), M(e,j+1), -D(e,j) (or -M(e,j) if b is a pole)
-//   T2 = (a_j, b_{j+1}, b_j)     when b is off the axis: D(e,j) (or M(e,j+1) if a is a pole), -R(b,j), -M(e,j)
+//   T1 = (a_j, a_{j+1}, b_{j+1}) when a is off the axis: R(a,j), M(e,j+1), -D(e,j) (or -M(e,j) if b is a
+//   pole) T2 = (a_j, b_{j+1}, b_j)     when b is off the axis: D(e,j) (or M(e,j+1) if a is a pole), -R(b,j),
+//   -M(e,j)
 // Next free vertex, edge and face slots of a mesh sized in advance.
 struct Slots {
   int vertex = 0, edge = 0, face = 0;
@@ -112,9 +118,9 @@ void revolve_loop(const std::vector<Vec2>& loop, const std::vector<double>& cs, 
   auto add_face = [&](HalfedgeHandle h0, HalfedgeHandle h1, HalfedgeHandle h2) {
     const Mesh::FaceHandle f(next.face++);
     mesh.set_halfedge_handle(f, h0);
-    for (auto [h, next] : {std::pair{h0, h1}, std::pair{h1, h2}, std::pair{h2, h0}}) {
+    for (auto [h, following] : {std::pair{h0, h1}, std::pair{h1, h2}, std::pair{h2, h0}}) {
       mesh.set_face_handle(h, f);
-      mesh.set_next_halfedge_handle(h, next);
+      mesh.set_next_halfedge_handle(h, following);
     }
   };
   for (std::size_t e = 0; e < n; ++e) {
@@ -137,7 +143,8 @@ void revolve_loop(const std::vector<Vec2>& loop, const std::vector<double>& cs, 
       for (std::size_t j = 0; j < m; ++j) mesh.set_halfedge_handle(v(i, j), he(ring[i], j));
       continue;
     }
-    const std::size_t out_edge = on_axis((i + 1) % n) ? (i + n - 1) % n : i;  // the loop edge leaving the axis here
+    const std::size_t out_edge =
+        on_axis((i + 1) % n) ? (i + n - 1) % n : i;  // the loop edge leaving the axis here
     const HalfedgeHandle h = he(meridian[out_edge], 0);
     mesh.set_halfedge_handle(v(i, 0), out_edge == i ? h : opposite(h));
   }
@@ -147,7 +154,8 @@ void revolve_loop(const std::vector<Vec2>& loop, const std::vector<double>& cs, 
 
 void revolve(const std::vector<std::vector<Vec2>>& loops, const RevolveOptions& options, Mesh& mesh) {
   if (options.segments < 3) {
-    throw RangeError("segments", options.segments, fmt::format("segments = {} must be >= 3", options.segments));
+    throw RangeError("segments", options.segments,
+                     fmt::format("segments = {} must be >= 3", options.segments));
   }
   const auto m = static_cast<std::size_t>(options.segments);
   std::vector<double> cs(m), sn(m);
@@ -169,8 +177,8 @@ void revolve(const std::vector<std::vector<Vec2>>& loops, const RevolveOptions& 
   mesh.resize(vertex_count, 3 * faces / 2, faces);  // closed triangle mesh: E = 3F/2
   Slots next;
   for (const auto& loop : loops) revolve_loop(loop, cs, sn, mesh, next);
-  if (static_cast<std::size_t>(next.vertex) != vertex_count || static_cast<std::size_t>(next.edge) != 3 * faces / 2 ||
-      static_cast<std::size_t>(next.face) != faces) {
+  if (static_cast<std::size_t>(next.vertex) != vertex_count ||
+      static_cast<std::size_t>(next.edge) != 3 * faces / 2 || static_cast<std::size_t>(next.face) != faces) {
     throw std::logic_error("revolve: element counts disagree with the closed-surface formula");
   }
 }

@@ -104,7 +104,8 @@ SelfIntersections find_self_intersections(const TriangleSoup& soup, const std::v
   require_indices_in_range(soup);
   for (const Vec3& p : soup.vertices) {
     if (!std::isfinite(p.x()) || !std::isfinite(p.y()) || !std::isfinite(p.z())) {
-      throw InputError(fmt::format("self-intersection test: vertex ({}, {}, {}) is not finite", p.x(), p.y(), p.z()));
+      throw InputError(
+          fmt::format("self-intersection test: vertex ({}, {}, {}) is not finite", p.x(), p.y(), p.z()));
     }
   }
   std::vector<Box> boxes;

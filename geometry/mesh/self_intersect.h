@@ -2,12 +2,12 @@
 // Self-intersection of a triangle soup: pairs of faces that meet anywhere
 // other than at the vertices and edges they share by index.
 
-#include "geometry/mesh/soup.h"
-
 #include <cstddef>
 #include <cstdint>
 #include <utility>
 #include <vector>
+
+#include "geometry/mesh/soup.h"
 
 namespace fabmesh {
 

@@ -6,9 +6,9 @@
 
 #include "geometry/mesh/soup.h"
 
-#include "geometry/core/errors.h"
-
 #include <fmt/format.h>
+
+#include "geometry/core/errors.h"
 
 namespace fabmesh {
 

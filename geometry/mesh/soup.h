@@ -1,12 +1,12 @@
 #pragma once
 // A triangle soup: the indexed, unchecked triangles of a file from elsewhere.
 
-#include "geometry/core/types.h"
-
 #include <array>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
+
+#include "geometry/core/types.h"
 
 namespace fabmesh {
 
@@ -15,7 +15,7 @@ namespace fabmesh {
 /// Invariant expected by consumers (readers guarantee it): every index is
 /// < vertices.size().
 struct TriangleSoup {
-  std::vector<Vec3> vertices;                            ///< model units
+  std::vector<Vec3> vertices;                           ///< model units
   std::vector<std::array<std::uint32_t, 3>> triangles;  ///< counter-clockwise seen from outside
 };
 

@@ -151,7 +151,8 @@ void count_components(const TriangleSoup& soup, const std::vector<Side>& sides, 
   }
   for (std::size_t i = 0; i < sides.size(); ++i) {
     if (i > 0 && sides[i].key == sides[i - 1].key) continue;
-    --topo.euler_characteristics[component[parts.find(static_cast<std::uint32_t>(sides[i].key >> 32))]];  // - E
+    --topo.euler_characteristics[component[parts.find(
+        static_cast<std::uint32_t>(sides[i].key >> 32))]];  // - E
   }
   for (const auto& t : soup.triangles) {
     if (!index_degenerate(t)) ++topo.euler_characteristics[component[parts.find(t[0])]];  // + F
@@ -177,7 +178,8 @@ Topology analyse_topology(const TriangleSoup& soup, std::size_t max_examples) {
     }
   }
   for (std::size_t v = 0; v < soup.vertices.size(); ++v) {
-    if (fan_count[v] > 1 || on_complex_edge[v]) topo.non_manifold_vertices.add(soup.vertices[v], max_examples);
+    if (fan_count[v] > 1 || on_complex_edge[v])
+      topo.non_manifold_vertices.add(soup.vertices[v], max_examples);
   }
   count_duplicates(soup, max_examples, topo);
   count_components(soup, sides, topo);

@@ -3,10 +3,10 @@
 // orientation, components and Euler characteristics. Works on any soup,
 // including non-manifold ones (it builds its own edge map; nothing is refused).
 
-#include "geometry/mesh/soup.h"
-
 #include <cstddef>
 #include <vector>
+
+#include "geometry/mesh/soup.h"
 
 namespace fabmesh {
 

@@ -1,15 +1,15 @@
 #include "geometry/mesh/validate.h"
 
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <fmt/format.h>
+
+#include <Eigen/Geometry>
+#include <chrono>
+#include <cmath>
+
 #include "geometry/core/errors.h"
 #include "geometry/mesh/halfedge_topology.h"
 #include "geometry/mesh/self_intersect.h"
-
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <Eigen/Geometry>
-#include <fmt/format.h>
-
-#include <chrono>
-#include <cmath>
 
 namespace fabmesh {
 namespace {
@@ -59,8 +59,9 @@ void measure(const TriangleSoup& soup, std::size_t max_examples, ValidationRepor
     area += 0.5 * n.norm();
     volume6 += (a - centre).dot((b - centre).cross(c - centre));
     const bool repeated = t[0] == t[1] || t[1] == t[2] || t[2] == t[0];
-    if (repeated || CGAL::collinear(Kernel::Point_3(a.x(), a.y(), a.z()), Kernel::Point_3(b.x(), b.y(), b.z()),
-                                    Kernel::Point_3(c.x(), c.y(), c.z()))) {
+    if (repeated ||
+        CGAL::collinear(Kernel::Point_3(a.x(), a.y(), a.z()), Kernel::Point_3(b.x(), b.y(), b.z()),
+                        Kernel::Point_3(c.x(), c.y(), c.z()))) {
       degenerate[f] = 1;
       degenerate_found.add((a + b + c) / 3.0, max_examples);
     }
@@ -87,16 +88,26 @@ void set_genus(ValidationReport& report, const Topology& topo) {
 
 const char* to_string(Defect kind) {
   switch (kind) {
-    case Defect::Empty: return "no faces";
-    case Defect::NonFiniteVertex: return "non-finite vertices";
-    case Defect::BoundaryEdge: return "boundary edges";
-    case Defect::NonManifoldEdge: return "non-manifold edges";
-    case Defect::NonManifoldVertex: return "non-manifold vertices";
-    case Defect::InconsistentOrientation: return "inconsistently oriented edges";
-    case Defect::InsideOut: return "inside-out (non-positive volume)";
-    case Defect::DegenerateFace: return "degenerate faces";
-    case Defect::DuplicateFace: return "duplicate faces";
-    case Defect::SelfIntersection: return "self-intersecting face pairs";
+    case Defect::Empty:
+      return "no faces";
+    case Defect::NonFiniteVertex:
+      return "non-finite vertices";
+    case Defect::BoundaryEdge:
+      return "boundary edges";
+    case Defect::NonManifoldEdge:
+      return "non-manifold edges";
+    case Defect::NonManifoldVertex:
+      return "non-manifold vertices";
+    case Defect::InconsistentOrientation:
+      return "inconsistently oriented edges";
+    case Defect::InsideOut:
+      return "inside-out (non-positive volume)";
+    case Defect::DegenerateFace:
+      return "degenerate faces";
+    case Defect::DuplicateFace:
+      return "duplicate faces";
+    case Defect::SelfIntersection:
+      return "self-intersecting face pairs";
   }
   return "unknown defect";
 }
@@ -122,7 +133,8 @@ ValidationReport validate(const TriangleSoup& soup, const ValidateOptions& optio
   const auto start = std::chrono::steady_clock::now();
   const Topology topo = analyse_topology(soup, options.max_examples);
   report.timings_ms.emplace_back(
-      "topology", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+      "topology",
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
   return validate_with(soup, topo, std::move(report), options);
 }
 
@@ -131,7 +143,8 @@ ValidationReport validate(const Mesh& mesh, const TriangleSoup& soup, const Vali
   const auto start = std::chrono::steady_clock::now();
   const Topology topo = analyse_topology(mesh, options.max_examples);  // linear time on the halfedges
   report.timings_ms.emplace_back(
-      "topology", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+      "topology",
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
   return validate_with(soup, topo, std::move(report), options);
 }
 

@@ -3,15 +3,15 @@
 // oriented, free of self-intersections, degenerate and duplicate faces.
 // Every mesh fabmesh writes passes through validate + require_valid.
 
-#include "geometry/core/types.h"
-#include "geometry/mesh/soup.h"
-#include "geometry/mesh/topology.h"
-
 #include <cstddef>
 #include <optional>
 #include <string>
 #include <utility>
 #include <vector>
+
+#include "geometry/core/types.h"
+#include "geometry/mesh/soup.h"
+#include "geometry/mesh/topology.h"
 
 namespace fabmesh {
 
@@ -48,9 +48,9 @@ struct ValidateOptions {
 
 /// Everything validate found out about a mesh.
 struct ValidationReport {
-  std::size_t vertices = 0;   ///< vertices of the mesh (after any welding the caller did)
-  std::size_t triangles = 0;  ///< faces, degenerate ones included
-  std::size_t components = 0; ///< connected components (faces sharing a vertex)
+  std::size_t vertices = 0;    ///< vertices of the mesh (after any welding the caller did)
+  std::size_t triangles = 0;   ///< faces, degenerate ones included
+  std::size_t components = 0;  ///< connected components (faces sharing a vertex)
   std::size_t boundary_edges = 0;
   std::size_t non_manifold_edges = 0;
   std::size_t non_manifold_vertices = 0;
@@ -69,8 +69,8 @@ struct ValidationReport {
   /// (g = (2 - chi) / 2); set only for a closed, manifold, consistently
   /// oriented mesh.
   std::optional<long> genus;
-  std::vector<long> euler_characteristics;  ///< V - E + F of each component
-  std::vector<DefectReport> defects;        ///< one entry per kind found, in enum order
+  std::vector<long> euler_characteristics;                 ///< V - E + F of each component
+  std::vector<DefectReport> defects;                       ///< one entry per kind found, in enum order
   std::vector<std::pair<std::string, double>> timings_ms;  ///< stage name -> wall time, ms
 
   /// True when no defect was found and the self-intersection test ran.

@@ -24,17 +24,19 @@ VesselMesh build_vessel(const CompositeCurve& profile, const VesselOptions& opti
   out.segments = angular_segments(out.section.max_radius, angular_tolerance);
   const std::size_t triangles = revolved_triangle_count(out.section.loops, out.segments);
   if (triangles > options.max_triangles) {
-    throw BudgetError(static_cast<double>(triangles), static_cast<double>(options.max_triangles),
-                      fmt::format("tolerance {} needs {} triangles, over the budget of {} (raise max_triangles or "
-                                  "the tolerance)",
-                                  options.tolerance, triangles, options.max_triangles));
+    throw BudgetError(
+        static_cast<double>(triangles), static_cast<double>(options.max_triangles),
+        fmt::format("tolerance {} needs {} triangles, over the budget of {} (raise max_triangles or "
+                    "the tolerance)",
+                    options.tolerance, triangles, options.max_triangles));
   }
   RevolveOptions ro;
   ro.segments = out.segments;
   revolve(out.section.loops, ro, out.mesh);
   const double sagitta = out.section.max_radius * (1.0 - std::cos(M_PI / out.segments));
   out.max_deviation = out.section.max_deviation + sagitta;
-  out.embedding_proof = out.section.proof + fmt::format("; revolved in {} uniform angular steps", out.segments);
+  out.embedding_proof =
+      out.section.proof + fmt::format("; revolved in {} uniform angular steps", out.segments);
   return out;
 }
 

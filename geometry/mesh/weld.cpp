@@ -1,7 +1,5 @@
 #include "geometry/mesh/weld.h"
 
-#include "geometry/core/errors.h"
-
 #include <fmt/format.h>
 #include <tbb/parallel_sort.h>
 
@@ -10,6 +8,8 @@
 #include <cstdint>
 #include <numeric>
 #include <unordered_map>
+
+#include "geometry/core/errors.h"
 
 namespace fabmesh {
 namespace {

@@ -2,9 +2,9 @@
 // Welding: merge coincident vertices of a triangle soup (STL files repeat
 // every vertex once per triangle).
 
-#include "geometry/mesh/soup.h"
-
 #include <cstddef>
+
+#include "geometry/mesh/soup.h"
 
 namespace fabmesh {
 
@@ -18,8 +18,8 @@ struct WeldOptions {
 
 /// A welded soup and what welding did.
 struct WeldResult {
-  TriangleSoup soup;               ///< same triangles, indices into the merged vertices
-  std::size_t merged_vertices = 0; ///< input vertex count minus output vertex count
+  TriangleSoup soup;                ///< same triangles, indices into the merged vertices
+  std::size_t merged_vertices = 0;  ///< input vertex count minus output vertex count
 };
 
 /// Merges coincident vertices of `soup`. Each merged vertex keeps the

@@ -29,7 +29,8 @@ struct Piece {
 
 }  // namespace
 
-std::vector<double> sample_segment_parameters(const Segment& seg, const SampleOptions& options, double* achieved) {
+std::vector<double> sample_segment_parameters(const Segment& seg, const SampleOptions& options,
+                                              double* achieved) {
   require_positive("tolerance", options.tolerance);
   std::vector<double> params{0.0};
   double worst = 0.0;
@@ -70,14 +71,15 @@ std::vector<double> sample_segment_parameters(const Segment& seg, const SampleOp
     }
     const double mid = 0.5 * (p.s0 + p.s1);
     if (!(mid > p.s0 && mid < p.s1)) {
-      throw BudgetError(0.0, 0.0, fmt::format("tolerance {} cannot be reached in double precision",
-                                              options.tolerance));
+      throw BudgetError(0.0, 0.0,
+                        fmt::format("tolerance {} cannot be reached in double precision", options.tolerance));
     }
     const double dm = d2(mid);
     stack.push_back({mid, p.s1, dm, p.d2_1});
     stack.push_back({p.s0, mid, p.d2_0, dm});
     if (stack.size() + params.size() > options.max_points) {
-      throw BudgetError(static_cast<double>(stack.size() + params.size()), static_cast<double>(options.max_points),
+      throw BudgetError(static_cast<double>(stack.size() + params.size()),
+                        static_cast<double>(options.max_points),
                         fmt::format("tolerance {} needs more than {} curve samples (the point budget)",
                                     options.tolerance, options.max_points));
     }
@@ -87,7 +89,8 @@ std::vector<double> sample_segment_parameters(const Segment& seg, const SampleOp
   return params;
 }
 
-Polyline2 sample_curve(const CompositeCurve& curve, const SampleOptions& options, std::vector<CurveParam>* params) {
+Polyline2 sample_curve(const CompositeCurve& curve, const SampleOptions& options,
+                       std::vector<CurveParam>* params) {
   require_positive("tolerance", options.tolerance);
   if (params) params->clear();
   Polyline2 out;

@@ -18,7 +18,8 @@ std::string at(const Vec2& p) { return fmt::format("(r {:.6g}, z {:.6g})", p.x()
 void snap_to_axis(std::vector<Vec2>& pts, double eps) {
   for (Vec2& p : pts) {
     if (p.x() < -eps) {
-      throw GeometryError("profile", fmt::format("profile crosses the axis: radius {:.6g} < 0 at {}", p.x(), at(p)));
+      throw GeometryError("profile",
+                          fmt::format("profile crosses the axis: radius {:.6g} < 0 at {}", p.x(), at(p)));
     }
     if (p.x() <= eps) p.x() = 0.0;
   }
@@ -30,10 +31,11 @@ void reject_isolated_axis_contacts(const std::vector<Vec2>& loop) {
   for (std::size_t i = 0; i < n; ++i) {
     if (loop[i].x() != 0.0) continue;
     if (loop[(i + n - 1) % n].x() != 0.0 && loop[(i + 1) % n].x() != 0.0) {
-      throw GeometryError("profile", fmt::format("profile touches the axis at the single point {}: the body would "
-                                                 "pinch to a point there (not a manifold); keep the profile off the "
-                                                 "axis or let it run along the axis",
-                                                 at(loop[i])));
+      throw GeometryError("profile",
+                          fmt::format("profile touches the axis at the single point {}: the body would "
+                                      "pinch to a point there (not a manifold); keep the profile off the "
+                                      "axis or let it run along the axis",
+                                      at(loop[i])));
     }
   }
 }
@@ -65,8 +67,8 @@ std::vector<std::vector<Vec2>> solid_loops(const std::vector<Vec2>& up) {
 
 // Inner wall: the profile offset by `wall` along its inward normal (toward
 // the axis for a profile running upward), at the exact curve's parameters.
-std::vector<Vec2> inner_offset(const CompositeCurve& profile, const std::vector<CurveParam>& params, double wall,
-                               bool upward, double* max_abs_curvature) {
+std::vector<Vec2> inner_offset(const CompositeCurve& profile, const std::vector<CurveParam>& params,
+                               double wall, bool upward, double* max_abs_curvature) {
   std::vector<Vec2> inner;
   inner.reserve(params.size());
   for (const CurveParam& p : params) {
@@ -79,9 +81,10 @@ std::vector<Vec2> inner_offset(const CompositeCurve& profile, const std::vector<
     const double k = (upward ? 1.0 : -1.0) * cross2(j[1], j[2]) / (speed * speed * speed);
     if (max_abs_curvature) *max_abs_curvature = std::max(*max_abs_curvature, std::abs(k));
     if (k * wall >= 1.0) {
-      throw GeometryError("wall", fmt::format("wall {} is too thick for the profile: its radius of curvature is "
-                                              "{:.6g} at {} (segment {}), so the inner surface would fold over",
-                                              wall, 1.0 / k, at(j[0]), p.segment + 1));
+      throw GeometryError("wall",
+                          fmt::format("wall {} is too thick for the profile: its radius of curvature is "
+                                      "{:.6g} at {} (segment {}), so the inner surface would fold over",
+                                      wall, 1.0 / k, at(j[0]), p.segment + 1));
     }
     inner.push_back(j[0] + wall * left);
   }
@@ -151,15 +154,17 @@ VesselSection build_vessel_section(const CompositeCurve& profile, const VesselSe
 
   if (profile.closed()) {
     if (options.mode == BodyMode::Shell) {
-      throw GeometryError("profile", "a closed profile is revolved as a solid ring; body.mode shell needs an open profile");
+      throw GeometryError(
+          "profile", "a closed profile is revolved as a solid ring; body.mode shell needs an open profile");
     }
     section.loops = {line.points};
   } else {
     const bool upward = line.points.back().y() > line.points.front().y();
     if (line.points.back().y() == line.points.front().y()) {
-      throw GeometryError("profile", fmt::format("profile ends {} and {} are at the same height: which end is the "
-                                                 "rim is undefined",
-                                                 at(line.points.front()), at(line.points.back())));
+      throw GeometryError("profile",
+                          fmt::format("profile ends {} and {} are at the same height: which end is the "
+                                      "rim is undefined",
+                                      at(line.points.front()), at(line.points.back())));
     }
     std::vector<Vec2> up = line.points;  // base -> rim
     if (!upward) std::reverse(up.begin(), up.end());
@@ -168,11 +173,13 @@ VesselSection build_vessel_section(const CompositeCurve& profile, const VesselSe
       section.loops = solid_loops(up);
     } else {
       if (top.x() == 0.0) {
-        throw GeometryError("profile", fmt::format("a shell is open at its rim, but the profile's upper end {} is on "
-                                                   "the axis",
-                                                   at(top)));
+        throw GeometryError("profile",
+                            fmt::format("a shell is open at its rim, but the profile's upper end {} is on "
+                                        "the axis",
+                                        at(top)));
       }
-      // Offsetting scales chord deviations by up to 1 + wall |k|: sample finely enough for the inner wall too.
+      // Offsetting scales chord deviations by up to 1 + wall |k|: sample finely enough for the inner wall
+      // too.
       double kmax = 0.0;
       std::vector<Vec2> inner = inner_offset(profile, params, options.wall, upward, &kmax);
       const double factor = 1.0 + options.wall * kmax;
@@ -194,9 +201,10 @@ VesselSection build_vessel_section(const CompositeCurve& profile, const VesselSe
       section.loops = {loop};
       for (const Vec2& p : loop) {
         if (p.x() < 0.0) {
-          throw GeometryError("wall", fmt::format("wall {} is too thick for the profile: the inner surface crosses "
-                                                  "the axis near {}",
-                                                  options.wall, at(p)));
+          throw GeometryError("wall",
+                              fmt::format("wall {} is too thick for the profile: the inner surface crosses "
+                                          "the axis near {}",
+                                          options.wall, at(p)));
         }
       }
     }
@@ -211,14 +219,15 @@ VesselSection build_vessel_section(const CompositeCurve& profile, const VesselSe
   }
   if (const auto c = find_crossing(section.loops)) {
     if (options.mode == BodyMode::Shell) {
-      throw GeometryError("wall", fmt::format("wall {} (base {}) is too thick for the profile: the shell section "
-                                              "crosses itself near {}",
-                                              options.wall, options.base > 0.0 ? options.base : options.wall,
-                                              at(c->where)));
+      throw GeometryError(
+          "wall", fmt::format("wall {} (base {}) is too thick for the profile: the shell section "
+                              "crosses itself near {}",
+                              options.wall, options.base > 0.0 ? options.base : options.wall, at(c->where)));
     }
     throw GeometryError("profile", fmt::format("the profile crosses itself near {}", at(c->where)));
   }
-  section.proof = "the section loops are simple and disjoint in r >= 0 (exact predicates), so its revolution is embedded";
+  section.proof =
+      "the section loops are simple and disjoint in r >= 0 (exact predicates), so its revolution is embedded";
   return section;
 }
 

@@ -15,9 +15,9 @@ enum class BodyMode { Solid, Shell };
 
 struct VesselSectionOptions {
   BodyMode mode = BodyMode::Solid;
-  double wall = 0.0;              ///< shell: wall thickness along the profile normal, model units (> 0)
-  double base = 0.0;              ///< shell: base thickness, model units (> 0; 0 = wall)
-  double tolerance = 0.005;       ///< profile sampling tolerance, model units (> 0)
+  double wall = 0.0;         ///< shell: wall thickness along the profile normal, model units (> 0)
+  double base = 0.0;         ///< shell: base thickness, model units (> 0; 0 = wall)
+  double tolerance = 0.005;  ///< profile sampling tolerance, model units (> 0)
   std::size_t max_points = 5000000;
 };
 
@@ -31,7 +31,7 @@ struct VesselSection {
   std::vector<std::vector<Vec2>> loops;
   double max_deviation = 0.0;  ///< bound on the distance between the loop and the exact section boundary
   double max_radius = 0.0;
-  std::string proof;           ///< why the section is simple (for reports)
+  std::string proof;  ///< why the section is simple (for reports)
 };
 
 /// Builds and checks the section. The profile runs either way; its higher

@@ -17,7 +17,8 @@ FairMode read_fair(const yaml::Fields& f, const YAML::Node& curve, const std::st
   return v == "none" ? FairMode::None : v == "strain" ? FairMode::Strain : FairMode::CurvatureVariation;
 }
 
-JoinSpec read_join(const yaml::Fields& f, const YAML::Node& node, const std::string& field, SegmentKind kind) {
+JoinSpec read_join(const yaml::Fields& f, const YAML::Node& node, const std::string& field,
+                   SegmentKind kind) {
   JoinSpec j;
   if (kind == SegmentKind::HBezier) {
     f.require_map(node, field, {"continuity", "k", "m"});
@@ -28,13 +29,15 @@ JoinSpec read_join(const yaml::Fields& f, const YAML::Node& node, const std::str
     f.require_map(node, field, {"continuity", "alpha", "beta"});
     j.alpha = f.number_or(node, "alpha", field + ".alpha", 1.0);
     j.beta = f.number_or(node, "beta", field + ".beta", 0.0);
-    if (j.alpha <= 0.0) f.fail(node["alpha"], field + ".alpha", fmt::format("alpha = {} must be > 0", j.alpha));
+    if (j.alpha <= 0.0)
+      f.fail(node["alpha"], field + ".alpha", fmt::format("alpha = {} must be > 0", j.alpha));
   }
   j.continuity = read_continuity(f, f.required(node, "continuity", field), field + ".continuity");
   return j;
 }
 
-SegmentSpec read_ellipse_arc(const yaml::Fields& f, const YAML::Node& n, const std::string& field, bool circle) {
+SegmentSpec read_ellipse_arc(const yaml::Fields& f, const YAML::Node& n, const std::string& field,
+                             bool circle) {
   SegmentSpec s;
   s.kind = SegmentKind::EllipseArc;
   if (circle) {
@@ -53,8 +56,8 @@ SegmentSpec read_ellipse_arc(const yaml::Fields& f, const YAML::Node& n, const s
   return s;
 }
 
-SegmentSpec read_segment(const yaml::Fields& f, const YAML::Node& n, const std::string& field, CurveFamily family,
-                         bool first) {
+SegmentSpec read_segment(const yaml::Fields& f, const YAML::Node& n, const std::string& field,
+                         CurveFamily family, bool first) {
   if (!n.IsMap()) f.fail(n, field, "expected a map describing a segment");
   SegmentSpec s;
   s.label = f.label(n, field);
@@ -65,9 +68,11 @@ SegmentSpec read_segment(const yaml::Fields& f, const YAML::Node& n, const std::
     s.kind = SegmentKind::Line;
     if (l["from"].IsDefined()) s.points.push_back(f.point2(l["from"], field + ".line.from"));
     s.points.push_back(f.point2(f.required(l, "to", field + ".line"), field + ".line.to"));
-    if (first && s.points.size() != 2) f.fail(l, field + ".line", "the first segment's line needs 'from' and 'to'");
+    if (first && s.points.size() != 2)
+      f.fail(l, field + ".line", "the first segment's line needs 'from' and 'to'");
     if (!first && s.points.size() != 1) {
-      f.fail(l["from"], field + ".line.from", "a line continues from the previous segment's end: give only 'to'");
+      f.fail(l["from"], field + ".line.from",
+             "a line continues from the previous segment's end: give only 'to'");
     }
     if (n["continuity"].IsDefined()) s.declared = read_continuity(f, n["continuity"], field + ".continuity");
     return s;
@@ -84,15 +89,17 @@ SegmentSpec read_segment(const yaml::Fields& f, const YAML::Node& n, const std::
   f.require_map(n, field, {"points", "lambda", "mu", "alpha", "join", "continuity", "family"});
   s.kind = family == CurveFamily::HBezier ? SegmentKind::HBezier : SegmentKind::TBezier;
   if (n["family"].IsDefined()) {
-    s.kind = f.choice(n["family"], field + ".family", {"tbezier", "hbezier"}) == "hbezier" ? SegmentKind::HBezier
-                                                                                          : SegmentKind::TBezier;
+    s.kind = f.choice(n["family"], field + ".family", {"tbezier", "hbezier"}) == "hbezier"
+                 ? SegmentKind::HBezier
+                 : SegmentKind::TBezier;
   }
   s.lambda = f.number_or(n, "lambda", field + ".lambda", 0.0);
   s.mu = f.number_or(n, "mu", field + ".mu", 0.0);
   if (s.kind == SegmentKind::HBezier) {
     s.alpha = f.number_or(n, "alpha", field + ".alpha", 1.0);
   } else if (n["alpha"].IsDefined()) {
-    f.fail(n["alpha"], field + ".alpha", "a tbezier segment has no alpha (the join's alpha goes under 'join')");
+    f.fail(n["alpha"], field + ".alpha",
+           "a tbezier segment has no alpha (the join's alpha goes under 'join')");
   }
   // Range checks of the shape parameters, reported at the segment.
   const std::array<Vec2, 4> probe{Vec2(0, 0), Vec2(1, 0), Vec2(2, 0), Vec2(3, 0)};
@@ -112,9 +119,10 @@ SegmentSpec read_segment(const yaml::Fields& f, const YAML::Node& n, const std::
   s.points = f.points2(f.required(n, "points", field), field + ".points");
   if (s.points.size() != needed) {
     f.fail(n["points"], field + ".points",
-           s.join ? fmt::format("a {} join computes {} point(s); give the {} free point(s), got {}",
-                                to_string(s.join->continuity), 4 - needed, needed, s.points.size())
-                  : fmt::format("an explicit segment needs 4 control points P0..P3, got {}", s.points.size()));
+           s.join
+               ? fmt::format("a {} join computes {} point(s); give the {} free point(s), got {}",
+                             to_string(s.join->continuity), 4 - needed, needed, s.points.size())
+               : fmt::format("an explicit segment needs 4 control points P0..P3, got {}", s.points.size()));
   }
   return s;
 }
@@ -144,8 +152,8 @@ CurveSpec read_curve(const yaml::Fields& f, const YAML::Node& node, const std::s
       f.require_list(l, field + ".lambdas");
       if (l.size() != n - 1) {
         f.fail(l, field + ".lambdas",
-               fmt::format("expected n - 1 = {} values lambda_1..lambda_{} for {} points, got {}", n - 1, n - 1,
-                           n + 1, l.size()));
+               fmt::format("expected n - 1 = {} values lambda_1..lambda_{} for {} points, got {}", n - 1,
+                           n - 1, n + 1, l.size()));
       }
       for (std::size_t i = 0; i < l.size(); ++i) {
         const std::string name = fmt::format("{}.lambdas[{}]", field, i);
@@ -163,16 +171,18 @@ CurveSpec read_curve(const yaml::Fields& f, const YAML::Node& node, const std::s
     const YAML::Node c = node["closing"];
     f.require_map(c, field + ".closing", {"continuity"});
     if (!spec.closed) f.fail(c, field + ".closing", "only a closed curve has a closing joint");
-    spec.closing_declared = read_continuity(f, f.required(c, "continuity", field + ".closing"),
-                                            field + ".closing.continuity");
+    spec.closing_declared =
+        read_continuity(f, f.required(c, "continuity", field + ".closing"), field + ".closing.continuity");
   }
   const YAML::Node segs = f.required(node, "segments", field);
   f.require_list(segs, field + ".segments", 1);
   for (std::size_t i = 0; i < segs.size(); ++i) {
-    spec.segments.push_back(read_segment(f, segs[i], fmt::format("{}.segments[{}]", field, i), spec.family, i == 0));
+    spec.segments.push_back(
+        read_segment(f, segs[i], fmt::format("{}.segments[{}]", field, i), spec.family, i == 0));
   }
   if (spec.fair == FairMode::Strain) {
-    f.fail(node["fair"], field + ".fair", "strain fairing applies to quasi_bspline curves; use curvature_variation");
+    f.fail(node["fair"], field + ".fair",
+           "strain fairing applies to quasi_bspline curves; use curvature_variation");
   }
   if (spec.fair != FairMode::None && spec.family == CurveFamily::HBezier) {
     f.fail(node["fair"], field + ".fair", "fairing is defined for tbezier and quasi_bspline curves");

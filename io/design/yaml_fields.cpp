@@ -65,7 +65,8 @@ double Fields::number(const YAML::Node& node, const std::string& field) const {
   return value;
 }
 
-double Fields::number_or(const YAML::Node& parent, const char* key, const std::string& field, double fallback) const {
+double Fields::number_or(const YAML::Node& parent, const char* key, const std::string& field,
+                         double fallback) const {
   const YAML::Node n = parent[key];
   return n.IsDefined() ? number(n, field) : fallback;
 }
@@ -91,7 +92,8 @@ std::string Fields::choice(const YAML::Node& node, const std::string& field,
   fail(node, field, fmt::format("'{}' is not one of: {}", value, join(choices)));
 }
 
-bool Fields::boolean_or(const YAML::Node& parent, const char* key, const std::string& field, bool fallback) const {
+bool Fields::boolean_or(const YAML::Node& parent, const char* key, const std::string& field,
+                        bool fallback) const {
   const YAML::Node n = parent[key];
   if (!n.IsDefined()) return fallback;
   bool value = false;
@@ -106,10 +108,12 @@ Vec2 Fields::point2(const YAML::Node& node, const std::string& field) const {
   return {number(node[0], field + "[0]"), number(node[1], field + "[1]")};
 }
 
-std::vector<Vec2> Fields::points2(const YAML::Node& node, const std::string& field, std::size_t min_size) const {
+std::vector<Vec2> Fields::points2(const YAML::Node& node, const std::string& field,
+                                  std::size_t min_size) const {
   require_list(node, field, min_size);
   std::vector<Vec2> out;
-  for (std::size_t i = 0; i < node.size(); ++i) out.push_back(point2(node[i], fmt::format("{}[{}]", field, i)));
+  for (std::size_t i = 0; i < node.size(); ++i)
+    out.push_back(point2(node[i], fmt::format("{}[{}]", field, i)));
   return out;
 }
 

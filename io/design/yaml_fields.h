@@ -27,17 +27,20 @@ class Fields {
   /// The child `key` of a map; a FileError at the map when it is missing.
   YAML::Node required(const YAML::Node& parent, const char* key, const std::string& field) const;
   /// Requires a map whose keys are all in `allowed`.
-  void require_map(const YAML::Node& node, const std::string& field, std::initializer_list<const char*> allowed) const;
+  void require_map(const YAML::Node& node, const std::string& field,
+                   std::initializer_list<const char*> allowed) const;
   /// Requires a sequence of at least `min_size` entries.
   void require_list(const YAML::Node& node, const std::string& field, std::size_t min_size = 0) const;
 
   double number(const YAML::Node& node, const std::string& field) const;
-  double number_or(const YAML::Node& parent, const char* key, const std::string& field, double fallback) const;
+  double number_or(const YAML::Node& parent, const char* key, const std::string& field,
+                   double fallback) const;
   std::string text(const YAML::Node& node, const std::string& field) const;
   std::string text_or(const YAML::Node& parent, const char* key, const std::string& field,
                       const std::string& fallback) const;
   /// One of `choices`.
-  std::string choice(const YAML::Node& node, const std::string& field, std::initializer_list<const char*> choices) const;
+  std::string choice(const YAML::Node& node, const std::string& field,
+                     std::initializer_list<const char*> choices) const;
   bool boolean_or(const YAML::Node& parent, const char* key, const std::string& field, bool fallback) const;
   Vec2 point2(const YAML::Node& node, const std::string& field) const;
   std::vector<Vec2> points2(const YAML::Node& node, const std::string& field, std::size_t min_size = 0) const;

@@ -1,10 +1,8 @@
 #include "io/mesh/atomic_file.h"
 
-#include "geometry/core/errors.h"
-
 #include <fcntl.h>
-#include <sys/stat.h>
 #include <fmt/format.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -13,6 +11,8 @@
 #include <filesystem>
 #include <fstream>
 #include <vector>
+
+#include "geometry/core/errors.h"
 
 namespace fabmesh {
 namespace {

@@ -1,8 +1,5 @@
 #include "io/mesh/draco.h"
 
-#include "geometry/core/errors.h"
-#include "io/mesh/atomic_file.h"
-
 #include <draco/compression/decode.h>
 #include <draco/compression/encode.h>
 #include <draco/mesh/mesh.h>
@@ -10,6 +7,9 @@
 
 #include <cmath>
 #include <limits>
+
+#include "geometry/core/errors.h"
+#include "io/mesh/atomic_file.h"
 
 namespace fabmesh {
 namespace {
@@ -47,10 +47,11 @@ DracoQuantization draco_quantization(const Vec3& lo, const Vec3& hi, double tole
     const double error = draco_max_error(lo, hi, bits);
     if (error <= tolerance) return {bits, error};
   }
-  throw RangeError("draco tolerance", tolerance,
-                   fmt::format("draco tolerance = {} is below what 30-bit float32 positions can hold for a mesh "
-                               "of extent {} (best: {})",
-                               tolerance, (hi - lo).maxCoeff(), draco_max_error(lo, hi, 30)));
+  throw RangeError(
+      "draco tolerance", tolerance,
+      fmt::format("draco tolerance = {} is below what 30-bit float32 positions can hold for a mesh "
+                  "of extent {} (best: {})",
+                  tolerance, (hi - lo).maxCoeff(), draco_max_error(lo, hi, 30)));
 }
 
 TriangleSoup parse_draco(std::string_view bytes, const std::string& name) {
@@ -111,7 +112,8 @@ std::string encode_draco(const TriangleSoup& soup, const DracoOptions& options) 
   const auto np = static_cast<draco::PointIndex::ValueType>(soup.vertices.size());
   mesh.set_num_points(np);
   draco::GeometryAttribute attribute;
-  attribute.Init(draco::GeometryAttribute::POSITION, nullptr, 3, draco::DT_FLOAT32, false, sizeof(float) * 3, 0);
+  attribute.Init(draco::GeometryAttribute::POSITION, nullptr, 3, draco::DT_FLOAT32, false, sizeof(float) * 3,
+                 0);
   const int id = mesh.AddAttribute(attribute, true, np);
   draco::PointAttribute* position = mesh.attribute(id);
   for (draco::PointIndex::ValueType i = 0; i < np; ++i) {

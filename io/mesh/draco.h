@@ -1,11 +1,11 @@
 #pragma once
 // Draco (.drc): compressed triangle meshes, positions quantized.
 
-#include "geometry/core/types.h"
-#include "geometry/mesh/soup.h"
-
 #include <string>
 #include <string_view>
+
+#include "geometry/core/types.h"
+#include "geometry/mesh/soup.h"
 
 namespace fabmesh {
 

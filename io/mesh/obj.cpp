@@ -1,13 +1,13 @@
 #include "io/mesh/obj.h"
 
-#include "geometry/core/errors.h"
-#include "io/mesh/atomic_file.h"
-#include "io/mesh/text_scanner.h"
-
 #include <fmt/format.h>
 
 #include <cstdint>
 #include <limits>
+
+#include "geometry/core/errors.h"
+#include "io/mesh/atomic_file.h"
+#include "io/mesh/text_scanner.h"
 
 namespace fabmesh {
 namespace {
@@ -45,7 +45,8 @@ TriangleSoup parse_obj(std::string_view bytes, const std::string& name) {
           if (-i > nv) scan.fail(fmt::format("relative index {} but only {} vertices precede it", i, nv));
           i = nv + i;
         } else {
-          if (i > std::numeric_limits<std::uint32_t>::max()) scan.fail(fmt::format("face vertex index {} too large", i));
+          if (i > std::numeric_limits<std::uint32_t>::max())
+            scan.fail(fmt::format("face vertex index {} too large", i));
           if (i > nv && i > max_forward) {
             max_forward = i;
             max_forward_line = scan.line();
@@ -73,14 +74,17 @@ std::string encode_obj(const TriangleSoup& soup) {
   require_indices_in_range(soup);
   fmt::memory_buffer out;
   fmt::format_to(std::back_inserter(out), "# written by fabmesh\n");
-  for (const Vec3& p : soup.vertices) fmt::format_to(std::back_inserter(out), "v {} {} {}\n", p.x(), p.y(), p.z());
+  for (const Vec3& p : soup.vertices)
+    fmt::format_to(std::back_inserter(out), "v {} {} {}\n", p.x(), p.y(), p.z());
   for (const auto& t : soup.triangles) {
     fmt::format_to(std::back_inserter(out), "f {} {} {}\n", t[0] + 1ull, t[1] + 1ull, t[2] + 1ull);
   }
   return fmt::to_string(out);
 }
 
-void write_obj(const TriangleSoup& soup, const std::string& path) { write_file_atomically(path, encode_obj(soup)); }
+void write_obj(const TriangleSoup& soup, const std::string& path) {
+  write_file_atomically(path, encode_obj(soup));
+}
 
 void write_obj(const Mesh& mesh, const std::string& path) { write_obj(to_soup(mesh), path); }
 

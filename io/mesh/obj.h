@@ -1,11 +1,11 @@
 #pragma once
 // Wavefront OBJ: vertices and faces (other records are ignored).
 
-#include "geometry/core/types.h"
-#include "geometry/mesh/soup.h"
-
 #include <string>
 #include <string_view>
+
+#include "geometry/core/types.h"
+#include "geometry/mesh/soup.h"
 
 namespace fabmesh {
 

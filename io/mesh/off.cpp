@@ -1,13 +1,13 @@
 #include "io/mesh/off.h"
 
-#include "geometry/core/errors.h"
-#include "io/mesh/atomic_file.h"
-#include "io/mesh/text_scanner.h"
-
 #include <fmt/format.h>
 
 #include <cstdint>
 #include <limits>
+
+#include "geometry/core/errors.h"
+#include "io/mesh/atomic_file.h"
+#include "io/mesh/text_scanner.h"
 
 namespace fabmesh {
 
@@ -35,7 +35,8 @@ TriangleSoup parse_off(std::string_view bytes, const std::string& name) {
   soup.vertices.reserve(static_cast<std::size_t>(nv));
   soup.triangles.reserve(static_cast<std::size_t>(nf));
   for (std::int64_t i = 0; i < nv; ++i) {
-    if (!scan.next_content_line(line, '#')) scan.fail(fmt::format("file ends after {} of {} vertices", i, nv));
+    if (!scan.next_content_line(line, '#'))
+      scan.fail(fmt::format("file ends after {} of {} vertices", i, nv));
     Vec3 p;
     for (int a = 0; a < 3; ++a) p[a] = scan.to_double(next_token(line), "vertex coordinate");
     soup.vertices.push_back(p);
@@ -44,7 +45,8 @@ TriangleSoup parse_off(std::string_view bytes, const std::string& name) {
   for (std::int64_t f = 0; f < nf; ++f) {
     if (!scan.next_content_line(line, '#')) scan.fail(fmt::format("file ends after {} of {} faces", f, nf));
     const std::int64_t n = scan.to_int(next_token(line), "face corner count");
-    if (n < 3 || n > static_cast<std::int64_t>(line.size())) scan.fail(fmt::format("face with {} corners", n));
+    if (n < 3 || n > static_cast<std::int64_t>(line.size()))
+      scan.fail(fmt::format("face with {} corners", n));
     polygon.clear();
     for (std::int64_t k = 0; k < n; ++k) {
       const std::string_view token = next_token(line);
@@ -53,7 +55,8 @@ TriangleSoup parse_off(std::string_view bytes, const std::string& name) {
       if (i < 0 || i >= nv) scan.fail(fmt::format("face vertex index {} outside [0, {})", i, nv));
       polygon.push_back(static_cast<std::uint32_t>(i));
     }
-    for (std::size_t k = 1; k + 1 < polygon.size(); ++k) soup.triangles.push_back({polygon[0], polygon[k], polygon[k + 1]});
+    for (std::size_t k = 1; k + 1 < polygon.size(); ++k)
+      soup.triangles.push_back({polygon[0], polygon[k], polygon[k + 1]});
   }
   return soup;
 }
@@ -68,7 +71,9 @@ std::string encode_off(const TriangleSoup& soup) {
   return fmt::to_string(out);
 }
 
-void write_off(const TriangleSoup& soup, const std::string& path) { write_file_atomically(path, encode_off(soup)); }
+void write_off(const TriangleSoup& soup, const std::string& path) {
+  write_file_atomically(path, encode_off(soup));
+}
 
 void write_off(const Mesh& mesh, const std::string& path) { write_off(to_soup(mesh), path); }
 

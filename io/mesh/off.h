@@ -1,11 +1,11 @@
 #pragma once
 // OFF (Object File Format): counts, vertices, polygon faces.
 
-#include "geometry/core/types.h"
-#include "geometry/mesh/soup.h"
-
 #include <string>
 #include <string_view>
+
+#include "geometry/core/types.h"
+#include "geometry/mesh/soup.h"
 
 namespace fabmesh {
 

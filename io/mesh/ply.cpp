@@ -1,9 +1,5 @@
 #include "io/mesh/ply.h"
 
-#include "geometry/core/errors.h"
-#include "io/mesh/atomic_file.h"
-#include "io/mesh/text_scanner.h"
-
 #include <fmt/format.h>
 
 #include <cmath>
@@ -11,6 +7,10 @@
 #include <cstring>
 #include <limits>
 #include <optional>
+
+#include "geometry/core/errors.h"
+#include "io/mesh/atomic_file.h"
+#include "io/mesh/text_scanner.h"
 
 namespace fabmesh {
 namespace {
@@ -40,10 +40,18 @@ struct Header {
 
 std::size_t size_of(Type t) {
   switch (t) {
-    case Type::I8: case Type::U8: return 1;
-    case Type::I16: case Type::U16: return 2;
-    case Type::I32: case Type::U32: case Type::F32: return 4;
-    case Type::F64: return 8;
+    case Type::I8:
+    case Type::U8:
+      return 1;
+    case Type::I16:
+    case Type::U16:
+      return 2;
+    case Type::I32:
+    case Type::U32:
+    case Type::F32:
+      return 4;
+    case Type::F64:
+      return 8;
   }
   return 1;
 }
@@ -74,10 +82,14 @@ Header parse_header(std::string_view bytes, const std::string& name) {
     if (key == "comment" || key == "obj_info" || key.empty()) continue;
     if (key == "format") {
       const std::string_view f = next_token(rest);
-      if (f == "ascii") header.format = Format::Ascii;
-      else if (f == "binary_little_endian") header.format = Format::BinaryLE;
-      else if (f == "binary_big_endian") header.format = Format::BinaryBE;
-      else scan.fail(fmt::format("unknown PLY format '{}'", std::string(f.substr(0, 40))));
+      if (f == "ascii")
+        header.format = Format::Ascii;
+      else if (f == "binary_little_endian")
+        header.format = Format::BinaryLE;
+      else if (f == "binary_big_endian")
+        header.format = Format::BinaryBE;
+      else
+        scan.fail(fmt::format("unknown PLY format '{}'", std::string(f.substr(0, 40))));
       have_format = true;
     } else if (key == "element") {
       Element e;
@@ -93,7 +105,8 @@ Header parse_header(std::string_view bytes, const std::string& name) {
       if (t == "list") {
         p.is_list = true;
         const auto count_type = type_named(next_token(rest));
-        if (!count_type || *count_type == Type::F32 || *count_type == Type::F64) scan.fail("bad list count type");
+        if (!count_type || *count_type == Type::F32 || *count_type == Type::F64)
+          scan.fail("bad list count type");
         p.count_type = *count_type;
         t = next_token(rest);
       }
@@ -118,14 +131,15 @@ class Values {
   Values(std::string_view body, Format format, const std::string& name, int first_line)
       : body_(body), format_(format), scan_(body, name, first_line) {}
 
-  double read(Type t) {
-    return format_ == Format::Ascii ? read_ascii() : read_binary(t);
+  double read(Type t) { return format_ == Format::Ascii ? read_ascii() : read_binary(t); }
+  std::size_t remaining() const {
+    return format_ == Format::Ascii ? scan_.remaining() + rest_.size() : body_.size() - pos_;
   }
-  std::size_t remaining() const { return format_ == Format::Ascii ? scan_.remaining() + rest_.size() : body_.size() - pos_; }
   Format format() const { return format_; }
   [[noreturn]] void fail(const std::string& message) const {
     if (format_ == Format::Ascii) scan_.fail(message);
-    throw FileError(scan_.name(), 0, 0, fmt::format("{}: byte {} of the PLY data: {}", scan_.name(), pos_, message));
+    throw FileError(scan_.name(), 0, 0,
+                    fmt::format("{}: byte {} of the PLY data: {}", scan_.name(), pos_, message));
   }
 
  private:
@@ -150,12 +164,18 @@ class Values {
       u |= std::uint64_t{b[i]} << (8 * shift);
     }
     switch (t) {
-      case Type::I8: return static_cast<std::int8_t>(u);
-      case Type::U8: return static_cast<double>(u);
-      case Type::I16: return static_cast<std::int16_t>(u);
-      case Type::U16: return static_cast<double>(u);
-      case Type::I32: return static_cast<std::int32_t>(u);
-      case Type::U32: return static_cast<double>(u);
+      case Type::I8:
+        return static_cast<std::int8_t>(u);
+      case Type::U8:
+        return static_cast<double>(u);
+      case Type::I16:
+        return static_cast<std::int16_t>(u);
+      case Type::U16:
+        return static_cast<double>(u);
+      case Type::I32:
+        return static_cast<std::int32_t>(u);
+      case Type::U32:
+        return static_cast<double>(u);
       case Type::F32: {
         const auto bits = static_cast<std::uint32_t>(u);
         float f;
@@ -181,11 +201,14 @@ class Values {
 /// The fewest bytes one element can take: guards counts before any allocation.
 std::uint64_t min_bytes(const Element& e, Format format) {
   std::uint64_t n = 0;
-  for (const Property& p : e.properties) n += format == Format::Ascii ? 2 : size_of(p.is_list ? p.count_type : p.type);
+  for (const Property& p : e.properties)
+    n += format == Format::Ascii ? 2 : size_of(p.is_list ? p.count_type : p.type);
   return n;
 }
 
-bool is_index_list(const Property& p) { return p.is_list && (p.name == "vertex_indices" || p.name == "vertex_index"); }
+bool is_index_list(const Property& p) {
+  return p.is_list && (p.name == "vertex_indices" || p.name == "vertex_index");
+}
 
 void read_element(const Element& e, Values& values, TriangleSoup& soup, std::vector<std::uint32_t>& polygon) {
   const bool vertex = e.name == "vertex";
@@ -211,15 +234,18 @@ void read_element(const Element& e, Values& values, TriangleSoup& soup, std::vec
       for (std::uint64_t k = 0; k < static_cast<std::uint64_t>(count); ++k) {
         const double index = values.read(prop.type);
         if (!keep) continue;
-        if (!(index >= 0) || index != std::floor(index) || index > std::numeric_limits<std::uint32_t>::max()) {
+        if (!(index >= 0) || index != std::floor(index) ||
+            index > std::numeric_limits<std::uint32_t>::max()) {
           values.fail(fmt::format("face {} has vertex index {}", i, index));
         }
         polygon.push_back(static_cast<std::uint32_t>(index));
       }
-      if (keep && polygon.size() < 3) values.fail(fmt::format("face {} has {} corners, needs at least 3", i, polygon.size()));
+      if (keep && polygon.size() < 3)
+        values.fail(fmt::format("face {} has {} corners, needs at least 3", i, polygon.size()));
     }
     if (vertex) soup.vertices.push_back(p);
-    for (std::size_t k = 1; k + 1 < polygon.size(); ++k) soup.triangles.push_back({polygon[0], polygon[k], polygon[k + 1]});
+    for (std::size_t k = 1; k + 1 < polygon.size(); ++k)
+      soup.triangles.push_back({polygon[0], polygon[k], polygon[k + 1]});
   }
 }
 
@@ -238,7 +264,8 @@ TriangleSoup parse_ply(std::string_view bytes, const std::string& name) {
   for (const Element& e : header.elements) {
     const std::uint64_t need = min_bytes(e, header.format);
     if (need > 0 && e.count > values.remaining() / need + 1) {
-      values.fail(fmt::format("{} {} elements cannot fit in the {} bytes left", e.count, e.name, values.remaining()));
+      values.fail(
+          fmt::format("{} {} elements cannot fit in the {} bytes left", e.count, e.name, values.remaining()));
     }
     if (e.name == "vertex") {
       if (have_vertices) values.fail("more than one 'vertex' element");
@@ -256,8 +283,9 @@ TriangleSoup parse_ply(std::string_view bytes, const std::string& name) {
   for (const auto& t : soup.triangles) {
     for (const std::uint32_t i : t) {
       if (i >= soup.vertices.size()) {
-        throw FileError(name, 0, 0, fmt::format("{}: a face refers to vertex {} but the file has {} vertices", name,
-                                                i, soup.vertices.size()));
+        throw FileError(name, 0, 0,
+                        fmt::format("{}: a face refers to vertex {} but the file has {} vertices", name, i,
+                                    soup.vertices.size()));
       }
     }
   }
@@ -287,7 +315,9 @@ std::string encode_ply(const TriangleSoup& soup) {
   return out;
 }
 
-void write_ply(const TriangleSoup& soup, const std::string& path) { write_file_atomically(path, encode_ply(soup)); }
+void write_ply(const TriangleSoup& soup, const std::string& path) {
+  write_file_atomically(path, encode_ply(soup));
+}
 
 void write_ply(const Mesh& mesh, const std::string& path) { write_ply(to_soup(mesh), path); }
 

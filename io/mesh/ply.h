@@ -2,11 +2,11 @@
 // PLY (Stanford polygon format): ascii, binary_little_endian and
 // binary_big_endian; the vertex and face elements.
 
-#include "geometry/core/types.h"
-#include "geometry/mesh/soup.h"
-
 #include <string>
 #include <string_view>
+
+#include "geometry/core/types.h"
+#include "geometry/mesh/soup.h"
 
 namespace fabmesh {
 

@@ -1,5 +1,11 @@
 #include "io/mesh/read_mesh.h"
 
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+
 #include "geometry/core/errors.h"
 #include "io/mesh/atomic_file.h"
 #include "io/mesh/draco.h"
@@ -9,18 +15,13 @@
 #include "io/mesh/stl.h"
 #include "io/mesh/text_scanner.h"
 
-#include <fmt/format.h>
-
-#include <algorithm>
-#include <cctype>
-#include <filesystem>
-
 namespace fabmesh {
 namespace {
 
 std::string lower_extension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return ext;
 }
 
@@ -57,11 +58,16 @@ std::string_view skip_comments_and_space(std::string_view bytes) {
 
 const char* to_string(MeshFormat format) {
   switch (format) {
-    case MeshFormat::Stl: return "STL";
-    case MeshFormat::Obj: return "OBJ";
-    case MeshFormat::Ply: return "PLY";
-    case MeshFormat::Off: return "OFF";
-    case MeshFormat::Draco: return "Draco";
+    case MeshFormat::Stl:
+      return "STL";
+    case MeshFormat::Obj:
+      return "OBJ";
+    case MeshFormat::Ply:
+      return "PLY";
+    case MeshFormat::Off:
+      return "OFF";
+    case MeshFormat::Draco:
+      return "Draco";
   }
   return "unknown";
 }
@@ -82,11 +88,16 @@ MeshFormat detect_format(std::string_view bytes, const std::string& path) {
 
 TriangleSoup parse_mesh(std::string_view bytes, const std::string& path) {
   switch (detect_format(bytes, path)) {
-    case MeshFormat::Stl: return parse_stl(bytes, path);
-    case MeshFormat::Obj: return parse_obj(bytes, path);
-    case MeshFormat::Ply: return parse_ply(bytes, path);
-    case MeshFormat::Off: return parse_off(bytes, path);
-    case MeshFormat::Draco: return parse_draco(bytes, path);
+    case MeshFormat::Stl:
+      return parse_stl(bytes, path);
+    case MeshFormat::Obj:
+      return parse_obj(bytes, path);
+    case MeshFormat::Ply:
+      return parse_ply(bytes, path);
+    case MeshFormat::Off:
+      return parse_off(bytes, path);
+    case MeshFormat::Draco:
+      return parse_draco(bytes, path);
   }
   throw FileError(path, 0, 0, fmt::format("{}: unknown mesh format", path));
 }

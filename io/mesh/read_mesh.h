@@ -1,10 +1,10 @@
 #pragma once
 // Any supported mesh file in: the format is told by content.
 
-#include "geometry/mesh/soup.h"
-
 #include <string>
 #include <string_view>
+
+#include "geometry/mesh/soup.h"
 
 namespace fabmesh {
 

@@ -1,18 +1,18 @@
 #include "io/mesh/stl.h"
 
-#include "geometry/core/errors.h"
-#include "io/mesh/atomic_file.h"
-#include "io/mesh/text_scanner.h"
-
-#include <Eigen/Geometry>
 #include <fmt/format.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <limits>
+
+#include "geometry/core/errors.h"
+#include "io/mesh/atomic_file.h"
+#include "io/mesh/text_scanner.h"
 
 namespace fabmesh {
 namespace {
@@ -23,7 +23,8 @@ constexpr std::size_t kRecord = 50;
 std::uint32_t read_u32(const char* p) {
   unsigned char b[4];
   std::memcpy(b, p, 4);
-  return std::uint32_t{b[0]} | std::uint32_t{b[1]} << 8 | std::uint32_t{b[2]} << 16 | std::uint32_t{b[3]} << 24;
+  return std::uint32_t{b[0]} | std::uint32_t{b[1]} << 8 | std::uint32_t{b[2]} << 16 |
+         std::uint32_t{b[3]} << 24;
 }
 
 float read_f32(const char* p) {
@@ -47,15 +48,17 @@ void store_f32_le(char* dst, float f) {
 
 TriangleSoup parse_binary(std::string_view bytes, const std::string& name) {
   if (bytes.size() < kHeader) {
-    throw FileError(name, 0, 0, fmt::format("{}: binary STL truncated: {} bytes, the header alone is 84", name,
-                                            bytes.size()));
+    throw FileError(
+        name, 0, 0,
+        fmt::format("{}: binary STL truncated: {} bytes, the header alone is 84", name, bytes.size()));
   }
   const std::uint64_t n = read_u32(bytes.data() + 80);
   const std::uint64_t expected = kHeader + kRecord * n;
   if (expected != bytes.size()) {
-    throw FileError(name, 0, 0,
-                    fmt::format("{}: binary STL header says {} triangles ({} bytes) but the file has {} bytes",
-                                name, n, expected, bytes.size()));
+    throw FileError(
+        name, 0, 0,
+        fmt::format("{}: binary STL header says {} triangles ({} bytes) but the file has {} bytes", name, n,
+                    expected, bytes.size()));
   }
   if (3 * n > std::numeric_limits<std::uint32_t>::max()) {
     throw FileError(name, 0, 0, fmt::format("{}: {} triangles are more than fabmesh can index", name, n));
@@ -105,7 +108,8 @@ TriangleSoup parse_ascii(std::string_view bytes, const std::string& name) {
       }
       const auto first = static_cast<std::uint32_t>(soup.vertices.size());
       soup.vertices.insert(soup.vertices.end(), loop.begin(), loop.end());
-      for (std::uint32_t k = 1; k + 1 < loop.size(); ++k) soup.triangles.push_back({first, first + k, first + k + 1});
+      for (std::uint32_t k = 1; k + 1 < loop.size(); ++k)
+        soup.triangles.push_back({first, first + k, first + k + 1});
       in_facet = false;
     } else if (key == "outer" || key == "endloop") {
       if (!in_facet) scan.fail(fmt::format("'{}' outside a facet", key));
@@ -122,12 +126,14 @@ TriangleSoup parse_ascii(std::string_view bytes, const std::string& name) {
 }  // namespace
 
 bool is_binary_stl(std::string_view bytes) {
-  return bytes.size() >= kHeader && kHeader + kRecord * std::uint64_t{read_u32(bytes.data() + 80)} == bytes.size();
+  return bytes.size() >= kHeader &&
+         kHeader + kRecord * std::uint64_t{read_u32(bytes.data() + 80)} == bytes.size();
 }
 
 bool looks_like_ascii_stl(std::string_view bytes) {
   std::size_t i = 0;
-  while (i < bytes.size() && (bytes[i] == ' ' || bytes[i] == '\t' || bytes[i] == '\r' || bytes[i] == '\n')) ++i;
+  while (i < bytes.size() && (bytes[i] == ' ' || bytes[i] == '\t' || bytes[i] == '\r' || bytes[i] == '\n'))
+    ++i;
   if (bytes.substr(i, 5) != "solid") return false;
   for (std::size_t k = 0; k < bytes.size() && k < 512; ++k) {
     const auto c = static_cast<unsigned char>(bytes[k]);
@@ -182,7 +188,9 @@ std::string encode_stl(const TriangleSoup& soup) {
   return out;
 }
 
-void write_stl(const TriangleSoup& soup, const std::string& path) { write_file_atomically(path, encode_stl(soup)); }
+void write_stl(const TriangleSoup& soup, const std::string& path) {
+  write_file_atomically(path, encode_stl(soup));
+}
 
 void write_stl(const Mesh& mesh, const std::string& path) { write_stl(to_soup(mesh), path); }
 

@@ -1,11 +1,11 @@
 #pragma once
 // STL: binary and ASCII triangle soups.
 
-#include "geometry/core/types.h"
-#include "geometry/mesh/soup.h"
-
 #include <string>
 #include <string_view>
+
+#include "geometry/core/types.h"
+#include "geometry/mesh/soup.h"
 
 namespace fabmesh {
 

@@ -1,11 +1,11 @@
 #include "io/mesh/text_scanner.h"
 
-#include "geometry/core/errors.h"
-
 #include <fmt/format.h>
 
 #include <charconv>
 #include <cmath>
+
+#include "geometry/core/errors.h"
 
 namespace fabmesh {
 namespace {

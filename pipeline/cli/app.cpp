@@ -1,11 +1,11 @@
-#include "geometry/core/errors.h"
-#include "pipeline/cli/commands.h"
-
 #include <fmt/format.h>
 
 #include <exception>
 #include <map>
 #include <string>
+
+#include "geometry/core/errors.h"
+#include "pipeline/cli/commands.h"
 
 namespace fabmesh::cli {
 namespace {

@@ -2,12 +2,6 @@
 // made anywhere. Exit 0 when every mesh is valid, 1 when any is invalid, 2
 // when any cannot be read.
 
-#include "geometry/core/errors.h"
-#include "geometry/mesh/validate.h"
-#include "geometry/mesh/weld.h"
-#include "io/mesh/read_mesh.h"
-#include "pipeline/cli/commands.h"
-
 #include <fmt/format.h>
 
 #include <chrono>
@@ -16,6 +10,12 @@
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "geometry/core/errors.h"
+#include "geometry/mesh/validate.h"
+#include "geometry/mesh/weld.h"
+#include "io/mesh/read_mesh.h"
+#include "pipeline/cli/commands.h"
 
 namespace fabmesh::cli {
 namespace {
@@ -99,7 +99,8 @@ std::string human_verdict(const FileCheck& check) {
                                  r.valid() ? "valid" : "INVALID", r.vertices, r.triangles, r.components,
                                  r.components == 1 ? "" : "s");
   if (r.genus) text += fmt::format(", genus {}", *r.genus);
-  text += fmt::format(", volume {:g}, area {:g}; weld merged {} vertices)\n", r.volume, r.area, check.welded_vertices);
+  text += fmt::format(", volume {:g}, area {:g}; weld merged {} vertices)\n", r.volume, r.area,
+                      check.welded_vertices);
   for (const std::string& line : describe_defects(r)) text += "  - " + line + "\n";
   return text;
 }
@@ -136,7 +137,8 @@ int run_check(const CheckArgs& args, Streams streams) {
 
 Runner add_check_command(CLI::App& app) {
   auto args = std::make_shared<CheckArgs>();
-  CLI::App* cmd = app.add_subcommand("check", "Validate mesh files (STL, OBJ, PLY, OFF, Draco) for fabrication");
+  CLI::App* cmd =
+      app.add_subcommand("check", "Validate mesh files (STL, OBJ, PLY, OFF, Draco) for fabrication");
   cmd->add_option("MESH", args->files, "Mesh files to check; the format is told by content")->required();
   cmd->add_flag("--json", args->json, "Print a JSON report per file (an array for several files)");
   cmd->add_option("--weld-tolerance", args->weld_tolerance,

@@ -3,7 +3,6 @@
 // options on `app` and returns the function that runs it once parsed.
 
 #include <CLI/CLI.hpp>
-
 #include <functional>
 #include <ostream>
 

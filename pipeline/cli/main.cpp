@@ -1,7 +1,5 @@
-#include "pipeline/cli/commands.h"
-
 #include <iostream>
 
-int main(int argc, char** argv) {
-  return fabmesh::cli::run_app(argc, argv, {std::cout, std::cerr});
-}
+#include "pipeline/cli/commands.h"
+
+int main(int argc, char** argv) { return fabmesh::cli::run_app(argc, argv, {std::cout, std::cerr}); }

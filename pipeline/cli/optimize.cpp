@@ -50,7 +50,8 @@ nlohmann::json optimize_curve(const NamedCurve& nc) {
     return out;
   }
   if (spec.family == CurveFamily::HBezier) {
-    throw GeometryError(nc.name, fmt::format("{}: optimize is defined for tbezier and quasi_bspline curves", nc.name));
+    throw GeometryError(nc.name,
+                        fmt::format("{}: optimize is defined for tbezier and quasi_bspline curves", nc.name));
   }
   spec.fair = FairMode::CurvatureVariation;
   const BuiltCurve built = build_curve(spec);
@@ -64,20 +65,25 @@ nlohmann::json optimize_curve(const NamedCurve& nc) {
 
 void print_human(const std::string& name, const nlohmann::json& r, std::ostream& out) {
   if (r["family"] == "quasi_bspline") {
-    out << fmt::format("{}: quasi_bspline, fairest lambdas for {} energy:\n", name, r["energy_kind"].get<std::string>());
+    out << fmt::format("{}: quasi_bspline, fairest lambdas for {} energy:\n", name,
+                       r["energy_kind"].get<std::string>());
     const auto lambdas = r["lambdas"].get<std::vector<double>>();
-    for (std::size_t i = 0; i < lambdas.size(); ++i) out << fmt::format("  lambda_{} = {:.6f}\n", i + 1, lambdas[i]);
+    for (std::size_t i = 0; i < lambdas.size(); ++i)
+      out << fmt::format("  lambda_{} = {:.6f}\n", i + 1, lambdas[i]);
     out << fmt::format("  energy = {:.6g}\n", r["energy"].get<double>());
   } else {
-    out << fmt::format("{}: tbezier, fairest (lambda, mu) per segment for curvature-variation energy:\n", name);
+    out << fmt::format("{}: tbezier, fairest (lambda, mu) per segment for curvature-variation energy:\n",
+                       name);
     for (const auto& s : r["segments"]) {
-      out << fmt::format("  segment {}: lambda = {:.6f}, mu = {:.6f}, energy = {:.6g}\n", s["index"].get<int>() + 1,
-                         s["lambda"].get<double>(), s["mu"].get<double>(), s["energy"].get<double>());
+      out << fmt::format("  segment {}: lambda = {:.6f}, mu = {:.6f}, energy = {:.6g}\n",
+                         s["index"].get<int>() + 1, s["lambda"].get<double>(), s["mu"].get<double>(),
+                         s["energy"].get<double>());
     }
   }
   for (const auto& j : r["joints"]) {
     out << fmt::format("  joint {} -> {}: declared {}, after fairing {}{}\n", j["before"].get<int>() + 1,
-                       j["after"].get<int>() + 1, j["declared"].get<std::string>(), j["achieved"].get<std::string>(),
+                       j["after"].get<int>() + 1, j["declared"].get<std::string>(),
+                       j["achieved"].get<std::string>(),
                        j["continuity_lost"].get<bool>() ? "  (continuity lost by fairing)" : "");
   }
 }

@@ -52,11 +52,13 @@ void print_human(const JobReport& r, std::ostream& out) {
   const ValidationReport& v = r.validation;
   double total = 0.0;
   for (const auto& t : r.timings_ms) total += t.second;
-  out << fmt::format("{}: {} with {} vertices, {} triangles, volume {:.6g}, area {:.6g}, genus {}\n", r.name, r.kind,
-                     v.vertices, v.triangles, v.volume, v.area, v.genus ? std::to_string(*v.genus) : "-");
-  out << fmt::format("  valid: closed, manifold, outward, no self-intersections{}; within {:.3g} of the exact "
-                     "surface (tolerance {})\n",
-                     r.embedding_proof.empty() ? " (checked)" : " (by construction)", r.max_deviation, r.tolerance);
+  out << fmt::format("{}: {} with {} vertices, {} triangles, volume {:.6g}, area {:.6g}, genus {}\n", r.name,
+                     r.kind, v.vertices, v.triangles, v.volume, v.area,
+                     v.genus ? std::to_string(*v.genus) : "-");
+  out << fmt::format(
+      "  valid: closed, manifold, outward, no self-intersections{}; within {:.3g} of the exact "
+      "surface (tolerance {})\n",
+      r.embedding_proof.empty() ? " (checked)" : " (by construction)", r.max_deviation, r.tolerance);
   for (const std::string& path : r.outputs) out << fmt::format("  wrote {}\n", path);
   out << fmt::format("  {:.1f} ms\n", total);
 }
@@ -75,8 +77,9 @@ int run_designs(const RunArgs& args, Streams io) {
     code = std::max(code, o.code);
     if (!o.error.empty()) io.err << "fabmesh: " << o.error << "\n";
     if (args.json) {
-      all.push_back(o.report ? to_json(*o.report)
-                             : nlohmann::json{{"design", args.designs[i]}, {"error", o.error}, {"exit_code", o.code}});
+      all.push_back(
+          o.report ? to_json(*o.report)
+                   : nlohmann::json{{"design", args.designs[i]}, {"error", o.error}, {"exit_code", o.code}});
     } else if (o.report) {
       print_human(*o.report, io.out);
     }

@@ -32,15 +32,16 @@ int run_sample(const SampleArgs& args, Streams io) {
       continue;
     }
     io.out << fmt::format("# {} {}: {} {} segment(s), {} points, max deviation {:.6g} (tolerance {})\n",
-                          design.common.name, nc.name, built.curve.closed() ? "closed" : "open", built.curve.size(),
-                          line.points.size(), line.max_deviation, options.tolerance);
+                          design.common.name, nc.name, built.curve.closed() ? "closed" : "open",
+                          built.curve.size(), line.points.size(), line.max_deviation, options.tolerance);
     for (std::size_t i = 0; i < built.joints.size(); ++i) {
       const JointReport& j = built.joints[i];
-      io.out << fmt::format("# joint {} -> {}{}: declared {}, measured {} (gap {:.3g}, angle {:.3g} rad, "
-                            "curvature jump {:.3g})\n",
-                            j.before + 1, j.after + 1, j.closing ? " (closing)" : "",
-                            i < built.declared.size() ? to_string(built.declared[i]) : "-", to_string(j.achieved),
-                            j.gap, j.tangent_angle, j.curvature_jump);
+      io.out << fmt::format(
+          "# joint {} -> {}{}: declared {}, measured {} (gap {:.3g}, angle {:.3g} rad, "
+          "curvature jump {:.3g})\n",
+          j.before + 1, j.after + 1, j.closing ? " (closing)" : "",
+          i < built.declared.size() ? to_string(built.declared[i]) : "-", to_string(j.achieved), j.gap,
+          j.tangent_angle, j.curvature_jump);
     }
     for (const Vec2& p : line.points) io.out << fmt::format("{} {}\n", p.x(), p.y());
   }

@@ -1,18 +1,18 @@
 // `fabmesh check` end to end: the real executable on files written in a temp folder.
 
+#include <sys/wait.h>
+
+#include <array>
+#include <catch2/catch.hpp>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <string>
+
 #include "io/mesh/obj.h"
 #include "io/mesh/off.h"
 #include "io/mesh/stl.h"
 #include "tests/geometry/mesh/shapes.h"
 #include "tests/io/mesh/temp_dir.h"
-
-#include <catch2/catch.hpp>
-#include <sys/wait.h>
-
-#include <array>
-#include <cstdio>
-#include <nlohmann/json.hpp>
-#include <string>
 
 using namespace fabmesh;
 using test::TempDir;
@@ -56,9 +56,10 @@ TEST_CASE("check: a valid STL exits 0 and reports what the weld merged", "[mesh]
   CHECK(json.code == 0);
   const auto j = nlohmann::json::parse(json.out);
   REQUIRE(j.is_object());
-  for (const char* key : {"file", "vertices", "triangles", "components", "boundary_edges", "non_manifold_edges",
-                          "non_manifold_vertices", "degenerate_faces", "duplicate_faces", "self_intersecting",
-                          "oriented_outward", "volume", "area", "genus", "valid", "welded_vertices", "timings_ms"}) {
+  for (const char* key :
+       {"file", "vertices", "triangles", "components", "boundary_edges", "non_manifold_edges",
+        "non_manifold_vertices", "degenerate_faces", "duplicate_faces", "self_intersecting",
+        "oriented_outward", "volume", "area", "genus", "valid", "welded_vertices", "timings_ms"}) {
     CHECK(j.contains(key));
   }
   CHECK(j["file"] == path);
@@ -96,7 +97,8 @@ TEST_CASE("check: several files give a JSON array; any invalid exits 1, any unre
   lying[80] = 13;  // claims 13 triangles, holds 12
   dir.write("lying.stl", lying);
 
-  const Run both = run_fabmesh("check --json " + quoted(dir.file("cube.obj")) + " " + quoted(dir.file("inside_out.obj")));
+  const Run both =
+      run_fabmesh("check --json " + quoted(dir.file("cube.obj")) + " " + quoted(dir.file("inside_out.obj")));
   CHECK(both.code == 1);
   const auto j = nlohmann::json::parse(both.out);
   REQUIRE(j.is_array());

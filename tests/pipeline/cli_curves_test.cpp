@@ -1,5 +1,4 @@
 #include <catch2/catch.hpp>
-
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -26,7 +25,9 @@ Result run(std::vector<std::string> args) {
   return {code, out.str(), err.str()};
 }
 
-std::string example(const std::string& name) { return std::string(FABMESH_SOURCE_DIR) + "/configs/examples/" + name; }
+std::string example(const std::string& name) {
+  return std::string(FABMESH_SOURCE_DIR) + "/configs/examples/" + name;
+}
 
 std::string write_temp(const std::string& name, const std::string& text) {
   const std::string path = std::string(FABMESH_TEST_TMP) + "/" + name;

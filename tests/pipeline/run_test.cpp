@@ -1,5 +1,4 @@
 #include <catch2/catch.hpp>
-
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -22,7 +21,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string example(const std::string& name) { return std::string(FABMESH_SOURCE_DIR) + "/configs/examples/" + name; }
+std::string example(const std::string& name) {
+  return std::string(FABMESH_SOURCE_DIR) + "/configs/examples/" + name;
+}
 
 fs::path fresh_dir(const std::string& name) {
   const fs::path dir = fs::path(FABMESH_TEST_TMP) / name;
@@ -72,12 +73,14 @@ TEST_CASE("run: a shell vessel is written as STL and Draco that both read back v
   CHECK(worst <= design.common.tolerance - r.max_deviation);
 }
 
-TEST_CASE("draco: the default 11 bits collapse a fine mesh; fabmesh's choice keeps it valid", "[pipeline][draco]") {
+TEST_CASE("draco: the default 11 bits collapse a fine mesh; fabmesh's choice keeps it valid",
+          "[pipeline][draco]") {
   // Rings next to a pole are short: their vertices are far closer than 11-bit steps of the bounding box.
   const fs::path dir = fresh_dir("run_fine");
   const Design design = parse_design(
       "name: ball\nkind: vessel\ntolerance: 0.0005\n"
-      "profile: {family: tbezier, segments: [{circle_arc: {center: [0, 0], radius: 20, from_deg: -90, to_deg: 90}}]}\n"
+      "profile: {family: tbezier, segments: [{circle_arc: {center: [0, 0], radius: 20, from_deg: -90, "
+      "to_deg: 90}}]}\n"
       "body: {mode: solid}\n",
       "ball.yaml");
   const JobReport r = run_job(design, {dir.string()});
@@ -99,8 +102,8 @@ TEST_CASE("run --json: the fields of product.md", "[pipeline][run]") {
   std::string out;
   REQUIRE(run_cli({"run", example("vessel_golden_solid.yaml"), "-o", dir.string(), "--json"}, &out) == 0);
   const auto j = nlohmann::json::parse(out);
-  for (const char* key : {"name", "kind", "outputs", "vertices", "triangles", "volume", "area", "watertight", "manifold",
-                          "self_intersecting", "max_deviation", "timings_ms"}) {
+  for (const char* key : {"name", "kind", "outputs", "vertices", "triangles", "volume", "area", "watertight",
+                          "manifold", "self_intersecting", "max_deviation", "timings_ms"}) {
     CHECK(j.contains(key));
   }
   CHECK(j["watertight"] == true);
@@ -122,13 +125,15 @@ TEST_CASE("run: bad input exits 2 and writes no file", "[pipeline][run][errors]"
   CHECK_THAT(out, Catch::Contains("thick.yaml") && Catch::Contains("too thick"));
   CHECK((!fs::exists(out_dir) || fs::is_empty(out_dir)));
 
-  std::ofstream(dir / "budget.yaml") << "kind: vessel\ntolerance: 0.000001\nmax_triangles: 1000\n"
-                                        "profile: {family: quasi_bspline, points: [[1.5, 6], [1, 5], [2, 4]]}\n"
-                                        "body: {mode: solid}\n";
+  std::ofstream(dir / "budget.yaml")
+      << "kind: vessel\ntolerance: 0.000001\nmax_triangles: 1000\n"
+         "profile: {family: quasi_bspline, points: [[1.5, 6], [1, 5], [2, 4]]}\n"
+         "body: {mode: solid}\n";
   CHECK(run_cli({"run", (dir / "budget.yaml").string(), "-o", out_dir.string()}, &out) == 2);
   CHECK_THAT(out, Catch::Contains("budget"));
-  std::ofstream(dir / "few.yaml") << "kind: vessel\nprofile: {family: quasi_bspline, points: [[1.5, 6], [1, 5]]}\n"
-                                     "body: {mode: solid}\n";
+  std::ofstream(dir / "few.yaml")
+      << "kind: vessel\nprofile: {family: quasi_bspline, points: [[1.5, 6], [1, 5]]}\n"
+         "body: {mode: solid}\n";
   CHECK(run_cli({"run", (dir / "few.yaml").string(), "-o", out_dir.string()}, &out) == 2);
   CHECK_THAT(out, Catch::Contains("few.yaml:2:") && Catch::Contains("at least 3 points"));
   CHECK((!fs::exists(out_dir) || fs::is_empty(out_dir)));
@@ -136,10 +141,11 @@ TEST_CASE("run: bad input exits 2 and writes no file", "[pipeline][run][errors]"
 
 TEST_CASE("run: a batch reports every design and exits with the worst code", "[pipeline][run]") {
   const fs::path dir = fresh_dir("run_batch");
-  std::ofstream(dir / "curve.yaml") << "kind: curve\ncurve: {family: quasi_bspline, points: [[0,0],[1,1],[2,0]]}\n";
+  std::ofstream(dir / "curve.yaml")
+      << "kind: curve\ncurve: {family: quasi_bspline, points: [[0,0],[1,1],[2,0]]}\n";
   std::string out;
-  CHECK(run_cli({"run", example("vessel_golden_solid.yaml"), (dir / "curve.yaml").string(), "-o", dir.string(),
-                 "--json"},
+  CHECK(run_cli({"run", example("vessel_golden_solid.yaml"), (dir / "curve.yaml").string(), "-o",
+                 dir.string(), "--json"},
                 &out) == 2);
   const auto j = nlohmann::json::parse(out.substr(0, out.rfind(']') + 1));
   REQUIRE(j.size() == 2);

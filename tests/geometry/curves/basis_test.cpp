@@ -1,9 +1,8 @@
-#include <catch2/catch.hpp>
+#include "geometry/curves/basis.h"
 
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <random>
-
-#include "geometry/curves/basis.h"
 
 using namespace fabmesh;
 
@@ -55,7 +54,8 @@ TEST_CASE("tbezier basis: fourth-derivative bound holds", "[curves][tbezier]") {
   }
 }
 
-TEST_CASE("quasi-cubic B-spline basis: partition of unity for any local parameters", "[curves][quasi_bspline]") {
+TEST_CASE("quasi-cubic B-spline basis: partition of unity for any local parameters",
+          "[curves][quasi_bspline]") {
   for (double l : {-8.0, -2.0, 0.0, 1.0, 4.0}) {
     for (double m : {-8.0, 0.5, 4.0}) {
       for (int i = 0; i <= 10; ++i) {
@@ -63,7 +63,8 @@ TEST_CASE("quasi-cubic B-spline basis: partition of unity for any local paramete
         CHECK(sum(w[0]) == Approx(1.0).margin(1e-14));
         for (int k = 1; k < 4; ++k) CHECK(sum(w[k]) == Approx(0.0).margin(1e-12));
       }
-      check_derivatives_by_differences([&](double x) { return quasi_bspline_basis(x, l, m); }, 0.4, 1e-5, 1e-7);
+      check_derivatives_by_differences([&](double x) { return quasi_bspline_basis(x, l, m); }, 0.4, 1e-5,
+                                       1e-7);
     }
   }
 }
@@ -136,8 +137,10 @@ TEST_CASE("hbezier basis: series and direct evaluation agree across the switch",
       for (int j = 0; j < 4; ++j) CHECK(lo[k][j] == Approx(hi[k][j]).margin(1e-10));
     }
   }
-  check_derivatives_by_differences([](double u) { return hbezier_basis(u, 0.5, 0.3, -0.7); }, 0.2, 1e-6, 1e-5);
-  check_derivatives_by_differences([](double u) { return hbezier_basis(u, 3.0, 0.3, -0.7); }, 1.2, 1e-6, 1e-5);
+  check_derivatives_by_differences([](double u) { return hbezier_basis(u, 0.5, 0.3, -0.7); }, 0.2, 1e-6,
+                                   1e-5);
+  check_derivatives_by_differences([](double u) { return hbezier_basis(u, 3.0, 0.3, -0.7); }, 1.2, 1e-6,
+                                   1e-5);
 }
 
 TEST_CASE("hbezier: lambda lower bound values", "[curves][hbezier]") {

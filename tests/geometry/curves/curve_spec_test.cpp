@@ -1,9 +1,9 @@
-#include <catch2/catch.hpp>
+#include "geometry/curves/curve_spec.h"
 
+#include <catch2/catch.hpp>
 #include <cmath>
 
 #include "geometry/core/errors.h"
-#include "geometry/curves/curve_spec.h"
 
 using namespace fabmesh;
 
@@ -53,9 +53,12 @@ TEST_CASE("tbezier G2 join: Q2 from the formula of curves.md and matching curvat
   const auto& p = c.segments()[0].control_points();
   const auto& q = c.segments()[1].control_points();
   const double pi = M_PI, a2 = alpha * alpha, a3 = a2 * alpha;
-  const Vec2 q2 = ((1 + 2 * mu) / a2 + 2 * (1 + lt) * (2 + mu) / (alpha * (2 + lt)) - beta * (2 + mu) / (a3 * pi) + 1) * p[3] -
-                  (2 * (1 + mu) / a2 + 2 * (2 + mu) * (1 + lt) / (alpha * (2 + lt)) - beta * (2 + mu) / (a3 * pi)) * p[2] +
-                  (1 / a2) * p[1];
+  const Vec2 q2 =
+      ((1 + 2 * mu) / a2 + 2 * (1 + lt) * (2 + mu) / (alpha * (2 + lt)) - beta * (2 + mu) / (a3 * pi) + 1) *
+          p[3] -
+      (2 * (1 + mu) / a2 + 2 * (2 + mu) * (1 + lt) / (alpha * (2 + lt)) - beta * (2 + mu) / (a3 * pi)) *
+          p[2] +
+      (1 / a2) * p[1];
   CHECK(rel(q[2], q2) < 1e-12);
   const CurveJet r1 = c.segments()[0].jet(1.0), r2 = c.segments()[1].jet(0.0);
   CHECK(rel(r1[2], a2 * r2[2] + beta * r2[1]) < 1e-9);
@@ -84,7 +87,8 @@ TEST_CASE("closed loop whose first segment joins the last: G2 everywhere by one 
   REQUIRE_NOTHROW(verify_declared_continuity(spec, c));
 }
 
-TEST_CASE("hbezier G1/G2 join: the test vector of h-bezier.md, coordinate by coordinate", "[curves][joins][hbezier]") {
+TEST_CASE("hbezier G1/G2 join: the test vector of h-bezier.md, coordinate by coordinate",
+          "[curves][joins][hbezier]") {
   // The join formulas act on each coordinate alone, so the 3D vector is checked
   // through its (x, y) and (x, z) projections.
   const std::array<Vec3, 4> p3{Vec3(0, 0, 0), Vec3(1, 2, 0), Vec3(3, 3, 1), Vec3(4, 1, 0)};
@@ -136,7 +140,8 @@ TEST_CASE("declared continuity that the joint contradicts is an error", "[curves
   REQUIRE_THROWS_WITH(verify_declared_continuity(spec, c), Catch::Contains("declared G1"));
 }
 
-TEST_CASE("a closed curve that does not close is an error naming the closing joint", "[curves][joins][errors]") {
+TEST_CASE("a closed curve that does not close is an error naming the closing joint",
+          "[curves][joins][errors]") {
   CurveSpec spec;
   spec.closed = true;
   spec.segments = {explicit_tbezier({{0, 0}, {1, 2}, {3, 2.5}, {4, 1}}, 0, 0)};
@@ -156,7 +161,8 @@ TEST_CASE("a join that is given the wrong number of free points is an error", "[
   REQUIRE_THROWS_WITH(construct_curve(spec), Catch::Contains("takes 2 point(s), got 3"));
 }
 
-TEST_CASE("quasi-cubic B-spline: golden data of curves.md and interpolation of the ends", "[curves][quasi_bspline]") {
+TEST_CASE("quasi-cubic B-spline: golden data of curves.md and interpolation of the ends",
+          "[curves][quasi_bspline]") {
   CurveSpec spec;
   spec.family = CurveFamily::QuasiBSpline;
   spec.bspline_points = {{1.5, 6}, {1, 5}, {2, 4}, {3, 3}, {1.5, 2}};
@@ -173,7 +179,8 @@ TEST_CASE("quasi-cubic B-spline: golden data of curves.md and interpolation of t
   for (const JointReport& j : c.joints()) CHECK(j.achieved == Continuity::G2);
 }
 
-TEST_CASE("quasi-cubic B-spline: changing lambda_i changes only the two spans at joint i", "[curves][quasi_bspline]") {
+TEST_CASE("quasi-cubic B-spline: changing lambda_i changes only the two spans at joint i",
+          "[curves][quasi_bspline]") {
   CurveSpec spec;
   spec.family = CurveFamily::QuasiBSpline;
   spec.bspline_points = {{0, 0}, {1, 2}, {2, 0}, {3, 3}, {4, 1}, {5, 2}};
@@ -191,7 +198,8 @@ TEST_CASE("quasi-cubic B-spline: changing lambda_i changes only the two spans at
   }
 }
 
-TEST_CASE("quasi-cubic B-spline: too few points or lambdas out of range are errors", "[curves][quasi_bspline][errors]") {
+TEST_CASE("quasi-cubic B-spline: too few points or lambdas out of range are errors",
+          "[curves][quasi_bspline][errors]") {
   CurveSpec spec;
   spec.family = CurveFamily::QuasiBSpline;
   spec.bspline_points = {{0, 0}, {1, 1}};

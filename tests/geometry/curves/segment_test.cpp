@@ -1,10 +1,10 @@
-#include <catch2/catch.hpp>
+#include "geometry/curves/segment.h"
 
+#include <catch2/catch.hpp>
 #include <cmath>
 
 #include "geometry/core/errors.h"
 #include "geometry/curves/composite.h"
-#include "geometry/curves/segment.h"
 
 using namespace fabmesh;
 
@@ -36,7 +36,8 @@ TEST_CASE("tbezier: endpoint derivatives match the formulas of curves.md", "[cur
   }
 }
 
-TEST_CASE("tbezier: shape parameters out of [-2, 1] are rejected with the value", "[curves][tbezier][errors]") {
+TEST_CASE("tbezier: shape parameters out of [-2, 1] are rejected with the value",
+          "[curves][tbezier][errors]") {
   REQUIRE_THROWS_AS(Segment::tbezier(kP, 1.7, 0.0), RangeError);
   REQUIRE_THROWS_WITH(Segment::tbezier(kP, 0.0, -2.5), Catch::Contains("mu = -2.5"));
   REQUIRE_THROWS_WITH(Segment::tbezier(kP, std::nan(""), 0.0), Catch::Contains("not a finite"));
@@ -105,9 +106,9 @@ TEST_CASE("fourth-derivative bounds hold for every family", "[curves][sampling]"
   e.a = 3;
   e.b = 1;
   e.to_deg = 300;
-  for (const Segment& s : {Segment::tbezier(p, -2, 1), Segment::hbezier(p, 0.01, -2.9, 0.9),
-                           Segment::hbezier(p, 6.0, 0.5, -3), Segment::quasi_bspline_span(p, -8, 4),
-                           Segment::ellipse_arc(e)}) {
+  for (const Segment& s :
+       {Segment::tbezier(p, -2, 1), Segment::hbezier(p, 0.01, -2.9, 0.9), Segment::hbezier(p, 6.0, 0.5, -3),
+        Segment::quasi_bspline_span(p, -8, 4), Segment::ellipse_arc(e)}) {
     const double bound = s.fourth_derivative_bound();
     for (int i = 1; i < 400; ++i) {
       const double t = i / 400.0, h = 1e-4;

@@ -1,5 +1,4 @@
 #include <catch2/catch.hpp>
-
 #include <random>
 
 #include "geometry/curves/basis.h"
@@ -40,7 +39,8 @@ TEST_CASE("gauss-legendre: integrates polynomials of degree 2n-1 exactly", "[fai
   }
 }
 
-TEST_CASE("tbezier curvature-variation energy: closed form equals quadrature on random data", "[fairing][tbezier]") {
+TEST_CASE("tbezier curvature-variation energy: closed form equals quadrature on random data",
+          "[fairing][tbezier]") {
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> shape(-2, 1);
   for (int trial = 0; trial < 50; ++trial) {
@@ -51,7 +51,8 @@ TEST_CASE("tbezier curvature-variation energy: closed form equals quadrature on 
   }
 }
 
-TEST_CASE("tbezier fairest: the exact box optimum, never worse than a clamp or a grid", "[fairing][tbezier]") {
+TEST_CASE("tbezier fairest: the exact box optimum, never worse than a clamp or a grid",
+          "[fairing][tbezier]") {
   std::mt19937 rng(11);
   int strictly_better_than_clamp = 0;
   for (int trial = 0; trial < 200; ++trial) {
@@ -79,7 +80,8 @@ TEST_CASE("tbezier fairest: the exact box optimum, never worse than a clamp or a
   CHECK(strictly_better_than_clamp > 0);
 }
 
-TEST_CASE("quasi-cubic B-spline energies: closed form equals quadrature on random data", "[fairing][quasi_bspline]") {
+TEST_CASE("quasi-cubic B-spline energies: closed form equals quadrature on random data",
+          "[fairing][quasi_bspline]") {
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> u(-4, 4), lam(-8, 1);
   for (int trial = 0; trial < 20; ++trial) {

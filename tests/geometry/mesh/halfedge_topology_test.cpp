@@ -1,7 +1,8 @@
+#include "geometry/mesh/halfedge_topology.h"
+
 #include <catch2/catch.hpp>
 
 #include "geometry/curves/curve_spec.h"
-#include "geometry/mesh/halfedge_topology.h"
 #include "geometry/mesh/soup.h"
 #include "geometry/mesh/topology.h"
 #include "geometry/mesh/vessel.h"
@@ -25,7 +26,9 @@ void check_same(const Topology& a, const Topology& b) {
 TriangleSoup tetrahedron(const Vec3& o, std::uint32_t base) {
   TriangleSoup s;
   s.vertices = {o, o + Vec3(1, 0, 0), o + Vec3(0, 1, 0), o + Vec3(0, 0, 1)};
-  s.triangles = {{base + 0, base + 2, base + 1}, {base + 0, base + 1, base + 3}, {base + 0, base + 3, base + 2},
+  s.triangles = {{base + 0, base + 2, base + 1},
+                 {base + 0, base + 1, base + 3},
+                 {base + 0, base + 3, base + 2},
                  {base + 1, base + 2, base + 3}};
   return s;
 }

@@ -2,16 +2,15 @@
 // Test shapes built in code: closed, outward-oriented soups with shared
 // vertices, and helpers to break them in precise ways.
 
-#include "geometry/mesh/soup.h"
-
 #include <Eigen/Geometry>
-
 #include <cmath>
 #include <cstdint>
 #include <map>
 #include <set>
 #include <tuple>
 #include <vector>
+
+#include "geometry/mesh/soup.h"
 
 namespace fabmesh::test {
 
@@ -81,7 +80,8 @@ inline TriangleSoup sphere(double r, int slices, int stacks) {
     const double phi = -pi / 2 + pi * k / stacks;
     for (int i = 0; i < slices; ++i) {
       const double u = 2 * pi * i / slices;
-      s.vertices.emplace_back(r * std::cos(phi) * std::cos(u), r * std::cos(phi) * std::sin(u), r * std::sin(phi));
+      s.vertices.emplace_back(r * std::cos(phi) * std::cos(u), r * std::cos(phi) * std::sin(u),
+                              r * std::sin(phi));
     }
   }
   s.vertices.emplace_back(0, 0, r);  // north pole

@@ -1,14 +1,13 @@
 #include "geometry/mesh/validate.h"
 
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <cmath>
+
 #include "geometry/core/errors.h"
 #include "geometry/mesh/self_intersect.h"
 #include "geometry/mesh/weld.h"
 #include "tests/geometry/mesh/shapes.h"
-
-#include <catch2/catch.hpp>
-
-#include <algorithm>
-#include <cmath>
 
 using namespace fabmesh;
 using fabmesh::test::append;
@@ -47,7 +46,8 @@ TEST_CASE("validate: a closed cube is valid, genus 0, with exact volume and area
   CHECK(r.timings_ms.size() == 3);
 }
 
-TEST_CASE("validate: a UV sphere with pole vertices is genus 0 and encloses nearly 4/3 pi r^3", "[mesh][validate]") {
+TEST_CASE("validate: a UV sphere with pole vertices is genus 0 and encloses nearly 4/3 pi r^3",
+          "[mesh][validate]") {
   const ValidationReport r = validate(test::sphere(2.0, 64, 32));
   require_clean(r);
   REQUIRE(r.genus);
@@ -72,7 +72,8 @@ TEST_CASE("validate: a torus is genus 1 with Pappus volume and area, also when r
   }
 }
 
-TEST_CASE("validate: a slab with two holes is a double torus (genus 2), one hole genus 1", "[mesh][validate]") {
+TEST_CASE("validate: a slab with two holes is a double torus (genus 2), one hole genus 1",
+          "[mesh][validate]") {
   for (int holes : {1, 2, 3}) {
     const TriangleSoup slab = test::slab_with_holes(holes);
     const ValidationReport r = validate(slab);
@@ -83,7 +84,8 @@ TEST_CASE("validate: a slab with two holes is a double torus (genus 2), one hole
   }
 }
 
-TEST_CASE("validate: two disjoint closed boxes are valid with two components and genus 0", "[mesh][validate]") {
+TEST_CASE("validate: two disjoint closed boxes are valid with two components and genus 0",
+          "[mesh][validate]") {
   TriangleSoup s = box();
   append(s, test::torus(3.0, 1.0, 32, 16));
   append(s, box(Vec3(10, 0, 0), Vec3(11, 1, 1)));
@@ -228,7 +230,8 @@ TEST_CASE("validate: a duplicate face is counted once, in either orientation", "
   }
 }
 
-TEST_CASE("validate: zero-area faces are degenerate, by repeated index or collinear corners", "[mesh][validate]") {
+TEST_CASE("validate: zero-area faces are degenerate, by repeated index or collinear corners",
+          "[mesh][validate]") {
   SECTION("a repeated index") {
     TriangleSoup s = box();
     s.triangles.push_back({0, 0, 7});
@@ -292,7 +295,8 @@ TEST_CASE("validate: skipping the self-intersection test never yields valid", "[
   CHECK_FALSE(r.valid());
 }
 
-TEST_CASE("require_valid: throws ValidationFailed listing every defect, passes a valid mesh", "[mesh][validate]") {
+TEST_CASE("require_valid: throws ValidationFailed listing every defect, passes a valid mesh",
+          "[mesh][validate]") {
   CHECK_NOTHROW(require_valid(validate(box()), "cube"));
   TriangleSoup s = box();
   s.triangles.pop_back();

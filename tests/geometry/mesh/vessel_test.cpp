@@ -1,5 +1,6 @@
-#include <catch2/catch.hpp>
+#include "geometry/mesh/vessel.h"
 
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <random>
 
@@ -9,7 +10,6 @@
 #include "geometry/mesh/revolve.h"
 #include "geometry/mesh/soup.h"
 #include "geometry/mesh/validate.h"
-#include "geometry/mesh/vessel.h"
 
 using namespace fabmesh;
 
@@ -68,7 +68,8 @@ double point_triangle_distance(const Vec3& p, const Vec3& a, const Vec3& b, cons
   const double vb = d5 * d2 - d1 * d6;
   if (vb <= 0 && d2 >= 0 && d6 <= 0) return (p - (a + d2 / (d2 - d6) * ac)).norm();
   const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return (p - (b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b))).norm();
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
+    return (p - (b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b))).norm();
   const double denom = 1 / (va + vb + vc);
   return (p - (a + ab * vb * denom + ac * vc * denom)).norm();
 }
@@ -175,10 +176,14 @@ TEST_CASE("revolve: a closed profile off the axis gives a torus of genus 1", "[m
   CHECK(std::abs(r.volume - exact_volume) <= o.tolerance * exact_area);
 }
 
-TEST_CASE("revolve: a profile running along the axis between two parts gives two closed bodies", "[mesh][revolve]") {
+TEST_CASE("revolve: a profile running along the axis between two parts gives two closed bodies",
+          "[mesh][revolve]") {
   CurveSpec spec;
-  for (auto [a, b] : {std::pair{Vec2(0, 0), Vec2(1, 1)}, {Vec2(1, 1), Vec2(0, 2)}, {Vec2(0, 2), Vec2(0, 3)},
-                      {Vec2(0, 3), Vec2(1, 4)}, {Vec2(1, 4), Vec2(0, 5)}}) {
+  for (auto [a, b] : {std::pair{Vec2(0, 0), Vec2(1, 1)},
+                      {Vec2(1, 1), Vec2(0, 2)},
+                      {Vec2(0, 2), Vec2(0, 3)},
+                      {Vec2(0, 3), Vec2(1, 4)},
+                      {Vec2(1, 4), Vec2(0, 5)}}) {
     SegmentSpec s;
     s.kind = SegmentKind::Line;
     s.points = spec.segments.empty() ? std::vector<Vec2>{a, b} : std::vector<Vec2>{b};
@@ -236,7 +241,8 @@ TEST_CASE("vessel: the golden shell is valid, thinner than the solid, with its r
   CHECK(rh.volume < 0.6 * rs.volume);
 }
 
-TEST_CASE("vessel bad input: axis crossing, self-crossing, thick wall, bad tolerance, budget", "[mesh][vessel][errors]") {
+TEST_CASE("vessel bad input: axis crossing, self-crossing, thick wall, bad tolerance, budget",
+          "[mesh][vessel][errors]") {
   auto lines = [](std::vector<Vec2> pts) {
     CurveSpec spec;
     for (std::size_t i = 1; i < pts.size(); ++i) {
@@ -249,7 +255,8 @@ TEST_CASE("vessel bad input: axis crossing, self-crossing, thick wall, bad toler
   };
   VesselOptions o;
   o.tolerance = 0.01;
-  REQUIRE_THROWS_WITH(build_vessel(lines({{1, 0}, {-0.5, 1}, {1, 2}}), o), Catch::Contains("crosses the axis"));
+  REQUIRE_THROWS_WITH(build_vessel(lines({{1, 0}, {-0.5, 1}, {1, 2}}), o),
+                      Catch::Contains("crosses the axis"));
   REQUIRE_THROWS_WITH(build_vessel(lines({{1, 0}, {2, 2}, {2, 0.5}, {0.5, 1.5}, {1, 3}}), o),
                       Catch::Contains("crosses itself"));
   VesselOptions thick = o;

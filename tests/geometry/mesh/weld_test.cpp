@@ -1,12 +1,11 @@
 #include "geometry/mesh/weld.h"
 
+#include <catch2/catch.hpp>
+#include <cmath>
+
 #include "geometry/core/errors.h"
 #include "geometry/mesh/validate.h"
 #include "tests/geometry/mesh/shapes.h"
-
-#include <catch2/catch.hpp>
-
-#include <cmath>
 
 using namespace fabmesh;
 

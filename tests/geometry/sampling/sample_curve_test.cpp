@@ -1,11 +1,11 @@
-#include <catch2/catch.hpp>
+#include "geometry/sampling/sample_curve.h"
 
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cmath>
 
 #include "geometry/core/errors.h"
 #include "geometry/curves/curve_spec.h"
-#include "geometry/sampling/sample_curve.h"
 
 using namespace fabmesh;
 
@@ -41,9 +41,12 @@ std::vector<Segment> test_segments() {
   e.rotation_deg = 20;
   e.from_deg = 10;
   e.to_deg = 350;
-  return {Segment::tbezier(p, -2, 1),          Segment::tbezier(p, 1, -1.5),
-          Segment::hbezier(p, 0.001, 0.5, -2), Segment::hbezier(p, 8.0, -3, 1),
-          Segment::quasi_bspline_span(p, 4, -8), Segment::ellipse_arc(e)};
+  return {Segment::tbezier(p, -2, 1),
+          Segment::tbezier(p, 1, -1.5),
+          Segment::hbezier(p, 0.001, 0.5, -2),
+          Segment::hbezier(p, 8.0, -3, 1),
+          Segment::quasi_bspline_span(p, 4, -8),
+          Segment::ellipse_arc(e)};
 }
 
 }  // namespace
@@ -86,7 +89,8 @@ TEST_CASE("sample_curve joins segments without duplicate points and reports the 
   CHECK(line.max_deviation > 0.0);
   CHECK((line.points.front() - Vec2(1.5, 6)).norm() < 1e-15);
   CHECK((line.points.back() - Vec2(1.5, 2)).norm() < 1e-15);
-  for (std::size_t i = 1; i < line.points.size(); ++i) CHECK((line.points[i] - line.points[i - 1]).norm() > 0.0);
+  for (std::size_t i = 1; i < line.points.size(); ++i)
+    CHECK((line.points[i] - line.points[i - 1]).norm() > 0.0);
 }
 
 TEST_CASE("a closed curve's polyline does not repeat its first point", "[sampling]") {

@@ -1,3 +1,7 @@
+#include <catch2/catch.hpp>
+#include <cstring>
+#include <functional>
+
 #include "geometry/core/errors.h"
 #include "geometry/mesh/validate.h"
 #include "geometry/mesh/weld.h"
@@ -10,11 +14,6 @@
 #include "io/mesh/stl.h"
 #include "tests/geometry/mesh/shapes.h"
 #include "tests/io/mesh/temp_dir.h"
-
-#include <catch2/catch.hpp>
-
-#include <cstring>
-#include <functional>
 
 using namespace fabmesh;
 using test::TempDir;
@@ -92,7 +91,8 @@ TEST_CASE("mesh files: binary STL round-trips float32 coordinates and welds back
   require_valid_torus(back, torus.triangles.size());
 }
 
-TEST_CASE("mesh files: Draco keeps every vertex within the tolerance and the mesh valid", "[mesh][io][draco]") {
+TEST_CASE("mesh files: Draco keeps every vertex within the tolerance and the mesh valid",
+          "[mesh][io][draco]") {
   const TempDir dir;
   const TriangleSoup torus = test::torus(30.0, 10.0, 48, 24);
   for (double tolerance : {0.5, 0.01, 1e-4}) {
@@ -176,8 +176,9 @@ TEST_CASE("mesh files: a malformed ASCII STL names the line", "[mesh][io][stl]")
     CHECK(e.line() == 5);
   }
   CHECK_THROWS_AS(parse_stl("solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\n", "t.stl"), FileError);
-  CHECK_THROWS_AS(parse_stl("solid x\nfacet\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nendloop\nendfacet\n", "t"),
-                  FileError);
+  CHECK_THROWS_AS(
+      parse_stl("solid x\nfacet\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nendloop\nendfacet\n", "t"),
+      FileError);
 }
 
 TEST_CASE("mesh files: OBJ corners v, v/vt, v//vn, v/vt/vn and negative indices; polygons fanned",
@@ -194,7 +195,8 @@ TEST_CASE("mesh files: OBJ corners v, v/vt, v//vn, v/vt/vn and negative indices;
   CHECK(detect_format(text, "q.txt") == MeshFormat::Obj);
 }
 
-TEST_CASE("mesh files: OBJ indices that refer to no vertex are FileErrors naming the line", "[mesh][io][obj]") {
+TEST_CASE("mesh files: OBJ indices that refer to no vertex are FileErrors naming the line",
+          "[mesh][io][obj]") {
   for (const std::string& bad : {std::string("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n"),
                                  std::string("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 0\n"),
                                  std::string("v 0 0 0\nv 1 0 0\nv 0 1 0\nf -4 1 2\n"),
@@ -223,8 +225,9 @@ TEST_CASE("mesh files: ASCII and big-endian PLY with extra properties and elemen
   CHECK(a.vertices[2] == Vec3(1, 1, 0));
   CHECK(a.triangles.size() == 2);
 
-  std::string be = "ply\nformat binary_big_endian 1.0\nelement vertex 3\nproperty double x\nproperty double y\n"
-                   "property double z\nelement face 1\nproperty list uchar uint vertex_indices\nend_header\n";
+  std::string be =
+      "ply\nformat binary_big_endian 1.0\nelement vertex 3\nproperty double x\nproperty double y\n"
+      "property double z\nelement face 1\nproperty list uchar uint vertex_indices\nend_header\n";
   auto put_be = [&](std::uint64_t v, int n) {
     for (int i = n - 1; i >= 0; --i) be.push_back(static_cast<char>((v >> (8 * i)) & 0xff));
   };
@@ -255,13 +258,16 @@ TEST_CASE("mesh files: malformed PLY is a FileError, huge counts fail fast", "[m
   std::string huge = header + body;
   huge.replace(huge.find("vertex 3"), 8, "vertex 4000000000");
   CHECK_THROWS_AS(parse_ply(huge, "huge.ply"), FileError);
-  CHECK_THROWS_AS(parse_ply("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n", "noend.ply"), FileError);
-  CHECK_THROWS_AS(parse_ply("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nend_header\n1\n", "xy.ply"),
+  CHECK_THROWS_AS(parse_ply("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n", "noend.ply"),
                   FileError);
+  CHECK_THROWS_AS(
+      parse_ply("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nend_header\n1\n", "xy.ply"),
+      FileError);
 }
 
 TEST_CASE("mesh files: OFF with comments and polygons; lying counts are FileErrors", "[mesh][io][off]") {
-  const std::string text = "# comment\nOFF\n# counts\n4 1 0\n0 0 0\n1 0 0\n1 1 0 # tail\n0 1 0\n4 0 1 2 3 255 0 0\n";
+  const std::string text =
+      "# comment\nOFF\n# counts\n4 1 0\n0 0 0\n1 0 0\n1 1 0 # tail\n0 1 0\n4 0 1 2 3 255 0 0\n";
   const TriangleSoup s = parse_off(text, "q.off");
   CHECK(s.vertices.size() == 4);
   CHECK(s.triangles.size() == 2);
