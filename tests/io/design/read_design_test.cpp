@@ -1,8 +1,9 @@
+#include "io/design/read_design.h"
+
 #include <catch2/catch.hpp>
 
 #include "geometry/core/errors.h"
 #include "geometry/fairing/fair_curve.h"
-#include "io/design/read_design.h"
 
 using namespace fabmesh;
 
@@ -51,7 +52,8 @@ TEST_CASE("design: a T-Bezier composite with joins, an ellipse arc and a line is
 }
 
 TEST_CASE("design: errors name file, line, column and field", "[io][design][errors]") {
-  const std::string base = std::string(kCurveHeader) + "  family: tbezier\n  segments:\n    - points: [[0,0],[1,1],[2,1],[3,0]]\n";
+  const std::string base =
+      std::string(kCurveHeader) + "  family: tbezier\n  segments:\n    - points: [[0,0],[1,1],[2,1],[3,0]]\n";
   SECTION("lambda out of range") {
     const std::string e = error_of(base + "      lambda: 1.7\n");
     CHECK_THAT(e, Catch::StartsWith("d.yaml:6:7: curve.segments[0]:") && Catch::Contains("lambda = 1.7"));
@@ -61,14 +63,17 @@ TEST_CASE("design: errors name file, line, column and field", "[io][design][erro
                Catch::Contains("d.yaml:7:7") && Catch::Contains("unknown key 'lamda'"));
   }
   SECTION("NaN and Inf") {
-    CHECK_THAT(error_of(base + "      mu: .nan\n"), Catch::Contains("curve.segments[0].mu") && Catch::Contains("finite"));
+    CHECK_THAT(error_of(base + "      mu: .nan\n"),
+               Catch::Contains("curve.segments[0].mu") && Catch::Contains("finite"));
     CHECK_THAT(error_of(base + "      mu: .inf\n"), Catch::Contains("finite"));
   }
   SECTION("not a number") {
-    CHECK_THAT(error_of(base + "      mu: abc\n"), Catch::Contains("d.yaml:7:11") && Catch::Contains("not a number"));
+    CHECK_THAT(error_of(base + "      mu: abc\n"),
+               Catch::Contains("d.yaml:7:11") && Catch::Contains("not a number"));
   }
   SECTION("too few control points") {
-    CHECK_THAT(error_of(std::string(kCurveHeader) + "  family: tbezier\n  segments:\n    - points: [[0,0],[1,1],[2,1]]\n"),
+    CHECK_THAT(error_of(std::string(kCurveHeader) +
+                        "  family: tbezier\n  segments:\n    - points: [[0,0],[1,1],[2,1]]\n"),
                Catch::Contains("needs 4 control points"));
   }
 }
@@ -76,8 +81,9 @@ TEST_CASE("design: errors name file, line, column and field", "[io][design][erro
 TEST_CASE("design: missing keys, bad kinds and bad tolerance are errors", "[io][design][errors]") {
   CHECK_THAT(error_of("tolerance: 0.01\n"), Catch::Contains("missing required key 'kind'"));
   CHECK_THAT(error_of("kind: teapot\n"), Catch::Contains("'teapot' is not one of"));
-  CHECK_THAT(error_of("kind: curve\ntolerance: 0\ncurve: {family: quasi_bspline, points: [[0,0],[1,1],[2,0]]}\n"),
-             Catch::Contains("d.yaml:2:12: tolerance") && Catch::Contains("must be > 0"));
+  CHECK_THAT(
+      error_of("kind: curve\ntolerance: 0\ncurve: {family: quasi_bspline, points: [[0,0],[1,1],[2,0]]}\n"),
+      Catch::Contains("d.yaml:2:12: tolerance") && Catch::Contains("must be > 0"));
   CHECK_THAT(error_of("kind: curve\ntolerance: -1\n"), Catch::Contains("must be > 0"));
   CHECK_THAT(error_of("kind: curve\n"), Catch::Contains("missing required key 'curve'"));
   CHECK_THAT(error_of("kind: curve\ncurve: [1, 2\n"), Catch::Contains("invalid YAML"));
@@ -95,13 +101,15 @@ TEST_CASE("design: quasi_bspline counts and ranges", "[io][design][errors]") {
 }
 
 TEST_CASE("design: hbezier parameters are range checked against lambda*(alpha)", "[io][design][errors]") {
-  const std::string head = std::string(kCurveHeader) + "  family: hbezier\n  segments:\n    - points: [[0,0],[1,2],[3,3],[4,1]]\n";
+  const std::string head =
+      std::string(kCurveHeader) + "  family: hbezier\n  segments:\n    - points: [[0,0],[1,2],[3,3],[4,1]]\n";
   CHECK_THAT(error_of(head + "      alpha: 12\n"), Catch::Contains("alpha = 12"));
   CHECK_THAT(error_of(head + "      alpha: 1\n      lambda: -3.3\n"), Catch::Contains("lambda = -3.3"));
   CHECK(error_of(head + "      alpha: 1\n      lambda: -3.2\n").empty());
 }
 
-TEST_CASE("design: geometry errors found when the curve is built carry the file location", "[io][design][errors]") {
+TEST_CASE("design: geometry errors found when the curve is built carry the file location",
+          "[io][design][errors]") {
   const Design d = parse_design(std::string(kCurveHeader) + R"(
   family: tbezier
   closed: true
