@@ -4,8 +4,10 @@
 
 #include <memory>
 
+#include "geometry/core/errors.h"
 #include "geometry/fairing/fair_curve.h"
 #include "geometry/sampling/sample_curve.h"
+#include "geometry/section/simple_polygon.h"
 #include "io/design/read_design.h"
 #include "pipeline/cli/commands.h"
 #include "pipeline/design_curves.h"
@@ -26,7 +28,18 @@ int run_sample(const SampleArgs& args, Streams io) {
   if (args.csv) io.out << "curve,x,y\n";
   for (const NamedCurve& nc : design_curves(design)) {
     const BuiltCurve built = build_curve(nc.spec);
-    const Polyline2 line = sample_curve(built.curve, options);
+    std::vector<CurveParam> params;
+    const Polyline2 line = sample_curve(built.curve, options, &params);
+    if (line.closed) {
+      // A closed outline must be simple (exact predicates on the sampled loop).
+      if (const auto c = find_crossing(line.points, true)) {
+        throw GeometryError(
+            nc.name, fmt::format("{}: the closed curve crosses itself near ({:.6g}, {:.6g}) "
+                                 "(segments {} and {})",
+                                 nc.spec.label, c->where.x(), c->where.y(), params[c->first].segment + 1,
+                                 params[c->second].segment + 1));
+      }
+    }
     if (args.csv) {
       for (const Vec2& p : line.points) io.out << fmt::format("{},{},{}\n", nc.name, p.x(), p.y());
       continue;

@@ -92,3 +92,16 @@ TEST_CASE("cli exit codes: bad input is 2 with a located message, --help is 0", 
   CHECK(run({"sample"}).code == 2);
   CHECK(run({"frobnicate"}).code == 2);
 }
+
+TEST_CASE("cli sample: a closed outline that crosses itself is bad input naming the segments",
+          "[pipeline][cli][errors]") {
+  // A figure eight: two lines crossing at (1, 1), closed by two more.
+  const std::string path = write_temp("eight.yaml",
+                                      "kind: curve\ncurve:\n  family: tbezier\n  closed: true\n  segments:\n"
+                                      "    - line: {from: [0, 0], to: [2, 2]}\n    - line: {to: [2, 0]}\n"
+                                      "    - line: {to: [0, 2]}\n    - line: {to: [0, 0]}\n");
+  const Result r = run({"sample", path});
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err, Catch::Contains("eight.yaml:3:3: curve") && Catch::Contains("crosses itself") &&
+                        Catch::Contains("segments 1 and 3"));
+}
