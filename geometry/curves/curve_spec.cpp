@@ -30,7 +30,7 @@ int computed_count(const CurveSpec& spec, std::size_t i) {
   return static_cast<int>(s.join->continuity) + 1;
 }
 
-// A segment with placeholder points, used for its basis weights.
+// A segment of the right family and shape with probe points: only its basis weights are used.
 Segment basis_segment(const SegmentSpec& s) {
   const std::array<Vec2, 4> probe{Vec2(0, 0), Vec2(1, 0), Vec2(2, 0), Vec2(3, 0)};
   switch (s.kind) {
