@@ -1,0 +1,39 @@
+#pragma once
+// Slabs: a triangulated planar region extruded into a closed solid of
+// constant thickness (a countertop with its cut-outs).
+
+#include <cstddef>
+#include <string>
+
+#include "geometry/section/region.h"
+#include "geometry/section/triangulate.h"
+
+namespace fabmesh {
+
+struct SlabOptions {
+  double thickness = 30.0;               ///< z extent, model units (> 0); bottom at z = 0, top at z = thickness
+  double max_edge = 0.0;                 ///< longest top/bottom edge, model units; 0: no refinement
+  std::size_t max_triangles = 20000000;  ///< budget for the whole slab; more is a BudgetError
+};
+
+struct SlabMesh {
+  Mesh mesh;
+  PlanarTriangulation triangulation;  ///< the top face's triangulation (bottom: mirrored)
+  /// Why the mesh is free of self-intersections without a 3D test.
+  std::string embedding_proof;
+};
+
+/// Triangle count of the slab over `t`: top and bottom, plus two per boundary edge.
+std::size_t slab_triangle_count(const PlanarTriangulation& t);
+
+/// Extrudes a triangulation: top (z = thickness) and bottom (z = 0) copies
+/// and one vertical wall quad (two triangles) per boundary edge, sharing
+/// vertices; watertight, outward oriented, genus = number of holes.
+/// \throw RangeError for thickness <= 0.
+Mesh extrude(const PlanarTriangulation& triangulation, double thickness);
+
+/// Triangulates `region` (refined to options.max_edge when > 0) and extrudes it.
+/// \throw RangeError (thickness, max_edge), BudgetError (over max_triangles)
+SlabMesh build_slab(const Region2& region, const SlabOptions& options);
+
+}  // namespace fabmesh

@@ -1,0 +1,53 @@
+#pragma once
+// A planar region bounded by one outer loop and any number of holes (a
+// countertop with its sink and cooktop cut-outs), sampled from exact curves
+// and proven simple with exact predicates.
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "geometry/core/types.h"
+#include "geometry/curves/composite.h"
+
+namespace fabmesh {
+
+/// A closed curve cut out of the region, with the name used in messages,
+/// e.g. "holes[1] (rounded_rect)".
+struct RegionHole {
+  CompositeCurve curve;
+  std::string label;
+};
+
+struct RegionOptions {
+  double tolerance = 0.01;            ///< max distance between each loop and its exact curve, model units (> 0)
+  std::size_t max_points = 5000000;   ///< sampling budget over all loops; more is a BudgetError
+};
+
+/// An oriented polygon with holes: the outer loop counter-clockwise, every
+/// hole clockwise (the region is on the left of every loop). Loops do not
+/// repeat their first point. Simple, pairwise disjoint, holes strictly inside
+/// the outer loop and not nested: decided with exact predicates on these points.
+struct Region2 {
+  std::vector<Vec2> outer;
+  std::vector<std::vector<Vec2>> holes;  ///< in the order the holes were given
+  double max_deviation = 0.0;            ///< proven bound: loop points/edges vs the exact curves
+  double area = 0.0;                     ///< polygon area (outer minus holes), model units^2
+  /// Per loop (outer first, then the holes): true when the loop runs against
+  /// its curve's direction (the curve was given the other way round).
+  std::vector<bool> reversed;
+  std::string proof;                     ///< why the region is simple (for reports)
+};
+
+/// Samples the outline and the holes and checks that they bound a region:
+/// the outline is closed and closes (its closing joint has no gap), each loop
+/// is simple, no two loops meet (no touching), every hole lies strictly
+/// inside the outline and outside every other hole.
+/// \throw GeometryError naming the outline segment or the hole at fault, with
+///        a point near the problem; RangeError (tolerance), BudgetError (points).
+Region2 build_region(const CompositeCurve& outline, const std::vector<RegionHole>& holes, const RegionOptions& options);
+
+/// The loops of `region` in one list: the outer loop first, then the holes.
+std::vector<std::vector<Vec2>> region_loops(const Region2& region);
+
+}  // namespace fabmesh

@@ -1,0 +1,115 @@
+#include <catch2/catch.hpp>
+
+#include "geometry/core/errors.h"
+#include "geometry/mesh/constructed_validation.h"
+#include "geometry/mesh/slab.h"
+#include "geometry/mesh/soup.h"
+#include "geometry/mesh/validate.h"
+#include "tests/geometry/section/region_shapes.h"
+
+using namespace fabmesh;
+using namespace fabmesh::test;
+
+namespace {
+
+struct Kitchen {
+  CompositeCurve outline;
+  std::vector<RegionHole> holes;
+  double exact_area = 0.0;  // of the exact curves
+  double perimeter = 0.0;
+};
+
+// A countertop outline in mm with an elliptic sink and a rounded cooktop, rotated by `degrees` about the origin.
+Kitchen kitchen(double degrees) {
+  const double c = std::cos(degrees * M_PI / 180.0), s = std::sin(degrees * M_PI / 180.0);
+  auto rot = [&](Vec2 p) { return Vec2(c * p.x() - s * p.y(), s * p.x() + c * p.y()); };
+  Kitchen k;
+  // Lines and exact quarter circles, rotated segment by segment.
+  std::vector<Segment> segs;
+  const CompositeCurve base = rounded_rect(0, 0, 1200, 600, 60);
+  for (const Segment& seg : base.segments()) {
+    if (seg.kind() == SegmentKind::Line) {
+      segs.push_back(Segment::line(rot(seg.point(0.0)), rot(seg.point(1.0))));
+    } else {
+      EllipseArcParams e = *seg.ellipse();
+      e.center = rot(e.center);
+      e.rotation_deg += degrees;
+      segs.push_back(Segment::ellipse_arc(e));
+    }
+  }
+  k.outline = CompositeCurve(segs, true);
+  k.holes.push_back({ellipse(rot({350, 300}), 200, 150, degrees + 10), "holes[0] (ellipse)"});
+  k.holes.push_back({ellipse(rot({900, 300}), 150, 150, 0), "holes[1] (ellipse)"});
+  k.exact_area = std::abs(exact_area(k.outline));
+  k.perimeter = exact_length(k.outline);
+  for (const auto& h : k.holes) k.exact_area -= std::abs(exact_area(h.curve)), k.perimeter += exact_length(h.curve);
+  return k;
+}
+
+}  // namespace
+
+TEST_CASE("slab: valid with the 3D self-intersection test, genus = holes, volume = exact area x thickness", "[mesh][slab][countertop]") {
+  for (const double degrees : {0.0, 33.0}) {
+    const Kitchen k = kitchen(degrees);
+    RegionOptions ro;
+    ro.tolerance = 0.2;
+    const Region2 region = build_region(k.outline, k.holes, ro);
+    SlabOptions so;
+    so.thickness = 30.0;
+    const SlabMesh slab = build_slab(region, so);
+    const ValidationReport full = validate(slab.mesh);
+    INFO(describe_defects(full).size());
+    CHECK(full.valid());
+    CHECK(full.self_intersection_checked);
+    CHECK_FALSE(full.self_intersecting);
+    REQUIRE(full.genus);
+    CHECK(*full.genus == 2);
+    CHECK(full.components == 1);
+    CHECK(full.triangles == slab_triangle_count(slab.triangulation));
+    // The polygon is within max_deviation of the exact boundary everywhere.
+    CHECK(std::abs(full.volume - k.exact_area * so.thickness) <= region.max_deviation * k.perimeter * so.thickness);
+    CHECK(full.volume == Approx(region.area * so.thickness).epsilon(1e-12));
+    // The construction proof agrees with the full test.
+    const ValidationReport constructed = validate_constructed(slab.mesh, slab.embedding_proof);
+    CHECK(constructed.valid());
+    CHECK(constructed.volume == full.volume);
+    CHECK(constructed.genus == full.genus);
+  }
+}
+
+TEST_CASE("slab: max_edge bounds top and bottom edges, walls follow the refined boundary", "[mesh][slab][countertop]") {
+  const Kitchen k = kitchen(0.0);
+  RegionOptions ro;
+  ro.tolerance = 0.5;
+  const Region2 region = build_region(k.outline, k.holes, ro);
+  SlabOptions so;
+  so.thickness = 20.0;
+  so.max_edge = 50.0;
+  const SlabMesh slab = build_slab(region, so);
+  CHECK(slab.triangulation.steiner_points > 0);
+  const ValidationReport full = validate(slab.mesh);
+  CHECK(full.valid());
+  REQUIRE(full.genus);
+  CHECK(*full.genus == 2);
+  CHECK(full.volume == Approx(region.area * so.thickness).epsilon(1e-9));
+  double longest_flat = 0.0;
+  for (const auto& e : slab.mesh.edges()) {
+    const auto h = slab.mesh.halfedge_handle(e, 0);
+    const auto a = slab.mesh.point(slab.mesh.from_vertex_handle(h)), b = slab.mesh.point(slab.mesh.to_vertex_handle(h));
+    if (a[2] == b[2]) longest_flat = std::max(longest_flat, (a - b).norm());
+  }
+  CHECK(longest_flat <= so.max_edge * (1 + 1e-9));
+}
+
+TEST_CASE("slab: thickness <= 0 and a triangle budget too small are rejected", "[mesh][slab][countertop][errors]") {
+  const Kitchen k = kitchen(0.0);
+  const Region2 region = build_region(k.outline, k.holes, {});
+  SlabOptions so;
+  so.thickness = 0.0;
+  CHECK_THROWS_AS(build_slab(region, so), RangeError);
+  so.thickness = -3.0;
+  CHECK_THROWS_AS(build_slab(region, so), RangeError);
+  so.thickness = 30.0;
+  so.max_triangles = 1000;
+  CHECK_THROWS_AS(build_slab(region, so), BudgetError);
+}
