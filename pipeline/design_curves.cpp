@@ -10,6 +10,13 @@ std::vector<NamedCurve> design_curves(const Design& design) {
         using T = std::decay_t<decltype(body)>;
         if constexpr (std::is_same_v<T, CurveDesign>) return {{"curve", body.curve}};
         if constexpr (std::is_same_v<T, VesselDesign>) return {{"profile", body.profile}};
+        if constexpr (std::is_same_v<T, CountertopDesign>) {
+          std::vector<NamedCurve> curves{{"outline", body.outline}};
+          for (std::size_t i = 0; i < body.holes.size(); ++i) {
+            curves.push_back({"holes[" + std::to_string(i) + "]", body.holes[i].curve});
+          }
+          return curves;
+        }
       },
       design.body);
 }

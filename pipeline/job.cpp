@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 
@@ -9,7 +10,11 @@
 #include "geometry/fairing/fair_curve.h"
 #include "geometry/mesh/constructed_validation.h"
 #include "geometry/mesh/soup.h"
+#include "geometry/mesh/slab.h"
 #include "geometry/mesh/vessel.h"
+#include "io/cutting/cutting_outline.h"
+#include "io/cutting/dxf.h"
+#include "io/cutting/svg.h"
 #include "io/mesh/atomic_file.h"
 #include "io/mesh/draco.h"
 #include "io/mesh/obj.h"
@@ -45,6 +50,7 @@ struct BuiltMesh {
   double max_deviation = 0.0;
   std::string embedding_proof;
   nlohmann::json build;
+  std::vector<CutLoop> cutting;  ///< countertops: the cutting outline (outline first, then the holes)
 };
 
 // Validates `mesh` (by its builder's embedding proof when it has one) and
@@ -58,6 +64,57 @@ BuiltMesh validated(const Mesh& mesh, double max_deviation, std::string proof, n
   out.max_deviation = max_deviation;
   out.embedding_proof = std::move(proof);
   out.build = std::move(facts);
+  return out;
+}
+
+bool wants(const Design& design, const char* format) {
+  const auto& outs = design.common.outputs;
+  return std::find(outs.begin(), outs.end(), format) != outs.end();
+}
+
+// Outline and holes -> region (proven simple) -> CDT -> slab; the exact curves also give the cutting outline.
+BuiltMesh build_countertop(const Design& design, const CountertopDesign& c, double tolerance, Stopwatch& watch) {
+  const BuiltCurve outline = build_curve(c.outline);
+  std::vector<RegionHole> holes;
+  for (std::size_t i = 0; i < c.holes.size(); ++i) {
+    holes.push_back({build_curve(c.holes[i].curve).curve, fmt::format("holes[{}] ({})", i, c.holes[i].shape)});
+  }
+  watch.lap("curve");
+  RegionOptions ro;
+  ro.tolerance = tolerance;
+  ro.max_points = c.max_triangles;
+  const Region2 region = build_region(outline.curve, holes, ro);
+  watch.lap("region");
+  SlabOptions so;
+  so.thickness = c.thickness;
+  so.max_edge = c.max_edge;
+  so.max_triangles = c.max_triangles;
+  const SlabMesh slab = build_slab(region, so);
+  watch.lap("build");
+  std::vector<CutLoop> cutting;
+  if (wants(design, "dxf") || wants(design, "svg")) {
+    CutLoopOptions co;
+    co.tolerance = tolerance;
+    co.reverse = region.reversed[0];
+    cutting.push_back(cut_loop(outline.curve, "outline", true, co));
+    for (std::size_t i = 0; i < holes.size(); ++i) {
+      co.reverse = region.reversed[i + 1];
+      cutting.push_back(cut_loop(holes[i].curve, holes[i].label, false, co));
+    }
+    watch.lap("cutting_outline");
+  }
+  std::size_t boundary_points = 0;
+  for (const auto& loop : slab.triangulation.boundary) boundary_points += loop.size();
+  nlohmann::json facts = {{"holes", holes.size()},
+                          {"outline_points", region.outer.size()},
+                          {"boundary_points", boundary_points},
+                          {"planar_triangles", slab.triangulation.triangles.size()},
+                          {"steiner_points", slab.triangulation.steiner_points},
+                          {"region_area", region.area},
+                          {"thickness", c.thickness}};
+  if (c.max_edge > 0.0) facts["max_edge"] = c.max_edge;
+  BuiltMesh out = validated(slab.mesh, region.max_deviation, slab.embedding_proof, std::move(facts), watch);
+  out.cutting = std::move(cutting);
   return out;
 }
 
@@ -81,6 +138,7 @@ BuiltMesh build_mesh(const Design& design, double tolerance, Stopwatch& watch) {
                             {"max_radius", vessel.section.max_radius}};
     return validated(vessel.mesh, vessel.max_deviation, vessel.embedding_proof, std::move(facts), watch);
   }
+  if (const auto* c = std::get_if<CountertopDesign>(&design.body)) return build_countertop(design, *c, tolerance, watch);
   throw InputError(fmt::format("{}: a {} design has no mesh to run; use `fabmesh sample` or `fabmesh optimize`",
                                design.common.path, design.common.kind));
 }
@@ -135,6 +193,14 @@ JobReport run_job(const Design& design, const JobOptions& options) {
       files.emplace_back(path, encode_ply(soup));
     } else if (format == "off") {
       files.emplace_back(path, encode_off(soup));
+    } else if (format == "dxf" && !built.cutting.empty()) {
+      DxfOptions dxf;
+      dxf.units = design.common.units;
+      files.emplace_back(path, encode_dxf(built.cutting, dxf));
+    } else if (format == "svg" && !built.cutting.empty()) {
+      SvgOptions svg;
+      svg.units = design.common.units;
+      files.emplace_back(path, encode_svg(built.cutting, svg));
     } else {
       throw InputError(fmt::format("{}: unknown output format '{}'", design.common.path, format));
     }

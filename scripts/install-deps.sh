@@ -9,7 +9,7 @@ packages=(
   libcgal-dev libgmp-dev libmpfr-dev libboost-dev
   libeigen3-dev libopenmesh-dev libdraco-dev libtbb-dev
   libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libfmt-dev
-  catch2 libbenchmark-dev
+  catch2 libbenchmark-dev libdxflib-dev
   clang libclang-rt-14-dev
 )
 if [[ "${1:-}" == "--bench" ]]; then

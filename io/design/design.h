@@ -34,7 +34,22 @@ struct VesselDesign {
   std::size_t max_triangles = 20000000;  ///< budget (key `max_triangles`)
 };
 
-using DesignBody = std::variant<CurveDesign, VesselDesign>;
+/// One cut-out of a countertop (sink, cooktop).
+struct CountertopHole {
+  std::string shape;  ///< ellipse | rounded_rect | outline (for messages)
+  CurveSpec curve;    ///< closed; ellipse and rounded_rect expanded into exact ellipse-arc and line segments
+};
+
+/// kind: countertop. Outline and holes in the plane; the slab spans z in [0, thickness].
+struct CountertopDesign {
+  CurveSpec outline;                     ///< closed
+  std::vector<CountertopHole> holes;
+  double thickness = 0.0;                ///< > 0, model units
+  double max_edge = 0.0;                 ///< > 0 refines the triangulation; 0: not given
+  std::size_t max_triangles = 20000000;  ///< budget (key `max_triangles`)
+};
+
+using DesignBody = std::variant<CurveDesign, VesselDesign, CountertopDesign>;
 
 struct Design {
   DesignCommon common;

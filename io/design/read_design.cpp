@@ -7,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "io/design/read_countertop.h"
 #include "io/design/read_curve.h"
 #include "io/design/yaml_fields.h"
 
@@ -27,8 +28,14 @@ DesignCommon read_common(const yaml::Fields& f, const YAML::Node& root) {
     const YAML::Node outs = root["outputs"];
     f.require_list(outs, "outputs", 1);
     for (std::size_t i = 0; i < outs.size(); ++i) {
-      c.outputs.push_back(f.choice(outs[i], fmt::format("outputs[{}]", i), {"stl", "drc", "obj", "ply", "off"}));
+      const std::string field = fmt::format("outputs[{}]", i);
+      c.outputs.push_back(f.choice(outs[i], field, {"stl", "drc", "obj", "ply", "off", "dxf", "svg"}));
+      if ((c.outputs.back() == "dxf" || c.outputs.back() == "svg") && c.kind != "countertop") {
+        f.fail(outs[i], field, fmt::format("{} is a cutting outline; only countertop designs have one", c.outputs.back()));
+      }
     }
+  } else if (c.kind == "countertop") {
+    c.outputs = {"stl", "drc", "dxf", "svg"};  // the slab, and its cutting outline for the CNC router
   } else {
     c.outputs = {"stl", "drc"};
   }
@@ -86,6 +93,10 @@ Design parse_design(const std::string& text, const std::string& path) {
   }
   if (d.common.kind == "vessel") {
     d.body = read_vessel(f, root);
+    return d;
+  }
+  if (d.common.kind == "countertop") {
+    d.body = read_countertop(f, root);
     return d;
   }
   f.fail(root["kind"], "kind", fmt::format("kind '{}' is not available in this version of fabmesh", d.common.kind));

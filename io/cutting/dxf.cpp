@@ -1,0 +1,161 @@
+#include "io/cutting/dxf.h"
+
+#include <dxflib/dl_dxf.h>
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <memory>
+
+#include "geometry/core/errors.h"
+#include "io/mesh/atomic_file.h"
+
+namespace fabmesh {
+namespace {
+
+// dxflib writes only to a named file: a private temporary one, removed on every path.
+class TempFile {
+ public:
+  TempFile() {
+    std::string pattern = (std::filesystem::temp_directory_path() / "fabmesh-dxf-XXXXXX").string();
+    const int fd = mkstemp(pattern.data());
+    if (fd < 0) throw FileError(pattern, 0, 0, fmt::format("{}: cannot create a temporary DXF file", pattern));
+    ::close(fd);
+    path_ = pattern;
+  }
+  ~TempFile() {
+    std::error_code ec;
+    std::filesystem::remove(path_, ec);
+  }
+  TempFile(const TempFile&) = delete;
+  TempFile& operator=(const TempFile&) = delete;
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+};
+
+int insunits(const std::string& units) {
+  if (units == "in") return 1;
+  if (units == "cm") return 5;
+  if (units == "m") return 6;
+  return 4;  // mm
+}
+
+void write_tables(DL_Dxf& dxf, DL_WriterA& dw) {
+  dw.sectionTables();
+  dxf.writeVPort(dw);
+  dw.tableLinetypes(3);
+  dxf.writeLinetype(dw, DL_LinetypeData("BYBLOCK", "BYBLOCK", 0, 0, 0.0));
+  dxf.writeLinetype(dw, DL_LinetypeData("BYLAYER", "BYLAYER", 0, 0, 0.0));
+  dxf.writeLinetype(dw, DL_LinetypeData("CONTINUOUS", "Continuous", 0, 0, 0.0));
+  dw.tableEnd();
+  dw.tableLayers(3);
+  dxf.writeLayer(dw, DL_LayerData("0", 0), DL_Attributes("", DL_Codes::black, 100, "CONTINUOUS", 1.0));
+  dxf.writeLayer(dw, DL_LayerData("OUTLINE", 0), DL_Attributes("", DL_Codes::red, 100, "CONTINUOUS", 1.0));
+  dxf.writeLayer(dw, DL_LayerData("HOLES", 0), DL_Attributes("", DL_Codes::blue, 100, "CONTINUOUS", 1.0));
+  dw.tableEnd();
+  dw.tableStyle(1);
+  dxf.writeStyle(dw, DL_StyleData("standard", 0, 2.5, 1.0, 0.0, 0, 2.5, "txt", ""));
+  dw.tableEnd();
+  dxf.writeView(dw);
+  dxf.writeUcs(dw);
+  dw.tableAppid(1);
+  dxf.writeAppid(dw, "ACAD");
+  dw.tableEnd();
+  dxf.writeDimStyle(dw, 1, 1, 1, 1, 1);
+  dxf.writeBlockRecord(dw);
+  dw.tableEnd();
+  dw.sectionEnd();
+  dw.sectionBlocks();
+  for (const char* block : {"*Model_Space", "*Paper_Space", "*Paper_Space0"}) {
+    dxf.writeBlock(dw, DL_BlockData(block, 0, 0.0, 0.0, 0.0));
+    dxf.writeEndBlock(dw, block);
+  }
+  dw.sectionEnd();
+}
+
+void write_arc(DL_Dxf& dxf, DL_WriterA& dw, const EllipseArcParams& a, const DL_Attributes& attr) {
+  // DXF arcs run counter-clockwise from the first angle to the second.
+  double from = a.from_deg, to = a.to_deg;
+  if (to < from) std::swap(from, to);
+  const bool whole = to - from >= 360.0;
+  if (a.a == a.b) {
+    if (whole) {
+      dxf.writeCircle(dw, DL_CircleData(a.center.x(), a.center.y(), 0.0, a.a), attr);
+    } else {
+      dxf.writeArc(dw, DL_ArcData(a.center.x(), a.center.y(), 0.0, a.a, from + a.rotation_deg, to + a.rotation_deg),
+                   attr);
+    }
+    return;
+  }
+  // ELLIPSE: major axis vector, minor/major ratio, parameters (radians) measured from the major axis.
+  const double rot = a.rotation_deg * M_PI / 180.0;
+  Vec2 major(a.a * std::cos(rot), a.a * std::sin(rot));
+  double ratio = a.b / a.a, shift = 0.0;
+  if (a.b > a.a) {  // the major axis is the rotated y axis; parameters shift by -90 degrees
+    major = Vec2(-a.b * std::sin(rot), a.b * std::cos(rot));
+    ratio = a.a / a.b;
+    shift = -90.0;
+  }
+  const double p1 = whole ? 0.0 : (from + shift) * M_PI / 180.0;
+  const double p2 = whole ? 2.0 * M_PI : (to + shift) * M_PI / 180.0;
+  dxf.writeEllipse(dw, DL_EllipseData(a.center.x(), a.center.y(), 0.0, major.x(), major.y(), 0.0, ratio, p1, p2),
+                   attr);
+}
+
+void write_entity(DL_Dxf& dxf, DL_WriterA& dw, const CutEntity& e, bool whole_loop, const DL_Attributes& attr) {
+  switch (e.kind) {
+    case CutKind::Line:
+      dxf.writeLine(dw, DL_LineData(e.points[0].x(), e.points[0].y(), 0.0, e.points[1].x(), e.points[1].y(), 0.0),
+                    attr);
+      return;
+    case CutKind::Arc:
+      write_arc(dxf, dw, e.arc, attr);
+      return;
+    case CutKind::Polyline: {
+      // A loop that is one polyline is written closed, without repeating its first point.
+      const std::size_t n = whole_loop ? e.points.size() - 1 : e.points.size();
+      dxf.writePolyline(dw, DL_PolylineData(static_cast<int>(n), 0, 0, whole_loop ? 1 : 0), attr);
+      for (std::size_t i = 0; i < n; ++i) dxf.writeVertex(dw, DL_VertexData(e.points[i].x(), e.points[i].y(), 0.0));
+      dxf.writePolylineEnd(dw);
+      return;
+    }
+  }
+}
+
+}  // namespace
+
+std::string encode_dxf(const std::vector<CutLoop>& loops, const DxfOptions& options) {
+  const TempFile tmp;
+  {
+    DL_Dxf dxf;
+    std::unique_ptr<DL_WriterA> dw(dxf.out(tmp.path().c_str(), DL_Codes::AC1015));
+    if (!dw) throw FileError(tmp.path(), 0, 0, fmt::format("{}: dxflib cannot open the file", tmp.path()));
+    dxf.writeHeader(*dw);
+    dw->dxfString(9, "$INSUNITS");
+    dw->dxfInt(70, insunits(options.units));
+    dw->sectionEnd();
+    write_tables(dxf, *dw);
+    dw->sectionEntities();
+    for (const CutLoop& loop : loops) {
+      const DL_Attributes attr(loop.outer ? "OUTLINE" : "HOLES", 256, -1, "BYLAYER", 1.0);
+      const bool whole_loop = loop.entities.size() == 1;
+      for (const CutEntity& e : loop.entities) write_entity(dxf, *dw, e, whole_loop, attr);
+    }
+    dw->sectionEnd();
+    dxf.writeObjects(*dw);
+    dxf.writeObjectsEnd(*dw);
+    dw->dxfEOF();
+    dw->close();
+  }
+  return read_file(tmp.path());
+}
+
+void write_dxf(const std::string& path, const std::vector<CutLoop>& loops, const DxfOptions& options) {
+  write_file_atomically(path, encode_dxf(loops, options));
+}
+
+}  // namespace fabmesh

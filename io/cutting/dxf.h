@@ -1,0 +1,25 @@
+#pragma once
+// DXF (AutoCAD 2000, via dxflib) cutting outlines: LINE, ARC/CIRCLE,
+// ELLIPSE and LWPOLYLINE entities, in model units.
+
+#include <string>
+#include <vector>
+
+#include "io/cutting/cutting_outline.h"
+
+namespace fabmesh {
+
+struct DxfOptions {
+  std::string units = "mm";  ///< mm | cm | m | in: the header's $INSUNITS
+};
+
+/// The DXF text of `loops`: the outline on layer OUTLINE, cut-outs on layer
+/// HOLES; lines as LINE, circular arcs as ARC (CIRCLE when whole), elliptic
+/// arcs as ELLIPSE, polylines as LWPOLYLINE (closed when a loop is one polyline).
+/// \throw FileError when dxflib cannot write its temporary file
+std::string encode_dxf(const std::vector<CutLoop>& loops, const DxfOptions& options = {});
+
+/// encode_dxf written atomically to `path`. \throw FileError
+void write_dxf(const std::string& path, const std::vector<CutLoop>& loops, const DxfOptions& options = {});
+
+}  // namespace fabmesh

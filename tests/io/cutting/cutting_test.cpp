@@ -1,0 +1,181 @@
+#include <catch2/catch.hpp>
+
+#include <map>
+#include <regex>
+
+#include "geometry/fairing/fair_curve.h"
+#include "io/cutting/cutting_outline.h"
+#include "io/cutting/dxf.h"
+#include "io/cutting/read_dxf.h"
+#include "io/cutting/svg.h"
+#include "tests/geometry/section/region_shapes.h"
+
+using namespace fabmesh;
+using namespace fabmesh::test;
+
+namespace {
+
+// An outline of a line, an exact elliptic arc and two T-Bézier segments
+// (one polyline run), and two holes: a rotated ellipse and a rounded rectangle.
+std::vector<CutLoop> kitchen_loops(double tolerance) {
+  EllipseArcParams bump;
+  bump.center = {600, 300};
+  bump.a = 200;
+  bump.b = 80;
+  bump.from_deg = 0;
+  bump.to_deg = 180;
+  const CompositeCurve outline({Segment::line({0, 0}, {1200, 0}),
+                                Segment::tbezier({Vec2(1200, 0), Vec2(1300, 0), Vec2(1300, 300), Vec2(1200, 300)}, 0, 0),
+                                Segment::line({1200, 300}, {800, 300}), Segment::ellipse_arc(bump),
+                                Segment::line({400, 300}, {0, 300}),
+                                Segment::tbezier({Vec2(0, 300), Vec2(-100, 300), Vec2(-100, 0), Vec2(0, 0)}, 0.5, 0.5)},
+                               true);
+  CutLoopOptions o;
+  o.tolerance = tolerance;
+  std::vector<CutLoop> loops{cut_loop(outline, "outline", true, o)};
+  o.reverse = true;
+  loops.push_back(cut_loop(ellipse({300, 150}, 120, 60, 30), "holes[0] (ellipse)", false, o));
+  loops.push_back(cut_loop(rounded_rect(700, 50, 1100, 250, 20), "holes[1] (rounded_rect)", false, o));
+  return loops;
+}
+
+// End points of the DXF entities on one layer chain into closed loops: every
+// end point meets exactly one other entity's end point (within `eps`).
+int closed_chains(const std::vector<DxfEntity>& entities, const std::string& layer, double eps) {
+  std::vector<std::pair<Vec2, Vec2>> ends;
+  int whole = 0;
+  for (const DxfEntity& e : entities) {
+    if (e.layer != layer) continue;
+    if (e.closed) {
+      ++whole;
+      continue;
+    }
+    ends.emplace_back(e.points.front(), e.points.back());
+  }
+  // Union of entities that share an end point; each end point must have exactly one partner.
+  std::vector<int> parent(ends.size());
+  for (std::size_t i = 0; i < ends.size(); ++i) parent[i] = static_cast<int>(i);
+  std::function<int(int)> find = [&](int i) { return parent[i] == i ? i : parent[i] = find(parent[i]); };
+  for (std::size_t i = 0; i < ends.size(); ++i) {
+    for (const Vec2& p : {ends[i].first, ends[i].second}) {
+      int partners = 0;
+      for (std::size_t j = 0; j < ends.size(); ++j) {
+        for (const Vec2& q : {ends[j].first, ends[j].second}) {
+          if (&p == &q) continue;
+          if (j == i && (p - q).norm() > eps) continue;
+          if (j != i && (p - q).norm() <= eps) {
+            ++partners;
+            parent[find(static_cast<int>(i))] = find(static_cast<int>(j));
+          }
+        }
+      }
+      if (partners != 1) return -1;
+    }
+  }
+  int chains = 0;
+  for (std::size_t i = 0; i < ends.size(); ++i) chains += find(static_cast<int>(i)) == static_cast<int>(i);
+  return chains + whole;
+}
+
+}  // namespace
+
+TEST_CASE("cut_loop: lines, exact arcs and one polyline per T-Bezier run, each loop closed", "[io][cutting][countertop]") {
+  const auto loops = kitchen_loops(0.01);
+  REQUIRE(loops.size() == 3);
+  std::map<CutKind, int> kinds;
+  for (const CutEntity& e : loops[0].entities) ++kinds[e.kind];
+  CHECK(kinds[CutKind::Line] == 3);
+  CHECK(kinds[CutKind::Arc] == 1);
+  CHECK(kinds[CutKind::Polyline] == 2);
+  for (const CutLoop& l : loops) {
+    for (std::size_t i = 0; i < l.entities.size(); ++i) {
+      const Vec2 end = l.entities[i].points.back();
+      const Vec2 next = l.entities[(i + 1) % l.entities.size()].points.front();
+      CHECK((end - next).norm() < 1e-9);
+    }
+  }
+  // Reversed holes run clockwise: the rounded rectangle's arcs go from a larger to a smaller angle.
+  for (const CutEntity& e : loops[2].entities) {
+    if (e.kind == CutKind::Arc) CHECK(e.arc.to_deg < e.arc.from_deg);
+  }
+}
+
+TEST_CASE("dxf: lines, arcs, ellipses and polylines read back with dxflib as closed loops per layer", "[io][cutting][dxf][countertop]") {
+  const auto loops = kitchen_loops(0.01);
+  const std::string bytes = encode_dxf(loops);
+  CHECK(bytes.find("LWPOLYLINE") != std::string::npos);
+  CHECK(bytes.find("$INSUNITS") != std::string::npos);
+  const std::vector<DxfEntity> entities = parse_dxf(bytes, "kitchen.dxf");
+  std::map<std::string, int> types;
+  for (const DxfEntity& e : entities) ++types[e.type + "@" + e.layer];
+  CHECK(types["LINE@OUTLINE"] == 3);
+  CHECK(types["ELLIPSE@OUTLINE"] == 1);
+  CHECK(types["POLYLINE@OUTLINE"] == 2);
+  CHECK(types["ELLIPSE@HOLES"] == 1);  // the whole rotated ellipse
+  CHECK(types["ARC@HOLES"] == 4);      // the rounded rectangle's corners
+  CHECK(types["LINE@HOLES"] == 4);
+  CHECK(closed_chains(entities, "OUTLINE", 1e-6) == 1);
+  CHECK(closed_chains(entities, "HOLES", 1e-6) == 2);
+  // The whole ellipse spans 2 pi and its points lie on the exact ellipse.
+  for (const DxfEntity& e : entities) {
+    if (e.type == "ELLIPSE" && e.layer == "HOLES") CHECK(e.closed);
+    if (e.type != "POLYLINE") continue;
+    CHECK(e.points.size() >= 3);
+  }
+}
+
+TEST_CASE("dxf: an arc whose end points are wrong breaks the chain (the check can fail)", "[io][cutting][dxf][countertop]") {
+  auto loops = kitchen_loops(0.01);
+  for (CutEntity& e : loops[0].entities) {
+    if (e.kind == CutKind::Arc) e.arc.to_deg = 170;  // no longer reaches the next line
+  }
+  CHECK(closed_chains(parse_dxf(encode_dxf(loops), "broken.dxf"), "OUTLINE", 1e-6) == -1);
+}
+
+TEST_CASE("dxf: a loop that is one T-Bezier run is a single closed LWPOLYLINE", "[io][cutting][dxf][countertop]") {
+  const CompositeCurve blob({Segment::tbezier({Vec2(0, 0), Vec2(100, -50), Vec2(200, 50), Vec2(100, 100)}, 0, 0),
+                             Segment::tbezier({Vec2(100, 100), Vec2(0, 150), Vec2(-100, 50), Vec2(0, 0)}, 0, 0)},
+                            true);
+  const std::vector<CutLoop> loops{cut_loop(blob, "outline", true, {})};
+  REQUIRE(loops[0].entities.size() == 1);
+  const auto entities = parse_dxf(encode_dxf(loops), "blob.dxf");
+  REQUIRE(entities.size() == 1);
+  CHECK(entities[0].type == "POLYLINE");
+  CHECK(entities[0].closed);
+  CHECK((entities[0].points.front() - entities[0].points.back()).norm() > 1.0);  // not repeated
+}
+
+TEST_CASE("svg: one path per loop, A commands for arcs, L for lines and polylines, viewBox in mm", "[io][cutting][svg][countertop]") {
+  const auto loops = kitchen_loops(0.01);
+  const std::string svg = encode_svg(loops);
+  const std::regex path_re("<path id=\"([a-z0-9]+)\" d=\"([^\"]*)\"");
+  std::vector<std::pair<std::string, std::string>> paths;
+  for (auto it = std::sregex_iterator(svg.begin(), svg.end(), path_re); it != std::sregex_iterator(); ++it) {
+    paths.emplace_back((*it)[1], (*it)[2]);
+  }
+  REQUIRE(paths.size() == 3);
+  CHECK(paths[0].first == "outline");
+  for (const auto& [id, d] : paths) {
+    CHECK(d.rfind("M ", 0) == 0);
+    CHECK(d.substr(d.size() - 2) == " Z");
+    CHECK(std::count(d.begin(), d.end(), 'M') == 1);
+  }
+  auto count = [](const std::string& d, char c) { return std::count(d.begin(), d.end(), c); };
+  CHECK(count(paths[0].second, 'A') == 2);  // the 180-degree bump in two pieces
+  CHECK(count(paths[0].second, 'L') > 10);  // lines and the sampled T-Bezier runs
+  CHECK(count(paths[1].second, 'A') == 3);  // a whole ellipse in 120-degree pieces
+  CHECK(count(paths[1].second, 'L') == 0);
+  CHECK(count(paths[2].second, 'A') == 4);
+  CHECK(count(paths[2].second, 'L') == 4);
+  // viewBox: the bounds plus the 5 mm margin; x from the sampled T-Bezier ends, y from the line (0) and the bump's apex (380).
+  double lo = INFINITY, hi = -INFINITY;
+  for (const CutEntity& e : loops[0].entities) {
+    for (const Vec2& p : e.points) lo = std::min(lo, p.x()), hi = std::max(hi, p.x());
+  }
+  std::smatch m;
+  REQUIRE(std::regex_search(svg, m, std::regex("viewBox=\"([-0-9.e]+) ([-0-9.e]+) ([-0-9.e]+) ([-0-9.e]+)\"")));
+  CHECK(std::stod(m[1]) == Approx(lo - 5).margin(0.02));
+  CHECK(std::stod(m[2]) == Approx(-380 - 5).margin(1e-9));
+  CHECK(std::stod(m[3]) == Approx(hi - lo + 10).margin(0.02));
+  CHECK(std::stod(m[4]) == Approx(380 + 10).margin(1e-9));
+}

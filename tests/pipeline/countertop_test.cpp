@@ -1,0 +1,196 @@
+#include <catch2/catch.hpp>
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "geometry/core/errors.h"
+#include "geometry/fairing/fair_curve.h"
+#include "geometry/mesh/soup.h"
+#include "geometry/mesh/validate.h"
+#include "geometry/mesh/weld.h"
+#include "io/cutting/read_dxf.h"
+#include "io/design/read_design.h"
+#include "io/mesh/atomic_file.h"
+#include "io/mesh/draco.h"
+#include "io/mesh/stl.h"
+#include "pipeline/cli/commands.h"
+#include "pipeline/job.h"
+#include "tests/geometry/section/region_shapes.h"
+
+using namespace fabmesh;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string example(const std::string& name) { return std::string(FABMESH_SOURCE_DIR) + "/configs/examples/" + name; }
+
+fs::path fresh_dir(const std::string& name) {
+  const fs::path dir = fs::path(FABMESH_TEST_TMP) / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+int run_cli(std::vector<std::string> args, std::string* out = nullptr) {
+  args.insert(args.begin(), "fabmesh");
+  std::vector<const char*> argv;
+  for (const auto& a : args) argv.push_back(a.c_str());
+  std::ostringstream o, e;
+  const int code = cli::run_app(static_cast<int>(argv.size()), argv.data(), {o, e});
+  if (out) *out = o.str() + e.str();
+  return code;
+}
+
+// Exact area and perimeter of a countertop design's region, from its exact curves.
+std::pair<double, double> exact_region(const CountertopDesign& c) {
+  const CompositeCurve outline = build_curve(c.outline).curve;
+  double area = std::abs(test::exact_area(outline)), perimeter = test::exact_length(outline);
+  for (const auto& h : c.holes) {
+    const CompositeCurve hole = build_curve(h.curve).curve;
+    area -= std::abs(test::exact_area(hole));
+    perimeter += test::exact_length(hole);
+  }
+  return {area, perimeter};
+}
+
+const char* kSmall =
+    "name: small\nkind: countertop\ntolerance: 0.5\nthickness: 20\n"
+    "outline:\n  family: tbezier\n  closed: true\n  segments:\n"
+    "    - line: {from: [0, 0], to: [800, 0]}\n"
+    "    - line: {to: [800, 400]}\n"
+    "    - line: {to: [0, 400]}\n"
+    "    - line: {to: [0, 0]}\n"
+    "holes:\n"
+    "  - ellipse: {center: [200, 200], a: 120, b: 80, rotation_deg: 20}\n"
+    "  - rounded_rect: {center: [550, 200], size: [300, 200], radius: 30}\n";
+
+}  // namespace
+
+TEST_CASE("countertop examples: valid slabs, genus = holes, volume = exact area x thickness", "[pipeline][countertop]") {
+  const fs::path dir = fresh_dir("countertop_examples");
+  for (const char* name : {"countertop_g1.yaml", "countertop_g2.yaml", "countertop_g1_fair_cv.yaml",
+                           "countertop_g2_fair_cv.yaml", "countertop_symmetric_ellipse.yaml",
+                           "countertop_asymmetric_line.yaml"}) {
+    INFO(name);
+    Design design = read_design(example(name));
+    design.common.outputs = {"stl", "dxf"};
+    const auto& c = std::get<CountertopDesign>(design.body);
+    const JobReport r = run_job(design, {dir.string()});
+    CHECK(r.validation.valid());
+    REQUIRE(r.validation.genus);
+    CHECK(*r.validation.genus == static_cast<long>(c.holes.size()));
+    CHECK(r.max_deviation <= design.common.tolerance);
+    const auto [area, perimeter] = exact_region(c);
+    CHECK(std::abs(r.validation.volume - area * c.thickness) <= r.max_deviation * perimeter * c.thickness);
+    // The STL read back passes the full validation, 3D self-intersection test included.
+    const ValidationReport full = validate(weld(parse_stl(read_file(r.outputs[0]), "stl")).soup);
+    CHECK(full.valid());
+    CHECK(full.self_intersection_checked);
+    CHECK(full.genus == r.validation.genus);
+    CHECK(full.triangles == r.validation.triangles);
+  }
+}
+
+TEST_CASE("countertop run: default outputs are STL, Draco, DXF and SVG; the DXF has exact arcs", "[pipeline][countertop]") {
+  const fs::path dir = fresh_dir("countertop_run");
+  std::string out;
+  REQUIRE(run_cli({"run", example("countertop_symmetric_ellipse.yaml"), "-o", dir.string(), "--json"}, &out) == 0);
+  const auto j = nlohmann::json::parse(out);
+  CHECK(j["kind"] == "countertop");
+  REQUIRE(j["outputs"].size() == 4);
+  CHECK(j["watertight"] == true);
+  CHECK(j["self_intersecting"] == false);
+  CHECK(j["genus"] == 2);
+  CHECK(j["build"]["holes"] == 2);
+  CHECK(j.contains("self_intersection_proof"));
+  for (const char* stage : {"curve", "region", "build", "validate", "encode_stl", "encode_dxf", "write"}) {
+    CHECK(j["timings_ms"].contains(stage));
+  }
+  for (const char* ext : {"stl", "drc", "dxf", "svg"}) CHECK(fs::exists(dir / (std::string("countertop_symmetric_ellipse.") + ext)));
+  CHECK(validate(parse_draco(read_file((dir / "countertop_symmetric_ellipse.drc").string()), "drc")).valid());
+  const auto entities = parse_dxf(read_file((dir / "countertop_symmetric_ellipse.dxf").string()), "dxf");
+  std::map<std::string, int> types;
+  for (const auto& e : entities) ++types[e.type + "@" + e.layer];
+  CHECK(types["ELLIPSE@OUTLINE"] == 1);   // the bar bump
+  CHECK(types["LINE@OUTLINE"] == 5);
+  CHECK(types["POLYLINE@OUTLINE"] == 2);  // the T-Bezier corners
+  CHECK(types["ELLIPSE@HOLES"] == 1);     // the oval sink, whole
+  CHECK(types["ARC@HOLES"] == 4);         // the cooktop's corners
+  const std::string svg = read_file((dir / "countertop_symmetric_ellipse.svg").string());
+  CHECK(std::count(svg.begin(), svg.end(), '\n') >= 3);
+  CHECK(svg.find("<path id=\"outline\"") != std::string::npos);
+  CHECK(svg.find("<path id=\"hole1\"") != std::string::npos);
+}
+
+TEST_CASE("countertop: max_edge is honoured on top and bottom, the slab stays valid", "[pipeline][countertop]") {
+  const fs::path dir = fresh_dir("countertop_max_edge");
+  Design design = parse_design(std::string(kSmall) + "max_edge: 40\noutputs: [stl]\n", "small.yaml");
+  const JobReport r = run_job(design, {dir.string()});
+  REQUIRE(r.validation.valid());
+  CHECK(r.build["steiner_points"].get<std::size_t>() > 0);
+  const TriangleSoup soup = weld(parse_stl(read_file(r.outputs[0]), "stl")).soup;
+  CHECK(validate(soup).valid());
+  double longest = 0.0;
+  for (const auto& t : soup.triangles) {
+    for (int i = 0; i < 3; ++i) {
+      const Vec3 a = soup.vertices[t[i]], b = soup.vertices[t[(i + 1) % 3]];
+      if (a.z() == b.z()) longest = std::max(longest, (a - b).norm());
+    }
+  }
+  CHECK(longest <= 40.0 * (1 + 1e-6));  // float32 STL coordinates
+  CHECK(longest > 20.0);
+}
+
+TEST_CASE("countertop bad input: exit 2, a message naming the problem, no file", "[pipeline][countertop][errors]") {
+  const fs::path dir = fresh_dir("countertop_bad");
+  const std::string small = kSmall;
+  auto replaced = [&](const std::string& from, const std::string& to) {
+    std::string t = small;
+    REQUIRE(t.find(from) != std::string::npos);
+    return t.replace(t.find(from), from.size(), to);
+  };
+  const std::vector<std::pair<std::string, std::string>> cases{
+      {replaced("    - line: {to: [0, 0]}\n", "    - line: {to: [0, 10]}\n"), "does not close"},
+      {replaced("    - line: {to: [800, 400]}\n    - line: {to: [0, 400]}\n",
+                "    - line: {to: [0, 400]}\n    - line: {to: [800, 400]}\n"),
+       "outline crosses itself"},
+      {replaced("center: [200, 200], a: 120", "center: [1200, 200], a: 120"), "holes[0] (ellipse) is not inside the outline"},
+      {replaced("center: [550, 200], size", "center: [300, 200], size"), "holes[1] (rounded_rect) overlaps holes[0]"},
+      {replaced("thickness: 20", "thickness: 0"), "thickness = 0 must be > 0"},
+      {replaced("thickness: 20", "thickness: -5"), "thickness = -5 must be > 0"},
+      {replaced("closed: true", "closed: false"), "closed"},
+  };
+  int i = 0;
+  for (const auto& [text, expected] : cases) {
+    INFO(expected);
+    const fs::path design = dir / fmt::format("bad{}.yaml", i++);
+    std::ofstream(design) << text;
+    const fs::path out_dir = dir / "out";
+    std::string out;
+    CHECK(run_cli({"run", design.string(), "-o", out_dir.string()}, &out) == 2);
+    CHECK_THAT(out, Catch::Contains(expected));
+    CHECK((!fs::exists(out_dir) || fs::is_empty(out_dir)));
+  }
+}
+
+TEST_CASE("countertop design: dxf/svg only for countertops, holes read as exact closed curves", "[pipeline][countertop][design]") {
+  CHECK_THROWS_AS(parse_design("name: v\nkind: vessel\noutputs: [stl, dxf]\nprofile: {family: tbezier, segments: "
+                               "[{line: {from: [1, 0], to: [1, 1]}}]}\nbody: {mode: solid}\n",
+                               "v.yaml"),
+                  FileError);
+  const Design d = parse_design(kSmall, "small.yaml");
+  CHECK(d.common.outputs == std::vector<std::string>{"stl", "drc", "dxf", "svg"});
+  const auto& c = std::get<CountertopDesign>(d.body);
+  REQUIRE(c.holes.size() == 2);
+  const CompositeCurve ellipse = build_curve(c.holes[0].curve).curve;
+  CHECK(ellipse.size() == 1);
+  CHECK(std::abs(test::exact_area(ellipse)) == Approx(M_PI * 120 * 80).epsilon(1e-12));
+  const CompositeCurve rect = build_curve(c.holes[1].curve).curve;
+  CHECK(rect.size() == 8);
+  for (const JointReport& j : rect.joints()) CHECK(j.achieved >= Continuity::G1);
+  CHECK(std::abs(test::exact_area(rect)) == Approx(300 * 200 - (4 - M_PI) * 30 * 30).epsilon(1e-12));
+}
