@@ -86,7 +86,7 @@ TEST_CASE("check: an invalid mesh exits 1 and names its defects", "[mesh][check]
   CHECK(j["genus"].is_null());
 }
 
-TEST_CASE("check: several files give a JSON array; any invalid exits 1, any unreadable exits 2",
+TEST_CASE("check: several files give a JSON array, and any invalid exits 1, any unreadable exits 2",
           "[mesh][check][cli]") {
   const TempDir dir;
   write_obj(test::box(), dir.file("cube.obj"));

@@ -73,7 +73,7 @@ TEST_CASE("run: a shell vessel is written as STL and Draco that both read back v
   CHECK(worst <= design.common.tolerance - r.max_deviation);
 }
 
-TEST_CASE("draco: the default 11 bits collapse a fine mesh; fabmesh's choice keeps it valid",
+TEST_CASE("draco: the default 11 bits collapse a fine mesh but fabmesh's choice keeps it valid",
           "[pipeline][draco]") {
   // Rings next to a pole are short: their vertices are far closer than 11-bit steps of the bounding box.
   const fs::path dir = fresh_dir("run_fine");

@@ -32,7 +32,7 @@ TEST_CASE("weld: keeps first-occurrence order and the lowest-index position", "[
   CHECK(w.soup.triangles[0] == w.soup.triangles[1]);
 }
 
-TEST_CASE("weld: +0.0 and -0.0 are equal coordinates; neighbours a hair apart are not", "[mesh][weld]") {
+TEST_CASE("weld: +0.0 and -0.0 are equal coordinates, and neighbours a hair apart are not", "[mesh][weld]") {
   TriangleSoup s;
   s.vertices = {{0.0, 1, 1}, {-0.0, 1, 1}, {std::nextafter(0.0, 1.0), 1, 1}};
   s.triangles = {{0, 1, 2}};
@@ -56,7 +56,7 @@ TEST_CASE("weld: a tolerance merges close vertices transitively", "[mesh][weld]"
   CHECK(weld(chain, WeldOptions{0.5}).soup.vertices.size() == 3);
 }
 
-TEST_CASE("weld: a bad tolerance is a RangeError; non-finite vertices never merge", "[mesh][weld]") {
+TEST_CASE("weld: a bad tolerance is a RangeError, and non-finite vertices never merge", "[mesh][weld]") {
   const TriangleSoup cube = test::box();
   CHECK_THROWS_AS(weld(cube, WeldOptions{-1.0}), RangeError);
   CHECK_THROWS_AS(weld(cube, WeldOptions{std::nan("")}), RangeError);

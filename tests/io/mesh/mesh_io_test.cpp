@@ -181,7 +181,7 @@ TEST_CASE("mesh files: a malformed ASCII STL names the line", "[mesh][io][stl]")
       FileError);
 }
 
-TEST_CASE("mesh files: OBJ corners v, v/vt, v//vn, v/vt/vn and negative indices; polygons fanned",
+TEST_CASE("mesh files: OBJ corners v, v/vt, v//vn, v/vt/vn and negative indices, and polygons fanned",
           "[mesh][io][obj]") {
   const std::string text =
       "# a quad and a triangle\nmtllib x.mtl\no thing\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvn 0 0 1\n"
@@ -265,7 +265,7 @@ TEST_CASE("mesh files: malformed PLY is a FileError, huge counts fail fast", "[m
       FileError);
 }
 
-TEST_CASE("mesh files: OFF with comments and polygons; lying counts are FileErrors", "[mesh][io][off]") {
+TEST_CASE("mesh files: OFF with comments and polygons, and lying counts are FileErrors", "[mesh][io][off]") {
   const std::string text =
       "# comment\nOFF\n# counts\n4 1 0\n0 0 0\n1 0 0\n1 1 0 # tail\n0 1 0\n4 0 1 2 3 255 0 0\n";
   const TriangleSoup s = parse_off(text, "q.off");
@@ -303,7 +303,7 @@ TEST_CASE("atomic_file: writes replace the target and leave no temporary behind"
   CHECK_THROWS_AS(write_stl(test::box(), dir.file("missing/out.stl")), FileError);
 }
 
-TEST_CASE("mesh files: every fuzz seed parses; fuzzer findings are clean FileErrors", "[mesh][io]") {
+TEST_CASE("mesh files: every fuzz seed parses, and fuzzer findings are clean FileErrors", "[mesh][io]") {
   const std::filesystem::path seeds = std::filesystem::path(FABMESH_SOURCE_DIR) / "tests/data/fuzz-seeds";
   int parsed = 0;
   for (const auto& entry : std::filesystem::recursive_directory_iterator(seeds)) {
