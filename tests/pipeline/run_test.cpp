@@ -78,7 +78,7 @@ TEST_CASE("draco: the default 11 bits collapse a fine mesh but fabmesh's choice 
   // Rings next to a pole are short: their vertices are far closer than 11-bit steps of the bounding box.
   const fs::path dir = fresh_dir("run_fine");
   const Design design = parse_design(
-      "name: ball\nkind: vessel\ntolerance: 0.0005\n"
+      "name: ball\nkind: vessel\ntolerance: 0.005\n"
       "profile: {family: tbezier, segments: [{circle_arc: {center: [0, 0], radius: 20, from_deg: -90, "
       "to_deg: 90}}]}\n"
       "body: {mode: solid}\n",
