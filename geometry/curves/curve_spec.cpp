@@ -207,15 +207,25 @@ CompositeCurve construct_curve(const CurveSpec& spec) {
 
   Eigen::SparseMatrix<double> a(unknowns, unknowns);
   a.setFromTriplets(entries.begin(), entries.end());
-  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
-  lu.compute(a);
-  if (lu.info() != Eigen::Success) {
-    throw GeometryError(spec.label,
-                        fmt::format("{}: the join conditions cannot be satisfied together (the closing "
-                                    "join is singular for these shape parameters)",
-                                    spec.label));
+  // Unknowns are ordered by segment, and a join reads only its own segment's
+  // earlier points and its predecessor's: the system is lower triangular
+  // (forward substitution, linear time) unless the first segment of a closed
+  // curve joins the last, which closes a cycle that needs a full solve.
+  const bool cyclic = spec.closed && computed_count(spec, 0) > 0;
+  Eigen::MatrixX2d x;
+  if (!cyclic) {
+    x = a.triangularView<Eigen::Lower>().solve(rhs);
+  } else {
+    Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
+    lu.compute(a);
+    if (lu.info() != Eigen::Success) {
+      throw GeometryError(spec.label,
+                          fmt::format("{}: the join conditions cannot be satisfied together (the closing "
+                                      "join is singular for these shape parameters)",
+                                      spec.label));
+    }
+    x = lu.solve(rhs);
   }
-  const Eigen::MatrixX2d x = lu.solve(rhs);
   if (!x.allFinite())
     throw GeometryError(spec.label, spec.label + ": the join conditions have no finite solution");
 

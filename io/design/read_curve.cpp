@@ -127,6 +127,27 @@ SegmentSpec read_segment(const yaml::Fields& f, const YAML::Node& n, const std::
   return s;
 }
 
+// `polyline: [p0, p1, ...]`: straight lines through the points, one segment
+// each (a compact form for long digitised outlines). As the first segment it
+// starts at p0; later it continues from the previous segment's end.
+void read_polyline(const yaml::Fields& f, const YAML::Node& n, const std::string& field,
+                   std::vector<SegmentSpec>& out) {
+  f.require_map(n, field, {"polyline", "continuity"});
+  const bool first = out.empty();
+  const std::vector<Vec2> pts = f.points2(n["polyline"], field + ".polyline", first ? 2 : 1);
+  const std::string label = f.label(n, field);
+  for (std::size_t k = first ? 1 : 0; k < pts.size(); ++k) {
+    SegmentSpec s;
+    s.kind = SegmentKind::Line;
+    s.label = fmt::format("{} (point {})", label, k);
+    s.points = (first && k == 1) ? std::vector<Vec2>{pts[0], pts[1]} : std::vector<Vec2>{pts[k]};
+    out.push_back(std::move(s));
+  }
+  if (n["continuity"].IsDefined())
+    out[out.size() - pts.size() + (first ? 1 : 0)].declared =
+        read_continuity(f, n["continuity"], field + ".continuity");
+}
+
 }  // namespace
 
 CurveSpec read_curve(const yaml::Fields& f, const YAML::Node& node, const std::string& field) {
@@ -177,8 +198,12 @@ CurveSpec read_curve(const yaml::Fields& f, const YAML::Node& node, const std::s
   const YAML::Node segs = f.required(node, "segments", field);
   f.require_list(segs, field + ".segments", 1);
   for (std::size_t i = 0; i < segs.size(); ++i) {
-    spec.segments.push_back(
-        read_segment(f, segs[i], fmt::format("{}.segments[{}]", field, i), spec.family, i == 0));
+    const std::string name = fmt::format("{}.segments[{}]", field, i);
+    if (segs[i].IsMap() && segs[i]["polyline"].IsDefined()) {
+      read_polyline(f, segs[i], name, spec.segments);
+      continue;
+    }
+    spec.segments.push_back(read_segment(f, segs[i], name, spec.family, spec.segments.empty()));
   }
   if (spec.fair == FairMode::Strain) {
     f.fail(node["fair"], field + ".fair",

@@ -121,3 +121,35 @@ TEST_CASE("design: geometry errors found when the curve is built carry the file 
   REQUIRE_THROWS_WITH(build_curve(std::get<CurveDesign>(d.body).curve),
                       Catch::Contains("d.yaml:5:3: curve") && Catch::Contains("does not close"));
 }
+
+TEST_CASE("design: a polyline entry is the same curve as one line entry per point", "[io][design]") {
+  const Design lines = parse_design(std::string(kCurveHeader) + R"(
+  family: tbezier
+  closed: true
+  segments:
+    - line: {from: [0, 0], to: [4, 0]}
+    - line: {to: [4, 3]}
+    - line: {to: [0, 3]}
+    - line: {to: [0, 0]}
+)",
+                                    "a.yaml");
+  const Design poly = parse_design(std::string(kCurveHeader) + R"(
+  family: tbezier
+  closed: true
+  segments:
+    - polyline: [[0, 0], [4, 0], [4, 3], [0, 3], [0, 0]]
+)",
+                                   "b.yaml");
+  const CompositeCurve a = build_curve(std::get<CurveDesign>(lines.body).curve).curve;
+  const CompositeCurve b = build_curve(std::get<CurveDesign>(poly.body).curve).curve;
+  REQUIRE(a.size() == 4);
+  REQUIRE(b.size() == 4);
+  for (std::size_t i = 0; i < 4; ++i) {
+    CHECK(b.segments()[i].kind() == SegmentKind::Line);
+    CHECK(a.segments()[i].control_points()[0] == b.segments()[i].control_points()[0]);
+    CHECK(a.segments()[i].control_points()[1] == b.segments()[i].control_points()[1]);
+  }
+  CHECK_THAT(
+      error_of(std::string(kCurveHeader) + "  family: tbezier\n  segments:\n    - polyline: [[0, 0]]\n"),
+      Catch::Contains("curve.segments[0].polyline") && Catch::Contains("at least 2"));
+}
