@@ -123,9 +123,9 @@ holes = [rounded_rect(650, 330, 560, 400, 40, H, False), ellipse(1650, 330, 280,
 
 def curve(pts, indent):
     out = [f"{indent}family: tbezier", f"{indent}closed: true", f"{indent}segments:"]
-    out.append(f"{indent}  - line: {{from: [{pts[0][0]!r}, {pts[0][1]!r}], to: [{pts[1][0]!r}, {pts[1][1]!r}]}}")
-    out += [f"{indent}  - line: {{to: [{x!r}, {y!r}]}}" for x, y in pts[2:]]
-    out.append(f"{indent}  - line: {{to: [{pts[0][0]!r}, {pts[0][1]!r}]}}")
+    # One `polyline` entry (straight lines through the points, closed back to the first).
+    ring = pts + [pts[0]]
+    out.append(f"{indent}  - polyline: [" + ", ".join(f"[{x!r}, {y!r}]" for x, y in ring) + "]")
     return out
 
 y = ["name: bench", "kind: countertop", "units: mm", "tolerance: 0.01", "thickness: 30", "outputs: [stl]",
