@@ -95,7 +95,7 @@ TEST_CASE("countertop examples: valid slabs, genus = holes, volume = exact area 
   }
 }
 
-TEST_CASE("countertop run: default outputs are STL, Draco, DXF and SVG; the DXF has exact arcs", "[pipeline][countertop]") {
+TEST_CASE("countertop run: default outputs are STL, Draco, DXF and SVG, and the DXF has exact arcs", "[pipeline][countertop]") {
   const fs::path dir = fresh_dir("countertop_run");
   std::string out;
   REQUIRE(run_cli({"run", example("countertop_symmetric_ellipse.yaml"), "-o", dir.string(), "--json"}, &out) == 0);
