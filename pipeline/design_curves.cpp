@@ -17,6 +17,7 @@ std::vector<NamedCurve> design_curves(const Design& design) {
           }
           return curves;
         }
+        if constexpr (std::is_same_v<T, SurfaceDesign>) return {};  // patches, no curves
       },
       design.body);
 }

@@ -12,6 +12,7 @@
 #include "geometry/mesh/soup.h"
 #include "geometry/mesh/slab.h"
 #include "geometry/mesh/vessel.h"
+#include "geometry/surfaces/surface_mesh.h"
 #include "io/cutting/cutting_outline.h"
 #include "io/cutting/dxf.h"
 #include "io/cutting/svg.h"
@@ -51,7 +52,14 @@ struct BuiltMesh {
   std::string embedding_proof;
   nlohmann::json build;
   std::vector<CutLoop> cutting;  ///< countertops: the cutting outline (outline first, then the holes)
+  bool open_surface = false;     ///< a surface without thickness: written for viewing, not for fabrication
 };
+
+// An open surface is fit for viewing when the only defect is its own border.
+bool only_open_border(const ValidationReport& r) {
+  return r.self_intersection_checked && !r.defects.empty() &&
+         std::all_of(r.defects.begin(), r.defects.end(), [](const DefectReport& d) { return d.kind == Defect::BoundaryEdge; });
+}
 
 // Validates `mesh` (by its builder's embedding proof when it has one) and
 // converts it to the soup the writers take.
@@ -118,6 +126,41 @@ BuiltMesh build_countertop(const Design& design, const CountertopDesign& c, doub
   return out;
 }
 
+// Patches -> network (joins built and measured) -> tessellation -> thickened shell, validated with the
+// 3D self-intersection test (a too-thick shell is caught there). Without thickness: the open surface.
+BuiltMesh build_surface(const SurfaceDesign& s, double tolerance, Stopwatch& watch) {
+  const PatchNetwork network = build_patch_network(s.patches);
+  watch.lap("patches");
+  SurfaceMeshOptions options;
+  options.tolerance = tolerance;
+  options.thickness = s.thickness;
+  options.max_triangles = s.max_triangles;
+  const SurfaceMesh surface = build_surface_mesh(network, options);
+  watch.lap("build");
+  nlohmann::json joints = nlohmann::json::array();
+  for (const SharedBorder& b : network.borders) {
+    joints.push_back({{"patches", {network.names[b.a], network.names[b.b]}},
+                      {"sides", {to_string(b.side_a), to_string(b.side_b)}},
+                      {"declared", to_string(b.declared)},
+                      {"achieved", to_string(b.achieved)},
+                      {"gap", b.gap},
+                      {"normal_angle", b.normal_angle},
+                      {"curvature_jump", b.curvature_jump}});
+  }
+  nlohmann::json facts = {{"patches", network.patches.size()},
+                          {"joints", joints},
+                          {"sheet_triangles", surface.sheet.mesh.n_faces()},
+                          {"rim_edges", surface.rim_edges}};
+  if (surface.thickened) {
+    facts["thickness"] = s.thickness;
+  } else {
+    facts["fabrication"] = "not valid: open surface (no thickness)";
+  }
+  BuiltMesh out = validated(surface.mesh(), surface.max_deviation, "", std::move(facts), watch);
+  out.open_surface = !surface.thickened;
+  return out;
+}
+
 BuiltMesh build_mesh(const Design& design, double tolerance, Stopwatch& watch) {
   if (const auto* v = std::get_if<VesselDesign>(&design.body)) {
     const BuiltCurve profile = build_curve(v->profile);
@@ -139,6 +182,7 @@ BuiltMesh build_mesh(const Design& design, double tolerance, Stopwatch& watch) {
     return validated(vessel.mesh, vessel.max_deviation, vessel.embedding_proof, std::move(facts), watch);
   }
   if (const auto* c = std::get_if<CountertopDesign>(&design.body)) return build_countertop(design, *c, tolerance, watch);
+  if (const auto* s = std::get_if<SurfaceDesign>(&design.body)) return build_surface(*s, tolerance, watch);
   throw InputError(fmt::format("{}: a {} design has no mesh to run; use `fabmesh sample` or `fabmesh optimize`",
                                design.common.path, design.common.kind));
 }
@@ -146,13 +190,13 @@ BuiltMesh build_mesh(const Design& design, double tolerance, Stopwatch& watch) {
 // Draco bytes whose decoded mesh moves no vertex more than `tolerance` and is
 // still valid: quantization may not collapse or fold faces, so the decoded
 // soup is validated, with more bits until it passes.
-std::string draco_bytes(const TriangleSoup& soup, double tolerance, const std::string& what) {
+std::string draco_bytes(const TriangleSoup& soup, double tolerance, const std::string& what, bool open_surface) {
   DracoOptions options;
   options.tolerance = tolerance;
   for (int attempt = 0; attempt < 24; ++attempt) {
     const std::string bytes = encode_draco(soup, options);
     const ValidationReport decoded = validate(parse_draco(bytes, what));
-    if (decoded.valid()) return bytes;
+    if (decoded.valid() || (open_surface && only_open_border(decoded))) return bytes;
     options.tolerance *= 0.5;  // one more bit of quantization
   }
   throw ValidationFailed(what + ": no Draco quantization keeps the decoded mesh valid");
@@ -173,7 +217,9 @@ JobReport run_job(const Design& design, const JobOptions& options) {
   report.build = built.build;
   report.validation = std::move(built.validation);
   const TriangleSoup& soup = built.soup;
-  require_valid(report.validation, fmt::format("{} '{}'", design.common.kind, design.common.name));
+  if (!(built.open_surface && only_open_border(report.validation))) {
+    require_valid(report.validation, fmt::format("{} '{}'", design.common.kind, design.common.name));
+  }
 
   std::error_code ec;
   std::filesystem::create_directories(options.out_dir, ec);
@@ -186,7 +232,7 @@ JobReport run_job(const Design& design, const JobOptions& options) {
     if (format == "stl") {
       files.emplace_back(path, encode_stl(soup));
     } else if (format == "drc") {
-      files.emplace_back(path, draco_bytes(soup, output_tolerance, path));
+      files.emplace_back(path, draco_bytes(soup, output_tolerance, path, built.open_surface));
     } else if (format == "obj") {
       files.emplace_back(path, encode_obj(soup));
     } else if (format == "ply") {
@@ -236,6 +282,7 @@ nlohmann::json to_json(const JobReport& r) {
                       {"valid", v.valid()},
                       {"timings_ms", timings}};
   if (!r.embedding_proof.empty()) j["self_intersection_proof"] = r.embedding_proof;
+  if (r.build.contains("fabrication")) j["fabrication"] = r.build["fabrication"];
   if (!r.build.is_null()) j["build"] = r.build;
   return j;
 }

@@ -7,6 +7,7 @@
 
 #include "geometry/curves/curve_spec.h"
 #include "geometry/section/vessel_section.h"
+#include "geometry/surfaces/patch_network.h"
 
 namespace fabmesh {
 
@@ -49,7 +50,14 @@ struct CountertopDesign {
   std::size_t max_triangles = 20000000;  ///< budget (key `max_triangles`)
 };
 
-using DesignBody = std::variant<CurveDesign, VesselDesign, CountertopDesign>;
+/// kind: surface (h-bezier.md). Patches of a G0/G1/G2-joined network, in file order.
+struct SurfaceDesign {
+  std::vector<PatchSpec> patches;
+  double thickness = 0.0;                ///< > 0: a solid shell along the normals; 0: an open surface
+  std::size_t max_triangles = 20000000;  ///< budget (key `max_triangles`)
+};
+
+using DesignBody = std::variant<CurveDesign, VesselDesign, CountertopDesign, SurfaceDesign>;
 
 struct Design {
   DesignCommon common;

@@ -9,6 +9,7 @@
 
 #include "io/design/read_countertop.h"
 #include "io/design/read_curve.h"
+#include "io/design/read_surface.h"
 #include "io/design/yaml_fields.h"
 
 namespace fabmesh {
@@ -97,6 +98,10 @@ Design parse_design(const std::string& text, const std::string& path) {
   }
   if (d.common.kind == "countertop") {
     d.body = read_countertop(f, root);
+    return d;
+  }
+  if (d.common.kind == "surface") {
+    d.body = read_surface(f, root);
     return d;
   }
   f.fail(root["kind"], "kind", fmt::format("kind '{}' is not available in this version of fabmesh", d.common.kind));

@@ -55,10 +55,17 @@ void print_human(const JobReport& r, std::ostream& out) {
   out << fmt::format("{}: {} with {} vertices, {} triangles, volume {:.6g}, area {:.6g}, genus {}\n", r.name,
                      r.kind, v.vertices, v.triangles, v.volume, v.area,
                      v.genus ? std::to_string(*v.genus) : "-");
-  out << fmt::format(
-      "  valid: closed, manifold, outward, no self-intersections{}; within {:.3g} of the exact "
-      "surface (tolerance {})\n",
-      r.embedding_proof.empty() ? " (checked)" : " (by construction)", r.max_deviation, r.tolerance);
+  if (v.valid()) {
+    out << fmt::format(
+        "  valid: closed, manifold, outward, no self-intersections{}; within {:.3g} of the exact "
+        "surface (tolerance {})\n",
+        r.embedding_proof.empty() ? " (checked)" : " (by construction)", r.max_deviation, r.tolerance);
+  } else {
+    const std::vector<std::string> defects = describe_defects(v);
+    out << fmt::format("  warning: not valid for fabrication ({}; {}): written for viewing only\n",
+                       r.build.is_object() ? r.build.value("fabrication", "invalid") : "invalid",
+                       defects.empty() ? "" : defects.front());
+  }
   for (const std::string& path : r.outputs) out << fmt::format("  wrote {}\n", path);
   out << fmt::format("  {:.1f} ms\n", total);
 }

@@ -25,6 +25,11 @@ int run_sample(const SampleArgs& args, Streams io) {
   const Design design = read_design(args.design);
   SampleOptions options;
   options.tolerance = args.tolerance > 0.0 ? args.tolerance : design.common.tolerance;
+  if (design_curves(design).empty()) {
+    io.out << fmt::format("# {}: a {} design has no curves to sample (its patches are tessellated by `fabmesh run`)\n",
+                          design.common.name, design.common.kind);
+    return 0;
+  }
   if (args.csv) io.out << "curve,x,y\n";
   for (const NamedCurve& nc : design_curves(design)) {
     const BuiltCurve built = build_curve(nc.spec);

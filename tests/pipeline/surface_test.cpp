@@ -1,0 +1,164 @@
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "geometry/core/errors.h"
+#include "geometry/mesh/validate.h"
+#include "geometry/mesh/weld.h"
+#include "io/design/read_design.h"
+#include "io/mesh/atomic_file.h"
+#include "io/mesh/draco.h"
+#include "io/mesh/stl.h"
+#include "pipeline/cli/commands.h"
+#include "pipeline/job.h"
+
+using namespace fabmesh;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string example(const std::string& name) {
+  return std::string(FABMESH_SOURCE_DIR) + "/configs/examples/" + name;
+}
+
+fs::path fresh_dir(const std::string& name) {
+  const fs::path dir = fs::path(FABMESH_TEST_TMP) / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+int run_cli(std::vector<std::string> args, std::string* out = nullptr) {
+  args.insert(args.begin(), "fabmesh");
+  std::vector<const char*> argv;
+  for (const auto& a : args) argv.push_back(a.c_str());
+  std::ostringstream o, e;
+  const int code = cli::run_app(static_cast<int>(argv.size()), argv.data(), {o, e});
+  if (out) *out = o.str() + e.str();
+  return code;
+}
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// The shell example with `replace` substituted for `find` (one occurrence).
+std::string edited_shell(const std::string& find, const std::string& replace) {
+  std::string text = read_text(example("surface_basin_shell.yaml"));
+  const auto at = text.find(find);
+  REQUIRE(at != std::string::npos);
+  return text.replace(at, find.size(), replace);
+}
+
+}  // namespace
+
+TEST_CASE("surface run: the thickened basin is a valid closed solid written as STL and Draco", "[pipeline][surface]") {
+  const fs::path dir = fresh_dir("surface_shell");
+  const Design design = read_design(example("surface_basin_shell.yaml"));
+  const JobReport r = run_job(design, {dir.string()});
+  REQUIRE(r.outputs.size() == 2);
+  CHECK(r.validation.valid());
+  CHECK(r.validation.self_intersection_checked);
+  CHECK(r.embedding_proof.empty());  // validated with the 3D self-intersection test
+  REQUIRE(r.validation.genus);
+  CHECK(*r.validation.genus == 0);
+  CHECK(r.validation.volume > 0.0);
+  CHECK(r.max_deviation <= design.common.tolerance);
+  REQUIRE(r.build.contains("joints"));
+  CHECK(r.build["joints"].size() == 4);
+  for (const auto& j : r.build["joints"]) CHECK(j["normal_angle"].get<double>() < 1e-6);
+
+  const TriangleSoup stl = weld(parse_stl(read_file((dir / "surface_basin_shell.stl").string()), "stl")).soup;
+  const ValidationReport from_stl = validate(stl);
+  CHECK(from_stl.valid());
+  CHECK(from_stl.volume == Approx(r.validation.volume).epsilon(1e-5));
+  CHECK(validate(parse_draco(read_file((dir / "surface_basin_shell.drc").string()), "drc")).valid());
+}
+
+TEST_CASE("surface run: an open surface is written for viewing but reported not valid for fabrication",
+          "[pipeline][surface]") {
+  const fs::path dir = fresh_dir("surface_open");
+  std::string out;
+  const int code = run_cli({"run", example("surface_basin_open.yaml"), "-o", dir.string(), "--json"}, &out);
+  CHECK(code == 0);
+  const auto json_start = out.find('{');
+  REQUIRE(json_start != std::string::npos);
+  const nlohmann::json j = nlohmann::json::parse(out.substr(json_start, out.rfind('}') - json_start + 1));
+  CHECK(j["valid"] == false);
+  CHECK(j["fabrication"].get<std::string>().find("not valid: open surface") != std::string::npos);
+  CHECK(j["watertight"] == false);
+  CHECK(fs::exists(dir / "surface_basin_open.stl"));
+  CHECK(fs::exists(dir / "surface_basin_open.drc"));
+  std::string human;
+  CHECK(run_cli({"run", example("surface_basin_open.yaml"), "-o", dir.string()}, &human) == 0);
+  CHECK(human.find("not valid for fabrication") != std::string::npos);
+}
+
+TEST_CASE("surface run: a shell too thick for its curvature fails validation and writes nothing", "[pipeline][surface]") {
+  // A half cylinder of radius 10 whose normals point to its axis: a 25 mm shell crosses the axis.
+  const fs::path dir = fresh_dir("surface_too_thick");
+  const std::string half_cylinder = R"(kind: surface
+tolerance: 0.05
+patches:
+  - name: trough
+    points:
+      - [[10, 0, 0], [10, 10, 0], [10, 20, 0], [10, 30, 0]]
+      - [[10, 0, 13.333333], [10, 10, 13.333333], [10, 20, 13.333333], [10, 30, 13.333333]]
+      - [[-10, 0, 13.333333], [-10, 10, 13.333333], [-10, 20, 13.333333], [-10, 30, 13.333333]]
+      - [[-10, 0, 0], [-10, 10, 0], [-10, 20, 0], [-10, 30, 0]]
+)";
+  write_file_atomically((dir / "thin.yaml").string(), half_cylinder + "thickness: 1\n");
+  write_file_atomically((dir / "too_thick.yaml").string(), half_cylinder + "thickness: 25\n");
+  std::string out;
+  CHECK(run_cli({"run", (dir / "thin.yaml").string(), "-o", (dir / "out").string()}, &out) == 0);
+  CHECK(fs::exists(dir / "out" / "thin.stl"));
+  CHECK(run_cli({"run", (dir / "too_thick.yaml").string(), "-o", (dir / "out").string()}, &out) == 1);
+  CHECK(out.find("self-intersect") != std::string::npos);
+  CHECK_FALSE(fs::exists(dir / "out" / "too_thick.stl"));
+  CHECK_FALSE(fs::exists(dir / "out" / "too_thick.drc"));
+}
+
+TEST_CASE("surface designs: bad values are reported with file, line and column", "[pipeline][surface]") {
+  const fs::path dir = fresh_dir("surface_bad");
+  struct Case {
+    std::string find, replace, expect;
+  };
+  const Case cases[] = {
+      {"thickness: 6\n", "thickness: -2\n", "thickness = -2 must be > 0"},
+      {"to: back_left,", "to: nowhere,", "no earlier patch is named 'nowhere'"},
+      {"side: u_max", "side: top", "side"},
+      {"gamma: 1}", "gamma: 0}", "gamma = 0 must be > 0"},
+      {"lambda: 0, mu: 0}", "lambda: -4, mu: 0}", "lambda = -4 is outside"},
+      {"alpha: 1, lambda", "alpha: 11, lambda", "alpha = 11"},
+      {"      - [[-150, 142.5, 0]", "      - [[-150, 142.5]", "point"},
+      {"  - name: back_left", "  - nam: back_left", "nam"},
+  };
+  for (const Case& c : cases) {
+    const fs::path design = dir / "bad.yaml";
+    write_file_atomically(design.string(), edited_shell(c.find, c.replace));
+    std::string out;
+    INFO(c.replace);
+    CHECK(run_cli({"run", design.string(), "-o", (dir / "out").string()}, &out) == 2);
+    CHECK(out.find(c.expect) != std::string::npos);
+    CHECK(out.find("bad.yaml:") != std::string::npos);
+    CHECK_FALSE(fs::exists(dir / "out" / "bad.stl"));
+  }
+  // A wrong number of free columns, at the patch.
+  write_file_atomically((dir / "rows.yaml").string(),
+                        edited_shell("      - [[150, 0, 0], [150, 75, 0], [150, 142.5, 0], [146.25, 146.25, 0]]\n", ""));
+  std::string out;
+  CHECK(run_cli({"run", (dir / "rows.yaml").string(), "-o", (dir / "out").string()}, &out) == 2);
+  CHECK(out.find("rows.yaml:") != std::string::npos);
+  CHECK(out.find("leaves 2 free columns") != std::string::npos);
+}
+
+TEST_CASE("surface sample: a surface has no curves to sample and says so", "[pipeline][surface]") {
+  std::string out;
+  CHECK(run_cli({"sample", example("surface_basin_shell.yaml")}, &out) == 0);
+  CHECK(out.find("no curves") != std::string::npos);
+}
