@@ -5,29 +5,12 @@
 #include <sstream>
 #include <string>
 
-#include "pipeline/cli/commands.h"
+#include "tests/pipeline/cli_harness.h"
 
 using namespace fabmesh;
+using namespace fabmesh::testing;
 
 namespace {
-
-struct Result {
-  int code;
-  std::string out, err;
-};
-
-Result run(std::vector<std::string> args) {
-  args.insert(args.begin(), "fabmesh");
-  std::vector<const char*> argv;
-  for (const auto& a : args) argv.push_back(a.c_str());
-  std::ostringstream out, err;
-  const int code = cli::run_app(static_cast<int>(argv.size()), argv.data(), {out, err});
-  return {code, out.str(), err.str()};
-}
-
-std::string example(const std::string& name) {
-  return std::string(FABMESH_SOURCE_DIR) + "/configs/examples/" + name;
-}
 
 std::string write_temp(const std::string& name, const std::string& text) {
   const std::string path = std::string(FABMESH_TEST_TMP) + "/" + name;
@@ -38,7 +21,7 @@ std::string write_temp(const std::string& name, const std::string& text) {
 }  // namespace
 
 TEST_CASE("cli optimize --json: Example 4 strain lambdas", "[pipeline][cli]") {
-  const Result r = run({"optimize", example("example4_profile.yaml"), "--json"});
+  const CliResult r = run_fabmesh({"optimize", example("example4_profile.yaml"), "--json"});
   REQUIRE(r.code == 0);
   const auto j = nlohmann::json::parse(r.out);
   CHECK(j["family"] == "quasi_bspline");
@@ -49,7 +32,7 @@ TEST_CASE("cli optimize --json: Example 4 strain lambdas", "[pipeline][cli]") {
 }
 
 TEST_CASE("cli optimize --json: T-Bezier segments with lambda, mu, energy", "[pipeline][cli]") {
-  const Result r = run({"optimize", example("tbezier_outline_g2.yaml"), "--json"});
+  const CliResult r = run_fabmesh({"optimize", example("tbezier_outline_g2.yaml"), "--json"});
   REQUIRE(r.code == 0);
   const auto j = nlohmann::json::parse(r.out);
   CHECK(j["family"] == "tbezier");
@@ -69,7 +52,7 @@ TEST_CASE("cli optimize --json: T-Bezier segments with lambda, mu, energy", "[pi
 TEST_CASE("cli sample --csv: every example samples within its tolerance", "[pipeline][cli]") {
   for (const char* name : {"example4_profile.yaml", "golden_profile.yaml", "tbezier_outline_g2.yaml",
                            "hbezier_composite.yaml", "countertop_outline_g1.yaml"}) {
-    const Result r = run({"sample", example(name), "--csv"});
+    const CliResult r = run_fabmesh({"sample", example(name), "--csv"});
     INFO(name << ": " << r.err);
     REQUIRE(r.code == 0);
     CHECK(r.out.rfind("curve,x,y\n", 0) == 0);
@@ -78,19 +61,19 @@ TEST_CASE("cli sample --csv: every example samples within its tolerance", "[pipe
 }
 
 TEST_CASE("cli exit codes: bad input is 2 with a located message, --help is 0", "[pipeline][cli][errors]") {
-  CHECK(run({"--help"}).code == 0);
-  CHECK(run({"sample", "--help"}).code == 0);
-  const Result missing = run({"sample", "/nonexistent/design.yaml"});
+  CHECK(run_fabmesh({"--help"}).code == 0);
+  CHECK(run_fabmesh({"sample", "--help"}).code == 0);
+  const CliResult missing = run_fabmesh({"sample", "/nonexistent/design.yaml"});
   CHECK(missing.code == 2);
   CHECK_THAT(missing.err, Catch::Contains("cannot open"));
   const std::string bad = write_temp("bad_lambda.yaml",
                                      "kind: curve\ncurve:\n  family: tbezier\n  segments:\n"
                                      "    - points: [[0,0],[1,1],[2,1],[3,0]]\n      lambda: 3\n");
-  const Result r = run({"optimize", bad});
+  const CliResult r = run_fabmesh({"optimize", bad});
   CHECK(r.code == 2);
   CHECK_THAT(r.err, Catch::Contains("bad_lambda.yaml:5:7") && Catch::Contains("lambda = 3"));
-  CHECK(run({"sample"}).code == 2);
-  CHECK(run({"frobnicate"}).code == 2);
+  CHECK(run_fabmesh({"sample"}).code == 2);
+  CHECK(run_fabmesh({"frobnicate"}).code == 2);
 }
 
 TEST_CASE("cli sample: a closed outline that crosses itself is bad input naming the segments",
@@ -100,7 +83,7 @@ TEST_CASE("cli sample: a closed outline that crosses itself is bad input naming 
                                       "kind: curve\ncurve:\n  family: tbezier\n  closed: true\n  segments:\n"
                                       "    - line: {from: [0, 0], to: [2, 2]}\n    - line: {to: [2, 0]}\n"
                                       "    - line: {to: [0, 2]}\n    - line: {to: [0, 0]}\n");
-  const Result r = run({"sample", path});
+  const CliResult r = run_fabmesh({"sample", path});
   CHECK(r.code == 2);
   CHECK_THAT(r.err, Catch::Contains("eight.yaml:3:3: curve") && Catch::Contains("crosses itself") &&
                         Catch::Contains("segments 1 and 3"));

@@ -1,6 +1,6 @@
-#include <catch2/catch.hpp>
 #include <fmt/format.h>
 
+#include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -20,30 +20,13 @@
 #include "pipeline/cli/commands.h"
 #include "pipeline/job.h"
 #include "tests/geometry/section/region_shapes.h"
+#include "tests/pipeline/cli_harness.h"
 
 using namespace fabmesh;
+using namespace fabmesh::testing;
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string example(const std::string& name) { return std::string(FABMESH_SOURCE_DIR) + "/configs/examples/" + name; }
-
-fs::path fresh_dir(const std::string& name) {
-  const fs::path dir = fs::path(FABMESH_TEST_TMP) / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-int run_cli(std::vector<std::string> args, std::string* out = nullptr) {
-  args.insert(args.begin(), "fabmesh");
-  std::vector<const char*> argv;
-  for (const auto& a : args) argv.push_back(a.c_str());
-  std::ostringstream o, e;
-  const int code = cli::run_app(static_cast<int>(argv.size()), argv.data(), {o, e});
-  if (out) *out = o.str() + e.str();
-  return code;
-}
 
 // Exact area and perimeter of a countertop design's region, from its exact curves.
 std::pair<double, double> exact_region(const CountertopDesign& c) {
@@ -70,7 +53,8 @@ const char* kSmall =
 
 }  // namespace
 
-TEST_CASE("countertop examples: valid slabs, genus = holes, volume = exact area x thickness", "[pipeline][countertop]") {
+TEST_CASE("countertop examples: valid slabs, genus = holes, volume = exact area x thickness",
+          "[pipeline][countertop]") {
   const fs::path dir = fresh_dir("countertop_examples");
   for (const char* name : {"countertop_g1.yaml", "countertop_g2.yaml", "countertop_g1_fair_cv.yaml",
                            "countertop_g2_fair_cv.yaml", "countertop_symmetric_ellipse.yaml",
@@ -95,10 +79,12 @@ TEST_CASE("countertop examples: valid slabs, genus = holes, volume = exact area 
   }
 }
 
-TEST_CASE("countertop run: default outputs are STL, Draco, DXF and SVG, and the DXF has exact arcs", "[pipeline][countertop]") {
+TEST_CASE("countertop run: default outputs are STL, Draco, DXF and SVG, and the DXF has exact arcs",
+          "[pipeline][countertop]") {
   const fs::path dir = fresh_dir("countertop_run");
   std::string out;
-  REQUIRE(run_cli({"run", example("countertop_symmetric_ellipse.yaml"), "-o", dir.string(), "--json"}, &out) == 0);
+  REQUIRE(run_cli({"run", example("countertop_symmetric_ellipse.yaml"), "-o", dir.string(), "--json"},
+                  &out) == 0);
   const auto j = nlohmann::json::parse(out);
   CHECK(j["kind"] == "countertop");
   REQUIRE(j["outputs"].size() == 4);
@@ -110,12 +96,13 @@ TEST_CASE("countertop run: default outputs are STL, Draco, DXF and SVG, and the 
   for (const char* stage : {"curve", "region", "build", "validate", "encode_stl", "encode_dxf", "write"}) {
     CHECK(j["timings_ms"].contains(stage));
   }
-  for (const char* ext : {"stl", "drc", "dxf", "svg"}) CHECK(fs::exists(dir / (std::string("countertop_symmetric_ellipse.") + ext)));
+  for (const char* ext : {"stl", "drc", "dxf", "svg"})
+    CHECK(fs::exists(dir / (std::string("countertop_symmetric_ellipse.") + ext)));
   CHECK(validate(parse_draco(read_file((dir / "countertop_symmetric_ellipse.drc").string()), "drc")).valid());
   const auto entities = parse_dxf(read_file((dir / "countertop_symmetric_ellipse.dxf").string()), "dxf");
   std::map<std::string, int> types;
   for (const auto& e : entities) ++types[e.type + "@" + e.layer];
-  CHECK(types["ELLIPSE@OUTLINE"] == 1);   // the bar bump
+  CHECK(types["ELLIPSE@OUTLINE"] == 1);  // the bar bump
   CHECK(types["LINE@OUTLINE"] == 5);
   CHECK(types["POLYLINE@OUTLINE"] == 2);  // the T-Bezier corners
   CHECK(types["ELLIPSE@HOLES"] == 1);     // the oval sink, whole
@@ -126,7 +113,8 @@ TEST_CASE("countertop run: default outputs are STL, Draco, DXF and SVG, and the 
   CHECK(svg.find("<path id=\"hole1\"") != std::string::npos);
 }
 
-TEST_CASE("countertop: max_edge is honoured on top and bottom, the slab stays valid", "[pipeline][countertop]") {
+TEST_CASE("countertop: max_edge is honoured on top and bottom, the slab stays valid",
+          "[pipeline][countertop]") {
   const fs::path dir = fresh_dir("countertop_max_edge");
   Design design = parse_design(std::string(kSmall) + "max_edge: 40\noutputs: [stl]\n", "small.yaml");
   const JobReport r = run_job(design, {dir.string()});
@@ -145,7 +133,8 @@ TEST_CASE("countertop: max_edge is honoured on top and bottom, the slab stays va
   CHECK(longest > 20.0);
 }
 
-TEST_CASE("countertop bad input: exit 2, a message naming the problem, no file", "[pipeline][countertop][errors]") {
+TEST_CASE("countertop bad input: exit 2, a message naming the problem, no file",
+          "[pipeline][countertop][errors]") {
   const fs::path dir = fresh_dir("countertop_bad");
   const std::string small = kSmall;
   auto replaced = [&](const std::string& from, const std::string& to) {
@@ -158,8 +147,10 @@ TEST_CASE("countertop bad input: exit 2, a message naming the problem, no file",
       {replaced("    - line: {to: [800, 400]}\n    - line: {to: [0, 400]}\n",
                 "    - line: {to: [0, 400]}\n    - line: {to: [800, 400]}\n"),
        "outline crosses itself"},
-      {replaced("center: [200, 200], a: 120", "center: [1200, 200], a: 120"), "holes[0] (ellipse) is not inside the outline"},
-      {replaced("center: [550, 200], size", "center: [300, 200], size"), "holes[1] (rounded_rect) overlaps holes[0]"},
+      {replaced("center: [200, 200], a: 120", "center: [1200, 200], a: 120"),
+       "holes[0] (ellipse) is not inside the outline"},
+      {replaced("center: [550, 200], size", "center: [300, 200], size"),
+       "holes[1] (rounded_rect) overlaps holes[0]"},
       {replaced("thickness: 20", "thickness: 0"), "thickness = 0 must be > 0"},
       {replaced("thickness: 20", "thickness: -5"), "thickness = -5 must be > 0"},
       {replaced("closed: true", "closed: false"), "closed"},
@@ -177,11 +168,13 @@ TEST_CASE("countertop bad input: exit 2, a message naming the problem, no file",
   }
 }
 
-TEST_CASE("countertop design: dxf/svg only for countertops, holes read as exact closed curves", "[pipeline][countertop][design]") {
-  CHECK_THROWS_AS(parse_design("name: v\nkind: vessel\noutputs: [stl, dxf]\nprofile: {family: tbezier, segments: "
-                               "[{line: {from: [1, 0], to: [1, 1]}}]}\nbody: {mode: solid}\n",
-                               "v.yaml"),
-                  FileError);
+TEST_CASE("countertop design: dxf/svg only for countertops, holes read as exact closed curves",
+          "[pipeline][countertop][design]") {
+  CHECK_THROWS_AS(
+      parse_design("name: v\nkind: vessel\noutputs: [stl, dxf]\nprofile: {family: tbezier, segments: "
+                   "[{line: {from: [1, 0], to: [1, 1]}}]}\nbody: {mode: solid}\n",
+                   "v.yaml"),
+      FileError);
   const Design d = parse_design(kSmall, "small.yaml");
   CHECK(d.common.outputs == std::vector<std::string>{"stl", "drc", "dxf", "svg"});
   const auto& c = std::get<CountertopDesign>(d.body);

@@ -15,34 +15,11 @@
 #include "io/mesh/stl.h"
 #include "pipeline/cli/commands.h"
 #include "pipeline/job.h"
+#include "tests/pipeline/cli_harness.h"
 
 using namespace fabmesh;
+using namespace fabmesh::testing;
 namespace fs = std::filesystem;
-
-namespace {
-
-std::string example(const std::string& name) {
-  return std::string(FABMESH_SOURCE_DIR) + "/configs/examples/" + name;
-}
-
-fs::path fresh_dir(const std::string& name) {
-  const fs::path dir = fs::path(FABMESH_TEST_TMP) / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-int run_cli(std::vector<std::string> args, std::string* out = nullptr) {
-  args.insert(args.begin(), "fabmesh");
-  std::vector<const char*> argv;
-  for (const auto& a : args) argv.push_back(a.c_str());
-  std::ostringstream o, e;
-  const int code = cli::run_app(static_cast<int>(argv.size()), argv.data(), {o, e});
-  if (out) *out = o.str() + e.str();
-  return code;
-}
-
-}  // namespace
 
 TEST_CASE("run: a shell vessel is written as STL and Draco that both read back valid", "[pipeline][run]") {
   const fs::path dir = fresh_dir("run_shell");

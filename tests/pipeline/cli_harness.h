@@ -1,0 +1,50 @@
+#pragma once
+// Shared by the pipeline tests: run the command line in-process, find the
+// bundled examples, and get a fresh scratch folder per test.
+
+#include <filesystem>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "pipeline/cli/commands.h"
+
+namespace fabmesh::testing {
+
+/// The path of a bundled example design.
+inline std::string example(const std::string& name) {
+  return std::string(FABMESH_SOURCE_DIR) + "/configs/examples/" + name;
+}
+
+/// An empty folder under the test build folder, named for the test.
+inline std::filesystem::path fresh_dir(const std::string& name) {
+  const std::filesystem::path dir = std::filesystem::path(FABMESH_TEST_TMP) / name;
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+/// What one run of the command line did.
+struct CliResult {
+  int code = 0;
+  std::string out, err;
+};
+
+/// Runs `fabmesh args...` in-process and captures both streams.
+inline CliResult run_fabmesh(std::vector<std::string> args) {
+  args.insert(args.begin(), "fabmesh");
+  std::vector<const char*> argv;
+  for (const auto& a : args) argv.push_back(a.c_str());
+  std::ostringstream out, err;
+  const int code = cli::run_app(static_cast<int>(argv.size()), argv.data(), {out, err});
+  return {code, out.str(), err.str()};
+}
+
+/// The same, with standard output then standard error in `*combined`.
+inline int run_cli(std::vector<std::string> args, std::string* combined = nullptr) {
+  const CliResult r = run_fabmesh(std::move(args));
+  if (combined) *combined = r.out + r.err;
+  return r.code;
+}
+
+}  // namespace fabmesh::testing
