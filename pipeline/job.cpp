@@ -9,8 +9,8 @@
 #include "geometry/core/errors.h"
 #include "geometry/fairing/fair_curve.h"
 #include "geometry/mesh/constructed_validation.h"
-#include "geometry/mesh/soup.h"
 #include "geometry/mesh/slab.h"
+#include "geometry/mesh/soup.h"
 #include "geometry/mesh/vessel.h"
 #include "geometry/surfaces/surface_mesh.h"
 #include "io/cutting/cutting_outline.h"
@@ -58,7 +58,8 @@ struct BuiltMesh {
 // An open surface is fit for viewing when the only defect is its own border.
 bool only_open_border(const ValidationReport& r) {
   return r.self_intersection_checked && !r.defects.empty() &&
-         std::all_of(r.defects.begin(), r.defects.end(), [](const DefectReport& d) { return d.kind == Defect::BoundaryEdge; });
+         std::all_of(r.defects.begin(), r.defects.end(),
+                     [](const DefectReport& d) { return d.kind == Defect::BoundaryEdge; });
 }
 
 // Validates `mesh` (by its builder's embedding proof when it has one) and
@@ -81,11 +82,13 @@ bool wants(const Design& design, const char* format) {
 }
 
 // Outline and holes -> region (proven simple) -> CDT -> slab; the exact curves also give the cutting outline.
-BuiltMesh build_countertop(const Design& design, const CountertopDesign& c, double tolerance, Stopwatch& watch) {
+BuiltMesh build_countertop(const Design& design, const CountertopDesign& c, double tolerance,
+                           Stopwatch& watch) {
   const BuiltCurve outline = build_curve(c.outline);
   std::vector<RegionHole> holes;
   for (std::size_t i = 0; i < c.holes.size(); ++i) {
-    holes.push_back({build_curve(c.holes[i].curve).curve, fmt::format("holes[{}] ({})", i, c.holes[i].shape)});
+    holes.push_back(
+        {build_curve(c.holes[i].curve).curve, fmt::format("holes[{}] ({})", i, c.holes[i].shape)});
   }
   watch.lap("curve");
   RegionOptions ro;
@@ -181,20 +184,22 @@ BuiltMesh build_mesh(const Design& design, double tolerance, Stopwatch& watch) {
                             {"max_radius", vessel.section.max_radius}};
     return validated(vessel.mesh, vessel.max_deviation, vessel.embedding_proof, std::move(facts), watch);
   }
-  if (const auto* c = std::get_if<CountertopDesign>(&design.body)) return build_countertop(design, *c, tolerance, watch);
+  if (const auto* c = std::get_if<CountertopDesign>(&design.body))
+    return build_countertop(design, *c, tolerance, watch);
   if (const auto* s = std::get_if<SurfaceDesign>(&design.body)) return build_surface(*s, tolerance, watch);
-  throw InputError(fmt::format("{}: a {} design has no mesh to run; use `fabmesh sample` or `fabmesh optimize`",
-                               design.common.path, design.common.kind));
+  throw InputError(fmt::format("a {} design has no mesh to run; use `fabmesh sample` or `fabmesh optimize`",
+                               design.common.kind));
 }
 
 // Draco bytes whose decoded mesh moves no vertex more than `tolerance` and is
 // still valid: quantization may not collapse or fold faces, so the decoded
 // soup is validated, with more bits until it passes.
-std::string draco_bytes(const TriangleSoup& soup, double tolerance, const std::string& what, bool open_surface) {
+std::string draco_bytes(const TriangleSoup& soup, double tolerance, const std::string& what,
+                        bool open_surface) {
   DracoOptions options;
   options.tolerance = tolerance;
   for (int attempt = 0; attempt < 24; ++attempt) {
-    const std::string bytes = encode_draco(soup, options);
+    std::string bytes = encode_draco(soup, options);
     const ValidationReport decoded = validate(parse_draco(bytes, what));
     if (decoded.valid() || (open_surface && only_open_border(decoded))) return bytes;
     options.tolerance *= 0.5;  // one more bit of quantization
@@ -223,12 +228,15 @@ JobReport run_job(const Design& design, const JobOptions& options) {
 
   std::error_code ec;
   std::filesystem::create_directories(options.out_dir, ec);
-  if (ec) throw FileError(options.out_dir, 0, 0, fmt::format("{}: cannot create output folder: {}", options.out_dir, ec.message()));
+  if (ec)
+    throw FileError(options.out_dir, 0, 0,
+                    fmt::format("{}: cannot create output folder: {}", options.out_dir, ec.message()));
   // The Draco encoding gets the tolerance the build left unused.
   const double output_tolerance = design.common.tolerance - built.max_deviation;
   std::vector<std::pair<std::string, std::string>> files;  // path, bytes: all encoded before any is written
   for (const std::string& format : design.common.outputs) {
-    const std::string path = (std::filesystem::path(options.out_dir) / (design.common.name + "." + format)).string();
+    const std::string path =
+        (std::filesystem::path(options.out_dir) / (design.common.name + "." + format)).string();
     if (format == "stl") {
       files.emplace_back(path, encode_stl(soup));
     } else if (format == "drc") {

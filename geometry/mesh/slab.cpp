@@ -24,9 +24,10 @@ Mesh extrude(const PlanarTriangulation& t, double thickness) {
   auto vh = [](std::size_t i) { return Mesh::VertexHandle(static_cast<int>(i)); };
   auto add = [&](std::size_t a, std::size_t b, std::size_t c) {
     if (!mesh.add_face(vh(a), vh(b), vh(c)).is_valid()) {
-      throw std::logic_error(fmt::format("extrude: face ({}, {}, {}) refused: the triangulation is not a manifold "
-                                         "disc with holes",
-                                         a, b, c));
+      throw std::logic_error(
+          fmt::format("extrude: face ({}, {}, {}) refused: the triangulation is not a manifold "
+                      "disc with holes",
+                      a, b, c));
     }
   };
   for (const auto& f : t.triangles) add(n + f[0], n + f[1], n + f[2]);  // top, normal +z
@@ -51,19 +52,21 @@ SlabMesh build_slab(const Region2& region, const SlabOptions& options) {
   out.triangulation = triangulate(region, to);
   const std::size_t triangles = slab_triangle_count(out.triangulation);
   if (triangles > options.max_triangles) {
-    throw BudgetError(static_cast<double>(triangles), static_cast<double>(options.max_triangles),
-                      fmt::format("the slab needs {} triangles, over the budget of {} (raise max_triangles, the "
-                                  "tolerance or max_edge)",
-                                  triangles, options.max_triangles));
+    throw BudgetError(
+        static_cast<double>(triangles), static_cast<double>(options.max_triangles),
+        fmt::format("the slab needs {} triangles, over the budget of {} (raise max_triangles, the "
+                    "tolerance or max_edge)",
+                    triangles, options.max_triangles));
   }
   out.mesh = extrude(out.triangulation, options.thickness);
   out.embedding_proof =
-      region.proof + fmt::format("; top and bottom are a CGAL constrained Delaunay triangulation of that region "
-                                 "({} faces, each counter-clockwise by the exact orientation predicate) at z = {} "
-                                 "and z = 0, walls vertical over its {} boundary cycle(s), which meet only at shared "
-                                 "vertices: an extruded planar embedding",
-                                 out.triangulation.triangles.size(), options.thickness,
-                                 out.triangulation.boundary.size());
+      region.proof + fmt::format(
+                         "; top and bottom are a CGAL constrained Delaunay triangulation of that region "
+                         "({} faces, each counter-clockwise by the exact orientation predicate) at z = {} "
+                         "and z = 0, walls vertical over its {} boundary cycle(s), which meet only at shared "
+                         "vertices: an extruded planar embedding",
+                         out.triangulation.triangles.size(), options.thickness,
+                         out.triangulation.boundary.size());
   return out;
 }
 

@@ -11,8 +11,8 @@
 namespace fabmesh {
 
 struct SlabOptions {
-  double thickness = 30.0;               ///< z extent, model units (> 0); bottom at z = 0, top at z = thickness
-  double max_edge = 0.0;                 ///< longest top/bottom edge, model units; 0: no refinement
+  double thickness = 30.0;  ///< z extent, model units (> 0); bottom at z = 0, top at z = thickness
+  double max_edge = 0.0;    ///< longest top/bottom edge, model units; 0: no refinement
   std::size_t max_triangles = 20000000;  ///< budget for the whole slab; more is a BudgetError
 };
 

@@ -94,7 +94,8 @@ CellError cell_error(const HBezierPatch& p, double s0, double s1, double t0, dou
         const double x = static_cast<double>(a) / n, y = static_cast<double>(b) / n;
         Vec3 lin;
         if (main_diagonal) {
-          lin = x >= y ? Vec3(c00 + x * (c10 - c00) + y * (c11 - c10)) : Vec3(c00 + y * (c01 - c00) + x * (c11 - c01));
+          lin = x >= y ? Vec3(c00 + x * (c10 - c00) + y * (c11 - c10))
+                       : Vec3(c00 + y * (c01 - c00) + x * (c11 - c01));
         } else {
           lin = x + y <= 1.0 ? Vec3(c00 + x * (c10 - c00) + y * (c01 - c00))
                              : Vec3(c11 + (1.0 - x) * (c01 - c11) + (1.0 - y) * (c10 - c11));
@@ -143,12 +144,17 @@ class VertexIds {
 };
 
 // Grid index of the k-th vertex along a side.
-std::pair<std::size_t, std::size_t> side_vertex(PatchSide side, std::size_t k, std::size_t ns, std::size_t nt) {
+std::pair<std::size_t, std::size_t> side_vertex(PatchSide side, std::size_t k, std::size_t ns,
+                                                std::size_t nt) {
   switch (side) {
-    case PatchSide::UMin: return {0, k};
-    case PatchSide::UMax: return {ns, k};
-    case PatchSide::VMin: return {k, 0};
-    case PatchSide::VMax: return {k, nt};
+    case PatchSide::UMin:
+      return {0, k};
+    case PatchSide::UMax:
+      return {ns, k};
+    case PatchSide::VMin:
+      return {k, 0};
+    case PatchSide::VMax:
+      return {k, nt};
   }
   return {0, 0};
 }
@@ -183,7 +189,8 @@ void tessellate(const PatchNetwork& network, const TessellateOptions& options, S
   };
   auto triangles = [&]() {
     std::size_t total = 0;
-    for (std::size_t p = 0; p < np; ++p) total += 2 * (slot_breaks(slot(p, false)).size() - 1) * (slot_breaks(slot(p, true)).size() - 1);
+    for (std::size_t p = 0; p < np; ++p)
+      total += 2 * (slot_breaks(slot(p, false)).size() - 1) * (slot_breaks(slot(p, true)).size() - 1);
     return total;
   };
   double achieved = 0.0;
@@ -198,7 +205,8 @@ void tessellate(const PatchNetwork& network, const TessellateOptions& options, S
       const auto sb = slot_breaks(slot(p, false)), tb = slot_breaks(slot(p, true));
       for (std::size_t a = 0; a + 1 < sb.size(); ++a) {
         for (std::size_t b = 0; b + 1 < tb.size(); ++b) {
-          const CellError e = cell_error(network.patches[p], sb[a], sb[a + 1], tb[b], tb[b + 1], options.offset);
+          const CellError e =
+              cell_error(network.patches[p], sb[a], sb[a + 1], tb[b], tb[b + 1], options.offset);
           achieved = std::max(achieved, e.bound);
           if (e.bound <= options.tolerance) continue;
           any = true;
@@ -284,7 +292,9 @@ void tessellate(const PatchNetwork& network, const TessellateOptions& options, S
   std::size_t refused = 0;
   for (std::size_t p = 0; p < np; ++p) {
     const auto [ns, nt] = sizes[p];
-    auto vh = [&](std::size_t a, std::size_t b) { return Mesh::VertexHandle(handle[ids.root(ids.id(p, a, b))]); };
+    auto vh = [&](std::size_t a, std::size_t b) {
+      return Mesh::VertexHandle(handle[ids.root(ids.id(p, a, b))]);
+    };
     auto pos = [&](Mesh::VertexHandle v) {
       const auto& q = out.mesh.point(v);
       return Vec3(q[0], q[1], q[2]);
@@ -307,9 +317,10 @@ void tessellate(const PatchNetwork& network, const TessellateOptions& options, S
     }
   }
   if (refused > 0) {
-    throw GeometryError("surface", fmt::format("{} triangles of the surface could not be connected manifoldly: "
-                                               "patches overlap or meet along partial borders",
-                                               refused));
+    throw GeometryError("surface",
+                        fmt::format("{} triangles of the surface could not be connected manifoldly: "
+                                    "patches overlap or meet along partial borders",
+                                    refused));
   }
 }
 

@@ -10,7 +10,8 @@
 
 namespace fabmesh {
 
-void thicken(const Mesh& sheet, const std::vector<Vec3>& vertex_normals, const ThickenOptions& options, Mesh& solid) {
+void thicken(const Mesh& sheet, const std::vector<Vec3>& vertex_normals, const ThickenOptions& options,
+             Mesh& solid) {
   require_positive("thickness", options.thickness);
   const std::size_t n = sheet.n_vertices();
   if (vertex_normals.size() != n) {

@@ -23,6 +23,7 @@ struct ThickenOptions {
 /// is not decided here: validate the result with the self-intersection test.
 /// \throw RangeError (thickness <= 0 or not finite, a normal count that does
 ///        not match), GeometryError (a sheet that is not manifold at its border)
-void thicken(const Mesh& sheet, const std::vector<Vec3>& vertex_normals, const ThickenOptions& options, Mesh& solid);
+void thicken(const Mesh& sheet, const std::vector<Vec3>& vertex_normals, const ThickenOptions& options,
+             Mesh& solid);
 
 }  // namespace fabmesh

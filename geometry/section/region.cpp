@@ -42,13 +42,15 @@ void require_closed(const CompositeCurve& curve, const std::string& label) {
     const Vec2 end = curve.segments()[j.before].point(1.0);
     const Vec2 start = curve.segments()[j.after].point(0.0);
     if (j.closing) {
-      throw GeometryError(label, fmt::format("{} does not close: its last segment ({}) ends at {}, {:.6g} from its "
-                                             "start {} (closing joint)",
-                                             label, j.before, at(end), j.gap, at(start)));
+      throw GeometryError(label,
+                          fmt::format("{} does not close: its last segment ({}) ends at {}, {:.6g} from its "
+                                      "start {} (closing joint)",
+                                      label, j.before, at(end), j.gap, at(start)));
     }
-    throw GeometryError(label, fmt::format("{} has a gap of {:.6g} between segment {} (ends at {}) and segment {} "
-                                           "(starts at {})",
-                                           label, j.gap, j.before, at(end), j.after, at(start)));
+    throw GeometryError(label,
+                        fmt::format("{} has a gap of {:.6g} between segment {} (ends at {}) and segment {} "
+                                    "(starts at {})",
+                                    label, j.gap, j.before, at(end), j.after, at(start)));
   }
 }
 
@@ -95,8 +97,9 @@ void require_nesting(const std::vector<Loop>& loops) {
     const Vec2& p = loops[i].points.front();
     const Point q(p.x(), p.y());
     if (CGAL::bounded_side_2(outer.begin(), outer.end(), q, Kernel()) != CGAL::ON_BOUNDED_SIDE) {
-      throw GeometryError(loops[i].label, fmt::format("{} is not inside the outline: its point {} lies outside it",
-                                                      loops[i].label, at(p)));
+      throw GeometryError(
+          loops[i].label,
+          fmt::format("{} is not inside the outline: its point {} lies outside it", loops[i].label, at(p)));
     }
   }
   for (std::size_t i = 1; i < loops.size(); ++i) {
@@ -104,7 +107,8 @@ void require_nesting(const std::vector<Loop>& loops) {
     for (std::size_t j = 1; j < loops.size(); ++j) {
       if (j == i) continue;
       const Vec2& p = loops[j].points.front();
-      if (CGAL::bounded_side_2(hole.begin(), hole.end(), Point(p.x(), p.y()), Kernel()) == CGAL::ON_BOUNDED_SIDE) {
+      if (CGAL::bounded_side_2(hole.begin(), hole.end(), Point(p.x(), p.y()), Kernel()) ==
+          CGAL::ON_BOUNDED_SIDE) {
         throw GeometryError(loops[j].label, fmt::format("{} lies inside {} (near {}); holes may not nest",
                                                         loops[j].label, loops[i].label, at(p)));
       }
@@ -152,9 +156,10 @@ Region2 build_region(const CompositeCurve& outline, const std::vector<RegionHole
       region.holes.push_back(std::move(pts));
     }
   }
-  region.proof = fmt::format("outline and {} hole(s) sampled into simple, pairwise disjoint polygons with every hole "
-                             "strictly inside the outline and outside the others (exact predicates)",
-                             holes.size());
+  region.proof = fmt::format(
+      "outline and {} hole(s) sampled into simple, pairwise disjoint polygons with every hole "
+      "strictly inside the outline and outside the others (exact predicates)",
+      holes.size());
   return region;
 }
 

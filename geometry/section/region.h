@@ -20,8 +20,8 @@ struct RegionHole {
 };
 
 struct RegionOptions {
-  double tolerance = 0.01;            ///< max distance between each loop and its exact curve, model units (> 0)
-  std::size_t max_points = 5000000;   ///< sampling budget over all loops; more is a BudgetError
+  double tolerance = 0.01;  ///< max distance between each loop and its exact curve, model units (> 0)
+  std::size_t max_points = 5000000;  ///< sampling budget over all loops; more is a BudgetError
 };
 
 /// An oriented polygon with holes: the outer loop counter-clockwise, every
@@ -36,7 +36,7 @@ struct Region2 {
   /// Per loop (outer first, then the holes): true when the loop runs against
   /// its curve's direction (the curve was given the other way round).
   std::vector<bool> reversed;
-  std::string proof;                     ///< why the region is simple (for reports)
+  std::string proof;  ///< why the region is simple (for reports)
 };
 
 /// Samples the outline and the holes and checks that they bound a region:
@@ -45,7 +45,8 @@ struct Region2 {
 /// inside the outline and outside every other hole.
 /// \throw GeometryError naming the outline segment or the hole at fault, with
 ///        a point near the problem; RangeError (tolerance), BudgetError (points).
-Region2 build_region(const CompositeCurve& outline, const std::vector<RegionHole>& holes, const RegionOptions& options);
+Region2 build_region(const CompositeCurve& outline, const std::vector<RegionHole>& holes,
+                     const RegionOptions& options);
 
 /// The loops of `region` in one list: the outer loop first, then the holes.
 std::vector<std::vector<Vec2>> region_loops(const Region2& region);

@@ -23,7 +23,8 @@ namespace {
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Point = Kernel::Point_2;
 constexpr std::uint32_t kUnset = std::numeric_limits<std::uint32_t>::max();
-using Vb = CGAL::Triangulation_vertex_base_with_info_2<std::uint32_t, Kernel, CGAL::Delaunay_mesh_vertex_base_2<Kernel>>;
+using Vb = CGAL::Triangulation_vertex_base_with_info_2<std::uint32_t, Kernel,
+                                                       CGAL::Delaunay_mesh_vertex_base_2<Kernel>>;
 using Fb = CGAL::Triangulation_face_base_with_info_2<int, Kernel, CGAL::Delaunay_mesh_face_base_2<Kernel>>;
 using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
 using Cdt = CGAL::Constrained_Delaunay_triangulation_2<Kernel, Tds, CGAL::No_constraint_intersection_tag>;
@@ -70,10 +71,11 @@ void refine(Cdt& cdt, const TriangulateOptions& options) {
   std::size_t steps = 0;
   while (mesher.try_one_step_refine_mesh()) {
     if (++steps % 4096 == 0 && cdt.number_of_faces() > 2 * options.max_triangles) {
-      throw BudgetError(static_cast<double>(cdt.number_of_faces()), static_cast<double>(options.max_triangles),
-                        fmt::format("max_edge {} needs more than {} triangles, over the budget (raise max_triangles "
-                                    "or max_edge)",
-                                    options.max_edge, options.max_triangles));
+      throw BudgetError(
+          static_cast<double>(cdt.number_of_faces()), static_cast<double>(options.max_triangles),
+          fmt::format("max_edge {} needs more than {} triangles, over the budget (raise max_triangles "
+                      "or max_edge)",
+                      options.max_edge, options.max_triangles));
     }
   }
   mark_domain(cdt);
@@ -88,7 +90,8 @@ std::vector<std::vector<std::uint32_t>> boundary_cycles(const Cdt& cdt, std::siz
     for (int i = 0; i < 3; ++i) {
       if (f->neighbor(i)->is_in_domain()) continue;
       const std::uint32_t a = f->vertex(Cdt::ccw(i))->info(), b = f->vertex(Cdt::cw(i))->info();
-      if (next[a] != kUnset) throw std::logic_error("triangulate: a boundary vertex with two outgoing boundary edges");
+      if (next[a] != kUnset)
+        throw std::logic_error("triangulate: a boundary vertex with two outgoing boundary edges");
       next[a] = b;
       ++edges;
     }
@@ -114,7 +117,8 @@ std::vector<std::vector<std::uint32_t>> boundary_cycles(const Cdt& cdt, std::siz
 
 PlanarTriangulation triangulate(const Region2& region, const TriangulateOptions& options) {
   if (!std::isfinite(options.max_edge) || options.max_edge < 0.0) {
-    throw RangeError("max_edge", options.max_edge, fmt::format("max_edge = {} must be > 0", options.max_edge));
+    throw RangeError("max_edge", options.max_edge,
+                     fmt::format("max_edge = {} must be > 0", options.max_edge));
   }
   std::vector<Point> points;
   std::vector<std::pair<std::size_t, std::size_t>> constraints;
@@ -129,10 +133,11 @@ PlanarTriangulation triangulate(const Region2& region, const TriangulateOptions&
     // A triangle whose longest edge is <= e has area <= sqrt(3)/4 e^2: a lower bound on the count.
     const double fewest = region.area / (std::sqrt(3.0) / 4.0 * options.max_edge * options.max_edge);
     if (fewest > static_cast<double>(options.max_triangles)) {
-      throw BudgetError(fewest, static_cast<double>(options.max_triangles),
-                        fmt::format("max_edge {} needs at least {:.0f} triangles, over the budget of {} (raise "
-                                    "max_triangles or max_edge)",
-                                    options.max_edge, fewest, options.max_triangles));
+      throw BudgetError(
+          fewest, static_cast<double>(options.max_triangles),
+          fmt::format("max_edge {} needs at least {:.0f} triangles, over the budget of {} (raise "
+                      "max_triangles or max_edge)",
+                      options.max_edge, fewest, options.max_triangles));
     }
   }
   Cdt cdt;
@@ -154,15 +159,16 @@ PlanarTriangulation triangulate(const Region2& region, const TriangulateOptions&
       t[static_cast<std::size_t>(i)] = v->info();
     }
     // CGAL keeps every face positively oriented (exact predicate); the slab's embedding proof relies on it.
-    if (CGAL::orientation(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point()) != CGAL::LEFT_TURN) {
+    if (CGAL::orientation(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point()) !=
+        CGAL::LEFT_TURN) {
       throw std::logic_error("triangulate: a face is not counter-clockwise");
     }
     out.triangles.push_back(t);
   }
   if (out.triangles.size() > options.max_triangles) {
     throw BudgetError(static_cast<double>(out.triangles.size()), static_cast<double>(options.max_triangles),
-                      fmt::format("the region needs {} triangles, over the budget of {}", out.triangles.size(),
-                                  options.max_triangles));
+                      fmt::format("the region needs {} triangles, over the budget of {}",
+                                  out.triangles.size(), options.max_triangles));
   }
   out.boundary = boundary_cycles(cdt, out.vertices.size());
   out.steiner_points = out.vertices.size() > points.size() ? out.vertices.size() - points.size() : 0;

@@ -23,8 +23,8 @@ struct TriangulateOptions {
 /// Triangles covering a region exactly (the union of the triangles is the
 /// region's polygon with holes), counter-clockwise, sharing vertices.
 struct PlanarTriangulation {
-  std::vector<Vec2> vertices;                            ///< model units
-  std::vector<std::array<std::uint32_t, 3>> triangles;   ///< counter-clockwise
+  std::vector<Vec2> vertices;                           ///< model units
+  std::vector<std::array<std::uint32_t, 3>> triangles;  ///< counter-clockwise
   /// The region's boundary as vertex cycles with the region on their left
   /// (outer loop counter-clockwise, holes clockwise), following every
   /// boundary edge of `triangles`: refinement may have split the input loops.

@@ -17,8 +17,9 @@ void require_valid_params(const HBezierParams& p, const std::string& where) {
   for (auto [name, value] : {std::pair{"lambda", p.lambda}, std::pair{"mu", p.mu}}) {
     const std::string field = prefix + name;
     if (!std::isfinite(value) || value <= lo || value > 1.0) {
-      throw RangeError(field, value,
-                       fmt::format("{} = {} is outside ({:.6g}, 1] for alpha = {}", field, value, lo, p.alpha));
+      throw RangeError(
+          field, value,
+          fmt::format("{} = {} is outside ({:.6g}, 1] for alpha = {}", field, value, lo, p.alpha));
     }
   }
 }

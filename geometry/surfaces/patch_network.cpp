@@ -15,10 +15,14 @@ bool is_u_side(PatchSide side) { return side == PatchSide::UMin || side == Patch
 
 PatchSide opposite(PatchSide side) {
   switch (side) {
-    case PatchSide::UMin: return PatchSide::UMax;
-    case PatchSide::UMax: return PatchSide::UMin;
-    case PatchSide::VMin: return PatchSide::VMax;
-    case PatchSide::VMax: return PatchSide::VMin;
+    case PatchSide::UMin:
+      return PatchSide::UMax;
+    case PatchSide::UMax:
+      return PatchSide::UMin;
+    case PatchSide::VMin:
+      return PatchSide::VMax;
+    case PatchSide::VMax:
+      return PatchSide::VMin;
   }
   return side;
 }
@@ -52,23 +56,27 @@ HBezierPatch joined_patch(const PatchSpec& spec, const HBezierPatch& target, con
   const HBezierParams& border = border_params(target, join.side);
   const HBezierParams& own_border = along_u ? spec.v : spec.u;
   if (own_border != border) {
-    throw GeometryError(spec.label, fmt::format(
-        "{}: patch '{}' joins '{}' along {} but its {} parameters (alpha {}, lambda {}, mu {}) differ from "
-        "the border's (alpha {}, lambda {}, mu {}): joined patches must share the border's parameterisation",
-        spec.label, spec.name, target_name, to_string(join.side), along_u ? "v" : "u", own_border.alpha,
-        own_border.lambda, own_border.mu, border.alpha, border.lambda, border.mu));
+    throw GeometryError(spec.label, fmt::format("{}: patch '{}' joins '{}' along {} but its {} parameters "
+                                                "(alpha {}, lambda {}, mu {}) differ from "
+                                                "the border's (alpha {}, lambda {}, mu {}): joined patches "
+                                                "must share the border's parameterisation",
+                                                spec.label, spec.name, target_name, to_string(join.side),
+                                                along_u ? "v" : "u", own_border.alpha, own_border.lambda,
+                                                own_border.mu, border.alpha, border.lambda, border.mu));
   }
   const std::size_t computed = computed_lines(join.continuity);
   if (spec.points.size() != 4 - computed) {
-    throw GeometryError(spec.label, fmt::format("{}: a {} join along {} leaves {} free {} of 4 points; got {}",
-                                                spec.label, to_string(join.continuity), to_string(join.side),
-                                                4 - computed, along_u ? "rows" : "columns", spec.points.size()));
+    throw GeometryError(
+        spec.label, fmt::format("{}: a {} join along {} leaves {} free {} of 4 points; got {}", spec.label,
+                                to_string(join.continuity), to_string(join.side), 4 - computed,
+                                along_u ? "rows" : "columns", spec.points.size()));
   }
   // The new patch's net, line k counted from the border outwards.
   ControlNet net{};
   const HBezierParams p_params = across_towards(target, join.side);
   const HBezierParams own_across = along_u ? spec.u : spec.v;
-  const HBezierParams q_params = (own == PatchSide::UMin || own == PatchSide::VMin) ? own_across : own_across.reversed();
+  const HBezierParams q_params =
+      (own == PatchSide::UMin || own == PatchSide::VMin) ? own_across : own_across.reversed();
   std::array<std::array<Vec3, 4>, 3> lines{};
   for (std::size_t j = 0; j < 4; ++j) {
     std::array<Vec3, 4> row;
@@ -120,7 +128,8 @@ void measure(const PatchNetwork& net, SharedBorder& b, const NetworkOptions& o) 
   b.achieved = Continuity::None;
   if (b.gap <= o.relative_gap_tolerance * net.size) b.achieved = Continuity::G0;
   if (b.achieved == Continuity::G0 && b.normal_angle <= o.angle_tolerance) b.achieved = Continuity::G1;
-  if (b.achieved == Continuity::G1 && b.curvature_jump <= o.relative_curvature_tolerance) b.achieved = Continuity::G2;
+  if (b.achieved == Continuity::G1 && b.curvature_jump <= o.relative_curvature_tolerance)
+    b.achieved = Continuity::G2;
 }
 
 // Finds the sides of patches p < q that are the same border curve.
@@ -147,19 +156,23 @@ void find_shared_borders(PatchNetwork& net, const std::vector<PatchSpec>& specs,
           const HBezierParams& pp = border_params(net.patches[p], sp);
           const HBezierParams& pq = border_params(net.patches[q], sq);
           if ((same && pp != pq) || (!same && pp != pq.reversed())) {
-            throw GeometryError(specs[q].label, fmt::format(
-                "{}: side {} of patch '{}' coincides with side {} of patch '{}' but is parameterised "
-                "differently (alpha {}, lambda {}, mu {} vs {}, {}, {}{}): shared borders need the same "
-                "parameterisation, or the tessellation would crack",
-                specs[q].label, to_string(sq), net.names[q], to_string(sp), net.names[p], pq.alpha, pq.lambda,
-                pq.mu, pp.alpha, pp.lambda, pp.mu, same ? "" : ", run backwards"));
+            throw GeometryError(
+                specs[q].label,
+                fmt::format(
+                    "{}: side {} of patch '{}' coincides with side {} of patch '{}' but is parameterised "
+                    "differently (alpha {}, lambda {}, mu {} vs {}, {}, {}{}): shared borders need the same "
+                    "parameterisation, or the tessellation would crack",
+                    specs[q].label, to_string(sq), net.names[q], to_string(sp), net.names[p], pq.alpha,
+                    pq.lambda, pq.mu, pp.alpha, pp.lambda, pp.mu, same ? "" : ", run backwards"));
           }
           const auto ip = static_cast<std::size_t>(sp), iq = static_cast<std::size_t>(sq);
           if (used[p][ip] >= 0 || used[q][iq] >= 0) {
-            throw GeometryError(specs[q].label, fmt::format(
-                "{}: side {} of patch '{}' and side {} of patch '{}' meet a border already shared by two "
-                "patches: a border may join only two patches",
-                specs[q].label, to_string(sq), net.names[q], to_string(sp), net.names[p]));
+            throw GeometryError(
+                specs[q].label,
+                fmt::format(
+                    "{}: side {} of patch '{}' and side {} of patch '{}' meet a border already shared by two "
+                    "patches: a border may join only two patches",
+                    specs[q].label, to_string(sq), net.names[q], to_string(sp), net.names[p]));
           }
           used[p][ip] = used[q][iq] = static_cast<int>(net.borders.size());
           SharedBorder b;
@@ -180,10 +193,14 @@ void find_shared_borders(PatchNetwork& net, const std::vector<PatchSpec>& specs,
 
 const char* to_string(PatchSide side) {
   switch (side) {
-    case PatchSide::UMin: return "u_min";
-    case PatchSide::UMax: return "u_max";
-    case PatchSide::VMin: return "v_min";
-    case PatchSide::VMax: return "v_max";
+    case PatchSide::UMin:
+      return "u_min";
+    case PatchSide::UMax:
+      return "u_max";
+    case PatchSide::VMin:
+      return "v_min";
+    case PatchSide::VMax:
+      return "v_max";
   }
   return "?";
 }
@@ -198,10 +215,14 @@ const HBezierParams& border_params(const HBezierPatch& patch, PatchSide side) {
 
 std::array<double, 2> border_uv(PatchSide side, double x) {
   switch (side) {
-    case PatchSide::UMin: return {0.0, x};
-    case PatchSide::UMax: return {1.0, x};
-    case PatchSide::VMin: return {x, 0.0};
-    case PatchSide::VMax: return {x, 1.0};
+    case PatchSide::UMin:
+      return {0.0, x};
+    case PatchSide::UMax:
+      return {1.0, x};
+    case PatchSide::VMin:
+      return {x, 0.0};
+    case PatchSide::VMax:
+      return {x, 1.0};
   }
   return {x, x};
 }
@@ -264,21 +285,27 @@ PatchNetwork build_patch_network(const std::vector<PatchSpec>& specs, const Netw
       return b.b == self && b.a == s.join->to && b.declared != Continuity::None;
     });
     if (!found) {
-      throw GeometryError(s.label, fmt::format("{}: patch '{}' was joined to '{}' but their borders do not meet",
-                                               s.label, s.name, net.names[s.join->to]));
+      throw GeometryError(
+          s.label, fmt::format("{}: patch '{}' was joined to '{}' but their borders do not meet", s.label,
+                               s.name, net.names[s.join->to]));
     }
   }
   for (SharedBorder& b : net.borders) {
     measure(net, b, options);
     if (b.declared == Continuity::None || b.achieved >= b.declared) continue;
     const std::string& where = specs[b.b].label;
-    throw GeometryError(where, fmt::format(
-        "{}: the {} join of '{}' to '{}' along {} measures {}: gap {:.3g}, normal angle {:.3g} rad{}{}",
-        where, to_string(b.declared), net.names[b.b], net.names[b.a], to_string(b.side_a), to_string(b.achieved),
-        b.gap, b.normal_angle, b.declared == Continuity::G2 ? fmt::format(", relative curvature jump {:.3g}", b.curvature_jump) : "",
-        b.normal_angle > M_PI / 2 ? " (the normals flip: the patches are oriented oppositely; the rows next to "
-                                    "the border may fold back, or a degenerate border)"
-                                  : " (degenerate rows next to the border?)"));
+    throw GeometryError(
+        where,
+        fmt::format(
+            "{}: the {} join of '{}' to '{}' along {} measures {}: gap {:.3g}, normal angle {:.3g} rad{}{}",
+            where, to_string(b.declared), net.names[b.b], net.names[b.a], to_string(b.side_a),
+            to_string(b.achieved), b.gap, b.normal_angle,
+            b.declared == Continuity::G2 ? fmt::format(", relative curvature jump {:.3g}", b.curvature_jump)
+                                         : "",
+            b.normal_angle > M_PI / 2
+                ? " (the normals flip: the patches are oriented oppositely; the rows next to "
+                  "the border may fold back, or a degenerate border)"
+                : " (degenerate rows next to the border?)"));
   }
   return net;
 }

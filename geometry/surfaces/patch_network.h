@@ -51,12 +51,13 @@ struct PatchSpec {
 struct SharedBorder {
   std::size_t a = 0, b = 0;  ///< patch indices, a < b
   PatchSide side_a = PatchSide::UMax, side_b = PatchSide::UMin;
-  bool reversed = false;                     ///< b's border runs the opposite way
-  Continuity declared = Continuity::None;    ///< None: found, not declared
-  Continuity achieved = Continuity::None;    ///< measured: G0 gap, G1 normals, G2 cross curvature
-  double gap = 0.0;              ///< max distance of the two border curves, sampled, model units
-  double normal_angle = 0.0;     ///< max angle of the two unit normals along the border, rad
-  double curvature_jump = 0.0;   ///< max jump of the cross-border curves' curvature, relative to the larger one
+  bool reversed = false;                   ///< b's border runs the opposite way
+  Continuity declared = Continuity::None;  ///< None: found, not declared
+  Continuity achieved = Continuity::None;  ///< measured: G0 gap, G1 normals, G2 cross curvature
+  double gap = 0.0;                        ///< max distance of the two border curves, sampled, model units
+  double normal_angle = 0.0;               ///< max angle of the two unit normals along the border, rad
+  double curvature_jump =
+      0.0;  ///< max jump of the cross-border curves' curvature, relative to the larger one
 };
 
 struct NetworkOptions {

@@ -29,8 +29,8 @@ SurfaceMesh build_surface_mesh(const PatchNetwork& network, const SurfaceMeshOpt
     const std::size_t total = 2 * sheet.n_faces() + 2 * out.rim_edges;
     if (total > options.max_triangles) {
       throw BudgetError(static_cast<double>(total), static_cast<double>(options.max_triangles),
-                        fmt::format("tolerance {} needs {} triangles, over the budget of {}", options.tolerance,
-                                    total, options.max_triangles));
+                        fmt::format("tolerance {} needs {} triangles, over the budget of {}",
+                                    options.tolerance, total, options.max_triangles));
     }
     ThickenOptions th;
     th.thickness = options.thickness;

@@ -11,8 +11,8 @@
 namespace fabmesh {
 
 struct SurfaceMeshOptions {
-  double tolerance = 0.01;  ///< model units: mesh to exact surface (both sheets)
-  double thickness = 0.0;   ///< > 0: a solid shell along the normals; 0: the open surface
+  double tolerance = 0.01;               ///< model units: mesh to exact surface (both sheets)
+  double thickness = 0.0;                ///< > 0: a solid shell along the normals; 0: the open surface
   std::size_t max_triangles = 20000000;  ///< budget for the final mesh; more is a BudgetError
 };
 

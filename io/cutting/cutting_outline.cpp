@@ -39,10 +39,12 @@ void arc_extremes(const EllipseArcParams& a, std::vector<Vec2>& out) {
 
 Vec2 arc_point(const EllipseArcParams& a, double deg) {
   const double t = deg * M_PI / 180.0;
-  return a.center + Eigen::Rotation2Dd(a.rotation_deg * M_PI / 180.0) * Vec2(a.a * std::cos(t), a.b * std::sin(t));
+  return a.center +
+         Eigen::Rotation2Dd(a.rotation_deg * M_PI / 180.0) * Vec2(a.a * std::cos(t), a.b * std::sin(t));
 }
 
-CutLoop cut_loop(const CompositeCurve& curve, const std::string& label, bool outer, const CutLoopOptions& options) {
+CutLoop cut_loop(const CompositeCurve& curve, const std::string& label, bool outer,
+                 const CutLoopOptions& options) {
   require_positive("tolerance", options.tolerance);
   if (!curve.closed()) throw GeometryError(label, fmt::format("{} is not closed: no cutting loop", label));
   SampleOptions so;

@@ -38,7 +38,8 @@ struct CutLoopOptions {
 /// ellipse arc, one Polyline per run of consecutive other segments (T-Bézier,
 /// H-Bézier, B-spline spans), sampled with the proven bound of sample_curve.
 /// \throw RangeError (tolerance), GeometryError (an open curve)
-CutLoop cut_loop(const CompositeCurve& curve, const std::string& label, bool outer, const CutLoopOptions& options);
+CutLoop cut_loop(const CompositeCurve& curve, const std::string& label, bool outer,
+                 const CutLoopOptions& options);
 
 /// The point of an exact arc at central angle `deg` (its T-Bezier angle parameter, degrees).
 Vec2 arc_point(const EllipseArcParams& arc, double deg);

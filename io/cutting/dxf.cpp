@@ -21,7 +21,8 @@ class TempFile {
   TempFile() {
     std::string pattern = (std::filesystem::temp_directory_path() / "fabmesh-dxf-XXXXXX").string();
     const int fd = mkstemp(pattern.data());
-    if (fd < 0) throw FileError(pattern, 0, 0, fmt::format("{}: cannot create a temporary DXF file", pattern));
+    if (fd < 0)
+      throw FileError(pattern, 0, 0, fmt::format("{}: cannot create a temporary DXF file", pattern));
     ::close(fd);
     path_ = pattern;
   }
@@ -86,8 +87,9 @@ void write_arc(DL_Dxf& dxf, DL_WriterA& dw, const EllipseArcParams& a, const DL_
     if (whole) {
       dxf.writeCircle(dw, DL_CircleData(a.center.x(), a.center.y(), 0.0, a.a), attr);
     } else {
-      dxf.writeArc(dw, DL_ArcData(a.center.x(), a.center.y(), 0.0, a.a, from + a.rotation_deg, to + a.rotation_deg),
-                   attr);
+      dxf.writeArc(
+          dw, DL_ArcData(a.center.x(), a.center.y(), 0.0, a.a, from + a.rotation_deg, to + a.rotation_deg),
+          attr);
     }
     return;
   }
@@ -102,14 +104,16 @@ void write_arc(DL_Dxf& dxf, DL_WriterA& dw, const EllipseArcParams& a, const DL_
   }
   const double p1 = whole ? 0.0 : (from + shift) * M_PI / 180.0;
   const double p2 = whole ? 2.0 * M_PI : (to + shift) * M_PI / 180.0;
-  dxf.writeEllipse(dw, DL_EllipseData(a.center.x(), a.center.y(), 0.0, major.x(), major.y(), 0.0, ratio, p1, p2),
-                   attr);
+  dxf.writeEllipse(
+      dw, DL_EllipseData(a.center.x(), a.center.y(), 0.0, major.x(), major.y(), 0.0, ratio, p1, p2), attr);
 }
 
-void write_entity(DL_Dxf& dxf, DL_WriterA& dw, const CutEntity& e, bool whole_loop, const DL_Attributes& attr) {
+void write_entity(DL_Dxf& dxf, DL_WriterA& dw, const CutEntity& e, bool whole_loop,
+                  const DL_Attributes& attr) {
   switch (e.kind) {
     case CutKind::Line:
-      dxf.writeLine(dw, DL_LineData(e.points[0].x(), e.points[0].y(), 0.0, e.points[1].x(), e.points[1].y(), 0.0),
+      dxf.writeLine(dw,
+                    DL_LineData(e.points[0].x(), e.points[0].y(), 0.0, e.points[1].x(), e.points[1].y(), 0.0),
                     attr);
       return;
     case CutKind::Arc:
@@ -119,7 +123,8 @@ void write_entity(DL_Dxf& dxf, DL_WriterA& dw, const CutEntity& e, bool whole_lo
       // A loop that is one polyline is written closed, without repeating its first point.
       const std::size_t n = whole_loop ? e.points.size() - 1 : e.points.size();
       dxf.writePolyline(dw, DL_PolylineData(static_cast<int>(n), 0, 0, whole_loop ? 1 : 0), attr);
-      for (std::size_t i = 0; i < n; ++i) dxf.writeVertex(dw, DL_VertexData(e.points[i].x(), e.points[i].y(), 0.0));
+      for (std::size_t i = 0; i < n; ++i)
+        dxf.writeVertex(dw, DL_VertexData(e.points[i].x(), e.points[i].y(), 0.0));
       dxf.writePolylineEnd(dw);
       return;
     }

@@ -11,7 +11,7 @@ namespace fabmesh {
 
 /// One drawing entity read from a DXF file, in model units.
 struct DxfEntity {
-  std::string type;   ///< LINE, ARC, CIRCLE, ELLIPSE or POLYLINE (an LWPOLYLINE or a POLYLINE)
+  std::string type;  ///< LINE, ARC, CIRCLE, ELLIPSE or POLYLINE (an LWPOLYLINE or a POLYLINE)
   std::string layer;
   /// LINE/ARC/ELLIPSE: start and end point (counter-clockwise for arcs);
   /// CIRCLE: one point on it, twice; polylines: their vertices.

@@ -51,8 +51,8 @@ std::string encode_svg(const std::vector<CutLoop>& loops, const SvgOptions& opti
     }
     d += " Z";
     const std::string id = loop.outer ? std::string("outline") : fmt::format("hole{}", holes++);
-    out += fmt::format("  <path id=\"{}\" d=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"0.5\"/>\n", id, d,
-                       loop.outer ? "red" : "blue");
+    out += fmt::format("  <path id=\"{}\" d=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"0.5\"/>\n", id,
+                       d, loop.outer ? "red" : "blue");
   }
   out += "</svg>\n";
   return out;

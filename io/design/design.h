@@ -13,9 +13,9 @@ namespace fabmesh {
 
 /// Keys every design has.
 struct DesignCommon {
-  std::string path;                  ///< the file it was read from
-  std::string name;                  ///< default: the file's stem
-  std::string kind;                  ///< curve | vessel | countertop | surface
+  std::string path;  ///< the file it was read from
+  std::string name;  ///< default: the file's stem
+  std::string kind;  ///< curve | vessel | countertop | surface
   std::string units = "mm";
   double tolerance = 0.01;           ///< model units, > 0
   std::vector<std::string> outputs;  ///< default: stl, drc
@@ -43,7 +43,7 @@ struct CountertopHole {
 
 /// kind: countertop. Outline and holes in the plane; the slab spans z in [0, thickness].
 struct CountertopDesign {
-  CurveSpec outline;                     ///< closed
+  CurveSpec outline;  ///< closed
   std::vector<CountertopHole> holes;
   double thickness = 0.0;                ///< > 0, model units
   double max_edge = 0.0;                 ///< > 0 refines the triangulation; 0: not given

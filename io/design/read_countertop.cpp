@@ -22,7 +22,8 @@ std::size_t read_budget(const yaml::Fields& f, const YAML::Node& root, std::size
 
 CurveSpec read_closed_curve(const yaml::Fields& f, const YAML::Node& node, const std::string& field) {
   CurveSpec spec = read_curve(f, node, field);
-  if (!spec.closed) f.fail(node, field + ".closed", fmt::format("{} must be a closed curve (closed: true)", field));
+  if (!spec.closed)
+    f.fail(node, field + ".closed", fmt::format("{} must be a closed curve (closed: true)", field));
   return spec;
 }
 
@@ -102,8 +103,10 @@ CurveSpec rounded_rect_curve(const Vec2& center, double w, double h, double r, d
   spec.closing_declared = joint;
   spec.label = "rounded_rect";
   // Counter-clockwise: each straight side (skipped when the corners use it all up), then the corner after it.
-  const std::array<Vec2, 4> side_from{Vec2(-hw + r, -hh), Vec2(hw, -hh + r), Vec2(hw - r, hh), Vec2(-hw, hh - r)};
-  const std::array<Vec2, 4> side_to{Vec2(hw - r, -hh), Vec2(hw, hh - r), Vec2(-hw + r, hh), Vec2(-hw, -hh + r)};
+  const std::array<Vec2, 4> side_from{Vec2(-hw + r, -hh), Vec2(hw, -hh + r), Vec2(hw - r, hh),
+                                      Vec2(-hw, hh - r)};
+  const std::array<Vec2, 4> side_to{Vec2(hw - r, -hh), Vec2(hw, hh - r), Vec2(-hw + r, hh),
+                                    Vec2(-hw, -hh + r)};
   const std::array<Vec2, 4> corner{Vec2(hw - r, -hh + r), Vec2(hw - r, hh - r), Vec2(-hw + r, hh - r),
                                    Vec2(-hw + r, -hh + r)};
   for (int i = 0; i < 4; ++i) {
@@ -117,7 +120,8 @@ CurveSpec rounded_rect_curve(const Vec2& center, double w, double h, double r, d
       spec.segments.push_back(line);
     }
     if (r > 0.0) {
-      SegmentSpec arc = arc_spec(place(corner[k].x(), corner[k].y()), r, r, rotation_deg, -90.0 + 90.0 * i, 90.0 * i);
+      SegmentSpec arc =
+          arc_spec(place(corner[k].x(), corner[k].y()), r, r, rotation_deg, -90.0 + 90.0 * i, 90.0 * i);
       arc.declared = joint;
       spec.segments.push_back(arc);
     }
@@ -126,21 +130,25 @@ CurveSpec rounded_rect_curve(const Vec2& center, double w, double h, double r, d
 }
 
 CountertopDesign read_countertop(const yaml::Fields& f, const YAML::Node& root) {
-  f.require_map(root, "", {"name", "kind", "units", "tolerance", "outputs", "outline", "holes", "thickness",
-                           "max_edge", "max_triangles"});
+  f.require_map(root, "",
+                {"name", "kind", "units", "tolerance", "outputs", "outline", "holes", "thickness", "max_edge",
+                 "max_triangles"});
   CountertopDesign d;
   d.outline = read_closed_curve(f, f.required(root, "outline", "outline"), "outline");
   if (root["holes"].IsDefined()) {
     const YAML::Node holes = root["holes"];
     f.require_list(holes, "holes");
-    for (std::size_t i = 0; i < holes.size(); ++i) d.holes.push_back(read_hole(f, holes[i], fmt::format("holes[{}]", i)));
+    for (std::size_t i = 0; i < holes.size(); ++i)
+      d.holes.push_back(read_hole(f, holes[i], fmt::format("holes[{}]", i)));
   }
   const YAML::Node thickness = f.required(root, "thickness", "thickness");
   d.thickness = f.number(thickness, "thickness");
-  if (d.thickness <= 0.0) f.fail(thickness, "thickness", fmt::format("thickness = {} must be > 0", d.thickness));
+  if (d.thickness <= 0.0)
+    f.fail(thickness, "thickness", fmt::format("thickness = {} must be > 0", d.thickness));
   if (root["max_edge"].IsDefined()) {
     d.max_edge = f.number(root["max_edge"], "max_edge");
-    if (d.max_edge <= 0.0) f.fail(root["max_edge"], "max_edge", fmt::format("max_edge = {} must be > 0", d.max_edge));
+    if (d.max_edge <= 0.0)
+      f.fail(root["max_edge"], "max_edge", fmt::format("max_edge = {} must be > 0", d.max_edge));
   }
   d.max_triangles = read_budget(f, root, d.max_triangles);
   return d;

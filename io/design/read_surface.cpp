@@ -8,8 +8,8 @@
 namespace fabmesh {
 namespace {
 
-HBezierParams read_params(const yaml::Fields& f, const YAML::Node& patch, const char* key, const std::string& field,
-                          const HBezierParams& fallback) {
+HBezierParams read_params(const yaml::Fields& f, const YAML::Node& patch, const char* key,
+                          const std::string& field, const HBezierParams& fallback) {
   const YAML::Node n = patch[key];
   if (!n.IsDefined()) return fallback;
   const std::string pf = field + "." + key;
@@ -38,12 +38,18 @@ PatchJoin read_join(const yaml::Fields& f, const YAML::Node& n, const std::strin
   const std::string target = f.text(to, field + ".to");
   const auto it = std::find(names.begin(), names.end(), target);
   if (it == names.end()) {
-    f.fail(to, field + ".to", fmt::format("no earlier patch is named '{}' (a join refers to a patch above it)", target));
+    f.fail(to, field + ".to",
+           fmt::format("no earlier patch is named '{}' (a join refers to a patch above it)", target));
   }
   j.to = static_cast<std::size_t>(it - names.begin());
-  const std::string side = f.choice(f.required(n, "side", field), field + ".side", {"u_min", "u_max", "v_min", "v_max"});
-  j.side = side == "u_min" ? PatchSide::UMin : side == "u_max" ? PatchSide::UMax : side == "v_min" ? PatchSide::VMin : PatchSide::VMax;
-  const std::string c = f.choice(f.required(n, "continuity", field), field + ".continuity", {"G0", "G1", "G2"});
+  const std::string side =
+      f.choice(f.required(n, "side", field), field + ".side", {"u_min", "u_max", "v_min", "v_max"});
+  j.side = side == "u_min"   ? PatchSide::UMin
+           : side == "u_max" ? PatchSide::UMax
+           : side == "v_min" ? PatchSide::VMin
+                             : PatchSide::VMax;
+  const std::string c =
+      f.choice(f.required(n, "continuity", field), field + ".continuity", {"G0", "G1", "G2"});
   j.continuity = c == "G0" ? Continuity::G0 : c == "G1" ? Continuity::G1 : Continuity::G2;
   if (j.continuity != Continuity::G1 && n["gamma"].IsDefined()) {
     f.fail(n["gamma"], field + ".gamma", fmt::format("gamma belongs to G1 joins (a {} join uses k, m)", c));
@@ -58,7 +64,8 @@ PatchJoin read_join(const yaml::Fields& f, const YAML::Node& n, const std::strin
     f.fail(n["gamma"], field + ".gamma", fmt::format("gamma = {} must be > 0", j.gamma));
   }
   j.k = f.number_or(n, "k", field + ".k", 1.0);
-  if (!(j.k > 0.0) || !std::isfinite(j.k)) f.fail(n["k"], field + ".k", fmt::format("k = {} must be > 0", j.k));
+  if (!(j.k > 0.0) || !std::isfinite(j.k))
+    f.fail(n["k"], field + ".k", fmt::format("k = {} must be > 0", j.k));
   j.m = f.number_or(n, "m", field + ".m", 0.0);
   if (!std::isfinite(j.m)) f.fail(n["m"], field + ".m", fmt::format("m = {} is not a finite number", j.m));
   return j;
@@ -90,29 +97,33 @@ PatchSpec read_patch(const yaml::Fields& f, const YAML::Node& n, const std::stri
     const HBezierParams& own = along_u ? s.v : s.u;
     const HBezierParams& theirs = along_u ? target->v : target->u;
     if (own != theirs) {
-      f.fail(n[key], field + "." + key, fmt::format(
-          "the patch joins '{}' along {}, so its {} parameters must be the border's (alpha {}, lambda {}, mu {}); "
-          "got (alpha {}, lambda {}, mu {}) (omit '{}' to inherit them)",
-          target->name, to_string(s.join->side), key, theirs.alpha, theirs.lambda, theirs.mu, own.alpha, own.lambda,
-          own.mu, key));
+      f.fail(n[key], field + "." + key,
+             fmt::format("the patch joins '{}' along {}, so its {} parameters must be the border's (alpha "
+                         "{}, lambda {}, mu {}); "
+                         "got (alpha {}, lambda {}, mu {}) (omit '{}' to inherit them)",
+                         target->name, to_string(s.join->side), key, theirs.alpha, theirs.lambda, theirs.mu,
+                         own.alpha, own.lambda, own.mu, key));
     }
   }
   const YAML::Node pts = f.required(n, "points", field);
   f.require_list(pts, field + ".points");
   if (pts.size() != rows) {
     f.fail(pts, field + ".points",
-           s.join ? fmt::format("a {} join leaves {} free {} of 4 points; got {}", to_string(s.join->continuity), rows,
-                                along_u ? "rows" : "columns", pts.size())
-                  : fmt::format("an explicit patch needs 4 rows of 4 points [x, y, z]; got {} rows", pts.size()));
+           s.join ? fmt::format("a {} join leaves {} free {} of 4 points; got {}",
+                                to_string(s.join->continuity), rows, along_u ? "rows" : "columns", pts.size())
+                  : fmt::format("an explicit patch needs 4 rows of 4 points [x, y, z]; got {} rows",
+                                pts.size()));
   }
-  for (std::size_t i = 0; i < rows; ++i) s.points.push_back(read_line(f, pts[i], fmt::format("{}.points[{}]", field, i)));
+  for (std::size_t i = 0; i < rows; ++i)
+    s.points.push_back(read_line(f, pts[i], fmt::format("{}.points[{}]", field, i)));
   return s;
 }
 
 }  // namespace
 
 SurfaceDesign read_surface(const yaml::Fields& f, const YAML::Node& root) {
-  f.require_map(root, "", {"name", "kind", "units", "tolerance", "outputs", "patches", "thickness", "max_triangles"});
+  f.require_map(root, "",
+                {"name", "kind", "units", "tolerance", "outputs", "patches", "thickness", "max_triangles"});
   SurfaceDesign d;
   const YAML::Node patches = f.required(root, "patches", "patches");
   f.require_list(patches, "patches", 1);
@@ -123,7 +134,8 @@ SurfaceDesign read_surface(const yaml::Fields& f, const YAML::Node& root) {
   }
   if (root["thickness"].IsDefined()) {
     d.thickness = f.number(root["thickness"], "thickness");
-    if (!(d.thickness > 0.0)) f.fail(root["thickness"], "thickness", fmt::format("thickness = {} must be > 0", d.thickness));
+    if (!(d.thickness > 0.0))
+      f.fail(root["thickness"], "thickness", fmt::format("thickness = {} must be > 0", d.thickness));
   }
   if (root["max_triangles"].IsDefined()) {
     const double budget = f.number(root["max_triangles"], "max_triangles");

@@ -91,6 +91,10 @@ void print_human(const std::string& name, const nlohmann::json& r, std::ostream&
 int run_optimize(const OptimizeArgs& args, Streams io) {
   const Design design = read_design(args.design);
   const auto curves = design_curves(design);
+  if (curves.empty()) {
+    throw InputError(
+        fmt::format("{}: a {} design has no curves to optimize", design.common.path, design.common.kind));
+  }
   nlohmann::json all = nlohmann::json::array();
   for (const NamedCurve& nc : curves) {
     nlohmann::json r = optimize_curve(nc);

@@ -26,8 +26,9 @@ int run_sample(const SampleArgs& args, Streams io) {
   SampleOptions options;
   options.tolerance = args.tolerance > 0.0 ? args.tolerance : design.common.tolerance;
   if (design_curves(design).empty()) {
-    io.out << fmt::format("# {}: a {} design has no curves to sample (its patches are tessellated by `fabmesh run`)\n",
-                          design.common.name, design.common.kind);
+    io.out << fmt::format(
+        "# {}: a {} design has no curves to sample (its patches are tessellated by `fabmesh run`)\n",
+        design.common.name, design.common.kind);
     return 0;
   }
   if (args.csv) io.out << "curve,x,y\n";

@@ -88,3 +88,9 @@ TEST_CASE("cli sample: a closed outline that crosses itself is bad input naming 
   CHECK_THAT(r.err, Catch::Contains("eight.yaml:3:3: curve") && Catch::Contains("crosses itself") &&
                         Catch::Contains("segments 1 and 3"));
 }
+
+TEST_CASE("cli optimize: a design without curves is bad input", "[pipeline][cli][errors]") {
+  const CliResult r = run_fabmesh({"optimize", example("surface_basin_shell.yaml")});
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err, Catch::Contains("surface_basin_shell.yaml") && Catch::Contains("no curves to optimize"));
+}

@@ -57,7 +57,8 @@ std::string edited_shell(const std::string& find, const std::string& replace) {
 
 }  // namespace
 
-TEST_CASE("surface run: the thickened basin is a valid closed solid written as STL and Draco", "[pipeline][surface]") {
+TEST_CASE("surface run: the thickened basin is a valid closed solid written as STL and Draco",
+          "[pipeline][surface]") {
   const fs::path dir = fresh_dir("surface_shell");
   const Design design = read_design(example("surface_basin_shell.yaml"));
   const JobReport r = run_job(design, {dir.string()});
@@ -99,7 +100,8 @@ TEST_CASE("surface run: an open surface is written for viewing but reported not 
   CHECK(human.find("not valid for fabrication") != std::string::npos);
 }
 
-TEST_CASE("surface run: a shell too thick for its curvature fails validation and writes nothing", "[pipeline][surface]") {
+TEST_CASE("surface run: a shell too thick for its curvature fails validation and writes nothing",
+          "[pipeline][surface]") {
   // A half cylinder of radius 10 whose normals point to its axis: a 25 mm shell crosses the axis.
   const fs::path dir = fresh_dir("surface_too_thick");
   const std::string half_cylinder = R"(kind: surface
@@ -149,8 +151,9 @@ TEST_CASE("surface designs: bad values are reported with file, line and column",
     CHECK_FALSE(fs::exists(dir / "out" / "bad.stl"));
   }
   // A wrong number of free columns, at the patch.
-  write_file_atomically((dir / "rows.yaml").string(),
-                        edited_shell("      - [[150, 0, 0], [150, 75, 0], [150, 142.5, 0], [146.25, 146.25, 0]]\n", ""));
+  write_file_atomically(
+      (dir / "rows.yaml").string(),
+      edited_shell("      - [[150, 0, 0], [150, 75, 0], [150, 142.5, 0], [146.25, 146.25, 0]]\n", ""));
   std::string out;
   CHECK(run_cli({"run", (dir / "rows.yaml").string(), "-o", (dir / "out").string()}, &out) == 2);
   CHECK(out.find("rows.yaml:") != std::string::npos);

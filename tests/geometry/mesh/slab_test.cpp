@@ -1,8 +1,9 @@
+#include "geometry/mesh/slab.h"
+
 #include <catch2/catch.hpp>
 
 #include "geometry/core/errors.h"
 #include "geometry/mesh/constructed_validation.h"
-#include "geometry/mesh/slab.h"
 #include "geometry/mesh/soup.h"
 #include "geometry/mesh/validate.h"
 #include "tests/geometry/section/region_shapes.h"
@@ -19,7 +20,8 @@ struct Kitchen {
   double perimeter = 0.0;
 };
 
-// A countertop outline in mm with an elliptic sink and a rounded cooktop, rotated by `degrees` about the origin.
+// A countertop outline in mm with an elliptic sink and a rounded cooktop, rotated by `degrees` about the
+// origin.
 Kitchen kitchen(double degrees) {
   const double c = std::cos(degrees * M_PI / 180.0), s = std::sin(degrees * M_PI / 180.0);
   auto rot = [&](Vec2 p) { return Vec2(c * p.x() - s * p.y(), s * p.x() + c * p.y()); };
@@ -42,13 +44,15 @@ Kitchen kitchen(double degrees) {
   k.holes.push_back({ellipse(rot({900, 300}), 150, 150, 0), "holes[1] (ellipse)"});
   k.exact_area = std::abs(exact_area(k.outline));
   k.perimeter = exact_length(k.outline);
-  for (const auto& h : k.holes) k.exact_area -= std::abs(exact_area(h.curve)), k.perimeter += exact_length(h.curve);
+  for (const auto& h : k.holes)
+    k.exact_area -= std::abs(exact_area(h.curve)), k.perimeter += exact_length(h.curve);
   return k;
 }
 
 }  // namespace
 
-TEST_CASE("slab: valid with the 3D self-intersection test, genus = holes, volume = exact area x thickness", "[mesh][slab][countertop]") {
+TEST_CASE("slab: valid with the 3D self-intersection test, genus = holes, volume = exact area x thickness",
+          "[mesh][slab][countertop]") {
   for (const double degrees : {0.0, 33.0}) {
     const Kitchen k = kitchen(degrees);
     RegionOptions ro;
@@ -67,7 +71,8 @@ TEST_CASE("slab: valid with the 3D self-intersection test, genus = holes, volume
     CHECK(full.components == 1);
     CHECK(full.triangles == slab_triangle_count(slab.triangulation));
     // The polygon is within max_deviation of the exact boundary everywhere.
-    CHECK(std::abs(full.volume - k.exact_area * so.thickness) <= region.max_deviation * k.perimeter * so.thickness);
+    CHECK(std::abs(full.volume - k.exact_area * so.thickness) <=
+          region.max_deviation * k.perimeter * so.thickness);
     CHECK(full.volume == Approx(region.area * so.thickness).epsilon(1e-12));
     // The construction proof agrees with the full test.
     const ValidationReport constructed = validate_constructed(slab.mesh, slab.embedding_proof);
@@ -77,7 +82,8 @@ TEST_CASE("slab: valid with the 3D self-intersection test, genus = holes, volume
   }
 }
 
-TEST_CASE("slab: max_edge bounds top and bottom edges, walls follow the refined boundary", "[mesh][slab][countertop]") {
+TEST_CASE("slab: max_edge bounds top and bottom edges, walls follow the refined boundary",
+          "[mesh][slab][countertop]") {
   const Kitchen k = kitchen(0.0);
   RegionOptions ro;
   ro.tolerance = 0.5;
@@ -95,13 +101,15 @@ TEST_CASE("slab: max_edge bounds top and bottom edges, walls follow the refined 
   double longest_flat = 0.0;
   for (const auto& e : slab.mesh.edges()) {
     const auto h = slab.mesh.halfedge_handle(e, 0);
-    const auto a = slab.mesh.point(slab.mesh.from_vertex_handle(h)), b = slab.mesh.point(slab.mesh.to_vertex_handle(h));
+    const auto a = slab.mesh.point(slab.mesh.from_vertex_handle(h)),
+               b = slab.mesh.point(slab.mesh.to_vertex_handle(h));
     if (a[2] == b[2]) longest_flat = std::max(longest_flat, (a - b).norm());
   }
   CHECK(longest_flat <= so.max_edge * (1 + 1e-9));
 }
 
-TEST_CASE("slab: thickness <= 0 and a triangle budget too small are rejected", "[mesh][slab][countertop][errors]") {
+TEST_CASE("slab: thickness <= 0 and a triangle budget too small are rejected",
+          "[mesh][slab][countertop][errors]") {
   const Kitchen k = kitchen(0.0);
   const Region2 region = build_region(k.outline, k.holes, {});
   SlabOptions so;

@@ -47,7 +47,8 @@ inline double exact_length(const CompositeCurve& curve) {
 /// A closed polygon of line segments through `pts`.
 inline CompositeCurve polygon(const std::vector<Vec2>& pts) {
   std::vector<Segment> segs;
-  for (std::size_t i = 0; i < pts.size(); ++i) segs.push_back(Segment::line(pts[i], pts[(i + 1) % pts.size()]));
+  for (std::size_t i = 0; i < pts.size(); ++i)
+    segs.push_back(Segment::line(pts[i], pts[(i + 1) % pts.size()]));
   return CompositeCurve(segs, true);
 }
 

@@ -1,7 +1,8 @@
+#include "geometry/section/region.h"
+
 #include <catch2/catch.hpp>
 
 #include "geometry/core/errors.h"
-#include "geometry/section/region.h"
 #include "geometry/section/simple_polygon.h"
 #include "tests/geometry/section/region_shapes.h"
 
@@ -21,7 +22,8 @@ std::string region_error(const CompositeCurve& outline, const std::vector<Region
 
 }  // namespace
 
-TEST_CASE("region: outline counter-clockwise, holes clockwise, area within the sampling bound", "[section][region][countertop]") {
+TEST_CASE("region: outline counter-clockwise, holes clockwise, area within the sampling bound",
+          "[section][region][countertop]") {
   const CompositeCurve outline = rounded_rect(0, 0, 2400, 650, 80);
   std::vector<RegionHole> holes{{ellipse({600, 325}, 250, 180, 15), "holes[0] (ellipse)"},
                                 {rounded_rect(1300, 150, 2000, 500, 40), "holes[1] (rounded_rect)"}};
@@ -47,7 +49,8 @@ TEST_CASE("region: outline counter-clockwise, holes clockwise, area within the s
   }
 }
 
-TEST_CASE("region: an outline that does not close is rejected at its closing joint", "[section][region][countertop][errors]") {
+TEST_CASE("region: an outline that does not close is rejected at its closing joint",
+          "[section][region][countertop][errors]") {
   const CompositeCurve open({Segment::line({0, 0}, {100, 0}), Segment::line({100, 0}, {100, 50}),
                              Segment::line({100, 50}, {0, 50}), Segment::line({0, 50}, {0, 5})},
                             true);
@@ -57,14 +60,16 @@ TEST_CASE("region: an outline that does not close is rejected at its closing joi
   CHECK_THAT(region_error(not_closed, {}), Catch::Contains("closed"));
 }
 
-TEST_CASE("region: an outline crossing itself is rejected naming its segments", "[section][region][countertop][errors]") {
+TEST_CASE("region: an outline crossing itself is rejected naming its segments",
+          "[section][region][countertop][errors]") {
   const CompositeCurve bow = polygon({{0, 0}, {100, 100}, {100, 0}, {0, 100}});
   const std::string msg = region_error(bow, {});
   CHECK_THAT(msg, Catch::Contains("outline crosses itself") && Catch::Contains("segment 0") &&
                       Catch::Contains("segment 2"));
 }
 
-TEST_CASE("region: holes outside, crossing, touching, overlapping or nested are rejected", "[section][region][countertop][errors]") {
+TEST_CASE("region: holes outside, crossing, touching, overlapping or nested are rejected",
+          "[section][region][countertop][errors]") {
   const CompositeCurve outline = polygon({{0, 0}, {1000, 0}, {1000, 600}, {0, 600}});
   SECTION("outside") {
     const std::string msg = region_error(outline, {{ellipse({1500, 300}, 100, 50, 0), "holes[0] (ellipse)"}});
@@ -80,8 +85,9 @@ TEST_CASE("region: holes outside, crossing, touching, overlapping or nested are 
     CHECK_THAT(msg, Catch::Contains("holes[0] (outline) crosses or touches the outline"));
   }
   SECTION("overlapping another hole") {
-    const std::string msg = region_error(outline, {{ellipse({300, 300}, 150, 100, 0), "holes[0] (ellipse)"},
-                                                   {rounded_rect(400, 200, 700, 400, 20), "holes[1] (rounded_rect)"}});
+    const std::string msg =
+        region_error(outline, {{ellipse({300, 300}, 150, 100, 0), "holes[0] (ellipse)"},
+                               {rounded_rect(400, 200, 700, 400, 20), "holes[1] (rounded_rect)"}});
     CHECK_THAT(msg, Catch::Contains("holes[1] (rounded_rect) overlaps holes[0] (ellipse) near ("));
   }
   SECTION("nested in another hole") {

@@ -1,8 +1,9 @@
+#include "geometry/section/triangulate.h"
+
 #include <catch2/catch.hpp>
 
 #include "geometry/core/errors.h"
 #include "geometry/section/simple_polygon.h"
-#include "geometry/section/triangulate.h"
 #include "tests/geometry/section/region_shapes.h"
 
 using namespace fabmesh;
@@ -31,7 +32,8 @@ double cycle_area(const PlanarTriangulation& t, const std::vector<std::uint32_t>
 
 }  // namespace
 
-TEST_CASE("triangulate: the triangles tile the region and its boundary cycles are its loops", "[section][triangulate][countertop]") {
+TEST_CASE("triangulate: the triangles tile the region and its boundary cycles are its loops",
+          "[section][triangulate][countertop]") {
   const Region2 r = kitchen_region(0.5);
   const PlanarTriangulation t = triangulate(r);
   CHECK(t.steiner_points == 0);
@@ -63,7 +65,8 @@ TEST_CASE("triangulate: the triangles tile the region and its boundary cycles ar
   CHECK(static_cast<long>(t.vertices.size()) - (3 * T + B) / 2 + T == -1);
 }
 
-TEST_CASE("triangulate: max_edge bounds every edge, the area stays that of the region", "[section][triangulate][countertop]") {
+TEST_CASE("triangulate: max_edge bounds every edge, the area stays that of the region",
+          "[section][triangulate][countertop]") {
   const Region2 r = kitchen_region(0.5);
   TriangulateOptions o;
   o.max_edge = 60.0;
@@ -73,14 +76,16 @@ TEST_CASE("triangulate: max_edge bounds every edge, the area stays that of the r
   for (const auto& f : t.triangles) {
     sum += triangle_area(t, f);
     CHECK(triangle_area(t, f) > 0.0);
-    for (int i = 0; i < 3; ++i) longest = std::max(longest, (t.vertices[f[i]] - t.vertices[f[(i + 1) % 3]]).norm());
+    for (int i = 0; i < 3; ++i)
+      longest = std::max(longest, (t.vertices[f[i]] - t.vertices[f[(i + 1) % 3]]).norm());
   }
   CHECK(longest <= o.max_edge * (1 + 1e-9));
   CHECK(sum == Approx(r.area).epsilon(1e-9));
   CHECK(t.boundary.size() == 3);
 }
 
-TEST_CASE("triangulate: a max_edge too small for the budget is a BudgetError", "[section][triangulate][countertop][errors]") {
+TEST_CASE("triangulate: a max_edge too small for the budget is a BudgetError",
+          "[section][triangulate][countertop][errors]") {
   const Region2 r = kitchen_region(0.5);
   TriangulateOptions o;
   o.max_edge = 1.0;

@@ -26,13 +26,15 @@ ControlNet wavy_net() {
   ControlNet p{};
   for (std::size_t i = 0; i < 4; ++i)
     for (std::size_t j = 0; j < 4; ++j)
-      p[i][j] = Vec3(static_cast<double>(i), static_cast<double>(j), std::sin(1.3 * static_cast<double>(i * j)) + 0.2 * static_cast<double>(i));
+      p[i][j] = Vec3(static_cast<double>(i), static_cast<double>(j),
+                     std::sin(1.3 * static_cast<double>(i * j)) + 0.2 * static_cast<double>(i));
   return p;
 }
 
 }  // namespace
 
-TEST_CASE("hbezier patch: a degenerate v direction reproduces the h-bezier.md basis test vectors", "[surfaces][patch]") {
+TEST_CASE("hbezier patch: a degenerate v direction reproduces the h-bezier.md basis test vectors",
+          "[surfaces][patch]") {
   struct Row {
     double alpha, lambda, mu, u;
     std::array<double, 4> h;

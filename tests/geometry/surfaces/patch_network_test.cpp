@@ -27,7 +27,8 @@ TEST_CASE("patch network: the h-bezier.md G2 join vector applied row by row", "[
   for (std::size_t j = 0; j < 4; ++j) last[j] = Vec3(8, 0, 5.0 * static_cast<double>(j));
   b.points = {last};
   const PatchNetwork net = build_patch_network({a, b});
-  const Vec3 q1(6.11046163281, -3.22092326562, -2.11046163281), q2(7.46485801734, -25.0226570331, -14.9206226164);
+  const Vec3 q1(6.11046163281, -3.22092326562, -2.11046163281),
+      q2(7.46485801734, -25.0226570331, -14.9206226164);
   for (std::size_t j = 0; j < 4; ++j) {
     const Vec3 shift(0, 0, 5.0 * static_cast<double>(j));
     CHECK((net.patches[1].points()[0][j] - (p[3] + shift)).norm() < 1e-12);
@@ -40,7 +41,8 @@ TEST_CASE("patch network: the h-bezier.md G2 join vector applied row by row", "[
   CHECK(net.borders[0].gap < 1e-12);
 }
 
-TEST_CASE("patch network: G1 joins have equal normals along every seam, declared or found", "[surfaces][network]") {
+TEST_CASE("patch network: G1 joins have equal normals along every seam, declared or found",
+          "[surfaces][network]") {
   const PatchNetwork net = build_patch_network(test::basin_specs());
   REQUIRE(net.patches.size() == 4);
   REQUIRE(net.borders.size() == 4);  // a-b, a-c, b-d declared; c-d found

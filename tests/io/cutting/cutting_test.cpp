@@ -1,5 +1,4 @@
 #include <catch2/catch.hpp>
-
 #include <map>
 #include <regex>
 
@@ -24,12 +23,13 @@ std::vector<CutLoop> kitchen_loops(double tolerance) {
   bump.b = 80;
   bump.from_deg = 0;
   bump.to_deg = 180;
-  const CompositeCurve outline({Segment::line({0, 0}, {1200, 0}),
-                                Segment::tbezier({Vec2(1200, 0), Vec2(1300, 0), Vec2(1300, 300), Vec2(1200, 300)}, 0, 0),
-                                Segment::line({1200, 300}, {800, 300}), Segment::ellipse_arc(bump),
-                                Segment::line({400, 300}, {0, 300}),
-                                Segment::tbezier({Vec2(0, 300), Vec2(-100, 300), Vec2(-100, 0), Vec2(0, 0)}, 0.5, 0.5)},
-                               true);
+  const CompositeCurve outline(
+      {Segment::line({0, 0}, {1200, 0}),
+       Segment::tbezier({Vec2(1200, 0), Vec2(1300, 0), Vec2(1300, 300), Vec2(1200, 300)}, 0, 0),
+       Segment::line({1200, 300}, {800, 300}), Segment::ellipse_arc(bump),
+       Segment::line({400, 300}, {0, 300}),
+       Segment::tbezier({Vec2(0, 300), Vec2(-100, 300), Vec2(-100, 0), Vec2(0, 0)}, 0.5, 0.5)},
+      true);
   CutLoopOptions o;
   o.tolerance = tolerance;
   std::vector<CutLoop> loops{cut_loop(outline, "outline", true, o)};
@@ -79,7 +79,8 @@ int closed_chains(const std::vector<DxfEntity>& entities, const std::string& lay
 
 }  // namespace
 
-TEST_CASE("cut_loop: lines, exact arcs and one polyline per T-Bezier run, each loop closed", "[io][cutting][countertop]") {
+TEST_CASE("cut_loop: lines, exact arcs and one polyline per T-Bezier run, each loop closed",
+          "[io][cutting][countertop]") {
   const auto loops = kitchen_loops(0.01);
   REQUIRE(loops.size() == 3);
   std::map<CutKind, int> kinds;
@@ -100,7 +101,8 @@ TEST_CASE("cut_loop: lines, exact arcs and one polyline per T-Bezier run, each l
   }
 }
 
-TEST_CASE("dxf: lines, arcs, ellipses and polylines read back with dxflib as closed loops per layer", "[io][cutting][dxf][countertop]") {
+TEST_CASE("dxf: lines, arcs, ellipses and polylines read back with dxflib as closed loops per layer",
+          "[io][cutting][dxf][countertop]") {
   const auto loops = kitchen_loops(0.01);
   const std::string bytes = encode_dxf(loops);
   CHECK(bytes.find("LWPOLYLINE") != std::string::npos);
@@ -124,7 +126,8 @@ TEST_CASE("dxf: lines, arcs, ellipses and polylines read back with dxflib as clo
   }
 }
 
-TEST_CASE("dxf: an arc whose end points are wrong breaks the chain (the check can fail)", "[io][cutting][dxf][countertop]") {
+TEST_CASE("dxf: an arc whose end points are wrong breaks the chain (the check can fail)",
+          "[io][cutting][dxf][countertop]") {
   auto loops = kitchen_loops(0.01);
   for (CutEntity& e : loops[0].entities) {
     if (e.kind == CutKind::Arc) e.arc.to_deg = 170;  // no longer reaches the next line
@@ -132,10 +135,12 @@ TEST_CASE("dxf: an arc whose end points are wrong breaks the chain (the check ca
   CHECK(closed_chains(parse_dxf(encode_dxf(loops), "broken.dxf"), "OUTLINE", 1e-6) == -1);
 }
 
-TEST_CASE("dxf: a loop that is one T-Bezier run is a single closed LWPOLYLINE", "[io][cutting][dxf][countertop]") {
-  const CompositeCurve blob({Segment::tbezier({Vec2(0, 0), Vec2(100, -50), Vec2(200, 50), Vec2(100, 100)}, 0, 0),
-                             Segment::tbezier({Vec2(100, 100), Vec2(0, 150), Vec2(-100, 50), Vec2(0, 0)}, 0, 0)},
-                            true);
+TEST_CASE("dxf: a loop that is one T-Bezier run is a single closed LWPOLYLINE",
+          "[io][cutting][dxf][countertop]") {
+  const CompositeCurve blob(
+      {Segment::tbezier({Vec2(0, 0), Vec2(100, -50), Vec2(200, 50), Vec2(100, 100)}, 0, 0),
+       Segment::tbezier({Vec2(100, 100), Vec2(0, 150), Vec2(-100, 50), Vec2(0, 0)}, 0, 0)},
+      true);
   const std::vector<CutLoop> loops{cut_loop(blob, "outline", true, {})};
   REQUIRE(loops[0].entities.size() == 1);
   const auto entities = parse_dxf(encode_dxf(loops), "blob.dxf");
@@ -145,7 +150,8 @@ TEST_CASE("dxf: a loop that is one T-Bezier run is a single closed LWPOLYLINE", 
   CHECK((entities[0].points.front() - entities[0].points.back()).norm() > 1.0);  // not repeated
 }
 
-TEST_CASE("svg: one path per loop, A commands for arcs, L for lines and polylines, viewBox in mm", "[io][cutting][svg][countertop]") {
+TEST_CASE("svg: one path per loop, A commands for arcs, L for lines and polylines, viewBox in mm",
+          "[io][cutting][svg][countertop]") {
   const auto loops = kitchen_loops(0.01);
   const std::string svg = encode_svg(loops);
   const std::regex path_re("<path id=\"([a-z0-9]+)\" d=\"([^\"]*)\"");
@@ -167,13 +173,15 @@ TEST_CASE("svg: one path per loop, A commands for arcs, L for lines and polyline
   CHECK(count(paths[1].second, 'L') == 0);
   CHECK(count(paths[2].second, 'A') == 4);
   CHECK(count(paths[2].second, 'L') == 4);
-  // viewBox: the bounds plus the 5 mm margin; x from the sampled T-Bezier ends, y from the line (0) and the bump's apex (380).
+  // viewBox: the bounds plus the 5 mm margin; x from the sampled T-Bezier ends, y from the line (0) and the
+  // bump's apex (380).
   double lo = INFINITY, hi = -INFINITY;
   for (const CutEntity& e : loops[0].entities) {
     for (const Vec2& p : e.points) lo = std::min(lo, p.x()), hi = std::max(hi, p.x());
   }
   std::smatch m;
-  REQUIRE(std::regex_search(svg, m, std::regex("viewBox=\"([-0-9.e]+) ([-0-9.e]+) ([-0-9.e]+) ([-0-9.e]+)\"")));
+  REQUIRE(
+      std::regex_search(svg, m, std::regex("viewBox=\"([-0-9.e]+) ([-0-9.e]+) ([-0-9.e]+) ([-0-9.e]+)\"")));
   CHECK(std::stod(m[1]) == Approx(lo - 5).margin(0.02));
   CHECK(std::stod(m[2]) == Approx(-380 - 5).margin(1e-9));
   CHECK(std::stod(m[3]) == Approx(hi - lo + 10).margin(0.02));
