@@ -6,8 +6,8 @@
 # The outline is a 2400 x 650 mm rounded rectangle (corner radius 100) sampled
 # as K points evenly along its length, with a sink (rounded rectangle) and a
 # cooktop (ellipse) of H points each, all rounded to a 2^-10 mm grid so both
-# tools read exactly the same coordinates. fabmesh gets it as `line`
-# segments (sampled exactly: a line is its own polyline), OpenSCAD as
+# tools read exactly the same coordinates. fabmesh gets each loop as a
+# `polyline` read from a CSV file (a line is sampled exactly), OpenSCAD as
 # linear_extrude(height = 30) polygon(points, paths). Each size times whole
 # processes (hyperfine if installed, else a loop), measures peak RSS with
 # /usr/bin/time -f %M, checks both STLs with `fabmesh check` and compares the
@@ -121,12 +121,17 @@ def area(p):
 outer = rounded_rect(1200, 325, 2400, 650, 100, K, True)
 holes = [rounded_rect(650, 330, 560, 400, 40, H, False), ellipse(1650, 330, 280, 230, H, False)]
 
+loop_files = []
+
 def curve(pts, indent):
-    out = [f"{indent}family: tbezier", f"{indent}closed: true", f"{indent}segments:"]
-    # One `polyline` entry (straight lines through the points, closed back to the first).
-    ring = pts + [pts[0]]
-    out.append(f"{indent}  - polyline: [" + ", ".join(f"[{x!r}, {y!r}]" for x, y in ring) + "]")
-    return out
+    # One `polyline` entry whose points come from a CSV file beside the design
+    # (straight lines through the points, closed back to the first).
+    name = f"loop{len(loop_files)}.csv"
+    loop_files.append(name)
+    with open(f"{d}/{name}", "w") as csv:
+        csv.write("".join(f"{x!r},{y!r}\n" for x, y in pts + [pts[0]]))
+    return [f"{indent}family: tbezier", f"{indent}closed: true", f"{indent}segments:",
+            f"{indent}  - polyline: {{file: {name}}}"]
 
 y = ["name: bench", "kind: countertop", "units: mm", "tolerance: 0.01", "thickness: 30", "outputs: [stl]",
      "max_triangles: 50000000", "outline:"] + curve(outer, "  ") + ["holes:"]

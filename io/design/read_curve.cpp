@@ -2,6 +2,10 @@
 
 #include <fmt/format.h>
 
+#include <filesystem>
+
+#include "io/design/points_csv.h"
+
 namespace fabmesh {
 namespace {
 
@@ -134,7 +138,25 @@ void read_polyline(const yaml::Fields& f, const YAML::Node& n, const std::string
                    std::vector<SegmentSpec>& out) {
   f.require_map(n, field, {"polyline", "continuity"});
   const bool first = out.empty();
-  const std::vector<Vec2> pts = f.points2(n["polyline"], field + ".polyline", first ? 2 : 1);
+  const YAML::Node list = n["polyline"];
+  const std::size_t needed = first ? 2 : 1;
+  std::vector<Vec2> pts;
+  if (list.IsMap()) {
+    // polyline: {file: points.csv}, relative to the design file's folder.
+    f.require_map(list, field + ".polyline", {"file"});
+    const YAML::Node file = f.required(list, "file", field + ".polyline");
+    const std::filesystem::path name = f.text(file, field + ".polyline.file");
+    const std::filesystem::path path =
+        name.is_absolute() ? name : std::filesystem::path(f.path()).parent_path() / name;
+    f.checked(file, field + ".polyline.file", [&] { pts = read_points_csv(path.string()); });
+    if (pts.size() < needed) {
+      f.fail(file, field + ".polyline.file",
+             fmt::format("{} holds {} point(s); this polyline needs at least {}", path.string(), pts.size(),
+                         needed));
+    }
+  } else {
+    pts = f.points2(list, field + ".polyline", needed);
+  }
   const std::string label = f.label(n, field);
   for (std::size_t k = first ? 1 : 0; k < pts.size(); ++k) {
     SegmentSpec s;

@@ -1,6 +1,7 @@
 #include "io/design/read_design.h"
 
 #include <catch2/catch.hpp>
+#include <fstream>
 
 #include "geometry/core/errors.h"
 #include "geometry/fairing/fair_curve.h"
@@ -152,4 +153,33 @@ TEST_CASE("design: a polyline entry is the same curve as one line entry per poin
   CHECK_THAT(
       error_of(std::string(kCurveHeader) + "  family: tbezier\n  segments:\n    - polyline: [[0, 0]]\n"),
       Catch::Contains("curve.segments[0].polyline") && Catch::Contains("at least 2"));
+}
+
+TEST_CASE("design: a polyline can read its points from a CSV file beside the design", "[io][design]") {
+  const std::string dir = std::string(FABMESH_TEST_TMP) + "/";
+  {
+    std::ofstream csv(dir + "square.csv");
+    csv << "x,y\n# the front edge first\n0,0\n4, 0\n4;3\n0 3\n0,0\n";
+  }
+  const std::string yaml =
+      std::string(kCurveHeader) +
+      "  family: tbezier\n  closed: true\n  segments:\n    - polyline: {file: square.csv}\n";
+  const Design d = parse_design(yaml, dir + "square.yaml");
+  const CompositeCurve c = build_curve(std::get<CurveDesign>(d.body).curve).curve;
+  REQUIRE(c.size() == 4);
+  CHECK(c.segments()[1].control_points()[0] == Vec2(4, 0));
+  CHECK(c.segments()[1].control_points()[1] == Vec2(4, 3));
+
+  std::ofstream(dir + "bad.csv") << "0,0\n1,1\n2,oops\n";
+  try {
+    parse_design(
+        std::string(kCurveHeader) + "  family: tbezier\n  segments:\n    - polyline: {file: bad.csv}\n",
+        dir + "bad.yaml");
+    FAIL("a bad CSV row must be an error");
+  } catch (const FileError& e) {
+    CHECK_THAT(e.what(), Catch::Contains("bad.csv:3: 'oops' is not a number"));
+  }
+  CHECK_THAT(error_of(std::string(kCurveHeader) +
+                      "  family: tbezier\n  segments:\n    - polyline: {file: /nonexistent/p.csv}\n"),
+             Catch::Contains("cannot open points file"));
 }

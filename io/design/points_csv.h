@@ -1,0 +1,21 @@
+#pragma once
+// 2D points from a CSV file: digitised outlines too long to write as YAML.
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "geometry/core/types.h"
+
+namespace fabmesh {
+
+/// Parses "x,y" rows (spaces, tabs or ';' also separate; blank lines and
+/// lines starting with '#' are skipped; a first row that is not numeric is
+/// a header). Every other row must hold exactly two finite numbers.
+/// \param path for messages \throw FileError naming the line and the value
+std::vector<Vec2> parse_points_csv(std::string_view text, const std::string& path);
+
+/// Reads and parses the file at `path`. \throw FileError
+std::vector<Vec2> read_points_csv(const std::string& path);
+
+}  // namespace fabmesh
