@@ -22,49 +22,9 @@ runs=${RUNS:-10}
 sizes=${SIZES:-"100:50 400:250 840:417"}
 helper=$here/vessel_exact_volume.py
 
-die() { echo "vessel_vs_openscad.sh: error: $*" >&2; exit 2; }
-[[ -x $fabmesh ]] || die "fabmesh not found or not executable at '$fabmesh' (build it: cmake -S . -B build-bench -G Ninja -DCMAKE_BUILD_TYPE=Release -DFABMESH_BUILD_TESTS=OFF && cmake --build build-bench --target fabmesh)"
-fabmesh=$(cd "$(dirname "$fabmesh")" && pwd)/$(basename "$fabmesh")
-command -v openscad >/dev/null 2>&1 || die "openscad not found on PATH (Debian: apt-get install -y openscad)"
-[[ -x /usr/bin/time ]] || die "/usr/bin/time (GNU time) not found (Debian: apt-get install -y time)"
-command -v python3 >/dev/null 2>&1 || die "python3 not found"
-have_hyperfine=0
-[[ ${NO_HYPERFINE:-0} == 1 ]] || ! command -v hyperfine >/dev/null 2>&1 || have_hyperfine=1
-
-tmp=$(mktemp -d "${TMPDIR:-/tmp}/vessel_vs_openscad.XXXXXX")
-if [[ ${KEEP:-0} == 1 ]]; then echo "keeping $tmp"; else trap 'rm -rf "$tmp"' EXIT; fi
-
-# json FILE PYTHON-EXPR: evaluates EXPR with the parsed JSON as `j`.
-json() { python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); j=j[0] if isinstance(j,list) else j; print(eval(sys.argv[2]))' "$1" "$2"; }
-
-# peak_kb CMD...: peak RSS (KB) of one run of CMD (output discarded); fails if CMD fails.
-peak_kb() {
-  local f=$tmp/peak.txt
-  if ! /usr/bin/time -f %M -o "$f" "$@" >/dev/null 2>"$tmp/peak.err"; then
-    cat "$tmp/peak.err" >&2; die "command failed: $*"
-  fi
-  tail -n 1 "$f"
-}
-
-# time_ms NAME CMD...: "median min" wall time (ms) of $runs runs of CMD, after one warm-up run.
-time_ms() {
-  local name=$1; shift
-  if [[ $have_hyperfine == 1 ]]; then
-    local cmd
-    cmd=$(printf '%q ' "$@")
-    hyperfine --runs "$runs" --warmup 1 --style none --export-json "$tmp/hf_$name.json" "$cmd" >/dev/null 2>&1 \
-      || die "hyperfine failed on: $cmd"
-    json "$tmp/hf_$name.json" '"%.2f %.2f" % (j["results"][0]["median"]*1000, j["results"][0]["min"]*1000)'
-  else
-    local i t0 t1 all=()
-    "$@" >/dev/null 2>&1  # warm-up
-    for ((i = 0; i < runs; i++)); do
-      t0=$(date +%s%N); "$@" >/dev/null 2>&1; t1=$(date +%s%N)
-      all+=($(( (t1 - t0) / 1000 )))
-    done
-    printf '%s\n' "${all[@]}" | sort -n | awk '{a[NR]=$1} END {m=(NR%2)?a[(NR+1)/2]:(a[NR/2]+a[NR/2+1])/2; printf "%.2f %.2f\n", m/1000, a[1]/1000}'
-  fi
-}
+bench_name=vessel_vs_openscad.sh
+# shellcheck source=lib.sh
+source "$here/lib.sh"
 
 python3 "$helper" selftest >/dev/null || die "vessel_exact_volume.py selftest failed"
 vexact=$(python3 "$helper" volume)
