@@ -52,8 +52,11 @@ void print_human(const JobReport& r, std::ostream& out) {
   const ValidationReport& v = r.validation;
   double total = 0.0;
   for (const auto& t : r.timings_ms) total += t.second;
-  out << fmt::format("{}: {} with {} vertices, {} triangles, volume {:.6g}, area {:.6g}, genus {}\n", r.name,
-                     r.kind, v.vertices, v.triangles, v.volume, v.area,
+  // An enclosed volume only exists for a closed mesh.
+  const std::string volume =
+      v.boundary_edges == 0 ? fmt::format("{:.6g}", v.volume) : std::string("- (open)");
+  out << fmt::format("{}: {} with {} vertices, {} triangles, volume {}, area {:.6g}, genus {}\n", r.name,
+                     r.kind, v.vertices, v.triangles, volume, v.area,
                      v.genus ? std::to_string(*v.genus) : "-");
   if (v.valid()) {
     out << fmt::format(
