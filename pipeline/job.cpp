@@ -3,10 +3,10 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <chrono>
 #include <filesystem>
 
 #include "geometry/core/errors.h"
+#include "geometry/core/stage_timer.h"
 #include "geometry/fairing/fair_curve.h"
 #include "geometry/mesh/constructed_validation.h"
 #include "geometry/mesh/slab.h"
@@ -28,20 +28,6 @@ namespace {
 
 // Share of the tolerance kept for output quantization (Draco, float32 STL).
 constexpr double kOutputShare = 0.1;
-
-class Stopwatch {
- public:
-  explicit Stopwatch(std::vector<std::pair<std::string, double>>& log) : log_(log) {}
-  void lap(const std::string& stage) {
-    const auto now = std::chrono::steady_clock::now();
-    log_.emplace_back(stage, std::chrono::duration<double, std::milli>(now - start_).count());
-    start_ = now;
-  }
-
- private:
-  std::vector<std::pair<std::string, double>>& log_;
-  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
-};
 
 // What a builder hands on: the validated mesh as a soup (OpenMesh meshes
 // cannot be moved, so the halfedge mesh never leaves its builder's branch).
@@ -65,7 +51,7 @@ bool only_open_border(const ValidationReport& r) {
 // Validates `mesh` (by its builder's embedding proof when it has one) and
 // converts it to the soup the writers take.
 BuiltMesh validated(const Mesh& mesh, double max_deviation, std::string proof, nlohmann::json facts,
-                    Stopwatch& watch) {
+                    StageTimer& watch) {
   BuiltMesh out;
   out.soup = to_soup(mesh);
   out.validation = proof.empty() ? validate(mesh, out.soup) : validate_constructed(mesh, out.soup, proof);
@@ -83,7 +69,7 @@ bool wants(const Design& design, const char* format) {
 
 // Outline and holes -> region (proven simple) -> CDT -> slab; the exact curves also give the cutting outline.
 BuiltMesh build_countertop(const Design& design, const CountertopDesign& c, double tolerance,
-                           Stopwatch& watch) {
+                           StageTimer& watch) {
   const BuiltCurve outline = build_curve(c.outline);
   std::vector<RegionHole> holes;
   for (std::size_t i = 0; i < c.holes.size(); ++i) {
@@ -131,7 +117,7 @@ BuiltMesh build_countertop(const Design& design, const CountertopDesign& c, doub
 
 // Patches -> network (joins built and measured) -> tessellation -> thickened shell, validated with the
 // 3D self-intersection test (a too-thick shell is caught there). Without thickness: the open surface.
-BuiltMesh build_surface(const SurfaceDesign& s, double tolerance, Stopwatch& watch) {
+BuiltMesh build_surface(const SurfaceDesign& s, double tolerance, StageTimer& watch) {
   const PatchNetwork network = build_patch_network(s.patches);
   watch.lap("patches");
   SurfaceMeshOptions options;
@@ -164,7 +150,7 @@ BuiltMesh build_surface(const SurfaceDesign& s, double tolerance, Stopwatch& wat
   return out;
 }
 
-BuiltMesh build_mesh(const Design& design, double tolerance, Stopwatch& watch) {
+BuiltMesh build_mesh(const Design& design, double tolerance, StageTimer& watch) {
   if (const auto* v = std::get_if<VesselDesign>(&design.body)) {
     const BuiltCurve profile = build_curve(v->profile);
     watch.lap("curve");
@@ -214,7 +200,7 @@ JobReport run_job(const Design& design, const JobOptions& options) {
   report.name = design.common.name;
   report.kind = design.common.kind;
   report.tolerance = design.common.tolerance;
-  Stopwatch watch(report.timings_ms);
+  StageTimer watch(report.timings_ms);
   const double build_tolerance = (1.0 - kOutputShare) * design.common.tolerance;
   BuiltMesh built = build_mesh(design, build_tolerance, watch);
   report.max_deviation = built.max_deviation;

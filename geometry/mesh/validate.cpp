@@ -4,10 +4,10 @@
 #include <fmt/format.h>
 
 #include <Eigen/Geometry>
-#include <chrono>
 #include <cmath>
 
 #include "geometry/core/errors.h"
+#include "geometry/core/stage_timer.h"
 #include "geometry/mesh/halfedge_topology.h"
 #include "geometry/mesh/self_intersect.h"
 
@@ -15,20 +15,6 @@ namespace fabmesh {
 namespace {
 
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-
-class StageTimer {
- public:
-  explicit StageTimer(ValidationReport& report) : report_(report) {}
-  void stop(const std::string& stage) {
-    const auto now = std::chrono::steady_clock::now();
-    report_.timings_ms.emplace_back(stage, std::chrono::duration<double, std::milli>(now - start_).count());
-    start_ = now;
-  }
-
- private:
-  ValidationReport& report_;
-  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
-};
 
 bool finite(const Vec3& p) { return std::isfinite(p.x()) && std::isfinite(p.y()) && std::isfinite(p.z()); }
 
@@ -130,21 +116,17 @@ ValidationReport validate_with(const TriangleSoup& soup, const Topology& topo, V
 ValidationReport validate(const TriangleSoup& soup, const ValidateOptions& options) {
   require_indices_in_range(soup);
   ValidationReport report;
-  const auto start = std::chrono::steady_clock::now();
+  StageTimer timer(report.timings_ms);
   const Topology topo = analyse_topology(soup, options.max_examples);
-  report.timings_ms.emplace_back(
-      "topology",
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+  timer.lap("topology");
   return validate_with(soup, topo, std::move(report), options);
 }
 
 ValidationReport validate(const Mesh& mesh, const TriangleSoup& soup, const ValidateOptions& options) {
   ValidationReport report;
-  const auto start = std::chrono::steady_clock::now();
+  StageTimer timer(report.timings_ms);
   const Topology topo = analyse_topology(mesh, options.max_examples);  // linear time on the halfedges
-  report.timings_ms.emplace_back(
-      "topology",
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+  timer.lap("topology");
   return validate_with(soup, topo, std::move(report), options);
 }
 
@@ -156,7 +138,7 @@ namespace {
 
 ValidationReport validate_with(const TriangleSoup& soup, const Topology& topo, ValidationReport report,
                                const ValidateOptions& options) {
-  StageTimer timer(report);
+  StageTimer timer(report.timings_ms);
   report.vertices = soup.vertices.size();
   report.triangles = soup.triangles.size();
   const std::size_t max_examples = options.max_examples;
@@ -180,7 +162,7 @@ ValidationReport validate_with(const TriangleSoup& soup, const Topology& topo, V
   if (non_finite.count == 0) measure(soup, max_examples, report, degenerate_found, degenerate);
   report.degenerate_faces = degenerate_found.count;
   report.oriented_outward = report.volume > 0.0;
-  timer.stop("geometry");
+  timer.lap("geometry");
 
   DefectCount intersections;
   if (options.check_self_intersections && non_finite.count == 0) {
@@ -199,7 +181,7 @@ ValidationReport validate_with(const TriangleSoup& soup, const Topology& topo, V
       intersections.examples.push_back(mid / 6.0);  // between the two centroids
     }
   }
-  timer.stop("self_intersection");
+  timer.lap("self_intersection");
 
   if (soup.triangles.empty()) report.defects.push_back({Defect::Empty, 1, {}});
   add_defect(report, Defect::NonFiniteVertex, non_finite);

@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "geometry/core/stage_timer.h"
 #include "geometry/core/types.h"
 #include "geometry/mesh/soup.h"
 #include "geometry/mesh/topology.h"
@@ -69,9 +70,9 @@ struct ValidationReport {
   /// (g = (2 - chi) / 2); set only for a closed, manifold, consistently
   /// oriented mesh.
   std::optional<long> genus;
-  std::vector<long> euler_characteristics;                 ///< V - E + F of each component
-  std::vector<DefectReport> defects;                       ///< one entry per kind found, in enum order
-  std::vector<std::pair<std::string, double>> timings_ms;  ///< stage name -> wall time, ms
+  std::vector<long> euler_characteristics;  ///< V - E + F of each component
+  std::vector<DefectReport> defects;        ///< one entry per kind found, in enum order
+  StageTimings timings_ms;                  ///< stage name -> wall time, ms
 
   /// True when no defect was found and the self-intersection test ran.
   bool valid() const { return defects.empty() && self_intersection_checked; }

@@ -4,7 +4,6 @@
 
 #include <fmt/format.h>
 
-#include <chrono>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -12,6 +11,7 @@
 #include <vector>
 
 #include "geometry/core/errors.h"
+#include "geometry/core/stage_timer.h"
 #include "geometry/mesh/validate.h"
 #include "geometry/mesh/weld.h"
 #include "io/mesh/read_mesh.h"
@@ -34,23 +34,17 @@ struct FileCheck {
   std::string error;
 };
 
-double ms_since(std::chrono::steady_clock::time_point& start) {
-  const auto now = std::chrono::steady_clock::now();
-  const double ms = std::chrono::duration<double, std::milli>(now - start).count();
-  start = now;
-  return ms;
-}
-
 FileCheck check_file(const std::string& path, double weld_tolerance) {
   FileCheck result{path, std::nullopt, 0, {}};
   try {
-    auto clock = std::chrono::steady_clock::now();
+    StageTimings timings;
+    StageTimer timer(timings);
     const TriangleSoup soup = read_mesh(path);
-    const double read_ms = ms_since(clock);
+    timer.lap("read");
     WeldResult welded = weld(soup, WeldOptions{weld_tolerance});
-    const double weld_ms = ms_since(clock);
+    timer.lap("weld");
     ValidationReport report = validate(welded.soup);
-    report.timings_ms.insert(report.timings_ms.begin(), {{"read", read_ms}, {"weld", weld_ms}});
+    report.timings_ms.insert(report.timings_ms.begin(), timings.begin(), timings.end());
     result.report = std::move(report);
     result.welded_vertices = welded.merged_vertices;
   } catch (const InputError& e) {
