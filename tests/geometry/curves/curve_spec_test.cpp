@@ -208,3 +208,38 @@ TEST_CASE("quasi-cubic B-spline: too few points or lambdas out of range are erro
   spec.bspline_lambdas = {1.5};
   REQUIRE_THROWS_AS(construct_curve(spec), RangeError);
 }
+
+TEST_CASE("a composite mixing families: T-Bezier, then an H-Bezier joined G2, then an ellipse arc",
+          "[curves][joins]") {
+  CurveSpec spec;
+  spec.segments = {explicit_tbezier({{0, 0}, {1, 2}, {3, 2.5}, {4, 1}}, -0.5, 0.3)};
+  SegmentSpec h;
+  h.kind = SegmentKind::HBezier;
+  h.alpha = 2.0;
+  h.lambda = 0.4;
+  h.mu = -1.0;
+  h.join = JoinSpec{Continuity::G2, 1.0, 0.0, 0.8, 0.3};  // H-Bezier convention: k = 0.8, m = 0.3
+  h.points = {Vec2(9, 0)};
+  spec.segments.push_back(h);
+  SegmentSpec e;
+  e.kind = SegmentKind::EllipseArc;
+  e.ellipse.center = Vec2(7, 0);
+  e.ellipse.a = 2;
+  e.ellipse.b = 1;
+  e.ellipse.from_deg = 0;
+  e.ellipse.to_deg = -90;  // starts at (9, 0), where the H-Bezier segment ends
+  spec.segments.push_back(e);
+  const CompositeCurve c = construct_curve(spec);
+  REQUIRE(c.segments()[1].kind() == SegmentKind::HBezier);
+  const auto joints = c.joints();
+  REQUIRE(joints.size() == 2);
+  CHECK(joints[0].achieved == Continuity::G2);
+  CHECK(joints[0].curvature_jump < 1e-9);
+  // Native derivatives: Q'(0) = k P'(end) and Q''(0) = k^2 P''(end) + m P'(end) (h-bezier.md's join).
+  const CurveJet p = c.segments()[0].jet(1.0);
+  const CurveJet q = c.segments()[1].jet(0.0);
+  const double a = c.segments()[1].native_scale();
+  CHECK(rel(q[1] / a, 0.8 * p[1]) < 1e-12);
+  CHECK(rel(q[2] / (a * a), 0.64 * p[2] + 0.3 * p[1]) < 1e-12);
+  CHECK(joints[1].gap < 1e-12);  // the explicit arc starts where the H-Bezier segment ends
+}
