@@ -1,6 +1,6 @@
 #include <catch2/catch.hpp>
 #include <map>
-#include <regex>
+#include <sstream>
 
 #include "geometry/fairing/fair_curve.h"
 #include "io/cutting/cutting_outline.h"
@@ -154,10 +154,14 @@ TEST_CASE("svg: one path per loop, A commands for arcs, L for lines and polyline
           "[io][cutting][svg][countertop]") {
   const auto loops = kitchen_loops(0.01);
   const std::string svg = encode_svg(loops);
-  const std::regex path_re("<path id=\"([a-z0-9]+)\" d=\"([^\"]*)\"");
+  // Plain scanning, not std::regex: libstdc++'s regex recurses per character
+  // and overflows the stack on long path data under AddressSanitizer.
   std::vector<std::pair<std::string, std::string>> paths;
-  for (auto it = std::sregex_iterator(svg.begin(), svg.end(), path_re); it != std::sregex_iterator(); ++it) {
-    paths.emplace_back((*it)[1], (*it)[2]);
+  for (std::size_t at = svg.find("<path id=\""); at != std::string::npos;
+       at = svg.find("<path id=\"", at + 1)) {
+    const std::size_t id_begin = at + 10, id_end = svg.find('"', id_begin);
+    const std::size_t d_begin = svg.find("d=\"", id_end) + 3, d_end = svg.find('"', d_begin);
+    paths.emplace_back(svg.substr(id_begin, id_end - id_begin), svg.substr(d_begin, d_end - d_begin));
   }
   REQUIRE(paths.size() == 3);
   CHECK(paths[0].first == "outline");
@@ -179,11 +183,13 @@ TEST_CASE("svg: one path per loop, A commands for arcs, L for lines and polyline
   for (const CutEntity& e : loops[0].entities) {
     for (const Vec2& p : e.points) lo = std::min(lo, p.x()), hi = std::max(hi, p.x());
   }
-  std::smatch m;
-  REQUIRE(
-      std::regex_search(svg, m, std::regex("viewBox=\"([-0-9.e]+) ([-0-9.e]+) ([-0-9.e]+) ([-0-9.e]+)\"")));
-  CHECK(std::stod(m[1]) == Approx(lo - 5).margin(0.02));
-  CHECK(std::stod(m[2]) == Approx(-380 - 5).margin(1e-9));
-  CHECK(std::stod(m[3]) == Approx(hi - lo + 10).margin(0.02));
-  CHECK(std::stod(m[4]) == Approx(380 + 10).margin(1e-9));
+  const std::size_t view = svg.find("viewBox=\"");
+  REQUIRE(view != std::string::npos);
+  std::istringstream box(svg.substr(view + 9, svg.find('"', view + 9) - view - 9));
+  double x0 = 0, y0 = 0, w = 0, h = 0;
+  REQUIRE(static_cast<bool>(box >> x0 >> y0 >> w >> h));
+  CHECK(x0 == Approx(lo - 5).margin(0.02));
+  CHECK(y0 == Approx(-380 - 5).margin(1e-9));
+  CHECK(w == Approx(hi - lo + 10).margin(0.02));
+  CHECK(h == Approx(380 + 10).margin(1e-9));
 }
