@@ -9,7 +9,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <map>
 #include <numeric>
 
 #include "geometry/core/errors.h"
@@ -196,6 +198,17 @@ void tessellate(const PatchNetwork& network, const TessellateOptions& options, S
     return total;
   };
   double achieved = 0.0;
+  // A cell that survives a refinement pass unchanged has the same error: each
+  // cell is evaluated once, keyed by its patch and exact parameter bounds.
+  std::map<std::array<double, 5>, CellError> cell_cache;
+  auto error_of = [&](std::size_t p, double s0, double s1, double t0, double t1) -> const CellError& {
+    const std::array<double, 5> key{static_cast<double>(p), s0, s1, t0, t1};
+    auto it = cell_cache.find(key);
+    if (it == cell_cache.end()) {
+      it = cell_cache.emplace(key, cell_error(network.patches[p], s0, s1, t0, t1, options.offset)).first;
+    }
+    return it->second;
+  };
   for (;;) {
     std::vector<std::vector<bool>> split(2 * np);
     for (std::size_t c = 0; c < 2 * np; ++c) split[c].assign(breaks[c].size() - 1, false);
@@ -207,8 +220,7 @@ void tessellate(const PatchNetwork& network, const TessellateOptions& options, S
       const auto sb = slot_breaks(slot(p, false)), tb = slot_breaks(slot(p, true));
       for (std::size_t a = 0; a + 1 < sb.size(); ++a) {
         for (std::size_t b = 0; b + 1 < tb.size(); ++b) {
-          const CellError e =
-              cell_error(network.patches[p], sb[a], sb[a + 1], tb[b], tb[b + 1], options.offset);
+          const CellError& e = error_of(p, sb[a], sb[a + 1], tb[b], tb[b + 1]);
           achieved = std::max(achieved, e.bound);
           if (e.bound <= options.tolerance) continue;
           any = true;
