@@ -32,6 +32,12 @@ std::array<double, 4> quasi_bspline_fourth_bound(double l, double m);
 /// evaluation of the cancelling differences).
 BasisJet hbezier_basis(double u, double alpha, double lambda, double mu);
 
+struct HBezierConstants;
+
+/// The same with the constants of `alpha` computed once by the caller
+/// (hbezier_constants(alpha)): they cost more than the basis itself.
+BasisJet hbezier_basis(double u, double alpha, double lambda, double mu, const HBezierConstants& constants);
+
 /// Upper bound, for u in [0, alpha], of |d^4 h_j / du^4| for each j.
 std::array<double, 4> hbezier_fourth_bound(double alpha, double lambda, double mu);
 

@@ -17,6 +17,8 @@ double even_odd_series(double x, int k0, int parity) {
   double sum = 0.0;
   for (int k = k0; k < k0 + kSeriesTerms; ++k) {
     sum += term;
+    // All terms have the sign of the first and shrink: stop once they no longer change the sum.
+    if (std::abs(term) <= 1e-17 * std::abs(sum)) break;
     const int n = 2 * k + parity;
     term *= x * x / ((n + 1) * (n + 2));
   }
@@ -68,7 +70,9 @@ double sinh_minus_x(double x) {
   return std::abs(x) < kSeriesLimit ? even_odd_series(x, 1, 1) : std::sinh(x) - x;
 }
 double cosh_minus_1(double x) {
-  return std::abs(x) < kSeriesLimit ? even_odd_series(x, 1, 0) : std::cosh(x) - 1.0;
+  // cosh x - 1 = 2 sinh^2(x/2): no cancellation at any x.
+  const double h = std::sinh(0.5 * x);
+  return 2.0 * h * h;
 }
 double cosh_minus_1_minus_half_x2(double x) {
   return std::abs(x) < kSeriesLimit ? even_odd_series(x, 2, 0) : std::cosh(x) - 1.0 - 0.5 * x * x;
@@ -92,8 +96,12 @@ HBezierConstants hbezier_constants(double alpha) {
 }
 
 BasisJet hbezier_basis(double u, double alpha, double lambda, double mu) {
+  return hbezier_basis(u, alpha, lambda, mu, hbezier_constants(alpha));
+}
+
+BasisJet hbezier_basis(double u, double alpha, double lambda, double mu, const HBezierConstants& constants) {
   const double a = alpha;
-  const auto [s, c, d, e] = hbezier_constants(a);
+  const auto [s, c, d, e] = constants;
   const double v = a - u;
   // Classical basis and quartic end functions with u-derivatives 0..3.
   const std::array<double, 4> h0{sinh_minus_x(v) / s, -cosh_minus_1(v) / s, std::sinh(v) / s,

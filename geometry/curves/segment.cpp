@@ -73,6 +73,7 @@ Segment Segment::hbezier(const std::array<Vec2, 4>& points, double alpha, double
   seg.kind_ = SegmentKind::HBezier;
   seg.points_ = points;
   seg.alpha_ = alpha;
+  seg.hbezier_ = hbezier_constants(alpha);
   seg.lambda_ = lambda;
   seg.mu_ = mu;
   return seg;
@@ -182,7 +183,7 @@ BasisJet Segment::weights(double s) const {
       w = tbezier_basis(t0_ + s * scale, 0.0, 0.0);
       break;
     case SegmentKind::HBezier:
-      w = hbezier_basis(s * alpha_, alpha_, lambda_, mu_);
+      w = hbezier_basis(s * alpha_, alpha_, lambda_, mu_, hbezier_);
       break;
     case SegmentKind::QuasiBSpline:
       w = quasi_bspline_basis(s, lambda_, mu_);

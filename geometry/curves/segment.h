@@ -80,6 +80,7 @@ class Segment {
   Vec2 origin_{0.0, 0.0};       // ellipse arcs: points_ are in the arc's frame
   double cos_ = 1.0, sin_ = 0.0;
   std::optional<EllipseArcParams> ellipse_;
+  HBezierConstants hbezier_{};  ///< hbezier_constants(alpha_) for H-Bézier segments, computed once
 };
 
 }  // namespace fabmesh

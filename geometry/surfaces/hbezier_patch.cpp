@@ -25,7 +25,12 @@ void require_valid_params(const HBezierParams& p, const std::string& where) {
 }
 
 std::array<std::array<double, 4>, 3> unit_hbezier_weights(double x, const HBezierParams& p) {
-  const BasisJet jet = hbezier_basis(x * p.alpha, p.alpha, p.lambda, p.mu);
+  return unit_hbezier_weights(x, p, hbezier_constants(p.alpha));
+}
+
+std::array<std::array<double, 4>, 3> unit_hbezier_weights(double x, const HBezierParams& p,
+                                                          const HBezierConstants& constants) {
+  const BasisJet jet = hbezier_basis(x * p.alpha, p.alpha, p.lambda, p.mu, constants);
   std::array<std::array<double, 4>, 3> w{};
   for (int i = 0; i < 4; ++i) {
     const auto k = static_cast<std::size_t>(i);
@@ -40,6 +45,8 @@ HBezierPatch::HBezierPatch(const ControlNet& points, const HBezierParams& u, con
     : points_(points), u_(u), v_(v) {
   require_valid_params(u, "u");
   require_valid_params(v, "v");
+  ku_ = hbezier_constants(u.alpha);
+  kv_ = hbezier_constants(v.alpha);
   for (std::size_t i = 0; i < 4; ++i) {
     for (std::size_t j = 0; j < 4; ++j) {
       if (!points[i][j].allFinite()) {
@@ -51,8 +58,8 @@ HBezierPatch::HBezierPatch(const ControlNet& points, const HBezierParams& u, con
 }
 
 PatchJet HBezierPatch::jet(double s, double t) const {
-  const auto a = unit_hbezier_weights(s, u_);
-  const auto b = unit_hbezier_weights(t, v_);
+  const auto a = unit_hbezier_weights(s, u_, ku_);
+  const auto b = unit_hbezier_weights(t, v_, kv_);
   PatchJet out{Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};
   for (std::size_t i = 0; i < 4; ++i) {
     // Row sums against the v weights, then the u weights.

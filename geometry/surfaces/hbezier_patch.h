@@ -8,6 +8,7 @@
 #include <string>
 
 #include "geometry/core/types.h"
+#include "geometry/curves/basis.h"
 
 namespace fabmesh {
 
@@ -58,10 +59,15 @@ class HBezierPatch {
  private:
   ControlNet points_;
   HBezierParams u_, v_;
+  HBezierConstants ku_, kv_;  ///< hbezier_constants of u_.alpha and v_.alpha, computed once
 };
 
 /// The four H-Bézier weights of one direction at unit parameter x in [0, 1]
 /// and their first two derivatives with respect to x: w[k][i] = d^k h_i / dx^k.
 std::array<std::array<double, 4>, 3> unit_hbezier_weights(double x, const HBezierParams& params);
+
+/// The same with the constants of params.alpha computed once by the caller.
+std::array<std::array<double, 4>, 3> unit_hbezier_weights(double x, const HBezierParams& params,
+                                                          const HBezierConstants& constants);
 
 }  // namespace fabmesh
