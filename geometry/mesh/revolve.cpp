@@ -1,9 +1,3 @@
-// GCC 12 reports a false -Wmaybe-uninitialized inside OpenMesh's property
-// containers when mesh.resize() default-constructs their elements.
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#endif
-
 #include "geometry/mesh/revolve.h"
 
 #include <fmt/format.h>

@@ -1,9 +1,3 @@
-// GCC 12 reports a false -Wmaybe-uninitialized inside OpenMesh's
-// PropertyT<Vec3d>::push_back (Property.hh) when a mesh grows here.
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#endif
-
 #include "geometry/mesh/slab.h"
 
 #include <fmt/format.h>

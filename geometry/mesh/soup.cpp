@@ -1,9 +1,3 @@
-// GCC 12 reports a false -Wmaybe-uninitialized inside OpenMesh's
-// PropertyT<Vec3d>::push_back (Property.hh), instantiated by add_vertex here.
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#endif
-
 #include "geometry/mesh/soup.h"
 
 #include <fmt/format.h>

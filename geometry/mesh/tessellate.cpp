@@ -1,9 +1,3 @@
-// GCC 12 reports a false -Wmaybe-uninitialized inside OpenMesh's property
-// containers (default-constructed points pushed back).
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#endif
-
 #include "geometry/mesh/tessellate.h"
 
 #include <fmt/format.h>

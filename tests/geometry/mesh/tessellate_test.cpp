@@ -1,7 +1,3 @@
-// GCC 12 reports a false -Wmaybe-uninitialized inside OpenMesh's property
-// containers (default-constructed points pushed back).
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-
 #include "geometry/mesh/tessellate.h"
 
 #include <catch2/catch.hpp>
