@@ -146,16 +146,7 @@ for size in $sizes; do
   read -r fm_ms fm_min < <(time_ms "fm_$K" "${fm_cmd[@]}")
   read -r os_ms os_min < <(time_ms "os_$K" "${os_cmd[@]}")
 
-  "$fabmesh" check "$fm_stl" --json > "$d/fm_check.json" || true
-  "$fabmesh" check "$d/os/out.stl" --json > "$d/os_check.json" || true
-  fm_valid=$(json "$d/fm_check.json" 'j["valid"]')
-  os_valid=$(json "$d/os_check.json" 'j["valid"]')
-  os_tri=$(json "$d/os_check.json" 'j["triangles"]')
-  os_vol=$(json "$d/os_check.json" 'repr(j["volume"])')
-
-  checks=ok
-  [[ $fm_valid == True ]] || { checks="fabmesh-invalid"; status=1; }
-  [[ $os_valid == True ]] || { checks="$checks,openscad-invalid"; status=1; }
+  check_outputs "$fm_stl" "$d/os/out.stl" "$d"
   checks=${checks#ok,}
 
   rows+=("$(awk -v k="$K" -v h="$H" -v ft="$fm_tri" -v ot="$os_tri" -v fms="$fm_ms" -v oms="$os_ms" -v fmin="$fm_min" \

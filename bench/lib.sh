@@ -1,7 +1,7 @@
 # Shared by the peer benchmarks: tool checks, a scratch folder and timing.
 # Source it after setting: bench_name (for messages and the temp folder),
 # fabmesh (binary path) and runs (timed runs per command).
-# Provides: die, json FILE EXPR, peak_kb CMD..., time_ms NAME CMD..., $tmp.
+# Provides: die, json FILE EXPR, peak_kb CMD..., time_ms NAME CMD..., check_outputs, $tmp.
 
 die() { echo "$bench_name: error: $*" >&2; exit 2; }
 [[ -x $fabmesh ]] || die "fabmesh not found or not executable at '$fabmesh' (build it: cmake -S . -B build-bench -G Ninja -DCMAKE_BUILD_TYPE=Release -DFABMESH_BUILD_TESTS=OFF && cmake --build build-bench --target fabmesh)"
@@ -47,3 +47,19 @@ time_ms() {
   fi
 }
 
+
+# check_outputs FM_STL OS_STL DIR: validates both tools' STL files with the
+# same checker (`fabmesh check`); sets os_tri, os_vol and checks ("ok" or the
+# failures), and status=1 when either file is invalid.
+check_outputs() {
+  "$fabmesh" check "$1" --json > "$3/fm_check.json" || true
+  "$fabmesh" check "$2" --json > "$3/os_check.json" || true
+  local fm_valid os_valid
+  fm_valid=$(json "$3/fm_check.json" 'j["valid"]')
+  os_valid=$(json "$3/os_check.json" 'j["valid"]')
+  os_tri=$(json "$3/os_check.json" 'j["triangles"]')
+  os_vol=$(json "$3/os_check.json" 'repr(j["volume"])')
+  checks=ok
+  [[ $fm_valid == True ]] || { checks="fabmesh-invalid"; status=1; }
+  [[ $os_valid == True ]] || { checks="$checks,openscad-invalid"; status=1; }
+}

@@ -78,17 +78,7 @@ for size in $sizes; do
   read -r os_ms os_min < <(time_ms "os_$N" "${os_cmd[@]}")
   read -r cp_ms cp_min < <(time_ms "cp_$N" cp "$fm_stl" "$d/floor.stl")
 
-  # Validate both outputs with the same checker.
-  "$fabmesh" check "$fm_stl" --json > "$d/fm_check.json" || true
-  "$fabmesh" check "$d/os/out.stl" --json > "$d/os_check.json" || true
-  fm_valid=$(json "$d/fm_check.json" 'j["valid"]')
-  os_valid=$(json "$d/os_check.json" 'j["valid"]')
-  os_tri=$(json "$d/os_check.json" 'j["triangles"]')
-  os_vol=$(json "$d/os_check.json" 'repr(j["volume"])')
-
-  checks=ok
-  [[ $fm_valid == True ]] || { checks="fabmesh-invalid"; status=1; }
-  [[ $os_valid == True ]] || { checks="$checks,openscad-invalid"; status=1; }
+  check_outputs "$fm_stl" "$d/os/out.stl" "$d"
   if ! awk -v a="$fm_tri" -v b="$os_tri" 'BEGIN {d = a - b; if (d < 0) d = -d; exit !(d <= 0.01 * a)}'; then
     checks="$checks,triangles-differ"; status=1
   fi
