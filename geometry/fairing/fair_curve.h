@@ -1,8 +1,7 @@
 #pragma once
-// A designer's curve made ready for sampling: constructed from its spec,
-// its declared continuity verified, faired when the spec asks for it.
+// Fairing a designer's curve: the shape parameters that minimise an energy
+// with every control point kept where the design put it.
 
-#include <optional>
 #include <vector>
 
 #include "geometry/curves/curve_spec.h"
@@ -22,24 +21,10 @@ struct BSplineFairing {
   double energy = 0.0;
 };
 
-struct BuiltCurve {
-  CompositeCurve curve;                   ///< after fairing, if any
-  std::vector<Continuity> declared;       ///< per joint, as CompositeCurve::joints()
-  std::vector<JointReport> joints;        ///< measured on `curve`
-  std::vector<SegmentFairing> segments;   ///< T-Bézier fairing results (when faired)
-  std::optional<BSplineFairing> bspline;  ///< quasi-B-spline fairing result (when faired)
-};
-
 /// Fairest parameters for every T-Bézier segment of `curve` (control points fixed).
 std::vector<SegmentFairing> fair_tbezier_segments(const CompositeCurve& curve);
 
 /// Fairest lambdas of a quasi_bspline spec for `kind` (Strain or CurvatureVariation).
 BSplineFairing fair_bspline(const CurveSpec& spec, FairMode kind);
-
-/// Constructs the curve, verifies declared continuity on the constructed
-/// curve (GeometryError if contradicted), then applies spec.fair: control
-/// points stay, shape parameters change; joints are measured after fairing
-/// (a G2 joint may be lost and the report says so).
-BuiltCurve build_curve(const CurveSpec& spec, const JointTolerances& tol = {});
 
 }  // namespace fabmesh

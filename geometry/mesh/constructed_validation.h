@@ -1,21 +1,19 @@
 #pragma once
 // Validation of meshes whose embedding is proven by their construction.
 
-#include <string>
-
+#include "geometry/mesh/embedding_proof.h"
 #include "geometry/mesh/validate.h"
 
 namespace fabmesh {
 
 /// Validates `mesh` fully (closedness, manifoldness, orientation, degenerate
 /// and duplicate faces, volume, genus) except for the 3D self-intersection
-/// test, which `embedding_proof` replaces: a builder that proved its output
-/// embedded (e.g. a simple section revolved) states why. The report then
-/// counts the self-intersection stage as checked, by construction.
-ValidationReport validate_constructed(const Mesh& mesh, const std::string& embedding_proof);
-
-/// The same when the caller already has `soup` == to_soup(mesh).
+/// test, which `proof` replaces: the report says
+/// IntersectionCheck::ProvenByConstruction and carries the statement.
+/// `soup` must be to_soup(mesh). A mesh with a non-finite vertex keeps
+/// IntersectionCheck::NotRun (a proof about the exact construction says
+/// nothing about NaNs), so it is never called valid.
 ValidationReport validate_constructed(const Mesh& mesh, const TriangleSoup& soup,
-                                      const std::string& embedding_proof);
+                                      const EmbeddingProof& proof);
 
 }  // namespace fabmesh

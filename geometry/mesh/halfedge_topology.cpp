@@ -4,24 +4,12 @@
 #include <numeric>
 #include <vector>
 
+#include "geometry/core/disjoint_sets.h"
+
 namespace fabmesh {
 namespace {
 
 Vec3 to_vec(const Mesh::Point& p) { return {p[0], p[1], p[2]}; }
-
-// Union-find over faces with path halving.
-struct Components {
-  std::vector<int> parent;
-  explicit Components(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  int find(int x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  void join(int a, int b) {
-    a = find(a), b = find(b);
-    if (a != b) parent[std::max(a, b)] = std::min(a, b);
-  }
-};
 
 }  // namespace
 
@@ -29,7 +17,7 @@ Topology analyse_topology(const Mesh& mesh, std::size_t max_examples) {
   Topology topo;
   topo.edges = mesh.n_edges();
   const auto faces = static_cast<int>(mesh.n_faces());
-  Components comp(mesh.n_faces());
+  DisjointSets<int> comp(mesh.n_faces());
 
   for (const auto e : mesh.edges()) {
     const auto h0 = mesh.halfedge_handle(e, 0), h1 = mesh.halfedge_handle(e, 1);
@@ -42,7 +30,7 @@ Topology analyse_topology(const Mesh& mesh, std::size_t max_examples) {
       }
       continue;
     }
-    comp.join(f0.idx(), f1.idx());
+    comp.unite(f0.idx(), f1.idx());
   }
 
   // Duplicate faces: a face whose three neighbours are one and the same face.
@@ -89,7 +77,7 @@ Topology analyse_topology(const Mesh& mesh, std::size_t max_examples) {
     if (rep < 0) {
       rep = f.idx();
     } else {
-      comp.join(rep, f.idx());
+      comp.unite(rep, f.idx());
     }
   }
   std::vector<int> root_of(faces);

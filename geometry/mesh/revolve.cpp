@@ -148,7 +148,7 @@ void revolve_loop(const std::vector<Vec2>& loop, const std::vector<double>& cs, 
 
 }  // namespace
 
-void revolve(const std::vector<std::vector<Vec2>>& loops, const RevolveOptions& options, Mesh& mesh) {
+Mesh revolve(const std::vector<std::vector<Vec2>>& loops, const RevolveOptions& options) {
   if (options.segments < 3) {
     throw RangeError("segments", options.segments,
                      fmt::format("segments = {} must be >= 3", options.segments));
@@ -169,7 +169,7 @@ void revolve(const std::vector<std::vector<Vec2>>& loops, const RevolveOptions& 
     }
   }
   const std::size_t faces = revolved_triangle_count(loops, options.segments);
-  mesh.clean();
+  Mesh mesh;
   mesh.resize(vertex_count, 3 * faces / 2, faces);  // closed triangle mesh: E = 3F/2
   Slots next;
   for (const auto& loop : loops) revolve_loop(loop, cs, sn, mesh, next);
@@ -177,6 +177,7 @@ void revolve(const std::vector<std::vector<Vec2>>& loops, const RevolveOptions& 
       static_cast<std::size_t>(next.edge) != 3 * faces / 2 || static_cast<std::size_t>(next.face) != faces) {
     throw std::logic_error("revolve: element counts disagree with the closed-surface formula");
   }
+  return mesh;
 }
 
 }  // namespace fabmesh

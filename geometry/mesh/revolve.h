@@ -26,10 +26,8 @@ std::size_t revolved_triangle_count(const std::vector<std::vector<Vec2>>& loops,
 /// along the axis produce no faces. The result is watertight with outward
 /// normals when the loop meets the axis only along axis edges; every
 /// angular slice of it is a uniformly scaled copy of the loop.
-/// Fills `mesh` (replacing its content): OpenMesh meshes cannot be moved,
-/// so the result is built in place rather than returned and copied.
 /// \throw RangeError for segments < 3 or a negative radius; GeometryError
 ///        for an axis vertex that is not the end of exactly one axis edge.
-void revolve(const std::vector<std::vector<Vec2>>& loops, const RevolveOptions& options, Mesh& mesh);
+Mesh revolve(const std::vector<std::vector<Vec2>>& loops, const RevolveOptions& options);
 
 }  // namespace fabmesh

@@ -48,9 +48,8 @@ SlabMesh build_slab(const Region2& region, const SlabOptions& options) {
   TriangulateOptions to;
   to.max_edge = options.max_edge;
   to.max_triangles = options.max_triangles / 2;
-  SlabMesh out;
-  out.triangulation = triangulate(region, to);
-  const std::size_t triangles = slab_triangle_count(out.triangulation);
+  PlanarTriangulation triangulation = triangulate(region, to);
+  const std::size_t triangles = slab_triangle_count(triangulation);
   if (triangles > options.max_triangles) {
     throw BudgetError(
         static_cast<double>(triangles), static_cast<double>(options.max_triangles),
@@ -58,16 +57,15 @@ SlabMesh build_slab(const Region2& region, const SlabOptions& options) {
                     "tolerance or max_edge)",
                     triangles, options.max_triangles));
   }
-  out.mesh = extrude(out.triangulation, options.thickness);
-  out.embedding_proof =
-      region.proof + fmt::format(
-                         "; top and bottom are a CGAL constrained Delaunay triangulation of that region "
-                         "({} faces, each counter-clockwise by the exact orientation predicate) at z = {} "
-                         "and z = 0, walls vertical over its {} boundary cycle(s), which meet only at shared "
-                         "vertices: an extruded planar embedding",
-                         out.triangulation.triangles.size(), options.thickness,
-                         out.triangulation.boundary.size());
-  return out;
+  EmbeddingProof proof{
+      region.proof +
+      fmt::format("; top and bottom are a CGAL constrained Delaunay triangulation of that region "
+                  "({} faces, each counter-clockwise by the exact orientation predicate) at z = {} "
+                  "and z = 0, walls vertical over its {} boundary cycle(s), which meet only at shared "
+                  "vertices: an extruded planar embedding",
+                  triangulation.triangles.size(), options.thickness, triangulation.boundary.size())};
+  // Braced initialisers run in order: the mesh is extruded (in place) before the triangulation moves.
+  return SlabMesh{extrude(triangulation, options.thickness), std::move(triangulation), std::move(proof)};
 }
 
 }  // namespace fabmesh

@@ -3,8 +3,10 @@
 // constant thickness (a countertop with its cut-outs).
 
 #include <cstddef>
-#include <string>
+#include <optional>
 
+#include "geometry/core/limits.h"
+#include "geometry/mesh/embedding_proof.h"
 #include "geometry/section/region.h"
 #include "geometry/section/triangulate.h"
 
@@ -13,14 +15,16 @@ namespace fabmesh {
 struct SlabOptions {
   double thickness = 30.0;  ///< z extent, model units (> 0); bottom at z = 0, top at z = thickness
   double max_edge = 0.0;    ///< longest top/bottom edge, model units; 0: no refinement
-  std::size_t max_triangles = 20000000;  ///< budget for the whole slab; more is a BudgetError
+  std::size_t max_triangles = kDefaultMaxTriangles;  ///< budget for the whole slab; more is a BudgetError
 };
 
+/// An extruded slab (returned by value: the mesh is built in place).
 struct SlabMesh {
   Mesh mesh;
   PlanarTriangulation triangulation;  ///< the top face's triangulation (bottom: mirrored)
-  /// Why the mesh is free of self-intersections without a 3D test.
-  std::string embedding_proof;
+  /// Why the mesh is free of self-intersections without a 3D test (always
+  /// given: a simple region extrudes into an embedded slab).
+  std::optional<EmbeddingProof> proof;
 };
 
 /// Triangle count of the slab over `t`: top and bottom, plus two per boundary edge.

@@ -6,15 +6,28 @@
 
 namespace fabmesh {
 
-void thicken(const Mesh& sheet, const std::vector<Vec3>& vertex_normals, const ThickenOptions& options,
-             Mesh& solid) {
+std::size_t thickened_triangle_count(const Mesh& sheet) {
+  std::size_t rim = 0;
+  for (const auto h : sheet.halfedges()) rim += sheet.is_boundary(h) ? 1 : 0;
+  return 2 * sheet.n_faces() + 2 * rim;
+}
+
+Mesh thicken(const Mesh& sheet, const std::vector<Vec3>& vertex_normals, const ThickenOptions& options) {
   require_positive("thickness", options.thickness);
   const std::size_t n = sheet.n_vertices();
   if (vertex_normals.size() != n) {
     throw RangeError("vertex_normals", static_cast<double>(vertex_normals.size()),
                      fmt::format("thicken: {} vertex normals for {} vertices", vertex_normals.size(), n));
   }
-  solid.clean();
+  const std::size_t triangles = thickened_triangle_count(sheet);
+  if (triangles > options.max_triangles) {
+    throw BudgetError(static_cast<double>(triangles), static_cast<double>(options.max_triangles),
+                      fmt::format("the thickened shell needs {} triangles, over the budget of {} (raise "
+                                  "max_triangles or the tolerance)",
+                                  triangles, options.max_triangles));
+  }
+  Mesh solid;
+  solid.reserve(2 * n, 3 * triangles / 2, triangles);
   for (const auto v : sheet.vertices()) solid.add_vertex(sheet.point(v));
   for (const auto v : sheet.vertices()) {
     const Vec3& nv = vertex_normals[static_cast<std::size_t>(v.idx())];
@@ -48,6 +61,7 @@ void thicken(const Mesh& sheet, const std::vector<Vec3>& vertex_normals, const T
                                                "sheet is not manifold at its border)",
                                                refused));
   }
+  return solid;
 }
 
 }  // namespace fabmesh

@@ -6,6 +6,8 @@
 #include <cstdint>
 #include <numeric>
 
+#include "geometry/core/disjoint_sets.h"
+
 namespace fabmesh {
 
 void DefectCount::add(const Vec3& where, std::size_t max_examples) {
@@ -14,27 +16,6 @@ void DefectCount::add(const Vec3& where, std::size_t max_examples) {
 }
 
 namespace {
-
-/// Union-find over dense indices, with path halving.
-class DisjointSets {
- public:
-  explicit DisjointSets(std::size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0u); }
-  std::uint32_t find(std::uint32_t i) {
-    while (parent_[i] != i) {
-      parent_[i] = parent_[parent_[i]];
-      i = parent_[i];
-    }
-    return i;
-  }
-  void unite(std::uint32_t a, std::uint32_t b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent_[std::max(a, b)] = std::min(a, b);
-  }
-
- private:
-  std::vector<std::uint32_t> parent_;
-};
 
 using Triangle = std::array<std::uint32_t, 3>;
 
@@ -70,7 +51,7 @@ std::vector<Side> collect_sides(const TriangleSoup& soup) {
 /// inconsistent edges, and joins the corners of the two faces of each
 /// manifold edge into fans.
 void classify_edges(const TriangleSoup& soup, const std::vector<Side>& sides, std::size_t max_examples,
-                    Topology& topo, DisjointSets& fans, std::vector<char>& on_complex_edge) {
+                    Topology& topo, DisjointSets<std::uint32_t>& fans, std::vector<char>& on_complex_edge) {
   const auto& tri = soup.triangles;
   auto midpoint = [&](std::uint64_t key) {
     return 0.5 * (soup.vertices[key >> 32] + soup.vertices[key & 0xffffffffu]);
@@ -129,7 +110,7 @@ void count_duplicates(const TriangleSoup& soup, std::size_t max_examples, Topolo
 
 void count_components(const TriangleSoup& soup, const std::vector<Side>& sides, Topology& topo) {
   const std::size_t nv = soup.vertices.size();
-  DisjointSets parts(nv);
+  DisjointSets<std::uint32_t> parts(nv);
   std::vector<char> used(nv, 0);
   for (const auto& t : soup.triangles) {
     if (index_degenerate(t)) continue;
@@ -165,7 +146,7 @@ Topology analyse_topology(const TriangleSoup& soup, std::size_t max_examples) {
   require_indices_in_range(soup);
   Topology topo;
   const std::vector<Side> sides = collect_sides(soup);
-  DisjointSets fans(3 * soup.triangles.size());
+  DisjointSets<std::uint32_t> fans(3 * soup.triangles.size());
   std::vector<char> on_complex_edge(soup.vertices.size(), 0);
   classify_edges(soup, sides, max_examples, topo, fans, on_complex_edge);
 

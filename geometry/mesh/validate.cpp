@@ -98,6 +98,18 @@ const char* to_string(Defect kind) {
   return "unknown defect";
 }
 
+const char* to_string(IntersectionCheck check) {
+  switch (check) {
+    case IntersectionCheck::NotRun:
+      return "not run";
+    case IntersectionCheck::Tested:
+      return "tested";
+    case IntersectionCheck::ProvenByConstruction:
+      return "proven by construction";
+  }
+  return "unknown";
+}
+
 const DefectReport* ValidationReport::find(Defect kind) const {
   for (const DefectReport& d : defects) {
     if (d.kind == kind) return &d;
@@ -170,7 +182,7 @@ ValidationReport validate_with(const TriangleSoup& soup, const Topology& topo, V
     si.parallel = options.parallel;
     si.max_pairs = max_examples;
     const SelfIntersections found = find_self_intersections(soup, degenerate, si);
-    report.self_intersection_checked = true;
+    report.self_intersection = IntersectionCheck::Tested;
     report.intersecting_pairs = found.count;
     report.self_intersecting = found.count > 0;
     intersections.count = found.count;
@@ -216,7 +228,7 @@ std::vector<std::string> describe_defects(const ValidationReport& report) {
     }
     lines.push_back(std::move(line));
   }
-  if (!report.self_intersection_checked && report.non_finite_vertices == 0) {
+  if (report.self_intersection == IntersectionCheck::NotRun && report.non_finite_vertices == 0) {
     lines.emplace_back("self-intersection test not run");
   }
   return lines;

@@ -33,6 +33,16 @@ enum class Defect {
 /// A short lower-case name of a defect kind, e.g. "boundary edges".
 const char* to_string(Defect kind);
 
+/// How the self-intersection question was settled for a report.
+enum class IntersectionCheck {
+  NotRun,                ///< skipped (by option, or non-finite input): the mesh cannot be called valid
+  Tested,                ///< the 3D test ran over every candidate pair of faces (exact predicates)
+  ProvenByConstruction,  ///< the builder proved the mesh embedded (EmbeddingProof); no 3D test ran
+};
+
+/// "not run", "tested" or "proven by construction".
+const char* to_string(IntersectionCheck check);
+
 /// One kind of defect found: how often, and a few locations (model units).
 struct DefectReport {
   Defect kind;
@@ -59,7 +69,8 @@ struct ValidationReport {
   std::size_t degenerate_faces = 0;
   std::size_t duplicate_faces = 0;
   std::size_t non_finite_vertices = 0;
-  bool self_intersection_checked = false;  ///< false when skipped (by option or non-finite input)
+  IntersectionCheck self_intersection = IntersectionCheck::NotRun;
+  std::string embedding_proof;  ///< the builder's statement when ProvenByConstruction
   bool self_intersecting = false;
   std::size_t intersecting_pairs = 0;  ///< face pairs that intersect
   bool consistently_oriented = false;  ///< no inconsistent edge
@@ -74,8 +85,8 @@ struct ValidationReport {
   std::vector<DefectReport> defects;        ///< one entry per kind found, in enum order
   StageTimings timings_ms;                  ///< stage name -> wall time, ms
 
-  /// True when no defect was found and the self-intersection test ran.
-  bool valid() const { return defects.empty() && self_intersection_checked; }
+  /// True when no defect was found and self-intersection was tested or proven absent.
+  bool valid() const { return defects.empty() && self_intersection != IntersectionCheck::NotRun; }
   /// The entry for `kind`, or nullptr when that defect was not found.
   const DefectReport* find(Defect kind) const;
 };

@@ -16,13 +16,12 @@ VesselMesh build_vessel(const CompositeCurve& profile, const VesselOptions& opti
   so.wall = options.wall;
   so.base = options.base;
   so.tolerance = 0.5 * options.tolerance;
-  so.max_points = options.max_triangles;
-  VesselMesh out;
-  out.section = build_vessel_section(profile, so);
+  so.max_points = options.max_triangles / 3 * 2 + 1;  // see VesselOptions::max_triangles
+  VesselSection section = build_vessel_section(profile, so);
 
-  const double angular_tolerance = options.tolerance - out.section.max_deviation;
-  out.segments = angular_segments(out.section.max_radius, angular_tolerance);
-  const std::size_t triangles = revolved_triangle_count(out.section.loops, out.segments);
+  const double angular_tolerance = options.tolerance - section.max_deviation;
+  const int segments = angular_segments(section.max_radius, angular_tolerance);
+  const std::size_t triangles = revolved_triangle_count(section.loops, segments);
   if (triangles > options.max_triangles) {
     throw BudgetError(
         static_cast<double>(triangles), static_cast<double>(options.max_triangles),
@@ -31,13 +30,13 @@ VesselMesh build_vessel(const CompositeCurve& profile, const VesselOptions& opti
                     options.tolerance, triangles, options.max_triangles));
   }
   RevolveOptions ro;
-  ro.segments = out.segments;
-  revolve(out.section.loops, ro, out.mesh);
-  const double sagitta = out.section.max_radius * (1.0 - std::cos(M_PI / out.segments));
-  out.max_deviation = out.section.max_deviation + sagitta;
-  out.embedding_proof =
-      out.section.proof + fmt::format("; revolved in {} uniform angular steps", out.segments);
-  return out;
+  ro.segments = segments;
+  const double sagitta = section.max_radius * (1.0 - std::cos(M_PI / segments));
+  const double max_deviation = section.max_deviation + sagitta;
+  EmbeddingProof proof{section.proof + fmt::format("; revolved in {} uniform angular steps", segments)};
+  // The mesh member is initialised from revolve's result in place (meshes cannot be moved).
+  return VesselMesh{revolve(section.loops, ro), std::move(section), segments, max_deviation,
+                    std::move(proof)};
 }
 
 }  // namespace fabmesh

@@ -2,9 +2,11 @@
 // Vessels: a profile curve revolved into a watertight solid or shell mesh.
 
 #include <cstddef>
-#include <string>
+#include <optional>
 
+#include "geometry/core/limits.h"
 #include "geometry/curves/composite.h"
+#include "geometry/mesh/embedding_proof.h"
 #include "geometry/section/vessel_section.h"
 
 namespace fabmesh {
@@ -16,17 +18,21 @@ struct VesselOptions {
   /// Largest distance between the mesh and the exact surface, model units:
   /// half goes to sampling the profile, the rest to the angular step.
   double tolerance = 0.01;
-  std::size_t max_triangles = 20000000;  ///< budget; more is a BudgetError
+  /// Budget; more is a BudgetError. It also bounds the profile samples: a
+  /// section of n points revolves into at least 1.5 n triangles (at most n/2
+  /// axis edges, at least 3 angular steps).
+  std::size_t max_triangles = kDefaultMaxTriangles;
 };
 
-/// Returned by value (NRVO: built in place); OpenMesh meshes are copied, not moved.
+/// A revolved vessel (returned by value: the mesh is built in place).
 struct VesselMesh {
   Mesh mesh;
   VesselSection section;
   int segments = 0;            ///< angular segments
   double max_deviation = 0.0;  ///< proven: section deviation + angular sagitta at the largest radius
-  /// Why the mesh is free of self-intersections without a 3D test.
-  std::string embedding_proof;
+  /// Why the mesh is free of self-intersections without a 3D test (always
+  /// given: a simple section revolves into an embedded surface).
+  std::optional<EmbeddingProof> proof;
 };
 
 /// Builds the section, chooses the angular step and revolves.

@@ -4,15 +4,16 @@
 #include <cstddef>
 #include <vector>
 
+#include "geometry/core/limits.h"
 #include "geometry/core/types.h"
 #include "geometry/curves/composite.h"
 
 namespace fabmesh {
 
 struct SampleOptions {
-  double tolerance = 0.01;           ///< max distance between polyline and curve, model units (> 0)
-  std::size_t max_points = 5000000;  ///< budget; exceeding it is a BudgetError
-  int min_pieces_per_segment = 2;    ///< never fewer chords than this per segment
+  double tolerance = 0.01;                     ///< max distance between polyline and curve, model units (> 0)
+  std::size_t max_points = kDefaultMaxPoints;  ///< budget; exceeding it is a BudgetError
+  int min_pieces_per_segment = 2;              ///< never fewer chords than this per segment
 };
 
 /// Samples one segment: parameters s_0 = 0 < ... < s_m = 1 such that on every

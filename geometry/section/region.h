@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "geometry/core/limits.h"
 #include "geometry/core/types.h"
 #include "geometry/curves/composite.h"
 
@@ -21,7 +22,7 @@ struct RegionHole {
 
 struct RegionOptions {
   double tolerance = 0.01;  ///< max distance between each loop and its exact curve, model units (> 0)
-  std::size_t max_points = 5000000;  ///< sampling budget over all loops; more is a BudgetError
+  std::size_t max_points = kDefaultMaxPoints;  ///< sampling budget over all loops; more is a BudgetError
 };
 
 /// An oriented polygon with holes: the outer loop counter-clockwise, every

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "geometry/core/limits.h"
 #include "geometry/core/types.h"
 #include "geometry/section/region.h"
 
@@ -17,7 +18,7 @@ struct TriangulateOptions {
   /// refinement). When > 0 the triangulation is refined (Delaunay refinement,
   /// minimum angle about 20.7 degrees), which also splits boundary edges.
   double max_edge = 0.0;
-  std::size_t max_triangles = 20000000;  ///< budget; more is a BudgetError
+  std::size_t max_triangles = kDefaultMaxTriangles;  ///< budget; more is a BudgetError
 };
 
 /// Triangles covering a region exactly (the union of the triangles is the

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "geometry/core/limits.h"
 #include "geometry/core/types.h"
 #include "geometry/curves/composite.h"
 
@@ -18,7 +19,7 @@ struct VesselSectionOptions {
   double wall = 0.0;         ///< shell: wall thickness along the profile normal, model units (> 0)
   double base = 0.0;         ///< shell: base thickness, model units (> 0; 0 = wall)
   double tolerance = 0.005;  ///< profile sampling tolerance, model units (> 0)
-  std::size_t max_points = 5000000;
+  std::size_t max_points = kDefaultMaxPoints;
 };
 
 /// Closed, simple, counter-clockwise, pairwise disjoint loops in the

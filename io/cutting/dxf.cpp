@@ -10,7 +10,7 @@
 #include <memory>
 
 #include "geometry/core/errors.h"
-#include "io/mesh/atomic_file.h"
+#include "io/file.h"
 
 namespace fabmesh {
 namespace {
@@ -157,10 +157,6 @@ std::string encode_dxf(const std::vector<CutLoop>& loops, const DxfOptions& opti
     dw->close();
   }
   return read_file(tmp.path());
-}
-
-void write_dxf(const std::string& path, const std::vector<CutLoop>& loops, const DxfOptions& options) {
-  write_file_atomically(path, encode_dxf(loops, options));
 }
 
 }  // namespace fabmesh

@@ -19,7 +19,4 @@ struct DxfOptions {
 /// \throw FileError when dxflib cannot write its temporary file
 std::string encode_dxf(const std::vector<CutLoop>& loops, const DxfOptions& options = {});
 
-/// encode_dxf written atomically to `path`. \throw FileError
-void write_dxf(const std::string& path, const std::vector<CutLoop>& loops, const DxfOptions& options = {});
-
 }  // namespace fabmesh

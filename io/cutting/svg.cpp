@@ -4,8 +4,6 @@
 
 #include <cmath>
 
-#include "io/mesh/atomic_file.h"
-
 namespace fabmesh {
 namespace {
 
@@ -56,10 +54,6 @@ std::string encode_svg(const std::vector<CutLoop>& loops, const SvgOptions& opti
   }
   out += "</svg>\n";
   return out;
-}
-
-void write_svg(const std::string& path, const std::vector<CutLoop>& loops, const SvgOptions& options) {
-  write_file_atomically(path, encode_svg(loops, options));
 }
 
 }  // namespace fabmesh

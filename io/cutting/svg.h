@@ -19,7 +19,4 @@ struct SvgOptions {
 /// loops' bounds plus the margin, in model units.
 std::string encode_svg(const std::vector<CutLoop>& loops, const SvgOptions& options = {});
 
-/// encode_svg written atomically to `path`. \throw FileError
-void write_svg(const std::string& path, const std::vector<CutLoop>& loops, const SvgOptions& options = {});
-
 }  // namespace fabmesh

@@ -1,38 +1,52 @@
 #pragma once
-// Design files as plain, validated data (product.md "Design files").
+// Design files as plain, validated data (docs/design-files.md).
 
+#include <cstddef>
 #include <string>
+#include <utility>
 #include <variant>
 #include <vector>
 
+#include "geometry/core/limits.h"
 #include "geometry/curves/curve_spec.h"
 #include "geometry/section/vessel_section.h"
 #include "geometry/surfaces/patch_network.h"
 
 namespace fabmesh {
 
+/// One entry of a design's `outputs:` list, with where it was written: the
+/// pipeline's output table decides whether the format exists and applies.
+struct OutputRequest {
+  std::string format;  ///< e.g. "stl"
+  std::string where;   ///< "path:line:column: outputs[1]" (or the -D override), for messages
+  int line = 0;        ///< 1-based, 0 when not from the file
+  int column = 0;
+};
+
 /// Keys every design has.
 struct DesignCommon {
   std::string path;  ///< the file it was read from
   std::string name;  ///< default: the file's stem
-  std::string kind;  ///< curve | vessel | countertop | surface
   std::string units = "mm";
-  double tolerance = 0.01;           ///< model units, > 0
-  std::vector<std::string> outputs;  ///< default: stl, drc
+  double tolerance = 0.01;  ///< model units, > 0
+  /// As given; empty when the design names none (the kind's defaults apply).
+  std::vector<OutputRequest> outputs;
 };
 
 /// kind: curve
 struct CurveDesign {
+  static constexpr const char* kKind = "curve";
   CurveSpec curve;
 };
 
 /// kind: vessel. The profile lies in the (radius, height) plane.
 struct VesselDesign {
+  static constexpr const char* kKind = "vessel";
   CurveSpec profile;
   BodyMode mode = BodyMode::Solid;
-  double wall = 0.0;                     ///< shell: > 0
-  double base = 0.0;                     ///< shell: > 0 (default: wall)
-  std::size_t max_triangles = 20000000;  ///< budget (key `max_triangles`)
+  double wall = 0.0;                                 ///< shell: > 0
+  double base = 0.0;                                 ///< shell: > 0 (default: wall)
+  std::size_t max_triangles = kDefaultMaxTriangles;  ///< budget (key `max_triangles`)
 };
 
 /// One cut-out of a countertop (sink, cooktop).
@@ -43,25 +57,49 @@ struct CountertopHole {
 
 /// kind: countertop. Outline and holes in the plane; the slab spans z in [0, thickness].
 struct CountertopDesign {
+  static constexpr const char* kKind = "countertop";
   CurveSpec outline;  ///< closed
   std::vector<CountertopHole> holes;
-  double thickness = 0.0;                ///< > 0, model units
-  double max_edge = 0.0;                 ///< > 0 refines the triangulation; 0: not given
-  std::size_t max_triangles = 20000000;  ///< budget (key `max_triangles`)
+  double thickness = 0.0;                            ///< > 0, model units
+  double max_edge = 0.0;                             ///< > 0 refines the triangulation; 0: not given
+  std::size_t max_triangles = kDefaultMaxTriangles;  ///< budget (key `max_triangles`)
 };
 
-/// kind: surface (h-bezier.md). Patches of a G0/G1/G2-joined network, in file order.
+/// kind: surface. Patches of a G0/G1/G2-joined network of generalized
+/// bicubic H-Bézier patches, in file order.
 struct SurfaceDesign {
+  static constexpr const char* kKind = "surface";
   std::vector<PatchSpec> patches;
-  double thickness = 0.0;                ///< > 0: a solid shell along the normals; 0: an open surface
-  std::size_t max_triangles = 20000000;  ///< budget (key `max_triangles`)
+  double thickness = 0.0;  ///< > 0: a solid shell along the normals; 0: an open surface
+  std::size_t max_triangles = kDefaultMaxTriangles;  ///< budget (key `max_triangles`)
 };
 
+/// The kinds of design. Adding one: an alternative here (with its kKind),
+/// its reader (io/design/yaml) and its builder (pipeline/build_*): every
+/// std::visit over a DesignBody then names what is missing at compile time.
 using DesignBody = std::variant<CurveDesign, VesselDesign, CountertopDesign, SurfaceDesign>;
 
 struct Design {
   DesignCommon common;
   DesignBody body;
 };
+
+namespace detail {
+template <std::size_t... I>
+std::vector<std::string> kind_names(std::index_sequence<I...>) {
+  return {std::variant_alternative_t<I, DesignBody>::kKind...};
+}
+}  // namespace detail
+
+/// Every kind's name, in the order of DesignBody's alternatives.
+inline std::vector<std::string> kind_names() {
+  return detail::kind_names(std::make_index_sequence<std::variant_size_v<DesignBody>>{});
+}
+
+/// The kind's name as design files write it ("vessel", ...).
+inline const char* kind_name(const DesignBody& body) {
+  return std::visit([](const auto& b) { return std::decay_t<decltype(b)>::kKind; }, body);
+}
+inline const char* kind_name(const Design& design) { return kind_name(design.body); }
 
 }  // namespace fabmesh

@@ -5,10 +5,9 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
-#include <sstream>
 
 #include "geometry/core/errors.h"
+#include "io/file.h"
 
 namespace fabmesh {
 namespace {
@@ -76,11 +75,8 @@ std::vector<Vec2> parse_points_csv(std::string_view text, const std::string& pat
 }
 
 std::vector<Vec2> read_points_csv(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw FileError(path, 0, 0, fmt::format("{}: cannot open points file", path));
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  return parse_points_csv(buffer.str(), path);
+  constexpr std::size_t kMaxPointsFileBytes = 64u << 20;
+  return parse_points_csv(read_file(path, kMaxPointsFileBytes, "points file"), path);
 }
 
 }  // namespace fabmesh

@@ -7,8 +7,10 @@
 
 namespace fabmesh {
 
-/// Reads and validates a design file. Every error is a FileError whose
-/// message starts with "path:line:column: field:" and names the value.
+/// Reads and validates a design file (a regular file of at most 64 MiB, one
+/// YAML document). Every error is a FileError whose message starts with
+/// "path:line:column: field:" and names the value. The `outputs` are kept as
+/// given: the pipeline's output table checks them.
 /// Ranges checked here: tolerance > 0, shape parameters of each family,
 /// counts of control points; geometry (joins, closure) is checked when built.
 /// \throw FileError

@@ -9,7 +9,7 @@
 #include <limits>
 
 #include "geometry/core/errors.h"
-#include "io/mesh/atomic_file.h"
+#include "io/file.h"
 
 namespace fabmesh {
 namespace {
@@ -131,6 +131,18 @@ std::string encode_draco(const TriangleSoup& soup, const DracoOptions& options) 
   const draco::Status status = encoder.EncodeMeshToBuffer(mesh, &buffer);
   if (!status.ok()) throw InputError(fmt::format("Draco encoder: {}", status.error_msg_string()));
   return std::string(buffer.data(), buffer.size());
+}
+
+std::string encode_draco_accepted(const TriangleSoup& soup, const DracoOptions& options,
+                                  const std::function<bool(const TriangleSoup& decoded)>& accept,
+                                  const std::string& what) {
+  DracoOptions attempt = options;
+  for (int extra_bits = 0; extra_bits < 24; ++extra_bits) {
+    std::string bytes = encode_draco(soup, attempt);
+    if (accept(parse_draco(bytes, what))) return bytes;
+    attempt.tolerance *= 0.5;  // one more bit of quantization
+  }
+  throw ValidationFailed(what + ": no Draco quantization keeps the decoded mesh valid");
 }
 
 void write_draco(const TriangleSoup& soup, const std::string& path, const DracoOptions& options) {

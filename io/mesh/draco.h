@@ -1,6 +1,7 @@
 #pragma once
 // Draco (.drc): compressed triangle meshes, positions quantized.
 
+#include <functional>
 #include <string>
 #include <string_view>
 
@@ -44,6 +45,16 @@ TriangleSoup parse_draco(std::string_view bytes, const std::string& name);
 /// \throw RangeError (tolerance), InputError (index out of range or the
 /// encoder refuses the mesh).
 std::string encode_draco(const TriangleSoup& soup, const DracoOptions& options = {});
+
+/// Draco bytes of `soup` whose decoded mesh `accept` takes (e.g. "is still
+/// valid": quantization can collapse or fold faces). Starts with the
+/// quantization options.tolerance allows and adds one bit at a time (halving
+/// the allowance) while the decoded mesh is refused. `what` names the output
+/// in messages. \throw RangeError (tolerance), ValidationFailed when no
+/// quantization keeps the decoded mesh acceptable.
+std::string encode_draco_accepted(const TriangleSoup& soup, const DracoOptions& options,
+                                  const std::function<bool(const TriangleSoup& decoded)>& accept,
+                                  const std::string& what);
 
 /// Writes `soup` (or `mesh`) as Draco to `path`, atomically.
 /// \throw as encode_draco, and FileError when the file cannot be written.

@@ -6,7 +6,7 @@
 #include <limits>
 
 #include "geometry/core/errors.h"
-#include "io/mesh/atomic_file.h"
+#include "io/file.h"
 #include "io/mesh/text_scanner.h"
 
 namespace fabmesh {

@@ -9,7 +9,7 @@
 #include <optional>
 
 #include "geometry/core/errors.h"
-#include "io/mesh/atomic_file.h"
+#include "io/file.h"
 #include "io/mesh/text_scanner.h"
 
 namespace fabmesh {

@@ -7,7 +7,7 @@
 #include <filesystem>
 
 #include "geometry/core/errors.h"
-#include "io/mesh/atomic_file.h"
+#include "io/file.h"
 #include "io/mesh/draco.h"
 #include "io/mesh/obj.h"
 #include "io/mesh/off.h"

@@ -11,7 +11,7 @@
 #include <limits>
 
 #include "geometry/core/errors.h"
-#include "io/mesh/atomic_file.h"
+#include "io/file.h"
 #include "io/mesh/text_scanner.h"
 
 namespace fabmesh {

@@ -1,21 +1,11 @@
-#include <fmt/format.h>
-
 #include <exception>
 #include <map>
 #include <string>
 
-#include "geometry/core/errors.h"
 #include "pipeline/cli/commands.h"
+#include "pipeline/failure.h"
 
 namespace fabmesh::cli {
-namespace {
-
-int report_error(Streams streams, const char* kind, const std::exception& e, int code) {
-  streams.err << fmt::format("fabmesh: {}: {}\n", kind, e.what());
-  return code;
-}
-
-}  // namespace
 
 int run_app(int argc, const char* const* argv, Streams streams) {
   CLI::App app{"fabmesh: parametric product designs to fabrication-ready meshes"};
@@ -47,12 +37,10 @@ int run_app(int argc, const char* const* argv, Streams streams) {
   try {
     if (chosen == nullptr) return run_bundled_example(streams);
     return runners.at(chosen)(streams);
-  } catch (const InputError& e) {
-    return report_error(streams, "error", e, 2);
-  } catch (const ValidationFailed& e) {
-    return report_error(streams, "invalid", e, 1);
-  } catch (const std::exception& e) {
-    return report_error(streams, "internal error", e, 3);
+  } catch (...) {
+    const Failure failure = describe_failure(std::current_exception());
+    streams.err << failure_line(failure) << "\n";
+    return failure.exit_code;
   }
 }
 

@@ -16,6 +16,7 @@
 #include "geometry/mesh/weld.h"
 #include "io/mesh/read_mesh.h"
 #include "pipeline/cli/commands.h"
+#include "pipeline/report.h"
 
 namespace fabmesh::cli {
 namespace {
@@ -61,28 +62,9 @@ nlohmann::ordered_json to_json(const FileCheck& check) {
     j["valid"] = false;
     return j;
   }
-  const ValidationReport& r = *check.report;
-  j["vertices"] = r.vertices;
-  j["triangles"] = r.triangles;
-  j["components"] = r.components;
-  j["boundary_edges"] = r.boundary_edges;
-  j["non_manifold_edges"] = r.non_manifold_edges;
-  j["non_manifold_vertices"] = r.non_manifold_vertices;
-  j["degenerate_faces"] = r.degenerate_faces;
-  j["duplicate_faces"] = r.duplicate_faces;
-  j["self_intersecting"] = r.self_intersecting;
-  j["oriented_outward"] = r.oriented_outward;
-  j["volume"] = r.volume;
-  j["area"] = r.area;
-  j["genus"] = r.genus ? nlohmann::ordered_json(*r.genus) : nlohmann::ordered_json(nullptr);
-  j["valid"] = r.valid();
   j["welded_vertices"] = check.welded_vertices;
-  j["consistently_oriented"] = r.consistently_oriented;
-  j["intersecting_pairs"] = r.intersecting_pairs;
-  j["defects"] = describe_defects(r);
-  nlohmann::ordered_json timings = nlohmann::ordered_json::object();
-  for (const auto& [stage, ms] : r.timings_ms) timings[stage] = ms;
-  j["timings_ms"] = timings;
+  j.update(validation_json(*check.report));
+  j["timings_ms"] = timings_json(check.report->timings_ms);
   return j;
 }
 

@@ -6,10 +6,11 @@
 #include <nlohmann/json.hpp>
 
 #include "geometry/core/errors.h"
-#include "geometry/fairing/fair_curve.h"
-#include "io/design/read_design.h"
+#include "geometry/curves/build_curve.h"
 #include "pipeline/cli/commands.h"
 #include "pipeline/design_curves.h"
+#include "pipeline/load_design.h"
+#include "pipeline/report.h"
 
 namespace fabmesh::cli {
 namespace {
@@ -19,51 +20,41 @@ struct OptimizeArgs {
   bool json = false;
 };
 
-nlohmann::json joints_json(const BuiltCurve& built) {
-  nlohmann::json out = nlohmann::json::array();
-  for (std::size_t i = 0; i < built.joints.size(); ++i) {
-    const JointReport& j = built.joints[i];
-    out.push_back({{"before", j.before},
-                   {"after", j.after},
-                   {"closing", j.closing},
-                   {"declared", i < built.declared.size() ? to_string(built.declared[i]) : "none"},
-                   {"achieved", to_string(j.achieved)},
-                   {"continuity_lost", i < built.declared.size() && j.achieved < built.declared[i]},
-                   {"gap", j.gap},
-                   {"tangent_angle", j.tangent_angle},
-                   {"curvature_jump", j.curvature_jump}});
-  }
-  return out;
-}
+// The fairest parameters of one curve as JSON, and the curve they give.
+struct Optimized {
+  nlohmann::ordered_json json;
+  BuiltCurve built;
+};
 
-nlohmann::json optimize_curve(const NamedCurve& nc) {
+Optimized optimize_curve(const NamedCurve& nc) {
   CurveSpec spec = nc.spec;
-  nlohmann::json out;
+  Optimized out;
+  nlohmann::ordered_json& j = out.json;
   if (spec.family == CurveFamily::QuasiBSpline) {
     if (spec.fair == FairMode::None) spec.fair = FairMode::CurvatureVariation;
-    const BuiltCurve built = build_curve(spec);
-    out = {{"family", "quasi_bspline"},
-           {"energy_kind", to_string(built.bspline->energy_kind)},
-           {"lambdas", built.bspline->lambdas},
-           {"energy", built.bspline->energy}};
-    out["joints"] = joints_json(built);
-    return out;
-  }
-  if (spec.family == CurveFamily::HBezier) {
+    out.built = build_curve(spec);
+    j["family"] = "quasi_bspline";
+    j["energy_kind"] = to_string(out.built.bspline->energy_kind);
+    j["lambdas"] = out.built.bspline->lambdas;
+    j["energy"] = out.built.bspline->energy;
+  } else if (spec.family == CurveFamily::HBezier) {
     throw GeometryError(nc.name,
                         fmt::format("{}: optimize is defined for tbezier and quasi_bspline curves", nc.name));
+  } else {
+    spec.fair = FairMode::CurvatureVariation;
+    out.built = build_curve(spec);
+    j["family"] = "tbezier";
+    j["segments"] = nlohmann::ordered_json::array();
+    for (const SegmentFairing& s : out.built.segments) {
+      j["segments"].push_back({{"index", s.index}, {"lambda", s.lambda}, {"mu", s.mu}, {"energy", s.energy}});
+    }
   }
-  spec.fair = FairMode::CurvatureVariation;
-  const BuiltCurve built = build_curve(spec);
-  out = {{"family", "tbezier"}, {"segments", nlohmann::json::array()}};
-  for (const SegmentFairing& s : built.segments) {
-    out["segments"].push_back({{"index", s.index}, {"lambda", s.lambda}, {"mu", s.mu}, {"energy", s.energy}});
-  }
-  out["joints"] = joints_json(built);
+  j["joints"] = joints_json(out.built);
   return out;
 }
 
-void print_human(const std::string& name, const nlohmann::json& r, std::ostream& out) {
+void print_human(const std::string& name, const Optimized& o, std::ostream& out) {
+  const nlohmann::ordered_json& r = o.json;
   if (r["family"] == "quasi_bspline") {
     out << fmt::format("{}: quasi_bspline, fairest lambdas for {} energy:\n", name,
                        r["energy_kind"].get<std::string>());
@@ -80,27 +71,22 @@ void print_human(const std::string& name, const nlohmann::json& r, std::ostream&
                          s["energy"].get<double>());
     }
   }
-  for (const auto& j : r["joints"]) {
-    out << fmt::format("  joint {} -> {}: declared {}, after fairing {}{}\n", j["before"].get<int>() + 1,
-                       j["after"].get<int>() + 1, j["declared"].get<std::string>(),
-                       j["achieved"].get<std::string>(),
-                       j["continuity_lost"].get<bool>() ? "  (continuity lost by fairing)" : "");
-  }
+  for (std::size_t i = 0; i < o.built.joints.size(); ++i) out << "  " << joint_line(o.built, i) << "\n";
 }
 
 int run_optimize(const OptimizeArgs& args, Streams io) {
-  const Design design = read_design(args.design);
+  const Design design = load_design(args.design);
   const auto curves = design_curves(design);
   if (curves.empty()) {
     throw InputError(
-        fmt::format("{}: a {} design has no curves to optimize", design.common.path, design.common.kind));
+        fmt::format("{}: a {} design has no curves to optimize", design.common.path, kind_name(design)));
   }
-  nlohmann::json all = nlohmann::json::array();
+  nlohmann::ordered_json all = nlohmann::ordered_json::array();
   for (const NamedCurve& nc : curves) {
-    nlohmann::json r = optimize_curve(nc);
-    if (!args.json) print_human(design.common.name + " " + nc.name, r, io.out);
-    if (curves.size() > 1) r["curve"] = nc.name;
-    all.push_back(std::move(r));
+    Optimized o = optimize_curve(nc);
+    if (!args.json) print_human(design.common.name + " " + nc.name, o, io.out);
+    if (curves.size() > 1) o.json["curve"] = nc.name;
+    all.push_back(std::move(o.json));
   }
   if (args.json) io.out << (all.size() == 1 ? all[0] : all).dump(2) << "\n";
   return 0;

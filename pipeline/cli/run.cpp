@@ -7,10 +7,11 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
-#include "geometry/core/errors.h"
-#include "io/design/read_design.h"
 #include "pipeline/cli/commands.h"
+#include "pipeline/failure.h"
 #include "pipeline/job.h"
+#include "pipeline/load_design.h"
+#include "pipeline/report.h"
 
 namespace fabmesh::cli {
 namespace {
@@ -31,46 +32,13 @@ struct Outcome {
 Outcome run_one(const std::string& path, const JobOptions& options) {
   Outcome o;
   try {
-    o.report = run_job(read_design(path), options);
-  } catch (const FileError& e) {
-    o.code = 2;
-    o.error = fmt::format("error: {}", e.what());  // already names the file and the place
-  } catch (const InputError& e) {
-    o.code = 2;
-    o.error = fmt::format("error: {}: {}", path, e.what());
-  } catch (const ValidationFailed& e) {
-    o.code = 1;
-    o.error = fmt::format("invalid: {}: {}", path, e.what());
-  } catch (const std::exception& e) {
-    o.code = 3;
-    o.error = fmt::format("internal error: {}: {}", path, e.what());
+    o.report = run_job(load_design(path), options);
+  } catch (...) {
+    const Failure failure = describe_failure(std::current_exception(), path);
+    o.code = failure.exit_code;
+    o.error = failure_line(failure);
   }
   return o;
-}
-
-void print_human(const JobReport& r, std::ostream& out) {
-  const ValidationReport& v = r.validation;
-  double total = 0.0;
-  for (const auto& t : r.timings_ms) total += t.second;
-  // An enclosed volume only exists for a closed mesh.
-  const std::string volume =
-      v.boundary_edges == 0 ? fmt::format("{:.6g}", v.volume) : std::string("- (open)");
-  out << fmt::format("{}: {} with {} vertices, {} triangles, volume {}, area {:.6g}, genus {}\n", r.name,
-                     r.kind, v.vertices, v.triangles, volume, v.area,
-                     v.genus ? std::to_string(*v.genus) : "-");
-  if (v.valid()) {
-    out << fmt::format(
-        "  valid: closed, manifold, outward, no self-intersections{}; within {:.3g} of the exact "
-        "surface (tolerance {})\n",
-        r.embedding_proof.empty() ? " (checked)" : " (by construction)", r.max_deviation, r.tolerance);
-  } else {
-    const std::vector<std::string> defects = describe_defects(v);
-    out << fmt::format("  warning: not valid for fabrication ({}; {}): written for viewing only\n",
-                       r.build.is_object() ? r.build.value("fabrication", "invalid") : "invalid",
-                       defects.empty() ? "" : defects.front());
-  }
-  for (const std::string& path : r.outputs) out << fmt::format("  wrote {}\n", path);
-  out << fmt::format("  {:.1f} ms\n", total);
 }
 
 int run_designs(const RunArgs& args, Streams io) {
@@ -81,17 +49,17 @@ int run_designs(const RunArgs& args, Streams io) {
   tbb::parallel_for(std::size_t{0}, args.designs.size(),
                     [&](std::size_t i) { outcomes[i] = run_one(args.designs[i], options); });
   int code = 0;
-  nlohmann::json all = nlohmann::json::array();
+  nlohmann::ordered_json all = nlohmann::ordered_json::array();
   for (std::size_t i = 0; i < outcomes.size(); ++i) {
     const Outcome& o = outcomes[i];
     code = std::max(code, o.code);
-    if (!o.error.empty()) io.err << "fabmesh: " << o.error << "\n";
+    if (!o.error.empty()) io.err << o.error << "\n";
     if (args.json) {
-      all.push_back(
-          o.report ? to_json(*o.report)
-                   : nlohmann::json{{"design", args.designs[i]}, {"error", o.error}, {"exit_code", o.code}});
+      all.push_back(o.report ? to_json(*o.report)
+                             : nlohmann::ordered_json{
+                                   {"design", args.designs[i]}, {"error", o.error}, {"exit_code", o.code}});
     } else if (o.report) {
-      print_human(*o.report, io.out);
+      print_summary(*o.report, io.out);
     }
   }
   if (args.json) io.out << (all.size() == 1 ? all[0] : all).dump(2) << "\n";

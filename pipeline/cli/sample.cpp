@@ -5,12 +5,13 @@
 #include <memory>
 
 #include "geometry/core/errors.h"
-#include "geometry/fairing/fair_curve.h"
+#include "geometry/curves/build_curve.h"
 #include "geometry/sampling/sample_curve.h"
 #include "geometry/section/simple_polygon.h"
-#include "io/design/read_design.h"
 #include "pipeline/cli/commands.h"
 #include "pipeline/design_curves.h"
+#include "pipeline/load_design.h"
+#include "pipeline/report.h"
 
 namespace fabmesh::cli {
 namespace {
@@ -22,13 +23,13 @@ struct SampleArgs {
 };
 
 int run_sample(const SampleArgs& args, Streams io) {
-  const Design design = read_design(args.design);
+  const Design design = load_design(args.design);
   SampleOptions options;
   options.tolerance = args.tolerance > 0.0 ? args.tolerance : design.common.tolerance;
   if (design_curves(design).empty()) {
     io.out << fmt::format(
         "# {}: a {} design has no curves to sample (its patches are tessellated by `fabmesh run`)\n",
-        design.common.name, design.common.kind);
+        design.common.name, kind_name(design));
     return 0;
   }
   if (args.csv) io.out << "curve,x,y\n";
@@ -53,15 +54,7 @@ int run_sample(const SampleArgs& args, Streams io) {
     io.out << fmt::format("# {} {}: {} {} segment(s), {} points, max deviation {:.6g} (tolerance {})\n",
                           design.common.name, nc.name, built.curve.closed() ? "closed" : "open",
                           built.curve.size(), line.points.size(), line.max_deviation, options.tolerance);
-    for (std::size_t i = 0; i < built.joints.size(); ++i) {
-      const JointReport& j = built.joints[i];
-      io.out << fmt::format(
-          "# joint {} -> {}{}: declared {}, measured {} (gap {:.3g}, angle {:.3g} rad, "
-          "curvature jump {:.3g})\n",
-          j.before + 1, j.after + 1, j.closing ? " (closing)" : "",
-          i < built.declared.size() ? to_string(built.declared[i]) : "-", to_string(j.achieved), j.gap,
-          j.tangent_angle, j.curvature_jump);
-    }
+    for (std::size_t i = 0; i < built.joints.size(); ++i) io.out << "# " << joint_line(built, i) << "\n";
     for (const Vec2& p : line.points) io.out << fmt::format("{} {}\n", p.x(), p.y());
   }
   return 0;

@@ -8,17 +8,18 @@
 #include <sstream>
 
 #include "geometry/core/errors.h"
-#include "geometry/fairing/fair_curve.h"
+#include "geometry/curves/build_curve.h"
 #include "geometry/mesh/soup.h"
 #include "geometry/mesh/validate.h"
 #include "geometry/mesh/weld.h"
 #include "io/cutting/read_dxf.h"
 #include "io/design/read_design.h"
-#include "io/mesh/atomic_file.h"
+#include "io/file.h"
 #include "io/mesh/draco.h"
 #include "io/mesh/stl.h"
 #include "pipeline/cli/commands.h"
 #include "pipeline/job.h"
+#include "pipeline/outputs.h"
 #include "tests/geometry/section/region_shapes.h"
 #include "tests/pipeline/cli_harness.h"
 
@@ -61,7 +62,7 @@ TEST_CASE("countertop examples: valid slabs, genus = holes, volume = exact area 
                            "countertop_asymmetric_line.yaml"}) {
     INFO(name);
     Design design = read_design(example(name));
-    design.common.outputs = {"stl", "dxf"};
+    design.common.outputs = {{"stl", "test", 0, 0}, {"dxf", "test", 0, 0}};
     const auto& c = std::get<CountertopDesign>(design.body);
     const JobReport r = run_job(design, {dir.string()});
     CHECK(r.validation.valid());
@@ -73,7 +74,7 @@ TEST_CASE("countertop examples: valid slabs, genus = holes, volume = exact area 
     // The STL read back passes the full validation, 3D self-intersection test included.
     const ValidationReport full = validate(weld(parse_stl(read_file(r.outputs[0]), "stl")).soup);
     CHECK(full.valid());
-    CHECK(full.self_intersection_checked);
+    CHECK(full.self_intersection == IntersectionCheck::Tested);
     CHECK(full.genus == r.validation.genus);
     CHECK(full.triangles == r.validation.triangles);
   }
@@ -170,13 +171,15 @@ TEST_CASE("countertop bad input: exit 2, a message naming the problem, no file",
 
 TEST_CASE("countertop design: dxf/svg only for countertops, holes read as exact closed curves",
           "[pipeline][countertop][design]") {
-  CHECK_THROWS_AS(
-      parse_design("name: v\nkind: vessel\noutputs: [stl, dxf]\nprofile: {family: tbezier, segments: "
-                   "[{line: {from: [1, 0], to: [1, 1]}}]}\nbody: {mode: solid}\n",
-                   "v.yaml"),
-      FileError);
+  CHECK_THROWS_WITH(
+      resolve_outputs(parse_design("name: v\nkind: vessel\noutputs: [stl, dxf]\nprofile: {family: tbezier, "
+                                   "segments: [{line: {from: [1, 0], to: [1, 1]}}]}\nbody: {mode: solid}\n",
+                                   "v.yaml")),
+      Catch::Contains("v.yaml:3:16: outputs[1]: dxf") && Catch::Contains("made for countertop designs"));
   const Design d = parse_design(kSmall, "small.yaml");
-  CHECK(d.common.outputs == std::vector<std::string>{"stl", "drc", "dxf", "svg"});
+  std::vector<std::string> defaults;
+  for (const OutputFormat* f : resolve_outputs(d)) defaults.emplace_back(f->name);
+  CHECK(defaults == std::vector<std::string>{"stl", "drc", "dxf", "svg"});
   const auto& c = std::get<CountertopDesign>(d.body);
   REQUIRE(c.holes.size() == 2);
   const CompositeCurve ellipse = build_curve(c.holes[0].curve).curve;

@@ -10,7 +10,7 @@
 #include "geometry/mesh/validate.h"
 #include "geometry/mesh/weld.h"
 #include "io/design/read_design.h"
-#include "io/mesh/atomic_file.h"
+#include "io/file.h"
 #include "io/mesh/draco.h"
 #include "io/mesh/stl.h"
 #include "pipeline/cli/commands.h"

@@ -64,7 +64,7 @@ TEST_CASE("slab: valid with the 3D self-intersection test, genus = holes, volume
     const ValidationReport full = validate(slab.mesh);
     INFO(describe_defects(full).size());
     CHECK(full.valid());
-    CHECK(full.self_intersection_checked);
+    CHECK(full.self_intersection == IntersectionCheck::Tested);
     CHECK_FALSE(full.self_intersecting);
     REQUIRE(full.genus);
     CHECK(*full.genus == 2);
@@ -75,7 +75,9 @@ TEST_CASE("slab: valid with the 3D self-intersection test, genus = holes, volume
           region.max_deviation * k.perimeter * so.thickness);
     CHECK(full.volume == Approx(region.area * so.thickness).epsilon(1e-12));
     // The construction proof agrees with the full test.
-    const ValidationReport constructed = validate_constructed(slab.mesh, slab.embedding_proof);
+    REQUIRE(slab.proof);
+    const ValidationReport constructed = validate_constructed(slab.mesh, to_soup(slab.mesh), *slab.proof);
+    CHECK(constructed.self_intersection == IntersectionCheck::ProvenByConstruction);
     CHECK(constructed.valid());
     CHECK(constructed.volume == full.volume);
     CHECK(constructed.genus == full.genus);

@@ -3,8 +3,8 @@
 #include <catch2/catch.hpp>
 
 #include "geometry/core/errors.h"
-#include "geometry/mesh/tessellate.h"
 #include "geometry/mesh/validate.h"
+#include "geometry/surfaces/tessellate.h"
 #include "tests/geometry/surfaces/test_networks.h"
 
 using namespace fabmesh;
@@ -15,10 +15,8 @@ TEST_CASE("thicken: a disk-like G1 network becomes a valid outward solid of genu
   TessellateOptions o;
   o.tolerance = 0.02;
   o.offset = 0.05;
-  SurfaceTessellation sheet;
-  tessellate(net, o, sheet);
-  Mesh solid;
-  thicken(sheet.mesh, sheet.normals, {0.05}, solid);
+  const SurfaceTessellation sheet = tessellate(net, o);
+  const Mesh solid = thicken(sheet.mesh, sheet.normals, {0.05});
   const ValidationReport r = validate(solid);
   std::string defects;
   for (const std::string& d : describe_defects(r)) defects += d + "; ";
@@ -39,23 +37,21 @@ TEST_CASE("thicken: a shell thicker than the radius of curvature intersects itse
   const PatchNetwork net = build_patch_network(test::half_cylinder_specs(1.0, 2.0));
   TessellateOptions o;
   o.tolerance = 0.01;
-  SurfaceTessellation sheet;
-  tessellate(net, o, sheet);
-  Mesh solid;
-  thicken(sheet.mesh, sheet.normals, {0.1}, solid);  // thin: fine
-  CHECK(validate(solid).valid());
-  thicken(sheet.mesh, sheet.normals, {2.5}, solid);  // beyond the axis: the walls cross
-  const ValidationReport r = validate(solid);
+  const SurfaceTessellation sheet = tessellate(net, o);
+  CHECK(validate(thicken(sheet.mesh, sheet.normals, {0.1})).valid());  // thin: fine
+  const ValidationReport r =
+      validate(thicken(sheet.mesh, sheet.normals, {2.5}));  // beyond the axis: walls cross
   CHECK_FALSE(r.valid());
   CHECK(r.self_intersecting);
 }
 
 TEST_CASE("thicken: bad thickness and normal counts are rejected", "[mesh][thicken]") {
   const PatchNetwork net = build_patch_network(test::half_cylinder_specs());
-  SurfaceTessellation sheet;
-  tessellate(net, {}, sheet);
-  Mesh solid;
-  CHECK_THROWS_AS(thicken(sheet.mesh, sheet.normals, {0.0}, solid), RangeError);
-  CHECK_THROWS_AS(thicken(sheet.mesh, sheet.normals, {-1.0}, solid), RangeError);
-  CHECK_THROWS_AS(thicken(sheet.mesh, {}, {1.0}, solid), RangeError);
+  const SurfaceTessellation sheet = tessellate(net, {});
+  CHECK_THROWS_AS(thicken(sheet.mesh, sheet.normals, {0.0}), RangeError);
+  CHECK_THROWS_AS(thicken(sheet.mesh, sheet.normals, {-1.0}), RangeError);
+  CHECK_THROWS_AS(thicken(sheet.mesh, {}, {1.0}), RangeError);
+  ThickenOptions small;
+  small.max_triangles = thickened_triangle_count(sheet.mesh) - 1;
+  CHECK_THROWS_AS(thicken(sheet.mesh, sheet.normals, small), BudgetError);
 }

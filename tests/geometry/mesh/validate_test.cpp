@@ -277,7 +277,7 @@ TEST_CASE("validate: an empty soup and non-finite vertices are invalid, never a 
   s.vertices[3].x() = std::nan("");
   const ValidationReport r = validate(s);
   CHECK(r.non_finite_vertices == 1);
-  CHECK_FALSE(r.self_intersection_checked);
+  CHECK(r.self_intersection == IntersectionCheck::NotRun);
   CHECK_FALSE(r.valid());
 }
 

@@ -2,7 +2,7 @@
 #include <map>
 #include <sstream>
 
-#include "geometry/fairing/fair_curve.h"
+#include "geometry/curves/build_curve.h"
 #include "io/cutting/cutting_outline.h"
 #include "io/cutting/dxf.h"
 #include "io/cutting/read_dxf.h"

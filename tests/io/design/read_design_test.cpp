@@ -4,7 +4,7 @@
 #include <fstream>
 
 #include "geometry/core/errors.h"
-#include "geometry/fairing/fair_curve.h"
+#include "geometry/curves/build_curve.h"
 
 using namespace fabmesh;
 
@@ -41,9 +41,9 @@ TEST_CASE("design: a T-Bezier composite with joins, an ellipse arc and a line is
 )",
                                 "dir/my_curve.yaml");
   CHECK(d.common.name == "my_curve");
-  CHECK(d.common.kind == "curve");
+  CHECK(std::string(kind_name(d)) == "curve");
   CHECK(d.common.units == "mm");
-  CHECK(d.common.outputs == std::vector<std::string>{"stl", "drc"});
+  CHECK(d.common.outputs.empty());  // none given: the output table supplies the kind's defaults
   const CurveSpec& c = std::get<CurveDesign>(d.body).curve;
   REQUIRE(c.segments.size() == 4);
   CHECK(c.segments[1].join->continuity == Continuity::G1);
@@ -181,5 +181,5 @@ TEST_CASE("design: a polyline can read its points from a CSV file beside the des
   }
   CHECK_THAT(error_of(std::string(kCurveHeader) +
                       "  family: tbezier\n  segments:\n    - polyline: {file: /nonexistent/p.csv}\n"),
-             Catch::Contains("cannot open points file"));
+             Catch::Contains("cannot open the points file"));
 }

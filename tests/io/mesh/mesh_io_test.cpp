@@ -5,7 +5,7 @@
 #include "geometry/core/errors.h"
 #include "geometry/mesh/validate.h"
 #include "geometry/mesh/weld.h"
-#include "io/mesh/atomic_file.h"
+#include "io/file.h"
 #include "io/mesh/draco.h"
 #include "io/mesh/obj.h"
 #include "io/mesh/off.h"
@@ -291,7 +291,7 @@ TEST_CASE("mesh files: garbage, empty and corrupt Draco files are FileErrors", "
   CHECK_THROWS_AS(read_mesh(dir.file("")), FileError);  // a folder
 }
 
-TEST_CASE("atomic_file: writes replace the target and leave no temporary behind", "[mesh][io]") {
+TEST_CASE("file: writes replace the target and leave no temporary behind", "[mesh][io]") {
   const TempDir dir;
   const std::string path = dir.file("out.stl");
   write_file_atomically(path, "first");

@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "geometry/core/limits.h"
 #include "geometry/core/types.h"
 #include "geometry/surfaces/patch_network.h"
 
@@ -15,8 +16,8 @@ struct TessellateOptions {
   /// When not 0, the offset sheet S + offset n (thicken) is kept within
   /// `tolerance` of the exact offset surface as well, model units.
   double offset = 0.0;
-  int initial_segments = 4;              ///< segments per patch direction before refinement (>= 1)
-  std::size_t max_triangles = 20000000;  ///< budget; more is a BudgetError
+  int initial_segments = 4;  ///< segments per patch direction before refinement (>= 1)
+  std::size_t max_triangles = kDefaultMaxTriangles;  ///< budget; more is a BudgetError
 };
 
 /// A network tessellated: one mesh, vertices shared by index across borders.
@@ -40,9 +41,8 @@ struct SurfaceTessellation {
 /// vertices) until every cell is within `tolerance`. Each grid cell becomes two
 /// triangles counter-clockwise about S_s x S_t; collapsed sides become one
 /// vertex. The only boundary edges are on the network's outer border.
-/// Fills `out` (replacing its content): OpenMesh meshes cannot be moved.
 /// \throw RangeError (tolerance), BudgetError (max_triangles), GeometryError
 ///        (a network whose patches cannot form a manifold mesh)
-void tessellate(const PatchNetwork& network, const TessellateOptions& options, SurfaceTessellation& out);
+SurfaceTessellation tessellate(const PatchNetwork& network, const TessellateOptions& options);
 
 }  // namespace fabmesh

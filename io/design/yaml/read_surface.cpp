@@ -1,4 +1,4 @@
-#include "io/design/read_surface.h"
+#include "io/design/yaml/read_surface.h"
 
 #include <fmt/format.h>
 
@@ -13,7 +13,7 @@ HBezierParams read_params(const yaml::Fields& f, const YAML::Node& patch, const 
   const YAML::Node n = patch[key];
   if (!n.IsDefined()) return fallback;
   const std::string pf = field + "." + key;
-  f.require_map(n, pf, {"alpha", "lambda", "mu"});
+  f.require_map(n, pf, key_group("surface.patches[].u"));
   HBezierParams p;
   p.alpha = f.number_or(n, "alpha", pf + ".alpha", 1.0);
   p.lambda = f.number_or(n, "lambda", pf + ".lambda", 0.0);
@@ -32,7 +32,7 @@ std::array<Vec3, 4> read_line(const yaml::Fields& f, const YAML::Node& n, const 
 
 PatchJoin read_join(const yaml::Fields& f, const YAML::Node& n, const std::string& field,
                     const std::vector<std::string>& names) {
-  f.require_map(n, field, {"to", "side", "continuity", "gamma", "k", "m"});
+  f.require_map(n, field, key_group("surface.patches[].join"));
   PatchJoin j;
   const YAML::Node to = f.required(n, "to", field);
   const std::string target = f.text(to, field + ".to");
@@ -73,7 +73,7 @@ PatchJoin read_join(const yaml::Fields& f, const YAML::Node& n, const std::strin
 
 PatchSpec read_patch(const yaml::Fields& f, const YAML::Node& n, const std::string& field,
                      const std::vector<PatchSpec>& earlier, const std::vector<std::string>& names) {
-  f.require_map(n, field, {"name", "u", "v", "points", "join"});
+  f.require_map(n, field, key_group("surface.patches[]"));
   PatchSpec s;
   s.name = f.text(f.required(n, "name", field), field + ".name");
   if (std::find(names.begin(), names.end(), s.name) != names.end()) {
@@ -122,8 +122,6 @@ PatchSpec read_patch(const yaml::Fields& f, const YAML::Node& n, const std::stri
 }  // namespace
 
 SurfaceDesign read_surface(const yaml::Fields& f, const YAML::Node& root) {
-  f.require_map(root, "",
-                {"name", "kind", "units", "tolerance", "outputs", "patches", "thickness", "max_triangles"});
   SurfaceDesign d;
   const YAML::Node patches = f.required(root, "patches", "patches");
   f.require_list(patches, "patches", 1);
@@ -137,14 +135,7 @@ SurfaceDesign read_surface(const yaml::Fields& f, const YAML::Node& root) {
     if (!(d.thickness > 0.0))
       f.fail(root["thickness"], "thickness", fmt::format("thickness = {} must be > 0", d.thickness));
   }
-  if (root["max_triangles"].IsDefined()) {
-    const double budget = f.number(root["max_triangles"], "max_triangles");
-    if (budget < 1.0 || budget > 2e9 || budget != std::floor(budget)) {
-      f.fail(root["max_triangles"], "max_triangles",
-             fmt::format("max_triangles = {} must be a whole number in [1, 2e9]", budget));
-    }
-    d.max_triangles = static_cast<std::size_t>(budget);
-  }
+  d.max_triangles = f.budget_or(root, "max_triangles", d.max_triangles);
   // Joins that cannot be made (continuity contradicted, borders that do not meet) at their patch.
   try {
     build_patch_network(d.patches);

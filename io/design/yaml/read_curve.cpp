@@ -1,4 +1,4 @@
-#include "io/design/read_curve.h"
+#include "io/design/yaml/read_curve.h"
 
 #include <fmt/format.h>
 
@@ -25,12 +25,12 @@ JoinSpec read_join(const yaml::Fields& f, const YAML::Node& node, const std::str
                    SegmentKind kind) {
   JoinSpec j;
   if (kind == SegmentKind::HBezier) {
-    f.require_map(node, field, {"continuity", "k", "m"});
+    f.require_map(node, field, key_group("segment.join.hbezier"));
     j.k = f.number_or(node, "k", field + ".k", 1.0);
     j.m = f.number_or(node, "m", field + ".m", 0.0);
     if (j.k <= 0.0) f.fail(node["k"], field + ".k", fmt::format("k = {} must be > 0", j.k));
   } else {
-    f.require_map(node, field, {"continuity", "alpha", "beta"});
+    f.require_map(node, field, key_group("segment.join.tbezier"));
     j.alpha = f.number_or(node, "alpha", field + ".alpha", 1.0);
     j.beta = f.number_or(node, "beta", field + ".beta", 0.0);
     if (j.alpha <= 0.0)
@@ -45,10 +45,10 @@ SegmentSpec read_ellipse_arc(const yaml::Fields& f, const YAML::Node& n, const s
   SegmentSpec s;
   s.kind = SegmentKind::EllipseArc;
   if (circle) {
-    f.require_map(n, field, {"center", "radius", "from_deg", "to_deg"});
+    f.require_map(n, field, key_group("segment.circle_arc.circle_arc"));
     s.ellipse.a = s.ellipse.b = f.number(f.required(n, "radius", field), field + ".radius");
   } else {
-    f.require_map(n, field, {"center", "a", "b", "rotation_deg", "from_deg", "to_deg"});
+    f.require_map(n, field, key_group("segment.ellipse_arc.ellipse_arc"));
     s.ellipse.a = f.number(f.required(n, "a", field), field + ".a");
     s.ellipse.b = f.number(f.required(n, "b", field), field + ".b");
     s.ellipse.rotation_deg = f.number_or(n, "rotation_deg", field + ".rotation_deg", 0.0);
@@ -66,9 +66,9 @@ SegmentSpec read_segment(const yaml::Fields& f, const YAML::Node& n, const std::
   SegmentSpec s;
   s.label = f.label(n, field);
   if (n["line"].IsDefined()) {
-    f.require_map(n, field, {"line", "continuity"});
+    f.require_map(n, field, key_group("segment.line"));
     const YAML::Node l = n["line"];
-    f.require_map(l, field + ".line", {"from", "to"});
+    f.require_map(l, field + ".line", key_group("segment.line.line"));
     s.kind = SegmentKind::Line;
     if (l["from"].IsDefined()) s.points.push_back(f.point2(l["from"], field + ".line.from"));
     s.points.push_back(f.point2(f.required(l, "to", field + ".line"), field + ".line.to"));
@@ -83,14 +83,14 @@ SegmentSpec read_segment(const yaml::Fields& f, const YAML::Node& n, const std::
   }
   for (const char* key : {"ellipse_arc", "circle_arc"}) {
     if (!n[key].IsDefined()) continue;
-    f.require_map(n, field, {key, "continuity"});
+    f.require_map(n, field, key_group(std::string("segment.") + key));
     SegmentSpec e = read_ellipse_arc(f, n[key], field + "." + key, std::string(key) == "circle_arc");
     e.label = s.label;
     if (n["continuity"].IsDefined()) e.declared = read_continuity(f, n["continuity"], field + ".continuity");
     return e;
   }
   // A cubic of the curve's family (or of the family the segment names).
-  f.require_map(n, field, {"points", "lambda", "mu", "alpha", "join", "continuity", "family"});
+  f.require_map(n, field, key_group("segment.cubic"));
   s.kind = family == CurveFamily::HBezier ? SegmentKind::HBezier : SegmentKind::TBezier;
   if (n["family"].IsDefined()) {
     s.kind = f.choice(n["family"], field + ".family", {"tbezier", "hbezier"}) == "hbezier"
@@ -136,14 +136,14 @@ SegmentSpec read_segment(const yaml::Fields& f, const YAML::Node& n, const std::
 // starts at p0; later it continues from the previous segment's end.
 void read_polyline(const yaml::Fields& f, const YAML::Node& n, const std::string& field,
                    std::vector<SegmentSpec>& out) {
-  f.require_map(n, field, {"polyline", "continuity"});
+  f.require_map(n, field, key_group("segment.polyline"));
   const bool first = out.empty();
   const YAML::Node list = n["polyline"];
   const std::size_t needed = first ? 2 : 1;
   std::vector<Vec2> pts;
   if (list.IsMap()) {
     // polyline: {file: points.csv}, relative to the design file's folder.
-    f.require_map(list, field + ".polyline", {"file"});
+    f.require_map(list, field + ".polyline", key_group("segment.polyline.file"));
     const YAML::Node file = f.required(list, "file", field + ".polyline");
     const std::filesystem::path name = f.text(file, field + ".polyline.file");
     const std::filesystem::path path =
@@ -180,7 +180,7 @@ CurveSpec read_curve(const yaml::Fields& f, const YAML::Node& node, const std::s
       f.choice(f.required(node, "family", field), field + ".family", {"tbezier", "hbezier", "quasi_bspline"});
   spec.fair = read_fair(f, node, field);
   if (family == "quasi_bspline") {
-    f.require_map(node, field, {"family", "points", "lambdas", "fair"});
+    f.require_map(node, field, key_group("curve.quasi_bspline"));
     spec.family = CurveFamily::QuasiBSpline;
     const YAML::Node pts = f.required(node, "points", field);
     spec.bspline_points = f.points2(pts, field + ".points");
@@ -207,12 +207,12 @@ CurveSpec read_curve(const yaml::Fields& f, const YAML::Node& node, const std::s
     }
     return spec;
   }
-  f.require_map(node, field, {"family", "closed", "segments", "fair", "closing"});
+  f.require_map(node, field, key_group("curve.composite"));
   spec.family = family == "hbezier" ? CurveFamily::HBezier : CurveFamily::TBezier;
   spec.closed = f.boolean_or(node, "closed", field + ".closed", false);
   if (node["closing"].IsDefined()) {
     const YAML::Node c = node["closing"];
-    f.require_map(c, field + ".closing", {"continuity"});
+    f.require_map(c, field + ".closing", key_group("curve.closing"));
     if (!spec.closed) f.fail(c, field + ".closing", "only a closed curve has a closing joint");
     spec.closing_declared =
         read_continuity(f, f.required(c, "continuity", field + ".closing"), field + ".closing.continuity");

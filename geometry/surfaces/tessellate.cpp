@@ -1,4 +1,4 @@
-#include "geometry/mesh/tessellate.h"
+#include "geometry/surfaces/tessellate.h"
 
 #include <fmt/format.h>
 
@@ -8,6 +8,7 @@
 #include <map>
 #include <numeric>
 
+#include "geometry/core/disjoint_sets.h"
 #include "geometry/core/errors.h"
 
 namespace fabmesh {
@@ -110,35 +111,34 @@ CellError cell_error(const HBezierPatch& p, double s0, double s1, double t0, dou
   return e;
 }
 
-// Grid vertex ids of a patch and the identification of shared ones.
+// Grid vertex ids of the patches, and the identification of shared ones
+// (the earliest patch's vertex represents its class).
 class VertexIds {
  public:
-  explicit VertexIds(const std::vector<std::pair<std::size_t, std::size_t>>& grid_sizes) {
-    std::size_t total = 0;
+  explicit VertexIds(const std::vector<std::pair<std::size_t, std::size_t>>& grid_sizes)
+      : sets_(total(grid_sizes)) {
+    std::size_t first = 0;
     for (const auto& [ns, nt] : grid_sizes) {
-      first_.push_back(total);
+      first_.push_back(first);
       nt_.push_back(nt);
-      total += (ns + 1) * (nt + 1);
+      first += (ns + 1) * (nt + 1);
     }
-    parent_.resize(total);
-    std::iota(parent_.begin(), parent_.end(), std::size_t{0});
   }
   std::size_t id(std::size_t patch, std::size_t a, std::size_t b) const {
     return first_[patch] + a * (nt_[patch] + 1) + b;
   }
-  std::size_t root(std::size_t x) {
-    while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
-    return x;
-  }
-  void unite(std::size_t x, std::size_t y) {
-    x = root(x);
-    y = root(y);
-    if (x != y) parent_[std::max(x, y)] = std::min(x, y);  // the earliest patch's vertex represents
-  }
-  std::size_t size() const { return parent_.size(); }
+  std::size_t root(std::size_t x) { return sets_.find(x); }
+  void unite(std::size_t x, std::size_t y) { sets_.unite(x, y); }
+  std::size_t size() const { return sets_.size(); }
 
  private:
-  std::vector<std::size_t> first_, nt_, parent_;
+  static std::size_t total(const std::vector<std::pair<std::size_t, std::size_t>>& sizes) {
+    std::size_t n = 0;
+    for (const auto& [ns, nt] : sizes) n += (ns + 1) * (nt + 1);
+    return n;
+  }
+  std::vector<std::size_t> first_, nt_;
+  DisjointSets<std::size_t> sets_;
 };
 
 // Grid index of the k-th vertex along a side.
@@ -164,7 +164,7 @@ bool collapsed(const HBezierPatch& p, PatchSide side, double eps) {
 
 }  // namespace
 
-void tessellate(const PatchNetwork& network, const TessellateOptions& options, SurfaceTessellation& out) {
+SurfaceTessellation tessellate(const PatchNetwork& network, const TessellateOptions& options) {
   require_positive("tolerance", options.tolerance);
   require_in_range("offset", options.offset, -1e12, 1e12);
   if (options.initial_segments < 1) {
@@ -242,10 +242,7 @@ void tessellate(const PatchNetwork& network, const TessellateOptions& options, S
     }
   }
 
-  out.mesh.clean();
-  out.normals.clear();
-  out.s_breaks.clear();
-  out.t_breaks.clear();
+  SurfaceTessellation out;
   out.max_deviation = achieved;
   std::vector<std::pair<std::size_t, std::size_t>> sizes;
   for (std::size_t p = 0; p < np; ++p) {
@@ -330,6 +327,7 @@ void tessellate(const PatchNetwork& network, const TessellateOptions& options, S
                                     "patches overlap or meet along partial borders",
                                     refused));
   }
+  return out;
 }
 
 }  // namespace fabmesh

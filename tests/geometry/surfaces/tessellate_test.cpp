@@ -1,4 +1,4 @@
-#include "geometry/mesh/tessellate.h"
+#include "geometry/surfaces/tessellate.h"
 
 #include <catch2/catch.hpp>
 #include <random>
@@ -52,12 +52,11 @@ double distance_to_mesh(const Mesh& m, const Vec3& p) {
 }  // namespace
 
 TEST_CASE("tessellate: a G1 network becomes one conforming sheet whose only boundary is the outer border",
-          "[mesh][tessellate]") {
+          "[surfaces][tessellate]") {
   const PatchNetwork net = build_patch_network(test::basin_specs());
   TessellateOptions o;
   o.tolerance = 0.01;
-  SurfaceTessellation t;
-  tessellate(net, o, t);
+  const SurfaceTessellation t = tessellate(net, o);
   const ValidationReport r = validate(t.mesh);
   // Open, but otherwise clean: manifold, consistently oriented, no degenerate or crossing faces.
   REQUIRE(r.defects.size() == 1);
@@ -90,14 +89,13 @@ TEST_CASE("tessellate: a G1 network becomes one conforming sheet whose only boun
 }
 
 TEST_CASE("tessellate: the mesh is within tolerance of the exact surface, and finer for a smaller one",
-          "[mesh][tessellate]") {
+          "[surfaces][tessellate]") {
   const PatchNetwork net = build_patch_network(test::basin_specs());
   std::size_t previous = 0;
   for (double tolerance : {0.05, 0.01}) {
     TessellateOptions o;
     o.tolerance = tolerance;
-    SurfaceTessellation t;
-    tessellate(net, o, t);
+    const SurfaceTessellation t = tessellate(net, o);
     CHECK(t.max_deviation <= tolerance);
     CHECK(t.mesh.n_faces() > previous);
     previous = t.mesh.n_faces();
@@ -113,13 +111,12 @@ TEST_CASE("tessellate: the mesh is within tolerance of the exact surface, and fi
   }
 }
 
-TEST_CASE("tessellate: the triangle budget is enforced", "[mesh][tessellate]") {
+TEST_CASE("tessellate: the triangle budget is enforced", "[surfaces][tessellate]") {
   const PatchNetwork net = build_patch_network(test::basin_specs());
   TessellateOptions o;
   o.tolerance = 1e-5;
   o.max_triangles = 5000;
-  SurfaceTessellation t;
-  CHECK_THROWS_AS(tessellate(net, o, t), BudgetError);
+  CHECK_THROWS_AS(tessellate(net, o), BudgetError);
   o.tolerance = 0.0;
-  CHECK_THROWS_AS(tessellate(net, o, t), RangeError);
+  CHECK_THROWS_AS(tessellate(net, o), RangeError);
 }

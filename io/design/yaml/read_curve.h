@@ -1,12 +1,12 @@
 #pragma once
-// Reads one curve (product.md "Curves", h-bezier.md) from a YAML node.
+// Reads one curve (docs/design-files.md "Curves") from a YAML node.
 
 #include <yaml-cpp/yaml.h>
 
 #include <string>
 
 #include "geometry/curves/curve_spec.h"
-#include "io/design/yaml_fields.h"
+#include "io/design/yaml/fields.h"
 
 namespace fabmesh {
 

@@ -1,6 +1,7 @@
 #pragma once
 // Typed access to YAML fields with errors that name file, line, column and
-// field. Kept out of the public design API: parsers of each design kind use it.
+// field. Private to io/design (yaml-cpp is a private dependency of
+// fabmesh::io): only the readers of io/design/yaml include it.
 
 #include <yaml-cpp/yaml.h>
 
@@ -10,6 +11,7 @@
 
 #include "geometry/core/errors.h"
 #include "geometry/core/types.h"
+#include "io/design/schema.h"
 
 namespace fabmesh::yaml {
 
@@ -26,9 +28,9 @@ class Fields {
 
   /// The child `key` of a map; a FileError at the map when it is missing.
   YAML::Node required(const YAML::Node& parent, const char* key, const std::string& field) const;
-  /// Requires a map whose keys are all in `allowed`.
-  void require_map(const YAML::Node& node, const std::string& field,
-                   std::initializer_list<const char*> allowed) const;
+  /// Requires a map whose keys are all in `allowed` (design_key_groups()),
+  /// each key a plain scalar given once.
+  void require_map(const YAML::Node& node, const std::string& field, const KeyGroup& allowed) const;
   /// Requires a sequence of at least `min_size` entries.
   void require_list(const YAML::Node& node, const std::string& field, std::size_t min_size = 0) const;
 
@@ -41,6 +43,8 @@ class Fields {
   /// One of `choices`.
   std::string choice(const YAML::Node& node, const std::string& field,
                      std::initializer_list<const char*> choices) const;
+  /// A work budget (`max_triangles`): a whole number in [1, 2e9], or `fallback` when absent.
+  std::size_t budget_or(const YAML::Node& parent, const char* key, std::size_t fallback) const;
   bool boolean_or(const YAML::Node& parent, const char* key, const std::string& field, bool fallback) const;
   Vec2 point2(const YAML::Node& node, const std::string& field) const;
   std::vector<Vec2> points2(const YAML::Node& node, const std::string& field, std::size_t min_size = 0) const;

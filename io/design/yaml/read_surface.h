@@ -1,10 +1,10 @@
 #pragma once
-// Reads the body of a `kind: surface` design (h-bezier.md "Design file").
+// Reads the body of a `kind: surface` design (docs/design-files.md "Surfaces").
 
 #include <yaml-cpp/yaml.h>
 
 #include "io/design/design.h"
-#include "io/design/yaml_fields.h"
+#include "io/design/yaml/fields.h"
 
 namespace fabmesh {
 

@@ -1,4 +1,4 @@
-#include "io/design/yaml_fields.h"
+#include "io/design/yaml/fields.h"
 
 #include <fmt/format.h>
 
@@ -6,12 +6,15 @@
 #include <cmath>
 #include <cstring>
 
+#include "geometry/core/limits.h"
+
 namespace fabmesh::yaml {
 namespace {
 
-std::string join(std::initializer_list<const char*> items) {
+template <class Items>
+std::string join(const Items& items) {
   std::string out;
-  for (const char* s : items) out += (out.empty() ? "" : ", ") + std::string(s);
+  for (const auto& s : items) out += (out.empty() ? "" : ", ") + std::string(s);
   return out;
 }
 
@@ -34,17 +37,36 @@ void Fields::fail(const YAML::Node& node, const std::string& field, const std::s
   throw FileError(path_, m.line + 1, m.column + 1, fmt::format("{}: {}", label(node, field), message));
 }
 
-void Fields::require_map(const YAML::Node& node, const std::string& field,
-                         std::initializer_list<const char*> allowed) const {
+void Fields::require_map(const YAML::Node& node, const std::string& field, const KeyGroup& allowed) const {
   if (!node.IsMap()) fail(node, field, "expected a map of keys");
+  std::vector<std::pair<std::string, YAML::Mark>> seen;
   for (const auto& kv : node) {
-    const std::string key = kv.first.as<std::string>();
-    const bool known = std::any_of(allowed.begin(), allowed.end(), [&](const char* a) { return key == a; });
+    if (!kv.first.IsScalar()) fail(kv.first, field, "a key must be a plain name, not a list or a map");
+    const std::string key = kv.first.Scalar();
+    for (const auto& [earlier, mark] : seen) {
+      if (earlier == key) {
+        fail(kv.first, field.empty() ? key : field + "." + key,
+             fmt::format("key '{}' is given twice (first at line {}, column {}); YAML keys must be unique",
+                         key, mark.line + 1, mark.column + 1));
+      }
+    }
+    seen.emplace_back(key, kv.first.Mark());
+    const bool known = std::find(allowed.keys.begin(), allowed.keys.end(), key) != allowed.keys.end();
     if (!known) {
       fail(kv.first, field.empty() ? key : field + "." + key,
-           fmt::format("unknown key '{}' (expected one of: {})", key, join(allowed)));
+           fmt::format("unknown key '{}' (expected one of: {})", key, join(allowed.keys)));
     }
   }
+}
+
+std::size_t Fields::budget_or(const YAML::Node& parent, const char* key, std::size_t fallback) const {
+  const YAML::Node n = parent[key];
+  if (!n.IsDefined()) return fallback;
+  const double budget = number(n, key);
+  if (budget < 1.0 || budget > kMaxTrianglesLimit || budget != std::floor(budget)) {
+    fail(n, key, fmt::format("{} = {} must be a whole number in [1, {}]", key, budget, kMaxTrianglesLimit));
+  }
+  return static_cast<std::size_t>(budget);
 }
 
 void Fields::require_list(const YAML::Node& node, const std::string& field, std::size_t min_size) const {

@@ -1,0 +1,64 @@
+#include "io/design/schema.h"
+
+#include <stdexcept>
+
+namespace fabmesh {
+namespace {
+
+std::vector<std::string> with_common(std::vector<std::string> keys) {
+  std::vector<std::string> all{"name", "kind", "units", "tolerance", "outputs"};
+  all.insert(all.end(), keys.begin(), keys.end());
+  return all;
+}
+
+std::vector<KeyGroup> make_groups() {
+  return {
+      {"common", with_common({})},
+      // Kinds (the root map of a design file).
+      {"curve", with_common({"curve"})},
+      {"vessel", with_common({"profile", "body", "max_triangles"})},
+      {"countertop", with_common({"outline", "holes", "thickness", "max_edge", "max_triangles"})},
+      {"surface", with_common({"patches", "thickness", "max_triangles"})},
+      // Vessels.
+      {"vessel.body", {"mode", "wall", "base"}},
+      // Countertops.
+      {"countertop.holes[]", {"ellipse", "rounded_rect", "outline"}},
+      {"countertop.holes[].ellipse", {"center", "a", "b", "rotation_deg"}},
+      {"countertop.holes[].rounded_rect", {"center", "size", "radius", "rotation_deg"}},
+      // Surfaces.
+      {"surface.patches[]", {"name", "u", "v", "points", "join"}},
+      {"surface.patches[].u", {"alpha", "lambda", "mu"}},
+      {"surface.patches[].join", {"to", "side", "continuity", "gamma", "k", "m"}},
+      // Curves (under curve, profile, outline and holes[].outline).
+      {"curve.quasi_bspline", {"family", "points", "lambdas", "fair"}},
+      {"curve.composite", {"family", "closed", "segments", "fair", "closing"}},
+      {"curve.closing", {"continuity"}},
+      {"segment.cubic", {"points", "lambda", "mu", "alpha", "join", "continuity", "family"}},
+      {"segment.join.tbezier", {"continuity", "alpha", "beta"}},
+      {"segment.join.hbezier", {"continuity", "k", "m"}},
+      {"segment.line", {"line", "continuity"}},
+      {"segment.line.line", {"from", "to"}},
+      {"segment.ellipse_arc", {"ellipse_arc", "continuity"}},
+      {"segment.ellipse_arc.ellipse_arc", {"center", "a", "b", "rotation_deg", "from_deg", "to_deg"}},
+      {"segment.circle_arc", {"circle_arc", "continuity"}},
+      {"segment.circle_arc.circle_arc", {"center", "radius", "from_deg", "to_deg"}},
+      {"segment.polyline", {"polyline", "continuity"}},
+      {"segment.polyline.file", {"file"}},
+  };
+}
+
+}  // namespace
+
+const std::vector<KeyGroup>& design_key_groups() {
+  static const std::vector<KeyGroup> groups = make_groups();
+  return groups;
+}
+
+const KeyGroup& key_group(std::string_view name) {
+  for (const KeyGroup& g : design_key_groups()) {
+    if (g.name == name) return g;
+  }
+  throw std::logic_error("design schema: no key group '" + std::string(name) + "'");
+}
+
+}  // namespace fabmesh

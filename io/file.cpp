@@ -1,0 +1,227 @@
+#include "io/file.h"
+
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <signal.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <random>
+
+#include "geometry/core/errors.h"
+
+namespace fabmesh {
+namespace {
+
+namespace fs = std::filesystem;
+
+[[noreturn]] void fail(const std::string& path, const std::string& what, int error) {
+  throw FileError(path, 0, 0, fmt::format("{}: {}: {}", path, what, std::strerror(error)));
+}
+
+// Closes a descriptor on every path out of a scope.
+class Descriptor {
+ public:
+  explicit Descriptor(int fd) : fd_(fd) {}
+  ~Descriptor() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+  Descriptor(const Descriptor&) = delete;
+  Descriptor& operator=(const Descriptor&) = delete;
+  int get() const { return fd_; }
+  /// Closes now and reports the error close found (0 when fine).
+  int close() {
+    const int result = ::close(fd_);
+    fd_ = -1;
+    return result == 0 ? 0 : errno;
+  }
+
+ private:
+  int fd_;
+};
+
+const char* kind_of(mode_t mode) {
+  if (S_ISDIR(mode)) return "a folder";
+  if (S_ISFIFO(mode)) return "a FIFO";
+  if (S_ISCHR(mode)) return "a character device";
+  if (S_ISBLK(mode)) return "a block device";
+  if (S_ISSOCK(mode)) return "a socket";
+  return "not a regular file";
+}
+
+std::string read_bounded(const std::string& path, std::size_t max_bytes, std::string_view what) {
+  // O_NONBLOCK: opening a FIFO must not wait for a writer before fstat can refuse it.
+  Descriptor fd(::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK | O_NOCTTY));
+  if (fd.get() < 0) fail(path, fmt::format("cannot open the {}", what), errno);
+  struct stat st {};
+  if (::fstat(fd.get(), &st) != 0) fail(path, fmt::format("cannot inspect the {}", what), errno);
+  if (!S_ISREG(st.st_mode)) {
+    throw FileError(path, 0, 0,
+                    fmt::format("{}: the {} is {}, not a regular file", path, what, kind_of(st.st_mode)));
+  }
+  auto too_large = [&]() {
+    return FileError(path, 0, 0, fmt::format("{}: the {} is larger than {} bytes", path, what, max_bytes));
+  };
+  if (static_cast<std::size_t>(st.st_size) > max_bytes) throw too_large();
+  std::string bytes;
+  bytes.reserve(static_cast<std::size_t>(st.st_size));
+  char buffer[1 << 16];
+  for (;;) {
+    const ssize_t n = ::read(fd.get(), buffer, sizeof buffer);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) fail(path, fmt::format("cannot read the {}", what), errno);
+    if (n == 0) break;
+    if (bytes.size() + static_cast<std::size_t>(n) > max_bytes) throw too_large();
+    bytes.append(buffer, static_cast<std::size_t>(n));
+  }
+  return bytes;
+}
+
+// The host name as it may appear in a file name.
+std::string host_tag() {
+  char name[256] = {};
+  if (::gethostname(name, sizeof name - 1) != 0) return "host";
+  std::string tag;
+  for (const char* c = name; *c != '\0' && tag.size() < 32; ++c) {
+    const bool plain = (*c >= 'a' && *c <= 'z') || (*c >= 'A' && *c <= 'Z') || (*c >= '0' && *c <= '9');
+    tag += plain ? *c : '_';
+  }
+  return tag.empty() ? "host" : tag;
+}
+
+// Removes temporaries of `path` left behind by fabmesh processes of this
+// host that no longer run (killed mid-write). Others' files are never touched.
+void remove_stale_temporaries(const std::string& path) {
+  const fs::path target(path);
+  const fs::path folder = target.has_parent_path() ? target.parent_path() : ".";
+  const std::string prefix = "." + target.filename().string() + ".tmp-" + host_tag() + "-";
+  std::error_code ec;
+  for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.compare(0, prefix.size(), prefix) != 0) continue;
+    const std::size_t dash = name.find('-', prefix.size());
+    if (dash == std::string::npos) continue;
+    const std::string pid_text = name.substr(prefix.size(), dash - prefix.size());
+    if (pid_text.empty() || pid_text.find_first_not_of("0123456789") != std::string::npos) continue;
+    const long pid = std::stol(pid_text);
+    // Our own pid: no other thread writes this target, so the file is an earlier process's.
+    const bool alive = pid != ::getpid() && (::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM);
+    if (!alive) fs::remove(it->path(), ec);
+  }
+}
+
+// Creates the temporary file for `path`: the umask applies to 0666.
+std::pair<std::string, int> create_temporary(const std::string& path) {
+  std::random_device entropy;
+  for (int attempt = 0; attempt < 64; ++attempt) {
+    const std::string temp = fmt::format("{}{}-{:08x}", temporary_prefix(path), ::getpid(), entropy());
+    const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    if (fd >= 0) return {temp, fd};
+    if (errno != EEXIST) fail(path, "cannot create a temporary file", errno);
+  }
+  fail(path, "cannot create a temporary file", EEXIST);
+}
+
+// Writes `bytes` to a fresh temporary of `path`, flushed; returns its name.
+std::string write_temporary(const std::string& path, std::string_view bytes) {
+  remove_stale_temporaries(path);
+  auto [temp, raw] = create_temporary(path);
+  Descriptor fd(raw);
+  const char* data = bytes.data();
+  std::size_t left = bytes.size();
+  while (left > 0) {
+    const ssize_t n = ::write(fd.get(), data, left);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const int error = n < 0 ? errno : EIO;
+      std::remove(temp.c_str());
+      fail(path, "write failed", error);
+    }
+    data += n;
+    left -= static_cast<std::size_t>(n);
+  }
+  int error = ::fsync(fd.get()) == 0 ? 0 : errno;
+  const int close_error = fd.close();
+  if (error == 0) error = close_error;
+  if (error != 0) {
+    std::remove(temp.c_str());
+    fail(path, "flush failed", error);
+  }
+  return temp;
+}
+
+// Makes the renames in a folder durable.
+void sync_folder(const std::string& path) {
+  const fs::path target(path);
+  const std::string folder = target.has_parent_path() ? target.parent_path().string() : ".";
+  Descriptor fd(::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC));
+  if (fd.get() >= 0) ::fsync(fd.get());
+}
+
+}  // namespace
+
+std::string temporary_prefix(const std::string& path) {
+  const fs::path target(path);
+  const fs::path folder = target.has_parent_path() ? target.parent_path() : ".";
+  return (folder / ("." + target.filename().string() + ".tmp-" + host_tag() + "-")).string();
+}
+
+std::string read_file(const std::string& path, std::size_t max_bytes, std::string_view what) {
+  return read_bounded(path, max_bytes, what);
+}
+
+std::string read_file(const std::string& path) { return read_bounded(path, SIZE_MAX - 1, "file"); }
+
+void write_file_atomically(const std::string& path, std::string_view bytes) {
+  const std::string temp = write_temporary(path, bytes);
+  if (std::rename(temp.c_str(), path.c_str()) != 0) {
+    const int error = errno;
+    std::remove(temp.c_str());
+    fail(path, "cannot rename the temporary file into place", error);
+  }
+  sync_folder(path);
+}
+
+void write_files_atomically(const std::vector<FileWrite>& files) {
+  std::vector<std::string> temps;
+  auto remove_all = [](const std::vector<std::string>& names) {
+    for (const std::string& n : names) std::remove(n.c_str());
+  };
+  try {
+    for (const FileWrite& f : files) temps.push_back(write_temporary(f.path, f.bytes));
+  } catch (...) {
+    remove_all(temps);
+    throw;
+  }
+  // Keep the previous version of each target (a hard link) until every rename succeeded.
+  std::vector<std::string> backups(files.size());
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    struct stat st {};
+    if (::lstat(files[i].path.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) continue;
+    const std::string backup = temps[i] + "-previous";
+    if (::link(files[i].path.c_str(), backup.c_str()) == 0) backups[i] = backup;
+  }
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    if (std::rename(temps[i].c_str(), files[i].path.c_str()) == 0) continue;
+    const int error = errno;
+    for (std::size_t j = 0; j < i; ++j) {  // roll back what is already in place
+      if (!backups[j].empty()) {
+        std::rename(backups[j].c_str(), files[j].path.c_str());
+      } else {
+        std::remove(files[j].path.c_str());
+      }
+    }
+    remove_all({temps.begin() + static_cast<std::ptrdiff_t>(i), temps.end()});
+    remove_all(backups);
+    fail(files[i].path, "cannot rename the temporary file into place (no output of this job was kept)",
+         error);
+  }
+  remove_all(backups);
+  for (const FileWrite& f : files) sync_folder(f.path);
+}
+
+}  // namespace fabmesh

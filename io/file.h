@@ -1,0 +1,48 @@
+#pragma once
+// Files in and out: bounded reads of regular files, atomic writes.
+
+#include <cstddef>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace fabmesh {
+
+/// The whole content of the regular file at `path`. FIFOs, devices, sockets
+/// and folders are refused before any byte is read (reading them could block
+/// forever or never end), and the size is checked while reading, so a file
+/// larger than `max_bytes` (or one that grows) costs at most max_bytes + 1
+/// bytes of memory. `what` names the file's role in messages ("design file").
+/// \throw FileError naming the path: missing, unreadable, not a regular file, too large.
+std::string read_file(const std::string& path, std::size_t max_bytes, std::string_view what);
+
+/// read_file with no size limit beyond the memory the file needs (for files
+/// fabmesh wrote itself). \throw FileError
+std::string read_file(const std::string& path);
+
+/// One file to write: where, and its bytes.
+struct FileWrite {
+  std::string path;
+  std::string bytes;
+};
+
+/// Writes `bytes` to `path` atomically: a temporary file in the same folder
+/// (created with the process's umask applied to 0666), flushed to disk, then
+/// renamed over `path`. On failure the temporary file is removed and `path`
+/// is untouched. Stale temporaries of `path` left by killed runs of fabmesh
+/// on this host are removed first. \throw FileError
+void write_file_atomically(const std::string& path, std::string_view bytes);
+
+/// Writes several files all or nothing, as far as the filesystem allows:
+/// every file is written to its temporary and flushed before any is renamed
+/// into place; when a rename fails, the files already renamed are rolled back
+/// (the previous version restored, or the new file removed) before the error
+/// is thrown. Only a crash between two renames can leave a mixed set, and no
+/// file is ever truncated. \throw FileError naming the file that failed
+void write_files_atomically(const std::vector<FileWrite>& files);
+
+/// The name pattern of the temporary files write_file_atomically uses for
+/// `path` (".NAME.tmp-HOST-PID-RANDOM" in the same folder), for tests.
+std::string temporary_prefix(const std::string& path);
+
+}  // namespace fabmesh

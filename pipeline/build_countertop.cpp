@@ -1,0 +1,59 @@
+// kind: countertop -> outline and holes -> region (proven simple) -> CDT ->
+// slab; the exact curves also give the cutting outline.
+
+#include <fmt/format.h>
+
+#include "geometry/curves/build_curve.h"
+#include "geometry/mesh/slab.h"
+#include "pipeline/build_design.h"
+
+namespace fabmesh {
+
+BuiltMesh build(const CountertopDesign& design, const BuildContext& context) {
+  const BuiltCurve outline = build_curve(design.outline);
+  std::vector<RegionHole> holes;
+  for (std::size_t i = 0; i < design.holes.size(); ++i) {
+    holes.push_back(
+        {build_curve(design.holes[i].curve).curve, fmt::format("holes[{}] ({})", i, design.holes[i].shape)});
+  }
+  context.watch.lap("curve");
+  RegionOptions ro;
+  ro.tolerance = context.tolerance;
+  ro.max_points = design.max_triangles / 2;  // every loop point makes two wall triangles
+  const Region2 region = build_region(outline.curve, holes, ro);
+  context.watch.lap("region");
+  SlabOptions so;
+  so.thickness = design.thickness;
+  so.max_edge = design.max_edge;
+  so.max_triangles = design.max_triangles;
+  const SlabMesh slab = build_slab(region, so);
+  context.watch.lap("build");
+  std::vector<CutLoop> cutting;
+  if (context.wants_cutting) {
+    CutLoopOptions co;
+    co.tolerance = context.tolerance;
+    co.reverse = region.reversed[0];
+    cutting.push_back(cut_loop(outline.curve, "outline", true, co));
+    for (std::size_t i = 0; i < holes.size(); ++i) {
+      co.reverse = region.reversed[i + 1];
+      cutting.push_back(cut_loop(holes[i].curve, holes[i].label, false, co));
+    }
+    context.watch.lap("cutting_outline");
+  }
+  std::size_t boundary_points = 0;
+  for (const auto& loop : slab.triangulation.boundary) boundary_points += loop.size();
+  BuiltMesh out = validated(slab.mesh, slab.proof, context);
+  out.max_deviation = region.max_deviation;
+  out.cutting = std::move(cutting);
+  out.facts = {{"holes", holes.size()},
+               {"outline_points", region.outer.size()},
+               {"boundary_points", boundary_points},
+               {"planar_triangles", slab.triangulation.triangles.size()},
+               {"steiner_points", slab.triangulation.steiner_points},
+               {"region_area", region.area},
+               {"thickness", design.thickness}};
+  if (design.max_edge > 0.0) out.facts["max_edge"] = design.max_edge;
+  return out;
+}
+
+}  // namespace fabmesh

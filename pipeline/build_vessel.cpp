@@ -1,0 +1,31 @@
+// kind: vessel -> profile curve -> section -> revolution, proven embedded.
+
+#include "geometry/curves/build_curve.h"
+#include "geometry/mesh/vessel.h"
+#include "pipeline/build_design.h"
+
+namespace fabmesh {
+
+BuiltMesh build(const VesselDesign& design, const BuildContext& context) {
+  const BuiltCurve profile = build_curve(design.profile);
+  context.watch.lap("curve");
+  VesselOptions options;
+  options.mode = design.mode;
+  options.wall = design.wall;
+  options.base = design.base;
+  options.tolerance = context.tolerance;
+  options.max_triangles = design.max_triangles;
+  const VesselMesh vessel = build_vessel(profile.curve, options);
+  context.watch.lap("build");
+  std::size_t section_points = 0;
+  for (const auto& loop : vessel.section.loops) section_points += loop.size();
+  BuiltMesh out = validated(vessel.mesh, vessel.proof, context);
+  out.max_deviation = vessel.max_deviation;
+  out.facts = {{"angular_segments", vessel.segments},
+               {"section_loops", vessel.section.loops.size()},
+               {"section_points", section_points},
+               {"max_radius", vessel.section.max_radius}};
+  return out;
+}
+
+}  // namespace fabmesh

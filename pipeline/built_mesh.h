@@ -1,0 +1,46 @@
+#pragma once
+// What a builder hands to the job: the validated result of one design, in
+// memory, before any file is encoded or written.
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "geometry/core/stage_timer.h"
+#include "geometry/mesh/soup.h"
+#include "geometry/mesh/validate.h"
+#include "io/cutting/cutting_outline.h"
+#include "io/design/design.h"
+
+namespace fabmesh {
+
+/// What a mesh is fit for.
+enum class MeshPurpose {
+  Fabrication,  ///< closed, manifold, outward, embedded: every check passed
+  Viewing,      ///< an open surface (no thickness): its only defect is its own border
+};
+
+/// True when `report` is fit for `purpose`: valid; or, for viewing, its
+/// only defects are boundary edges (an open surface's own border).
+bool fit_for(const ValidationReport& report, MeshPurpose purpose);
+
+/// One design built and validated. The soup is what the writers encode
+/// (vertices and triangles as validated); a curve design has none.
+struct BuiltMesh {
+  TriangleSoup soup;
+  ValidationReport validation;
+  MeshPurpose purpose = MeshPurpose::Fabrication;
+  double max_deviation = 0.0;    ///< proven bound of the mesh (or the curves) against the exact shape
+  nlohmann::json facts;          ///< builder facts for the report, e.g. {"angular_segments": 128}
+  std::vector<CutLoop> cutting;  ///< cutting outline (outline first, then holes), when the kind has one
+};
+
+/// What every builder gets besides its design.
+struct BuildContext {
+  const DesignCommon& common;
+  double tolerance = 0.0;      ///< the share of the design's tolerance the mesh may use
+  bool wants_cutting = false;  ///< an output needs the cutting outline
+  StageTimer& watch;           ///< stage timings of the job
+};
+
+}  // namespace fabmesh

@@ -1,0 +1,41 @@
+#include "pipeline/failure.h"
+
+#include <fmt/format.h>
+
+#include "geometry/core/errors.h"
+
+namespace fabmesh {
+
+Failure describe_failure(const std::exception_ptr& error, const std::string& subject) {
+  auto located = [&](const char* what) {
+    return subject.empty() ? std::string(what) : subject + ": " + what;
+  };
+  try {
+    std::rethrow_exception(error);
+  } catch (const FileError& e) {
+    return {2, "error", e.what()};
+  } catch (const InputError& e) {
+    return {2, "error", located(e.what())};
+  } catch (const ValidationFailed& e) {
+    return {1, "invalid", located(e.what())};
+  } catch (const std::exception& e) {
+    return {3, "internal error", located(e.what())};
+  } catch (...) {
+    return {3, "internal error", located("unknown exception")};
+  }
+}
+
+std::string failure_line(const Failure& failure) {
+  std::string text;
+  for (const char c : failure.message) {
+    const auto u = static_cast<unsigned char>(c);
+    if (u < 0x20 || u == 0x7f) {
+      text += fmt::format("\\x{:02x}", u);
+    } else {
+      text += c;
+    }
+  }
+  return fmt::format("fabmesh: {}: {}", failure.label, text);
+}
+
+}  // namespace fabmesh

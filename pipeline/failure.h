@@ -1,0 +1,24 @@
+#pragma once
+// Exceptions to exit codes and messages, the same for every command.
+
+#include <exception>
+#include <string>
+
+namespace fabmesh {
+
+/// How a failure is reported.
+struct Failure {
+  int exit_code = 3;    ///< 2 bad input, 1 an invalid mesh, 3 an internal error
+  std::string label;    ///< "error", "invalid" or "internal error"
+  std::string message;  ///< names the file (line, column and field where known)
+};
+
+/// Classifies `error`: InputError (and its kinds) -> 2, ValidationFailed -> 1,
+/// anything else -> 3. `subject` (the design or mesh file at hand) prefixes
+/// messages that do not name their file already (FileError messages do).
+Failure describe_failure(const std::exception_ptr& error, const std::string& subject = "");
+
+/// "fabmesh: error: message" (one line: control characters are escaped).
+std::string failure_line(const Failure& failure);
+
+}  // namespace fabmesh

@@ -1,0 +1,69 @@
+#pragma once
+// The table of output formats: adding one is an encoder in io/ plus one row
+// in outputs.cpp. The design reader's `outputs:` list, the defaults of each
+// kind and the job's encoding all come from here.
+
+#include <bitset>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+#include "io/design/design.h"
+#include "pipeline/built_mesh.h"
+
+namespace fabmesh {
+
+/// A set of design kinds (one bit per DesignBody alternative).
+using KindSet = std::bitset<std::variant_size_v<DesignBody>>;
+
+namespace detail {
+template <class T, std::size_t I = 0>
+constexpr std::size_t kind_index() {
+  static_assert(I < std::variant_size_v<DesignBody>, "not a DesignBody alternative");
+  if constexpr (std::is_same_v<T, std::variant_alternative_t<I, DesignBody>>) {
+    return I;
+  } else {
+    return kind_index<T, I + 1>();
+  }
+}
+}  // namespace detail
+
+/// The set of the given kinds, e.g. kinds<VesselDesign, SurfaceDesign>().
+template <class... Kinds>
+KindSet kinds() {
+  KindSet set;
+  (set.set(detail::kind_index<Kinds>()), ...);
+  return set;
+}
+
+/// What an encoder gets: the built design and the error it may still add.
+struct EncodeContext {
+  const DesignCommon& common;
+  const BuiltMesh& built;
+  double output_tolerance = 0.0;  ///< tolerance left after the build, model units
+  std::string path;               ///< where the file will go (for messages)
+};
+
+/// What an output is made from: the builders make the cutting outline only when an output needs it.
+enum class OutputContent { Triangles, CuttingOutline };
+
+/// One output format.
+struct OutputFormat {
+  std::string_view name;         ///< the file extension and the name in `outputs:`, e.g. "stl"
+  std::string_view description;  ///< for help texts and the reference
+  OutputContent content;
+  KindSet kinds;        ///< the kinds it applies to
+  KindSet default_for;  ///< the kinds that get it when a design names no outputs
+  std::string (*encode)(const EncodeContext& context);
+};
+
+/// Every output format, in the order defaults are listed.
+const std::vector<OutputFormat>& output_formats();
+
+/// The formats `design` asks for: its `outputs` (each checked: the format
+/// exists and applies to the kind) or, when it names none, its kind's defaults.
+/// \throw FileError at the offending `outputs` entry
+std::vector<const OutputFormat*> resolve_outputs(const Design& design);
+
+}  // namespace fabmesh

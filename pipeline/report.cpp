@@ -1,0 +1,117 @@
+#include "pipeline/report.h"
+
+#include <fmt/format.h>
+
+namespace fabmesh {
+
+nlohmann::ordered_json validation_json(const ValidationReport& r) {
+  nlohmann::ordered_json j;
+  j["vertices"] = r.vertices;
+  j["triangles"] = r.triangles;
+  j["components"] = r.components;
+  j["genus"] = r.genus ? nlohmann::ordered_json(*r.genus) : nlohmann::ordered_json(nullptr);
+  j["volume"] = r.volume;
+  j["area"] = r.area;
+  j["watertight"] = r.boundary_edges == 0 && r.non_manifold_edges == 0;
+  j["manifold"] = r.non_manifold_edges == 0 && r.non_manifold_vertices == 0;
+  j["boundary_edges"] = r.boundary_edges;
+  j["non_manifold_edges"] = r.non_manifold_edges;
+  j["non_manifold_vertices"] = r.non_manifold_vertices;
+  j["inconsistent_edges"] = r.inconsistent_edges;
+  j["degenerate_faces"] = r.degenerate_faces;
+  j["duplicate_faces"] = r.duplicate_faces;
+  j["non_finite_vertices"] = r.non_finite_vertices;
+  j["consistently_oriented"] = r.consistently_oriented;
+  j["oriented_outward"] = r.oriented_outward;
+  j["self_intersecting"] = r.self_intersecting;
+  j["self_intersection"] = to_string(r.self_intersection);
+  if (r.self_intersection == IntersectionCheck::ProvenByConstruction) {
+    j["self_intersection_proof"] = r.embedding_proof;
+  }
+  j["intersecting_pairs"] = r.intersecting_pairs;
+  j["defects"] = describe_defects(r);
+  j["valid"] = r.valid();
+  return j;
+}
+
+nlohmann::ordered_json timings_json(const StageTimings& timings, const std::string& prefix) {
+  nlohmann::ordered_json j = nlohmann::ordered_json::object();
+  for (const auto& [stage, ms] : timings) j[prefix + stage] = ms;
+  return j;
+}
+
+nlohmann::ordered_json to_json(const JobReport& r) {
+  nlohmann::ordered_json j;
+  j["name"] = r.name;
+  j["kind"] = r.kind;
+  j["units"] = r.units;
+  j["tolerance"] = r.tolerance;
+  j["max_deviation"] = r.max_deviation;
+  j["outputs"] = r.outputs;
+  j["purpose"] = r.purpose == MeshPurpose::Fabrication ? "fabrication" : "viewing";
+  j.update(validation_json(r.validation));
+  if (r.build.is_object() && r.build.contains("fabrication")) j["fabrication"] = r.build["fabrication"];
+  if (!r.build.is_null()) j["build"] = r.build;
+  nlohmann::ordered_json timings = timings_json(r.timings_ms);
+  timings.update(timings_json(r.validation.timings_ms, "validate."));
+  j["timings_ms"] = timings;
+  return j;
+}
+
+void print_summary(const JobReport& r, std::ostream& out) {
+  const ValidationReport& v = r.validation;
+  double total = 0.0;
+  for (const auto& t : r.timings_ms) total += t.second;
+  // An enclosed volume only exists for a closed mesh.
+  const std::string volume =
+      v.boundary_edges == 0 ? fmt::format("{:.6g}", v.volume) : std::string("- (open)");
+  out << fmt::format("{}: {} with {} vertices, {} triangles, volume {}, area {:.6g}, genus {}\n", r.name,
+                     r.kind, v.vertices, v.triangles, volume, v.area,
+                     v.genus ? std::to_string(*v.genus) : "-");
+  if (v.valid()) {
+    out << fmt::format(
+        "  valid: closed, manifold, outward, no self-intersections ({}); within {:.3g} of the exact "
+        "surface (tolerance {})\n",
+        v.self_intersection == IntersectionCheck::ProvenByConstruction ? "by construction" : "checked",
+        r.max_deviation, r.tolerance);
+  } else {
+    const std::vector<std::string> defects = describe_defects(v);
+    out << fmt::format("  warning: not valid for fabrication ({}; {}): written for viewing only\n",
+                       r.build.is_object() ? r.build.value("fabrication", "invalid") : "invalid",
+                       defects.empty() ? "" : defects.front());
+  }
+  for (const std::string& path : r.outputs) out << fmt::format("  wrote {}\n", path);
+  out << fmt::format("  {:.1f} ms\n", total);
+}
+
+nlohmann::ordered_json joints_json(const BuiltCurve& built) {
+  nlohmann::ordered_json out = nlohmann::ordered_json::array();
+  for (std::size_t i = 0; i < built.joints.size(); ++i) {
+    const JointReport& j = built.joints[i];
+    nlohmann::ordered_json o;
+    o["before"] = j.before;
+    o["after"] = j.after;
+    o["closing"] = j.closing;
+    o["declared"] = i < built.declared.size() ? to_string(built.declared[i]) : "none";
+    o["achieved"] = to_string(j.achieved);
+    o["continuity_lost"] = i < built.declared.size() && j.achieved < built.declared[i];
+    o["gap"] = j.gap;
+    o["tangent_angle"] = j.tangent_angle;
+    o["curvature_jump"] = j.curvature_jump;
+    out.push_back(std::move(o));
+  }
+  return out;
+}
+
+std::string joint_line(const BuiltCurve& built, std::size_t joint) {
+  const JointReport& j = built.joints[joint];
+  const bool has_declared = joint < built.declared.size();
+  const bool lost = has_declared && j.achieved < built.declared[joint];
+  return fmt::format(
+      "joint {} -> {}{}: declared {}, measured {} (gap {:.3g}, angle {:.3g} rad, curvature jump {:.3g}){}",
+      j.before + 1, j.after + 1, j.closing ? " (closing)" : "",
+      has_declared ? to_string(built.declared[joint]) : "-", to_string(j.achieved), j.gap, j.tangent_angle,
+      j.curvature_jump, lost ? "  (continuity lost by fairing)" : "");
+}
+
+}  // namespace fabmesh
