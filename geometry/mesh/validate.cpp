@@ -5,6 +5,7 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <limits>
 
 #include "geometry/core/errors.h"
 #include "geometry/core/stage_timer.h"
@@ -27,8 +28,9 @@ void measure(const TriangleSoup& soup, std::size_t max_examples, ValidationRepor
              DefectCount& degenerate_found, std::vector<char>& degenerate) {
   // Signed volume about the bounding-box centre: exact for closed meshes,
   // and with less cancellation than about the origin.
-  Vec3 lo = Vec3::Constant(INFINITY);
-  Vec3 hi = Vec3::Constant(-INFINITY);
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  Vec3 lo = Vec3::Constant(kInf);
+  Vec3 hi = Vec3::Constant(-kInf);
   for (const Vec3& p : soup.vertices) {
     lo = lo.cwiseMin(p);
     hi = hi.cwiseMax(p);

@@ -106,8 +106,8 @@ WeldResult weld(const TriangleSoup& soup, const WeldOptions& options) {
                                              : exact_groups(soup.vertices);
   WeldResult result;
   const std::size_t n = soup.vertices.size();
-  constexpr std::uint32_t unset = UINT32_MAX;
-  std::vector<std::uint32_t> new_index(n, unset);
+  constexpr std::uint32_t kUnset = UINT32_MAX;
+  std::vector<std::uint32_t> new_index(n, kUnset);
   // rep[i] <= i, so every representative is numbered before its members.
   for (std::size_t i = 0; i < n; ++i) {
     if (rep[i] == i) {

@@ -47,7 +47,7 @@ HBezierParams across_towards(const HBezierPatch& p, PatchSide side) {
   return (side == PatchSide::UMax || side == PatchSide::VMax) ? q : q.reversed();
 }
 
-std::size_t computed_lines(Continuity c) { return static_cast<std::size_t>(static_cast<int>(c) + 1); }
+std::size_t computed_lines(Continuity c) { return static_cast<std::size_t>(static_cast<int>(c)) + 1; }
 
 HBezierPatch joined_patch(const PatchSpec& spec, const HBezierPatch& target, const std::string& target_name) {
   const PatchJoin& join = *spec.join;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "geometry/core/errors.h"
 #include "geometry/sampling/sample_curve.h"
@@ -78,7 +79,8 @@ CutLoop cut_loop(const CompositeCurve& curve, const std::string& label, bool out
 }
 
 std::pair<Vec2, Vec2> cut_bounds(const std::vector<CutLoop>& loops) {
-  Vec2 lo = Vec2::Constant(INFINITY), hi = Vec2::Constant(-INFINITY);
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  Vec2 lo = Vec2::Constant(kInf), hi = Vec2::Constant(-kInf);
   std::vector<Vec2> pts;
   for (const CutLoop& l : loops) {
     for (const CutEntity& e : l.entities) {

@@ -70,7 +70,7 @@ TriangleSoup parse_binary(std::string_view bytes, const std::string& name) {
     const char* record = bytes.data() + kHeader + kRecord * t + 12;  // skip the normal
     for (int c = 0; c < 3; ++c) {
       Vec3 p;
-      for (int a = 0; a < 3; ++a) p[a] = read_f32(record + 12 * c + 4 * a);
+      for (std::ptrdiff_t a = 0; a < 3; ++a) p[a] = read_f32(record + 12 * std::ptrdiff_t{c} + 4 * a);
       if (!std::isfinite(p.x()) || !std::isfinite(p.y()) || !std::isfinite(p.z())) {
         throw FileError(name, 0, 0, fmt::format("{}: triangle {} has a non-finite coordinate", name, t));
       }
@@ -181,7 +181,7 @@ std::string encode_stl(const TriangleSoup& soup) {
                           values[9 + k] = static_cast<float>(c[k]);
                         }
                         char* record = records + kRecord * i;
-                        for (int k = 0; k < 12; ++k) store_f32_le(record + 4 * k, values[k]);
+                        for (std::ptrdiff_t k = 0; k < 12; ++k) store_f32_le(record + 4 * k, values[k]);
                         // The two attribute bytes stay zero.
                       }
                     });

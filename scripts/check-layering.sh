@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# Fails when the code breaks the layering of docs/architecture (pipeline -> io
+# -> geometry, never back), includes CGAL from a header (every includer would
+# compile it), or includes the private YAML readers (yaml-cpp is a private
+# dependency of fabmesh::io) from outside io/design.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+status=0
+complain() { echo "check-layering: $*"; status=1; }
+
+while IFS= read -r hit; do complain "geometry depends on io/pipeline: $hit"; done \
+  < <(grep -rnE '#include "(io|pipeline)/' geometry || true)
+while IFS= read -r hit; do complain "io depends on pipeline: $hit"; done \
+  < <(grep -rnE '#include "pipeline/' io || true)
+while IFS= read -r hit; do complain "CGAL in a header: $hit"; done \
+  < <(grep -rnE '#include <CGAL/' --include='*.h' geometry io pipeline || true)
+while IFS= read -r hit; do complain "private YAML reader used outside io/design: $hit"; done \
+  < <(grep -rnE '#include "io/design/yaml/' geometry io pipeline tests bench fuzz 2>/dev/null | grep -v '^io/design/' || true)
+while IFS= read -r hit; do complain "yaml-cpp outside io/design: $hit"; done \
+  < <(grep -rnE '#include <yaml-cpp/' geometry io pipeline 2>/dev/null | grep -v '^io/design/' || true)
+
+[[ $status -eq 0 ]] && echo "check-layering: pipeline -> io -> geometry holds; CGAL and yaml-cpp stay private"
+exit $status
