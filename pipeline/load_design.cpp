@@ -5,10 +5,17 @@
 
 namespace fabmesh {
 
-Design load_design(const std::string& path) {
-  Design design = read_design(path);
+Design load_design(const std::string& path, const std::vector<Override>& overrides) {
+  Design design = read_design(path, overrides);
   resolve_outputs(design);
   return design;
+}
+
+std::vector<Override> parse_overrides(const std::vector<std::string>& texts) {
+  std::vector<Override> out;
+  out.reserve(texts.size());
+  for (const std::string& t : texts) out.push_back(parse_override(t));
+  return out;
 }
 
 }  // namespace fabmesh

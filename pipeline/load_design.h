@@ -1,15 +1,21 @@
 #pragma once
-// Designs as every command reads them: the file, checked against the output table.
+// Designs as every command reads them: the file with its -D overrides,
+// checked against the output table.
 
 #include <string>
+#include <vector>
 
 #include "io/design/design.h"
+#include "io/design/overrides.h"
 
 namespace fabmesh {
 
-/// Reads the design at `path` (io/design/read_design.h) and checks its
-/// `outputs` against the output table, so a bad design fails before any work.
-/// \throw FileError naming file, line, column and field
-Design load_design(const std::string& path);
+/// Reads the design at `path` with `overrides` applied (io/design/read_design.h)
+/// and checks its `outputs` against the output table, so a bad design fails
+/// before any work. \throw FileError naming file, line, column and field (or the override)
+Design load_design(const std::string& path, const std::vector<Override>& overrides = {});
+
+/// Parses `-D` texts ("body.wall=2.5"). \throw InputError naming a malformed one
+std::vector<Override> parse_overrides(const std::vector<std::string>& texts);
 
 }  // namespace fabmesh

@@ -17,6 +17,7 @@ namespace fabmesh {
 namespace {
 
 constexpr std::size_t kMaxDesignBytes = 64u << 20;
+constexpr std::size_t kMaxNameBytes = 120;
 
 template <class Body>
 struct KindTag {};
@@ -50,10 +51,115 @@ DesignBody read_body(const std::string& kind, const yaml::Fields& f, const YAML:
   }
 }
 
+// One step of an override's path: a map key or a list index.
+struct PathStep {
+  std::string key;
+  std::size_t index = 0;
+  bool is_index = false;
+};
+
+std::vector<PathStep> path_steps(const std::string& path) {
+  std::vector<PathStep> steps;
+  for (std::size_t i = 0; i < path.size();) {
+    if (path[i] == '.') {
+      ++i;
+    } else if (path[i] == '[') {
+      const std::size_t close = path.find(']', i);
+      steps.push_back({"", static_cast<std::size_t>(std::stoul(path.substr(i + 1, close - i - 1))), true});
+      i = close + 1;
+    } else {
+      std::size_t j = i;
+      while (j < path.size() && path[j] != '.' && path[j] != '[') ++j;
+      steps.push_back({path.substr(i, j - i), 0, false});
+      i = j;
+    }
+  }
+  return steps;
+}
+
+// Puts `value` at `o.path` in the tree; maps on the way are created when missing.
+void apply_override(YAML::Node root, const Override& o, const YAML::Node& value) {
+  const std::vector<PathStep> steps = path_steps(o.path);
+  YAML::Node cur = root;
+  std::string where;  // the path walked so far, for messages
+  for (std::size_t i = 0; i < steps.size(); ++i) {
+    const PathStep& step = steps[i];
+    const bool last = i + 1 == steps.size();
+    if (step.is_index) {
+      if (!cur.IsSequence()) {
+        throw FileError("", 0, 0,
+                        fmt::format("-D {}: {} is not a list", o.text, where.empty() ? "the design" : where));
+      }
+      if (step.index >= cur.size()) {
+        throw FileError("", 0, 0,
+                        fmt::format("-D {}: {} has {} entries; [{}] is out of range", o.text, where,
+                                    cur.size(), step.index));
+      }
+      where += fmt::format("[{}]", step.index);
+      if (last) {
+        cur[step.index] = value;
+        return;
+      }
+      YAML::Node next = cur[step.index];
+      cur.reset(next);
+      continue;
+    }
+    if (!cur.IsMap() && !(cur.IsNull() && i > 0)) {
+      throw FileError("", 0, 0,
+                      fmt::format("-D {}: {} is not a map (it has no key '{}')", o.text,
+                                  where.empty() ? "the design" : where, step.key));
+    }
+    where += (where.empty() ? "" : ".") + step.key;
+    if (last) {
+      cur[step.key] = value;
+      return;
+    }
+    if (!cur[step.key].IsDefined()) cur[step.key] = YAML::Node(YAML::NodeType::Map);
+    YAML::Node next = cur[step.key];
+    cur.reset(next);
+  }
+}
+
+// Why `name` is not a plain file name (empty when it is). Names become file
+// names in the output folder: nothing that could leave it, hide a file or
+// break a message.
+std::string name_problem(const std::string& name) {
+  if (name.empty()) return "it is empty";
+  if (name.size() > kMaxNameBytes) return fmt::format("it is longer than {} bytes", kMaxNameBytes);
+  if (name.front() == '.' || name.front() == '-' || name.front() == ' ')
+    return "it starts with '.', '-' or a space";
+  if (name.back() == ' ' || name.back() == '.') return "it ends with a space or '.'";
+  for (std::size_t i = 0; i < name.size(); ++i) {
+    const auto c = static_cast<unsigned char>(name[i]);
+    const bool plain = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+                       c == '_' || c == '-' || c == '.' || c == '+' || c == ' ' || c == '(' || c == ')';
+    if (plain) continue;
+    if (c < 0x80) return fmt::format("it contains the character {:#04x}", c);
+    // A UTF-8 sequence of 2 to 4 bytes (letters beyond ASCII: "tasse_à_café").
+    const int length = c >= 0xf0 && c < 0xf5 ? 4 : c >= 0xe0 ? 3 : c >= 0xc2 && c < 0xe0 ? 2 : 0;
+    if (length == 0 || i + static_cast<std::size_t>(length) > name.size()) return "it is not valid UTF-8";
+    for (int k = 1; k < length; ++k) {
+      if ((static_cast<unsigned char>(name[i + static_cast<std::size_t>(k)]) & 0xc0) != 0x80)
+        return "it is not valid UTF-8";
+    }
+    i += static_cast<std::size_t>(length - 1);
+  }
+  return "";
+}
+
 DesignCommon read_common(const yaml::Fields& f, const YAML::Node& root) {
   DesignCommon c;
   c.path = f.path();
   c.name = f.text_or(root, "name", "name", std::filesystem::path(f.path()).stem().string());
+  if (const std::string problem = name_problem(c.name); !problem.empty()) {
+    const std::string shown = fmt::format("{:?}", c.name);
+    f.fail(root["name"].IsDefined() ? root["name"] : root, "name",
+           fmt::format(
+               "{} is not a plain file name: {} (names use letters, digits, spaces and _ - . + ( ), at most "
+               "{} bytes, and do not start with '.', '-' or a space{})",
+               shown, problem, kMaxNameBytes,
+               root["name"].IsDefined() ? "" : "; the default name is the file's; set `name:`"));
+  }
   c.units = f.choice(root["units"].IsDefined() ? root["units"] : YAML::Node("mm"), "units",
                      {"mm", "cm", "m", "in"});
   c.tolerance = f.number_or(root, "tolerance", "tolerance", 0.01);
@@ -73,8 +179,8 @@ DesignCommon read_common(const yaml::Fields& f, const YAML::Node& root) {
 
 }  // namespace
 
-Design parse_design(const std::string& text, const std::string& path) {
-  const yaml::Fields f(path);
+Design parse_design(const std::string& text, const std::string& path,
+                    const std::vector<Override>& overrides) {
   YAML::Node root;
   try {
     std::vector<YAML::Node> documents = YAML::LoadAll(text);
@@ -91,6 +197,22 @@ Design parse_design(const std::string& text, const std::string& path) {
         fmt::format("{}:{}:{}: invalid YAML: {}", path, e.mark.line + 1, e.mark.column + 1, e.msg));
   }
   if (!root.IsMap()) throw FileError(path, 0, 0, fmt::format("{}: a design file must be a YAML map", path));
+  std::vector<yaml::OverrideOrigin> origins;
+  for (const Override& o : overrides) {
+    YAML::Node value;
+    try {
+      value = YAML::Load(o.value);
+    } catch (const YAML::Exception& e) {
+      throw FileError(path, 0, 0, fmt::format("-D {}: the value is not valid YAML: {}", o.text, e.msg));
+    }
+    try {
+      apply_override(root, o, value);
+    } catch (const FileError& e) {
+      throw FileError(path, 0, 0, e.what());
+    }
+    origins.push_back({value, o.text});
+  }
+  const yaml::Fields f(path, std::move(origins));
   const std::string kind = f.text(f.required(root, "kind", "kind"), "kind");
   Design d;
   d.common = read_common(f, root);
@@ -98,8 +220,8 @@ Design parse_design(const std::string& text, const std::string& path) {
   return d;
 }
 
-Design read_design(const std::string& path) {
-  return parse_design(read_file(path, kMaxDesignBytes, "design file"), path);
+Design read_design(const std::string& path, const std::vector<Override>& overrides) {
+  return parse_design(read_file(path, kMaxDesignBytes, "design file"), path, overrides);
 }
 
 }  // namespace fabmesh

@@ -2,8 +2,10 @@
 // Reads YAML design files into Design structs.
 
 #include <string>
+#include <vector>
 
 #include "io/design/design.h"
+#include "io/design/overrides.h"
 
 namespace fabmesh {
 
@@ -13,10 +15,15 @@ namespace fabmesh {
 /// given: the pipeline's output table checks them.
 /// Ranges checked here: tolerance > 0, shape parameters of each family,
 /// counts of control points; geometry (joins, closure) is checked when built.
+/// `overrides` (-D path=value) replace or add fields before anything is read,
+/// in order; an error at an overridden value names the override
+/// ("-D body.wall=-1: body.wall: wall = -1 must be > 0"), a path through a
+/// missing list entry or a value that is not a map is bad input too.
 /// \throw FileError
-Design read_design(const std::string& path);
+Design read_design(const std::string& path, const std::vector<Override>& overrides = {});
 
 /// The same from YAML text; `path` is used for messages and the default name.
-Design parse_design(const std::string& yaml_text, const std::string& path);
+Design parse_design(const std::string& yaml_text, const std::string& path,
+                    const std::vector<Override>& overrides = {});
 
 }  // namespace fabmesh

@@ -5,6 +5,8 @@
 #include <CLI/CLI.hpp>
 #include <functional>
 #include <ostream>
+#include <string>
+#include <vector>
 
 namespace fabmesh::cli {
 
@@ -16,6 +18,15 @@ struct Streams {
 
 /// Runs a parsed command; returns the process exit code (0, 1, 2 or 3).
 using Runner = std::function<int(Streams)>;
+
+/// Registers `-D path=value` (repeatable) on a command that reads designs.
+inline void add_define_option(CLI::App* cmd, std::vector<std::string>& defines) {
+  cmd->add_option(
+         "-D,--define", defines,
+         "Override a design field, e.g. -D body.wall=2.5 -D profile.points[1]=[1,5] (the value is YAML; "
+         "repeatable)")
+      ->allow_extra_args(false);
+}
 
 // --- commands ---
 Runner add_check_command(CLI::App& app);  ///< `fabmesh check MESH... [--json] [--weld-tolerance X]`

@@ -17,6 +17,7 @@ namespace {
 
 struct OptimizeArgs {
   std::string design;
+  std::vector<std::string> defines;
   bool json = false;
 };
 
@@ -75,7 +76,7 @@ void print_human(const std::string& name, const Optimized& o, std::ostream& out)
 }
 
 int run_optimize(const OptimizeArgs& args, Streams io) {
-  const Design design = load_design(args.design);
+  const Design design = load_design(args.design, parse_overrides(args.defines));
   const auto curves = design_curves(design);
   if (curves.empty()) {
     throw InputError(
@@ -98,6 +99,7 @@ Runner add_optimize_command(CLI::App& app) {
   auto args = std::make_shared<OptimizeArgs>();
   CLI::App* cmd = app.add_subcommand("optimize", "Fairest shape parameters of a design's curves");
   cmd->add_option("design", args->design, "Design file (YAML)")->required();
+  add_define_option(cmd, args->defines);
   cmd->add_flag("--json", args->json, "Print the result as JSON");
   return [args](Streams io) { return run_optimize(*args, io); };
 }

@@ -18,6 +18,7 @@ namespace {
 
 struct RunArgs {
   std::vector<std::string> designs;
+  std::vector<std::string> defines;
   std::string out_dir = "out";
   bool json = false;
 };
@@ -29,10 +30,10 @@ struct Outcome {
   std::string error;
 };
 
-Outcome run_one(const std::string& path, const JobOptions& options) {
+Outcome run_one(const std::string& path, const std::vector<Override>& overrides, const JobOptions& options) {
   Outcome o;
   try {
-    o.report = run_job(load_design(path), options);
+    o.report = run_job(load_design(path, overrides), options);
   } catch (...) {
     const Failure failure = describe_failure(std::current_exception(), path);
     o.code = failure.exit_code;
@@ -44,10 +45,11 @@ Outcome run_one(const std::string& path, const JobOptions& options) {
 int run_designs(const RunArgs& args, Streams io) {
   JobOptions options;
   options.out_dir = args.out_dir;
+  const std::vector<Override> overrides = parse_overrides(args.defines);
   std::vector<Outcome> outcomes(args.designs.size());
   // Jobs are pure functions of their designs: a batch runs them in parallel.
   tbb::parallel_for(std::size_t{0}, args.designs.size(),
-                    [&](std::size_t i) { outcomes[i] = run_one(args.designs[i], options); });
+                    [&](std::size_t i) { outcomes[i] = run_one(args.designs[i], overrides, options); });
   int code = 0;
   nlohmann::ordered_json all = nlohmann::ordered_json::array();
   for (std::size_t i = 0; i < outcomes.size(); ++i) {
@@ -76,6 +78,7 @@ Runner add_run_command(CLI::App& app) {
   cmd->add_option("designs", args->designs, "Design files (YAML)")->required();
   cmd->add_option("-o,--out", args->out_dir, "Output folder (default: out)");
   cmd->add_flag("--json", args->json, "Print one JSON report per design");
+  add_define_option(cmd, args->defines);
   return [args](Streams io) { return run_designs(*args, io); };
 }
 

@@ -18,12 +18,13 @@ namespace {
 
 struct SampleArgs {
   std::string design;
+  std::vector<std::string> defines;
   bool csv = false;
   double tolerance = 0.0;  // 0: the design's
 };
 
 int run_sample(const SampleArgs& args, Streams io) {
-  const Design design = load_design(args.design);
+  const Design design = load_design(args.design, parse_overrides(args.defines));
   SampleOptions options;
   options.tolerance = args.tolerance > 0.0 ? args.tolerance : design.common.tolerance;
   if (design_curves(design).empty()) {
@@ -66,6 +67,7 @@ Runner add_sample_command(CLI::App& app) {
   auto args = std::make_shared<SampleArgs>();
   CLI::App* cmd = app.add_subcommand("sample", "Print the sampled points of a design's curves");
   cmd->add_option("design", args->design, "Design file (YAML)")->required();
+  add_define_option(cmd, args->defines);
   cmd->add_flag("--csv", args->csv, "Print CSV with columns curve,x,y");
   cmd->add_option("--tolerance", args->tolerance, "Sampling tolerance (default: the design's)")
       ->check(CLI::PositiveNumber);

@@ -20,7 +20,35 @@ std::string join(const Items& items) {
 
 }  // namespace
 
+namespace {
+
+bool contains(const YAML::Node& tree, const YAML::Node& node) {
+  if (!tree.IsDefined()) return false;
+  if (tree.is(node)) return true;
+  if (tree.IsSequence()) {
+    for (const YAML::Node& child : tree) {
+      if (contains(child, node)) return true;
+    }
+  } else if (tree.IsMap()) {
+    for (const auto& kv : tree) {
+      if (contains(kv.first, node) || contains(kv.second, node)) return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace
+
+const OverrideOrigin* Fields::origin_of(const YAML::Node& node) const {
+  if (!node.IsDefined()) return nullptr;
+  for (const OverrideOrigin& o : overrides_) {
+    if (contains(o.value, node)) return &o;
+  }
+  return nullptr;
+}
+
 std::string Fields::label(const YAML::Node& node, const std::string& field) const {
+  if (const OverrideOrigin* o = origin_of(node)) return fmt::format("-D {}: {}", o->text, field);
   const YAML::Mark m = node.IsDefined() ? node.Mark() : YAML::Mark::null_mark();
   if (m.line < 0) return fmt::format("{}: {}", path_, field);
   return fmt::format("{}:{}:{}: {}", path_, m.line + 1, m.column + 1, field);
@@ -33,28 +61,40 @@ YAML::Node Fields::required(const YAML::Node& parent, const char* key, const std
 }
 
 void Fields::fail(const YAML::Node& node, const std::string& field, const std::string& message) const {
+  if (origin_of(node) != nullptr)
+    throw FileError(path_, 0, 0, fmt::format("{}: {}", label(node, field), message));
   const YAML::Mark m = node.IsDefined() ? node.Mark() : YAML::Mark::null_mark();
   throw FileError(path_, m.line + 1, m.column + 1, fmt::format("{}: {}", label(node, field), message));
+}
+
+void Fields::fail_key(const YAML::Node& key, const YAML::Node& value, const std::string& field,
+                      const std::string& message) const {
+  if (const OverrideOrigin* o = origin_of(value)) {
+    throw FileError(path_, 0, 0, fmt::format("-D {}: {}: {}", o->text, field, message));
+  }
+  fail(key, field, message);
 }
 
 void Fields::require_map(const YAML::Node& node, const std::string& field, const KeyGroup& allowed) const {
   if (!node.IsMap()) fail(node, field, "expected a map of keys");
   std::vector<std::pair<std::string, YAML::Mark>> seen;
   for (const auto& kv : node) {
-    if (!kv.first.IsScalar()) fail(kv.first, field, "a key must be a plain name, not a list or a map");
+    if (!kv.first.IsScalar())
+      fail_key(kv.first, kv.second, field, "a key must be a plain name, not a list or a map");
     const std::string key = kv.first.Scalar();
     for (const auto& [earlier, mark] : seen) {
       if (earlier == key) {
-        fail(kv.first, field.empty() ? key : field + "." + key,
-             fmt::format("key '{}' is given twice (first at line {}, column {}); YAML keys must be unique",
-                         key, mark.line + 1, mark.column + 1));
+        fail_key(
+            kv.first, kv.second, field.empty() ? key : field + "." + key,
+            fmt::format("key '{}' is given twice (first at line {}, column {}); YAML keys must be unique",
+                        key, mark.line + 1, mark.column + 1));
       }
     }
     seen.emplace_back(key, kv.first.Mark());
     const bool known = std::find(allowed.keys.begin(), allowed.keys.end(), key) != allowed.keys.end();
     if (!known) {
-      fail(kv.first, field.empty() ? key : field + "." + key,
-           fmt::format("unknown key '{}' (expected one of: {})", key, join(allowed.keys)));
+      fail_key(kv.first, kv.second, field.empty() ? key : field + "." + key,
+               fmt::format("unknown key '{}' (expected one of: {})", key, join(allowed.keys)));
     }
   }
 }

@@ -15,16 +15,27 @@
 
 namespace fabmesh::yaml {
 
+/// A value that came from a `-D` override: its YAML subtree and how the user wrote it.
+struct OverrideOrigin {
+  YAML::Node value;
+  std::string text;  ///< "body.wall=2.5"
+};
+
 /// The file being read; makes errors and labels with locations.
 class Fields {
  public:
-  explicit Fields(std::string path) : path_(std::move(path)) {}
+  explicit Fields(std::string path, std::vector<OverrideOrigin> overrides = {})
+      : path_(std::move(path)), overrides_(std::move(overrides)) {}
   const std::string& path() const { return path_; }
 
-  /// "path:line:column: field" for a node (1-based line and column).
+  /// "path:line:column: field" for a node (1-based line and column), or
+  /// "-D path=value: field" for a node an override put there.
   std::string label(const YAML::Node& node, const std::string& field) const;
   /// A FileError at `node` for `field`.
   [[noreturn]] void fail(const YAML::Node& node, const std::string& field, const std::string& message) const;
+  /// The same for a map key, whose origin is its value's (`value`: the key's entry).
+  [[noreturn]] void fail_key(const YAML::Node& key, const YAML::Node& value, const std::string& field,
+                             const std::string& message) const;
 
   /// The child `key` of a map; a FileError at the map when it is missing.
   YAML::Node required(const YAML::Node& parent, const char* key, const std::string& field) const;
@@ -63,7 +74,11 @@ class Fields {
   }
 
  private:
+  /// The override `node` belongs to (it is, or is inside, an override's value), if any.
+  const OverrideOrigin* origin_of(const YAML::Node& node) const;
+
   std::string path_;
+  std::vector<OverrideOrigin> overrides_;
 };
 
 }  // namespace fabmesh::yaml
