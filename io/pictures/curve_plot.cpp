@@ -21,6 +21,7 @@ constexpr const char* kPolygonBlue = "#1f4fd0";
 constexpr double kTitleBand = 34.0;  // pixels above the panels
 constexpr double kLegendLine = 18.0;
 constexpr double kScaleBand = 34.0;  // pixels under the model, for the scale bar
+constexpr int kJointLabelRows = 3;   // rows of joint labels above the curvature plot
 
 struct Box {
   Vec2 lo = Vec2::Constant(INFINITY), hi = Vec2::Constant(-INFINITY);
@@ -340,7 +341,7 @@ Axes curvature_axes(const std::vector<Prepared>& curves, double px0, double py0,
   a.k_max = k_hi + pad;
   a.x0 = px0 + 62;
   a.x1 = px0 + pw - 14;
-  a.y0 = py0 + 22;
+  a.y0 = py0 + 14 + 11 * kJointLabelRows;
   a.y1 = py0 + ph - 40;
   return a;
 }
@@ -372,6 +373,70 @@ void write_axes(std::string& out, const Axes& a, const std::string& units) {
       ticks, labels, px(0.5 * (a.x0 + a.x1)), px(a.y1 + 34), u, px(a.x0 - 48), px(0.5 * (a.y0 + a.y1)), u);
 }
 
+// Rows of joint labels above the curvature plot, so that close joints stay readable.
+class LabelRows {
+ public:
+  /// The row (0 nearest the plot) for a label centred at pixel x.
+  int place(double x) {
+    int best = 0;
+    for (int r = 0; r < kRows; ++r) {
+      if (x - last_[r] >= 18.0) {
+        best = r;
+        break;
+      }
+      if (last_[r] < last_[best]) best = r;
+    }
+    last_[best] = x;
+    return best;
+  }
+  static constexpr int kRows = kJointLabelRows;
+
+ private:
+  std::array<double, kRows> last_{-INFINITY, -INFINITY, -INFINITY};
+};
+
+void write_curvature_curve(std::string& out, const Prepared& c, const Axes& a, LabelRows& rows) {
+  const std::string name = escape_markup(c.in->name);
+  out +=
+      fmt::format("<g class=\"curvature\" data-name=\"{}\" fill=\"none\" stroke=\"{}\">\n", name, c.colour);
+  const CurvatureSample* previous = nullptr;
+  for (std::size_t i = 0; i < c.profile.segments.size(); ++i) {
+    const auto& samples = c.profile.segments[i];
+    if (samples.empty()) continue;
+    // A jump at the joint is drawn as a thin vertical step (zero length where the curvature is continuous).
+    if (previous != nullptr && std::abs(a.y(previous->curvature) - a.y(samples.front().curvature)) >= 0.05) {
+      out += fmt::format(
+          "<line class=\"curvature-jump\" x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke-width=\"0.8\" "
+          "stroke-opacity=\"0.7\"/>\n",
+          px(a.x(previous->arc_length)), px(a.y(previous->curvature)), px(a.x(samples.front().arc_length)),
+          px(a.y(samples.front().curvature)));
+    }
+    std::string points;
+    for (const CurvatureSample& s : samples)
+      points += px(a.x(s.arc_length)) + "," + px(a.y(s.curvature)) + " ";
+    points.pop_back();
+    out += fmt::format(
+        "<polyline class=\"curvature-segment\" data-segment=\"{}\" data-s-start=\"{}\" data-s-end=\"{}\" "
+        "data-k-start=\"{}\" data-k-end=\"{}\" points=\"{}\" stroke-width=\"1.6\"/>\n",
+        i, short_number(samples.front().arc_length, 12), short_number(samples.back().arc_length, 12),
+        short_number(samples.front().curvature, 12), short_number(samples.back().curvature, 12), points);
+    previous = &samples.back();
+  }
+  for (std::size_t j = 0; j < c.joints.size(); ++j) {
+    const JointReport& r = c.joints[j];
+    const double s = c.profile.segment_ends[r.before];
+    const int row = rows.place(a.x(s));
+    out += fmt::format(
+        "<g class=\"joint-marker\" data-name=\"{}\" data-joint=\"{}\" data-s=\"{}\" data-achieved=\"{}\">"
+        "<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke-width=\"0.8\" stroke-dasharray=\"4 3\"/>"
+        "<text x=\"{}\" y=\"{}\" font-size=\"10\" text-anchor=\"middle\" fill=\"{}\" "
+        "stroke=\"none\">{}</text></g>\n",
+        name, j, short_number(s, 12), joint_label(r.achieved), px(a.x(s)), px(a.y0 - 11.0 * row), px(a.x(s)),
+        px(a.y1), px(a.x(s)), px(a.y0 - 4.0 - 11.0 * row), c.colour, joint_label(r.achieved));
+  }
+  out += "</g>\n";
+}
+
 void write_curvature_panel(std::string& out, const std::vector<Prepared>& curves, const CurvePlot& plot,
                            double px0, double py0, double pw, double ph) {
   const Axes a = curvature_axes(curves, px0, py0, pw, ph);
@@ -381,36 +446,8 @@ void write_curvature_panel(std::string& out, const std::vector<Prepared>& curves
       short_number(a.s_max, 12), short_number(a.k_min, 12), short_number(a.k_max, 12), px(a.x0), px(a.x1),
       px(a.y0), px(a.y1));
   write_axes(out, a, plot.units);
-  for (const Prepared& c : curves) {
-    const std::string name = escape_markup(c.in->name);
-    out +=
-        fmt::format("<g class=\"curvature\" data-name=\"{}\" fill=\"none\" stroke=\"{}\">\n", name, c.colour);
-    for (std::size_t i = 0; i < c.profile.segments.size(); ++i) {
-      const auto& samples = c.profile.segments[i];
-      if (samples.empty()) continue;
-      std::string points;
-      for (const CurvatureSample& s : samples)
-        points += px(a.x(s.arc_length)) + "," + px(a.y(s.curvature)) + " ";
-      points.pop_back();
-      out += fmt::format(
-          "<polyline class=\"curvature-segment\" data-segment=\"{}\" data-s-start=\"{}\" data-s-end=\"{}\" "
-          "data-k-start=\"{}\" data-k-end=\"{}\" points=\"{}\" stroke-width=\"1.6\"/>\n",
-          i, short_number(samples.front().arc_length, 12), short_number(samples.back().arc_length, 12),
-          short_number(samples.front().curvature, 12), short_number(samples.back().curvature, 12), points);
-    }
-    for (std::size_t j = 0; j < c.joints.size(); ++j) {
-      const JointReport& r = c.joints[j];
-      const double s = c.profile.segment_ends[r.before];
-      out += fmt::format(
-          "<g class=\"joint-marker\" data-name=\"{}\" data-joint=\"{}\" data-s=\"{}\" data-achieved=\"{}\">"
-          "<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke-width=\"0.8\" stroke-dasharray=\"4 3\"/>"
-          "<text x=\"{}\" y=\"{}\" font-size=\"10\" text-anchor=\"middle\" fill=\"{}\" "
-          "stroke=\"none\">{}</text></g>\n",
-          name, j, short_number(s, 12), joint_label(r.achieved), px(a.x(s)), px(a.y0), px(a.x(s)), px(a.y1),
-          px(a.x(s)), px(a.y0 - 6), c.colour, joint_label(r.achieved));
-    }
-    out += "</g>\n";
-  }
+  LabelRows rows;
+  for (const Prepared& c : curves) write_curvature_curve(out, c, a, rows);
   out += "</g>\n";
 }
 

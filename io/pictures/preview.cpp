@@ -171,7 +171,9 @@ Rgb shade(const TriangleSoup& soup, std::uint32_t f, const Camera& camera, const
   if (length > 0.0) normal /= length;
   const bool back = normal.dot(camera.toward) < 0.0;
   if (back) normal = -normal;
-  const double intensity = o.ambient + (1.0 - o.ambient) * std::max(0.0, normal.dot(camera.light));
+  // A key lamp above-left and a weaker lamp at the eye, so no face turned to the viewer is left flat.
+  const double lambert = 0.75 * std::max(0.0, normal.dot(camera.light)) + 0.25 * normal.dot(camera.toward);
+  const double intensity = o.ambient + (1.0 - o.ambient) * lambert;
   const Rgb& base = back ? o.back_color : o.front_color;
   Rgb c{};
   for (int k = 0; k < 3; ++k) c[k] = static_cast<std::uint8_t>(std::lround(base[k] * intensity));

@@ -36,8 +36,8 @@ struct PreviewOptions {
 };
 
 /// Renders `soup` with a z-buffer: flat face normals, Lambert shading from a
-/// lamp above-left of the viewer plus `ambient`, faces two-sided (back faces
-/// in `back_color`). The mesh is fitted to the frame: in each view the
+/// key lamp above-left of the viewer (3/4) and a lamp at the eye (1/4) plus
+/// `ambient`, faces two-sided (back faces in `back_color`). The mesh is fitted to the frame: in each view the
 /// bounding box of the projected vertices is centred in the view's frame and
 /// the scale (pixels per model unit, shared by both views) is the largest
 /// that keeps it inside the frame less `margin` on every side. Pixel (i, j)

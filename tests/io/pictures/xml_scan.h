@@ -72,9 +72,19 @@ inline std::string decode_entities(std::string_view s) {
   return out;
 }
 
+/// HTML elements that never have content (a browser's serialisation writes them without "/>").
+inline bool is_void_html(const std::string& name) {
+  for (const char* v :
+       {"area", "base", "br", "col", "embed", "hr", "img", "input", "link", "meta", "source", "wbr"}) {
+    if (name == v) return true;
+  }
+  return false;
+}
+
 /// Every element of `doc` in document order. Throws std::runtime_error on
-/// malformed markup (unclosed or mismatched tags, a bare '<' or '&').
-inline std::vector<XmlElement> scan_xml(std::string_view doc) {
+/// malformed markup (unclosed or mismatched tags, a bare '<' or '&'). With
+/// `html`, void elements (img, meta, ...) need no "/>".
+inline std::vector<XmlElement> scan_xml(std::string_view doc, bool html = false) {
   std::vector<XmlElement> elements;
   std::vector<int> open;
   std::size_t i = 0;
@@ -138,7 +148,7 @@ inline std::vector<XmlElement> scan_xml(std::string_view doc) {
       elements.push_back(std::move(e));
       const int index = static_cast<int>(elements.size()) - 1;
       const std::string& name = elements.back().name;
-      if (self_closing) continue;
+      if (self_closing || (html && is_void_html(name))) continue;
       if (name == "script" || name == "style") {  // raw text up to the end tag
         const std::size_t end = doc.find("</" + name + ">", i);
         if (end == std::string_view::npos) fail("unterminated " + name);
