@@ -3,8 +3,10 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <iterator>
+#include <limits>
 
 #include "geometry/core/errors.h"
 #include "geometry/sampling/sample_curve.h"
@@ -21,10 +23,11 @@ constexpr const char* kPolygonBlue = "#1f4fd0";
 constexpr double kTitleBand = 34.0;  // pixels above the panels
 constexpr double kLegendLine = 18.0;
 constexpr double kScaleBand = 34.0;  // pixels under the model, for the scale bar
-constexpr int kJointLabelRows = 3;   // rows of joint labels above the curvature plot
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+constexpr int kJointLabelRows = 3;  // rows of joint labels above the curvature plot
 
 struct Box {
-  Vec2 lo = Vec2::Constant(INFINITY), hi = Vec2::Constant(-INFINITY);
+  Vec2 lo = Vec2::Constant(kInfinity), hi = Vec2::Constant(-kInfinity);
   void add(const Vec2& p) {
     lo = lo.cwiseMin(p);
     hi = hi.cwiseMax(p);
@@ -156,7 +159,7 @@ ModelFrame model_frame(const Box& content, double px0, double py0, double pw, do
 // degrees), lines as L, other segments as polylines within `tolerance`.
 std::string curve_path(const CompositeCurve& curve, double tolerance, const ModelFrame& f) {
   std::string d;
-  Vec2 pen = Vec2::Constant(INFINITY);
+  Vec2 pen = Vec2::Constant(kInfinity);
   SampleOptions sampling;
   sampling.tolerance = tolerance;
   for (const Segment& seg : curve.segments()) {
@@ -392,7 +395,7 @@ class LabelRows {
   static constexpr int kRows = kJointLabelRows;
 
  private:
-  std::array<double, kRows> last_{-INFINITY, -INFINITY, -INFINITY};
+  std::array<double, kRows> last_{-kInfinity, -kInfinity, -kInfinity};
 };
 
 void write_curvature_curve(std::string& out, const Prepared& c, const Axes& a, LabelRows& rows) {

@@ -202,7 +202,8 @@ Image resolve(const TriangleSoup& soup, const DepthBuffer& buffer, const std::ve
         for (int j = 0; j < s; ++j) {
           for (int i = 0; i < s; ++i) {
             const std::uint32_t f =
-                buffer.face[static_cast<std::size_t>(y * s + j) * buffer.width + x * s + i];
+                buffer.face[static_cast<std::size_t>(y * s + j) * static_cast<std::size_t>(buffer.width) +
+                            static_cast<std::size_t>(x * s + i)];
             if (f != cached) {
               cached = f;
               cached_color = f == kNoFace ? o.background : shade(soup, f, cameras[view], o);

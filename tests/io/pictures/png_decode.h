@@ -3,6 +3,7 @@
 
 #include <spng.h>
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <stdexcept>
