@@ -1,0 +1,36 @@
+#include "io/pictures/curvature_profile.h"
+
+#include <cmath>
+
+#include "geometry/core/errors.h"
+#include "geometry/fairing/gauss_legendre.h"
+
+namespace fabmesh {
+
+CurvatureProfile curvature_profile(const CompositeCurve& curve, int samples_per_segment) {
+  require_in_range("curvature samples_per_segment", samples_per_segment, 1, 100000);
+  const QuadratureRule rule = gauss_legendre(8);
+  const int m = samples_per_segment;
+  CurvatureProfile out;
+  double length = 0.0;
+  for (const Segment& seg : curve.segments()) {
+    std::vector<CurvatureSample> samples;
+    for (int j = 0; j <= m; ++j) {
+      const double s = static_cast<double>(j) / m;
+      if (j > 0) {
+        const double s0 = static_cast<double>(j - 1) / m;
+        for (std::size_t q = 0; q < rule.nodes.size(); ++q) {
+          length += rule.weights[q] / m * seg.jet(s0 + rule.nodes[q] / m)[1].norm();
+        }
+      }
+      const double k = seg.curvature(s);
+      if (std::isfinite(k)) samples.push_back({s, length, k});
+    }
+    out.segments.push_back(std::move(samples));
+    out.segment_ends.push_back(length);
+  }
+  out.length = length;
+  return out;
+}
+
+}  // namespace fabmesh

@@ -1,0 +1,43 @@
+#pragma once
+// The plain data a curve plot draws for one curve, and how to assemble it
+// from a designer's curve spec (construction, fairing, energies).
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "geometry/curves/composite.h"
+#include "geometry/curves/curve_spec.h"
+
+namespace fabmesh {
+
+/// One curve of a plot.
+struct PlotCurve {
+  std::string name;
+  CompositeCurve curve;  ///< as built (after fairing, if any), model units
+  /// Control polygons drawn dotted: one per T-/H-Bézier segment, one for a
+  /// whole run of quasi-B-spline spans (its p_0..p_n); none for lines and
+  /// exact arcs. See control_polygons().
+  std::vector<std::vector<Vec2>> control_polygons;
+  /// Measured joints as CompositeCurve::joints(); empty: measured by the plot.
+  std::vector<JointReport> joints;
+  /// Declared continuity per joint (same order); empty: nothing declared.
+  std::vector<Continuity> declared;
+  /// The curve before fairing, drawn grey dashed under the faired one.
+  std::optional<CompositeCurve> before_fairing;
+  std::optional<double> energy_before, energy_after;  ///< fairing energy (energy_name), model units
+  std::string energy_name;                            ///< e.g. "curvature variation", "strain"
+};
+
+/// The control polygons of `curve` as PlotCurve::control_polygons describes.
+std::vector<std::vector<Vec2>> control_polygons(const CompositeCurve& curve);
+
+/// A PlotCurve for `spec`: built with build_curve (declared continuity
+/// verified, faired when spec.fair asks), the joints measured with `tol`,
+/// and, when faired, the curve before fairing with both energies (the
+/// T-Bézier curvature-variation energy summed over the T-Bézier segments, or
+/// the quasi-B-spline energy of the spec's fairing kind).
+/// \throw as build_curve (RangeError, GeometryError)
+PlotCurve plot_curve_for(const CurveSpec& spec, const std::string& name, const JointTolerances& tol = {});
+
+}  // namespace fabmesh
