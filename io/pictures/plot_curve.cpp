@@ -2,7 +2,7 @@
 
 #include <Eigen/Core>
 
-#include "geometry/fairing/fair_curve.h"
+#include "geometry/curves/build_curve.h"
 #include "geometry/fairing/quasi_bspline_energy.h"
 #include "geometry/fairing/tbezier_energy.h"
 

@@ -39,7 +39,7 @@ inline ReportRow sample_row(const std::string& dir, const Design& design, const 
                             const CurvePlot& plot, double seconds) {
   ReportRow row;
   row.name = design.common.name;
-  row.kind = design.common.kind;
+  row.kind = kind_name(design);
   row.units = design.common.units;
   row.status = ReportStatus::Ok;
   row.message = "valid: closed, oriented, no self-intersections";
