@@ -60,8 +60,8 @@ void check_release(Mould& m, const MouldOptions& o) {
   if (!keys_ok) {
     const double needed = m.keys.radius / std::cos(alpha) - m.keys.radius;
     const std::string text = fmt::format(
-        "with {} parts each part is pulled along its bisector, {:.6g} degrees off its keys' axes: a bump of "
-        "radius {} binds in a socket of radius {:.6g}; key_clearance {} must be >= {:.6g} (key_radius "
+        "with {} parts each part is pulled along its bisector, {:.6g} degrees off its keys' axes: a bump "
+        "of radius {} binds in a socket of radius {:.6g}; key_clearance {} must be >= {:.6g} (key_radius "
         "(1 / cos {:.6g} deg - 1))",
         o.parts, alpha * 180.0 / M_PI, m.keys.radius, m.keys.socket_radius, o.key_clearance, needed,
         alpha * 180.0 / M_PI);
@@ -70,18 +70,21 @@ void check_release(Mould& m, const MouldOptions& o) {
   }
   m.release_proof = fmt::format(
       "side parts: the cavity's boundary above {} never rises walking down from the opening (sampled "
-      "section), "
-      "so every horizontal slice of the cavity is a disc and each part, spanning {:.6g} degrees, leaves it "
-      "pulled along its bisector (|p + t d| > |p| when p.d >= 0); keys: sockets {:.6g} >= {:.6g} = key "
-      "radius / "
-      "cos {:.6g} deg{}",
+      "section), so every horizontal slice of the cavity is a disc and each part, spanning {:.6g} degrees, "
+      "leaves it pulled along its bisector (|p + t d| > |p| when p.d >= 0)",
       m.section.has_cut ? fmt::format("the base cut z = {:.6g}", m.section.z_cut) : std::string("the bottom"),
-      360.0 / o.parts, m.keys.socket_radius, m.keys.radius / std::cos(alpha), alpha * 180.0 / M_PI,
-      m.section.has_cut
-          ? "; base part: the cavity inside it never widens walking from the cut to the axis, so "
-            "every vertical line meets it in one interval up to the cut and the base pulls down; "
-            "the flat cut carries no keys (a side part slides off it horizontally)"
-          : "");
+      360.0 / o.parts);
+  if (!m.keys.centres.empty()) {
+    m.release_proof += fmt::format(
+        "; keys: sockets {:.6g} >= {:.6g} = key radius / cos {:.6g} deg (the pull's angle to their axes)",
+        m.keys.socket_radius, m.keys.radius / std::cos(alpha), alpha * 180.0 / M_PI);
+  }
+  if (m.section.has_cut) {
+    m.release_proof +=
+        "; base part: the cavity inside it never widens walking from the cut to the axis, so every "
+        "vertical line meets it in one interval up to the cut and the base pulls down; the flat cut "
+        "carries no keys (a side part slides off it horizontally)";
+  }
   if (!m.warnings.empty())
     m.release_proof = "NOT RELEASABLE as built: " + fmt::format("{}", fmt::join(m.warnings, "; "));
 }
@@ -89,18 +92,15 @@ void check_release(Mould& m, const MouldOptions& o) {
 std::string side_proof(const Mould& m, const MouldPart& p, const MouldOptions& o) {
   return fmt::format(
       "{}; swept from {:.6g} to {:.6g} degrees in {} steps of at most {:.6g} degrees: in each wedge the "
-      "half-plane "
-      "at angle phi meets the lateral mesh in the section with its revolved vertices scaled radially by "
-      "cos(step/2)/cos(phi - mid) in [cos(step/2), 1]{} (a simple polygon), so slices at distinct angles are "
-      "disjoint simple polygons in disjoint half-planes; the caps are CGAL constrained Delaunay "
-      "triangulations "
-      "of that section (counter-clockwise by the exact orientation predicate) in the two bounding "
-      "half-planes, "
-      "with the keys' circles as holes; each socket lies within its radius of its centre in every section "
-      "(|(rho - r_c, z - z_c)| <= |v|), which keeps >= key_margin + sagitta {:.3g} from the section's "
-      "boundary, "
-      "and within asin(r_s / r_c) < 90 degrees of its plane; each bump lies outside the wedge (angles in "
-      "(b, b + asin(r / r_c)]) and meets the part only along its base circle",
+      "half-plane at angle phi meets the lateral mesh in the section with its revolved vertices scaled "
+      "radially by cos(step/2)/cos(phi - mid) in [cos(step/2), 1]{} (a simple polygon), so slices at "
+      "distinct angles are disjoint simple polygons in disjoint half-planes; the caps are CGAL constrained "
+      "Delaunay triangulations of that section (counter-clockwise by the exact orientation predicate) in "
+      "the two bounding half-planes, with the keys' circles as holes; each socket lies within its radius "
+      "of its centre in every section (|(rho - r_c, z - z_c)| <= |v|), which keeps >= key_margin + sagitta "
+      "{:.3g} from the section's boundary, and within asin(r_s / r_c) < 90 degrees of its plane; each bump "
+      "lies outside the wedge (angles in (b, b + asin(r / r_c)]) and meets the part only along its base "
+      "circle",
       m.section.proof, p.from_angle * 180.0 / M_PI, p.to_angle * 180.0 / M_PI, p.angular_steps,
       m.max_angular_step * 180.0 / M_PI,
       o.block == BlockShape::Box ? " and its block side on the box's flat side (every corner is a sample)"
@@ -158,8 +158,8 @@ Mould build_mould(const CompositeCurve& profile, const MouldOptions& o) {
     MouldPart base = build_base_part(s, o, m.max_angular_step, budget);
     base.embedding_proof = fmt::format(
         "{}; the base section swept all the way round in {} steps of at most {:.6g} degrees: every "
-        "half-plane "
-        "meets it in the section scaled radially about the axis{}, simple, in disjoint half-planes",
+        "half-plane meets it in the section scaled radially about the axis{}, simple, in disjoint "
+        "half-planes",
         s.proof, base.angular_steps, m.max_angular_step * 180.0 / M_PI,
         o.block == BlockShape::Box ? " with its block side on the box's flat side" : "");
     m.parts.push_back(std::move(base));

@@ -162,7 +162,7 @@ MouldSection build_mould_section(const CompositeCurve& master_profile, const Mou
   }
   for (const Vec2& p : up) {
     if (p.y() + s.max_deviation >= s.z_top) {
-      throw GeometryError("spare", fmt::format("the profile reaches {} , not below the top of the reservoir "
+      throw GeometryError("spare", fmt::format("the profile reaches {}, not below the top of the reservoir "
                                                "at z = {:.6g} (rim + spare {}): raise spare",
                                                at(p), s.z_top, options.spare));
     }

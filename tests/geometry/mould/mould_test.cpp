@@ -390,3 +390,26 @@ TEST_CASE("mould: a hemispherical bowl whose bottom is on the axis, with and wit
     CHECK(err.where() == "base_height");
   }
 }
+
+TEST_CASE("mould: profiles that cannot make a cavity are GeometryErrors naming what is wrong", "[mould]") {
+  MouldOptions o = small_options();
+  auto where_of = [&](const CompositeCurve& c) {
+    try {
+      build_mould(c, o);
+    } catch (const GeometryError& e) {
+      return e.where();
+    }
+    return std::string("none");
+  };
+  // The profile rises 1 above its rim: a 0.5 reservoir would not cover it.
+  o.spare = 0.5;
+  CHECK(where_of(polyline_profile({{2, 0}, {3, 6}, {2.5, 5}})) == "spare");
+  o.spare = 1.5;
+  CHECK(where_of(polyline_profile({{2, 0}, {3, 2}, {0, 5}})) == "profile");  // rim on the axis
+  CHECK(where_of(polyline_profile({{2, 0}, {0, 2}, {2, 4}})) == "profile");  // touches the axis
+  CHECK_THROWS_WITH(build_mould(polyline_profile({{2, 0}, {3, 3}, {1, 2}, {3.5, 2.5}}), o),
+                    Catch::Contains("is not simple near"));  // crosses itself
+  CHECK(where_of(CompositeCurve(
+            {Segment::line({1, 0}, {2, 1}), Segment::line({2, 1}, {1, 2}), Segment::line({1, 2}, {1, 0})},
+            true)) == "profile");  // closed
+}
