@@ -28,10 +28,11 @@ Override parse_override(const std::string& text) {
     } else if (c == '[') {
       const std::size_t close = o.path.find(']', i);
       const std::string digits = close == std::string::npos ? "" : o.path.substr(i + 1, close - i - 1);
-      if (digits.empty() || digits.size() > 9 || digits.find_first_not_of("0123456789") != std::string::npos) {
-        throw InputError(fmt::format("-D {}: '{}' is not a list index [N] in path '{}'", text,
-                                     o.path.substr(i, close == std::string::npos ? std::string::npos : close - i + 1),
-                                     o.path));
+      if (digits.empty() || digits.size() > 9 ||
+          digits.find_first_not_of("0123456789") != std::string::npos) {
+        throw InputError(fmt::format(
+            "-D {}: '{}' is not a list index [N] in path '{}'", text,
+            o.path.substr(i, close == std::string::npos ? std::string::npos : close - i + 1), o.path));
       }
       i = close + 1;
     } else {

@@ -69,14 +69,16 @@ TEST_CASE("overrides: a bad path or value is bad input naming the override, as i
   CHECK_THAT(error_of(kCup, {"body.wal=2"}),
              Catch::StartsWith("-D body.wal=2: body.wal: unknown key 'wal'") &&
                  Catch::Contains("expected one of: mode, wall, base"));
-  CHECK_THAT(error_of(kCup, {"body.wall=-1"}), Catch::StartsWith("-D body.wall=-1: body.wall: wall = -1 must be > 0"));
+  CHECK_THAT(error_of(kCup, {"body.wall=-1"}),
+             Catch::StartsWith("-D body.wall=-1: body.wall: wall = -1 must be > 0"));
   CHECK_THAT(error_of(kCup, {"profile.points[1]=[1]"}),
              Catch::StartsWith("-D profile.points[1]=[1]: profile.points[1]") && Catch::Contains("[x, y]"));
   CHECK_THAT(error_of(kCup, {"profile.points[9]=[1, 5]"}),
              Catch::Contains("profile.points has 5 entries; [9] is out of range"));
   CHECK_THAT(error_of(kCup, {"tolerance.x=1"}), Catch::Contains("tolerance is not a map"));
   CHECK_THAT(error_of(kCup, {"body.wall=[1, 2"}), Catch::Contains("the value is not valid YAML"));
-  CHECK_THAT(error_of(kCup, {"units=furlong"}), Catch::StartsWith("-D units=furlong: units: 'furlong' is not one of"));
+  CHECK_THAT(error_of(kCup, {"units=furlong"}),
+             Catch::StartsWith("-D units=furlong: units: 'furlong' is not one of"));
   CHECK_THROWS_AS(parse_override("body.wall"), InputError);
   CHECK_THROWS_AS(parse_override("=2"), InputError);
   CHECK_THROWS_AS(parse_override("points[x]=2"), InputError);

@@ -1,0 +1,77 @@
+#pragma once
+// One part of a slip-casting mould as a closed triangle mesh: a side part is
+// the mould section swept over its angular range (a partial, or for a box a
+// generalised, revolution) and capped on both split planes by CGAL
+// triangulations of that section, with the keys' hemispheres stitched into
+// the caps; the base part is its section swept all the way round.
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "geometry/mesh/embedding_proof.h"
+#include "geometry/mesh/soup.h"
+#include "geometry/mesh/validate.h"
+#include "geometry/mould/keys.h"
+#include "geometry/mould/mould_section.h"
+#include "geometry/mould/release.h"
+
+namespace fabmesh {
+
+/// A key's hemisphere as built into a part.
+struct KeyFeature {
+  std::size_t key = 0;  ///< index into KeyLayout::centres
+  bool bump = true;     ///< a bump (dome, material) or a socket (pit, empty)
+  Vec3 centre{0.0, 0.0, 0.0};
+  Vec3 axis{0.0, 0.0, 0.0};  ///< unit normal of the split plane, from the plane toward the apex
+  double radius = 0.0;
+  std::vector<std::uint32_t> vertices;  ///< soup indices of the hemisphere's vertices (base ring first)
+};
+
+/// A split plane: the half-plane through the z axis at `angle` (radians).
+struct SplitPlane {
+  double angle = 0.0;
+  Vec2 direction{1.0, 0.0};  ///< (cos angle, sin angle), exact at multiples of 90 degrees
+};
+
+/// The split plane k of `parts` equal side parts: angle 2 pi k / parts.
+SplitPlane split_plane(int k, int parts);
+
+/// Angular samples of a sweep and the block's outline point at each.
+struct AngularSamples {
+  std::vector<double> angles;
+  std::vector<Vec2> directions;
+  std::vector<Vec2> outline;  ///< block outline point (x, y): on the circle, or on the box's side
+};
+
+/// Samples [from, to] (closed: [from, from + 2 pi), the last joining the
+/// first) with steps of at most `max_step`; for a box every corner angle
+/// (45 + 90 k degrees) in the range is a sample, so that between two samples
+/// the block's outline is one straight side of the box.
+AngularSamples angular_samples(const SplitPlane& from, const SplitPlane& to, bool closed, BlockShape block,
+                               double block_radius, double max_step);
+
+struct MouldPart {
+  std::string name;  ///< "side 1 of 2", ..., "base"
+  MouldPartKind kind = MouldPartKind::Side;
+  double from_angle = 0.0, to_angle = 0.0;  ///< radians (base: 0 and 2 pi)
+  std::size_t angular_steps = 0;
+  TriangleSoup soup;             ///< closed, outward, sharing vertices
+  std::vector<KeyFeature> keys;  ///< sockets on the `from` plane, bumps on the `to` plane
+  EmbeddingProof proof;          ///< why the mesh is embedded without a 3D test
+  ValidationReport validation;   ///< filled by build_mould (validate_constructed)
+};
+
+/// A side part between two split planes, with sockets on `from` and bumps on `to`.
+/// `max_step`: largest angular step; `sagitta`: its radial sagitta bound (for the proof).
+/// \throw BudgetError when the part would exceed `max_triangles`.
+MouldPart build_side_part(const MouldSection& section, const KeyLayout& keys, const MouldOptions& options,
+                          const SplitPlane& from, const SplitPlane& to, double max_step,
+                          std::size_t max_triangles);
+
+/// The base part: the base section swept all the way round (no caps, no keys).
+MouldPart build_base_part(const MouldSection& section, const MouldOptions& options, double max_step,
+                          std::size_t max_triangles);
+
+}  // namespace fabmesh
