@@ -13,10 +13,10 @@ packages=(
   libeigen3-dev libopenmesh-dev libdraco-dev libtbb-dev
   libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libfmt-dev
   catch2 libbenchmark-dev libdxflib-dev
-  lib3mf-dev libtinygltf-dev libspng-dev libpng-dev
+  lib3mf-dev libtinygltf-dev libspng-dev libpng-dev zlib1g-dev
   clang clang-tidy libclang-rt-14-dev
   python3 python3-ezdxf
-  prusa-slicer chromium
+  prusa-slicer chromium draco
   slurm-wlm munge
 )
 # Node.js and npm come with the machine (NodeSource's nodejs bundles npm and
