@@ -9,6 +9,7 @@
 #include "geometry/core/errors.h"
 #include "io/mesh/atomic_file.h"
 #include "io/mesh/draco.h"
+#include "io/mesh/gltf.h"
 #include "io/mesh/obj.h"
 #include "io/mesh/off.h"
 #include "io/mesh/ply.h"
@@ -55,13 +56,22 @@ std::string_view skip_comments_and_space(std::string_view bytes) {
   }
 }
 
+/// A JSON object (first non-space character '{') with an "asset" member.
+bool looks_like_gltf_json(std::string_view bytes) {
+  std::size_t i = 0;
+  while (i < bytes.size() && std::isspace(static_cast<unsigned char>(bytes[i]))) ++i;
+  return i < bytes.size() && bytes[i] == '{' && bytes.find("\"asset\"") != std::string_view::npos;
+}
+
 }  // namespace
 
 MeshFormat detect_format(std::string_view bytes, const std::string& path) {
   if (bytes.substr(0, 5) == "DRACO") return MeshFormat::Draco;
   if (starts_with_line(bytes, "ply")) return MeshFormat::Ply;
   if (starts_with_line(skip_comments_and_space(bytes), "OFF")) return MeshFormat::Off;
+  if (bytes.substr(0, 4) == "glTF") return MeshFormat::Glb;
   if (looks_like_3mf(bytes)) return MeshFormat::ThreeMf;
+  if (looks_like_gltf_json(bytes)) return MeshFormat::Gltf;
   if (is_binary_stl(bytes) || looks_like_ascii_stl(bytes)) return MeshFormat::Stl;
   if (looks_like_obj(bytes)) return MeshFormat::Obj;
   const std::string ext = lower_extension(path);
@@ -69,7 +79,7 @@ MeshFormat detect_format(std::string_view bytes, const std::string& path) {
   if (ext == ".obj") return MeshFormat::Obj;
   throw FileError(
       path, 0, 0,
-      fmt::format("{}: not a mesh file fabmesh can read (STL, OBJ, PLY, OFF, Draco or 3MF){}",
+      fmt::format("{}: not a mesh file fabmesh can read (STL, OBJ, PLY, OFF, Draco, 3MF, GLB or glTF){}",
                   path, bytes.empty() ? " (the file is empty)" : ""));
 }
 
@@ -87,6 +97,9 @@ TriangleSoup parse_mesh(std::string_view bytes, const std::string& path) {
       return parse_draco(bytes, path);
     case MeshFormat::ThreeMf:
       return merged_soup(parse_3mf(bytes, path));
+    case MeshFormat::Glb:
+    case MeshFormat::Gltf:
+      return parse_gltf(bytes, path).soup;
   }
   throw FileError(path, 0, 0, fmt::format("{}: unknown mesh format", path));
 }
