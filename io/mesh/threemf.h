@@ -64,6 +64,11 @@ struct ThreeMfContent {
   std::vector<std::string> warnings;
 };
 
+/// A minimal 3MF package (content types, root relationship, stored zip
+/// entries) whose 3D model part 3D/3dmodel.model is `model_xml`, unchecked:
+/// for tests and fuzzing lib3mf's XML reading with well-formed packages.
+std::string threemf_package(std::string_view model_xml);
+
 /// True when `bytes` is a zip archive holding a part whose name ends in
 /// ".model" (a 3MF package's 3D model part, usually 3D/3dmodel.model).
 bool looks_like_3mf(std::string_view bytes);

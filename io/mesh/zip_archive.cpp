@@ -4,6 +4,8 @@
 
 #include <limits>
 
+#include "geometry/core/errors.h"
+
 namespace fabmesh {
 namespace {
 
@@ -85,6 +87,38 @@ bool read_zip64_extra(std::string_view extra, ZipEntry& e, bool u, bool c, bool 
   return !(u || c || o);
 }
 
+/// The local header and data of a stored entry, and its central directory
+/// record for a local header at `local_offset`.
+std::pair<std::string, std::string> stored_entry(const std::string& name, std::string_view data,
+                                                 std::uint64_t local_offset) {
+  const auto crc = static_cast<std::uint32_t>(
+      crc32(0L, reinterpret_cast<const Bytef*>(data.data()), static_cast<uInt>(data.size())));
+  std::string local;
+  local += kLocalHeader;
+  put(local, 20, 2);  // version needed: 2.0
+  put(local, 0, 2);   // flags
+  put(local, 0, 2);   // stored
+  put(local, 0, 4);   // time and date: none, as lib3mf writes
+  put(local, crc, 4);
+  put(local, data.size(), 4);
+  put(local, data.size(), 4);
+  put(local, name.size(), 2);
+  put(local, 0, 2);
+  local += name;
+  local += data;
+  std::string central;
+  central += kCentralHeader;
+  put(central, 20, 2);             // version made by
+  central += local.substr(4, 26);  // version needed .. extra length, as in the local header
+  put(central, 0, 2);              // comment length
+  put(central, 0, 2);              // disk
+  put(central, 0, 2);              // internal attributes
+  put(central, 0, 4);              // external attributes
+  put(central, local_offset, 4);
+  central += name;
+  return {std::move(local), std::move(central)};
+}
+
 }  // namespace
 
 std::optional<std::vector<ZipEntry>> zip_entries(std::string_view b) {
@@ -153,33 +187,9 @@ std::optional<std::string> zip_append_stored(std::string_view b, const std::stri
   const auto d = directory(b);
   if (!d || d->zip64 || name.size() > 0xffff || data.size() > 0xfffffff0u || d->entries >= 0xffff)
     return std::nullopt;
-  const auto crc = static_cast<std::uint32_t>(
-      crc32(0L, reinterpret_cast<const Bytef*>(data.data()), static_cast<uInt>(data.size())));
   const std::uint64_t local_offset = d->offset;
-  std::string local;
-  local += kLocalHeader;
-  put(local, 20, 2);  // version needed: 2.0
-  put(local, 0, 2);   // flags
-  put(local, 0, 2);   // stored
-  put(local, 0, 4);   // time and date: none, as lib3mf writes
-  put(local, crc, 4);
-  put(local, data.size(), 4);
-  put(local, data.size(), 4);
-  put(local, name.size(), 2);
-  put(local, 0, 2);
-  local += name;
-  local += data;
+  const auto [local, central] = stored_entry(name, data, local_offset);
   if (local_offset + local.size() > 0xffffffffu) return std::nullopt;
-  std::string central;
-  central += kCentralHeader;
-  put(central, 20, 2);             // version made by
-  central += local.substr(4, 26);  // version needed .. extra length, as in the local header
-  put(central, 0, 2);              // comment length
-  put(central, 0, 2);              // disk
-  put(central, 0, 2);              // internal attributes
-  put(central, 0, 4);              // external attributes
-  put(central, local_offset, 4);
-  central += name;
   std::string out(b.substr(0, local_offset));
   out += local;
   out += b.substr(d->offset, d->size);
@@ -196,6 +206,30 @@ std::optional<std::string> zip_append_stored(std::string_view b, const std::stri
   set(12, size, 4);
   set(16, offset, 4);
   return out + eocd;
+}
+
+std::string zip_stored(const std::vector<std::pair<std::string, std::string>>& entries) {
+  std::string locals;
+  std::string centrals;
+  for (const auto& [name, data] : entries) {
+    if (name.size() > 0xffff || locals.size() + 30 + name.size() + data.size() > 0xffffffffu ||
+        entries.size() >= 0xffff) {
+      throw InputError("zip: the archive would need zip64");
+    }
+    const auto [local, central] = stored_entry(name, data, locals.size());
+    locals += local;
+    centrals += central;
+  }
+  std::string out = locals + centrals;
+  out += kEndOfDirectory;
+  put(out, 0, 2);  // this disk
+  put(out, 0, 2);  // disk of the directory
+  put(out, entries.size(), 2);
+  put(out, entries.size(), 2);
+  put(out, centrals.size(), 4);
+  put(out, locals.size(), 4);
+  put(out, 0, 2);  // comment length
+  return out;
 }
 
 }  // namespace fabmesh

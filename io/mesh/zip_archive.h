@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace fabmesh {
@@ -34,5 +35,10 @@ std::optional<std::string> zip_read(std::string_view bytes, const ZipEntry& entr
 /// byte for byte.
 std::optional<std::string> zip_append_stored(std::string_view bytes, const std::string& name,
                                              std::string_view data);
+
+/// A new zip archive holding `entries` (name, content) stored uncompressed,
+/// in order, with no timestamps. \throw InputError when a name or the
+/// archive is too large for a plain (not zip64) archive.
+std::string zip_stored(const std::vector<std::pair<std::string, std::string>>& entries);
 
 }  // namespace fabmesh
