@@ -167,9 +167,9 @@ std::string_view GltfDocument::split_glb(std::string_view b) {
 
 const GltfDocument::Json& GltfDocument::array(const Json& o, const char* key,
                                               const std::string& where) const {
-  static const Json kEmpty = Json::array();
+  static const Json empty_array = Json::array();  // immutable
   const auto it = o.find(key);
-  if (it == o.end()) return kEmpty;
+  if (it == o.end()) return empty_array;
   if (!it->is_array()) fail(fmt::format("{}{} is not an array", where, key));
   return *it;
 }

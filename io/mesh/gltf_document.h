@@ -15,15 +15,13 @@
 
 namespace fabmesh {
 
-/// glTF accessor component types.
-enum GltfComponentType : int {
-  kGltfByte = 5120,
-  kGltfUnsignedByte = 5121,
-  kGltfShort = 5122,
-  kGltfUnsignedShort = 5123,
-  kGltfUnsignedInt = 5125,
-  kGltfFloat = 5126,
-};
+/// glTF accessor component types (accessor.componentType).
+inline constexpr int kGltfByte = 5120;
+inline constexpr int kGltfUnsignedByte = 5121;
+inline constexpr int kGltfShort = 5122;
+inline constexpr int kGltfUnsignedShort = 5123;
+inline constexpr int kGltfUnsignedInt = 5125;
+inline constexpr int kGltfFloat = 5126;
 
 /// An accessor's elements as doubles: count x components, row-major.
 struct GltfAccessorValues {
@@ -35,7 +33,7 @@ struct GltfAccessorValues {
 struct GltfAccessorRequest {
   const char* type = "VEC3";         ///< glTF accessor type: "SCALAR", "VEC3"
   std::size_t components = 3;        ///< of that type
-  std::vector<int> component_types;  ///< allowed GltfComponentType values
+  std::vector<int> component_types;  ///< allowed kGltf* component types
   bool allow_normalized = false;
   std::size_t max_count = 0;  ///< budget, checked before anything is allocated
 };

@@ -96,8 +96,9 @@ std::string cube_mesh_xml() {
   return xml + "</triangles></mesh>";
 }
 
-const char* kModelHead = R"(<?xml version="1.0" encoding="UTF-8"?><model unit="millimeter" xml:lang="en-US" )"
-                         R"(xmlns="http://schemas.microsoft.com/3dmanufacturing/core/2015/02">)";
+constexpr const char* kModelHead =
+    R"(<?xml version="1.0" encoding="UTF-8"?><model unit="millimeter" xml:lang="en-US" )"
+    R"(xmlns="http://schemas.microsoft.com/3dmanufacturing/core/2015/02">)";
 
 ValidationReport welded_report(const TriangleSoup& soup) { return validate(weld(soup).soup); }
 
@@ -149,10 +150,10 @@ TEST_CASE("3mf: the writer is deterministic and its UUIDs follow the content", "
   const TempDir dir;
   dir.write("ring.3mf", a);
   REQUIRE_PROGRAM("python3");
-  const test::ToolRun listing =
-      run_tool("python3 -c \"import sys, zipfile; [print(i.filename, i.date_time) for i in "
-               "zipfile.ZipFile(sys.argv[1]).infolist()]\" " +
-               quoted(dir.file("ring.3mf")));
+  const test::ToolRun listing = run_tool(
+      "python3 -c \"import sys, zipfile; [print(i.filename, i.date_time) for i in "
+      "zipfile.ZipFile(sys.argv[1]).infolist()]\" " +
+      quoted(dir.file("ring.3mf")));
   INFO(listing.output);
   CHECK(listing.output.find("3D/3dmodel.model (1980, 0, 0, 0, 0, 0)") != std::string::npos);
   CHECK(listing.output.find("_rels/.rels (1980, 0, 0, 0, 0, 0)") != std::string::npos);
