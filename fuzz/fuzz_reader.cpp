@@ -1,5 +1,6 @@
 // libFuzzer entry for one mesh reader, chosen by FABMESH_FUZZ_PARSE
-// (parse_stl, parse_obj, parse_ply, parse_off or parse_draco).
+// (parse_stl, parse_obj, parse_ply, parse_off, parse_draco, fuzz::parse_3mf
+// or fuzz::parse_gltf).
 // A reader may only return a soup whose indices are in range, or throw
 // FileError; anything else (a crash, another exception, a sanitizer report,
 // a hang caught by -timeout) is a finding. Small soups also go through weld
@@ -14,10 +15,36 @@
 #include "geometry/mesh/validate.h"
 #include "geometry/mesh/weld.h"
 #include "io/mesh/draco.h"
+#include "io/mesh/gltf.h"
 #include "io/mesh/obj.h"
 #include "io/mesh/off.h"
 #include "io/mesh/ply.h"
 #include "io/mesh/stl.h"
+#include "io/mesh/threemf.h"
+
+namespace fabmesh::fuzz {
+
+// The container formats instance meshes (components, nodes): a smaller
+// budget than the default keeps each input's work and memory small.
+constexpr std::size_t kMaxTriangles = 200000;
+
+/// A zip archive ("PK") is read as it is; anything else is taken as the 3D
+/// model part of a package made for it, so that mutations reach lib3mf's
+/// XML reading instead of failing the zip's CRC checks.
+TriangleSoup parse_3mf(std::string_view bytes, const std::string& name) {
+  ThreeMfReadOptions options;
+  options.max_triangles = kMaxTriangles;
+  if (bytes.substr(0, 2) == "PK") return merged_soup(fabmesh::parse_3mf(bytes, name, options));
+  return merged_soup(fabmesh::parse_3mf(threemf_package(bytes), name, options));
+}
+
+TriangleSoup parse_gltf(std::string_view bytes, const std::string& name) {
+  GltfReadOptions options;
+  options.max_triangles = kMaxTriangles;
+  return fabmesh::parse_gltf(bytes, name, options).soup;
+}
+
+}  // namespace fabmesh::fuzz
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view bytes(reinterpret_cast<const char*>(data), size);

@@ -11,7 +11,7 @@ cd "$(dirname "$0")/.."
 what="${1:-all}"
 FUZZ_SECONDS="${FUZZ_SECONDS:-20}"
 JOBS="${JOBS:-2}"
-readers=(stl obj ply off draco)
+readers=(stl obj ply off draco 3mf gltf)
 
 fuzz() {
   local dir=build-fuzz

@@ -13,17 +13,17 @@ packages=(
   libeigen3-dev libopenmesh-dev libdraco-dev libtbb-dev
   libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libfmt-dev
   catch2 libbenchmark-dev libdxflib-dev
-  lib3mf-dev libtinygltf-dev libspng-dev libpng-dev
+  lib3mf-dev libspng-dev zlib1g-dev
   clang clang-tidy libclang-rt-14-dev
   python3 python3-ezdxf
-  prusa-slicer chromium
+  prusa-slicer chromium draco openscad
   slurm-wlm munge
 )
 # Node.js and npm come with the machine (NodeSource's nodejs bundles npm and
 # conflicts with Debian's npm); install Debian's pair only where there is none.
 if ! command -v npm >/dev/null 2>&1; then packages+=(nodejs npm); fi
 if [[ "${1:-}" == "--bench" ]]; then
-  packages+=(openscad admesh hyperfine time dxf2gcode)
+  packages+=(admesh hyperfine time dxf2gcode)
 fi
 
 missing=()

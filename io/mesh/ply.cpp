@@ -292,20 +292,33 @@ TriangleSoup parse_ply(std::string_view bytes, const std::string& name) {
   return soup;
 }
 
-std::string encode_ply(const TriangleSoup& soup) {
+std::string encode_ply(const TriangleSoup& soup, const PlyOptions& options) {
   require_indices_in_range(soup);
+  const bool dbl = options.double_precision;
+  const char* type = dbl ? "double" : "float";
   std::string out = fmt::format(
       "ply\nformat binary_little_endian 1.0\ncomment written by fabmesh\nelement vertex {}\n"
-      "property double x\nproperty double y\nproperty double z\nelement face {}\n"
+      "property {} x\nproperty {} y\nproperty {} z\nelement face {}\n"
       "property list uchar uint vertex_indices\nend_header\n",
-      soup.vertices.size(), soup.triangles.size());
-  out.reserve(out.size() + 24 * soup.vertices.size() + 13 * soup.triangles.size());
-  for (const Vec3& p : soup.vertices) {
+      soup.vertices.size(), type, type, type, soup.triangles.size());
+  out.reserve(out.size() + (dbl ? 24 : 12) * soup.vertices.size() + 13 * soup.triangles.size());
+  for (std::size_t i = 0; i < soup.vertices.size(); ++i) {
+    const Vec3& p = soup.vertices[i];
     for (int a = 0; a < 3; ++a) {
-      std::uint64_t bits;
       const double d = p[a];
-      std::memcpy(&bits, &d, 8);
-      put_le(out, bits, 8);
+      const float f = static_cast<float>(d);
+      if (!std::isfinite(dbl ? d : static_cast<double>(f))) {
+        throw InputError(fmt::format("PLY: vertex {} has coordinate {}, not a finite {}", i, d, type));
+      }
+      if (dbl) {
+        std::uint64_t bits;
+        std::memcpy(&bits, &d, 8);
+        put_le(out, bits, 8);
+      } else {
+        std::uint32_t bits;
+        std::memcpy(&bits, &f, 4);
+        put_le(out, bits, 4);
+      }
     }
   }
   for (const auto& t : soup.triangles) {
@@ -315,10 +328,12 @@ std::string encode_ply(const TriangleSoup& soup) {
   return out;
 }
 
-void write_ply(const TriangleSoup& soup, const std::string& path) {
-  write_file_atomically(path, encode_ply(soup));
+void write_ply(const TriangleSoup& soup, const std::string& path, const PlyOptions& options) {
+  write_file_atomically(path, encode_ply(soup, options));
 }
 
-void write_ply(const Mesh& mesh, const std::string& path) { write_ply(to_soup(mesh), path); }
+void write_ply(const Mesh& mesh, const std::string& path, const PlyOptions& options) {
+  write_ply(to_soup(mesh), path, options);
+}
 
 }  // namespace fabmesh

@@ -18,12 +18,23 @@ namespace fabmesh {
 /// hold, truncated data, a non-finite coordinate or an index out of range.
 TriangleSoup parse_ply(std::string_view bytes, const std::string& name);
 
-/// binary_little_endian PLY bytes of `soup` (double coordinates: exact).
-/// \throw InputError when an index is out of range.
-std::string encode_ply(const TriangleSoup& soup);
+/// Options of the PLY writer.
+struct PlyOptions {
+  /// false (default): `float` coordinates (float32), which every PLY reader
+  /// takes (draco_encoder, among others, refuses double); true: `double`,
+  /// exact.
+  bool double_precision = false;
+};
 
-/// Writes `soup` (or `mesh`) as binary PLY to `path`, atomically. \throw FileError
-void write_ply(const TriangleSoup& soup, const std::string& path);
-void write_ply(const Mesh& mesh, const std::string& path);
+/// binary_little_endian PLY bytes of `soup`: vertex x, y, z (float32 unless
+/// options.double_precision) and faces as `list uchar uint vertex_indices`.
+/// \throw InputError when an index is out of range or a coordinate is not
+/// finite in the chosen precision.
+std::string encode_ply(const TriangleSoup& soup, const PlyOptions& options = {});
+
+/// Writes `soup` (or `mesh`) as binary PLY to `path`, atomically.
+/// \throw as encode_ply, and FileError when the file cannot be written.
+void write_ply(const TriangleSoup& soup, const std::string& path, const PlyOptions& options = {});
+void write_ply(const Mesh& mesh, const std::string& path, const PlyOptions& options = {});
 
 }  // namespace fabmesh

@@ -9,11 +9,13 @@
 #include "geometry/core/errors.h"
 #include "io/file.h"
 #include "io/mesh/draco.h"
+#include "io/mesh/gltf.h"
 #include "io/mesh/obj.h"
 #include "io/mesh/off.h"
 #include "io/mesh/ply.h"
 #include "io/mesh/stl.h"
 #include "io/mesh/text_scanner.h"
+#include "io/mesh/threemf.h"
 
 namespace fabmesh {
 namespace {
@@ -54,36 +56,31 @@ std::string_view skip_comments_and_space(std::string_view bytes) {
   }
 }
 
-}  // namespace
-
-const char* to_string(MeshFormat format) {
-  switch (format) {
-    case MeshFormat::Stl:
-      return "STL";
-    case MeshFormat::Obj:
-      return "OBJ";
-    case MeshFormat::Ply:
-      return "PLY";
-    case MeshFormat::Off:
-      return "OFF";
-    case MeshFormat::Draco:
-      return "Draco";
-  }
-  return "unknown";
+/// A JSON object (first non-space character '{') with an "asset" member.
+bool looks_like_gltf_json(std::string_view bytes) {
+  std::size_t i = 0;
+  while (i < bytes.size() && std::isspace(static_cast<unsigned char>(bytes[i]))) ++i;
+  return i < bytes.size() && bytes[i] == '{' && bytes.find("\"asset\"") != std::string_view::npos;
 }
+
+}  // namespace
 
 MeshFormat detect_format(std::string_view bytes, const std::string& path) {
   if (bytes.substr(0, 5) == "DRACO") return MeshFormat::Draco;
   if (starts_with_line(bytes, "ply")) return MeshFormat::Ply;
   if (starts_with_line(skip_comments_and_space(bytes), "OFF")) return MeshFormat::Off;
+  if (bytes.substr(0, 4) == "glTF") return MeshFormat::Glb;
+  if (looks_like_3mf(bytes)) return MeshFormat::ThreeMf;
+  if (looks_like_gltf_json(bytes)) return MeshFormat::Gltf;
   if (is_binary_stl(bytes) || looks_like_ascii_stl(bytes)) return MeshFormat::Stl;
   if (looks_like_obj(bytes)) return MeshFormat::Obj;
   const std::string ext = lower_extension(path);
   if (ext == ".stl") return MeshFormat::Stl;  // a lying or truncated binary STL: parse_stl says why
   if (ext == ".obj") return MeshFormat::Obj;
-  throw FileError(path, 0, 0,
-                  fmt::format("{}: not a mesh file fabmesh can read (STL, OBJ, PLY, OFF or Draco){}", path,
-                              bytes.empty() ? " (the file is empty)" : ""));
+  throw FileError(
+      path, 0, 0,
+      fmt::format("{}: not a mesh file fabmesh can read (STL, OBJ, PLY, OFF, Draco, 3MF, GLB or glTF){}",
+                  path, bytes.empty() ? " (the file is empty)" : ""));
 }
 
 TriangleSoup parse_mesh(std::string_view bytes, const std::string& path) {
@@ -98,6 +95,11 @@ TriangleSoup parse_mesh(std::string_view bytes, const std::string& path) {
       return parse_off(bytes, path);
     case MeshFormat::Draco:
       return parse_draco(bytes, path);
+    case MeshFormat::ThreeMf:
+      return merged_soup(parse_3mf(bytes, path));
+    case MeshFormat::Glb:
+    case MeshFormat::Gltf:
+      return parse_gltf(bytes, path).soup;
   }
   throw FileError(path, 0, 0, fmt::format("{}: unknown mesh format", path));
 }

@@ -9,19 +9,20 @@
 namespace fabmesh {
 
 /// The mesh file formats fabmesh reads.
-enum class MeshFormat { Stl, Obj, Ply, Off, Draco };
-
-/// "STL", "OBJ", "PLY", "OFF" or "Draco".
-const char* to_string(MeshFormat format);
+enum class MeshFormat { Stl, Obj, Ply, Off, Draco, ThreeMf, Glb, Gltf };
 
 /// Tells the format of a mesh file by its content: "DRACO", "ply", "OFF"
-/// magic; a binary STL by its exact size; "solid" + text for ASCII STL; OBJ
-/// records. The extension only breaks ties (a binary STL whose size is wrong
-/// is still recognised by ".stl", to be rejected with the size mismatch).
+/// magic; a zip archive ("PK\x03\x04") holding a *.model part is 3MF; "glTF"
+/// magic is GLB; a JSON object with an "asset" member is glTF; a binary STL
+/// by its exact size; "solid" + text for ASCII STL; OBJ records. The
+/// extension only breaks ties (a binary STL whose size is wrong is still
+/// recognised by ".stl", to be rejected with the size mismatch).
 /// \throw FileError when the content matches no supported format.
 MeshFormat detect_format(std::string_view bytes, const std::string& path);
 
-/// Parses `bytes` in the detected format. \param path for detection ties and messages
+/// Parses `bytes` in the detected format. 3MF: every build item in one soup
+/// (merged_soup), in the file's unit; glTF: the scene in one soup, metres,
+/// Y-up as glTF stores it. \param path for detection ties and messages
 /// \throw FileError for anything malformed.
 TriangleSoup parse_mesh(std::string_view bytes, const std::string& path);
 

@@ -12,7 +12,9 @@
 #include "io/mesh/ply.h"
 #include "io/mesh/read_mesh.h"
 #include "io/mesh/stl.h"
+#include "io/mesh/threemf.h"
 #include "tests/geometry/mesh/shapes.h"
+#include "tests/io/mesh/external_tool.h"
 #include "tests/io/mesh/temp_dir.h"
 
 using namespace fabmesh;
@@ -53,13 +55,13 @@ void require_valid_torus(const TriangleSoup& read, std::size_t triangles) {
 
 }  // namespace
 
-TEST_CASE("mesh files: OBJ, PLY and OFF round-trip vertices and faces exactly", "[mesh][io]") {
+TEST_CASE("mesh files: OBJ, double PLY and OFF round-trip vertices and faces exactly", "[mesh][io]") {
   const TempDir dir;
   const TriangleSoup torus = test::rotated(test::torus(3.0, 1.0, 24, 12), Vec3(1, 1, 0), 0.3);
   using Writer = std::function<void(const TriangleSoup&, const std::string&)>;
   const std::vector<std::pair<std::string, Writer>> writers = {
       {"t.obj", [](const TriangleSoup& s, const std::string& p) { write_obj(s, p); }},
-      {"t.ply", [](const TriangleSoup& s, const std::string& p) { write_ply(s, p); }},
+      {"t.ply", [](const TriangleSoup& s, const std::string& p) { write_ply(s, p, PlyOptions{true}); }},
       {"t.off", [](const TriangleSoup& s, const std::string& p) { write_off(s, p); }}};
   for (const auto& [name, write] : writers) {
     INFO(name);
@@ -69,6 +71,40 @@ TEST_CASE("mesh files: OBJ, PLY and OFF round-trip vertices and faces exactly", 
     CHECK(back.triangles == torus.triangles);
     require_valid_torus(back, torus.triangles.size());
   }
+}
+
+TEST_CASE("mesh files: PLY is float32 by default, round-trips float32 exactly and draco_encoder takes it",
+          "[mesh][io][ply]") {
+  const TempDir dir;
+  const TriangleSoup torus = test::rotated(test::torus(3.0, 1.0, 24, 12), Vec3(1, 1, 0), 0.3);
+  const std::string bytes = encode_ply(torus);
+  CHECK(bytes.find("property float x") != std::string::npos);
+  const TriangleSoup back = parse_ply(bytes, "t.ply");
+  CHECK(back.vertices == as_float(torus).vertices);
+  CHECK(back.triangles == torus.triangles);
+  require_valid_torus(back, torus.triangles.size());
+  CHECK(encode_ply(torus, PlyOptions{true}).find("property double x") != std::string::npos);
+
+  // draco_encoder refuses double coordinates ("x, y, and z properties must be
+  // of type float32 or int32") and takes fabmesh's default PLY.
+  REQUIRE_PROGRAM("draco_encoder");
+  write_ply(torus, dir.file("float.ply"));
+  write_ply(torus, dir.file("double.ply"), PlyOptions{true});
+  const auto encode = [&](const std::string& ply) {
+    return test::run_tool("draco_encoder -qp 20 -i " + test::quoted(dir.file(ply)) + " -o " +
+                          test::quoted(dir.file(ply + ".drc")));
+  };
+  const test::ToolRun ok = encode("float.ply");
+  INFO(ok.output);
+  REQUIRE(ok.code == 0);
+  const TriangleSoup decoded = read_mesh(dir.file("float.ply.drc"));
+  CHECK(decoded.triangles.size() == torus.triangles.size());
+  CHECK(max_nearest_distance(decoded, torus) <= 1e-4);
+  CHECK(encode("double.ply").code != 0);
+  TriangleSoup overflow = test::box();
+  overflow.vertices[0].x() = 1e300;
+  CHECK_THROWS_AS(encode_ply(overflow), InputError);
+  CHECK(encode_ply(overflow, PlyOptions{true}).size() > 0);
 }
 
 TEST_CASE("mesh files: binary STL round-trips float32 coordinates and welds back to the mesh", "[mesh][io]") {
@@ -310,10 +346,15 @@ TEST_CASE("mesh files: every fuzz seed parses, and fuzzer findings are clean Fil
     if (!entry.is_regular_file()) continue;
     const std::string path = entry.path().string();
     INFO(path);
+    // A *.model seed is a 3MF model part: the 3MF fuzzer packages it (threemf_package).
+    const bool model_part = entry.path().extension() == ".model";
+    const auto parse = [&] {
+      return model_part ? merged_soup(parse_3mf(threemf_package(read_file(path)), path)) : read_mesh(path);
+    };
     if (entry.path().filename().string().rfind("regression-", 0) == 0) {
-      CHECK_THROWS_AS(read_mesh(path), FileError);
+      CHECK_THROWS_AS(parse(), FileError);
     } else {
-      CHECK_FALSE(read_mesh(path).triangles.empty());
+      CHECK_FALSE(parse().triangles.empty());
       ++parsed;
     }
   }
