@@ -15,50 +15,103 @@ namespace {
 // Share of the tolerance kept for output quantization (Draco, float32 files).
 constexpr double kOutputShare = 0.1;
 
+TriangleSoup scaled(const TriangleSoup& soup, double factor) {
+  if (factor == 1.0) return soup;
+  TriangleSoup out = soup;
+  for (Vec3& p : out.vertices) p *= factor;
+  return out;
+}
+
+std::vector<const OutputFormat*> formats_of(const Design& design, const JobOptions& options) {
+  if (!options.export_format) return resolve_outputs(design);
+  Design one = design;
+  one.common.outputs = {{*options.export_format, "--export-format " + *options.export_format, 0, 0}};
+  return resolve_outputs(one);
+}
+
+std::string path_of(const Design& design, const OutputFormat& format, const JobOptions& options) {
+  if (options.output_file) return *options.output_file;
+  return (std::filesystem::path(options.out_dir) / (design.common.name + std::string(format.file_suffix)))
+      .string();
+}
+
 }  // namespace
 
 PreparedJob prepare_job(const Design& design, const JobOptions& options) {
   PreparedJob job;
   JobReport& report = job.report;
-  report.name = design.common.name;
+  DesignCommon common = design.common;
+  if (options.export_units) common.export_units = *options.export_units;
+  report.name = common.name;
   report.kind = kind_name(design);
-  report.units = design.common.units;
-  report.tolerance = design.common.tolerance;
+  report.units = common.units;
+  report.export_units = common.export_units;
+  report.tolerance = common.tolerance;
   StageTimer watch(report.timings_ms);
-  const std::vector<const OutputFormat*> formats = resolve_outputs(design);
+  const std::vector<const OutputFormat*> formats = formats_of(design, options);
+  if (options.output_file && formats.size() != 1) {
+    std::string names;
+    for (const OutputFormat* f : formats) names += (names.empty() ? "" : ", ") + std::string(f->name);
+    throw InputError(
+        fmt::format("the design asks for {} outputs ({}); -o {} takes one: choose it with "
+                    "--export-format",
+                    formats.size(), names, *options.output_file));
+  }
   const bool wants_cutting = std::any_of(formats.begin(), formats.end(), [](const OutputFormat* f) {
     return f->content == OutputContent::CuttingOutline;
   });
-  const BuildContext context{design.common, (1.0 - kOutputShare) * design.common.tolerance, wants_cutting,
-                             watch};
+  const BuildContext context{common, (1.0 - kOutputShare) * common.tolerance, wants_cutting, watch};
   const BuiltMesh built = build_design(design, context);
   report.max_deviation = built.max_deviation;
   report.build = built.facts;
   report.validation = built.validation;
   report.purpose = built.purpose;
-  if (!fit_for(report.validation, built.purpose)) {
-    require_valid(report.validation, fmt::format("{} '{}'", report.kind, report.name));
+  const std::string what = fmt::format("{} '{}'", report.kind, report.name);
+  if (!fit_for(report.validation, built.purpose)) require_valid(report.validation, what);
+  if (built.purpose == MeshPurpose::Viewing && common.purpose != Purpose::View) {
+    throw ValidationFailed(fmt::format(
+        "{}: the mesh is open ({} boundary edges): not fit for fabrication, so nothing is written; give the "
+        "surface a `thickness` for a solid shell, or set `purpose: view` to write it for viewing",
+        what, report.validation.boundary_edges));
   }
-  // The encoders get the tolerance the build left unused.
-  const double output_tolerance = design.common.tolerance - built.max_deviation;
+  if (!built.soup.vertices.empty()) {
+    report.bbox_min = report.bbox_max = built.soup.vertices.front();
+    for (const Vec3& p : built.soup.vertices) {
+      report.bbox_min = report.bbox_min.cwiseMin(p);
+      report.bbox_max = report.bbox_max.cwiseMax(p);
+    }
+  }
+  // The encoders get the tolerance the build left unused, and the mesh in the export unit.
+  const double export_scale = metres_per_unit(common.units) / metres_per_unit(common.export_units);
+  const TriangleSoup exported = scaled(built.soup, export_scale);
+  const double output_tolerance = common.tolerance - built.max_deviation;
   for (const OutputFormat* format : formats) {
-    const std::string path =
-        (std::filesystem::path(options.out_dir) / (design.common.name + "." + std::string(format->name)))
-            .string();
-    job.files.push_back({path, format->encode({design.common, built, output_tolerance, path})});
-    report.outputs.push_back(path);
+    const std::string path = path_of(design, *format, options);
+    try {
+      Encoded e = format->encode({common, built, exported, export_scale, output_tolerance, path});
+      report.files.push_back({path, std::string(format->name), e.units, e.added_error});
+      report.outputs.push_back(path);
+      job.files.push_back({path, std::move(e.bytes)});
+    } catch (const OutputError& e) {
+      if (common.on_output_error == OutputErrorPolicy::Fail) throw;
+      report.skipped.push_back({std::string(format->name), e.what()});
+    }
     watch.lap("encode_" + std::string(format->name));
   }
   return job;
 }
 
-JobReport write_job(PreparedJob job, const JobOptions& options) {
+JobReport write_job(PreparedJob job) {
   StageTimer watch(job.report.timings_ms);
-  std::error_code ec;
-  std::filesystem::create_directories(options.out_dir, ec);
-  if (ec) {
-    throw FileError(options.out_dir, 0, 0,
-                    fmt::format("{}: cannot create the output folder: {}", options.out_dir, ec.message()));
+  for (const FileWrite& f : job.files) {
+    const std::filesystem::path folder = std::filesystem::path(f.path).parent_path();
+    if (folder.empty()) continue;
+    std::error_code ec;
+    std::filesystem::create_directories(folder, ec);
+    if (ec) {
+      throw FileError(folder.string(), 0, 0,
+                      fmt::format("{}: cannot create the output folder: {}", folder.string(), ec.message()));
+    }
   }
   write_files_atomically(job.files);
   watch.lap("write");
@@ -66,7 +119,7 @@ JobReport write_job(PreparedJob job, const JobOptions& options) {
 }
 
 JobReport run_job(const Design& design, const JobOptions& options) {
-  return write_job(prepare_job(design, options), options);
+  return write_job(prepare_job(design, options));
 }
 
 }  // namespace fabmesh

@@ -3,6 +3,7 @@
 // output in memory, then write them all or none.
 
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,26 @@ namespace fabmesh {
 
 struct JobOptions {
   std::string out_dir = "out";  ///< created when missing
+  /// Replaces the design's export unit (`--export-units`) when set.
+  std::optional<std::string> export_units;
+  /// Replaces the design's outputs by this one format (`--export-format`, `-o FILE.ext`) when set.
+  std::optional<std::string> export_format;
+  /// The path of the single output (`-o FILE.ext`) instead of out_dir/NAME.ext; "-" is standard output.
+  std::optional<std::string> output_file;
+};
+
+/// One file a job wrote.
+struct OutputFile {
+  std::string path;
+  std::string format;
+  std::string units;         ///< the unit of its coordinates
+  double added_error = 0.0;  ///< how far writing moved any vertex at most, model units
+};
+
+/// An output the job could not make (and skipped, by the design's policy).
+struct SkippedOutput {
+  std::string format;
+  std::string reason;
 };
 
 /// What one job did.
@@ -23,11 +44,15 @@ struct JobReport {
   std::string name;
   std::string kind;
   std::string units;
+  std::string export_units;
   std::vector<std::string> outputs;  ///< paths written (or to be written, for a prepared job)
+  std::vector<OutputFile> files;     ///< the same with their format, unit and added error
+  std::vector<SkippedOutput> skipped;
   ValidationReport validation;
   MeshPurpose purpose = MeshPurpose::Fabrication;
   double max_deviation = 0.0;  ///< proven bound of the mesh against the exact shape, model units
   double tolerance = 0.0;
+  Vec3 bbox_min = Vec3::Zero(), bbox_max = Vec3::Zero();  ///< of the mesh, model units
   nlohmann::json build;  ///< builder facts, e.g. {"angular_segments": 128, "section_points": 90}
   StageTimings timings_ms;
 };
@@ -39,15 +64,16 @@ struct PreparedJob {
 };
 
 /// Builds, validates and encodes `design` into its outputs' bytes. Does no
-/// I/O. A mesh that is not valid for fabrication (or, for a viewing mesh,
-/// has defects beyond its open border) stops the job here.
-/// \throw InputError (bad design), ValidationFailed (the mesh, or its decoded Draco form, is invalid)
+/// I/O. A mesh that is not valid for fabrication stops the job here; an open
+/// surface is written only when the design's purpose is `view`. An output
+/// that cannot be made within the tolerance is skipped (reported) or fails
+/// the job, as the design's `on_output_error` says.
+/// \throw InputError (bad design, OutputError), ValidationFailed (an invalid mesh)
 PreparedJob prepare_job(const Design& design, const JobOptions& options);
 
-/// Writes a prepared job's files into their folder (created when missing),
-/// all or nothing (write_files_atomically); fills report.outputs.
-/// \throw FileError
-JobReport write_job(PreparedJob job, const JobOptions& options);
+/// Writes a prepared job's files, all or nothing (write_files_atomically),
+/// creating their folder when missing. \throw FileError
+JobReport write_job(PreparedJob job);
 
 /// prepare_job then write_job.
 JobReport run_job(const Design& design, const JobOptions& options);

@@ -37,12 +37,24 @@ KindSet kinds() {
   return set;
 }
 
-/// What an encoder gets: the built design and the error it may still add.
+/// What an encoder gets: the built design, the same mesh in the export unit,
+/// and the error it may still add.
 struct EncodeContext {
   const DesignCommon& common;
   const BuiltMesh& built;
+  const TriangleSoup& exported;   ///< built.soup scaled to common.export_units
+  double export_scale = 1.0;      ///< export units per model unit
   double output_tolerance = 0.0;  ///< tolerance left after the build, model units
   std::string path;               ///< where the file will go (for messages)
+};
+
+/// An encoded output: its bytes, the unit they are in, and the largest
+/// distance by which writing moved any vertex (a proven bound or a measured
+/// value over every vertex), in model units.
+struct Encoded {
+  std::string bytes;
+  std::string units;
+  double added_error = 0.0;
 };
 
 /// What an output is made from: the builders make the cutting outline only when an output needs it.
@@ -53,13 +65,18 @@ struct OutputFormat {
   std::string_view name;         ///< the file extension and the name in `outputs:`, e.g. "stl"
   std::string_view description;  ///< for help texts and the reference
   OutputContent content;
-  KindSet kinds;        ///< the kinds it applies to
-  KindSet default_for;  ///< the kinds that get it when a design names no outputs
-  std::string (*encode)(const EncodeContext& context);
+  KindSet kinds;                 ///< the kinds it applies to
+  KindSet default_for;           ///< the kinds that get it when a design names no outputs
+  std::string_view file_suffix;  ///< after the name: ".stl", ".draco.glb", ...
+  /// \throw OutputError when the output cannot be made within the tolerance left
+  Encoded (*encode)(const EncodeContext& context);
 };
 
 /// Every output format, in the order defaults are listed.
 const std::vector<OutputFormat>& output_formats();
+
+/// The format called `name`, or nullptr.
+const OutputFormat* find_output_format(std::string_view name);
 
 /// The formats `design` asks for: its `outputs` (each checked: the format
 /// exists and applies to the kind) or, when it names none, its kind's defaults.

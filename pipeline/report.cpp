@@ -40,14 +40,34 @@ nlohmann::ordered_json timings_json(const StageTimings& timings, const std::stri
   return j;
 }
 
+nlohmann::ordered_json bounding_box_json(const Vec3& lo, const Vec3& hi, const std::string& units) {
+  const Vec3 size = hi - lo;
+  nlohmann::ordered_json j;
+  j["min"] = {lo.x(), lo.y(), lo.z()};
+  j["max"] = {hi.x(), hi.y(), hi.z()};
+  j["size"] = {size.x(), size.y(), size.z()};
+  j["units"] = units;
+  return j;
+}
+
 nlohmann::ordered_json to_json(const JobReport& r) {
   nlohmann::ordered_json j;
   j["name"] = r.name;
   j["kind"] = r.kind;
   j["units"] = r.units;
+  j["export_units"] = r.export_units;
   j["tolerance"] = r.tolerance;
   j["max_deviation"] = r.max_deviation;
+  j["bounding_box"] = bounding_box_json(r.bbox_min, r.bbox_max, r.units);
   j["outputs"] = r.outputs;
+  j["files"] = nlohmann::ordered_json::array();
+  for (const OutputFile& f : r.files) {
+    j["files"].push_back(
+        {{"path", f.path}, {"format", f.format}, {"units", f.units}, {"max_added_error", f.added_error}});
+  }
+  j["skipped_outputs"] = nlohmann::ordered_json::array();
+  for (const SkippedOutput& s : r.skipped)
+    j["skipped_outputs"].push_back({{"format", s.format}, {"reason", s.reason}});
   j["purpose"] = r.purpose == MeshPurpose::Fabrication ? "fabrication" : "viewing";
   j.update(validation_json(r.validation));
   if (r.build.is_object() && r.build.contains("fabrication")) j["fabrication"] = r.build["fabrication"];
@@ -62,25 +82,34 @@ void print_summary(const JobReport& r, std::ostream& out) {
   const ValidationReport& v = r.validation;
   double total = 0.0;
   for (const auto& t : r.timings_ms) total += t.second;
+  const std::string& u = r.units;
   // An enclosed volume only exists for a closed mesh.
   const std::string volume =
-      v.boundary_edges == 0 ? fmt::format("{:.6g}", v.volume) : std::string("- (open)");
-  out << fmt::format("{}: {} with {} vertices, {} triangles, volume {}, area {:.6g}, genus {}\n", r.name,
-                     r.kind, v.vertices, v.triangles, volume, v.area,
+      v.boundary_edges == 0 ? fmt::format("{:.6g} {}^3", v.volume, u) : std::string("- (open)");
+  out << fmt::format("{}: {} with {} vertices, {} triangles, volume {}, area {:.6g} {}^2, genus {}\n", r.name,
+                     r.kind, v.vertices, v.triangles, volume, v.area, u,
                      v.genus ? std::to_string(*v.genus) : "-");
+  const Vec3 size = r.bbox_max - r.bbox_min;
+  out << fmt::format(
+      "  size {:.6g} x {:.6g} x {:.6g} {} (x {:.6g}..{:.6g}, y {:.6g}..{:.6g}, z {:.6g}..{:.6g})\n", size.x(),
+      size.y(), size.z(), u, r.bbox_min.x(), r.bbox_max.x(), r.bbox_min.y(), r.bbox_max.y(), r.bbox_min.z(),
+      r.bbox_max.z());
   if (v.valid()) {
     out << fmt::format(
-        "  valid: closed, manifold, outward, no self-intersections ({}); within {:.3g} of the exact "
-        "surface (tolerance {})\n",
+        "  valid: closed, manifold, outward, no self-intersections ({}); within {:.3g} {} of the exact "
+        "surface "
+        "(tolerance {} {})\n",
         v.self_intersection == IntersectionCheck::ProvenByConstruction ? "by construction" : "checked",
-        r.max_deviation, r.tolerance);
+        r.max_deviation, u, r.tolerance, u);
   } else {
     const std::vector<std::string> defects = describe_defects(v);
-    out << fmt::format("  warning: not valid for fabrication ({}; {}): written for viewing only\n",
+    out << fmt::format("  for viewing only, not valid for fabrication ({}; {})\n",
                        r.build.is_object() ? r.build.value("fabrication", "invalid") : "invalid",
                        defects.empty() ? "" : defects.front());
   }
-  for (const std::string& path : r.outputs) out << fmt::format("  wrote {}\n", path);
+  for (const OutputFile& f : r.files) out << fmt::format("  wrote {} (in {})\n", f.path, f.units);
+  for (const SkippedOutput& s : r.skipped)
+    out << fmt::format("  warning: skipped {}: {}\n", s.format, s.reason);
   out << fmt::format("  {:.1f} ms\n", total);
 }
 

@@ -71,6 +71,19 @@ class FileError : public InputError {
   int column_;
 };
 
+/// An output file that cannot be made as asked, e.g. a quantization that
+/// cannot hold the tolerance at these coordinates. The message says what to
+/// change. The job skips that output (or fails, when the design asks).
+class OutputError : public InputError {
+ public:
+  OutputError(std::string format, const std::string& message)
+      : InputError(message), format_(std::move(format)) {}
+  const std::string& format() const { return format_; }
+
+ private:
+  std::string format_;
+};
+
 /// A mesh that fails validation where a valid one is required (exit code 1).
 class ValidationFailed : public std::runtime_error {
  public:

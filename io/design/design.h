@@ -23,15 +23,36 @@ struct OutputRequest {
   int column = 0;
 };
 
+/// What a design's mesh is for.
+enum class Purpose {
+  Fabrication,  ///< every mesh must be valid for fabrication (closed, manifold, embedded)
+  View,         ///< an open surface may be written for viewing (its only defect its border)
+};
+
+/// What a job does when one output cannot be made as asked (e.g. Draco cannot
+/// hold the tolerance at these coordinates).
+enum class OutputErrorPolicy {
+  Skip,  ///< write the others, report the skipped one with why (a warning)
+  Fail,  ///< fail the whole job (bad input, nothing written)
+};
+
 /// Keys every design has.
 struct DesignCommon {
   std::string path;  ///< the file it was read from
   std::string name;  ///< default: the file's stem
   std::string units = "mm";
+  /// The unit of files that carry none (STL, OBJ, PLY, OFF, Draco) and of 3MF;
+  /// glTF is always metres. Default mm: slicers read STL as millimetres.
+  std::string export_units = "mm";
   double tolerance = 0.01;  ///< model units, > 0
   /// As given; empty when the design names none (the kind's defaults apply).
   std::vector<OutputRequest> outputs;
+  Purpose purpose = Purpose::Fabrication;
+  OutputErrorPolicy on_output_error = OutputErrorPolicy::Skip;
 };
+
+/// Metres per `units` (mm, cm, m, in). \throw std::invalid_argument for another unit
+double metres_per_unit(const std::string& units);
 
 /// kind: curve
 struct CurveDesign {

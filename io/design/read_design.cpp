@@ -162,6 +162,18 @@ DesignCommon read_common(const yaml::Fields& f, const YAML::Node& root) {
   }
   c.units = f.choice(root["units"].IsDefined() ? root["units"] : YAML::Node("mm"), "units",
                      {"mm", "cm", "m", "in"});
+  c.export_units = f.choice(root["export_units"].IsDefined() ? root["export_units"] : YAML::Node("mm"),
+                            "export_units", {"mm", "cm", "m", "in"});
+  if (root["purpose"].IsDefined()) {
+    c.purpose = f.choice(root["purpose"], "purpose", {"fabrication", "view"}) == "view"
+                    ? Purpose::View
+                    : Purpose::Fabrication;
+  }
+  if (root["on_output_error"].IsDefined()) {
+    c.on_output_error = f.choice(root["on_output_error"], "on_output_error", {"skip", "fail"}) == "fail"
+                            ? OutputErrorPolicy::Fail
+                            : OutputErrorPolicy::Skip;
+  }
   c.tolerance = f.number_or(root, "tolerance", "tolerance", 0.01);
   if (c.tolerance <= 0.0)
     f.fail(root["tolerance"], "tolerance", fmt::format("tolerance = {:g} must be > 0", c.tolerance));
@@ -178,6 +190,14 @@ DesignCommon read_common(const yaml::Fields& f, const YAML::Node& root) {
 }
 
 }  // namespace
+
+double metres_per_unit(const std::string& units) {
+  if (units == "mm") return 1e-3;
+  if (units == "cm") return 1e-2;
+  if (units == "m") return 1.0;
+  if (units == "in") return 0.0254;
+  throw std::invalid_argument("unknown unit '" + units + "'");
+}
 
 Design parse_design(const std::string& text, const std::string& path,
                     const std::vector<Override>& overrides) {

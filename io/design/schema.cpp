@@ -6,7 +6,8 @@ namespace fabmesh {
 namespace {
 
 std::vector<std::string> with_common(std::vector<std::string> keys) {
-  std::vector<std::string> all{"name", "kind", "units", "tolerance", "outputs"};
+  std::vector<std::string> all{"name",    "kind",         "units",   "tolerance",
+                               "outputs", "export_units", "purpose", "on_output_error"};
   all.insert(all.end(), keys.begin(), keys.end());
   return all;
 }

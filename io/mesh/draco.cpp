@@ -5,8 +5,12 @@
 #include <draco/mesh/mesh.h>
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+#include <memory>
+#include <optional>
 
 #include "geometry/core/errors.h"
 #include "io/file.h"
@@ -101,31 +105,40 @@ TriangleSoup parse_draco(std::string_view bytes, const std::string& name) {
   return soup;
 }
 
-std::string encode_draco(const TriangleSoup& soup, const DracoOptions& options) {
-  require_indices_in_range(soup);
-  Vec3 lo;
-  Vec3 hi;
-  bounding_box(soup, lo, hi);
-  const DracoQuantization q = draco_quantization(lo, hi, options.tolerance);
+namespace {
 
-  draco::Mesh mesh;
+// A Draco mesh of the soup's positions (float32) and faces; with `with_ids`
+// also a lossless integer attribute holding each point's index in the soup.
+std::unique_ptr<draco::Mesh> draco_mesh(const TriangleSoup& soup, bool with_ids) {
+  auto mesh = std::make_unique<draco::Mesh>();
   const auto np = static_cast<draco::PointIndex::ValueType>(soup.vertices.size());
-  mesh.set_num_points(np);
+  mesh->set_num_points(np);
   draco::GeometryAttribute attribute;
   attribute.Init(draco::GeometryAttribute::POSITION, nullptr, 3, draco::DT_FLOAT32, false, sizeof(float) * 3,
                  0);
-  const int id = mesh.AddAttribute(attribute, true, np);
-  draco::PointAttribute* position = mesh.attribute(id);
+  draco::PointAttribute* position = mesh->attribute(mesh->AddAttribute(attribute, true, np));
   for (draco::PointIndex::ValueType i = 0; i < np; ++i) {
     const Vec3& p = soup.vertices[i];
     const float xyz[3] = {static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())};
     position->SetAttributeValue(draco::AttributeValueIndex(i), xyz);
   }
-  for (const auto& t : soup.triangles) {
-    mesh.AddFace({draco::PointIndex(t[0]), draco::PointIndex(t[1]), draco::PointIndex(t[2])});
+  if (with_ids) {
+    draco::GeometryAttribute ids;
+    ids.Init(draco::GeometryAttribute::GENERIC, nullptr, 1, draco::DT_UINT32, false, sizeof(std::uint32_t),
+             0);
+    draco::PointAttribute* id = mesh->attribute(mesh->AddAttribute(ids, true, np));
+    for (draco::PointIndex::ValueType i = 0; i < np; ++i)
+      id->SetAttributeValue(draco::AttributeValueIndex(i), &i);
   }
+  for (const auto& t : soup.triangles) {
+    mesh->AddFace({draco::PointIndex(t[0]), draco::PointIndex(t[1]), draco::PointIndex(t[2])});
+  }
+  return mesh;
+}
+
+std::string encode(const draco::Mesh& mesh, int bits, const DracoOptions& options) {
   draco::Encoder encoder;
-  encoder.SetAttributeQuantization(draco::GeometryAttribute::POSITION, q.bits);
+  encoder.SetAttributeQuantization(draco::GeometryAttribute::POSITION, bits);
   encoder.SetSpeedOptions(options.encoding_speed, options.decoding_speed);
   draco::EncoderBuffer buffer;
   const draco::Status status = encoder.EncodeMeshToBuffer(mesh, &buffer);
@@ -133,16 +146,145 @@ std::string encode_draco(const TriangleSoup& soup, const DracoOptions& options) 
   return std::string(buffer.data(), buffer.size());
 }
 
-std::string encode_draco_accepted(const TriangleSoup& soup, const DracoOptions& options,
-                                  const std::function<bool(const TriangleSoup& decoded)>& accept,
-                                  const std::string& what) {
-  DracoOptions attempt = options;
-  for (int extra_bits = 0; extra_bits < 24; ++extra_bits) {
-    std::string bytes = encode_draco(soup, attempt);
-    if (accept(parse_draco(bytes, what))) return bytes;
-    attempt.tolerance *= 0.5;  // one more bit of quantization
+std::unique_ptr<draco::Mesh> decode(std::string_view bytes) {
+  draco::DecoderBuffer buffer;
+  buffer.Init(bytes.data(), bytes.size());
+  draco::Decoder decoder;
+  auto decoded = decoder.DecodeMeshFromBuffer(&buffer);
+  if (!decoded.ok() || !decoded.value()) throw std::logic_error("Draco cannot decode its own output");
+  return std::move(decoded).value();
+}
+
+std::array<std::uint32_t, 3> canonical(std::array<std::uint32_t, 3> t) {
+  // Rotate so the smallest index comes first: the same face whatever corner a decoder starts at.
+  while (t[0] > t[1] || t[0] > t[2]) t = {t[1], t[2], t[0]};
+  return t;
+}
+
+// The decoded mesh of an id-tagged encoding in the soup's order, or nullopt
+// when its faces are not the soup's.
+std::optional<TriangleSoup> decode_tagged(const std::string& bytes, const TriangleSoup& soup) {
+  const std::unique_ptr<draco::Mesh> mesh = decode(bytes);
+  const draco::PointAttribute* position = mesh->GetNamedAttribute(draco::GeometryAttribute::POSITION);
+  const draco::PointAttribute* ids = mesh->GetNamedAttribute(draco::GeometryAttribute::GENERIC);
+  if (position == nullptr || ids == nullptr)
+    throw std::logic_error("Draco lost an attribute of its own output");
+  TriangleSoup out;
+  out.vertices = soup.vertices;  // unreferenced vertices (Draco drops them) keep their place
+  std::vector<std::uint32_t> original(mesh->num_points());
+  for (draco::PointIndex::ValueType i = 0; i < mesh->num_points(); ++i) {
+    std::uint32_t id = 0;
+    ids->ConvertValue<std::uint32_t, 1>(ids->mapped_index(draco::PointIndex(i)), &id);
+    float xyz[3];
+    position->ConvertValue<float, 3>(position->mapped_index(draco::PointIndex(i)), xyz);
+    if (id >= soup.vertices.size()) return std::nullopt;
+    original[i] = id;
+    out.vertices[id] = Vec3(xyz[0], xyz[1], xyz[2]);
   }
-  throw ValidationFailed(what + ": no Draco quantization keeps the decoded mesh valid");
+  if (mesh->num_faces() != soup.triangles.size()) return std::nullopt;
+  std::vector<std::array<std::uint32_t, 3>> decoded_faces, input_faces;
+  for (draco::FaceIndex::ValueType f = 0; f < mesh->num_faces(); ++f) {
+    const draco::Mesh::Face& face = mesh->face(draco::FaceIndex(f));
+    decoded_faces.push_back(
+        canonical({original[face[0].value()], original[face[1].value()], original[face[2].value()]}));
+  }
+  for (const auto& t : soup.triangles) input_faces.push_back(canonical(t));
+  std::sort(decoded_faces.begin(), decoded_faces.end());
+  std::sort(input_faces.begin(), input_faces.end());
+  if (decoded_faces != input_faces) return std::nullopt;
+  out.triangles = soup.triangles;
+  return out;
+}
+
+double max_displacement(const TriangleSoup& a, const TriangleSoup& b) {
+  double worst = 0.0;
+  for (std::size_t i = 0; i < a.vertices.size(); ++i)
+    worst = std::max(worst, (a.vertices[i] - b.vertices[i]).norm());
+  return worst;
+}
+
+}  // namespace
+
+std::string encode_draco(const TriangleSoup& soup, const DracoOptions& options) {
+  require_indices_in_range(soup);
+  Vec3 lo;
+  Vec3 hi;
+  bounding_box(soup, lo, hi);
+  return encode_draco_bits(soup, draco_quantization(lo, hi, options.tolerance).bits, options);
+}
+
+std::string encode_draco_bits(const TriangleSoup& soup, int bits, const DracoOptions& options) {
+  require_in_range("draco bits", bits, 1, 30);
+  require_indices_in_range(soup);
+  return encode(*draco_mesh(soup, false), bits, options);
+}
+
+DracoFit fit_draco(const TriangleSoup& soup, double tolerance,
+                   const std::function<bool(const TriangleSoup& decoded)>& accept, const std::string& format,
+                   const DracoOptions& options) {
+  require_positive("draco tolerance", tolerance);
+  require_indices_in_range(soup);
+  Vec3 lo;
+  Vec3 hi;
+  bounding_box(soup, lo, hi);
+  const double extent = (hi - lo).maxCoeff();
+  // The fewest bits whose half step alone fits; float32 rounding is measured, not assumed.
+  int bits = 1;
+  while (bits < 30 && std::sqrt(3.0) * 0.5 * extent / (std::ldexp(1.0, bits) - 1.0) > tolerance) ++bits;
+  const std::unique_ptr<draco::Mesh> tagged = draco_mesh(soup, true);
+  double best = std::numeric_limits<double>::infinity();
+  bool folded = false;
+  for (; bits <= 30; ++bits) {
+    std::optional<TriangleSoup> decoded = decode_tagged(encode(*tagged, bits, options), soup);
+    if (!decoded) throw std::logic_error(format + ": Draco changed the faces of the mesh");
+    const double moved = max_displacement(soup, *decoded);
+    best = std::min(best, moved);
+    if (moved > tolerance) continue;
+    if (!accept(*decoded)) {
+      folded = true;
+      continue;
+    }
+    return {bits, moved, std::move(*decoded)};
+  }
+  if (folded) {
+    throw OutputError(format,
+                      fmt::format("{}: at every Draco quantization that keeps the vertices within the "
+                                  "{:.3g} left for this output, the decoded mesh is no longer valid "
+                                  "(faces collapse or fold); raise the tolerance, or drop {}",
+                                  format, tolerance, format));
+  }
+  throw OutputError(
+      format,
+      fmt::format("{}: Draco cannot keep every vertex within the {:.3g} left for this output: even at 30 "
+                  "bits of quantization vertices move by up to {:.3g} (float32 positions at "
+                  "coordinates up to {:.6g}); raise the tolerance so that at least {:.3g} is left for "
+                  "the outputs, move the design nearer the origin, or drop {}",
+                  format, tolerance, best, std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff()), best,
+                  format));
+}
+
+void require_draco_matches(std::string_view bytes, const DracoFit& fit) {
+  const std::unique_ptr<draco::Mesh> mesh = decode(bytes);
+  const draco::PointAttribute* position = mesh->GetNamedAttribute(draco::GeometryAttribute::POSITION);
+  if (position == nullptr || mesh->num_faces() != fit.decoded.triangles.size()) {
+    throw std::logic_error("the Draco file differs from the validated mesh");
+  }
+  auto key = [](const Vec3& p) { return std::array<double, 3>{p.x(), p.y(), p.z()}; };
+  std::vector<std::array<double, 3>> written, validated;
+  for (draco::FaceIndex::ValueType f = 0; f < mesh->num_faces(); ++f) {
+    for (const draco::PointIndex& p : mesh->face(draco::FaceIndex(f))) {
+      float xyz[3];
+      position->ConvertValue<float, 3>(position->mapped_index(p), xyz);
+      written.push_back({xyz[0], xyz[1], xyz[2]});
+    }
+  }
+  for (const auto& t : fit.decoded.triangles) {
+    for (const std::uint32_t v : t) validated.push_back(key(fit.decoded.vertices[v]));
+  }
+  std::sort(written.begin(), written.end());
+  std::sort(validated.begin(), validated.end());
+  if (written != validated)
+    throw std::logic_error("the Draco file's positions differ from the validated mesh");
 }
 
 void write_draco(const TriangleSoup& soup, const std::string& path, const DracoOptions& options) {

@@ -46,15 +46,33 @@ TriangleSoup parse_draco(std::string_view bytes, const std::string& name);
 /// encoder refuses the mesh).
 std::string encode_draco(const TriangleSoup& soup, const DracoOptions& options = {});
 
-/// Draco bytes of `soup` whose decoded mesh `accept` takes (e.g. "is still
-/// valid": quantization can collapse or fold faces). Starts with the
-/// quantization options.tolerance allows and adds one bit at a time (halving
-/// the allowance) while the decoded mesh is refused. `what` names the output
-/// in messages. \throw RangeError (tolerance), ValidationFailed when no
-/// quantization keeps the decoded mesh acceptable.
-std::string encode_draco_accepted(const TriangleSoup& soup, const DracoOptions& options,
-                                  const std::function<bool(const TriangleSoup& decoded)>& accept,
-                                  const std::string& what);
+/// Draco bytes of `soup` (positions as float32) with `bits` of position
+/// quantization, in [1, 30]. \throw RangeError (bits), InputError (the encoder refuses the mesh)
+std::string encode_draco_bits(const TriangleSoup& soup, int bits, const DracoOptions& options = {});
+
+/// A quantization of one mesh, measured by encoding and decoding it.
+struct DracoFit {
+  int bits = 0;
+  double max_displacement = 0.0;  ///< measured: the farthest any vertex moved, model units
+  TriangleSoup decoded;           ///< the decoded mesh with the input's vertex order and faces
+};
+
+/// The fewest quantization bits whose MEASURED displacement of every vertex
+/// is <= `tolerance` and whose decoded mesh `accept` takes (quantization can
+/// collapse or fold faces). Each try encodes the mesh with an extra integer
+/// attribute holding each vertex's index, so every decoded vertex is matched
+/// to its input vertex exactly, and checks that the decoded faces are the
+/// input's faces. The bits found give the same positions without that
+/// attribute (quantization depends on the positions only). `format` names
+/// the output in messages ("drc", "glb_draco").
+/// \throw OutputError when no quantization fits, saying by how much and what to change
+DracoFit fit_draco(const TriangleSoup& soup, double tolerance,
+                   const std::function<bool(const TriangleSoup& decoded)>& accept, const std::string& format,
+                   const DracoOptions& options = {});
+
+/// Throws std::logic_error unless `bytes` decode to `fit.decoded`'s faces and
+/// positions (as multisets): the file written is the mesh that was validated.
+void require_draco_matches(std::string_view bytes, const DracoFit& fit);
 
 /// Writes `soup` (or `mesh`) as Draco to `path`, atomically.
 /// \throw as encode_draco, and FileError when the file cannot be written.

@@ -83,30 +83,78 @@ MeshFormat detect_format(std::string_view bytes, const std::string& path) {
                   path, bytes.empty() ? " (the file is empty)" : ""));
 }
 
-TriangleSoup parse_mesh(std::string_view bytes, const std::string& path) {
-  switch (detect_format(bytes, path)) {
+const char* to_string(MeshFormat format) {
+  switch (format) {
     case MeshFormat::Stl:
-      return parse_stl(bytes, path);
+      return "STL";
     case MeshFormat::Obj:
-      return parse_obj(bytes, path);
+      return "OBJ";
     case MeshFormat::Ply:
-      return parse_ply(bytes, path);
+      return "PLY";
     case MeshFormat::Off:
-      return parse_off(bytes, path);
+      return "OFF";
     case MeshFormat::Draco:
-      return parse_draco(bytes, path);
+      return "Draco";
     case MeshFormat::ThreeMf:
-      return merged_soup(parse_3mf(bytes, path));
+      return "3MF";
     case MeshFormat::Glb:
+      return "GLB";
     case MeshFormat::Gltf:
-      return parse_gltf(bytes, path).soup;
+      return "glTF";
   }
-  throw FileError(path, 0, 0, fmt::format("{}: unknown mesh format", path));
+  return "unknown";
 }
 
-TriangleSoup read_mesh(const std::string& path) {
-  const std::string bytes = read_file(path);
-  return parse_mesh(bytes, path);
+MeshFile parse_mesh_file(std::string_view bytes, const std::string& path) {
+  MeshFile out;
+  out.format = detect_format(bytes, path);
+  switch (out.format) {
+    case MeshFormat::Stl:
+      out.soup = parse_stl(bytes, path);
+      break;
+    case MeshFormat::Obj:
+      out.soup = parse_obj(bytes, path);
+      break;
+    case MeshFormat::Ply:
+      out.soup = parse_ply(bytes, path);
+      break;
+    case MeshFormat::Off:
+      out.soup = parse_off(bytes, path);
+      break;
+    case MeshFormat::Draco:
+      out.soup = parse_draco(bytes, path);
+      break;
+    case MeshFormat::ThreeMf: {
+      ThreeMfContent content = parse_3mf(bytes, path);
+      out.soup = merged_soup(content);
+      out.units = content.unit;
+      out.notes = content.warnings;
+      out.notes.push_back(fmt::format("{} object(s)", content.objects.size()));
+      break;
+    }
+    case MeshFormat::Glb:
+    case MeshFormat::Gltf: {
+      GltfContent content = parse_gltf(bytes, path);
+      out.soup = std::move(content.soup);
+      out.units = "m";
+      out.notes.push_back(
+          fmt::format("{} triangle primitive(s), {} Draco-compressed, {} point/line skipped; "
+                      "coordinates as stored (Y up)",
+                      content.primitives, content.draco_primitives, content.skipped_primitives));
+      break;
+    }
+  }
+  return out;
 }
+
+TriangleSoup parse_mesh(std::string_view bytes, const std::string& path) {
+  return parse_mesh_file(bytes, path).soup;
+}
+
+MeshFile read_mesh_file(const std::string& path) {
+  return parse_mesh_file(read_file(path, kMaxMeshFileBytes, "mesh file"), path);
+}
+
+TriangleSoup read_mesh(const std::string& path) { return read_mesh_file(path).soup; }
 
 }  // namespace fabmesh

@@ -1,8 +1,10 @@
 #pragma once
 // Any supported mesh file in: the format is told by content.
 
+#include <cstddef>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "geometry/mesh/soup.h"
 
@@ -26,7 +28,29 @@ MeshFormat detect_format(std::string_view bytes, const std::string& path);
 /// \throw FileError for anything malformed.
 TriangleSoup parse_mesh(std::string_view bytes, const std::string& path);
 
-/// Reads and parses the mesh file at `path`.
+/// "STL", "OBJ", "PLY", "OFF", "Draco", "3MF", "GLB" or "glTF".
+const char* to_string(MeshFormat format);
+
+/// A mesh file read: its soup, its format, and its unit when the file says
+/// (3MF's unit, glTF's metres; empty for formats that carry none).
+struct MeshFile {
+  TriangleSoup soup;
+  MeshFormat format = MeshFormat::Stl;
+  std::string units;
+  std::vector<std::string> notes;  ///< what the reader did, e.g. "3 primitives, 1 Draco-compressed"
+};
+
+/// Largest mesh file fabmesh reads (4 GiB: a binary STL of about 86 million triangles).
+inline constexpr std::size_t kMaxMeshFileBytes = std::size_t{4} << 30;
+
+/// Parses `bytes` as parse_mesh does, keeping the format, unit and notes.
+MeshFile parse_mesh_file(std::string_view bytes, const std::string& path);
+
+/// Reads the regular file at `path` (at most kMaxMeshFileBytes) and parses it.
+/// \throw FileError when it cannot be read, is not a regular file, or is malformed.
+MeshFile read_mesh_file(const std::string& path);
+
+/// Reads and parses the mesh file at `path` (read_mesh_file's soup).
 /// \throw FileError when it cannot be read or is malformed.
 TriangleSoup read_mesh(const std::string& path);
 

@@ -10,6 +10,12 @@ namespace fabmesh::cli {
 int run_app(int argc, const char* const* argv, Streams streams) {
   CLI::App app{"fabmesh: parametric product designs to fabrication-ready meshes"};
   app.require_subcommand(0, 1);
+  app.set_version_flag("--version", std::string("fabmesh ") + FABMESH_VERSION);
+  bool quiet = false, verbose = false;
+  // Options of the program, accepted before or after the command (`fabmesh run -q x.yaml`).
+  app.fallthrough();
+  app.add_flag("-q,--quiet", quiet, "Print results and errors only (no summaries, no progress)");
+  app.add_flag("-v,--verbose", verbose, "Print more: every stage's time");
   std::map<const CLI::App*, Runner> runners;
   auto add = [&](Runner (*adder)(CLI::App&)) {
     const std::size_t before = app.get_subcommands({}).size();
@@ -30,6 +36,7 @@ int run_app(int argc, const char* const* argv, Streams streams) {
     return code == 0 ? 0 : 2;
   }
 
+  streams.verbosity = quiet ? 0 : verbose ? 2 : 1;
   const CLI::App* chosen = nullptr;
   for (const auto& [sub, runner] : runners) {
     if (sub->parsed()) chosen = sub;

@@ -31,18 +31,25 @@ struct CheckArgs {
 struct FileCheck {
   std::string file;
   std::optional<ValidationReport> report;
+  std::string format;
+  std::string units;  ///< as the file states it; empty for formats that carry none
+  std::vector<std::string> notes;
   std::size_t welded_vertices = 0;
   std::string error;
 };
 
 FileCheck check_file(const std::string& path, double weld_tolerance) {
-  FileCheck result{path, std::nullopt, 0, {}};
+  FileCheck result;
+  result.file = path;
   try {
     StageTimings timings;
     StageTimer timer(timings);
-    const TriangleSoup soup = read_mesh(path);
+    MeshFile file = read_mesh_file(path);
+    result.format = to_string(file.format);
+    result.units = file.units;
+    result.notes = std::move(file.notes);
     timer.lap("read");
-    WeldResult welded = weld(soup, WeldOptions{weld_tolerance});
+    WeldResult welded = weld(file.soup, WeldOptions{weld_tolerance});
     timer.lap("weld");
     ValidationReport report = validate(welded.soup);
     report.timings_ms.insert(report.timings_ms.begin(), timings.begin(), timings.end());
@@ -62,7 +69,10 @@ nlohmann::ordered_json to_json(const FileCheck& check) {
     j["valid"] = false;
     return j;
   }
+  j["format"] = check.format;
+  j["units"] = check.units.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(check.units);
   j["welded_vertices"] = check.welded_vertices;
+  j["notes"] = check.notes;
   j.update(validation_json(*check.report));
   j["timings_ms"] = timings_json(check.report->timings_ms);
   return j;
@@ -75,8 +85,18 @@ std::string human_verdict(const FileCheck& check) {
                                  r.valid() ? "valid" : "INVALID", r.vertices, r.triangles, r.components,
                                  r.components == 1 ? "" : "s");
   if (r.genus) text += fmt::format(", genus {}", *r.genus);
-  text += fmt::format(", volume {:g}, area {:g}; weld merged {} vertices)\n", r.volume, r.area,
-                      check.welded_vertices);
+  const std::string unit = check.units.empty() ? "" : " " + check.units;
+  text += fmt::format(", volume {:g}{}, area {:g}{})\n", r.volume, unit.empty() ? "" : unit + "^3", r.area,
+                      unit.empty() ? "" : unit + "^2");
+  text += fmt::format("  {} file{}{}\n", check.format,
+                      check.units.empty() ? " (no unit in the file)" : ", unit " + check.units,
+                      check.format == "GLB" || check.format == "glTF" ? ", Y up" : "");
+  if (check.welded_vertices > 0) {
+    text += fmt::format(
+        "  welded {} coincident vertices{}\n", check.welded_vertices,
+        check.format == "STL" ? " (normal for STL, which repeats every vertex per triangle)" : "");
+  }
+  for (const std::string& note : check.notes) text += "  " + note + "\n";
   for (const std::string& line : describe_defects(r)) text += "  - " + line + "\n";
   return text;
 }
@@ -113,8 +133,8 @@ int run_check(const CheckArgs& args, Streams streams) {
 
 Runner add_check_command(CLI::App& app) {
   auto args = std::make_shared<CheckArgs>();
-  CLI::App* cmd =
-      app.add_subcommand("check", "Validate mesh files (STL, OBJ, PLY, OFF, Draco) for fabrication");
+  CLI::App* cmd = app.add_subcommand(
+      "check", "Validate mesh files (STL, OBJ, PLY, OFF, Draco, 3MF, GLB, glTF) for fabrication");
   cmd->add_option("MESH", args->files, "Mesh files to check; the format is told by content")->required();
   cmd->add_flag("--json", args->json, "Print a JSON report per file (an array for several files)");
   cmd->add_option("--weld-tolerance", args->weld_tolerance,

@@ -10,10 +10,12 @@
 
 namespace fabmesh::cli {
 
-/// Where a command writes: its result to `out`, diagnostics to `err`.
+/// Where a command writes: its result to `out`, diagnostics to `err`, and
+/// how much: 0 with -q (results and errors only), 1 normally, 2 with -v.
 struct Streams {
   std::ostream& out;
   std::ostream& err;
+  int verbosity = 1;
 };
 
 /// Runs a parsed command; returns the process exit code (0, 1, 2 or 3).

@@ -1,70 +1,164 @@
-// fabmesh run DESIGN... [-o OUTDIR] [--json]: the main job.
+// fabmesh run DESIGN... [-o OUTDIR/ | -o FILE.ext | -o -] [-D path=value]... [--json]: the main job.
 
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 
+#include "geometry/core/errors.h"
 #include "pipeline/cli/commands.h"
 #include "pipeline/failure.h"
 #include "pipeline/job.h"
 #include "pipeline/load_design.h"
+#include "pipeline/outputs.h"
 #include "pipeline/report.h"
 
 namespace fabmesh::cli {
 namespace {
 
+namespace fs = std::filesystem;
+
 struct RunArgs {
   std::vector<std::string> designs;
   std::vector<std::string> defines;
-  std::string out_dir = "out";
+  std::string out = "out";
+  std::string export_units;
+  std::string export_format;
   bool json = false;
 };
 
 // One design's outcome: a report, or the exit code and message of its failure.
 struct Outcome {
+  std::optional<Design> design;
   std::optional<JobReport> report;
+  std::optional<PreparedJob> streamed;  ///< `-o -`: the job's bytes go to standard output
   int code = 0;
   std::string error;
 };
 
-Outcome run_one(const std::string& path, const std::vector<Override>& overrides, const JobOptions& options) {
-  Outcome o;
-  try {
-    o.report = run_job(load_design(path, overrides), options);
-  } catch (...) {
-    const Failure failure = describe_failure(std::current_exception(), path);
-    o.code = failure.exit_code;
-    o.error = failure_line(failure);
+void fail_with(Outcome& o, const std::string& subject) {
+  const Failure failure = describe_failure(std::current_exception(), subject);
+  o.code = failure.exit_code;
+  o.error = failure_line(failure);
+}
+
+// The format a file name asks for by its ending (".draco.glb" before ".glb"), or nullptr.
+const OutputFormat* format_of_file(const std::string& path) {
+  const OutputFormat* best = nullptr;
+  for (const OutputFormat& f : output_formats()) {
+    const std::string_view suffix = f.file_suffix;
+    if (path.size() > suffix.size() &&
+        path.compare(path.size() - suffix.size(), suffix.size(), suffix) == 0 &&
+        (best == nullptr || suffix.size() > best->file_suffix.size())) {
+      best = &f;
+    }
   }
-  return o;
+  return best;
+}
+
+// Where `-o` sends the outputs: a folder, one file (format by its ending), or standard output.
+JobOptions output_options(const RunArgs& args) {
+  JobOptions options;
+  if (!args.export_units.empty()) options.export_units = args.export_units;
+  if (!args.export_format.empty()) options.export_format = args.export_format;
+  const std::string& out = args.out;
+  std::error_code ec;
+  const bool folder = out.back() == '/' || fs::is_directory(out, ec);
+  if (out == "-" || (!folder && format_of_file(out) != nullptr)) {
+    if (args.designs.size() != 1) {
+      throw InputError(
+          fmt::format("-o {}: a single output file takes a single design ({} given); use -o DIR/", out,
+                      args.designs.size()));
+    }
+    if (out != "-" && !options.export_format) options.export_format = std::string(format_of_file(out)->name);
+    options.output_file = out;
+    options.out_dir = ".";
+    return options;
+  }
+  options.out_dir = out;
+  return options;
+}
+
+// Two designs with one name would overwrite each other's files.
+void require_unique_names(std::vector<Outcome>& outcomes, const RunArgs& args) {
+  std::map<std::string, std::size_t> first;
+  for (std::size_t i = 0; i < outcomes.size(); ++i) {
+    if (!outcomes[i].design) continue;
+    const std::string& name = outcomes[i].design->common.name;
+    const auto [it, fresh] = first.emplace(name, i);
+    if (fresh) continue;
+    throw InputError(
+        fmt::format("{} and {} are both named '{}': their files would overwrite each other in {}; "
+                    "give one another `name:` (nothing was run)",
+                    args.designs[it->second], args.designs[i], name, args.out));
+  }
 }
 
 int run_designs(const RunArgs& args, Streams io) {
-  JobOptions options;
-  options.out_dir = args.out_dir;
+  const JobOptions options = output_options(args);
   const std::vector<Override> overrides = parse_overrides(args.defines);
+  const bool to_stdout = options.output_file && *options.output_file == "-";
   std::vector<Outcome> outcomes(args.designs.size());
-  // Jobs are pure functions of their designs: a batch runs them in parallel.
-  tbb::parallel_for(std::size_t{0}, args.designs.size(),
-                    [&](std::size_t i) { outcomes[i] = run_one(args.designs[i], overrides, options); });
+  // Read every design first: a bad one, or two with one name, stops nothing that ran.
+  tbb::parallel_for(std::size_t{0}, args.designs.size(), [&](std::size_t i) {
+    try {
+      outcomes[i].design = load_design(args.designs[i], overrides);
+    } catch (...) {
+      fail_with(outcomes[i], args.designs[i]);
+    }
+  });
+  require_unique_names(outcomes, args);
+  // Jobs are pure functions of their designs: they run in parallel.
+  tbb::parallel_for(std::size_t{0}, args.designs.size(), [&](std::size_t i) {
+    Outcome& o = outcomes[i];
+    if (!o.design) return;
+    try {
+      if (to_stdout) {
+        o.streamed = prepare_job(*o.design, options);
+        o.report = o.streamed->report;
+      } else {
+        o.report = run_job(*o.design, options);
+      }
+    } catch (...) {
+      fail_with(o, args.designs[i]);
+    }
+  });
+  // With -o - the file is the standard output: reports go to the error stream.
+  std::ostream& report_out = to_stdout ? io.err : io.out;
   int code = 0;
   nlohmann::ordered_json all = nlohmann::ordered_json::array();
   for (std::size_t i = 0; i < outcomes.size(); ++i) {
     const Outcome& o = outcomes[i];
     code = std::max(code, o.code);
     if (!o.error.empty()) io.err << o.error << "\n";
+    if (o.streamed) {
+      for (const FileWrite& f : o.streamed->files)
+        io.out.write(f.bytes.data(), static_cast<std::streamsize>(f.bytes.size()));
+    }
     if (args.json) {
       all.push_back(o.report ? to_json(*o.report)
                              : nlohmann::ordered_json{
                                    {"design", args.designs[i]}, {"error", o.error}, {"exit_code", o.code}});
-    } else if (o.report) {
-      print_summary(*o.report, io.out);
+    } else if (o.report && io.verbosity > 0) {
+      print_summary(*o.report, report_out);
+      if (io.verbosity > 1) {
+        for (const auto& [stage, ms] : o.report->timings_ms)
+          report_out << fmt::format("    {} {:.2f} ms\n", stage, ms);
+      }
+    }
+    if (o.report) {
+      for (const SkippedOutput& s : o.report->skipped) {
+        if (args.json)
+          io.err << fmt::format("fabmesh: warning: {}: skipped {}: {}\n", args.designs[i], s.format,
+                                s.reason);
+      }
     }
   }
-  if (args.json) io.out << (all.size() == 1 ? all[0] : all).dump(2) << "\n";
+  // `run --json` prints an array always: one entry per design, whatever their number.
+  if (args.json) report_out << all.dump(2) << "\n";
   return code;
 }
 
@@ -76,8 +170,20 @@ Runner add_run_command(CLI::App& app) {
   auto args = std::make_shared<RunArgs>();
   CLI::App* cmd = app.add_subcommand("run", "Build, validate and write the meshes of design files");
   cmd->add_option("designs", args->designs, "Design files (YAML)")->required();
-  cmd->add_option("-o,--out", args->out_dir, "Output folder (default: out)");
-  cmd->add_flag("--json", args->json, "Print one JSON report per design");
+  cmd->add_option(
+      "-o,--output", args->out,
+      "Where to write: a folder (default: out; a trailing / or an existing folder), one file whose "
+      "ending picks the format (x.stl, x.3mf, x.glb, x.draco.glb, ...: one design only), or - for "
+      "standard output (one design, one format)");
+  cmd->add_option(
+      "--export-format", args->export_format,
+      "Write only this format, whatever the design's outputs (stl, 3mf, glb, glb_draco, drc, obj, ply, "
+      "off, dxf, svg)");
+  cmd->add_option("--export-units", args->export_units,
+                  "Unit of the files that carry none (STL, OBJ, PLY, OFF, Draco) and of 3MF, instead of the "
+                  "design's export_units (default mm)")
+      ->check(CLI::IsMember({"mm", "cm", "m", "in"}));
+  cmd->add_flag("--json", args->json, "Print the JSON reports (an array, one entry per design)");
   add_define_option(cmd, args->defines);
   return [args](Streams io) { return run_designs(*args, io); };
 }
@@ -89,7 +195,7 @@ int run_bundled_example(Streams io) {
   const int code = run_designs(args, io);
   if (code == 0) {
     io.out << fmt::format("Files are in {}/. Try `fabmesh run --help` and the designs in {}.\n",
-                          std::filesystem::absolute(args.out_dir).string(), FABMESH_EXAMPLES_DIR);
+                          fs::absolute(args.out).string(), FABMESH_EXAMPLES_DIR);
   }
   return code;
 }

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "pipeline/cli/commands.h"
+#include "pipeline/job.h"
 
 namespace fabmesh::testing {
 
@@ -22,6 +23,13 @@ inline std::filesystem::path fresh_dir(const std::string& name) {
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;
+}
+
+/// Job options that write into `dir`.
+inline JobOptions into(const std::filesystem::path& dir) {
+  JobOptions options;
+  options.out_dir = dir.string();
+  return options;
 }
 
 /// What one run of the command line did.

@@ -21,19 +21,24 @@ using namespace fabmesh;
 using namespace fabmesh::testing;
 namespace fs = std::filesystem;
 
-TEST_CASE("run: a shell vessel is written as STL and Draco that both read back valid", "[pipeline][run]") {
+TEST_CASE("run: a shell vessel is written as STL and Draco in millimetres that both read back valid",
+          "[pipeline][run]") {
   const fs::path dir = fresh_dir("run_shell");
   const Design design = read_design(example("vessel_golden_shell.yaml"));
-  const JobReport r = run_job(design, {dir.string()});
+  REQUIRE(design.common.units == "cm");
+  const JobReport r = run_job(design, into(dir));
   REQUIRE(r.outputs.size() == 2);
   CHECK(r.validation.valid());
   CHECK(r.max_deviation <= design.common.tolerance);
+  CHECK(r.export_units == "mm");
+  for (const OutputFile& f : r.files) CHECK(f.units == "mm");
 
+  // The design is in cm, the files in mm: 10 times the lengths, 1000 times the volume.
   const TriangleSoup stl = weld(parse_stl(read_file((dir / "vessel_golden_shell.stl").string()), "stl")).soup;
   const ValidationReport from_stl = validate(stl);
   CHECK(from_stl.valid());
   CHECK(from_stl.triangles == r.validation.triangles);
-  CHECK(from_stl.volume == Approx(r.validation.volume).epsilon(1e-6));
+  CHECK(from_stl.volume == Approx(1000.0 * r.validation.volume).epsilon(1e-6));
 
   const TriangleSoup drc = parse_draco(read_file((dir / "vessel_golden_shell.drc").string()), "drc");
   const ValidationReport from_drc = validate(drc);
@@ -47,7 +52,7 @@ TEST_CASE("run: a shell vessel is written as STL and Draco that both read back v
     for (const Vec3& q : built.vertices) best = std::min(best, (p - q).norm());
     worst = std::max(worst, best);
   }
-  CHECK(worst <= design.common.tolerance - r.max_deviation);
+  CHECK(worst <= 10.0 * (design.common.tolerance - r.max_deviation));  // mm
 }
 
 TEST_CASE("draco: the default 11 bits collapse a fine mesh but fabmesh's choice keeps it valid",
@@ -60,7 +65,7 @@ TEST_CASE("draco: the default 11 bits collapse a fine mesh but fabmesh's choice 
       "to_deg: 90}}]}\n"
       "body: {mode: solid}\n",
       "ball.yaml");
-  const JobReport r = run_job(design, {dir.string()});
+  const JobReport r = run_job(design, into(dir));
   REQUIRE(r.validation.valid());
   const TriangleSoup soup = weld(parse_stl(read_file((dir / "ball.stl").string()), "stl")).soup;
   Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
@@ -74,11 +79,17 @@ TEST_CASE("draco: the default 11 bits collapse a fine mesh but fabmesh's choice 
   CHECK(validate(parse_draco(read_file((dir / "ball.drc").string()), "drc")).valid());
 }
 
-TEST_CASE("run --json: the fields of product.md", "[pipeline][run]") {
+TEST_CASE("run --json: one array, an object per design with the documented fields", "[pipeline][run]") {
   const fs::path dir = fresh_dir("run_json");
   std::string out;
   REQUIRE(run_cli({"run", example("vessel_golden_solid.yaml"), "-o", dir.string(), "--json"}, &out) == 0);
-  const auto j = nlohmann::json::parse(out);
+  const auto all = nlohmann::json::parse(out);
+  REQUIRE(all.is_array());
+  REQUIRE(all.size() == 1);
+  const auto& j = all[0];
+  for (const char* key : {"units", "export_units", "bounding_box", "files", "skipped_outputs"})
+    CHECK(j.contains(key));
+  CHECK(j["bounding_box"]["units"] == "cm");
   for (const char* key : {"name", "kind", "outputs", "vertices", "triangles", "volume", "area", "watertight",
                           "manifold", "self_intersecting", "max_deviation", "timings_ms"}) {
     CHECK(j.contains(key));

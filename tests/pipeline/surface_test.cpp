@@ -13,6 +13,7 @@
 #include "io/mesh/stl.h"
 #include "pipeline/cli/commands.h"
 #include "pipeline/job.h"
+#include "tests/pipeline/cli_harness.h"
 
 using namespace fabmesh;
 namespace fs = std::filesystem;
@@ -61,7 +62,7 @@ TEST_CASE("surface run: the thickened basin is a valid closed solid written as S
           "[pipeline][surface]") {
   const fs::path dir = fresh_dir("surface_shell");
   const Design design = read_design(example("surface_basin_shell.yaml"));
-  const JobReport r = run_job(design, {dir.string()});
+  const JobReport r = run_job(design, testing::into(dir));
   REQUIRE(r.outputs.size() == 2);
   CHECK(r.validation.valid());
   CHECK(r.validation.self_intersection == IntersectionCheck::Tested);  // the 3D test, not a proof
@@ -80,23 +81,29 @@ TEST_CASE("surface run: the thickened basin is a valid closed solid written as S
   CHECK(validate(parse_draco(read_file((dir / "surface_basin_shell.drc").string()), "drc")).valid());
 }
 
-TEST_CASE("surface run: an open surface is written for viewing but reported not valid for fabrication",
+TEST_CASE("surface run: an open surface is refused for fabrication and written only for viewing",
           "[pipeline][surface]") {
   const fs::path dir = fresh_dir("surface_open");
   std::string out;
-  const int code = run_cli({"run", example("surface_basin_open.yaml"), "-o", dir.string(), "--json"}, &out);
-  CHECK(code == 0);
-  const auto json_start = out.find('{');
-  REQUIRE(json_start != std::string::npos);
-  const nlohmann::json j = nlohmann::json::parse(out.substr(json_start, out.rfind('}') - json_start + 1));
+  // Without purpose: view it is not a success: exit 1, nothing written, and the message says what to do.
+  CHECK(run_cli({"run", example("surface_basin_open.yaml"), "-o", dir.string(), "-D", "purpose=fabrication",
+                 "-D", "outputs=[stl]"},
+                &out) == 1);
+  CHECK_THAT(out, Catch::Contains("not fit for fabrication") && Catch::Contains("purpose: view"));
+  CHECK(fs::is_empty(dir));
+  // The example says it is for viewing: exit 0, glTF written, the report says it is not valid for
+  // fabrication.
+  REQUIRE(run_cli({"run", example("surface_basin_open.yaml"), "-o", dir.string(), "--json"}, &out) == 0);
+  const nlohmann::json j = nlohmann::json::parse(out).at(0);
   CHECK(j["valid"] == false);
+  CHECK(j["purpose"] == "viewing");
   CHECK(j["fabrication"].get<std::string>().find("not valid: open surface") != std::string::npos);
   CHECK(j["watertight"] == false);
-  CHECK(fs::exists(dir / "surface_basin_open.stl"));
-  CHECK(fs::exists(dir / "surface_basin_open.drc"));
+  CHECK(fs::exists(dir / "surface_basin_open.glb"));
+  CHECK(fs::exists(dir / "surface_basin_open.draco.glb"));
   std::string human;
   CHECK(run_cli({"run", example("surface_basin_open.yaml"), "-o", dir.string()}, &human) == 0);
-  CHECK(human.find("not valid for fabrication") != std::string::npos);
+  CHECK(human.find("for viewing only, not valid for fabrication") != std::string::npos);
 }
 
 TEST_CASE("surface run: a shell too thick for its curvature fails validation and writes nothing",

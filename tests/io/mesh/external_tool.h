@@ -7,6 +7,9 @@
 #include <array>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
+#include <map>
+#include <sstream>
 #include <string>
 
 namespace fabmesh::test {
@@ -49,6 +52,32 @@ inline bool gltf_validator_installed() {
   return on_path("node") && run_tool("test -d " + quoted(std::string(FABMESH_SOURCE_DIR) +
                                                          "/tools/node/node_modules/gltf-validator"))
                                     .code == 0;
+}
+
+/// `prusa-slicer ARGS` headless, with a private HOME and data folder `home`.
+inline ToolRun prusa_slicer(const std::string& home, const std::string& args) {
+  std::filesystem::create_directories(home);
+  return run_tool("HOME=" + quoted(home) + " prusa-slicer --datadir " + quoted(home) + " --loglevel 1 " +
+                  args);
+}
+
+/// The "key = value" lines of `prusa-slicer --info FILE` (size_x, manifold, volume, ...);
+/// `run` receives the whole run.
+inline std::map<std::string, std::string> prusa_info(const std::string& home, const std::string& file,
+                                                     ToolRun* run = nullptr) {
+  const ToolRun r = prusa_slicer(home, "--info " + quoted(file));
+  if (run != nullptr) *run = r;
+  std::map<std::string, std::string> info;
+  std::istringstream lines(r.output);
+  for (std::string l; std::getline(lines, l);) {
+    const std::size_t eq = l.find(" = ");
+    if (eq == std::string::npos) continue;
+    std::string key = l.substr(0, eq), value = l.substr(eq + 3);
+    key.erase(0, key.find_first_not_of(" \t"));
+    while (!value.empty() && (value.back() == ' ' || value.back() == '\r')) value.pop_back();
+    if (!key.empty() && key.find(' ') == std::string::npos) info[key] = value;
+  }
+  return info;
 }
 
 }  // namespace fabmesh::test
