@@ -74,6 +74,7 @@ inline std::map<std::string, std::string> prusa_info(const std::string& home, co
     if (eq == std::string::npos) continue;
     std::string key = l.substr(0, eq), value = l.substr(eq + 3);
     key.erase(0, key.find_first_not_of(" \t"));
+    value.erase(0, value.find_first_not_of(' '));
     while (!value.empty() && (value.back() == ' ' || value.back() == '\r')) value.pop_back();
     if (!key.empty() && key.find(' ') == std::string::npos) info[key] = value;
   }
