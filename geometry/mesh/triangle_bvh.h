@@ -1,0 +1,123 @@
+#pragma once
+// A bounding-volume hierarchy over the axis-aligned boxes of a soup's
+// triangles: the broad phase of the self-intersection test. Triangles are
+// sorted along a Morton curve of their box centres and grouped kLeafSize to
+// a leaf; the tree over the leaves is a perfect binary tree stored as an
+// array (node 1 the root, node i with children 2i and 2i + 1, leaf l at node
+// leaf_base + l). Boxes are floats rounded outwards, so every pair of
+// triangles whose exact (closed) boxes overlap is reported; a few pairs whose
+// exact boxes only nearly touch may be reported too.
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "geometry/mesh/soup.h"
+
+namespace fabmesh {
+
+/// A closed axis-aligned box in single precision. An empty box has lo > hi.
+struct BoxF {
+  float lo[3];
+  float hi[3];
+};
+
+/// Whether two closed boxes overlap (touching counts). One branch, not six:
+/// the outcome is hard to predict in the hierarchy's inner loops.
+inline bool overlap(const BoxF& a, const BoxF& b) {
+  return static_cast<bool>(static_cast<int>(a.lo[0] <= b.hi[0]) & static_cast<int>(b.lo[0] <= a.hi[0]) &
+                           static_cast<int>(a.lo[1] <= b.hi[1]) & static_cast<int>(b.lo[1] <= a.hi[1]) &
+                           static_cast<int>(a.lo[2] <= b.hi[2]) & static_cast<int>(b.lo[2] <= a.hi[2]));
+}
+
+class TriangleBvh {
+ public:
+  static constexpr std::size_t kLeafSize = 4;
+
+  /// Builds the hierarchy over the triangles f of `soup` with skip[f] == 0
+  /// (all of them when `skip` is empty), using all cores when `parallel`.
+  /// The result does not depend on the number of threads.
+  /// \pre indices in range, coordinates finite.
+  TriangleBvh(const TriangleSoup& soup, const std::vector<char>& skip, bool parallel);
+
+  /// Number of triangles in the hierarchy.
+  std::size_t size() const { return faces_.size(); }
+  /// Number of (non-empty) leaves: ceil(size() / kLeafSize).
+  std::size_t leaf_count() const { return (faces_.size() + kLeafSize - 1) / kLeafSize; }
+
+  /// A unit of the search: the pairs within one subtree (b == a) or between
+  /// two disjoint subtrees a < b, as node numbers.
+  struct Task {
+    std::size_t a, b;
+  };
+
+  /// Splits the search into tasks of about `leaves_per_task` leaves each,
+  /// in a fixed order: over all tasks, run() visits every pair of triangles
+  /// whose boxes overlap exactly once.
+  std::vector<Task> tasks(std::size_t leaves_per_task) const;
+
+  /// Calls visit(i, j) for each pair of sorted positions i < j in `task`
+  /// whose boxes overlap, in an order that depends only on the soup.
+  template <class Visit>
+  void run(const Task& task, Visit&& visit) const {
+    if (task.a == task.b) {
+      self(task.a, visit);
+    } else {
+      pair(task.a, task.b, visit);
+    }
+  }
+
+  /// The face at sorted position i.
+  std::uint32_t face(std::size_t i) const { return faces_[i]; }
+
+ private:
+  template <class Visit>
+  void self(std::size_t n, Visit& visit) const {
+    if (nodes_[n].lo[0] > nodes_[n].hi[0]) return;  // empty
+    if (n >= leaf_base_) {
+      leaf_pairs(n - leaf_base_, n - leaf_base_, visit);
+      return;
+    }
+    self(2 * n, visit);
+    self(2 * n + 1, visit);
+    pair(2 * n, 2 * n + 1, visit);
+  }
+
+  template <class Visit>
+  void pair(std::size_t a, std::size_t b, Visit& visit) const {
+    if (!overlap(nodes_[a], nodes_[b])) return;
+    if (a >= leaf_base_) {  // both are leaves: the tree is perfect
+      leaf_pairs(a - leaf_base_, b - leaf_base_, visit);
+      return;
+    }
+    pair(2 * a, 2 * b, visit);
+    pair(2 * a, 2 * b + 1, visit);
+    pair(2 * a + 1, 2 * b, visit);
+    pair(2 * a + 1, 2 * b + 1, visit);
+  }
+
+  template <class Visit>
+  void leaf_pairs(std::size_t a, std::size_t b, Visit& visit) const {
+    const std::size_t a0 = a * kLeafSize;
+    const std::size_t a1 = std::min(a0 + kLeafSize, faces_.size());
+    const std::size_t b0 = b * kLeafSize;
+    const std::size_t b1 = std::min(b0 + kLeafSize, faces_.size());
+    const BoxF& other = nodes_[leaf_base_ + b];
+    for (std::size_t i = a0; i < a1; ++i) {
+      if (!overlap(boxes_[i], other)) continue;
+      for (std::size_t j = (a == b ? i + 1 : b0); j < b1; ++j) {
+        if (overlap(boxes_[i], boxes_[j])) visit(i, j);
+      }
+    }
+  }
+
+  void self_tasks(std::size_t n, std::size_t level, std::vector<Task>& out) const;
+  void pair_tasks(std::size_t a, std::size_t b, std::size_t level, std::vector<Task>& out) const;
+
+  std::vector<std::uint32_t> faces_;  ///< face index at each sorted position
+  std::vector<BoxF> boxes_;           ///< box of each sorted position
+  std::vector<BoxF> nodes_;           ///< 2 * leaf_base_ node boxes (index 0 unused)
+  std::size_t leaf_base_ = 1;         ///< power of two >= leaf_count()
+};
+
+}  // namespace fabmesh
