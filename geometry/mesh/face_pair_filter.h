@@ -5,19 +5,25 @@
 // pair it cannot prove apart goes to the exact test, so the answer is always
 // the exact one.
 //
-// Error bounds (standard model fl(a op b) = (a op b)(1 + d), |d| <= u = 2^-53):
-// a sum of products evaluated through k rounded operations on every path
-// from an input coordinate to the result (the input differences included)
-// differs from the exact value by at most gamma_k * A, where A is the same
-// expression evaluated on absolute values with + for - (Higham, ASNA 3.1).
-// A determinant of differences (orientation), and a dot product of two cross
-// products of differences, both have k = 6: gamma_6 < 6.7e-16, and we use
-// 2e-15 * A (A itself computed in floating point, low by at most gamma_5).
-// A projection (x - o) . m onto a given double vector m has k = 4 and uses
-// 1e-15 * A. The bounds hold while no intermediate overflows or underflows:
-// FacePairFilter is only enabled when every coordinate is 0 or has a
-// magnitude in [1e-30, 1e30] (then every nonzero difference is >= 1e-46,
-// every nonzero intermediate >= 1e-240, every intermediate <= 1e130).
+// Error bounds (standard model fl(a op b) = (a op b)(1 + d), |d| <= u = 2^-53;
+// Higham, Accuracy and Stability of Numerical Algorithms, 3.1). Write each
+// rounded difference of two coordinates as the exact difference times
+// (1 + d). A polynomial in the exact differences, evaluated in floating
+// point, then carries on each of its monomials a product of at most k such
+// factors, where k counts the roundings: 1 per difference, and per operation
+// 1 + the sum of its operands' counts for a product, 1 + their maximum for a
+// sum. So the computed value is within gamma_k * A of the exact one, with
+// A the expression evaluated on absolute values, + for - (computed in
+// floating point, A is low by at most a factor 1 - gamma_k).
+//   orientation det(e1, e2, e3) = (e1 x e2) . e3:  k = 8, gamma_8 < 8.9e-16;
+//   (e1 x e2) . (e1 x e3), two normals:            k = 11, gamma_11 < 1.3e-15;
+//   a 2 x 2 minor (a component of e1 x e2):        k = 4, gamma_4 < 4.5e-16;
+//   a projection (x - o) . m on a double vector m: k = 4.
+// The bounds below are these with a margin of 1.5 to 4. They hold while no
+// intermediate overflows or underflows: FacePairFilter is only enabled when
+// every coordinate is 0 or has a magnitude in [1e-30, 1e30] (then every
+// nonzero difference is >= 1e-46, every nonzero intermediate >= 1e-240,
+// every intermediate <= 1e130).
 
 #include <array>
 #include <cmath>
@@ -46,9 +52,10 @@ inline double dot_abs(const D3& a, const D3& b) {
   return std::abs(a.x) * std::abs(b.x) + std::abs(a.y) * std::abs(b.y) + std::abs(a.z) * std::abs(b.z);
 }
 
-constexpr double kDegree6Bound = 2e-15;     ///< > gamma_6 / (1 - gamma_5)
-constexpr double kProjectionBound = 1e-15;  ///< > gamma_4 / (1 - gamma_3)
-constexpr double kCrossBound = 1e-15;       ///< > gamma_3 / (1 - gamma_2), a 2 x 2 minor
+constexpr double kOrientationBound = 2e-15;  ///< > gamma_8 / (1 - gamma_8)
+constexpr double kNormalsBound = 3e-15;      ///< > gamma_11 / (1 - gamma_11)
+constexpr double kProjectionBound = 1e-15;   ///< > gamma_4 / (1 - gamma_4)
+constexpr double kCrossBound = 1e-15;        ///< > gamma_4 / (1 - gamma_4), a 2 x 2 minor
 
 /// Certified sign of `value` (+1 or -1), or 0 when |value| <= bound * magnitude.
 inline int certified_sign(double value, double magnitude, double bound) {
@@ -68,7 +75,7 @@ struct Plane {
   D3 n;      ///< cross(e1, e2), computed
   D3 n_abs;  ///< its magnitude bound
   /// Certified sign of det(e1, e2, x - o), 0 when unknown.
-  int side(const D3& d) const { return certified_sign(dot(n, d), dot_abs(n_abs, d), kDegree6Bound); }
+  int side(const D3& d) const { return certified_sign(dot(n, d), dot_abs(n_abs, d), kOrientationBound); }
 };
 
 inline Plane plane(const D3& e1, const D3& e2) { return {cross(e1, e2), cross_abs(e1, e2)}; }
@@ -223,7 +230,7 @@ class FacePairFilter {
     const D3 e3 = sub(b.p[s], p);
     const Plane n1 = plane(e1, e2);
     const Plane n2 = plane(e1, e3);
-    if (certified_sign(dot(n1.n, n2.n), dot_abs(n1.n_abs, n2.n_abs), kDegree6Bound) < 0) return true;
+    if (certified_sign(dot(n1.n, n2.n), dot_abs(n1.n_abs, n2.n_abs), kNormalsBound) < 0) return true;
     return n1.side(e3) != 0;
   }
 

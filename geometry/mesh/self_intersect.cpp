@@ -106,11 +106,13 @@ class Search {
     if (total && total->load(std::memory_order_relaxed) >= options_.count_limit) return r;
     bvh_.run(tasks_[t], [&](std::size_t i, std::size_t j) {
       if (r.count >= limit || filter_.disjoint(face_[i], face_[j])) return;
-      const std::uint32_t f = bvh_.face(i);
-      const std::uint32_t g = bvh_.face(j);
+      // The smaller index first: on degenerate faces (not skipped) CGAL's
+      // tests are undefined and may depend on the order.
+      const std::uint32_t f = std::min(bvh_.face(i), bvh_.face(j));
+      const std::uint32_t g = std::max(bvh_.face(i), bvh_.face(j));
       if (!boxes_overlap(soup_, f, g) || !faces_intersect_exact(soup_, f, g)) return;
       ++r.count;
-      r.smallest.add(f < g ? Pair{f, g} : Pair{g, f});
+      r.smallest.add({f, g});
     });
     if (total && r.count > 0) total->fetch_add(r.count);
     r.complete = true;
