@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <memory>
 
 #include "geometry/core/errors.h"
 #include "geometry/mesh/weld_grid.h"
@@ -87,8 +88,8 @@ std::vector<std::uint32_t> exact_groups(const std::vector<Vec3>& vertices) {
   const std::size_t n = vertices.size();
   std::vector<std::uint32_t> rep(n);
   const std::size_t blocks = (n + kBlock - 1) / kBlock;
-  int bits = 0;  // 2^bits buckets of a few thousand vertices each
-  while (bits < 16 && (n >> bits) > 4096) ++bits;
+  int bits = 0;  // 2^bits buckets of 8192 to 16384 vertices: few enough output streams for the scatter
+  while (bits < 16 && (n >> bits) > 16384) ++bits;
   const std::size_t buckets = std::size_t{1} << bits;
   auto bucket_of = [bits](std::uint64_t h) {
     return bits == 0 ? std::size_t{0} : std::size_t(h >> (64 - bits));
@@ -117,7 +118,8 @@ std::vector<std::uint32_t> exact_groups(const std::vector<Vec3>& vertices) {
     }
   }
   bucket_start[buckets] = total;
-  std::vector<Entry> entries(total);
+  // Uninitialised: the scatter writes every entry (zeroing 32 bytes a vertex first costs as much).
+  const std::unique_ptr<Entry[]> entries(new Entry[total]);
   parallel_blocks(blocks, [&](std::size_t b) {
     std::size_t* next = &offset[b * buckets];
     for (std::size_t i = b * kBlock; i < std::min(n, (b + 1) * kBlock); ++i) {
@@ -131,7 +133,7 @@ std::vector<std::uint32_t> exact_groups(const std::vector<Vec3>& vertices) {
       tbb::blocked_range<std::size_t>(0, buckets, 16), [&](const tbb::blocked_range<std::size_t>& r) {
         std::vector<std::uint32_t> table;
         for (std::size_t k = r.begin(); k != r.end(); ++k) {
-          weld_bucket(entries.data() + bucket_start[k], bucket_start[k + 1] - bucket_start[k], table, rep);
+          weld_bucket(entries.get() + bucket_start[k], bucket_start[k + 1] - bucket_start[k], table, rep);
         }
       });
   return rep;
@@ -146,19 +148,29 @@ WeldResult weld(const TriangleSoup& soup, const WeldOptions& options) {
   if (options.tolerance > 0.0) rep = tolerance_groups(soup.vertices, rep, options.tolerance);
   WeldResult result;
   const std::size_t n = soup.vertices.size();
+  // Representatives are numbered in index order, block by block in parallel;
+  // rep[i] <= i is a representative, numbered before its members look it up.
+  const std::size_t blocks = (n + kBlock - 1) / kBlock;
+  std::vector<std::size_t> first(blocks + 1, 0);
+  parallel_blocks(blocks, [&](std::size_t b) {
+    for (std::size_t i = b * kBlock; i < std::min(n, (b + 1) * kBlock); ++i) first[b + 1] += rep[i] == i;
+  });
+  for (std::size_t b = 0; b < blocks; ++b) first[b + 1] += first[b];
+  result.soup.vertices.resize(first[blocks]);
   std::vector<std::uint32_t> new_index(n);
-  // rep[i] <= i, so every representative is numbered before its members.
-  std::size_t kept = 0;
-  for (std::size_t i = 0; i < n; ++i) kept += rep[i] == i;
-  result.soup.vertices.reserve(kept);
-  for (std::size_t i = 0; i < n; ++i) {
-    if (rep[i] == i) {
-      new_index[i] = static_cast<std::uint32_t>(result.soup.vertices.size());
-      result.soup.vertices.push_back(soup.vertices[i]);
-    } else {
-      new_index[i] = new_index[rep[i]];
+  parallel_blocks(blocks, [&](std::size_t b) {
+    std::size_t next = first[b];
+    for (std::size_t i = b * kBlock; i < std::min(n, (b + 1) * kBlock); ++i) {
+      if (rep[i] != i) continue;
+      new_index[i] = static_cast<std::uint32_t>(next);
+      result.soup.vertices[next++] = soup.vertices[i];
     }
-  }
+  });
+  parallel_blocks(blocks, [&](std::size_t b) {
+    for (std::size_t i = b * kBlock; i < std::min(n, (b + 1) * kBlock); ++i) {
+      if (rep[i] != i) new_index[i] = new_index[rep[i]];
+    }
+  });
   result.soup.triangles.resize(soup.triangles.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, soup.triangles.size(), 65536),
                     [&](const tbb::blocked_range<std::size_t>& r) {
