@@ -124,9 +124,19 @@ TriangleBvh::TriangleBvh(const TriangleSoup& soup, const std::vector<char>& skip
   leaf_base_ = 1;
   while (leaf_base_ < leaves) leaf_base_ *= 2;
   nodes_.assign(2 * leaf_base_, empty_box());
+  leaf_boxes_.resize(leaves);
   for_range(leaves, parallel, [&](std::size_t l) {
     BoxF& b = nodes_[leaf_base_ + l];
-    for (std::size_t k = l * kLeafSize; k < std::min((l + 1) * kLeafSize, n); ++k) grow(b, boxes_[k]);
+    LeafBoxes& lanes = leaf_boxes_[l];
+    for (std::size_t lane = 0; lane < kLeafSize; ++lane) {
+      const std::size_t k = l * kLeafSize + lane;
+      const BoxF tri = k < n ? boxes_[k] : empty_box();
+      grow(b, tri);
+      for (int c = 0; c < 3; ++c) {
+        lanes.lo[c][lane] = tri.lo[c];
+        lanes.hi[c][lane] = tri.hi[c];
+      }
+    }
   });
   for (std::size_t level = leaf_base_ / 2; level >= 1; level /= 2) {
     for_range(level, parallel, [&](std::size_t i) {

@@ -32,7 +32,7 @@ inline bool overlap(const BoxF& a, const BoxF& b) {
 
 class TriangleBvh {
  public:
-  static constexpr std::size_t kLeafSize = 4;
+  static constexpr std::size_t kLeafSize = 4;  ///< triangles per leaf: one lane each
 
   /// Builds the hierarchy over the triangles f of `soup` with skip[f] == 0
   /// (all of them when `skip` is empty), using all cores when `parallel`.
@@ -96,28 +96,41 @@ class TriangleBvh {
     pair(2 * a + 1, 2 * b + 1, visit);
   }
 
+  /// Four lanes of floats (GCC/Clang vector extension: SSE on x86-64, NEON on ARM).
+  typedef float Lanes __attribute__((vector_size(16)));
+  typedef int LaneMask __attribute__((vector_size(16)));
+
+  /// The boxes of one leaf's kLeafSize triangles, one lane each (empty lanes
+  /// hold empty boxes), so that a box is tested against a whole leaf at once.
+  struct LeafBoxes {
+    Lanes lo[3];
+    Lanes hi[3];
+  };
+
   template <class Visit>
   void leaf_pairs(std::size_t a, std::size_t b, Visit& visit) const {
     const std::size_t a0 = a * kLeafSize;
     const std::size_t a1 = std::min(a0 + kLeafSize, faces_.size());
     const std::size_t b0 = b * kLeafSize;
-    const std::size_t b1 = std::min(b0 + kLeafSize, faces_.size());
-    const BoxF& other = nodes_[leaf_base_ + b];
+    const LeafBoxes& other = leaf_boxes_[b];
     for (std::size_t i = a0; i < a1; ++i) {
-      if (!overlap(boxes_[i], other)) continue;
-      for (std::size_t j = (a == b ? i + 1 : b0); j < b1; ++j) {
-        if (overlap(boxes_[i], boxes_[j])) visit(i, j);
-      }
+      const BoxF& x = boxes_[i];
+      LaneMask m = (other.lo[0] <= x.hi[0]) & (other.hi[0] >= x.lo[0]) & (other.lo[1] <= x.hi[1]) &
+                   (other.hi[1] >= x.lo[1]) & (other.lo[2] <= x.hi[2]) & (other.hi[2] >= x.lo[2]);
+      unsigned bits = (m[0] & 1u) | (m[1] & 2u) | (m[2] & 4u) | (m[3] & 8u);
+      if (a == b) bits &= ~((2u << (i - a0)) - 1);  // within a leaf: only the triangles after i
+      for (; bits != 0; bits &= bits - 1) visit(i, b0 + static_cast<std::size_t>(__builtin_ctz(bits)));
     }
   }
 
   void self_tasks(std::size_t n, std::size_t level, std::vector<Task>& out) const;
   void pair_tasks(std::size_t a, std::size_t b, std::size_t level, std::vector<Task>& out) const;
 
-  std::vector<std::uint32_t> faces_;  ///< face index at each sorted position
-  std::vector<BoxF> boxes_;           ///< box of each sorted position
-  std::vector<BoxF> nodes_;           ///< 2 * leaf_base_ node boxes (index 0 unused)
-  std::size_t leaf_base_ = 1;         ///< power of two >= leaf_count()
+  std::vector<std::uint32_t> faces_;   ///< face index at each sorted position
+  std::vector<BoxF> boxes_;            ///< box of each sorted position
+  std::vector<BoxF> nodes_;            ///< 2 * leaf_base_ node boxes (index 0 unused)
+  std::vector<LeafBoxes> leaf_boxes_;  ///< the triangle boxes of each leaf, in lanes
+  std::size_t leaf_base_ = 1;          ///< power of two >= leaf_count()
 };
 
 }  // namespace fabmesh
