@@ -5,6 +5,8 @@
 
 #include "geometry/mesh/self_intersect.h"
 
+#include <tbb/task_arena.h>
+
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -14,7 +16,10 @@
 #include "geometry/core/errors.h"
 #include "geometry/mesh/revolve.h"
 #include "geometry/mesh/self_intersect_reference.h"
+#include "geometry/mesh/slab.h"
+#include "geometry/section/region.h"
 #include "tests/geometry/mesh/shapes.h"
+#include "tests/geometry/section/region_shapes.h"
 
 using namespace fabmesh;
 using fabmesh::test::append;
@@ -137,6 +142,16 @@ TriangleSoup revolved(int segments) {
   return to_soup(mesh);
 }
 
+/// A countertop slab (what the countertop builder makes): a constrained
+/// Delaunay triangulation with long slivers and many coplanar neighbours.
+TriangleSoup countertop() {
+  RegionOptions ro;
+  ro.tolerance = 0.5;
+  const Region2 region = build_region(test::rounded_rect(0, 0, 1200, 600, 60),
+                                      {{test::ellipse({350, 300}, 200, 150, 10), "sink"}}, ro);
+  return to_soup(build_slab(region, SlabOptions{}).mesh);
+}
+
 /// Faces of a voxel slab folded flat: vertex v moved within its face plane.
 TriangleSoup coplanar_fold(Random& rng) {
   TriangleSoup s = test::slab_with_holes(1 + static_cast<int>(rng.below(2)));
@@ -204,7 +219,7 @@ TEST_CASE("self-intersection: the fast test equals the reference on closed meshe
           "[mesh][self_intersect]") {
   for (const TriangleSoup& s :
        {test::torus(3, 1, 40, 20), test::sphere(2, 32, 16), test::slab_with_holes(3), revolved(48),
-        test::rotated(test::torus(3, 1.2, 30, 17), Vec3(1, 2, 3), 0.7)}) {
+        test::rotated(test::torus(3, 1.2, 30, 17), Vec3(1, 2, 3), 0.7), countertop()}) {
     const SelfIntersections r = find_self_intersections(s);
     CHECK(r.count == 0);
     require_same(s, {});
@@ -269,6 +284,14 @@ TEST_CASE("self-intersection: a capped search counts exactly count_limit pairs, 
   CHECK(parallel.count == expected.count);
   CHECK(parallel.pairs == sequential.pairs);
   CHECK(parallel.pairs.size() == 30);
+  // The same count and pairs on 1, 2 and 3 threads.
+  options.parallel = true;
+  for (const int threads : {1, 2, 3}) {
+    tbb::task_arena arena(threads);
+    const SelfIntersections r = arena.execute([&] { return find_self_intersections(pile, {}, options); });
+    CHECK(r.count == parallel.count);
+    CHECK(r.pairs == parallel.pairs);
+  }
   options.count_limit = 0;
   CHECK(find_self_intersections(pile, {}, options).count == 0);
 }
