@@ -28,6 +28,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 #include "geometry/mesh/soup.h"
 
@@ -93,8 +94,8 @@ inline bool certified_nondegenerate(const Vec3& a, const Vec3& b, const Vec3& c)
 /// An interval [lo, hi] that certainly contains the exact projections
 /// (x - o) . m of some points, for a fixed double vector m.
 struct Interval {
-  double lo = INFINITY;
-  double hi = -INFINITY;
+  double lo = std::numeric_limits<double>::infinity();
+  double hi = -std::numeric_limits<double>::infinity();
   void add(const D3& d, const D3& m) {
     const double v = dot(d, m);
     const double e = 2.0 * kProjectionBound * dot_abs(d, m);  // doubled: covers the rounding of v -/+ e
@@ -113,12 +114,12 @@ struct FaceData {
   std::array<Vec3, 3> p;  ///< the corners
 };
 
-/// The FaceData of face t of `soup`.
+/// The FaceData of face f of `soup`.
 inline FaceData face_data(const TriangleSoup& soup, std::uint32_t f) {
   const auto& t = soup.triangles[f];
   FaceData d{t, 0, {soup.vertices[t[0]], soup.vertices[t[1]], soup.vertices[t[2]]}};
-  d.certified =
-      t[0] != t[1] && t[1] != t[2] && t[0] != t[2] && certified_nondegenerate(d.p[0], d.p[1], d.p[2]);
+  d.certified = static_cast<char>(t[0] != t[1] && t[1] != t[2] && t[0] != t[2] &&
+                                  certified_nondegenerate(d.p[0], d.p[1], d.p[2]));
   return d;
 }
 
