@@ -28,7 +28,8 @@ namespace {
 
 using Pair = std::pair<std::uint32_t, std::uint32_t>;
 
-constexpr std::size_t kLeavesPerTask = 64;  ///< the unit of parallel work: 256 triangles
+constexpr std::size_t kLeavesPerTask = 64;    ///< the unit of parallel work: 256 triangles
+constexpr std::size_t kTasksPerBatch = 4096;  ///< tasks in flight (memory bound on piles of faces)
 
 /// The smallest `keep` pairs of those added.
 class SmallestPairs {
@@ -85,7 +86,7 @@ class Search {
  public:
   Search(const TriangleSoup& soup, const TriangleBvh& bvh, const detail::FacePairFilter& filter,
          const SelfIntersectOptions& options)
-      : soup_(soup), bvh_(bvh), filter_(filter), options_(options), tasks_(bvh.tasks(kLeavesPerTask)) {
+      : soup_(soup), bvh_(bvh), filter_(filter), options_(options) {
     // The filter's data in the hierarchy's order: neighbours in space are neighbours in memory.
     face_.resize(bvh.size());
     auto body = [&](std::size_t i) { face_[i] = detail::face_data(soup, bvh.face(i)); };
@@ -96,15 +97,13 @@ class Search {
     }
   }
 
-  std::size_t tasks() const { return tasks_.size(); }
-
   /// Searches the pairs of one task, counting at most `limit`. With
   /// `total`, adds what it counts there and gives up (complete = false) when
   /// the total has already reached count_limit.
-  TaskResult run(std::size_t t, std::size_t limit, std::atomic<std::size_t>* total) const {
+  TaskResult run(const TriangleBvh::Task& task, std::size_t limit, std::atomic<std::size_t>* total) const {
     TaskResult r{0, SmallestPairs(options_.max_pairs), false};
     if (total && total->load(std::memory_order_relaxed) >= options_.count_limit) return r;
-    bvh_.run(tasks_[t], [&](std::size_t i, std::size_t j) {
+    bvh_.run(task, [&](std::size_t i, std::size_t j) {
       if (r.count >= limit || filter_.disjoint(face_[i], face_[j])) return;
       // The smaller index first: on degenerate faces (not skipped) CGAL's
       // tests are undefined and may depend on the order.
@@ -124,7 +123,6 @@ class Search {
   const TriangleBvh& bvh_;
   const detail::FacePairFilter& filter_;
   const SelfIntersectOptions& options_;
-  std::vector<TriangleBvh::Task> tasks_;
   std::vector<detail::FaceData> face_;
 };
 
@@ -159,27 +157,33 @@ SelfIntersections find_self_intersections(const TriangleSoup& soup, const std::v
   const Search search(soup, bvh, filter, options);
   const std::size_t limit = options.count_limit;
 
-  // Every task at once; once `limit` pairs are found anywhere, unstarted
-  // tasks give up (those before the capping point are redone below).
-  std::vector<TaskResult> task(search.tasks(), TaskResult{0, SmallestPairs(0), false});
-  std::atomic<std::size_t> total{0};
-  auto body = [&](std::size_t c) { task[c] = search.run(c, limit, &total); };
-  if (options.parallel) {
-    tbb::parallel_for(std::size_t{0}, task.size(), body);
-  } else {
-    for (std::size_t c = 0; c < task.size(); ++c) body(c);
-  }
-
-  // Combine in task order: the first `limit` pairs in search order count.
+  // Tasks in batches, each batch in parallel; once the count reaches the
+  // limit, tasks not yet started give up (those before the capping point
+  // are redone), then results are combined in task order: the first
+  // `limit` pairs in search order count.
+  TriangleBvh::TaskCursor cursor(bvh, kLeavesPerTask);
+  std::vector<TriangleBvh::Task> batch;
+  std::vector<TaskResult> done;
   SmallestPairs smallest(options.max_pairs);
   std::size_t counted = 0;
-  for (std::size_t c = 0; c < task.size() && !result.capped; ++c) {
-    const std::size_t quota = limit - counted;
-    TaskResult& r = task[c];
-    if (!r.complete || r.count > quota) r = search.run(c, quota, nullptr);
-    counted += r.count;
-    smallest.add(r.smallest);
-    result.capped = counted >= limit;
+  std::atomic<std::size_t> total{0};
+  while (!result.capped && cursor.next(kTasksPerBatch, batch)) {
+    done.assign(batch.size(), TaskResult{0, SmallestPairs(0), false});
+    total = counted;
+    auto body = [&](std::size_t c) { done[c] = search.run(batch[c], limit, &total); };
+    if (options.parallel) {
+      tbb::parallel_for(std::size_t{0}, batch.size(), body);
+    } else {
+      for (std::size_t c = 0; c < batch.size(); ++c) body(c);
+    }
+    for (std::size_t c = 0; c < batch.size() && !result.capped; ++c) {
+      const std::size_t quota = limit - counted;
+      TaskResult& r = done[c];
+      if (!r.complete || r.count > quota) r = search.run(batch[c], quota, nullptr);
+      counted += r.count;
+      smallest.add(r.smallest);
+      result.capped = counted >= limit;
+    }
   }
   result.count = counted;
   result.pairs = smallest.take();

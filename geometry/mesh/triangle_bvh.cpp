@@ -147,35 +147,35 @@ TriangleBvh::TriangleBvh(const TriangleSoup& soup, const std::vector<char>& skip
   }
 }
 
-std::vector<TriangleBvh::Task> TriangleBvh::tasks(std::size_t leaves_per_task) const {
-  std::size_t level = 1;  // the first node of the depth whose subtrees have <= leaves_per_task leaves
-  while (leaf_base_ / level > std::max<std::size_t>(leaves_per_task, 1)) level *= 2;
-  std::vector<Task> out;
-  self_tasks(1, level, out);
-  return out;
+TriangleBvh::TaskCursor::TaskCursor(const TriangleBvh& bvh, std::size_t leaves_per_task)
+    : bvh_(bvh), level_(1) {
+  while (bvh.leaf_base_ / level_ > std::max<std::size_t>(leaves_per_task, 1)) level_ *= 2;
+  stack_.push_back({1, 1});
 }
 
-void TriangleBvh::self_tasks(std::size_t n, std::size_t level, std::vector<Task>& out) const {
-  if (nodes_[n].lo[0] > nodes_[n].hi[0]) return;  // empty
-  if (n >= level) {
-    out.push_back({n, n});
-    return;
+bool TriangleBvh::TaskCursor::next(std::size_t n, std::vector<Task>& out) {
+  out.clear();
+  // The depth-first order of self(n) = [self(2n), self(2n + 1), pair(2n, 2n + 1)]
+  // and pair(a, b) = [pair(2a, 2b), pair(2a, 2b + 1), pair(2a + 1, 2b), pair(2a + 1, 2b + 1)].
+  while (!stack_.empty() && out.size() < n) {
+    const Task t = stack_.back();
+    stack_.pop_back();
+    const BoxF& box = bvh_.nodes_[t.a];
+    if (t.a == t.b ? box.lo[0] > box.hi[0] : !overlap(box, bvh_.nodes_[t.b])) continue;
+    if (t.a >= level_) {
+      out.push_back(t);
+    } else if (t.a == t.b) {
+      stack_.push_back({2 * t.a, 2 * t.a + 1});
+      stack_.push_back({2 * t.a + 1, 2 * t.a + 1});
+      stack_.push_back({2 * t.a, 2 * t.a});
+    } else {
+      stack_.push_back({2 * t.a + 1, 2 * t.b + 1});
+      stack_.push_back({2 * t.a + 1, 2 * t.b});
+      stack_.push_back({2 * t.a, 2 * t.b + 1});
+      stack_.push_back({2 * t.a, 2 * t.b});
+    }
   }
-  self_tasks(2 * n, level, out);
-  self_tasks(2 * n + 1, level, out);
-  pair_tasks(2 * n, 2 * n + 1, level, out);
-}
-
-void TriangleBvh::pair_tasks(std::size_t a, std::size_t b, std::size_t level, std::vector<Task>& out) const {
-  if (!overlap(nodes_[a], nodes_[b])) return;
-  if (a >= level) {
-    out.push_back({a, b});
-    return;
-  }
-  pair_tasks(2 * a, 2 * b, level, out);
-  pair_tasks(2 * a, 2 * b + 1, level, out);
-  pair_tasks(2 * a + 1, 2 * b, level, out);
-  pair_tasks(2 * a + 1, 2 * b + 1, level, out);
+  return !out.empty();
 }
 
 }  // namespace fabmesh

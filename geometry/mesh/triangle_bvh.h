@@ -51,10 +51,21 @@ class TriangleBvh {
     std::size_t a, b;
   };
 
-  /// Splits the search into tasks of about `leaves_per_task` leaves each,
-  /// in a fixed order: over all tasks, run() visits every pair of triangles
-  /// whose boxes overlap exactly once.
-  std::vector<Task> tasks(std::size_t leaves_per_task) const;
+  /// The search split into tasks of about `leaves_per_task` leaves each, in
+  /// a fixed order, a batch at a time (a pile of overlapping faces has
+  /// quadratically many): over all tasks, run() visits every pair of
+  /// triangles whose boxes overlap exactly once.
+  class TaskCursor {
+   public:
+    TaskCursor(const TriangleBvh& bvh, std::size_t leaves_per_task);
+    /// Replaces `out` with the next (at most) `n` tasks; false when none are left.
+    bool next(std::size_t n, std::vector<Task>& out);
+
+   private:
+    const TriangleBvh& bvh_;
+    std::size_t level_;        ///< first node of the depth at which tasks stop splitting
+    std::vector<Task> stack_;  ///< pending subproblems, the next on top (a == b: within a)
+  };
 
   /// Calls visit(i, j) for each pair of sorted positions i < j in `task`
   /// whose boxes overlap, in an order that depends only on the soup.
@@ -122,9 +133,6 @@ class TriangleBvh {
       for (; bits != 0; bits &= bits - 1) visit(i, b0 + static_cast<std::size_t>(__builtin_ctz(bits)));
     }
   }
-
-  void self_tasks(std::size_t n, std::size_t level, std::vector<Task>& out) const;
-  void pair_tasks(std::size_t a, std::size_t b, std::size_t level, std::vector<Task>& out) const;
 
   std::vector<std::uint32_t> faces_;   ///< face index at each sorted position
   std::vector<BoxF> boxes_;            ///< box of each sorted position
