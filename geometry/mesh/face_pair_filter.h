@@ -20,8 +20,8 @@
 //   a 2 x 2 minor (a component of e1 x e2):        k = 4, gamma_4 < 4.5e-16;
 //   a projection (x - o) . m on a double vector m: k = 4.
 // The bounds below are these with a margin of 1.5 to 4. They hold while no
-// intermediate overflows or underflows: FacePairFilter is only enabled when
-// every coordinate is 0 or has a magnitude in [1e-30, 1e30] (then every
+// intermediate overflows or underflows: the filter only reasons about faces
+// whose every coordinate is 0 or has a magnitude in [1e-30, 1e30] (then every
 // nonzero difference is >= 1e-46, every nonzero intermediate >= 1e-240,
 // every intermediate <= 1e130).
 
@@ -109,7 +109,8 @@ struct Interval {
 struct FaceData {
   std::array<std::uint32_t, 3> v;  ///< vertex indices
   /// Nonzero when v has three distinct indices and the corners are
-  /// certified_nondegenerate: the filter only reasons about such faces.
+  /// filterable() and certified_nondegenerate: the filter only reasons about
+  /// such faces.
   char certified;
   std::array<Vec3, 3> p;  ///< the corners
 };
@@ -118,22 +119,20 @@ struct FaceData {
 inline FaceData face_data(const TriangleSoup& soup, std::uint32_t f) {
   const auto& t = soup.triangles[f];
   FaceData d{t, 0, {soup.vertices[t[0]], soup.vertices[t[1]], soup.vertices[t[2]]}};
-  d.certified = static_cast<char>(t[0] != t[1] && t[1] != t[2] && t[0] != t[2] &&
-                                  certified_nondegenerate(d.p[0], d.p[1], d.p[2]));
+  bool ok = t[0] != t[1] && t[1] != t[2] && t[0] != t[2];
+  for (const Vec3& p : d.p) ok = ok && filterable(p.x()) && filterable(p.y()) && filterable(p.z());
+  d.certified = static_cast<char>(ok && certified_nondegenerate(d.p[0], d.p[1], d.p[2]));
   return d;
 }
 
 /// Proves that two faces meet at most in what they share (the negation of
-/// faces_intersect_exact), or gives up. `enabled` only when every
-/// coordinate of the soup is filterable().
+/// faces_intersect_exact), or gives up.
 class FacePairFilter {
  public:
-  explicit FacePairFilter(bool enabled) : enabled_(enabled) {}
-
   /// True when the faces certainly do not intersect in the sense of
   /// faces_intersect_exact; false when the filter cannot tell.
   bool disjoint(const FaceData& a, const FaceData& b) const {
-    if (!enabled_ || !a.certified || !b.certified) return false;
+    if (!a.certified || !b.certified) return false;
     int shared = 0;
     int ia = -1;
     int ib = -1;
@@ -234,8 +233,6 @@ class FacePairFilter {
     if (certified_sign(dot(n1.n, n2.n), dot_abs(n1.n_abs, n2.n_abs), kNormalsBound) < 0) return true;
     return n1.side(e3) != 0;
   }
-
-  bool enabled_;
 };
 
 }  // namespace fabmesh::detail

@@ -126,33 +126,29 @@ class Search {
   std::vector<detail::FaceData> face_;
 };
 
-/// Checks the input; returns whether every coordinate is in the filter's range.
-bool check_input(const TriangleSoup& soup) {
+/// Checks the input.
+void check_input(const TriangleSoup& soup) {
   require_indices_in_range(soup);
-  bool filterable = true;
   for (const Vec3& p : soup.vertices) {
     if (!std::isfinite(p.x()) || !std::isfinite(p.y()) || !std::isfinite(p.z())) {
       throw InputError(
           fmt::format("self-intersection test: vertex ({}, {}, {}) is not finite", p.x(), p.y(), p.z()));
     }
-    filterable =
-        filterable && detail::filterable(p.x()) && detail::filterable(p.y()) && detail::filterable(p.z());
   }
-  return filterable;
 }
 
 }  // namespace
 
 SelfIntersections find_self_intersections(const TriangleSoup& soup, const std::vector<char>& skip,
                                           const SelfIntersectOptions& options) {
-  const bool filterable = check_input(soup);
+  check_input(soup);
   if (!skip.empty() && skip.size() != soup.triangles.size()) {
     throw InputError(fmt::format("self-intersection test: {} skip flags for {} triangles", skip.size(),
                                  soup.triangles.size()));
   }
   SelfIntersections result;
   if (options.count_limit == 0) return result;
-  const detail::FacePairFilter filter(filterable);
+  const detail::FacePairFilter filter;
   const TriangleBvh bvh(soup, skip, options.parallel);
   const Search search(soup, bvh, filter, options);
   const std::size_t limit = options.count_limit;
