@@ -2,14 +2,15 @@
 # Whole-command comparison: `fabmesh check` against `admesh` on a closed
 # 1e6-triangle binary STL (a finely tessellated torus), plus fabmesh's own
 # per-stage timings (self-intersection among them).
-# Needs: a built fabmesh (default build/pipeline/fabmesh), python3, admesh,
+# Needs: a Release fabmesh (default build-bench/pipeline/fabmesh), python3, admesh,
 # and optionally hyperfine (scripts/install-deps.sh --bench installs them).
 # Usage: bench/check_vs_admesh.sh [FABMESH_BINARY] [NU NV]
+# (bench/check_vs_pmp.sh adds CGAL PMP and per-stage ratios.)
 # Note what is compared: admesh reads, welds (exact), checks edges/normals and
 # computes the volume; fabmesh check also runs an exact self-intersection test.
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
-fabmesh="${1:-$here/../build/pipeline/fabmesh}"
+fabmesh="${1:-$here/../build-bench/pipeline/fabmesh}"
 nu="${2:-1000}"
 nv="${3:-500}"
 work="$(mktemp -d)"

@@ -1,12 +1,15 @@
 # Shared by the peer benchmarks: tool checks, a scratch folder and timing.
 # Source it after setting: bench_name (for messages and the temp folder),
-# fabmesh (binary path) and runs (timed runs per command).
+# fabmesh (binary path), runs (timed runs per command) and optionally
+# peer_tools (the peer programs that must be on PATH; default openscad).
 # Provides: die, json FILE EXPR, peak_kb CMD..., time_ms NAME CMD..., check_outputs, $tmp.
 
 die() { echo "$bench_name: error: $*" >&2; exit 2; }
 [[ -x $fabmesh ]] || die "fabmesh not found or not executable at '$fabmesh' (build it: cmake -S . -B build-bench -G Ninja -DCMAKE_BUILD_TYPE=Release -DFABMESH_BUILD_TESTS=OFF && cmake --build build-bench --target fabmesh)"
 fabmesh=$(cd "$(dirname "$fabmesh")" && pwd)/$(basename "$fabmesh")
-command -v openscad >/dev/null 2>&1 || die "openscad not found on PATH (Debian: apt-get install -y openscad)"
+for tool in ${peer_tools:-openscad}; do
+  command -v "$tool" >/dev/null 2>&1 || die "$tool not found on PATH (Debian: apt-get install -y $tool)"
+done
 [[ -x /usr/bin/time ]] || die "/usr/bin/time (GNU time) not found (Debian: apt-get install -y time)"
 command -v python3 >/dev/null 2>&1 || die "python3 not found"
 have_hyperfine=0

@@ -1,106 +1,133 @@
+// The fast self-intersection test: a Morton-sorted BVH over the triangle
+// boxes (triangle_bvh.h) enumerates the pairs whose boxes overlap; a
+// floating-point filter with proven error bounds (face_pair_filter.h)
+// dismisses the pairs that certainly do not intersect, which is nearly all
+// of them in a valid mesh (mostly neighbours sharing a vertex or an edge);
+// the few it cannot decide go to the exact test of the reference
+// implementation (faces_intersect_exact). The answer is therefore exactly
+// the reference's. The search is split into fixed tasks (pairs of subtrees),
+// each run by one thread, and their findings combined in task order, so the result
+// does not depend on the thread count.
+
 #include "geometry/mesh/self_intersect.h"
 
-#include "geometry/core/errors.h"
-
-// Parallel box intersection needs this before any CGAL header; TBB is linked
-// to fabmesh::geometry.
-#ifndef CGAL_LINKED_WITH_TBB
-#define CGAL_LINKED_WITH_TBB
-#endif
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/box_intersection_d.h>
 #include <fmt/format.h>
-#include <tbb/concurrent_vector.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <random>
+
+#include "geometry/core/errors.h"
+#include "geometry/mesh/face_pair_filter.h"
+#include "geometry/mesh/self_intersect_reference.h"
+#include "geometry/mesh/triangle_bvh.h"
 
 namespace fabmesh {
 namespace {
 
-using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Point = Kernel::Point_3;
-using Segment = Kernel::Segment_3;
-using Triangle = Kernel::Triangle_3;
-using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, std::uint32_t,
-                                                      CGAL::Box_intersection_d::ID_FROM_BOX_ADDRESS>;
-using Face = std::array<std::uint32_t, 3>;
+using Pair = std::pair<std::uint32_t, std::uint32_t>;
 
-/// Thrown from the box callback to stop the search at the count limit.
-struct LimitReached {};
+constexpr std::size_t kLeavesPerTask = 64;    ///< the unit of parallel work: 256 triangles
+constexpr std::size_t kTasksPerBatch = 4096;  ///< tasks in flight (memory bound on piles of faces)
 
-/// Exact test of two faces, allowing them to meet at what they share by
-/// index (the same case analysis as CGAL's do_faces_intersect, on a soup).
-class FacePairTest {
+/// The smallest `keep` pairs of those added.
+class SmallestPairs {
  public:
-  explicit FacePairTest(const TriangleSoup& soup) : soup_(soup) {}
-
-  bool operator()(std::uint32_t f, std::uint32_t g) const {
-    const Face& a = soup_.triangles[f];
-    const Face& b = soup_.triangles[g];
-    int shared = 0;
-    int ia = -1;
-    int ib = -1;
-    for (int i = 0; i < 3; ++i) {
-      for (int j = 0; j < 3; ++j) {
-        if (a[i] == b[j]) {
-          ++shared;
-          ia = i;
-          ib = j;
-        }
-      }
-    }
-    if (shared >= 3) return false;  // the same face: validation reports duplicates separately
-    if (shared == 2) return shared_edge_overlap(a, b);
-    if (shared == 1) return shared_vertex_overlap(a, b, ia, ib);
-    return CGAL::do_intersect(triangle(a), triangle(b));
+  explicit SmallestPairs(std::size_t keep) : keep_(keep) {}
+  void add(const Pair& p) {
+    pairs_.push_back(p);
+    if (pairs_.size() >= 2 * keep_ + 1024) trim();
+  }
+  void add(const SmallestPairs& other) {
+    for (const Pair& p : other.pairs_) add(p);
+  }
+  /// The kept pairs, ascending.
+  std::vector<Pair> take() {
+    trim();
+    std::sort(pairs_.begin(), pairs_.end());
+    return std::move(pairs_);
   }
 
  private:
-  Point point(std::uint32_t v) const {
-    const Vec3& p = soup_.vertices[v];
-    return {p.x(), p.y(), p.z()};
+  void trim() {
+    if (pairs_.size() <= keep_) return;
+    std::nth_element(pairs_.begin(), pairs_.begin() + static_cast<std::ptrdiff_t>(keep_), pairs_.end());
+    pairs_.resize(keep_);
   }
-  Triangle triangle(const Face& t) const { return {point(t[0]), point(t[1]), point(t[2])}; }
-
-  /// Faces sharing edge pq meet elsewhere iff they are coplanar and their
-  /// third vertices lie on the same side of pq.
-  bool shared_edge_overlap(const Face& a, const Face& b) const {
-    std::uint32_t r = a[0];
-    for (const std::uint32_t v : a) {
-      if (v != b[0] && v != b[1] && v != b[2]) r = v;
-    }
-    std::uint32_t s = b[0];
-    for (const std::uint32_t v : b) {
-      if (v != a[0] && v != a[1] && v != a[2]) s = v;
-    }
-    std::uint32_t p = 0;
-    std::uint32_t q = 0;
-    int k = 0;
-    for (const std::uint32_t v : a) {
-      if (v != r) (k++ == 0 ? p : q) = v;
-    }
-    const Point pp = point(p), pq = point(q), pr = point(r), ps = point(s);
-    return CGAL::coplanar(pp, pq, pr, ps) && CGAL::coplanar_orientation(pp, pq, pr, ps) == CGAL::POSITIVE;
-  }
-
-  /// Faces sharing one vertex meet elsewhere iff the edge opposite the shared
-  /// vertex in one face touches the other face.
-  bool shared_vertex_overlap(const Face& a, const Face& b, int ia, int ib) const {
-    const Segment sa(point(a[(ia + 1) % 3]), point(a[(ia + 2) % 3]));
-    const Segment sb(point(b[(ib + 1) % 3]), point(b[(ib + 2) % 3]));
-    return CGAL::do_intersect(triangle(a), sb) || CGAL::do_intersect(triangle(b), sa);
-  }
-
-  const TriangleSoup& soup_;
+  std::size_t keep_;
+  std::vector<Pair> pairs_;
 };
 
-}  // namespace
+/// What one task found.
+struct TaskResult {
+  std::size_t count = 0;   ///< intersecting pairs counted (at most the task's limit)
+  SmallestPairs smallest;  ///< the smallest max_pairs of them
+  bool complete = false;   ///< false when the search gave up before starting
+};
 
-SelfIntersections find_self_intersections(const TriangleSoup& soup, const std::vector<char>& skip,
-                                          const SelfIntersectOptions& options) {
+/// Whether the exact (closed) boxes of faces f and g overlap: the reference
+/// never tests other pairs, so neither may we (it matters only for
+/// degenerate faces, on which CGAL's tests are not defined).
+bool boxes_overlap(const TriangleSoup& soup, std::uint32_t f, std::uint32_t g) {
+  const auto& a = soup.triangles[f];
+  const auto& b = soup.triangles[g];
+  for (int k = 0; k < 3; ++k) {
+    const double a0 = soup.vertices[a[0]][k], a1 = soup.vertices[a[1]][k], a2 = soup.vertices[a[2]][k];
+    const double b0 = soup.vertices[b[0]][k], b1 = soup.vertices[b[1]][k], b2 = soup.vertices[b[2]][k];
+    if (std::max({a0, a1, a2}) < std::min({b0, b1, b2}) || std::max({b0, b1, b2}) < std::min({a0, a1, a2})) {
+      return false;
+    }
+  }
+  return true;
+}
+
+class Search {
+ public:
+  Search(const TriangleSoup& soup, const TriangleBvh& bvh, const detail::FacePairFilter& filter,
+         const SelfIntersectOptions& options)
+      : soup_(soup), bvh_(bvh), filter_(filter), options_(options) {
+    // The filter's data in the hierarchy's order: neighbours in space are neighbours in memory.
+    face_.resize(bvh.size());
+    auto body = [&](std::size_t i) { face_[i] = detail::face_data(soup, bvh.face(i)); };
+    if (options.parallel) {
+      tbb::parallel_for(std::size_t{0}, face_.size(), body);
+    } else {
+      for (std::size_t i = 0; i < face_.size(); ++i) body(i);
+    }
+  }
+
+  /// Searches the pairs of one task, counting at most `limit`. With
+  /// `total`, adds what it counts there and gives up (complete = false) when
+  /// the total has already reached count_limit.
+  TaskResult run(const TriangleBvh::Task& task, std::size_t limit, std::atomic<std::size_t>* total) const {
+    TaskResult r{0, SmallestPairs(options_.max_pairs), false};
+    if (total && total->load(std::memory_order_relaxed) >= options_.count_limit) return r;
+    bvh_.run(task, [&](std::size_t i, std::size_t j) {
+      if (r.count >= limit || filter_.disjoint(face_[i], face_[j])) return;
+      // The smaller index first: on degenerate faces (not skipped) CGAL's
+      // tests are undefined and may depend on the order.
+      const std::uint32_t f = std::min(bvh_.face(i), bvh_.face(j));
+      const std::uint32_t g = std::max(bvh_.face(i), bvh_.face(j));
+      if (!boxes_overlap(soup_, f, g) || !faces_intersect_exact(soup_, f, g)) return;
+      ++r.count;
+      r.smallest.add({f, g});
+    });
+    if (total && r.count > 0) total->fetch_add(r.count);
+    r.complete = true;
+    return r;
+  }
+
+ private:
+  const TriangleSoup& soup_;
+  const TriangleBvh& bvh_;
+  const detail::FacePairFilter& filter_;
+  const SelfIntersectOptions& options_;
+  std::vector<detail::FaceData> face_;
+};
+
+/// Checks the input.
+void check_input(const TriangleSoup& soup) {
   require_indices_in_range(soup);
   for (const Vec3& p : soup.vertices) {
     if (!std::isfinite(p.x()) || !std::isfinite(p.y()) || !std::isfinite(p.z())) {
@@ -108,54 +135,54 @@ SelfIntersections find_self_intersections(const TriangleSoup& soup, const std::v
           fmt::format("self-intersection test: vertex ({}, {}, {}) is not finite", p.x(), p.y(), p.z()));
     }
   }
-  std::vector<Box> boxes;
-  boxes.reserve(soup.triangles.size());
-  for (std::uint32_t f = 0; f < soup.triangles.size(); ++f) {
-    if (!skip.empty() && skip.at(f)) continue;
-    CGAL::Bbox_3 bbox;
-    for (const std::uint32_t v : soup.triangles[f]) {
-      const Vec3& p = soup.vertices[v];
-      bbox += CGAL::Bbox_3(p.x(), p.y(), p.z(), p.x(), p.y(), p.z());
-    }
-    boxes.emplace_back(bbox, f);
-  }
-  std::vector<const Box*> box_ptr;
-  box_ptr.reserve(boxes.size());
-  for (const Box& b : boxes) box_ptr.push_back(&b);
+}
 
-  const FacePairTest intersect(soup);
-  std::atomic<std::size_t> count{0};
-  tbb::concurrent_vector<std::pair<std::uint32_t, std::uint32_t>> found;
-  // Keep a bounded number of pairs in memory; count them all.
-  const std::size_t keep = std::max<std::size_t>(options.max_pairs, 100000);
-  auto callback = [&](const Box* x, const Box* y) {
-    std::uint32_t f = x->info();
-    std::uint32_t g = y->info();
-    if (!intersect(f, g)) return;
-    if (f > g) std::swap(f, g);
-    const std::size_t before = count.fetch_add(1);
-    if (before < keep) found.push_back({f, g});
-    if (before + 1 >= options.count_limit) throw LimitReached{};
-  };
-  const std::ptrdiff_t cutoff = 2000;
+}  // namespace
+
+SelfIntersections find_self_intersections(const TriangleSoup& soup, const std::vector<char>& skip,
+                                          const SelfIntersectOptions& options) {
+  check_input(soup);
+  if (!skip.empty() && skip.size() != soup.triangles.size()) {
+    throw InputError(fmt::format("self-intersection test: {} skip flags for {} triangles", skip.size(),
+                                 soup.triangles.size()));
+  }
   SelfIntersections result;
   if (options.count_limit == 0) return result;
-  try {
+  const detail::FacePairFilter filter;
+  const TriangleBvh bvh(soup, skip, options.parallel);
+  const Search search(soup, bvh, filter, options);
+  const std::size_t limit = options.count_limit;
+
+  // Tasks in batches, each batch in parallel; once the count reaches the
+  // limit, tasks not yet started give up (those before the capping point
+  // are redone), then results are combined in task order: the first
+  // `limit` pairs in search order count.
+  TriangleBvh::TaskCursor cursor(bvh, kLeavesPerTask);
+  std::vector<TriangleBvh::Task> batch;
+  std::vector<TaskResult> done;
+  SmallestPairs smallest(options.max_pairs);
+  std::size_t counted = 0;
+  std::atomic<std::size_t> total{0};
+  while (!result.capped && cursor.next(kTasksPerBatch, batch)) {
+    done.assign(batch.size(), TaskResult{0, SmallestPairs(0), false});
+    total = counted;
+    auto body = [&](std::size_t c) { done[c] = search.run(batch[c], limit, &total); };
     if (options.parallel) {
-      // A fixed shuffle balances the parallel slices (as CGAL does) and keeps runs reproducible.
-      std::mt19937 rng(0);
-      std::shuffle(box_ptr.begin(), box_ptr.end(), rng);
-      CGAL::box_self_intersection_d<CGAL::Parallel_tag>(box_ptr.begin(), box_ptr.end(), callback, cutoff);
+      tbb::parallel_for(std::size_t{0}, batch.size(), body);
     } else {
-      CGAL::box_self_intersection_d<CGAL::Sequential_tag>(box_ptr.begin(), box_ptr.end(), callback, cutoff);
+      for (std::size_t c = 0; c < batch.size(); ++c) body(c);
     }
-  } catch (const LimitReached&) {
-    result.capped = true;
+    for (std::size_t c = 0; c < batch.size() && !result.capped; ++c) {
+      const std::size_t quota = limit - counted;
+      TaskResult& r = done[c];
+      if (!r.complete || r.count > quota) r = search.run(batch[c], quota, nullptr);
+      counted += r.count;
+      smallest.add(r.smallest);
+      result.capped = counted >= limit;
+    }
   }
-  result.count = std::min(count.load(), options.count_limit);
-  result.pairs.assign(found.begin(), found.end());
-  std::sort(result.pairs.begin(), result.pairs.end());
-  if (result.pairs.size() > options.max_pairs) result.pairs.resize(options.max_pairs);
+  result.count = counted;
+  result.pairs = smallest.take();
   return result;
 }
 

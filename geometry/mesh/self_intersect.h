@@ -29,15 +29,24 @@ struct SelfIntersections {
   std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
 };
 
-/// Finds the pairs of faces of `soup` that intersect, using exact predicates
-/// (CGAL Epick) on axis-aligned-box candidates. Faces sharing two vertex
-/// indices intersect only if they are coplanar and overlap across the shared
-/// edge; faces sharing one vertex only if they meet elsewhere too.
+/// Finds the pairs of faces of `soup` that intersect, exactly: faces sharing
+/// two vertex indices intersect only if they are coplanar and overlap across
+/// the shared edge; faces sharing one vertex only if the edge opposite it in
+/// one face touches the other; faces sharing none if the triangles meet
+/// (faces_intersect_exact in self_intersect_reference.h is the definition).
+/// Candidates come from a bounding-volume hierarchy over the triangle boxes;
+/// a floating-point filter with proven error bounds dismisses the pairs that
+/// certainly do not intersect and the others are decided with exact
+/// predicates (CGAL Epick). The result equals find_self_intersections_reference
+/// and does not depend on the number of threads: `pairs` are the smallest
+/// max_pairs pairs counted; when capped, the pairs counted are the first
+/// count_limit in the search order (a fixed order over a Morton sort).
 /// Faces with skip[f] != 0 take no part (validation skips degenerate faces
 /// and extra copies of duplicate faces, which it reports on their own).
 /// \param skip  empty, or one flag per triangle
 /// \pre every vertex coordinate is finite and every index in range
-/// \throw InputError when an index is out of range or a coordinate is not finite.
+/// \throw InputError when an index is out of range, a coordinate is not
+///        finite, or `skip` is neither empty nor one flag per triangle.
 SelfIntersections find_self_intersections(const TriangleSoup& soup, const std::vector<char>& skip = {},
                                           const SelfIntersectOptions& options = {});
 

@@ -1,99 +1,142 @@
+// Welding. Both modes first find, for every vertex, the lowest index of the
+// vertices at exactly its position (exact_groups: a hash partition into
+// cache-sized buckets, then one small hash table per bucket; linear). The
+// tolerance mode then unites those positions on a grid (weld_grid.cpp).
+
 #include "geometry/mesh/weld.h"
 
-#include <fmt/format.h>
-#include <tbb/parallel_sort.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <numeric>
-#include <unordered_map>
+#include <cstring>
+#include <memory>
 
 #include "geometry/core/errors.h"
+#include "geometry/mesh/weld_grid.h"
 
 namespace fabmesh {
 namespace {
 
 bool finite(const Vec3& p) { return std::isfinite(p.x()) && std::isfinite(p.y()) && std::isfinite(p.z()); }
 
-/// representative[i] = the lowest index of the group vertex i merges into.
+std::uint64_t mix(std::uint64_t h) {
+  h ^= h >> 33;
+  h *= 0xff51afd7ed558ccdULL;
+  h ^= h >> 33;
+  h *= 0xc4ceb9fe1a85ec53ULL;
+  h ^= h >> 33;
+  return h;
+}
+
+/// A vertex in the bucket partition: its coordinates with -0.0 turned into
+/// +0.0 (so that equal coordinates have equal bits), its index and hash.
+struct Entry {
+  double c[3];
+  std::uint32_t index;
+  std::uint32_t hash;
+};
+
+Entry entry(const Vec3& p, std::uint32_t index, std::uint64_t& hash) {
+  Entry e{{p.x() + 0.0, p.y() + 0.0, p.z() + 0.0}, index, 0};
+  std::uint64_t h = 0;
+  for (const double c : e.c) {
+    std::uint64_t bits = 0;
+    std::memcpy(&bits, &c, sizeof bits);
+    h = mix(h ^ bits);
+  }
+  hash = h;
+  e.hash = static_cast<std::uint32_t>(h);
+  return e;
+}
+
+constexpr std::size_t kBlock = std::size_t{1} << 16;  ///< vertices per partition block (fixed: determinism)
+
+template <class Body>
+void parallel_blocks(std::size_t blocks, const Body& body) {
+  tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) { body(b); });
+}
+
+/// Finds equal positions within one bucket: entries arrive in ascending
+/// index order, so the first of each position is the lowest index.
+void weld_bucket(const Entry* entries, std::size_t count, std::vector<std::uint32_t>& table,
+                 std::vector<std::uint32_t>& rep) {
+  std::size_t size = 16;
+  while (size < 2 * count) size *= 2;
+  table.assign(size, 0);
+  const std::size_t mask = size - 1;
+  for (std::size_t k = 0; k < count; ++k) {
+    const Entry& e = entries[k];
+    for (std::size_t s = e.hash & mask;; s = (s + 1) & mask) {
+      if (table[s] == 0) {
+        table[s] = static_cast<std::uint32_t>(k + 1);
+        break;
+      }
+      const Entry& o = entries[table[s] - 1];
+      if (o.hash == e.hash && o.c[0] == e.c[0] && o.c[1] == e.c[1] && o.c[2] == e.c[2]) {
+        rep[e.index] = o.index;
+        break;
+      }
+    }
+  }
+}
+
+/// rep[i] = the lowest index of the vertices at exactly the position of
+/// vertex i (i itself when that position is not finite).
 std::vector<std::uint32_t> exact_groups(const std::vector<Vec3>& vertices) {
-  const auto n = static_cast<std::uint32_t>(vertices.size());
-  std::vector<std::uint32_t> order;
-  order.reserve(n);
-  for (std::uint32_t i = 0; i < n; ++i) {
-    if (finite(vertices[i])) order.push_back(i);  // NaN would break the strict weak order
-  }
-  // Adding 0.0 turns -0.0 into +0.0 so that equal coordinates compare equal.
-  auto key = [&](std::uint32_t i) {
-    const Vec3& p = vertices[i];
-    return std::array<double, 3>{p.x() + 0.0, p.y() + 0.0, p.z() + 0.0};
-  };
-  tbb::parallel_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
-    const auto ka = key(a);
-    const auto kb = key(b);
-    return ka != kb ? ka < kb : a < b;
-  });
+  const std::size_t n = vertices.size();
   std::vector<std::uint32_t> rep(n);
-  std::iota(rep.begin(), rep.end(), 0u);
-  for (std::size_t k = 1; k < order.size(); ++k) {
-    if (key(order[k]) == key(order[k - 1])) rep[order[k]] = rep[order[k - 1]];
-  }
-  return rep;
-}
-
-std::uint32_t find_root(std::vector<std::uint32_t>& parent, std::uint32_t i) {
-  while (parent[i] != i) {
-    parent[i] = parent[parent[i]];
-    i = parent[i];
-  }
-  return i;
-}
-
-/// Union-find over a uniform grid of cell size `tol`: each vertex is compared
-/// with the vertices already placed in its 27 neighbouring cells.
-std::vector<std::uint32_t> tolerance_groups(const std::vector<Vec3>& vertices, double tol) {
-  const auto n = static_cast<std::uint32_t>(vertices.size());
-  std::vector<std::uint32_t> parent(n);
-  std::iota(parent.begin(), parent.end(), 0u);
-  struct CellHash {
-    std::size_t operator()(const std::array<std::int64_t, 3>& c) const {
-      return static_cast<std::size_t>(c[0] * 73856093LL ^ c[1] * 19349663LL ^ c[2] * 83492791LL);
-    }
+  const std::size_t blocks = (n + kBlock - 1) / kBlock;
+  int bits = 0;  // 2^bits buckets of 8192 to 16384 vertices: few enough output streams for the scatter
+  while (bits < 16 && (n >> bits) > 16384) ++bits;
+  const std::size_t buckets = std::size_t{1} << bits;
+  auto bucket_of = [bits](std::uint64_t h) {
+    return bits == 0 ? std::size_t{0} : std::size_t(h >> (64 - bits));
   };
-  std::unordered_map<std::array<std::int64_t, 3>, std::vector<std::uint32_t>, CellHash> grid;
-  grid.reserve(n);
-  const double limit = 1e15;  // cell coordinates must stay exact in int64 and double
-  for (std::uint32_t i = 0; i < n; ++i) {
-    const Vec3& p = vertices[i];
-    if (!finite(p)) continue;
-    std::array<std::int64_t, 3> cell{};
-    for (int a = 0; a < 3; ++a) {
-      const double c = std::floor(p[a] / tol);
-      if (std::abs(c) > limit) {
-        throw RangeError("weld tolerance", tol,
-                         fmt::format("weld tolerance = {} is too small for coordinate {}", tol, p[a]));
-      }
-      cell[a] = static_cast<std::int64_t>(c);
+
+  // Stable counting sort of the finite vertices by bucket, block by block.
+  std::vector<std::size_t> offset(blocks * buckets, 0);
+  parallel_blocks(blocks, [&](std::size_t b) {
+    std::size_t* count = &offset[b * buckets];
+    for (std::size_t i = b * kBlock; i < std::min(n, (b + 1) * kBlock); ++i) {
+      rep[i] = static_cast<std::uint32_t>(i);
+      if (!finite(vertices[i])) continue;
+      std::uint64_t h = 0;
+      entry(vertices[i], 0, h);
+      ++count[bucket_of(h)];
     }
-    for (std::int64_t dx = -1; dx <= 1; ++dx) {
-      for (std::int64_t dy = -1; dy <= 1; ++dy) {
-        for (std::int64_t dz = -1; dz <= 1; ++dz) {
-          const auto it = grid.find({cell[0] + dx, cell[1] + dy, cell[2] + dz});
-          if (it == grid.end()) continue;
-          for (const std::uint32_t j : it->second) {
-            if ((vertices[j] - p).norm() > tol) continue;
-            const std::uint32_t ri = find_root(parent, i);
-            const std::uint32_t rj = find_root(parent, j);
-            if (ri != rj) parent[std::max(ri, rj)] = std::min(ri, rj);
-          }
-        }
-      }
+  });
+  std::vector<std::size_t> bucket_start(buckets + 1, 0);
+  std::size_t total = 0;
+  for (std::size_t k = 0; k < buckets; ++k) {
+    bucket_start[k] = total;
+    for (std::size_t b = 0; b < blocks; ++b) {
+      const std::size_t c = offset[b * buckets + k];
+      offset[b * buckets + k] = total;
+      total += c;
     }
-    grid[cell].push_back(i);
   }
-  for (std::uint32_t i = 0; i < n; ++i) parent[i] = find_root(parent, i);
-  return parent;
+  bucket_start[buckets] = total;
+  // Uninitialised: the scatter writes every entry (zeroing 32 bytes a vertex first costs as much).
+  const std::unique_ptr<Entry[]> entries(new Entry[total]);
+  parallel_blocks(blocks, [&](std::size_t b) {
+    std::size_t* next = &offset[b * buckets];
+    for (std::size_t i = b * kBlock; i < std::min(n, (b + 1) * kBlock); ++i) {
+      if (!finite(vertices[i])) continue;
+      std::uint64_t h = 0;
+      const Entry e = entry(vertices[i], static_cast<std::uint32_t>(i), h);
+      entries[next[bucket_of(h)]++] = e;
+    }
+  });
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, buckets, 16), [&](const tbb::blocked_range<std::size_t>& r) {
+        std::vector<std::uint32_t> table;
+        for (std::size_t k = r.begin(); k != r.end(); ++k) {
+          weld_bucket(entries.get() + bucket_start[k], bucket_start[k + 1] - bucket_start[k], table, rep);
+        }
+      });
+  return rep;
 }
 
 }  // namespace
@@ -101,26 +144,41 @@ std::vector<std::uint32_t> tolerance_groups(const std::vector<Vec3>& vertices, d
 WeldResult weld(const TriangleSoup& soup, const WeldOptions& options) {
   if (options.tolerance != 0.0) require_positive("weld tolerance", options.tolerance);
   require_indices_in_range(soup);
-  const std::vector<std::uint32_t> rep = options.tolerance > 0.0
-                                             ? tolerance_groups(soup.vertices, options.tolerance)
-                                             : exact_groups(soup.vertices);
+  std::vector<std::uint32_t> rep = exact_groups(soup.vertices);
+  if (options.tolerance > 0.0) rep = tolerance_groups(soup.vertices, rep, options.tolerance);
   WeldResult result;
   const std::size_t n = soup.vertices.size();
-  constexpr std::uint32_t kUnset = UINT32_MAX;
-  std::vector<std::uint32_t> new_index(n, kUnset);
-  // rep[i] <= i, so every representative is numbered before its members.
-  for (std::size_t i = 0; i < n; ++i) {
-    if (rep[i] == i) {
-      new_index[i] = static_cast<std::uint32_t>(result.soup.vertices.size());
-      result.soup.vertices.push_back(soup.vertices[i]);
-    } else {
-      new_index[i] = new_index[rep[i]];
+  // Representatives are numbered in index order, block by block in parallel;
+  // rep[i] <= i is a representative, numbered before its members look it up.
+  const std::size_t blocks = (n + kBlock - 1) / kBlock;
+  std::vector<std::size_t> first(blocks + 1, 0);
+  parallel_blocks(blocks, [&](std::size_t b) {
+    for (std::size_t i = b * kBlock; i < std::min(n, (b + 1) * kBlock); ++i) first[b + 1] += rep[i] == i;
+  });
+  for (std::size_t b = 0; b < blocks; ++b) first[b + 1] += first[b];
+  result.soup.vertices.resize(first[blocks]);
+  std::vector<std::uint32_t> new_index(n);
+  parallel_blocks(blocks, [&](std::size_t b) {
+    std::size_t next = first[b];
+    for (std::size_t i = b * kBlock; i < std::min(n, (b + 1) * kBlock); ++i) {
+      if (rep[i] != i) continue;
+      new_index[i] = static_cast<std::uint32_t>(next);
+      result.soup.vertices[next++] = soup.vertices[i];
     }
-  }
-  result.soup.triangles.reserve(soup.triangles.size());
-  for (const auto& t : soup.triangles) {
-    result.soup.triangles.push_back({new_index[t[0]], new_index[t[1]], new_index[t[2]]});
-  }
+  });
+  parallel_blocks(blocks, [&](std::size_t b) {
+    for (std::size_t i = b * kBlock; i < std::min(n, (b + 1) * kBlock); ++i) {
+      if (rep[i] != i) new_index[i] = new_index[rep[i]];
+    }
+  });
+  result.soup.triangles.resize(soup.triangles.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, soup.triangles.size(), 65536),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t f = r.begin(); f != r.end(); ++f) {
+                        const auto& t = soup.triangles[f];
+                        result.soup.triangles[f] = {new_index[t[0]], new_index[t[1]], new_index[t[2]]};
+                      }
+                    });
   result.merged_vertices = n - result.soup.vertices.size();
   return result;
 }

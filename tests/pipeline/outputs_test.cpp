@@ -2,6 +2,8 @@
 // PrusaSlicer, GLB accepted by the Khronos validator, Draco at real sizes, and
 // the peers' conventions for -o, --export-format, --version, -q.
 
+#include "pipeline/outputs.h"
+
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -15,7 +17,6 @@
 #include "io/mesh/gltf.h"
 #include "io/mesh/read_mesh.h"
 #include "io/mesh/stl.h"
-#include "pipeline/outputs.h"
 #include "tests/io/mesh/external_tool.h"
 #include "tests/pipeline/cli_harness.h"
 
@@ -62,12 +63,13 @@ TEST_CASE("units: a design in cm is written to STL in mm unless asked otherwise,
   CHECK(j["files"][0]["units"] == "mm");
   const auto size = j["bounding_box"]["size"];
   CHECK(j["bounding_box"]["units"] == "cm");
-  const ValidationReport mm = validate(weld(parse_stl(bytes_of(dir / "mm" / "vessel_golden_solid.stl"), "stl")).soup);
+  const ValidationReport mm =
+      validate(weld(parse_stl(bytes_of(dir / "mm" / "vessel_golden_solid.stl"), "stl")).soup);
   CHECK(mm.valid());
   CHECK(mm.volume == Approx(1000.0 * j["volume"].get<double>()).epsilon(1e-6));
 
-  REQUIRE(run_cli({"run", example("vessel_golden_solid.yaml"), "-o", (dir / "cm").string() + "/", "--export-units",
-                   "cm"}) == 0);
+  REQUIRE(run_cli({"run", example("vessel_golden_solid.yaml"), "-o", (dir / "cm").string() + "/",
+                   "--export-units", "cm"}) == 0);
   const TriangleSoup cm = weld(parse_stl(bytes_of(dir / "cm" / "vessel_golden_solid.stl"), "stl")).soup;
   CHECK(validate(cm).volume == Approx(j["volume"].get<double>()).epsilon(1e-6));
   Vec3 lo = cm.vertices.front(), hi = lo;
@@ -76,7 +78,8 @@ TEST_CASE("units: a design in cm is written to STL in mm unless asked otherwise,
   // The design key does the same as the option.
   REQUIRE(run_cli({"run", example("vessel_golden_solid.yaml"), "-o", (dir / "key").string() + "/", "-D",
                    "export_units=cm"}) == 0);
-  CHECK(bytes_of(dir / "key" / "vessel_golden_solid.stl") == bytes_of(dir / "cm" / "vessel_golden_solid.stl"));
+  CHECK(bytes_of(dir / "key" / "vessel_golden_solid.stl") ==
+        bytes_of(dir / "cm" / "vessel_golden_solid.stl"));
 }
 
 TEST_CASE("3mf: PrusaSlicer reads fabmesh's 3MF of a cm design at its size in mm, manifold, and slices it",
@@ -84,8 +87,8 @@ TEST_CASE("3mf: PrusaSlicer reads fabmesh's 3MF of a cm design at its size in mm
   REQUIRE_PROGRAM("prusa-slicer");
   const fs::path dir = fresh_dir("prusa_3mf");
   std::string out;
-  REQUIRE(run_cli({"run", example("vessel_golden_shell.yaml"), "-o", (dir / "cup.3mf").string(), "--json"}, &out) ==
-          0);
+  REQUIRE(run_cli({"run", example("vessel_golden_shell.yaml"), "-o", (dir / "cup.3mf").string(), "--json"},
+                  &out) == 0);
   const auto j = nlohmann::json::parse(out).at(0);
   REQUIRE(fs::exists(dir / "cup.3mf"));
   test::ToolRun run;
@@ -96,10 +99,9 @@ TEST_CASE("3mf: PrusaSlicer reads fabmesh's 3MF of a cm design at its size in mm
   const auto size = j["bounding_box"]["size"];  // cm
   CHECK(std::stod(info["size_x"]) == Approx(10.0 * size[0].get<double>()).margin(0.01));
   CHECK(std::stod(info["size_z"]) == Approx(10.0 * size[2].get<double>()).margin(0.01));
-  const test::ToolRun slice = test::prusa_slicer((dir / "home").string(), "--export-gcode " +
-                                                                              test::quoted((dir / "cup.3mf").string()) +
-                                                                              " --output " +
-                                                                              test::quoted((dir / "cup.gcode").string()));
+  const test::ToolRun slice = test::prusa_slicer(
+      (dir / "home").string(), "--export-gcode " + test::quoted((dir / "cup.3mf").string()) + " --output " +
+                                   test::quoted((dir / "cup.gcode").string()));
   INFO(slice.output);
   CHECK(slice.code == 0);
   CHECK(fs::file_size(dir / "cup.gcode") > 10000);
@@ -119,7 +121,8 @@ TEST_CASE("glb: every GLB fabmesh writes, plain and Draco, passes the Khronos va
                              "surface_basin_open.yaml"}) {
     INFO(design);
     std::string out;
-    REQUIRE(run_cli({"run", example(design), "-o", dir.string(), "-D", "outputs=[glb, glb_draco]"}, &out) == 0);
+    REQUIRE(run_cli({"run", example(design), "-o", dir.string(), "-D", "outputs=[glb, glb_draco]"}, &out) ==
+            0);
     const std::string stem = fs::path(design).stem().string();
     for (const std::string& file : {stem + ".glb", stem + ".draco.glb"}) {
       INFO(file);
@@ -144,7 +147,8 @@ TEST_CASE("draco: long designs at fine tolerances get their Draco file, its erro
   write_file_atomically((dir / "long_top.yaml").string(), kLongCountertop);
   std::string out;
   // A 2400 mm countertop at 0.01 mm: the old a-priori bound refused it; measured, 30 bits are plenty.
-  REQUIRE(run_cli({"run", (dir / "long_top.yaml").string(), "-o", (dir / "out").string(), "--json"}, &out) == 0);
+  REQUIRE(run_cli({"run", (dir / "long_top.yaml").string(), "-o", (dir / "out").string(), "--json"}, &out) ==
+          0);
   const auto j = nlohmann::json::parse(out).at(0);
   REQUIRE(j["files"].size() == 2);
   CHECK(j["skipped_outputs"].empty());
@@ -153,20 +157,22 @@ TEST_CASE("draco: long designs at fine tolerances get their Draco file, its erro
   CHECK(j["files"][1]["max_added_error"].get<double>() <= left);
   CHECK(validate(parse_draco(bytes_of(dir / "out" / "long_top.drc"), "drc")).valid());
   // A 520 mm vessel at 0.005 mm.
-  REQUIRE(run_cli({"run", example("vessel_golden_solid.yaml"), "-o", (dir / "out").string(), "-D", "units=mm", "-D",
-                   "tolerance=0.005", "-D", "profile.points=[[75, 520], [50, 400], [100, 300], [150, 150], [75, 0]]",
-                   "--json"},
+  REQUIRE(run_cli({"run", example("vessel_golden_solid.yaml"), "-o", (dir / "out").string(), "-D", "units=mm",
+                   "-D", "tolerance=0.005", "-D",
+                   "profile.points=[[75, 520], [50, 400], [100, 300], [150, 150], [75, 0]]", "--json"},
                   &out) == 0);
   CHECK(nlohmann::json::parse(out).at(0)["skipped_outputs"].empty());
 }
 
-TEST_CASE("draco: an output that cannot meet the tolerance is skipped with a reason, or fails the job if asked",
-          "[pipeline][outputs][draco][errors]") {
+TEST_CASE(
+    "draco: an output that cannot meet the tolerance is skipped with a reason, or fails the job if asked",
+    "[pipeline][outputs][draco][errors]") {
   const fs::path dir = fresh_dir("draco_impossible");
   // 1e6 mm from the origin, 1e-5 mm tolerance: float32 positions there are 0.06 mm apart.
-  const std::string far = "name: far\nkind: vessel\ntolerance: 0.00001\noutputs: [obj, drc]\nmax_triangles: 2e7\n"
-                          "profile: {family: tbezier, segments: [{line: {from: [1000000, 0], to: [1000000, 1]}}]}\n"
-                          "body: {mode: solid}\n";
+  const std::string far =
+      "name: far\nkind: vessel\ntolerance: 0.00001\noutputs: [obj, drc]\nmax_triangles: 2e7\n"
+      "profile: {family: tbezier, segments: [{line: {from: [1000000, 0], to: [1000000, 1]}}]}\n"
+      "body: {mode: solid}\n";
   write_file_atomically((dir / "far.yaml").string(), far);
   std::string out;
   REQUIRE(run_cli({"run", (dir / "far.yaml").string(), "-o", (dir / "out").string()}, &out) == 0);
@@ -174,14 +180,16 @@ TEST_CASE("draco: an output that cannot meet the tolerance is skipped with a rea
   CHECK(fs::exists(dir / "out" / "far.obj"));
   CHECK_FALSE(fs::exists(dir / "out" / "far.drc"));
   fs::remove_all(dir / "out");
-  CHECK(run_cli({"run", (dir / "far.yaml").string(), "-o", (dir / "out").string(), "-D", "on_output_error=fail"},
-                &out) == 2);
+  CHECK(run_cli(
+            {"run", (dir / "far.yaml").string(), "-o", (dir / "out").string(), "-D", "on_output_error=fail"},
+            &out) == 2);
   CHECK_THAT(out, Catch::Contains("drc: Draco cannot keep every vertex"));
   CHECK((!fs::exists(dir / "out") || fs::is_empty(dir / "out")));
 }
 
-TEST_CASE("command line: -o FILE.ext picks the format, -o DIR/ a folder, -o - standard output, --export-format",
-          "[pipeline][outputs][cli]") {
+TEST_CASE(
+    "command line: -o FILE.ext picks the format, -o DIR/ a folder, -o - standard output, --export-format",
+    "[pipeline][outputs][cli]") {
   const fs::path dir = fresh_dir("cli_outputs");
   const std::string design = example("vessel_golden_solid.yaml");
   REQUIRE(run_cli({"run", design, "-o", (dir / "one.stl").string()}) == 0);
@@ -215,7 +223,8 @@ TEST_CASE("command line: --version, -q and -v", "[pipeline][cli]") {
   const CliResult quiet = run_fabmesh({"run", example("vessel_golden_solid.yaml"), "-o", dir.string(), "-q"});
   CHECK(quiet.code == 0);
   CHECK(quiet.out.empty());
-  const CliResult verbose = run_fabmesh({"-v", "run", example("vessel_golden_solid.yaml"), "-o", dir.string()});
+  const CliResult verbose =
+      run_fabmesh({"-v", "run", example("vessel_golden_solid.yaml"), "-o", dir.string()});
   CHECK(verbose.code == 0);
   CHECK_THAT(verbose.out, Catch::Contains("encode_stl") && Catch::Contains("validate"));
   // Errors still reach standard error with -q.
@@ -235,7 +244,7 @@ TEST_CASE("run: two designs with one name, or two outputs of one file, stop befo
                 &out) == 2);
   CHECK_THAT(out, Catch::Contains("both named 'vessel_golden_solid'"));
   CHECK_FALSE(fs::exists(dir / "out"));
-  CHECK(run_cli({"run", (dir / "a.yaml").string(), "-o", (dir / "out").string(), "-D", "outputs=[stl, stl]"}, &out) ==
-        2);
+  CHECK(run_cli({"run", (dir / "a.yaml").string(), "-o", (dir / "out").string(), "-D", "outputs=[stl, stl]"},
+                &out) == 2);
   CHECK_THAT(out, Catch::Contains("stl is listed twice"));
 }
