@@ -23,6 +23,7 @@ void check_hole_width(const CutCurve& loop, std::size_t index, const BoundaryInd
     if (e.loop == index) pts.push_back(e.a);
   }
   constexpr int kDirections = 360;  // every half degree
+  double narrowest = INFINITY, across = 0.0;
   for (int k = 0; k < kDirections; ++k) {
     const double angle = M_PI * k / kDirections;
     const Vec2 u(std::cos(angle), std::sin(angle));
@@ -30,12 +31,13 @@ void check_hole_width(const CutCurve& loop, std::size_t index, const BoundaryInd
     for (const Vec2& p : pts) lo = std::min(lo, p.dot(u)), hi = std::max(hi, p.dot(u));
     // The exact curve lies within `deviation` of its samples: its width is at most this.
     const double width = hi - lo + 2.0 * deviation;
-    if (width < diameter) {
-      throw GeometryError(loop.label,
-                          fmt::format("{} is at most {:.6g} wide (across the direction {:.4g} degrees): "
-                                      "smaller than the tool diameter {}",
-                                      loop.label, width, angle * 180.0 / M_PI, diameter));
-    }
+    if (width < narrowest) narrowest = width, across = angle;
+  }
+  if (narrowest < diameter) {
+    throw GeometryError(loop.label,
+                        fmt::format("{} is at most {:.6g} wide (across the direction {:.4g} degrees): "
+                                    "smaller than the tool diameter {}",
+                                    loop.label, narrowest, across * 180.0 / M_PI, diameter));
   }
 }
 
