@@ -2,13 +2,13 @@
 
 #include <fmt/format.h>
 
-#include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <stdexcept>
 
 #include "geometry/fairing/fair_curve.h"
 #include "geometry/toolpath/curvature_bound.h"
@@ -19,7 +19,7 @@ namespace {
 
 std::string run_command(const std::string& command, int* status) {
   FILE* pipe = popen(command.c_str(), "r");
-  REQUIRE(pipe != nullptr);
+  if (!pipe) throw std::runtime_error("cannot run: " + command);
   std::string out;
   char buffer[65536];
   std::size_t n = 0;
@@ -27,6 +27,8 @@ std::string run_command(const std::string& command, int* status) {
   *status = pclose(pipe);
   return out;
 }
+
+std::string script_path() { return std::string(FABMESH_SOURCE_DIR) + "/tools/node/gcode-trace.js"; }
 
 Vec3 vec3(const nlohmann::json& j) {
   return Vec3(j[0].get<double>(), j[1].get<double>(), j[2].get<double>());
@@ -47,24 +49,38 @@ double arc_sweep(const TraceMotion& m) {
 
 }  // namespace
 
-Trace interpret_gcode(const std::string& gcode, const std::string& name) {
-  const std::string script = std::string(FABMESH_SOURCE_DIR) + "/tools/node/gcode-trace.js";
-  const std::string package = std::string(FABMESH_SOURCE_DIR) + "/tools/node/node_modules/gcode-toolpath";
+std::string gcode_interpreter_problem() {
   int status = 0;
   run_command("node --version > /dev/null 2>&1", &status);
-  INFO("node (Node.js) must be on PATH to interpret G-code (scripts/install-deps.sh)");
-  REQUIRE(status == 0);
-  INFO("the npm package gcode-toolpath must be installed in tools/node (scripts/install-deps.sh)");
-  REQUIRE(std::filesystem::exists(package));
+  if (status != 0) return "node (Node.js) must be on PATH to interpret G-code (scripts/install-deps.sh)";
+  const std::string package = std::string(FABMESH_SOURCE_DIR) + "/tools/node/node_modules/gcode-toolpath";
+  if (!std::filesystem::exists(package)) {
+    return "the npm package gcode-toolpath must be installed in tools/node (scripts/install-deps.sh): " +
+           package + " is missing";
+  }
+  return "";
+}
+
+Trace interpret_gcode(const std::string& gcode, const std::string& name) {
   const std::filesystem::path file = std::filesystem::path(FABMESH_TEST_TMP) / name;
   {
     std::ofstream out(file, std::ios::binary);
     out << gcode;
-    REQUIRE(out.good());
+    if (!out.good()) throw std::runtime_error("cannot write " + file.string());
   }
-  const std::string json_text = run_command(fmt::format("node '{}' '{}'", script, file.string()), &status);
-  INFO("gcode-trace.js failed on " << file);
-  REQUIRE(status == 0);
+  return interpret_gcode_file(file.string());
+}
+
+Trace interpret_gcode_file(const std::string& file) {
+  const std::string problem = gcode_interpreter_problem();
+  if (!problem.empty()) throw std::runtime_error(problem);
+  int status = 0;
+  const std::string json_text = run_command(fmt::format("node '{}' '{}'", script_path(), file), &status);
+  if (status != 0) throw std::runtime_error("gcode-trace.js failed on " + file);
+  return parse_trace(json_text);
+}
+
+Trace parse_trace(const std::string& json_text) {
   const nlohmann::json j = nlohmann::json::parse(json_text);
   Trace trace;
   for (const auto& u : j["unknown"]) trace.unknown.push_back(u["code"].get<std::string>());
@@ -143,6 +159,19 @@ CurveDistance::CurveDistance(CompositeCurve curve, double spacing)
   }
 }
 
+double CurveDistance::newton(std::size_t segment, double s, const Vec2& q) const {
+  const Segment& seg = curve_.segments()[segment];
+  for (int it = 0; it < 50; ++it) {
+    const CurveJet j = seg.jet(s);
+    const double f = (j[0] - q).dot(j[1]);
+    const double fp = j[1].squaredNorm() + (j[0] - q).dot(j[2]);
+    const double next = std::clamp(fp > 0.0 ? s - f / fp : s - f / j[1].squaredNorm(), 0.0, 1.0);
+    if (std::abs(next - s) < 1e-15) return next;
+    s = next;
+  }
+  return s;
+}
+
 CurveDistance::Foot CurveDistance::nearest(const Vec2& q, double limit) const {
   const long long cx = static_cast<long long>(std::floor(q.x() / cell_));
   const long long cy = static_cast<long long>(std::floor(q.y() / cell_));
@@ -179,20 +208,23 @@ CurveDistance::Foot CurveDistance::nearest(const Vec2& q, double limit) const {
     // Seeds: samples closer than both neighbours (local minima along the curve) near the best.
     const double di = dist(i);
     if (di > best + cell_ || di > dist(i - 1) || di > dist(i + 1)) continue;
-    // Newton on the exact segment from the sample (samples of neighbouring segments seed their own runs).
-    const Sample& smp = samples_[i];
-    const Segment& seg = curve_.segments()[smp.segment];
-    double s = smp.s;
-    for (int it = 0; it < 50; ++it) {
-      const CurveJet j = seg.jet(s);
-      const double f = (j[0] - q).dot(j[1]);
-      const double fp = j[1].squaredNorm() + (j[0] - q).dot(j[2]);
-      const double next = std::clamp(fp > 0.0 ? s - f / fp : s - f / j[1].squaredNorm(), 0.0, 1.0);
-      if (std::abs(next - s) < 1e-15) break;
-      s = next;
+    // Newton on the exact segment from the sample; a run stopped at a segment's end goes on
+    // into the neighbouring segment from its joint end.
+    std::size_t segment = samples_[i].segment;
+    double s = samples_[i].s;
+    for (int hop = 0; hop < 3; ++hop) {
+      s = newton(segment, s, q);
+      const Vec2 p = curve_.segments()[segment].point(s);
+      if ((p - q).norm() < foot.distance) foot = {(p - q).norm(), segment, s, p};
+      const std::size_t n_seg = curve_.size();
+      if (s == 0.0 && (curve_.closed() || segment > 0)) {
+        segment = (segment + n_seg - 1) % n_seg, s = 1.0;
+      } else if (s == 1.0 && (curve_.closed() || segment + 1 < n_seg)) {
+        segment = (segment + 1) % n_seg, s = 0.0;
+      } else {
+        break;
+      }
     }
-    const Vec2 p = seg.point(s);
-    if ((p - q).norm() < foot.distance) foot = {(p - q).norm(), smp.segment, s, p};
   }
   return foot;
 }
@@ -282,7 +314,9 @@ double lipschitz_walk_curve(const CompositeCurve& curve, const std::function<dou
 }
 
 ExampleRegion load_countertop_example(const std::string& file_name) {
-  const Design design = read_design(std::string(FABMESH_SOURCE_DIR) + "/configs/examples/" + file_name);
+  const bool bare = file_name.find('/') == std::string::npos;
+  const Design design =
+      read_design(bare ? std::string(FABMESH_SOURCE_DIR) + "/configs/examples/" + file_name : file_name);
   const auto& c = std::get<CountertopDesign>(design.body);
   ExampleRegion out;
   out.outline = build_curve(c.outline).curve;

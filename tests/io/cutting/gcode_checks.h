@@ -34,10 +34,20 @@ struct Trace {
   std::string units;                 ///< modal units at the end: G21 | G20
 };
 
-/// Writes `gcode` to a scratch file named `name` and runs it through
-/// gcode-toolpath 3.0.0 with node. REQUIREs node and the npm package to be
-/// installed (scripts/install-deps.sh) and the run to succeed.
+/// Empty when node and the npm package gcode-toolpath are installed, else
+/// what is missing and how to install it (tests REQUIRE it to be empty).
+std::string gcode_interpreter_problem();
+
+/// Writes `gcode` to a scratch file named `name` (in the test build folder)
+/// and interprets it. \throw std::runtime_error naming what failed
 Trace interpret_gcode(const std::string& gcode, const std::string& name);
+
+/// Runs a .nc file through gcode-toolpath 3.0.0 with node (gcode-trace.js).
+/// \throw std::runtime_error when the interpreter is missing or fails
+Trace interpret_gcode_file(const std::string& file);
+
+/// The motions of gcode-trace.js's JSON output.
+Trace parse_trace(const std::string& json_text);
 
 /// Length of a motion in the XY plane (arcs: radius times the turned angle;
 /// the interpreter's convention: G2 clockwise, G3 counter-clockwise, equal
@@ -48,9 +58,10 @@ Vec3 motion_point(const TraceMotion& m, double f);
 /// Distance from p to the motion's XY path.
 double motion_distance(const TraceMotion& m, const Vec2& p);
 
-/// Exact distance from points to a composite curve: the nearest of dense
-/// samples seeds Newton's method on f(s) = (c(s) - q) . c'(s) on the exact
-/// segment (and its neighbours at the ends).
+/// Exact distance from points to a composite curve: the samples nearest to q
+/// along the curve (local minima) seed Newton's method on
+/// f(s) = (c(s) - q) . c'(s) on their exact segment; a run that stops at a
+/// segment's end continues in the neighbouring segment.
 class CurveDistance {
  public:
   struct Foot {
@@ -73,6 +84,7 @@ class CurveDistance {
     double s;
   };
   long long key(long long ix, long long iy) const { return ix * 1000003LL + iy; }
+  double newton(std::size_t segment, double s, const Vec2& q) const;  // a foot parameter from s
   CompositeCurve curve_;
   double cell_;
   double max_gap_ = 0.0;  // longest chord between consecutive samples
@@ -97,7 +109,8 @@ double lipschitz_walk(const TraceMotion& m, const std::function<double(const Vec
 double lipschitz_walk_curve(const CompositeCurve& curve, const std::function<double(const Vec2&)>& margin,
                             double min_step, Vec2* where);
 
-/// The loops of a countertop example: outline and holes built with build_curve.
+/// The loops of a countertop design (a file name in configs/examples, or a
+/// path): outline and holes built with build_curve, labelled as the pipeline does.
 struct ExampleRegion {
   CompositeCurve outline;
   std::vector<RegionHole> holes;

@@ -9,7 +9,7 @@
 
 #include "geometry/core/errors.h"
 #include "tests/geometry/section/region_shapes.h"
-#include "tests/io/cutting/gcode_checks.h"
+#include "tests/io/cutting/interpret.h"
 
 using namespace fabmesh;
 using namespace fabmesh::test;
@@ -76,7 +76,7 @@ TEST_CASE(
 TEST_CASE("gcode: a round sink is cut by G2/G3 arcs of its radius minus the tool radius, halves at most",
           "[io][cutting][gcode]") {
   const Toolpath tp = slab_with_round_sink();
-  const Trace trace = interpret_gcode(encode_gcode(tp), "round_sink.nc");
+  const Trace trace = interpret(encode_gcode(tp), "round_sink.nc");
   CHECK(trace.unknown.empty());
   int arcs = 0;
   for (const TraceMotion& m : trace.motions) {
@@ -121,7 +121,7 @@ TEST_CASE("gcode: a model in centimetres is written in millimetres (G21) scaled 
   const Toolpath tp = plan_toolpath(slab, {}, o);
   GcodeOptions g;
   g.model_units = "cm";
-  const Trace trace = interpret_gcode(encode_gcode(tp, g), "slab_cm.nc");
+  const Trace trace = interpret(encode_gcode(tp, g), "slab_cm.nc");
   double lo = INFINITY, hi = -INFINITY, deepest = 0.0;
   for (const TraceMotion& m : trace.motions) {
     lo = std::min(lo, m.end.x()), hi = std::max(hi, m.end.x()), deepest = std::min(deepest, m.end.z());
@@ -133,7 +133,7 @@ TEST_CASE("gcode: a model in centimetres is written in millimetres (G21) scaled 
 
 TEST_CASE("gcode-trace: codes the interpreter has no handler for are reported, not skipped silently",
           "[io][cutting][gcode]") {
-  const Trace trace = interpret_gcode("G21 G90\nG41 D1\nG1 X10 F100\nG64 P0.01\nM30\n", "unknown_codes.nc");
+  const Trace trace = interpret("G21 G90\nG41 D1\nG1 X10 F100\nG64 P0.01\nM30\n", "unknown_codes.nc");
   CHECK(trace.unknown == std::vector<std::string>{"G41", "G64"});
   REQUIRE(trace.motions.size() == 1);
   CHECK(trace.motions[0].end.x() == 10);

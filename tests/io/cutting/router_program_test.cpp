@@ -12,7 +12,7 @@
 #include "geometry/core/errors.h"
 #include "geometry/toolpath/toolpath.h"
 #include "io/cutting/gcode.h"
-#include "tests/io/cutting/gcode_checks.h"
+#include "tests/io/cutting/interpret.h"
 
 using namespace fabmesh;
 using namespace fabmesh::test;
@@ -239,7 +239,7 @@ Findings run_example(const ExampleRegion& region, const CncOptions& plan, const 
   GcodeOptions go = g;
   go.name = region.name;
   const std::string program = encode_gcode(tp, go);
-  const Trace trace = interpret_gcode(program, region.name + ".nc");
+  const Trace trace = interpret(program, region.name + ".nc");
   if (verify) tp.options = *verify;
   const double mm = millimetres_per_unit(go.model_units);
   Findings f = measure_program(region, tp, trace, mm);
@@ -315,7 +315,7 @@ TEST_CASE("router program: inch output (G20) interprets to the same cut in milli
   const Toolpath tp = plan_toolpath(region.outline, region.holes, options_for(region));
   const std::string program = encode_gcode(tp, g);
   CHECK(program.find("G20 G90 G94 G17") != std::string::npos);
-  const Trace trace = interpret_gcode(program, "countertop_g1_in.nc");
+  const Trace trace = interpret(program, "countertop_g1_in.nc");
   CHECK(trace.units == "G20");
   require_good_program(measure_program(region, tp, trace, 1.0), tp, 1.0);
 }
