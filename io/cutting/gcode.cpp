@@ -155,7 +155,7 @@ std::string Encoder::run(const GcodeOptions& o) {
   const CncOptions& c = path_.options;
   const std::string u = o.units;
   const std::string per_min = u + "/min";
-  w_.line(fmt::format("(fabmesh toolpath: {})", comment_text(o.name)));
+  w_.line(fmt::format("(fabmesh toolpath: {})", comment_text(o.name).substr(0, 120)));
   w_.line(fmt::format("(tool: end mill, diameter {} {}; the tool-centre path, no G41/G42)",
                       w_.num(c.tool_diameter), u));
   w_.line(fmt::format("(units {}; z = 0 on the slab top; depth {} in {} passes)", u,
@@ -167,8 +167,8 @@ std::string Encoder::run(const GcodeOptions& o) {
   w_.line(fmt::format("(path within {} {} of the exact offset of the exact curves)",
                       w_.num(path_.deviation + w_.resolution()), u));
   w_.line(std::string(u == "in" ? "G20" : "G21") + " G90 G94 G17");
+  w_.line(fmt::format("G0 Z{}", w_.num(c.safe_z)));  // up before the spindle starts
   w_.line(fmt::format("M3 S{}", w_.plain(c.spindle)));
-  w_.line(fmt::format("G0 Z{}", w_.num(c.safe_z)));
   s_.motion = "G0";
   std::size_t loop = static_cast<std::size_t>(-1);
   std::size_t pass = 0;

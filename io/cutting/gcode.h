@@ -20,7 +20,7 @@ struct GcodeOptions {
 };
 
 /// The program: a header comment (design, tool, units, depths, feeds, the
-/// proven deviation), G21|G20 G90 G94 G17, M3 S<spindle>, G0 to safe height,
+/// proven deviation), G21|G20 G90 G94 G17, G0 to safe height, M3 S<spindle>,
 /// then every move of `path` (G0 rapids and retracts, G1 plunges and tab
 /// steps at the plunge feed, G1/G2/G3 cuts at the cutting feed; a comment on
 /// lead-in, lead-out, tab and dog-bone lines and before every pass), M5, M30.
