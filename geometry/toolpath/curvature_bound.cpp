@@ -59,7 +59,8 @@ JetBounds jet_bounds(const Segment& seg, double a, double b, double m4) {
   return out;
 }
 
-CurvatureBound least_curvature(const Segment& seg, double sign, double precision, std::size_t budget) {
+CurvatureBound least_curvature(const Segment& seg, double sign, double precision, double good_enough,
+                               std::size_t budget) {
   CurvatureBound out;
   if (seg.kind() == SegmentKind::Line) {
     out.s = 0.5;
@@ -76,7 +77,7 @@ CurvatureBound least_curvature(const Segment& seg, double sign, double precision
     ++evaluated;
     const double value = sign * signed_curvature(jb.at_center);
     if (value < out.attained) out.attained = value, out.s = 0.5 * (a + b);
-    double lower = -INFINITY;
+    double lower = -std::numeric_limits<double>::infinity();
     if (jb.min_speed > 0.0) {
       const double s = jb.min_speed;
       lower = value - jb.half * (jb.d3 / (s * s) + 3.0 * jb.d2 * jb.d2 / (s * s * s));
@@ -93,6 +94,7 @@ CurvatureBound least_curvature(const Segment& seg, double sign, double precision
   while (!queue.empty()) {
     const Cell cell = queue.top();
     if (cell.lower >= out.attained - precision) break;  // every cell left is within precision
+    if (cell.lower >= good_enough) break;               // every value is proven above what matters
     if (evaluated >= budget) break;
     queue.pop();
     const double mid = 0.5 * (cell.a + cell.b);

@@ -15,6 +15,7 @@
 // k(s) >= k(c) - h L there: a lower bound that bisection tightens.
 
 #include <cstddef>
+#include <limits>
 
 #include "geometry/curves/segment.h"
 
@@ -43,9 +44,11 @@ struct CurvatureBound {
 /// turning left along the segment's parameter); sign = -1 for travel against
 /// the parameter. Lines: 0; circle arcs: exact; ellipse arcs: the analytic
 /// extremes of their curvature; other families: the interval bound above,
-/// refined until attained - least <= precision (> 0) or `budget` intervals
-/// have been evaluated (then `least` is the weaker bound reached).
+/// refined until attained - least <= precision (> 0), or least >= good_enough
+/// (the caller needs no more: every value is proven at least that), or
+/// `budget` intervals have been evaluated (then `least` is the weaker bound).
 CurvatureBound least_curvature(const Segment& segment, double sign, double precision,
+                               double good_enough = std::numeric_limits<double>::infinity(),
                                std::size_t budget = 200000);
 
 }  // namespace fabmesh

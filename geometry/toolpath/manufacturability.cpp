@@ -27,7 +27,7 @@ void check_hole_width(const CutCurve& loop, std::size_t index, const BoundaryInd
   for (int k = 0; k < kDirections; ++k) {
     const double angle = M_PI * k / kDirections;
     const Vec2 u(std::cos(angle), std::sin(angle));
-    double lo = INFINITY, hi = -INFINITY;
+    double lo = INFINITY, hi = -std::numeric_limits<double>::infinity();
     for (const Vec2& p : pts) lo = std::min(lo, p.dot(u)), hi = std::max(hi, p.dot(u));
     // The exact curve lies within `deviation` of its samples: its width is at most this.
     const double width = hi - lo + 2.0 * deviation;
@@ -63,7 +63,8 @@ void check_concave_stretches(const CutCurve& loop, LoopCheck& check, double r) {
   for (std::size_t i = 0; i < curve.size(); ++i) {
     const Segment& seg = curve.segments()[i];
     // Curvature < 0 in the cutting orientation turns away from the tool (which cuts on the right).
-    const CurvatureBound b = least_curvature(seg, sign, 0.1 * kRelativeSlack / r);
+    // Concave radii beyond 1000 tool radii need no precise value: stop once they are proven.
+    const CurvatureBound b = least_curvature(seg, sign, 0.1 * kRelativeSlack / r, -1e-3 / r);
     if (!(b.least < 0.0)) continue;
     const double radius = -1.0 / b.least;  // proven: every concave radius of this segment is >= this
     if (radius < check.min_concave_radius) {

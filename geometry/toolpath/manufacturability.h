@@ -37,7 +37,8 @@ struct LoopCorner {
 struct LoopCheck {
   std::string label;
   /// Proven lower bound of the radius of curvature over the loop's concave
-  /// stretches (curving away from the tool); infinity when there are none.
+  /// stretches (curving away from the tool), to 6 digits when below 1000
+  /// tool radii (else a bound at least that); infinity when there are none.
   double min_concave_radius = std::numeric_limits<double>::infinity();
   std::size_t min_segment = 0;  ///< where the smallest radius was found
   Vec2 min_at{0.0, 0.0};

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "geometry/core/errors.h"
 #include "io/mesh/atomic_file.h"
@@ -61,7 +62,7 @@ std::vector<PathPiece> sub_path(const std::vector<PathPiece>& pieces, double a, 
 }
 
 struct Bounds {
-  Vec2 lo = Vec2::Constant(INFINITY), hi = Vec2::Constant(-INFINITY);
+  Vec2 lo = Vec2::Constant(INFINITY), hi = Vec2::Constant(-std::numeric_limits<double>::infinity());
   void add(const Vec2& p) { lo = lo.cwiseMin(p), hi = hi.cwiseMax(p); }
   void add(const PathPiece& p) {
     for (const Vec2& q : piece_polyline(p, 1e-3 * (1.0 + piece_radius(p)))) add(q);

@@ -40,52 +40,64 @@ struct Findings {
   std::vector<double> dogbone_reach;  // per dog-bone: | distance of its tip from the corner point - r |
 };
 
-Findings measure_program(const ExampleRegion& region, const Toolpath& tp, const Trace& trace, double mm) {
-  const CncOptions& o = tp.options;
-  const double r = 0.5 * o.tool_diameter * mm, tol = o.tolerance * mm;
-  const double depth = (o.depth + o.breakthrough) * mm, tab_z = tp.tab_z * mm, safe = o.safe_z * mm;
-  const double ztol = 0.01;  // mm: z levels as the program's rounding leaves them
-  Findings f;
-  f.unknown = trace.unknown;
-
-  // The exact loops (in mm).
-  std::vector<std::string> labels{"outline"};
-  for (const RegionHole& h : region.holes) labels.push_back(h.label);
-  auto scaled = [&](const CompositeCurve& c) {
-    if (mm == 1.0) return c;
-    std::vector<Segment> segs;
-    for (const Segment& s : c.segments()) {
-      if (s.kind() == SegmentKind::EllipseArc) {
-        EllipseArcParams e = *s.ellipse();
-        e.center *= mm, e.a *= mm, e.b *= mm;
-        segs.push_back(Segment::ellipse_arc(e));
-      } else {
-        std::array<Vec2, 4> p = s.control_points();
-        for (Vec2& q : p) q *= mm;
-        segs.push_back(s.with_points(p));
-      }
-    }
-    return CompositeCurve(segs, c.closed());
-  };
-  std::vector<CompositeCurve> curves{scaled(region.outline)};
-  for (const RegionHole& h : region.holes) curves.push_back(scaled(h.curve));
+// The program's numbers in millimetres, and the exact loops scaled to millimetres.
+struct Setup {
+  double r = 0, tol = 0, depth = 0, tab_z = 0, safe = 0;
+  double ztol = 0.01;  // mm: z levels as the program's rounding leaves them
+  std::vector<std::string> labels;
+  std::vector<CompositeCurve> curves;
   std::vector<CurveDistance> exact;
-  for (const CompositeCurve& c : curves) exact.emplace_back(c, 0.5);
+  std::vector<std::vector<const TraceMotion*>> loops;  // motions in each loop's pass sections
+};
 
-  // Group motions by the loop whose pass comments precede them.
-  std::vector<std::vector<const TraceMotion*>> loops(labels.size());
-  for (const TraceMotion& m : trace.motions) {
-    for (std::size_t l = 0; l < labels.size(); ++l) {
-      std::string label = labels[l];
-      for (char& c : label) c = c == '(' ? '[' : c == ')' ? ']' : c;
-      if (m.section.rfind(label + ": pass", 0) == 0) loops[l].push_back(&m);
+CompositeCurve scaled(const CompositeCurve& c, double mm) {
+  if (mm == 1.0) return c;
+  std::vector<Segment> segs;
+  for (const Segment& s : c.segments()) {
+    if (s.kind() == SegmentKind::EllipseArc) {
+      EllipseArcParams e = *s.ellipse();
+      e.center *= mm, e.a *= mm, e.b *= mm;
+      segs.push_back(Segment::ellipse_arc(e));
+    } else {
+      std::array<Vec2, 4> p = s.control_points();
+      for (Vec2& q : p) q *= mm;
+      segs.push_back(s.with_points(p));
     }
   }
+  return CompositeCurve(segs, c.closed());
+}
 
+Setup setup(const ExampleRegion& region, const Toolpath& tp, const Trace& trace, double mm) {
+  const CncOptions& o = tp.options;
+  Setup st;
+  st.r = 0.5 * o.tool_diameter * mm;
+  st.tol = o.tolerance * mm;
+  st.depth = (o.depth + o.breakthrough) * mm;
+  st.tab_z = tp.tab_z * mm;
+  st.safe = o.safe_z * mm;
+  st.labels.push_back("outline");
+  st.curves.push_back(scaled(region.outline, mm));
+  for (const RegionHole& h : region.holes)
+    st.labels.push_back(h.label), st.curves.push_back(scaled(h.curve, mm));
+  for (const CompositeCurve& c : st.curves) st.exact.emplace_back(c, 0.5);
+  // Group motions by the loop whose pass comments precede them.
+  st.loops.resize(st.labels.size());
+  for (const TraceMotion& m : trace.motions) {
+    for (std::size_t l = 0; l < st.labels.size(); ++l) {
+      std::string label = st.labels[l];
+      for (char& c : label) c = c == '(' ? '[' : c == ')' ? ']' : c;
+      if (m.section.rfind(label + ": pass", 0) == 0) st.loops[l].push_back(&m);
+    }
+  }
+  return st;
+}
+
+// Rapids only at safe height (or straight up to it), arcs with one radius, the asked feeds.
+void measure_moves(const Setup& st, const CncOptions& o, double mm, const Trace& trace, Findings& f) {
   for (const TraceMotion& m : trace.motions) {
     if (m.motion == "G0") {
-      const bool up = vertical(m) && std::abs(m.end.z() - safe) < ztol && m.end.z() >= m.start.z();
-      const bool level = std::abs(m.start.z() - safe) < ztol && std::abs(m.end.z() - safe) < ztol;
+      const bool up = vertical(m) && std::abs(m.end.z() - st.safe) < st.ztol && m.end.z() >= m.start.z();
+      const bool level = std::abs(m.start.z() - st.safe) < st.ztol && std::abs(m.end.z() - st.safe) < st.ztol;
       f.bad_rapids += !(up || level);
       continue;
     }
@@ -97,26 +109,33 @@ Findings measure_program(const ExampleRegion& region, const Toolpath& tp, const 
     const double want = vertical(m) ? o.plunge * mm : o.feed * mm;
     f.bad_feeds += std::abs(m.feed - want) > 1e-4 * want;  // F is rounded like the coordinates
   }
+}
 
-  for (std::size_t l = 0; l < labels.size(); ++l) {
+// The cutting levels of each loop: the deepest and the largest step between them.
+void measure_levels(const Setup& st, const CncOptions& o, Findings& f) {
+  for (std::size_t l = 0; l < st.labels.size(); ++l) {
     std::set<double> levels;
-    for (const TraceMotion* m : loops[l]) {
+    for (const TraceMotion* m : st.loops[l]) {
       if (!vertical(*m) && m->start.z() < 0 && m->comment.empty()) levels.insert(m->start.z());
     }
     f.deepest.push_back(levels.empty() ? 0.0 : *levels.begin());
     double prev = 0.0, step = 0.0;
     for (auto it = levels.rbegin(); it != levels.rend(); ++it) {
-      if (l == 0 && o.tabs.count > 0 && std::abs(*it - tab_z) < ztol) continue;
+      if (l == 0 && o.tabs.count > 0 && std::abs(*it - st.tab_z) < st.ztol) continue;
       step = std::max(step, prev - *it);
       prev = *it;
     }
     f.largest_step.push_back(step);
   }
+}
 
-  // Distinct XY motions in material (passes repeat the same path).
+// On the distinct moves in material (passes repeat the same path): the exact offset
+// (|distance to the loop's curve - r| <= tol), nothing of the part cut (distance to every
+// loop >= r - tol, the middle in the waste), dog-bones reaching their corner point.
+void measure_paths(const Setup& st, const Toolpath& tp, double mm, Findings& f) {
   std::map<std::string, std::pair<const TraceMotion*, std::size_t>> distinct;
-  for (std::size_t l = 0; l < labels.size(); ++l) {
-    for (const TraceMotion* m : loops[l]) {
+  for (std::size_t l = 0; l < st.labels.size(); ++l) {
+    for (const TraceMotion* m : st.loops[l]) {
       if (!in_material(*m) || vertical(*m)) continue;
       distinct.emplace(
           fmt::format("{:.6f} {:.6f} {:.6f} {:.6f} {} {:.6f} {:.6f} {}", m->start.x(), m->start.y(),
@@ -124,11 +143,10 @@ Findings measure_program(const ExampleRegion& region, const Toolpath& tp, const 
           std::pair{m, l});
     }
   }
+  const double r = st.r, tol = st.tol;
   for (const auto& [key, entry] : distinct) {
     const auto [m, l] = entry;
-    const bool dogbone = m->comment == "dogbone";
-    const bool lead = m->comment == "lead in" || m->comment == "lead out";
-    if (dogbone) {  // X -> D and back: at D the tool's disc reaches the corner point exactly
+    if (m->comment == "dogbone") {  // X -> D and back: at D the tool's disc reaches the corner point exactly
       double reach = INFINITY;
       for (const LoopCheck& c : tp.checks.loops) {
         for (const LoopCorner& k : c.concave_corners) {
@@ -140,58 +158,76 @@ Findings measure_program(const ExampleRegion& region, const Toolpath& tp, const 
       f.dogbone_reach.push_back(reach);
       continue;
     }
-    if (!lead) {
+    if (m->comment != "lead in" && m->comment != "lead out") {
+      const CurveDistance& own = st.exact[l];
       f.offset_margin = std::min(
           f.offset_margin,
           lipschitz_walk(
-              *m, [&](const Vec2& p) { return tol - std::abs(exact[l].nearest(p, 2.0 * r).distance - r); },
-              1e-4, nullptr));
+              *m, [&](const Vec2& p) { return tol - std::abs(own.nearest(p, 2.0 * r).distance - r); }, 1e-4,
+              nullptr));
     }
     f.clearance_margin = std::min(f.clearance_margin, lipschitz_walk(
                                                           *m,
                                                           [&](const Vec2& p) {
                                                             double d = INFINITY;
-                                                            for (const CurveDistance& e : exact)
+                                                            for (const CurveDistance& e : st.exact) {
                                                               d = std::min(d, e.nearest(p, r + 1.0).distance);
+                                                            }
                                                             return d - (r - tol);
                                                           },
                                                           1e-4, nullptr));
     const Vec2 mid = motion_point(*m, 0.5).head<2>();
-    bool waste = !inside_polygon(exact[0].polygon(), mid);
-    for (std::size_t h = 1; h < exact.size(); ++h) waste = waste || inside_polygon(exact[h].polygon(), mid);
+    bool waste = !inside_polygon(st.exact[0].polygon(), mid);
+    for (std::size_t h = 1; h < st.exact.size(); ++h)
+      waste = waste || inside_polygon(st.exact[h].polygon(), mid);
     f.outside_waste += !waste;
   }
+}
 
-  // Cut through: each point of a loop's exact curve within r + tol of a full-depth move (the outline's,
-  // under a tab, of a move at the tab height instead).
-  for (std::size_t l = 0; l < labels.size(); ++l) {
+// Cut through: each point of a loop's exact curve within r + tol of a full-depth move (the
+// outline's, under a tab, of a move at the tab height instead).
+void measure_coverage(const Setup& st, Findings& f) {
+  for (std::size_t l = 0; l < st.labels.size(); ++l) {
     std::vector<const TraceMotion*> full, raised;
-    for (const TraceMotion* m : loops[l]) {
+    for (const TraceMotion* m : st.loops[l]) {
       if (vertical(*m) || m->motion == "G0") continue;
-      if (std::abs(m->start.z() + depth) < ztol) full.push_back(m);
-      if (std::abs(m->start.z() - tab_z) < ztol && m->comment.empty()) raised.push_back(m);
+      if (std::abs(m->start.z() + st.depth) < st.ztol) full.push_back(m);
+      if (std::abs(m->start.z() - st.tab_z) < st.ztol && m->comment.empty()) raised.push_back(m);
     }
     auto reach = [&](const std::vector<const TraceMotion*>& set, const Vec2& q) {
       double d = INFINITY;
       for (const TraceMotion* m : set) d = std::min(d, motion_distance(*m, q));
-      return (r + tol) - d;
+      return (st.r + st.tol) - d;
     };
     f.coverage.push_back(lipschitz_walk_curve(
-        curves[l],
+        st.curves[l],
         [&](const Vec2& q) { return l == 0 ? std::max(reach(full, q), reach(raised, q)) : reach(full, q); },
         1e-4, nullptr));
   }
+}
 
-  // Tabs: the raised stretches of the outline, from a tab step up to a tab step down.
+// Tabs: the raised stretches of the outline, from a tab step up to a tab step down.
+void measure_tabs(const Setup& st, const Toolpath& tp, Findings& f) {
   double run = -1.0;
-  for (const TraceMotion* m : loops[0]) {
+  for (const TraceMotion* m : st.loops[0]) {
     if (m->comment == "tab" && m->end.z() > m->start.z()) run = 0.0;
     if (run >= 0.0 && !vertical(*m))
-      run += std::abs(m->start.z() - tab_z) < ztol ? motion_length(*m) : INFINITY;
+      run += std::abs(m->start.z() - st.tab_z) < st.ztol ? motion_length(*m) : INFINITY;
     if (m->comment == "tab" && m->end.z() < m->start.z()) f.tab_stretches.push_back(run), run = -1.0;
   }
   f.tab_passes = static_cast<std::size_t>(
       std::count_if(tp.pass_z.begin(), tp.pass_z.end(), [&](double z) { return z < tp.tab_z - 1e-9; }));
+}
+
+Findings measure_program(const ExampleRegion& region, const Toolpath& tp, const Trace& trace, double mm) {
+  const Setup st = setup(region, tp, trace, mm);
+  Findings f;
+  f.unknown = trace.unknown;
+  measure_moves(st, tp.options, mm, trace, f);
+  measure_levels(st, tp.options, f);
+  measure_paths(st, tp, mm, f);
+  measure_coverage(st, f);
+  measure_tabs(st, tp, f);
   return f;
 }
 
