@@ -200,3 +200,32 @@ TEST_CASE("toolpath: moves start at safe height, plunge at the lead's start and 
   CHECK(tp.deviation <= 0.5 * tp.options.tolerance);
   CHECK(tp.deviation > 0.0);  // the ellipse's offset is a chain of chords
 }
+
+TEST_CASE("toolpath: an outline given clockwise and holes given either way cut the same paths",
+          "[geometry][toolpath]") {
+  const CompositeCurve ccw = rounded_rect(0, 0, 900, 600, 40);
+  const CompositeCurve cw = polygon({Vec2(0, 0), Vec2(0, 600), Vec2(900, 600), Vec2(900, 0)});
+  const CompositeCurve sharp = polygon({Vec2(0, 0), Vec2(900, 0), Vec2(900, 600), Vec2(0, 600)});
+  const CompositeCurve hole = ellipse({450, 300}, 150, 90, 10);
+  const CompositeCurve hole_cw({Segment::ellipse_arc([] {
+                                 EllipseArcParams e;
+                                 e.center = {450, 300};
+                                 e.a = 150;
+                                 e.b = 90;
+                                 e.rotation_deg = 10;
+                                 e.from_deg = 360;
+                                 e.to_deg = 0;
+                                 return e;
+                               }())},
+                               true);
+  CncOptions o = base();
+  const Toolpath a = plan_toolpath(sharp, {{hole, "holes[0] (ellipse)"}}, o);
+  const Toolpath b = plan_toolpath(cw, {{hole_cw, "holes[0] (ellipse)"}}, o);
+  for (std::size_t l = 0; l < 2; ++l) {
+    CHECK(a.loops[l].length == Approx(b.loops[l].length).epsilon(1e-9));
+    CHECK(signed_area2(a.loops[l].pieces) == Approx(signed_area2(b.loops[l].pieces)).epsilon(1e-6));
+  }
+  // And the rounded outline's path is its offset: corner arcs of 40 + 6.
+  const Toolpath c = plan_toolpath(ccw, {}, o);
+  CHECK(c.loops.back().length == Approx(2 * (820 + 520) + 2 * M_PI * 46));
+}

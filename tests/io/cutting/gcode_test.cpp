@@ -41,7 +41,7 @@ std::vector<std::pair<char, std::string>> words(const std::string& program) {
 }  // namespace
 
 TEST_CASE(
-    "gcode: header, modal setup, spindle and end; numbers without trailing zeros or -0; same bytes twice",
+    "gcode: header, modal setup, spindle and end, numbers without trailing zeros or -0, same bytes twice",
     "[io][cutting][gcode]") {
   const Toolpath tp = slab_with_round_sink();
   GcodeOptions g;
