@@ -1,0 +1,75 @@
+#pragma once
+// What a CNC router cut of a countertop needs to know: the tool, the depths,
+// the feeds, the lead-in, the holding tabs and how concave corners are
+// treated. All lengths in model units (the design's), feeds in model units
+// per minute.
+
+#include <cstddef>
+#include <optional>
+
+namespace fabmesh {
+
+/// Travel direction around each loop, for a spindle turning clockwise seen
+/// from above (M3). Climb: the part stays on the tool's right (the outline
+/// runs clockwise, holes counter-clockwise); conventional: the part stays on
+/// its left (outline counter-clockwise, holes clockwise).
+enum class CutDirection { Climb, Conventional };
+
+/// What happens at a concave corner (a G0 joint the tool cannot reach).
+/// None: such a corner is refused (GeometryError). Dogbone: the tool runs
+/// into the corner along the bisector until its disc touches the corner
+/// point and back, so the part's sharp corner is reached (the part loses a
+/// circular notch of the tool radius there).
+enum class CornerRelief { None, Dogbone };
+
+const char* to_string(CutDirection d);
+const char* to_string(CornerRelief r);
+
+/// Holding tabs on the outline: bridges of material left at the bottom of
+/// the cut so the part does not move when it comes free.
+struct TabOptions {
+  std::size_t count = 4;  ///< tabs on the outline (0: none)
+  /// Width of the bridge, measured along the tool-centre path: the tool rises
+  /// over width + tool diameter of its path (its disc still cuts a radius
+  /// before and after). > 0.
+  double width = 10.0;
+  double height = 3.0;  ///< the bridge's height above the bottom of the slab; in (0, depth)
+  /// Tabs sit where the tool-centre path's radius of curvature is at least
+  /// this (straight or gently curved stretches), > 0; unset: 20 tool diameters.
+  std::optional<double> min_radius;
+};
+
+/// The cut. Defaults are a 12 mm straight router bit through a 30 mm slab.
+struct CncOptions {
+  double tool_diameter = 12.0;  ///< > 0
+  double depth = 30.0;          ///< depth of cut, > 0: the slab thickness (the caller's default)
+  double breakthrough = 0.0;    ///< extra depth below the slab (into the spoilboard), >= 0
+  double step_down = 10.0;      ///< largest depth of one pass, > 0
+  double feed = 3000.0;         ///< cutting feed, model units per minute, > 0
+  double plunge = 600.0;        ///< plunge feed (vertical moves in material), > 0
+  double spindle = 18000.0;     ///< spindle speed, revolutions per minute, > 0
+  double safe_z = 10.0;         ///< height of rapid moves above the slab's top (z = 0), > 0
+  double lead_in = 8.0;         ///< length of the arc lead onto each loop from the waste side, >= 0
+  TabOptions tabs;
+  CutDirection direction = CutDirection::Climb;
+  CornerRelief relief = CornerRelief::None;
+  /// Largest distance between the tool-centre path and the exact offset of
+  /// the exact curves (chords of non-circular stretches), model units, > 0.
+  double tolerance = 0.01;
+  /// Narrowest web of material allowed between two loops (a hole and the
+  /// outline, two holes), >= 0 (0: no check); unset: one tool diameter.
+  std::optional<double> min_web;
+  std::size_t max_points = 5000000;  ///< budget of path points over all loops
+};
+
+/// Throws RangeError naming the field ("cnc.tool_diameter", "cnc.tabs.height", ...)
+/// and its value when an option is out of range (NaN and infinities included).
+void validate_cnc_options(const CncOptions& options);
+
+/// The tabs' minimum radius of curvature with its default resolved.
+double tab_min_radius(const CncOptions& options);
+
+/// The minimum web with its default resolved.
+double min_web(const CncOptions& options);
+
+}  // namespace fabmesh

@@ -1,0 +1,219 @@
+#include "geometry/toolpath/toolpath.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "geometry/core/errors.h"
+#include "geometry/toolpath/clearance.h"
+#include "geometry/toolpath/tabs.h"
+
+namespace fabmesh {
+namespace {
+
+std::string at(const Vec2& p) { return fmt::format("({:.6g}, {:.6g})", p.x(), p.y()); }
+
+// Tolerance budget (header): chains t/2, boundary samples t/10, arc chords t/20.
+struct Budget {
+  double chain, boundary, sagitta;
+};
+Budget budget(double t) { return {0.5 * t, 0.1 * t, 0.05 * t}; }
+
+ToolMove move_along(const PathPiece& p, double z, MoveKind kind, std::size_t loop) {
+  ToolMove m;
+  m.kind = kind;
+  m.shape = p.kind;
+  m.to = Vec3(p.to.x(), p.to.y(), z);
+  m.center = p.center;
+  m.sweep = p.sweep;
+  m.role = p.role;
+  m.loop = loop;
+  return m;
+}
+
+ToolMove move_to(MoveKind kind, const Vec2& xy, double z, std::size_t loop) {
+  ToolMove m;
+  m.kind = kind;
+  m.to = Vec3(xy.x(), xy.y(), z);
+  m.loop = loop;
+  return m;
+}
+
+// The least distance from `path` to the sampled part boundary, minus the
+// sample and chord allowances: a proven lower bound on the exact clearance.
+double proven_clearance(const std::vector<PathPiece>& path, const BoundaryIndex& index, double r,
+                        double deviation, const Budget& b, Clearance* found) {
+  *found = path_clearance(path, index, r, b.sagitta);
+  return std::min(found->distance, r) - deviation - b.sagitta;
+}
+
+void require_clearance(const LoopPath& lp, const std::vector<CutCurve>& loops, const BoundaryIndex& index,
+                       const SampledBoundary& sb, const CncOptions& o, const Budget& b, double* clearance) {
+  const double r = 0.5 * o.tool_diameter;
+  Clearance c;
+  const double proven = proven_clearance(lp.pieces, index, r, sb.deviation, b, &c);
+  *clearance = std::min(*clearance, proven);
+  if (proven >= r - o.tolerance) return;
+  const BoundaryEdge& e = index.edges()[c.edge];
+  const CutCurve& other = loops[e.loop];
+  throw GeometryError(lp.label,
+                      fmt::format("{}: the tool of diameter {} does not fit near {}: its centre comes "
+                                  "within {:.6g} of {} {}, less than the tool radius {} (a passage "
+                                  "narrower than the tool)",
+                                  lp.label, o.tool_diameter, at(c.at), c.distance, other.label,
+                                  segment_name(*other.curve, e.segment), r));
+}
+
+// The first lead arc (radius 2 lead_in / pi, then halved twice) that keeps clear of the part.
+std::optional<PathPiece> choose_lead(const LoopPath& lp, const BoundaryIndex& index,
+                                     const SampledBoundary& sb, const CncOptions& o, const Budget& b,
+                                     double* clearance) {
+  const double r = 0.5 * o.tool_diameter;
+  double radius = 2.0 * o.lead_in / M_PI;
+  for (int attempt = 0; attempt < 3 && radius > 0.0; ++attempt, radius *= 0.5) {
+    const PathPiece lead = lead_arc(lp, o.direction, radius);
+    Clearance c;
+    const double proven = proven_clearance({lead}, index, r, sb.deviation, b, &c);
+    if (proven >= r - o.tolerance) {
+      *clearance = std::min(*clearance, proven);
+      return lead;
+    }
+  }
+  return std::nullopt;
+}
+
+std::vector<double> pass_depths(const CncOptions& o) {
+  const double total = o.depth + o.breakthrough;
+  const int n = std::max(1, static_cast<int>(std::ceil(total / o.step_down - 1e-9)));
+  std::vector<double> z;
+  for (int k = 1; k <= n; ++k) z.push_back(-total * k / n);
+  return z;
+}
+
+// One pass around a loop at depth z, rising to tab_z over the tabs when `tabs`.
+void cut_pass(const LoopPath& lp, std::size_t loop, double z, bool tabs, double tab_z,
+              std::vector<ToolMove>& moves) {
+  std::vector<double> marks;  // tab boundaries, increasing
+  if (tabs) {
+    for (const auto& [a, bnd] : lp.tabs) marks.insert(marks.end(), {a, bnd});
+  }
+  auto on_tab = [&](double u) {
+    for (const auto& [a, bnd] : lp.tabs) {
+      if (tabs && u > a && u < bnd) return true;
+    }
+    return false;
+  };
+  bool raised = false;
+  double u0 = 0.0;
+  for (const PathPiece& whole : lp.pieces) {
+    const double len = piece_length(whole);
+    PathPiece rest = whole;
+    double done = 0.0;  // of `whole`
+    std::vector<double> cuts;
+    for (double m : marks) {
+      if (m > u0 + done && m < u0 + len) cuts.push_back(m - u0);
+    }
+    cuts.push_back(len);
+    for (double cut : cuts) {
+      PathPiece part = rest;
+      if (cut < len) {
+        auto halves = split_piece(rest, cut - done);
+        part = halves.first;
+        rest = halves.second;
+      }
+      const bool want = on_tab(u0 + 0.5 * (done + cut));
+      if (want != raised) {
+        moves.push_back(
+            move_to(want ? MoveKind::TabUp : MoveKind::TabDown, part.from, want ? tab_z : z, loop));
+        raised = want;
+      }
+      moves.push_back(move_along(part, raised ? tab_z : z, MoveKind::Cut, loop));
+      done = cut;
+    }
+    u0 += len;
+  }
+  if (raised) moves.push_back(move_to(MoveKind::TabDown, lp.pieces.front().from, z, loop));
+}
+
+void append_loop_moves(Toolpath& tp, std::size_t index) {
+  const LoopPath& lp = tp.loops[index];
+  const CncOptions& o = tp.options;
+  const Vec2 start = lp.lead ? lp.lead->from : lp.pieces.front().from;
+  tp.moves.push_back(move_to(MoveKind::Rapid, start, o.safe_z, index));
+  const bool has_tabs = lp.outer && !lp.tabs.empty();
+  for (double z : tp.pass_z) {
+    tp.moves.push_back(move_to(MoveKind::Plunge, start, z, index));
+    if (lp.lead) tp.moves.push_back(move_along(*lp.lead, z, MoveKind::LeadIn, index));
+    cut_pass(lp, index, z, has_tabs && z < tp.tab_z - 1e-9 * o.depth, tp.tab_z, tp.moves);
+    if (lp.lead) tp.moves.push_back(move_along(reversed(*lp.lead), z, MoveKind::LeadOut, index));
+  }
+  tp.moves.push_back(move_to(MoveKind::Retract, start, o.safe_z, index));
+}
+
+}  // namespace
+
+const char* to_string(MoveKind kind) {
+  switch (kind) {
+    case MoveKind::Rapid:
+      return "rapid";
+    case MoveKind::Plunge:
+      return "plunge";
+    case MoveKind::LeadIn:
+      return "lead-in";
+    case MoveKind::Cut:
+      return "cut";
+    case MoveKind::LeadOut:
+      return "lead-out";
+    case MoveKind::TabUp:
+      return "tab-up";
+    case MoveKind::TabDown:
+      return "tab-down";
+    case MoveKind::Retract:
+      return "retract";
+  }
+  return "rapid";
+}
+
+Toolpath plan_toolpath(const CompositeCurve& outline, const std::vector<RegionHole>& holes,
+                       const CncOptions& o) {
+  validate_cnc_options(o);
+  RegionOptions ro;
+  ro.tolerance = o.tolerance;
+  ro.max_points = o.max_points;
+  const Region2 region = build_region(outline, holes, ro);
+  std::vector<CutCurve> loops{{&outline, "outline", true, region.reversed[0]}};
+  for (std::size_t i = 0; i < holes.size(); ++i) {
+    loops.push_back({&holes[i].curve, holes[i].label, false, region.reversed[i + 1]});
+  }
+  const double r = 0.5 * o.tool_diameter;
+  const Budget b = budget(o.tolerance);
+  const SampledBoundary sb = sample_boundary(loops, b.boundary, o.max_points);
+  const BoundaryIndex index(sb.edges, r);
+
+  Toolpath tp;
+  tp.options = o;
+  tp.checks = check_manufacturability(loops, index, sb.deviation, o);
+  LoopPathOptions lo;
+  lo.radius = r;
+  lo.chain_tolerance = b.chain;
+  lo.direction = o.direction;
+  lo.gentle_radius = tab_min_radius(o);
+  lo.max_points = o.max_points;
+  tp.clearance = r;
+  for (std::size_t k = 1; k <= loops.size(); ++k) {
+    const std::size_t l = k % loops.size();  // holes first, the outline (0) last
+    LoopPath lp = build_loop_path(loops[l], tp.checks.loops[l], lo);
+    require_clearance(lp, loops, index, sb, o, b, &tp.clearance);
+    if (o.lead_in > 0.0) lp.lead = choose_lead(lp, index, sb, o, b, &tp.clearance);
+    if (lp.outer) lp.tabs = place_tabs(lp, o);
+    tp.deviation = std::max(tp.deviation, lp.deviation);
+    tp.loops.push_back(std::move(lp));
+  }
+  tp.pass_z = pass_depths(o);
+  tp.tab_z = -(o.depth - o.tabs.height);
+  for (std::size_t i = 0; i < tp.loops.size(); ++i) append_loop_moves(tp, i);
+  return tp;
+}
+
+}  // namespace fabmesh

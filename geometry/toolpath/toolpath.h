@@ -1,0 +1,76 @@
+#pragma once
+// The router's whole job for a countertop: the tool-centre path around every
+// hole and then the outline, in depth passes, with lead-ins and holding
+// tabs, as a list of 3D moves. Coordinates: the design's x, y; z = 0 on the
+// slab's top face, negative into the material.
+
+#include <cstddef>
+#include <limits>
+#include <vector>
+
+#include "geometry/section/region.h"
+#include "geometry/toolpath/cnc_options.h"
+#include "geometry/toolpath/loop_path.h"
+#include "geometry/toolpath/manufacturability.h"
+
+namespace fabmesh {
+
+enum class MoveKind {
+  Rapid,    ///< G0 at safe height
+  Plunge,   ///< straight down at the plunge feed (in the waste, at the lead's start)
+  LeadIn,   ///< the lead arc onto the loop, at the cutting feed
+  Cut,      ///< along the loop at the cutting feed
+  LeadOut,  ///< the lead arc run backwards off the loop
+  TabUp,    ///< straight up onto a tab (plunge feed)
+  TabDown,  ///< straight down after a tab (plunge feed)
+  Retract,  ///< G0 up to safe height
+};
+
+const char* to_string(MoveKind kind);
+
+/// One move from the previous position to `to`. Arcs (shape Arc) turn about
+/// `center` by `sweep` radians in the plane z = to.z() (positive:
+/// counter-clockwise seen from above, G3); their start is the previous position.
+struct ToolMove {
+  MoveKind kind = MoveKind::Rapid;
+  PieceKind shape = PieceKind::Line;
+  Vec3 to{0.0, 0.0, 0.0};
+  Vec2 center{0.0, 0.0};
+  double sweep = 0.0;
+  PieceRole role = PieceRole::Offset;  ///< Cut moves: what the piece is (offset, corner, dog-bone)
+  std::size_t loop = 0;                ///< index into Toolpath::loops
+};
+
+struct Toolpath {
+  CncOptions options;
+  ManufacturabilityReport checks;
+  std::vector<LoopPath> loops;  ///< cutting order: the holes as given, then the outline
+  std::vector<ToolMove> moves;  ///< the first is a Rapid at safe_z; the program starts by rising to safe_z
+  std::vector<double> pass_z;   ///< z of each depth pass, descending to -(depth + breakthrough)
+  double tab_z = 0.0;           ///< z over the tabs: -(depth - tabs.height)
+  /// Proven bound: the tool-centre path (chords of chains, exact lines and
+  /// arcs) vs the exact offset of the exact curves, model units.
+  double deviation = 0.0;
+  /// Proven lower bound of the distance between the tool-centre path
+  /// (dog-bones excepted) and the exact part boundary: the tool cuts into the
+  /// part by at most tool radius - clearance (<= options.tolerance).
+  double clearance = 0.0;
+};
+
+/// Plans the cut of the region bounded by `outline` and `holes` (as
+/// build_region takes them: closed, simple, holes inside and disjoint).
+/// Order of work: options (RangeError naming the field), the region
+/// (build_region's GeometryError), check_manufacturability (GeometryError
+/// naming loop, segment, point, radius or gap), the loop paths, their
+/// clearance from the part (GeometryError where the tool cannot pass, e.g.
+/// a notch narrower than the tool), tabs on the outline (GeometryError when
+/// they find no room). The lead arc has radius 2 lead_in / pi (a quarter
+/// circle of length lead_in); where it would cut into the part it is halved,
+/// twice, then left out (the plunge then lands on the path).
+/// Tolerance budget (cnc.tolerance = t): chords of chains t/2, boundary
+/// samples for the checks t/10, arcs as chords in the clearance check t/20.
+/// \throw RangeError, GeometryError, BudgetError
+Toolpath plan_toolpath(const CompositeCurve& outline, const std::vector<RegionHole>& holes,
+                       const CncOptions& options);
+
+}  // namespace fabmesh

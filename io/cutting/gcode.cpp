@@ -1,0 +1,231 @@
+#include "io/cutting/gcode.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "geometry/core/errors.h"
+#include "io/file.h"
+
+namespace fabmesh {
+namespace {
+
+// Comments may not hold parentheses (RS-274) and stay printable ASCII.
+std::string comment_text(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    if (c == '(') {
+      out += '[';
+    } else if (c == ')') {
+      out += ']';
+    } else if (c >= 32 && c < 127) {
+      out += c;
+    }
+  }
+  return out;
+}
+
+class Writer {
+ public:
+  Writer(double scale, int decimals) : scale_(scale), decimals_(decimals) {}
+
+  // A number in program units, fixed decimals, no trailing zeros, no "-0".
+  std::string num(double model_value) const { return plain(model_value * scale_); }
+  std::string plain(double v) const {
+    std::string s = fmt::format("{:.{}f}", v, decimals_);
+    if (s.find('.') != std::string::npos) {
+      while (s.back() == '0') s.pop_back();
+      if (s.back() == '.') s.pop_back();
+    }
+    if (s == "-0") s = "0";
+    return s;
+  }
+  // The value the controller will read back, in model units.
+  double rounded(double model_value) const { return std::stod(num(model_value)) / scale_; }
+  double resolution() const { return std::pow(10.0, -decimals_) / scale_; }
+
+  std::string text;
+  void line(const std::string& s) {
+    text += s;
+    text += '\n';
+  }
+
+ private:
+  double scale_;
+  int decimals_;
+};
+
+struct State {
+  Vec3 at{0.0, 0.0, 0.0};  // rounded position, model units
+  bool known = false;
+  std::string motion;  // G0, G1, G2, G3
+  double feed = -1.0;
+};
+
+const char* note(const ToolMove& m) {
+  switch (m.kind) {
+    case MoveKind::LeadIn:
+      return " (lead in)";
+    case MoveKind::LeadOut:
+      return " (lead out)";
+    case MoveKind::TabUp:
+    case MoveKind::TabDown:
+      return " (tab)";
+    default:
+      return m.role == PieceRole::Dogbone ? " (dogbone)" : "";
+  }
+}
+
+class Encoder {
+ public:
+  Encoder(const Toolpath& path, double scale, int decimals) : path_(path), w_(scale, decimals) {}
+
+  std::string run(const GcodeOptions& o);
+
+ private:
+  double feed_of(const ToolMove& m) const {
+    switch (m.kind) {
+      case MoveKind::Plunge:
+      case MoveKind::TabUp:
+      case MoveKind::TabDown:
+        return path_.options.plunge;
+      default:
+        return path_.options.feed;
+    }
+  }
+
+  // "G1 X.. Y.. Z.. F.." with the words that change; nothing when no word changes.
+  void linear(const ToolMove& m, const Vec3& to) {
+    const bool rapid = m.kind == MoveKind::Rapid || m.kind == MoveKind::Retract;
+    const Vec3 r(w_.rounded(to.x()), w_.rounded(to.y()), w_.rounded(to.z()));
+    std::string words;
+    const char* axes = "XYZ";
+    for (int k = 0; k < 3; ++k) {
+      if (!s_.known || r[k] != s_.at[k]) words += fmt::format(" {}{}", axes[k], w_.num(to[k]));
+    }
+    if (words.empty()) return;
+    emit(rapid ? "G0" : "G1", words, rapid ? -1.0 : feed_of(m), note(m));
+    s_.at = r;
+    s_.known = true;
+  }
+
+  void arc(const ToolMove& m) {
+    const Vec2 start(s_.at.x(), s_.at.y());
+    const double radius = (start - m.center).norm();
+    const int pieces = std::max(1, static_cast<int>(std::ceil(std::abs(m.sweep) / (M_PI + 1e-9))));
+    const double a0 = std::atan2(start.y() - m.center.y(), start.x() - m.center.x());
+    for (int i = 1; i <= pieces; ++i) {
+      const double sweep = m.sweep / pieces;
+      const Vec2 end = i == pieces ? Vec2(m.to.x(), m.to.y())
+                                   : m.center + radius * Vec2(std::cos(a0 + m.sweep * i / pieces),
+                                                              std::sin(a0 + m.sweep * i / pieces));
+      const Vec3 to(end.x(), end.y(), m.to.z());
+      // Flatter than the resolution: a straight move is as exact.
+      if (radius * (1.0 - std::cos(0.5 * sweep)) <= w_.resolution()) {
+        linear(m, to);
+        continue;
+      }
+      const Vec2 from(s_.at.x(), s_.at.y());
+      const Vec2 r_end(w_.rounded(end.x()), w_.rounded(end.y()));
+      if (r_end == from) continue;  // would read as a full circle
+      const std::string words = fmt::format(" X{} Y{} I{} J{}", w_.num(end.x()), w_.num(end.y()),
+                                            w_.num(m.center.x() - from.x()), w_.num(m.center.y() - from.y()));
+      emit(sweep > 0.0 ? "G3" : "G2", words, feed_of(m), note(m));
+      s_.at = Vec3(r_end.x(), r_end.y(), s_.at.z());
+    }
+  }
+
+  void emit(const std::string& motion, const std::string& words, double feed, const char* comment) {
+    std::string line = motion + words;
+    if (feed > 0.0 && feed != s_.feed) {
+      line += " F" + w_.num(feed);
+      s_.feed = feed;
+    }
+    s_.motion = motion;
+    w_.line(line + comment);
+  }
+
+  const Toolpath& path_;
+  Writer w_;
+  State s_;
+};
+
+std::string Encoder::run(const GcodeOptions& o) {
+  const CncOptions& c = path_.options;
+  const std::string u = o.units;
+  const std::string per_min = u + "/min";
+  w_.line(fmt::format("(fabmesh toolpath: {})", comment_text(o.name).substr(0, 120)));
+  w_.line(fmt::format("(tool: end mill, diameter {} {}; the tool-centre path, no G41/G42)",
+                      w_.num(c.tool_diameter), u));
+  w_.line(fmt::format("(units {}; z = 0 on the slab top; depth {} in {} passes)", u,
+                      w_.num(c.depth + c.breakthrough), path_.pass_z.size()));
+  w_.line(fmt::format("(feed {} {}, plunge {} {}, spindle {} rpm clockwise)", w_.num(c.feed), per_min,
+                      w_.num(c.plunge), per_min, w_.plain(c.spindle)));
+  w_.line(fmt::format("(cutting {}; tabs {} x {} wide, {} high; lead-in {})", to_string(c.direction),
+                      c.tabs.count, w_.num(c.tabs.width), w_.num(c.tabs.height), w_.num(c.lead_in)));
+  w_.line(fmt::format("(path within {} {} of the exact offset of the exact curves)",
+                      w_.num(path_.deviation + w_.resolution()), u));
+  w_.line(std::string(u == "in" ? "G20" : "G21") + " G90 G94 G17");
+  w_.line(fmt::format("G0 Z{}", w_.num(c.safe_z)));  // up before the spindle starts
+  w_.line(fmt::format("M3 S{}", w_.plain(c.spindle)));
+  s_.motion = "G0";
+  std::size_t loop = static_cast<std::size_t>(-1);
+  std::size_t pass = 0;
+  for (const ToolMove& m : path_.moves) {
+    if (m.loop != loop) loop = m.loop, pass = 0;
+    if (m.kind == MoveKind::Plunge) {
+      w_.line(fmt::format("({}: pass {} of {} at z {})", comment_text(path_.loops[m.loop].label), ++pass,
+                          path_.pass_z.size(), w_.num(m.to.z())));
+    }
+    if (!s_.known && m.kind == MoveKind::Rapid) {
+      // The first move: at safe height already (the line above), across to the start.
+      w_.line(fmt::format("G0 X{} Y{}", w_.num(m.to.x()), w_.num(m.to.y())));
+      s_.at = Vec3(w_.rounded(m.to.x()), w_.rounded(m.to.y()), w_.rounded(c.safe_z));
+      s_.known = true;
+      continue;
+    }
+    if (m.shape == PieceKind::Arc) {
+      arc(m);
+    } else {
+      linear(m, m.to);
+    }
+  }
+  w_.line("M5");
+  w_.line("M30");
+  return w_.text;
+}
+
+}  // namespace
+
+double millimetres_per_unit(const std::string& units) {
+  if (units == "mm") return 1.0;
+  if (units == "cm") return 10.0;
+  if (units == "m") return 1000.0;
+  if (units == "in") return 25.4;
+  throw InputError(fmt::format("units '{}' is not one of mm, cm, m, in", units));
+}
+
+std::string encode_gcode(const Toolpath& path, const GcodeOptions& o) {
+  if (o.units != "mm" && o.units != "in") {
+    throw InputError(fmt::format("G-code units '{}' is not mm (G21) or in (G20)", o.units));
+  }
+  if (o.decimals < 0 || o.decimals > 9) {
+    throw RangeError("decimals", o.decimals, fmt::format("decimals = {} is outside [0, 9]", o.decimals));
+  }
+  const double scale =
+      millimetres_per_unit(o.model_units) / millimetres_per_unit(o.units);  // model -> program
+  int decimals = o.decimals;
+  if (decimals == 0) {
+    // Rounding moves a point by at most sqrt(2)/2 10^-d program units: keep that <= tolerance / 20.
+    const double allowed = path.options.tolerance / 20.0 * scale;
+    decimals = std::clamp(static_cast<int>(std::ceil(std::log10(std::sqrt(0.5) / allowed))), 3, 6);
+  }
+  return Encoder(path, scale, decimals).run(o);
+}
+
+void write_gcode(const std::string& file, const Toolpath& path, const GcodeOptions& options) {
+  write_file_atomically(file, encode_gcode(path, options));
+}
+
+}  // namespace fabmesh

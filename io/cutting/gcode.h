@@ -1,0 +1,39 @@
+#pragma once
+// RS-274 G-code (as LinuxCNC and GRBL read it; file extension .nc) of a
+// router toolpath: the tool-centre path itself (no controller cutter
+// compensation), absolute coordinates, arcs in the XY plane with centres
+// relative to their start (I, J).
+
+#include <string>
+
+#include "geometry/toolpath/toolpath.h"
+
+namespace fabmesh {
+
+struct GcodeOptions {
+  std::string name = "part";       ///< the design's name, for the header comment
+  std::string model_units = "mm";  ///< units of the toolpath: mm | cm | m | in
+  std::string units = "mm";        ///< units of the program: mm (G21) | in (G20)
+  /// Digits after the decimal point, 0: the fewest (3 to 6) whose rounding
+  /// moves a point by at most cnc.tolerance / 20.
+  int decimals = 0;
+};
+
+/// The program: a header comment (design, tool, units, depths, feeds, the
+/// proven deviation), G21|G20 G90 G94 G17, G0 to safe height, M3 S<spindle>,
+/// then every move of `path` (G0 rapids and retracts, G1 plunges and tab
+/// steps at the plunge feed, G1/G2/G3 cuts at the cutting feed; a comment on
+/// lead-in, lead-out, tab and dog-bone lines and before every pass), M5, M30.
+/// Arcs over 180 degrees are split; an arc whose sagitta is below the
+/// resolution is written as G1. Numbers have fixed decimals with trailing
+/// zeros removed and never read "-0". Deterministic: same path, same bytes.
+/// \throw InputError for unknown units, RangeError for decimals outside [0, 9]
+std::string encode_gcode(const Toolpath& path, const GcodeOptions& options = {});
+
+/// encode_gcode written atomically to `path`. \throw FileError
+void write_gcode(const std::string& file, const Toolpath& path, const GcodeOptions& options = {});
+
+/// Model units -> millimetres (mm 1, cm 10, m 1000, in 25.4). \throw InputError
+double millimetres_per_unit(const std::string& units);
+
+}  // namespace fabmesh

@@ -1,0 +1,231 @@
+// The planned toolpath as data: passes, directions, corner arcs, dog-bones,
+// tabs and leads on shapes built in code.
+
+#include "geometry/toolpath/toolpath.h"
+
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "geometry/core/errors.h"
+#include "tests/geometry/section/region_shapes.h"
+
+using namespace fabmesh;
+using namespace fabmesh::test;
+
+namespace {
+
+const CompositeCurve kSlab = polygon({Vec2(0, 0), Vec2(900, 0), Vec2(900, 600), Vec2(0, 600)});
+
+CncOptions base() {
+  CncOptions o;
+  o.tabs.min_radius = 1000;
+  return o;
+}
+
+// Twice the signed area swept by a closed path (arcs by their exact segment area).
+double signed_area2(const std::vector<PathPiece>& pieces) {
+  double a = 0.0;
+  for (const PathPiece& p : pieces) {
+    a += cross2(p.from, p.to);
+    if (p.kind == PieceKind::Arc) {
+      const double r = piece_radius(p);
+      a += r * r * (p.sweep - std::sin(p.sweep));  // the circular segment between chord and arc
+    }
+  }
+  return a;
+}
+
+}  // namespace
+
+TEST_CASE("toolpath: passes descend in equal steps of at most step_down to depth plus breakthrough",
+          "[geometry][toolpath]") {
+  CncOptions o = base();
+  o.depth = 30;
+  o.step_down = 7;
+  o.breakthrough = 0.5;
+  const Toolpath tp = plan_toolpath(kSlab, {}, o);
+  REQUIRE(tp.pass_z.size() == 5);
+  for (std::size_t k = 0; k < 5; ++k) CHECK(tp.pass_z[k] == Approx(-30.5 * static_cast<double>(k + 1) / 5));
+  CHECK(tp.tab_z == Approx(-27));
+  o.step_down = 10;
+  o.breakthrough = 0;
+  CHECK(plan_toolpath(kSlab, {}, o).pass_z == std::vector<double>{-10, -20, -30});
+}
+
+TEST_CASE("toolpath: climb runs the outline clockwise and holes counter-clockwise, conventional the reverse",
+          "[geometry][toolpath]") {
+  const std::vector<RegionHole> holes{{ellipse({450, 300}, 120, 80, 20), "holes[0] (ellipse)"}};
+  CncOptions o = base();
+  for (CutDirection d : {CutDirection::Climb, CutDirection::Conventional}) {
+    o.direction = d;
+    const Toolpath tp = plan_toolpath(kSlab, holes, o);
+    REQUIRE(tp.loops.size() == 2);
+    CHECK(tp.loops[0].label == "holes[0] (ellipse)");  // holes first
+    CHECK(tp.loops[1].outer);
+    const double sign = d == CutDirection::Climb ? 1.0 : -1.0;
+    CHECK(sign * signed_area2(tp.loops[0].pieces) > 0.0);
+    CHECK(sign * signed_area2(tp.loops[1].pieces) < 0.0);
+    // The outline's path encloses the slab grown by the tool radius with round corners.
+    CHECK(std::abs(signed_area2(tp.loops[1].pieces)) / 2 ==
+          Approx(912.0 * 612 - (4 - M_PI) * 36).epsilon(1e-12));
+  }
+}
+
+TEST_CASE("toolpath: convex corners get quarter arcs of the tool radius about the corner point",
+          "[geometry][toolpath]") {
+  const Toolpath tp = plan_toolpath(kSlab, {}, base());
+  const LoopPath& outline = tp.loops.back();
+  int corners = 0;
+  for (const PathPiece& p : outline.pieces) {
+    if (p.role != PieceRole::Corner) continue;
+    ++corners;
+    CHECK(piece_radius(p) == Approx(6));
+    CHECK(std::abs(p.sweep) == Approx(M_PI / 2));
+    CHECK(((p.center - Vec2(0, 0)).norm() < 1e-9 || (p.center - Vec2(900, 0)).norm() < 1e-9 ||
+           (p.center - Vec2(900, 600)).norm() < 1e-9 || (p.center - Vec2(0, 600)).norm() < 1e-9));
+  }
+  CHECK(corners == 4);
+  CHECK(outline.length == Approx(2 * (900 + 600) + 2 * M_PI * 6));
+  CHECK(tp.deviation == 0.0);  // lines and arcs only: exact
+  CHECK(tp.clearance >= 6 - tp.options.tolerance);
+}
+
+TEST_CASE("toolpath: dog-bones run from where the offsets meet to where the tool's disc touches the corner",
+          "[geometry][toolpath]") {
+  // A square cut-out with sharp corners: every corner is concave for the tool inside it.
+  const std::vector<RegionHole> holes{
+      {polygon({Vec2(300, 200), Vec2(600, 200), Vec2(600, 400), Vec2(300, 400)}), "holes[0] (outline)"}};
+  CncOptions o = base();
+  REQUIRE_THROWS_AS(plan_toolpath(kSlab, holes, o), GeometryError);
+  o.relief = CornerRelief::Dogbone;
+  const Toolpath tp = plan_toolpath(kSlab, holes, o);
+  const LoopPath& hole = tp.loops.front();
+  const std::vector<Vec2> corners{Vec2(300, 200), Vec2(600, 200), Vec2(600, 400), Vec2(300, 400)};
+  int bones = 0;
+  for (std::size_t i = 0; i + 1 < hole.pieces.size(); ++i) {
+    const PathPiece& in = hole.pieces[i];
+    if (in.role != PieceRole::Dogbone) continue;
+    const PathPiece& out = hole.pieces[++i];
+    REQUIRE(out.role == PieceRole::Dogbone);
+    CHECK(out.to.isApprox(in.from));  // and back
+    double reach = INFINITY, start = INFINITY;
+    for (const Vec2& c : corners)
+      reach = std::min(reach, (in.to - c).norm()), start = std::min(start, (in.from - c).norm());
+    CHECK(reach == Approx(6));
+    CHECK(start == Approx(6 * std::sqrt(2.0)));  // the offsets of both sides meet on the bisector
+    ++bones;
+  }
+  CHECK(bones == 4);
+  CHECK(tp.checks.loops[1].concave_corners.size() == 4);
+}
+
+TEST_CASE("toolpath: tabs lie on straight stretches, width + tool diameter long, clear of the start",
+          "[geometry][toolpath][tabs]") {
+  CncOptions o = base();
+  o.tabs.count = 6;
+  const Toolpath tp = plan_toolpath(kSlab, {}, o);
+  const LoopPath& outline = tp.loops.back();
+  REQUIRE(outline.tabs.size() == 6);
+  double prev = 0.0;
+  for (const auto& [a, b] : outline.tabs) {
+    CHECK(b - a == Approx(o.tabs.width + o.tool_diameter));
+    CHECK(a >= prev);
+    CHECK(a >= o.tool_diameter);
+    CHECK(b <= outline.length - o.tool_diameter);
+    prev = b + o.tool_diameter;
+    // On a straight offset piece: both ends and the middle lie on one line piece.
+    double u = 0.0;
+    for (const PathPiece& p : outline.pieces) {
+      const double len = piece_length(p);
+      if (u <= a && b <= u + len) CHECK(p.kind == PieceKind::Line);
+      CHECK(!(u < b && a < u + len && p.role == PieceRole::Corner));
+      u += len;
+    }
+  }
+  o.tabs.count = 200;  // 200 * 34 mm does not fit on 3 m of edges
+  try {
+    plan_toolpath(kSlab, {}, o);
+    FAIL("accepted");
+  } catch (const GeometryError& e) {
+    CHECK(e.where() == "outline");
+    CHECK_THAT(std::string(e.what()), Catch::Contains("no room for tab"));
+  }
+}
+
+TEST_CASE(
+    "toolpath: the lead arc arrives tangent at the start from the waste side, a quarter circle of lead_in",
+    "[geometry][toolpath]") {
+  const std::vector<RegionHole> holes{{rounded_rect(200, 150, 700, 450, 30), "holes[0] (rounded_rect)"}};
+  for (CutDirection d : {CutDirection::Climb, CutDirection::Conventional}) {
+    CncOptions o = base();
+    o.direction = d;
+    const Toolpath tp = plan_toolpath(kSlab, holes, o);
+    for (const LoopPath& lp : tp.loops) {
+      REQUIRE(lp.lead);
+      const PathPiece& lead = *lp.lead;
+      CHECK(lead.to == lp.pieces.front().from);
+      CHECK(piece_length(lead) == Approx(o.lead_in));
+      CHECK(piece_tangent(lead, piece_length(lead)).isApprox(piece_tangent(lp.pieces.front(), 0.0), 1e-12));
+      // The plunge point lies farther from the part than the path: outside the slab, inside the hole.
+      const Vec2 p = lead.from;
+      if (lp.outer) {
+        CHECK((p.x() < -6 || p.x() > 906 || p.y() < -6 || p.y() > 606));
+      } else {
+        CHECK((p.x() > 206 && p.x() < 694 && p.y() > 156 && p.y() < 444));
+      }
+    }
+  }
+}
+
+TEST_CASE("toolpath: moves start at safe height, plunge at the lead's start and end retracted",
+          "[geometry][toolpath]") {
+  const Toolpath tp = plan_toolpath(kSlab, {{ellipse({450, 300}, 100, 60, 0), "holes[0] (ellipse)"}}, base());
+  REQUIRE(!tp.moves.empty());
+  CHECK(tp.moves.front().kind == MoveKind::Rapid);
+  CHECK(tp.moves.front().to.z() == tp.options.safe_z);
+  CHECK(tp.moves.back().kind == MoveKind::Retract);
+  CHECK(tp.moves.back().to.z() == tp.options.safe_z);
+  int plunges = 0, tab_ups = 0;
+  for (std::size_t i = 1; i < tp.moves.size(); ++i) {
+    const ToolMove& m = tp.moves[i];
+    if (m.kind == MoveKind::Plunge) {
+      ++plunges;
+      CHECK(m.to.head<2>().isApprox(tp.moves[i - 1].to.head<2>()));  // straight down
+      CHECK(tp.loops[m.loop].lead->from.isApprox(m.to.head<2>()));
+    }
+    tab_ups += m.kind == MoveKind::TabUp;
+  }
+  CHECK(plunges == 2 * 3);  // two loops, three passes
+  CHECK(tab_ups == 4);      // the last pass only: the tab tops at -27 lie below the second pass at -20
+  CHECK(tp.deviation <= 0.5 * tp.options.tolerance);
+  CHECK(tp.deviation > 0.0);  // the ellipse's offset is a chain of chords
+}
+
+TEST_CASE("toolpath: an outline given clockwise and holes given either way cut the same paths",
+          "[geometry][toolpath]") {
+  const CompositeCurve ccw = rounded_rect(0, 0, 900, 600, 40);
+  const CompositeCurve cw = polygon({Vec2(0, 0), Vec2(0, 600), Vec2(900, 600), Vec2(900, 0)});
+  const CompositeCurve sharp = polygon({Vec2(0, 0), Vec2(900, 0), Vec2(900, 600), Vec2(0, 600)});
+  const CompositeCurve hole = ellipse({450, 300}, 150, 90, 10);
+  const CompositeCurve hole_cw({Segment::ellipse_arc([] {
+                                 EllipseArcParams e;
+                                 e.center = {450, 300};
+                                 e.a = 150;
+                                 e.b = 90;
+                                 e.rotation_deg = 10;
+                                 e.from_deg = 360;
+                                 e.to_deg = 0;
+                                 return e;
+                               }())},
+                               true);
+  CncOptions o = base();
+  const Toolpath a = plan_toolpath(sharp, {{hole, "holes[0] (ellipse)"}}, o);
+  const Toolpath b = plan_toolpath(cw, {{hole_cw, "holes[0] (ellipse)"}}, o);
+  for (std::size_t l = 0; l < 2; ++l) {
+    CHECK(a.loops[l].length == Approx(b.loops[l].length).epsilon(1e-9));
+    CHECK(signed_area2(a.loops[l].pieces) == Approx(signed_area2(b.loops[l].pieces)).epsilon(1e-6));
+  }
+  // And the rounded outline's path is its offset: corner arcs of 40 + 6.
+  const Toolpath c = plan_toolpath(ccw, {}, o);
+  CHECK(c.loops.back().length == Approx(2 * (820 + 520) + 2 * M_PI * 46));
+}

@@ -1,0 +1,377 @@
+// Router programs of the countertop examples, verified by simulation: each
+// program runs through the CNCjs interpreter (gcode-toolpath) and the
+// interpreted motions are measured against the EXACT curves of the design.
+
+#include <fmt/format.h>
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <map>
+#include <set>
+
+#include "geometry/core/errors.h"
+#include "geometry/toolpath/toolpath.h"
+#include "io/cutting/gcode.h"
+#include "tests/io/cutting/interpret.h"
+
+using namespace fabmesh;
+using namespace fabmesh::test;
+
+namespace {
+
+bool vertical(const TraceMotion& m) { return !m.arc && m.start.head<2>() == m.end.head<2>(); }
+bool in_material(const TraceMotion& m) { return std::min(m.start.z(), m.end.z()) < 0.0; }
+
+// What the interpreted program does, measured against the exact curves (millimetres; `mm`
+// converts model units). Margins >= 0 are proven passes (Lipschitz walks), < 0 failures.
+struct Findings {
+  std::vector<std::string> unknown;    // codes the interpreter does not know
+  int bad_rapids = 0;                  // G0 below safe height other than straight up to it
+  double arc_radius_mismatch = 0.0;    // largest | |start - c| - |end - c| |
+  int bad_feeds = 0;                   // plunges not at the plunge feed, cuts not at the feed
+  std::vector<double> deepest;         // per loop: the lowest cutting level
+  std::vector<double> largest_step;    // per loop: the largest step between levels
+  double offset_margin = INFINITY;     // tol - | distance to the loop's exact curve - r |, cuts in material
+  double clearance_margin = INFINITY;  // distance to the part - (r - tol), every move in material
+  int outside_waste = 0;               // moves in material whose middle lies inside the part
+  std::vector<double> coverage;  // per loop: (r + tol) - distance from its curve to the cut-through moves
+  std::vector<double> tab_stretches;  // lengths of the raised stretches of the outline
+  std::size_t tab_passes = 0;         // passes deep enough to need tabs
+  std::vector<double> dogbone_reach;  // per dog-bone: | distance of its tip from the corner point - r |
+};
+
+// The program's numbers in millimetres, and the exact loops scaled to millimetres.
+struct Setup {
+  double r = 0, tol = 0, depth = 0, tab_z = 0, safe = 0;
+  double ztol = 0.01;  // mm: z levels as the program's rounding leaves them
+  std::vector<std::string> labels;
+  std::vector<CompositeCurve> curves;
+  std::vector<CurveDistance> exact;
+  std::vector<std::vector<const TraceMotion*>> loops;  // motions in each loop's pass sections
+};
+
+CompositeCurve scaled(const CompositeCurve& c, double mm) {
+  if (mm == 1.0) return c;
+  std::vector<Segment> segs;
+  for (const Segment& s : c.segments()) {
+    if (s.kind() == SegmentKind::EllipseArc) {
+      EllipseArcParams e = *s.ellipse();
+      e.center *= mm, e.a *= mm, e.b *= mm;
+      segs.push_back(Segment::ellipse_arc(e));
+    } else {
+      std::array<Vec2, 4> p = s.control_points();
+      for (Vec2& q : p) q *= mm;
+      segs.push_back(s.with_points(p));
+    }
+  }
+  return CompositeCurve(segs, c.closed());
+}
+
+Setup setup(const ExampleRegion& region, const Toolpath& tp, const Trace& trace, double mm) {
+  const CncOptions& o = tp.options;
+  Setup st;
+  st.r = 0.5 * o.tool_diameter * mm;
+  st.tol = o.tolerance * mm;
+  st.depth = (o.depth + o.breakthrough) * mm;
+  st.tab_z = tp.tab_z * mm;
+  st.safe = o.safe_z * mm;
+  st.labels.push_back("outline");
+  st.curves.push_back(scaled(region.outline, mm));
+  for (const RegionHole& h : region.holes)
+    st.labels.push_back(h.label), st.curves.push_back(scaled(h.curve, mm));
+  for (const CompositeCurve& c : st.curves) st.exact.emplace_back(c, 0.5);
+  // Group motions by the loop whose pass comments precede them.
+  st.loops.resize(st.labels.size());
+  for (const TraceMotion& m : trace.motions) {
+    for (std::size_t l = 0; l < st.labels.size(); ++l) {
+      std::string label = st.labels[l];
+      for (char& c : label) c = c == '(' ? '[' : c == ')' ? ']' : c;
+      if (m.section.rfind(label + ": pass", 0) == 0) st.loops[l].push_back(&m);
+    }
+  }
+  return st;
+}
+
+// Rapids only at safe height (or straight up to it), arcs with one radius, the asked feeds.
+void measure_moves(const Setup& st, const CncOptions& o, double mm, const Trace& trace, Findings& f) {
+  for (const TraceMotion& m : trace.motions) {
+    if (m.motion == "G0") {
+      const bool up = vertical(m) && std::abs(m.end.z() - st.safe) < st.ztol && m.end.z() >= m.start.z();
+      const bool level = std::abs(m.start.z() - st.safe) < st.ztol && std::abs(m.end.z() - st.safe) < st.ztol;
+      f.bad_rapids += !(up || level);
+      continue;
+    }
+    if (m.arc) {
+      const double r0 = (m.start.head<2>() - m.center.head<2>()).norm();
+      const double r1 = (m.end.head<2>() - m.center.head<2>()).norm();
+      f.arc_radius_mismatch = std::max(f.arc_radius_mismatch, std::abs(r0 - r1));
+    }
+    const double want = vertical(m) ? o.plunge * mm : o.feed * mm;
+    f.bad_feeds += std::abs(m.feed - want) > 1e-4 * want;  // F is rounded like the coordinates
+  }
+}
+
+// The cutting levels of each loop: the deepest and the largest step between them.
+void measure_levels(const Setup& st, const CncOptions& o, Findings& f) {
+  for (std::size_t l = 0; l < st.labels.size(); ++l) {
+    std::set<double> levels;
+    for (const TraceMotion* m : st.loops[l]) {
+      if (!vertical(*m) && m->start.z() < 0 && m->comment.empty()) levels.insert(m->start.z());
+    }
+    f.deepest.push_back(levels.empty() ? 0.0 : *levels.begin());
+    double prev = 0.0, step = 0.0;
+    for (auto it = levels.rbegin(); it != levels.rend(); ++it) {
+      if (l == 0 && o.tabs.count > 0 && std::abs(*it - st.tab_z) < st.ztol) continue;
+      step = std::max(step, prev - *it);
+      prev = *it;
+    }
+    f.largest_step.push_back(step);
+  }
+}
+
+// On the distinct moves in material (passes repeat the same path): the exact offset
+// (|distance to the loop's curve - r| <= tol), nothing of the part cut (distance to every
+// loop >= r - tol, the middle in the waste), dog-bones reaching their corner point.
+void measure_paths(const Setup& st, const Toolpath& tp, double mm, Findings& f) {
+  std::map<std::string, std::pair<const TraceMotion*, std::size_t>> distinct;
+  for (std::size_t l = 0; l < st.labels.size(); ++l) {
+    for (const TraceMotion* m : st.loops[l]) {
+      if (!in_material(*m) || vertical(*m)) continue;
+      distinct.emplace(
+          fmt::format("{:.6f} {:.6f} {:.6f} {:.6f} {} {:.6f} {:.6f} {}", m->start.x(), m->start.y(),
+                      m->end.x(), m->end.y(), m->motion, m->center.x(), m->center.y(), m->comment),
+          std::pair{m, l});
+    }
+  }
+  const double r = st.r, tol = st.tol;
+  for (const auto& [key, entry] : distinct) {
+    const auto [m, l] = entry;
+    if (m->comment == "dogbone") {  // X -> D and back: at D the tool's disc reaches the corner point exactly
+      double reach = INFINITY;
+      for (const LoopCheck& c : tp.checks.loops) {
+        for (const LoopCorner& k : c.concave_corners) {
+          for (const Vec3& end : {m->start, m->end}) {
+            reach = std::min(reach, std::abs((end.head<2>() - mm * k.at).norm() - r));
+          }
+        }
+      }
+      f.dogbone_reach.push_back(reach);
+      continue;
+    }
+    if (m->comment != "lead in" && m->comment != "lead out") {
+      const CurveDistance& own = st.exact[l];
+      f.offset_margin = std::min(
+          f.offset_margin,
+          lipschitz_walk(
+              *m, [&](const Vec2& p) { return tol - std::abs(own.nearest(p, 2.0 * r).distance - r); }, 1e-4,
+              nullptr));
+    }
+    f.clearance_margin = std::min(f.clearance_margin, lipschitz_walk(
+                                                          *m,
+                                                          [&](const Vec2& p) {
+                                                            double d = INFINITY;
+                                                            for (const CurveDistance& e : st.exact) {
+                                                              d = std::min(d, e.nearest(p, r + 1.0).distance);
+                                                            }
+                                                            return d - (r - tol);
+                                                          },
+                                                          1e-4, nullptr));
+    const Vec2 mid = motion_point(*m, 0.5).head<2>();
+    bool waste = !inside_polygon(st.exact[0].polygon(), mid);
+    for (std::size_t h = 1; h < st.exact.size(); ++h)
+      waste = waste || inside_polygon(st.exact[h].polygon(), mid);
+    f.outside_waste += !waste;
+  }
+}
+
+// Cut through: each point of a loop's exact curve within r + tol of a full-depth move (the
+// outline's, under a tab, of a move at the tab height instead).
+void measure_coverage(const Setup& st, Findings& f) {
+  for (std::size_t l = 0; l < st.labels.size(); ++l) {
+    std::vector<const TraceMotion*> full, raised;
+    for (const TraceMotion* m : st.loops[l]) {
+      if (vertical(*m) || m->motion == "G0") continue;
+      if (std::abs(m->start.z() + st.depth) < st.ztol) full.push_back(m);
+      if (std::abs(m->start.z() - st.tab_z) < st.ztol && m->comment.empty()) raised.push_back(m);
+    }
+    auto reach = [&](const std::vector<const TraceMotion*>& set, const Vec2& q) {
+      double d = INFINITY;
+      for (const TraceMotion* m : set) d = std::min(d, motion_distance(*m, q));
+      return (st.r + st.tol) - d;
+    };
+    f.coverage.push_back(lipschitz_walk_curve(
+        st.curves[l],
+        [&](const Vec2& q) { return l == 0 ? std::max(reach(full, q), reach(raised, q)) : reach(full, q); },
+        1e-4, nullptr));
+  }
+}
+
+// Tabs: the raised stretches of the outline, from a tab step up to a tab step down.
+void measure_tabs(const Setup& st, const Toolpath& tp, Findings& f) {
+  double run = -1.0;
+  for (const TraceMotion* m : st.loops[0]) {
+    if (m->comment == "tab" && m->end.z() > m->start.z()) run = 0.0;
+    if (run >= 0.0 && !vertical(*m))
+      run += std::abs(m->start.z() - st.tab_z) < st.ztol ? motion_length(*m) : INFINITY;
+    if (m->comment == "tab" && m->end.z() < m->start.z()) f.tab_stretches.push_back(run), run = -1.0;
+  }
+  f.tab_passes = static_cast<std::size_t>(
+      std::count_if(tp.pass_z.begin(), tp.pass_z.end(), [&](double z) { return z < tp.tab_z - 1e-9; }));
+}
+
+Findings measure_program(const ExampleRegion& region, const Toolpath& tp, const Trace& trace, double mm) {
+  const Setup st = setup(region, tp, trace, mm);
+  Findings f;
+  f.unknown = trace.unknown;
+  measure_moves(st, tp.options, mm, trace, f);
+  measure_levels(st, tp.options, f);
+  measure_paths(st, tp, mm, f);
+  measure_coverage(st, f);
+  measure_tabs(st, tp, f);
+  return f;
+}
+
+// Everything the brief asks of a program.
+void require_good_program(const Findings& f, const Toolpath& tp, double mm) {
+  const CncOptions& o = tp.options;
+  const double depth = (o.depth + o.breakthrough) * mm;
+  CHECK(f.unknown.empty());
+  CHECK(f.bad_rapids == 0);
+  CHECK(f.arc_radius_mismatch <= 5e-3);  // mm: rounding of the end point and the centre
+  CHECK(f.bad_feeds == 0);
+  for (std::size_t l = 0; l < f.deepest.size(); ++l) {
+    INFO("loop " << l);
+    CHECK(f.deepest[l] == Approx(-depth).margin(0.01));
+    CHECK(f.largest_step[l] <= o.step_down * mm + 0.01);
+    CHECK(f.coverage[l] >= 0.0);
+  }
+  CHECK(f.offset_margin >= 0.0);
+  CHECK(f.clearance_margin >= 0.0);
+  CHECK(f.outside_waste == 0);
+  CHECK(f.tab_stretches.size() == o.tabs.count * f.tab_passes);
+  for (double s : f.tab_stretches)
+    CHECK(s == Approx((o.tabs.width + o.tool_diameter) * mm).margin(o.tolerance * mm));
+  // Tabs spread: each within its own share of the outline's path around its ideal place.
+  const LoopPath& outline = tp.loops.back();
+  const double share = outline.length / static_cast<double>(std::max<std::size_t>(1, o.tabs.count));
+  for (std::size_t j = 0; j < outline.tabs.size(); ++j) {
+    const double centre = 0.5 * (outline.tabs[j].first + outline.tabs[j].second);
+    CHECK(std::abs(centre - (static_cast<double>(j) + 0.5) * share) < 0.5 * share);
+  }
+  for (double d : f.dogbone_reach) CHECK(d <= 2e-3 * mm);
+}
+
+CncOptions options_for(const ExampleRegion& region) {
+  CncOptions o;
+  o.depth = region.thickness;
+  o.tolerance = region.tolerance;
+  return o;
+}
+
+// Plans, encodes, interprets and measures; `verify` as planned with `plan`'s tool unless given.
+Findings run_example(const ExampleRegion& region, const CncOptions& plan, const GcodeOptions& g = {},
+                     const CncOptions* verify = nullptr, Toolpath* planned = nullptr) {
+  Toolpath tp = plan_toolpath(region.outline, region.holes, plan);
+  GcodeOptions go = g;
+  go.name = region.name;
+  const std::string program = encode_gcode(tp, go);
+  const Trace trace = interpret(program, region.name + ".nc");
+  if (verify) tp.options = *verify;
+  const double mm = millimetres_per_unit(go.model_units);
+  Findings f = measure_program(region, tp, trace, mm);
+  if (planned) *planned = std::move(tp);
+  return f;
+}
+
+void verify_example(const std::string& file, CncOptions o, const GcodeOptions& g = {}) {
+  const ExampleRegion region = load_countertop_example(file);
+  Toolpath tp;
+  const Findings f = run_example(region, o, g, nullptr, &tp);
+  require_good_program(f, tp, millimetres_per_unit(g.model_units));
+}
+
+}  // namespace
+
+TEST_CASE("router program: countertop_g1 interpreted by CNCjs cuts the exact offset, every hole, the tabs",
+          "[io][cutting][gcode][toolpath][countertop]") {
+  const ExampleRegion region = load_countertop_example("countertop_g1.yaml");
+  verify_example("countertop_g1.yaml", options_for(region));
+}
+
+TEST_CASE("router program: countertop_g2 (exact oval sink) conventional, with a breakthrough",
+          "[io][cutting][gcode][toolpath][countertop]") {
+  const ExampleRegion region = load_countertop_example("countertop_g2.yaml");
+  CncOptions o = options_for(region);
+  o.direction = CutDirection::Conventional;
+  o.breakthrough = 0.5;
+  o.tabs.count = 6;
+  verify_example("countertop_g2.yaml", o);
+}
+
+TEST_CASE(
+    "router program: countertop_asymmetric_line, its rotated cooktop with 8 mm corners accepted for a 12 mm "
+    "tool",
+    "[io][cutting][gcode][toolpath][countertop]") {
+  const ExampleRegion region = load_countertop_example("countertop_asymmetric_line.yaml");
+  verify_example("countertop_asymmetric_line.yaml", options_for(region));
+}
+
+TEST_CASE(
+    "router program: countertop_symmetric_ellipse is refused at its concave bump corners without relief",
+    "[io][cutting][gcode][toolpath][countertop][errors]") {
+  const ExampleRegion region = load_countertop_example("countertop_symmetric_ellipse.yaml");
+  try {
+    plan_toolpath(region.outline, region.holes, options_for(region));
+    FAIL("a concave G0 corner was accepted without relief");
+  } catch (const GeometryError& e) {
+    CHECK(e.where() == "outline");
+    const std::string what = e.what();
+    CHECK_THAT(what, Catch::Contains("segment 3 (line)") && Catch::Contains("segment 4 (ellipse_arc)"));
+    CHECK_THAT(what, Catch::Contains("(1600, 650)") && Catch::Contains("90 degrees"));
+    CHECK_THAT(what, Catch::Contains("relief: dogbone"));
+  }
+}
+
+TEST_CASE("router program: countertop_symmetric_ellipse with dog-bones reaches both corner points",
+          "[io][cutting][gcode][toolpath][countertop]") {
+  const ExampleRegion region = load_countertop_example("countertop_symmetric_ellipse.yaml");
+  CncOptions o = options_for(region);
+  o.relief = CornerRelief::Dogbone;
+  Toolpath tp;
+  const Findings f = run_example(region, o, {}, nullptr, &tp);
+  require_good_program(f, tp, 1.0);
+  CHECK(f.dogbone_reach.size() == 4);  // into each bump corner and back (passes repeat the same moves)
+}
+
+TEST_CASE("router program: inch output (G20) interprets to the same cut in millimetres",
+          "[io][cutting][gcode][toolpath][countertop]") {
+  const ExampleRegion region = load_countertop_example("countertop_g1.yaml");
+  GcodeOptions g;
+  g.units = "in";
+  const Toolpath tp = plan_toolpath(region.outline, region.holes, options_for(region));
+  const std::string program = encode_gcode(tp, g);
+  CHECK(program.find("G20 G90 G94 G17") != std::string::npos);
+  const Trace trace = interpret(program, "countertop_g1_in.nc");
+  CHECK(trace.units == "G20");
+  require_good_program(measure_program(region, tp, trace, 1.0), tp, 1.0);
+}
+
+TEST_CASE(
+    "router program: the measurements catch a path 0.2 mm off, a tool cutting into the part, missing tabs",
+    "[io][cutting][gcode][toolpath][countertop]") {
+  const ExampleRegion region = load_countertop_example("countertop_g1.yaml");
+  const CncOptions asked = options_for(region);
+  CncOptions wider = asked, narrower = asked, no_tabs = asked;
+  wider.tool_diameter += 0.4;     // the program keeps 0.2 mm too far from the part
+  narrower.tool_diameter -= 0.4;  // the program cuts 0.2 mm into the part
+  no_tabs.tabs.count = 0;
+  const Findings far = run_example(region, wider, {}, &asked);
+  CHECK(far.offset_margin < 0.0);
+  CHECK(far.clearance_margin >= 0.0);
+  const Findings gouge = run_example(region, narrower, {}, &asked);
+  CHECK(gouge.offset_margin < 0.0);
+  CHECK(gouge.clearance_margin < 0.0);
+  const Findings untabbed = run_example(region, no_tabs, {}, &asked);
+  CHECK(untabbed.tab_stretches.empty());
+  CHECK(untabbed.offset_margin >= 0.0);
+}
