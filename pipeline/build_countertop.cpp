@@ -5,6 +5,7 @@
 
 #include "geometry/curves/build_curve.h"
 #include "geometry/mesh/slab.h"
+#include "geometry/toolpath/toolpath.h"
 #include "pipeline/build_design.h"
 
 namespace fabmesh {
@@ -53,6 +54,21 @@ BuiltMesh build(const CountertopDesign& design, const BuildContext& context) {
                {"region_area", region.area},
                {"thickness", design.thickness}};
   if (design.max_edge > 0.0) out.facts["max_edge"] = design.max_edge;
+  if (design.cnc) {
+    CncOptions cnc = design.cnc->options;
+    cnc.tolerance = context.tolerance;
+    out.toolpath = plan_toolpath(outline.curve, holes, cnc);
+    context.watch.lap("toolpath");
+    const Toolpath& t = *out.toolpath;
+    out.facts["cnc"] = {{"tool_diameter", cnc.tool_diameter},
+                        {"passes", t.pass_z.size()},
+                        {"moves", t.moves.size()},
+                        {"deviation", t.deviation},
+                        {"clearance", t.clearance},
+                        {"tabs", cnc.tabs.count},
+                        {"direction", to_string(cnc.direction)},
+                        {"relief", to_string(cnc.relief)}};
+  }
   return out;
 }
 

@@ -1,12 +1,26 @@
-// kind: curve: a curve alone has no mesh.
+// kind: curve: no mesh; its drawing at true size (DXF, SVG) for templates.
 
-#include "geometry/core/errors.h"
+#include "geometry/curves/build_curve.h"
+#include "geometry/sampling/sample_curve.h"
 #include "pipeline/build_design.h"
 
 namespace fabmesh {
 
-BuiltMesh build(const CurveDesign& /*design*/, const BuildContext& /*context*/) {
-  throw InputError("a curve design has no mesh to run; use `fabmesh sample` or `fabmesh optimize`");
+BuiltMesh build(const CurveDesign& design, const BuildContext& context) {
+  const BuiltCurve curve = build_curve(design.curve);
+  context.watch.lap("curve");
+  BuiltMesh out;
+  out.purpose = MeshPurpose::Drawing;  // no mesh to validate
+  CutLoopOptions options;
+  options.tolerance = context.tolerance;
+  out.cutting.push_back(cut_loop(curve.curve, "curve", true, options));
+  // Lines and exact arcs are drawn exactly; the rest as polylines sampled within the tolerance.
+  SampleOptions so;
+  so.tolerance = context.tolerance;
+  out.max_deviation = sample_curve(curve.curve, so).max_deviation;
+  out.facts = {{"segments", curve.curve.size()}, {"closed", curve.curve.closed()}};
+  context.watch.lap("drawing");
+  return out;
 }
 
 }  // namespace fabmesh

@@ -7,7 +7,7 @@
 namespace fabmesh {
 
 bool fit_for(const ValidationReport& report, MeshPurpose purpose) {
-  if (report.valid()) return true;
+  if (purpose == MeshPurpose::Drawing || report.valid()) return true;
   return purpose == MeshPurpose::Viewing && report.self_intersection != IntersectionCheck::NotRun &&
          std::all_of(report.defects.begin(), report.defects.end(),
                      [](const DefectReport& d) { return d.kind == Defect::BoundaryEdge; });

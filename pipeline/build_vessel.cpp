@@ -1,21 +1,89 @@
-// kind: vessel -> profile curve -> section -> revolution, proven embedded.
+// kind: vessel -> profile curve (scaled for shrinkage) -> section ->
+// revolution, proven embedded; the profile's template for the workshop; the
+// slip-casting mould when the design has one.
 
+#include <fmt/format.h>
+
+#include <algorithm>
+
+#include "geometry/core/errors.h"
 #include "geometry/curves/build_curve.h"
 #include "geometry/mesh/vessel.h"
+#include "geometry/mould/mould.h"
+#include "geometry/mould/shrinkage.h"
 #include "pipeline/build_design.h"
 
 namespace fabmesh {
+namespace {
+
+// The outer profile closed along the axis: the shape a potter's rib (or a
+// jigger template) is cut to, at the size it is made (the master).
+CutLoop profile_template(const CompositeCurve& profile, double tolerance) {
+  std::vector<Segment> segments = profile.segments();
+  if (!profile.closed()) {
+    const Vec2 start = segments.front().point(0.0), end = segments.back().point(1.0);
+    const Vec2 axis_end(0.0, end.y()), axis_start(0.0, start.y());
+    if (end.x() != 0.0) segments.push_back(Segment::line(end, axis_end));
+    if (axis_end != axis_start) segments.push_back(Segment::line(axis_end, axis_start));
+    if (start.x() != 0.0) segments.push_back(Segment::line(axis_start, start));
+  }
+  CutLoopOptions options;
+  options.tolerance = tolerance;
+  return cut_loop(CompositeCurve(std::move(segments), true), "profile template", true, options);
+}
+
+nlohmann::json size_json(const Vec3& lo, const Vec3& hi) {
+  const Vec3 s = hi - lo;
+  return {s.x(), s.y(), s.z()};
+}
+
+// The mould's parts (validated by build_mould) and what a workshop needs to know.
+void add_mould(const VesselDesign& design, const CompositeCurve& fired_profile, const BuildContext& context,
+               BuiltMesh& out) {
+  MouldOptions options = *design.mould;
+  options.tolerance = context.tolerance;
+  const Mould mould = build_mould(fired_profile, options);
+  context.watch.lap("mould");
+  nlohmann::json parts = nlohmann::json::array();
+  for (const MouldPart& p : mould.parts) {
+    std::string name = p.name;  // "side 1 of 2", "base"
+    if (p.kind == MouldPartKind::Side) name = fmt::format("side-{}", out.mould_parts.size() + 1);
+    parts.push_back(
+        {{"name", name},
+         {"triangles", p.soup.triangles.size()},
+         {"volume", p.validation.volume},
+         {"genus", p.validation.genus ? nlohmann::json(*p.validation.genus) : nlohmann::json(nullptr)},
+         {"self_intersection", to_string(p.validation.self_intersection)}});
+    out.mould_parts.push_back({name, p.soup});
+  }
+  out.max_deviation = std::max(out.max_deviation, mould.max_deviation);
+  out.facts["mould"] = {{"parts", parts},
+                        {"slip_volume", mould.cavity_volume},
+                        {"plaster_volume", mould.plaster_volume},
+                        {"block_volume", mould.block_volume},
+                        {"spare_volume", mould.spare_volume},
+                        {"vessel_volume", mould.vessel_volume},
+                        {"volume_identity_error_bound", mould.volume_error_bound},
+                        {"max_deviation", mould.max_deviation},
+                        {"release", mould.release_proof},
+                        {"warnings", mould.warnings}};
+}
+
+}  // namespace
 
 BuiltMesh build(const VesselDesign& design, const BuildContext& context) {
   const BuiltCurve profile = build_curve(design.profile);
+  // What is written is the master: the fired design scaled up for the clay's shrinkage.
+  const double factor = shrinkage_factor(design.shrinkage);
+  const CompositeCurve master = factor == 1.0 ? profile.curve : scale_curve(profile.curve, factor);
   context.watch.lap("curve");
   VesselOptions options;
   options.mode = design.mode;
-  options.wall = design.wall;
-  options.base = design.base;
+  options.wall = design.wall * factor;
+  options.base = design.base * factor;
   options.tolerance = context.tolerance;
   options.max_triangles = design.max_triangles;
-  const VesselMesh vessel = build_vessel(profile.curve, options);
+  const VesselMesh vessel = build_vessel(master, options);
   context.watch.lap("build");
   std::size_t section_points = 0;
   for (const auto& loop : vessel.section.loops) section_points += loop.size();
@@ -25,6 +93,19 @@ BuiltMesh build(const VesselDesign& design, const BuildContext& context) {
                {"section_loops", vessel.section.loops.size()},
                {"section_points", section_points},
                {"max_radius", vessel.section.max_radius}};
+  if (design.shrinkage > 0.0) {
+    Vec3 lo = out.soup.vertices.front(), hi = lo;
+    for (const Vec3& p : out.soup.vertices) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+    out.facts["shrinkage"] = {{"shrinkage", design.shrinkage},
+                              {"factor", factor},
+                              {"master_size", size_json(lo, hi)},
+                              {"fired_size", size_json(lo / factor, hi / factor)}};
+  }
+  if (context.wants_cutting) {
+    out.cutting.push_back(profile_template(master, context.tolerance));
+    context.watch.lap("template");
+  }
+  if (design.mould) add_mould(design, profile.curve, context, out);
   return out;
 }
 

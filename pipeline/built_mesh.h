@@ -3,12 +3,14 @@
 // memory, before any file is encoded or written.
 
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "geometry/core/stage_timer.h"
 #include "geometry/mesh/soup.h"
 #include "geometry/mesh/validate.h"
+#include "geometry/toolpath/toolpath.h"
 #include "io/cutting/cutting_outline.h"
 #include "io/design/design.h"
 
@@ -18,11 +20,18 @@ namespace fabmesh {
 enum class MeshPurpose {
   Fabrication,  ///< closed, manifold, outward, embedded: every check passed
   Viewing,      ///< an open surface (no thickness): its only defect is its own border
+  Drawing,      ///< no mesh at all: a curve design, drawn at true size
 };
 
 /// True when `report` is fit for `purpose`: valid; or, for viewing, its
 /// only defects are boundary edges (an open surface's own border).
 bool fit_for(const ValidationReport& report, MeshPurpose purpose);
+
+/// A further mesh of a design, validated like the main one (a mould part).
+struct NamedSoup {
+  std::string name;  ///< used in file names: "side-1", "base"
+  TriangleSoup soup;
+};
 
 /// One design built and validated. The soup is what the writers encode
 /// (vertices and triangles as validated); a curve design has none.
@@ -30,9 +39,13 @@ struct BuiltMesh {
   TriangleSoup soup;
   ValidationReport validation;
   MeshPurpose purpose = MeshPurpose::Fabrication;
-  double max_deviation = 0.0;    ///< proven bound of the mesh (or the curves) against the exact shape
-  nlohmann::json facts;          ///< builder facts for the report, e.g. {"angular_segments": 128}
-  std::vector<CutLoop> cutting;  ///< cutting outline (outline first, then holes), when the kind has one
+  double max_deviation = 0.0;  ///< proven bound of the mesh (or the curves) against the exact shape
+  nlohmann::json facts;        ///< builder facts for the report, e.g. {"angular_segments": 128}
+  /// Drawing of the design's curves at true size: a countertop's cutting
+  /// outline (outline first, then holes), a vessel's profile template, a curve.
+  std::vector<CutLoop> cutting;
+  std::vector<NamedSoup> mould_parts;  ///< a vessel's mould, each part validated (build_mould)
+  std::optional<Toolpath> toolpath;    ///< a countertop's router path (key `cnc`)
 };
 
 /// What every builder gets besides its design.

@@ -29,10 +29,13 @@ std::vector<const OutputFormat*> formats_of(const Design& design, const JobOptio
   return resolve_outputs(one);
 }
 
+std::string path_with_suffix(const Design& design, const std::string& suffix, const JobOptions& options) {
+  return (std::filesystem::path(options.out_dir) / (design.common.name + suffix)).string();
+}
+
 std::string path_of(const Design& design, const OutputFormat& format, const JobOptions& options) {
   if (options.output_file) return *options.output_file;
-  return (std::filesystem::path(options.out_dir) / (design.common.name + std::string(format.file_suffix)))
-      .string();
+  return path_with_suffix(design, std::string(format.file_suffix), options);
 }
 
 }  // namespace
@@ -58,7 +61,7 @@ PreparedJob prepare_job(const Design& design, const JobOptions& options) {
                     formats.size(), names, *options.output_file));
   }
   const bool wants_cutting = std::any_of(formats.begin(), formats.end(), [](const OutputFormat* f) {
-    return f->content == OutputContent::CuttingOutline;
+    return f->content == OutputContent::Drawing || f->content == OutputContent::Toolpath;
   });
   const BuildContext context{common, (1.0 - kOutputShare) * common.tolerance, wants_cutting, watch};
   const BuiltMesh built = build_design(design, context);
@@ -80,6 +83,10 @@ PreparedJob prepare_job(const Design& design, const JobOptions& options) {
       report.bbox_min = report.bbox_min.cwiseMin(p);
       report.bbox_max = report.bbox_max.cwiseMax(p);
     }
+  } else if (!built.cutting.empty()) {
+    const auto [lo, hi] = cut_bounds(built.cutting);
+    report.bbox_min = Vec3(lo.x(), lo.y(), 0.0);
+    report.bbox_max = Vec3(hi.x(), hi.y(), 0.0);
   }
   // The encoders get the tolerance the build left unused, and the mesh in the export unit.
   const double export_scale = metres_per_unit(common.units) / metres_per_unit(common.export_units);
@@ -88,10 +95,13 @@ PreparedJob prepare_job(const Design& design, const JobOptions& options) {
   for (const OutputFormat* format : formats) {
     const std::string path = path_of(design, *format, options);
     try {
-      Encoded e = format->encode({common, built, exported, export_scale, output_tolerance, path});
-      report.files.push_back({path, std::string(format->name), e.units, e.added_error});
-      report.outputs.push_back(path);
-      job.files.push_back({path, std::move(e.bytes)});
+      for (Encoded& e :
+           format->encode({common, &design.body, built, exported, export_scale, output_tolerance, path})) {
+        const std::string file = e.suffix.empty() ? path : path_with_suffix(design, e.suffix, options);
+        report.files.push_back({file, std::string(format->name), e.units, e.added_error});
+        report.outputs.push_back(file);
+        job.files.push_back({file, std::move(e.bytes)});
+      }
     } catch (const OutputError& e) {
       if (common.on_output_error == OutputErrorPolicy::Fail) throw;
       report.skipped.push_back({std::string(format->name), e.what()});

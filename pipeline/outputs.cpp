@@ -7,7 +7,9 @@
 
 #include "geometry/core/errors.h"
 #include "io/cutting/dxf.h"
+#include "io/cutting/gcode.h"
 #include "io/cutting/svg.h"
+#include "io/cutting/toolpath_svg.h"
 #include "io/mesh/draco.h"
 #include "io/mesh/gltf.h"
 #include "io/mesh/obj.h"
@@ -52,26 +54,35 @@ Encoded within_tolerance(Encoded e, const EncodeContext& c, std::string_view for
   return e;
 }
 
-Encoded encode_stl_output(const EncodeContext& c) {
-  return within_tolerance({encode_stl(c.exported), c.common.export_units, float32_error(c)}, c, "stl");
-}
-Encoded encode_obj_output(const EncodeContext& c) {
-  return within_tolerance({encode_obj(c.exported), c.common.export_units, double_error(c)}, c, "obj");
-}
-Encoded encode_ply_output(const EncodeContext& c) {
-  return within_tolerance({encode_ply(c.exported), c.common.export_units, float32_error(c)}, c, "ply");
-}
-Encoded encode_off_output(const EncodeContext& c) {
-  return within_tolerance({encode_off(c.exported), c.common.export_units, double_error(c)}, c, "off");
+using Files = std::vector<Encoded>;
+
+Encoded unitless(std::string bytes, const EncodeContext& c, double error) {
+  Encoded e;
+  e.bytes = std::move(bytes);
+  e.units = c.common.export_units;
+  e.added_error = error;
+  return e;
 }
 
-Encoded encode_3mf_output(const EncodeContext& c) {
+Files encode_stl_output(const EncodeContext& c) {
+  return {within_tolerance(unitless(encode_stl(c.exported), c, float32_error(c)), c, "stl")};
+}
+Files encode_obj_output(const EncodeContext& c) {
+  return {within_tolerance(unitless(encode_obj(c.exported), c, double_error(c)), c, "obj")};
+}
+Files encode_ply_output(const EncodeContext& c) {
+  return {within_tolerance(unitless(encode_ply(c.exported), c, float32_error(c)), c, "ply")};
+}
+Files encode_off_output(const EncodeContext& c) {
+  return {within_tolerance(unitless(encode_off(c.exported), c, double_error(c)), c, "off")};
+}
+
+Files encode_3mf_output(const EncodeContext& c) {
   ThreeMfOptions options;
   options.units = c.common.export_units;
   options.title = c.common.name;
   const double error = threemf_max_error(max_abs_coordinate(c.exported)) / c.export_scale + double_error(c);
-  return within_tolerance({encode_3mf({{c.common.name, c.exported}}, options), c.common.export_units, error},
-                          c, "3mf");
+  return {within_tolerance(unitless(encode_3mf({{c.common.name, c.exported}}, options), c, error), c, "3mf")};
 }
 
 // Quantization may collapse or fold faces: each candidate's decoded mesh is validated.
@@ -80,13 +91,12 @@ std::function<bool(const TriangleSoup&)> still_fit(const EncodeContext& c) {
   return [purpose](const TriangleSoup& decoded) { return fit_for(validate(decoded), purpose); };
 }
 
-Encoded encode_drc_output(const EncodeContext& c) {
+Files encode_drc_output(const EncodeContext& c) {
   const double tolerance = c.output_tolerance * c.export_scale;  // export units
   const DracoFit fit = fit_draco(c.exported, tolerance, still_fit(c), "drc");
-  Encoded out{encode_draco_bits(c.exported, fit.bits), c.common.export_units,
-              fit.max_displacement / c.export_scale};
+  Encoded out = unitless(encode_draco_bits(c.exported, fit.bits), c, fit.max_displacement / c.export_scale);
   require_draco_matches(out.bytes, fit);
-  return out;
+  return {std::move(out)};
 }
 
 GlbOptions glb_options(const EncodeContext& c) {
@@ -96,40 +106,96 @@ GlbOptions glb_options(const EncodeContext& c) {
   return options;
 }
 
-Encoded encode_glb_output(const EncodeContext& c) {
+Files encode_glb_output(const EncodeContext& c) {
   const GlbOptions options = glb_options(c);
   // float32 metres: relative rounding as for STL, of the model's own coordinates.
   const double error =
       std::sqrt(3.0) * (std::ldexp(1.0, -24) + std::ldexp(1.0, -52)) * max_abs_coordinate(c.built.soup);
-  return within_tolerance({encode_glb(c.built.soup, options), "m", error}, c, "glb");
+  Encoded e{encode_glb(c.built.soup, options), "m", error, ""};
+  return {within_tolerance(std::move(e), c, "glb")};
 }
 
-Encoded encode_glb_draco_output(const EncodeContext& c) {
+Files encode_glb_draco_output(const EncodeContext& c) {
   GlbOptions options = glb_options(c);
   const TriangleSoup metres = to_gltf_frame(c.built.soup, options.scale_to_metres);
   const DracoFit fit =
       fit_draco(metres, c.output_tolerance * options.scale_to_metres, still_fit(c), "glb_draco");
   options.draco = true;
   options.draco_position_bits = fit.bits;
-  return {encode_glb(c.built.soup, options), "m", fit.max_displacement / options.scale_to_metres};
+  return {{encode_glb(c.built.soup, options), "m", fit.max_displacement / options.scale_to_metres, ""}};
 }
 
-Encoded encode_dxf_output(const EncodeContext& c) {
+Files encode_dxf_output(const EncodeContext& c) {
   DxfOptions options;
   options.units = c.common.units;
-  return {encode_dxf(c.built.cutting, options), c.common.units, 0.0};
+  return {{encode_dxf(c.built.cutting, options), c.common.units, 0.0, ""}};
 }
 
-Encoded encode_svg_output(const EncodeContext& c) {
+Files encode_svg_output(const EncodeContext& c) {
   SvgOptions options;
   options.units = c.common.units;
-  return {encode_svg(c.built.cutting, options), c.common.units, 0.0};
+  return {{encode_svg(c.built.cutting, options), c.common.units, 0.0, ""}};
+}
+
+// The mould's parts in the export unit, as the vessel itself.
+std::vector<NamedSoup> exported_parts(const EncodeContext& c) {
+  std::vector<NamedSoup> parts = c.built.mould_parts;
+  for (NamedSoup& p : parts) {
+    for (Vec3& v : p.soup.vertices) v *= c.export_scale;
+  }
+  return parts;
+}
+
+Files encode_mould_stl_output(const EncodeContext& c) {
+  Files files;
+  for (const NamedSoup& p : exported_parts(c)) {
+    files.push_back(
+        {encode_stl(p.soup), c.common.export_units, float32_error(c), ".mould-" + p.name + ".stl"});
+  }
+  return files;
+}
+
+Files encode_mould_3mf_output(const EncodeContext& c) {
+  std::vector<ThreeMfObject> objects;
+  double largest = 0.0;
+  for (NamedSoup& p : exported_parts(c)) {
+    for (const Vec3& v : p.soup.vertices) largest = std::max(largest, v.cwiseAbs().maxCoeff());
+    objects.push_back({c.common.name + " mould " + p.name, std::move(p.soup)});
+  }
+  ThreeMfOptions options;
+  options.units = c.common.export_units;
+  options.title = c.common.name + " mould";
+  return {
+      {encode_3mf(objects, options), c.common.export_units, threemf_max_error(largest) / c.export_scale, ""}};
+}
+
+GcodeOptions gcode_options(const EncodeContext& c) {
+  const CncDesign& cnc = *std::get<CountertopDesign>(*c.body).cnc;
+  GcodeOptions options;
+  options.name = c.common.name;
+  options.model_units = c.common.units;
+  options.units = cnc.program_units;
+  options.decimals = cnc.decimals;
+  return options;
+}
+
+Files encode_nc_output(const EncodeContext& c) {
+  const GcodeOptions options = gcode_options(c);
+  return {{encode_gcode(*c.built.toolpath, options), options.units, c.built.toolpath->deviation, ""}};
+}
+
+Files encode_toolpath_svg_output(const EncodeContext& c) {
+  ToolpathSvgOptions options;
+  options.units = c.common.units;
+  return {{encode_toolpath_svg(c.built.cutting, *c.built.toolpath, options), c.common.units, 0.0, ""}};
 }
 
 std::vector<OutputFormat> make_table() {
   const KindSet meshes = kinds<VesselDesign, CountertopDesign, SurfaceDesign>();
-  const KindSet cutting = kinds<CountertopDesign>();
-  const OutputContent mesh = OutputContent::Triangles, outline = OutputContent::CuttingOutline;
+  const KindSet drawn = kinds<CurveDesign, VesselDesign, CountertopDesign>();
+  const KindSet vessels = kinds<VesselDesign>(), countertops = kinds<CountertopDesign>();
+  const OutputContent mesh = OutputContent::Triangles, drawing = OutputContent::Drawing,
+                      mould = OutputContent::MouldParts, toolpath = OutputContent::Toolpath;
   return {
       {"stl", "binary STL mesh, in the export unit", mesh, meshes, meshes, ".stl", &encode_stl_output},
       {"drc", "Draco compressed mesh in the export unit, decoded and validated before writing", mesh, meshes,
@@ -164,10 +230,20 @@ std::vector<OutputFormat> make_table() {
        &encode_obj_output},
       {"ply", "binary PLY mesh in the export unit, float32", mesh, meshes, {}, ".ply", &encode_ply_output},
       {"off", "OFF mesh in the export unit, exact decimals", mesh, meshes, {}, ".off", &encode_off_output},
-      {"dxf", "cutting outline for CNC with exact lines, arcs and ellipses, in the design's unit", outline,
-       cutting, cutting, ".dxf", &encode_dxf_output},
-      {"svg", "cutting outline drawing with exact arcs, true size", outline, cutting, cutting, ".svg",
+      {"dxf",
+       "true-size drawing with exact lines, arcs and ellipses, in the design's unit: a countertop's cutting "
+       "outline, a vessel's profile template, a curve",
+       drawing, drawn, drawn, ".dxf", &encode_dxf_output},
+      {"svg", "the same drawing as SVG, exact arcs, true size", drawing, drawn, drawn, ".svg",
        &encode_svg_output},
+      {"mould_stl", "one STL per part of the vessel's slip-casting mould, in the export unit", mould, vessels,
+       vessels, ".mould-PART.stl", &encode_mould_stl_output},
+      {"mould_3mf", "the mould's parts as separate objects of one 3MF", mould, vessels, vessels, ".mould.3mf",
+       &encode_mould_3mf_output},
+      {"nc", "RS-274 G-code of the countertop's router path (key cnc), G21/G20 as asked", toolpath,
+       countertops, countertops, ".nc", &encode_nc_output},
+      {"toolpath_svg", "drawing of the router path over the outline", toolpath, countertops, countertops,
+       ".toolpath.svg", &encode_toolpath_svg_output},
   };
 }
 
@@ -181,6 +257,24 @@ std::string kind_list(const KindSet& set) {
 }
 
 }  // namespace
+
+bool has_content(const Design& design, OutputContent content) {
+  switch (content) {
+    case OutputContent::Triangles:
+      return !std::holds_alternative<CurveDesign>(design.body);
+    case OutputContent::Drawing:
+      return !std::holds_alternative<SurfaceDesign>(design.body);
+    case OutputContent::MouldParts: {
+      const auto* v = std::get_if<VesselDesign>(&design.body);
+      return v != nullptr && v->mould.has_value();
+    }
+    case OutputContent::Toolpath: {
+      const auto* c = std::get_if<CountertopDesign>(&design.body);
+      return c != nullptr && c->cnc.has_value();
+    }
+  }
+  return false;
+}
 
 const std::vector<OutputFormat>& output_formats() {
   static const std::vector<OutputFormat> table = make_table();
@@ -199,7 +293,7 @@ std::vector<const OutputFormat*> resolve_outputs(const Design& design) {
   std::vector<const OutputFormat*> out;
   if (design.common.outputs.empty()) {
     for (const OutputFormat& f : output_formats()) {
-      if (f.default_for.test(kind)) out.push_back(&f);
+      if (f.default_for.test(kind) && has_content(design, f.content)) out.push_back(&f);
     }
     return out;
   }
@@ -217,6 +311,12 @@ std::vector<const OutputFormat*> resolve_outputs(const Design& design) {
           design.common.path, r.line, r.column,
           fmt::format("{}: {} ({}) is made for {} designs, not for a {} design", r.where, r.format,
                       format->description, kind_list(format->kinds), kind_name(design)));
+    }
+    if (!has_content(design, format->content)) {
+      throw FileError(design.common.path, r.line, r.column,
+                      fmt::format("{}: {} needs {}", r.where, r.format,
+                                  format->content == OutputContent::MouldParts ? "a `mould:` section"
+                                                                               : "a `cnc:` section"));
     }
     if (std::find(out.begin(), out.end(), format) != out.end()) {
       throw FileError(design.common.path, r.line, r.column,

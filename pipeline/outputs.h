@@ -41,6 +41,7 @@ KindSet kinds() {
 /// and the error it may still add.
 struct EncodeContext {
   const DesignCommon& common;
+  const DesignBody* body;  ///< the design's kind-specific part
   const BuiltMesh& built;
   const TriangleSoup& exported;   ///< built.soup scaled to common.export_units
   double export_scale = 1.0;      ///< export units per model unit
@@ -55,10 +56,21 @@ struct Encoded {
   std::string bytes;
   std::string units;
   double added_error = 0.0;
+  /// Replaces the format's file_suffix when an output is several files
+  /// (one per mould part: ".mould-side-1.stl").
+  std::string suffix;
 };
 
 /// What an output is made from: the builders make the cutting outline only when an output needs it.
-enum class OutputContent { Triangles, CuttingOutline };
+enum class OutputContent {
+  Triangles,  ///< the design's mesh
+  Drawing,  ///< its curves at true size: a countertop's cutting outline, a vessel's profile template, a curve
+  MouldParts,  ///< the parts of a vessel's slip-casting mould (key `mould`)
+  Toolpath,    ///< a countertop's router path (key `cnc`)
+};
+
+/// True when `design` has what `content` is made from (a mould for MouldParts, ...).
+bool has_content(const Design& design, OutputContent content);
 
 /// One output format.
 struct OutputFormat {
@@ -68,8 +80,9 @@ struct OutputFormat {
   KindSet kinds;                 ///< the kinds it applies to
   KindSet default_for;           ///< the kinds that get it when a design names no outputs
   std::string_view file_suffix;  ///< after the name: ".stl", ".draco.glb", ...
+  /// One file, or several (each with its own suffix).
   /// \throw OutputError when the output cannot be made within the tolerance left
-  Encoded (*encode)(const EncodeContext& context);
+  std::vector<Encoded> (*encode)(const EncodeContext& context);
 };
 
 /// Every output format, in the order defaults are listed.
@@ -79,7 +92,8 @@ const std::vector<OutputFormat>& output_formats();
 const OutputFormat* find_output_format(std::string_view name);
 
 /// The formats `design` asks for: its `outputs` (each checked: the format
-/// exists and applies to the kind) or, when it names none, its kind's defaults.
+/// exists, applies to the kind, and the design has its content) or, when it
+/// names none, its kind's defaults whose content the design has.
 /// \throw FileError at the offending `outputs` entry
 std::vector<const OutputFormat*> resolve_outputs(const Design& design);
 

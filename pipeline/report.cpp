@@ -68,8 +68,10 @@ nlohmann::ordered_json to_json(const JobReport& r) {
   j["skipped_outputs"] = nlohmann::ordered_json::array();
   for (const SkippedOutput& s : r.skipped)
     j["skipped_outputs"].push_back({{"format", s.format}, {"reason", s.reason}});
-  j["purpose"] = r.purpose == MeshPurpose::Fabrication ? "fabrication" : "viewing";
-  j.update(validation_json(r.validation));
+  j["purpose"] = r.purpose == MeshPurpose::Fabrication ? "fabrication"
+                 : r.purpose == MeshPurpose::Viewing   ? "viewing"
+                                                       : "drawing";
+  if (r.purpose != MeshPurpose::Drawing) j.update(validation_json(r.validation));
   if (r.build.is_object() && r.build.contains("fabrication")) j["fabrication"] = r.build["fabrication"];
   if (!r.build.is_null()) j["build"] = r.build;
   nlohmann::ordered_json timings = timings_json(r.timings_ms);
@@ -83,6 +85,13 @@ void print_summary(const JobReport& r, std::ostream& out) {
   double total = 0.0;
   for (const auto& t : r.timings_ms) total += t.second;
   const std::string& u = r.units;
+  if (r.purpose == MeshPurpose::Drawing) {
+    out << fmt::format("{}: {} drawn at true size, within {:.3g} {} of the exact curve (tolerance {} {})\n",
+                       r.name, r.kind, r.max_deviation, u, r.tolerance, u);
+    for (const OutputFile& f : r.files) out << fmt::format("  wrote {} (in {})\n", f.path, f.units);
+    out << fmt::format("  {:.1f} ms\n", total);
+    return;
+  }
   // An enclosed volume only exists for a closed mesh.
   const std::string volume =
       v.boundary_edges == 0 ? fmt::format("{:.6g} {}^3", v.volume, u) : std::string("- (open)");
@@ -106,6 +115,26 @@ void print_summary(const JobReport& r, std::ostream& out) {
     out << fmt::format("  for viewing only, not valid for fabrication ({}; {})\n",
                        r.build.is_object() ? r.build.value("fabrication", "invalid") : "invalid",
                        defects.empty() ? "" : defects.front());
+  }
+  if (r.build.is_object() && r.build.contains("shrinkage")) {
+    const auto& s = r.build["shrinkage"];
+    const auto fired = s["fired_size"];
+    out << fmt::format(
+        "  shrinkage {}: written {:.6g} times the fired size ({:.6g} x {:.6g} x {:.6g} {} when fired)\n",
+        s["shrinkage"].get<double>(), s["factor"].get<double>(), fired[0].get<double>(),
+        fired[1].get<double>(), fired[2].get<double>(), u);
+  }
+  if (r.build.is_object() && r.build.contains("mould")) {
+    const auto& m = r.build["mould"];
+    out << fmt::format(
+        "  mould: {} parts, each closed and embedded by construction; slip {:.6g} {}^3, plaster "
+        "{:.6g} {}^3\n",
+        m["parts"].size(), m["slip_volume"].get<double>(), u, m["plaster_volume"].get<double>(), u);
+  }
+  if (r.build.is_object() && r.build.contains("cnc")) {
+    const auto& c = r.build["cnc"];
+    out << fmt::format("  router path: {} passes, within {:.3g} {} of the exact offset\n",
+                       c["passes"].get<int>(), c["deviation"].get<double>(), u);
   }
   for (const OutputFile& f : r.files) out << fmt::format("  wrote {} (in {})\n", f.path, f.units);
   for (const SkippedOutput& s : r.skipped)

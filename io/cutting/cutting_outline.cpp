@@ -47,12 +47,12 @@ Vec2 arc_point(const EllipseArcParams& a, double deg) {
 CutLoop cut_loop(const CompositeCurve& curve, const std::string& label, bool outer,
                  const CutLoopOptions& options) {
   require_positive("tolerance", options.tolerance);
-  if (!curve.closed()) throw GeometryError(label, fmt::format("{} is not closed: no cutting loop", label));
   SampleOptions so;
   so.tolerance = options.tolerance;
   CutLoop loop;
   loop.label = label;
   loop.outer = outer;
+  loop.closed = curve.closed();
   for (const Segment& seg : curve.segments()) {
     if (seg.kind() == SegmentKind::Line) {
       loop.entities.push_back({CutKind::Line, {seg.point(0.0), seg.point(1.0)}, {}});
@@ -68,7 +68,7 @@ CutLoop cut_loop(const CompositeCurve& curve, const std::string& label, bool out
     }
   }
   // A loop that starts and ends inside one run of polyline segments is one polyline.
-  if (loop.entities.size() > 1 && loop.entities.front().kind == CutKind::Polyline &&
+  if (loop.closed && loop.entities.size() > 1 && loop.entities.front().kind == CutKind::Polyline &&
       loop.entities.back().kind == CutKind::Polyline) {
     std::vector<Vec2>& tail = loop.entities.back().points;
     tail.insert(tail.end(), loop.entities.front().points.begin() + 1, loop.entities.front().points.end());

@@ -22,10 +22,12 @@ struct CutEntity {
   EllipseArcParams arc;
 };
 
-/// A closed loop: each entity starts where the previous one ends, the last ends where the first starts.
+/// A chain of entities, each starting where the previous one ends; when
+/// closed (a loop) the last ends where the first starts.
 struct CutLoop {
   std::string label;   ///< "outline", "holes[0] (ellipse)", ...
   bool outer = false;  ///< the outline (else a cut-out)
+  bool closed = true;  ///< an open curve (a kind: curve design) is drawn as an open chain
   std::vector<CutEntity> entities;
 };
 
@@ -34,10 +36,11 @@ struct CutLoopOptions {
   bool reverse = false;     ///< run the loop against the curve's direction
 };
 
-/// The loop of a closed curve: a Line per line segment, an Arc per exact
-/// ellipse arc, one Polyline per run of consecutive other segments (T-Bézier,
+/// The chain of a curve: a Line per line segment, an Arc per exact ellipse
+/// arc, one Polyline per run of consecutive other segments (T-Bézier,
 /// H-Bézier, B-spline spans), sampled with the proven bound of sample_curve.
-/// \throw RangeError (tolerance), GeometryError (an open curve)
+/// A closed curve gives a closed loop, an open one an open chain.
+/// \throw RangeError (tolerance)
 CutLoop cut_loop(const CompositeCurve& curve, const std::string& label, bool outer,
                  const CutLoopOptions& options);
 

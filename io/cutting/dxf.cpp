@@ -147,7 +147,7 @@ std::string encode_dxf(const std::vector<CutLoop>& loops, const DxfOptions& opti
     dw->sectionEntities();
     for (const CutLoop& loop : loops) {
       const DL_Attributes attr(loop.outer ? "OUTLINE" : "HOLES", 256, -1, "BYLAYER", 1.0);
-      const bool whole_loop = loop.entities.size() == 1;
+      const bool whole_loop = loop.closed && loop.entities.size() == 1;
       for (const CutEntity& e : loop.entities) write_entity(dxf, *dw, e, whole_loop, attr);
     }
     dw->sectionEnd();

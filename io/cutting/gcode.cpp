@@ -198,14 +198,6 @@ std::string Encoder::run(const GcodeOptions& o) {
 
 }  // namespace
 
-double millimetres_per_unit(const std::string& units) {
-  if (units == "mm") return 1.0;
-  if (units == "cm") return 10.0;
-  if (units == "m") return 1000.0;
-  if (units == "in") return 25.4;
-  throw InputError(fmt::format("units '{}' is not one of mm, cm, m, in", units));
-}
-
 std::string encode_gcode(const Toolpath& path, const GcodeOptions& o) {
   if (o.units != "mm" && o.units != "in") {
     throw InputError(fmt::format("G-code units '{}' is not mm (G21) or in (G20)", o.units));

@@ -6,6 +6,7 @@
 
 #include <string>
 
+#include "geometry/core/units.h"
 #include "geometry/toolpath/toolpath.h"
 
 namespace fabmesh {
@@ -32,8 +33,5 @@ std::string encode_gcode(const Toolpath& path, const GcodeOptions& options = {})
 
 /// encode_gcode written atomically to `path`. \throw FileError
 void write_gcode(const std::string& file, const Toolpath& path, const GcodeOptions& options = {});
-
-/// Model units -> millimetres (mm 1, cm 10, m 1000, in 25.4). \throw InputError
-double millimetres_per_unit(const std::string& units);
 
 }  // namespace fabmesh

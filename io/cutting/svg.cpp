@@ -47,7 +47,7 @@ std::string encode_svg(const std::vector<CutLoop>& loops, const SvgOptions& opti
         for (std::size_t i = 1; i < e.points.size(); ++i) d += " L " + pt(e.points[i]);
       }
     }
-    d += " Z";
+    if (loop.closed) d += " Z";
     const std::string id = loop.outer ? std::string("outline") : fmt::format("hole{}", holes++);
     out += fmt::format("  <path id=\"{}\" d=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"0.5\"/>\n", id,
                        d, loop.outer ? "red" : "blue");

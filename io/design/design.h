@@ -2,15 +2,19 @@
 // Design files as plain, validated data (docs/design-files.md).
 
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <utility>
 #include <variant>
 #include <vector>
 
 #include "geometry/core/limits.h"
+#include "geometry/core/units.h"
 #include "geometry/curves/curve_spec.h"
+#include "geometry/mould/mould_options.h"
 #include "geometry/section/vessel_section.h"
 #include "geometry/surfaces/patch_network.h"
+#include "geometry/toolpath/cnc_options.h"
 
 namespace fabmesh {
 
@@ -51,9 +55,6 @@ struct DesignCommon {
   OutputErrorPolicy on_output_error = OutputErrorPolicy::Skip;
 };
 
-/// Metres per `units` (mm, cm, m, in). \throw std::invalid_argument for another unit
-double metres_per_unit(const std::string& units);
-
 /// kind: curve
 struct CurveDesign {
   static constexpr const char* kKind = "curve";
@@ -68,12 +69,25 @@ struct VesselDesign {
   double wall = 0.0;                                 ///< shell: > 0
   double base = 0.0;                                 ///< shell: > 0 (default: wall)
   std::size_t max_triangles = kDefaultMaxTriangles;  ///< budget (key `max_triangles`)
+  /// Clay shrinkage from wet to fired, in [0, 1): what is written (the master)
+  /// is the designed (fired) vessel scaled by 1 / (1 - shrinkage).
+  double shrinkage = 0.0;
+  /// A slip-casting mould around the vessel (key `mould`); its options in
+  /// model units, tolerance and shrinkage filled from the design.
+  std::optional<MouldOptions> mould;
 };
 
 /// One cut-out of a countertop (sink, cooktop).
 struct CountertopHole {
   std::string shape;  ///< ellipse | rounded_rect | outline (for messages)
   CurveSpec curve;    ///< closed; ellipse and rounded_rect expanded into exact ellipse-arc and line segments
+};
+
+/// A CNC router cut of a countertop (key `cnc`): the cut, and how its G-code is written.
+struct CncDesign {
+  CncOptions options;                ///< model units; depth defaults to the slab's thickness
+  std::string program_units = "mm";  ///< mm (G21) or in (G20)
+  int decimals = 0;                  ///< digits in the program; 0: from the tolerance
 };
 
 /// kind: countertop. Outline and holes in the plane; the slab spans z in [0, thickness].
@@ -84,6 +98,7 @@ struct CountertopDesign {
   double thickness = 0.0;                            ///< > 0, model units
   double max_edge = 0.0;                             ///< > 0 refines the triangulation; 0: not given
   std::size_t max_triangles = kDefaultMaxTriangles;  ///< budget (key `max_triangles`)
+  std::optional<CncDesign> cnc;
 };
 
 /// kind: surface. Patches of a G0/G1/G2-joined network of generalized

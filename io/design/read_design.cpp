@@ -23,31 +23,36 @@ template <class Body>
 struct KindTag {};
 
 // One reader per kind: a DesignBody alternative without one does not compile.
-CurveDesign read_kind(KindTag<CurveDesign>, const yaml::Fields& f, const YAML::Node& root) {
+CurveDesign read_kind(KindTag<CurveDesign>, const yaml::Fields& f, const YAML::Node& root,
+                      const DesignCommon&) {
   return CurveDesign{read_curve(f, f.required(root, "curve", "curve"), "curve")};
 }
-VesselDesign read_kind(KindTag<VesselDesign>, const yaml::Fields& f, const YAML::Node& root) {
-  return read_vessel(f, root);
+VesselDesign read_kind(KindTag<VesselDesign>, const yaml::Fields& f, const YAML::Node& root,
+                       const DesignCommon& common) {
+  return read_vessel(f, root, common);
 }
-CountertopDesign read_kind(KindTag<CountertopDesign>, const yaml::Fields& f, const YAML::Node& root) {
-  return read_countertop(f, root);
+CountertopDesign read_kind(KindTag<CountertopDesign>, const yaml::Fields& f, const YAML::Node& root,
+                           const DesignCommon& common) {
+  return read_countertop(f, root, common);
 }
-SurfaceDesign read_kind(KindTag<SurfaceDesign>, const yaml::Fields& f, const YAML::Node& root) {
+SurfaceDesign read_kind(KindTag<SurfaceDesign>, const yaml::Fields& f, const YAML::Node& root,
+                        const DesignCommon&) {
   return read_surface(f, root);
 }
 
 // The alternative of DesignBody whose kKind is `kind`, read from `root`.
 template <std::size_t I = 0>
-DesignBody read_body(const std::string& kind, const yaml::Fields& f, const YAML::Node& root) {
+DesignBody read_body(const std::string& kind, const yaml::Fields& f, const YAML::Node& root,
+                     const DesignCommon& common) {
   if constexpr (I == std::variant_size_v<DesignBody>) {
     std::string names;
     for (const std::string& n : kind_names()) names += (names.empty() ? "" : ", ") + n;
     f.fail(root["kind"], "kind", fmt::format("'{}' is not one of: {}", kind, names));
   } else {
     using Body = std::variant_alternative_t<I, DesignBody>;
-    if (kind != Body::kKind) return read_body<I + 1>(kind, f, root);
+    if (kind != Body::kKind) return read_body<I + 1>(kind, f, root, common);
     f.require_map(root, "", key_group(Body::kKind));
-    return read_kind(KindTag<Body>{}, f, root);
+    return read_kind(KindTag<Body>{}, f, root, common);
   }
 }
 
@@ -191,14 +196,6 @@ DesignCommon read_common(const yaml::Fields& f, const YAML::Node& root) {
 
 }  // namespace
 
-double metres_per_unit(const std::string& units) {
-  if (units == "mm") return 1e-3;
-  if (units == "cm") return 1e-2;
-  if (units == "m") return 1.0;
-  if (units == "in") return 0.0254;
-  throw std::invalid_argument("unknown unit '" + units + "'");
-}
-
 Design parse_design(const std::string& text, const std::string& path,
                     const std::vector<Override>& overrides) {
   YAML::Node root;
@@ -236,7 +233,7 @@ Design parse_design(const std::string& text, const std::string& path,
   const std::string kind = f.text(f.required(root, "kind", "kind"), "kind");
   Design d;
   d.common = read_common(f, root);
-  d.body = read_body(kind, f, root);
+  d.body = read_body(kind, f, root, d.common);
   return d;
 }
 

@@ -17,15 +17,23 @@ std::vector<KeyGroup> make_groups() {
       {"common", with_common({})},
       // Kinds (the root map of a design file).
       {"curve", with_common({"curve"})},
-      {"vessel", with_common({"profile", "body", "max_triangles"})},
-      {"countertop", with_common({"outline", "holes", "thickness", "max_edge", "max_triangles"})},
+      {"vessel", with_common({"profile", "body", "max_triangles", "shrinkage", "mould"})},
+      {"countertop", with_common({"outline", "holes", "thickness", "max_edge", "max_triangles", "cnc"})},
       {"surface", with_common({"patches", "thickness", "max_triangles"})},
       // Vessels.
       {"vessel.body", {"mode", "wall", "base"}},
+      {"vessel.mould",
+       {"parts", "wall", "spare", "spare_shape", "spare_taper_deg", "block", "block_radius", "base_part",
+        "base_height", "keys", "key_radius", "key_clearance", "key_margin", "key_positions",
+        "allow_undercuts"}},
       // Countertops.
       {"countertop.holes[]", {"ellipse", "rounded_rect", "outline"}},
       {"countertop.holes[].ellipse", {"center", "a", "b", "rotation_deg"}},
       {"countertop.holes[].rounded_rect", {"center", "size", "radius", "rotation_deg"}},
+      {"countertop.cnc",
+       {"tool_diameter", "depth", "breakthrough", "step_down", "feed", "plunge", "spindle", "safe_z",
+        "lead_in", "tabs", "direction", "relief", "min_web", "units", "decimals"}},
+      {"countertop.cnc.tabs", {"count", "width", "height", "min_radius"}},
       // Surfaces.
       {"surface.patches[]", {"name", "u", "v", "points", "join"}},
       {"surface.patches[].u", {"alpha", "lambda", "mu"}},

@@ -169,13 +169,20 @@ TEST_CASE("countertop bad input: exit 2, a message naming the problem, no file",
   }
 }
 
-TEST_CASE("countertop design: dxf/svg only for countertops, holes read as exact closed curves",
-          "[pipeline][countertop][design]") {
+TEST_CASE(
+    "countertop design: outputs apply to the kinds and contents they are made for, holes read as exact "
+    "closed curves",
+    "[pipeline][countertop][design]") {
+  const std::string vessel =
+      "name: v\nkind: vessel\nprofile: {family: tbezier, segments: [{line: {from: [1, 0], to: [1, 1]}}]}\n"
+      "body: {mode: solid}\n";
   CHECK_THROWS_WITH(
-      resolve_outputs(parse_design("name: v\nkind: vessel\noutputs: [stl, dxf]\nprofile: {family: tbezier, "
-                                   "segments: [{line: {from: [1, 0], to: [1, 1]}}]}\nbody: {mode: solid}\n",
-                                   "v.yaml")),
-      Catch::Contains("v.yaml:3:16: outputs[1]: dxf") && Catch::Contains("made for countertop designs"));
+      resolve_outputs(parse_design(vessel + "outputs: [stl, nc]\n", "v.yaml")),
+      Catch::Contains("v.yaml:5:16: outputs[1]: nc") && Catch::Contains("made for countertop designs"));
+  CHECK_THROWS_WITH(resolve_outputs(parse_design(vessel + "outputs: [mould_stl]\n", "v.yaml")),
+                    Catch::Contains("outputs[0]: mould_stl needs a `mould:` section"));
+  CHECK_THROWS_WITH(resolve_outputs(parse_design(std::string(kSmall) + "outputs: [stl, nc]\n", "small.yaml")),
+                    Catch::Contains("outputs[1]: nc needs a `cnc:` section"));
   const Design d = parse_design(kSmall, "small.yaml");
   std::vector<std::string> defaults;
   for (const OutputFormat* f : resolve_outputs(d)) defaults.emplace_back(f->name);

@@ -168,11 +168,12 @@ TEST_CASE(
     "draco: an output that cannot meet the tolerance is skipped with a reason, or fails the job if asked",
     "[pipeline][outputs][draco][errors]") {
   const fs::path dir = fresh_dir("draco_impossible");
-  // 1e6 mm from the origin, 1e-5 mm tolerance: float32 positions there are 0.06 mm apart.
+  // A 10 mm plate 1e6 mm from the origin at a 1e-5 mm tolerance: float32 positions there are 0.06 mm apart.
   const std::string far =
-      "name: far\nkind: vessel\ntolerance: 0.00001\noutputs: [obj, drc]\nmax_triangles: 2e7\n"
-      "profile: {family: tbezier, segments: [{line: {from: [1000000, 0], to: [1000000, 1]}}]}\n"
-      "body: {mode: solid}\n";
+      "name: far\nkind: countertop\ntolerance: 0.00001\noutputs: [obj, drc]\nthickness: 1\n"
+      "outline: {family: tbezier, closed: true, segments: [{polyline: [[1000000.3, 0.3], [1000010.3, 0.3], "
+      "[1000010.3, 10.3], "
+      "[1000000.3, 10.3], [1000000.3, 0.3]]}]}\n";
   write_file_atomically((dir / "far.yaml").string(), far);
   std::string out;
   REQUIRE(run_cli({"run", (dir / "far.yaml").string(), "-o", (dir / "out").string()}, &out) == 0);

@@ -27,11 +27,12 @@ TEST_CASE("run: a shell vessel is written as STL and Draco in millimetres that b
   const Design design = read_design(example("vessel_golden_shell.yaml"));
   REQUIRE(design.common.units == "cm");
   const JobReport r = run_job(design, into(dir));
-  REQUIRE(r.outputs.size() == 2);
+  REQUIRE(r.outputs.size() == 4);  // the mesh (STL, Draco) and the profile template (DXF, SVG)
   CHECK(r.validation.valid());
   CHECK(r.max_deviation <= design.common.tolerance);
   CHECK(r.export_units == "mm");
-  for (const OutputFile& f : r.files) CHECK(f.units == "mm");
+  for (const OutputFile& f : r.files)
+    CHECK(f.units == (f.format == "dxf" || f.format == "svg" ? "cm" : "mm"));
 
   // The design is in cm, the files in mm: 10 times the lengths, 1000 times the volume.
   const TriangleSoup stl = weld(parse_stl(read_file((dir / "vessel_golden_shell.stl").string()), "stl")).soup;
@@ -97,7 +98,7 @@ TEST_CASE("run --json: one array, an object per design with the documented field
   CHECK(j["watertight"] == true);
   CHECK(j["manifold"] == true);
   CHECK(j["self_intersecting"] == false);
-  CHECK(j["outputs"].size() == 2);
+  CHECK(j["outputs"].size() == 4);  // STL, Draco, and the profile template as DXF and SVG
   CHECK(j["max_deviation"].get<double>() <= 0.005);
 }
 
@@ -129,13 +130,14 @@ TEST_CASE("run: bad input exits 2 and writes no file", "[pipeline][run][errors]"
 
 TEST_CASE("run: a batch reports every design and exits with the worst code", "[pipeline][run]") {
   const fs::path dir = fresh_dir("run_batch");
+  // A curve with a lambda out of range: bad input, while the vessel beside it is built.
   std::ofstream(dir / "curve.yaml")
-      << "kind: curve\ncurve: {family: quasi_bspline, points: [[0,0],[1,1],[2,0]]}\n";
-  std::string out;
-  CHECK(run_cli({"run", example("vessel_golden_solid.yaml"), (dir / "curve.yaml").string(), "-o",
-                 dir.string(), "--json"},
-                &out) == 2);
-  const auto j = nlohmann::json::parse(out.substr(0, out.rfind(']') + 1));
+      << "kind: curve\ncurve: {family: quasi_bspline, points: [[0,0],[1,1],[2,0],[3,1]], lambdas: [0, 7]}\n";
+  const CliResult r = run_fabmesh({"run", example("vessel_golden_solid.yaml"), (dir / "curve.yaml").string(),
+                                   "-o", dir.string(), "--json"});
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err, Catch::Contains("curve.yaml") && Catch::Contains("lambda"));
+  const auto j = nlohmann::json::parse(r.out);
   REQUIRE(j.size() == 2);
   CHECK(j[0]["name"] == "vessel_golden_solid");
   CHECK(j[1]["exit_code"] == 2);

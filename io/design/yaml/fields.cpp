@@ -99,6 +99,15 @@ void Fields::require_map(const YAML::Node& node, const std::string& field, const
   }
 }
 
+long Fields::integer(const YAML::Node& node, const std::string& field, long lo, long hi) const {
+  const double v = number(node, field);
+  if (v != std::floor(v) || v < static_cast<double>(lo) || v > static_cast<double>(hi)) {
+    fail(node, field,
+         fmt::format("{} = {} must be a whole number in [{}, {}]", field, node.Scalar(), lo, hi));
+  }
+  return static_cast<long>(v);
+}
+
 std::size_t Fields::budget_or(const YAML::Node& parent, const char* key, std::size_t fallback) const {
   const YAML::Node n = parent[key];
   if (!n.IsDefined()) return fallback;

@@ -56,6 +56,8 @@ class Fields {
                      std::initializer_list<const char*> choices) const;
   /// A work budget (`max_triangles`): a whole number in [1, 2e9], or `fallback` when absent.
   std::size_t budget_or(const YAML::Node& parent, const char* key, std::size_t fallback) const;
+  /// A whole number in [lo, hi].
+  long integer(const YAML::Node& node, const std::string& field, long lo, long hi) const;
   bool boolean_or(const YAML::Node& parent, const char* key, const std::string& field, bool fallback) const;
   Vec2 point2(const YAML::Node& node, const std::string& field) const;
   std::vector<Vec2> points2(const YAML::Node& node, const std::string& field, std::size_t min_size = 0) const;

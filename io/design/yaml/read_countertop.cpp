@@ -52,9 +52,57 @@ CountertopHole read_hole(const yaml::Fields& f, const YAML::Node& n, const std::
   return hole;
 }
 
+CncDesign read_cnc(const yaml::Fields& f, const YAML::Node& n, const DesignCommon& common, double thickness) {
+  f.require_map(n, "cnc", key_group("countertop.cnc"));
+  const double mm = 1e-3 / metres_per_unit(common.units);  // the defaults are in millimetres
+  CncDesign d;
+  CncOptions& o = d.options;
+  auto length = [&](const char* key, double fallback_mm) {
+    return f.number_or(n, key, std::string("cnc.") + key, fallback_mm * mm);
+  };
+  o.tool_diameter = length("tool_diameter", o.tool_diameter);
+  o.depth = f.number_or(n, "depth", "cnc.depth", thickness);
+  o.breakthrough = length("breakthrough", o.breakthrough);
+  o.step_down = length("step_down", o.step_down);
+  o.feed = length("feed", o.feed);
+  o.plunge = length("plunge", o.plunge);
+  o.spindle = f.number_or(n, "spindle", "cnc.spindle", o.spindle);
+  o.safe_z = length("safe_z", o.safe_z);
+  o.lead_in = length("lead_in", o.lead_in);
+  if (n["tabs"].IsDefined()) {
+    const YAML::Node t = n["tabs"];
+    f.require_map(t, "cnc.tabs", key_group("countertop.cnc.tabs"));
+    if (t["count"].IsDefined())
+      o.tabs.count = static_cast<std::size_t>(f.integer(t["count"], "cnc.tabs.count", 0, 1000));
+    o.tabs.width = f.number_or(t, "width", "cnc.tabs.width", o.tabs.width * mm);
+    o.tabs.height = f.number_or(t, "height", "cnc.tabs.height", o.tabs.height * mm);
+    if (t["min_radius"].IsDefined()) o.tabs.min_radius = f.number(t["min_radius"], "cnc.tabs.min_radius");
+  } else {
+    o.tabs.width *= mm;
+    o.tabs.height *= mm;
+  }
+  if (n["direction"].IsDefined()) {
+    o.direction = f.choice(n["direction"], "cnc.direction", {"climb", "conventional"}) == "conventional"
+                      ? CutDirection::Conventional
+                      : CutDirection::Climb;
+  }
+  if (n["relief"].IsDefined()) {
+    o.relief = f.choice(n["relief"], "cnc.relief", {"none", "dogbone"}) == "dogbone" ? CornerRelief::Dogbone
+                                                                                     : CornerRelief::None;
+  }
+  if (n["min_web"].IsDefined()) o.min_web = f.number(n["min_web"], "cnc.min_web");
+  d.program_units = common.units == "in" ? "in" : "mm";
+  if (n["units"].IsDefined()) d.program_units = f.choice(n["units"], "cnc.units", {"mm", "in"});
+  if (n["decimals"].IsDefined())
+    d.decimals = static_cast<int>(f.integer(n["decimals"], "cnc.decimals", 0, 9));
+  o.tolerance = common.tolerance;
+  f.checked(n, "cnc", [&] { validate_cnc_options(o); });
+  return d;
+}
+
 }  // namespace
 
-CountertopDesign read_countertop(const yaml::Fields& f, const YAML::Node& root) {
+CountertopDesign read_countertop(const yaml::Fields& f, const YAML::Node& root, const DesignCommon& common) {
   CountertopDesign d;
   d.outline = read_closed_curve(f, f.required(root, "outline", "outline"), "outline");
   if (root["holes"].IsDefined()) {
@@ -73,6 +121,7 @@ CountertopDesign read_countertop(const yaml::Fields& f, const YAML::Node& root) 
       f.fail(root["max_edge"], "max_edge", fmt::format("max_edge = {} must be > 0", d.max_edge));
   }
   d.max_triangles = f.budget_or(root, "max_triangles", d.max_triangles);
+  if (root["cnc"].IsDefined()) d.cnc = read_cnc(f, root["cnc"], common, d.thickness);
   return d;
 }
 

@@ -15,6 +15,9 @@ namespace fabmesh {
 /// rounded_rect holes become closed curves of exact segments (one 0..360
 /// ellipse arc; 4 lines and 4 quarter circles, declared G1).
 /// \throw FileError naming file, line, column and field
-CountertopDesign read_countertop(const yaml::Fields& fields, const YAML::Node& root);
+/// `cnc:` (CncOptions; defaults in mm, converted to the design's units;
+/// depth defaults to the thickness) as well; `common` gives the units and tolerance.
+CountertopDesign read_countertop(const yaml::Fields& fields, const YAML::Node& root,
+                                 const DesignCommon& common);
 
 }  // namespace fabmesh

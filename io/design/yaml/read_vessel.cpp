@@ -2,11 +2,53 @@
 
 #include <fmt/format.h>
 
+#include "geometry/mould/mould_section.h"
 #include "io/design/yaml/read_curve.h"
 
 namespace fabmesh {
 
-VesselDesign read_vessel(const yaml::Fields& f, const YAML::Node& root) {
+namespace {
+
+MouldOptions read_mould(const yaml::Fields& f, const YAML::Node& m, const DesignCommon& common,
+                        const VesselDesign& v) {
+  f.require_map(m, "mould", key_group("vessel.mould"));
+  const double mm = 1e-3 / metres_per_unit(common.units);  // the defaults are in millimetres
+  MouldOptions o;
+  auto length = [&](const char* key, double fallback_mm) {
+    return f.number_or(m, key, std::string("mould.") + key, fallback_mm * mm);
+  };
+  if (m["parts"].IsDefined()) o.parts = static_cast<int>(f.integer(m["parts"], "mould.parts", 2, 3));
+  o.wall = length("wall", o.wall);
+  o.spare = length("spare", o.spare);
+  if (m["spare_shape"].IsDefined()) {
+    o.spare_shape = f.choice(m["spare_shape"], "mould.spare_shape", {"cylinder", "cone"}) == "cone"
+                        ? SpareShape::Cone
+                        : SpareShape::Cylinder;
+  }
+  o.spare_taper_deg = f.number_or(m, "spare_taper_deg", "mould.spare_taper_deg", o.spare_taper_deg);
+  if (m["block"].IsDefined()) {
+    o.block = f.choice(m["block"], "mould.block", {"cylinder", "box"}) == "box" ? BlockShape::Box
+                                                                                : BlockShape::Cylinder;
+  }
+  o.block_radius = f.number_or(m, "block_radius", "mould.block_radius", 0.0);
+  o.base_part = f.boolean_or(m, "base_part", "mould.base_part", false);
+  o.base_height = f.number_or(m, "base_height", "mould.base_height", 0.0);
+  if (m["keys"].IsDefined()) o.keys = static_cast<int>(f.integer(m["keys"], "mould.keys", 0, 64));
+  o.key_radius = length("key_radius", o.key_radius);
+  o.key_clearance = length("key_clearance", o.key_clearance);
+  o.key_margin = f.number_or(m, "key_margin", "mould.key_margin", 0.0);
+  if (m["key_positions"].IsDefined()) o.key_positions = f.points2(m["key_positions"], "mould.key_positions");
+  o.allow_undercuts = f.boolean_or(m, "allow_undercuts", "mould.allow_undercuts", false);
+  o.shrinkage = v.shrinkage;
+  o.tolerance = common.tolerance;
+  o.max_triangles = v.max_triangles;
+  f.checked(m, "mould", [&] { check_mould_options(o); });
+  return o;
+}
+
+}  // namespace
+
+VesselDesign read_vessel(const yaml::Fields& f, const YAML::Node& root, const DesignCommon& common) {
   VesselDesign v;
   v.profile = read_curve(f, f.required(root, "profile", "profile"), "profile");
   const YAML::Node body = f.required(root, "body", "body");
@@ -26,6 +68,16 @@ VesselDesign read_vessel(const yaml::Fields& f, const YAML::Node& root) {
     }
   }
   v.max_triangles = f.budget_or(root, "max_triangles", v.max_triangles);
+  if (root["shrinkage"].IsDefined()) {
+    v.shrinkage = f.number(root["shrinkage"], "shrinkage");
+    if (v.shrinkage < 0.0 || v.shrinkage >= 1.0) {
+      f.fail(root["shrinkage"], "shrinkage",
+             fmt::format("shrinkage = {} must be in [0, 1) (0.12 for 12 %)", root["shrinkage"].Scalar()));
+    }
+  }
+  if (root["mould"].IsDefined()) {
+    v.mould = read_mould(f, root["mould"], common, v);
+  }
   return v;
 }
 

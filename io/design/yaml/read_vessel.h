@@ -11,6 +11,9 @@ namespace fabmesh {
 /// Reads profile (a curve in the (radius, height) plane), body {mode, wall,
 /// base} and max_triangles from the design's root map (its keys already
 /// checked against key_group("vessel")). \throw FileError naming file, line, column and field
-VesselDesign read_vessel(const yaml::Fields& fields, const YAML::Node& root);
+/// `shrinkage` (in [0, 1)) and `mould:` (MouldOptions; defaults in mm,
+/// converted to the design's units) as well; `common` gives the units and
+/// the tolerance. \throw FileError
+VesselDesign read_vessel(const yaml::Fields& fields, const YAML::Node& root, const DesignCommon& common);
 
 }  // namespace fabmesh
