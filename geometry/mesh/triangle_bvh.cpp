@@ -10,17 +10,19 @@
 namespace fabmesh {
 namespace {
 
-/// The float nearest to x that is <= x (resp. >= x).
+/// The float nearest to x that is <= x (resp. >= x), clamped to the finite
+/// floats. Clamping is monotone, so boxes that overlap exactly still overlap;
+/// and no box reaches an infinity, so none overlaps an empty box (lo = +inf,
+/// hi = -inf), which a box from -inf to +inf would.
 float round_down(double x) {
+  constexpr float kMax = std::numeric_limits<float>::max();
+  if (x >= static_cast<double>(kMax)) return kMax;
+  if (x <= -static_cast<double>(kMax)) return -kMax;
   float f = static_cast<float>(x);
-  if (static_cast<double>(f) > x) f = std::nextafter(f, -std::numeric_limits<float>::infinity());
+  if (static_cast<double>(f) > x) f = std::nextafter(f, -kMax);
   return f;
 }
-float round_up(double x) {
-  float f = static_cast<float>(x);
-  if (static_cast<double>(f) < x) f = std::nextafter(f, std::numeric_limits<float>::infinity());
-  return f;
-}
+float round_up(double x) { return -round_down(-x); }
 
 BoxF empty_box() {
   const float inf = std::numeric_limits<float>::infinity();

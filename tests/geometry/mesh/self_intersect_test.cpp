@@ -238,6 +238,23 @@ TEST_CASE("self-intersection: the fast test equals the reference on closed meshe
   CHECK(r.count > 7);
 }
 
+TEST_CASE("self-intersection: coordinates beyond float range never reach the empty padding of the hierarchy",
+          "[mesh][self_intersect]") {
+  // A fuzzer's cube (12 faces: 3 leaves padded to 4) with a corner at 1e300:
+  // its boxes reached both float infinities and so "overlapped" the empty
+  // padding leaf, whose lanes hold no face.
+  for (const double far : {1e300, -1e300, 1e39, 3.5e38}) {
+    TriangleSoup s = box();
+    REQUIRE(s.triangles.size() == 12);
+    s.vertices[0] = Vec3(far, -far, far);
+    INFO("far corner " << far);
+    require_same(s, degenerate_faces(s));
+    TriangleSoup two = box();
+    append(two, s);
+    require_same(two, degenerate_faces(two));
+  }
+}
+
 TEST_CASE("self-intersection: the fast test equals the reference on thousands of random soups",
           "[mesh][self_intersect]") {
   Random rng(20261123);
