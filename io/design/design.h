@@ -9,6 +9,7 @@
 
 #include "geometry/core/limits.h"
 #include "geometry/curves/curve_spec.h"
+#include "geometry/mesh/thicken.h"
 #include "geometry/section/vessel_section.h"
 #include "geometry/surfaces/patch_network.h"
 
@@ -70,7 +71,8 @@ struct CountertopDesign {
 struct SurfaceDesign {
   static constexpr const char* kKind = "surface";
   std::vector<PatchSpec> patches;
-  double thickness = 0.0;  ///< > 0: a solid shell along the normals; 0: an open surface
+  double thickness = 0.0;                     ///< > 0: a solid shell along the normals; 0: an open surface
+  ThickenSide thicken = ThickenSide::Normal;  ///< which side the shell goes to (key `thicken`)
   std::size_t max_triangles = kDefaultMaxTriangles;  ///< budget (key `max_triangles`)
 };
 

@@ -18,7 +18,7 @@ std::vector<KeyGroup> make_groups() {
       {"curve", with_common({"curve"})},
       {"vessel", with_common({"profile", "body", "max_triangles"})},
       {"countertop", with_common({"outline", "holes", "thickness", "max_edge", "max_triangles"})},
-      {"surface", with_common({"patches", "thickness", "max_triangles"})},
+      {"surface", with_common({"patches", "thickness", "thicken", "max_triangles"})},
       // Vessels.
       {"vessel.body", {"mode", "wall", "base"}},
       // Countertops.

@@ -14,7 +14,7 @@ TEST_CASE("thicken: a disk-like G1 network becomes a valid outward solid of genu
   const PatchNetwork net = build_patch_network(test::basin_specs(2.0, 0.6, 2.0 / 3.0));
   TessellateOptions o;
   o.tolerance = 0.02;
-  o.offset = 0.05;
+  o.shell_to = 0.05;
   const SurfaceTessellation sheet = tessellate(net, o);
   const Mesh solid = thicken(sheet.mesh, sheet.normals, {0.05});
   const ValidationReport r = validate(solid);
