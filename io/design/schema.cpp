@@ -31,7 +31,7 @@ std::vector<KeyGroup> make_groups() {
       {"surface.patches[].join", {"to", "side", "continuity", "gamma", "k", "m"}},
       // Curves (under curve, profile, outline and holes[].outline).
       {"curve.quasi_bspline", {"family", "points", "lambdas", "fair"}},
-      {"curve.composite", {"family", "closed", "segments", "fair", "closing"}},
+      {"curve.composite", {"family", "closed", "segments", "fair", "fair_keeps", "closing"}},
       {"curve.closing", {"continuity"}},
       {"segment.cubic", {"points", "lambda", "mu", "alpha", "join", "continuity", "family"}},
       {"segment.join.tbezier", {"continuity", "alpha", "beta"}},
