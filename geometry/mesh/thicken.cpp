@@ -98,7 +98,7 @@ double enclosed_volume(const Mesh& sheet) {
     ++rim;
   }
   if (rim > 0) centroid /= static_cast<double>(rim);
-  auto at = [&](Mesh::VertexHandle v) {
+  auto at = [&](Mesh::VertexHandle v) -> Vec3 {
     const auto& p = sheet.point(v);
     return Vec3(p[0], p[1], p[2]) - centroid;
   };

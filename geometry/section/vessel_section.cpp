@@ -165,13 +165,19 @@ void check_clearance(const CompositeCurve& profile, const std::vector<CurveParam
   const double required = options.min_clearance > 0.0 ? options.min_clearance : options.tolerance;
   const std::string where = fmt::format("outer surface near {} and inner surface near {}", at(c.a), at(c.b));
   if (c.upper < required) {
+    const bool crossing = c.upper <= co.accuracy;
     throw GeometryError(
         options.label.empty() ? "wall" : options.label,
         fmt::format(
-            "{}wall {} (base {}): the exact outer and inner surfaces come within {:.6g} of each other ({}), "
-            "closer than the tolerance {}: the shell would be thinner than that there",
-            options.label.empty() ? "" : options.label + ": ", options.wall,
-            options.base > 0.0 ? options.base : options.wall, c.upper, where, required));
+            "{}wall {} (base {}): {}", options.label.empty() ? "" : options.label + ": ", options.wall,
+            options.base > 0.0 ? options.base : options.wall,
+            crossing
+                ? fmt::format("the exact inner surface meets the outer one ({}): the wall is too thick "
+                              "for the profile there",
+                              where)
+                : fmt::format("the exact outer and inner surfaces come within {:.6g} of each other ({}), "
+                              "closer than the tolerance {}: the shell would be thinner than that there",
+                              c.upper, where, required)));
   }
   section.min_clearance = c.lower;
   section.clearance_where = where;
@@ -228,6 +234,7 @@ VesselSection build_vessel_section(const CompositeCurve& profile, const VesselSe
     for (const Vec2& p : l) section.max_radius = std::max(section.max_radius, p.x());
   }
   if (const auto c = find_crossing(section.loops)) {
+    if (shell) check_clearance(profile, params, *shell, options, section);  // the exact walls say why
     if (options.mode == BodyMode::Shell) {
       throw GeometryError(
           "wall", fmt::format("wall {} (base {}) is too thick for the profile: the shell section "
