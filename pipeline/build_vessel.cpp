@@ -16,6 +16,7 @@ BuiltMesh build(const VesselDesign& design, const BuildContext& context) {
   options.mode = design.mode;
   options.wall = design.wall;
   options.base = design.base;
+  options.rim = design.rim;
   options.tolerance = context.tolerance;
   options.max_triangles = design.max_triangles;
   options.label = design.profile.label;

@@ -266,6 +266,102 @@ std::vector<double> side_twists(const HBezierPatch& patch, PatchSide side, const
   return twist;
 }
 
+// The cone of normals of cell (a, b), from the corner where |N| is least.
+double corner_cone(const HBezierPatch& patch, const std::vector<double>& sb, const std::vector<double>& tb,
+                   std::size_t a, std::size_t b, const CellDerivatives& d) {
+  double least = std::numeric_limits<double>::infinity(), angle = least;
+  const HBezierConstants ku = hbezier_constants(patch.u().alpha), kv = hbezier_constants(patch.v().alpha);
+  for (int corner = 0; corner < 4; ++corner) {
+    const bool s1 = (corner & 1) != 0, t1 = (corner & 2) != 0;
+    const PointPartials at = point_partials(patch.points(), unit_jet(s1 ? sb[a + 1] : sb[a], patch.u(), ku),
+                                            unit_jet(t1 ? tb[b + 1] : tb[b], patch.v(), kv));
+    const double n = at[1][0].cross(at[0][1]).norm();
+    if (n < least) {
+      least = n;
+      angle = normal_cone_angle(at, s1, t1, d);
+    }
+  }
+  return angle;
+}
+
+// What a refinement pass needs besides the grid.
+struct Pass {
+  const TessellateOptions& options;
+  double normal_term;  // the thickness-free part of the averaged-normal term
+  bool shell;
+  double thickness;
+};
+
+// One pass over the cells of patch p on its grid (sb, tb): the worst bound,
+// and the cells to split marked in split_s / split_t (grid order). True when
+// any cell is over the tolerance.
+bool mark_patch(const PatchNetwork& network, std::size_t p, const NetDifferences& diff,
+                const std::array<bool, 4>& outer, const std::vector<double>& sb,
+                const std::vector<double>& tb, const Pass& pass, double& achieved, std::vector<bool>& split_s,
+                std::vector<bool>& split_t) {
+  const HBezierPatch& patch = network.patches[p];
+  const DirectionSamples su = sample_direction(sb, patch.u()), sv = sample_direction(tb, patch.v());
+  // Side walls: twists along the outer sides (u sides run along t, v sides along s).
+  std::array<std::vector<double>, 4> twist;
+  for (PatchSide side : {PatchSide::UMin, PatchSide::UMax, PatchSide::VMin, PatchSide::VMax}) {
+    const auto i = static_cast<std::size_t>(side);
+    if (pass.shell && outer[i])
+      twist[i] = side_twists(patch, side, is_u_side(side) ? tb : sb, pass.thickness);
+  }
+  auto twist_at = [&](PatchSide side, std::size_t k) {
+    const auto& v = twist[static_cast<std::size_t>(side)];
+    return v.empty() ? 0.0 : v[k];
+  };
+  bool any = false;
+  for (std::size_t a = 0; a + 1 < sb.size(); ++a) {
+    for (std::size_t b = 0; b + 1 < tb.size(); ++b) {
+      const double ds = sb[a + 1] - sb[a], dt = tb[b + 1] - tb[b];
+      const CellDerivatives d =
+          cell_derivatives(patch.points(), diff, su.cells[a], sv.cells[b], su.mids[a], sv.mids[b], ds, dt);
+      double twist_t = 0.0, twist_s = 0.0;
+      if (a == 0) twist_t = std::max(twist_t, twist_at(PatchSide::UMin, b));
+      if (a + 2 == sb.size()) twist_t = std::max(twist_t, twist_at(PatchSide::UMax, b));
+      if (b == 0) twist_s = std::max(twist_s, twist_at(PatchSide::VMin, a));
+      if (b + 2 == tb.size()) twist_s = std::max(twist_s, twist_at(PatchSide::VMax, a));
+      const auto cone = [&]() { return corner_cone(patch, sb, tb, a, b, d); };
+      const CellError e = cell_error(d, ds, dt, pass.options, pass.normal_term, cone, twist_s, twist_t);
+      achieved = std::max(achieved, e.bound);
+      if (e.bound <= pass.options.tolerance) continue;
+      if (e.degenerate && ds < 1e-4 && dt < 1e-4) {
+        throw GeometryError(
+            network.names[p],
+            fmt::format("patch '{}': the surface normal vanishes near (s {:.6g}, t {:.6g}), so "
+                        "the offset sheet of the shell cannot be bounded there (a collapsed "
+                        "side or a cusp cannot be thickened)",
+                        network.names[p], sb[a], tb[b]));
+      }
+      any = true;
+      if (e.split_s) split_s[a] = true;
+      if (e.split_t) split_t[b] = true;
+    }
+  }
+  return any;
+}
+
+// Halves the marked intervals (and their mirror images in a symmetric class).
+std::vector<double> refine(const std::vector<double>& breaks, const std::vector<bool>& split, bool symmetric,
+                           double tolerance) {
+  std::vector<double> refined{breaks[0]};
+  for (std::size_t k = 0; k + 1 < breaks.size(); ++k) {
+    const bool mirror = symmetric && split[breaks.size() - 2 - k];
+    if (split[k] || mirror) {
+      const double mid = 0.5 * (breaks[k] + breaks[k + 1]);
+      if (!(mid > breaks[k] && mid < breaks[k + 1])) {
+        throw BudgetError(0.0, 0.0,
+                          fmt::format("tolerance {} cannot be reached in double precision", tolerance));
+      }
+      refined.push_back(mid);
+    }
+    refined.push_back(breaks[k + 1]);
+  }
+  return refined;
+}
+
 }  // namespace
 
 double min_triangle_count(const PatchNetwork& network, double tolerance) {
@@ -366,6 +462,7 @@ SurfaceTessellation tessellate(const PatchNetwork& network, const TessellateOpti
   const std::vector<std::array<bool, 4>> outer = outer_sides(network);
   std::vector<NetDifferences> diffs;
   for (const HBezierPatch& patch : network.patches) diffs.push_back(net_differences(patch.points()));
+  const Pass pass{options, normal_term, shell, thickness};
   double achieved = 0.0;
   for (;;) {
     std::vector<std::vector<bool>> split(2 * np);
@@ -373,84 +470,22 @@ SurfaceTessellation tessellate(const PatchNetwork& network, const TessellateOpti
     bool any = false;
     achieved = 0.0;
     for (std::size_t p = 0; p < np; ++p) {
-      const HBezierPatch& patch = network.patches[p];
       const auto [rs, ps] = classes.find(slot(p, false));
       const auto [rt, pt] = classes.find(slot(p, true));
       const auto sb = slot_breaks(slot(p, false)), tb = slot_breaks(slot(p, true));
-      const DirectionSamples su = sample_direction(sb, patch.u()), sv = sample_direction(tb, patch.v());
-      // Side walls: twists along the outer sides (u sides run along t, v sides along s).
-      std::array<std::vector<double>, 4> twist;
-      for (PatchSide side : {PatchSide::UMin, PatchSide::UMax, PatchSide::VMin, PatchSide::VMax}) {
-        const auto i = static_cast<std::size_t>(side);
-        if (shell && outer[p][i]) twist[i] = side_twists(patch, side, is_u_side(side) ? tb : sb, thickness);
+      std::vector<bool> split_s(sb.size() - 1, false), split_t(tb.size() - 1, false);
+      if (!mark_patch(network, p, diffs[p], outer[p], sb, tb, pass, achieved, split_s, split_t)) continue;
+      any = true;
+      for (std::size_t a = 0; a < split_s.size(); ++a) {
+        if (split_s[a]) split[rs][ps ? split_s.size() - 1 - a : a] = true;
       }
-      auto twist_at = [&](PatchSide side, std::size_t k) {
-        const auto& v = twist[static_cast<std::size_t>(side)];
-        return v.empty() ? 0.0 : v[k];
-      };
-      for (std::size_t a = 0; a + 1 < sb.size(); ++a) {
-        for (std::size_t b = 0; b + 1 < tb.size(); ++b) {
-          const double ds = sb[a + 1] - sb[a], dt = tb[b + 1] - tb[b];
-          const CellDerivatives d = cell_derivatives(patch.points(), diffs[p], su.cells[a], sv.cells[b],
-                                                     su.mids[a], sv.mids[b], ds, dt);
-          double twist_t = 0.0, twist_s = 0.0;
-          if (a == 0) twist_t = std::max(twist_t, twist_at(PatchSide::UMin, b));
-          if (a + 2 == sb.size()) twist_t = std::max(twist_t, twist_at(PatchSide::UMax, b));
-          if (b == 0) twist_s = std::max(twist_s, twist_at(PatchSide::VMin, a));
-          if (b + 2 == tb.size()) twist_s = std::max(twist_s, twist_at(PatchSide::VMax, a));
-          // The cone of normals, from the corner where |N| is least.
-          const auto cone = [&]() {
-            double least = std::numeric_limits<double>::infinity(), angle = least;
-            const HBezierConstants ku = hbezier_constants(patch.u().alpha),
-                                   kv = hbezier_constants(patch.v().alpha);
-            for (int corner = 0; corner < 4; ++corner) {
-              const bool s1 = (corner & 1) != 0, t1 = (corner & 2) != 0;
-              const PointPartials at =
-                  point_partials(patch.points(), unit_jet(s1 ? sb[a + 1] : sb[a], patch.u(), ku),
-                                 unit_jet(t1 ? tb[b + 1] : tb[b], patch.v(), kv));
-              const double n = at[1][0].cross(at[0][1]).norm();
-              if (n < least) {
-                least = n;
-                angle = normal_cone_angle(at, s1, t1, d);
-              }
-            }
-            return angle;
-          };
-          const CellError e = cell_error(d, ds, dt, options, normal_term, cone, twist_s, twist_t);
-          achieved = std::max(achieved, e.bound);
-          if (e.bound <= options.tolerance) continue;
-          if (e.degenerate && ds < 1e-4 && dt < 1e-4) {
-            throw GeometryError(
-                network.names[p],
-                fmt::format("patch '{}': the surface normal vanishes near (s {:.6g}, t {:.6g}), so "
-                            "the offset sheet of the shell cannot be bounded there (a collapsed "
-                            "side or a cusp cannot be thickened)",
-                            network.names[p], sb[a], tb[b]));
-          }
-          any = true;
-          if (e.split_s) split[rs][ps ? sb.size() - 2 - a : a] = true;
-          if (e.split_t) split[rt][pt ? tb.size() - 2 - b : b] = true;
-        }
+      for (std::size_t b = 0; b < split_t.size(); ++b) {
+        if (split_t[b]) split[rt][pt ? split_t.size() - 1 - b : b] = true;
       }
     }
     if (!any) break;
-    for (std::size_t c = 0; c < 2 * np; ++c) {
-      std::vector<double> refined{breaks[c][0]};
-      for (std::size_t k = 0; k + 1 < breaks[c].size(); ++k) {
-        const bool mirror = classes.symmetric(c) && split[c][breaks[c].size() - 2 - k];
-        if (split[c][k] || mirror) {
-          const double mid = 0.5 * (breaks[c][k] + breaks[c][k + 1]);
-          if (!(mid > breaks[c][k] && mid < breaks[c][k + 1])) {
-            throw BudgetError(
-                0.0, 0.0,
-                fmt::format("tolerance {} cannot be reached in double precision", options.tolerance));
-          }
-          refined.push_back(mid);
-        }
-        refined.push_back(breaks[c][k + 1]);
-      }
-      breaks[c] = std::move(refined);
-    }
+    for (std::size_t c = 0; c < 2 * np; ++c)
+      breaks[c] = refine(breaks[c], split[c], classes.symmetric(c), options.tolerance);
     const std::size_t count = triangles();
     if (count > options.max_triangles) {
       throw BudgetError(static_cast<double>(count), static_cast<double>(options.max_triangles),

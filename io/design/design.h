@@ -47,6 +47,7 @@ struct VesselDesign {
   BodyMode mode = BodyMode::Solid;
   double wall = 0.0;                                 ///< shell: > 0
   double base = 0.0;                                 ///< shell: > 0 (default: wall)
+  RimCut rim = RimCut::Square;                       ///< shell: how the rim is cut (proposed key `body.rim`)
   std::size_t max_triangles = kDefaultMaxTriangles;  ///< budget (key `max_triangles`)
 };
 
