@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include "geometry/curves/build_curve.h"
+#include "geometry/mesh/bounding_box.h"
 #include "geometry/mesh/slab.h"
 #include "geometry/toolpath/toolpath.h"
 #include "pipeline/build_design.h"
@@ -14,13 +15,14 @@ BuiltMesh build(const CountertopDesign& design, const BuildContext& context) {
   const BuiltCurve outline = build_curve(design.outline);
   std::vector<RegionHole> holes;
   for (std::size_t i = 0; i < design.holes.size(); ++i) {
-    holes.push_back(
-        {build_curve(design.holes[i].curve).curve, fmt::format("holes[{}] ({})", i, design.holes[i].shape)});
+    holes.push_back({build_curve(design.holes[i].curve).curve,
+                     fmt::format("holes[{}] ({})", i, design.holes[i].shape), design.holes[i].curve.label});
   }
   context.watch.lap("curve");
   RegionOptions ro;
   ro.tolerance = context.tolerance;
   ro.max_points = design.max_triangles / 2;  // every loop point makes two wall triangles
+  ro.outline_where = design.outline.label;
   const Region2 region = build_region(outline.curve, holes, ro);
   context.watch.lap("region");
   SlabOptions so;
@@ -54,6 +56,14 @@ BuiltMesh build(const CountertopDesign& design, const BuildContext& context) {
                {"region_area", region.area},
                {"thickness", design.thickness}};
   if (design.max_edge > 0.0) out.facts["max_edge"] = design.max_edge;
+  if (!holes.empty()) {
+    // Between the exact curves (a proven lower bound), not their polylines.
+    out.facts["min_clearance"] = region.min_clearance;
+    out.facts["min_clearance_where"] = region.clearance_where;
+  }
+  const BoundingBox box = bounding_box(out.soup.vertices);
+  out.facts["bbox_min"] = {box.lo.x(), box.lo.y(), box.lo.z()};
+  out.facts["bbox_max"] = {box.hi.x(), box.hi.y(), box.hi.z()};
   if (design.cnc) {
     CncOptions cnc = design.cnc->options;
     cnc.tolerance = context.tolerance;

@@ -5,9 +5,11 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "geometry/core/errors.h"
 #include "geometry/curves/build_curve.h"
+#include "geometry/mesh/bounding_box.h"
 #include "geometry/mesh/vessel.h"
 #include "geometry/mould/mould.h"
 #include "geometry/mould/shrinkage.h"
@@ -81,25 +83,33 @@ BuiltMesh build(const VesselDesign& design, const BuildContext& context) {
   options.mode = design.mode;
   options.wall = design.wall * factor;
   options.base = design.base * factor;
+  options.rim = design.rim;
   options.tolerance = context.tolerance;
   options.max_triangles = design.max_triangles;
+  options.label = design.profile.label;
   const VesselMesh vessel = build_vessel(master, options);
   context.watch.lap("build");
   std::size_t section_points = 0;
   for (const auto& loop : vessel.section.loops) section_points += loop.size();
   BuiltMesh out = validated(vessel.mesh, vessel.proof, context);
   out.max_deviation = vessel.max_deviation;
+  const BoundingBox box = bounding_box(out.soup.vertices);
   out.facts = {{"angular_segments", vessel.segments},
                {"section_loops", vessel.section.loops.size()},
                {"section_points", section_points},
-               {"max_radius", vessel.section.max_radius}};
+               {"max_radius", vessel.section.max_radius},
+               {"bbox_min", {box.lo.x(), box.lo.y(), box.lo.z()}},
+               {"bbox_max", {box.hi.x(), box.hi.y(), box.hi.z()}}};
+  if (!std::isnan(vessel.section.min_clearance)) {
+    // The thinnest place of the shell, between the exact outer and inner surfaces.
+    out.facts["min_clearance"] = vessel.section.min_clearance;
+    out.facts["min_clearance_where"] = vessel.section.clearance_where;
+  }
   if (design.shrinkage > 0.0) {
-    Vec3 lo = out.soup.vertices.front(), hi = lo;
-    for (const Vec3& p : out.soup.vertices) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
     out.facts["shrinkage"] = {{"shrinkage", design.shrinkage},
                               {"factor", factor},
-                              {"master_size", size_json(lo, hi)},
-                              {"fired_size", size_json(lo / factor, hi / factor)}};
+                              {"master_size", size_json(box.lo, box.hi)},
+                              {"fired_size", size_json(box.lo / factor, box.hi / factor)}};
   }
   if (context.wants_cutting) {
     out.cutting.push_back(profile_template(master, context.tolerance));

@@ -5,12 +5,48 @@
 #include "geometry/core/errors.h"
 
 namespace fabmesh {
+namespace {
+
+// What fairing changed on a segment: "segment 3 (lambda 0.5 -> -0.21, mu 0.5 -> 0.13)".
+std::string change(const CompositeCurve& before, const CompositeCurve& after, std::size_t i) {
+  const Segment& a = before.segments()[i];
+  const Segment& b = after.segments()[i];
+  if (a.lambda() == b.lambda() && a.mu() == b.mu()) return fmt::format("segment {} (unchanged)", i + 1);
+  return fmt::format("segment {} (lambda {:.4g} -> {:.4g}, mu {:.4g} -> {:.4g})", i + 1, a.lambda(),
+                     b.lambda(), a.mu(), b.mu());
+}
+
+// Every joint keeps its declared continuity (at least fair_keeps) after fairing.
+void require_kept_continuity(const CurveSpec& spec, const CompositeCurve& before, const BuiltCurve& out) {
+  for (std::size_t i = 0; i < out.joints.size() && i < out.declared.size(); ++i) {
+    const JointReport& j = out.joints[i];
+    Continuity required = out.declared[i];
+    if (spec.fair_keeps && static_cast<int>(*spec.fair_keeps) < static_cast<int>(required))
+      required = *spec.fair_keeps;
+    if (static_cast<int>(j.achieved) >= static_cast<int>(required)) continue;
+    const std::string joint =
+        j.closing ? fmt::format("closing joint (segments {} -> {})", j.before + 1, j.after + 1)
+                  : fmt::format("joint {} (segments {} -> {})", i + 1, j.before + 1, j.after + 1);
+    throw GeometryError(
+        spec.label,
+        fmt::format(
+            "{}: {}: declared {} but after fair: {} it is {} (tangent angle {:.3g} rad, relative curvature "
+            "jump {:.3g}): fairing changed {} and {}; drop the fairing, or say what the curve may lose "
+            "with fair_keeps: {}",
+            spec.label, joint, to_string(out.declared[i]), to_string(spec.fair), to_string(j.achieved),
+            j.tangent_angle, j.curvature_jump, change(before, out.curve, j.before),
+            change(before, out.curve, j.after), to_string(j.achieved)));
+  }
+}
+
+}  // namespace
 
 BuiltCurve build_curve(const CurveSpec& spec, const JointTolerances& tol) {
   BuiltCurve out;
   out.curve = construct_curve(spec);
   verify_declared_continuity(spec, out.curve, tol);
   out.declared = declared_continuity(spec);
+  const CompositeCurve before = out.curve;
   if (spec.fair != FairMode::None && spec.family == CurveFamily::HBezier) {
     throw GeometryError(spec.label, spec.label +
                                         ": fairing is defined for tbezier and quasi_bspline curves, "
@@ -35,6 +71,7 @@ BuiltCurve build_curve(const CurveSpec& spec, const JointTolerances& tol) {
     }
   }
   out.joints = out.curve.joints(tol);
+  if (spec.fair != FairMode::None) require_kept_continuity(spec, before, out);
   return out;
 }
 

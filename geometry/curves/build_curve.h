@@ -21,9 +21,11 @@ struct BuiltCurve {
 
 /// Constructs the curve, verifies declared continuity on the constructed
 /// curve (GeometryError if contradicted), then applies spec.fair: control
-/// points stay, shape parameters change; joints are measured after fairing
-/// (a G2 joint may be lost and the report says so).
-/// \throw RangeError, GeometryError (naming spec.label)
+/// points stay, shape parameters change; joints are measured after fairing.
+/// A joint that fairing leaves below its declared continuity (or below
+/// spec.fair_keeps, when the design accepts less) is a GeometryError naming
+/// the joint, the curve and the shape parameters fairing changed.
+/// \throw RangeError, GeometryError (where: spec.label)
 BuiltCurve build_curve(const CurveSpec& spec, const JointTolerances& tol = {});
 
 }  // namespace fabmesh

@@ -52,6 +52,10 @@ struct CurveSpec {
   std::vector<Vec2> bspline_points;     ///< quasi_bspline: p0..pn, n >= 2
   std::vector<double> bspline_lambdas;  ///< quasi_bspline: lambda_1..lambda_{n-1}; empty = all 0
   FairMode fair = FairMode::None;
+  /// The continuity every joint must keep after fairing (design key
+  /// `fair_keeps`): a joint declared higher may drop to this, not below.
+  /// Absent: every declared continuity must survive fairing.
+  std::optional<Continuity> fair_keeps;
   std::string label;  ///< where it came from, for messages
 };
 

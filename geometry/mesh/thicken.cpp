@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+
 #include "geometry/core/errors.h"
 
 namespace fabmesh {
@@ -14,6 +16,7 @@ std::size_t thickened_triangle_count(const Mesh& sheet) {
 
 Mesh thicken(const Mesh& sheet, const std::vector<Vec3>& vertex_normals, const ThickenOptions& options) {
   require_positive("thickness", options.thickness);
+  require_in_range("offset", options.offset, -1e12, 1e12);
   const std::size_t n = sheet.n_vertices();
   if (vertex_normals.size() != n) {
     throw RangeError("vertex_normals", static_cast<double>(vertex_normals.size()),
@@ -28,11 +31,14 @@ Mesh thicken(const Mesh& sheet, const std::vector<Vec3>& vertex_normals, const T
   }
   Mesh solid;
   solid.reserve(2 * n, 3 * triangles / 2, triangles);
-  for (const auto v : sheet.vertices()) solid.add_vertex(sheet.point(v));
-  for (const auto v : sheet.vertices()) {
+  const double lower = options.offset, upper = options.offset + options.thickness;
+  auto along = [&](Mesh::VertexHandle v, double distance) {
+    if (distance == 0.0) return sheet.point(v);
     const Vec3& nv = vertex_normals[static_cast<std::size_t>(v.idx())];
-    solid.add_vertex(sheet.point(v) + options.thickness * Mesh::Point(nv.x(), nv.y(), nv.z()));
-  }
+    return Mesh::Point(sheet.point(v) + distance * Mesh::Point(nv.x(), nv.y(), nv.z()));
+  };
+  for (const auto v : sheet.vertices()) solid.add_vertex(along(v, lower));
+  for (const auto v : sheet.vertices()) solid.add_vertex(along(v, upper));
   auto base = [](Mesh::VertexHandle v) { return v; };
   auto offset = [n](Mesh::VertexHandle v) { return Mesh::VertexHandle(v.idx() + static_cast<int>(n)); };
   std::size_t refused = 0;
@@ -62,6 +68,73 @@ Mesh thicken(const Mesh& sheet, const std::vector<Vec3>& vertex_normals, const T
                                                refused));
   }
   return solid;
+}
+
+}  // namespace fabmesh
+
+namespace fabmesh {
+
+const char* to_string(ThickenSide side) {
+  switch (side) {
+    case ThickenSide::Normal:
+      return "normal";
+    case ThickenSide::Outward:
+      return "outward";
+    case ThickenSide::Inward:
+      return "inward";
+    case ThickenSide::Centered:
+      return "centered";
+  }
+  return "normal";
+}
+
+double enclosed_volume(const Mesh& sheet) {
+  Vec3 centroid = Vec3::Zero();
+  std::size_t rim = 0;
+  for (const auto h : sheet.halfedges()) {
+    if (!sheet.is_boundary(h)) continue;
+    const auto& p = sheet.point(sheet.from_vertex_handle(h));
+    centroid += Vec3(p[0], p[1], p[2]);
+    ++rim;
+  }
+  if (rim > 0) centroid /= static_cast<double>(rim);
+  auto at = [&](Mesh::VertexHandle v) -> Vec3 {
+    const auto& p = sheet.point(v);
+    return Vec3(p[0], p[1], p[2]) - centroid;
+  };
+  double six_volume = 0.0;
+  for (const auto f : sheet.faces()) {
+    std::array<Vec3, 3> c;
+    std::size_t k = 0;
+    for (const auto v : sheet.fv_range(f)) c[k++] = at(v);
+    six_volume += c[0].dot(c[1].cross(c[2]));
+  }
+  // The cap's triangles (from, to, centroid) add nothing: the centroid is the origin here.
+  return six_volume / 6.0;
+}
+
+std::array<double, 2> shell_span(ThickenSide side, double thickness, double volume, double size) {
+  require_positive("thickness", thickness);
+  const bool tellable = std::abs(volume) > 1e-6 * size * size * size;
+  if ((side == ThickenSide::Outward || side == ThickenSide::Inward) && !tellable) {
+    throw GeometryError("thicken",
+                        fmt::format("thicken: {} needs a surface that encloses a volume with its rim "
+                                    "(a bowl, a tray); this one is flat (enclosed volume {:.3g}): use "
+                                    "normal (along S_u x S_v) or centered",
+                                    to_string(side), volume));
+  }
+  const bool normals_out = volume > 0.0;
+  switch (side) {
+    case ThickenSide::Normal:
+      return {0.0, thickness};
+    case ThickenSide::Outward:
+      return normals_out ? std::array<double, 2>{0.0, thickness} : std::array<double, 2>{-thickness, 0.0};
+    case ThickenSide::Inward:
+      return normals_out ? std::array<double, 2>{-thickness, 0.0} : std::array<double, 2>{0.0, thickness};
+    case ThickenSide::Centered:
+      return {-0.5 * thickness, 0.5 * thickness};
+  }
+  return {0.0, thickness};
 }
 
 }  // namespace fabmesh

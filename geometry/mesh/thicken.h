@@ -1,6 +1,7 @@
 #pragma once
 // Thickening an open surface mesh into a closed solid shell for fabrication.
 
+#include <array>
 #include <cstddef>
 #include <vector>
 
@@ -9,17 +10,30 @@
 
 namespace fabmesh {
 
+/// Which side of an open surface a shell goes to (design key `thicken`).
+/// Normal: along S_s x S_t (the patches' orientation); Outward / Inward: away
+/// from / into the volume the surface encloses with a flat cap over its rim
+/// (for a basin or a tray: below and outside / inside the bowl); Centered:
+/// half the thickness to each side.
+enum class ThickenSide { Normal, Outward, Inward, Centered };
+
+/// "normal", "outward", "inward", "centered".
+const char* to_string(ThickenSide side);
+
 struct ThickenOptions {
-  /// Distance of the second sheet along the vertex normals, model units (> 0).
+  /// Distance between the two sheets along the vertex normals, model units (> 0).
   double thickness = 1.0;
+  /// The shell spans p + offset n to p + (offset + thickness) n: 0 puts the
+  /// sheet itself on one side, -thickness on the other, -thickness/2 centres it.
+  double offset = 0.0;
   std::size_t max_triangles = kDefaultMaxTriangles;  ///< budget for the shell; more is a BudgetError
 };
 
 /// Triangles of the shell over `sheet`: both sheets and two per boundary edge.
 std::size_t thickened_triangle_count(const Mesh& sheet);
 
-/// The shell between `sheet` and its offset p + thickness n(p): the offset
-/// sheet keeps the sheet's orientation, the sheet itself is reversed, and
+/// The shell between the sheets p + offset n(p) and p + (offset + thickness)
+/// n(p): the upper sheet keeps the sheet's orientation, the lower one is reversed, and
 /// each boundary edge gets a side-wall quad (two triangles) sharing the
 /// vertices of both sheets. With `vertex_normals` the unit normals the
 /// sheet's faces turn counter-clockwise about (one per sheet vertex), the
@@ -30,5 +44,16 @@ std::size_t thickened_triangle_count(const Mesh& sheet);
 ///        not match), BudgetError (over max_triangles), GeometryError (a sheet
 ///        that is not manifold at its border)
 Mesh thicken(const Mesh& sheet, const std::vector<Vec3>& vertex_normals, const ThickenOptions& options);
+
+/// Signed volume enclosed by `sheet` (faces counter-clockwise about its
+/// normals) closed by a fan from the centroid of its boundary vertices over
+/// its boundary edges: positive when the normals point out of that volume.
+double enclosed_volume(const Mesh& sheet);
+
+/// The shell's span [from, to] along the normals (to - from = thickness) for
+/// `side`; `volume` is enclosed_volume of the sheet and `size` its extent
+/// (diagonal). \throw GeometryError for outward or inward when the sheet
+/// encloses no volume to tell the sides by (|volume| <= 1e-6 size^3).
+std::array<double, 2> shell_span(ThickenSide side, double thickness, double volume, double size);
 
 }  // namespace fabmesh

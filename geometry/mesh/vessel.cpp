@@ -2,12 +2,39 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "geometry/core/errors.h"
 #include "geometry/mesh/revolve.h"
+#include "geometry/sampling/sample_curve.h"
 
 namespace fabmesh {
+
+namespace {
+
+// Refuses a tolerance whose lower bound of triangles is over the budget
+// before anything is sampled: every chord of a curved segment revolves into
+// at least `segments` triangles, and the angular step must keep the sagitta
+// at the largest radius of an end point within the tolerance.
+void require_budget(const CompositeCurve& profile, const VesselOptions& options, double sample_tolerance) {
+  double chords = 0.0, radius = 0.0;
+  for (const Segment& seg : profile.segments()) {
+    if (seg.kind() != SegmentKind::Line) chords += min_chord_count(seg, sample_tolerance, 2);
+    radius = std::max({radius, std::abs(seg.point(0.0).x()), std::abs(seg.point(1.0).x())});
+  }
+  const int segments = angular_segments(radius, options.tolerance);
+  const double triangles = chords * segments;
+  if (triangles > static_cast<double>(options.max_triangles)) {
+    throw BudgetError(triangles, static_cast<double>(options.max_triangles),
+                      fmt::format("tolerance {} needs at least {:.4g} triangles (estimated before sampling: "
+                                  "{:.4g} profile chords x {} angular steps), over the budget of {} (raise "
+                                  "max_triangles or the tolerance)",
+                                  options.tolerance, triangles, chords, segments, options.max_triangles));
+  }
+}
+
+}  // namespace
 
 VesselMesh build_vessel(const CompositeCurve& profile, const VesselOptions& options) {
   require_positive("tolerance", options.tolerance);
@@ -15,8 +42,12 @@ VesselMesh build_vessel(const CompositeCurve& profile, const VesselOptions& opti
   so.mode = options.mode;
   so.wall = options.wall;
   so.base = options.base;
+  so.rim = options.rim;
   so.tolerance = 0.5 * options.tolerance;
+  so.min_clearance = options.tolerance;
   so.max_points = options.max_triangles / 3 * 2 + 1;  // see VesselOptions::max_triangles
+  so.label = options.label;
+  require_budget(profile, options, so.tolerance);
   VesselSection section = build_vessel_section(profile, so);
 
   const double angular_tolerance = options.tolerance - section.max_deviation;

@@ -3,6 +3,7 @@
 
 #include <cstddef>
 #include <optional>
+#include <string>
 
 #include "geometry/core/limits.h"
 #include "geometry/curves/composite.h"
@@ -13,8 +14,9 @@ namespace fabmesh {
 
 struct VesselOptions {
   BodyMode mode = BodyMode::Solid;
-  double wall = 0.0;  ///< shell wall thickness, model units
-  double base = 0.0;  ///< shell base thickness (0: wall), model units
+  double wall = 0.0;            ///< shell wall thickness, model units
+  double base = 0.0;            ///< shell base thickness (0: wall), model units
+  RimCut rim = RimCut::Square;  ///< shell: how the rim is cut (see RimCut)
   /// Largest distance between the mesh and the exact surface, model units:
   /// half goes to sampling the profile, the rest to the angular step.
   double tolerance = 0.01;
@@ -22,6 +24,7 @@ struct VesselOptions {
   /// section of n points revolves into at least 1.5 n triangles (at most n/2
   /// axis edges, at least 3 angular steps).
   std::size_t max_triangles = kDefaultMaxTriangles;
+  std::string label;  ///< the profile's name with its file location, for messages
 };
 
 /// A revolved vessel (returned by value: the mesh is built in place).
@@ -35,7 +38,11 @@ struct VesselMesh {
   std::optional<EmbeddingProof> proof;
 };
 
-/// Builds the section, chooses the angular step and revolves.
+/// Builds the section, chooses the angular step and revolves. Before any
+/// sampling, a lower bound of the triangle count (profile chords from
+/// min_chord_count times the angular steps the largest end radius needs) is
+/// checked against max_triangles. A shell's exact walls must stay `tolerance`
+/// apart (VesselSectionOptions::min_clearance).
 /// \throw GeometryError (profile/wall), RangeError, BudgetError (tolerance too small for max_triangles)
 VesselMesh build_vessel(const CompositeCurve& profile, const VesselOptions& options);
 

@@ -11,9 +11,21 @@ namespace fabmesh {
 namespace {
 
 constexpr int kThirdDerivativeGrid = 64;
+constexpr int kCountGrid = 64;
 
-// Upper bound of |r'''| over [0, 1]: grid values plus half a grid step times
-// the bound of |r''''|.
+struct Piece {
+  double s0, s1;
+  ChordBound::Ends a, b;
+};
+
+[[noreturn]] void over_budget(std::size_t count, const SampleOptions& options) {
+  throw BudgetError(static_cast<double>(count), static_cast<double>(options.max_points),
+                    fmt::format("tolerance {} needs more than {} curve samples (the point budget)",
+                                options.tolerance, options.max_points));
+}
+
+}  // namespace
+
 double third_derivative_bound(const Segment& seg) {
   double grid_max = 0.0;
   for (int i = 0; i <= kThirdDerivativeGrid; ++i) {
@@ -22,51 +34,44 @@ double third_derivative_bound(const Segment& seg) {
   return grid_max + 0.5 / kThirdDerivativeGrid * seg.fourth_derivative_bound();
 }
 
-struct Piece {
-  double s0, s1;
-  double d2_0, d2_1;  // |r''| at the ends
-};
+SegmentChordBound::SegmentChordBound(const Segment& segment)
+    : segment_(&segment),
+      m3_(segment.kind() == SegmentKind::Line ? 0.0 : fabmesh::third_derivative_bound(segment)) {}
 
-}  // namespace
+ChordBound::Ends SegmentChordBound::at(double s) const {
+  Ends e{};
+  e[0] = segment_->kind() == SegmentKind::Line ? 0.0 : segment_->jet(s)[2].norm();
+  return e;
+}
 
-std::vector<double> sample_segment_parameters(const Segment& seg, const SampleOptions& options,
-                                              double* achieved) {
+double SegmentChordBound::bound(double s0, double s1, const Ends& a, const Ends& b) const {
+  const double h = s1 - s0;
+  return h * h / 8.0 * (std::max(a[0], b[0]) + 0.5 * h * m3_);
+}
+
+std::vector<double> sample_parameters(const ChordBound& bound, const SampleOptions& options,
+                                      double* achieved) {
   require_positive("tolerance", options.tolerance);
   std::vector<double> params{0.0};
   double worst = 0.0;
-  if (seg.kind() == SegmentKind::Line) {
-    params.push_back(1.0);
-    if (achieved) *achieved = 0.0;
-    return params;
-  }
-  const double m3 = third_derivative_bound(seg);
-  auto d2 = [&](double s) { return seg.jet(s)[2].norm(); };
-  auto bound = [&](const Piece& p) {
-    const double h = p.s1 - p.s0;
-    return h * h / 8.0 * (std::max(p.d2_0, p.d2_1) + 0.5 * h * m3);
-  };
-
-  // Depth-first bisection with an explicit stack keeps the parameters ordered.
+  // Depth-first bisection with an explicit stack keeps the parameters ordered;
+  // the stack holds at most one piece per level (plus the initial pieces).
   const int initial = std::max(1, options.min_pieces_per_segment);
+  std::vector<ChordBound::Ends> ends(static_cast<std::size_t>(initial) + 1);
+  for (int i = 0; i <= initial; ++i) ends[i] = bound.at(static_cast<double>(i) / initial);
   std::vector<Piece> stack;
-  std::vector<double> d2_initial(static_cast<std::size_t>(initial) + 1);
-  for (int i = 0; i <= initial; ++i) d2_initial[i] = d2(static_cast<double>(i) / initial);
   for (int i = initial - 1; i >= 0; --i) {
-    stack.push_back({static_cast<double>(i) / initial, static_cast<double>(i + 1) / initial, d2_initial[i],
-                     d2_initial[i + 1]});
+    stack.push_back(
+        {static_cast<double>(i) / initial, static_cast<double>(i + 1) / initial, ends[i], ends[i + 1]});
   }
   while (!stack.empty()) {
     const Piece p = stack.back();
     stack.pop_back();
-    const double b = bound(p);
+    const double b = bound.bound(p.s0, p.s1, p.a, p.b);
     if (b <= options.tolerance) {
       params.push_back(p.s1);
       worst = std::max(worst, b);
-      if (params.size() > options.max_points) {
-        throw BudgetError(static_cast<double>(params.size()), static_cast<double>(options.max_points),
-                          fmt::format("tolerance {} needs more than {} curve samples (the point budget)",
-                                      options.tolerance, options.max_points));
-      }
+      if (params.size() > options.max_points) over_budget(params.size(), options);
       continue;
     }
     const double mid = 0.5 * (p.s0 + p.s1);
@@ -74,32 +79,63 @@ std::vector<double> sample_segment_parameters(const Segment& seg, const SampleOp
       throw BudgetError(0.0, 0.0,
                         fmt::format("tolerance {} cannot be reached in double precision", options.tolerance));
     }
-    const double dm = d2(mid);
-    stack.push_back({mid, p.s1, dm, p.d2_1});
-    stack.push_back({p.s0, mid, p.d2_0, dm});
-    if (stack.size() + params.size() > options.max_points) {
-      throw BudgetError(static_cast<double>(stack.size() + params.size()),
-                        static_cast<double>(options.max_points),
-                        fmt::format("tolerance {} needs more than {} curve samples (the point budget)",
-                                    options.tolerance, options.max_points));
-    }
+    const ChordBound::Ends m = bound.at(mid);
+    stack.push_back({mid, p.s1, m, p.b});
+    stack.push_back({p.s0, mid, p.a, m});
+    if (stack.size() + params.size() > options.max_points) over_budget(stack.size() + params.size(), options);
   }
   params.back() = 1.0;
   if (achieved) *achieved = worst;
   return params;
 }
 
+std::vector<double> sample_segment_parameters(const Segment& seg, const SampleOptions& options,
+                                              double* achieved) {
+  require_positive("tolerance", options.tolerance);
+  if (seg.kind() == SegmentKind::Line) {
+    if (achieved) *achieved = 0.0;
+    return {0.0, 1.0};
+  }
+  return sample_parameters(SegmentChordBound(seg), options, achieved);
+}
+
+double min_chord_count(const Segment& seg, double tolerance, int min_pieces) {
+  require_positive("tolerance", tolerance);
+  if (seg.kind() == SegmentKind::Line) return 1.0;
+  // On each grid cell |r''| >= |r''(mid)| - (step/2) M3.
+  const double m3 = third_derivative_bound(seg);
+  const double step = 1.0 / kCountGrid;
+  double integral = 0.0;
+  for (int k = 0; k < kCountGrid; ++k) {
+    const double low = seg.jet((k + 0.5) * step)[2].norm() - 0.5 * step * m3;
+    if (low > 0.0) integral += step * std::sqrt(low / (8.0 * tolerance));
+  }
+  return std::max({1.0, static_cast<double>(min_pieces), std::ceil(integral)});
+}
+
 Polyline2 sample_curve(const CompositeCurve& curve, const SampleOptions& options,
                        std::vector<CurveParam>* params) {
   require_positive("tolerance", options.tolerance);
   if (params) params->clear();
+  const auto& segs = curve.segments();
+  // Refuse before refining when even the lower bound is over the budget.
+  double estimate = 0.0;
+  for (const Segment& seg : segs)
+    estimate += min_chord_count(seg, options.tolerance, options.min_pieces_per_segment);
+  if (estimate > static_cast<double>(options.max_points)) {
+    throw BudgetError(estimate, static_cast<double>(options.max_points),
+                      fmt::format("tolerance {} needs at least {:.4g} curve samples (estimated from the "
+                                  "curve's second derivatives before sampling), over the budget of {}",
+                                  options.tolerance, estimate, options.max_points));
+  }
   Polyline2 out;
   out.closed = curve.closed();
   double worst = 0.0, worst_gap = 0.0;
-  const auto& segs = curve.segments();
   for (std::size_t i = 0; i < segs.size(); ++i) {
     double achieved = 0.0;
-    const auto seg_params = sample_segment_parameters(segs[i], options, &achieved);
+    SampleOptions left = options;
+    left.max_points = options.max_points - std::min(options.max_points, out.points.size());
+    const auto seg_params = sample_segment_parameters(segs[i], left, &achieved);
     worst = std::max(worst, achieved);
     // Each segment contributes its start and interior samples; the end is the next one's start.
     for (std::size_t k = 0; k + 1 < seg_params.size(); ++k) {
@@ -115,14 +151,18 @@ Polyline2 sample_curve(const CompositeCurve& curve, const SampleOptions& options
       out.points.push_back(end);
       if (params) params->push_back({i, 1.0});
     }
-    if (out.points.size() > options.max_points) {
-      throw BudgetError(static_cast<double>(out.points.size()), static_cast<double>(options.max_points),
-                        fmt::format("tolerance {} needs more than {} curve samples (the point budget)",
-                                    options.tolerance, options.max_points));
-    }
+    if (out.points.size() > options.max_points) over_budget(out.points.size(), options);
   }
   out.max_deviation = worst + worst_gap;
   return out;
+}
+
+std::array<double, 2> edge_parameters(const std::vector<CurveParam>& params, std::size_t i) {
+  const CurveParam& a = params[i];
+  const std::size_t next = (i + 1) % params.size();
+  const CurveParam& b = params[next];
+  const bool same = next != 0 && b.segment == a.segment;
+  return {a.s, same ? b.s : 1.0};
 }
 
 }  // namespace fabmesh

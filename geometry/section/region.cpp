@@ -5,9 +5,11 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <memory>
 
 #include "geometry/core/errors.h"
 #include "geometry/sampling/sample_curve.h"
+#include "geometry/section/clearance.h"
 #include "geometry/section/simple_polygon.h"
 
 namespace fabmesh {
@@ -21,6 +23,7 @@ std::string at(const Vec2& p) { return fmt::format("({:.6g}, {:.6g})", p.x(), p.
 // One sampled loop and where each of its points lies on its curve.
 struct Loop {
   std::string label;
+  std::string where;
   const CompositeCurve* curve = nullptr;
   std::vector<Vec2> points;
   std::vector<CurveParam> params;
@@ -116,14 +119,46 @@ void require_nesting(const std::vector<Loop>& loops) {
   }
 }
 
+// The exact curves of different loops must stay `tolerance` apart.
+void require_clearance(const std::vector<Loop>& loops, double tolerance, Region2& region) {
+  if (loops.size() < 2) return;
+  std::vector<std::unique_ptr<ExactArc>> arcs;
+  std::vector<ArcPiece> pieces;
+  for (std::size_t l = 0; l < loops.size(); ++l) {
+    const std::size_t first = arcs.size();
+    for (const Segment& seg : loops[l].curve->segments()) arcs.push_back(std::make_unique<SegmentArc>(seg));
+    const auto& params = loops[l].params;
+    for (std::size_t i = 0; i < params.size(); ++i) {
+      const auto [s0, s1] = edge_parameters(params, i);
+      pieces.push_back({arcs[first + params[i].segment].get(), s0, s1, static_cast<int>(l)});
+    }
+  }
+  ClearanceOptions co;
+  co.accuracy = 1e-3 * tolerance;
+  const Clearance c = exact_clearance(pieces, co);
+  const Loop& a = loops[static_cast<std::size_t>(std::min(c.group_a, c.group_b))];
+  const Loop& b = loops[static_cast<std::size_t>(std::max(c.group_a, c.group_b))];
+  const Vec2 pa = c.group_a < c.group_b ? c.a : c.b, pb = c.group_a < c.group_b ? c.b : c.a;
+  region.min_clearance = c.lower;
+  region.clearance_where = fmt::format("{} near {} and {} near {}", a.label, at(pa), b.label, at(pb));
+  if (c.upper < tolerance) {
+    const std::string where = b.where.empty() ? b.label : b.where;
+    throw GeometryError(
+        where, fmt::format("{}: {} comes within {:.6g} of {} ({} near {}, {} near {}), closer than "
+                           "the tolerance {}{}",
+                           where, b.label, c.upper, a.label, b.label, at(pb), a.label, at(pa), tolerance,
+                           c.lower == 0.0 ? " (the exact curves meet)" : ""));
+  }
+}
+
 }  // namespace
 
 Region2 build_region(const CompositeCurve& outline, const std::vector<RegionHole>& holes,
                      const RegionOptions& options) {
   require_positive("tolerance", options.tolerance);
   std::vector<Loop> loops;
-  loops.push_back({"outline", &outline, {}, {}});
-  for (const RegionHole& h : holes) loops.push_back({h.label, &h.curve, {}, {}});
+  loops.push_back({"outline", options.outline_where, &outline, {}, {}});
+  for (const RegionHole& h : holes) loops.push_back({h.label, h.where, &h.curve, {}, {}});
 
   Region2 region;
   std::size_t budget = options.max_points;
@@ -143,6 +178,7 @@ Region2 build_region(const CompositeCurve& outline, const std::vector<RegionHole
   }
   require_disjoint(loops);
   require_nesting(loops);
+  require_clearance(loops, options.tolerance, region);
 
   for (std::size_t i = 0; i < loops.size(); ++i) {
     std::vector<Vec2>& pts = loops[i].points;

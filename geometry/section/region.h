@@ -4,6 +4,7 @@
 // and proven simple with exact predicates.
 
 #include <cstddef>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -18,11 +19,13 @@ namespace fabmesh {
 struct RegionHole {
   CompositeCurve curve;
   std::string label;
+  std::string where;  ///< the hole's label with its file location (GeometryError::where); empty: label
 };
 
 struct RegionOptions {
   double tolerance = 0.01;  ///< max distance between each loop and its exact curve, model units (> 0)
   std::size_t max_points = kDefaultMaxPoints;  ///< sampling budget over all loops; more is a BudgetError
+  std::string outline_where;  ///< the outline's label with its file location (GeometryError::where)
 };
 
 /// An oriented polygon with holes: the outer loop counter-clockwise, every
@@ -38,14 +41,22 @@ struct Region2 {
   /// its curve's direction (the curve was given the other way round).
   std::vector<bool> reversed;
   std::string proof;  ///< why the region is simple (for reports)
+  /// The smallest distance between two different exact curves (outline and
+  /// holes, holes among themselves), a proven lower bound; infinity with no hole.
+  double min_clearance = std::numeric_limits<double>::infinity();
+  std::string clearance_where;  ///< the two curves and the place (for reports)
 };
 
 /// Samples the outline and the holes and checks that they bound a region:
 /// the outline is closed and closes (its closing joint has no gap), each loop
 /// is simple, no two loops meet (no touching), every hole lies strictly
-/// inside the outline and outside every other hole.
+/// inside the outline and outside every other hole, and the exact curves of
+/// different loops stay at least `tolerance` apart (exact_clearance: decided
+/// on the curves, not on the polylines, which may be up to twice their
+/// deviation closer or farther).
 /// \throw GeometryError naming the outline segment or the hole at fault, with
-///        a point near the problem; RangeError (tolerance), BudgetError (points).
+///        a point near the problem (`where`: the curve's label with its file
+///        location); RangeError (tolerance), BudgetError (points).
 Region2 build_region(const CompositeCurve& outline, const std::vector<RegionHole>& holes,
                      const RegionOptions& options);
 

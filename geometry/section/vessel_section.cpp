@@ -4,9 +4,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
+#include <optional>
 
 #include "geometry/core/errors.h"
 #include "geometry/sampling/sample_curve.h"
+#include "geometry/section/clearance.h"
+#include "geometry/section/inner_wall.h"
 #include "geometry/section/simple_polygon.h"
 
 namespace fabmesh {
@@ -65,56 +69,6 @@ std::vector<std::vector<Vec2>> solid_loops(const std::vector<Vec2>& up) {
   return loops;
 }
 
-// Inner wall: the profile offset by `wall` along its inward normal (toward
-// the axis for a profile running upward), at the exact curve's parameters.
-std::vector<Vec2> inner_offset(const CompositeCurve& profile, const std::vector<CurveParam>& params,
-                               double wall, bool upward, double* max_abs_curvature) {
-  std::vector<Vec2> inner;
-  inner.reserve(params.size());
-  for (const CurveParam& p : params) {
-    const CurveJet j = profile.segments()[p.segment].jet(p.s);
-    const double speed = j[1].norm();
-    Vec2 left(-j[1].y(), j[1].x());
-    left /= speed;
-    if (!upward) left = -left;
-    // Curvature toward the inside (positive: the wall's inner side is concave there).
-    const double k = (upward ? 1.0 : -1.0) * cross2(j[1], j[2]) / (speed * speed * speed);
-    if (max_abs_curvature) *max_abs_curvature = std::max(*max_abs_curvature, std::abs(k));
-    if (k * wall >= 1.0) {
-      throw GeometryError("wall",
-                          fmt::format("wall {} is too thick for the profile: its radius of curvature is "
-                                      "{:.6g} at {} (segment {}), so the inner surface would fold over",
-                                      wall, 1.0 / k, at(j[0]), p.segment + 1));
-    }
-    inner.push_back(j[0] + wall * left);
-  }
-  return inner;
-}
-
-// The inner wall from the rim down, cut where it reaches z_cut or the axis;
-// the cut point is appended, then the loop continues along the base to the axis.
-std::vector<Vec2> trim_inner(const std::vector<Vec2>& inner_top_down, double z_cut) {
-  std::vector<Vec2> out{inner_top_down.front()};
-  for (std::size_t i = 1; i < inner_top_down.size(); ++i) {
-    const Vec2 a = out.back(), b = inner_top_down[i];
-    const double tz = (b.y() < z_cut) ? (a.y() - z_cut) / (a.y() - b.y()) : 2.0;
-    const double tr = (b.x() < 0.0) ? a.x() / (a.x() - b.x()) : 2.0;
-    if (tz <= 1.0 || tr <= 1.0) {
-      if (tz <= tr) {
-        out.emplace_back(a.x() + tz * (b.x() - a.x()), z_cut);
-        out.emplace_back(0.0, z_cut);
-      } else {
-        out.emplace_back(0.0, a.y() + tr * (b.y() - a.y()));
-      }
-      return out;
-    }
-    out.push_back(b);
-  }
-  // Never reached the base plane or the axis: close horizontally to the axis.
-  out.emplace_back(0.0, out.back().y());
-  return out;
-}
-
 void remove_repeated(std::vector<Vec2>& loop) {
   std::vector<Vec2> out;
   for (const Vec2& p : loop) {
@@ -133,6 +87,102 @@ void remove_repeated(std::vector<Vec2>& loop) {
   loop = std::move(clean);
 }
 
+// The shell's loop: the outer wall up, the inner wall down to the base (or
+// the axis), the base and the bottom back to the start.
+struct Shell {
+  std::vector<Vec2> loop;
+  InnerWall inner;
+  bool cut_at_base = false;
+};
+
+Shell shell_loop(const CompositeCurve& profile, const std::vector<Vec2>& up, bool upward,
+                 const VesselSectionOptions& options) {
+  const Vec2 bottom = up.front(), top = up.back();
+  if (top.x() == 0.0) {
+    throw GeometryError(
+        "profile",
+        fmt::format("a shell is open at its rim, but the profile's upper end {} is on the axis", at(top)));
+  }
+  SampleOptions so;
+  so.tolerance = options.tolerance;
+  so.max_points = options.max_points - std::min(options.max_points, up.size());
+  Shell shell;
+  // The inner wall lies toward the axis: left of a profile running upward.
+  shell.inner = sample_inner_wall(profile, options.wall, upward ? 1.0 : -1.0, upward, so, options.label);
+  if (options.rim == RimCut::Level) level_inner_wall(shell.inner, profile, top.y(), upward);
+  const double base = options.base > 0.0 ? options.base : options.wall;
+  const double z_cut = bottom.y() + base;
+  const double inner_top = shell.inner.points.front().point.y();
+  if (z_cut >= inner_top) {
+    throw GeometryError("base",
+                        fmt::format("base {} leaves no cavity: the inner wall rises only {:.6g} above the "
+                                    "bottom (z {:.6g} to {:.6g}), so the base must be thinner than that",
+                                    base, inner_top - bottom.y(), bottom.y(), inner_top));
+  }
+  shell.cut_at_base = cut_inner_wall(shell.inner, profile, z_cut);
+  shell.loop = up;
+  for (const WallPoint& p : shell.inner.points) shell.loop.push_back(p.point);
+  // At the base plane, or never down to it nor the axis: close horizontally to the axis.
+  if (shell.loop.back().x() != 0.0) shell.loop.emplace_back(0.0, shell.loop.back().y());
+  if (bottom.x() != 0.0) shell.loop.emplace_back(0.0, bottom.y());
+  for (const Vec2& p : shell.loop) {
+    if (p.x() < 0.0) {
+      throw GeometryError("wall",
+                          fmt::format("wall {} is too thick for the profile: the inner surface crosses "
+                                      "the axis near {}",
+                                      options.wall, at(p)));
+    }
+  }
+  return shell;
+}
+
+// The clearance of the exact outer surface (profile, bottom) and inner
+// surface (inner wall, base): the rim and the axis join them.
+void check_clearance(const CompositeCurve& profile, const std::vector<CurveParam>& params, const Shell& shell,
+                     const VesselSectionOptions& options, VesselSection& section) {
+  std::vector<std::unique_ptr<ExactArc>> arcs;
+  std::vector<ArcPiece> pieces;
+  for (const Segment& seg : profile.segments()) arcs.push_back(std::make_unique<SegmentArc>(seg));
+  for (std::size_t i = 0; i + 1 < params.size(); ++i) {
+    const auto [s0, s1] = edge_parameters(params, i);
+    pieces.push_back({arcs[params[i].segment].get(), s0, s1, 0});
+  }
+  const Vec2 start = profile.segments().front().point(0.0), end = profile.segments().back().point(1.0);
+  const Vec2 bottom = start.y() < end.y() ? start : end;
+  if (bottom.x() != 0.0) {
+    arcs.push_back(std::make_unique<LineArc>(bottom, Vec2(0.0, bottom.y())));
+    pieces.push_back({arcs.back().get(), 0.0, 1.0, 0});
+  }
+  inner_wall_pieces(shell.inner, profile, 1, arcs, pieces);
+  const Vec2 last = shell.inner.points.back().point;
+  if (last.x() != 0.0) {
+    arcs.push_back(std::make_unique<LineArc>(last, Vec2(0.0, last.y())));
+    pieces.push_back({arcs.back().get(), 0.0, 1.0, 1});
+  }
+  ClearanceOptions co;
+  co.accuracy = 1e-3 * options.tolerance;
+  const Clearance c = exact_clearance(pieces, co);
+  const double required = options.min_clearance > 0.0 ? options.min_clearance : options.tolerance;
+  const std::string where = fmt::format("outer surface near {} and inner surface near {}", at(c.a), at(c.b));
+  if (c.upper < required) {
+    const bool crossing = c.upper <= co.accuracy;
+    throw GeometryError(
+        options.label.empty() ? "wall" : options.label,
+        fmt::format(
+            "{}wall {} (base {}): {}", options.label.empty() ? "" : options.label + ": ", options.wall,
+            options.base > 0.0 ? options.base : options.wall,
+            crossing
+                ? fmt::format("the exact inner surface meets the outer one ({}): the wall is too thick "
+                              "for the profile there",
+                              where)
+                : fmt::format("the exact outer and inner surfaces come within {:.6g} of each other ({}), "
+                              "closer than the tolerance {}: the shell would be thinner than that there",
+                              c.upper, where, required)));
+  }
+  section.min_clearance = c.lower;
+  section.clearance_where = where;
+}
+
 }  // namespace
 
 VesselSection build_vessel_section(const CompositeCurve& profile, const VesselSectionOptions& options) {
@@ -149,9 +199,8 @@ VesselSection build_vessel_section(const CompositeCurve& profile, const VesselSe
   snap_to_axis(line.points, eps);
 
   VesselSection section;
-  section.max_deviation = line.max_deviation;
-  std::vector<Vec2> loop;
-
+  section.max_deviation = line.max_deviation + eps;
+  std::optional<Shell> shell;
   if (profile.closed()) {
     if (options.mode == BodyMode::Shell) {
       throw GeometryError(
@@ -168,45 +217,12 @@ VesselSection build_vessel_section(const CompositeCurve& profile, const VesselSe
     }
     std::vector<Vec2> up = line.points;  // base -> rim
     if (!upward) std::reverse(up.begin(), up.end());
-    const Vec2 bottom = up.front(), top = up.back();
     if (options.mode == BodyMode::Solid) {
       section.loops = solid_loops(up);
     } else {
-      if (top.x() == 0.0) {
-        throw GeometryError("profile",
-                            fmt::format("a shell is open at its rim, but the profile's upper end {} is on "
-                                        "the axis",
-                                        at(top)));
-      }
-      // Offsetting scales chord deviations by up to 1 + wall |k|: sample finely enough for the inner wall
-      // too.
-      double kmax = 0.0;
-      std::vector<Vec2> inner = inner_offset(profile, params, options.wall, upward, &kmax);
-      const double factor = 1.0 + options.wall * kmax;
-      if (factor > 1.0 + 1e-9) {
-        so.tolerance = options.tolerance / factor;
-        line = sample_curve(profile, so, &params);
-        snap_to_axis(line.points, eps);
-        up = line.points;
-        if (!upward) std::reverse(up.begin(), up.end());
-        inner = inner_offset(profile, params, options.wall, upward, nullptr);
-      }
-      section.max_deviation = line.max_deviation * factor;
-      if (upward) std::reverse(inner.begin(), inner.end());  // rim -> base
-      const double base = options.base > 0.0 ? options.base : options.wall;
-      const std::vector<Vec2> trimmed = trim_inner(inner, bottom.y() + base);
-      loop = up;
-      loop.insert(loop.end(), trimmed.begin(), trimmed.end());
-      if (bottom.x() != 0.0) loop.emplace_back(0.0, bottom.y());
-      section.loops = {loop};
-      for (const Vec2& p : loop) {
-        if (p.x() < 0.0) {
-          throw GeometryError("wall",
-                              fmt::format("wall {} is too thick for the profile: the inner surface crosses "
-                                          "the axis near {}",
-                                          options.wall, at(p)));
-        }
-      }
+      shell = shell_loop(profile, up, upward, options);
+      section.max_deviation = std::max(section.max_deviation, shell->inner.max_deviation);
+      section.loops = {shell->loop};
     }
   }
   if (section.loops.empty()) throw GeometryError("profile", "the profile encloses no area with the axis");
@@ -218,6 +234,7 @@ VesselSection build_vessel_section(const CompositeCurve& profile, const VesselSe
     for (const Vec2& p : l) section.max_radius = std::max(section.max_radius, p.x());
   }
   if (const auto c = find_crossing(section.loops)) {
+    if (shell) check_clearance(profile, params, *shell, options, section);  // the exact walls say why
     if (options.mode == BodyMode::Shell) {
       throw GeometryError(
           "wall", fmt::format("wall {} (base {}) is too thick for the profile: the shell section "
@@ -226,6 +243,7 @@ VesselSection build_vessel_section(const CompositeCurve& profile, const VesselSe
     }
     throw GeometryError("profile", fmt::format("the profile crosses itself near {}", at(c->where)));
   }
+  if (shell) check_clearance(profile, params, *shell, options, section);
   section.proof =
       "the section loops are simple and disjoint in r >= 0 (exact predicates), so its revolution is embedded";
   return section;

@@ -3,6 +3,7 @@
 // the profile closed to the axis (solid) or thickened into a wall with a rim
 // and a base (shell). Revolving a simple section gives an embedded surface.
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -14,12 +15,26 @@ namespace fabmesh {
 
 enum class BodyMode { Solid, Shell };
 
+/// How a shell's rim is cut. Square: across the wall, perpendicular to the
+/// profile at its end, so the inner edge lies `wall` from the outer one along
+/// the normal (a profile that flares outward at the rim makes the inner edge
+/// higher than the profile's end: the golden cup ending at z = 6 with a 0.3
+/// wall stands 6.134 high). Level: a horizontal rim at the profile's end
+/// height (the inner wall cut there, or continued along its end tangent up to
+/// it when it ends lower).
+enum class RimCut { Square, Level };
+
 struct VesselSectionOptions {
   BodyMode mode = BodyMode::Solid;
-  double wall = 0.0;         ///< shell: wall thickness along the profile normal, model units (> 0)
-  double base = 0.0;         ///< shell: base thickness, model units (> 0; 0 = wall)
-  double tolerance = 0.005;  ///< profile sampling tolerance, model units (> 0)
+  double wall = 0.0;            ///< shell: wall thickness along the profile normal, model units (> 0)
+  double base = 0.0;            ///< shell: base thickness, model units (> 0; 0 = wall)
+  RimCut rim = RimCut::Square;  ///< shell: how the rim is cut
+  double tolerance = 0.005;     ///< profile sampling tolerance, model units (> 0)
+  /// Shell: the exact inner and outer walls (with the base and the bottom)
+  /// must stay at least this far apart, model units; 0: `tolerance`.
+  double min_clearance = 0.0;
   std::size_t max_points = kDefaultMaxPoints;
+  std::string label;  ///< the profile's name with its file location, for messages (GeometryError::where)
 };
 
 /// Closed, simple, counter-clockwise, pairwise disjoint loops in the
@@ -33,13 +48,24 @@ struct VesselSection {
   double max_deviation = 0.0;  ///< bound on the distance between the loop and the exact section boundary
   double max_radius = 0.0;
   std::string proof;  ///< why the section is simple (for reports)
+  /// Shell: the smallest distance between the exact outer surface (profile and
+  /// bottom) and the exact inner surface (inner wall and base), a proven lower
+  /// bound; NaN for a solid.
+  double min_clearance = std::numeric_limits<double>::quiet_NaN();
+  std::string clearance_where;  ///< where min_clearance is attained (for reports)
 };
 
 /// Builds and checks the section. The profile runs either way; its higher
 /// end is the rim. A closed profile is revolved as it is (solid only).
+/// A shell's inner wall is the exact offset of the profile, sampled with its
+/// own proven chord bound (max_deviation covers both walls) and cut exactly
+/// where it meets the base plane or the axis.
 /// \throw GeometryError when the profile crosses the axis or itself, touches
-///        the axis at a single point (the body would pinch), or the wall is too thick for its
-///        curvature or its radius; RangeError for bad wall/base/tolerance.
+///        the axis at a single point (the body would pinch), the wall is too
+///        thick for its curvature (proven over each whole chord) or its radius,
+///        the base leaves no cavity (a base at least as tall as the wall's
+///        height), or the exact walls come closer than min_clearance;
+///        RangeError for bad wall/base/tolerance; BudgetError (max_points).
 VesselSection build_vessel_section(const CompositeCurve& profile, const VesselSectionOptions& options);
 
 }  // namespace fabmesh

@@ -5,11 +5,12 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <map>
+#include <limits>
 #include <numeric>
 
 #include "geometry/core/disjoint_sets.h"
 #include "geometry/core/errors.h"
+#include "geometry/surfaces/cell_bound.h"
 
 namespace fabmesh {
 namespace {
@@ -59,56 +60,125 @@ std::vector<double> oriented(const std::vector<double>& breaks, int parity) {
   return out;
 }
 
+// A cell's proven bound and the directions to split it in.
 struct CellError {
   double bound = 0.0;
   bool split_s = false, split_t = false;
+  bool degenerate = false;  ///< the normal's lower bound is 0: the offset cannot be bounded here
 };
 
-// Taylor bound of the linear interpolation over the cell [s0,s1] x [t0,t1];
-// with an offset also the sampled deviation of the offset sheet.
-CellError cell_error(const HBezierPatch& p, double s0, double s1, double t0, double t1, double offset) {
-  double mss = 0.0, mst = 0.0, mtt = 0.0;
-  for (int a = 0; a <= 2; ++a) {
-    for (int b = 0; b <= 2; ++b) {
-      const PatchJet j = p.jet(s0 + 0.5 * a * (s1 - s0), t0 + 0.5 * b * (t1 - t0));
-      mss = std::max(mss, j.dss.norm());
-      mst = std::max(mst, j.dst.norm());
-      mtt = std::max(mtt, j.dtt.norm());
-    }
+// One direction of one patch at the breaks of the current grid: the basis
+// enclosure of every interval and the jet at its midpoint.
+struct DirectionSamples {
+  std::vector<BasisEnclosure> cells;
+  std::vector<UnitJet> mids;
+};
+
+DirectionSamples sample_direction(const std::vector<double>& breaks, const HBezierParams& params) {
+  const HBezierConstants constants = hbezier_constants(params.alpha);
+  const std::array<double, 4> fourth = unit_fourth_bound(params);
+  DirectionSamples out;
+  out.cells.reserve(breaks.size());
+  out.mids.reserve(breaks.size());
+  UnitJet previous = unit_jet(breaks[0], params, constants);
+  for (std::size_t i = 0; i + 1 < breaks.size(); ++i) {
+    const UnitJet next = unit_jet(breaks[i + 1], params, constants);
+    out.cells.push_back(enclose(previous, next, breaks[i + 1] - breaks[i], fourth));
+    out.mids.push_back(unit_jet(0.5 * (breaks[i] + breaks[i + 1]), params, constants));
+    previous = next;
   }
-  constexpr double kMargin = 1.25;
-  const double ds = s1 - s0, dt = t1 - t0;
-  const double ts = kMargin * mss * ds * ds, tt = kMargin * mtt * dt * dt, tm = kMargin * 2.0 * mst * ds * dt;
+  return out;
+}
+
+// The bound of one cell: the surface, each offset sheet of the shell (plus
+// the averaged-normal term), and the side wall's twist along an outer border.
+CellError cell_error(const CellDerivatives& d, double ds, double dt, const TessellateOptions& o,
+                     double normal_term, const std::function<double()>& cone, double twist_s,
+                     double twist_t) {
   CellError e;
-  e.bound = 0.5 * (ts + tm + tt);
-  if (offset != 0.0) {
-    // Offset corners, then the offset surface against the two triangles' interpolation.
-    auto off = [&](double s, double t) -> Vec3 { return p.point(s, t) + offset * p.normal(s, t); };
-    const Vec3 c00 = off(s0, t0), c10 = off(s1, t0), c01 = off(s0, t1), c11 = off(s1, t1);
-    const bool main_diagonal = (c00 - c11).norm() <= (c10 - c01).norm();
-    double sampled = 0.0;
-    constexpr int n = 4;
-    for (int a = 0; a <= n; ++a) {
-      for (int b = 0; b <= n; ++b) {
-        const double x = static_cast<double>(a) / n, y = static_cast<double>(b) / n;
-        Vec3 lin;
-        if (main_diagonal) {
-          lin = x >= y ? Vec3(c00 + x * (c10 - c00) + y * (c11 - c10))
-                       : Vec3(c00 + y * (c01 - c00) + x * (c11 - c01));
-        } else {
-          lin = x + y <= 1.0 ? Vec3(c00 + x * (c10 - c00) + y * (c01 - c00))
-                             : Vec3(c11 + (1.0 - x) * (c01 - c11) + (1.0 - y) * (c10 - c11));
-        }
-        sampled = std::max(sampled, (off(s0 + x * ds, t0 + y * dt) - lin).norm());
+  double ss = d.ss, st = d.st, tt = d.tt;
+  const double surface = surface_cell_error(d, ds, dt);
+  e.bound = surface;
+  double cone_angle = -1.0;  // computed when first needed
+  for (double offset : {o.shell_from, o.shell_to}) {
+    if (offset == 0.0) continue;
+    const OffsetSecond sec = offset_second(d, offset);
+    double err = (sec.ss * ds * ds + 2.0 * sec.st * ds * dt + sec.tt * dt * dt) / 8.0;
+    bool by_cone = false;
+    if (!(err + std::abs(offset) * normal_term <= o.tolerance)) {
+      // Near a singular point of the normal its derivatives blow up, but the
+      // normals stay in a narrow cone: bound the sheet by that instead.
+      if (cone_angle < 0.0) cone_angle = cone();
+      const double by_angle = surface + std::abs(offset) * 2.0 * std::sin(std::min(cone_angle, M_PI / 2));
+      if (std::isfinite(cone_angle) && !(err <= by_angle)) {
+        err = by_angle;
+        by_cone = true;
       }
     }
-    e.bound = std::max(e.bound, 1.5 * sampled);
+    err += std::abs(offset) * normal_term;
+    if (!std::isfinite(err)) {
+      e.bound = err;
+      e.degenerate = e.split_s = e.split_t = true;
+      return e;
+    }
+    if (by_cone) e.split_s = e.split_t = true;
+    if (err > e.bound) {
+      e.bound = err;
+      if (!by_cone) ss = sec.ss, st = sec.st, tt = sec.tt;
+    }
   }
-  const double total = ts + tm + tt;
-  e.split_s = ts + 0.5 * tm >= 0.25 * total;
-  e.split_t = tt + 0.5 * tm >= 0.25 * total;
-  if (!e.split_s && !e.split_t) e.split_s = e.split_t = true;  // an offset-driven split of a flat cell
+  const double sheets = e.bound;
+  e.bound += std::max(twist_s, twist_t);
+  const double ts = ss * ds * ds, tm = 2.0 * st * ds * dt, tq = tt * dt * dt, total = ts + tm + tq;
+  e.split_s = e.split_s || ts + 0.5 * tm >= 0.25 * total || twist_s >= 0.5 * sheets;
+  e.split_t = e.split_t || tq + 0.5 * tm >= 0.25 * total || twist_t >= 0.5 * sheets;
+  if (!e.split_s && !e.split_t) e.split_s = e.split_t = true;
   return e;
+}
+
+// Point "enclosure" of a jet (both ends the same).
+BasisEnclosure point_enclosure(const UnitJet& jet, const std::array<double, 4>& fourth) {
+  BasisEnclosure e{};
+  for (std::size_t k = 0; k < 4; ++k) {
+    for (std::size_t i = 0; i < 4; ++i) e[k][i] = {jet[k][i], jet[k][i]};
+  }
+  for (std::size_t i = 0; i < 4; ++i) e[4][i] = {-fourth[i], fourth[i]};
+  return e;
+}
+
+// Lower bound of the columns (along_t: rows) a patch needs, see min_triangle_count.
+double direction_count(const HBezierPatch& p, const NetDifferences& diff, bool along_t, double tolerance) {
+  constexpr int kIntervals = 64, kLines = 8;
+  const HBezierParams& mine = along_t ? p.v() : p.u();
+  const HBezierParams& other = along_t ? p.u() : p.v();
+  std::vector<double> grid;
+  for (int k = 0; k <= kIntervals; ++k) grid.push_back(static_cast<double>(k) / kIntervals);
+  const DirectionSamples samples = sample_direction(grid, mine);
+  const HBezierConstants oc = hbezier_constants(other.alpha);
+  const double step = 1.0 / kIntervals;
+  double best = 0.0;
+  for (int m = 0; m <= kLines; ++m) {
+    const UnitJet line = unit_jet(static_cast<double>(m) / kLines, other, oc);
+    const BasisEnclosure at_line = point_enclosure(line, unit_fourth_bound(other));
+    double integral = 0.0;
+    for (int k = 0; k < kIntervals; ++k) {
+      const auto& enc = samples.cells[static_cast<std::size_t>(k)];
+      const auto& mid = samples.mids[static_cast<std::size_t>(k)];
+      const CellDerivatives d = along_t
+                                    ? cell_derivatives(p.points(), diff, at_line, enc, line, mid, 0.0, step)
+                                    : cell_derivatives(p.points(), diff, enc, at_line, mid, line, step, 0.0);
+      Vec3 second = Vec3::Zero();
+      for (std::size_t i = 0; i < 4; ++i) {
+        for (std::size_t j = 0; j < 4; ++j) {
+          second += (along_t ? line[0][i] * mid[2][j] : mid[2][i] * line[0][j]) * p.points()[i][j];
+        }
+      }
+      const double low = second.norm() - 0.5 * step * (along_t ? d.ttt : d.sss);
+      if (low > 0.0) integral += step * std::sqrt(low / (8.0 * tolerance));
+    }
+    best = std::max(best, integral);
+  }
+  return best;
 }
 
 // Grid vertex ids of the patches, and the identification of shared ones
@@ -164,11 +234,203 @@ bool collapsed(const HBezierPatch& p, PatchSide side, double eps) {
 
 }  // namespace
 
+namespace {
+
+// Which sides of each patch are on the network's outer border (not shared, not collapsed).
+std::vector<std::array<bool, 4>> outer_sides(const PatchNetwork& network) {
+  std::vector<std::array<bool, 4>> outer(network.patches.size(), {true, true, true, true});
+  for (const SharedBorder& b : network.borders) {
+    outer[b.a][static_cast<std::size_t>(b.side_a)] = false;
+    outer[b.b][static_cast<std::size_t>(b.side_b)] = false;
+  }
+  const double eps = 1e-12 * network.size;
+  for (std::size_t p = 0; p < network.patches.size(); ++p) {
+    for (PatchSide side : {PatchSide::UMin, PatchSide::UMax, PatchSide::VMin, PatchSide::VMax}) {
+      if (collapsed(network.patches[p], side, eps)) outer[p][static_cast<std::size_t>(side)] = false;
+    }
+  }
+  return outer;
+}
+
+// Twist of each side-wall quad along an outer side: thickness |n(k+1) - n(k)| / 4 per grid edge.
+std::vector<double> side_twists(const HBezierPatch& patch, PatchSide side, const std::vector<double>& breaks,
+                                double thickness) {
+  std::vector<double> twist;
+  Vec3 previous = Vec3::Zero();
+  for (std::size_t k = 0; k < breaks.size(); ++k) {
+    const auto [s, t] = border_uv(side, breaks[k]);
+    const Vec3 n = patch.normal(s, t);
+    if (k > 0) twist.push_back(thickness * (n - previous).norm() / 4.0);
+    previous = n;
+  }
+  return twist;
+}
+
+// The cone of normals of cell (a, b), from the corner where |N| is least.
+double corner_cone(const HBezierPatch& patch, const std::vector<double>& sb, const std::vector<double>& tb,
+                   std::size_t a, std::size_t b, const CellDerivatives& d) {
+  double least = std::numeric_limits<double>::infinity(), angle = least;
+  const HBezierConstants ku = hbezier_constants(patch.u().alpha), kv = hbezier_constants(patch.v().alpha);
+  for (int corner = 0; corner < 4; ++corner) {
+    const bool s1 = (corner & 1) != 0, t1 = (corner & 2) != 0;
+    const PointPartials at = point_partials(patch.points(), unit_jet(s1 ? sb[a + 1] : sb[a], patch.u(), ku),
+                                            unit_jet(t1 ? tb[b + 1] : tb[b], patch.v(), kv));
+    const double n = at[1][0].cross(at[0][1]).norm();
+    if (n < least) {
+      least = n;
+      angle = normal_cone_angle(at, s1, t1, d);
+    }
+  }
+  return angle;
+}
+
+// What a refinement pass needs besides the grid.
+struct Pass {
+  const TessellateOptions& options;
+  double normal_term;  // the thickness-free part of the averaged-normal term
+  bool shell;
+  double thickness;
+};
+
+// One pass over the cells of patch p on its grid (sb, tb): the worst bound,
+// and the cells to split marked in split_s / split_t (grid order). True when
+// any cell is over the tolerance.
+bool mark_patch(const PatchNetwork& network, std::size_t p, const NetDifferences& diff,
+                const std::array<bool, 4>& outer, const std::vector<double>& sb,
+                const std::vector<double>& tb, const Pass& pass, double& achieved, std::vector<bool>& split_s,
+                std::vector<bool>& split_t) {
+  const HBezierPatch& patch = network.patches[p];
+  const DirectionSamples su = sample_direction(sb, patch.u()), sv = sample_direction(tb, patch.v());
+  // Side walls: twists along the outer sides (u sides run along t, v sides along s).
+  std::array<std::vector<double>, 4> twist;
+  for (PatchSide side : {PatchSide::UMin, PatchSide::UMax, PatchSide::VMin, PatchSide::VMax}) {
+    const auto i = static_cast<std::size_t>(side);
+    if (pass.shell && outer[i])
+      twist[i] = side_twists(patch, side, is_u_side(side) ? tb : sb, pass.thickness);
+  }
+  auto twist_at = [&](PatchSide side, std::size_t k) {
+    const auto& v = twist[static_cast<std::size_t>(side)];
+    return v.empty() ? 0.0 : v[k];
+  };
+  bool any = false;
+  for (std::size_t a = 0; a + 1 < sb.size(); ++a) {
+    for (std::size_t b = 0; b + 1 < tb.size(); ++b) {
+      const double ds = sb[a + 1] - sb[a], dt = tb[b + 1] - tb[b];
+      const CellDerivatives d =
+          cell_derivatives(patch.points(), diff, su.cells[a], sv.cells[b], su.mids[a], sv.mids[b], ds, dt);
+      double twist_t = 0.0, twist_s = 0.0;
+      if (a == 0) twist_t = std::max(twist_t, twist_at(PatchSide::UMin, b));
+      if (a + 2 == sb.size()) twist_t = std::max(twist_t, twist_at(PatchSide::UMax, b));
+      if (b == 0) twist_s = std::max(twist_s, twist_at(PatchSide::VMin, a));
+      if (b + 2 == tb.size()) twist_s = std::max(twist_s, twist_at(PatchSide::VMax, a));
+      const auto cone = [&]() { return corner_cone(patch, sb, tb, a, b, d); };
+      const CellError e = cell_error(d, ds, dt, pass.options, pass.normal_term, cone, twist_s, twist_t);
+      achieved = std::max(achieved, e.bound);
+      if (e.bound <= pass.options.tolerance) continue;
+      if (e.degenerate && ds < 1e-4 && dt < 1e-4) {
+        throw GeometryError(
+            network.names[p],
+            fmt::format("patch '{}': the surface normal vanishes near (s {:.6g}, t {:.6g}), so "
+                        "the offset sheet of the shell cannot be bounded there (a collapsed "
+                        "side or a cusp cannot be thickened)",
+                        network.names[p], sb[a], tb[b]));
+      }
+      any = true;
+      if (e.split_s) split_s[a] = true;
+      if (e.split_t) split_t[b] = true;
+    }
+  }
+  return any;
+}
+
+// Halves the marked intervals (and their mirror images in a symmetric class).
+std::vector<double> refine(const std::vector<double>& breaks, const std::vector<bool>& split, bool symmetric,
+                           double tolerance) {
+  std::vector<double> refined{breaks[0]};
+  for (std::size_t k = 0; k + 1 < breaks.size(); ++k) {
+    const bool mirror = symmetric && split[breaks.size() - 2 - k];
+    if (split[k] || mirror) {
+      const double mid = 0.5 * (breaks[k] + breaks[k + 1]);
+      if (!(mid > breaks[k] && mid < breaks[k + 1])) {
+        throw BudgetError(0.0, 0.0,
+                          fmt::format("tolerance {} cannot be reached in double precision", tolerance));
+      }
+      refined.push_back(mid);
+    }
+    refined.push_back(breaks[k + 1]);
+  }
+  return refined;
+}
+
+}  // namespace
+
+double min_triangle_count(const PatchNetwork& network, double tolerance) {
+  require_positive("tolerance", tolerance);
+  const std::size_t np = network.patches.size();
+  DirectionClasses classes(2 * np);
+  for (const SharedBorder& b : network.borders) {
+    classes.unite(slot(b.a, is_u_side(b.side_a)), slot(b.b, is_u_side(b.side_b)), b.reversed ? 1 : 0);
+  }
+  std::vector<double> count(2 * np, 1.0);
+  for (std::size_t p = 0; p < np; ++p) {
+    const NetDifferences diff = net_differences(network.patches[p].points());
+    for (bool along_t : {false, true}) {
+      const std::size_t root = classes.find(slot(p, along_t)).first;
+      count[root] =
+          std::max(count[root], std::ceil(direction_count(network.patches[p], diff, along_t, tolerance)));
+    }
+  }
+  const double eps = 1e-12 * network.size;
+  double triangles = 0.0;
+  for (std::size_t p = 0; p < np; ++p) {
+    const double ns = count[classes.find(slot(p, false)).first],
+                 nt = count[classes.find(slot(p, true)).first];
+    double cells = 2.0 * ns * nt;
+    for (PatchSide side : {PatchSide::UMin, PatchSide::UMax, PatchSide::VMin, PatchSide::VMax}) {
+      if (collapsed(network.patches[p], side, eps))
+        cells -= is_u_side(side) ? nt : ns;  // one triangle per cell there
+    }
+    triangles += std::max(cells, 0.0);
+  }
+  return triangles;
+}
+
+void for_each_cell_bound(
+    const PatchNetwork& network, const std::vector<std::vector<double>>& s_breaks,
+    const std::vector<std::vector<double>>& t_breaks,
+    const std::function<void(std::size_t, double, double, double, double, const CellDerivatives&)>& visit) {
+  for (std::size_t p = 0; p < network.patches.size(); ++p) {
+    const HBezierPatch& patch = network.patches[p];
+    const NetDifferences diff = net_differences(patch.points());
+    const auto& sb = s_breaks[p];
+    const auto& tb = t_breaks[p];
+    const DirectionSamples su = sample_direction(sb, patch.u()), sv = sample_direction(tb, patch.v());
+    for (std::size_t a = 0; a + 1 < sb.size(); ++a) {
+      for (std::size_t b = 0; b + 1 < tb.size(); ++b) {
+        const double ds = sb[a + 1] - sb[a], dt = tb[b + 1] - tb[b];
+        visit(
+            p, sb[a], sb[a + 1], tb[b], tb[b + 1],
+            cell_derivatives(patch.points(), diff, su.cells[a], sv.cells[b], su.mids[a], sv.mids[b], ds, dt));
+      }
+    }
+  }
+}
+
 SurfaceTessellation tessellate(const PatchNetwork& network, const TessellateOptions& options) {
   require_positive("tolerance", options.tolerance);
-  require_in_range("offset", options.offset, -1e12, 1e12);
+  require_in_range("shell_from", options.shell_from, -1e12, 1e12);
+  require_in_range("shell_to", options.shell_to, -1e12, 1e12);
   if (options.initial_segments < 1) {
     throw RangeError("initial_segments", options.initial_segments, "initial_segments must be >= 1");
+  }
+  const double estimate = min_triangle_count(network, options.tolerance);
+  if (estimate > static_cast<double>(options.max_triangles)) {
+    throw BudgetError(
+        estimate, static_cast<double>(options.max_triangles),
+        fmt::format("tolerance {} needs at least {:.4g} triangles (estimated from the surface's "
+                    "second derivatives before refining), over the budget of {} (raise "
+                    "max_triangles or the tolerance)",
+                    options.tolerance, estimate, options.max_triangles));
   }
   const std::size_t np = network.patches.size();
   DirectionClasses classes(2 * np);
@@ -191,18 +453,17 @@ SurfaceTessellation tessellate(const PatchNetwork& network, const TessellateOpti
       total += 2 * (slot_breaks(slot(p, false)).size() - 1) * (slot_breaks(slot(p, true)).size() - 1);
     return total;
   };
+  const bool shell = options.shell_to > options.shell_from;
+  const double thickness = shell ? options.shell_to - options.shell_from : 0.0;
+  // Vertex normals average the patches meeting there: off by up to the
+  // measured normal angle along shared borders.
+  double normal_term = 0.0;
+  for (const SharedBorder& b : network.borders) normal_term = std::max(normal_term, b.normal_angle);
+  const std::vector<std::array<bool, 4>> outer = outer_sides(network);
+  std::vector<NetDifferences> diffs;
+  for (const HBezierPatch& patch : network.patches) diffs.push_back(net_differences(patch.points()));
+  const Pass pass{options, normal_term, shell, thickness};
   double achieved = 0.0;
-  // A cell that survives a refinement pass unchanged has the same error: each
-  // cell is evaluated once, keyed by its patch and exact parameter bounds.
-  std::map<std::array<double, 5>, CellError> cell_cache;
-  auto error_of = [&](std::size_t p, double s0, double s1, double t0, double t1) -> const CellError& {
-    const std::array<double, 5> key{static_cast<double>(p), s0, s1, t0, t1};
-    auto it = cell_cache.find(key);
-    if (it == cell_cache.end()) {
-      it = cell_cache.emplace(key, cell_error(network.patches[p], s0, s1, t0, t1, options.offset)).first;
-    }
-    return it->second;
-  };
   for (;;) {
     std::vector<std::vector<bool>> split(2 * np);
     for (std::size_t c = 0; c < 2 * np; ++c) split[c].assign(breaks[c].size() - 1, false);
@@ -212,27 +473,19 @@ SurfaceTessellation tessellate(const PatchNetwork& network, const TessellateOpti
       const auto [rs, ps] = classes.find(slot(p, false));
       const auto [rt, pt] = classes.find(slot(p, true));
       const auto sb = slot_breaks(slot(p, false)), tb = slot_breaks(slot(p, true));
-      for (std::size_t a = 0; a + 1 < sb.size(); ++a) {
-        for (std::size_t b = 0; b + 1 < tb.size(); ++b) {
-          const CellError& e = error_of(p, sb[a], sb[a + 1], tb[b], tb[b + 1]);
-          achieved = std::max(achieved, e.bound);
-          if (e.bound <= options.tolerance) continue;
-          any = true;
-          if (e.split_s) split[rs][ps ? sb.size() - 2 - a : a] = true;
-          if (e.split_t) split[rt][pt ? tb.size() - 2 - b : b] = true;
-        }
+      std::vector<bool> split_s(sb.size() - 1, false), split_t(tb.size() - 1, false);
+      if (!mark_patch(network, p, diffs[p], outer[p], sb, tb, pass, achieved, split_s, split_t)) continue;
+      any = true;
+      for (std::size_t a = 0; a < split_s.size(); ++a) {
+        if (split_s[a]) split[rs][ps ? split_s.size() - 1 - a : a] = true;
+      }
+      for (std::size_t b = 0; b < split_t.size(); ++b) {
+        if (split_t[b]) split[rt][pt ? split_t.size() - 1 - b : b] = true;
       }
     }
     if (!any) break;
-    for (std::size_t c = 0; c < 2 * np; ++c) {
-      std::vector<double> refined{breaks[c][0]};
-      for (std::size_t k = 0; k + 1 < breaks[c].size(); ++k) {
-        const bool mirror = classes.symmetric(c) && split[c][breaks[c].size() - 2 - k];
-        if (split[c][k] || mirror) refined.push_back(0.5 * (breaks[c][k] + breaks[c][k + 1]));
-        refined.push_back(breaks[c][k + 1]);
-      }
-      breaks[c] = std::move(refined);
-    }
+    for (std::size_t c = 0; c < 2 * np; ++c)
+      breaks[c] = refine(breaks[c], split[c], classes.symmetric(c), options.tolerance);
     const std::size_t count = triangles();
     if (count > options.max_triangles) {
       throw BudgetError(static_cast<double>(count), static_cast<double>(options.max_triangles),

@@ -11,6 +11,7 @@
 #include "geometry/core/limits.h"
 #include "geometry/core/units.h"
 #include "geometry/curves/curve_spec.h"
+#include "geometry/mesh/thicken.h"
 #include "geometry/mould/mould_options.h"
 #include "geometry/section/vessel_section.h"
 #include "geometry/surfaces/patch_network.h"
@@ -68,6 +69,7 @@ struct VesselDesign {
   BodyMode mode = BodyMode::Solid;
   double wall = 0.0;                                 ///< shell: > 0
   double base = 0.0;                                 ///< shell: > 0 (default: wall)
+  RimCut rim = RimCut::Square;                       ///< shell: how the rim is cut (proposed key `body.rim`)
   std::size_t max_triangles = kDefaultMaxTriangles;  ///< budget (key `max_triangles`)
   /// Clay shrinkage from wet to fired, in [0, 1): what is written (the master)
   /// is the designed (fired) vessel scaled by 1 / (1 - shrinkage).
@@ -106,7 +108,8 @@ struct CountertopDesign {
 struct SurfaceDesign {
   static constexpr const char* kKind = "surface";
   std::vector<PatchSpec> patches;
-  double thickness = 0.0;  ///< > 0: a solid shell along the normals; 0: an open surface
+  double thickness = 0.0;                     ///< > 0: a solid shell along the normals; 0: an open surface
+  ThickenSide thicken = ThickenSide::Normal;  ///< which side the shell goes to (key `thicken`)
   std::size_t max_triangles = kDefaultMaxTriangles;  ///< budget (key `max_triangles`)
 };
 

@@ -19,9 +19,9 @@ std::vector<KeyGroup> make_groups() {
       {"curve", with_common({"curve"})},
       {"vessel", with_common({"profile", "body", "max_triangles", "shrinkage", "mould"})},
       {"countertop", with_common({"outline", "holes", "thickness", "max_edge", "max_triangles", "cnc"})},
-      {"surface", with_common({"patches", "thickness", "max_triangles"})},
+      {"surface", with_common({"patches", "thickness", "thicken", "max_triangles"})},
       // Vessels.
-      {"vessel.body", {"mode", "wall", "base"}},
+      {"vessel.body", {"mode", "wall", "base", "rim"}},
       {"vessel.mould",
        {"parts", "wall", "spare", "spare_shape", "spare_taper_deg", "block", "block_radius", "base_part",
         "base_height", "keys", "key_radius", "key_clearance", "key_margin", "key_positions",
@@ -40,7 +40,7 @@ std::vector<KeyGroup> make_groups() {
       {"surface.patches[].join", {"to", "side", "continuity", "gamma", "k", "m"}},
       // Curves (under curve, profile, outline and holes[].outline).
       {"curve.quasi_bspline", {"family", "points", "lambdas", "fair"}},
-      {"curve.composite", {"family", "closed", "segments", "fair", "closing"}},
+      {"curve.composite", {"family", "closed", "segments", "fair", "fair_keeps", "closing"}},
       {"curve.closing", {"continuity"}},
       {"segment.cubic", {"points", "lambda", "mu", "alpha", "join", "continuity", "family"}},
       {"segment.join.tbezier", {"continuity", "alpha", "beta"}},

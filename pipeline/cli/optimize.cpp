@@ -43,6 +43,7 @@ Optimized optimize_curve(const NamedCurve& nc) {
                         fmt::format("{}: optimize is defined for tbezier and quasi_bspline curves", nc.name));
   } else {
     spec.fair = FairMode::CurvatureVariation;
+    spec.fair_keeps = Continuity::None;  // optimize reports what fairing would lose (continuity_lost)
     out.built = build_curve(spec);
     j["family"] = "tbezier";
     j["segments"] = nlohmann::ordered_json::array();

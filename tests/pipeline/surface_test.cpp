@@ -127,6 +127,9 @@ patches:
   CHECK(fs::exists(dir / "out" / "thin.stl"));
   CHECK(run_cli({"run", (dir / "too_thick.yaml").string(), "-o", (dir / "out").string()}, &out) == 1);
   CHECK(out.find("self-intersect") != std::string::npos);
+  // It says the thickness the curvature allows (radius of curvature about 7.5 here, at most 10).
+  CHECK_THAT(out, Catch::Contains("the largest thickness that could pass is below") &&
+                      Catch::Contains("cannot fold anywhere"));
   CHECK_FALSE(fs::exists(dir / "out" / "too_thick.stl"));
   CHECK_FALSE(fs::exists(dir / "out" / "too_thick.drc"));
 }
@@ -170,4 +173,36 @@ TEST_CASE("surface sample: a surface has no curves to sample and says so", "[pip
   std::string out;
   CHECK(run_cli({"sample", example("surface_basin_shell.yaml")}, &out) == 0);
   CHECK(out.find("no curves") != std::string::npos);
+}
+
+TEST_CASE("surface designs: thicken chooses the shell's side, and the report says where it went",
+          "[pipeline][surface]") {
+  const fs::path dir = fresh_dir("surface_thicken");
+  struct Case {
+    std::string side, thickness;
+    double z_min;  // the basin is 120 deep; an outward shell hangs below it
+  };
+  // Inward, the rim's rounded corners allow little (their radius of curvature is about a millimetre).
+  for (const Case& c :
+       {Case{"outward", "6", -126.0}, Case{"inward", "0.5", -120.0}, Case{"centered", "1", -120.5}}) {
+    INFO(c.side);
+    write_file_atomically((dir / "basin.yaml").string(),
+                          edited_shell("thickness: 6\n", "thickness: " + c.thickness +
+                                                             "\nthicken: " + c.side + "\noutputs: [stl]\n"));
+    std::string out;
+    REQUIRE(run_cli({"run", (dir / "basin.yaml").string(), "-o", (dir / "out").string(), "--json"}, &out) ==
+            0);
+    const nlohmann::json j = nlohmann::json::parse(out).at(0);
+    CHECK(j["valid"] == true);
+    CHECK(j["build"]["thicken"] == c.side);
+    CHECK(j["build"]["bbox_min"][2].get<double>() == Approx(c.z_min).margin(0.1));
+    CHECK(j["max_deviation"].get<double>() <= 0.5);
+  }
+  write_file_atomically((dir / "bad.yaml").string(), edited_shell("thickness: 6\n", "thicken: sideways\n"));
+  std::string out;
+  CHECK(run_cli({"run", (dir / "bad.yaml").string(), "-o", (dir / "out").string()}, &out) == 2);
+  CHECK_THAT(out, Catch::Contains("bad.yaml:") && Catch::Contains("thicken"));
+  write_file_atomically((dir / "lonely.yaml").string(), edited_shell("thickness: 6\n", "thicken: outward\n"));
+  CHECK(run_cli({"run", (dir / "lonely.yaml").string(), "-o", (dir / "out").string()}, &out) == 2);
+  CHECK_THAT(out, Catch::Contains("give a thickness too"));
 }

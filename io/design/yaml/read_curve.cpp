@@ -234,6 +234,13 @@ CurveSpec read_curve(const yaml::Fields& f, const YAML::Node& node, const std::s
   if (spec.fair != FairMode::None && spec.family == CurveFamily::HBezier) {
     f.fail(node["fair"], field + ".fair", "fairing is defined for tbezier and quasi_bspline curves");
   }
+  if (node["fair_keeps"].IsDefined()) {
+    if (spec.fair == FairMode::None) {
+      f.fail(node["fair_keeps"], field + ".fair_keeps",
+             "fair_keeps says what continuity fairing may leave; it needs fair: curvature_variation");
+    }
+    spec.fair_keeps = read_continuity(f, node["fair_keeps"], field + ".fair_keeps");
+  }
   return spec;
 }
 

@@ -135,6 +135,17 @@ SurfaceDesign read_surface(const yaml::Fields& f, const YAML::Node& root) {
     if (!(d.thickness > 0.0))
       f.fail(root["thickness"], "thickness", fmt::format("thickness = {} must be > 0", d.thickness));
   }
+  if (root["thicken"].IsDefined()) {
+    const std::string side =
+        f.choice(root["thicken"], "thicken", {"normal", "outward", "inward", "centered"});
+    if (d.thickness == 0.0) {
+      f.fail(root["thicken"], "thicken", "thicken says which side a shell goes to; give a thickness too");
+    }
+    d.thicken = side == "outward"    ? ThickenSide::Outward
+                : side == "inward"   ? ThickenSide::Inward
+                : side == "centered" ? ThickenSide::Centered
+                                     : ThickenSide::Normal;
+  }
   d.max_triangles = f.budget_or(root, "max_triangles", d.max_triangles);
   // Joins that cannot be made (continuity contradicted, borders that do not meet) at their patch.
   try {

@@ -61,10 +61,14 @@ VesselDesign read_vessel(const yaml::Fields& f, const YAML::Node& root, const De
     if (v.wall <= 0.0) f.fail(wall, "body.wall", fmt::format("wall = {} must be > 0", v.wall));
     v.base = f.number_or(body, "base", "body.base", v.wall);
     if (v.base <= 0.0) f.fail(body["base"], "body.base", fmt::format("base = {} must be > 0", v.base));
+    if (body["rim"].IsDefined()) {
+      const std::string rim = f.choice(body["rim"], "body.rim", {"square", "level"});
+      v.rim = rim == "level" ? RimCut::Level : RimCut::Square;
+    }
   } else {
-    for (const char* key : {"wall", "base"}) {
+    for (const char* key : {"wall", "base", "rim"}) {
       if (body[key].IsDefined())
-        f.fail(body[key], std::string("body.") + key, "a solid body has no wall or base");
+        f.fail(body[key], std::string("body.") + key, "a solid body has no wall, base or rim");
     }
   }
   v.max_triangles = f.budget_or(root, "max_triangles", v.max_triangles);
