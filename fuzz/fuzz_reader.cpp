@@ -1,6 +1,6 @@
 // libFuzzer entry for one mesh reader, chosen by FABMESH_FUZZ_PARSE
-// (parse_stl, parse_obj, parse_ply, parse_off, parse_draco, fuzz::parse_3mf
-// or fuzz::parse_gltf).
+// (parse_stl, parse_obj, parse_ply, parse_off, fuzz::parse_draco,
+// fuzz::parse_3mf or fuzz::parse_gltf).
 // A reader may only return a soup whose indices are in range, or throw
 // FileError; anything else (a crash, another exception, a sanitizer report,
 // a hang caught by -timeout) is a finding. Small soups also go through weld
@@ -36,6 +36,10 @@ TriangleSoup parse_3mf(std::string_view bytes, const std::string& name) {
   options.max_triangles = kMaxTriangles;
   if (bytes.substr(0, 2) == "PK") return merged_soup(fabmesh::parse_3mf(bytes, name, options));
   return merged_soup(fabmesh::parse_3mf(threemf_package(bytes), name, options));
+}
+
+TriangleSoup parse_draco(std::string_view bytes, const std::string& name) {
+  return fabmesh::parse_draco(bytes, name, kMaxTriangles);
 }
 
 TriangleSoup parse_gltf(std::string_view bytes, const std::string& name) {

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -31,6 +32,115 @@ void bounding_box(const TriangleSoup& soup, Vec3& lo, Vec3& hi) {
     lo = lo.cwiseMin(p);
     hi = hi.cwiseMax(p);
   }
+}
+
+/// Reads Draco's header fields in order; every read fails cleanly past the end.
+class HeaderReader {
+ public:
+  explicit HeaderReader(std::string_view bytes) : bytes_(bytes) {}
+  bool byte(std::uint8_t& out) {
+    if (pos_ >= bytes_.size()) return false;
+    out = static_cast<std::uint8_t>(bytes_[pos_++]);
+    return true;
+  }
+  bool skip(std::uint64_t n) {
+    if (bytes_.size() - pos_ < n) return false;
+    pos_ += static_cast<std::size_t>(n);
+    return true;
+  }
+  /// A little-endian fixed-size integer of `n` bytes.
+  bool fixed(std::uint64_t& out, int n) {
+    out = 0;
+    for (int i = 0; i < n; ++i) {
+      std::uint8_t b = 0;
+      if (!byte(b)) return false;
+      out |= std::uint64_t{b} << (8 * i);
+    }
+    return true;
+  }
+  /// Draco's varint: 7 bits a byte, low first, at most 5 bytes for 32 bits.
+  bool varint(std::uint64_t& out) {
+    out = 0;
+    for (int i = 0; i < 5; ++i) {
+      std::uint8_t b = 0;
+      if (!byte(b)) return false;
+      out |= std::uint64_t{b & 0x7fu} << (7 * i);
+      if ((b & 0x80u) == 0) return true;
+    }
+    return false;
+  }
+  /// A name: one length byte, then that many bytes.
+  bool name() {
+    std::uint8_t length = 0;
+    return byte(length) && skip(length);
+  }
+  std::size_t remaining() const { return bytes_.size() - pos_; }
+
+ private:
+  std::string_view bytes_;
+  std::size_t pos_ = 0;
+};
+
+/// Skips one metadata tree: its entries (name, size, bytes), then its
+/// sub-metadata (each a name and a tree), depth first as libdraco reads them.
+/// Every block read takes at least two bytes, so this ends with the data.
+bool skip_metadata_tree(HeaderReader& in) {
+  std::uint64_t pending = 1;
+  for (bool root = true; pending > 0; root = false) {
+    --pending;
+    if (!root && !in.name()) return false;
+    std::uint64_t entries = 0;
+    if (!in.varint(entries)) return false;
+    for (std::uint64_t e = 0; e < entries; ++e) {
+      std::uint64_t size = 0;
+      if (!in.name() || !in.varint(size) || !in.skip(size)) return false;
+    }
+    std::uint64_t subs = 0;
+    if (!in.varint(subs) || subs > in.remaining()) return false;
+    pending += subs;
+  }
+  return true;
+}
+
+/// Skips the metadata block: per attribute its id and tree, then the geometry's tree.
+bool skip_metadata(HeaderReader& in) {
+  std::uint64_t attributes = 0;
+  if (!in.varint(attributes)) return false;
+  for (std::uint64_t a = 0; a < attributes; ++a) {
+    std::uint64_t id = 0;
+    if (!in.varint(id) || !skip_metadata_tree(in)) return false;
+  }
+  return skip_metadata_tree(in);
+}
+
+/// The number of triangles a Draco mesh's header declares, read before
+/// libdraco allocates for it; nullopt when the header ends early or the
+/// method is unknown (libdraco then refuses the file itself).
+std::optional<std::uint64_t> declared_triangles(std::string_view bytes) {
+  HeaderReader in(bytes);
+  std::uint64_t major = 0, minor = 0, type = 0, method = 0, flags = 0;
+  if (!in.skip(5) || !in.fixed(major, 1) || !in.fixed(minor, 1) || !in.fixed(type, 1) ||
+      !in.fixed(method, 1) || !in.fixed(flags, 2)) {
+    return std::nullopt;
+  }
+  const std::uint64_t version = major * 256 + minor;
+  if ((flags & 0x8000u) != 0 && version >= 0x0103 && !skip_metadata(in)) return std::nullopt;
+  // Counts are 32-bit words before bitstream 2.0 (sequential: before 2.2), varints after.
+  const auto count = [&](std::uint64_t& out, std::uint64_t varint_since) {
+    return version < varint_since ? in.fixed(out, 4) : in.varint(out);
+  };
+  std::uint64_t faces = 0, unused = 0;
+  if (method == 0) {  // sequential: faces, then points
+    if (!count(faces, 0x0202)) return std::nullopt;
+    return faces;
+  }
+  if (method == 1) {  // edgebreaker: traversal type, [new vertices], vertices, faces
+    if (!in.fixed(unused, 1)) return std::nullopt;
+    if (version < 0x0202 && !count(unused, 0x0200)) return std::nullopt;
+    if (!count(unused, 0x0200) || !count(faces, 0x0200)) return std::nullopt;
+    return faces;
+  }
+  return std::nullopt;
 }
 
 }  // namespace
@@ -58,12 +168,23 @@ DracoQuantization draco_quantization(const Vec3& lo, const Vec3& hi, double tole
                   tolerance, (hi - lo).maxCoeff(), draco_max_error(lo, hi, 30)));
 }
 
-TriangleSoup parse_draco(std::string_view bytes, const std::string& name) {
+TriangleSoup parse_draco(std::string_view bytes, const std::string& name, std::size_t max_triangles) {
   draco::DecoderBuffer buffer;
   buffer.Init(bytes.data(), bytes.size());
   const auto type = draco::Decoder::GetEncodedGeometryType(&buffer);
   if (!type.ok()) fail(name, fmt::format("not a Draco file: {}", type.status().error_msg_string()));
   if (type.value() != draco::TRIANGULAR_MESH) fail(name, "the Draco file holds a point cloud, not a mesh");
+  if (const auto declared = declared_triangles(bytes)) {
+    const std::uint64_t plausible = std::uint64_t{kMaxDracoTrianglesPerByte} * bytes.size() + 4096;
+    if (*declared > max_triangles) {
+      fail(name, fmt::format("the Draco mesh declares {} triangles, more than the {} fabmesh reads",
+                             *declared, max_triangles));
+    }
+    if (*declared > plausible) {
+      fail(name,
+           fmt::format("corrupt Draco mesh: it declares {} triangles in {} bytes", *declared, bytes.size()));
+    }
+  }
   draco::Decoder decoder;
   auto decoded = decoder.DecodeMeshFromBuffer(&buffer);
   if (!decoded.ok()) fail(name, fmt::format("corrupt Draco mesh: {}", decoded.status().error_msg_string()));

@@ -36,10 +36,23 @@ double draco_max_error(const Vec3& lo, const Vec3& hi, int bits);
 /// bits (or float32) cannot meet it for this bounding box.
 DracoQuantization draco_quantization(const Vec3& lo, const Vec3& hi, double tolerance);
 
-/// Decodes a Draco triangle mesh (positions only). \param name the path, for messages
+/// Most triangles a Draco file may declare by default: as many as the largest
+/// binary STL fabmesh reads holds.
+inline constexpr std::size_t kMaxDracoTriangles = 86'000'000;
+
+/// Most triangles a Draco file may declare per byte of its data. Edgebreaker
+/// with 1-bit positions packs a smooth 7e5-triangle vessel at 160 per byte;
+/// a declared count beyond this is a corrupt header, refused before libdraco
+/// allocates for it (it would reserve 3 GB for a 100-byte file).
+inline constexpr std::size_t kMaxDracoTrianglesPerByte = 1024;
+
+/// Decodes a Draco triangle mesh (positions only). \param name the path, for
+/// messages. \param max_triangles the most triangles the file may declare.
 /// \throw FileError when the data is not a valid Draco mesh (a point cloud,
-/// corrupt data, no positions, a non-finite position).
-TriangleSoup parse_draco(std::string_view bytes, const std::string& name);
+/// corrupt data, no positions, a non-finite position), or declares more
+/// triangles than max_triangles or than kMaxDracoTrianglesPerByte allows.
+TriangleSoup parse_draco(std::string_view bytes, const std::string& name,
+                         std::size_t max_triangles = kMaxDracoTriangles);
 
 /// Draco bytes of `soup`, quantized by draco_quantization(bbox, options.tolerance).
 /// \throw RangeError (tolerance), InputError (index out of range or the

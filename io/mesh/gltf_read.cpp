@@ -125,7 +125,7 @@ class GltfReader {
     doc_.required_uint(*attributes, "POSITION", where + ".attributes");
     TriangleSoup decoded;
     try {
-      decoded = parse_draco(bytes, doc_.name());
+      decoded = parse_draco(bytes, doc_.name(), options_.max_triangles);
     } catch (const FileError& e) {
       doc_.fail(fmt::format("{}: {}", where, e.what()));
     }

@@ -327,6 +327,20 @@ TEST_CASE("mesh files: garbage, empty and corrupt Draco files are FileErrors", "
   CHECK_THROWS_AS(read_mesh(dir.file("")), FileError);  // a folder
 }
 
+TEST_CASE("mesh files: a Draco header declaring more triangles than allowed is refused before decoding",
+          "[mesh][io][draco]") {
+  // The count is read from the header itself: a 12-triangle box over a budget of 11.
+  const std::string drc = encode_draco(test::box());
+  CHECK(parse_draco(drc, "box.drc", 12).triangles.size() == 12);
+  CHECK_THROWS_WITH(parse_draco(drc, "box.drc", 11),
+                    Catch::Contains("declares 12 triangles, more than the 11"));
+  // A fuzzer's 63-byte file whose header declares 268435447 faces: libdraco
+  // reserved 3 GB for it. Refused from the header, with the count.
+  const std::string path =
+      std::string(FABMESH_SOURCE_DIR) + "/tests/data/fuzz-seeds/draco/regression-declares-268m-faces.drc";
+  CHECK_THROWS_WITH(read_mesh(path), Catch::Contains("declares 268435447 triangles"));
+}
+
 TEST_CASE("file: writes replace the target and leave no temporary behind", "[mesh][io]") {
   const TempDir dir;
   const std::string path = dir.file("out.stl");
