@@ -27,12 +27,15 @@ fuzz() {
     echo "ci-extra: fuzzing the $r reader for ${FUZZ_SECONDS}s"
     # Fuzzing runs single-threaded; libFuzzer exits non-zero on a crash, a
     # sanitizer report, a timeout (-timeout per input) or an out-of-memory.
+    local log="$dir/fuzz/fuzz-$r.log" status=0
     "$dir/fuzz/fuzz_$r" -max_total_time="$FUZZ_SECONDS" -timeout=10 -rss_limit_mb=2048 \
       -artifact_prefix="$dir/fuzz/finding-$r-" -print_final_stats=1 \
-      "$corpus" "tests/data/fuzz-seeds/$r" 2>&1 | tail -n 15
-    local status="${PIPESTATUS[0]}"
+      "$corpus" "tests/data/fuzz-seeds/$r" >"$log" 2>&1 || status=$?
+    tail -n 8 "$log"
     rm -rf "$corpus"
     if [[ "$status" -ne 0 ]]; then
+      # The report and its stack, not only libFuzzer's closing statistics.
+      grep -m1 -A60 -E "ERROR|runtime error|Deadly|out-of-memory|timeout" "$log" >&2 || tail -n 80 "$log" >&2
       echo "ci-extra: the $r fuzzer found a problem (exit $status); see $dir/fuzz/finding-$r-*" >&2
       exit 1
     fi
