@@ -23,10 +23,21 @@ TriangleSoup scaled(const TriangleSoup& soup, double factor) {
 }
 
 std::vector<const OutputFormat*> formats_of(const Design& design, const JobOptions& options) {
-  if (!options.export_format) return resolve_outputs(design);
-  Design one = design;
-  one.common.outputs = {{*options.export_format, "--export-format " + *options.export_format, 0, 0}};
-  return resolve_outputs(one);
+  std::vector<const OutputFormat*> formats;
+  if (!options.export_format) {
+    formats = resolve_outputs(design);
+  } else {
+    Design one = design;
+    one.common.outputs = {{*options.export_format, "--export-format " + *options.export_format, 0, 0}};
+    formats = resolve_outputs(one);
+  }
+  // Pictures asked for by the command (a report's): those the design has content for, once.
+  for (const std::string& name : options.also_formats) {
+    const OutputFormat* f = find_output_format(name);
+    if (f == nullptr || !has_content(design, f->content) || !f->kinds.test(design.body.index())) continue;
+    if (std::find(formats.begin(), formats.end(), f) == formats.end()) formats.push_back(f);
+  }
+  return formats;
 }
 
 std::string path_with_suffix(const Design& design, const std::string& suffix, const JobOptions& options) {

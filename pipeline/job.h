@@ -23,6 +23,9 @@ struct JobOptions {
   std::optional<std::string> export_format;
   /// The path of the single output (`-o FILE.ext`) instead of out_dir/NAME.ext; "-" is standard output.
   std::optional<std::string> output_file;
+  /// Formats added to the design's own (e.g. "png" and "plot" for `run --report`)
+  /// where the design's kind and content allow them; unknown names are ignored.
+  std::vector<std::string> also_formats;
 };
 
 /// One file a job wrote.

@@ -17,6 +17,7 @@
 #include "io/mesh/ply.h"
 #include "io/mesh/stl.h"
 #include "io/mesh/threemf.h"
+#include "pipeline/pictures.h"
 
 namespace fabmesh {
 namespace {
@@ -190,10 +191,21 @@ Files encode_toolpath_svg_output(const EncodeContext& c) {
   return {{encode_toolpath_svg(c.built.cutting, *c.built.toolpath, options), c.common.units, 0.0, ""}};
 }
 
+Files encode_plot_output(const EncodeContext& c) {
+  return {{design_plot_svg(Design{c.common, *c.body}), c.common.units, 0.0, ""}};
+}
+
+Files encode_png_output(const EncodeContext& c) {
+  PreviewOptions options;
+  options.supersample = 2;
+  return {{preview_png(c.built.soup, options), c.common.units, 0.0, ""}};
+}
+
 std::vector<OutputFormat> make_table() {
   const KindSet meshes = kinds<VesselDesign, CountertopDesign, SurfaceDesign>();
   const KindSet drawn = kinds<CurveDesign, VesselDesign, CountertopDesign>();
   const KindSet vessels = kinds<VesselDesign>(), countertops = kinds<CountertopDesign>();
+  const KindSet every = kinds<CurveDesign, VesselDesign, CountertopDesign, SurfaceDesign>();
   const OutputContent mesh = OutputContent::Triangles, drawing = OutputContent::Drawing,
                       mould = OutputContent::MouldParts, toolpath = OutputContent::Toolpath;
   return {
@@ -244,6 +256,20 @@ std::vector<OutputFormat> make_table() {
        countertops, countertops, ".nc", &encode_nc_output},
       {"toolpath_svg", "drawing of the router path over the outline", toolpath, countertops, countertops,
        ".toolpath.svg", &encode_toolpath_svg_output},
+      {"plot",
+       "the design's curves with control polygons, joints, curvature combs and curvature plot (SVG)",
+       OutputContent::Design,
+       every,
+       {},
+       ".plot.svg",
+       &encode_plot_output},
+      {"png",
+       "a shaded three-quarter preview of the mesh (PNG)",
+       mesh,
+       meshes,
+       {},
+       ".png",
+       &encode_png_output},
   };
 }
 
@@ -268,6 +294,8 @@ bool has_content(const Design& design, OutputContent content) {
       const auto* v = std::get_if<VesselDesign>(&design.body);
       return v != nullptr && v->mould.has_value();
     }
+    case OutputContent::Design:
+      return true;
     case OutputContent::Toolpath: {
       const auto* c = std::get_if<CountertopDesign>(&design.body);
       return c != nullptr && c->cnc.has_value();

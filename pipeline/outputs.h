@@ -67,6 +67,7 @@ enum class OutputContent {
   Drawing,  ///< its curves at true size: a countertop's cutting outline, a vessel's profile template, a curve
   MouldParts,  ///< the parts of a vessel's slip-casting mould (key `mould`)
   Toolpath,    ///< a countertop's router path (key `cnc`)
+  Design,      ///< the design itself: its curves (a plot), whatever its kind
 };
 
 /// True when `design` has what `content` is made from (a mould for MouldParts, ...).

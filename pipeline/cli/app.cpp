@@ -27,6 +27,8 @@ int run_app(int argc, const char* const* argv, Streams streams) {
   add(&add_sample_command);
   add(&add_optimize_command);
   add(&add_run_command);
+  add(&add_plot_command);
+  add(&add_preview_command);
 
   try {
     app.parse(argc, argv);

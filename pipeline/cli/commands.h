@@ -35,6 +35,8 @@ Runner add_check_command(CLI::App& app);  ///< `fabmesh check MESH... [--json] [
 Runner add_sample_command(CLI::App& app);
 Runner add_optimize_command(CLI::App& app);
 Runner add_run_command(CLI::App& app);
+Runner add_plot_command(CLI::App& app);     ///< `fabmesh plot DESIGN... [-o FILE.svg | DIR]`
+Runner add_preview_command(CLI::App& app);  ///< `fabmesh preview MESH|DESIGN -o FILE.png`
 
 /// `fabmesh` without arguments: runs the bundled vessel example into ./out.
 int run_bundled_example(Streams streams);

@@ -9,11 +9,13 @@
 #include <nlohmann/json.hpp>
 
 #include "geometry/core/errors.h"
+#include "io/file.h"
 #include "pipeline/cli/commands.h"
 #include "pipeline/failure.h"
 #include "pipeline/job.h"
 #include "pipeline/load_design.h"
 #include "pipeline/outputs.h"
+#include "pipeline/pictures.h"
 #include "pipeline/report.h"
 
 namespace fabmesh::cli {
@@ -27,6 +29,7 @@ struct RunArgs {
   std::string out = "out";
   std::string export_units;
   std::string export_format;
+  std::string report;  ///< --report FILE.html
   bool json = false;
 };
 
@@ -97,8 +100,38 @@ void require_unique_names(std::vector<Outcome>& outcomes, const RunArgs& args) {
   }
 }
 
+// The HTML page of `--report`: one row per design, its preview and plot linked from the output folder.
+void write_report(const RunArgs& args, const std::vector<Outcome>& outcomes) {
+  const std::string base = fs::path(args.report).parent_path().string();
+  HtmlReport page;
+  page.title = "fabmesh run";
+  page.generated_by = std::string("fabmesh ") + FABMESH_VERSION + " run --report";
+  for (std::size_t i = 0; i < outcomes.size(); ++i) {
+    const Outcome& o = outcomes[i];
+    if (!o.report) {
+      page.rows.push_back(failed_row(args.designs[i], o.code, o.error));
+      continue;
+    }
+    ReportRow row = report_row(*o.report, base);
+    for (std::size_t k = 0; k < o.report->files.size(); ++k) {
+      const OutputFile& f = o.report->files[k];
+      if (f.format == "png") row.preview_png = row.files[k];
+      if (f.format == "plot") row.plot_svg = row.files[k];
+    }
+    page.rows.push_back(std::move(row));
+  }
+  if (!base.empty()) fs::create_directories(base);
+  write_file_atomically(args.report, render_report_html(page));
+}
+
 int run_designs(const RunArgs& args, Streams io) {
-  const JobOptions options = output_options(args);
+  JobOptions options = output_options(args);
+  if (!args.report.empty()) {
+    if (fs::path(args.report).extension() != ".html")
+      throw InputError(fmt::format("--report {}: the report is an HTML page; name it *.html", args.report));
+    // The report shows each design's preview and plot: written beside its other outputs.
+    if (!options.output_file) options.also_formats = {"png", "plot"};
+  }
   const std::vector<Override> overrides = parse_overrides(args.defines);
   const bool to_stdout = options.output_file && *options.output_file == "-";
   std::vector<Outcome> outcomes(args.designs.size());
@@ -159,6 +192,10 @@ int run_designs(const RunArgs& args, Streams io) {
   }
   // `run --json` prints an array always: one entry per design, whatever their number.
   if (args.json) report_out << all.dump(2) << "\n";
+  if (!args.report.empty()) {
+    write_report(args, outcomes);
+    if (io.verbosity > 0 && !args.json) report_out << fmt::format("report: {}\n", args.report);
+  }
   return code;
 }
 
@@ -178,12 +215,15 @@ Runner add_run_command(CLI::App& app) {
   cmd->add_option(
       "--export-format", args->export_format,
       "Write only this format, whatever the design's outputs (stl, 3mf, glb, glb_draco, drc, obj, ply, "
-      "off, dxf, svg)");
+      "off, dxf, svg, mould_stl, mould_3mf, nc, toolpath_svg, plot, png)");
   cmd->add_option("--export-units", args->export_units,
                   "Unit of the files that carry none (STL, OBJ, PLY, OFF, Draco) and of 3MF, instead of the "
                   "design's export_units (default mm)")
       ->check(CLI::IsMember({"mm", "cm", "m", "in"}));
   cmd->add_flag("--json", args->json, "Print the JSON reports (an array, one entry per design)");
+  cmd->add_option("--report", args->report,
+                  "Also write an HTML report (one self-contained page: summary table, each design's preview "
+                  "and plot, verdict, measures and files; the pictures are written with the outputs)");
   add_define_option(cmd, args->defines);
   return [args](Streams io) { return run_designs(*args, io); };
 }

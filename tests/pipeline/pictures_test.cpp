@@ -1,0 +1,135 @@
+// The pictures a designer judges, through the command line: `plot` for every
+// kind, `preview` of designs and mesh files, the `png`/`plot` outputs and the
+// HTML report of `run --report`, loaded by Chromium.
+
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <fstream>
+#include <set>
+
+#include "io/file.h"
+#include "io/mesh/stl.h"
+#include "tests/geometry/mesh/shapes.h"
+#include "tests/io/pictures/chromium.h"
+#include "tests/io/pictures/png_decode.h"
+#include "tests/io/pictures/xml_scan.h"
+#include "tests/pipeline/cli_harness.h"
+
+using namespace fabmesh;
+using namespace fabmesh::test;
+using namespace fabmesh::testing;
+namespace fs = std::filesystem;
+
+namespace {
+
+// The data-name of every drawn curve of a plot.
+std::multiset<std::string> curve_names(const std::string& svg) {
+  std::multiset<std::string> names;
+  const auto doc = scan_xml(svg);
+  for (const XmlElement* e : select(doc, "path", "curve")) names.insert(e->attr("data-name"));
+  return names;
+}
+
+// Pixels of a decoded image that are not the preview's background.
+std::size_t drawn_pixels(const DecodedPng& image) {
+  std::size_t n = 0;
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < image.width; ++x) n += image.at(x, y) != std::array<std::uint8_t, 3>{235, 235, 235};
+  }
+  return n;
+}
+
+}  // namespace
+
+TEST_CASE("plot: every kind draws its curves, a surface its patch borders and control net",
+          "[pipeline][pictures][plot]") {
+  const fs::path dir = fresh_dir("plot_kinds");
+  REQUIRE(run_cli({"plot", example("vessel_golden_shell.yaml"), example("countertop_g1.yaml"),
+                   example("surface_basin_shell.yaml"), example("golden_profile.yaml"), "-o", dir.string()}) == 0);
+  CHECK(curve_names(read_file((dir / "vessel_golden_shell.plot.svg").string())) ==
+        std::multiset<std::string>{"profile"});
+  const auto countertop = curve_names(read_file((dir / "countertop_g1.plot.svg").string()));
+  CHECK(countertop.count("outline") == 1);
+  CHECK(countertop.count("holes[0]") == 1);
+  CHECK(countertop.count("holes[1]") == 1);
+  const std::string surface = read_file((dir / "surface_basin_shell.plot.svg").string());
+  const auto borders = curve_names(surface);
+  CHECK(borders.size() % 4 == 0);
+  CHECK(borders.size() >= 4);
+  CHECK(select(scan_xml(surface), "path", "net").size() == 1);  // the control net in plan, dotted
+  CHECK(curve_names(read_file((dir / "golden_profile.plot.svg").string())) == std::multiset<std::string>{"curve"});
+}
+
+TEST_CASE("plot: one file for one design, overrides apply, a bad design writes nothing",
+          "[pipeline][pictures][plot]") {
+  const fs::path dir = fresh_dir("plot_one");
+  const std::string one = (dir / "cup.svg").string();
+  REQUIRE(run_cli({"plot", example("vessel_golden_shell.yaml"), "-o", one, "-D", "profile.lambdas[0]=-1"}) ==
+          0);
+  const std::string changed = read_file(one);
+  REQUIRE(run_cli({"plot", example("vessel_golden_shell.yaml"), "-o", one}) == 0);
+  CHECK(read_file(one) != changed);
+  CHECK(run_cli({"plot", example("vessel_golden_shell.yaml"), example("countertop_g1.yaml"), "-o", one}) == 2);
+  std::string out;
+  CHECK(run_cli({"plot", example("vessel_golden_shell.yaml"), "-o", (dir / "bad").string(), "-D", "body.wal=2"},
+                &out) == 2);
+  CHECK_THAT(out, Catch::Contains("wal"));
+  CHECK_FALSE(fs::exists(dir / "bad"));
+}
+
+TEST_CASE("preview: a design and a mesh file give a shaded PNG of the asked size",
+          "[pipeline][pictures][preview]") {
+  const fs::path dir = fresh_dir("preview");
+  const std::string from_design = (dir / "cup.png").string();
+  REQUIRE(run_cli({"preview", example("vessel_golden_shell.yaml"), "-o", from_design, "--width", "320", "--height",
+                   "240", "--views", "2"}) == 0);
+  const DecodedPng a = decode_png(read_file(from_design));
+  CHECK(a.width == 320);
+  CHECK(a.height == 240);
+  CHECK(drawn_pixels(a) > 320 * 240 / 10);
+  write_stl(test::torus(3, 1, 40, 20), (dir / "torus.stl").string());
+  const std::string from_mesh = (dir / "torus.png").string();
+  REQUIRE(run_cli({"preview", (dir / "torus.stl").string(), "-o", from_mesh}) == 0);
+  const DecodedPng b = decode_png(read_file(from_mesh));
+  CHECK(b.width == 800);
+  CHECK(drawn_pixels(b) > 800 * 600 / 10);
+  // Wrong ending, a curve design (no mesh), -D on a mesh file: exit 2, nothing written.
+  CHECK(run_cli({"preview", example("vessel_golden_shell.yaml"), "-o", (dir / "x.jpg").string()}) == 2);
+  CHECK(run_cli({"preview", example("golden_profile.yaml"), "-o", (dir / "c.png").string()}) == 2);
+  CHECK(run_cli({"preview", (dir / "torus.stl").string(), "-o", (dir / "d.png").string(), "-D", "units=mm"}) == 2);
+  CHECK_FALSE(fs::exists(dir / "x.jpg"));
+  CHECK_FALSE(fs::exists(dir / "c.png"));
+  CHECK_FALSE(fs::exists(dir / "d.png"));
+}
+
+TEST_CASE("run --report: one page with every design, its pictures beside the outputs, loaded by Chromium",
+          "[pipeline][pictures][report][chromium]") {
+  REQUIRE(chromium_available());  // Debian package chromium (scripts/install-deps.sh)
+  const fs::path dir = fresh_dir("run_report");
+  const fs::path bad = dir / "bad.yaml";
+  write_file_atomically(bad.string(), "name: bad\nkind: vessel\nunits: mm\n");
+  const std::string page = (dir / "report" / "index.html").string();
+  CHECK(run_cli({"run", example("vessel_golden_shell.yaml"), example("countertop_g1.yaml"),
+                 example("golden_profile.yaml"), bad.string(), "-o", (dir / "out").string(), "--report", page}) == 2);
+  const std::string html = read_file(page);
+  const auto doc = scan_xml(html, true);
+  CHECK(select(doc, "tr").size() == 5);  // the header and four designs
+  // Every image and link resolves to a file beside the page.
+  std::size_t images = 0;
+  for (const XmlElement* img : select(doc, "img")) {
+    ++images;
+    CHECK(fs::is_regular_file(fs::path(page).parent_path() / decode_entities(img->attr("src"))));
+  }
+  CHECK(images >= 5);  // two previews, three plots
+  for (const char* file : {"vessel_golden_shell.png", "countertop_g1.plot.svg", "golden_profile.plot.svg"})
+    CHECK(fs::is_regular_file(dir / "out" / file));
+  CHECK(html.find("bad input") != std::string::npos);
+  const ChromiumRun run =
+      run_chromium("--window-size=1400,900 --virtual-time-budget=10000 --dump-dom", file_url(page));
+  INFO(run.err);
+  REQUIRE(run.code == 0);
+  const auto dom = scan_xml(run.out, true);
+  const XmlElement& body = *select(dom, "body").at(0);
+  CHECK(body.attr("data-images-loaded") == std::to_string(images));
+  CHECK(body.attr("data-images-failed") == "0");
+}
