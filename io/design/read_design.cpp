@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "io/design/yaml/fields.h"
+#include "io/design/yaml/node_budget.h"
 #include "io/design/yaml/read_countertop.h"
 #include "io/design/yaml/read_curve.h"
 #include "io/design/yaml/read_surface.h"
@@ -16,7 +17,11 @@
 namespace fabmesh {
 namespace {
 
-constexpr std::size_t kMaxDesignBytes = 64u << 20;
+// Reading a design stays within a stated memory bound (docs/design-files.md):
+// yaml-cpp spends about 470 bytes per node, so the node count is what bounds
+// the tree; the byte limit bounds the text and long scalars.
+constexpr std::size_t kMaxDesignBytes = 16u << 20;
+constexpr std::size_t kMaxDesignNodes = 1u << 20;
 constexpr std::size_t kMaxNameBytes = 120;
 
 template <class Body>
@@ -203,6 +208,7 @@ Design parse_design(const std::string& text, const std::string& path,
                     const std::vector<Override>& overrides) {
   YAML::Node root;
   try {
+    yaml::require_node_budget(text, path, kMaxDesignNodes);
     std::vector<YAML::Node> documents = YAML::LoadAll(text);
     if (documents.size() > 1) {
       const YAML::Mark m = documents[1].Mark();
@@ -221,6 +227,7 @@ Design parse_design(const std::string& text, const std::string& path,
   for (const Override& o : overrides) {
     YAML::Node value;
     try {
+      yaml::require_node_budget(o.value, path, kMaxDesignNodes, o.text);
       value = YAML::Load(o.value);
     } catch (const YAML::Exception& e) {
       throw FileError(path, 0, 0, fmt::format("-D {}: the value is not valid YAML: {}", o.text, e.msg));
