@@ -1,0 +1,171 @@
+// The real executable against hostile input, under a time and memory bound
+// the test enforces (tests/pipeline/limited_run.h): nothing hangs, nothing
+// blows memory, nothing is written outside the output folder or half way.
+
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <fstream>
+
+#include "io/file.h"
+#include "tests/pipeline/cli_harness.h"
+#include "tests/pipeline/limited_run.h"
+
+using namespace fabmesh;
+using namespace fabmesh::testing;
+namespace fs = std::filesystem;
+
+namespace {
+
+// Refusals must be immediate: generous bounds for a loaded machine, far
+// below what reading /dev/zero or waiting on a FIFO would take.
+constexpr double kQuickSeconds = 20.0;
+constexpr std::size_t kSmallMemory = 256 * kMiB;
+
+void write_text(const fs::path& path, const std::string& text) { std::ofstream(path) << text; }
+
+std::vector<std::string> names_in(const fs::path& dir) {
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+const char* const kCurveFromCsv =
+    "kind: curve\ncurve:\n  family: tbezier\n  segments:\n    - polyline: {file: FILE}\n";
+
+std::string with_file(const std::string& file) {
+  std::string text = kCurveFromCsv;
+  text.replace(text.find("FILE"), 4, file);
+  return text;
+}
+
+}  // namespace
+
+TEST_CASE("run /dev/zero and check on a FIFO end at once with exit 2", "[pipeline][errors][bounded]") {
+  const fs::path dir = fresh_dir("hostile_devices");
+  const std::string fifo = (dir / "mesh.stl").string();
+  REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);  // no writer ever opens it
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"run", "/dev/zero", "-o", (dir / "out").string()},
+        std::vector<std::string>{"check", fifo}, std::vector<std::string>{"check", "--json", "/dev/zero"},
+        std::vector<std::string>{"run", fifo, "-o", (dir / "out").string()},
+        std::vector<std::string>{"sample", "/dev/zero"}, std::vector<std::string>{"optimize", fifo}}) {
+    INFO(args[0] << " " << args[1]);
+    const LimitedRun r = run_limited(args, kQuickSeconds, kSmallMemory);
+    INFO(r.describe());
+    CHECK(r.code == 2);
+    CHECK_THAT(r.err, Catch::Contains("not a regular file"));
+  }
+  CHECK_FALSE(fs::exists(dir / "out"));
+}
+
+TEST_CASE("a polyline file that is /dev/zero or a FIFO is refused at once with exit 2",
+          "[pipeline][errors][bounded]") {
+  const fs::path dir = fresh_dir("hostile_csv");
+  write_text(dir / "zero.yaml", with_file("/dev/zero"));
+  REQUIRE(::mkfifo((dir / "points.csv").c_str(), 0600) == 0);
+  write_text(dir / "fifo.yaml", with_file("points.csv"));
+  write_text(dir / "top.yaml",
+             "kind: countertop\nthickness: 30\noutline:\n  family: tbezier\n  closed: true\n  segments:\n"
+             "    - polyline: {file: points.csv}\n");
+  // Each message is located at the design's `file:` key (line 5 of the curves, 7 of the countertop).
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases{
+      {{"sample", (dir / "zero.yaml").string()}, "zero.yaml:5:"},
+      {{"sample", (dir / "fifo.yaml").string()}, "fifo.yaml:5:"},
+      {{"optimize", (dir / "fifo.yaml").string()}, "fifo.yaml:5:"},
+      {{"run", (dir / "top.yaml").string(), "-o", (dir / "out").string()}, "top.yaml:7:"}};
+  for (const auto& [args, where] : cases) {
+    INFO(args[0] << " " << args[1]);
+    const LimitedRun r = run_limited(args, kQuickSeconds, kSmallMemory);
+    INFO(r.describe());
+    CHECK(r.code == 2);
+    CHECK_THAT(r.err, Catch::Contains("not a regular file") && Catch::Contains(where) &&
+                          Catch::Contains("polyline.file"));
+  }
+  CHECK_FALSE(fs::exists(dir / "out"));
+}
+
+TEST_CASE("run: output files get the process's umask", "[pipeline][run][files]") {
+  const fs::path dir = fresh_dir("hostile_umask");
+  for (const auto& [mask, mode] :
+       {std::pair<const char*, unsigned>{"027", 0640u}, {"077", 0600u}, {"022", 0644u}}) {
+    const fs::path out = dir / mask;
+    const LimitedRun r = run_limited({"run", example("vessel_golden_solid.yaml"), "-o", out.string(), "-q"},
+                                     120.0, 2048 * kMiB, "", std::string("umask ") + mask + ";");
+    INFO(r.describe());
+    REQUIRE(r.code == 0);
+    for (const char* name : {"vessel_golden_solid.stl", "vessel_golden_solid.drc"}) {
+      struct stat st {};
+      REQUIRE(::stat((out / name).c_str(), &st) == 0);
+      CHECK((st.st_mode & 0777) == mode);
+    }
+  }
+}
+
+TEST_CASE("run: a job whose second output cannot be renamed leaves no file of that job",
+          "[pipeline][run][files][errors]") {
+  const fs::path dir = fresh_dir("hostile_rename");
+  const fs::path out = dir / "out";
+  fs::create_directories(out / "vessel_golden_solid.drc");  // a folder named like the second output
+  write_text(out / "vessel_golden_solid.stl", "the previous version");
+  const LimitedRun r =
+      run_limited({"run", example("vessel_golden_solid.yaml"), "-o", out.string()}, 120.0, 2048 * kMiB);
+  INFO(r.describe());
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err, Catch::Contains("vessel_golden_solid.drc") && Catch::Contains("no output of this job"));
+  CHECK(read_file((out / "vessel_golden_solid.stl").string()) == "the previous version");
+  CHECK(fs::is_empty(out / "vessel_golden_solid.drc"));
+  CHECK(names_in(out) == std::vector<std::string>{"vessel_golden_solid.drc", "vessel_golden_solid.stl"});
+}
+
+TEST_CASE("run: a stale temporary of a dead process is removed, a live process's is kept",
+          "[pipeline][run][files]") {
+  const fs::path dir = fresh_dir("hostile_stale");
+  const fs::path out = dir / "out";
+  fs::create_directories(out);
+  const std::string target = (out / "vessel_golden_solid.stl").string();
+  const pid_t dead = ::fork();
+  if (dead == 0) ::_exit(0);
+  int status = 0;
+  ::waitpid(dead, &status, 0);
+  const std::string stale = temporary_prefix(target) + std::to_string(dead) + "-0badf00d";
+  const std::string live = temporary_prefix(target) + std::to_string(::getpid()) + "-0badf00d";
+  write_text(stale, "left by a killed run");
+  write_text(live, "being written by this test process");
+  const LimitedRun r =
+      run_limited({"run", example("vessel_golden_solid.yaml"), "-o", out.string(), "-q"}, 120.0, 2048 * kMiB);
+  INFO(r.describe());
+  REQUIRE(r.code == 0);
+  CHECK_FALSE(fs::exists(stale));
+  CHECK(fs::exists(live));
+  CHECK(fs::exists(target));
+}
+
+TEST_CASE("run: a design named ../../x writes nothing outside the output folder and exits 2",
+          "[pipeline][run][errors]") {
+  const fs::path dir = fresh_dir("hostile_name");
+  const fs::path nest = dir / "a" / "b";
+  fs::create_directories(nest);
+  std::string text = read_file(example("vessel_golden_solid.yaml"));
+  write_text(nest / "escape.yaml", "name: ../../x\n" + text);
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"run", "escape.yaml", "-o", "out"},
+        std::vector<std::string>{"run", example("vessel_golden_solid.yaml"), "-o", "out", "-D",
+                                 "name=../../x"},
+        std::vector<std::string>{"run", example("vessel_golden_solid.yaml"), "-o", "out", "-D",
+                                 "name=" + (dir / "escaped").string()}}) {
+    const LimitedRun r = run_limited(args, 120.0, 2048 * kMiB, nest.string());
+    INFO(r.describe());
+    CHECK(r.code == 2);
+    CHECK_THAT(r.err, Catch::Contains("name") && Catch::Contains("not a plain file name"));
+  }
+  CHECK_FALSE(fs::exists(nest / "out"));
+  CHECK(names_in(dir) == std::vector<std::string>{"a"});
+  CHECK(names_in(dir / "a") == std::vector<std::string>{"b"});
+  CHECK(names_in(nest) == std::vector<std::string>{"escape.yaml"});
+}
