@@ -6,6 +6,7 @@
 #include <cstdlib>
 
 #include "geometry/core/errors.h"
+#include "io/design/number_limits.h"
 #include "io/file.h"
 
 namespace fabmesh {
@@ -87,6 +88,12 @@ std::vector<Vec2> parse_points_csv(std::string_view text, const std::string& pat
         throw FileError(path, line, fields[k].column,
                         fmt::format("{}:{}:{}: {} = {} is not a finite number", path, line, fields[k].column,
                                     k == 0 ? "x" : "y", shown(fields[k].text)));
+      }
+      if (std::abs(fields[k].value) > kMaxDesignNumber) {
+        throw FileError(
+            path, line, fields[k].column,
+            fmt::format("{}:{}:{}: {} = {} is too large: coordinates are at most {:g} in magnitude", path,
+                        line, fields[k].column, k == 0 ? "x" : "y", shown(fields[k].text), kMaxDesignNumber));
       }
     }
     points.emplace_back(fields[0].value, fields[1].value);

@@ -7,6 +7,7 @@
 #include <cstring>
 
 #include "geometry/core/limits.h"
+#include "io/design/number_limits.h"
 
 namespace fabmesh::yaml {
 namespace {
@@ -124,6 +125,11 @@ double Fields::number(const YAML::Node& node, const std::string& field) const {
     fail(node, field, fmt::format("'{}' is not a number", node.Scalar()));
   }
   if (!std::isfinite(value)) fail(node, field, fmt::format("{} is not a finite number", node.Scalar()));
+  if (std::abs(value) > kMaxDesignNumber) {
+    fail(node, field,
+         fmt::format("{} is too large: numbers in a design are at most {:g} in magnitude", node.Scalar(),
+                     kMaxDesignNumber));
+  }
   return value;
 }
 

@@ -45,6 +45,7 @@ class Fields {
   /// Requires a sequence of at least `min_size` entries.
   void require_list(const YAML::Node& node, const std::string& field, std::size_t min_size = 0) const;
 
+  /// A finite number of magnitude at most kMaxDesignNumber (io/design/number_limits.h).
   double number(const YAML::Node& node, const std::string& field) const;
   double number_or(const YAML::Node& parent, const char* key, const std::string& field,
                    double fallback) const;
