@@ -158,7 +158,8 @@ int run_designs(const RunArgs& args, Streams io) {
     }
   }
   // `run --json` prints an array always: one entry per design, whatever their number.
-  if (args.json) report_out << all.dump(2) << "\n";
+  if (args.json)
+    report_out << all.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) << "\n";
   return code;
 }
 
