@@ -2,6 +2,7 @@
 // the test enforces (tests/pipeline/limited_run.h): nothing hangs, nothing
 // blows memory, nothing is written outside the output folder or half way.
 
+#include <fmt/format.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -10,6 +11,7 @@
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "io/file.h"
 #include "tests/pipeline/cli_harness.h"
@@ -168,4 +170,119 @@ TEST_CASE("run: a design named ../../x writes nothing outside the output folder 
   CHECK(names_in(dir) == std::vector<std::string>{"a"});
   CHECK(names_in(dir / "a") == std::vector<std::string>{"b"});
   CHECK(names_in(nest) == std::vector<std::string>{"escape.yaml"});
+}
+
+TEST_CASE("bad values are exit 2 naming the field, never nan", "[pipeline][errors][bounded]") {
+  const fs::path dir = fresh_dir("hostile_values");
+  const std::string profile = example("golden_profile.yaml");
+  write_text(dir / "key.yaml", "? [x]\n: 1\n" + read_file(profile));
+  struct Case {
+    std::vector<std::string> args;
+    std::string message;
+  };
+  const std::vector<Case> cases{
+      {{"sample", (dir / "key.yaml").string()}, "a key must be a plain name"},
+      {{"sample", profile, "-D", "curve.points[0]=[1e300, 6]"}, "curve.points[0][0]: 1e300 is too large"},
+      {{"run", example("vessel_golden_solid.yaml"), "-o", (dir / "out").string(), "-D",
+        "profile.points[1]=[1, -1e300]"},
+       "profile.points[1][1]: -1e300 is too large"},
+      {{"sample", profile, "-D", "tolerance=4.9e-324"}, "tolerance = 4.9e-324 is below 1e-12"},
+      {{"sample", profile, "--tolerance", "nan"}, "--tolerance = nan is not a finite number"},
+      {{"sample", profile, "--tolerance", "-inf"}, "--tolerance = -inf is not a finite number"},
+      {{"sample", profile, "--tolerance", "0"}, "--tolerance = 0 must be > 0"},
+      {{"sample", profile, "-D", "curve.points=[[1, 1], [1, 1], [1, 1], [1, 1], [1, 1]]"},
+       "no tangent direction at the joint"},
+  };
+  for (const Case& c : cases) {
+    INFO(c.args[0] << " " << c.args.back());
+    const LimitedRun r = run_limited(c.args, kQuickSeconds, kSmallMemory);
+    INFO(r.describe());
+    CHECK(r.code == 2);
+    CHECK_THAT(r.err, Catch::Contains(c.message));
+    // No non-finite value the input did not hold itself.
+    if (c.args.back() != "nan" && c.args.back() != "-inf") {
+      CHECK_THAT(r.err, !Catch::Contains("nan") && !Catch::Contains("inf "));
+    }
+  }
+  CHECK_FALSE(fs::exists(dir / "out"));
+}
+
+TEST_CASE("run --json: a design that is not UTF-8 is exit 2 and the other designs' report is still printed",
+          "[pipeline][run][errors][json]") {
+  const fs::path dir = fresh_dir("hostile_utf8");
+  write_text(dir / "bad.yaml", "name: cup\xff\n" + read_file(example("vessel_golden_solid.yaml")));
+  const std::string bad_path = (dir / "caf\xe9.yaml").string();  // Latin-1 in a path from argv
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"run", "--json", "-q", "-o", (dir / "out").string(),
+                                 (dir / "bad.yaml").string(), example("vessel_golden_solid.yaml")},
+        std::vector<std::string>{"run", "--json", "-q", "-o", (dir / "out").string(), bad_path,
+                                 example("vessel_golden_solid.yaml")},
+        std::vector<std::string>{"run", "--json", "-q", "-o", (dir / "out").string(), "-D",
+                                 "name=cup\xc0\xaf", example("vessel_golden_solid.yaml"),
+                                 example("vessel_golden_shell.yaml")}}) {
+    const LimitedRun r = run_limited(args, 120.0, 2048 * kMiB);
+    INFO(r.describe());
+    CHECK(r.code == 2);
+    const nlohmann::json report = nlohmann::json::parse(r.out, nullptr, false);
+    REQUIRE(report.is_array());
+    REQUIRE(report.size() == 2);  // one entry per design, the failed ones included
+    CHECK(report[0].value("exit_code", 0) == 2);
+  }
+  const LimitedRun first = run_limited({"run", "--json", "-q", "-o", (dir / "out").string(),
+                                        (dir / "bad.yaml").string(), example("vessel_golden_solid.yaml")},
+                                       120.0, 2048 * kMiB);
+  const nlohmann::json report = nlohmann::json::parse(first.out, nullptr, false);
+  REQUIRE(report.is_array());
+  CHECK_THAT(report[0].value("error", ""), Catch::Contains("bad.yaml:1:10: the design is not UTF-8 text"));
+  CHECK(report[1].value("name", "") == "vessel_golden_solid");
+  CHECK(fs::exists(dir / "out" / "vessel_golden_solid.stl"));
+}
+
+TEST_CASE("a design at the YAML value budget is read in bounded memory, one past it is refused at once",
+          "[pipeline][errors][bounded]") {
+  const fs::path dir = fresh_dir("hostile_large_design");
+  // 87000 points: 261000 + 7 YAML values, just under the 2^18 budget; 3 values per point.
+  auto polyline = [](int points) {
+    std::string text = "kind: curve\ncurve:\n  family: tbezier\n  segments:\n    - polyline: [";
+    for (int i = 0; i < points; ++i) text += (i ? "," : "") + fmt::format("[{},{}]", i % 1000, i / 1000);
+    return text + "]\n";
+  };
+  write_text(dir / "near.yaml", polyline(87000));
+  write_text(dir / "past.yaml", polyline(88000));
+  // Measured: 180 MB resident at the budget (yaml-cpp ~470 bytes per value); before the
+  // budget a 59 MB design took 3.6 GB.
+  const LimitedRun near = run_limited({"sample", "--csv", (dir / "near.yaml").string()}, 120.0, 768 * kMiB);
+  INFO(near.describe());
+  CHECK(near.code == 0);
+  const LimitedRun past = run_limited({"sample", (dir / "past.yaml").string()}, kQuickSeconds, kSmallMemory);
+  INFO(past.describe());
+  CHECK(past.code == 2);
+  CHECK_THAT(past.err, Catch::Contains("past.yaml:5:") && Catch::Contains("more than 262144 YAML values"));
+}
+
+TEST_CASE("check --weld-tolerance larger than the model ends within a bound on a large mesh",
+          "[pipeline][check][bounded]") {
+  const fs::path dir = fresh_dir("hostile_weld");
+  // A binary STL of 200000 triangles on a 0.5 grid: a tolerance of 100 puts every vertex in one cell.
+  const std::uint32_t count = 200000;
+  std::string stl(80, '\0');
+  auto put = [&stl](const void* p, std::size_t n) { stl.append(static_cast<const char*>(p), n); };
+  put(&count, 4);
+  for (std::uint32_t i = 0; i < count; ++i) {
+    const float x = 0.5f * static_cast<float>(i % 1000), y = 0.5f * static_cast<float>(i / 1000);
+    const float v[12] = {0, 0, 1, x, y, 0, x + 0.5f, y, 0, x, y + 0.5f, 0};
+    put(v, sizeof v);
+    put("\0\0", 2);
+  }
+  write_text(dir / "sheet.stl", stl);
+  for (const char* tolerance : {"100", "0.6", "1e300"}) {
+    INFO("--weld-tolerance " << tolerance);
+    const LimitedRun r = run_limited(
+        {"check", "--json", "--weld-tolerance", tolerance, (dir / "sheet.stl").string()}, 60.0, 1024 * kMiB);
+    INFO(r.describe());
+    REQUIRE_FALSE(r.timed_out);
+    CHECK(r.code == 1);  // welded into degenerate or non-manifold triangles: a verdict, not a hang
+    const nlohmann::json report = nlohmann::json::parse(r.out, nullptr, false);
+    CHECK(report.is_object());
+  }
 }
