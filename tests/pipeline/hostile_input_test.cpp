@@ -148,7 +148,7 @@ TEST_CASE("run: a stale temporary of a dead process is removed, a live process's
   CHECK(fs::exists(target));
 }
 
-TEST_CASE("run: a design named ../../x writes nothing outside the output folder and exits 2",
+TEST_CASE("run: a name like ../../x, /abs/x, empty, . or .. or with a newline writes nothing and exits 2",
           "[pipeline][run][errors]") {
   const fs::path dir = fresh_dir("hostile_name");
   const fs::path nest = dir / "a" / "b";
@@ -160,7 +160,16 @@ TEST_CASE("run: a design named ../../x writes nothing outside the output folder 
         std::vector<std::string>{"run", example("vessel_golden_solid.yaml"), "-o", "out", "-D",
                                  "name=../../x"},
         std::vector<std::string>{"run", example("vessel_golden_solid.yaml"), "-o", "out", "-D",
-                                 "name=" + (dir / "escaped").string()}}) {
+                                 "name=" + (dir / "escaped").string()},
+        // Hidden files, the folder itself, a newline that would cut the message.
+        std::vector<std::string>{"run", example("vessel_golden_solid.yaml"), "-o", "out", "-D", "name=\"\""},
+        std::vector<std::string>{"run", example("vessel_golden_solid.yaml"), "-o", "out", "-D", "name=."},
+        std::vector<std::string>{"run", example("vessel_golden_solid.yaml"), "-o", "out", "-D", "name=.."},
+        std::vector<std::string>{"run", example("vessel_golden_solid.yaml"), "-o", "out", "-D",
+                                 "name=\"cup\\nrm -rf\""},
+        std::vector<std::string>{"run", example("vessel_golden_solid.yaml"), "-o", "out", "-D",
+                                 "name=\"cup\\0.stl\""}}) {
+    INFO(args.back());
     const LimitedRun r = run_limited(args, 120.0, 2048 * kMiB, nest.string());
     INFO(r.describe());
     CHECK(r.code == 2);
