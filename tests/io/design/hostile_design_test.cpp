@@ -3,6 +3,7 @@
 // at its line and column, never a value silently changed.
 
 #include <catch2/catch.hpp>
+#include <filesystem>
 #include <string>
 
 #include "geometry/core/errors.h"
@@ -110,4 +111,22 @@ TEST_CASE(
   CHECK_THAT(error_of(bomb), Catch::Contains("more than 262144 YAML values"));
   // An alias inside the node it names is refused too (yaml-cpp would recurse).
   CHECK_THAT(error_of("kind: curve\na: &a [1, *a]\n"), Catch::Contains("an alias may not stand for a node"));
+}
+
+TEST_CASE("design fuzz seeds: every design and points CSV seed reads", "[io][design]") {
+  const std::filesystem::path seeds = std::filesystem::path(FABMESH_SOURCE_DIR) / "tests/data/fuzz-seeds";
+  int designs = 0, csvs = 0;
+  for (const auto& e : std::filesystem::directory_iterator(seeds / "design")) {
+    if (e.path().extension() != ".yaml") continue;
+    INFO(e.path());
+    CHECK_NOTHROW(read_design(e.path().string()));
+    ++designs;
+  }
+  for (const auto& e : std::filesystem::directory_iterator(seeds / "csv")) {
+    INFO(e.path());
+    CHECK_FALSE(read_points_csv(e.path().string()).empty());
+    ++csvs;
+  }
+  CHECK(designs >= 5);
+  CHECK(csvs >= 2);
 }
