@@ -190,7 +190,7 @@ TEST_CASE("bad values are exit 2 naming the field, never nan", "[pipeline][error
     std::string message;
   };
   const std::vector<Case> cases{
-      {{"sample", (dir / "key.yaml").string()}, "a key must be a plain name"},
+      {{"sample", (dir / "key.yaml").string()}, "key.yaml:1:3: (a top-level key): a key must be a plain name"},
       {{"sample", profile, "-D", "curve.points[0]=[1e300, 6]"}, "curve.points[0][0]: 1e300 is too large"},
       {{"run", example("vessel_golden_solid.yaml"), "-o", (dir / "out").string(), "-D",
         "profile.points[1]=[1, -1e300]"},

@@ -81,7 +81,8 @@ void Fields::require_map(const YAML::Node& node, const std::string& field, const
   std::vector<std::pair<std::string, YAML::Mark>> seen;
   for (const auto& kv : node) {
     if (!kv.first.IsScalar())
-      fail_key(kv.first, kv.second, field, "a key must be a plain name, not a list or a map");
+      fail_key(kv.first, kv.second, field.empty() ? "(a top-level key)" : field,
+               "a key must be a plain name, not a list or a map");
     const std::string key = kv.first.Scalar();
     for (const auto& [earlier, mark] : seen) {
       if (earlier == key) {
