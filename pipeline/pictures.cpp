@@ -68,8 +68,8 @@ std::string design_plot_svg(const Design& design, const CurvePlotOptions& option
 
 TriangleSoup design_mesh(const Design& design) {
   if (std::holds_alternative<CurveDesign>(design.body)) {
-    throw InputError(fmt::format("{}: a curve design has no mesh to preview; try `fabmesh plot`",
-                                 design.common.name));
+    throw InputError(
+        fmt::format("{}: a curve design has no mesh to preview; try `fabmesh plot`", design.common.name));
   }
   StageTimings timings;
   StageTimer watch(timings);
@@ -88,7 +88,7 @@ ReportRow report_row(const JobReport& report, const std::string& base) {
   row.units = report.units;
   const bool mesh = report.purpose != MeshPurpose::Drawing;
   row.status = !mesh || report.validation.valid() ? ReportStatus::Ok : ReportStatus::Invalid;
-  row.message = !mesh ? "drawing written"
+  row.message = !mesh                       ? "drawing written"
                 : report.validation.valid() ? "valid for fabrication"
                                             : "written for viewing only: not valid for fabrication";
   row.max_deviation = report.max_deviation;
@@ -106,7 +106,9 @@ ReportRow report_row(const JobReport& report, const std::string& base) {
 ReportRow failed_row(const std::string& design_file, int exit_code, const std::string& message) {
   ReportRow row;
   row.name = std::filesystem::path(design_file).stem().string();
-  row.status = exit_code == 1 ? ReportStatus::Invalid : exit_code == 2 ? ReportStatus::BadInput : ReportStatus::Error;
+  row.status = exit_code == 1   ? ReportStatus::Invalid
+               : exit_code == 2 ? ReportStatus::BadInput
+                                : ReportStatus::Error;
   row.message = message;
   return row;
 }

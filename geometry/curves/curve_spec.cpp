@@ -4,6 +4,7 @@
 
 #include <Eigen/Sparse>
 #include <Eigen/SparseLU>
+#include <cmath>
 
 #include "geometry/core/errors.h"
 
@@ -272,6 +273,14 @@ void verify_declared_continuity(const CurveSpec& spec, const CompositeCurve& cur
     const std::string where =
         j.closing ? std::string("closing joint")
                   : fmt::format("joint {} (segments {} -> {})", i + 1, j.before + 1, j.after + 1);
+    if (!std::isfinite(j.gap) || !std::isfinite(j.tangent_angle) || !std::isfinite(j.curvature_jump)) {
+      // 0/0 from a zero tangent (coincident control points): say so, never "nan".
+      throw GeometryError(
+          where, fmt::format("{}{}: declared {} but a segment has no tangent direction at "
+                             "the joint (coincident control points?), so it cannot be "
+                             "measured",
+                             spec.label.empty() ? "" : spec.label + ": ", where, to_string(declared[i])));
+    }
     throw GeometryError(
         where, fmt::format("{}{}: declared {} but measured gap {:.3g}, tangent angle {:.3g} rad, "
                            "relative curvature jump {:.3g} ({})",

@@ -59,7 +59,10 @@ void write_tables(DL_Dxf& dxf, DL_WriterA& dw) {
   dxf.writeLayer(dw, DL_LayerData("HOLES", 0), DL_Attributes("", DL_Codes::blue, 100, "CONTINUOUS", 1.0));
   dw.tableEnd();
   dw.tableStyle(1);
-  dxf.writeStyle(dw, DL_StyleData("standard", 0, 2.5, 1.0, 0.0, 0, 2.5, "txt", ""));
+  // dxflib records the handle of the style named exactly "Standard" and writes
+  // it as the DIMSTYLE's text style (group 340); under another name that
+  // handle is never set and 340 carries uninitialised memory.
+  dxf.writeStyle(dw, DL_StyleData("Standard", 0, 2.5, 1.0, 0.0, 0, 2.5, "txt", ""));
   dw.tableEnd();
   dxf.writeView(dw);
   dxf.writeUcs(dw);

@@ -2,11 +2,11 @@
 
 #include <fmt/format.h>
 
-#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 
 #include "geometry/core/errors.h"
+#include "io/design/number_limits.h"
 #include "io/file.h"
 
 namespace fabmesh {
@@ -14,35 +14,48 @@ namespace {
 
 bool is_separator(char c) { return c == ',' || c == ';' || c == ' ' || c == '\t' || c == '\r'; }
 
-// The numbers of one row; false when a field is not a number.
-bool parse_row(std::string_view row, std::vector<double>& values, std::string& bad) {
-  values.clear();
+// One number of a row: its value, its text and its 1-based column.
+struct Field {
+  double value = 0.0;
+  std::string text;
+  int column = 0;
+};
+
+// The fields of one row, at most three (a third is already an error); false
+// when a field is not a number (`bad` says which). Values too large for a
+// double come back infinite, to be reported as not finite.
+bool parse_row(std::string_view row, std::vector<Field>& fields, Field& bad) {
+  fields.clear();
   std::size_t i = 0;
-  while (i < row.size()) {
+  while (i < row.size() && fields.size() < 3) {
     while (i < row.size() && is_separator(row[i])) ++i;
     if (i == row.size()) break;
     std::size_t j = i;
     while (j < row.size() && !is_separator(row[j])) ++j;
-    const std::string field(row.substr(i, j - i));
+    Field f{0.0, std::string(row.substr(i, j - i)), static_cast<int>(i) + 1};
     char* end = nullptr;
-    errno = 0;
-    const double v = std::strtod(field.c_str(), &end);
-    if (end != field.c_str() + field.size() || errno == ERANGE) {
-      bad = field;
+    f.value = std::strtod(f.text.c_str(), &end);
+    if (f.text.empty() || end != f.text.c_str() + f.text.size()) {
+      bad = std::move(f);
       return false;
     }
-    values.push_back(v);
+    fields.push_back(std::move(f));
     i = j;
   }
   return true;
+}
+
+// A field as messages show it: at most 40 bytes.
+std::string shown(const std::string& field) {
+  return field.size() <= 40 ? field : field.substr(0, 40) + "...";
 }
 
 }  // namespace
 
 std::vector<Vec2> parse_points_csv(std::string_view text, const std::string& path) {
   std::vector<Vec2> points;
-  std::vector<double> values;
-  std::string bad;
+  std::vector<Field> fields;
+  Field bad;
   int line = 0;
   bool header_allowed = true;
   std::size_t pos = 0;
@@ -53,22 +66,37 @@ std::vector<Vec2> parse_points_csv(std::string_view text, const std::string& pat
     ++line;
     const std::size_t first = row.find_first_not_of(" \t\r");
     if (first == std::string_view::npos || row[first] == '#') continue;
-    if (!parse_row(row, values, bad)) {
+    if (!parse_row(row, fields, bad)) {
       if (header_allowed) {
         header_allowed = false;
         continue;
       }
-      throw FileError(path, line, 0, fmt::format("{}:{}: '{}' is not a number", path, line, bad));
+      throw FileError(path, line, bad.column,
+                      fmt::format("{}:{}:{}: '{}' is not a number", path, line, bad.column, shown(bad.text)));
     }
     header_allowed = false;
-    if (values.size() != 2) {
-      throw FileError(path, line, 0,
-                      fmt::format("{}:{}: expected two numbers x, y, got {}", path, line, values.size()));
+    if (fields.size() != 2) {
+      const int column = fields.size() > 2 ? fields[2].column : static_cast<int>(first) + 1;
+      throw FileError(path, line, column,
+                      fmt::format("{}:{}:{}: expected two numbers x, y, got {}", path, line, column,
+                                  fields.size() > 2    ? "more"
+                                  : fields.size() == 1 ? "one"
+                                                       : "none"));
     }
-    if (!std::isfinite(values[0]) || !std::isfinite(values[1])) {
-      throw FileError(path, line, 0, fmt::format("{}:{}: a coordinate is not a finite number", path, line));
+    for (std::size_t k = 0; k < 2; ++k) {
+      if (!std::isfinite(fields[k].value)) {
+        throw FileError(path, line, fields[k].column,
+                        fmt::format("{}:{}:{}: {} = {} is not a finite number", path, line, fields[k].column,
+                                    k == 0 ? "x" : "y", shown(fields[k].text)));
+      }
+      if (std::abs(fields[k].value) > kMaxDesignNumber) {
+        throw FileError(
+            path, line, fields[k].column,
+            fmt::format("{}:{}:{}: {} = {} is too large: coordinates are at most {:g} in magnitude", path,
+                        line, fields[k].column, k == 0 ? "x" : "y", shown(fields[k].text), kMaxDesignNumber));
+      }
     }
-    points.emplace_back(values[0], values[1]);
+    points.emplace_back(fields[0].value, fields[1].value);
     if (end == text.size()) break;
   }
   return points;

@@ -11,7 +11,8 @@ namespace fabmesh {
 
 /// Parses "x,y" rows (spaces, tabs or ';' also separate; blank lines and
 /// lines starting with '#' are skipped; a first row that is not numeric is
-/// a header). Every other row must hold exactly two finite numbers.
+/// a header). Every other row must hold exactly two finite numbers of
+/// magnitude at most 1e12 (kMaxDesignNumber).
 /// \param path for messages \throw FileError naming the line and the value
 std::vector<Vec2> parse_points_csv(std::string_view text, const std::string& path);
 

@@ -2,11 +2,15 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <type_traits>
 #include <utility>
 
+#include "io/design/number_limits.h"
+#include "io/design/utf8.h"
 #include "io/design/yaml/fields.h"
+#include "io/design/yaml/node_budget.h"
 #include "io/design/yaml/read_countertop.h"
 #include "io/design/yaml/read_curve.h"
 #include "io/design/yaml/read_surface.h"
@@ -16,7 +20,11 @@
 namespace fabmesh {
 namespace {
 
-constexpr std::size_t kMaxDesignBytes = 64u << 20;
+// Reading a design stays within a stated memory bound (docs/design-files.md):
+// yaml-cpp spends about 470 bytes per node, so the node count is what bounds
+// the tree; the byte limit bounds the text and long scalars.
+constexpr std::size_t kMaxDesignBytes = 16u << 20;
+constexpr std::size_t kMaxDesignNodes = 1u << 18;
 constexpr std::size_t kMaxNameBytes = 120;
 
 template <class Body>
@@ -180,8 +188,15 @@ DesignCommon read_common(const yaml::Fields& f, const YAML::Node& root) {
                             : OutputErrorPolicy::Skip;
   }
   c.tolerance = f.number_or(root, "tolerance", "tolerance", 0.01);
-  if (c.tolerance <= 0.0)
-    f.fail(root["tolerance"], "tolerance", fmt::format("tolerance = {:g} must be > 0", c.tolerance));
+  if (c.tolerance <= 0.0) {
+    f.fail(root["tolerance"], "tolerance", fmt::format("tolerance = {} must be > 0", c.tolerance));
+  }
+  if (c.tolerance < kMinDesignTolerance) {
+    // As written (a subnormal like 4.9e-324 must not read as "0").
+    f.fail(root["tolerance"], "tolerance",
+           fmt::format("tolerance = {} is below {:g}, the smallest tolerance fabmesh accepts",
+                       root["tolerance"].Scalar(), kMinDesignTolerance));
+  }
   if (root["outputs"].IsDefined()) {
     const YAML::Node outs = root["outputs"];
     f.require_list(outs, "outputs", 1);
@@ -196,10 +211,34 @@ DesignCommon read_common(const yaml::Fields& f, const YAML::Node& root) {
 
 }  // namespace
 
+namespace {
+
+// Throws FileError at the first byte of `text` that is not UTF-8 (names and
+// messages made from the design, and its JSON report, must be UTF-8).
+void require_utf8(const std::string& text, const std::string& path, const std::string& override_text) {
+  const std::size_t bad = invalid_utf8_offset(text);
+  if (bad == std::string::npos) return;
+  const std::string byte = fmt::format("0x{:02X}", static_cast<unsigned char>(text[bad]));
+  if (!override_text.empty()) {
+    throw FileError(path, 0, 0, fmt::format("-D: the value is not UTF-8 text (byte {})", byte));
+  }
+  const auto before = text.begin() + static_cast<std::ptrdiff_t>(bad);
+  const auto line = static_cast<int>(std::count(text.begin(), before, '\n') + 1);
+  const std::size_t line_start = text.find_last_of('\n', bad == 0 ? std::string::npos : bad - 1);
+  const std::size_t column = bad == 0 || line_start == std::string::npos ? bad + 1 : bad - line_start;
+  throw FileError(
+      path, line, static_cast<int>(column),
+      fmt::format("{}:{}:{}: the design is not UTF-8 text (byte {} here)", path, line, column, byte));
+}
+
+}  // namespace
+
 Design parse_design(const std::string& text, const std::string& path,
                     const std::vector<Override>& overrides) {
+  require_utf8(text, path, "");
   YAML::Node root;
   try {
+    yaml::require_node_budget(text, path, kMaxDesignNodes);
     std::vector<YAML::Node> documents = YAML::LoadAll(text);
     if (documents.size() > 1) {
       const YAML::Mark m = documents[1].Mark();
@@ -216,8 +255,10 @@ Design parse_design(const std::string& text, const std::string& path,
   if (!root.IsMap()) throw FileError(path, 0, 0, fmt::format("{}: a design file must be a YAML map", path));
   std::vector<yaml::OverrideOrigin> origins;
   for (const Override& o : overrides) {
+    require_utf8(o.text, path, o.text);
     YAML::Node value;
     try {
+      yaml::require_node_budget(o.value, path, kMaxDesignNodes, o.text);
       value = YAML::Load(o.value);
     } catch (const YAML::Exception& e) {
       throw FileError(path, 0, 0, fmt::format("-D {}: the value is not valid YAML: {}", o.text, e.msg));

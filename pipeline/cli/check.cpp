@@ -124,7 +124,7 @@ int run_check(const CheckArgs& args, Streams streams) {
       out = nlohmann::ordered_json::array();
       for (const FileCheck& c : checks) out.push_back(to_json(c));
     }
-    streams.out << out.dump(2) << "\n";
+    streams.out << out.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) << "\n";
   }
   return code;
 }

@@ -90,7 +90,10 @@ int run_optimize(const OptimizeArgs& args, Streams io) {
     if (curves.size() > 1) o.json["curve"] = nc.name;
     all.push_back(std::move(o.json));
   }
-  if (args.json) io.out << (all.size() == 1 ? all[0] : all).dump(2) << "\n";
+  if (args.json)
+    io.out << (all.size() == 1 ? all[0] : all)
+                  .dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace)
+           << "\n";
   return 0;
 }
 

@@ -62,10 +62,10 @@ int plot_designs(const PlotArgs& args, Streams io) {
 
 Runner add_plot_command(CLI::App& app) {
   auto args = std::make_shared<PlotArgs>();
-  CLI::App* cmd = app.add_subcommand(
-      "plot",
-      "Draw a design's curves as SVG: control polygons dotted, joints with their continuity, curvature combs, "
-      "curvature against arc length, true to scale with a scale bar");
+  CLI::App* cmd = app.add_subcommand("plot",
+                                     "Draw a design's curves as SVG: control polygons dotted, joints with "
+                                     "their continuity, curvature combs, "
+                                     "curvature against arc length, true to scale with a scale bar");
   cmd->add_option("designs", args->designs, "Design files (YAML)")->required();
   cmd->add_option("-o,--output", args->out,
                   "A folder for NAME.plot.svg (default: the current folder), or one FILE.svg for one design");

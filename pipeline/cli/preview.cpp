@@ -50,7 +50,8 @@ int preview(const PreviewArgs& args, Streams io) {
   if (!folder.empty()) fs::create_directories(folder);
   write_file_atomically(args.out, png);
   if (io.verbosity > 0)
-    io.out << fmt::format("wrote {} ({} x {}, {} triangles)\n", args.out, args.width, args.height, soup.triangles.size());
+    io.out << fmt::format("wrote {} ({} x {}, {} triangles)\n", args.out, args.width, args.height,
+                          soup.triangles.size());
   return 0;
 }
 
@@ -59,8 +60,10 @@ int preview(const PreviewArgs& args, Streams io) {
 Runner add_preview_command(CLI::App& app) {
   auto args = std::make_shared<PreviewArgs>();
   CLI::App* cmd = app.add_subcommand(
-      "preview", "Render a shaded picture (PNG) of a mesh file or of the mesh a design builds, without a display");
-  cmd->add_option("input", args->input, "A mesh file (STL, OBJ, PLY, OFF, Draco, 3MF, glTF) or a design (YAML)")
+      "preview",
+      "Render a shaded picture (PNG) of a mesh file or of the mesh a design builds, without a display");
+  cmd->add_option("input", args->input,
+                  "A mesh file (STL, OBJ, PLY, OFF, Draco, 3MF, glTF) or a design (YAML)")
       ->required();
   cmd->add_option("-o,--output", args->out, "The PNG file to write")->required();
   cmd->add_option("--views", args->views,

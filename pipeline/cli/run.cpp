@@ -191,7 +191,8 @@ int run_designs(const RunArgs& args, Streams io) {
     }
   }
   // `run --json` prints an array always: one entry per design, whatever their number.
-  if (args.json) report_out << all.dump(2) << "\n";
+  if (args.json)
+    report_out << all.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) << "\n";
   if (!args.report.empty()) {
     write_report(args, outcomes);
     if (io.verbosity > 0 && !args.json) report_out << fmt::format("report: {}\n", args.report);

@@ -20,13 +20,17 @@ struct SampleArgs {
   std::string design;
   std::vector<std::string> defines;
   bool csv = false;
-  double tolerance = 0.0;  // 0: the design's
+  double tolerance = 0.0;  // used when tolerance_given, else the design's
+  bool tolerance_given = false;
 };
 
 int run_sample(const SampleArgs& args, Streams io) {
+  // Checked here, not by CLI11: its PositiveNumber lets NaN through and calls
+  // 4.9e-324 "not in range 0.000000 to 1797693134862315708...".
+  if (args.tolerance_given) require_positive("--tolerance", args.tolerance);
   const Design design = load_design(args.design, parse_overrides(args.defines));
   SampleOptions options;
-  options.tolerance = args.tolerance > 0.0 ? args.tolerance : design.common.tolerance;
+  options.tolerance = args.tolerance_given ? args.tolerance : design.common.tolerance;
   if (design_curves(design).empty()) {
     io.out << fmt::format(
         "# {}: a {} design has no curves to sample (its patches are tessellated by `fabmesh run`)\n",
@@ -69,9 +73,12 @@ Runner add_sample_command(CLI::App& app) {
   cmd->add_option("design", args->design, "Design file (YAML)")->required();
   add_define_option(cmd, args->defines);
   cmd->add_flag("--csv", args->csv, "Print CSV with columns curve,x,y");
-  cmd->add_option("--tolerance", args->tolerance, "Sampling tolerance (default: the design's)")
-      ->check(CLI::PositiveNumber);
-  return [args](Streams io) { return run_sample(*args, io); };
+  CLI::Option* tolerance =
+      cmd->add_option("--tolerance", args->tolerance, "Sampling tolerance, > 0 (default: the design's)");
+  return [args, tolerance](Streams io) {
+    args->tolerance_given = tolerance->count() > 0;
+    return run_sample(*args, io);
+  };
 }
 
 }  // namespace fabmesh::cli

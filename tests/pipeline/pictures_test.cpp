@@ -45,7 +45,8 @@ TEST_CASE("plot: every kind draws its curves, a surface its patch borders and co
           "[pipeline][pictures][plot]") {
   const fs::path dir = fresh_dir("plot_kinds");
   REQUIRE(run_cli({"plot", example("vessel_golden_shell.yaml"), example("countertop_g1.yaml"),
-                   example("surface_basin_shell.yaml"), example("golden_profile.yaml"), "-o", dir.string()}) == 0);
+                   example("surface_basin_shell.yaml"), example("golden_profile.yaml"), "-o",
+                   dir.string()}) == 0);
   CHECK(curve_names(read_file((dir / "vessel_golden_shell.plot.svg").string())) ==
         std::multiset<std::string>{"profile"});
   const auto countertop = curve_names(read_file((dir / "countertop_g1.plot.svg").string()));
@@ -57,7 +58,8 @@ TEST_CASE("plot: every kind draws its curves, a surface its patch borders and co
   CHECK(borders.size() % 4 == 0);
   CHECK(borders.size() >= 4);
   CHECK(select(scan_xml(surface), "path", "net").size() == 1);  // the control net in plan, dotted
-  CHECK(curve_names(read_file((dir / "golden_profile.plot.svg").string())) == std::multiset<std::string>{"curve"});
+  CHECK(curve_names(read_file((dir / "golden_profile.plot.svg").string())) ==
+        std::multiset<std::string>{"curve"});
 }
 
 TEST_CASE("plot: one file for one design, overrides apply, a bad design writes nothing",
@@ -69,10 +71,12 @@ TEST_CASE("plot: one file for one design, overrides apply, a bad design writes n
   const std::string changed = read_file(one);
   REQUIRE(run_cli({"plot", example("vessel_golden_shell.yaml"), "-o", one}) == 0);
   CHECK(read_file(one) != changed);
-  CHECK(run_cli({"plot", example("vessel_golden_shell.yaml"), example("countertop_g1.yaml"), "-o", one}) == 2);
+  CHECK(run_cli({"plot", example("vessel_golden_shell.yaml"), example("countertop_g1.yaml"), "-o", one}) ==
+        2);
   std::string out;
-  CHECK(run_cli({"plot", example("vessel_golden_shell.yaml"), "-o", (dir / "bad").string(), "-D", "body.wal=2"},
-                &out) == 2);
+  CHECK(
+      run_cli({"plot", example("vessel_golden_shell.yaml"), "-o", (dir / "bad").string(), "-D", "body.wal=2"},
+              &out) == 2);
   CHECK_THAT(out, Catch::Contains("wal"));
   CHECK_FALSE(fs::exists(dir / "bad"));
 }
@@ -81,8 +85,8 @@ TEST_CASE("preview: a design and a mesh file give a shaded PNG of the asked size
           "[pipeline][pictures][preview]") {
   const fs::path dir = fresh_dir("preview");
   const std::string from_design = (dir / "cup.png").string();
-  REQUIRE(run_cli({"preview", example("vessel_golden_shell.yaml"), "-o", from_design, "--width", "320", "--height",
-                   "240", "--views", "2"}) == 0);
+  REQUIRE(run_cli({"preview", example("vessel_golden_shell.yaml"), "-o", from_design, "--width", "320",
+                   "--height", "240", "--views", "2"}) == 0);
   const DecodedPng a = decode_png(read_file(from_design));
   CHECK(a.width == 320);
   CHECK(a.height == 240);
@@ -96,7 +100,8 @@ TEST_CASE("preview: a design and a mesh file give a shaded PNG of the asked size
   // Wrong ending, a curve design (no mesh), -D on a mesh file: exit 2, nothing written.
   CHECK(run_cli({"preview", example("vessel_golden_shell.yaml"), "-o", (dir / "x.jpg").string()}) == 2);
   CHECK(run_cli({"preview", example("golden_profile.yaml"), "-o", (dir / "c.png").string()}) == 2);
-  CHECK(run_cli({"preview", (dir / "torus.stl").string(), "-o", (dir / "d.png").string(), "-D", "units=mm"}) == 2);
+  CHECK(run_cli({"preview", (dir / "torus.stl").string(), "-o", (dir / "d.png").string(), "-D",
+                 "units=mm"}) == 2);
   CHECK_FALSE(fs::exists(dir / "x.jpg"));
   CHECK_FALSE(fs::exists(dir / "c.png"));
   CHECK_FALSE(fs::exists(dir / "d.png"));
@@ -110,7 +115,8 @@ TEST_CASE("run --report: one page with every design, its pictures beside the out
   write_file_atomically(bad.string(), "name: bad\nkind: vessel\nunits: mm\n");
   const std::string page = (dir / "report" / "index.html").string();
   CHECK(run_cli({"run", example("vessel_golden_shell.yaml"), example("countertop_g1.yaml"),
-                 example("golden_profile.yaml"), bad.string(), "-o", (dir / "out").string(), "--report", page}) == 2);
+                 example("golden_profile.yaml"), bad.string(), "-o", (dir / "out").string(), "--report",
+                 page}) == 2);
   const std::string html = read_file(page);
   const auto doc = scan_xml(html, true);
   CHECK(select(doc, "tr").size() == 5);  // the header and four designs

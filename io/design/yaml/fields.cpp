@@ -7,6 +7,7 @@
 #include <cstring>
 
 #include "geometry/core/limits.h"
+#include "io/design/number_limits.h"
 
 namespace fabmesh::yaml {
 namespace {
@@ -80,7 +81,8 @@ void Fields::require_map(const YAML::Node& node, const std::string& field, const
   std::vector<std::pair<std::string, YAML::Mark>> seen;
   for (const auto& kv : node) {
     if (!kv.first.IsScalar())
-      fail_key(kv.first, kv.second, field, "a key must be a plain name, not a list or a map");
+      fail_key(kv.first, kv.second, field.empty() ? "(a top-level key)" : field,
+               "a key must be a plain name, not a list or a map");
     const std::string key = kv.first.Scalar();
     for (const auto& [earlier, mark] : seen) {
       if (earlier == key) {
@@ -133,6 +135,11 @@ double Fields::number(const YAML::Node& node, const std::string& field) const {
     fail(node, field, fmt::format("'{}' is not a number", node.Scalar()));
   }
   if (!std::isfinite(value)) fail(node, field, fmt::format("{} is not a finite number", node.Scalar()));
+  if (std::abs(value) > kMaxDesignNumber) {
+    fail(node, field,
+         fmt::format("{} is too large: numbers in a design are at most {:g} in magnitude", node.Scalar(),
+                     kMaxDesignNumber));
+  }
   return value;
 }
 

@@ -45,6 +45,7 @@ class Fields {
   /// Requires a sequence of at least `min_size` entries.
   void require_list(const YAML::Node& node, const std::string& field, std::size_t min_size = 0) const;
 
+  /// A finite number of magnitude at most kMaxDesignNumber (io/design/number_limits.h).
   double number(const YAML::Node& node, const std::string& field) const;
   double number_or(const YAML::Node& parent, const char* key, const std::string& field,
                    double fallback) const;
@@ -64,12 +65,16 @@ class Fields {
   Vec3 point3(const YAML::Node& node, const std::string& field) const;
 
   /// Runs `check` and turns an InputError from it into a FileError at `node`.
+  /// A FileError about this design file passes unchanged; one about another
+  /// file (a points CSV the node names) is located at the node too:
+  /// "design.yaml:5:7: curve.segments[0].polyline.file: points.csv:3: ...".
   template <class F>
   void checked(const YAML::Node& node, const std::string& field, F&& check) const {
     try {
       check();
-    } catch (const FileError&) {
-      throw;
+    } catch (const FileError& e) {
+      if (e.path() == path_) throw;
+      fail(node, field, e.what());
     } catch (const InputError& e) {
       fail(node, field, e.what());
     }

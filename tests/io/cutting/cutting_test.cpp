@@ -1,5 +1,6 @@
 #include <catch2/catch.hpp>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include "geometry/curves/build_curve.h"
@@ -133,6 +134,37 @@ TEST_CASE("dxf: an arc whose end points are wrong breaks the chain (the check ca
     if (e.kind == CutKind::Arc) e.arc.to_deg = 170;  // no longer reaches the next line
   }
   CHECK(closed_chains(parse_dxf(encode_dxf(loops), "broken.dxf"), "OUTLINE", 1e-6) == -1);
+}
+
+TEST_CASE("dxf: two encodes are byte-identical and every handle reference names a handle of the file",
+          "[io][cutting][dxf][determinism]") {
+  const auto loops = kitchen_loops(0.01);
+  const std::string first = encode_dxf(loops);
+  CHECK(encode_dxf(loops) == first);
+  // Group codes 330/340/350/360 point at handles (group 5 or 105): a pointer to
+  // no handle is uninitialised memory (as DIMSTYLE's 340 was under a style not
+  // named "Standard").
+  std::istringstream in(first);
+  std::vector<std::pair<std::string, std::string>> pairs;
+  std::string code, value;
+  auto trim = [](std::string s) {
+    s.erase(0, s.find_first_not_of(" \r"));
+    s.erase(s.find_last_not_of(" \r") + 1);
+    return s;
+  };
+  while (std::getline(in, code) && std::getline(in, value)) pairs.emplace_back(trim(code), trim(value));
+  std::set<std::string> handles;
+  for (const auto& [c, v] : pairs) {
+    if (c == "5" || c == "105") handles.insert(v);
+  }
+  int references = 0;
+  for (const auto& [c, v] : pairs) {
+    if (c != "330" && c != "340" && c != "350" && c != "360") continue;
+    INFO("group " << c << " -> " << v);
+    CHECK(handles.count(v) == 1);
+    ++references;
+  }
+  CHECK(references > 0);
 }
 
 TEST_CASE("dxf: a loop that is one T-Bezier run is a single closed LWPOLYLINE",

@@ -1,0 +1,106 @@
+// io/file: bounded reads that refuse what is not a regular file, and
+// all-or-nothing writes.
+
+#include "io/file.h"
+
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <catch2/catch.hpp>
+#include <filesystem>
+
+#include "geometry/core/errors.h"
+#include "tests/io/mesh/temp_dir.h"
+
+using namespace fabmesh;
+using test::TempDir;
+namespace fs = std::filesystem;
+
+namespace {
+
+// The pid of a process that has exited and been reaped.
+pid_t dead_pid() {
+  const pid_t pid = ::fork();
+  if (pid == 0) ::_exit(0);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  return pid;
+}
+
+}  // namespace
+
+TEST_CASE("read_file: a FIFO, a device and a folder are refused before any byte is read",
+          "[io][file][errors]") {
+  const TempDir dir;
+  const std::string fifo = dir.file("pipe");
+  REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+  // No writer ever opens the FIFO: a blocking read would wait forever.
+  CHECK_THROWS_WITH(read_file(fifo, 1000, "design file"), Catch::Contains("pipe") && Catch::Contains("FIFO"));
+  CHECK_THROWS_WITH(read_file("/dev/zero", 1000, "design file"), Catch::Contains("character device"));
+  CHECK_THROWS_WITH(read_file(dir.file(""), 1000, "design file"), Catch::Contains("folder"));
+  CHECK_THROWS_AS(read_file(dir.file("missing"), 1000, "design file"), FileError);
+}
+
+TEST_CASE("read_file: a file larger than the limit is refused naming the limit", "[io][file][errors]") {
+  const TempDir dir;
+  const std::string path = dir.write("big.txt", std::string(1001, 'x'));
+  CHECK(read_file(path, 1001, "points file").size() == 1001);
+  CHECK_THROWS_WITH(read_file(path, 1000, "points file"),
+                    Catch::Contains("points file") && Catch::Contains("1000 bytes"));
+}
+
+TEST_CASE("write_files_atomically: a failed rename keeps the previous files and leaves no temporary",
+          "[io][file][errors]") {
+  const TempDir dir;
+  const std::string stl = dir.file("cup.stl"), drc = dir.file("cup.drc"), ply = dir.file("cup.ply");
+  write_file_atomically(stl, "previous stl");
+  fs::create_directory(drc);  // a folder where the second file should go: its rename fails
+  CHECK_THROWS_WITH(write_files_atomically({{stl, "new stl"}, {drc, "new drc"}, {ply, "new ply"}}),
+                    Catch::Contains("cup.drc"));
+  CHECK(read_file(stl) == "previous stl");
+  CHECK_FALSE(fs::exists(ply));
+  CHECK(fs::is_directory(drc));
+  CHECK(fs::is_empty(drc));
+  // Nothing else is left in the folder: no temporary, no backup link.
+  std::vector<std::string> names = dir.listing();
+  std::sort(names.begin(), names.end());
+  CHECK(names == std::vector<std::string>{"cup.drc", "cup.stl"});
+
+  // A first output that did not exist before is removed again.
+  fs::remove(stl);
+  CHECK_THROWS(write_files_atomically({{stl, "new stl"}, {drc, "new drc"}}));
+  CHECK_FALSE(fs::exists(stl));
+  CHECK(dir.listing() == std::vector<std::string>{"cup.drc"});
+}
+
+TEST_CASE("write_file_atomically: stale temporaries of dead processes go, a live process's stay",
+          "[io][file]") {
+  const TempDir dir;
+  const std::string path = dir.file("cup.stl");
+  const std::string stale = temporary_prefix(path) + std::to_string(dead_pid()) + "-0badf00d";
+  // The parent of this test process is alive (and not this process).
+  const std::string live = temporary_prefix(path) + std::to_string(::getppid()) + "-0badf00d";
+  const std::string other = dir.file(".cup.stl.tmp-otherhost-1-0badf00d");  // another host: not ours to judge
+  for (const std::string& p : {stale, live, other}) write_file_atomically(p, "partial");
+  write_file_atomically(path, "whole");
+  CHECK(read_file(path) == "whole");
+  CHECK_FALSE(fs::exists(stale));
+  CHECK(fs::exists(live));
+  CHECK(fs::exists(other));
+}
+
+TEST_CASE("write_file_atomically: the file gets the process's umask", "[io][file]") {
+  const TempDir dir;
+  const mode_t previous = ::umask(027);
+  write_file_atomically(dir.file("a.stl"), "x");
+  ::umask(077);
+  write_file_atomically(dir.file("b.stl"), "x");
+  ::umask(previous);
+  struct stat a {
+  }, b{};
+  REQUIRE(::stat(dir.file("a.stl").c_str(), &a) == 0);
+  REQUIRE(::stat(dir.file("b.stl").c_str(), &b) == 0);
+  CHECK((a.st_mode & 0777) == 0640);
+  CHECK((b.st_mode & 0777) == 0600);
+}
