@@ -6,6 +6,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "io/design/yaml/design_tree.h"
 #include "io/design/yaml/fields.h"
 #include "io/design/yaml/read_countertop.h"
 #include "io/design/yaml/read_curve.h"
@@ -199,8 +200,11 @@ double metres_per_unit(const std::string& units) {
   throw std::invalid_argument("unknown unit '" + units + "'");
 }
 
-Design parse_design(const std::string& text, const std::string& path,
-                    const std::vector<Override>& overrides) {
+std::string plain_name_problem(const std::string& name) { return name_problem(name); }
+
+namespace yaml {
+
+YAML::Node load_design_tree(const std::string& text, const std::string& path) {
   YAML::Node root;
   try {
     std::vector<YAML::Node> documents = YAML::LoadAll(text);
@@ -217,7 +221,12 @@ Design parse_design(const std::string& text, const std::string& path,
         fmt::format("{}:{}:{}: invalid YAML: {}", path, e.mark.line + 1, e.mark.column + 1, e.msg));
   }
   if (!root.IsMap()) throw FileError(path, 0, 0, fmt::format("{}: a design file must be a YAML map", path));
-  std::vector<yaml::OverrideOrigin> origins;
+  return root;
+}
+
+std::vector<OverrideOrigin> apply_overrides(YAML::Node root, const std::string& path,
+                                            const std::vector<Override>& overrides) {
+  std::vector<OverrideOrigin> origins;
   for (const Override& o : overrides) {
     YAML::Node value;
     try {
@@ -232,12 +241,26 @@ Design parse_design(const std::string& text, const std::string& path,
     }
     origins.push_back({value, o.text});
   }
-  const yaml::Fields f(path, std::move(origins));
+  return origins;
+}
+
+Design read_design_tree(const YAML::Node& root, const std::string& path,
+                        std::vector<OverrideOrigin> origins) {
+  const Fields f(path, std::move(origins));
   const std::string kind = f.text(f.required(root, "kind", "kind"), "kind");
   Design d;
   d.common = read_common(f, root);
   d.body = read_body(kind, f, root);
   return d;
+}
+
+}  // namespace yaml
+
+Design parse_design(const std::string& text, const std::string& path,
+                    const std::vector<Override>& overrides) {
+  YAML::Node root = yaml::load_design_tree(text, path);
+  std::vector<yaml::OverrideOrigin> origins = yaml::apply_overrides(root, path, overrides);
+  return yaml::read_design_tree(root, path, std::move(origins));
 }
 
 Design read_design(const std::string& path, const std::vector<Override>& overrides) {

@@ -27,6 +27,7 @@ int run_app(int argc, const char* const* argv, Streams streams) {
   add(&add_sample_command);
   add(&add_optimize_command);
   add(&add_run_command);
+  add(&add_batch_command);
 
   try {
     app.parse(argc, argv);

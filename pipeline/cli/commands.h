@@ -35,6 +35,7 @@ Runner add_check_command(CLI::App& app);  ///< `fabmesh check MESH... [--json] [
 Runner add_sample_command(CLI::App& app);
 Runner add_optimize_command(CLI::App& app);
 Runner add_run_command(CLI::App& app);
+Runner add_batch_command(CLI::App& app);  ///< `fabmesh batch MANIFEST ...`, `fabmesh batch --merge DIR`
 
 /// `fabmesh` without arguments: runs the bundled vessel example into ./out.
 int run_bundled_example(Streams streams);
