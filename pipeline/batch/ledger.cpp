@@ -54,46 +54,39 @@ std::optional<LedgerHeader> parse_header(std::string_view json) {
   }
 }
 
-// The committed lines of `text`: [begin, end) of each line's JSON.
+// Calls `each(json, offset)` for the committed lines of the file at `path`, read
+// a block at a time (memory stays bounded by the longest line), while it returns true.
 template <class Each>
-void each_committed(std::string_view text, Each each) {
-  std::size_t start = 0;
-  while (start < text.size()) {
-    const std::size_t newline = text.find('\n', start);
-    if (newline == std::string_view::npos) break;  // a torn last line
-    if (const auto json = committed_json(text.substr(start, newline - start + 1))) each(*json);
-    start = newline + 1;
-  }
-}
-
-// The length of `text` without its torn tail: through the last committed line.
-std::size_t committed_length(std::string_view text) {
-  std::size_t end = text.rfind('\n');
-  end = end == std::string_view::npos ? 0 : end + 1;
-  while (end > 0) {
-    std::size_t start = 0;  // of the line that ends at end - 1
-    if (end >= 2) {
-      const std::size_t prev = text.rfind('\n', end - 2);
-      start = prev == std::string_view::npos ? 0 : prev + 1;
-    }
-    if (committed_json(text.substr(start, end - start))) break;
-    end = start;
-  }
-  return end;
-}
-
-std::string read_all(int fd, const std::string& path) {
-  std::string text;
+void each_committed_in_file(const std::string& path, Each each) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) fail(path, "cannot open the ledger", errno);
+  std::string pending;           // the start of a line the last block did not end
+  std::uint64_t pending_at = 0;  // its offset in the file
   char buffer[1 << 16];
   for (off_t offset = 0;;) {
     const ssize_t n = ::pread(fd, buffer, sizeof buffer, offset);
     if (n < 0 && errno == EINTR) continue;
-    if (n < 0) fail(path, "cannot read the ledger", errno);
-    if (n == 0) break;
-    text.append(buffer, static_cast<std::size_t>(n));
+    if (n < 0) {
+      const int error = errno;
+      ::close(fd);
+      fail(path, "cannot read the ledger", error);
+    }
+    if (n == 0) break;  // what is pending is a torn last line
     offset += n;
+    pending.append(buffer, static_cast<std::size_t>(n));
+    std::size_t start = 0;
+    for (std::size_t newline; (newline = pending.find('\n', start)) != std::string::npos;
+         start = newline + 1) {
+      const auto json = committed_json(std::string_view(pending).substr(start, newline - start + 1));
+      if (json && !each(*json, pending_at + start)) {
+        ::close(fd);
+        return;
+      }
+    }
+    pending.erase(0, start);
+    pending_at += start;
   }
-  return text;
+  ::close(fd);
 }
 
 void write_all(int fd, std::string_view bytes, const std::string& path) {
@@ -164,11 +157,20 @@ LedgerWriter::LedgerWriter(const std::string& folder, const LedgerHeader& header
                     "locked); wait for it or use another -o",
                     path_, header.shard.index, header.shard.count));
   }
-  std::string text = read_all(fd_, path_);
+  // The header (the first line) and the end of the last committed line, read a block at a time.
   std::optional<LedgerHeader> found;
-  each_committed(text, [&](std::string_view json) {
-    if (!found) found = parse_header(json);
-  });
+  std::uint64_t keep = 0;
+  const auto scan = [&] {
+    found.reset();
+    keep = 0;
+    each_committed_in_file(path_, [&](std::string_view json, std::uint64_t offset) {
+      if (offset == 0) found = parse_header(json);
+      if (!found) return false;                        // not a ledger: begun anew below
+      keep = offset + json.size() + kCheckDigits + 2;  // the tab, the check, the newline
+      return true;
+    });
+  };
+  scan();
   if (found && found->plan != header.plan) {
     // Another plan's rows stay readable beside the new ledger.
     const std::string aside = aside_name(path_, found->plan);
@@ -177,25 +179,32 @@ LedgerWriter::LedgerWriter(const std::string& folder, const LedgerHeader& header
     ::close(fd_);
     fd_ = open_locked(path_);
     if (fd_ < 0) throw InputError(fmt::format("{}: another fabmesh batch took this ledger", path_));
-    found.reset();
-    text = read_all(fd_, path_);
+    scan();
   }
   // Without a committed header the file holds nothing usable; else cut a torn tail.
-  const std::size_t keep = found ? committed_length(text) : 0;
-  if (keep != text.size() && ::ftruncate(fd_, static_cast<off_t>(keep)) != 0) {
+  struct stat st {};
+  if (::fstat(fd_, &st) != 0) fail(path_, "cannot read the size of the ledger", errno);
+  if (!found) keep = 0;
+  if (keep != static_cast<std::uint64_t>(st.st_size) && ::ftruncate(fd_, static_cast<off_t>(keep)) != 0) {
     fail(path_, "cannot cut the torn end of the ledger", errno);
   }
   if (!found) write_all(fd_, ledger_line(header_json(header)), path_);
+  const off_t end = ::lseek(fd_, 0, SEEK_END);
+  if (end < 0) fail(path_, "cannot find the end of the ledger", errno);
+  size_ = static_cast<std::uint64_t>(end);
 }
 
 LedgerWriter::~LedgerWriter() {
   if (fd_ >= 0) ::close(fd_);
 }
 
-void LedgerWriter::append(std::string_view json) {
+std::uint64_t LedgerWriter::append(std::string_view json) {
   const std::string line = ledger_line(json);
   std::lock_guard<std::mutex> lock(writing_);
   write_all(fd_, line, path_);
+  const std::uint64_t offset = size_;
+  size_ += line.size();
+  return offset;
 }
 
 void LedgerWriter::sync() {
@@ -218,9 +227,10 @@ std::vector<LedgerFile> list_ledgers(const std::string& folder) {
     if (!is_current && !std::regex_match(name, any)) continue;
     std::error_code time_ec;
     Found f{{it->path().string(), is_current, std::nullopt}, fs::last_write_time(it->path(), time_ec)};
-    const std::string text = read_file(f.file.path);
-    each_committed(text, [&](std::string_view json) {
-      if (!f.file.header) f.file.header = parse_header(json);
+    // The header is the first line: read no further.
+    each_committed_in_file(f.file.path, [&](std::string_view json, std::uint64_t) {
+      f.file.header = parse_header(json);
+      return false;
     });
     found.push_back(std::move(f));
   }
@@ -234,17 +244,33 @@ std::vector<LedgerFile> list_ledgers(const std::string& folder) {
   return out;
 }
 
-void for_each_row(const LedgerFile& file, const std::function<void(std::string_view json)>& row) {
-  const std::string text = read_file(file.path);
+void for_each_row(const LedgerFile& file,
+                  const std::function<void(std::string_view json, std::uint64_t offset)>& row) {
   bool header = true;
-  each_committed(text, [&](std::string_view json) {
-    if (header && parse_header(json)) {
-      header = false;
-      return;
-    }
+  each_committed_in_file(file.path, [&](std::string_view json, std::uint64_t offset) {
+    if (!(header && parse_header(json))) row(json, offset);
     header = false;
-    row(json);
+    return true;
   });
+}
+
+std::string read_row(const std::string& path, std::uint64_t offset, std::size_t size) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) fail(path, "cannot open the ledger", errno);
+  std::string json(size, '\0');
+  std::size_t got = 0;
+  while (got < size) {
+    const ssize_t n = ::pread(fd, json.data() + got, size - got, static_cast<off_t>(offset + got));
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const int error = n < 0 ? errno : EIO;
+      ::close(fd);
+      fail(path, "cannot read a row of the ledger", error);
+    }
+    got += static_cast<std::size_t>(n);
+  }
+  ::close(fd);
+  return json;
 }
 
 }  // namespace fabmesh

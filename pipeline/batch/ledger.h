@@ -5,6 +5,7 @@
 // line torn by a kill (or a crash) fails the check and is dropped; its
 // variant is redone.
 
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <mutex>
@@ -45,8 +46,9 @@ class LedgerWriter {
   LedgerWriter(const LedgerWriter&) = delete;
   LedgerWriter& operator=(const LedgerWriter&) = delete;
 
-  /// Appends a committed line of `json` (one write; safe from several threads). \throw FileError
-  void append(std::string_view json);
+  /// Appends a committed line of `json` (one write; safe from several threads)
+  /// and returns the byte offset of the JSON in the file. \throw FileError
+  std::uint64_t append(std::string_view json);
   /// Flushes the ledger to disk (fdatasync). \throw FileError
   void sync();
   const std::string& path() const { return path_; }
@@ -54,6 +56,7 @@ class LedgerWriter {
  private:
   std::string path_;
   int fd_ = -1;
+  std::uint64_t size_ = 0;  ///< of the file: this writer is its only one
   std::mutex writing_;
 };
 
@@ -72,8 +75,14 @@ struct LedgerFile {
 /// time, then name): later rows supersede earlier ones. Empty when there is none.
 std::vector<LedgerFile> list_ledgers(const std::string& folder);
 
-/// Calls `row(json)` for every committed row (not header) of `file`, in order.
-/// A torn or failing line is skipped. \throw FileError when the file cannot be read
-void for_each_row(const LedgerFile& file, const std::function<void(std::string_view json)>& row);
+/// Calls `row(json, offset)` for every committed row (not header) of `file`, in
+/// order; `offset` is where the JSON starts in the file. A torn or failing line
+/// is skipped. \throw FileError when the file cannot be read
+void for_each_row(const LedgerFile& file,
+                  const std::function<void(std::string_view json, std::uint64_t offset)>& row);
+
+/// The `size` bytes at `offset` of the file at `path` (a row for_each_row or
+/// LedgerWriter::append located). \throw FileError
+std::string read_row(const std::string& path, std::uint64_t offset, std::size_t size);
 
 }  // namespace fabmesh

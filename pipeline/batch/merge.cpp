@@ -47,7 +47,11 @@ MergeOutcome merge_batch(const std::string& out_dir) {
   const BatchPlan plan = read_plan(plan_path(folder, out.plan));
   out.variants = plan.variants.size();
   PlanRows rows(plan);
-  for (const LedgerFile& file : ledgers) for_each_row(file, [&](std::string_view json) { rows.offer(json); });
+  for (const LedgerFile& file : ledgers) {
+    const std::size_t ledger = rows.add_ledger(file.path);
+    for_each_row(file,
+                 [&](std::string_view json, std::uint64_t offset) { rows.offer(json, ledger, offset); });
+  }
   out.counts = write_summary(plan, rows, out_dir);
   for (std::size_t i = 0; i < plan.variants.size(); ++i) {
     if (rows.status(i) == VariantStatus::Missing) out.missing.push_back(plan.variants[i].name);

@@ -4,6 +4,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <mutex>
@@ -84,7 +85,13 @@ BatchOutcome run_batch(const BatchManifest& manifest, const BatchOptions& option
   out.plan_ms = ms_since(start);
 
   std::vector<VariantStatus> status(out.in_shard, VariantStatus::Missing);
-  std::vector<BatchFailure> failures(out.in_shard);
+  const std::size_t own_ledger = rows.add_ledger(ledger.path());
+  std::vector<std::pair<std::size_t, BatchFailure>> failures;  // by k, in finishing order
+  std::mutex failing;
+  const auto failed = [&](std::size_t k, const BatchRow& row) {
+    std::lock_guard<std::mutex> lock(failing);
+    failures.push_back({k, {row.name, row.status, row.exit_code, row.message}});
+  };
   std::atomic<std::size_t> ran{0};
   std::atomic<long long> jobs_us{0};
   std::mutex keeping;  // the kept rows, for the summary of a whole batch
@@ -94,29 +101,28 @@ BatchOutcome run_batch(const BatchManifest& manifest, const BatchOptions& option
                       [&](const tbb::blocked_range<std::size_t>& r) {
                         for (std::size_t k = r.begin(); k != r.end(); ++k) {
                           const std::size_t i = shard.index + k * shard.count;
-                          const std::string* earlier = rows.row(i);
-                          if (!options.force && earlier != nullptr && row_stands(*earlier, options.out_dir)) {
+                          const std::optional<std::string> earlier = rows.row(i);
+                          if (!options.force && earlier && row_stands(*earlier, options.out_dir)) {
                             status[k] = rows.status(i);
                             if (status[k] != VariantStatus::Ok) {
                               const BatchRow row = summary_row(plan, rows, i);
-                              failures[k] = {row.name, row.status, row.exit_code, row.message};
+                              failed(k, row);
                             }
                             tally.finished(true, status[k] == VariantStatus::Ok);
                             continue;
                           }
                           const BatchRow row = run_variant(manifest, i, plan.variants[i], options.out_dir);
                           const std::string json = row_json(row).dump();
-                          ledger.append(json);
+                          const std::uint64_t offset = ledger.append(json);
                           for (const auto& [stage, ms] : row.timings_ms) {
                             if (stage == "job") jobs_us += static_cast<long long>(ms * 1000.0);
                           }
                           if (shard.count == 1) {
                             std::lock_guard<std::mutex> lock(keeping);
-                            rows.offer(json);
+                            rows.offer(json, own_ledger, offset);
                           }
                           status[k] = row.status;
-                          if (row.status != VariantStatus::Ok)
-                            failures[k] = {row.name, row.status, row.exit_code, row.message};
+                          if (row.status != VariantStatus::Ok) failed(k, row);
                           ++ran;
                           tally.finished(false, row.status == VariantStatus::Ok);
                         }
@@ -128,8 +134,9 @@ BatchOutcome run_batch(const BatchManifest& manifest, const BatchOptions& option
   out.jobs_ms = static_cast<double>(jobs_us.load()) / 1000.0;
   for (std::size_t k = 0; k < out.in_shard; ++k) {
     out.counts.add(status[k], exit_code_of(status[k]));
-    if (status[k] != VariantStatus::Ok) out.failures.push_back(std::move(failures[k]));
   }
+  std::sort(failures.begin(), failures.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (auto& f : failures) out.failures.push_back(std::move(f.second));
   if (shard.count == 1) {
     write_summary(plan, rows, options.out_dir);
     out.summary_written = true;

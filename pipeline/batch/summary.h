@@ -3,6 +3,8 @@
 // of the plan, in plan order, from the rows its ledgers committed.
 
 #include <cstddef>
+#include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <unordered_map>
@@ -15,24 +17,34 @@ namespace fabmesh {
 
 /// For each variant of a plan, the row that stands for it: the last committed
 /// row with its name and key, a row of a finished variant (ok, invalid, bad
-/// input) never superseded by one of an internal error.
+/// input) never superseded by one of an internal error. Keeps where each row
+/// is in its ledger, not the row: memory grows by a few bytes per variant.
 class PlanRows {
  public:
   explicit PlanRows(const BatchPlan& plan);
-  /// Offers a row's JSON (a ledger line's); keeps it when it belongs to the plan
-  /// and supersedes the row kept. Rows of other plans or damaged rows are ignored.
-  void offer(std::string_view json);
+  /// Offers a row's JSON, committed at `offset` of the ledger `ledger` (an
+  /// index from add_ledger); keeps it when it belongs to the plan and
+  /// supersedes the row kept. Rows of other plans or damaged rows are ignored.
+  void offer(std::string_view json, std::size_t ledger, std::uint64_t offset);
+  /// Registers a ledger file; returns its index for offer().
+  std::size_t add_ledger(const std::string& path);
   /// Offers every row of every ledger in `ledger_folder` (list_ledgers order).
   void offer_ledgers(const std::string& ledger_folder);
-  /// The row kept for variant `i`, or nullptr.
-  const std::string* row(std::size_t i) const { return rows_[i].empty() ? nullptr : &rows_[i]; }
+  /// The JSON of the row kept for variant `i` (read from its ledger), or nothing. \throw FileError
+  std::optional<std::string> row(std::size_t i) const;
   /// Its status (Missing when there is none).
   VariantStatus status(std::size_t i) const { return status_[i]; }
 
  private:
+  struct Place {
+    std::uint64_t offset = 0;
+    std::uint32_t size = 0;
+    std::uint32_t ledger = 0;
+  };
   const BatchPlan& plan_;
-  std::unordered_map<std::string, std::size_t> by_name_;
-  std::vector<std::string> rows_;
+  std::unordered_map<std::string_view, std::size_t> by_name_;  // views of the plan's names
+  std::vector<std::string> ledgers_;
+  std::vector<Place> places_;
   std::vector<VariantStatus> status_;
 };
 
@@ -51,8 +63,8 @@ int exit_code_of(VariantStatus status);
 BatchRow summary_row(const BatchPlan& plan, const PlanRows& rows, std::size_t i);
 
 /// Writes `out_dir`/summary.jsonl and summary.csv, each atomically (rows in
-/// plan order, no timestamps: only the timing fields differ between runs).
-/// \throw FileError
+/// plan order, no timestamps: only the timing fields differ between runs),
+/// streamed a block at a time. \throw FileError
 SummaryCounts write_summary(const BatchPlan& plan, const PlanRows& rows, const std::string& out_dir);
 
 /// The batch's own folder inside its output folder (ledgers, plans, Slurm logs).

@@ -86,7 +86,7 @@ inline std::size_t committed_rows(const std::filesystem::path& out,
   const std::filesystem::path path = out / ".batch" / ledger;
   if (!std::filesystem::exists(path)) return 0;
   std::size_t n = 0;
-  for_each_row({path.string(), true, std::nullopt}, [&](std::string_view) { ++n; });
+  for_each_row({path.string(), true, std::nullopt}, [&](std::string_view, std::uint64_t) { ++n; });
   return n;
 }
 

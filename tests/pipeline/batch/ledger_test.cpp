@@ -57,7 +57,8 @@ TEST_CASE("batch: a reopened ledger cuts its torn end and keeps its rows, one wr
     w.append(R"({"name":"d"})");
   }
   std::vector<std::string> rows;
-  for_each_row({path.string(), true, std::nullopt}, [&](std::string_view json) { rows.emplace_back(json); });
+  for_each_row({path.string(), true, std::nullopt},
+               [&](std::string_view json, std::uint64_t) { rows.emplace_back(json); });
   CHECK(rows == std::vector<std::string>{R"({"name":"a"})", R"({"name":"b"})", R"({"name":"d"})"});
   // A ledger of another plan is moved aside, not lost.
   { LedgerWriter w(dir.string(), {"p2", 4, {0, 1}}); }
