@@ -132,7 +132,7 @@ void ManifestReader::read_bases(const YAML::Node& node, BatchManifest& m) const 
 
 std::string ManifestReader::parameter(const YAML::Node& key, const std::string& field,
                                       const std::string& form) {
-  const std::string path = f_.text(key, field);
+  std::string path = f_.text(key, field);
   try {
     parse_override(path + "=0");
   } catch (const InputError& e) {

@@ -79,6 +79,7 @@ std::vector<PathStep> path_steps(const std::string& path) {
 }
 
 // Puts `value` at `o.path` in the tree; maps on the way are created when missing.
+// NOLINTNEXTLINE(performance-unnecessary-value-param): a handle, the tree is changed through it
 void apply_override(YAML::Node root, const Override& o, const YAML::Node& value) {
   const std::vector<PathStep> steps = path_steps(o.path);
   YAML::Node cur = root;
@@ -224,6 +225,7 @@ YAML::Node load_design_tree(const std::string& text, const std::string& path) {
   return root;
 }
 
+// NOLINTNEXTLINE(performance-unnecessary-value-param): a handle, the tree is changed through it
 std::vector<OverrideOrigin> apply_overrides(YAML::Node root, const std::string& path,
                                             const std::vector<Override>& overrides) {
   std::vector<OverrideOrigin> origins;

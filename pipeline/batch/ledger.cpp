@@ -240,6 +240,7 @@ std::vector<LedgerFile> list_ledgers(const std::string& folder) {
     return a.file.path < b.file.path;
   });
   std::vector<LedgerFile> out;
+  out.reserve(found.size());
   for (Found& f : found) out.push_back(std::move(f.file));
   return out;
 }
