@@ -163,3 +163,33 @@ TEST_CASE("batch: --merge of a folder without ledgers is exit 2", "[pipeline][ba
   CHECK(run_cli({"batch", "--merge", dir.string()}, &text) == 2);
   CHECK_THAT(text, Catch::Contains("no batch ledger"));
 }
+
+TEST_CASE("batch: progress goes to stderr (none with -q) and --slurm writes a job array of the shards",
+          "[pipeline][batch]") {
+  const fs::path dir = batch_folder("cli", kSweep);
+  const std::string m = (dir / "m.yaml").string();
+  const CliResult plain = run_fabmesh({"batch", m, "-o", (dir / "out").string()});
+  CHECK(plain.code == 0);
+  // Not a terminal: plain lines, the last one always.
+  CHECK_THAT(plain.err, Catch::Contains("batch: 8/8 done, 0 failed, 0 reused"));
+  CHECK_THAT(plain.out, Catch::Contains("8 ok") && Catch::Contains("summary.csv"));
+  const CliResult quiet = run_fabmesh({"batch", m, "-o", (dir / "out").string(), "-q"});
+  CHECK(quiet.code == 0);
+  CHECK(quiet.err.empty());
+
+  const std::string out = (dir / "array").string();
+  const CliResult slurm = run_fabmesh({"batch", m, "-o", out, "--slurm", "--array-size", "3", "--jobs", "2"});
+  INFO(slurm.err);
+  REQUIRE(slurm.code == 0);
+  const std::string script = file_text(dir / "array" / "slurm.sbatch");
+  CHECK_THAT(script, Catch::Contains("#SBATCH --array=0-2\n") && Catch::Contains("--cpus-per-task=2\n"));
+  CHECK_THAT(script, Catch::Contains("--shard \"${SLURM_ARRAY_TASK_ID}/3\" --jobs 2"));
+  CHECK(fs::is_directory(dir / "array" / ".batch" / "slurm"));
+  CHECK(fs::status(dir / "array" / "slurm.sbatch").permissions() != fs::perms::none);
+  // Nothing ran: the tasks do.
+  CHECK_FALSE(fs::exists(dir / "array" / "summary.csv"));
+  // Run as the array would, each shard, then merged: the same summary as a whole run.
+  for (const char* shard : {"0/3", "1/3", "2/3"}) batch_json({m, "-o", out, "--shard", shard, "--jobs", "2"});
+  CHECK(run_cli({"batch", "--merge", out}) == 0);
+  CHECK(summary_without_timings(out) == summary_without_timings(dir / "out"));
+}
