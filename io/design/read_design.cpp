@@ -9,6 +9,7 @@
 
 #include "io/design/number_limits.h"
 #include "io/design/utf8.h"
+#include "io/design/yaml/design_tree.h"
 #include "io/design/yaml/fields.h"
 #include "io/design/yaml/node_budget.h"
 #include "io/design/yaml/read_countertop.h"
@@ -91,6 +92,7 @@ std::vector<PathStep> path_steps(const std::string& path) {
 }
 
 // Puts `value` at `o.path` in the tree; maps on the way are created when missing.
+// NOLINTNEXTLINE(performance-unnecessary-value-param): a handle, the tree is changed through it
 void apply_override(YAML::Node root, const Override& o, const YAML::Node& value) {
   const std::vector<PathStep> steps = path_steps(o.path);
   YAML::Node cur = root;
@@ -233,8 +235,11 @@ void require_utf8(const std::string& text, const std::string& path, const std::s
 
 }  // namespace
 
-Design parse_design(const std::string& text, const std::string& path,
-                    const std::vector<Override>& overrides) {
+std::string plain_name_problem(const std::string& name) { return name_problem(name); }
+
+namespace yaml {
+
+YAML::Node load_design_tree(const std::string& text, const std::string& path) {
   require_utf8(text, path, "");
   YAML::Node root;
   try {
@@ -253,7 +258,13 @@ Design parse_design(const std::string& text, const std::string& path,
         fmt::format("{}:{}:{}: invalid YAML: {}", path, e.mark.line + 1, e.mark.column + 1, e.msg));
   }
   if (!root.IsMap()) throw FileError(path, 0, 0, fmt::format("{}: a design file must be a YAML map", path));
-  std::vector<yaml::OverrideOrigin> origins;
+  return root;
+}
+
+// NOLINTNEXTLINE(performance-unnecessary-value-param): a handle, the tree is changed through it
+std::vector<OverrideOrigin> apply_overrides(YAML::Node root, const std::string& path,
+                                            const std::vector<Override>& overrides) {
+  std::vector<OverrideOrigin> origins;
   for (const Override& o : overrides) {
     require_utf8(o.text, path, o.text);
     YAML::Node value;
@@ -270,12 +281,26 @@ Design parse_design(const std::string& text, const std::string& path,
     }
     origins.push_back({value, o.text});
   }
-  const yaml::Fields f(path, std::move(origins));
+  return origins;
+}
+
+Design read_design_tree(const YAML::Node& root, const std::string& path,
+                        std::vector<OverrideOrigin> origins) {
+  const Fields f(path, std::move(origins));
   const std::string kind = f.text(f.required(root, "kind", "kind"), "kind");
   Design d;
   d.common = read_common(f, root);
   d.body = read_body(kind, f, root, d.common);
   return d;
+}
+
+}  // namespace yaml
+
+Design parse_design(const std::string& text, const std::string& path,
+                    const std::vector<Override>& overrides) {
+  YAML::Node root = yaml::load_design_tree(text, path);
+  std::vector<yaml::OverrideOrigin> origins = yaml::apply_overrides(root, path, overrides);
+  return yaml::read_design_tree(root, path, std::move(origins));
 }
 
 Design read_design(const std::string& path, const std::vector<Override>& overrides) {

@@ -26,4 +26,9 @@ Design read_design(const std::string& path, const std::vector<Override>& overrid
 Design parse_design(const std::string& yaml_text, const std::string& path,
                     const std::vector<Override>& overrides = {});
 
+/// Why `name` is not a plain file name, the rule for design names (empty when
+/// it is): at most 120 bytes of letters (UTF-8), digits, spaces and _ - . + ( ),
+/// not starting with '.', '-' or a space, not ending with a space or '.'.
+std::string plain_name_problem(const std::string& name);
+
 }  // namespace fabmesh

@@ -29,6 +29,7 @@ int run_app(int argc, const char* const* argv, Streams streams) {
   add(&add_run_command);
   add(&add_plot_command);
   add(&add_preview_command);
+  add(&add_batch_command);
 
   try {
     app.parse(argc, argv);

@@ -37,6 +37,7 @@ Runner add_optimize_command(CLI::App& app);
 Runner add_run_command(CLI::App& app);
 Runner add_plot_command(CLI::App& app);     ///< `fabmesh plot DESIGN... [-o FILE.svg | DIR]`
 Runner add_preview_command(CLI::App& app);  ///< `fabmesh preview MESH|DESIGN -o FILE.png`
+Runner add_batch_command(CLI::App& app);    ///< `fabmesh batch MANIFEST ...`, `fabmesh batch --merge DIR`
 
 /// `fabmesh` without arguments: runs the bundled vessel example into ./out.
 int run_bundled_example(Streams streams);

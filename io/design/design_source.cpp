@@ -1,0 +1,72 @@
+#include "io/design/design_source.h"
+
+#include <filesystem>
+#include <mutex>
+#include <utility>
+
+#include "io/design/yaml/canonical_tree.h"
+#include "io/design/yaml/design_tree.h"
+#include "io/file.h"
+
+namespace fabmesh {
+
+namespace {
+constexpr std::size_t kMaxDesignBytes = 64u << 20;  // as read_design reads
+}  // namespace
+
+struct DesignSource::Impl {
+  std::string path;
+  std::string folder;
+  YAML::Node root;
+  // yaml-cpp nodes are not safe to read from several threads at once (iterating
+  // a map updates internal state): copies of the tree are made one at a time.
+  std::mutex copying;
+};
+
+DesignSource::DesignSource(const std::string& text, std::string path) : impl_(std::make_unique<Impl>()) {
+  impl_->root = yaml::load_design_tree(text, path);
+  impl_->folder = std::filesystem::path(path).parent_path().string();
+  impl_->path = std::move(path);
+}
+
+DesignSource DesignSource::read(const std::string& path) {
+  return DesignSource(read_file(path, kMaxDesignBytes, "design file"), path);
+}
+
+DesignSource::DesignSource(DesignSource&&) noexcept = default;
+DesignSource& DesignSource::operator=(DesignSource&&) noexcept = default;
+DesignSource::~DesignSource() = default;
+
+const std::string& DesignSource::path() const { return impl_->path; }
+
+std::string DesignSource::name() const {
+  std::lock_guard<std::mutex> lock(impl_->copying);
+  const YAML::Node& root = impl_->root;
+  const YAML::Node name = root["name"];
+  if (name.IsDefined() && name.IsScalar()) return name.Scalar();
+  return std::filesystem::path(impl_->path).stem().string();
+}
+
+std::string DesignSource::canonical(const std::vector<Override>& overrides) const {
+  YAML::Node root;
+  {
+    std::lock_guard<std::mutex> lock(impl_->copying);
+    root = YAML::Clone(impl_->root);
+  }
+  yaml::apply_overrides(root, impl_->path, overrides);
+  return yaml::canonical_tree(root, impl_->path, impl_->folder);
+}
+
+Design DesignSource::resolve(const std::vector<Override>& overrides, std::string* canonical) const {
+  if (canonical != nullptr) canonical->clear();
+  YAML::Node root;
+  {
+    std::lock_guard<std::mutex> lock(impl_->copying);
+    root = YAML::Clone(impl_->root);
+  }
+  std::vector<yaml::OverrideOrigin> origins = yaml::apply_overrides(root, impl_->path, overrides);
+  if (canonical != nullptr) *canonical = yaml::canonical_tree(root, impl_->path, impl_->folder);
+  return yaml::read_design_tree(root, impl_->path, std::move(origins));
+}
+
+}  // namespace fabmesh

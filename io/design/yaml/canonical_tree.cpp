@@ -1,0 +1,167 @@
+#include "io/design/yaml/canonical_tree.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <utility>
+#include <vector>
+
+#include "geometry/core/errors.h"
+#include "io/file.h"
+
+namespace fabmesh::yaml {
+namespace {
+
+constexpr std::size_t kMaxCanonicalBytes = 256u << 20;
+constexpr std::size_t kMaxReadFileBytes = 64u << 20;  // as io/design/points_csv.cpp reads
+
+// The keys whose values name a file the reader reads: {map key, key inside it}.
+// A design key that reads a file must be listed here, or its content would not enter the key.
+constexpr std::pair<const char*, const char*> kFileKeys[] = {{"polyline", "file"}};
+
+class Writer {
+ public:
+  Writer(std::string path, std::string folder) : path_(std::move(path)), folder_(std::move(folder)) {}
+
+  void node(const YAML::Node& n, const char* parent_key) {
+    check_size();
+    switch (n.Type()) {
+      case YAML::NodeType::Undefined:
+      case YAML::NodeType::Null:
+        out_ += '~';
+        break;
+      case YAML::NodeType::Scalar:
+        scalar(n);
+        break;
+      case YAML::NodeType::Sequence:
+        out_ += '[';
+        for (std::size_t i = 0; i < n.size(); ++i) {
+          if (i > 0) out_ += ',';
+          node(n[i], nullptr);
+        }
+        out_ += ']';
+        break;
+      case YAML::NodeType::Map:
+        map(n, parent_key);
+        break;
+    }
+  }
+
+  std::string take() { return std::move(out_); }
+
+ private:
+  void scalar(const YAML::Node& n) {
+    // "?" is a plain scalar, "!" a quoted one; anything else is an explicit tag.
+    const std::string& tag = n.Tag();
+    if (tag == "!") {
+      out_ += '\'';
+    } else if (tag != "?") {
+      out_ += '!';
+      quoted(tag);
+    }
+    quoted(n.Scalar());
+  }
+
+  void quoted(const std::string& text) {
+    out_ += '"';
+    for (const char c : text) {
+      const auto u = static_cast<unsigned char>(c);
+      if (c == '"' || c == '\\') {
+        out_ += '\\';
+        out_ += c;
+      } else if (u < 0x20 || u == 0x7f) {
+        out_ += fmt::format("\\x{:02x}", u);
+      } else {
+        out_ += c;
+      }
+    }
+    out_ += '"';
+  }
+
+  void map(const YAML::Node& n, const char* parent_key) {
+    // Sorted through indices: assigning a YAML::Node (as sorting nodes would)
+    // overwrites the node it refers to.
+    std::vector<std::string> keys;
+    std::vector<YAML::Node> values;
+    for (const auto& kv : n) {
+      Writer key(path_, folder_);
+      key.node(kv.first, nullptr);
+      keys.push_back(key.take());
+      values.push_back(kv.second);
+    }
+    std::vector<std::size_t> order(keys.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return keys[a] < keys[b]; });
+    out_ += '{';
+    for (std::size_t k = 0; k < order.size(); ++k) {
+      const std::string& key = keys[order[k]];
+      const YAML::Node& value = values[order[k]];
+      if (k > 0) out_ += ',';
+      out_ += key;
+      out_ += ':';
+      if (is_file_reference(parent_key, key, value)) {
+        file(value.Scalar());
+      } else {
+        const std::string plain_key = key_text(key);
+        node(value, plain_key.empty() ? nullptr : plain_key.c_str());
+      }
+    }
+    out_ += '}';
+  }
+
+  // The text of a plain scalar key as written ("polyline"), or "" for any other key.
+  static std::string key_text(const std::string& canonical_key) {
+    if (canonical_key.size() < 2 || canonical_key.front() != '"' || canonical_key.back() != '"') return "";
+    const std::string inner = canonical_key.substr(1, canonical_key.size() - 2);
+    return inner.find_first_of("\"\\") == std::string::npos ? inner : "";
+  }
+
+  static bool is_file_reference(const char* parent_key, const std::string& canonical_key,
+                                const YAML::Node& value) {
+    if (parent_key == nullptr || !value.IsScalar()) return false;
+    const std::string key = key_text(canonical_key);
+    return std::any_of(std::begin(kFileKeys), std::end(kFileKeys), [&](const auto& fk) {
+      return key == fk.second && std::string(parent_key) == fk.first;
+    });
+  }
+
+  // The bytes of the file, not its name: a moved or renamed file keeps its key.
+  void file(const std::string& name) {
+    const std::filesystem::path p(name);
+    const std::filesystem::path full = p.is_absolute() ? p : std::filesystem::path(folder_) / p;
+    try {
+      const std::string bytes = read_file(full.string(), kMaxReadFileBytes, "file");
+      out_ += fmt::format("file({}:", bytes.size());
+      out_ += bytes;
+      out_ += ')';
+    } catch (const FileError&) {
+      out_ += "unreadable-file(";
+      quoted(name);
+      out_ += ')';
+    }
+  }
+
+  void check_size() const {
+    if (out_.size() > kMaxCanonicalBytes) {
+      throw FileError(path_, 0, 0,
+                      fmt::format("{}: the design expands to more than {} MiB (through YAML aliases?)", path_,
+                                  kMaxCanonicalBytes >> 20));
+    }
+  }
+
+  std::string path_, folder_;
+  std::string out_;
+};
+
+}  // namespace
+
+std::string canonical_tree(const YAML::Node& root, const std::string& path,
+                           const std::string& design_folder) {
+  Writer w(path, design_folder);
+  w.node(root, nullptr);
+  return w.take();
+}
+
+}  // namespace fabmesh::yaml

@@ -1,0 +1,31 @@
+#pragma once
+// The steps of reading a design, for io/design's readers that resolve one
+// parsed tree many times (design_source.h): text to tree, overrides into the
+// tree, tree to Design. Private to io/design, like fields.h.
+
+#include <yaml-cpp/yaml.h>
+
+#include <string>
+#include <vector>
+
+#include "io/design/design.h"
+#include "io/design/overrides.h"
+#include "io/design/yaml/fields.h"
+
+namespace fabmesh::yaml {
+
+/// The root map of a design file's text (one YAML document).
+/// \throw FileError naming the line and column of a YAML error, or a root that is not a map
+YAML::Node load_design_tree(const std::string& text, const std::string& path);
+
+/// Puts each override's value at its path in `root` (in place, in order) and
+/// returns where each value came from, for messages.
+/// \throw FileError naming the override (bad YAML value, path through a missing entry or a non-map)
+std::vector<OverrideOrigin> apply_overrides(YAML::Node root, const std::string& path,
+                                            const std::vector<Override>& overrides);
+
+/// Reads and validates the design of a resolved tree (see read_design).
+/// \throw FileError naming file, line, column and field, or the override
+Design read_design_tree(const YAML::Node& root, const std::string& path, std::vector<OverrideOrigin> origins);
+
+}  // namespace fabmesh::yaml

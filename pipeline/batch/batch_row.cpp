@@ -1,0 +1,201 @@
+#include "pipeline/batch/batch_row.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+#include "geometry/core/errors.h"
+
+namespace fabmesh {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+constexpr const char* kFixedColumns[] = {
+    "index",      "name",       "design",        "status",     "exit_code",  "message",
+    "key",        "kind",       "units",         "vertices",   "triangles",  "volume",
+    "area",       "valid",      "bbox_min_x",    "bbox_min_y", "bbox_min_z", "bbox_max_x",
+    "bbox_max_y", "bbox_max_z", "max_deviation", "tolerance",  "files"};
+
+// A CSV cell, quoted when it holds a separator, a quote, a line break or edge spaces.
+std::string cell(const std::string& text) {
+  const bool quote = text.find_first_of(",\"\r\n") != std::string::npos ||
+                     (!text.empty() && (text.front() == ' ' || text.back() == ' '));
+  if (!quote) return text;
+  std::string out = "\"";
+  for (const char c : text) {
+    if (c == '"') out += '"';
+    out += c;
+  }
+  return out + "\"";
+}
+
+std::string number(double x) { return fmt::format("{}", x); }
+
+// A parameter's column: its path, unless a fixed column has that name.
+std::string parameter_column(const std::string& path) {
+  const bool taken = std::any_of(std::begin(kFixedColumns), std::end(kFixedColumns),
+                                 [&](const char* c) { return path == c; });
+  return taken ? "-D " + path : path;
+}
+
+double timing(const StageTimings& timings, const std::string& stage) {
+  for (const auto& [name, ms] : timings) {
+    if (name == stage) return ms;
+  }
+  return 0.0;
+}
+
+template <class T>
+T field(const nlohmann::ordered_json& j, const char* key) {
+  if (!j.contains(key)) throw InputError(fmt::format("summary row: missing field '{}'", key));
+  return j.at(key).get<T>();
+}
+
+}  // namespace
+
+const char* to_string(VariantStatus status) {
+  switch (status) {
+    case VariantStatus::Ok:
+      return "ok";
+    case VariantStatus::Invalid:
+      return "invalid";
+    case VariantStatus::BadInput:
+      return "bad input";
+    case VariantStatus::Error:
+      return "error";
+    case VariantStatus::Missing:
+      return "missing";
+  }
+  return "error";
+}
+
+VariantStatus parse_variant_status(const std::string& text) {
+  for (const VariantStatus s : {VariantStatus::Ok, VariantStatus::Invalid, VariantStatus::BadInput,
+                                VariantStatus::Error, VariantStatus::Missing}) {
+    if (text == to_string(s)) return s;
+  }
+  throw InputError(fmt::format("summary row: unknown status '{}'", text));
+}
+
+Json row_json(const BatchRow& r) {
+  Json j;
+  j["index"] = r.index;
+  j["name"] = r.name;
+  j["design"] = r.design;
+  j["overrides"] = Json::object();
+  for (const auto& [path, value] : r.overrides) j["overrides"][path] = value;
+  j["key"] = r.key;
+  j["status"] = to_string(r.status);
+  j["exit_code"] = r.status == VariantStatus::Missing ? Json(nullptr) : Json(r.exit_code);
+  j["message"] = r.message;
+  if (r.mesh) {
+    const RowMesh& m = *r.mesh;
+    j["kind"] = m.kind;
+    j["units"] = m.units;
+    j["vertices"] = m.vertices;
+    j["triangles"] = m.triangles;
+    j["volume"] = m.volume;
+    j["area"] = m.area;
+    j["valid"] = m.valid;
+    j["bounding_box"] = {{"min", m.bbox_min}, {"max", m.bbox_max}};
+    j["max_deviation"] = m.max_deviation;
+    j["tolerance"] = m.tolerance;
+  }
+  j["files"] = Json::array();
+  for (const RowFile& f : r.files) {
+    j["files"].push_back({{"path", f.path},
+                          {"format", f.format},
+                          {"units", f.units},
+                          {"bytes", f.bytes},
+                          {"sha256", f.sha256}});
+  }
+  j["skipped_outputs"] = Json::array();
+  for (const SkippedOutput& s : r.skipped)
+    j["skipped_outputs"].push_back({{"format", s.format}, {"reason", s.reason}});
+  j["timings_ms"] = Json::object();
+  for (const auto& [stage, ms] : r.timings_ms) j["timings_ms"][stage] = ms;
+  return j;
+}
+
+BatchRow row_from_json(const nlohmann::ordered_json& j) {
+  try {
+    BatchRow r;
+    r.index = field<std::size_t>(j, "index");
+    r.name = field<std::string>(j, "name");
+    r.design = field<std::string>(j, "design");
+    for (const auto& [path, value] : j.at("overrides").items())
+      r.overrides.emplace_back(path, value.get<std::string>());
+    r.key = field<std::string>(j, "key");
+    r.status = parse_variant_status(field<std::string>(j, "status"));
+    r.exit_code = j.at("exit_code").is_null() ? 0 : j.at("exit_code").get<int>();
+    r.message = field<std::string>(j, "message");
+    if (j.contains("kind")) {
+      RowMesh m;
+      m.kind = field<std::string>(j, "kind");
+      m.units = field<std::string>(j, "units");
+      m.vertices = field<std::size_t>(j, "vertices");
+      m.triangles = field<std::size_t>(j, "triangles");
+      m.volume = field<double>(j, "volume");
+      m.area = field<double>(j, "area");
+      m.valid = field<bool>(j, "valid");
+      m.bbox_min = j.at("bounding_box").at("min").get<std::array<double, 3>>();
+      m.bbox_max = j.at("bounding_box").at("max").get<std::array<double, 3>>();
+      m.max_deviation = field<double>(j, "max_deviation");
+      m.tolerance = field<double>(j, "tolerance");
+      r.mesh = m;
+    }
+    for (const auto& f : j.at("files")) {
+      r.files.push_back({field<std::string>(f, "path"), field<std::string>(f, "format"),
+                         field<std::string>(f, "units"), field<std::uint64_t>(f, "bytes"),
+                         field<std::string>(f, "sha256")});
+    }
+    for (const auto& s : j.at("skipped_outputs"))
+      r.skipped.push_back({field<std::string>(s, "format"), field<std::string>(s, "reason")});
+    for (const auto& [stage, ms] : j.at("timings_ms").items())
+      r.timings_ms.emplace_back(stage, ms.get<double>());
+    return r;
+  } catch (const nlohmann::ordered_json::exception& e) {
+    throw InputError(fmt::format("summary row: {}", e.what()));
+  }
+}
+
+std::string csv_header(const std::vector<std::string>& parameters) {
+  std::string line;
+  for (const char* c : {"index", "name", "design"}) line += std::string(line.empty() ? "" : ",") + c;
+  for (const std::string& p : parameters) line += "," + cell(parameter_column(p));
+  for (std::size_t i = 3; i < std::size(kFixedColumns); ++i) line += std::string(",") + kFixedColumns[i];
+  return line + ",resolve_ms,job_ms,record_ms\n";
+}
+
+std::string csv_line(const BatchRow& r, const std::vector<std::string>& parameters) {
+  std::string line = fmt::format("{},{},{}", r.index, cell(r.name), cell(r.design));
+  for (const std::string& p : parameters) {
+    std::string value;
+    for (const auto& [path, v] : r.overrides) {
+      if (path == p) value = v;
+    }
+    line += "," + cell(value);
+  }
+  line += fmt::format(",{},{},{},{}", to_string(r.status),
+                      r.status == VariantStatus::Missing ? "" : std::to_string(r.exit_code), cell(r.message),
+                      r.key);
+  if (r.mesh) {
+    const RowMesh& m = *r.mesh;
+    line += fmt::format(",{},{},{},{},{},{},{}", m.kind, m.units, m.vertices, m.triangles, number(m.volume),
+                        number(m.area), m.valid ? "true" : "false");
+    for (const double x : m.bbox_min) line += "," + number(x);
+    for (const double x : m.bbox_max) line += "," + number(x);
+    line += fmt::format(",{},{}", number(m.max_deviation), number(m.tolerance));
+  } else {
+    line += std::string(15, ',');
+  }
+  std::string files;
+  for (const RowFile& f : r.files) files += (files.empty() ? "" : ";") + f.path;
+  line += "," + cell(files);
+  line += fmt::format(",{:.3f},{:.3f},{:.3f}\n", timing(r.timings_ms, "resolve"), timing(r.timings_ms, "job"),
+                      timing(r.timings_ms, "record"));
+  return line;
+}
+
+}  // namespace fabmesh

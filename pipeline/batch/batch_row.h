@@ -1,0 +1,83 @@
+#pragma once
+// One variant's line of a batch summary (summary.csv, summary.jsonl): what it
+// is (name, base design, parameter values, content key) and what became of it.
+
+#include <array>
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "geometry/core/stage_timer.h"
+#include "pipeline/job.h"
+
+namespace fabmesh {
+
+/// What became of a variant.
+enum class VariantStatus {
+  Ok,        ///< built, valid, written (exit code 0)
+  Invalid,   ///< its mesh is not valid (exit code 1)
+  BadInput,  ///< its design, with its values, is bad input (exit code 2)
+  Error,     ///< an internal error (exit code 3); redone by the next run
+  Missing,   ///< no shard has run it yet (merge only)
+};
+
+/// "ok", "invalid", "bad input", "error", "missing".
+const char* to_string(VariantStatus status);
+/// The inverse of to_string. \throw InputError for another text
+VariantStatus parse_variant_status(const std::string& text);
+
+/// The mesh facts of a variant that was written.
+struct RowMesh {
+  std::string kind;
+  std::string units;  ///< model units of the facts below
+  std::size_t vertices = 0, triangles = 0;
+  double volume = 0.0, area = 0.0;
+  bool valid = false;  ///< valid for fabrication (a `purpose: view` surface may be written and not be)
+  std::array<double, 3> bbox_min{}, bbox_max{};
+  double max_deviation = 0.0, tolerance = 0.0;
+};
+
+/// One output file of a variant, its path relative to the batch folder.
+struct RowFile {
+  std::string path;
+  std::string format;
+  std::string units;
+  std::uint64_t bytes = 0;
+  std::string sha256;  ///< of its content, 64 hex digits
+};
+
+/// One summary row (docs/batch.md). Plain data: the lead's HTML report turns these into its rows.
+struct BatchRow {
+  std::size_t index = 0;  ///< 0-based position in the manifest's variant list
+  std::string name;
+  std::string design;                                          ///< the base design as the manifest names it
+  std::vector<std::pair<std::string, std::string>> overrides;  ///< the variant's own values: path, YAML text
+  std::string key;  ///< 64 hex digits: SHA-256 of the resolved design and the fabmesh version
+  VariantStatus status = VariantStatus::Missing;
+  int exit_code = 0;
+  std::string message;          ///< why it failed, or the warnings of skipped outputs
+  std::optional<RowMesh> mesh;  ///< when written
+  std::vector<RowFile> files;
+  std::vector<SkippedOutput> skipped;
+  /// Wall ms: "resolve" (overrides, canonical text, key), "job" (the job's own
+  /// stages, in the job's report too), "record" (digests, ledger), then the job's stages.
+  StageTimings timings_ms;
+};
+
+/// The row as one JSON object (a summary.jsonl line); timings last.
+nlohmann::ordered_json row_json(const BatchRow& row);
+
+/// The inverse of row_json. \throw InputError when a field is missing or of the wrong type
+BatchRow row_from_json(const nlohmann::ordered_json& j);
+
+/// The header line of summary.csv (with its newline): fixed columns, one column per
+/// parameter, then timings.
+std::string csv_header(const std::vector<std::string>& parameters);
+
+/// The row as a summary.csv line (with its newline), in csv_header's columns.
+std::string csv_line(const BatchRow& row, const std::vector<std::string>& parameters);
+
+}  // namespace fabmesh

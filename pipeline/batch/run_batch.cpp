@@ -1,0 +1,149 @@
+#include "pipeline/batch/run_batch.h"
+
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <mutex>
+#include <optional>
+
+#include "pipeline/batch/ledger.h"
+#include "pipeline/batch/plan.h"
+#include "pipeline/batch/run_variant.h"
+
+namespace fabmesh {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+// Counts finished variants and reports progress, one report at a time.
+class Tally {
+ public:
+  Tally(std::size_t total, const std::function<void(const BatchProgress&)>& report) : report_(report) {
+    progress_.total = total;
+  }
+
+  void finished(bool reused, bool ok) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    ++progress_.done;
+    if (reused) ++progress_.reused;
+    if (!ok) ++progress_.failed;
+    send(false);
+  }
+
+  void end() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    send(true);
+  }
+
+ private:
+  void send(bool finished) {
+    if (!report_) return;
+    progress_.elapsed_s = std::chrono::duration<double>(Clock::now() - start_).count();
+    progress_.finished = finished;
+    report_(progress_);
+  }
+
+  const std::function<void(const BatchProgress&)>& report_;
+  BatchProgress progress_;
+  std::mutex mutex_;
+  Clock::time_point start_ = Clock::now();
+};
+
+}  // namespace
+
+BatchOutcome run_batch(const BatchManifest& manifest, const BatchOptions& options) {
+  const Clock::time_point start = Clock::now();
+  BatchOutcome out;
+  const int threads =
+      options.jobs > 0 ? static_cast<int>(options.jobs) : tbb::this_task_arena::max_concurrency();
+  // More threads than cores (--jobs above the core count) need a larger pool, for this run only.
+  std::optional<tbb::global_control> pool;
+  if (threads > tbb::this_task_arena::max_concurrency())
+    pool.emplace(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
+  tbb::task_arena arena(threads);
+  const Shard shard = options.shard;
+  const std::string folder = ledger_folder(options.out_dir);
+
+  BatchPlan plan;
+  arena.execute([&] { plan = plan_batch(manifest); });
+  out.variants = plan.variants.size();
+  out.in_shard = shard.size_of(plan.variants.size());
+  LedgerWriter ledger(folder, {plan.digest, plan.variants.size(), shard});
+  out.ledger = ledger.path();
+  save_plan(plan, folder);
+  // Rows of earlier runs, of any shard count: each variant's last row of its key.
+  PlanRows rows(plan);
+  rows.offer_ledgers(folder);
+  out.plan_ms = ms_since(start);
+
+  std::vector<VariantStatus> status(out.in_shard, VariantStatus::Missing);
+  const std::size_t own_ledger = rows.add_ledger(ledger.path());
+  std::vector<std::pair<std::size_t, BatchFailure>> failures;  // by k, in finishing order
+  std::mutex failing;
+  const auto failed = [&](std::size_t k, const BatchRow& row) {
+    std::lock_guard<std::mutex> lock(failing);
+    failures.push_back({k, {row.name, row.status, row.exit_code, row.message}});
+  };
+  std::atomic<std::size_t> ran{0};
+  std::atomic<long long> jobs_us{0};
+  std::mutex keeping;  // the kept rows, for the summary of a whole batch
+  Tally tally(out.in_shard, options.progress);
+  arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, out.in_shard, 1),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t k = r.begin(); k != r.end(); ++k) {
+                          const std::size_t i = shard.index + k * shard.count;
+                          const std::optional<std::string> earlier = rows.row(i);
+                          if (!options.force && earlier && row_stands(*earlier, options.out_dir)) {
+                            status[k] = rows.status(i);
+                            if (status[k] != VariantStatus::Ok) {
+                              const BatchRow row = summary_row(plan, rows, i);
+                              failed(k, row);
+                            }
+                            tally.finished(true, status[k] == VariantStatus::Ok);
+                            continue;
+                          }
+                          const BatchRow row = run_variant(manifest, i, plan.variants[i], options.out_dir);
+                          const std::string json = row_json(row).dump();
+                          const std::uint64_t offset = ledger.append(json);
+                          for (const auto& [stage, ms] : row.timings_ms) {
+                            if (stage == "job") jobs_us += static_cast<long long>(ms * 1000.0);
+                          }
+                          if (shard.count == 1) {
+                            std::lock_guard<std::mutex> lock(keeping);
+                            rows.offer(json, own_ledger, offset);
+                          }
+                          status[k] = row.status;
+                          if (row.status != VariantStatus::Ok) failed(k, row);
+                          ++ran;
+                          tally.finished(false, row.status == VariantStatus::Ok);
+                        }
+                      });
+  });
+  ledger.sync();
+  out.ran = ran;
+  out.reused = out.in_shard - out.ran;
+  out.jobs_ms = static_cast<double>(jobs_us.load()) / 1000.0;
+  for (std::size_t k = 0; k < out.in_shard; ++k) {
+    out.counts.add(status[k], exit_code_of(status[k]));
+  }
+  std::sort(failures.begin(), failures.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (auto& f : failures) out.failures.push_back(std::move(f.second));
+  if (shard.count == 1) {
+    write_summary(plan, rows, options.out_dir);
+    out.summary_written = true;
+  }
+  out.wall_ms = ms_since(start);
+  tally.end();
+  return out;
+}
+
+}  // namespace fabmesh

@@ -1,0 +1,131 @@
+#include "pipeline/batch/summary.h"
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "geometry/core/errors.h"
+#include "io/file.h"
+#include "pipeline/batch/ledger.h"
+#include "pipeline/batch/streamed_file.h"
+
+namespace fabmesh {
+
+int exit_code_of(VariantStatus status) {
+  switch (status) {
+    case VariantStatus::Ok:
+      return 0;
+    case VariantStatus::Invalid:
+      return 1;
+    case VariantStatus::BadInput:
+      return 2;
+    case VariantStatus::Error:
+      return 3;
+    case VariantStatus::Missing:
+      return 0;
+  }
+  return 3;
+}
+
+void SummaryCounts::add(VariantStatus status, int code) {
+  switch (status) {
+    case VariantStatus::Ok:
+      ++ok;
+      break;
+    case VariantStatus::Invalid:
+      ++invalid;
+      break;
+    case VariantStatus::BadInput:
+      ++bad_input;
+      break;
+    case VariantStatus::Error:
+      ++error;
+      break;
+    case VariantStatus::Missing:
+      ++missing;
+      break;
+  }
+  exit_code = std::max(exit_code, code);
+}
+
+PlanRows::PlanRows(const BatchPlan& plan)
+    : plan_(plan), places_(plan.variants.size()), status_(plan.variants.size(), VariantStatus::Missing) {
+  by_name_.reserve(plan.variants.size());
+  for (std::size_t i = 0; i < plan.variants.size(); ++i) by_name_.emplace(plan.variants[i].name, i);
+}
+
+std::size_t PlanRows::add_ledger(const std::string& path) {
+  ledgers_.push_back(path);
+  return ledgers_.size() - 1;
+}
+
+std::optional<std::string> PlanRows::row(std::size_t i) const {
+  if (status_[i] == VariantStatus::Missing) return std::nullopt;
+  const Place& p = places_[i];
+  return read_row(ledgers_[p.ledger], p.offset, p.size);
+}
+
+void PlanRows::offer(std::string_view json, std::size_t ledger, std::uint64_t offset) {
+  const nlohmann::json j = nlohmann::json::parse(json, nullptr, false);
+  if (j.is_discarded() || !j.is_object()) return;
+  const auto name = j.find("name");
+  const auto key = j.find("key");
+  const auto status = j.find("status");
+  if (name == j.end() || key == j.end() || status == j.end() || !name->is_string() || !status->is_string())
+    return;
+  const auto it = by_name_.find(name->get<std::string>());
+  if (it == by_name_.end() || plan_.variants[it->second].key != *key) return;
+  VariantStatus s;
+  try {
+    s = parse_variant_status(status->get<std::string>());
+  } catch (const InputError&) {
+    return;
+  }
+  const std::size_t i = it->second;
+  const bool kept_finished = status_[i] != VariantStatus::Missing && status_[i] != VariantStatus::Error;
+  if (s == VariantStatus::Missing || (kept_finished && s == VariantStatus::Error)) return;
+  places_[i] = {offset, static_cast<std::uint32_t>(json.size()), static_cast<std::uint32_t>(ledger)};
+  status_[i] = s;
+}
+
+void PlanRows::offer_ledgers(const std::string& folder) {
+  for (const LedgerFile& file : list_ledgers(folder)) {
+    const std::size_t ledger = add_ledger(file.path);
+    for_each_row(file, [&](std::string_view json, std::uint64_t offset) { offer(json, ledger, offset); });
+  }
+}
+
+BatchRow summary_row(const BatchPlan& plan, const PlanRows& rows, std::size_t i) {
+  const PlannedVariant& p = plan.variants[i];
+  BatchRow row;
+  if (const std::optional<std::string> json = rows.row(i))
+    row = row_from_json(nlohmann::ordered_json::parse(*json));
+  row.index = i;
+  row.name = p.name;
+  row.design = p.design;
+  row.overrides = p.overrides;
+  row.key = p.key;
+  return row;
+}
+
+SummaryCounts write_summary(const BatchPlan& plan, const PlanRows& rows, const std::string& out_dir) {
+  SummaryCounts counts;
+  const std::filesystem::path dir(out_dir);
+  StreamedFile jsonl((dir / "summary.jsonl").string());
+  StreamedFile csv((dir / "summary.csv").string());
+  csv.append(csv_header(plan.parameters));
+  for (std::size_t i = 0; i < plan.variants.size(); ++i) {
+    const BatchRow row = summary_row(plan, rows, i);
+    counts.add(row.status, exit_code_of(row.status));
+    jsonl.append(row_json(row).dump() + "\n");
+    csv.append(csv_line(row, plan.parameters));
+  }
+  jsonl.commit();
+  csv.commit();
+  return counts;
+}
+
+std::string ledger_folder(const std::string& out_dir) {
+  return (std::filesystem::path(out_dir) / ".batch").string();
+}
+
+}  // namespace fabmesh
