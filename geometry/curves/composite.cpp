@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "geometry/core/errors.h"
 
@@ -27,7 +28,8 @@ CompositeCurve::CompositeCurve(std::vector<Segment> segments, bool closed)
 }
 
 double CompositeCurve::extent() const {
-  Vec2 lo = Vec2::Constant(INFINITY), hi = Vec2::Constant(-INFINITY);
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  Vec2 lo = Vec2::Constant(kInf), hi = Vec2::Constant(-kInf);
   for (const Segment& seg : segments_) {
     // Sample the segment too: an ellipse arc's control points live in its own frame.
     for (int i = 0; i <= 8; ++i) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <queue>
 
 namespace fabmesh {
@@ -164,7 +165,8 @@ Clearance exact_clearance(const std::vector<ArcPiece>& pieces, const ClearanceOp
   }
   std::vector<Chunk> chunks;
   for (std::size_t i = 0; i < pieces.size();) {
-    Chunk c{i, i, pieces[i].group, Vec2::Constant(INFINITY), Vec2::Constant(-INFINITY)};
+    constexpr double kInf = std::numeric_limits<double>::infinity();
+    Chunk c{i, i, pieces[i].group, Vec2::Constant(kInf), Vec2::Constant(-kInf)};
     double grow = 0.0;
     while (c.last < pieces.size() && c.last - c.first < kChunk && pieces[c.last].group == c.group) {
       const Sub& s = subs[c.last];

@@ -98,6 +98,7 @@ std::optional<EdgeCrossing> find_crossing(const std::vector<Vec2>& points, bool 
 
 std::optional<EdgeCrossing> find_crossing(const std::vector<std::vector<Vec2>>& loops) {
   std::vector<Chain> chains;
+  chains.reserve(loops.size());
   for (const auto& l : loops) chains.push_back({&l, true});
   return find_crossing_in(chains);
 }

@@ -12,6 +12,7 @@
 #include "geometry/core/errors.h"
 #include "io/design/manifest.h"
 #include "io/file.h"
+#include "pipeline/batch/batch_report.h"
 #include "pipeline/batch/merge.h"
 #include "pipeline/batch/plan.h"
 #include "pipeline/batch/progress.h"
@@ -38,6 +39,7 @@ struct BatchArgs {
   bool slurm = false;
   std::size_t array_size = 0;
   std::string merge;
+  std::string report;  ///< --report FILE.html
 };
 
 // Default folder: out/MANIFEST-STEM.
@@ -123,6 +125,10 @@ int run_manifest(const BatchArgs& args, Streams io) {
     } else {
       io.out << fmt::format("when every shard is done: fabmesh batch --merge {}\n", options.out_dir);
     }
+  }
+  if (!args.report.empty() && out.summary_written) {
+    write_batch_report(options.out_dir, args.report);
+    if (io.verbosity > 0 && !args.json) io.out << fmt::format("report: {}\n", args.report);
   }
   return out.counts.exit_code;
 }
@@ -215,6 +221,10 @@ int merge(const BatchArgs& args, Streams io) {
     io.out << fmt::format("summary: {}, {}\n", (dir / "summary.csv").string(),
                           (dir / "summary.jsonl").string());
   }
+  if (!args.report.empty()) {
+    write_batch_report(args.merge, args.report);
+    if (io.verbosity > 0 && !args.json) io.out << fmt::format("report: {}\n", args.report);
+  }
   return out.exit_code;
 }
 
@@ -222,12 +232,17 @@ int run_batch_command(const BatchArgs& args, Streams io) {
   if (args.merge.empty() == args.manifest.empty()) {
     throw InputError("batch: give a manifest (fabmesh batch MANIFEST.yaml) or --merge DIR, not both");
   }
+  if (!args.report.empty() && fs::path(args.report).extension() != ".html")
+    throw InputError(fmt::format("--report {}: the report is an HTML page; name it *.html", args.report));
   if (!args.merge.empty()) {
     if (args.slurm || !args.shard.empty() || args.force || args.jobs > 0 || !args.out.empty())
-      throw InputError("batch --merge DIR takes no other option than --json");
+      throw InputError("batch --merge DIR takes no other option than --json and --report");
     return merge(args, io);
   }
   if (args.slurm) {
+    if (!args.report.empty())
+      throw InputError(
+          "batch --slurm: make the report when merging (fabmesh batch --merge DIR --report FILE.html)");
     if (!args.shard.empty())
       throw InputError("batch --slurm writes a script that runs every shard: drop --shard");
     return write_slurm(args, io);
@@ -254,6 +269,10 @@ Runner add_batch_command(CLI::App& app) {
                 "Write DIR/slurm.sbatch, a Slurm job array running the shards, and say how to submit it");
   cmd->add_option("--array-size", args->array_size, "With --slurm: the number of shards (default: 100)")
       ->check(CLI::Range(1, 1000000));
+  cmd->add_option(
+      "--report", args->report,
+      "Also write an HTML page of the summary, a thumbnail of each variant's mesh beside its files "
+      "(a whole batch, or with --merge)");
   cmd->add_option("--merge", args->merge, "Merge the summaries of the shards in DIR into DIR/summary.*");
   return [args](Streams io) { return run_batch_command(*args, io); };
 }

@@ -139,3 +139,39 @@ TEST_CASE("run --report: one page with every design, its pictures beside the out
   CHECK(body.attr("data-images-loaded") == std::to_string(images));
   CHECK(body.attr("data-images-failed") == "0");
 }
+
+TEST_CASE("batch --report: a page of every variant with a thumbnail of its mesh, loaded by Chromium",
+          "[pipeline][pictures][report][batch][chromium]") {
+  REQUIRE(chromium_available());  // Debian package chromium (scripts/install-deps.sh)
+  const fs::path dir = fresh_dir("batch_report");
+  const std::string page = (dir / "report.html").string();
+  REQUIRE(run_cli({"batch", example("batch_vessel_sweep.yaml"), "-o", (dir / "sweep").string(), "--report",
+                   page, "-q"}) == 0);
+  const std::string html = read_file(page);
+  const auto doc = scan_xml(html, true);
+  std::size_t variants = 0;
+  for (const auto& e : fs::directory_iterator(dir / "sweep"))
+    variants += e.is_directory() && e.path().filename() != ".batch";
+  REQUIRE(variants >= 10);
+  CHECK(select(doc, "tr").size() == variants + 1);
+  std::size_t images = 0;
+  for (const XmlElement* img : select(doc, "img")) {
+    ++images;
+    CHECK(fs::is_regular_file(dir / decode_entities(img->attr("src"))));
+  }
+  CHECK(images == variants);
+  // A rerun keeps the thumbnails; a report of a batch that never ran is bad input.
+  CHECK(run_cli({"batch", "--merge", (dir / "sweep").string(), "--report", page}) == 0);
+  CHECK(run_cli({"batch", "--merge", (dir / "nothing").string(), "--report", (dir / "x.html").string()}) !=
+        0);
+  CHECK(run_cli({"batch", example("batch_vessel_sweep.yaml"), "-o", (dir / "sweep").string(), "--report",
+                 (dir / "r.txt").string()}) == 2);
+  const ChromiumRun run =
+      run_chromium("--window-size=1400,2400 --virtual-time-budget=10000 --dump-dom", file_url(page));
+  INFO(run.err);
+  REQUIRE(run.code == 0);
+  const auto dom = scan_xml(run.out, true);
+  const XmlElement& body = *select(dom, "body").at(0);
+  CHECK(body.attr("data-images-failed") == "0");
+  CHECK(body.attr("data-images-loaded") != "0");
+}

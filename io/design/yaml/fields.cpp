@@ -19,6 +19,14 @@ std::string join(const Items& items) {
   return out;
 }
 
+/// "parent.key", built in place.
+std::string child_field(const std::string& parent, const std::string& key) {
+  std::string out;
+  out.reserve(parent.size() + 1 + key.size());
+  out.append(parent).append(".").append(key);
+  return out;
+}
+
 }  // namespace
 
 namespace {
@@ -87,7 +95,7 @@ void Fields::require_map(const YAML::Node& node, const std::string& field, const
     for (const auto& [earlier, mark] : seen) {
       if (earlier == key) {
         fail_key(
-            kv.first, kv.second, field.empty() ? key : field + "." + key,
+            kv.first, kv.second, field.empty() ? key : child_field(field, key),
             fmt::format("key '{}' is given twice (first at line {}, column {}); YAML keys must be unique",
                         key, mark.line + 1, mark.column + 1));
       }
@@ -95,7 +103,7 @@ void Fields::require_map(const YAML::Node& node, const std::string& field, const
     seen.emplace_back(key, kv.first.Mark());
     const bool known = std::find(allowed.keys.begin(), allowed.keys.end(), key) != allowed.keys.end();
     if (!known) {
-      fail_key(kv.first, kv.second, field.empty() ? key : field + "." + key,
+      fail_key(kv.first, kv.second, field.empty() ? key : child_field(field, key),
                fmt::format("unknown key '{}' (expected one of: {})", key, join(allowed.keys)));
     }
   }
@@ -163,7 +171,7 @@ std::string Fields::text_or(const YAML::Node& parent, const char* key, const std
 
 std::string Fields::choice(const YAML::Node& node, const std::string& field,
                            std::initializer_list<const char*> choices) const {
-  const std::string value = text(node, field);
+  std::string value = text(node, field);
   for (const char* c : choices) {
     if (value == c) return value;
   }
