@@ -14,6 +14,13 @@ Failure describe_failure(const std::exception_ptr& error, const std::string& sub
     std::rethrow_exception(error);
   } catch (const FileError& e) {
     return {2, "error", e.what()};
+  } catch (const GeometryError& e) {
+    // A shape the design's numbers make impossible: at the curve, hole or key that
+    // caused it, whose `where` is its file:line:column (or -D override) when known.
+    const std::string& where = e.where();
+    const bool located_in_file =
+        !subject.empty() && (where.rfind(subject + ":", 0) == 0 || where.rfind("-D ", 0) == 0);
+    return {2, "error", located_in_file ? where + ": " + e.what() : located(e.what())};
   } catch (const InputError& e) {
     return {2, "error", located(e.what())};
   } catch (const ValidationFailed& e) {

@@ -74,16 +74,19 @@ void require_disjoint(const std::vector<Loop>& loops) {
   const std::string where = at(crossing->where);
   if (la == lb) {
     const Loop& l = loops[la];
-    throw GeometryError(l.label, fmt::format("{} crosses itself near {}: {} meets {}", l.label, where,
-                                             edge_name(l, ea), edge_name(l, eb)));
+    throw GeometryError(l.where.empty() ? l.label : l.where,
+                        fmt::format("{} crosses itself near {}: {} meets {}", l.label, where,
+                                    edge_name(l, ea), edge_name(l, eb)));
   }
   const Loop& a = loops[std::min(la, lb)];
   const Loop& b = loops[std::max(la, lb)];
   if (std::min(la, lb) == 0) {
-    throw GeometryError(b.label, fmt::format("{} crosses or touches the outline near {} ({})", b.label, where,
-                                             edge_name(a, la == 0 ? ea : eb)));
+    throw GeometryError(b.where.empty() ? b.label : b.where,
+                        fmt::format("{} crosses or touches the outline near {} ({})", b.label, where,
+                                    edge_name(a, la == 0 ? ea : eb)));
   }
-  throw GeometryError(b.label, fmt::format("{} overlaps {} near {}", b.label, a.label, where));
+  throw GeometryError(b.where.empty() ? b.label : b.where,
+                      fmt::format("{} overlaps {} near {}", b.label, a.label, where));
 }
 
 std::vector<Point> to_cgal(const std::vector<Vec2>& pts) {

@@ -85,9 +85,9 @@ void write_batch_report(const std::string& batch_dir, const std::string& report_
   const fs::path dir(batch_dir);
   const fs::path summary = dir / "summary.jsonl";
   if (!fs::is_regular_file(summary)) {
-    throw FileError(summary.string(), 0, 0,
-                    fmt::format("{}: no summary yet: the report is made from a whole batch's summary",
-                                summary.string()));
+    throw FileError(
+        summary.string(), 0, 0,
+        fmt::format("{}: no summary yet: the report is made from a whole batch's summary", summary.string()));
   }
   const std::vector<BatchRow> rows = read_rows(summary);
   // Thumbnails, once per variant, in parallel (each reads its own STL).

@@ -197,3 +197,24 @@ TEST_CASE(
   for (const JointReport& j : rect.joints()) CHECK(j.achieved >= Continuity::G1);
   CHECK(std::abs(test::exact_area(rect)) == Approx(300 * 200 - (4 - M_PI) * 30 * 30).epsilon(1e-12));
 }
+
+TEST_CASE(
+    "countertop run: a crossing outline or a hole over the edge is bad input at its file line and column",
+    "[pipeline][countertop][errors]") {
+  const fs::path dir = fresh_dir("countertop_located");
+  const std::string design = (dir / "cross.yaml").string();
+  write_file_atomically(design,
+                        "name: cross\nkind: countertop\nunits: mm\ntolerance: 0.05\nthickness: 30\n"
+                        "outline:\n  family: tbezier\n  closed: true\n  segments:\n"
+                        "    - polyline: [[0, 0], [100, 100], [100, 0], [0, 100], [0, 0]]\n");
+  std::string out;
+  CHECK(run_cli({"run", design, "-o", (dir / "out").string()}, &out) == 2);
+  CHECK_THAT(out, Catch::Contains(design + ":7:3: outline: outline crosses itself near (50, 50)"));
+  CHECK_FALSE(fs::exists(dir / "out"));
+  CHECK(run_cli({"run", example("countertop_g1.yaml"), "-o", (dir / "out").string(), "-D",
+                 "holes[0].rounded_rect.center=[100,340]"},
+                &out) == 2);
+  CHECK_THAT(out,
+             Catch::Contains("countertop_g1.yaml:41:5: holes[0]: holes[0] (rounded_rect) crosses or touches "
+                             "the outline"));
+}
