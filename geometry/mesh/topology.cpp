@@ -118,13 +118,13 @@ void count_components(const TriangleSoup& soup, const std::vector<Side>& sides, 
     parts.unite(t[1], t[2]);
     for (const std::uint32_t v : t) used[v] = 1;
   }
-  constexpr std::uint32_t none = UINT32_MAX;
-  std::vector<std::uint32_t> component(nv, none);  // by root vertex
+  constexpr std::uint32_t kNone = UINT32_MAX;
+  std::vector<std::uint32_t> component(nv, kNone);  // by root vertex
   for (std::uint32_t v = 0; v < nv; ++v) {
     if (!used[v]) continue;
     ++topo.referenced_vertices;
     const std::uint32_t r = parts.find(v);
-    if (component[r] == none) {
+    if (component[r] == kNone) {
       component[r] = static_cast<std::uint32_t>(topo.components++);
       topo.euler_characteristics.push_back(0);
     }

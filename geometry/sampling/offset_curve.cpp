@@ -12,7 +12,7 @@ namespace fabmesh {
 namespace {
 
 // Ends layout: |o''|, |r'|, |r''|, |r'''|, k.
-enum End { kO2 = 0, kSpeed = 1, kR2 = 2, kR3 = 3, kCurvature = 4 };
+enum End { O2 = 0, Speed = 1, R2 = 2, R3 = 3, Curvature = 4 };
 
 // Pieces shorter than this cannot be split usefully (parameters are in [0, 1]).
 constexpr double kShortestPiece = 1e-9;
@@ -68,11 +68,11 @@ ChordBound::Ends OffsetChordBound::at(double s) const {
   }
   const CurveJet j = segment_->jet(s);
   Ends e{};
-  e[kO2] = o.d2.norm();
-  e[kSpeed] = o.speed;
-  e[kR2] = j[2].norm();
-  e[kR3] = j[3].norm();
-  e[kCurvature] = o.k;
+  e[O2] = o.d2.norm();
+  e[Speed] = o.speed;
+  e[R2] = j[2].norm();
+  e[R3] = j[3].norm();
+  e[Curvature] = o.k;
   return e;
 }
 
@@ -80,9 +80,9 @@ double OffsetChordBound::bound(double s0, double s1, const Ends& a, const Ends& 
   const double h = s1 - s0, half = 0.5 * h, d = offset_.distance;
   const double inf = std::numeric_limits<double>::infinity();
   // Bounds over the piece: each from its end values and the next derivative's bound.
-  const double m3 = std::min(m3_, std::max(a[kR3], b[kR3]) + half * m4_);
-  const double m2 = std::max(a[kR2], b[kR2]) + half * m3;
-  const double sigma = std::min(a[kSpeed], b[kSpeed]) - half * m2;
+  const double m3 = std::min(m3_, std::max(a[R3], b[R3]) + half * m4_);
+  const double m2 = std::max(a[R2], b[R2]) + half * m3;
+  const double sigma = std::min(a[Speed], b[Speed]) - half * m2;
   const bool unsplittable = h <= kShortestPiece;
   if (!(sigma > 0.0)) {
     if (unsplittable) {
@@ -96,7 +96,7 @@ double OffsetChordBound::bound(double s0, double s1, const Ends& a, const Ends& 
   }
   // |k'| <= |cross(r', r''')| / |r'|^3 + 3 |cross(r', r'')| |r'|' / |r'|^4.
   const double k_slope = m3 / (sigma * sigma) + 3.0 * m2 * m2 / (sigma * sigma * sigma);
-  const double k_sup = std::max(a[kCurvature], b[kCurvature]) + half * k_slope;
+  const double k_sup = std::max(a[Curvature], b[Curvature]) + half * k_slope;
   if (k_sup * d >= 1.0) {
     if (unsplittable) {
       throw GeometryError("wall", fmt::format("{} is too thick for the profile: near {} ({}) its radius of "
@@ -108,7 +108,7 @@ double OffsetChordBound::bound(double s0, double s1, const Ends& a, const Ends& 
   const double s2 = sigma * sigma, s3 = s2 * sigma;
   const double direct = m2 + d * (m3 / sigma + 3.0 * m2 * m2 / s2);
   const double normal3 = m4_ / sigma + 10.0 * m2 * m3 / s2 + 15.0 * m2 * m2 * m2 / s3;
-  const double mean_value = std::max(a[kO2], b[kO2]) + half * (m3 + d * normal3);
+  const double mean_value = std::max(a[O2], b[O2]) + half * (m3 + d * normal3);
   return h * h / 8.0 * std::min(direct, mean_value);
 }
 
