@@ -9,8 +9,8 @@
 #include <string>
 
 #include "io/file.h"
-#include "tests/pipeline/child_process.h"
 #include "tests/pipeline/cli_harness.h"
+#include "tests/pipeline/limited_run.h"
 
 using namespace fabmesh;
 using namespace fabmesh::testing;
@@ -18,7 +18,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr std::size_t kMemory = std::size_t{1} << 30;  // 1 GiB of address space
+constexpr std::size_t kMemory = std::size_t{1} << 30;  // 1 GiB (address space; resident under ASan)
 
 // The example with `find` replaced by `replace`, written to `dir/name`.
 std::string edited(const fs::path& dir, const std::string& example_name, const std::string& find,
@@ -33,13 +33,12 @@ std::string edited(const fs::path& dir, const std::string& example_name, const s
 }
 
 void require_refused(const std::string& design, const fs::path& dir, double seconds) {
-  const ChildResult r = run_limited({"run", design, "-o", (dir / "out").string()}, kMemory, seconds,
-                                    (dir / "log.txt").string());
-  INFO(design << " after " << r.seconds << " s:\n" << r.output);
+  const LimitedRun r = run_limited({"run", design, "-o", (dir / "out").string()}, seconds, kMemory);
+  INFO(design << ": " << r.describe() << "\n" << r.out << r.err);
   REQUIRE_FALSE(r.timed_out);
-  REQUIRE_FALSE(r.signalled);
+  REQUIRE(r.signal == 0);
   CHECK(r.code == 2);
-  CHECK_THAT(r.output,
+  CHECK_THAT(r.out + r.err,
              Catch::Contains("budget of") && Catch::Contains("at least") && Catch::Contains("tolerance"));
   CHECK((!fs::exists(dir / "out") || fs::is_empty(dir / "out")));
 }
@@ -89,12 +88,11 @@ TEST_CASE("budget: the surface shell at 0.001 mm ends within its limits with a b
   const fs::path dir = fresh_dir("budget_surface_fine");
   const std::string design =
       edited(dir, "surface_basin_shell.yaml", "tolerance: 0.5", "tolerance: 0.001", "fine.yaml");
-  const ChildResult r =
-      run_limited({"run", design, "-o", (dir / "out").string()}, kMemory, 120.0, (dir / "log.txt").string());
-  INFO("after " << r.seconds << " s:\n" << r.output);
+  const LimitedRun r = run_limited({"run", design, "-o", (dir / "out").string()}, 120.0, kMemory);
+  INFO(r.describe() << "\n" << r.out << r.err);
   REQUIRE_FALSE(r.timed_out);
-  REQUIRE_FALSE(r.signalled);
+  REQUIRE(r.signal == 0);
   CHECK(r.code == 2);
-  CHECK_THAT(r.output, Catch::Contains("budget of"));
+  CHECK_THAT(r.out + r.err, Catch::Contains("budget of"));
   CHECK((!fs::exists(dir / "out") || fs::is_empty(dir / "out")));
 }
