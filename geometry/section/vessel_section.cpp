@@ -97,7 +97,8 @@ struct Shell {
 
 Shell shell_loop(const CompositeCurve& profile, const std::vector<Vec2>& up, bool upward,
                  const VesselSectionOptions& options) {
-  const Vec2 bottom = up.front(), top = up.back();
+  const Vec2& bottom = up.front();
+  const Vec2& top = up.back();
   if (top.x() == 0.0) {
     throw GeometryError(
         "profile",

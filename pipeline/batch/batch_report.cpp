@@ -73,7 +73,7 @@ ReportRow page_row(const BatchRow& row, const fs::path& dir, const fs::path& bas
   for (const auto& [stage, ms] : row.timings_ms) r.timings.push_back({stage, ms / 1000.0});
   const auto relative = [&](const fs::path& p) { return p.lexically_relative(base).generic_string(); };
   for (const RowFile& f : row.files) r.files.push_back(relative(dir / f.path));
-  if (const RowFile* stl = stl_of(row)) {
+  if (stl_of(row) != nullptr) {
     r.preview_png = relative(dir / row.name / (row.name + ".thumb.png"));
   }
   return r;
