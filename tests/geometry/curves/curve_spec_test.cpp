@@ -4,24 +4,13 @@
 #include <cmath>
 
 #include "geometry/core/errors.h"
+#include "tests/geometry/curves/segment_specs.h"
 
 using namespace fabmesh;
+using fabmesh::test::explicit_tbezier;
+using fabmesh::test::joined;
 
 namespace {
-
-SegmentSpec explicit_tbezier(std::vector<Vec2> pts, double l, double m) {
-  SegmentSpec s;
-  s.points = std::move(pts);
-  s.lambda = l;
-  s.mu = m;
-  return s;
-}
-
-SegmentSpec joined(Continuity c, std::vector<Vec2> pts, double l, double m, double alpha, double beta = 0.0) {
-  SegmentSpec s = explicit_tbezier(std::move(pts), l, m);
-  s.join = JoinSpec{c, alpha, beta, 1.0, 0.0};
-  return s;
-}
 
 double rel(const Vec2& a, const Vec2& b) { return (a - b).norm() / std::max(a.norm(), b.norm()); }
 

@@ -8,23 +8,14 @@
 
 #include "geometry/core/errors.h"
 #include "io/design/csv_table.h"
+#include "tests/io/design/cup_design.h"
 
 using namespace fabmesh;
+using fabmesh::test::kCup;
 
 namespace {
 
 namespace fs = std::filesystem;
-
-const std::string kCup = R"(name: cup
-kind: vessel
-units: cm
-tolerance: 0.005
-profile:
-  family: quasi_bspline
-  points: [[1.5, 6], [1, 5], [2, 4], [3, 3], [1.5, 2]]
-  lambdas: [0, 0, 0]
-body: {mode: shell, wall: 0.3, base: 0.4}
-)";
 
 // A folder with cup.yaml and the given extra files.
 fs::path folder(const std::string& test, const std::vector<std::pair<std::string, std::string>>& files = {}) {

@@ -5,21 +5,12 @@
 
 #include "geometry/core/errors.h"
 #include "io/design/read_design.h"
+#include "tests/io/design/cup_design.h"
 
 using namespace fabmesh;
+using fabmesh::test::kCup;
 
 namespace {
-
-const std::string kCup = R"(name: cup
-kind: vessel
-units: cm
-tolerance: 0.005
-profile:
-  family: quasi_bspline
-  points: [[1.5, 6], [1, 5], [2, 4], [3, 3], [1.5, 2]]
-  lambdas: [0, 0, 0]
-body: {mode: shell, wall: 0.3, base: 0.4}
-)";
 
 const std::string kComposite = R"(name: c
 kind: curve

@@ -9,30 +9,19 @@
 #include "geometry/core/errors.h"
 #include "io/pictures/curvature_profile.h"
 #include "io/pictures/markup.h"
+#include "tests/geometry/curves/segment_specs.h"
 #include "tests/io/pictures/chromium.h"
 #include "tests/io/pictures/png_decode.h"
 #include "tests/io/pictures/xml_scan.h"
 
 using namespace fabmesh;
+using fabmesh::test::explicit_tbezier;
+using fabmesh::test::joined;
 using test::scan_xml;
 using test::select;
 using test::XmlElement;
 
 namespace {
-
-SegmentSpec explicit_tbezier(std::vector<Vec2> pts, double l, double m) {
-  SegmentSpec s;
-  s.points = std::move(pts);
-  s.lambda = l;
-  s.mu = m;
-  return s;
-}
-
-SegmentSpec joined(Continuity c, std::vector<Vec2> pts, double l, double m, double alpha, double beta = 0.0) {
-  SegmentSpec s = explicit_tbezier(std::move(pts), l, m);
-  s.join = JoinSpec{c, alpha, beta, 1.0, 0.0};
-  return s;
-}
 
 // Two T-Bézier segments joined G2 (alpha 1.5, beta 0.7): curvature continuous at the joint.
 CurveSpec g2_pair() {
