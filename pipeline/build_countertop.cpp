@@ -4,7 +4,6 @@
 #include <fmt/format.h>
 
 #include "geometry/curves/build_curve.h"
-#include "geometry/mesh/bounding_box.h"
 #include "geometry/mesh/slab.h"
 #include "geometry/toolpath/toolpath.h"
 #include "pipeline/build_design.h"
@@ -61,9 +60,6 @@ BuiltMesh build(const CountertopDesign& design, const BuildContext& context) {
     out.facts["min_clearance"] = region.min_clearance;
     out.facts["min_clearance_where"] = region.clearance_where;
   }
-  const BoundingBox box = bounding_box(out.soup.vertices);
-  out.facts["bbox_min"] = {box.lo.x(), box.lo.y(), box.lo.z()};
-  out.facts["bbox_max"] = {box.hi.x(), box.hi.y(), box.hi.z()};
   if (design.cnc) {
     CncOptions cnc = design.cnc->options;
     cnc.tolerance = context.tolerance;

@@ -12,7 +12,6 @@
 #include <limits>
 
 #include "geometry/core/errors.h"
-#include "geometry/mesh/bounding_box.h"
 #include "geometry/mesh/thicken.h"
 #include "geometry/surfaces/tessellate.h"
 #include "pipeline/build_design.h"
@@ -135,18 +134,12 @@ BuiltMesh build(const SurfaceDesign& design, const BuildContext& context) {
                           {"joints", joints_json(network)},
                           {"sheet_triangles", sheet.mesh.n_faces()},
                           {"rim_edges", rim_edges}};
-  auto add_box = [&](BuiltMesh& out) {
-    const BoundingBox box = bounding_box(out.soup.vertices);
-    facts["bbox_min"] = {box.lo.x(), box.lo.y(), box.lo.z()};
-    facts["bbox_max"] = {box.hi.x(), box.hi.y(), box.hi.z()};
-  };
   if (!thick) {
     context.watch.lap("build");
     BuiltMesh out = validated(sheet.mesh, std::nullopt, context);
     out.purpose = MeshPurpose::Viewing;
     out.max_deviation = sheet.max_deviation;
     facts["fabrication"] = "not valid: open surface (no thickness)";
-    add_box(out);
     out.facts = std::move(facts);
     return out;
   }
@@ -163,7 +156,6 @@ BuiltMesh build(const SurfaceDesign& design, const BuildContext& context) {
   facts["thickness"] = design.thickness;
   facts["thicken"] = to_string(design.thicken);
   facts["shell_span"] = {span[0], span[1]};
-  add_box(out);
   out.facts = std::move(facts);
   return out;
 }

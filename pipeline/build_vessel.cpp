@@ -93,19 +93,17 @@ BuiltMesh build(const VesselDesign& design, const BuildContext& context) {
   for (const auto& loop : vessel.section.loops) section_points += loop.size();
   BuiltMesh out = validated(vessel.mesh, vessel.proof, context);
   out.max_deviation = vessel.max_deviation;
-  const BoundingBox box = bounding_box(out.soup.vertices);
   out.facts = {{"angular_segments", vessel.segments},
                {"section_loops", vessel.section.loops.size()},
                {"section_points", section_points},
-               {"max_radius", vessel.section.max_radius},
-               {"bbox_min", {box.lo.x(), box.lo.y(), box.lo.z()}},
-               {"bbox_max", {box.hi.x(), box.hi.y(), box.hi.z()}}};
+               {"max_radius", vessel.section.max_radius}};
   if (!std::isnan(vessel.section.min_clearance)) {
     // The thinnest place of the shell, between the exact outer and inner surfaces.
     out.facts["min_clearance"] = vessel.section.min_clearance;
     out.facts["min_clearance_where"] = vessel.section.clearance_where;
   }
   if (design.shrinkage > 0.0) {
+    const BoundingBox box = bounding_box(out.soup.vertices);
     out.facts["shrinkage"] = {{"shrinkage", design.shrinkage},
                               {"factor", factor},
                               {"master_size", size_json(box.lo, box.hi)},

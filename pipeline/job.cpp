@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "geometry/core/errors.h"
+#include "geometry/mesh/bounding_box.h"
 #include "pipeline/build_design.h"
 #include "pipeline/outputs.h"
 
@@ -89,11 +90,12 @@ PreparedJob prepare_job(const Design& design, const JobOptions& options) {
         what, report.validation.boundary_edges));
   }
   if (!built.soup.vertices.empty()) {
-    report.bbox_min = report.bbox_max = built.soup.vertices.front();
-    for (const Vec3& p : built.soup.vertices) {
-      report.bbox_min = report.bbox_min.cwiseMin(p);
-      report.bbox_max = report.bbox_max.cwiseMax(p);
-    }
+    // The mesh's box, in model units: in the report and among the build facts.
+    const BoundingBox box = bounding_box(built.soup.vertices);
+    report.bbox_min = box.lo;
+    report.bbox_max = box.hi;
+    report.build["bbox_min"] = {box.lo.x(), box.lo.y(), box.lo.z()};
+    report.build["bbox_max"] = {box.hi.x(), box.hi.y(), box.hi.z()};
   } else if (!built.cutting.empty()) {
     const auto [lo, hi] = cut_bounds(built.cutting);
     report.bbox_min = Vec3(lo.x(), lo.y(), 0.0);
