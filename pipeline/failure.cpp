@@ -2,13 +2,19 @@
 
 #include <fmt/format.h>
 
+#include <string_view>
+
 #include "geometry/core/errors.h"
 
 namespace fabmesh {
 
 Failure describe_failure(const std::exception_ptr& error, const std::string& subject) {
+  // A message that starts at its place in the design already keeps it.
   auto located = [&](const char* what) {
-    return subject.empty() ? std::string(what) : subject + ": " + what;
+    const std::string_view text(what);
+    const bool placed = text.rfind("-D ", 0) == 0 ||
+                        (!subject.empty() && text.rfind(subject + ":", 0) == 0);
+    return subject.empty() || placed ? std::string(what) : subject + ": " + what;
   };
   try {
     std::rethrow_exception(error);

@@ -116,7 +116,15 @@ PreparedJob prepare_job(const Design& design, const JobOptions& options) {
         job.files.push_back({file, std::move(e.bytes)});
       }
     } catch (const OutputError& e) {
-      if (common.on_output_error == OutputErrorPolicy::Fail) throw;
+      if (common.on_output_error == OutputErrorPolicy::Fail) {
+        // At the `outputs:` entry that asked for it (or the list, for a kind's default outputs).
+        const auto asked = std::find_if(common.outputs.begin(), common.outputs.end(),
+                                        [&](const OutputRequest& r) { return r.format == format->name; });
+        throw OutputError(e.format(), fmt::format("{}: {}",
+                                                  asked != common.outputs.end() ? asked->where
+                                                                                : key_label(common, "outputs"),
+                                                  e.what()));
+      }
       report.skipped.push_back({std::string(format->name), e.what()});
     }
     watch.lap("encode_" + std::string(format->name));

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <limits>
 
 #include "geometry/core/errors.h"
 
@@ -169,6 +170,14 @@ Mesh revolve(const std::vector<std::vector<Vec2>>& loops, const RevolveOptions& 
     }
   }
   const std::size_t faces = revolved_triangle_count(loops, options.segments);
+  // OpenMesh numbers halfedges (3 per triangle) with an int.
+  constexpr std::size_t kMaxFaces = static_cast<std::size_t>(std::numeric_limits<int>::max()) / 3;
+  if (faces > kMaxFaces) {
+    throw BudgetError(static_cast<double>(faces), static_cast<double>(kMaxFaces),
+                      fmt::format("the mesh needs {} triangles, more than the {} a halfedge mesh can hold "
+                                  "(lower max_triangles or raise the tolerance)",
+                                  faces, kMaxFaces));
+  }
   Mesh mesh;
   mesh.resize(vertex_count, 3 * faces / 2, faces);  // closed triangle mesh: E = 3F/2
   Slots next;

@@ -27,10 +27,10 @@ void require_budget(const CompositeCurve& profile, const VesselOptions& options,
   const double triangles = chords * segments;
   if (triangles > static_cast<double>(options.max_triangles)) {
     throw BudgetError(triangles, static_cast<double>(options.max_triangles),
-                      fmt::format("tolerance {} needs at least {:.4g} triangles (estimated before sampling: "
+                      fmt::format("the mesh needs at least {:.4g} triangles (estimated before sampling: "
                                   "{:.4g} profile chords x {} angular steps), over the budget of {} (raise "
                                   "max_triangles or the tolerance)",
-                                  options.tolerance, triangles, chords, segments, options.max_triangles));
+                                  triangles, chords, segments, options.max_triangles));
   }
 }
 
@@ -56,9 +56,9 @@ VesselMesh build_vessel(const CompositeCurve& profile, const VesselOptions& opti
   if (triangles > options.max_triangles) {
     throw BudgetError(
         static_cast<double>(triangles), static_cast<double>(options.max_triangles),
-        fmt::format("tolerance {} needs {} triangles, over the budget of {} (raise max_triangles or "
-                    "the tolerance)",
-                    options.tolerance, triangles, options.max_triangles));
+        fmt::format("the mesh needs {} triangles, over the budget of {} (raise max_triangles or the "
+                    "tolerance)",
+                    triangles, options.max_triangles));
   }
   RevolveOptions ro;
   ro.segments = segments;

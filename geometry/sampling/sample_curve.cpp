@@ -20,8 +20,7 @@ struct Piece {
 
 [[noreturn]] void over_budget(std::size_t count, const SampleOptions& options) {
   throw BudgetError(static_cast<double>(count), static_cast<double>(options.max_points),
-                    fmt::format("tolerance {} needs more than {} curve samples (the point budget)",
-                                options.tolerance, options.max_points));
+                    fmt::format("the curve needs more than {} samples (the point budget)", options.max_points));
 }
 
 }  // namespace
@@ -77,7 +76,8 @@ std::vector<double> sample_parameters(const ChordBound& bound, const SampleOptio
     const double mid = 0.5 * (p.s0 + p.s1);
     if (!(mid > p.s0 && mid < p.s1)) {
       throw BudgetError(0.0, 0.0,
-                        fmt::format("tolerance {} cannot be reached in double precision", options.tolerance));
+                        fmt::format("the curve cannot be sampled within {:.3g} in double precision",
+                                    options.tolerance));
     }
     const ChordBound::Ends m = bound.at(mid);
     stack.push_back({mid, p.s1, m, p.b});
@@ -124,9 +124,9 @@ Polyline2 sample_curve(const CompositeCurve& curve, const SampleOptions& options
     estimate += min_chord_count(seg, options.tolerance, options.min_pieces_per_segment);
   if (estimate > static_cast<double>(options.max_points)) {
     throw BudgetError(estimate, static_cast<double>(options.max_points),
-                      fmt::format("tolerance {} needs at least {:.4g} curve samples (estimated from the "
-                                  "curve's second derivatives before sampling), over the budget of {}",
-                                  options.tolerance, estimate, options.max_points));
+                      fmt::format("the curve needs at least {:.4g} samples (estimated from its second "
+                                  "derivatives before sampling), over the budget of {}",
+                                  estimate, options.max_points));
   }
   Polyline2 out;
   out.closed = curve.closed();

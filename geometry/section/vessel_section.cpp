@@ -168,9 +168,9 @@ void check_clearance(const CompositeCurve& profile, const std::vector<CurveParam
   if (c.upper < required) {
     const bool crossing = c.upper <= co.accuracy;
     throw GeometryError(
-        options.label.empty() ? "wall" : options.label,
+        "wall",
         fmt::format(
-            "{}wall {} (base {}): {}", options.label.empty() ? "" : options.label + ": ", options.wall,
+            "wall {} (base {}): {}", options.wall,
             options.base > 0.0 ? options.base : options.wall,
             crossing
                 ? fmt::format("the exact inner surface meets the outer one ({}): the wall is too thick "

@@ -353,7 +353,7 @@ std::vector<double> refine(const std::vector<double>& breaks, const std::vector<
       const double mid = 0.5 * (breaks[k] + breaks[k + 1]);
       if (!(mid > breaks[k] && mid < breaks[k + 1])) {
         throw BudgetError(0.0, 0.0,
-                          fmt::format("tolerance {} cannot be reached in double precision", tolerance));
+                          fmt::format("the surface cannot be refined to {:.3g} in double precision", tolerance));
       }
       refined.push_back(mid);
     }
@@ -427,10 +427,10 @@ SurfaceTessellation tessellate(const PatchNetwork& network, const TessellateOpti
   if (estimate > static_cast<double>(options.max_triangles)) {
     throw BudgetError(
         estimate, static_cast<double>(options.max_triangles),
-        fmt::format("tolerance {} needs at least {:.4g} triangles (estimated from the surface's "
+        fmt::format("the mesh needs at least {:.4g} triangles (estimated from the surface's "
                     "second derivatives before refining), over the budget of {} (raise "
                     "max_triangles or the tolerance)",
-                    options.tolerance, estimate, options.max_triangles));
+                    estimate, options.max_triangles));
   }
   const std::size_t np = network.patches.size();
   DirectionClasses classes(2 * np);
@@ -489,9 +489,9 @@ SurfaceTessellation tessellate(const PatchNetwork& network, const TessellateOpti
     const std::size_t count = triangles();
     if (count > options.max_triangles) {
       throw BudgetError(static_cast<double>(count), static_cast<double>(options.max_triangles),
-                        fmt::format("tolerance {} needs more than {} triangles, over the budget of {} (raise "
+                        fmt::format("the mesh needs more than {} triangles, over the budget of {} (raise "
                                     "max_triangles or the tolerance)",
-                                    options.tolerance, count, options.max_triangles));
+                                    count, options.max_triangles));
     }
   }
 

@@ -2,6 +2,7 @@
 // Design files as plain, validated data (docs/design-files.md).
 
 #include <cstddef>
+#include <map>
 #include <optional>
 #include <string>
 #include <utility>
@@ -54,7 +55,16 @@ struct DesignCommon {
   std::vector<OutputRequest> outputs;
   Purpose purpose = Purpose::Fabrication;
   OutputErrorPolicy on_output_error = OutputErrorPolicy::Skip;
+  /// Where the design gives each key, by dotted path ("tolerance", "body.wall",
+  /// "mould.wall"; two levels): "path:line:column", or "-D path=value" for an
+  /// override. For messages about a value that only building can judge.
+  std::map<std::string, std::string> where;
 };
+
+/// "where: key" for a message about `key`'s value: the key's own place, else
+/// that of its nearest enclosing key the design gives ("body" for an absent
+/// "body.base"), else the design file's path.
+std::string key_label(const DesignCommon& common, const std::string& key);
 
 /// kind: curve
 struct CurveDesign {

@@ -235,6 +235,16 @@ void require_utf8(const std::string& text, const std::string& path, const std::s
 
 }  // namespace
 
+std::string key_label(const DesignCommon& common, const std::string& key) {
+  for (std::string k = key;;) {
+    if (const auto it = common.where.find(k); it != common.where.end()) return it->second + ": " + key;
+    const std::size_t dot = k.rfind('.');
+    if (dot == std::string::npos) break;
+    k.resize(dot);
+  }
+  return common.path + ": " + key;
+}
+
 std::string plain_name_problem(const std::string& name) { return name_problem(name); }
 
 namespace yaml {
@@ -291,6 +301,13 @@ Design read_design_tree(const YAML::Node& root, const std::string& path,
   Design d;
   d.common = read_common(f, root);
   d.body = read_body(kind, f, root, d.common);
+  // Where each key is given, two levels deep (the design is valid by now: keys are scalars).
+  for (const auto& kv : root) {
+    const std::string key = kv.first.Scalar();
+    d.common.where[key] = f.location(kv.second);
+    if (!kv.second.IsMap()) continue;
+    for (const auto& inner : kv.second) d.common.where[key + "." + inner.first.Scalar()] = f.location(inner.second);
+  }
   return d;
 }
 

@@ -41,7 +41,17 @@ int run_sample(const SampleArgs& args, Streams io) {
   for (const NamedCurve& nc : design_curves(design)) {
     const BuiltCurve built = build_curve(nc.spec);
     std::vector<CurveParam> params;
-    const Polyline2 line = sample_curve(built.curve, options, &params);
+    Polyline2 line;
+    try {
+      line = sample_curve(built.curve, options, &params);
+    } catch (const BudgetError& e) {
+      // At the tolerance that asked for it: the option, or the design's key.
+      const std::string tolerance =
+          args.tolerance_given ? fmt::format("--tolerance {:g}", args.tolerance)
+                               : fmt::format("{}: {:g}", key_label(design.common, "tolerance"), options.tolerance);
+      throw BudgetError(e.requested(), e.budget(),
+                        fmt::format("{} {}: {}", tolerance, design.common.units, e.what()));
+    }
     if (line.closed) {
       // A closed outline must be simple (exact predicates on the sampled loop).
       if (const auto c = find_crossing(line.points, true)) {

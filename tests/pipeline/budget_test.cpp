@@ -41,6 +41,7 @@ int refused_code(const std::string& design, const fs::path& dir, double seconds)
   REQUIRE(r.signal == 0);
   CHECK_THAT(r.out + r.err,
              Catch::Contains("budget of") && Catch::Contains("at least") && Catch::Contains("tolerance"));
+  CHECK(names_place(r.err, design, "tolerance"));  // at the key that asked for it
   CHECK((!fs::exists(dir / "out") || fs::is_empty(dir / "out")));
   return r.code;
 }
@@ -75,6 +76,23 @@ TEST_CASE("budget: a vessel with max_triangles 2e9 at tolerance 1e-9 is refused 
   CHECK(refused_code(edited(dir, "vessel_golden_shell.yaml", "tolerance: 0.005",
                             "tolerance: 1e-9\nmax_triangles: 2e9", "huge.yaml"),
                      dir, 20.0) == 2);
+}
+
+TEST_CASE("budget: a vessel larger than a halfedge mesh can hold is refused before allocating it",
+          "[pipeline][budget]") {
+  // 7.2e8 triangles: within max_triangles 2e9, past OpenMesh's int halfedge
+  // numbers; it used to end in std::bad_alloc (exit 3) after seconds and gigabytes.
+  const fs::path dir = fresh_dir("budget_vessel_halfedges");
+  const std::string design = edited(dir, "vessel_golden_shell.yaml", "tolerance: 0.005",
+                                    "tolerance: 1e-7\nmax_triangles: 2e9", "dense.yaml");
+  const LimitedRun r = run_limited({"run", design, "-o", (dir / "out").string()}, 20.0, kMemory);
+  INFO(r.describe() << "\n" << r.out << r.err);
+  REQUIRE_FALSE(r.timed_out);
+  REQUIRE(r.signal == 0);
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err, Catch::Contains("a halfedge mesh can hold"));
+  CHECK(names_place(r.err, design, "tolerance"));
+  CHECK((!fs::exists(dir / "out") || fs::is_empty(dir / "out")));
 }
 
 TEST_CASE("budget: a countertop at tolerance 1e-12 is refused before sampling", "[pipeline][budget]") {

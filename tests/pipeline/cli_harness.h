@@ -55,4 +55,21 @@ inline int run_cli(std::vector<std::string> args, std::string* combined = nullpt
   return r.code;
 }
 
+/// Whether `text` names `file:LINE:COLUMN: key: ` (a message located at a design's key).
+inline bool names_place(const std::string& text, const std::string& file, const std::string& key) {
+  for (std::size_t at = text.find(file + ":"); at != std::string::npos; at = text.find(file + ":", at + 1)) {
+    std::size_t i = at + file.size() + 1;
+    int numbers = 0;
+    while (numbers < 2) {
+      const std::size_t digits = i;
+      while (i < text.size() && text[i] >= '0' && text[i] <= '9') ++i;
+      if (i == digits || i >= text.size() || text[i] != ':') break;
+      ++i;
+      ++numbers;
+    }
+    if (numbers == 2 && text.compare(i, key.size() + 3, " " + key + ": ") == 0) return true;
+  }
+  return false;
+}
+
 }  // namespace fabmesh::testing

@@ -56,11 +56,15 @@ const OverrideOrigin* Fields::origin_of(const YAML::Node& node) const {
   return nullptr;
 }
 
-std::string Fields::label(const YAML::Node& node, const std::string& field) const {
-  if (const OverrideOrigin* o = origin_of(node)) return fmt::format("-D {}: {}", o->text, field);
+std::string Fields::location(const YAML::Node& node) const {
+  if (const OverrideOrigin* o = origin_of(node)) return "-D " + o->text;
   const YAML::Mark m = node.IsDefined() ? node.Mark() : YAML::Mark::null_mark();
-  if (m.line < 0) return fmt::format("{}: {}", path_, field);
-  return fmt::format("{}:{}:{}: {}", path_, m.line + 1, m.column + 1, field);
+  if (m.line < 0) return path_;
+  return fmt::format("{}:{}:{}", path_, m.line + 1, m.column + 1);
+}
+
+std::string Fields::label(const YAML::Node& node, const std::string& field) const {
+  return fmt::format("{}: {}", location(node), field);
 }
 
 YAML::Node Fields::required(const YAML::Node& parent, const char* key, const std::string& field) const {

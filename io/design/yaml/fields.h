@@ -28,6 +28,9 @@ class Fields {
       : path_(std::move(path)), overrides_(std::move(overrides)) {}
   const std::string& path() const { return path_; }
 
+  /// "path:line:column" of a node (1-based), "-D path=value" for a node an
+  /// override put there, or the path alone when the node has no mark.
+  std::string location(const YAML::Node& node) const;
   /// "path:line:column: field" for a node (1-based line and column), or
   /// "-D path=value: field" for a node an override put there.
   std::string label(const YAML::Node& node, const std::string& field) const;
