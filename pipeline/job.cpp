@@ -54,6 +54,7 @@ std::string path_of(const Design& design, const OutputFormat& format, const JobO
 
 PreparedJob prepare_job(const Design& design, const JobOptions& options) {
   PreparedJob job;
+  job.on_stage = options.on_stage;
   JobReport& report = job.report;
   DesignCommon common = design.common;
   if (options.export_units) common.export_units = *options.export_units;
@@ -62,7 +63,7 @@ PreparedJob prepare_job(const Design& design, const JobOptions& options) {
   report.units = common.units;
   report.export_units = common.export_units;
   report.tolerance = common.tolerance;
-  StageTimer watch(report.timings_ms);
+  StageTimer watch(report.timings_ms, options.on_stage);
   const std::vector<const OutputFormat*> formats = formats_of(design, options);
   if (options.output_file && formats.size() != 1) {
     std::string names;
@@ -133,7 +134,7 @@ PreparedJob prepare_job(const Design& design, const JobOptions& options) {
 }
 
 JobReport write_job(PreparedJob job) {
-  StageTimer watch(job.report.timings_ms);
+  StageTimer watch(job.report.timings_ms, job.on_stage);
   for (const FileWrite& f : job.files) {
     const std::filesystem::path folder = std::filesystem::path(f.path).parent_path();
     if (folder.empty()) continue;

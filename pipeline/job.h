@@ -26,6 +26,9 @@ struct JobOptions {
   /// Formats added to the design's own (e.g. "png" and "plot" for `run --report`)
   /// where the design's kind and content allow them; unknown names are ignored.
   std::vector<std::string> also_formats;
+  /// Told after each stage of the job ("curve", "build", "validate", "encode_stl",
+  /// "write", ...), from the thread that runs it: progress of a long run.
+  StageObserver on_stage;
 };
 
 /// One file a job wrote.
@@ -64,6 +67,7 @@ struct JobReport {
 struct PreparedJob {
   JobReport report;
   std::vector<FileWrite> files;  ///< every output's path and bytes
+  StageObserver on_stage;        ///< JobOptions::on_stage, for write_job's stage
 };
 
 /// Builds, validates and encodes `design` into its outputs' bytes. Does no

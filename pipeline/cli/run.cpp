@@ -2,8 +2,10 @@
 
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
+#include <unistd.h>
 
 #include <filesystem>
+#include <iostream>
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -11,6 +13,7 @@
 #include "geometry/core/errors.h"
 #include "io/file.h"
 #include "pipeline/cli/commands.h"
+#include "pipeline/cli/run_progress.h"
 #include "pipeline/failure.h"
 #include "pipeline/job.h"
 #include "pipeline/load_design.h"
@@ -144,21 +147,34 @@ int run_designs(const RunArgs& args, Streams io) {
     }
   });
   require_unique_names(outcomes, args);
+  std::optional<RunProgress> progress;
+  if (io.verbosity > 0) {
+    const bool terminal = &io.err == &std::cerr && ::isatty(STDERR_FILENO) == 1;
+    progress.emplace(io.err, args.designs.size(), terminal);
+  }
   // Jobs are pure functions of their designs: they run in parallel.
   tbb::parallel_for(std::size_t{0}, args.designs.size(), [&](std::size_t i) {
     Outcome& o = outcomes[i];
     if (!o.design) return;
+    JobOptions job = options;
+    if (progress) {
+      job.on_stage = [&progress, name = o.design->common.name](const std::string& stage, double ms) {
+        progress->stage(name, stage, ms);
+      };
+    }
     try {
       if (to_stdout) {
-        o.streamed = prepare_job(*o.design, options);
+        o.streamed = prepare_job(*o.design, job);
         o.report = o.streamed->report;
       } else {
-        o.report = run_job(*o.design, options);
+        o.report = run_job(*o.design, job);
       }
     } catch (...) {
       fail_with(o, args.designs[i]);
     }
+    if (progress) progress->design_done();
   });
+  if (progress) progress->finish();
   // With -o - the file is the standard output: reports go to the error stream.
   std::ostream& report_out = to_stdout ? io.err : io.out;
   int code = 0;
