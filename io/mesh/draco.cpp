@@ -1,8 +1,8 @@
 #include "io/mesh/draco.h"
 
 #include <draco/compression/decode.h>
-#include <draco/core/quantization_utils.h>
 #include <draco/compression/encode.h>
+#include <draco/core/quantization_utils.h>
 #include <draco/mesh/mesh.h>
 #include <fmt/format.h>
 
@@ -454,7 +454,8 @@ std::optional<TriangleSoup> decode_matched(const std::string& bytes, const Trian
   }
   TriangleSoup out;
   out.vertices = soup.vertices;  // unreferenced vertices (Draco drops them) keep their place
-  for (std::size_t j = 0; j < np; ++j) out.vertices[sigma[j]] = Vec3(decoded[j][0], decoded[j][1], decoded[j][2]);
+  for (std::size_t j = 0; j < np; ++j)
+    out.vertices[sigma[j]] = Vec3(decoded[j][0], decoded[j][1], decoded[j][2]);
   out.triangles = soup.triangles;
   return out;
 }
