@@ -3,7 +3,7 @@
 # the golden shell vessel at ~1.9e5 triangles, `outputs: [stl]` vs
 # `outputs: [stl, drc]`, for each fabmesh binary given (e.g. a baseline and
 # the current build, timed in the same run), plus the median `timings_ms`
-# of RUNS runs and draco_encoder (Debian draco-tools) on the same STL.
+# of RUNS runs (NO_HYPERFINE=1: only these) and draco_encoder (Debian draco-tools) on the same STL.
 #
 #   bench/draco_vs_stl.sh [FABMESH ...]     # default: build-bench/pipeline/fabmesh
 #   RUNS=10 TOLERANCE=0.00043 bench/draco_vs_stl.sh /tmp/fabmesh-main build-bench/pipeline/fabmesh
@@ -22,7 +22,7 @@ for bin in "$@"; do
     commands+=("$bin run $design -D tolerance=$tolerance -D outputs=$outputs -o $work/out/")
   done
 done
-if command -v hyperfine >/dev/null; then
+if [ -z "${NO_HYPERFINE:-}" ] && command -v hyperfine >/dev/null; then
   hyperfine -N --warmup 1 --runs "$runs" "${commands[@]}"
 fi
 
@@ -40,7 +40,7 @@ while i < len(text):
     reports += value
 keys = ["build", "validate", "encode_stl", "encode_drc", "write"]
 print(sys.argv[1], reports[0]["triangles"], "triangles; median ms:",
-      ", ".join(f"{k} {statistics.median(r[\"timings_ms\"][k] for r in reports):.1f}" for k in keys))
+      ", ".join(k + " %.1f" % statistics.median(r["timings_ms"][k] for r in reports) for k in keys))
 ' "$bin"
 done
 
