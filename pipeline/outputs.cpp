@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "geometry/core/errors.h"
+#include "geometry/mesh/moved_validation.h"
 #include "io/cutting/dxf.h"
 #include "io/cutting/gcode.h"
 #include "io/cutting/svg.h"
@@ -86,18 +87,23 @@ Files encode_3mf_output(const EncodeContext& c) {
   return {within_tolerance(unitless(encode_3mf({{c.common.name, c.exported}}, options), c, error), c, "3mf")};
 }
 
-// Quantization may collapse or fold faces: each candidate's decoded mesh is validated.
-std::function<bool(const TriangleSoup&)> still_fit(const EncodeContext& c) {
+// Quantization may collapse or fold faces: each candidate's decoded mesh is
+// validated. Its faces are `input`'s (fit_draco checks that), so its
+// combinatorial facts are the built mesh's (validated by the job) and only
+// its geometry is tested again (validate_moved: the same verdict as validate).
+std::function<bool(const TriangleSoup&)> still_fit(const EncodeContext& c, const TriangleSoup& input) {
   const MeshPurpose purpose = c.built.purpose;
-  return [purpose](const TriangleSoup& decoded) { return fit_for(validate(decoded), purpose); };
+  const ValidationReport& built = c.built.validation;
+  return [purpose, &built, &input](const TriangleSoup& decoded) {
+    return fit_for(validate_moved(input, built, decoded), purpose);
+  };
 }
 
 Files encode_drc_output(const EncodeContext& c) {
   const double tolerance = c.output_tolerance * c.export_scale;  // export units
-  const DracoFit fit = fit_draco(c.exported, tolerance, still_fit(c), "drc");
-  Encoded out = unitless(encode_draco_bits(c.exported, fit.bits), c, fit.max_displacement / c.export_scale);
-  require_draco_matches(out.bytes, fit);
-  return {std::move(out)};
+  DracoFit fit = fit_draco(c.exported, tolerance, still_fit(c, c.exported), "drc");
+  // fit.bytes are the file whose decoding was matched to the mesh and validated.
+  return {unitless(std::move(fit.bytes), c, fit.max_displacement / c.export_scale)};
 }
 
 GlbOptions glb_options(const EncodeContext& c) {
@@ -120,7 +126,7 @@ Files encode_glb_draco_output(const EncodeContext& c) {
   GlbOptions options = glb_options(c);
   const TriangleSoup metres = to_gltf_frame(c.built.soup, options.scale_to_metres);
   const DracoFit fit =
-      fit_draco(metres, c.output_tolerance * options.scale_to_metres, still_fit(c), "glb_draco");
+      fit_draco(metres, c.output_tolerance * options.scale_to_metres, still_fit(c, metres), "glb_draco");
   options.draco = true;
   options.draco_position_bits = fit.bits;
   return {{encode_glb(c.built.soup, options), "m", fit.max_displacement / options.scale_to_metres, ""}};

@@ -2,6 +2,7 @@
 
 #include <draco/compression/decode.h>
 #include <draco/compression/encode.h>
+#include <draco/core/quantization_utils.h>
 #include <draco/mesh/mesh.h>
 #include <fmt/format.h>
 
@@ -9,9 +10,11 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <memory>
 #include <optional>
+#include <unordered_map>
 
 #include "geometry/core/errors.h"
 #include "io/file.h"
@@ -324,6 +327,139 @@ double max_displacement(const TriangleSoup& a, const TriangleSoup& b) {
   return worst;
 }
 
+/// Where Draco's position quantization with `bits` puts each vertex of
+/// `soup`: the float32 positions a decoder returns. It follows Draco's
+/// AttributeQuantizationTransform (float32 arithmetic, Draco's own Quantizer
+/// and Dequantizer): the box's minimum corner and its largest extent (1 when
+/// zero) set the grid. A prediction only: decode_matched verifies it.
+std::vector<std::array<float, 3>> predicted_positions(const TriangleSoup& soup, int bits) {
+  std::array<float, 3> lo{}, hi{};
+  for (int k = 0; k < 3; ++k) {
+    lo[k] = std::numeric_limits<float>::infinity();
+    hi[k] = -lo[k];
+  }
+  for (const Vec3& p : soup.vertices) {
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::min(lo[k], static_cast<float>(p[k]));
+      hi[k] = std::max(hi[k], static_cast<float>(p[k]));
+    }
+  }
+  float range = 0.0f;
+  for (int k = 0; k < 3; ++k) range = std::max(range, hi[k] - lo[k]);
+  if (range == 0.0f) range = 1.0f;
+  const auto max_quantized = static_cast<std::int32_t>((std::uint32_t{1} << bits) - 1);
+  draco::Quantizer quantizer;
+  quantizer.Init(range, max_quantized);
+  draco::Dequantizer dequantizer;
+  std::vector<std::array<float, 3>> out(soup.vertices.size());
+  if (!dequantizer.Init(range, max_quantized)) return {};
+  for (std::size_t i = 0; i < soup.vertices.size(); ++i) {
+    for (int k = 0; k < 3; ++k) {
+      const std::int32_t q = quantizer.QuantizeFloat(static_cast<float>(soup.vertices[i][k]) - lo[k]);
+      out[i][k] = dequantizer.DequantizeFloat(q) + lo[k];
+    }
+  }
+  return out;
+}
+
+/// The bits of three floats, for exact comparison (+0 and -0 differ, as they may in a file).
+struct FloatKey {
+  std::uint32_t x, y, z;
+  bool operator==(const FloatKey& o) const { return x == o.x && y == o.y && z == o.z; }
+};
+struct FloatKeyHash {
+  std::size_t operator()(const FloatKey& k) const {
+    std::uint64_t h = k.x * 0x9E3779B97F4A7C15ull;
+    h ^= (h >> 29) + k.y * 0xBF58476D1CE4E5B9ull;
+    h ^= (h >> 31) + k.z * 0x94D049BB133111EBull;
+    return static_cast<std::size_t>(h ^ (h >> 32));
+  }
+};
+FloatKey key_of(const float xyz[3]) {
+  FloatKey k{};
+  std::memcpy(&k.x, &xyz[0], 4);
+  std::memcpy(&k.y, &xyz[1], 4);
+  std::memcpy(&k.z, &xyz[2], 4);
+  return k;
+}
+
+/// The mesh that `bytes` (an encoding of `soup` without ids, `bits` of
+/// quantization) decode to, in the soup's vertex order and with the soup's
+/// triangles; nullopt when the correspondence cannot be established this way
+/// (the caller then falls back to an id-tagged encoding).
+///
+/// Why the result is exactly the decoded file: each decoded point p_j is
+/// assigned the input vertex sigma(j) whose predicted decoded position equals
+/// p_j bit for bit. The assignment is accepted only when sigma is a bijection
+/// from the decoded points onto the referenced input vertices (no decoded
+/// position repeats, every referenced vertex finds a point) and sigma maps
+/// the decoded faces one to one onto the soup's faces, each with its
+/// orientation (the same cyclic order). Then relabelling by sigma turns the
+/// decoded mesh into the returned one: the same faces over the same
+/// positions. The prediction is only a guess; the checks make it a proof.
+std::optional<TriangleSoup> decode_matched(const std::string& bytes, const TriangleSoup& soup, int bits) {
+  const std::unique_ptr<draco::Mesh> mesh = decode(bytes);
+  const draco::PointAttribute* position = mesh->GetNamedAttribute(draco::GeometryAttribute::POSITION);
+  if (position == nullptr) throw std::logic_error("Draco lost the positions of its own output");
+  const std::size_t np = mesh->num_points();
+  if (mesh->num_faces() != soup.triangles.size()) return std::nullopt;
+  std::vector<std::array<float, 3>> decoded(np);
+  std::unordered_map<FloatKey, std::uint32_t, FloatKeyHash> point_at;
+  point_at.reserve(2 * np);
+  for (draco::PointIndex::ValueType j = 0; j < np; ++j) {
+    position->ConvertValue<float, 3>(position->mapped_index(draco::PointIndex(j)), decoded[j].data());
+    if (!point_at.emplace(key_of(decoded[j].data()), j).second) return std::nullopt;  // a repeated position
+  }
+  std::vector<char> referenced(soup.vertices.size(), 0);
+  for (const auto& t : soup.triangles) referenced[t[0]] = referenced[t[1]] = referenced[t[2]] = 1;
+  const std::vector<std::array<float, 3>> predicted = predicted_positions(soup, bits);
+  if (predicted.size() != soup.vertices.size()) return std::nullopt;
+  constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+  std::vector<std::uint32_t> sigma(np, kNone);  // decoded point -> input vertex
+  std::size_t matched = 0;
+  for (std::uint32_t i = 0; i < soup.vertices.size(); ++i) {
+    if (!referenced[i]) continue;
+    const auto it = point_at.find(key_of(predicted[i].data()));
+    if (it == point_at.end() || sigma[it->second] != kNone) return std::nullopt;
+    sigma[it->second] = i;
+    ++matched;
+  }
+  if (matched != np) return std::nullopt;
+  // The soup's faces by their smallest vertex, in canonical rotation.
+  std::vector<std::uint32_t> first(soup.vertices.size() + 1, 0);
+  std::vector<std::array<std::uint32_t, 3>> canon(soup.triangles.size());
+  for (std::size_t f = 0; f < soup.triangles.size(); ++f) {
+    canon[f] = canonical(soup.triangles[f]);
+    ++first[canon[f][0] + 1];
+  }
+  for (std::size_t v = 0; v < soup.vertices.size(); ++v) first[v + 1] += first[v];
+  std::vector<std::uint32_t> bucket(soup.triangles.size());
+  {
+    std::vector<std::uint32_t> fill(first.begin(), first.end() - 1);
+    for (std::uint32_t f = 0; f < soup.triangles.size(); ++f) bucket[fill[canon[f][0]]++] = f;
+  }
+  std::vector<char> used(soup.triangles.size(), 0);
+  for (draco::FaceIndex::ValueType f = 0; f < mesh->num_faces(); ++f) {
+    const draco::Mesh::Face& face = mesh->face(draco::FaceIndex(f));
+    const std::array<std::uint32_t, 3> t =
+        canonical({sigma[face[0].value()], sigma[face[1].value()], sigma[face[2].value()]});
+    bool found = false;
+    for (std::uint32_t b = first[t[0]]; b < first[t[0] + 1] && !found; ++b) {
+      if (canon[bucket[b]] == t && !used[bucket[b]]) {
+        used[bucket[b]] = 1;
+        found = true;
+      }
+    }
+    if (!found) return std::nullopt;
+  }
+  TriangleSoup out;
+  out.vertices = soup.vertices;  // unreferenced vertices (Draco drops them) keep their place
+  for (std::size_t j = 0; j < np; ++j)
+    out.vertices[sigma[j]] = Vec3(decoded[j][0], decoded[j][1], decoded[j][2]);
+  out.triangles = soup.triangles;
+  return out;
+}
+
 }  // namespace
 
 std::string encode_draco(const TriangleSoup& soup, const DracoOptions& options) {
@@ -352,12 +488,21 @@ DracoFit fit_draco(const TriangleSoup& soup, double tolerance,
   // The fewest bits whose half step alone fits; float32 rounding is measured, not assumed.
   int bits = 1;
   while (bits < 30 && std::sqrt(3.0) * 0.5 * extent / (std::ldexp(1.0, bits) - 1.0) > tolerance) ++bits;
-  const std::unique_ptr<draco::Mesh> tagged = draco_mesh(soup, true);
+  const std::unique_ptr<draco::Mesh> plain = draco_mesh(soup, false);
+  std::unique_ptr<draco::Mesh> tagged;  // only when the position match fails
   double best = std::numeric_limits<double>::infinity();
   bool folded = false;
   for (; bits <= 30; ++bits) {
-    std::optional<TriangleSoup> decoded = decode_tagged(encode(*tagged, bits, options), soup);
-    if (!decoded) throw std::logic_error(format + ": Draco changed the faces of the mesh");
+    std::string bytes = encode(*plain, bits, options);
+    std::optional<TriangleSoup> decoded = decode_matched(bytes, soup, bits);
+    if (!decoded) {
+      // The slow exact way: ids give the correspondence, then the id-free
+      // file is checked to decode to the same faces and positions.
+      if (!tagged) tagged = draco_mesh(soup, true);
+      decoded = decode_tagged(encode(*tagged, bits, options), soup);
+      if (!decoded) throw std::logic_error(format + ": Draco changed the faces of the mesh");
+      require_draco_matches(bytes, DracoFit{bits, 0.0, *decoded, {}});
+    }
     const double moved = max_displacement(soup, *decoded);
     best = std::min(best, moved);
     if (moved > tolerance) continue;
@@ -365,7 +510,7 @@ DracoFit fit_draco(const TriangleSoup& soup, double tolerance,
       folded = true;
       continue;
     }
-    return {bits, moved, std::move(*decoded)};
+    return {bits, moved, std::move(*decoded), std::move(bytes)};
   }
   if (folded) {
     throw OutputError(format,

@@ -68,15 +68,20 @@ struct DracoFit {
   int bits = 0;
   double max_displacement = 0.0;  ///< measured: the farthest any vertex moved, model units
   TriangleSoup decoded;           ///< the decoded mesh with the input's vertex order and faces
+  std::string bytes;              ///< the Draco file (no extra attributes) that decodes to `decoded`
 };
 
 /// The fewest quantization bits whose MEASURED displacement of every vertex
 /// is <= `tolerance` and whose decoded mesh `accept` takes (quantization can
-/// collapse or fold faces). Each try encodes the mesh with an extra integer
-/// attribute holding each vertex's index, so every decoded vertex is matched
-/// to its input vertex exactly, and checks that the decoded faces are the
-/// input's faces. The bits found give the same positions without that
-/// attribute (quantization depends on the positions only). `format` names
+/// collapse or fold faces). Each try encodes the mesh once, as it is written,
+/// decodes it, and matches every decoded point to its input vertex by the
+/// position Draco's quantizer gives that vertex; the match is accepted only
+/// as a bijection under which the decoded faces are the input's faces with
+/// their orientation, so `decoded` is exactly what the file decodes to, in
+/// the input's order. When the match fails (two vertices quantize to the same
+/// position, or Draco split a vertex), that try falls back to an encoding
+/// with an extra id attribute and checks the id-free file against it.
+/// `accept` gets `decoded`, whose triangles are the input's. `format` names
 /// the output in messages ("drc", "glb_draco").
 /// \throw OutputError when no quantization fits, saying by how much and what to change
 DracoFit fit_draco(const TriangleSoup& soup, double tolerance,
@@ -85,6 +90,7 @@ DracoFit fit_draco(const TriangleSoup& soup, double tolerance,
 
 /// Throws std::logic_error unless `bytes` decode to `fit.decoded`'s faces and
 /// positions (as multisets): the file written is the mesh that was validated.
+/// fit_draco's `bytes` pass by construction; this is the independent check.
 void require_draco_matches(std::string_view bytes, const DracoFit& fit);
 
 /// Writes `soup` (or `mesh`) as Draco to `path`, atomically.
