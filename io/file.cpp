@@ -11,6 +11,8 @@
 #include <cstring>
 #include <filesystem>
 #include <random>
+#include <tuple>
+#include <utility>
 
 #include "geometry/core/errors.h"
 
@@ -33,12 +35,6 @@ class Descriptor {
   Descriptor(const Descriptor&) = delete;
   Descriptor& operator=(const Descriptor&) = delete;
   int get() const { return fd_; }
-  /// Closes now and reports the error close found (0 when fine).
-  int close() {
-    const int result = ::close(fd_);
-    fd_ = -1;
-    return result == 0 ? 0 : errno;
-  }
 
  private:
   int fd_;
@@ -126,34 +122,6 @@ std::pair<std::string, int> create_temporary(const std::string& path) {
   fail(path, "cannot create a temporary file", EEXIST);
 }
 
-// Writes `bytes` to a fresh temporary of `path`, flushed; returns its name.
-std::string write_temporary(const std::string& path, std::string_view bytes) {
-  remove_stale_temporaries(path);
-  auto [temp, raw] = create_temporary(path);
-  Descriptor fd(raw);
-  const char* data = bytes.data();
-  std::size_t left = bytes.size();
-  while (left > 0) {
-    const ssize_t n = ::write(fd.get(), data, left);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      const int error = n < 0 ? errno : EIO;
-      std::remove(temp.c_str());
-      fail(path, "write failed", error);
-    }
-    data += n;
-    left -= static_cast<std::size_t>(n);
-  }
-  int error = ::fsync(fd.get()) == 0 ? 0 : errno;
-  const int close_error = fd.close();
-  if (error == 0) error = close_error;
-  if (error != 0) {
-    std::remove(temp.c_str());
-    fail(path, "flush failed", error);
-  }
-  return temp;
-}
-
 // Makes the renames in a folder durable.
 void sync_folder(const std::string& path) {
   const fs::path target(path);
@@ -176,52 +144,115 @@ std::string read_file(const std::string& path, std::size_t max_bytes, std::strin
 
 std::string read_file(const std::string& path) { return read_bounded(path, SIZE_MAX - 1, "file"); }
 
-void write_file_atomically(const std::string& path, std::string_view bytes) {
-  const std::string temp = write_temporary(path, bytes);
-  if (std::rename(temp.c_str(), path.c_str()) != 0) {
-    const int error = errno;
-    std::remove(temp.c_str());
-    fail(path, "cannot rename the temporary file into place", error);
-  }
-  sync_folder(path);
+PendingFile::PendingFile(std::string path) : path_(std::move(path)) {
+  remove_stale_temporaries(path_);
+  std::tie(temporary_, fd_) = create_temporary(path_);
 }
 
-void write_files_atomically(const std::vector<FileWrite>& files) {
-  std::vector<std::string> temps;
-  auto remove_all = [](const std::vector<std::string>& names) {
-    for (const std::string& n : names) std::remove(n.c_str());
-  };
-  try {
-    for (const FileWrite& f : files) temps.push_back(write_temporary(f.path, f.bytes));
-  } catch (...) {
-    remove_all(temps);
-    throw;
+PendingFile::PendingFile(PendingFile&& other) noexcept
+    : path_(std::move(other.path_)), temporary_(std::move(other.temporary_)), fd_(other.fd_) {
+  other.temporary_.clear();
+  other.fd_ = -1;
+}
+
+PendingFile::~PendingFile() { discard(); }
+
+void PendingFile::discard() noexcept {
+  if (fd_ >= 0) ::close(fd_);
+  fd_ = -1;
+  if (!temporary_.empty()) std::remove(temporary_.c_str());
+  temporary_.clear();
+}
+
+void PendingFile::write(std::string_view bytes) {
+  if (fd_ < 0) throw FileError(path_, 0, 0, fmt::format("{}: written after it was finished", path_));
+  const char* data = bytes.data();
+  std::size_t left = bytes.size();
+  while (left > 0) {
+    const ssize_t n = ::write(fd_, data, left);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const int error = n < 0 ? errno : EIO;
+      discard();
+      fail(path_, "write failed", error);
+    }
+    data += n;
+    left -= static_cast<std::size_t>(n);
   }
-  // Keep the previous version of each target (a hard link) until every rename succeeded.
+}
+
+void PendingFile::finish() {
+  if (fd_ < 0) throw FileError(path_, 0, 0, fmt::format("{}: finished twice", path_));
+  int error = ::fsync(fd_) == 0 ? 0 : errno;
+  const int close_error = ::close(fd_) == 0 ? 0 : errno;
+  fd_ = -1;
+  if (error == 0) error = close_error;
+  if (error != 0) {
+    discard();
+    fail(path_, "flush failed", error);
+  }
+}
+
+void commit_files(std::vector<PendingFile>& files) {
+  for (const PendingFile& f : files) {
+    if (f.fd_ >= 0 || f.temporary_.empty())
+      throw FileError(f.path_, 0, 0, fmt::format("{}: committed before it was finished", f.path_));
+  }
+  // Keep the previous version of each target (a hard link) until every rename
+  // succeeded; a single file needs none: its one rename is atomic.
   std::vector<std::string> backups(files.size());
-  for (std::size_t i = 0; i < files.size(); ++i) {
+  for (std::size_t i = 0; i < files.size() && files.size() > 1; ++i) {
     struct stat st {};
-    if (::lstat(files[i].path.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) continue;
-    const std::string backup = temps[i] + "-previous";
-    if (::link(files[i].path.c_str(), backup.c_str()) == 0) backups[i] = backup;
+    if (::lstat(files[i].path_.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) continue;
+    const std::string backup = files[i].temporary_ + "-previous";
+    if (::link(files[i].path_.c_str(), backup.c_str()) == 0) backups[i] = backup;
   }
+  auto remove_backups = [&]() {
+    for (const std::string& b : backups)
+      if (!b.empty()) std::remove(b.c_str());
+  };
   for (std::size_t i = 0; i < files.size(); ++i) {
-    if (std::rename(temps[i].c_str(), files[i].path.c_str()) == 0) continue;
+    if (std::rename(files[i].temporary_.c_str(), files[i].path_.c_str()) == 0) {
+      files[i].temporary_.clear();
+      continue;
+    }
     const int error = errno;
     for (std::size_t j = 0; j < i; ++j) {  // roll back what is already in place
       if (!backups[j].empty()) {
-        std::rename(backups[j].c_str(), files[j].path.c_str());
+        std::rename(backups[j].c_str(), files[j].path_.c_str());
+        backups[j].clear();
       } else {
-        std::remove(files[j].path.c_str());
+        std::remove(files[j].path_.c_str());
       }
     }
-    remove_all({temps.begin() + static_cast<std::ptrdiff_t>(i), temps.end()});
-    remove_all(backups);
-    fail(files[i].path, "cannot rename the temporary file into place (no output of this job was kept)",
+    remove_backups();
+    for (PendingFile& f : files) f.discard();  // the temporaries not renamed
+    fail(files[i].path_,
+         files.size() > 1 ? "cannot rename the temporary file into place (no output of this job was kept)"
+                          : "cannot rename the temporary file into place",
          error);
   }
-  remove_all(backups);
-  for (const FileWrite& f : files) sync_folder(f.path);
+  remove_backups();
+  for (const PendingFile& f : files) sync_folder(f.path_);
+}
+
+void write_file_atomically(const std::string& path, std::string_view bytes) {
+  std::vector<PendingFile> files;
+  files.emplace_back(path);
+  files.back().write(bytes);
+  files.back().finish();
+  commit_files(files);
+}
+
+void write_files_atomically(const std::vector<FileWrite>& files) {
+  std::vector<PendingFile> pending;
+  pending.reserve(files.size());
+  for (const FileWrite& f : files) {
+    pending.emplace_back(f.path);
+    pending.back().write(f.bytes);
+    pending.back().finish();
+  }
+  commit_files(pending);
 }
 
 }  // namespace fabmesh

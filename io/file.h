@@ -41,6 +41,44 @@ void write_file_atomically(const std::string& path, std::string_view bytes);
 /// file is ever truncated. \throw FileError naming the file that failed
 void write_files_atomically(const std::vector<FileWrite>& files);
 
+/// A file being written atomically, piece by piece: its bytes go to a
+/// temporary in the target's folder (created with the process's umask applied
+/// to 0666; stale temporaries of the target left by killed runs removed
+/// first) and reach `path` only through commit_files. Destroying a pending
+/// file that was not committed removes its temporary: nothing partial is ever
+/// left under `path`. Move-only.
+class PendingFile {
+ public:
+  /// Creates the temporary for `path`. \throw FileError
+  explicit PendingFile(std::string path);
+  ~PendingFile();
+  PendingFile(PendingFile&& other) noexcept;
+  PendingFile& operator=(PendingFile&& other) = delete;
+  PendingFile(const PendingFile&) = delete;
+  PendingFile& operator=(const PendingFile&) = delete;
+
+  /// Appends `bytes`. \throw FileError (the temporary is removed)
+  void write(std::string_view bytes);
+  /// Flushes the bytes to disk and closes the temporary; no write after it.
+  /// \throw FileError (the temporary is removed)
+  void finish();
+  /// Where the file goes once committed.
+  const std::string& path() const { return path_; }
+
+ private:
+  friend void commit_files(std::vector<PendingFile>& files);
+  void discard() noexcept;
+  std::string path_;
+  std::string temporary_;  ///< empty once renamed into place or removed
+  int fd_ = -1;
+};
+
+/// Renames finished pending files into place all or nothing, as
+/// write_files_atomically does (previous versions restored when a rename
+/// fails), and makes the renames durable. \throw FileError naming the file
+/// that failed, or a file not finished
+void commit_files(std::vector<PendingFile>& files);
+
 /// The name pattern of the temporary files write_file_atomically uses for
 /// `path` (".NAME.tmp-HOST-PID-RANDOM" in the same folder), for tests.
 std::string temporary_prefix(const std::string& path);

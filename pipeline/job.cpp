@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <functional>
+#include <optional>
 
 #include "geometry/core/errors.h"
 #include "geometry/mesh/bounding_box.h"
@@ -50,12 +52,13 @@ std::string path_of(const Design& design, const OutputFormat& format, const JobO
   return path_with_suffix(design, std::string(format.file_suffix), options);
 }
 
-}  // namespace
+// A job's outputs as they are encoded: the file each goes to and its encoding.
+using TakeOutput = std::function<void(const std::string& file, Encoded& encoded)>;
 
-PreparedJob prepare_job(const Design& design, const JobOptions& options) {
-  PreparedJob job;
-  job.on_stage = options.on_stage;
-  JobReport& report = job.report;
+// Builds and validates `design`, then encodes its outputs one by one, each
+// handed to `take` while the mesh it may refer to (Encoded::stream) lives.
+JobReport build_and_encode(const Design& design, const JobOptions& options, const TakeOutput& take) {
+  JobReport report;
   DesignCommon common = design.common;
   if (options.export_units) common.export_units = *options.export_units;
   report.name = common.name;
@@ -102,9 +105,12 @@ PreparedJob prepare_job(const Design& design, const JobOptions& options) {
     report.bbox_min = Vec3(lo.x(), lo.y(), 0.0);
     report.bbox_max = Vec3(hi.x(), hi.y(), 0.0);
   }
-  // The encoders get the tolerance the build left unused, and the mesh in the export unit.
+  // The encoders get the tolerance the build left unused, and the mesh in the
+  // export unit (the built mesh itself when the units agree: no copy).
   const double export_scale = metres_per_unit(common.units) / metres_per_unit(common.export_units);
-  const TriangleSoup exported = scaled(built.soup, export_scale);
+  const std::optional<TriangleSoup> rescaled =
+      export_scale == 1.0 ? std::nullopt : std::optional<TriangleSoup>(scaled(built.soup, export_scale));
+  const TriangleSoup& exported = rescaled ? *rescaled : built.soup;
   const double output_tolerance = common.tolerance - built.max_deviation;
   for (const OutputFormat* format : formats) {
     const std::string path = path_of(design, *format, options);
@@ -114,7 +120,7 @@ PreparedJob prepare_job(const Design& design, const JobOptions& options) {
         const std::string file = e.suffix.empty() ? path : path_with_suffix(design, e.suffix, options);
         report.files.push_back({file, std::string(format->name), e.units, e.added_error});
         report.outputs.push_back(file);
-        job.files.push_back({file, std::move(e.bytes)});
+        take(file, e);
       }
     } catch (const OutputError& e) {
       if (common.on_output_error == OutputErrorPolicy::Fail) {
@@ -130,13 +136,12 @@ PreparedJob prepare_job(const Design& design, const JobOptions& options) {
     }
     watch.lap("encode_" + std::string(format->name));
   }
-  return job;
+  return report;
 }
 
-JobReport write_job(PreparedJob job) {
-  StageTimer watch(job.report.timings_ms, job.on_stage);
-  for (const FileWrite& f : job.files) {
-    const std::filesystem::path folder = std::filesystem::path(f.path).parent_path();
+void create_folders(const std::vector<std::string>& paths) {
+  for (const std::string& path : paths) {
+    const std::filesystem::path folder = std::filesystem::path(path).parent_path();
     if (folder.empty()) continue;
     std::error_code ec;
     std::filesystem::create_directories(folder, ec);
@@ -145,13 +150,52 @@ JobReport write_job(PreparedJob job) {
                       fmt::format("{}: cannot create the output folder: {}", folder.string(), ec.message()));
     }
   }
+}
+
+}  // namespace
+
+PreparedJob prepare_job(const Design& design, const JobOptions& options) {
+  PreparedJob job;
+  job.on_stage = options.on_stage;
+  job.report = build_and_encode(design, options, [&](const std::string& file, Encoded& e) {
+    if (e.stream) e.stream([&](std::string_view piece) { e.bytes.append(piece); });
+    job.files.push_back({file, std::move(e.bytes)});
+  });
+  return job;
+}
+
+JobReport write_job(PreparedJob job) {
+  StageTimer watch(job.report.timings_ms, job.on_stage);
+  std::vector<std::string> paths;
+  for (const FileWrite& f : job.files) paths.push_back(f.path);
+  create_folders(paths);
   write_files_atomically(job.files);
   watch.lap("write");
   return std::move(job.report);
 }
 
 JobReport run_job(const Design& design, const JobOptions& options) {
-  return write_job(prepare_job(design, options));
+  // Each output goes to its temporary file as soon as it is encoded (a
+  // streamed one piece by piece, never whole in memory); the temporaries are
+  // renamed into place together once every output is made, and removed when
+  // anything fails: all or nothing, as write_job.
+  std::vector<PendingFile> pending;
+  JobReport report = build_and_encode(design, options, [&](const std::string& file, Encoded& e) {
+    create_folders({file});
+    pending.emplace_back(file);
+    PendingFile& out = pending.back();
+    if (e.stream) {
+      e.stream([&](std::string_view piece) { out.write(piece); });
+    } else {
+      out.write(e.bytes);
+      e.bytes = std::string();  // written: its memory is free for the next output
+    }
+  });
+  StageTimer watch(report.timings_ms, options.on_stage);
+  for (PendingFile& f : pending) f.finish();
+  commit_files(pending);
+  watch.lap("write");
+  return report;
 }
 
 }  // namespace fabmesh

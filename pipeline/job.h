@@ -1,6 +1,6 @@
 #pragma once
 // One design through the stages: build and validate (no I/O), encode every
-// output in memory, then write them all or none.
+// output, then write them all or none.
 
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -82,7 +82,13 @@ PreparedJob prepare_job(const Design& design, const JobOptions& options);
 /// creating their folder when missing. \throw FileError
 JobReport write_job(PreparedJob job);
 
-/// prepare_job then write_job.
+/// prepare_job then write_job, with the same guarantees (nothing written
+/// unless valid, all outputs or none, umask, fsync) but without holding the
+/// outputs in memory: each goes to its temporary file as it is encoded (a
+/// large STL in pieces, Encoded::stream), and the temporaries are renamed
+/// into place together at the end, or removed when anything fails. Stage
+/// "encode_FORMAT" then includes writing to the temporary; "write" is the
+/// flush and the renames. \throw as prepare_job and write_job
 JobReport run_job(const Design& design, const JobOptions& options);
 
 }  // namespace fabmesh

@@ -67,7 +67,10 @@ Encoded unitless(std::string bytes, const EncodeContext& c, double error) {
 }
 
 Files encode_stl_output(const EncodeContext& c) {
-  return {within_tolerance(unitless(encode_stl(c.exported), c, float32_error(c)), c, "stl")};
+  Encoded e = unitless({}, c, float32_error(c));
+  const TriangleSoup& soup = c.exported;
+  e.stream = [&soup](const std::function<void(std::string_view)>& sink) { encode_stl_pieces(soup, sink); };
+  return {within_tolerance(std::move(e), c, "stl")};
 }
 Files encode_obj_output(const EncodeContext& c) {
   return {within_tolerance(unitless(encode_obj(c.exported), c, double_error(c)), c, "obj")};

@@ -4,6 +4,7 @@
 // kind and the job's encoding all come from here.
 
 #include <bitset>
+#include <functional>
 #include <string>
 #include <string_view>
 #include <variant>
@@ -59,6 +60,10 @@ struct Encoded {
   /// Replaces the format's file_suffix when an output is several files
   /// (one per mould part: ".mould-side-1.stl").
   std::string suffix;
+  /// When set, `bytes` is empty and this hands them to its sink in pieces
+  /// instead (a large STL is written straight to its file, never held whole).
+  /// It refers to the EncodeContext's meshes: call it while they live.
+  std::function<void(const std::function<void(std::string_view)>&)> stream = nullptr;
 };
 
 /// What an output is made from: the builders make the cutting outline only when an output needs it.

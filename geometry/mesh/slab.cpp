@@ -2,6 +2,12 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <stdexcept>
+#include <vector>
+
 #include "geometry/core/errors.h"
 
 namespace fabmesh {
@@ -12,33 +18,91 @@ std::size_t slab_triangle_count(const PlanarTriangulation& t) {
   return 2 * t.triangles.size() + walls;
 }
 
-Mesh extrude(const PlanarTriangulation& t, double thickness) {
-  require_positive("thickness", thickness);
-  const std::size_t n = t.vertices.size();
-  const std::size_t faces = slab_triangle_count(t);
-  Mesh mesh;
-  mesh.reserve(2 * n, 3 * faces / 2, faces);
-  // Bottom copy i, top copy n + i.
-  for (const Vec2& p : t.vertices) mesh.add_vertex(Mesh::Point(p.x(), p.y(), 0.0));
-  for (const Vec2& p : t.vertices) mesh.add_vertex(Mesh::Point(p.x(), p.y(), thickness));
-  auto vh = [](std::size_t i) { return Mesh::VertexHandle(static_cast<int>(i)); };
-  auto add = [&](std::size_t a, std::size_t b, std::size_t c) {
-    if (!mesh.add_face(vh(a), vh(b), vh(c)).is_valid()) {
-      throw std::logic_error(
-          fmt::format("extrude: face ({}, {}, {}) refused: the triangulation is not a manifold "
-                      "disc with holes",
-                      a, b, c));
-    }
-  };
-  for (const auto& f : t.triangles) add(n + f[0], n + f[1], n + f[2]);  // top, normal +z
-  for (const auto& f : t.triangles) add(f[0], f[2], f[1]);              // bottom, normal -z
+namespace {
+
+using Corners = std::array<std::uint32_t, 3>;
+
+// The slab's faces: top (normal +z), bottom (-z), then two per boundary edge.
+std::vector<Corners> slab_faces(const PlanarTriangulation& t) {
+  const auto n = static_cast<std::uint32_t>(t.vertices.size());
+  std::vector<Corners> faces;
+  faces.reserve(slab_triangle_count(t));
+  for (const auto& f : t.triangles) faces.push_back({n + f[0], n + f[1], n + f[2]});
+  for (const auto& f : t.triangles) faces.push_back({f[0], f[2], f[1]});
   // Walls: boundary edge a -> b has the region on its left, so the outside is on its right.
   for (const auto& loop : t.boundary) {
     for (std::size_t i = 0; i < loop.size(); ++i) {
-      const std::size_t a = loop[i], b = loop[(i + 1) % loop.size()];
-      add(a, b, n + b);
-      add(a, n + b, n + a);
+      const std::uint32_t a = loop[i], b = loop[(i + 1) % loop.size()];
+      faces.push_back({a, b, n + b});
+      faces.push_back({a, n + b, n + a});
     }
+  }
+  return faces;
+}
+
+[[noreturn]] void refuse(const Corners& f) {
+  throw std::logic_error(
+      fmt::format("extrude: face ({}, {}, {}) refused: the triangulation is not a manifold "
+                  "disc with holes",
+                  f[0], f[1], f[2]));
+}
+
+}  // namespace
+
+// The halfedge arrays are written directly (as revolve does): every side of
+// every face is paired with the opposite side of exactly one other face, found
+// by sorting the sides; anything else is refused, so the result is closed.
+Mesh extrude(const PlanarTriangulation& t, double thickness) {
+  require_positive("thickness", thickness);
+  const std::size_t n = t.vertices.size();
+  const std::vector<Corners> faces = slab_faces(t);
+  // Side 3 f + k runs from corner k to corner k + 1 of face f; sorted by undirected edge.
+  struct Side {
+    std::uint64_t key;
+    std::uint32_t side;
+  };
+  std::vector<Side> sides(3 * faces.size());
+  for (std::uint32_t f = 0; f < faces.size(); ++f) {
+    for (std::uint32_t k = 0; k < 3; ++k) {
+      const std::uint64_t a = faces[f][k], b = faces[f][(k + 1) % 3];
+      if (a == b) refuse(faces[f]);
+      sides[3 * f + k] = {std::min(a, b) << 32 | std::max(a, b), 3 * f + k};
+    }
+  }
+  std::sort(sides.begin(), sides.end(),
+            [](const Side& x, const Side& y) { return x.key != y.key ? x.key < y.key : x.side < y.side; });
+  Mesh mesh;
+  mesh.resize(2 * n, sides.size() / 2, faces.size());
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec2& p = t.vertices[i];
+    mesh.set_point(Mesh::VertexHandle(static_cast<int>(i)), Mesh::Point(p.x(), p.y(), 0.0));
+    mesh.set_point(Mesh::VertexHandle(static_cast<int>(n + i)), Mesh::Point(p.x(), p.y(), thickness));
+  }
+  // Halfedge of each side: edges numbered in key order, the lower side first.
+  std::vector<int> halfedge_of(sides.size());
+  for (std::size_t i = 0; i < sides.size(); i += 2) {
+    const Side& s = sides[i];
+    const std::uint32_t fs = s.side / 3, ks = s.side % 3;
+    if (i + 1 >= sides.size() || sides[i + 1].key != s.key ||
+        (i + 2 < sides.size() && sides[i + 2].key == s.key))
+      refuse(faces[fs]);
+    const Side& u = sides[i + 1];
+    const std::uint32_t fu = u.side / 3, ku = u.side % 3;
+    if (faces[fs][ks] != faces[fu][(ku + 1) % 3]) refuse(faces[fu]);  // both sides run the same way
+    halfedge_of[s.side] = static_cast<int>(i);
+    halfedge_of[u.side] = static_cast<int>(i + 1);
+  }
+  for (std::uint32_t f = 0; f < faces.size(); ++f) {
+    const Mesh::FaceHandle fh(static_cast<int>(f));
+    for (std::uint32_t k = 0; k < 3; ++k) {
+      const Mesh::HalfedgeHandle h(halfedge_of[3 * f + k]);
+      const auto to = Mesh::VertexHandle(static_cast<int>(faces[f][(k + 1) % 3]));
+      mesh.set_vertex_handle(h, to);
+      mesh.set_face_handle(h, fh);
+      mesh.set_next_halfedge_handle(h, Mesh::HalfedgeHandle(halfedge_of[3 * f + (k + 1) % 3]));
+      mesh.set_halfedge_handle(Mesh::VertexHandle(static_cast<int>(faces[f][k])), h);  // an outgoing one
+    }
+    mesh.set_halfedge_handle(fh, Mesh::HalfedgeHandle(halfedge_of[3 * f + 2]));
   }
   return mesh;
 }

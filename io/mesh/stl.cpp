@@ -3,8 +3,10 @@
 #include <fmt/format.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_group.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -44,6 +46,51 @@ void store_f32_le(char* dst, float f) {
   std::memcpy(&bits, &f, 4);
   if constexpr (__BYTE_ORDER__ == __ORDER_BIG_ENDIAN__) bits = __builtin_bswap32(bits);
   std::memcpy(dst, &bits, 4);
+}
+
+void check_encodable(const TriangleSoup& soup) {
+  require_indices_in_range(soup);
+  if (soup.triangles.size() > std::numeric_limits<std::uint32_t>::max()) {
+    throw InputError(fmt::format("binary STL cannot hold {} triangles", soup.triangles.size()));
+  }
+}
+
+// The 80-byte header text and the triangle count, at `out`.
+void encode_header(const TriangleSoup& soup, char* out) {
+  std::string header = "binary STL written by fabmesh";
+  header.resize(80, ' ');
+  std::memcpy(out, header.data(), 80);
+  std::string count;
+  put_u32(count, static_cast<std::uint32_t>(soup.triangles.size()));
+  std::memcpy(out + 80, count.data(), 4);
+}
+
+// The records of triangles [first, first + count) at `out`. Each 50-byte record
+// depends only on its triangle, so ranges are encoded in parallel with identical bytes.
+void encode_records(const TriangleSoup& soup, std::size_t first, std::size_t count, char* out) {
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(first, first + count, 16384),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                        const auto& t = soup.triangles[i];
+                        const Vec3& a = soup.vertices[t[0]];
+                        const Vec3& b = soup.vertices[t[1]];
+                        const Vec3& c = soup.vertices[t[2]];
+                        const Vec3 n = (b - a).cross(c - a);
+                        const double len = n.norm();
+                        const Vec3 unit = len > 0.0 ? Vec3(n / len) : Vec3::Zero();
+                        float values[12];
+                        for (int k = 0; k < 3; ++k) {
+                          values[k] = static_cast<float>(unit[k]);
+                          values[3 + k] = static_cast<float>(a[k]);
+                          values[6 + k] = static_cast<float>(b[k]);
+                          values[9 + k] = static_cast<float>(c[k]);
+                        }
+                        char* record = out + kRecord * (i - first);
+                        for (std::ptrdiff_t k = 0; k < 12; ++k) store_f32_le(record + 4 * k, values[k]);
+                        record[48] = 0;  // the two attribute bytes (the buffer may be reused)
+                        record[49] = 0;
+                      }
+                    });
 }
 
 TriangleSoup parse_binary(std::string_view bytes, const std::string& name) {
@@ -149,47 +196,54 @@ TriangleSoup parse_stl(std::string_view bytes, const std::string& name) {
 }
 
 std::string encode_stl(const TriangleSoup& soup) {
-  require_indices_in_range(soup);
-  if (soup.triangles.size() > std::numeric_limits<std::uint32_t>::max()) {
-    throw InputError(fmt::format("binary STL cannot hold {} triangles", soup.triangles.size()));
-  }
-  // Sized once and filled record by record: each 50-byte record depends only
-  // on its triangle, so ranges are encoded in parallel with identical bytes.
+  check_encodable(soup);
+  // Sized once and filled record by record.
   std::string out(kHeader + kRecord * soup.triangles.size(), '\0');
-  std::string header = "binary STL written by fabmesh";
-  header.resize(80, ' ');
-  std::memcpy(out.data(), header.data(), 80);
-  std::string count;
-  put_u32(count, static_cast<std::uint32_t>(soup.triangles.size()));
-  std::memcpy(out.data() + 80, count.data(), 4);
-  char* records = out.data() + kHeader;
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, soup.triangles.size(), 16384),
-                    [&](const tbb::blocked_range<std::size_t>& range) {
-                      for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                        const auto& t = soup.triangles[i];
-                        const Vec3& a = soup.vertices[t[0]];
-                        const Vec3& b = soup.vertices[t[1]];
-                        const Vec3& c = soup.vertices[t[2]];
-                        const Vec3 n = (b - a).cross(c - a);
-                        const double len = n.norm();
-                        const Vec3 unit = len > 0.0 ? Vec3(n / len) : Vec3::Zero();
-                        float values[12];
-                        for (int k = 0; k < 3; ++k) {
-                          values[k] = static_cast<float>(unit[k]);
-                          values[3 + k] = static_cast<float>(a[k]);
-                          values[6 + k] = static_cast<float>(b[k]);
-                          values[9 + k] = static_cast<float>(c[k]);
-                        }
-                        char* record = records + kRecord * i;
-                        for (std::ptrdiff_t k = 0; k < 12; ++k) store_f32_le(record + 4 * k, values[k]);
-                        // The two attribute bytes stay zero.
-                      }
-                    });
+  encode_header(soup, out.data());
+  encode_records(soup, 0, soup.triangles.size(), out.data() + kHeader);
   return out;
 }
 
+void encode_stl_pieces(const TriangleSoup& soup, const std::function<void(std::string_view)>& sink,
+                       std::size_t piece_bytes) {
+  check_encodable(soup);
+  const std::size_t per_piece = std::max<std::size_t>(1, piece_bytes / kRecord);
+  const std::size_t n = soup.triangles.size();
+  // Two buffers: the next piece is encoded while the sink takes the current one.
+  std::string buffers[2];
+  for (std::string& b : buffers) b.assign(kHeader + kRecord * std::min(per_piece, n), '\0');
+  encode_header(soup, buffers[0].data());
+  std::size_t first = 0, count = std::min(per_piece, n);  // the current piece's triangles
+  encode_records(soup, first, count, buffers[0].data() + kHeader);
+  std::string_view current(buffers[0].data(), kHeader + kRecord * count);  // the first starts with the header
+  for (int side = 1;; side ^= 1) {
+    const std::size_t next_first = first + count, next_count = std::min(per_piece, n - next_first);
+    tbb::task_group encoding;
+    if (next_count > 0) {
+      char* const out = buffers[side].data();
+      encoding.run(
+          [&soup, next_first, next_count, out] { encode_records(soup, next_first, next_count, out); });
+    }
+    try {
+      sink(current);
+    } catch (...) {
+      encoding.wait();
+      throw;
+    }
+    encoding.wait();
+    if (next_count == 0) break;
+    current = std::string_view(buffers[side].data(), kRecord * next_count);
+    first = next_first;
+    count = next_count;
+  }
+}
+
 void write_stl(const TriangleSoup& soup, const std::string& path) {
-  write_file_atomically(path, encode_stl(soup));
+  std::vector<PendingFile> file;
+  file.emplace_back(path);
+  encode_stl_pieces(soup, [&](std::string_view piece) { file.back().write(piece); });
+  file.back().finish();
+  commit_files(file);
 }
 
 void write_stl(const Mesh& mesh, const std::string& path) { write_stl(to_soup(mesh), path); }

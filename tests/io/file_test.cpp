@@ -7,6 +7,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <filesystem>
 
@@ -103,4 +104,39 @@ TEST_CASE("write_file_atomically: the file gets the process's umask", "[io][file
   REQUIRE(::stat(dir.file("b.stl").c_str(), &b) == 0);
   CHECK((a.st_mode & 0777) == 0640);
   CHECK((b.st_mode & 0777) == 0600);
+}
+
+TEST_CASE("PendingFile: bytes written in pieces reach the target only when committed, and never partly",
+          "[io][file]") {
+  const TempDir dir;
+  const std::string target = dir.file("cup.stl");
+  write_file_atomically(target, "previous");
+  {
+    PendingFile abandoned(target);  // e.g. an encoder failed half-way
+    abandoned.write("half of a new ");
+  }
+  CHECK(read_file(target) == "previous");
+  CHECK(dir.listing() == std::vector<std::string>{"cup.stl"});
+  {
+    std::vector<PendingFile> unfinished;
+    unfinished.emplace_back(target);
+    unfinished.back().write("not flushed");
+    CHECK_THROWS_WITH(commit_files(unfinished), Catch::Contains("before it was finished"));
+  }
+  CHECK(read_file(target) == "previous");
+  CHECK(dir.listing() == std::vector<std::string>{"cup.stl"});
+  std::vector<PendingFile> files;
+  files.emplace_back(target);
+  files.emplace_back(dir.file("cup.drc"));
+  for (const std::string_view piece : {"new ", "bytes ", "in pieces"}) files[0].write(piece);
+  files[1].write("drc");
+  for (PendingFile& f : files) f.finish();
+  CHECK_THROWS(files[0].write("after finish"));
+  commit_files(files);
+  files.clear();
+  CHECK(read_file(target) == "new bytes in pieces");
+  CHECK(read_file(dir.file("cup.drc")) == "drc");
+  std::vector<std::string> names = dir.listing();
+  std::sort(names.begin(), names.end());
+  CHECK(names == std::vector<std::string>{"cup.drc", "cup.stl"});
 }

@@ -151,3 +151,31 @@ TEST_CASE("fabmesh with no arguments runs the bundled example into ./out", "[pip
   CHECK(fs::exists(dir / "out" / "vessel_golden_shell.drc"));
   CHECK_THAT(read_file((dir / "log.txt").string()), Catch::Contains("Files are in"));
 }
+
+TEST_CASE("run: a job written straight to its files has the bytes of the same job prepared in memory",
+          "[pipeline][run][determinism]") {
+  const fs::path dir = fresh_dir("run_streamed");
+  Design design = read_design(example("vessel_golden_shell.yaml"));
+  design.common.outputs = {{"stl", "outputs", 0, 0}, {"obj", "outputs", 0, 0}, {"dxf", "outputs", 0, 0}};
+  const PreparedJob prepared = prepare_job(design, into(dir / "prepared"));
+  const JobReport written = run_job(design, into(dir / "written"));
+  REQUIRE(prepared.files.size() == 3);
+  REQUIRE(written.outputs.size() == 3);
+  for (std::size_t k = 0; k < prepared.files.size(); ++k) {
+    const fs::path name = fs::path(prepared.files[k].path).filename();
+    CHECK(fs::path(written.outputs[k]).filename() == name);
+    CHECK(read_file(written.outputs[k]) == prepared.files[k].bytes);
+  }
+  // Only the outputs: no temporary is left beside them.
+  std::size_t entries = 0;
+  for (const auto& e : fs::directory_iterator(dir / "written")) entries += e.is_regular_file() ? 1 : 0;
+  CHECK(entries == 3);
+  // In the design's own unit the exported mesh is the built one itself: same bytes too.
+  JobOptions same_unit = into(dir / "cm");
+  same_unit.export_units = "cm";
+  design.common.outputs = {{"stl", "outputs", 0, 0}};
+  const PreparedJob prepared_cm = prepare_job(design, same_unit);
+  const JobReport written_cm = run_job(design, same_unit);
+  CHECK(read_file(written_cm.outputs.at(0)) == prepared_cm.files.at(0).bytes);
+  CHECK(prepared_cm.files.at(0).bytes != prepared.files.at(0).bytes);  // cm, not mm
+}

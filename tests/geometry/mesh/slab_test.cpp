@@ -123,3 +123,37 @@ TEST_CASE("slab: thickness <= 0 and a triangle budget too small are rejected",
   so.max_triangles = 1000;
   CHECK_THROWS_AS(build_slab(region, so), BudgetError);
 }
+
+TEST_CASE(
+    "slab: extrude links the halfedges as OpenMesh's add_face does, and refuses a triangulation "
+    "that is not a disc with holes",
+    "[mesh][slab]") {
+  // A unit square with a square hole: 8 vertices, 8 triangles, an outer and an inner boundary cycle.
+  PlanarTriangulation t;
+  t.vertices = {{0, 0}, {3, 0}, {3, 3}, {0, 3}, {1, 1}, {2, 1}, {2, 2}, {1, 2}};
+  t.triangles = {{0, 1, 5}, {0, 5, 4}, {1, 2, 6}, {1, 6, 5}, {2, 3, 7}, {2, 7, 6}, {3, 0, 4}, {3, 4, 7}};
+  t.boundary = {{0, 1, 2, 3}, {4, 7, 6, 5}};
+  const Mesh mesh = extrude(t, 0.5);
+  const TriangleSoup soup = to_soup(mesh);
+  // The same faces, corner for corner, as adding them one by one through OpenMesh.
+  const SoupToMesh reference = to_mesh(soup);
+  REQUIRE(reference.refused_faces == 0);
+  CHECK(to_soup(reference.mesh).triangles == soup.triangles);
+  CHECK(mesh.n_edges() == reference.mesh.n_edges());
+  for (const auto h : mesh.halfedges()) {
+    CHECK(mesh.next_halfedge_handle(mesh.prev_halfedge_handle(h)) == h);
+    CHECK(mesh.face_handle(h).is_valid());
+    CHECK(mesh.from_vertex_handle(h) == mesh.to_vertex_handle(mesh.opposite_halfedge_handle(h)));
+  }
+  const ValidationReport report = validate(mesh);
+  CHECK(report.valid());
+  CHECK(report.genus == 1);
+  CHECK(report.volume == Approx(8.0 * 0.5).epsilon(1e-12));
+  // A flipped triangle makes two sides run the same way; a missing boundary cycle leaves sides unpaired.
+  PlanarTriangulation flipped = t;
+  std::swap(flipped.triangles[3][1], flipped.triangles[3][2]);
+  CHECK_THROWS_AS(extrude(flipped, 0.5), std::logic_error);
+  PlanarTriangulation open = t;
+  open.boundary.pop_back();
+  CHECK_THROWS_AS(extrude(open, 0.5), std::logic_error);
+}

@@ -377,3 +377,38 @@ TEST_CASE("mesh files: every fuzz seed parses, and fuzzer findings are clean Fil
   }
   CHECK(parsed >= 10);
 }
+
+TEST_CASE("stl: the binary STL handed over in pieces is byte for byte the one encoded whole",
+          "[mesh][io][stl]") {
+  const TriangleSoup torus = test::torus(3.0, 1.0, 24, 12);  // 576 triangles
+  const std::string whole = encode_stl(torus);
+  // Pieces smaller than a record, of one record, of an odd count, a divisor, larger than the file.
+  for (const std::size_t piece :
+       {std::size_t{1}, std::size_t{50}, std::size_t{350}, std::size_t{50 * 96}, std::size_t{1} << 20}) {
+    std::string joined;
+    std::size_t calls = 0;
+    encode_stl_pieces(
+        torus,
+        [&](std::string_view bytes) {
+          ++calls;
+          CHECK(bytes.size() <= 84 + std::max<std::size_t>(piece, 50));
+          joined.append(bytes);
+        },
+        piece);
+    CHECK(joined == whole);
+    CHECK(calls == (torus.triangles.size() + std::max<std::size_t>(1, piece / 50) - 1) /
+                       std::max<std::size_t>(1, piece / 50));
+  }
+  std::string empty;
+  encode_stl_pieces(TriangleSoup{}, [&](std::string_view bytes) { empty.append(bytes); });
+  CHECK(empty == encode_stl(TriangleSoup{}));
+  CHECK(empty.size() == 84);
+  // A sink that fails stops the encoding with its error.
+  CHECK_THROWS_AS(encode_stl_pieces(
+                      torus, [](std::string_view) { throw FileError("t.stl", 0, 0, "disk full"); }, 100),
+                  FileError);
+  TriangleSoup bad = torus;
+  bad.triangles[7][1] = 100000;
+  CHECK_THROWS_AS(encode_stl_pieces(bad, [](std::string_view) { FAIL("no piece of a bad soup"); }),
+                  InputError);
+}
