@@ -6,7 +6,9 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
-#include <unordered_map>
+#include <memory>
+#include <optional>
+#include <stdexcept>
 #include <utility>
 
 #include "geometry/core/errors.h"
@@ -16,6 +18,75 @@
 #include "io/file.h"
 
 namespace fabmesh {
+
+// One parameter value of a variant: its override and its text in names.
+struct ManifestValue {
+  Override override;
+  std::string shown;
+};
+
+// The variants of a manifest, made on demand: the value lists of its forms,
+// never their product, so a manifest's memory does not grow with its count.
+struct ManifestExpansion {
+  using ValueSet = std::vector<ManifestValue>;
+  // A piece of a name template: literal text, or a placeholder ({index}, {design}, {path}).
+  struct TemplatePart {
+    std::string text;
+    bool placeholder = false;
+  };
+
+  // The axes of the product, slowest first: `variants`, `table` and `zip`
+  // are one axis each, a `grid` one per key. Variant k of a base takes one set
+  // of each axis, k in mixed radix with the last axis fastest.
+  std::vector<std::vector<ValueSet>> axes;
+  ValueSet common;                        // `set`, for {path} in names
+  std::vector<TemplatePart> name_parts;   // the name template
+  std::vector<std::string> designs;       // each base's name, for {design}
+  std::size_t per_base = 1;               // variants per base
+  std::size_t count = 0;                  // every variant
+
+  // The values of variant i (in axis order); its base in `base`.
+  ValueSet values(std::size_t i, std::size_t& base) const {
+    base = i / per_base;
+    ValueSet out;
+    std::size_t rest = i % per_base, stride = per_base;
+    for (const auto& axis : axes) {
+      stride /= axis.size();
+      const ValueSet& set = axis[rest / stride];
+      rest %= stride;
+      out.insert(out.end(), set.begin(), set.end());
+    }
+    return out;
+  }
+
+  // Variant i's name, or "" with `error` set when the template names a value it lacks.
+  std::string name(const ValueSet& values, std::size_t base, std::size_t i, std::string& error) const {
+    std::string out;
+    for (const TemplatePart& p : name_parts) {
+      if (!p.placeholder) {
+        out += p.text;
+      } else if (p.text == "index") {
+        out += fmt::format("{:0{}}", i + 1, std::to_string(count).size());
+      } else if (p.text == "design") {
+        out += designs[base];
+      } else {
+        const ManifestValue* found = nullptr;
+        for (const ValueSet* set : {&values, &common}) {
+          for (const ManifestValue& v : *set) {
+            if (v.override.path == p.text) found = &v;
+          }
+        }
+        if (found == nullptr) {
+          error = fmt::format("variant {} sets no {} for {{{}}}", i + 1, p.text, p.text);
+          return "";
+        }
+        out += found->shown;
+      }
+    }
+    return out;
+  }
+};
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -23,22 +94,13 @@ namespace fs = std::filesystem;
 constexpr std::size_t kMaxManifestBytes = 1u << 20;
 constexpr int kMaxRangeSteps = 1000000;
 
-// One parameter value of a variant: its override and its text in names.
-struct Value {
-  Override override;
-  std::string shown;
-};
-using ValueSet = std::vector<Value>;
+using Value = ManifestValue;
+using ValueSet = ManifestExpansion::ValueSet;
+using TemplatePart = ManifestExpansion::TemplatePart;
 
-// The override sets of one form (`variants`, `table`, `zip` or `grid`).
+// The override sets of one axis of the product (see ManifestExpansion::axes).
 struct Form {
   std::vector<ValueSet> sets;
-};
-
-// A piece of a name template: literal text, or a placeholder ({index}, {design}, {path}).
-struct TemplatePart {
-  std::string text;
-  bool placeholder = false;
 };
 
 const KeyGroup& manifest_keys() {
@@ -94,16 +156,15 @@ class ManifestReader {
   Form read_variants(const YAML::Node& node);
   Form read_table(const YAML::Node& node);
   Form read_zip(const YAML::Node& node);
-  Form read_grid(const YAML::Node& node);
+  std::vector<Form> read_grid(const YAML::Node& node);
   std::vector<Value> grid_values(const std::string& path, const YAML::Node& node,
                                  const std::string& field) const;
 
   void expand(const std::vector<Form>& forms, const ValueSet& common, const YAML::Node& root,
               BatchManifest& m);
-  std::vector<TemplatePart> name_template(const YAML::Node& root, const BatchManifest& m) const;
-  std::string render(const std::vector<TemplatePart>& parts, const ValueSet& values, const ValueSet& common,
-                     const std::string& design, std::size_t index, std::size_t count,
-                     const YAML::Node& at) const;
+  std::vector<TemplatePart> name_template(const YAML::Node& root, const BatchManifest& m,
+                                          std::size_t count) const;
+  void check_names(const ManifestExpansion& x, const YAML::Node& at) const;
 
   yaml::Fields f_;
   fs::path folder_;
@@ -281,9 +342,9 @@ std::vector<Value> ManifestReader::grid_values(const std::string& path, const YA
   return values;
 }
 
-Form ManifestReader::read_grid(const YAML::Node& node) {
-  Form form;
-  form.sets.emplace_back();
+std::vector<Form> ManifestReader::read_grid(const YAML::Node& node) {
+  // One axis per key, in order: earlier keys vary slowest.
+  std::vector<Form> axes;
   std::size_t count = 1;
   parameters_of(
       node, "grid", "grid", [&](const std::string& path, const YAML::Node& spec, const std::string& field) {
@@ -292,31 +353,24 @@ Form ManifestReader::read_grid(const YAML::Node& node) {
         if (count > kMaxBatchVariants) {
           f_.fail(spec, field, fmt::format("the grid makes more than {} variants", kMaxBatchVariants));
         }
-        // Earlier keys vary slowest: each set so far is followed by every value of this key.
-        std::vector<ValueSet> next;
-        next.reserve(form.sets.size() * values.size());
-        for (const ValueSet& set : form.sets) {
-          for (const Value& v : values) {
-            next.push_back(set);
-            next.back().push_back(v);
-          }
-        }
-        form.sets = std::move(next);
+        Form axis;
+        for (const Value& v : values) axis.sets.push_back({v});
+        axes.push_back(std::move(axis));
       });
   if (node.size() == 0) f_.fail(node, "grid", "expected at least one parameter");
-  return form;
+  return axes;
 }
 
-std::vector<TemplatePart> ManifestReader::name_template(const YAML::Node& root,
-                                                        const BatchManifest& m) const {
+std::vector<TemplatePart> ManifestReader::name_template(const YAML::Node& root, const BatchManifest& m,
+                                                        std::size_t count) const {
   const YAML::Node node = root["name"];
   std::string text;
   if (node.IsDefined()) {
     text = f_.text(node, "name");
   } else {
     text = owner_.count("name")                           ? "{name}"
-           : m.bases.size() > 1 || m.variants.size() != 1 ? "{design}_{index}"
-                                                          : "{design}";
+           : m.bases.size() > 1 || count != 1 ? "{design}_{index}"
+                                              : "{design}";
   }
   std::vector<TemplatePart> parts;
   for (std::size_t i = 0; i < text.size();) {
@@ -342,31 +396,52 @@ std::vector<TemplatePart> ManifestReader::name_template(const YAML::Node& root,
   return parts;
 }
 
-std::string ManifestReader::render(const std::vector<TemplatePart>& parts, const ValueSet& values,
-                                   const ValueSet& common, const std::string& design, std::size_t index,
-                                   std::size_t count, const YAML::Node& at) const {
-  std::string name;
-  for (const TemplatePart& p : parts) {
-    if (!p.placeholder) {
-      name += p.text;
-    } else if (p.text == "index") {
-      name += fmt::format("{:0{}}", index + 1, std::to_string(count).size());
-    } else if (p.text == "design") {
-      name += design;
-    } else {
-      const Value* found = nullptr;
-      for (const ValueSet* set : {&values, &common}) {
-        for (const Value& v : *set) {
-          if (v.override.path == p.text) found = &v;
-        }
-      }
-      if (found == nullptr) {
-        f_.fail(at, "name", fmt::format("variant {} sets no {} for {{{}}}", index + 1, p.text, p.text));
-      }
-      name += found->shown;
+// Every name a plain file name, none a batch file's, all different: checked
+// once, in manifest order, keeping 16 bytes a variant (a hash of its name)
+// only while checking.
+void ManifestReader::check_names(const ManifestExpansion& x, const YAML::Node& at) const {
+  const auto name_of = [&](std::size_t i) {
+    std::size_t base = 0;
+    const ValueSet values = x.values(i, base);
+    std::string error;
+    std::string name = x.name(values, base, i, error);
+    if (!error.empty()) f_.fail(at, "name", error);
+    return name;
+  };
+  std::vector<std::pair<std::size_t, std::size_t>> hashes;  // (hash of the name, index)
+  hashes.reserve(x.count);
+  for (std::size_t i = 0; i < x.count; ++i) {
+    const std::string name = name_of(i);
+    if (const std::string problem = plain_name_problem(name); !problem.empty()) {
+      f_.fail(at, "name",
+              fmt::format("variant {} is named {:?}, not a plain file name: {}", i + 1, name, problem));
     }
+    for (const std::string& reserved : reserved_variant_names()) {
+      if (name == reserved)
+        f_.fail(at, "name", fmt::format("variant {} is named '{}', a file of the batch's own", i + 1, name));
+    }
+    hashes.emplace_back(std::hash<std::string>{}(name), i);
   }
-  return name;
+  std::sort(hashes.begin(), hashes.end());
+  // The first variant (in manifest order) whose name an earlier one has: as a scan in order would find.
+  std::optional<std::pair<std::size_t, std::size_t>> clash;  // (earlier, later)
+  for (std::size_t a = 0; a < hashes.size();) {
+    std::size_t b = a;
+    while (b < hashes.size() && hashes[b].first == hashes[a].first) ++b;
+    for (std::size_t j = a + 1; j < b; ++j) {  // same hash: compare the names
+      for (std::size_t k = a; k < j; ++k) {
+        const std::size_t later = hashes[j].second, earlier = hashes[k].second;
+        if ((!clash || later < clash->second) && name_of(earlier) == name_of(later)) clash = {earlier, later};
+      }
+    }
+    a = b;
+  }
+  if (clash) {
+    f_.fail(at, "name",
+            fmt::format("variants {} and {} are both named '{}': make the name template tell them apart "
+                        "(e.g. add {{index}} or a parameter that differs)",
+                        clash->first + 1, clash->second + 1, name_of(clash->first)));
+  }
 }
 
 void ManifestReader::expand(const std::vector<Form>& forms, const ValueSet& common, const YAML::Node& root,
@@ -380,46 +455,15 @@ void ManifestReader::expand(const std::vector<Form>& forms, const ValueSet& comm
   if (per_base > kMaxBatchVariants || count > kMaxBatchVariants) {
     f_.fail(root, "", fmt::format("the manifest makes more than {} variants", kMaxBatchVariants));
   }
-  const std::vector<TemplatePart> parts = name_template(root, m);
-  const YAML::Node at = root["name"].IsDefined() ? root["name"] : root;
-  std::unordered_map<std::string, std::size_t> first;
-  m.variants.reserve(count);
-  for (std::size_t b = 0; b < m.bases.size(); ++b) {
-    const std::string design = m.bases[b].name();
-    for (std::size_t k = 0; k < per_base; ++k) {
-      // k in mixed radix, the last form's digit fastest.
-      ValueSet values;
-      std::size_t rest = k, stride = per_base;
-      for (const Form& form : forms) {
-        stride /= form.sets.size();
-        const ValueSet& set = form.sets[rest / stride];
-        rest %= stride;
-        values.insert(values.end(), set.begin(), set.end());
-      }
-      const std::size_t index = m.variants.size();
-      Variant v;
-      v.base = b;
-      v.name = render(parts, values, common, design, index, count, at);
-      if (const std::string problem = plain_name_problem(v.name); !problem.empty()) {
-        f_.fail(
-            at, "name",
-            fmt::format("variant {} is named {:?}, not a plain file name: {}", index + 1, v.name, problem));
-      }
-      for (const std::string& reserved : reserved_variant_names()) {
-        if (v.name == reserved)
-          f_.fail(at, "name",
-                  fmt::format("variant {} is named '{}', a file of the batch's own", index + 1, v.name));
-      }
-      if (const auto [it, fresh] = first.emplace(v.name, index); !fresh) {
-        f_.fail(at, "name",
-                fmt::format("variants {} and {} are both named '{}': make the name template tell them apart "
-                            "(e.g. add {{index}} or a parameter that differs)",
-                            it->second + 1, index + 1, v.name));
-      }
-      for (Value& value : values) v.overrides.push_back(std::move(value.override));
-      m.variants.push_back(std::move(v));
-    }
-  }
+  auto x = std::make_shared<ManifestExpansion>();
+  for (const Form& form : forms) x->axes.push_back(form.sets);
+  x->common = common;
+  x->name_parts = name_template(root, m, count);
+  for (const DesignSource& base : m.bases) x->designs.push_back(base.name());
+  x->per_base = per_base;
+  x->count = count;
+  check_names(*x, root["name"].IsDefined() ? root["name"] : root);
+  m.expansion = std::move(x);
 }
 
 BatchManifest ManifestReader::read(const YAML::Node& root) {
@@ -438,7 +482,9 @@ BatchManifest ManifestReader::read(const YAML::Node& root) {
   if (root["variants"].IsDefined()) forms.push_back(read_variants(root["variants"]));
   if (root["table"].IsDefined()) forms.push_back(read_table(root["table"]));
   if (root["zip"].IsDefined()) forms.push_back(read_zip(root["zip"]));
-  if (root["grid"].IsDefined()) forms.push_back(read_grid(root["grid"]));
+  if (root["grid"].IsDefined()) {
+    for (Form& axis : read_grid(root["grid"])) forms.push_back(std::move(axis));
+  }
   // The summary's parameter columns: `name`, when a form sets it, is the name column.
   for (const auto& [path, form] : owner_) {
     if (form != "set" && path != "name") m.parameters.push_back(path);
@@ -447,8 +493,8 @@ BatchManifest ManifestReader::read(const YAML::Node& root) {
   expand(forms, common, root, m);
   // Parameters in order of first appearance in the variants.
   std::vector<std::string> ordered;
-  for (const Variant& v : m.variants) {
-    for (const Override& o : v.overrides) {
+  for (std::size_t i = 0; i < m.variant_count(); ++i) {
+    for (const Override& o : m.variant(i).overrides) {
       if (o.path != "name" && std::find(ordered.begin(), ordered.end(), o.path) == ordered.end())
         ordered.push_back(o.path);
     }
@@ -475,6 +521,20 @@ BatchManifest parse_manifest(const std::string& text, const std::string& path) {
 
 BatchManifest read_manifest(const std::string& path) {
   return parse_manifest(read_file(path, kMaxManifestBytes, "manifest"), path);
+}
+
+std::size_t BatchManifest::variant_count() const { return expansion ? expansion->count : 0; }
+
+Variant BatchManifest::variant(std::size_t i) const {
+  if (i >= variant_count()) throw std::out_of_range("BatchManifest::variant: no such variant");
+  Variant v;
+  ManifestExpansion::ValueSet values = expansion->values(i, v.base);
+  std::string error;
+  v.name = expansion->name(values, v.base, i, error);
+  if (!error.empty()) throw std::logic_error(error);  // read_manifest checked every name
+  v.overrides.reserve(values.size());
+  for (ManifestValue& value : values) v.overrides.push_back(std::move(value.override));
+  return v;
 }
 
 std::vector<Override> variant_overrides(const BatchManifest& manifest, const Variant& v) {

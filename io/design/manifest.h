@@ -3,6 +3,7 @@
 // make their variants, read and expanded into the list of variants.
 
 #include <cstddef>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -21,7 +22,9 @@ struct Variant {
   std::vector<Override> overrides;
 };
 
-/// A manifest, read and expanded.
+struct ManifestExpansion;
+
+/// A manifest, read and checked; its variants are made on demand.
 struct BatchManifest {
   std::string path;                 ///< the manifest file
   std::vector<DesignSource> bases;  ///< the `design` files, parsed once
@@ -29,9 +32,16 @@ struct BatchManifest {
       base_labels;               ///< the `design` entries as written (relative to the manifest's folder)
   std::vector<Override> common;  ///< `set`: applied to every variant before its own values
   std::vector<std::string> parameters;  ///< the paths the variants set, in order of first appearance
-  /// In manifest order: for each base, the product variants x table x zip x
-  /// grid (earlier forms and, in a grid, earlier keys vary slowest).
-  std::vector<Variant> variants;
+  /// How many variants: for each base, the product variants x table x zip x grid.
+  std::size_t variant_count() const;
+  /// Variant `i` (0-based) in manifest order: for each base, the product
+  /// (earlier forms and, in a grid, earlier keys vary slowest). Made on demand
+  /// from the forms' value lists: a manifest's memory grows with what it
+  /// writes, never with the product. \throw std::out_of_range
+  Variant variant(std::size_t i) const;
+
+  /// The forms' value lists and the name template (manifest.cpp).
+  std::shared_ptr<const ManifestExpansion> expansion;
 };
 
 /// At most this many variants in one manifest.

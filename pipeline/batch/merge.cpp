@@ -45,7 +45,7 @@ MergeOutcome merge_batch(const std::string& out_dir) {
   MergeOutcome out;
   out.plan = current_plan(ledgers, out_dir);
   const BatchPlan plan = read_plan(plan_path(folder, out.plan));
-  out.variants = plan.variants.size();
+  out.variants = plan.size();
   PlanRows rows(plan);
   for (const LedgerFile& file : ledgers) {
     const std::size_t ledger = rows.add_ledger(file.path);
@@ -53,8 +53,8 @@ MergeOutcome merge_batch(const std::string& out_dir) {
                  [&](std::string_view json, std::uint64_t offset) { rows.offer(json, ledger, offset); });
   }
   out.counts = write_summary(plan, rows, out_dir);
-  for (std::size_t i = 0; i < plan.variants.size(); ++i) {
-    if (rows.status(i) == VariantStatus::Missing) out.missing.push_back(plan.variants[i].name);
+  for (std::size_t i = 0; i < plan.size(); ++i) {
+    if (rows.status(i) == VariantStatus::Missing) out.missing.push_back(plan.name(i));
   }
   // Which shards own the missing variants, for each shard count that ran.
   std::map<std::size_t, std::set<std::size_t>> started;  // shard count -> indices with a ledger
@@ -64,7 +64,7 @@ MergeOutcome merge_batch(const std::string& out_dir) {
   }
   for (const auto& [count, indices] : started) {
     std::vector<ShardGap> gaps(count);
-    for (std::size_t i = 0; i < plan.variants.size(); ++i) {
+    for (std::size_t i = 0; i < plan.size(); ++i) {
       ShardGap& g = gaps[i % count];
       ++g.owned;
       if (rows.status(i) == VariantStatus::Missing) ++g.missing;

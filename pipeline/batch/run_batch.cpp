@@ -74,9 +74,9 @@ BatchOutcome run_batch(const BatchManifest& manifest, const BatchOptions& option
 
   BatchPlan plan;
   arena.execute([&] { plan = plan_batch(manifest); });
-  out.variants = plan.variants.size();
-  out.in_shard = shard.size_of(plan.variants.size());
-  LedgerWriter ledger(folder, {plan.digest, plan.variants.size(), shard});
+  out.variants = plan.size();
+  out.in_shard = shard.size_of(plan.size());
+  LedgerWriter ledger(folder, {plan.digest, plan.size(), shard});
   out.ledger = ledger.path();
   save_plan(plan, folder);
   // Rows of earlier runs, of any shard count: each variant's last row of its key.
@@ -111,7 +111,7 @@ BatchOutcome run_batch(const BatchManifest& manifest, const BatchOptions& option
                             tally.finished(true, status[k] == VariantStatus::Ok);
                             continue;
                           }
-                          const BatchRow row = run_variant(manifest, i, plan.variants[i], options.out_dir);
+                          const BatchRow row = run_variant(manifest, i, plan.variant(i), options.out_dir);
                           const std::string json = row_json(row).dump();
                           const std::uint64_t offset = ledger.append(json);
                           for (const auto& [stage, ms] : row.timings_ms) {

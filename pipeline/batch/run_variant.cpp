@@ -66,7 +66,7 @@ std::string variant_folder(const std::string& out_dir, const std::string& name) 
 
 BatchRow run_variant(const BatchManifest& manifest, std::size_t index, const PlannedVariant& planned,
                      const std::string& out_dir) {
-  const Variant& v = manifest.variants[index];
+  const Variant v = manifest.variant(index);
   BatchRow row;
   row.index = index;
   row.name = planned.name;

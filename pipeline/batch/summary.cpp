@@ -48,10 +48,7 @@ void SummaryCounts::add(VariantStatus status, int code) {
 }
 
 PlanRows::PlanRows(const BatchPlan& plan)
-    : plan_(plan), places_(plan.variants.size()), status_(plan.variants.size(), VariantStatus::Missing) {
-  by_name_.reserve(plan.variants.size());
-  for (std::size_t i = 0; i < plan.variants.size(); ++i) by_name_.emplace(plan.variants[i].name, i);
-}
+    : plan_(plan), places_(plan.size()), status_(plan.size(), VariantStatus::Missing) {}
 
 std::size_t PlanRows::add_ledger(const std::string& path) {
   ledgers_.push_back(path);
@@ -72,15 +69,15 @@ void PlanRows::offer(std::string_view json, std::size_t ledger, std::uint64_t of
   const auto status = j.find("status");
   if (name == j.end() || key == j.end() || status == j.end() || !name->is_string() || !status->is_string())
     return;
-  const auto it = by_name_.find(name->get<std::string>());
-  if (it == by_name_.end() || plan_.variants[it->second].key != *key) return;
+  const std::optional<std::size_t> found = plan_.find(name->get<std::string>());
+  if (!found || !key->is_string() || plan_.key(*found) != key->get<std::string>()) return;
   VariantStatus s;
   try {
     s = parse_variant_status(status->get<std::string>());
   } catch (const InputError&) {
     return;
   }
-  const std::size_t i = it->second;
+  const std::size_t i = *found;
   const bool kept_finished = status_[i] != VariantStatus::Missing && status_[i] != VariantStatus::Error;
   if (s == VariantStatus::Missing || (kept_finished && s == VariantStatus::Error)) return;
   places_[i] = {offset, static_cast<std::uint32_t>(json.size()), static_cast<std::uint32_t>(ledger)};
@@ -95,7 +92,7 @@ void PlanRows::offer_ledgers(const std::string& folder) {
 }
 
 BatchRow summary_row(const BatchPlan& plan, const PlanRows& rows, std::size_t i) {
-  const PlannedVariant& p = plan.variants[i];
+  const PlannedVariant p = plan.variant(i);
   BatchRow row;
   if (const std::optional<std::string> json = rows.row(i))
     row = row_from_json(nlohmann::ordered_json::parse(*json));
@@ -113,7 +110,7 @@ SummaryCounts write_summary(const BatchPlan& plan, const PlanRows& rows, const s
   StreamedFile jsonl((dir / "summary.jsonl").string());
   StreamedFile csv((dir / "summary.csv").string());
   csv.append(csv_header(plan.parameters));
-  for (std::size_t i = 0; i < plan.variants.size(); ++i) {
+  for (std::size_t i = 0; i < plan.size(); ++i) {
     const BatchRow row = summary_row(plan, rows, i);
     counts.add(row.status, exit_code_of(row.status));
     jsonl.append(row_json(row).dump() + "\n");

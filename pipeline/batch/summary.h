@@ -7,7 +7,6 @@
 #include <optional>
 #include <string>
 #include <string_view>
-#include <unordered_map>
 #include <vector>
 
 #include "pipeline/batch/batch_row.h"
@@ -42,7 +41,6 @@ class PlanRows {
     std::uint32_t ledger = 0;
   };
   const BatchPlan& plan_;
-  std::unordered_map<std::string_view, std::size_t> by_name_;  // views of the plan's names
   std::vector<std::string> ledgers_;
   std::vector<Place> places_;
   std::vector<VariantStatus> status_;

@@ -146,7 +146,7 @@ std::string job_name(const std::string& manifest) {
 int write_slurm(const BatchArgs& args, Streams io) {
   const BatchManifest manifest = read_manifest(args.manifest);
   const std::string out_dir = fs::absolute(out_dir_of(args)).lexically_normal().string();
-  const std::size_t variants = manifest.variants.size();
+  const std::size_t variants = manifest.variant_count();
   SlurmScriptOptions o;
   std::error_code ec;
   o.program = fs::read_symlink("/proc/self/exe", ec).string();

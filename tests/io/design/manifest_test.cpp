@@ -34,7 +34,7 @@ BatchManifest manifest(const std::string& test, const std::string& text,
 
 std::vector<std::string> names(const BatchManifest& m) {
   std::vector<std::string> out;
-  for (const Variant& v : m.variants) out.push_back(v.name);
+  for (std::size_t i = 0; i < m.variant_count(); ++i) out.push_back(m.variant(i).name);
   return out;
 }
 
@@ -50,7 +50,8 @@ std::string error_of(const std::string& test, const std::string& text,
 
 // The wall of the design of variant `i`, resolved as a batch resolves it.
 double wall_of(const BatchManifest& m, std::size_t i) {
-  const Design d = m.bases[m.variants[i].base].resolve(variant_overrides(m, m.variants[i]));
+  const Variant v = m.variant(i);
+  const Design d = m.bases[v.base].resolve(variant_overrides(m, v));
   return std::get<VesselDesign>(d.body).wall;
 }
 
@@ -69,9 +70,34 @@ grid:
   CHECK(m.parameters == std::vector<std::string>{"body.wall", "profile.lambdas[0]"});
   CHECK(wall_of(m, 0) == 0.2);
   CHECK(wall_of(m, 5) == 0.4);
-  const Design last = m.bases[0].resolve(variant_overrides(m, m.variants[5]));
+  const Design last = m.bases[0].resolve(variant_overrides(m, m.variant(5)));
   CHECK(last.common.name == "cup_w0.4_l0.5");
   CHECK(std::get<VesselDesign>(last.body).profile.bspline_lambdas[0] == 0.5);
+}
+
+TEST_CASE("manifest: a million-variant grid is read as its value lists, each variant made on demand",
+          "[io][design][manifest][batch]") {
+  const BatchManifest m = manifest("million", R"(design: cup.yaml
+name: cup_w{body.wall}_b{body.base}
+grid:
+  body.wall: {from: 0.2, to: 0.3, steps: 1000}
+  body.base: {from: 0.1, to: 0.4, steps: 1000}
+)");
+  REQUIRE(m.variant_count() == 1000000);
+  CHECK(m.variant(0).name == "cup_w0.2_b0.1");
+  CHECK(m.variant(999).name == "cup_w0.2_b0.4");    // the last key fastest
+  CHECK(m.variant(1000).name == "cup_w0.2001001001_b0.1");
+  CHECK(m.variant(999999).name == "cup_w0.3_b0.4");  // ranges end exactly
+  CHECK(wall_of(m, 999999) == 0.3);
+  CHECK_THROWS_AS(m.variant(1000000), std::out_of_range);
+  // Two equal names a million variants apart are still found.
+  CHECK_THAT(error_of("million_clash", R"(design: cup.yaml
+name: cup_w{body.wall}
+grid:
+  body.wall: {from: 0.2, to: 0.3, steps: 1000}
+  body.base: {from: 0.1, to: 0.4, steps: 1000}
+)"),
+             Catch::Contains("variants 1 and 2 are both named 'cup_w0.2'"));
 }
 
 TEST_CASE("manifest: zip pairs equal-length lists and names the list whose length differs",
@@ -84,7 +110,7 @@ zip:
   body.base: [0.5, 0.6, 0.7]
 )");
   CHECK(names(m) == std::vector<std::string>{"z1", "z2", "z3"});
-  const Design d = m.bases[0].resolve(variant_overrides(m, m.variants[1]));
+  const Design d = m.bases[0].resolve(variant_overrides(m, m.variant(1)));
   CHECK(std::get<VesselDesign>(d.body).wall == 0.25);
   CHECK(std::get<VesselDesign>(d.body).base == 0.6);
   CHECK(d.common.tolerance == 0.01);
@@ -107,7 +133,7 @@ TEST_CASE(
   CHECK(names(m) == std::vector<std::string>{"thin", "plain"});
   CHECK(wall_of(m, 0) == 0.2);
   CHECK(wall_of(m, 1) == 0.3);
-  const Design d = m.bases[0].resolve(variant_overrides(m, m.variants[0]));
+  const Design d = m.bases[0].resolve(variant_overrides(m, m.variant(0)));
   CHECK(std::get<VesselDesign>(d.body).profile.bspline_points[1] == Vec2(1.2, 5));
   // A short row is named by its line in the table.
   const std::string e =
@@ -137,7 +163,7 @@ variants:
                                    {{"mug.yaml", kCup + "# the same cup by another name\n"}});
   // The base names come from `name:` in the design files: both are "cup" here, told apart by {index}.
   CHECK(names(m) == std::vector<std::string>{"cup-1", "cup-2", "cup-3", "cup-4"});
-  CHECK(m.variants[2].base == 1);
+  CHECK(m.variant(2).base == 1);
   CHECK(wall_of(m, 3) == 0.25);
 }
 
