@@ -12,8 +12,7 @@ Failure describe_failure(const std::exception_ptr& error, const std::string& sub
   // A message that starts at its place in the design already keeps it.
   auto located = [&](const char* what) {
     const std::string_view text(what);
-    const bool placed = text.rfind("-D ", 0) == 0 ||
-                        (!subject.empty() && text.rfind(subject + ":", 0) == 0);
+    const bool placed = text.rfind("-D ", 0) == 0 || (!subject.empty() && text.rfind(subject + ":", 0) == 0);
     return subject.empty() || placed ? std::string(what) : subject + ": " + what;
   };
   try {

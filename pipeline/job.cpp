@@ -127,10 +127,10 @@ JobReport build_and_encode(const Design& design, const JobOptions& options, cons
         // At the `outputs:` entry that asked for it (or the list, for a kind's default outputs).
         const auto asked = std::find_if(common.outputs.begin(), common.outputs.end(),
                                         [&](const OutputRequest& r) { return r.format == format->name; });
-        throw OutputError(e.format(), fmt::format("{}: {}",
-                                                  asked != common.outputs.end() ? asked->where
-                                                                                : key_label(common, "outputs"),
-                                                  e.what()));
+        throw OutputError(
+            e.format(),
+            fmt::format("{}: {}", asked != common.outputs.end() ? asked->where : key_label(common, "outputs"),
+                        e.what()));
       }
       report.skipped.push_back({std::string(format->name), e.what()});
     }

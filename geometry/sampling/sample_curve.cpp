@@ -19,8 +19,9 @@ struct Piece {
 };
 
 [[noreturn]] void over_budget(std::size_t count, const SampleOptions& options) {
-  throw BudgetError(static_cast<double>(count), static_cast<double>(options.max_points),
-                    fmt::format("the curve needs more than {} samples (the point budget)", options.max_points));
+  throw BudgetError(
+      static_cast<double>(count), static_cast<double>(options.max_points),
+      fmt::format("the curve needs more than {} samples (the point budget)", options.max_points));
 }
 
 }  // namespace
@@ -75,9 +76,9 @@ std::vector<double> sample_parameters(const ChordBound& bound, const SampleOptio
     }
     const double mid = 0.5 * (p.s0 + p.s1);
     if (!(mid > p.s0 && mid < p.s1)) {
-      throw BudgetError(0.0, 0.0,
-                        fmt::format("the curve cannot be sampled within {:.3g} in double precision",
-                                    options.tolerance));
+      throw BudgetError(
+          0.0, 0.0,
+          fmt::format("the curve cannot be sampled within {:.3g} in double precision", options.tolerance));
     }
     const ChordBound::Ends m = bound.at(mid);
     stack.push_back({mid, p.s1, m, p.b});

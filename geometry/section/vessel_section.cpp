@@ -170,8 +170,7 @@ void check_clearance(const CompositeCurve& profile, const std::vector<CurveParam
     throw GeometryError(
         "wall",
         fmt::format(
-            "wall {} (base {}): {}", options.wall,
-            options.base > 0.0 ? options.base : options.wall,
+            "wall {} (base {}): {}", options.wall, options.base > 0.0 ? options.base : options.wall,
             crossing
                 ? fmt::format("the exact inner surface meets the outer one ({}): the wall is too thick "
                               "for the profile there",

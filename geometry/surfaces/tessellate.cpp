@@ -352,8 +352,8 @@ std::vector<double> refine(const std::vector<double>& breaks, const std::vector<
     if (split[k] || mirror) {
       const double mid = 0.5 * (breaks[k] + breaks[k + 1]);
       if (!(mid > breaks[k] && mid < breaks[k + 1])) {
-        throw BudgetError(0.0, 0.0,
-                          fmt::format("the surface cannot be refined to {:.3g} in double precision", tolerance));
+        throw BudgetError(
+            0.0, 0.0, fmt::format("the surface cannot be refined to {:.3g} in double precision", tolerance));
       }
       refined.push_back(mid);
     }
@@ -425,12 +425,11 @@ SurfaceTessellation tessellate(const PatchNetwork& network, const TessellateOpti
   }
   const double estimate = min_triangle_count(network, options.tolerance);
   if (estimate > static_cast<double>(options.max_triangles)) {
-    throw BudgetError(
-        estimate, static_cast<double>(options.max_triangles),
-        fmt::format("the mesh needs at least {:.4g} triangles (estimated from the surface's "
-                    "second derivatives before refining), over the budget of {} (raise "
-                    "max_triangles or the tolerance)",
-                    estimate, options.max_triangles));
+    throw BudgetError(estimate, static_cast<double>(options.max_triangles),
+                      fmt::format("the mesh needs at least {:.4g} triangles (estimated from the surface's "
+                                  "second derivatives before refining), over the budget of {} (raise "
+                                  "max_triangles or the tolerance)",
+                                  estimate, options.max_triangles));
   }
   const std::size_t np = network.patches.size();
   DirectionClasses classes(2 * np);

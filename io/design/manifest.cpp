@@ -39,11 +39,11 @@ struct ManifestExpansion {
   // are one axis each, a `grid` one per key. Variant k of a base takes one set
   // of each axis, k in mixed radix with the last axis fastest.
   std::vector<std::vector<ValueSet>> axes;
-  ValueSet common;                        // `set`, for {path} in names
-  std::vector<TemplatePart> name_parts;   // the name template
-  std::vector<std::string> designs;       // each base's name, for {design}
-  std::size_t per_base = 1;               // variants per base
-  std::size_t count = 0;                  // every variant
+  ValueSet common;                       // `set`, for {path} in names
+  std::vector<TemplatePart> name_parts;  // the name template
+  std::vector<std::string> designs;      // each base's name, for {design}
+  std::size_t per_base = 1;              // variants per base
+  std::size_t count = 0;                 // every variant
 
   // The values of variant i (in axis order); its base in `base`.
   ValueSet values(std::size_t i, std::size_t& base) const {
@@ -368,7 +368,7 @@ std::vector<TemplatePart> ManifestReader::name_template(const YAML::Node& root, 
   if (node.IsDefined()) {
     text = f_.text(node, "name");
   } else {
-    text = owner_.count("name")                           ? "{name}"
+    text = owner_.count("name")               ? "{name}"
            : m.bases.size() > 1 || count != 1 ? "{design}_{index}"
                                               : "{design}";
   }

@@ -306,7 +306,8 @@ Design read_design_tree(const YAML::Node& root, const std::string& path,
     const std::string key = kv.first.Scalar();
     d.common.where[key] = f.location(kv.second);
     if (!kv.second.IsMap()) continue;
-    for (const auto& inner : kv.second) d.common.where[key + "." + inner.first.Scalar()] = f.location(inner.second);
+    for (const auto& inner : kv.second)
+      d.common.where[key + "." + inner.first.Scalar()] = f.location(inner.second);
   }
   return d;
 }

@@ -5,8 +5,8 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <stdexcept>
 #include <nlohmann/json.hpp>
+#include <stdexcept>
 
 #include "geometry/core/errors.h"
 #include "io/file.h"
@@ -37,7 +37,8 @@ namespace {
 std::array<std::uint8_t, 32> key_bytes(const std::string& hex) {
   std::array<std::uint8_t, 32> out{};
   if (hex.size() != 64) throw std::invalid_argument("a variant key has 64 hex digits");
-  for (std::size_t i = 0; i < 32; ++i) out[i] = static_cast<std::uint8_t>(std::stoi(hex.substr(2 * i, 2), nullptr, 16));
+  for (std::size_t i = 0; i < 32; ++i)
+    out[i] = static_cast<std::uint8_t>(std::stoi(hex.substr(2 * i, 2), nullptr, 16));
   return out;
 }
 

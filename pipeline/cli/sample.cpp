@@ -47,8 +47,9 @@ int run_sample(const SampleArgs& args, Streams io) {
     } catch (const BudgetError& e) {
       // At the tolerance that asked for it: the option, or the design's key.
       const std::string tolerance =
-          args.tolerance_given ? fmt::format("--tolerance {:g}", args.tolerance)
-                               : fmt::format("{}: {:g}", key_label(design.common, "tolerance"), options.tolerance);
+          args.tolerance_given
+              ? fmt::format("--tolerance {:g}", args.tolerance)
+              : fmt::format("{}: {:g}", key_label(design.common, "tolerance"), options.tolerance);
       throw BudgetError(e.requested(), e.budget(),
                         fmt::format("{} {}: {}", tolerance, design.common.units, e.what()));
     }

@@ -50,8 +50,9 @@ TEST_CASE("located errors: a base taller than the cavity is reported at body.bas
   CHECK_THAT(d.err, Catch::Contains("-D body.base=100: body.base: base 100 leaves no cavity"));
 }
 
-TEST_CASE("located errors: a wall too thick for the profile is reported at body.wall, naming the segment once",
-          "[pipeline][errors]") {
+TEST_CASE(
+    "located errors: a wall too thick for the profile is reported at body.wall, naming the segment once",
+    "[pipeline][errors]") {
   const fs::path dir = fresh_dir("located_wall");
   const std::string design = shell_with(dir, "thick.yaml", "wall: 0.3", "wall: 3");
   const CliResult r = refused(dir, {"run", design});

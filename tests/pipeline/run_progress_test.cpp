@@ -2,12 +2,13 @@
 // line on a terminal, plain lines every few seconds otherwise, none for a run
 // shorter than that (and none with -q).
 
+#include "pipeline/cli/run_progress.h"
+
 #include <catch2/catch.hpp>
 #include <sstream>
 #include <string>
 
 #include "io/design/read_design.h"
-#include "pipeline/cli/run_progress.h"
 #include "tests/pipeline/cli_harness.h"
 
 using namespace fabmesh;
@@ -29,7 +30,8 @@ void run_reported(cli::RunProgress& progress, const std::string& dir) {
 
 }  // namespace
 
-TEST_CASE("run progress: every stage of a job is reported, in order, as plain lines", "[pipeline][progress]") {
+TEST_CASE("run progress: every stage of a job is reported, in order, as plain lines",
+          "[pipeline][progress]") {
   std::ostringstream err;
   cli::RunProgress progress(err, 1, false, 0.0);
   run_reported(progress, "progress_plain");

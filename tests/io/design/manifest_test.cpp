@@ -85,7 +85,7 @@ grid:
 )");
   REQUIRE(m.variant_count() == 1000000);
   CHECK(m.variant(0).name == "cup_w0.2_b0.1");
-  CHECK(m.variant(999).name == "cup_w0.2_b0.4");    // the last key fastest
+  CHECK(m.variant(999).name == "cup_w0.2_b0.4");  // the last key fastest
   CHECK(m.variant(1000).name == "cup_w0.2001001001_b0.1");
   CHECK(m.variant(999999).name == "cup_w0.3_b0.4");  // ranges end exactly
   CHECK(wall_of(m, 999999) == 0.3);

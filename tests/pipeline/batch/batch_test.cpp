@@ -205,8 +205,8 @@ grid:
   body.base: {from: 0.1, to: 0.4, steps: 1000}
 )");
   const LimitedRun r = run_limited(
-      {"batch", (dir / "m.yaml").string(), "-o", (dir / "out").string(), "--slurm", "--array-size", "100"}, 60.0,
-      std::size_t{256} << 20);
+      {"batch", (dir / "m.yaml").string(), "-o", (dir / "out").string(), "--slurm", "--array-size", "100"},
+      60.0, std::size_t{256} << 20);
   INFO(r.describe() << "\n" << r.out << r.err);
   REQUIRE_FALSE(r.timed_out);
   CHECK(r.code == 0);
