@@ -1,7 +1,8 @@
 #include "geometry/mesh/halfedge_topology.h"
 
 #include <algorithm>
-#include <numeric>
+#include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "geometry/core/disjoint_sets.h"
@@ -11,26 +12,92 @@ namespace {
 
 Vec3 to_vec(const Mesh::Point& p) { return {p[0], p[1], p[2]}; }
 
+// What one pass over the edges finds: faces joined across edges and at
+// vertices, boundary edges, and how many halfedges (and boundary halfedges)
+// leave each vertex. 32-bit counters: OpenMesh numbers elements with an int.
+struct EdgePass {
+  std::vector<std::int32_t> outgoing;       // halfedges with a face on either side, by from-vertex
+  std::vector<std::uint8_t> boundary_out;   // of those, without a face (saturates at 2)
+  std::vector<std::int32_t> face_at;        // a face at each vertex, -1 for none
+  std::vector<std::int32_t> boundary_face;  // the face of each boundary edge
+};
+
+EdgePass scan_edges(const Mesh& mesh, DisjointSets<int>& comp, Topology& topo, std::size_t max_examples) {
+  EdgePass pass;
+  pass.outgoing.assign(mesh.n_vertices(), 0);
+  pass.boundary_out.assign(mesh.n_vertices(), 0);
+  pass.face_at.assign(mesh.n_vertices(), -1);
+  // Every face at a vertex joins the first face seen there, whatever fan it
+  // is in: components are faces sharing an edge, then a vertex.
+  auto at_vertex = [&](int v, int f) {
+    std::int32_t& rep = pass.face_at[v];
+    if (rep < 0) {
+      rep = f;
+    } else {
+      comp.unite(rep, f);
+    }
+  };
+  for (const auto e : mesh.edges()) {
+    const auto h0 = mesh.halfedge_handle(e, 0), h1 = mesh.halfedge_handle(e, 1);
+    const int f0 = mesh.face_handle(h0).idx(), f1 = mesh.face_handle(h1).idx();
+    if (f0 < 0 && f1 < 0) continue;                  // an isolated edge: no part of any face
+    const int v0 = mesh.to_vertex_handle(h0).idx();  // h0: v1 -> v0, h1: v0 -> v1
+    const int v1 = mesh.to_vertex_handle(h1).idx();
+    ++pass.outgoing[v1];
+    ++pass.outgoing[v0];
+    if (f0 >= 0) at_vertex(v0, f0);
+    if (f1 >= 0) at_vertex(v1, f1);
+    if (f0 >= 0 && f1 >= 0) {
+      comp.unite(f0, f1);
+      continue;
+    }
+    std::uint8_t& open = pass.boundary_out[f0 < 0 ? v1 : v0];
+    open = static_cast<std::uint8_t>(std::min(open + 1, 2));
+    pass.boundary_face.push_back(f0 >= 0 ? f0 : f1);
+    topo.boundary_edges.add(
+        to_vec(0.5 * (mesh.point(Mesh::VertexHandle(v0)) + mesh.point(Mesh::VertexHandle(v1)))),
+        max_examples);
+  }
+  return pass;
+}
+
 }  // namespace
 
 Topology analyse_topology(const Mesh& mesh, std::size_t max_examples) {
   Topology topo;
   topo.edges = mesh.n_edges();
   const auto faces = static_cast<int>(mesh.n_faces());
-  DisjointSets<int> comp(mesh.n_faces());
+  std::vector<std::int32_t> component;  // dense id of each face's component
+  std::vector<std::int32_t> face_at, boundary_face;
+  {
+    DisjointSets<int> comp(mesh.n_faces());
+    EdgePass pass = scan_edges(mesh, comp, topo, max_examples);
 
-  for (const auto e : mesh.edges()) {
-    const auto h0 = mesh.halfedge_handle(e, 0), h1 = mesh.halfedge_handle(e, 1);
-    const auto f0 = mesh.face_handle(h0), f1 = mesh.face_handle(h1);
-    if (!f0.is_valid() || !f1.is_valid()) {
-      if (f0.is_valid() || f1.is_valid()) {
-        const auto mid =
-            0.5 * (mesh.point(mesh.to_vertex_handle(h0)) + mesh.point(mesh.to_vertex_handle(h1)));
-        topo.boundary_edges.add(to_vec(mid), max_examples);
+    // A vertex is manifold when its faces form one fan: at most one boundary
+    // halfedge leaves it (OpenMesh links boundary fans into one circulation),
+    // and circulating reaches every halfedge leaving it.
+    for (const auto v : mesh.vertices()) {
+      const std::int32_t out = pass.outgoing[v.idx()];
+      if (out == 0) continue;
+      ++topo.referenced_vertices;
+      std::int32_t around = 0;
+      for (auto it = mesh.cvoh_iter(v); it.is_valid() && around <= out; ++it) ++around;
+      if (pass.boundary_out[v.idx()] > 1 || around != out) {
+        topo.non_manifold_vertices.add(to_vec(mesh.point(v)), max_examples);
       }
-      continue;
     }
-    comp.unite(f0.idx(), f1.idx());
+    face_at = std::move(pass.face_at);
+    boundary_face = std::move(pass.boundary_face);
+    pass = EdgePass();  // the counts' memory is free before the components'
+
+    // Components numbered by their smallest face (the representative).
+    component.resize(static_cast<std::size_t>(faces));
+    std::int32_t count = 0;
+    for (int f = 0; f < faces; ++f) {
+      const int root = comp.find(f);
+      component[f] = root == f ? count++ : component[root];
+    }
+    topo.components = static_cast<std::size_t>(count);
   }
 
   // Duplicate faces: a face whose three neighbours are one and the same face.
@@ -46,64 +113,24 @@ Topology analyse_topology(const Mesh& mesh, std::size_t max_examples) {
     }
   }
 
-  // A vertex is manifold when its faces form one fan: at most one boundary
-  // halfedge leaves it (OpenMesh links boundary fans into one circulation),
-  // and circulating reaches every halfedge leaving it.
-  std::vector<int> outgoing(mesh.n_vertices(), 0), boundary_out(mesh.n_vertices(), 0);
-  for (const auto h : mesh.halfedges()) {
-    const bool has_face = mesh.face_handle(h).is_valid();
-    if (has_face || mesh.face_handle(mesh.opposite_halfedge_handle(h)).is_valid()) {
-      ++outgoing[mesh.from_vertex_handle(h).idx()];
-      if (!has_face) ++boundary_out[mesh.from_vertex_handle(h).idx()];
-    }
-  }
-  for (const auto v : mesh.vertices()) {
-    if (outgoing[v.idx()] == 0) continue;
-    ++topo.referenced_vertices;
-    int around = 0;
-    for (auto it = mesh.cvoh_iter(v); it.is_valid() && around <= outgoing[v.idx()]; ++it) ++around;
-    if (boundary_out[v.idx()] > 1 || around != outgoing[v.idx()]) {
-      topo.non_manifold_vertices.add(to_vec(mesh.point(v)), max_examples);
-    }
-  }
-
-  // Components (faces sharing an edge, then a vertex) and their V - E + F.
-  // (every face at a vertex, whatever fan it is in: no circulation here).
-  std::vector<int> face_at(mesh.n_vertices(), -1);
-  for (const auto h : mesh.halfedges()) {
-    const auto f = mesh.face_handle(h);
-    if (!f.is_valid()) continue;
-    int& rep = face_at[mesh.to_vertex_handle(h).idx()];
-    if (rep < 0) {
-      rep = f.idx();
-    } else {
-      comp.unite(rep, f.idx());
-    }
-  }
-  std::vector<int> root_of(faces);
-  for (int f = 0; f < faces; ++f) root_of[f] = comp.find(f);
-  std::vector<long> chi(static_cast<std::size_t>(faces), 0);
-  std::vector<int> lowest_vertex(static_cast<std::size_t>(faces), -1);
-  for (int f = 0; f < faces; ++f) chi[root_of[f]] += 1;
-  for (const auto e : mesh.edges()) {
-    const auto f = mesh.face_handle(mesh.halfedge_handle(e, 0)).is_valid()
-                       ? mesh.face_handle(mesh.halfedge_handle(e, 0))
-                       : mesh.face_handle(mesh.halfedge_handle(e, 1));
-    if (f.is_valid()) chi[root_of[f.idx()]] -= 1;
-  }
+  // V - E + F of each component, doubled: a triangle mesh has E = (3F + B) / 2
+  // with B its boundary edges, so 2 (V - E + F) = 2V - F - B.
+  std::vector<long> twice_chi(topo.components, 0);
+  std::vector<std::int32_t> lowest_vertex(topo.components, -1);
+  for (int f = 0; f < faces; ++f) twice_chi[component[f]] -= 1;
+  for (const std::int32_t f : boundary_face) twice_chi[component[f]] -= 1;
   for (const auto v : mesh.vertices()) {
     if (face_at[v.idx()] < 0) continue;
-    const int root = root_of[face_at[v.idx()]];
-    chi[root] += 1;
-    if (lowest_vertex[root] < 0) lowest_vertex[root] = v.idx();
+    const std::int32_t c = component[face_at[v.idx()]];
+    twice_chi[c] += 2;
+    if (lowest_vertex[c] < 0) lowest_vertex[c] = v.idx();
   }
-  std::vector<std::pair<int, int>> order;  // (lowest vertex, root)
-  for (int f = 0; f < faces; ++f) {
-    if (root_of[f] == f) order.emplace_back(lowest_vertex[f], f);
-  }
+  std::vector<std::pair<std::int32_t, std::int32_t>> order;  // (lowest vertex, component)
+  order.reserve(topo.components);
+  for (std::size_t c = 0; c < topo.components; ++c)
+    order.emplace_back(lowest_vertex[c], static_cast<std::int32_t>(c));
   std::sort(order.begin(), order.end());
-  topo.components = order.size();
-  for (const auto& [vertex, root] : order) topo.euler_characteristics.push_back(chi[root]);
+  for (const auto& [vertex, c] : order) topo.euler_characteristics.push_back(twice_chi[c] / 2);
   return topo;
 }
 
