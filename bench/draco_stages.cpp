@@ -16,7 +16,6 @@
 #include <string>
 #include <vector>
 
-#include "geometry/mesh/moved_validation.h"
 #include "geometry/mesh/self_intersect.h"
 #include "geometry/mesh/topology.h"
 #include "geometry/mesh/triangle_bvh.h"

@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "geometry/core/errors.h"
-#include "geometry/mesh/moved_validation.h"
+#include "geometry/mesh/validate.h"
 #include "io/cutting/dxf.h"
 #include "io/cutting/gcode.h"
 #include "io/cutting/svg.h"

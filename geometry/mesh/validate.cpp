@@ -148,6 +148,32 @@ ValidationReport validate(const Mesh& mesh, const ValidateOptions& options) {
   return validate(mesh, to_soup(mesh), options);
 }
 
+ValidationReport validate_moved(const TriangleSoup& original, const ValidationReport& original_report,
+                                const TriangleSoup& moved, const ValidateOptions& options) {
+  require_indices_in_range(moved);
+  if (moved.triangles != original.triangles || moved.vertices.size() != original.vertices.size()) {
+    throw InputError("validate_moved: the moved mesh does not have the original's vertices and triangles");
+  }
+  // Combinatorial facts are functions of the triangles alone, which are the original's.
+  const auto inherited = [&](Defect kind) {
+    DefectCount out;
+    if (const DefectReport* d = original_report.find(kind)) {
+      out.count = d->count;
+      out.examples = d->examples;
+    }
+    return out;
+  };
+  Topology topo;
+  topo.boundary_edges = inherited(Defect::BoundaryEdge);
+  topo.non_manifold_edges = inherited(Defect::NonManifoldEdge);
+  topo.non_manifold_vertices = inherited(Defect::NonManifoldVertex);
+  topo.inconsistent_edges = inherited(Defect::InconsistentOrientation);
+  topo.duplicate_faces = inherited(Defect::DuplicateFace);
+  topo.components = original_report.components;
+  topo.euler_characteristics = original_report.euler_characteristics;
+  return validate_with(moved, topo, ValidationReport{}, options);
+}
+
 namespace {
 
 ValidationReport validate_with(const TriangleSoup& soup, const Topology& topo, ValidationReport report,

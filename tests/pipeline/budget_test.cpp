@@ -20,18 +20,6 @@ namespace {
 
 constexpr std::size_t kMemory = std::size_t{1} << 30;  // 1 GiB (address space; resident under ASan)
 
-// The example with `find` replaced by `replace`, written to `dir/name`.
-std::string edited(const fs::path& dir, const std::string& example_name, const std::string& find,
-                   const std::string& replace, const std::string& name) {
-  std::string text = read_file(example(example_name));
-  const auto at = text.find(find);
-  REQUIRE(at != std::string::npos);
-  text.replace(at, find.size(), replace);
-  const fs::path path = dir / name;
-  write_file_atomically(path.string(), text);
-  return path.string();
-}
-
 // Runs `design` under the time and memory limits; its exit code (2 when the
 // budget refused it early, as the checks inside require).
 int refused_code(const std::string& design, const fs::path& dir, double seconds) {
@@ -50,31 +38,31 @@ int refused_code(const std::string& design, const fs::path& dir, double seconds)
 
 TEST_CASE("budget: a surface at tolerance 1e-12 is refused before refining", "[pipeline][budget]") {
   const fs::path dir = fresh_dir("budget_surface_tiny");
-  CHECK(
-      refused_code(edited(dir, "surface_basin_shell.yaml", "tolerance: 0.5", "tolerance: 1e-12", "tiny.yaml"),
-                   dir, 20.0) == 2);
+  CHECK(refused_code(edited_example(dir, "surface_basin_shell.yaml", "tolerance: 0.5", "tolerance: 1e-12",
+                                    "tiny.yaml"),
+                     dir, 20.0) == 2);
 }
 
 TEST_CASE("budget: a surface with max_triangles 2e9 at tolerance 1e-9 is refused before refining",
           "[pipeline][budget]") {
   const fs::path dir = fresh_dir("budget_surface_huge");
-  CHECK(refused_code(edited(dir, "surface_basin_open.yaml", "tolerance: 0.5",
-                            "tolerance: 1e-9\nmax_triangles: 2e9", "huge.yaml"),
+  CHECK(refused_code(edited_example(dir, "surface_basin_open.yaml", "tolerance: 0.5",
+                                    "tolerance: 1e-9\nmax_triangles: 2e9", "huge.yaml"),
                      dir, 20.0) == 2);
 }
 
 TEST_CASE("budget: a vessel at tolerance 1e-12 is refused before sampling", "[pipeline][budget]") {
   const fs::path dir = fresh_dir("budget_vessel_tiny");
-  CHECK(refused_code(
-            edited(dir, "vessel_golden_shell.yaml", "tolerance: 0.005", "tolerance: 1e-12", "tiny.yaml"), dir,
-            20.0) == 2);
+  CHECK(refused_code(edited_example(dir, "vessel_golden_shell.yaml", "tolerance: 0.005", "tolerance: 1e-12",
+                                    "tiny.yaml"),
+                     dir, 20.0) == 2);
 }
 
 TEST_CASE("budget: a vessel with max_triangles 2e9 at tolerance 1e-9 is refused before sampling",
           "[pipeline][budget]") {
   const fs::path dir = fresh_dir("budget_vessel_huge");
-  CHECK(refused_code(edited(dir, "vessel_golden_shell.yaml", "tolerance: 0.005",
-                            "tolerance: 1e-9\nmax_triangles: 2e9", "huge.yaml"),
+  CHECK(refused_code(edited_example(dir, "vessel_golden_shell.yaml", "tolerance: 0.005",
+                                    "tolerance: 1e-9\nmax_triangles: 2e9", "huge.yaml"),
                      dir, 20.0) == 2);
 }
 
@@ -83,8 +71,8 @@ TEST_CASE("budget: a vessel larger than a halfedge mesh can hold is refused befo
   // 7.2e8 triangles: within max_triangles 2e9, past OpenMesh's int halfedge
   // numbers; it used to end in std::bad_alloc (exit 3) after seconds and gigabytes.
   const fs::path dir = fresh_dir("budget_vessel_halfedges");
-  const std::string design = edited(dir, "vessel_golden_shell.yaml", "tolerance: 0.005",
-                                    "tolerance: 1e-7\nmax_triangles: 2e9", "dense.yaml");
+  const std::string design = edited_example(dir, "vessel_golden_shell.yaml", "tolerance: 0.005",
+                                            "tolerance: 1e-7\nmax_triangles: 2e9", "dense.yaml");
   const LimitedRun r = run_limited({"run", design, "-o", (dir / "out").string()}, 20.0, kMemory);
   INFO(r.describe() << "\n" << r.out << r.err);
   REQUIRE_FALSE(r.timed_out);
@@ -97,8 +85,9 @@ TEST_CASE("budget: a vessel larger than a halfedge mesh can hold is refused befo
 
 TEST_CASE("budget: a countertop at tolerance 1e-12 is refused before sampling", "[pipeline][budget]") {
   const fs::path dir = fresh_dir("budget_countertop_tiny");
-  CHECK(refused_code(edited(dir, "countertop_g2.yaml", "tolerance: 0.05", "tolerance: 1e-12", "tiny.yaml"),
-                     dir, 20.0) == 2);
+  CHECK(refused_code(
+            edited_example(dir, "countertop_g2.yaml", "tolerance: 0.05", "tolerance: 1e-12", "tiny.yaml"),
+            dir, 20.0) == 2);
 }
 
 TEST_CASE("budget: the surface shell at 0.001 mm ends within its limits with a budget error",
@@ -108,7 +97,7 @@ TEST_CASE("budget: the surface shell at 0.001 mm ends within its limits with a b
   // had not finished after 580 s before.
   const fs::path dir = fresh_dir("budget_surface_fine");
   const std::string design =
-      edited(dir, "surface_basin_shell.yaml", "tolerance: 0.5", "tolerance: 0.001", "fine.yaml");
+      edited_example(dir, "surface_basin_shell.yaml", "tolerance: 0.5", "tolerance: 0.001", "fine.yaml");
   const LimitedRun r = run_limited({"run", design, "-o", (dir / "out").string()}, 120.0, kMemory);
   INFO(r.describe() << "\n" << r.out << r.err);
   REQUIRE_FALSE(r.timed_out);

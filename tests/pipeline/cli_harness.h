@@ -2,11 +2,13 @@
 // Shared by the pipeline tests: run the command line in-process, find the
 // bundled examples, and get a fresh scratch folder per test.
 
+#include <catch2/catch.hpp>
 #include <filesystem>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "io/file.h"
 #include "pipeline/cli/commands.h"
 #include "pipeline/job.h"
 
@@ -53,6 +55,20 @@ inline int run_cli(std::vector<std::string> args, std::string* combined = nullpt
   const CliResult r = run_fabmesh(std::move(args));
   if (combined) *combined = r.out + r.err;
   return r.code;
+}
+
+/// The bundled example `example_name` with `find` replaced by `replace`,
+/// written to `dir/name`; its path.
+inline std::string edited_example(const std::filesystem::path& dir, const std::string& example_name,
+                                  const std::string& find, const std::string& replace,
+                                  const std::string& name) {
+  std::string text = read_file(example(example_name));
+  const auto at = text.find(find);
+  REQUIRE(at != std::string::npos);
+  text.replace(at, find.size(), replace);
+  const std::filesystem::path path = dir / name;
+  write_file_atomically(path.string(), text);
+  return path.string();
 }
 
 /// Whether `text` names `file:LINE:COLUMN: key: ` (a message located at a design's key).

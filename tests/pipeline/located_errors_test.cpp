@@ -19,13 +19,7 @@ namespace {
 // The golden shell with `find` replaced by `replace`, written to `dir/name`.
 std::string shell_with(const fs::path& dir, const std::string& name, const std::string& find,
                        const std::string& replace) {
-  std::string text = read_file(example("vessel_golden_shell.yaml"));
-  const auto at = text.find(find);
-  REQUIRE(at != std::string::npos);
-  text.replace(at, find.size(), replace);
-  const fs::path path = dir / name;
-  write_file_atomically(path.string(), text);
-  return path.string();
+  return edited_example(dir, "vessel_golden_shell.yaml", find, replace, name);
 }
 
 // Runs `args` and requires a refusal with nothing written.

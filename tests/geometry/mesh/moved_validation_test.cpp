@@ -1,7 +1,5 @@
 // validate_moved against validate: the same verdict on meshes whose vertices moved.
 
-#include "geometry/mesh/moved_validation.h"
-
 #include <catch2/catch.hpp>
 #include <random>
 

@@ -6,7 +6,6 @@
 #include <catch2/catch.hpp>
 
 #include "geometry/core/errors.h"
-#include "geometry/mesh/moved_validation.h"
 #include "geometry/mesh/validate.h"
 #include "tests/geometry/mesh/shapes.h"
 
