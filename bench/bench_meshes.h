@@ -1,6 +1,6 @@
 #pragma once
 // Meshes for the benchmark kernels, built in code: a torus revolved by the
-// vessel builder's revolve(), as a halfedge mesh, an indexed soup, and an
+// vessel builder's revolve(), as an indexed soup, a halfedge mesh, and an
 // STL-style soup (three float-rounded vertices per triangle).
 
 #include <cmath>
@@ -30,14 +30,14 @@ inline int torus_points(std::size_t triangles) {
   return static_cast<int>(std::lround(std::sqrt(static_cast<double>(triangles) / 4.0)));
 }
 
-/// A revolved torus of about `triangles` triangles as a halfedge mesh.
-inline Mesh torus_mesh(std::size_t triangles) {
+/// A revolved torus of about `triangles` triangles as an indexed soup.
+inline TriangleSoup torus_soup(std::size_t triangles) {
   const int k = torus_points(triangles);
-  return revolve(torus_section(k), RevolveOptions{2 * k});
+  return revolve(torus_section(k), RevolveOptions{2 * k}).soup;
 }
 
-/// The same torus as an indexed soup.
-inline TriangleSoup torus_soup(std::size_t triangles) { return to_soup(torus_mesh(triangles)); }
+/// The same torus as a halfedge mesh.
+inline Mesh torus_mesh(std::size_t triangles) { return to_mesh(torus_soup(triangles)).mesh; }
 
 /// The same torus as an STL file holds it: three float-rounded vertices per triangle.
 inline TriangleSoup torus_stl_soup(std::size_t triangles) {

@@ -1,8 +1,11 @@
 #include "pipeline/build_design.h"
 
 #include <fmt/format.h>
+#include <sys/resource.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <limits>
 #include <new>
 #include <string>
 
@@ -16,6 +19,19 @@ bool fit_for(const ValidationReport& report, MeshPurpose purpose) {
   return purpose == MeshPurpose::Viewing && report.self_intersection != IntersectionCheck::NotRun &&
          std::all_of(report.defects.begin(), report.defects.end(),
                      [](const DefectReport& d) { return d.kind == Defect::BoundaryEdge; });
+}
+
+std::size_t process_memory_limit() {
+  std::size_t limit = std::numeric_limits<std::size_t>::max();
+  const long pages = ::sysconf(_SC_PHYS_PAGES);
+  const long page_size = ::sysconf(_SC_PAGESIZE);
+  if (pages > 0 && page_size > 0)
+    limit = static_cast<std::size_t>(pages) * static_cast<std::size_t>(page_size);
+  rlimit address_space{};
+  if (::getrlimit(RLIMIT_AS, &address_space) == 0 && address_space.rlim_cur != RLIM_INFINITY) {
+    limit = std::min(limit, static_cast<std::size_t>(address_space.rlim_cur));
+  }
+  return limit;
 }
 
 namespace {

@@ -10,6 +10,7 @@
 #include "geometry/core/errors.h"
 #include "geometry/curves/build_curve.h"
 #include "geometry/mesh/bounding_box.h"
+#include "geometry/mesh/constructed_validation.h"
 #include "geometry/mesh/vessel.h"
 #include "geometry/mould/mould.h"
 #include "geometry/mould/shrinkage.h"
@@ -86,12 +87,16 @@ BuiltMesh build(const VesselDesign& design, const BuildContext& context) {
   options.rim = design.rim;
   options.tolerance = context.tolerance;
   options.max_triangles = design.max_triangles;
+  options.max_bytes = context.memory_limit;
   options.label = design.profile.label;
-  const VesselMesh vessel = build_vessel(master, options);
+  VesselMesh vessel = build_vessel(master, options);
   context.watch.lap("build");
   std::size_t section_points = 0;
   for (const auto& loop : vessel.section.loops) section_points += loop.size();
-  BuiltMesh out = validated(vessel.mesh, vessel.proof, context);
+  BuiltMesh out;
+  out.validation = validate_constructed(vessel.soup, vessel.topology, vessel.proof);
+  out.soup = std::move(vessel.soup);
+  context.watch.lap("validate");
   out.max_deviation = vessel.max_deviation;
   out.facts = {{"angular_segments", vessel.segments},
                {"section_loops", vessel.section.loops.size()},

@@ -2,6 +2,8 @@
 // What a builder hands to the job: the validated result of one design, in
 // memory, before any file is encoded or written.
 
+#include <cstddef>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -54,6 +56,13 @@ struct BuildContext {
   double tolerance = 0.0;      ///< the share of the design's tolerance the mesh may use
   bool wants_cutting = false;  ///< an output needs the cutting outline
   StageTimer& watch;           ///< stage timings of the job
+  /// Memory this process can use, bytes (process_memory_limit()); builders
+  /// that know their arrays' size in advance refuse larger meshes with it.
+  std::size_t memory_limit = std::numeric_limits<std::size_t>::max();
 };
+
+/// The smaller of this machine's physical memory and the process's address
+/// space limit (RLIMIT_AS), bytes.
+std::size_t process_memory_limit();
 
 }  // namespace fabmesh

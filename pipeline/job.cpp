@@ -79,7 +79,8 @@ JobReport build_and_encode(const Design& design, const JobOptions& options, cons
   const bool wants_cutting = std::any_of(formats.begin(), formats.end(), [](const OutputFormat* f) {
     return f->content == OutputContent::Drawing || f->content == OutputContent::Toolpath;
   });
-  const BuildContext context{common, (1.0 - kOutputShare) * common.tolerance, wants_cutting, watch};
+  const BuildContext context{common, (1.0 - kOutputShare) * common.tolerance, wants_cutting, watch,
+                             process_memory_limit()};
   const BuiltMesh built = build_design(design, context);
   report.max_deviation = built.max_deviation;
   report.build = built.facts;

@@ -73,7 +73,7 @@ TriangleSoup design_mesh(const Design& design) {
   }
   StageTimings timings;
   StageTimer watch(timings);
-  const BuildContext context{design.common, design.common.tolerance, false, watch};
+  const BuildContext context{design.common, design.common.tolerance, false, watch, process_memory_limit()};
   return build_design(design, context).soup;
 }
 

@@ -12,6 +12,8 @@ nlohmann::ordered_json validation_json(const ValidationReport& r) {
   j["genus"] = r.genus ? nlohmann::ordered_json(*r.genus) : nlohmann::ordered_json(nullptr);
   j["volume"] = r.volume;
   j["area"] = r.area;
+  j["topology"] = r.topology_proof.empty() ? "analysed" : "proven by construction";
+  if (!r.topology_proof.empty()) j["topology_proof"] = r.topology_proof;
   j["watertight"] = r.boundary_edges == 0 && r.non_manifold_edges == 0;
   j["manifold"] = r.non_manifold_edges == 0 && r.non_manifold_vertices == 0;
   j["boundary_edges"] = r.boundary_edges;
@@ -105,9 +107,9 @@ void print_summary(const JobReport& r, std::ostream& out) {
       r.bbox_max.z());
   if (v.valid()) {
     out << fmt::format(
-        "  valid: closed, manifold, outward, no self-intersections ({}); within {:.3g} {} of the exact "
-        "surface "
-        "(tolerance {} {})\n",
+        "  valid: closed, manifold ({}), outward, no self-intersections ({}); within {:.3g} {} of the exact "
+        "surface (tolerance {} {})\n",
+        v.topology_proof.empty() ? "checked" : "by construction",
         v.self_intersection == IntersectionCheck::ProvenByConstruction ? "by construction" : "checked",
         r.max_deviation, u, r.tolerance, u);
   } else {

@@ -28,12 +28,15 @@ std::size_t revolved_triangle_count(const std::vector<std::vector<Vec2>>& loops,
   return per_slice * static_cast<std::size_t>(segments);
 }
 
+std::size_t revolved_vertex_count(const std::vector<std::vector<Vec2>>& loops, int segments) {
+  std::size_t count = 0;
+  for (const auto& loop : loops) {
+    for (const Vec2& p : loop) count += p.x() == 0.0 ? 1 : static_cast<std::size_t>(segments);
+  }
+  return count;
+}
+
 namespace {
-
-using HalfedgeHandle = Mesh::HalfedgeHandle;
-using VertexHandle = Mesh::VertexHandle;
-
-HalfedgeHandle opposite(HalfedgeHandle h) { return HalfedgeHandle(h.idx() ^ 1); }
 
 // Every axis vertex needs exactly one neighbour on the axis: then it is the
 // apex of one fan, and axis edges (which make no faces) never chain.
@@ -51,105 +54,66 @@ void require_axis_contacts_along_edges(const std::vector<Vec2>& loop) {
   }
 }
 
-// Builds the halfedge structure of one revolved loop directly: the
-// connectivity of the revolution grid is known, so every halfedge gets its
-// face by index arithmetic (no searches), and the result is closed by
-// construction: each of the 2E halfedges below is used by exactly one face.
-//   R(i,j): ring edge a_j -> a_{j+1} of off-axis vertex i
-//   M(e,j): meridian a_j -> b_j of loop edge e = (a, b), unless both are on the axis
-//   D(e,j): diagonal a_j -> b_{j+1}, when both ends are off the axis
-// Faces of e at j (counter-clockwise loop, outward normals):
-//   T1 = (a_j, a_{j+1}, b_{j+1}) when a is off the axis: R(a,j), M(e,j+1), -D(e,j) (or -M(e,j) if b is a
-//   pole) T2 = (a_j, b_{j+1}, b_j)     when b is off the axis: D(e,j) (or M(e,j+1) if a is a pole), -R(b,j),
-//   -M(e,j)
-// Next free vertex, edge and face slots of a mesh sized in advance.
-struct Slots {
-  int vertex = 0, edge = 0, face = 0;
-};
-
+// The faces of one revolved loop, by index arithmetic on the revolution grid.
+// Vertex (i, j) is loop vertex i at angle step j (j mod m), or i's pole.
+// Faces of loop edge e = (a, b) at step j (counter-clockwise loop, outward normals):
+//   T1 = (a_j, a_{j+1}, b_{j+1}) when a is off the axis
+//   T2 = (a_j, b_{j+1}, b_j)     when b is off the axis
+// Each grid edge then has exactly two faces, which traverse it in opposite
+// directions: ring edge a_j a_{j+1} has T1 of the edge leaving a and T2 of the
+// edge arriving at a; meridian a_j b_j has T2 of step j and T1 of step j - 1;
+// diagonal a_j b_{j+1} has T1 and T2 of the same step. Around a ring vertex
+// the faces of the two loop edges at it form one disc; around a pole, the
+// m faces of its one off-axis loop edge form one fan.
 void revolve_loop(const std::vector<Vec2>& loop, const std::vector<double>& cs, const std::vector<double>& sn,
-                  Mesh& mesh, Slots& next) {
+                  TriangleSoup& out) {
   const std::size_t n = loop.size();
   const std::size_t m = cs.size();
   auto on_axis = [&](std::size_t i) { return loop[i].x() == 0.0; };
 
-  std::vector<int> first(n);  // vertex index of ring i at angle 0, or its pole
+  std::vector<std::uint32_t> first(n);  // vertex index of ring i at angle 0, or its pole
   for (std::size_t i = 0; i < n; ++i) {
     const Vec2& p = loop[i];
-    first[i] = next.vertex;
+    first[i] = static_cast<std::uint32_t>(out.vertices.size());
     if (on_axis(i)) {
-      mesh.set_point(VertexHandle(next.vertex++), Mesh::Point(0.0, 0.0, p.y()));
+      out.vertices.emplace_back(0.0, 0.0, p.y());
       continue;
     }
-    for (std::size_t j = 0; j < m; ++j) {
-      mesh.set_point(VertexHandle(next.vertex++), Mesh::Point(p.x() * cs[j], p.x() * sn[j], p.y()));
-    }
+    for (std::size_t j = 0; j < m; ++j) out.vertices.emplace_back(p.x() * cs[j], p.x() * sn[j], p.y());
   }
   auto v = [&](std::size_t i, std::size_t j) {
-    return VertexHandle(on_axis(i) ? first[i] : first[i] + static_cast<int>(j % m));
-  };
-
-  // Edges, in a fixed order; each family's first halfedge is remembered.
-  auto new_edge = [&](VertexHandle from, VertexHandle to) {
-    const HalfedgeHandle h(2 * next.edge++);
-    mesh.set_vertex_handle(h, to);
-    mesh.set_vertex_handle(opposite(h), from);
-    return h.idx();
-  };
-  std::vector<int> ring(n, -1), meridian(n, -1), diagonal(n, -1);  // halfedge index at j = 0; +2 per step
-  for (std::size_t i = 0; i < n; ++i) {
-    if (on_axis(i)) continue;
-    ring[i] = new_edge(v(i, 0), v(i, 1));
-    for (std::size_t j = 1; j < m; ++j) new_edge(v(i, j), v(i, j + 1));
-  }
-  for (std::size_t e = 0; e < n; ++e) {
-    const std::size_t a = e, b = (e + 1) % n;
-    if (on_axis(a) && on_axis(b)) continue;
-    meridian[e] = new_edge(v(a, 0), v(b, 0));
-    for (std::size_t j = 1; j < m; ++j) new_edge(v(a, j), v(b, j));
-    if (on_axis(a) || on_axis(b)) continue;
-    diagonal[e] = new_edge(v(a, 0), v(b, 1));
-    for (std::size_t j = 1; j < m; ++j) new_edge(v(a, j), v(b, j + 1));
-  }
-  auto he = [&](int base, std::size_t j) { return HalfedgeHandle(base + 2 * static_cast<int>(j % m)); };
-  auto add_face = [&](HalfedgeHandle h0, HalfedgeHandle h1, HalfedgeHandle h2) {
-    const Mesh::FaceHandle f(next.face++);
-    mesh.set_halfedge_handle(f, h0);
-    for (auto [h, following] : {std::pair{h0, h1}, std::pair{h1, h2}, std::pair{h2, h0}}) {
-      mesh.set_face_handle(h, f);
-      mesh.set_next_halfedge_handle(h, following);
-    }
+    return on_axis(i) ? first[i] : first[i] + static_cast<std::uint32_t>(j % m);
   };
   for (std::size_t e = 0; e < n; ++e) {
     const std::size_t a = e, b = (e + 1) % n;
     if (on_axis(a) && on_axis(b)) continue;
     for (std::size_t j = 0; j < m; ++j) {
-      if (!on_axis(a)) {
-        const HalfedgeHandle back = on_axis(b) ? opposite(he(meridian[e], j)) : opposite(he(diagonal[e], j));
-        add_face(he(ring[a], j), he(meridian[e], j + 1), back);
-      }
-      if (!on_axis(b)) {
-        const HalfedgeHandle out = on_axis(a) ? he(meridian[e], j + 1) : he(diagonal[e], j);
-        add_face(out, opposite(he(ring[b], j)), opposite(he(meridian[e], j)));
-      }
+      if (!on_axis(a)) out.triangles.push_back({v(a, j + 1), v(b, j + 1), v(a, j)});
+      if (!on_axis(b)) out.triangles.push_back({v(b, j + 1), v(b, j), v(a, j)});
     }
   }
-  // Each vertex's outgoing halfedge: its ring edge, or for a pole its meridian.
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!on_axis(i)) {
-      for (std::size_t j = 0; j < m; ++j) mesh.set_halfedge_handle(v(i, j), he(ring[i], j));
-      continue;
-    }
-    const std::size_t out_edge =
-        on_axis((i + 1) % n) ? (i + n - 1) % n : i;  // the loop edge leaving the axis here
-    const HalfedgeHandle h = he(meridian[out_edge], 0);
-    mesh.set_halfedge_handle(v(i, 0), out_edge == i ? h : opposite(h));
-  }
+}
+
+// The components of one loop's revolution and their Euler characteristics,
+// appended in order of their lowest vertex. `base` is the loop's first vertex
+// number. Without axis vertices the loop sweeps a torus (V = E - F = n m,
+// chi 0). Otherwise every axis edge is a seam that makes no faces, so each
+// arc between two axis edges sweeps its own sphere: k ring vertices and two
+// poles give V = k m + 2, F = 2 m k, E = 3 m k, chi 2.
+void loop_components(const std::vector<Vec2>& loop, TopologyProof& proof) {
+  const std::size_t n = loop.size();
+  std::size_t axis_edges = 0;
+  for (std::size_t i = 0; i < n; ++i) axis_edges += loop[i].x() == 0.0 && loop[(i + 1) % n].x() == 0.0;
+  proof.components += axis_edges == 0 ? 1 : axis_edges;
+  // Vertices are numbered in loop order, so ordering by lowest vertex is
+  // ordering by lowest loop index, which every component has the same chi.
+  proof.euler_characteristics.insert(proof.euler_characteristics.end(), axis_edges == 0 ? 1 : axis_edges,
+                                     axis_edges == 0 ? 0L : 2L);
 }
 
 }  // namespace
 
-Mesh revolve(const std::vector<std::vector<Vec2>>& loops, const RevolveOptions& options) {
+RevolvedSoup revolve(const std::vector<std::vector<Vec2>>& loops, const RevolveOptions& options) {
   if (options.segments < 3) {
     throw RangeError("segments", options.segments,
                      fmt::format("segments = {} must be >= 3", options.segments));
@@ -161,32 +125,36 @@ Mesh revolve(const std::vector<std::vector<Vec2>>& loops, const RevolveOptions& 
     cs[j] = std::cos(theta);
     sn[j] = std::sin(theta);
   }
-  std::size_t vertex_count = 0;
   for (const auto& loop : loops) {
     require_axis_contacts_along_edges(loop);
     for (const Vec2& p : loop) {
       if (p.x() < 0.0) throw RangeError("radius", p.x(), fmt::format("loop vertex radius {} < 0", p.x()));
-      vertex_count += p.x() == 0.0 ? 1 : m;
     }
   }
-  const std::size_t faces = revolved_triangle_count(loops, options.segments);
-  // OpenMesh numbers halfedges (3 per triangle) with an int.
-  constexpr std::size_t kMaxFaces = static_cast<std::size_t>(std::numeric_limits<int>::max()) / 3;
-  if (faces > kMaxFaces) {
-    throw BudgetError(static_cast<double>(faces), static_cast<double>(kMaxFaces),
-                      fmt::format("the mesh needs {} triangles, more than the {} a halfedge mesh can hold "
+  const std::size_t vertex_count = revolved_vertex_count(loops, options.segments);
+  constexpr std::size_t kMaxVertices = std::numeric_limits<std::uint32_t>::max();
+  if (vertex_count > kMaxVertices) {
+    throw BudgetError(static_cast<double>(vertex_count), static_cast<double>(kMaxVertices),
+                      fmt::format("the mesh needs {} vertices, more than the {} 32-bit indices can number "
                                   "(lower max_triangles or raise the tolerance)",
-                                  faces, kMaxFaces));
+                                  vertex_count, kMaxVertices));
   }
-  Mesh mesh;
-  mesh.resize(vertex_count, 3 * faces / 2, faces);  // closed triangle mesh: E = 3F/2
-  Slots next;
-  for (const auto& loop : loops) revolve_loop(loop, cs, sn, mesh, next);
-  if (static_cast<std::size_t>(next.vertex) != vertex_count ||
-      static_cast<std::size_t>(next.edge) != 3 * faces / 2 || static_cast<std::size_t>(next.face) != faces) {
-    throw std::logic_error("revolve: element counts disagree with the closed-surface formula");
+  const std::size_t faces = revolved_triangle_count(loops, options.segments);
+  RevolvedSoup out;
+  out.soup.vertices.reserve(vertex_count);
+  out.soup.triangles.reserve(faces);
+  for (const auto& loop : loops) {
+    revolve_loop(loop, cs, sn, out.soup);
+    loop_components(loop, out.topology);
   }
-  return mesh;
+  if (out.soup.vertices.size() != vertex_count || out.soup.triangles.size() != faces) {
+    throw std::logic_error("revolve: element counts disagree with the revolution grid");
+  }
+  out.topology.statement = fmt::format(
+      "closed, manifold and consistently oriented by construction: a revolution grid of {} angular steps "
+      "whose every edge has one face on each side, traversed in opposite directions",
+      m);
+  return out;
 }
 
 }  // namespace fabmesh

@@ -121,11 +121,17 @@ const DefectReport* ValidationReport::find(Defect kind) const {
 
 namespace {
 
-// The stages after the connectivity analysis, shared by both entry points.
+// The stages after the connectivity analysis, shared by every entry point.
 ValidationReport validate_with(const TriangleSoup& soup, const Topology& topo, ValidationReport report,
                                const ValidateOptions& options);
 
 }  // namespace
+
+ValidationReport validate_geometry(const TriangleSoup& soup, const Topology& topology,
+                                   const ValidateOptions& options) {
+  require_indices_in_range(soup);
+  return validate_with(soup, topology, ValidationReport{}, options);
+}
 
 ValidationReport validate(const TriangleSoup& soup, const ValidateOptions& options) {
   require_indices_in_range(soup);
@@ -171,7 +177,9 @@ ValidationReport validate_moved(const TriangleSoup& original, const ValidationRe
   topo.duplicate_faces = inherited(Defect::DuplicateFace);
   topo.components = original_report.components;
   topo.euler_characteristics = original_report.euler_characteristics;
-  return validate_with(moved, topo, ValidationReport{}, options);
+  ValidationReport report = validate_with(moved, topo, ValidationReport{}, options);
+  report.topology_proof = original_report.topology_proof;
+  return report;
 }
 
 namespace {

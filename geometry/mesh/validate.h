@@ -71,6 +71,10 @@ struct ValidationReport {
   std::size_t non_finite_vertices = 0;
   IntersectionCheck self_intersection = IntersectionCheck::NotRun;
   std::string embedding_proof;  ///< the builder's statement when ProvenByConstruction
+  /// The builder's statement when its construction proved the connectivity
+  /// (closed, manifold, oriented, components, Euler characteristics; see
+  /// TopologyProof); empty when the connectivity was analysed.
+  std::string topology_proof;
   bool self_intersecting = false;
   std::size_t intersecting_pairs = 0;  ///< face pairs that intersect
   bool consistently_oriented = false;  ///< no inconsistent edge
@@ -102,6 +106,14 @@ ValidationReport validate(const Mesh& mesh, const ValidateOptions& options = {})
 
 /// The same when the caller already has `soup` == to_soup(mesh).
 ValidationReport validate(const Mesh& mesh, const TriangleSoup& soup, const ValidateOptions& options = {});
+
+/// Validates `soup` given its connectivity facts `topology` (from
+/// analyse_topology on the same triangles, or from a construction proof):
+/// every geometric check of validate (finiteness, exact degeneracy, area,
+/// signed volume and orientation, the exact self-intersection test) runs on
+/// `soup`, the combinatorial counts and the genus come from `topology`.
+ValidationReport validate_geometry(const TriangleSoup& soup, const Topology& topology,
+                                   const ValidateOptions& options = {});
 
 /// The report validate(moved) would give, without redoing what cannot have
 /// changed. `moved` has the same triangles as `original` (same indices, same

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "geometry/core/errors.h"
@@ -60,14 +61,25 @@ VesselMesh build_vessel(const CompositeCurve& profile, const VesselOptions& opti
                     "tolerance)",
                     triangles, options.max_triangles));
   }
+  const std::size_t vertices = revolved_vertex_count(section.loops, segments);
+  const double bytes = static_cast<double>(triangles) * sizeof(std::array<std::uint32_t, 3>) +
+                       static_cast<double>(vertices) * sizeof(Vec3);
+  if (bytes > static_cast<double>(options.max_bytes)) {
+    throw BudgetError(
+        bytes, static_cast<double>(options.max_bytes),
+        fmt::format("the mesh needs {} triangles and {:.3g} GB of memory, more than the {:.3g} GB "
+                    "this process can use (raise the tolerance or lower max_triangles)",
+                    triangles, bytes * 1e-9, static_cast<double>(options.max_bytes) * 1e-9));
+  }
   RevolveOptions ro;
   ro.segments = segments;
   const double sagitta = section.max_radius * (1.0 - std::cos(M_PI / segments));
   const double max_deviation = section.max_deviation + sagitta;
   EmbeddingProof proof{section.proof + fmt::format("; revolved in {} uniform angular steps", segments)};
-  // The mesh member is initialised from revolve's result in place (meshes cannot be moved).
-  return VesselMesh{revolve(section.loops, ro), std::move(section), segments, max_deviation,
-                    std::move(proof)};
+  RevolvedSoup revolved = revolve(section.loops, ro);
+  return VesselMesh{
+      std::move(revolved.soup), std::move(revolved.topology), std::move(section), segments, max_deviation,
+      std::move(proof)};
 }
 
 }  // namespace fabmesh

@@ -2,12 +2,15 @@
 // Vessels: a profile curve revolved into a watertight solid or shell mesh.
 
 #include <cstddef>
+#include <limits>
 #include <optional>
 #include <string>
 
 #include "geometry/core/limits.h"
 #include "geometry/curves/composite.h"
 #include "geometry/mesh/embedding_proof.h"
+#include "geometry/mesh/soup.h"
+#include "geometry/mesh/topology_proof.h"
 #include "geometry/section/vessel_section.h"
 
 namespace fabmesh {
@@ -24,18 +27,22 @@ struct VesselOptions {
   /// section of n points revolves into at least 1.5 n triangles (at most n/2
   /// axis edges, at least 3 angular steps).
   std::size_t max_triangles = kDefaultMaxTriangles;
+  /// Memory the mesh's arrays may take, bytes (the caller's machine or
+  /// process limit); more is a BudgetError before they are allocated.
+  std::size_t max_bytes = std::numeric_limits<std::size_t>::max();
   std::string label;  ///< the profile's name with its file location, for messages
 };
 
-/// A revolved vessel (returned by value: the mesh is built in place).
+/// A revolved vessel.
 struct VesselMesh {
-  Mesh mesh;
+  TriangleSoup soup;       ///< the revolution (revolve's layout)
+  TopologyProof topology;  ///< its connectivity, proven by the revolution grid
   VesselSection section;
   int segments = 0;            ///< angular segments
   double max_deviation = 0.0;  ///< proven: section deviation + angular sagitta at the largest radius
   /// Why the mesh is free of self-intersections without a 3D test (always
   /// given: a simple section revolves into an embedded surface).
-  std::optional<EmbeddingProof> proof;
+  EmbeddingProof proof;
 };
 
 /// Builds the section, chooses the angular step and revolves. Before any
@@ -43,7 +50,8 @@ struct VesselMesh {
 /// min_chord_count times the angular steps the largest end radius needs) is
 /// checked against max_triangles. A shell's exact walls must stay `tolerance`
 /// apart (VesselSectionOptions::min_clearance).
-/// \throw GeometryError (profile/wall), RangeError, BudgetError (tolerance too small for max_triangles)
+/// \throw GeometryError (profile/wall), RangeError, BudgetError (tolerance too small for
+///        max_triangles, or the mesh larger than max_bytes)
 VesselMesh build_vessel(const CompositeCurve& profile, const VesselOptions& options);
 
 }  // namespace fabmesh

@@ -94,6 +94,8 @@ TEST_CASE("countertop run: default outputs are STL, Draco, DXF and SVG, and the 
   CHECK(j["genus"] == 2);
   CHECK(j["build"]["holes"] == 2);
   CHECK(j.contains("self_intersection_proof"));
+  CHECK(j["topology"] == "analysed");
+  CHECK_FALSE(j.contains("topology_proof"));
   for (const char* stage : {"curve", "region", "build", "validate", "encode_stl", "encode_dxf", "write"}) {
     CHECK(j["timings_ms"].contains(stage));
   }

@@ -40,6 +40,12 @@ TEST_CASE("run: a shell vessel is written as STL and Draco in millimetres that b
   CHECK(from_stl.valid());
   CHECK(from_stl.triangles == r.validation.triangles);
   CHECK(from_stl.volume == Approx(1000.0 * r.validation.volume).epsilon(1e-6));
+  // The job proved the connectivity by construction; the file's analysis finds the same.
+  CHECK_FALSE(r.validation.topology_proof.empty());
+  CHECK(from_stl.topology_proof.empty());
+  CHECK(from_stl.components == r.validation.components);
+  CHECK(from_stl.euler_characteristics == r.validation.euler_characteristics);
+  CHECK(from_stl.genus == r.validation.genus);
 
   const TriangleSoup drc = parse_draco(read_file((dir / "vessel_golden_shell.drc").string()), "drc");
   const ValidationReport from_drc = validate(drc);
@@ -98,6 +104,8 @@ TEST_CASE("run --json: one array, an object per design with the documented field
   CHECK(j["watertight"] == true);
   CHECK(j["manifold"] == true);
   CHECK(j["self_intersecting"] == false);
+  CHECK(j["topology"] == "proven by construction");
+  CHECK(j["topology_proof"].get<std::string>().find("revolution grid") != std::string::npos);
   CHECK(j["outputs"].size() == 4);  // STL, Draco, and the profile template as DXF and SVG
   CHECK(j["max_deviation"].get<double>() <= 0.005);
 }

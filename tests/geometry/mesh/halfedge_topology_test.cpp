@@ -43,7 +43,9 @@ TEST_CASE("halfedge topology agrees with the soup analysis on valid meshes", "[m
   o.tolerance = 0.02;
   o.mode = BodyMode::Shell;
   o.wall = 0.3;
-  const Mesh mesh = build_vessel(construct_curve(spec), o).mesh;
+  const SoupToMesh built = to_mesh(build_vessel(construct_curve(spec), o).soup);
+  REQUIRE(built.refused_faces == 0);
+  const Mesh& mesh = built.mesh;
   const Topology t = analyse_topology(mesh);
   check_same(t, analyse_topology(to_soup(mesh)));
   CHECK(t.euler_characteristics == std::vector<long>{2});

@@ -137,7 +137,7 @@ TriangleSoup perturbed(TriangleSoup s, Random& rng) {
 /// A section revolved into a closed mesh (what the vessel builder makes).
 TriangleSoup revolved(int segments) {
   const std::vector<std::vector<Vec2>> loops = {{{0, 0}, {2, 0}, {2.5, 1}, {1.5, 2}, {1.2, 3}, {0, 3}}};
-  return to_soup(revolve(loops, RevolveOptions{segments}));
+  return revolve(loops, RevolveOptions{segments}).soup;
 }
 
 /// A countertop slab (what the countertop builder makes): a constrained

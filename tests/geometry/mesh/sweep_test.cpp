@@ -33,7 +33,7 @@ TEST_CASE("sweep: a closed sweep is revolve's mesh, a valid solid of the same vo
   CHECK(a.genus == 0);
   RevolveOptions ro;
   ro.segments = 48;
-  const ValidationReport b = validate(revolve({s.loop}, ro));
+  const ValidationReport b = validate(revolve({s.loop}, ro).soup);
   CHECK(swept.soup.triangles.size() == static_cast<std::size_t>(b.triangles));
   CHECK(a.volume == Approx(b.volume).epsilon(1e-12));
   CHECK(a.area == Approx(b.area).epsilon(1e-12));

@@ -77,12 +77,9 @@ double surface_to_mesh_distance(const CompositeCurve& profile, const TriangleSou
   return worst;
 }
 
-std::size_t axis_vertices(const Mesh& mesh) {
+std::size_t axis_vertices(const TriangleSoup& soup) {
   std::size_t n = 0;
-  for (const auto v : mesh.vertices()) {
-    const auto p = mesh.point(v);
-    if (p[0] == 0.0 && p[1] == 0.0) ++n;
-  }
+  for (const Vec3& p : soup.vertices) n += p.x() == 0.0 && p.y() == 0.0;
   return n;
 }
 
@@ -99,7 +96,7 @@ TEST_CASE("vessel: solid golden profile converges to the Pappus volume and area"
     o.tolerance = tol;
     const VesselMesh v = build_vessel(profile, o);
     CHECK(v.max_deviation <= tol);
-    const ValidationReport r = validate(v.mesh);
+    const ValidationReport r = validate(v.soup);
     REQUIRE(r.valid());
     CHECK(r.genus == 0);
     CHECK(r.components == 1);
@@ -119,7 +116,7 @@ TEST_CASE("vessel: every point of the exact surface is within tolerance of the m
     VesselOptions o;
     o.tolerance = tol;
     const VesselMesh v = build_vessel(profile, o);
-    CHECK(surface_to_mesh_distance(profile, to_soup(v.mesh), 300) <= tol);
+    CHECK(surface_to_mesh_distance(profile, v.soup, 300) <= tol);
   }
 }
 
@@ -129,15 +126,15 @@ TEST_CASE("revolve: a profile from axis to axis gives single pole vertices and n
   VesselOptions o;
   o.tolerance = 0.002;
   const VesselMesh v = build_vessel(sphere, o);
-  CHECK(axis_vertices(v.mesh) == 2);
-  const ValidationReport r = validate(v.mesh);
+  CHECK(axis_vertices(v.soup) == 2);
+  const ValidationReport r = validate(v.soup);
   REQUIRE(r.valid());
   CHECK(r.degenerate_faces == 0);
   CHECK(r.genus == 0);
   const double exact_volume = 4.0 / 3.0 * M_PI * 8.0, exact_area = 16 * M_PI;
   CHECK(std::abs(r.volume - exact_volume) <= o.tolerance * exact_area);
   CHECK(r.area == Approx(exact_area).epsilon(0.01));
-  CHECK(surface_to_mesh_distance(sphere, to_soup(v.mesh), 300) <= o.tolerance);
+  CHECK(surface_to_mesh_distance(sphere, v.soup, 300) <= o.tolerance);
 }
 
 TEST_CASE("revolve: a closed profile off the axis gives a torus of genus 1", "[mesh][revolve]") {
@@ -148,8 +145,8 @@ TEST_CASE("revolve: a closed profile off the axis gives a torus of genus 1", "[m
   VesselOptions o;
   o.tolerance = 0.005;
   const VesselMesh v = build_vessel(ring, o);
-  CHECK(axis_vertices(v.mesh) == 0);
-  const ValidationReport r = validate(v.mesh);
+  CHECK(axis_vertices(v.soup) == 0);
+  const ValidationReport r = validate(v.soup);
   REQUIRE(r.valid());
   CHECK(r.genus == 1);
   const double exact_volume = 2 * M_PI * M_PI * 3, exact_area = 4 * M_PI * M_PI * 3;
@@ -173,10 +170,10 @@ TEST_CASE("revolve: a profile running along the axis between two parts gives two
   o.tolerance = 0.01;
   const VesselMesh v = build_vessel(construct_curve(spec), o);
   CHECK(v.section.loops.size() == 2);
-  const ValidationReport r = validate(v.mesh);
+  const ValidationReport r = validate(v.soup);
   REQUIRE(r.valid());
   CHECK(r.components == 2);
-  CHECK(axis_vertices(v.mesh) == 4);
+  CHECK(axis_vertices(v.soup) == 4);
   // Two double cones of radius 1 and height 2: volume 2 * (2/3) pi, lateral area 4 * pi * sqrt(2).
   CHECK(std::abs(r.volume - 4.0 / 3.0 * M_PI) <= o.tolerance * 4 * M_PI * std::sqrt(2.0));
 }
@@ -195,7 +192,7 @@ TEST_CASE("vessel: a straight shell matches the exact cup volume and is a valid 
   o.base = base;
   o.tolerance = 0.001;
   const VesselMesh v = build_vessel(construct_curve(spec), o);
-  const ValidationReport r = validate(v.mesh);
+  const ValidationReport r = validate(v.soup);
   REQUIRE(r.valid());
   CHECK(r.genus == 0);
   const double ri = radius - wall;
@@ -213,8 +210,8 @@ TEST_CASE("vessel: the golden shell is valid, thinner than the solid, with its r
   shell.wall = 0.3;
   shell.base = 0.4;
   const CompositeCurve profile = golden_profile();
-  const ValidationReport rs = validate(build_vessel(profile, solid).mesh);
-  const ValidationReport rh = validate(build_vessel(profile, shell).mesh);
+  const ValidationReport rs = validate(build_vessel(profile, solid).soup);
+  const ValidationReport rh = validate(build_vessel(profile, shell).soup);
   REQUIRE(rh.valid());
   CHECK(rh.genus == 0);
   CHECK(rh.volume > 0.2 * rs.volume);
@@ -252,36 +249,10 @@ TEST_CASE("vessel bad input: axis crossing, self-crossing, thick wall, bad toler
   budget.tolerance = 1e-5;
   budget.max_triangles = 100000;
   REQUIRE_THROWS_AS(build_vessel(golden_profile(), budget), BudgetError);
-}
-
-TEST_CASE("revolve: the directly built halfedge structure is consistent", "[mesh][revolve]") {
-  // Sphere (two poles), torus (no pole) and a shell: every halfedge has a face,
-  // prev/next/opposite agree, and circulating each vertex visits all its edges.
-  EllipseArcParams e;
-  e.center = Vec2(3, 1);
-  e.a = e.b = 1;
-  VesselOptions o;
-  o.tolerance = 0.05;
-  VesselOptions shell = o;
-  shell.mode = BodyMode::Shell;
-  shell.wall = 0.2;
-  for (const Mesh& mesh : {build_vessel(arc_profile({0, 0}, 2.0, -90, 90), o).mesh,
-                           build_vessel(CompositeCurve({Segment::ellipse_arc(e)}, true), o).mesh,
-                           build_vessel(golden_profile(), shell).mesh}) {
-    std::vector<int> outgoing(mesh.n_vertices(), 0);
-    for (const auto h : mesh.halfedges()) {
-      REQUIRE(mesh.face_handle(h).is_valid());
-      CHECK(mesh.prev_halfedge_handle(mesh.next_halfedge_handle(h)) == h);
-      CHECK(mesh.next_halfedge_handle(mesh.next_halfedge_handle(mesh.next_halfedge_handle(h))) == h);
-      CHECK(mesh.to_vertex_handle(mesh.opposite_halfedge_handle(h)) == mesh.from_vertex_handle(h));
-      CHECK(mesh.to_vertex_handle(mesh.prev_halfedge_handle(h)) == mesh.from_vertex_handle(h));
-      ++outgoing[mesh.from_vertex_handle(h).idx()];
-    }
-    for (const auto vh : mesh.vertices()) {
-      int around = 0;
-      for (auto it = mesh.cvoh_iter(vh); it.is_valid(); ++it) ++around;
-      CHECK(around == outgoing[vh.idx()]);
-      CHECK(mesh.is_manifold(vh));
-    }
-  }
+  VesselOptions memory = o;
+  const VesselMesh fits = build_vessel(golden_profile(), o);
+  memory.max_bytes = fits.soup.triangles.size() * 12 + fits.soup.vertices.size() * 24;  // exactly its arrays
+  CHECK(build_vessel(golden_profile(), memory).soup.triangles.size() == fits.soup.triangles.size());
+  memory.max_bytes -= 1;
+  REQUIRE_THROWS_WITH(build_vessel(golden_profile(), memory), Catch::Contains("GB of memory"));
 }

@@ -19,7 +19,7 @@ inline TriangleSoup golden_vessel_cm(double tolerance = 0.005) {
   options.wall = 0.3;
   options.base = 0.4;
   options.tolerance = tolerance;
-  return to_soup(build_vessel(construct_curve(spec), options).mesh);
+  return build_vessel(construct_curve(spec), options).soup;
 }
 
 /// `soup` with every vertex multiplied by `factor`.

@@ -82,7 +82,7 @@ inline ReportRow vessel_row(const std::string& dir, const std::string& example) 
   plot.title = design.common.name + ": profile (radius, height)";
   plot.units = design.common.units;
   plot.curves.push_back(plot_curve_for(vessel.profile, "profile"));
-  const TriangleSoup soup = to_soup(build_vessel(plot.curves[0].curve, options).mesh);
+  const TriangleSoup soup = build_vessel(plot.curves[0].curve, options).soup;
   return sample_row(dir, design, soup, plot,
                     std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
 }

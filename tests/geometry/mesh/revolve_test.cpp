@@ -1,0 +1,128 @@
+// The revolution's connectivity is proven by its construction (revolve's
+// TopologyProof) and that proof replaces the connectivity analysis in the
+// pipeline; these cases check it against the full analysis of the soup, which
+// assumes nothing, on sections of every kind revolve accepts.
+
+#include "geometry/mesh/revolve.h"
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <random>
+#include <set>
+
+#include "geometry/core/errors.h"
+#include "geometry/mesh/constructed_validation.h"
+#include "geometry/mesh/topology.h"
+#include "geometry/mesh/validate.h"
+
+using namespace fabmesh;
+
+namespace {
+
+using Loops = std::vector<std::vector<Vec2>>;
+
+// A star-shaped loop around `centre` (counter-clockwise, off the axis when
+// the radii stay below centre.x()): it revolves into a torus.
+std::vector<Vec2> star(std::mt19937& rng, Vec2 centre, int points, double r_min, double r_max) {
+  std::uniform_real_distribution<double> radius(r_min, r_max);
+  std::vector<Vec2> loop;
+  for (int i = 0; i < points; ++i) {
+    const double t = 2 * M_PI * i / points;
+    const double r = radius(rng);
+    loop.emplace_back(centre.x() + r * std::cos(t), centre.y() + r * std::sin(t));
+  }
+  return loop;
+}
+
+// A profile rising monotonically from (0, z0) to (0, z1) at random radii,
+// closed down the axis: a solid whose two poles end one axis edge.
+std::vector<Vec2> solid(std::mt19937& rng, double z0, double z1, int points) {
+  std::uniform_real_distribution<double> radius(0.2, 2.0);
+  std::vector<Vec2> loop = {{0.0, z0}};
+  for (int i = 1; i <= points; ++i) loop.emplace_back(radius(rng), z0 + (z1 - z0) * i / (points + 1));
+  loop.emplace_back(0.0, z1);
+  return loop;
+}
+
+// What the proof states must be what analysing the soup from scratch finds.
+void require_proof_holds(const Loops& loops, int segments) {
+  const RevolvedSoup r = revolve(loops, RevolveOptions{segments});
+  INFO(loops.size() << " loops, " << segments << " segments, " << r.soup.triangles.size() << " triangles");
+  REQUIRE(r.soup.triangles.size() == revolved_triangle_count(loops, segments));
+  REQUIRE(r.soup.vertices.size() == revolved_vertex_count(loops, segments));
+  const Topology t = analyse_topology(r.soup);
+  CHECK(t.boundary_edges.count == 0);
+  CHECK(t.non_manifold_edges.count == 0);
+  CHECK(t.non_manifold_vertices.count == 0);
+  CHECK(t.inconsistent_edges.count == 0);
+  CHECK(t.duplicate_faces.count == 0);
+  CHECK(t.referenced_vertices == r.soup.vertices.size());
+  CHECK(t.components == r.topology.components);
+  CHECK(t.euler_characteristics == r.topology.euler_characteristics);
+  for (const auto& f : r.soup.triangles) REQUIRE((f[0] != f[1] && f[1] != f[2] && f[2] != f[0]));
+
+  // The whole report: the full validation (3D test included) against the constructed one.
+  const ValidationReport full = validate(r.soup);
+  const ValidationReport built = validate_constructed(r.soup, r.topology, EmbeddingProof{"simple section"});
+  CHECK(full.valid());
+  CHECK(built.valid());
+  CHECK(built.components == full.components);
+  CHECK(built.euler_characteristics == full.euler_characteristics);
+  CHECK(built.genus == full.genus);
+  CHECK(built.degenerate_faces == full.degenerate_faces);
+  CHECK(built.volume == full.volume);
+  CHECK(built.area == full.area);
+  CHECK(built.oriented_outward == full.oriented_outward);
+  CHECK(built.topology_proof == r.topology.statement);
+  CHECK(built.self_intersection == IntersectionCheck::ProvenByConstruction);
+}
+
+}  // namespace
+
+TEST_CASE("revolve: the proven connectivity is what the full analysis finds", "[mesh][revolve]") {
+  std::mt19937 rng(7);
+  for (const int segments : {3, 4, 7, 64}) {
+    SECTION("tori, " + std::to_string(segments) + " segments") {
+      for (int k = 0; k < 10; ++k) require_proof_holds({star(rng, {3.0, 0.0}, 3 + k * 5, 0.5, 1.5)}, segments);
+    }
+    SECTION("solids from pole to pole, " + std::to_string(segments) + " segments") {
+      for (int k = 0; k < 10; ++k) require_proof_holds({solid(rng, 0.0, 3.0, 1 + k * 4)}, segments);
+    }
+    SECTION("several loops in one mesh, " + std::to_string(segments) + " segments") {
+      require_proof_holds({solid(rng, 0.0, 3.0, 6), star(rng, {6.0, 1.0}, 9, 0.5, 1.5), solid(rng, 4, 5, 2)},
+                          segments);
+    }
+  }
+}
+
+TEST_CASE("revolve: a loop with two axis edges sweeps two spheres", "[mesh][revolve]") {
+  // A C-shaped section (counter-clockwise) touching the axis along z in [0, 1]
+  // and [4, 5]: a closed cylinder with a closed cavity inside, one arc each.
+  const Loops loops = {{{0, 0}, {2, 0}, {2, 5}, {0, 5}, {0, 4}, {1, 4}, {1, 1}, {0, 1}}};
+  for (const int segments : {3, 5, 32}) require_proof_holds(loops, segments);
+  const RevolvedSoup r = revolve(loops, RevolveOptions{32});
+  CHECK(r.topology.components == 2);
+  CHECK(r.topology.euler_characteristics == std::vector<long>{2, 2});
+  const double n = 32, s = std::sin(2 * M_PI / n);
+  // Two prisms of regular 32-gons: outer radius 2 height 5, cavity radius 1 height 3.
+  CHECK(validate(r.soup).volume == Approx(n / 2 * s * (4 * 5 - 1 * 3)).epsilon(1e-12));
+}
+
+TEST_CASE("revolve: the layout is vertices loop by loop and rings from angle 0", "[mesh][revolve]") {
+  const Loops loops = {{{0, 0}, {1, 0}, {1, 2}, {0, 2}}};
+  const RevolvedSoup r = revolve(loops, RevolveOptions{4});
+  REQUIRE(r.soup.vertices.size() == 10);
+  CHECK(r.soup.vertices[0] == Vec3(0, 0, 0));  // pole
+  CHECK(r.soup.vertices[1] == Vec3(1, 0, 0));  // ring of (1, 0) at angle 0
+  CHECK(r.soup.vertices[9] == Vec3(0, 0, 2));  // the top pole
+  // Every triangle of a counter-clockwise section faces away from the axis or its poles.
+  CHECK(validate(r.soup).oriented_outward);
+}
+
+TEST_CASE("revolve: bad sections are refused", "[mesh][revolve][errors]") {
+  CHECK_THROWS_AS(revolve({{{1, 0}, {2, 0}, {1, 1}}}, RevolveOptions{2}), RangeError);
+  CHECK_THROWS_AS(revolve({{{1, 0}, {-2, 0}, {1, 1}}}, RevolveOptions{8}), RangeError);
+  // A single axis vertex (no axis edge): the mesh would be pinched there.
+  CHECK_THROWS_WITH(revolve({{{0, 0}, {2, 1}, {1, 2}}}, RevolveOptions{8}),
+                    Catch::Contains("axis neighbours"));
+}
