@@ -37,6 +37,7 @@ struct OutputFile {
   std::string format;
   std::string units;         ///< the unit of its coordinates
   double added_error = 0.0;  ///< how far writing moved any vertex at most, model units
+  std::optional<bool> valid_as_written = std::nullopt;  ///< mesh outputs: Encoded::valid_as_written
 };
 
 /// An output the job could not make (and skipped, by the design's policy).

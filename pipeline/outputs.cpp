@@ -43,6 +43,12 @@ double double_error(const EncodeContext& c) {
              : std::sqrt(3.0) * std::ldexp(1.0, -52) * max_abs_coordinate(c.exported) / c.export_scale;
 }
 
+// Whether a mesh moved by at most `moved` (model units) is still the valid mesh it was.
+bool still_valid(const EncodeContext& c, double moved) {
+  const ValidationReport& v = c.built.validation;
+  return v.valid() && (moved == 0.0 || moved < v.embedding_margin);
+}
+
 Encoded within_tolerance(Encoded e, const EncodeContext& c, std::string_view format) {
   if (e.added_error > c.output_tolerance) {
     throw OutputError(
@@ -53,6 +59,7 @@ Encoded within_tolerance(Encoded e, const EncodeContext& c, std::string_view for
                     format, e.added_error, c.common.units, max_abs_coordinate(c.exported),
                     c.common.export_units, c.output_tolerance));
   }
+  e.valid_as_written = still_valid(c, e.added_error);
   return e;
 }
 
@@ -94,19 +101,28 @@ Files encode_3mf_output(const EncodeContext& c) {
 // validated. Its faces are `input`'s (fit_draco checks that), so its
 // combinatorial facts are the built mesh's (validated by the job) and only
 // its geometry is tested again (validate_moved: the same verdict as validate).
-std::function<bool(const TriangleSoup&)> still_fit(const EncodeContext& c, const TriangleSoup& input) {
+// A proven embedding margin (a vessel's) carries over to `input`, the built
+// mesh times `scale` (and turned by quarter turns, which round nothing):
+// times the scale, less what scaling rounded.
+std::function<bool(const TriangleSoup&)> still_fit(const EncodeContext& c, const TriangleSoup& input,
+                                                   double scale) {
   const MeshPurpose purpose = c.built.purpose;
-  const ValidationReport& built = c.built.validation;
-  return [purpose, &built, &input](const TriangleSoup& decoded) {
+  ValidationReport built = c.built.validation;
+  const double rounding =
+      scale == 1.0 ? 0.0 : std::sqrt(3.0) * std::ldexp(1.0, -52) * max_abs_coordinate(input);
+  built.embedding_margin = std::max(0.0, built.embedding_margin * scale * (1.0 - 1e-12) - rounding);
+  return [purpose, built = std::move(built), &input](const TriangleSoup& decoded) {
     return fit_for(validate_moved(input, built, decoded), purpose);
   };
 }
 
 Files encode_drc_output(const EncodeContext& c) {
   const double tolerance = c.output_tolerance * c.export_scale;  // export units
-  DracoFit fit = fit_draco(c.exported, tolerance, still_fit(c, c.exported), "drc");
+  DracoFit fit = fit_draco(c.exported, tolerance, still_fit(c, c.exported, c.export_scale), "drc");
   // fit.bytes are the file whose decoding was matched to the mesh and validated.
-  return {unitless(std::move(fit.bytes), c, fit.max_displacement / c.export_scale)};
+  Encoded e = unitless(std::move(fit.bytes), c, fit.max_displacement / c.export_scale);
+  e.valid_as_written = c.built.validation.valid();
+  return {std::move(e)};
 }
 
 GlbOptions glb_options(const EncodeContext& c) {
@@ -128,11 +144,13 @@ Files encode_glb_output(const EncodeContext& c) {
 Files encode_glb_draco_output(const EncodeContext& c) {
   GlbOptions options = glb_options(c);
   const TriangleSoup metres = to_gltf_frame(c.built.soup, options.scale_to_metres);
-  const DracoFit fit =
-      fit_draco(metres, c.output_tolerance * options.scale_to_metres, still_fit(c, metres), "glb_draco");
+  const DracoFit fit = fit_draco(metres, c.output_tolerance * options.scale_to_metres,
+                                 still_fit(c, metres, options.scale_to_metres), "glb_draco");
   options.draco = true;
   options.draco_position_bits = fit.bits;
-  return {{encode_glb(c.built.soup, options), "m", fit.max_displacement / options.scale_to_metres, ""}};
+  Encoded e{encode_glb(c.built.soup, options), "m", fit.max_displacement / options.scale_to_metres, ""};
+  e.valid_as_written = c.built.validation.valid();
+  return {std::move(e)};
 }
 
 Files encode_dxf_output(const EncodeContext& c) {
@@ -159,8 +177,8 @@ std::vector<NamedSoup> exported_parts(const EncodeContext& c) {
 Files encode_mould_stl_output(const EncodeContext& c) {
   Files files;
   for (const NamedSoup& p : exported_parts(c)) {
-    files.push_back(
-        {encode_stl(p.soup), c.common.export_units, float32_error(c), ".mould-" + p.name + ".stl"});
+    files.push_back({encode_stl(p.soup), c.common.export_units, float32_error(c), ".mould-" + p.name + ".stl",
+                     nullptr, false});
   }
   return files;
 }

@@ -5,6 +5,7 @@
 
 #include <bitset>
 #include <functional>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <variant>
@@ -64,6 +65,11 @@ struct Encoded {
   /// instead (a large STL is written straight to its file, never held whole).
   /// It refers to the EncodeContext's meshes: call it while they live.
   std::function<void(const std::function<void(std::string_view)>&)> stream = nullptr;
+  /// Mesh outputs: true when the mesh as written (moved by added_error) is
+  /// itself proven valid: written exactly, moved less than the built mesh's
+  /// embedding margin, or decoded and validated (Draco); false when only the
+  /// move is bounded. Unset for drawings and programs.
+  std::optional<bool> valid_as_written = std::nullopt;
 };
 
 /// What an output is made from: the builders make the cutting outline only when an output needs it.

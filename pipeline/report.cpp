@@ -64,8 +64,10 @@ nlohmann::ordered_json to_json(const JobReport& r) {
   j["outputs"] = r.outputs;
   j["files"] = nlohmann::ordered_json::array();
   for (const OutputFile& f : r.files) {
-    j["files"].push_back(
-        {{"path", f.path}, {"format", f.format}, {"units", f.units}, {"max_added_error", f.added_error}});
+    nlohmann::ordered_json file = {
+        {"path", f.path}, {"format", f.format}, {"units", f.units}, {"max_added_error", f.added_error}};
+    if (f.valid_as_written) file["valid_as_written"] = *f.valid_as_written;
+    j["files"].push_back(std::move(file));
   }
   j["skipped_outputs"] = nlohmann::ordered_json::array();
   for (const SkippedOutput& s : r.skipped)

@@ -8,6 +8,7 @@ ValidationReport with_embedding(ValidationReport report, const EmbeddingProof& p
   if (report.non_finite_vertices == 0) {
     report.self_intersection = IntersectionCheck::ProvenByConstruction;
     report.embedding_proof = proof.statement;
+    report.embedding_margin = proof.margin;
     report.self_intersecting = false;
   }
   return report;

@@ -12,6 +12,10 @@ namespace fabmesh {
 /// construction proves it; validate_constructed then replaces the 3D test.
 struct EmbeddingProof {
   std::string statement;
+  /// Moving every vertex by less than this keeps the mesh embedded and its
+  /// faces non-degenerate (0: not proven). It lets a moved copy of the mesh (quantized, rounded to float32)
+  /// skip the 3D test: see revolution_margin.
+  double margin = 0.0;
 };
 
 }  // namespace fabmesh

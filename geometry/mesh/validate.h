@@ -71,6 +71,9 @@ struct ValidationReport {
   std::size_t non_finite_vertices = 0;
   IntersectionCheck self_intersection = IntersectionCheck::NotRun;
   std::string embedding_proof;  ///< the builder's statement when ProvenByConstruction
+  /// With ProvenByConstruction: moving every vertex by less than this keeps
+  /// the mesh embedded (EmbeddingProof::margin; 0: not proven).
+  double embedding_margin = 0.0;
   /// The builder's statement when its construction proved the connectivity
   /// (closed, manifold, oriented, components, Euler characteristics; see
   /// TopologyProof); empty when the connectivity was analysed.
@@ -126,6 +129,9 @@ ValidationReport validate_geometry(const TriangleSoup& soup, const Topology& top
 /// recomputed on `moved` exactly as validate does: finiteness, area, signed
 /// volume and orientation, exact degeneracy, and the exact self-intersection
 /// test. So valid() and every defect kind and count equal validate(moved)'s.
+/// Except that when `original_report` carries an embedding margin and no
+/// vertex moved as far, the 3D test is replaced by that proof (the report
+/// says ProvenByConstruction and how far the vertices moved).
 /// \throw InputError when the triangles differ or an index is out of range.
 ValidationReport validate_moved(const TriangleSoup& original, const ValidationReport& original_report,
                                 const TriangleSoup& moved, const ValidateOptions& options = {});

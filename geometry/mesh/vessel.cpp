@@ -8,6 +8,7 @@
 
 #include "geometry/core/errors.h"
 #include "geometry/mesh/revolve.h"
+#include "geometry/mesh/revolve_clearance.h"
 #include "geometry/sampling/sample_curve.h"
 
 namespace fabmesh {
@@ -75,7 +76,8 @@ VesselMesh build_vessel(const CompositeCurve& profile, const VesselOptions& opti
   ro.segments = segments;
   const double sagitta = section.max_radius * (1.0 - std::cos(M_PI / segments));
   const double max_deviation = section.max_deviation + sagitta;
-  EmbeddingProof proof{section.proof + fmt::format("; revolved in {} uniform angular steps", segments)};
+  EmbeddingProof proof{section.proof + fmt::format("; revolved in {} uniform angular steps", segments),
+                       revolution_margin(section.loops, segments)};
   RevolvedSoup revolved = revolve(section.loops, ro);
   return VesselMesh{
       std::move(revolved.soup), std::move(revolved.topology), std::move(section), segments, max_deviation,

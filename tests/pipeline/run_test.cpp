@@ -31,8 +31,16 @@ TEST_CASE("run: a shell vessel is written as STL and Draco in millimetres that b
   CHECK(r.validation.valid());
   CHECK(r.max_deviation <= design.common.tolerance);
   CHECK(r.export_units == "mm");
-  for (const OutputFile& f : r.files)
+  for (const OutputFile& f : r.files) {
     CHECK(f.units == (f.format == "dxf" || f.format == "svg" ? "cm" : "mm"));
+    // The vessel's embedding margin covers float32 rounding; Draco's decoding is validated.
+    if (f.format == "stl" || f.format == "drc") {
+      CHECK(f.valid_as_written == std::optional<bool>(true));
+    } else {
+      CHECK_FALSE(f.valid_as_written.has_value());
+    }
+  }
+  CHECK(r.validation.embedding_margin > 0.0);
 
   // The design is in cm, the files in mm: 10 times the lengths, 1000 times the volume.
   const TriangleSoup stl = weld(parse_stl(read_file((dir / "vessel_golden_shell.stl").string()), "stl")).soup;

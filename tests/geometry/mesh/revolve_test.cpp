@@ -12,6 +12,7 @@
 
 #include "geometry/core/errors.h"
 #include "geometry/mesh/constructed_validation.h"
+#include "geometry/mesh/revolve_clearance.h"
 #include "geometry/mesh/topology.h"
 #include "geometry/mesh/validate.h"
 
@@ -83,7 +84,8 @@ TEST_CASE("revolve: the proven connectivity is what the full analysis finds", "[
   std::mt19937 rng(7);
   for (const int segments : {3, 4, 7, 64}) {
     SECTION("tori, " + std::to_string(segments) + " segments") {
-      for (int k = 0; k < 10; ++k) require_proof_holds({star(rng, {3.0, 0.0}, 3 + k * 5, 0.5, 1.5)}, segments);
+      for (int k = 0; k < 10; ++k)
+        require_proof_holds({star(rng, {3.0, 0.0}, 3 + k * 5, 0.5, 1.5)}, segments);
     }
     SECTION("solids from pole to pole, " + std::to_string(segments) + " segments") {
       for (int k = 0; k < 10; ++k) require_proof_holds({solid(rng, 0.0, 3.0, 1 + k * 4)}, segments);
@@ -125,4 +127,106 @@ TEST_CASE("revolve: bad sections are refused", "[mesh][revolve][errors]") {
   // A single axis vertex (no axis edge): the mesh would be pinched there.
   CHECK_THROWS_WITH(revolve({{{0, 0}, {2, 1}, {1, 2}}}, RevolveOptions{8}),
                     Catch::Contains("axis neighbours"));
+}
+
+namespace {
+
+// `soup` with every vertex moved by `distance` in a random direction.
+TriangleSoup jittered(TriangleSoup soup, double distance, std::mt19937& rng) {
+  std::normal_distribution<double> g(0.0, 1.0);
+  for (Vec3& p : soup.vertices) {
+    const Vec3 d(g(rng), g(rng), g(rng));
+    p += distance * d.normalized();
+  }
+  return soup;
+}
+
+// Two squares side by side, `gap` apart, the first one reaching the axis.
+Loops two_blocks(double gap) {
+  return {{{0, 0}, {1, 0}, {1, 1}, {0, 1}}, {{1 + gap, 0}, {2 + gap, 0}, {2 + gap, 1}, {1 + gap, 1}}};
+}
+
+}  // namespace
+
+TEST_CASE("revolution_margin: vertices moved by less than it leave the revolution embedded",
+          "[mesh][revolve][margin]") {
+  std::mt19937 rng(11);
+  const std::vector<Loops> sections = {
+      {star(rng, {3.0, 0.0}, 40, 0.5, 1.5)},
+      {solid(rng, 0.0, 3.0, 30)},
+      {{{0, 0}, {2, 0}, {2, 5}, {0, 5}, {0, 4}, {1, 4}, {1, 1}, {0, 1}}},
+      two_blocks(0.01),
+  };
+  for (const Loops& loops : sections) {
+    // (Coarser revolutions may get 0: faces lie within r_max (1 - cos(pi / n)) of
+    // their section edge, and that sagitta must stay below the section's clearance.)
+    for (const int segments : {64, 128}) {
+      const double margin = revolution_margin(loops, segments);
+      const TriangleSoup soup = revolve(loops, RevolveOptions{segments}).soup;
+      INFO(segments << " segments, margin " << margin);
+      REQUIRE(margin > 0.0);
+      for (int trial = 0; trial < 20; ++trial) {
+        const ValidationReport moved = validate(jittered(soup, 0.999 * margin, rng));
+        REQUIRE(moved.self_intersection == IntersectionCheck::Tested);
+        CHECK(moved.intersecting_pairs == 0);
+      }
+    }
+  }
+}
+
+TEST_CASE("revolution_margin: a narrow gap bounds it, and closing the gap makes faces meet",
+          "[mesh][revolve][margin]") {
+  const int segments = 48;
+  for (const double gap : {0.1, 0.05, 0.02}) {
+    // The gap's walls at r = 1 and 1 + gap; every face lies within a sagitta of its section edge.
+    const double sagitta = (2 + gap) * (1 - std::cos(M_PI / segments));
+    const double margin = revolution_margin(two_blocks(gap), segments);
+    INFO("gap " << gap << ", margin " << margin);
+    CHECK(margin <= gap / 2);
+    CHECK(margin >= (gap - 2 * sagitta) / 2 - 1e-9);
+    // Pushing the facing walls toward each other by a little more than gap / 2 each makes them cross.
+    TriangleSoup soup = revolve(two_blocks(gap), RevolveOptions{segments}).soup;
+    for (Vec3& p : soup.vertices) {
+      const double r = std::hypot(p.x(), p.y());
+      const double push = std::abs(r - 1) < 1e-9         ? 0.51 * gap
+                          : std::abs(r - 1 - gap) < 1e-9 ? -0.51 * gap
+                                                         : 0.0;
+      if (push != 0.0) p *= (r + push) / r;
+    }
+    CHECK(validate(soup).intersecting_pairs > 0);
+  }
+  // With many steps the wedges are narrow: two faces of a wall two steps apart
+  // are only about r sin(2 pi / n) apart, which then bounds the margin.
+  const double wedge = std::cos(M_PI / 400) * std::sin(2 * M_PI / 400);
+  CHECK(revolution_margin(two_blocks(0.1), 400) <= wedge / 2);
+  CHECK(revolution_margin(two_blocks(0.1), 400) == Approx(wedge / 2).epsilon(1e-3));
+}
+
+TEST_CASE("revolution_margin: a vertex between two poles gets none", "[mesh][revolve][margin]") {
+  // A double cone: both fans of its one ring reach the axis.
+  CHECK(revolution_margin({{{0, 0}, {1, 1}, {0, 2}}}, 16) == 0.0);
+}
+
+TEST_CASE("validate_moved: within the margin the proof replaces the 3D test, beyond it the test runs",
+          "[mesh][revolve][margin]") {
+  std::mt19937 rng(5);
+  const Loops loops = {solid(rng, 0.0, 3.0, 20)};
+  const RevolvedSoup r = revolve(loops, RevolveOptions{32});
+  const double margin = revolution_margin(loops, 32);
+  REQUIRE(margin > 0.0);
+  const ValidationReport built = validate_constructed(r.soup, r.topology, EmbeddingProof{"simple", margin});
+  CHECK(built.embedding_margin == margin);
+
+  const TriangleSoup near = jittered(r.soup, 0.5 * margin, rng);
+  const ValidationReport within = validate_moved(r.soup, built, near);
+  CHECK(within.valid());
+  CHECK(within.self_intersection == IntersectionCheck::ProvenByConstruction);
+  CHECK_THAT(within.embedding_proof, Catch::Contains("less than its margin"));
+  CHECK(within.topology_proof == r.topology.statement);
+  CHECK(validate(near).valid());  // the full test agrees
+
+  const TriangleSoup far = jittered(r.soup, 2.0 * margin, rng);
+  const ValidationReport beyond = validate_moved(r.soup, built, far);
+  CHECK(beyond.self_intersection == IntersectionCheck::Tested);
+  CHECK(beyond.intersecting_pairs == validate(far).intersecting_pairs);
 }
