@@ -217,7 +217,8 @@ double revolution_margin(const std::vector<std::vector<Vec2>>& loops, int segmen
     auto corner = [&](std::size_t i, long step) -> Corner {
       const Vec2& p = loop[i % n];
       if (on_axis(i)) return {Vec3(0.0, 0.0, p.y()), {i % n, m}};
-      const std::size_t j = static_cast<std::size_t>((step % static_cast<long>(m) + static_cast<long>(m))) % m;
+      const std::size_t j =
+          static_cast<std::size_t>((step % static_cast<long>(m) + static_cast<long>(m))) % m;
       const auto [c, s] = trig(j);
       return {Vec3(p.x() * c, p.x() * s, p.y()), {i % n, j}};
     };
@@ -231,7 +232,8 @@ double revolution_margin(const std::vector<std::vector<Vec2>>& loops, int segmen
     };
     auto bound_pairs = [&](const std::vector<Face>& fs, const std::vector<Face>& gs, bool same) {
       for (std::size_t x = 0; x < fs.size(); ++x) {
-        for (std::size_t y = same ? x + 1 : 0; y < gs.size(); ++y) local = std::min(local, pair_bound(fs[x], gs[y], slack));
+        for (std::size_t y = same ? x + 1 : 0; y < gs.size(); ++y)
+          local = std::min(local, pair_bound(fs[x], gs[y], slack));
       }
     };
     for (std::size_t e = 0; e < n; ++e) {
