@@ -29,6 +29,7 @@ nlohmann::ordered_json validation_json(const ValidationReport& r) {
   j["self_intersection"] = to_string(r.self_intersection);
   if (r.self_intersection == IntersectionCheck::ProvenByConstruction) {
     j["self_intersection_proof"] = r.embedding_proof;
+    if (r.embedding_margin > 0.0) j["embedding_margin"] = r.embedding_margin;
   }
   j["intersecting_pairs"] = r.intersecting_pairs;
   j["defects"] = describe_defects(r);

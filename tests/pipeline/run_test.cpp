@@ -113,6 +113,7 @@ TEST_CASE("run --json: one array, an object per design with the documented field
   CHECK(j["manifold"] == true);
   CHECK(j["self_intersecting"] == false);
   CHECK(j["topology"] == "proven by construction");
+  CHECK(j["embedding_margin"].get<double>() > 0.0);
   CHECK(j["topology_proof"].get<std::string>().find("revolution grid") != std::string::npos);
   CHECK(j["outputs"].size() == 4);  // STL, Draco, and the profile template as DXF and SVG
   CHECK(j["max_deviation"].get<double>() <= 0.005);
