@@ -193,8 +193,8 @@ Files encode_mould_3mf_output(const EncodeContext& c) {
   ThreeMfOptions options;
   options.units = c.common.export_units;
   options.title = c.common.name + " mould";
-  return {
-      {encode_3mf(objects, options), c.common.export_units, threemf_max_error(largest) / c.export_scale, ""}};
+  return {{encode_3mf(objects, options), c.common.export_units, threemf_max_error(largest) / c.export_scale,
+           "", nullptr, false}};
 }
 
 GcodeOptions gcode_options(const EncodeContext& c) {

@@ -28,6 +28,11 @@ std::size_t revolved_triangle_count(const std::vector<std::vector<Vec2>>& loops,
   return per_slice * static_cast<std::size_t>(segments);
 }
 
+std::array<double, 2> revolve_direction(std::size_t j, int segments) {
+  const double theta = 2.0 * M_PI * static_cast<double>(j) / static_cast<double>(segments);
+  return {std::cos(theta), std::sin(theta)};
+}
+
 std::size_t revolved_vertex_count(const std::vector<std::vector<Vec2>>& loops, int segments) {
   std::size_t count = 0;
   for (const auto& loop : loops) {
@@ -56,19 +61,19 @@ void require_axis_contacts_along_edges(const std::vector<Vec2>& loop) {
 
 // The faces of one revolved loop, by index arithmetic on the revolution grid.
 // Vertex (i, j) is loop vertex i at angle step j (j mod m), or i's pole.
-// Faces of loop edge e = (a, b) at step j (counter-clockwise loop, outward normals):
-//   T1 = (a_j, a_{j+1}, b_{j+1}) when a is off the axis
-//   T2 = (a_j, b_{j+1}, b_j)     when b is off the axis
+// Faces of loop edge e = (a, b) at step j (for_each_edge_face; counter-clockwise
+// loop, outward normals): T1 = a_j a_{j+1} b_{j+1} when a is off the axis,
+// T2 = a_j b_{j+1} b_j when b is off the axis.
 // Each grid edge then has exactly two faces, which traverse it in opposite
 // directions: ring edge a_j a_{j+1} has T1 of the edge leaving a and T2 of the
 // edge arriving at a; meridian a_j b_j has T2 of step j and T1 of step j - 1;
 // diagonal a_j b_{j+1} has T1 and T2 of the same step. Around a ring vertex
 // the faces of the two loop edges at it form one disc; around a pole, the
 // m faces of its one off-axis loop edge form one fan.
-void revolve_loop(const std::vector<Vec2>& loop, const std::vector<double>& cs, const std::vector<double>& sn,
+void revolve_loop(const std::vector<Vec2>& loop, const std::vector<std::array<double, 2>>& directions,
                   TriangleSoup& out) {
   const std::size_t n = loop.size();
-  const std::size_t m = cs.size();
+  const std::size_t m = directions.size();
   auto on_axis = [&](std::size_t i) { return loop[i].x() == 0.0; };
 
   std::vector<std::uint32_t> first(n);  // vertex index of ring i at angle 0, or its pole
@@ -79,7 +84,7 @@ void revolve_loop(const std::vector<Vec2>& loop, const std::vector<double>& cs, 
       out.vertices.emplace_back(0.0, 0.0, p.y());
       continue;
     }
-    for (std::size_t j = 0; j < m; ++j) out.vertices.emplace_back(p.x() * cs[j], p.x() * sn[j], p.y());
+    for (std::size_t j = 0; j < m; ++j) out.vertices.push_back(revolved_point(p, directions[j]));
   }
   auto v = [&](std::size_t i, std::size_t j) {
     return on_axis(i) ? first[i] : first[i] + static_cast<std::uint32_t>(j % m);
@@ -88,15 +93,17 @@ void revolve_loop(const std::vector<Vec2>& loop, const std::vector<double>& cs, 
     const std::size_t a = e, b = (e + 1) % n;
     if (on_axis(a) && on_axis(b)) continue;
     for (std::size_t j = 0; j < m; ++j) {
-      if (!on_axis(a)) out.triangles.push_back({v(a, j + 1), v(b, j + 1), v(a, j)});
-      if (!on_axis(b)) out.triangles.push_back({v(b, j + 1), v(b, j), v(a, j)});
+      for_each_edge_face(
+          on_axis(a), on_axis(b), j, [&](bool is_b, std::size_t step) { return v(is_b ? b : a, step); },
+          [&](std::uint32_t c0, std::uint32_t c1, std::uint32_t c2) {
+            out.triangles.push_back({c0, c1, c2});
+          });
     }
   }
 }
 
 // The components of one loop's revolution and their Euler characteristics,
-// appended in order of their lowest vertex. `base` is the loop's first vertex
-// number. Without axis vertices the loop sweeps a torus (V = E - F = n m,
+// appended in order of their lowest vertex. Without axis vertices the loop sweeps a torus (V = E - F = n m,
 // chi 0). Otherwise every axis edge is a seam that makes no faces, so each
 // arc between two axis edges sweeps its own sphere: k ring vertices and two
 // poles give V = k m + 2, F = 2 m k, E = 3 m k, chi 2.
@@ -119,12 +126,8 @@ RevolvedSoup revolve(const std::vector<std::vector<Vec2>>& loops, const RevolveO
                      fmt::format("segments = {} must be >= 3", options.segments));
   }
   const auto m = static_cast<std::size_t>(options.segments);
-  std::vector<double> cs(m), sn(m);
-  for (std::size_t j = 0; j < m; ++j) {
-    const double theta = 2.0 * M_PI * static_cast<double>(j) / static_cast<double>(m);
-    cs[j] = std::cos(theta);
-    sn[j] = std::sin(theta);
-  }
+  std::vector<std::array<double, 2>> directions(m);
+  for (std::size_t j = 0; j < m; ++j) directions[j] = revolve_direction(j, options.segments);
   for (const auto& loop : loops) {
     require_axis_contacts_along_edges(loop);
     for (const Vec2& p : loop) {
@@ -144,7 +147,7 @@ RevolvedSoup revolve(const std::vector<std::vector<Vec2>>& loops, const RevolveO
   out.soup.vertices.reserve(vertex_count);
   out.soup.triangles.reserve(faces);
   for (const auto& loop : loops) {
-    revolve_loop(loop, cs, sn, out.soup);
+    revolve_loop(loop, directions, out.soup);
     loop_components(loop, out.topology);
   }
   if (out.soup.vertices.size() != vertex_count || out.soup.triangles.size() != faces) {

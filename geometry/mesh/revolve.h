@@ -2,6 +2,7 @@
 // Surfaces of revolution: a section in the (radius, height) half-plane
 // revolved about the height (z) axis into a closed triangle mesh.
 
+#include <array>
 #include <cstddef>
 #include <vector>
 
@@ -22,6 +23,28 @@ int angular_segments(double max_radius, double tolerance);
 
 /// Triangles the revolution of `loops` has with `segments` angular segments.
 std::size_t revolved_triangle_count(const std::vector<std::vector<Vec2>>& loops, int segments);
+
+/// The unit direction (cos, sin) of revolve's angular step j of `segments`
+/// (angle 2 pi j / segments). revolve computes its vertices with it, so what
+/// reasons about them (revolution_margin) sees them bit for bit.
+std::array<double, 2> revolve_direction(std::size_t j, int segments);
+
+/// revolve's vertex of section point `p` (radius, height) in `direction`.
+inline Vec3 revolved_point(const Vec2& p, const std::array<double, 2>& direction) {
+  return {p.x() * direction[0], p.x() * direction[1], p.y()};
+}
+
+/// revolve's triangles of the loop edge from vertex a to vertex b at angular
+/// step j: calls face(c0, c1, c2) for each, its corners made by
+/// corner(is_b, step) with step j or j + 1 (a pole's step does not matter):
+///   (a_{j+1}, b_{j+1}, a_j) when a is off the axis,
+///   (b_{j+1}, b_j, a_j)     when b is off the axis,
+/// counter-clockwise seen from outside for a counter-clockwise loop.
+template <class Step, class Corner, class Face>
+void for_each_edge_face(bool a_on_axis, bool b_on_axis, Step j, Corner&& corner, Face&& face) {
+  if (!a_on_axis) face(corner(false, j + 1), corner(true, j + 1), corner(false, j));
+  if (!b_on_axis) face(corner(true, j + 1), corner(true, j), corner(false, j));
+}
 
 /// Vertices the revolution of `loops` has with `segments` angular segments.
 std::size_t revolved_vertex_count(const std::vector<std::vector<Vec2>>& loops, int segments);

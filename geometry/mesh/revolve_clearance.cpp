@@ -7,6 +7,8 @@
 #include <limits>
 #include <utility>
 
+#include "geometry/mesh/revolve.h"
+
 namespace fabmesh {
 namespace {
 
@@ -196,10 +198,6 @@ double revolution_margin(const std::vector<std::vector<Vec2>>& loops, int segmen
   }
   if (!std::isfinite(scale) || !(r_min < kInf)) return 0.0;
   const double slack = kBoundSlack * scale;
-  auto trig = [m](std::size_t j) {  // revolve's angles, bit for bit
-    const double theta = 2.0 * M_PI * static_cast<double>(j % m) / static_cast<double>(m);
-    return std::pair{std::cos(theta), std::sin(theta)};
-  };
   const double half_step = M_PI / static_cast<double>(m);
 
   // Two or more angular steps apart (only when there are four or more steps).
@@ -219,15 +217,16 @@ double revolution_margin(const std::vector<std::vector<Vec2>>& loops, int segmen
       if (on_axis(i)) return {Vec3(0.0, 0.0, p.y()), {i % n, m}};
       const std::size_t j =
           static_cast<std::size_t>((step % static_cast<long>(m) + static_cast<long>(m))) % m;
-      const auto [c, s] = trig(j);
-      return {Vec3(p.x() * c, p.x() * s, p.y()), {i % n, j}};
+      return {revolved_point(p, revolve_direction(j, segments)), {i % n, j}};
     };
     // revolve's faces of loop edge e at angular step j.
     auto faces = [&](std::size_t e, long j) {
       std::vector<Face> out;
-      const std::size_t a = e, b = e + 1;
-      if (!on_axis(a)) out.push_back({corner(a, j + 1), corner(b, j + 1), corner(a, j)});
-      if (!on_axis(b)) out.push_back({corner(b, j + 1), corner(b, j), corner(a, j)});
+      for_each_edge_face(
+          on_axis(e), on_axis(e + 1), j, [&](bool is_b, long step) { return corner(is_b ? e + 1 : e, step); },
+          [&](const Corner& c0, const Corner& c1, const Corner& c2) {
+            out.push_back({c0, c1, c2});
+          });
       return out;
     };
     auto bound_pairs = [&](const std::vector<Face>& fs, const std::vector<Face>& gs, bool same) {
