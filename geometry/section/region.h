@@ -19,7 +19,7 @@ namespace fabmesh {
 struct RegionHole {
   CompositeCurve curve;
   std::string label;
-  std::string where;  ///< the hole's label with its file location (GeometryError::where); empty: label
+  std::string where = {};  ///< the hole's label with its file location (GeometryError::where); empty: label
 };
 
 struct RegionOptions {
