@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The golden vessel profile of curves.md section 2, for bench/vessel_vs_openscad.sh.
+"""The golden vessel profile of docs/math/curves.md section 2, for bench/vessel_vs_openscad.sh.
 
 Quasi-cubic uniform B-spline, control points p0..p4 = (1.5,6),(1,5),(2,4),(3,3),(1.5,2)
 in (radius, height), interior lambdas 0 (ends 4), scaled to millimetres.
@@ -18,7 +18,7 @@ Usage:
       of their neighbours are dropped (OpenSCAD would drop them), sampling a
       few more until exactly K remain.
   vessel_exact_volume.py selftest
-      Checks the evaluator against the golden values of curves.md.
+      Checks the evaluator against the golden values of docs/math/curves.md.
 
 Plain Python 3, no third-party modules.
 """
@@ -47,7 +47,7 @@ def lambdas_for(points, interior=None):
 
 
 def basis(t, l, m):
-    """b_{i,0..3}(t) of curves.md section 2 (works on floats and Fractions)."""
+    """b_{i,0..3}(t) of docs/math/curves.md section 2 (works on floats and Fractions)."""
     u = 1 - t
     return (
         ((4 - l) * u**4 + 4 * (1 - l) * u**3 * t) / 24,

@@ -3,7 +3,7 @@
 #
 #   bench/vessel_vs_openscad.sh [path/to/fabmesh]     (default: build-bench/pipeline/fabmesh)
 #
-# The profile is the golden quasi-cubic B-spline of curves.md section 2, scaled
+# The profile is the golden quasi-cubic B-spline of docs/math/curves.md section 2, scaled
 # by 30 to mm, sampled as K points rounded to a 2^-10 mm grid (bench/vessel_exact_volume.py),
 # revolved in N angular steps: 2*K*N triangles for both tools. Each size times
 # whole processes (hyperfine if installed, else a loop), measures peak RSS with

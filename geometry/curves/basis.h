@@ -1,5 +1,5 @@
 #pragma once
-// Scalar basis functions of the curve families (curves.md, h-bezier.md),
+// Scalar basis functions of the curve families (docs/math/curves.md, docs/math/h-bezier.md),
 // with analytic derivatives. A basis maps a parameter to four weights per
 // derivative order; a curve point is the weighted sum of its control points.
 
@@ -10,14 +10,14 @@ namespace fabmesh {
 /// Weights of the four control points: w[k][j] = d^k b_j / dt^k, k = 0..3.
 using BasisJet = std::array<std::array<double, 4>, 4>;
 
-/// Cubic T-Bézier basis (curves.md 1), t in R (periodic extension is exact
+/// Cubic T-Bézier basis (docs/math/curves.md 1), t in R (periodic extension is exact
 /// for ellipses), shape parameters lambda, mu (range checked by callers).
 BasisJet tbezier_basis(double t, double lambda, double mu);
 
 /// Upper bound, for all t, of |d^4 b_j / dt^4| for each j (T-Bézier).
 std::array<double, 4> tbezier_fourth_bound(double lambda, double mu);
 
-/// Quasi-cubic uniform B-spline span basis (curves.md 2), t in [0,1], with
+/// Quasi-cubic uniform B-spline span basis (docs/math/curves.md 2), t in [0,1], with
 /// l = lambda_i and m = lambda_{i+1}.
 BasisJet quasi_bspline_basis(double t, double l, double m);
 
@@ -27,7 +27,7 @@ std::array<std::array<double, 5>, 4> quasi_bspline_coefficients(double l, double
 /// Exact sup over [0,1] of |d^4 b_j / dt^4| (a constant: degree-4 polynomials).
 std::array<double, 4> quasi_bspline_fourth_bound(double l, double m);
 
-/// Generalized cubic H-Bézier basis (h-bezier.md) at u in [0, alpha], derivatives
+/// Generalized cubic H-Bézier basis (docs/math/h-bezier.md) at u in [0, alpha], derivatives
 /// with respect to u. Accurate to about 1e-12 down to alpha = 1e-3 (series
 /// evaluation of the cancelling differences).
 BasisJet hbezier_basis(double u, double alpha, double lambda, double mu);
@@ -41,13 +41,13 @@ BasisJet hbezier_basis(double u, double alpha, double lambda, double mu, const H
 /// Upper bound, for u in [0, alpha], of |d^4 h_j / du^4| for each j.
 std::array<double, 4> hbezier_fourth_bound(double alpha, double lambda, double mu);
 
-/// The H-Bézier constants S, C, D, E of h-bezier.md, computed without cancellation.
+/// The H-Bézier constants S, C, D, E of docs/math/h-bezier.md, computed without cancellation.
 struct HBezierConstants {
   double s, c, d, e;
 };
 HBezierConstants hbezier_constants(double alpha);
 
-/// Endpoint constants of h-bezier.md: P'(0) = a0 (P1-P0), P'(alpha) = a1 (P3-P2),
+/// Endpoint constants of docs/math/h-bezier.md: P'(0) = a0 (P1-P0), P'(alpha) = a1 (P3-P2),
 /// P''(0) = b0 (P0-P1) + e (P2-P1), P''(alpha) = b1 (P3-P2) + e (P1-P2).
 struct HBezierEndConstants {
   double a0, a1, b0, b1, e;

@@ -18,9 +18,9 @@ const char* to_string(FairMode f);
 
 /// How a segment's leading control points are computed from the previous
 /// segment. A T-Bézier segment uses (alpha, beta): r1'(1) = alpha r2'(0),
-/// r1''(1) = alpha^2 r2''(0) + beta r2'(0) (curves.md 1.1); an H-Bézier
+/// r1''(1) = alpha^2 r2''(0) + beta r2'(0) (docs/math/curves.md 1.1); an H-Bézier
 /// segment uses (k, m): Q'(0) = k P'(end), Q''(0) = k^2 P''(end) + m P'(end)
-/// (h-bezier.md), derivatives in each segment's native parameter.
+/// (docs/math/h-bezier.md), derivatives in each segment's native parameter.
 struct JoinSpec {
   Continuity continuity = Continuity::G1;
   double alpha = 1.0;  ///< > 0 (T-Bézier convention)

@@ -106,7 +106,8 @@ Segment Segment::ellipse_arc(const EllipseArcParams& p) {
   }
   Segment seg;
   seg.kind_ = SegmentKind::EllipseArc;
-  // curves.md 1.2: lambda = mu = 0 and these points give (a cos(pi t/2), b sin(pi t/2)) for every t.
+  // docs/math/curves.md 1.2: lambda = mu = 0 and these points give (a cos(pi t/2), b sin(pi t/2))
+  // for every t.
   seg.points_ = {Vec2(p.a, 0.0), Vec2(p.a, p.b / 2.0), Vec2(p.a / 2.0, p.b), Vec2(0.0, p.b)};
   seg.t0_ = p.from_deg / 90.0;
   seg.t1_ = p.to_deg / 90.0;

@@ -39,7 +39,7 @@ class Segment {
   static Segment hbezier(const std::array<Vec2, 4>& points, double alpha, double lambda, double mu);
   /// Straight segment from -> to (distinct points). \throw GeometryError
   static Segment line(const Vec2& from, const Vec2& to);
-  /// Exact elliptic arc through the T-Bézier form of curves.md 1.2. \throw RangeError
+  /// Exact elliptic arc through the T-Bézier form of docs/math/curves.md 1.2. \throw RangeError
   static Segment ellipse_arc(const EllipseArcParams& params);
   /// One span of a quasi-cubic B-spline: points p(i-1)..p(i+2), l = lambda_i,
   /// m = lambda_{i+1}, each in [-8, 1] or exactly 4 at the curve's ends. \throw RangeError

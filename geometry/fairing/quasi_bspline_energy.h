@@ -1,7 +1,7 @@
 #pragma once
 // Strain (k = 2) and curvature-variation (k = 3) energies of a quasi-cubic
 // uniform B-spline as quadratic functions of its interior local parameters
-// (curves.md 2.1), and their box-constrained minimisers.
+// (docs/math/curves.md 2.1), and their box-constrained minimisers.
 
 #include <Eigen/Core>
 #include <vector>

@@ -1,5 +1,5 @@
 #pragma once
-// Curvature-variation energy of a cubic T-Bézier segment (curves.md 1.3) and
+// Curvature-variation energy of a cubic T-Bézier segment (docs/math/curves.md 1.3) and
 // its fairest shape parameters.
 
 #include <array>
@@ -17,7 +17,7 @@ struct TBezierEnergy {
   }
 };
 
-/// The closed form of curves.md 1.3 for control points P0..P3 (2D). The
+/// The closed form of docs/math/curves.md 1.3 for control points P0..P3 (2D). The
 /// constant c is E(0, 0), integrated by 32-point Gauss-Legendre (exact to
 /// rounding for this trigonometric polynomial).
 TBezierEnergy tbezier_curvature_variation_energy(const std::array<Vec2, 4>& points);

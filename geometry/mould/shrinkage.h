@@ -12,7 +12,7 @@ namespace fabmesh {
 double shrinkage_factor(double shrinkage);
 
 /// `curve` scaled about the origin by `factor` (> 0). Exact for every family:
-/// each basis sums to one (curves.md), so scaling the control points scales
+/// each basis sums to one (docs/math/curves.md), so scaling the control points scales
 /// every point of the curve; ellipse arcs get a scaled centre and semi-axes.
 /// Shape parameters (lambda, mu, alpha) are unchanged.
 /// \throw RangeError for factor <= 0 or not finite.

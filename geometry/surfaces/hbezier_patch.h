@@ -1,5 +1,5 @@
 #pragma once
-// Generalized bicubic H-Bézier patches (h-bezier.md "Bicubic surfaces"):
+// Generalized bicubic H-Bézier patches (docs/math/h-bezier.md "Bicubic surfaces"):
 // S(u, v) = sum_ij h_i(u) h_j(v) P_ij, each direction with its own
 // (alpha, lambda, mu). Evaluated in unit parameters s = u / alpha_u and
 // t = v / alpha_v in [0, 1]; derivatives are with respect to s and t.

@@ -1,5 +1,5 @@
 #pragma once
-// Networks of generalized bicubic H-Bézier patches (h-bezier.md): each patch
+// Networks of generalized bicubic H-Bézier patches (docs/math/h-bezier.md): each patch
 // explicit or joined to an earlier one along one of its sides, with the
 // border-to-border joint report measured on the exact surfaces.
 
@@ -29,7 +29,7 @@ struct PatchJoin {
   Continuity continuity = Continuity::G1;  ///< G0, G1 or G2
   /// G1: Q_1j = P_3j + gamma (P_3j - P_2j), gamma > 0 (mirrored for u_min / v_min).
   double gamma = 1.0;
-  /// G2: the curve join constants of h-bezier.md, applied row by row (k > 0).
+  /// G2: the curve join constants of docs/math/h-bezier.md, applied row by row (k > 0).
   double k = 1.0;
   double m = 0.0;
 };
@@ -84,7 +84,7 @@ const HBezierParams& border_params(const HBezierPatch& patch, PatchSide side);
 std::array<double, 2> border_uv(PatchSide side, double x);
 
 /// Control points Q_1 (G1) and Q_2 (G2) of a curve joined at the end of
-/// P_0..P_3 (h-bezier.md "Joining curves"), Q_0 = P_3. For G1 the `gamma` of
+/// P_0..P_3 (docs/math/h-bezier.md "Joining curves"), Q_0 = P_3. For G1 the `gamma` of
 /// `join` is rho; for G2 rho = k a1(p) / a0(q) and Q_2 follows. Returns
 /// {Q_0, Q_1, Q_2} (entries past the continuity are left as P_3).
 std::array<Vec3, 3> join_curve_points(const std::array<Vec3, 4>& p, const HBezierParams& p_params,

@@ -8,7 +8,8 @@ using namespace fabmesh;
 
 namespace {
 
-// The closed G2 outline of curves.md 1.1: every segment G2-joined to its predecessor, the first to the last.
+// The closed G2 outline of docs/math/curves.md 1.1: every segment G2-joined to its predecessor, the
+// first to the last.
 CurveSpec g2_loop() {
   CurveSpec spec;
   spec.closed = true;

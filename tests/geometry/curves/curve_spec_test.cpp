@@ -224,7 +224,8 @@ TEST_CASE("a composite mixing families: T-Bezier, then an H-Bezier joined G2, th
   REQUIRE(joints.size() == 2);
   CHECK(joints[0].achieved == Continuity::G2);
   CHECK(joints[0].curvature_jump < 1e-9);
-  // Native derivatives: Q'(0) = k P'(end) and Q''(0) = k^2 P''(end) + m P'(end) (h-bezier.md's join).
+  // Native derivatives: Q'(0) = k P'(end) and Q''(0) = k^2 P''(end) + m P'(end)
+  // (docs/math/h-bezier.md "Joining curves").
   const CurveJet p = c.segments()[0].jet(1.0);
   const CurveJet q = c.segments()[1].jet(0.0);
   const double a = c.segments()[1].native_scale();

@@ -8,7 +8,7 @@
 
 namespace fabmesh::test {
 
-/// The golden vessel shell: 3 mm wall, 4 mm base, the profile of curves.md 2.
+/// The golden vessel shell: 3 mm wall, 4 mm base, the profile of docs/math/curves.md 2.
 /// Model units: cm. \param tolerance cm
 inline TriangleSoup golden_vessel_cm(double tolerance = 0.005) {
   CurveSpec spec;
