@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Fails when the code breaks the layering of docs/architecture (pipeline -> io
+# Fails when the code breaks the layering of docs/architecture.md (pipeline -> io
 # -> geometry, never back), includes CGAL from a header (every includer would
 # compile it), or includes the private YAML readers (yaml-cpp is a private
 # dependency of fabmesh::io) from outside io/design.

@@ -79,7 +79,7 @@ struct VesselDesign {
   BodyMode mode = BodyMode::Solid;
   double wall = 0.0;                                 ///< shell: > 0
   double base = 0.0;                                 ///< shell: > 0 (default: wall)
-  RimCut rim = RimCut::Square;                       ///< shell: how the rim is cut (proposed key `body.rim`)
+  RimCut rim = RimCut::Square;                       ///< shell: how the rim is cut (key `body.rim`)
   std::size_t max_triangles = kDefaultMaxTriangles;  ///< budget (key `max_triangles`)
   /// Clay shrinkage from wet to fired, in [0, 1): what is written (the master)
   /// is the designed (fired) vessel scaled by 1 / (1 - shrinkage).

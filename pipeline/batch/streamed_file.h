@@ -1,6 +1,8 @@
 #pragma once
-// A file written atomically a block at a time: for summaries too large to
-// hold in memory whole (io/file.h's write_file_atomically takes all bytes).
+// One file written atomically through a buffer flushed a block at a time:
+// batch plans and summaries, too large to hold in memory whole. Unlike
+// io/file.h's PendingFile (a set of files renamed together by commit_files)
+// it is committed on its own.
 
 #include <string>
 #include <string_view>
