@@ -3,7 +3,7 @@
 
 #include <fmt/format.h>
 
-#include "geometry/curves/build_curve.h"
+#include "geometry/fairing/build_curve.h"
 #include "geometry/mesh/slab.h"
 #include "geometry/toolpath/toolpath.h"
 #include "pipeline/build_design.h"
@@ -11,12 +11,15 @@
 namespace fabmesh {
 
 BuiltMesh build(const CountertopDesign& design, const BuildContext& context) {
-  const BuiltCurve outline = build_curve(design.outline);
+  BuiltShape shape;
+  shape.curves.push_back({"outline", build_curve(design.outline)});
   std::vector<RegionHole> holes;
   for (std::size_t i = 0; i < design.holes.size(); ++i) {
-    holes.push_back({build_curve(design.holes[i].curve).curve,
-                     fmt::format("holes[{}] ({})", i, design.holes[i].shape), design.holes[i].curve.label});
+    shape.curves.push_back({fmt::format("holes[{}]", i), build_curve(design.holes[i].curve)});
+    holes.push_back({shape.curves.back().curve.curve, fmt::format("holes[{}] ({})", i, design.holes[i].shape),
+                     design.holes[i].curve.label});
   }
+  const BuiltCurve& outline = shape.curves.front().curve;
   context.watch.lap("curve");
   RegionOptions ro;
   ro.tolerance = context.tolerance;
@@ -64,6 +67,8 @@ BuiltMesh build(const CountertopDesign& design, const BuildContext& context) {
     CncOptions cnc = design.cnc->options;
     cnc.tolerance = context.tolerance;
     out.toolpath = plan_toolpath(outline.curve, holes, cnc);
+    out.gcode = GcodeOptions{context.common.name, context.common.units, design.cnc->program_units,
+                             design.cnc->decimals};
     context.watch.lap("toolpath");
     const Toolpath& t = *out.toolpath;
     out.facts["cnc"] = {{"tool_diameter", cnc.tool_diameter},
@@ -75,6 +80,7 @@ BuiltMesh build(const CountertopDesign& design, const BuildContext& context) {
                         {"direction", to_string(cnc.direction)},
                         {"relief", to_string(cnc.relief)}};
   }
+  out.shape = std::move(shape);
   return out;
 }
 

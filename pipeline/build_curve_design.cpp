@@ -1,6 +1,6 @@
 // kind: curve: no mesh; its drawing at true size (DXF, SVG) for templates.
 
-#include "geometry/curves/build_curve.h"
+#include "geometry/fairing/build_curve.h"
 #include "geometry/sampling/sample_curve.h"
 #include "pipeline/build_design.h"
 
@@ -20,6 +20,7 @@ BuiltMesh build(const CurveDesign& design, const BuildContext& context) {
   out.max_deviation = sample_curve(curve.curve, so).max_deviation;
   out.facts = {{"segments", curve.curve.size()}, {"closed", curve.curve.closed()}};
   context.watch.lap("drawing");
+  out.shape.curves.push_back({"curve", curve});
   return out;
 }
 

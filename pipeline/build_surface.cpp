@@ -141,6 +141,7 @@ BuiltMesh build(const SurfaceDesign& design, const BuildContext& context) {
     out.max_deviation = sheet.max_deviation;
     facts["fabrication"] = "not valid: open surface (no thickness)";
     out.facts = std::move(facts);
+    out.shape.patches = network;
     return out;
   }
   ThickenOptions th;
@@ -157,6 +158,7 @@ BuiltMesh build(const SurfaceDesign& design, const BuildContext& context) {
   facts["thicken"] = to_string(design.thicken);
   facts["shell_span"] = {span[0], span[1]};
   out.facts = std::move(facts);
+  out.shape.patches = network;
   return out;
 }
 

@@ -8,7 +8,7 @@
 #include <cmath>
 
 #include "geometry/core/errors.h"
-#include "geometry/curves/build_curve.h"
+#include "geometry/fairing/build_curve.h"
 #include "geometry/mesh/bounding_box.h"
 #include "geometry/mesh/constructed_validation.h"
 #include "geometry/mesh/vessel.h"
@@ -119,6 +119,7 @@ BuiltMesh build(const VesselDesign& design, const BuildContext& context) {
     context.watch.lap("template");
   }
   if (design.mould) add_mould(design, profile.curve, context, out);
+  out.shape.curves.push_back({"profile", profile});
   return out;
 }
 

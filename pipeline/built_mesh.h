@@ -10,10 +10,13 @@
 #include <vector>
 
 #include "geometry/core/stage_timer.h"
+#include "geometry/fairing/build_curve.h"
 #include "geometry/mesh/soup.h"
 #include "geometry/mesh/validate.h"
+#include "geometry/sampling/cut_loop.h"
+#include "geometry/surfaces/patch_network.h"
 #include "geometry/toolpath/toolpath.h"
-#include "io/cutting/cutting_outline.h"
+#include "io/cutting/gcode.h"
 #include "io/design/design.h"
 
 namespace fabmesh {
@@ -35,6 +38,20 @@ struct NamedSoup {
   TriangleSoup soup;
 };
 
+/// A design's curve as built (build_curve), under its design key: "curve",
+/// "profile", "outline", "holes[0]", ...
+struct NamedBuiltCurve {
+  std::string name;
+  BuiltCurve curve;
+};
+
+/// The design's own curves and patches as built, before any mesh: what its
+/// plot draws. The curves are in the design's order (design_curves).
+struct BuiltShape {
+  std::vector<NamedBuiltCurve> curves;
+  std::optional<PatchNetwork> patches;  ///< a surface's patch network
+};
+
 /// One design built and validated. The soup is what the writers encode
 /// (vertices and triangles as validated); a curve design has none.
 struct BuiltMesh {
@@ -48,6 +65,8 @@ struct BuiltMesh {
   std::vector<CutLoop> cutting;
   std::vector<NamedSoup> mould_parts;  ///< a vessel's mould, each part validated (build_mould)
   std::optional<Toolpath> toolpath;    ///< a countertop's router path (key `cnc`)
+  std::optional<GcodeOptions> gcode;   ///< how its program is written (with `toolpath`)
+  BuiltShape shape;                    ///< the curves and patches the mesh was built from
 };
 
 /// What every builder gets besides its design.

@@ -2,6 +2,8 @@
 
 #include <type_traits>
 
+#include "geometry/surfaces/patch_network.h"
+
 namespace fabmesh {
 
 std::vector<NamedCurve> design_curves(const Design& design) {
@@ -20,6 +22,14 @@ std::vector<NamedCurve> design_curves(const Design& design) {
         if constexpr (std::is_same_v<T, SurfaceDesign>) return {};  // patches, no curves
       },
       design.body);
+}
+
+BuiltShape build_shape(const Design& design) {
+  BuiltShape shape;
+  for (const NamedCurve& nc : design_curves(design)) shape.curves.push_back({nc.name, build_curve(nc.spec)});
+  if (const auto* surface = std::get_if<SurfaceDesign>(&design.body))
+    shape.patches = build_patch_network(surface->patches);
+  return shape;
 }
 
 }  // namespace fabmesh

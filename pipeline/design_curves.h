@@ -1,10 +1,12 @@
 #pragma once
-// The curves of a design, by name, for the commands that work on curves.
+// The curves of a design, by name, for the commands that work on curves, and
+// the design's shape (curves and patches) built without a mesh.
 
 #include <string>
 #include <vector>
 
 #include "io/design/design.h"
+#include "pipeline/built_mesh.h"
 
 namespace fabmesh {
 
@@ -15,5 +17,10 @@ struct NamedCurve {
 
 /// Every curve a design declares, in file order.
 std::vector<NamedCurve> design_curves(const Design& design);
+
+/// The design's curves built (build_curve, in design_curves' order) and a
+/// surface's patch network (build_patch_network), without building a mesh:
+/// what `plot` draws. \throw as build_curve / build_patch_network
+BuiltShape build_shape(const Design& design);
 
 }  // namespace fabmesh

@@ -116,8 +116,7 @@ JobReport build_and_encode(const Design& design, const JobOptions& options, cons
   for (const OutputFormat* format : formats) {
     const std::string path = path_of(design, *format, options);
     try {
-      for (Encoded& e :
-           format->encode({common, &design.body, built, exported, export_scale, output_tolerance, path})) {
+      for (Encoded& e : format->encode({common, built, exported, export_scale, output_tolerance, path})) {
         const std::string file = e.suffix.empty() ? path : path_with_suffix(design, e.suffix, options);
         report.files.push_back({file, std::string(format->name), e.units, e.added_error, e.valid_as_written});
         report.outputs.push_back(file);

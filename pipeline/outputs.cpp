@@ -197,18 +197,8 @@ Files encode_mould_3mf_output(const EncodeContext& c) {
            "", nullptr, false}};
 }
 
-GcodeOptions gcode_options(const EncodeContext& c) {
-  const CncDesign& cnc = *std::get<CountertopDesign>(*c.body).cnc;
-  GcodeOptions options;
-  options.name = c.common.name;
-  options.model_units = c.common.units;
-  options.units = cnc.program_units;
-  options.decimals = cnc.decimals;
-  return options;
-}
-
 Files encode_nc_output(const EncodeContext& c) {
-  const GcodeOptions options = gcode_options(c);
+  const GcodeOptions& options = *c.built.gcode;
   return {{encode_gcode(*c.built.toolpath, options), options.units, c.built.toolpath->deviation, ""}};
 }
 
@@ -219,7 +209,7 @@ Files encode_toolpath_svg_output(const EncodeContext& c) {
 }
 
 Files encode_plot_output(const EncodeContext& c) {
-  return {{design_plot_svg(Design{c.common, *c.body}), c.common.units, 0.0, ""}};
+  return {{plot_curves_svg(shape_plot(c.common, c.built.shape)), c.common.units, 0.0, ""}};
 }
 
 Files encode_png_output(const EncodeContext& c) {

@@ -43,7 +43,6 @@ KindSet kinds() {
 /// and the error it may still add.
 struct EncodeContext {
   const DesignCommon& common;
-  const DesignBody* body;  ///< the design's kind-specific part
   const BuiltMesh& built;
   const TriangleSoup& exported;   ///< built.soup scaled to common.export_units
   double export_scale = 1.0;      ///< export units per model unit

@@ -30,11 +30,10 @@ PlotCurve border_curve(const HBezierPatch& patch, PatchSide side, const std::str
   return c;
 }
 
-void add_surface(const SurfaceDesign& surface, CurvePlot& plot) {
-  const PatchNetwork network = build_patch_network(surface.patches);
+void add_surface(const PatchNetwork& network, CurvePlot& plot) {
   for (std::size_t k = 0; k < network.patches.size(); ++k) {
     const HBezierPatch& patch = network.patches[k];
-    const std::string& name = surface.patches[k].name;
+    const std::string& name = network.names[k];
     for (const PatchSide side : {PatchSide::UMin, PatchSide::UMax, PatchSide::VMin, PatchSide::VMax})
       plot.curves.push_back(border_curve(patch, side, name + " " + to_string(side)));
     const ControlNet& net = patch.points();
@@ -53,14 +52,16 @@ std::string relative_to(const std::string& path, const std::string& base) {
 
 }  // namespace
 
-CurvePlot design_plot(const Design& design) {
+CurvePlot shape_plot(const DesignCommon& common, const BuiltShape& shape) {
   CurvePlot plot;
-  plot.title = design.common.name;
-  plot.units = design.common.units;
-  for (const NamedCurve& nc : design_curves(design)) plot.curves.push_back(plot_curve_for(nc.spec, nc.name));
-  if (const auto* surface = std::get_if<SurfaceDesign>(&design.body)) add_surface(*surface, plot);
+  plot.title = common.name;
+  plot.units = common.units;
+  for (const NamedBuiltCurve& c : shape.curves) plot.curves.push_back(plot_curve(c.curve, c.name));
+  if (shape.patches) add_surface(*shape.patches, plot);
   return plot;
 }
+
+CurvePlot design_plot(const Design& design) { return shape_plot(design.common, build_shape(design)); }
 
 std::string design_plot_svg(const Design& design, const CurvePlotOptions& options) {
   return plot_curves_svg(design_plot(design), options);

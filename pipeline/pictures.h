@@ -21,6 +21,10 @@ namespace fabmesh {
 /// its units. \throw as build_curve / build_patch_network
 CurvePlot design_plot(const Design& design);
 
+/// The same plot drawn from a shape already built (BuiltMesh::shape, or
+/// build_shape): constructs nothing.
+CurvePlot shape_plot(const DesignCommon& common, const BuiltShape& shape);
+
 /// The SVG of design_plot(design) (plot_curves_svg).
 std::string design_plot_svg(const Design& design, const CurvePlotOptions& options = {});
 

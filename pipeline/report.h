@@ -6,7 +6,7 @@
 #include <ostream>
 #include <string>
 
-#include "geometry/curves/build_curve.h"
+#include "geometry/fairing/build_curve.h"
 #include "geometry/mesh/validate.h"
 #include "pipeline/job.h"
 

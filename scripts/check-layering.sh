@@ -12,6 +12,12 @@ while IFS= read -r hit; do complain "geometry depends on io/pipeline: $hit"; don
   < <(grep -rnE '#include "(io|pipeline)/' geometry || true)
 while IFS= read -r hit; do complain "io depends on pipeline: $hit"; done \
   < <(grep -rnE '#include "pipeline/' io || true)
+while IFS= read -r hit; do complain "curves depend on fairing (fairing builds on curves): $hit"; done \
+  < <(grep -rnE '#include "geometry/fairing/' geometry/curves || true)
+while IFS= read -r hit; do complain "an encoder reads the design: $hit"; done \
+  < <(grep -rnE '#include "io/design/' io/mesh io/cutting io/pictures || true)
+while IFS= read -r hit; do complain "an encoder builds geometry (builders return it): $hit"; done \
+  < <(grep -rnE '\b(build_curve|construct_curve|build_patch_network|cut_loop|fair_[a-z_]+)\(' io/mesh io/cutting io/pictures || true)
 while IFS= read -r hit; do complain "CGAL in a header: $hit"; done \
   < <(grep -rnE '#include <CGAL/' --include='*.h' geometry io pipeline || true)
 while IFS= read -r hit; do complain "private YAML reader used outside io/design: $hit"; done \
@@ -19,5 +25,5 @@ while IFS= read -r hit; do complain "private YAML reader used outside io/design:
 while IFS= read -r hit; do complain "yaml-cpp outside io/design: $hit"; done \
   < <(grep -rnE '#include <yaml-cpp/' geometry io pipeline 2>/dev/null | grep -v '^io/design/' || true)
 
-[[ $status -eq 0 ]] && echo "check-layering: pipeline -> io -> geometry holds; CGAL and yaml-cpp stay private"
+[[ $status -eq 0 ]] && echo "check-layering: pipeline -> io -> geometry holds; encoders see built data only; CGAL and yaml-cpp stay private"
 exit $status

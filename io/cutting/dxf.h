@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "io/cutting/cutting_outline.h"
+#include "geometry/sampling/cut_loop.h"
 
 namespace fabmesh {
 

@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "geometry/sampling/cut_loop.h"
 #include "geometry/toolpath/toolpath.h"
-#include "io/cutting/cutting_outline.h"
 
 namespace fabmesh {
 

@@ -1,13 +1,13 @@
 #pragma once
-// The plain data a curve plot draws for one curve, and how to assemble it
-// from a designer's curve spec (construction, fairing, energies).
+// The plain data a curve plot draws for one curve, taken from a built curve
+// (the plot constructs and fairs nothing itself).
 
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "geometry/curves/composite.h"
-#include "geometry/curves/curve_spec.h"
+#include "geometry/fairing/build_curve.h"
 
 namespace fabmesh {
 
@@ -32,12 +32,9 @@ struct PlotCurve {
 /// The control polygons of `curve` as PlotCurve::control_polygons describes.
 std::vector<std::vector<Vec2>> control_polygons(const CompositeCurve& curve);
 
-/// A PlotCurve for `spec`: built with build_curve (declared continuity
-/// verified, faired when spec.fair asks), the joints measured with `tol`,
-/// and, when faired, the curve before fairing with both energies (the
-/// T-Bézier curvature-variation energy summed over the T-Bézier segments, or
-/// the quasi-B-spline energy of the spec's fairing kind).
-/// \throw as build_curve (RangeError, GeometryError)
-PlotCurve plot_curve_for(const CurveSpec& spec, const std::string& name, const JointTolerances& tol = {});
+/// The PlotCurve of a built curve: the curve as built, its control polygons,
+/// its measured and declared joints, and when it was faired the curve before
+/// fairing with both energies (BuiltCurve::fairing).
+PlotCurve plot_curve(const BuiltCurve& built, const std::string& name);
 
 }  // namespace fabmesh

@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "geometry/core/errors.h"
-#include "geometry/curves/build_curve.h"
+#include "geometry/fairing/build_curve.h"
 #include "pipeline/cli/commands.h"
 #include "pipeline/design_curves.h"
 #include "pipeline/load_design.h"

@@ -5,7 +5,7 @@
 #include <memory>
 
 #include "geometry/core/errors.h"
-#include "geometry/curves/build_curve.h"
+#include "geometry/fairing/build_curve.h"
 #include "geometry/sampling/sample_curve.h"
 #include "geometry/section/simple_polygon.h"
 #include "pipeline/cli/commands.h"

@@ -8,7 +8,7 @@
 #include <sstream>
 
 #include "geometry/core/errors.h"
-#include "geometry/curves/build_curve.h"
+#include "geometry/fairing/build_curve.h"
 #include "geometry/mesh/soup.h"
 #include "geometry/mesh/validate.h"
 #include "geometry/mesh/weld.h"

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "geometry/curves/build_curve.h"
+#include "geometry/fairing/build_curve.h"
 #include "geometry/mesh/bounding_box.h"
 #include "geometry/sampling/sample_curve.h"
 #include "io/design/read_design.h"

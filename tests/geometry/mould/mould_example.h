@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "geometry/curves/build_curve.h"
+#include "geometry/fairing/build_curve.h"
 #include "geometry/mould/mould_options.h"
 #include "io/design/read_design.h"
 

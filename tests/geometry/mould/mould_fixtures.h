@@ -4,8 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "geometry/curves/build_curve.h"
 #include "geometry/curves/composite.h"
+#include "geometry/fairing/build_curve.h"
 #include "geometry/mould/mould.h"
 #include "io/design/read_design.h"
 #include "tests/geometry/mesh/point_triangle.h"

@@ -3,8 +3,8 @@
 #include <set>
 #include <sstream>
 
-#include "geometry/curves/build_curve.h"
-#include "io/cutting/cutting_outline.h"
+#include "geometry/fairing/build_curve.h"
+#include "geometry/sampling/cut_loop.h"
 #include "io/cutting/dxf.h"
 #include "io/cutting/read_dxf.h"
 #include "io/cutting/svg.h"

@@ -10,7 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "geometry/curves/build_curve.h"
+#include "geometry/fairing/build_curve.h"
 #include "geometry/toolpath/curvature_bound.h"
 #include "io/design/read_design.h"
 

@@ -4,7 +4,7 @@
 #include <fstream>
 
 #include "geometry/core/errors.h"
-#include "geometry/curves/build_curve.h"
+#include "geometry/fairing/build_curve.h"
 
 using namespace fabmesh;
 

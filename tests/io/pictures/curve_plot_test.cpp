@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "geometry/core/errors.h"
+#include "geometry/fairing/build_curve.h"
 #include "io/pictures/curvature_profile.h"
 #include "io/pictures/markup.h"
 #include "tests/geometry/curves/segment_specs.h"
@@ -54,8 +55,8 @@ CurvePlot three_curves() {
   CurvePlot plot;
   plot.title = "three curves";
   plot.units = "cm";
-  plot.curves.push_back(plot_curve_for(g2_pair(), "G2 pair"));
-  plot.curves.push_back(plot_curve_for(g1_pair(), "G1 pair"));
+  plot.curves.push_back(plot_curve(build_curve(g2_pair()), "G2 pair"));
+  plot.curves.push_back(plot_curve(build_curve(g1_pair()), "G1 pair"));
   PlotCurve s;
   s.name = "slot";
   s.curve = slot();
@@ -267,7 +268,7 @@ TEST_CASE("curvature profile: arc length by quadrature is exact for lines and a 
 
 TEST_CASE("curve plot: a declared continuity the joint lost is marked as lost", "[io][pictures][plot]") {
   CurvePlot plot;
-  PlotCurve c = plot_curve_for(g1_pair(), "declared G2");
+  PlotCurve c = plot_curve(build_curve(g1_pair()), "declared G2");
   c.declared = {Continuity::G2};
   plot.curves.push_back(c);
   const auto svg = scan_xml(plot_curves_svg(plot));
@@ -284,7 +285,7 @@ TEST_CASE("curve plot: a faired curve shows its shape before fairing and both en
   SECTION("T-Bézier composite, curvature variation") {
     CurveSpec spec = g1_pair();
     spec.fair = FairMode::CurvatureVariation;
-    const PlotCurve c = plot_curve_for(spec, "faired");
+    const PlotCurve c = plot_curve(build_curve(spec), "faired");
     REQUIRE(c.before_fairing);
     REQUIRE(c.energy_before);
     REQUIRE(c.energy_after);
@@ -309,7 +310,7 @@ TEST_CASE("curve plot: a faired curve shows its shape before fairing and both en
     spec.family = CurveFamily::QuasiBSpline;
     spec.bspline_points = {{1.5, 6}, {0, 4.5}, {2, 4}, {3, 3}, {1.5, 2}};
     spec.fair = FairMode::Strain;
-    const PlotCurve c = plot_curve_for(spec, "example 4");
+    const PlotCurve c = plot_curve(build_curve(spec), "example 4");
     REQUIRE(c.energy_before);
     REQUIRE(c.energy_after);
     CHECK(*c.energy_after < *c.energy_before);
@@ -324,7 +325,7 @@ TEST_CASE("curve plot: names and titles are escaped and survive a round trip", "
   CurvePlot plot;
   plot.title = "T <&> \"quoted\" 'single'";
   plot.units = "mm";
-  PlotCurve c = plot_curve_for(g2_pair(), "a<b & \"c\" 'd'");
+  PlotCurve c = plot_curve(build_curve(g2_pair()), "a<b & \"c\" 'd'");
   plot.curves.push_back(c);
   const std::string text = plot_curves_svg(plot);
   const auto svg = scan_xml(text);

@@ -11,6 +11,7 @@
 #include <variant>
 
 #include "geometry/curves/curve_spec.h"
+#include "geometry/fairing/build_curve.h"
 #include "geometry/mesh/slab.h"
 #include "geometry/mesh/soup.h"
 #include "geometry/mesh/vessel.h"
@@ -81,7 +82,7 @@ inline ReportRow vessel_row(const std::string& dir, const std::string& example) 
   CurvePlot plot;
   plot.title = design.common.name + ": profile (radius, height)";
   plot.units = design.common.units;
-  plot.curves.push_back(plot_curve_for(vessel.profile, "profile"));
+  plot.curves.push_back(plot_curve(build_curve(vessel.profile), "profile"));
   const TriangleSoup soup = build_vessel(plot.curves[0].curve, options).soup;
   return sample_row(dir, design, soup, plot,
                     std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
@@ -94,11 +95,11 @@ inline ReportRow countertop_row(const std::string& dir, const std::string& examp
   CurvePlot plot;
   plot.title = design.common.name + ": outline and cut-outs";
   plot.units = design.common.units;
-  plot.curves.push_back(plot_curve_for(top.outline, "outline"));
+  plot.curves.push_back(plot_curve(build_curve(top.outline), "outline"));
   std::vector<RegionHole> holes;
   for (std::size_t i = 0; i < top.holes.size(); ++i) {
     const std::string label = "holes[" + std::to_string(i) + "] (" + top.holes[i].shape + ")";
-    plot.curves.push_back(plot_curve_for(top.holes[i].curve, label));
+    plot.curves.push_back(plot_curve(build_curve(top.holes[i].curve), label));
     holes.push_back({plot.curves.back().curve, label});
   }
   RegionOptions region;

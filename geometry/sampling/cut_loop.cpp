@@ -1,4 +1,4 @@
-#include "io/cutting/cutting_outline.h"
+#include "geometry/sampling/cut_loop.h"
 
 #include <fmt/format.h>
 

@@ -3,12 +3,25 @@
 // its declared continuity verified, faired when the spec asks for it.
 
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "geometry/curves/curve_spec.h"
 #include "geometry/fairing/fair_curve.h"
 
 namespace fabmesh {
+
+/// What fairing did to a curve, for plots and reports: the curve before and
+/// the energy it minimised, before and after (model units).
+struct FairingEffect {
+  CompositeCurve before;       ///< the constructed curve, shape parameters as designed
+  double energy_before = 0.0;  ///< the energy of `before`
+  double energy_after = 0.0;   ///< the energy of the faired curve
+  /// "strain" or "curvature variation": a quasi-B-spline's energy of the
+  /// spec's fairing kind, or the T-Bézier curvature-variation energy summed
+  /// over the T-Bézier segments.
+  std::string energy_name;
+};
 
 /// A curve as the stages after construction use it, with what fairing did.
 struct BuiltCurve {
@@ -17,6 +30,7 @@ struct BuiltCurve {
   std::vector<JointReport> joints;        ///< measured on `curve`
   std::vector<SegmentFairing> segments;   ///< T-Bézier fairing results (when faired)
   std::optional<BSplineFairing> bspline;  ///< quasi-B-spline fairing result (when faired)
+  std::optional<FairingEffect> fairing;   ///< set when the spec asked for fairing
 };
 
 /// Constructs the curve, verifies declared continuity on the constructed
@@ -24,7 +38,9 @@ struct BuiltCurve {
 /// points stay, shape parameters change; joints are measured after fairing.
 /// A joint that fairing leaves below its declared continuity (or below
 /// spec.fair_keeps, when the design accepts less) is a GeometryError naming
-/// the joint, the curve and the shape parameters fairing changed.
+/// the joint, the curve and the shape parameters fairing changed. This is the
+/// one way the stages build a designer's curve (construct_curve is its first
+/// step).
 /// \throw RangeError, GeometryError (where: spec.label)
 BuiltCurve build_curve(const CurveSpec& spec, const JointTolerances& tol = {});
 

@@ -1,8 +1,12 @@
-#include "geometry/curves/build_curve.h"
+#include "geometry/fairing/build_curve.h"
 
 #include <fmt/format.h>
 
+#include <Eigen/Core>
+
 #include "geometry/core/errors.h"
+#include "geometry/fairing/quasi_bspline_energy.h"
+#include "geometry/fairing/tbezier_energy.h"
 
 namespace fabmesh {
 namespace {
@@ -39,6 +43,39 @@ void require_kept_continuity(const CurveSpec& spec, const CompositeCurve& before
   }
 }
 
+// Sum of the T-Bézier segments' curvature-variation energies at their current shape.
+double tbezier_energy(const CompositeCurve& curve) {
+  double sum = 0.0;
+  for (const Segment& seg : curve.segments()) {
+    if (seg.kind() != SegmentKind::TBezier) continue;
+    sum += tbezier_curvature_variation_energy(seg.control_points())(seg.lambda(), seg.mu());
+  }
+  return sum;
+}
+
+// The energy fairing minimised, before (the spec's own lambdas) and after.
+FairingEffect fairing_effect(const CurveSpec& spec, const CompositeCurve& before, const BuiltCurve& built) {
+  FairingEffect effect;
+  effect.before = before;
+  if (built.bspline) {
+    const int order = built.bspline->energy_kind == FairMode::Strain ? 2 : 3;
+    const QuadraticEnergy energy = quasi_bspline_energy(spec.bspline_points, order);
+    Eigen::VectorXd lambdas = Eigen::VectorXd::Zero(energy.b.size());
+    for (std::size_t i = 0; i < spec.bspline_lambdas.size() && i < static_cast<std::size_t>(lambdas.size());
+         ++i) {
+      lambdas[static_cast<Eigen::Index>(i)] = spec.bspline_lambdas[i];
+    }
+    effect.energy_before = energy(lambdas);
+    effect.energy_after = built.bspline->energy;
+    effect.energy_name = order == 2 ? "strain" : "curvature variation";
+  } else {
+    effect.energy_before = tbezier_energy(before);
+    effect.energy_after = tbezier_energy(built.curve);
+    effect.energy_name = "curvature variation";
+  }
+  return effect;
+}
+
 }  // namespace
 
 BuiltCurve build_curve(const CurveSpec& spec, const JointTolerances& tol) {
@@ -71,7 +108,10 @@ BuiltCurve build_curve(const CurveSpec& spec, const JointTolerances& tol) {
     }
   }
   out.joints = out.curve.joints(tol);
-  if (spec.fair != FairMode::None) require_kept_continuity(spec, before, out);
+  if (spec.fair != FairMode::None) {
+    require_kept_continuity(spec, before, out);
+    out.fairing = fairing_effect(spec, before, out);
+  }
   return out;
 }
 

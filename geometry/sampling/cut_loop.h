@@ -1,7 +1,8 @@
 #pragma once
-// The cutting outline of a countertop for a CNC router: one closed loop per
-// boundary, made of exact entities where the design has them (lines,
-// circular and elliptic arcs) and polylines within tolerance elsewhere.
+// The drawing of a curve at true size (a countertop's cutting outline, a
+// vessel's profile template, a curve design): one chain per curve, made of
+// exact entities where the curve has them (lines, circular and elliptic
+// arcs) and polylines sampled within a proven tolerance elsewhere.
 
 #include <string>
 #include <vector>

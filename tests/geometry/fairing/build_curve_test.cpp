@@ -1,4 +1,4 @@
-#include "geometry/curves/build_curve.h"
+#include "geometry/fairing/build_curve.h"
 
 #include <catch2/catch.hpp>
 
