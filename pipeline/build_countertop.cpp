@@ -15,13 +15,13 @@ BuiltMesh build(const CountertopDesign& design, const BuildContext& context) {
   std::vector<RegionHole> holes;
   for (std::size_t i = 0; i < design.holes.size(); ++i) {
     holes.push_back({build_curve(design.holes[i].curve).curve,
-                     fmt::format("holes[{}] ({})", i, design.holes[i].shape), design.holes[i].curve.label});
+                     fmt::format("holes[{}] ({})", i, design.holes[i].shape), design.holes[i].curve.key});
   }
   context.watch.lap("curve");
   RegionOptions ro;
   ro.tolerance = context.tolerance;
   ro.max_points = design.max_triangles / 2;  // every loop point makes two wall triangles
-  ro.outline_where = design.outline.label;
+  ro.outline_key = design.outline.key;
   const Region2 region = build_region(outline.curve, holes, ro);
   context.watch.lap("region");
   SlabOptions so;

@@ -14,8 +14,10 @@ struct Failure {
 };
 
 /// Classifies `error`: InputError (and its kinds) -> 2, ValidationFailed -> 1,
-/// anything else -> 3. `subject` (the design or mesh file at hand) prefixes
-/// messages that do not name their file already (FileError messages do).
+/// anything else -> 3. An InputError whose location io has placed is reported
+/// there ("path:line:column: key: message", "-D path=value: key: message",
+/// "path: key (default): message"); FileError messages name their file;
+/// `subject` (the design or mesh file at hand) prefixes any other message.
 Failure describe_failure(const std::exception_ptr& error, const std::string& subject = "");
 
 /// "fabmesh: error: message" (one line: control characters are escaped).

@@ -25,7 +25,7 @@ struct BuiltCurve {
 /// A joint that fairing leaves below its declared continuity (or below
 /// spec.fair_keeps, when the design accepts less) is a GeometryError naming
 /// the joint, the curve and the shape parameters fairing changed.
-/// \throw RangeError, GeometryError (where: spec.label)
+/// \throw RangeError, GeometryError (at spec.key, or a segment's key)
 BuiltCurve build_curve(const CurveSpec& spec, const JointTolerances& tol = {});
 
 }  // namespace fabmesh
