@@ -14,19 +14,20 @@ Failure describe_failure(const std::exception_ptr& error, const std::string& sub
   try {
     std::rethrow_exception(error);
   } catch (const FileError& e) {
-    return {2, "error", e.what()};
+    return {kExitBadInput, "error", e.what()};
   } catch (const InputError& e) {
     // A value only building can judge (a shape the design's numbers make
     // impossible, a budget, an output): at the key that gave it, as io placed it.
     const ErrorLocation& at = e.location();
-    if (!at.key.empty() && !at.place.empty()) return {2, "error", location_text(at) + ": " + e.what()};
-    return {2, "error", about_subject(e.what())};
+    if (!at.key.empty() && !at.place.empty())
+      return {kExitBadInput, "error", location_text(at) + ": " + e.what()};
+    return {kExitBadInput, "error", about_subject(e.what())};
   } catch (const ValidationFailed& e) {
-    return {1, "invalid", about_subject(e.what())};
+    return {kExitInvalid, "invalid", about_subject(e.what())};
   } catch (const std::exception& e) {
-    return {3, "internal error", about_subject(e.what())};
+    return {kExitInternal, "internal error", about_subject(e.what())};
   } catch (...) {
-    return {3, "internal error", about_subject("unknown exception")};
+    return {kExitInternal, "internal error", about_subject("unknown exception")};
   }
 }
 
