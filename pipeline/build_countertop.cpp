@@ -17,14 +17,14 @@ BuiltMesh build(const CountertopDesign& design, const BuildContext& context) {
   for (std::size_t i = 0; i < design.holes.size(); ++i) {
     shape.curves.push_back({fmt::format("holes[{}]", i), build_curve(design.holes[i].curve)});
     holes.push_back({shape.curves.back().curve.curve, fmt::format("holes[{}] ({})", i, design.holes[i].shape),
-                     design.holes[i].curve.label});
+                     design.holes[i].curve.key});
   }
   const BuiltCurve& outline = shape.curves.front().curve;
   context.watch.lap("curve");
   RegionOptions ro;
   ro.tolerance = context.tolerance;
   ro.max_points = design.max_triangles / 2;  // every loop point makes two wall triangles
-  ro.outline_where = design.outline.label;
+  ro.outline_key = design.outline.key;
   const Region2 region = build_region(outline.curve, holes, ro);
   context.watch.lap("region");
   SlabOptions so;

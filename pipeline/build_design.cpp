@@ -11,6 +11,7 @@
 
 #include "geometry/core/errors.h"
 #include "geometry/mesh/constructed_validation.h"
+#include "pipeline/load_design.h"
 
 namespace fabmesh {
 
@@ -34,42 +35,25 @@ std::size_t process_memory_limit() {
   return limit;
 }
 
-namespace {
-
-// The design key a builder's GeometryError names by its bare field ("wall",
-// "base", "profile"), or "" when `where` is already a place in the design.
-std::string key_of(const DesignCommon& common, const std::string& where) {
-  if (where.empty() || where.rfind(common.path, 0) == 0 || where.rfind("-D ", 0) == 0) return "";
-  if (where.find(' ') != std::string::npos) return "";  // "profile segment 2": a place, not a key
-  for (const std::string& key : {where, "body." + where}) {
-    if (common.where.count(key) != 0) return key;
-  }
-  // An absent key with a default (a shell's base is its wall): at its enclosing map.
-  return common.where.count("body") != 0 && common.where.count(where) == 0 ? "body." + where : where;
-}
-
-}  // namespace
-
 BuiltMesh build_design(const Design& design, const BuildContext& context) {
   const DesignCommon& common = design.common;
-  try {
-    return std::visit([&](const auto& body) { return build(body, context); }, design.body);
-  } catch (const BudgetError& e) {
-    // Every budget is the tolerance's (and max_triangles'): at the tolerance, in the design's words.
-    throw BudgetError(e.requested(), e.budget(),
-                      fmt::format("{}: {:g} {}: {}", key_label(common, "tolerance"), common.tolerance,
-                                  common.units, e.what()));
-  } catch (const std::bad_alloc&) {
-    // A budget the design allows (max_triangles) that this machine's memory does not.
-    throw BudgetError(0.0, 0.0,
-                      fmt::format("{}: {:g} {}: the mesh does not fit in this machine's memory; raise the "
-                                  "tolerance or lower max_triangles",
-                                  key_label(common, "tolerance"), common.tolerance, common.units));
-  } catch (const GeometryError& e) {
-    const std::string key = key_of(common, e.where());
-    if (key.empty()) throw;
-    throw GeometryError(key_label(common, key), e.what());
-  }
+  return in_design(design, [&] {
+    try {
+      return std::visit([&](const auto& body) { return build(body, context); }, design.body);
+    } catch (const BudgetError& e) {
+      // Every budget is the tolerance's (and max_triangles'): at the tolerance, in the design's words.
+      throw BudgetError(e.requested(), e.budget(),
+                        fmt::format("{:g} {}: {}", common.tolerance, common.units, e.what()),
+                        ErrorLocation{"tolerance"});
+    } catch (const std::bad_alloc&) {
+      // A budget the design allows (max_triangles) that this machine's memory does not.
+      throw BudgetError(0.0, 0.0,
+                        fmt::format("{:g} {}: the mesh does not fit in this machine's memory; raise the "
+                                    "tolerance or lower max_triangles",
+                                    common.tolerance, common.units),
+                        ErrorLocation{"tolerance"});
+    }
+  });
 }
 
 BuiltMesh validated(const Mesh& mesh, const std::optional<EmbeddingProof>& proof,

@@ -14,10 +14,30 @@
 #include "geometry/mesh/vessel.h"
 #include "geometry/mould/mould.h"
 #include "geometry/mould/shrinkage.h"
+#include "io/design/schema.h"
 #include "pipeline/build_design.h"
 
 namespace fabmesh {
 namespace {
+
+// Runs `f`. A GeometryError it throws at one of its options ("wall",
+// "keys[1]"), named as in the design's map `group` ("vessel.body"), is
+// rethrown at that option's design key ("body.wall": `prefix` + its name).
+template <class F>
+auto keyed_in(const char* group, const std::string& prefix, F&& f) -> decltype(f()) {
+  try {
+    return f();
+  } catch (GeometryError& e) {
+    const std::string& key = e.location().key;
+    const std::vector<std::string>& options = key_group(group).keys;
+    if (std::find(options.begin(), options.end(), key.substr(0, key.find('['))) != options.end()) {
+      ErrorLocation at = e.location();
+      at.key = prefix + key;
+      e.set_location(std::move(at));
+    }
+    throw;
+  }
+}
 
 // The outer profile closed along the axis: the shape a potter's rib (or a
 // jigger template) is cut to, at the size it is made (the master).
@@ -45,7 +65,7 @@ void add_mould(const VesselDesign& design, const CompositeCurve& fired_profile, 
                BuiltMesh& out) {
   MouldOptions options = *design.mould;
   options.tolerance = context.tolerance;
-  const Mould mould = build_mould(fired_profile, options);
+  const Mould mould = keyed_in("vessel.mould", "mould.", [&] { return build_mould(fired_profile, options); });
   context.watch.lap("mould");
   nlohmann::json parts = nlohmann::json::array();
   for (const MouldPart& p : mould.parts) {
@@ -88,8 +108,8 @@ BuiltMesh build(const VesselDesign& design, const BuildContext& context) {
   options.tolerance = context.tolerance;
   options.max_triangles = design.max_triangles;
   options.max_bytes = context.memory_limit;
-  options.label = design.profile.label;
-  VesselMesh vessel = build_vessel(master, options);
+  options.name_key = [&](const std::string& key) { return key_label(context.common, key); };
+  VesselMesh vessel = keyed_in("vessel.body", "body.", [&] { return build_vessel(master, options); });
   context.watch.lap("build");
   std::size_t section_points = 0;
   for (const auto& loop : vessel.section.loops) section_points += loop.size();

@@ -2,38 +2,32 @@
 
 #include <fmt/format.h>
 
-#include <string_view>
-
 #include "geometry/core/errors.h"
 
 namespace fabmesh {
 
 Failure describe_failure(const std::exception_ptr& error, const std::string& subject) {
-  // A message that starts at its place in the design already keeps it.
-  auto located = [&](const char* what) {
-    const std::string_view text(what);
-    const bool placed = text.rfind("-D ", 0) == 0 || (!subject.empty() && text.rfind(subject + ":", 0) == 0);
-    return subject.empty() || placed ? std::string(what) : subject + ": " + what;
+  // A message without a place of its own is about the file at hand.
+  auto about_subject = [&](const std::string& text) {
+    return subject.empty() ? text : subject + ": " + text;
   };
   try {
     std::rethrow_exception(error);
   } catch (const FileError& e) {
-    return {2, "error", e.what()};
-  } catch (const GeometryError& e) {
-    // A shape the design's numbers make impossible: at the curve, hole or key that
-    // caused it, whose `where` is its file:line:column (or -D override) when known.
-    const std::string& where = e.where();
-    const bool located_in_file =
-        !subject.empty() && (where.rfind(subject + ":", 0) == 0 || where.rfind("-D ", 0) == 0);
-    return {2, "error", located_in_file ? where + ": " + e.what() : located(e.what())};
+    return {kExitBadInput, "error", e.what()};
   } catch (const InputError& e) {
-    return {2, "error", located(e.what())};
+    // A value only building can judge (a shape the design's numbers make
+    // impossible, a budget, an output): at the key that gave it, as io placed it.
+    const ErrorLocation& at = e.location();
+    if (!at.key.empty() && !at.place.empty())
+      return {kExitBadInput, "error", location_text(at) + ": " + e.what()};
+    return {kExitBadInput, "error", about_subject(e.what())};
   } catch (const ValidationFailed& e) {
-    return {1, "invalid", located(e.what())};
+    return {kExitInvalid, "invalid", about_subject(e.what())};
   } catch (const std::exception& e) {
-    return {3, "internal error", located(e.what())};
+    return {kExitInternal, "internal error", about_subject(e.what())};
   } catch (...) {
-    return {3, "internal error", located("unknown exception")};
+    return {kExitInternal, "internal error", about_subject("unknown exception")};
   }
 }
 

@@ -6,19 +6,44 @@
 
 namespace fabmesh {
 
+/// Exit codes, the same for every command.
+constexpr int kExitOk = 0;        ///< done, every mesh valid
+constexpr int kExitInvalid = 1;   ///< a mesh is not valid (ValidationFailed)
+constexpr int kExitBadInput = 2;  ///< bad input (InputError)
+constexpr int kExitInternal = 3;  ///< an internal error
+
 /// How a failure is reported.
 struct Failure {
-  int exit_code = 3;    ///< 2 bad input, 1 an invalid mesh, 3 an internal error
-  std::string label;    ///< "error", "invalid" or "internal error"
-  std::string message;  ///< names the file (line, column and field where known)
+  int exit_code = kExitInternal;  ///< kExitBadInput, kExitInvalid or kExitInternal
+  std::string label;              ///< "error", "invalid" or "internal error"
+  std::string message;            ///< names the file (line, column and field where known)
 };
 
 /// Classifies `error`: InputError (and its kinds) -> 2, ValidationFailed -> 1,
-/// anything else -> 3. `subject` (the design or mesh file at hand) prefixes
-/// messages that do not name their file already (FileError messages do).
+/// anything else -> 3. An InputError whose location io has placed is reported
+/// there ("path:line:column: key: message", "-D path=value: key: message",
+/// "path: key (default): message"); FileError messages name their file;
+/// `subject` (the design or mesh file at hand) prefixes any other message.
 Failure describe_failure(const std::exception_ptr& error, const std::string& subject = "");
 
 /// "fabmesh: error: message" (one line: control characters are escaped).
 std::string failure_line(const Failure& failure);
+
+/// The status a report or batch row shows for a job that ended with
+/// `exit_code` (describe_failure's, or 0): 0 Ok, 1 Invalid, 2 BadInput,
+/// anything else Error. `Status`: an enum with those four values.
+template <class Status>
+Status status_of(int exit_code) {
+  switch (exit_code) {
+    case kExitOk:
+      return Status::Ok;
+    case kExitInvalid:
+      return Status::Invalid;
+    case kExitBadInput:
+      return Status::BadInput;
+    default:
+      return Status::Error;
+  }
+}
 
 }  // namespace fabmesh

@@ -127,10 +127,11 @@ JobReport build_and_encode(const Design& design, const JobOptions& options, cons
         // At the `outputs:` entry that asked for it (or the list, for a kind's default outputs).
         const auto asked = std::find_if(common.outputs.begin(), common.outputs.end(),
                                         [&](const OutputRequest& r) { return r.format == format->name; });
-        throw OutputError(
-            e.format(),
-            fmt::format("{}: {}", asked != common.outputs.end() ? asked->where : key_label(common, "outputs"),
-                        e.what()));
+        const std::string key =
+            asked != common.outputs.end()
+                ? fmt::format("outputs[{}]", static_cast<std::size_t>(asked - common.outputs.begin()))
+                : "outputs";
+        throw OutputError(e.format(), e.what(), placed(common, ErrorLocation{key}));
       }
       report.skipped.push_back({std::string(format->name), e.what()});
     }

@@ -18,4 +18,20 @@ Design load_design(const std::string& path, const std::vector<Override>& overrid
 /// Parses `-D` texts ("body.wall=2.5"). \throw InputError naming a malformed one
 std::vector<Override> parse_overrides(const std::vector<std::string>& texts);
 
+/// Runs `f` and returns what it returns. An InputError escaping it at a key
+/// path of `design` (its ErrorLocation::key, see is_design_key) is rethrown
+/// placed in the design (io's `placed`: file, line and column, the -D
+/// override, or the default), where describe_failure reports it.
+template <class F>
+auto in_design(const Design& design, F&& f) -> decltype(f()) {
+  try {
+    return f();
+  } catch (InputError& e) {
+    if (e.location().place.empty() && is_design_key(design, e.location().key)) {
+      e.set_location(placed(design.common, e.location()));
+    }
+    throw;
+  }
+}
+
 }  // namespace fabmesh

@@ -12,6 +12,7 @@
 #include "io/pictures/plot_curve.h"
 #include "pipeline/build_design.h"
 #include "pipeline/design_curves.h"
+#include "pipeline/failure.h"
 
 namespace fabmesh {
 namespace {
@@ -107,9 +108,7 @@ ReportRow report_row(const JobReport& report, const std::string& base) {
 ReportRow failed_row(const std::string& design_file, int exit_code, const std::string& message) {
   ReportRow row;
   row.name = std::filesystem::path(design_file).stem().string();
-  row.status = exit_code == 1   ? ReportStatus::Invalid
-               : exit_code == 2 ? ReportStatus::BadInput
-                                : ReportStatus::Error;
+  row.status = status_of<ReportStatus>(exit_code);
   row.message = message;
   return row;
 }

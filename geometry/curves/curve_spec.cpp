@@ -13,8 +13,11 @@ namespace {
 
 int control_count(SegmentKind kind) { return kind == SegmentKind::Line ? 2 : 4; }
 
-std::string name_of(const SegmentSpec& s, std::size_t i) {
-  return s.label.empty() ? fmt::format("segment {}", i + 1) : s.label;
+// An error about segment i: at its key, named as the design names it; for a
+// curve built without keys, the message says "segment i".
+GeometryError segment_error(const SegmentSpec& s, std::size_t i, const std::string& message) {
+  if (s.key.empty()) return GeometryError(ErrorLocation{}, fmt::format("segment {}: {}", i + 1, message));
+  return GeometryError(ErrorLocation{s.key, s.name}, message);
 }
 
 // Number of leading control points a segment's join computes.
@@ -24,9 +27,7 @@ int computed_count(const CurveSpec& spec, std::size_t i) {
   if (s.kind == SegmentKind::Line) return (i > 0 || (spec.closed && s.points.size() == 1)) ? 1 : 0;
   if (!s.join) return 0;
   if (!has_predecessor) {
-    throw GeometryError(
-        name_of(s, i),
-        fmt::format("{}: the first segment of an open curve cannot have a join", name_of(s, i)));
+    throw segment_error(s, i, "the first segment of an open curve cannot have a join");
   }
   return static_cast<int>(s.join->continuity) + 1;
 }
@@ -65,13 +66,18 @@ struct JoinFactors {
 
 JoinFactors join_factors(const SegmentSpec& next, std::size_t i) {
   const JoinSpec& j = *next.join;
-  if (next.kind == SegmentKind::HBezier) {
-    require_positive(fmt::format("{}: join k", name_of(next, i)), j.k);
-    require_in_range(fmt::format("{}: join m", name_of(next, i)), j.m, -1e300, 1e300);
-    return {j.k, j.k * j.k, j.m};
+  try {
+    if (next.kind == SegmentKind::HBezier) {
+      require_positive("join k", j.k);
+      require_in_range("join m", j.m, -1e300, 1e300);
+      return {j.k, j.k * j.k, j.m};
+    }
+    require_positive("join alpha", j.alpha);
+    require_in_range("join beta", j.beta, -1e300, 1e300);
+  } catch (const RangeError& e) {
+    const GeometryError at = segment_error(next, i, e.what());  // at the segment
+    throw RangeError(e.field(), e.value(), at.what(), at.location());
   }
-  require_positive(fmt::format("{}: join alpha", name_of(next, i)), j.alpha);
-  require_in_range(fmt::format("{}: join beta", name_of(next, i)), j.beta, -1e300, 1e300);
   const double a = j.alpha;
   return {1.0 / a, 1.0 / (a * a), -j.beta / (a * a * a)};
 }
@@ -79,22 +85,25 @@ JoinFactors join_factors(const SegmentSpec& next, std::size_t i) {
 CompositeCurve construct_quasi_bspline(const CurveSpec& spec) {
   const auto& p = spec.bspline_points;
   if (p.size() < 3) {
-    throw GeometryError(spec.label,
-                        fmt::format("{}: a quasi-cubic B-spline needs at least 3 points (n >= 2), got {}",
-                                    spec.label, p.size()));
+    throw GeometryError(
+        spec.key, fmt::format("a quasi-cubic B-spline needs at least 3 points (n >= 2), got {}", p.size()));
   }
-  if (spec.closed) throw GeometryError(spec.label, spec.label + ": a quasi-cubic B-spline curve is open");
+  if (spec.closed) throw GeometryError(spec.key, "a quasi-cubic B-spline curve is open");
   const std::size_t n = p.size() - 1;
   std::vector<double> lam(n + 1, 0.0);
   lam.front() = lam.back() = 4.0;
   if (!spec.bspline_lambdas.empty()) {
     if (spec.bspline_lambdas.size() != n - 1) {
-      throw GeometryError(spec.label, fmt::format("{}: lambdas has {} values; {} points need n - 1 = {}",
-                                                  spec.label, spec.bspline_lambdas.size(), p.size(), n - 1));
+      throw GeometryError(spec.key, fmt::format("lambdas has {} values; {} points need n - 1 = {}",
+                                                spec.bspline_lambdas.size(), p.size(), n - 1));
     }
     for (std::size_t i = 1; i < n; ++i) {
       lam[i] = spec.bspline_lambdas[i - 1];
-      require_in_range(fmt::format("{}: lambda_{}", spec.label, i), lam[i], -8.0, 1.0);
+      try {
+        require_in_range(fmt::format("lambda_{}", i), lam[i], -8.0, 1.0);
+      } catch (const RangeError& e) {
+        throw RangeError(e.field(), e.value(), e.what(), ErrorLocation{spec.key});
+      }
     }
   }
   auto at = [&](long i) { return p[static_cast<std::size_t>(std::clamp<long>(i, 0, static_cast<long>(n)))]; };
@@ -136,7 +145,7 @@ const char* to_string(FairMode f) {
 CompositeCurve construct_curve(const CurveSpec& spec) {
   if (spec.family == CurveFamily::QuasiBSpline) return construct_quasi_bspline(spec);
   const std::size_t n = spec.segments.size();
-  if (n == 0) throw GeometryError(spec.label, spec.label + ": a curve needs at least one segment");
+  if (n == 0) throw GeometryError(spec.key, "a curve needs at least one segment");
 
   // Unknowns: every control point of every segment, one row each; x and y solved together.
   std::vector<int> offset(n + 1, 0);
@@ -153,8 +162,7 @@ CompositeCurve construct_curve(const CurveSpec& spec) {
     const SegmentSpec& s = spec.segments[i];
     const int count = control_count(s.kind);
     if (s.kind == SegmentKind::EllipseArc) {
-      if (s.join)
-        throw GeometryError(name_of(s, i), name_of(s, i) + ": an ellipse arc cannot be joined; it is exact");
+      if (s.join) throw segment_error(s, i, "an ellipse arc cannot be joined; it is exact");
       for (int j = 0; j < 4; ++j) {
         entries.emplace_back(offset[i] + j, offset[i] + j, 1.0);
         rhs.row(offset[i] + j) = bases[i].control_points()[j].transpose();
@@ -167,9 +175,9 @@ CompositeCurve construct_curve(const CurveSpec& spec) {
       const std::string how =
           s.join ? fmt::format("after a {} join", to_string(s.join->continuity))
                  : (computed > 0 ? "continuing the previous segment" : "as an explicit segment");
-      throw GeometryError(name_of(s, i),
-                          fmt::format("{}: a {} segment {} takes {} point(s), got {}", name_of(s, i),
-                                      to_string(s.kind), how, count - computed, given));
+      throw segment_error(s, i,
+                          fmt::format("a {} segment {} takes {} point(s), got {}", to_string(s.kind), how,
+                                      count - computed, given));
     }
     for (int j = computed; j < count; ++j) {
       entries.emplace_back(offset[i] + j, offset[i] + j, 1.0);
@@ -220,15 +228,13 @@ CompositeCurve construct_curve(const CurveSpec& spec) {
     Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
     lu.compute(a);
     if (lu.info() != Eigen::Success) {
-      throw GeometryError(spec.label,
-                          fmt::format("{}: the join conditions cannot be satisfied together (the closing "
-                                      "join is singular for these shape parameters)",
-                                      spec.label));
+      throw GeometryError(spec.key,
+                          "the join conditions cannot be satisfied together (the closing join is singular "
+                          "for these shape parameters)");
     }
     x = lu.solve(rhs);
   }
-  if (!x.allFinite())
-    throw GeometryError(spec.label, spec.label + ": the join conditions have no finite solution");
+  if (!x.allFinite()) throw GeometryError(spec.key, "the join conditions have no finite solution");
 
   std::vector<Segment> segments;
   for (std::size_t i = 0; i < n; ++i) {
@@ -241,7 +247,7 @@ CompositeCurve construct_curve(const CurveSpec& spec) {
     try {
       segments.push_back(bases[i].with_points(pts));
     } catch (const GeometryError& e) {
-      throw GeometryError(name_of(spec.segments[i], i), name_of(spec.segments[i], i) + ": " + e.what());
+      throw segment_error(spec.segments[i], i, e.what());
     }
   }
   return CompositeCurve(std::move(segments), spec.closed);
@@ -275,18 +281,16 @@ void verify_declared_continuity(const CurveSpec& spec, const CompositeCurve& cur
                   : fmt::format("joint {} (segments {} -> {})", i + 1, j.before + 1, j.after + 1);
     if (!std::isfinite(j.gap) || !std::isfinite(j.tangent_angle) || !std::isfinite(j.curvature_jump)) {
       // 0/0 from a zero tangent (coincident control points): say so, never "nan".
-      throw GeometryError(
-          where, fmt::format("{}{}: declared {} but a segment has no tangent direction at "
-                             "the joint (coincident control points?), so it cannot be "
-                             "measured",
-                             spec.label.empty() ? "" : spec.label + ": ", where, to_string(declared[i])));
+      throw GeometryError(spec.key, fmt::format("{}: declared {} but a segment has no tangent direction at "
+                                                "the joint (coincident control points?), so it cannot be "
+                                                "measured",
+                                                where, to_string(declared[i])));
     }
     throw GeometryError(
-        where, fmt::format("{}{}: declared {} but measured gap {:.3g}, tangent angle {:.3g} rad, "
-                           "relative curvature jump {:.3g} ({})",
-                           spec.label.empty() ? "" : spec.label + ": ", where, to_string(declared[i]), j.gap,
-                           j.tangent_angle, j.curvature_jump,
-                           j.closing && j.gap > 0 ? "the curve does not close" : to_string(j.achieved)));
+        spec.key, fmt::format("{}: declared {} but measured gap {:.3g}, tangent angle {:.3g} rad, "
+                              "relative curvature jump {:.3g} ({})",
+                              where, to_string(declared[i]), j.gap, j.tangent_angle, j.curvature_jump,
+                              j.closing && j.gap > 0 ? "the curve does not close" : to_string(j.achieved)));
   }
 }
 

@@ -40,7 +40,12 @@ struct SegmentSpec {
   /// Continuity an explicit segment declares with its predecessor: verified, not constructed.
   Continuity declared = Continuity::G0;
   EllipseArcParams ellipse;  ///< when kind == EllipseArc
-  std::string label;         ///< where it came from, for messages
+  /// Its design key path ("profile.segments[2]"), where errors about it are;
+  /// empty: messages name it "segment i".
+  std::string key;
+  /// How messages name it when that says more than the key
+  /// ("profile.segments[2] (point 3)" of a polyline); empty: the key.
+  std::string name;
 };
 
 struct CurveSpec {
@@ -56,7 +61,9 @@ struct CurveSpec {
   /// `fair_keeps`): a joint declared higher may drop to this, not below.
   /// Absent: every declared continuity must survive fairing.
   std::optional<Continuity> fair_keeps;
-  std::string label;  ///< where it came from, for messages
+  /// Its design key path ("profile", "holes[1]"), where errors about it are
+  /// (GeometryError::location); empty: none.
+  std::string key;
 };
 
 /// Builds the segments, computing every join-determined control point (an
@@ -70,7 +77,7 @@ CompositeCurve construct_curve(const CurveSpec& spec);
 std::vector<Continuity> declared_continuity(const CurveSpec& spec);
 
 /// Throws GeometryError naming the first joint whose measured continuity
-/// is below the declared one.
+/// is below the declared one (at the curve's key).
 void verify_declared_continuity(const CurveSpec& spec, const CompositeCurve& curve,
                                 const JointTolerances& tol = {});
 

@@ -32,7 +32,6 @@ CurveSpec ellipse_curve(const Vec2& center, double a, double b, double rotation_
   spec.closed = true;
   spec.closing_declared = Continuity::G1;
   spec.segments.push_back(arc_spec(center, a, b, rotation_deg, 0.0, 360.0));
-  spec.label = "ellipse";
   return spec;
 }
 
@@ -49,7 +48,6 @@ CurveSpec rounded_rect_curve(const Vec2& center, double w, double h, double r, d
   CurveSpec spec;
   spec.closed = true;
   spec.closing_declared = joint;
-  spec.label = "rounded_rect";
   // Counter-clockwise: each straight side (skipped when the corners use it all up), then the corner after it.
   const std::array<Vec2, 4> side_from{Vec2(-hw + r, -hh), Vec2(hw, -hh + r), Vec2(hw - r, hh),
                                       Vec2(-hw, hh - r)};

@@ -32,14 +32,14 @@ void require_kept_continuity(const CurveSpec& spec, const CompositeCurve& before
         j.closing ? fmt::format("closing joint (segments {} -> {})", j.before + 1, j.after + 1)
                   : fmt::format("joint {} (segments {} -> {})", i + 1, j.before + 1, j.after + 1);
     throw GeometryError(
-        spec.label,
+        spec.key,
         fmt::format(
-            "{}: {}: declared {} but after fair: {} it is {} (tangent angle {:.3g} rad, relative curvature "
+            "{}: declared {} but after fair: {} it is {} (tangent angle {:.3g} rad, relative curvature "
             "jump {:.3g}): fairing changed {} and {}; drop the fairing, or say what the curve may lose "
             "with fair_keeps: {}",
-            spec.label, joint, to_string(out.declared[i]), to_string(spec.fair), to_string(j.achieved),
-            j.tangent_angle, j.curvature_jump, change(before, out.curve, j.before),
-            change(before, out.curve, j.after), to_string(j.achieved)));
+            joint, to_string(out.declared[i]), to_string(spec.fair), to_string(j.achieved), j.tangent_angle,
+            j.curvature_jump, change(before, out.curve, j.before), change(before, out.curve, j.after),
+            to_string(j.achieved)));
   }
 }
 
@@ -85,9 +85,7 @@ BuiltCurve build_curve(const CurveSpec& spec, const JointTolerances& tol) {
   out.declared = declared_continuity(spec);
   const CompositeCurve before = out.curve;
   if (spec.fair != FairMode::None && spec.family == CurveFamily::HBezier) {
-    throw GeometryError(spec.label, spec.label +
-                                        ": fairing is defined for tbezier and quasi_bspline curves, "
-                                        "not for hbezier");
+    throw GeometryError(spec.key, "fairing is defined for tbezier and quasi_bspline curves, not for hbezier");
   }
   if (spec.fair != FairMode::None) {
     if (spec.family == CurveFamily::QuasiBSpline) {
@@ -101,10 +99,9 @@ BuiltCurve build_curve(const CurveSpec& spec, const JointTolerances& tol) {
       for (const SegmentFairing& f : out.segments) segs[f.index] = segs[f.index].with_shape(f.lambda, f.mu);
       out.curve = CompositeCurve(std::move(segs), out.curve.closed());
     } else {
-      throw GeometryError(spec.label,
-                          fmt::format("{}: fair: {} applies to quasi_bspline curves; T-Bézier curves "
-                                      "take curvature_variation",
-                                      spec.label, to_string(spec.fair)));
+      throw GeometryError(spec.key, fmt::format("fair: {} applies to quasi_bspline curves; T-Bézier curves "
+                                                "take curvature_variation",
+                                                to_string(spec.fair)));
     }
   }
   out.joints = out.curve.joints(tol);

@@ -41,7 +41,7 @@ struct BuiltCurve {
 /// the joint, the curve and the shape parameters fairing changed. This is the
 /// one way the stages build a designer's curve (construct_curve is its first
 /// step).
-/// \throw RangeError, GeometryError (where: spec.label)
+/// \throw RangeError, GeometryError (at spec.key, or a segment's key)
 BuiltCurve build_curve(const CurveSpec& spec, const JointTolerances& tol = {});
 
 }  // namespace fabmesh

@@ -48,7 +48,7 @@ VesselMesh build_vessel(const CompositeCurve& profile, const VesselOptions& opti
   so.tolerance = 0.5 * options.tolerance;
   so.min_clearance = options.tolerance;
   so.max_points = options.max_triangles / 3 * 2 + 1;  // see VesselOptions::max_triangles
-  so.label = options.label;
+  so.name_key = options.name_key;
   require_budget(profile, options, so.tolerance);
   VesselSection section = build_vessel_section(profile, so);
 

@@ -29,7 +29,7 @@ struct VesselOptions {
   /// Memory the mesh's arrays may take, bytes (the caller's machine or
   /// process limit); more is a BudgetError before they are allocated.
   std::size_t max_bytes = std::numeric_limits<std::size_t>::max();
-  std::string label;  ///< the profile's name with its file location, for messages
+  KeyNamer name_key;  ///< names the profile in messages (VesselSectionOptions::name_key)
 };
 
 /// A revolved vessel.

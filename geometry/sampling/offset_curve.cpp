@@ -25,7 +25,7 @@ OffsetJet offset_jet(const Segment& segment, const OffsetSpec& offset, double s)
   const CurveJet j = segment.jet(s);
   const double sigma = j[1].norm();
   if (!(sigma > 0.0)) {
-    throw GeometryError(offset.where,
+    throw GeometryError(ErrorLocation{},
                         fmt::format("{}: the curve stops (zero speed) at {}, so its {} offset is "
                                     "undefined there",
                                     offset.where, near(j[0]), offset.what));
@@ -61,10 +61,11 @@ OffsetChordBound::OffsetChordBound(const Segment& segment, const OffsetSpec& off
 ChordBound::Ends OffsetChordBound::at(double s) const {
   const OffsetJet o = offset_jet(*segment_, offset_, s);
   if (o.k * offset_.distance >= 1.0) {
-    throw GeometryError("wall",
+    const Vec2 p = segment_->point(s);
+    throw GeometryError(ErrorLocation{"wall", {}, {p.x(), p.y()}},
                         fmt::format("{} is too thick for the profile: its radius of curvature is "
                                     "{:.6g} at {} ({}), so the inner surface would fold over",
-                                    offset_.what, 1.0 / o.k, near(segment_->point(s)), offset_.where));
+                                    offset_.what, 1.0 / o.k, near(p), offset_.where));
   }
   const CurveJet j = segment_->jet(s);
   Ends e{};
@@ -87,7 +88,7 @@ double OffsetChordBound::bound(double s0, double s1, const Ends& a, const Ends& 
   if (!(sigma > 0.0)) {
     if (unsplittable) {
       throw GeometryError(
-          offset_.where,
+          ErrorLocation{},
           fmt::format("{}: the curve's speed cannot be bounded away from zero near {}, so its {} "
                       "offset cannot be proven",
                       offset_.where, near(segment_->point(s0)), offset_.what));
@@ -99,9 +100,11 @@ double OffsetChordBound::bound(double s0, double s1, const Ends& a, const Ends& 
   const double k_sup = std::max(a[Curvature], b[Curvature]) + half * k_slope;
   if (k_sup * d >= 1.0) {
     if (unsplittable) {
-      throw GeometryError("wall", fmt::format("{} is too thick for the profile: near {} ({}) its radius of "
-                                              "curvature cannot be proven larger than the wall",
-                                              offset_.what, near(segment_->point(s0)), offset_.where));
+      const Vec2 p = segment_->point(s0);
+      throw GeometryError(ErrorLocation{"wall", {}, {p.x(), p.y()}},
+                          fmt::format("{} is too thick for the profile: near {} ({}) its radius of "
+                                      "curvature cannot be proven larger than the wall",
+                                      offset_.what, near(p), offset_.where));
     }
     return inf;
   }

@@ -16,7 +16,7 @@ struct OffsetSpec {
   double distance = 0.0;      ///< model units (> 0)
   double side = 1.0;          ///< +1: to the left of the direction of travel, -1: to the right
   std::string what = "wall";  ///< names the offset in messages ("wall 0.3")
-  std::string where;          ///< names the segment in messages ("profile segment 2")
+  std::string where;          ///< names the segment in messages ("segment 2 of profile")
 };
 
 /// Point and derivatives of the offset at s, with what its chord bound needs.

@@ -79,7 +79,7 @@ void keep_until(InnerWall& wall, std::size_t k, const WallPoint& cut) {
 }  // namespace
 
 InnerWall sample_inner_wall(const CompositeCurve& profile, double wall, double side, bool rim_at_end,
-                            const SampleOptions& options, const std::string& label) {
+                            const SampleOptions& options, const std::string& profile_name) {
   InnerWall out;
   out.wall = wall;
   out.side = side;
@@ -88,7 +88,7 @@ InnerWall sample_inner_wall(const CompositeCurve& profile, double wall, double s
   double worst = 0.0, worst_gap = 0.0;
   for (std::size_t i = 0; i < segs.size(); ++i) {
     OffsetSpec spec = spec_of(out, i);
-    if (!label.empty()) spec.where = fmt::format("segment {} of {}", i + 1, label);
+    if (!profile_name.empty()) spec.where = fmt::format("segment {} of {}", i + 1, profile_name);
     const OffsetChordBound bound(segs[i], spec);
     SampleOptions so = options;
     so.max_points = options.max_points - std::min(options.max_points, out.points.size());

@@ -39,10 +39,11 @@ struct InnerWall {
 /// `side` (+1: left of the profile's direction) within options.tolerance,
 /// proving on each piece that the offset does not fold (OffsetChordBound),
 /// and orders the result from the rim down (`rim_at_end`: the profile's
-/// end is its rim). \throw GeometryError (a wall too thick for the
-/// curvature), BudgetError (options.max_points)
+/// end is its rim). Messages name segment i "segment i of `profile_name`"
+/// (nothing when it is empty). \throw GeometryError (a wall too thick for
+/// the curvature), BudgetError (options.max_points)
 InnerWall sample_inner_wall(const CompositeCurve& profile, double wall, double side, bool rim_at_end,
-                            const SampleOptions& options, const std::string& label);
+                            const SampleOptions& options, const std::string& profile_name);
 
 /// Cuts the wall where it first (from the rim down) reaches height z_cut or
 /// the axis (radius 0), at the exact crossing of the offset curve (bisection

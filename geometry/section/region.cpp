@@ -20,10 +20,13 @@ using Point = Kernel::Point_2;
 
 std::string at(const Vec2& p) { return fmt::format("({:.6g}, {:.6g})", p.x(), p.y()); }
 
+// At a loop's key, near `p`.
+ErrorLocation near(const std::string& key, const Vec2& p) { return ErrorLocation{key, {}, {p.x(), p.y()}}; }
+
 // One sampled loop and where each of its points lies on its curve.
 struct Loop {
   std::string label;
-  std::string where;
+  std::string key;
   const CompositeCurve* curve = nullptr;
   std::vector<Vec2> points;
   std::vector<CurveParam> params;
@@ -38,19 +41,19 @@ std::string edge_name(const Loop& loop, std::size_t edge) {
 // The closed curve's joints all meet (the closing one included).
 void require_closed(const CompositeCurve& curve, const std::string& label) {
   if (!curve.closed()) {
-    throw GeometryError(label, fmt::format("{} must be a closed curve (closed: true)", label));
+    throw GeometryError(ErrorLocation{}, fmt::format("{} must be a closed curve (closed: true)", label));
   }
   for (const JointReport& j : curve.joints()) {
     if (j.achieved != Continuity::None) continue;
     const Vec2 end = curve.segments()[j.before].point(1.0);
     const Vec2 start = curve.segments()[j.after].point(0.0);
     if (j.closing) {
-      throw GeometryError(label,
+      throw GeometryError(ErrorLocation{},
                           fmt::format("{} does not close: its last segment ({}) ends at {}, {:.6g} from its "
                                       "start {} (closing joint)",
                                       label, j.before, at(end), j.gap, at(start)));
     }
-    throw GeometryError(label,
+    throw GeometryError(ErrorLocation{},
                         fmt::format("{} has a gap of {:.6g} between segment {} (ends at {}) and segment {} "
                                     "(starts at {})",
                                     label, j.gap, j.before, at(end), j.after, at(start)));
@@ -74,18 +77,18 @@ void require_disjoint(const std::vector<Loop>& loops) {
   const std::string where = at(crossing->where);
   if (la == lb) {
     const Loop& l = loops[la];
-    throw GeometryError(l.where.empty() ? l.label : l.where,
+    throw GeometryError(near(l.key, crossing->where),
                         fmt::format("{} crosses itself near {}: {} meets {}", l.label, where,
                                     edge_name(l, ea), edge_name(l, eb)));
   }
   const Loop& a = loops[std::min(la, lb)];
   const Loop& b = loops[std::max(la, lb)];
   if (std::min(la, lb) == 0) {
-    throw GeometryError(b.where.empty() ? b.label : b.where,
+    throw GeometryError(near(b.key, crossing->where),
                         fmt::format("{} crosses or touches the outline near {} ({})", b.label, where,
                                     edge_name(a, la == 0 ? ea : eb)));
   }
-  throw GeometryError(b.where.empty() ? b.label : b.where,
+  throw GeometryError(near(b.key, crossing->where),
                       fmt::format("{} overlaps {} near {}", b.label, a.label, where));
 }
 
@@ -104,7 +107,7 @@ void require_nesting(const std::vector<Loop>& loops) {
     const Point q(p.x(), p.y());
     if (CGAL::bounded_side_2(outer.begin(), outer.end(), q, Kernel()) != CGAL::ON_BOUNDED_SIDE) {
       throw GeometryError(
-          loops[i].label,
+          ErrorLocation{},
           fmt::format("{} is not inside the outline: its point {} lies outside it", loops[i].label, at(p)));
     }
   }
@@ -115,8 +118,8 @@ void require_nesting(const std::vector<Loop>& loops) {
       const Vec2& p = loops[j].points.front();
       if (CGAL::bounded_side_2(hole.begin(), hole.end(), Point(p.x(), p.y()), Kernel()) ==
           CGAL::ON_BOUNDED_SIDE) {
-        throw GeometryError(loops[j].label, fmt::format("{} lies inside {} (near {}); holes may not nest",
-                                                        loops[j].label, loops[i].label, at(p)));
+        throw GeometryError(ErrorLocation{}, fmt::format("{} lies inside {} (near {}); holes may not nest",
+                                                         loops[j].label, loops[i].label, at(p)));
       }
     }
   }
@@ -145,12 +148,11 @@ void require_clearance(const std::vector<Loop>& loops, double tolerance, Region2
   region.min_clearance = c.lower;
   region.clearance_where = fmt::format("{} near {} and {} near {}", a.label, at(pa), b.label, at(pb));
   if (c.upper < tolerance) {
-    const std::string where = b.where.empty() ? b.label : b.where;
-    throw GeometryError(
-        where, fmt::format("{}: {} comes within {:.6g} of {} ({} near {}, {} near {}), closer than "
-                           "the tolerance {}{}",
-                           where, b.label, c.upper, a.label, b.label, at(pb), a.label, at(pa), tolerance,
-                           c.lower == 0.0 ? " (the exact curves meet)" : ""));
+    throw GeometryError(near(b.key, pb),
+                        fmt::format("{} comes within {:.6g} of {} ({} near {}, {} near {}), closer than "
+                                    "the tolerance {}{}",
+                                    b.label, c.upper, a.label, b.label, at(pb), a.label, at(pa), tolerance,
+                                    c.lower == 0.0 ? " (the exact curves meet)" : ""));
   }
 }
 
@@ -160,8 +162,8 @@ Region2 build_region(const CompositeCurve& outline, const std::vector<RegionHole
                      const RegionOptions& options) {
   require_positive("tolerance", options.tolerance);
   std::vector<Loop> loops;
-  loops.push_back({"outline", options.outline_where, &outline, {}, {}});
-  for (const RegionHole& h : holes) loops.push_back({h.label, h.where, &h.curve, {}, {}});
+  loops.push_back({"outline", options.outline_key, &outline, {}, {}});
+  for (const RegionHole& h : holes) loops.push_back({h.label, h.key, &h.curve, {}, {}});
 
   Region2 region;
   std::size_t budget = options.max_points;
@@ -175,8 +177,9 @@ Region2 build_region(const CompositeCurve& outline, const std::vector<RegionHole
     region.max_deviation = std::max(region.max_deviation, line.max_deviation);
     l.points = std::move(line.points);
     if (l.points.size() < 3) {
-      throw GeometryError(l.label, fmt::format("{} samples to {} points; a closed loop needs at least 3",
-                                               l.label, l.points.size()));
+      throw GeometryError(
+          ErrorLocation{},
+          fmt::format("{} samples to {} points; a closed loop needs at least 3", l.label, l.points.size()));
     }
   }
   require_disjoint(loops);

@@ -19,13 +19,13 @@ namespace fabmesh {
 struct RegionHole {
   CompositeCurve curve;
   std::string label;
-  std::string where = {};  ///< the hole's label with its file location (GeometryError::where); empty: label
+  std::string key = {};  ///< its design key path ("holes[1]"), where errors about it are; empty: none
 };
 
 struct RegionOptions {
   double tolerance = 0.01;  ///< max distance between each loop and its exact curve, model units (> 0)
   std::size_t max_points = kDefaultMaxPoints;  ///< sampling budget over all loops; more is a BudgetError
-  std::string outline_where;  ///< the outline's label with its file location (GeometryError::where)
+  std::string outline_key;  ///< the outline's design key path ("outline"), where errors about it are
 };
 
 /// An oriented polygon with holes: the outer loop counter-clockwise, every
@@ -55,8 +55,8 @@ struct Region2 {
 /// on the curves, not on the polylines, which may be up to twice their
 /// deviation closer or farther).
 /// \throw GeometryError naming the outline segment or the hole at fault, with
-///        a point near the problem (`where`: the curve's label with its file
-///        location); RangeError (tolerance), BudgetError (points).
+///        a point near the problem (its location: the curve's key and the
+///        point); RangeError (tolerance), BudgetError (points).
 Region2 build_region(const CompositeCurve& outline, const std::vector<RegionHole>& holes,
                      const RegionOptions& options);
 

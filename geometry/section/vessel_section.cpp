@@ -109,7 +109,8 @@ Shell shell_loop(const CompositeCurve& profile, const std::vector<Vec2>& up, boo
   so.max_points = options.max_points - std::min(options.max_points, up.size());
   Shell shell;
   // The inner wall lies toward the axis: left of a profile running upward.
-  shell.inner = sample_inner_wall(profile, options.wall, upward ? 1.0 : -1.0, upward, so, options.label);
+  const std::string profile_name = options.name_key ? options.name_key("profile") : "profile";
+  shell.inner = sample_inner_wall(profile, options.wall, upward ? 1.0 : -1.0, upward, so, profile_name);
   if (options.rim == RimCut::Level) level_inner_wall(shell.inner, profile, top.y(), upward);
   const double base = options.base > 0.0 ? options.base : options.wall;
   const double z_cut = bottom.y() + base;
@@ -237,11 +238,13 @@ VesselSection build_vessel_section(const CompositeCurve& profile, const VesselSe
     if (shell) check_clearance(profile, params, *shell, options, section);  // the exact walls say why
     if (options.mode == BodyMode::Shell) {
       throw GeometryError(
-          "wall", fmt::format("wall {} (base {}) is too thick for the profile: the shell section "
-                              "crosses itself near {}",
-                              options.wall, options.base > 0.0 ? options.base : options.wall, at(c->where)));
+          ErrorLocation{"wall", {}, {c->where.x(), c->where.y()}},
+          fmt::format(
+              "wall {} (base {}) is too thick for the profile: the shell section crosses itself near {}",
+              options.wall, options.base > 0.0 ? options.base : options.wall, at(c->where)));
     }
-    throw GeometryError("profile", fmt::format("the profile crosses itself near {}", at(c->where)));
+    throw GeometryError(ErrorLocation{"profile", {}, {c->where.x(), c->where.y()}},
+                        fmt::format("the profile crosses itself near {}", at(c->where)));
   }
   if (shell) check_clearance(profile, params, *shell, options, section);
   section.proof =

@@ -3,6 +3,7 @@
 // the profile closed to the axis (solid) or thickened into a wall with a rim
 // and a base (shell). Revolving a simple section gives an embedded surface.
 
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
@@ -24,6 +25,11 @@ enum class BodyMode { Solid, Shell };
 /// it when it ends lower).
 enum class RimCut { Square, Level };
 
+/// How a message names a key it mentions besides the one it is at (the
+/// profile whose segment a wall is too thick for): the caller's name for the
+/// key, e.g. with its place in the design ("file:line:column: profile").
+using KeyNamer = std::function<std::string(const std::string& key)>;
+
 struct VesselSectionOptions {
   BodyMode mode = BodyMode::Solid;
   double wall = 0.0;            ///< shell: wall thickness along the profile normal, model units (> 0)
@@ -34,7 +40,10 @@ struct VesselSectionOptions {
   /// must stay at least this far apart, model units; 0: `tolerance`.
   double min_clearance = 0.0;
   std::size_t max_points = kDefaultMaxPoints;
-  std::string label;  ///< the profile's name with its file location, for messages (GeometryError::where)
+  /// Names the profile where a message points at one of its segments
+  /// ("segment 3 of NAME"); null: "segment 3 of profile". Errors are at the
+  /// keys "profile", "wall", "base" and "rim" (GeometryError::location).
+  KeyNamer name_key;
 };
 
 /// Closed, simple, counter-clockwise, pairwise disjoint loops in the

@@ -49,27 +49,36 @@ HBezierParams across_towards(const HBezierPatch& p, PatchSide side) {
 
 std::size_t computed_lines(Continuity c) { return static_cast<std::size_t>(static_cast<int>(c)) + 1; }
 
-HBezierPatch joined_patch(const PatchSpec& spec, const HBezierPatch& target, const std::string& target_name) {
+// An error about patch i (`spec`): at its key, named with the patch's name
+// ("patches[1] ('lid')"); for a network built without keys, the message says "patches[i]".
+GeometryError patch_error(const PatchSpec& spec, std::size_t i, const std::string& message) {
+  if (spec.key.empty()) return GeometryError(ErrorLocation{}, fmt::format("patches[{}]: {}", i, message));
+  return GeometryError(ErrorLocation{spec.key, fmt::format("{} ('{}')", spec.key, spec.name)}, message);
+}
+
+HBezierPatch joined_patch(const PatchSpec& spec, std::size_t spec_index, const HBezierPatch& target,
+                          const std::string& target_name) {
   const PatchJoin& join = *spec.join;
   const PatchSide own = opposite(join.side);  // the new patch's side on the border
   const bool along_u = is_u_side(join.side);
   const HBezierParams& border = border_params(target, join.side);
   const HBezierParams& own_border = along_u ? spec.v : spec.u;
   if (own_border != border) {
-    throw GeometryError(spec.label, fmt::format("{}: patch '{}' joins '{}' along {} but its {} parameters "
-                                                "(alpha {}, lambda {}, mu {}) differ from "
-                                                "the border's (alpha {}, lambda {}, mu {}): joined patches "
-                                                "must share the border's parameterisation",
-                                                spec.label, spec.name, target_name, to_string(join.side),
-                                                along_u ? "v" : "u", own_border.alpha, own_border.lambda,
-                                                own_border.mu, border.alpha, border.lambda, border.mu));
+    throw patch_error(
+        spec, spec_index,
+        fmt::format("patch '{}' joins '{}' along {} but its {} parameters "
+                    "(alpha {}, lambda {}, mu {}) differ from "
+                    "the border's (alpha {}, lambda {}, mu {}): joined patches "
+                    "must share the border's parameterisation",
+                    spec.name, target_name, to_string(join.side), along_u ? "v" : "u", own_border.alpha,
+                    own_border.lambda, own_border.mu, border.alpha, border.lambda, border.mu));
   }
   const std::size_t computed = computed_lines(join.continuity);
   if (spec.points.size() != 4 - computed) {
-    throw GeometryError(
-        spec.label, fmt::format("{}: a {} join along {} leaves {} free {} of 4 points; got {}", spec.label,
-                                to_string(join.continuity), to_string(join.side), 4 - computed,
-                                along_u ? "rows" : "columns", spec.points.size()));
+    throw patch_error(
+        spec, spec_index,
+        fmt::format("a {} join along {} leaves {} free {} of 4 points; got {}", to_string(join.continuity),
+                    to_string(join.side), 4 - computed, along_u ? "rows" : "columns", spec.points.size()));
   }
   // The new patch's net, line k counted from the border outwards.
   ControlNet net{};
@@ -156,23 +165,23 @@ void find_shared_borders(PatchNetwork& net, const std::vector<PatchSpec>& specs,
           const HBezierParams& pp = border_params(net.patches[p], sp);
           const HBezierParams& pq = border_params(net.patches[q], sq);
           if ((same && pp != pq) || (!same && pp != pq.reversed())) {
-            throw GeometryError(
-                specs[q].label,
+            throw patch_error(
+                specs[q], q,
                 fmt::format(
-                    "{}: side {} of patch '{}' coincides with side {} of patch '{}' but is parameterised "
+                    "side {} of patch '{}' coincides with side {} of patch '{}' but is parameterised "
                     "differently (alpha {}, lambda {}, mu {} vs {}, {}, {}{}): shared borders need the same "
                     "parameterisation, or the tessellation would crack",
-                    specs[q].label, to_string(sq), net.names[q], to_string(sp), net.names[p], pq.alpha,
-                    pq.lambda, pq.mu, pp.alpha, pp.lambda, pp.mu, same ? "" : ", run backwards"));
+                    to_string(sq), net.names[q], to_string(sp), net.names[p], pq.alpha, pq.lambda, pq.mu,
+                    pp.alpha, pp.lambda, pp.mu, same ? "" : ", run backwards"));
           }
           const auto ip = static_cast<std::size_t>(sp), iq = static_cast<std::size_t>(sq);
           if (used[p][ip] >= 0 || used[q][iq] >= 0) {
-            throw GeometryError(
-                specs[q].label,
+            throw patch_error(
+                specs[q], q,
                 fmt::format(
-                    "{}: side {} of patch '{}' and side {} of patch '{}' meet a border already shared by two "
+                    "side {} of patch '{}' and side {} of patch '{}' meet a border already shared by two "
                     "patches: a border may join only two patches",
-                    specs[q].label, to_string(sq), net.names[q], to_string(sp), net.names[p]));
+                    to_string(sq), net.names[q], to_string(sp), net.names[p]));
           }
           used[p][ip] = used[q][iq] = static_cast<int>(net.borders.size());
           SharedBorder b;
@@ -248,14 +257,13 @@ PatchNetwork build_patch_network(const std::vector<PatchSpec>& specs, const Netw
   PatchNetwork net;
   for (std::size_t i = 0; i < specs.size(); ++i) {
     const PatchSpec& s = specs[i];
-    const std::string where = s.label.empty() ? fmt::format("patches[{}]", i) : s.label;
     if (std::find(net.names.begin(), net.names.end(), s.name) != net.names.end()) {
-      throw GeometryError(where, fmt::format("{}: patch name '{}' is used twice", where, s.name));
+      throw patch_error(s, i, fmt::format("patch name '{}' is used twice", s.name));
     }
     if (!s.join) {
       if (s.points.size() != 4) {
-        throw GeometryError(where, fmt::format("{}: an explicit patch needs 4 rows of 4 points; got {} rows",
-                                               where, s.points.size()));
+        throw patch_error(
+            s, i, fmt::format("an explicit patch needs 4 rows of 4 points; got {} rows", s.points.size()));
       }
       ControlNet p{};
       for (std::size_t r = 0; r < 4; ++r) p[r] = s.points[r];
@@ -263,16 +271,14 @@ PatchNetwork build_patch_network(const std::vector<PatchSpec>& specs, const Netw
     } else {
       const PatchJoin& j = *s.join;
       if (j.to >= i) {
-        throw GeometryError(where, fmt::format("{}: patch '{}' joins patch {}, which is not an earlier patch",
-                                               where, s.name, j.to));
+        throw patch_error(
+            s, i, fmt::format("patch '{}' joins patch {}, which is not an earlier patch", s.name, j.to));
       }
-      if (j.continuity == Continuity::None) throw GeometryError(where, where + ": a join needs G0, G1 or G2");
+      if (j.continuity == Continuity::None) throw patch_error(s, i, "a join needs G0, G1 or G2");
       if (j.continuity == Continuity::G1) require_positive("gamma", j.gamma);
       if (j.continuity == Continuity::G2) require_positive("k", j.k);
       require_in_range("m", j.m, -1e12, 1e12);
-      PatchSpec labelled = s;
-      labelled.label = where;
-      net.patches.push_back(joined_patch(labelled, net.patches[j.to], net.names[j.to]));
+      net.patches.push_back(joined_patch(s, i, net.patches[j.to], net.names[j.to]));
     }
     net.names.push_back(s.name);
   }
@@ -285,21 +291,20 @@ PatchNetwork build_patch_network(const std::vector<PatchSpec>& specs, const Netw
       return b.b == self && b.a == s.join->to && b.declared != Continuity::None;
     });
     if (!found) {
-      throw GeometryError(
-          s.label, fmt::format("{}: patch '{}' was joined to '{}' but their borders do not meet", s.label,
-                               s.name, net.names[s.join->to]));
+      throw patch_error(s, self,
+                        fmt::format("patch '{}' was joined to '{}' but their borders do not meet", s.name,
+                                    net.names[s.join->to]));
     }
   }
   for (SharedBorder& b : net.borders) {
     measure(net, b, options);
     if (b.declared == Continuity::None || b.achieved >= b.declared) continue;
-    const std::string& where = specs[b.b].label;
-    throw GeometryError(
-        where,
+    throw patch_error(
+        specs[b.b], b.b,
         fmt::format(
-            "{}: the {} join of '{}' to '{}' along {} measures {}: gap {:.3g}, normal angle {:.3g} rad{}{}",
-            where, to_string(b.declared), net.names[b.b], net.names[b.a], to_string(b.side_a),
-            to_string(b.achieved), b.gap, b.normal_angle,
+            "the {} join of '{}' to '{}' along {} measures {}: gap {:.3g}, normal angle {:.3g} rad{}{}",
+            to_string(b.declared), net.names[b.b], net.names[b.a], to_string(b.side_a), to_string(b.achieved),
+            b.gap, b.normal_angle,
             b.declared == Continuity::G2 ? fmt::format(", relative curvature jump {:.3g}", b.curvature_jump)
                                          : "",
             b.normal_angle > M_PI / 2

@@ -37,7 +37,9 @@ struct PatchJoin {
 /// A patch as a designer gives it.
 struct PatchSpec {
   std::string name;
-  std::string label;  ///< where it came from, for messages (e.g. "file:12:5: patches[1]")
+  /// Its design key path ("patches[1]"), where errors about it are
+  /// (messages name it "patches[1] ('name')"); empty: none.
+  std::string key;
   HBezierParams u, v;
   std::optional<PatchJoin> join;
   /// Explicit: 4 rows (i = 0..3) of 4 points (j = 0..3). Joined along u

@@ -9,6 +9,7 @@
 #include <variant>
 #include <vector>
 
+#include "geometry/core/errors.h"
 #include "geometry/core/limits.h"
 #include "geometry/core/units.h"
 #include "geometry/curves/curve_spec.h"
@@ -42,6 +43,12 @@ enum class OutputErrorPolicy {
   Fail,  ///< fail the whole job (bad input, nothing written)
 };
 
+/// Where a design gives one key.
+struct KeySource {
+  std::string place;        ///< "path:line:column", or "-D path=value" for an override
+  bool holds_keys = false;  ///< its value is a map, a list or empty (what it does not give is a default)
+};
+
 /// Keys every design has.
 struct DesignCommon {
   std::string path;  ///< the file it was read from
@@ -55,15 +62,23 @@ struct DesignCommon {
   std::vector<OutputRequest> outputs;
   Purpose purpose = Purpose::Fabrication;
   OutputErrorPolicy on_output_error = OutputErrorPolicy::Skip;
-  /// Where the design gives each key, by dotted path ("tolerance", "body.wall",
-  /// "mould.wall"; two levels): "path:line:column", or "-D path=value" for an
-  /// override. For messages about a value that only building can judge.
-  std::map<std::string, std::string> where;
+  /// Where the design gives each key, by key path ("tolerance", "body.wall",
+  /// "holes[1].segments[2]"; every map entry and list element, not inside
+  /// lists of lists such as points). For messages about a value that only
+  /// building can judge.
+  std::map<std::string, KeySource> where;
 };
 
-/// "where: key" for a message about `key`'s value: the key's own place, else
-/// that of its nearest enclosing key the design gives ("body" for an absent
-/// "body.base"), else the design file's path.
+/// `location` placed in the design: `place` is where the design gives its key
+/// (or, for a key inside a value the design gives, e.g. "mould.keys[1]" of
+/// `keys: 4`, that value's place); a key the design does not write is
+/// `is_default`, placed at the design's path. A location without a key, or
+/// already placed, is returned as it is.
+ErrorLocation placed(const DesignCommon& common, ErrorLocation location);
+
+/// "place: key" for a message about `key`'s value (location_text of the
+/// placed key): "path:line:column: key", "-D path=value: key", or
+/// "path: key (default)" when the design does not write it.
 std::string key_label(const DesignCommon& common, const std::string& key);
 
 /// kind: curve
@@ -150,5 +165,9 @@ inline const char* kind_name(const DesignBody& body) {
   return std::visit([](const auto& b) { return std::decay_t<decltype(b)>::kKind; }, body);
 }
 inline const char* kind_name(const Design& design) { return kind_name(design.body); }
+
+/// Whether `key` is a key path ("holes[1].segments[2]": names, each followed
+/// by any [index]) whose first name is a top-level key of `design`'s kind.
+bool is_design_key(const Design& design, const std::string& key);
 
 }  // namespace fabmesh

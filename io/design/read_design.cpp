@@ -235,14 +235,80 @@ void require_utf8(const std::string& text, const std::string& path, const std::s
 
 }  // namespace
 
-std::string key_label(const DesignCommon& common, const std::string& key) {
-  for (std::string k = key;;) {
-    if (const auto it = common.where.find(k); it != common.where.end()) return it->second + ": " + key;
-    const std::size_t dot = k.rfind('.');
-    if (dot == std::string::npos) break;
-    k.resize(dot);
+namespace {
+
+// The key path one level up: "holes[1]" of "holes[1].segments", "holes" of
+// "holes[1]", "" for a top-level key.
+std::string enclosing_key(const std::string& key) {
+  const std::size_t last = key.find_last_of(".[");
+  return last == std::string::npos ? std::string() : key.substr(0, last);
+}
+
+bool is_name_start(char c) { return c == '_' || (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z'); }
+bool is_digit(char c) { return c >= '0' && c <= '9'; }
+
+// Whether `key` is names joined by '.', each followed by any number of [index].
+bool is_key_path(const std::string& key) {
+  std::size_t i = 0;
+  while (true) {
+    if (i >= key.size() || !is_name_start(key[i])) return false;
+    while (i < key.size() && (is_name_start(key[i]) || is_digit(key[i]))) ++i;
+    while (i < key.size() && key[i] == '[') {
+      const std::size_t digits = ++i;
+      while (i < key.size() && is_digit(key[i])) ++i;
+      if (i == digits || i >= key.size() || key[i] != ']') return false;
+      ++i;
+    }
+    if (i == key.size()) return true;
+    if (key[i++] != '.') return false;
   }
-  return common.path + ": " + key;
+}
+
+// Records where the design gives every key under `node` (at key path `path`):
+// map entries and list elements, descending into maps (not into lists of lists).
+void record_sources(const yaml::Fields& f, const YAML::Node& node, const std::string& path,
+                    std::map<std::string, KeySource>& where) {
+  auto record = [&](const std::string& key, const YAML::Node& value) {
+    where[key] = KeySource{f.location(value), !value.IsScalar()};  // a map, a list, or empty
+    if (value.IsMap() || value.IsSequence()) record_sources(f, value, key, where);
+  };
+  if (node.IsMap()) {
+    for (const auto& kv : node) {
+      if (kv.first.IsScalar())
+        record(path.empty() ? kv.first.Scalar() : path + "." + kv.first.Scalar(), kv.second);
+    }
+  } else if (node.IsSequence()) {
+    for (std::size_t i = 0; i < node.size(); ++i) {
+      if (!node[i].IsSequence()) record(fmt::format("{}[{}]", path, i), node[i]);
+    }
+  }
+}
+
+}  // namespace
+
+ErrorLocation placed(const DesignCommon& common, ErrorLocation location) {
+  if (location.key.empty() || !location.place.empty()) return location;
+  for (std::string k = location.key; !k.empty(); k = enclosing_key(k)) {
+    const auto it = common.where.find(k);
+    if (it == common.where.end()) continue;
+    if (k != location.key && it->second.holds_keys) break;  // absent from a map the design gives
+    location.place = it->second.place;  // the key itself, or the value it lies in (`keys: 4`)
+    return location;
+  }
+  location.place = common.path;
+  location.is_default = true;
+  return location;
+}
+
+bool is_design_key(const Design& design, const std::string& key) {
+  if (!is_key_path(key)) return false;
+  const std::string root = key.substr(0, key.find_first_of(".["));
+  const std::vector<std::string>& top = key_group(kind_name(design)).keys;
+  return std::find(top.begin(), top.end(), root) != top.end();
+}
+
+std::string key_label(const DesignCommon& common, const std::string& key) {
+  return location_text(placed(common, ErrorLocation{key}));
 }
 
 std::string plain_name_problem(const std::string& name) { return name_problem(name); }
@@ -301,14 +367,8 @@ Design read_design_tree(const YAML::Node& root, const std::string& path,
   Design d;
   d.common = read_common(f, root);
   d.body = read_body(kind, f, root, d.common);
-  // Where each key is given, two levels deep (the design is valid by now: keys are scalars).
-  for (const auto& kv : root) {
-    const std::string key = kv.first.Scalar();
-    d.common.where[key] = f.location(kv.second);
-    if (!kv.second.IsMap()) continue;
-    for (const auto& inner : kv.second)
-      d.common.where[key + "." + inner.first.Scalar()] = f.location(inner.second);
-  }
+  // Where each key is given (the design is valid by now: keys are scalars).
+  record_sources(f, root, "", d.common.where);
   return d;
 }
 

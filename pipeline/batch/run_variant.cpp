@@ -23,12 +23,6 @@ double ms_since(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
-VariantStatus status_of(int exit_code) {
-  return exit_code == 1   ? VariantStatus::Invalid
-         : exit_code == 2 ? VariantStatus::BadInput
-                          : VariantStatus::Error;
-}
-
 // Removes the regular files of `folder` not in `keep` (file names); the folder
 // too when nothing is left. Hidden files (temporaries of writers) are left alone.
 void tidy_folder(const fs::path& folder, const std::set<std::string>& keep) {
@@ -113,7 +107,7 @@ BatchRow run_variant(const BatchManifest& manifest, std::size_t index, const Pla
     row.exit_code = 0;
   } catch (...) {
     const Failure failure = describe_failure(std::current_exception(), planned.design);
-    row.status = status_of(failure.exit_code);
+    row.status = status_of<VariantStatus>(failure.exit_code);
     row.exit_code = failure.exit_code;
     row.message = failure.message;
     row.files.clear();

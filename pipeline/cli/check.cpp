@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -16,6 +17,7 @@
 #include "geometry/mesh/weld.h"
 #include "io/mesh/read_mesh.h"
 #include "pipeline/cli/commands.h"
+#include "pipeline/failure.h"
 #include "pipeline/report.h"
 
 namespace fabmesh::cli {
@@ -35,7 +37,7 @@ struct FileCheck {
   std::string units;  ///< as the file states it; empty for formats that carry none
   std::vector<std::string> notes;
   std::size_t welded_vertices = 0;
-  std::string error;
+  Failure failure;  ///< why it could not be read, when there is no report
 };
 
 FileCheck check_file(const std::string& path, double weld_tolerance) {
@@ -55,8 +57,8 @@ FileCheck check_file(const std::string& path, double weld_tolerance) {
     report.timings_ms.insert(report.timings_ms.begin(), timings.begin(), timings.end());
     result.report = std::move(report);
     result.welded_vertices = welded.merged_vertices;
-  } catch (const InputError& e) {
-    result.error = e.what();
+  } catch (const InputError&) {
+    result.failure = describe_failure(std::current_exception());
   }
   return result;
 }
@@ -65,7 +67,7 @@ nlohmann::ordered_json to_json(const FileCheck& check) {
   nlohmann::ordered_json j;
   j["file"] = check.file;
   if (!check.report) {
-    j["error"] = check.error;
+    j["error"] = check.failure.message;
     j["valid"] = false;
     return j;
   }
@@ -79,7 +81,7 @@ nlohmann::ordered_json to_json(const FileCheck& check) {
 }
 
 std::string human_verdict(const FileCheck& check) {
-  if (!check.report) return fmt::format("{}: UNREADABLE: {}\n", check.file, check.error);
+  if (!check.report) return fmt::format("{}: UNREADABLE: {}\n", check.file, check.failure.message);
   const ValidationReport& r = *check.report;
   std::string text = fmt::format("{}: {} ({} vertices, {} triangles, {} component{}", check.file,
                                  r.valid() ? "valid" : "INVALID", r.vertices, r.triangles, r.components,
@@ -104,15 +106,15 @@ std::string human_verdict(const FileCheck& check) {
 int run_check(const CheckArgs& args, Streams streams) {
   if (args.weld_tolerance != 0.0) require_positive("--weld-tolerance", args.weld_tolerance);
   std::vector<FileCheck> checks;
-  int code = 0;
+  int code = kExitOk;  // the worst file's: unreadable, then invalid
   for (const std::string& file : args.files) {
     checks.push_back(check_file(file, args.weld_tolerance));
     const FileCheck& c = checks.back();
     if (!c.report) {
-      streams.err << fmt::format("fabmesh: error: {}\n", c.error);
-      code = 2;
-    } else if (!c.report->valid() && code == 0) {
-      code = 1;
+      streams.err << failure_line(c.failure) << "\n";
+      code = std::max(code, c.failure.exit_code);
+    } else if (!c.report->valid()) {
+      code = std::max(code, kExitInvalid);
     }
     if (!args.json) streams.out << human_verdict(c);
   }

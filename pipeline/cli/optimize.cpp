@@ -39,7 +39,7 @@ Optimized optimize_curve(const NamedCurve& nc) {
     j["lambdas"] = out.built.bspline->lambdas;
     j["energy"] = out.built.bspline->energy;
   } else if (spec.family == CurveFamily::HBezier) {
-    throw GeometryError(nc.name,
+    throw GeometryError(ErrorLocation{},
                         fmt::format("{}: optimize is defined for tbezier and quasi_bspline curves", nc.name));
   } else {
     spec.fair = FairMode::CurvatureVariation;
@@ -85,7 +85,7 @@ int run_optimize(const OptimizeArgs& args, Streams io) {
   }
   nlohmann::ordered_json all = nlohmann::ordered_json::array();
   for (const NamedCurve& nc : curves) {
-    Optimized o = optimize_curve(nc);
+    Optimized o = in_design(design, [&] { return optimize_curve(nc); });
     if (!args.json) print_human(design.common.name + " " + nc.name, o, io.out);
     if (curves.size() > 1) o.json["curve"] = nc.name;
     all.push_back(std::move(o.json));

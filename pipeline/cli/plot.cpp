@@ -45,7 +45,7 @@ int plot_designs(const PlotArgs& args, Streams io) {
     const Design design = load_design(path, overrides);
     const std::string target =
         one_file ? args.out : (fs::path(args.out) / (design.common.name + ".plot.svg")).string();
-    files.push_back({target, design_plot_svg(design, options)});
+    files.push_back({target, in_design(design, [&] { return design_plot_svg(design, options); })});
   }
   for (const FileWrite& f : files) {
     const fs::path folder = fs::path(f.path).parent_path();

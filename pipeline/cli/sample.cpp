@@ -38,41 +38,46 @@ int run_sample(const SampleArgs& args, Streams io) {
     return 0;
   }
   if (args.csv) io.out << "curve,x,y\n";
-  for (const NamedCurve& nc : design_curves(design)) {
-    const BuiltCurve built = build_curve(nc.spec);
-    std::vector<CurveParam> params;
-    Polyline2 line;
-    try {
-      line = sample_curve(built.curve, options, &params);
-    } catch (const BudgetError& e) {
-      // At the tolerance that asked for it: the option, or the design's key.
-      const std::string tolerance =
-          args.tolerance_given
-              ? fmt::format("--tolerance {:g}", args.tolerance)
-              : fmt::format("{}: {:g}", key_label(design.common, "tolerance"), options.tolerance);
-      throw BudgetError(e.requested(), e.budget(),
-                        fmt::format("{} {}: {}", tolerance, design.common.units, e.what()));
-    }
-    if (line.closed) {
-      // A closed outline must be simple (exact predicates on the sampled loop).
-      if (const auto c = find_crossing(line.points, true)) {
-        throw GeometryError(
-            nc.name, fmt::format("{}: the closed curve crosses itself near ({:.6g}, {:.6g}) "
-                                 "(segments {} and {})",
-                                 nc.spec.label, c->where.x(), c->where.y(), params[c->first].segment + 1,
-                                 params[c->second].segment + 1));
+  // Errors at a curve's key (or the tolerance) are reported where the design gives it.
+  in_design(design, [&] {
+    for (const NamedCurve& nc : design_curves(design)) {
+      const BuiltCurve built = build_curve(nc.spec);
+      std::vector<CurveParam> params;
+      Polyline2 line;
+      try {
+        line = sample_curve(built.curve, options, &params);
+      } catch (const BudgetError& e) {
+        // At the tolerance that asked for it: the option, or the design's key.
+        if (args.tolerance_given) {
+          throw BudgetError(
+              e.requested(), e.budget(),
+              fmt::format("--tolerance {:g} {}: {}", args.tolerance, design.common.units, e.what()));
+        }
+        throw BudgetError(e.requested(), e.budget(),
+                          fmt::format("{:g} {}: {}", options.tolerance, design.common.units, e.what()),
+                          ErrorLocation{"tolerance"});
       }
+      if (line.closed) {
+        // A closed outline must be simple (exact predicates on the sampled loop).
+        if (const auto c = find_crossing(line.points, true)) {
+          throw GeometryError(
+              ErrorLocation{nc.spec.key, {}, {c->where.x(), c->where.y()}},
+              fmt::format("the closed curve crosses itself near ({:.6g}, {:.6g}) (segments {} and {})",
+                          c->where.x(), c->where.y(), params[c->first].segment + 1,
+                          params[c->second].segment + 1));
+        }
+      }
+      if (args.csv) {
+        for (const Vec2& p : line.points) io.out << fmt::format("{},{},{}\n", nc.name, p.x(), p.y());
+        continue;
+      }
+      io.out << fmt::format("# {} {}: {} {} segment(s), {} points, max deviation {:.6g} (tolerance {})\n",
+                            design.common.name, nc.name, built.curve.closed() ? "closed" : "open",
+                            built.curve.size(), line.points.size(), line.max_deviation, options.tolerance);
+      for (std::size_t i = 0; i < built.joints.size(); ++i) io.out << "# " << joint_line(built, i) << "\n";
+      for (const Vec2& p : line.points) io.out << fmt::format("{} {}\n", p.x(), p.y());
     }
-    if (args.csv) {
-      for (const Vec2& p : line.points) io.out << fmt::format("{},{},{}\n", nc.name, p.x(), p.y());
-      continue;
-    }
-    io.out << fmt::format("# {} {}: {} {} segment(s), {} points, max deviation {:.6g} (tolerance {})\n",
-                          design.common.name, nc.name, built.curve.closed() ? "closed" : "open",
-                          built.curve.size(), line.points.size(), line.max_deviation, options.tolerance);
-    for (std::size_t i = 0; i < built.joints.size(); ++i) io.out << "# " << joint_line(built, i) << "\n";
-    for (const Vec2& p : line.points) io.out << fmt::format("{} {}\n", p.x(), p.y());
-  }
+  });
   return 0;
 }
 

@@ -81,3 +81,25 @@ TEST_CASE("located errors: a Draco output that cannot hold the tolerance fails a
   const CliResult r = refused(dir, {"run", design, "-D", "outputs=[drc]", "-D", "on_output_error=fail"});
   CHECK_THAT(r.err, Catch::Contains("-D outputs=[drc]: outputs[0]: drc: Draco cannot keep every vertex"));
 }
+
+TEST_CASE("located errors: a mould option is reported at its key under mould, never at body",
+          "[pipeline][errors]") {
+  const fs::path dir = fresh_dir("located_mould");
+  // Three parts pull 30 degrees off the keys' axes: the golden mould's 0.2 mm sockets are too tight.
+  const std::string design = example("mould_golden.yaml");
+  const CliResult r = refused(dir, {"run", design, "-D", "mould.parts=3"});
+  CHECK(names_place(r.err, design, "mould.key_clearance"));
+  CHECK_THAT(r.err, !Catch::Contains("body."));
+  const CliResult d = refused(dir, {"run", design, "-D", "mould.parts=3", "-D", "mould.key_clearance=0.03"});
+  CHECK_THAT(d.err, Catch::StartsWith("fabmesh: error: -D mould.key_clearance=0.03: mould.key_clearance: "));
+}
+
+TEST_CASE("located errors: a value the design never wrote is reported at its key as (default)",
+          "[pipeline][errors]") {
+  const fs::path dir = fresh_dir("located_default");
+  // A mould the design does not have, made by -D: its key_clearance is the default, 0.2 mm.
+  const std::string design = example("vessel_golden_solid.yaml");
+  const CliResult r = refused(dir, {"run", design, "-D", "mould.parts=3"});
+  CHECK_THAT(r.err, Catch::StartsWith("fabmesh: error: " + design + ": mould.key_clearance (default): "));
+  CHECK_THAT(r.err, !Catch::Contains("body."));
+}

@@ -48,7 +48,7 @@ CountertopHole read_hole(const yaml::Fields& f, const YAML::Node& n, const std::
     hole.shape = "outline";
     hole.curve = read_closed_curve(f, n["outline"], field + ".outline");
   }
-  hole.curve.label = f.label(n, field);
+  hole.curve.key = field;
   return hole;
 }
 

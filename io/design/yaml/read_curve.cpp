@@ -64,7 +64,7 @@ SegmentSpec read_segment(const yaml::Fields& f, const YAML::Node& n, const std::
                          CurveFamily family, bool first) {
   if (!n.IsMap()) f.fail(n, field, "expected a map describing a segment");
   SegmentSpec s;
-  s.label = f.label(n, field);
+  s.key = field;
   if (n["line"].IsDefined()) {
     f.require_map(n, field, key_group("segment.line"));
     const YAML::Node l = n["line"];
@@ -85,7 +85,7 @@ SegmentSpec read_segment(const yaml::Fields& f, const YAML::Node& n, const std::
     if (!n[key].IsDefined()) continue;
     f.require_map(n, field, key_group(std::string("segment.") + key));
     SegmentSpec e = read_ellipse_arc(f, n[key], field + "." + key, std::string(key) == "circle_arc");
-    e.label = s.label;
+    e.key = s.key;
     if (n["continuity"].IsDefined()) e.declared = read_continuity(f, n["continuity"], field + ".continuity");
     return e;
   }
@@ -157,11 +157,11 @@ void read_polyline(const yaml::Fields& f, const YAML::Node& n, const std::string
   } else {
     pts = f.points2(list, field + ".polyline", needed);
   }
-  const std::string label = f.label(n, field);
   for (std::size_t k = first ? 1 : 0; k < pts.size(); ++k) {
     SegmentSpec s;
     s.kind = SegmentKind::Line;
-    s.label = fmt::format("{} (point {})", label, k);
+    s.key = field;
+    s.name = fmt::format("{} (point {})", field, k);
     s.points = (first && k == 1) ? std::vector<Vec2>{pts[0], pts[1]} : std::vector<Vec2>{pts[k]};
     out.push_back(std::move(s));
   }
@@ -174,7 +174,7 @@ void read_polyline(const yaml::Fields& f, const YAML::Node& n, const std::string
 
 CurveSpec read_curve(const yaml::Fields& f, const YAML::Node& node, const std::string& field) {
   CurveSpec spec;
-  spec.label = f.label(node, field);
+  spec.key = field;
   if (!node.IsMap()) f.fail(node, field, "expected a map describing a curve");
   const std::string family =
       f.choice(f.required(node, "family", field), field + ".family", {"tbezier", "hbezier", "quasi_bspline"});

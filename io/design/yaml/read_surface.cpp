@@ -79,7 +79,7 @@ PatchSpec read_patch(const yaml::Fields& f, const YAML::Node& n, const std::stri
   if (std::find(names.begin(), names.end(), s.name) != names.end()) {
     f.fail(n["name"], field + ".name", fmt::format("patch name '{}' is used twice", s.name));
   }
-  s.label = f.label(n, fmt::format("{} ('{}')", field, s.name));
+  s.key = field;
   std::size_t rows = 4;
   if (n["join"].IsDefined()) {
     s.join = read_join(f, n["join"], field + ".join", names);
@@ -152,9 +152,10 @@ SurfaceDesign read_surface(const yaml::Fields& f, const YAML::Node& root) {
     build_patch_network(d.patches);
   } catch (const GeometryError& e) {
     for (std::size_t i = 0; i < d.patches.size(); ++i) {
-      if (d.patches[i].label != e.where()) continue;
+      if (e.where().empty() || d.patches[i].key != e.where()) continue;
       const YAML::Mark m = patches[i].Mark();
-      throw FileError(f.path(), m.line + 1, m.column + 1, e.what());
+      throw FileError(f.path(), m.line + 1, m.column + 1,
+                      fmt::format("{}: {}", f.label(patches[i], e.location().name), e.what()));
     }
     throw FileError(f.path(), 0, 0, fmt::format("{}: {}", f.path(), e.what()));
   } catch (const RangeError& e) {

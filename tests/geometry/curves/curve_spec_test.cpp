@@ -120,13 +120,18 @@ TEST_CASE("hbezier G1/G2 join: the test vector of h-bezier.md, coordinate by coo
 
 TEST_CASE("declared continuity that the joint contradicts is an error", "[curves][joins][errors]") {
   CurveSpec spec;
-  spec.label = "outline";
+  spec.key = "outline";
   SegmentSpec second = explicit_tbezier({{4, 1}, {5, 3}, {6, 2}, {7, 0}}, 0, 0);
   second.declared = Continuity::G1;  // the tangents at (4, 1) are not parallel
   spec.segments = {explicit_tbezier({{0, 0}, {1, 2}, {3, 2.5}, {4, 1}}, 0, 0), second};
   const CompositeCurve c = construct_curve(spec);
   REQUIRE_THROWS_AS(verify_declared_continuity(spec, c), GeometryError);
   REQUIRE_THROWS_WITH(verify_declared_continuity(spec, c), Catch::Contains("declared G1"));
+  try {
+    verify_declared_continuity(spec, c);
+  } catch (const GeometryError& e) {
+    CHECK(e.where() == "outline");  // at the curve's key
+  }
 }
 
 TEST_CASE("a closed curve that does not close is an error naming the closing joint",

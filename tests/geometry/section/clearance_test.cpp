@@ -64,15 +64,16 @@ TEST_CASE(
   const double tolerance = 0.5, gap = 0.3;
   RegionOptions o;
   o.tolerance = tolerance;
-  o.outline_where = "design.yaml:3:1: outline";
-  const std::vector<RegionHole> holes{
-      {circle({300, 300}, 100), "holes[0] (ellipse)", "design.yaml:9:5: holes[0]"},
-      {circle({500 + gap, 300}, 100), "holes[1] (ellipse)", "design.yaml:10:5: holes[1]"}};
+  o.outline_key = "outline";
+  const std::vector<RegionHole> holes{{circle({300, 300}, 100), "holes[0] (ellipse)", "holes[0]"},
+                                      {circle({500 + gap, 300}, 100), "holes[1] (ellipse)", "holes[1]"}};
   try {
     build_region(rectangle(1000, 600), holes, o);
     FAIL("closer than the tolerance, yet accepted");
   } catch (const GeometryError& e) {
-    CHECK(e.where() == "design.yaml:10:5: holes[1]");
+    CHECK(e.where() == "holes[1]");
+    REQUIRE(e.location().point.size() == 2);  // near the closest place, on holes[1]'s side
+    CHECK(e.location().point[0] == Approx(400 + gap).margin(0.01));
     CHECK_THAT(std::string(e.what()), Catch::Contains("holes[1] (ellipse) comes within 0.3") &&
                                           Catch::Contains("holes[0] (ellipse)") &&
                                           Catch::Contains("closer than the tolerance 0.5"));
