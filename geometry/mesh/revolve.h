@@ -3,6 +3,7 @@
 // revolved about the height (z) axis into a closed triangle mesh.
 
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <vector>
 
@@ -20,6 +21,13 @@ struct RevolveOptions {
 /// is at most `tolerance`: R (1 - cos(pi / n)) <= tolerance, n >= 3.
 /// \throw RangeError for tolerance <= 0.
 int angular_segments(double max_radius, double tolerance);
+
+/// The angle of one of `segments` uniform angular steps: 2 pi / segments.
+inline double angular_step(int segments) { return 2.0 * M_PI / segments; }
+
+/// The sagitta of a chord over angle `step` of a circle of radius `radius`:
+/// radius (1 - cos(step / 2)), how far the chord is from its arc at most.
+inline double chord_sagitta(double radius, double step) { return radius * (1.0 - std::cos(0.5 * step)); }
 
 /// Triangles the revolution of `loops` has with `segments` angular segments.
 std::size_t revolved_triangle_count(const std::vector<std::vector<Vec2>>& loops, int segments);

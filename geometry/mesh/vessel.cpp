@@ -74,7 +74,7 @@ VesselMesh build_vessel(const CompositeCurve& profile, const VesselOptions& opti
   }
   RevolveOptions ro;
   ro.segments = segments;
-  const double sagitta = section.max_radius * (1.0 - std::cos(M_PI / segments));
+  const double sagitta = chord_sagitta(section.max_radius, angular_step(segments));
   const double max_deviation = section.max_deviation + sagitta;
   EmbeddingProof proof{section.proof + fmt::format("; revolved in {} uniform angular steps", segments),
                        revolution_margin(section.loops, segments)};
