@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "geometry/core/errors.h"
+#include "geometry/core/units.h"
 #include "io/file.h"
 #include "pipeline/cli/commands.h"
 #include "pipeline/cli/run_progress.h"
@@ -236,7 +237,7 @@ Runner add_run_command(CLI::App& app) {
   cmd->add_option("--export-units", args->export_units,
                   "Unit of the files that carry none (STL, OBJ, PLY, OFF, Draco) and of 3MF, instead of the "
                   "design's export_units (default mm)")
-      ->check(CLI::IsMember({"mm", "cm", "m", "in"}));
+      ->check(CLI::IsMember(length_unit_names()));
   cmd->add_flag("--json", args->json, "Print the JSON reports (an array, one entry per design)");
   cmd->add_option("--report", args->report,
                   "Also write an HTML report (one self-contained page: summary table, each design's preview "
