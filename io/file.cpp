@@ -21,6 +21,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// Pieces smaller than this are gathered before they are written.
+constexpr std::size_t kBlockBytes = std::size_t{1} << 20;
+
 [[noreturn]] void fail(const std::string& path, const std::string& what, int error) {
   throw FileError(path, 0, 0, fmt::format("{}: {}: {}", path, what, std::strerror(error)));
 }
@@ -102,7 +105,9 @@ void remove_stale_temporaries(const std::string& path) {
     const std::size_t dash = name.find('-', prefix.size());
     if (dash == std::string::npos) continue;
     const std::string pid_text = name.substr(prefix.size(), dash - prefix.size());
-    if (pid_text.empty() || pid_text.find_first_not_of("0123456789") != std::string::npos) continue;
+    if (pid_text.empty() || pid_text.size() > 9 ||
+        pid_text.find_first_not_of("0123456789") != std::string::npos)
+      continue;
     const long pid = std::stol(pid_text);
     // Our own pid: no other thread writes this target, so the file is an earlier process's.
     const bool alive = pid != ::getpid() && (::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM);
@@ -150,8 +155,12 @@ PendingFile::PendingFile(std::string path) : path_(std::move(path)) {
 }
 
 PendingFile::PendingFile(PendingFile&& other) noexcept
-    : path_(std::move(other.path_)), temporary_(std::move(other.temporary_)), fd_(other.fd_) {
+    : path_(std::move(other.path_)),
+      temporary_(std::move(other.temporary_)),
+      gathered_(std::move(other.gathered_)),
+      fd_(other.fd_) {
   other.temporary_.clear();
+  other.gathered_.clear();
   other.fd_ = -1;
 }
 
@@ -162,10 +171,21 @@ void PendingFile::discard() noexcept {
   fd_ = -1;
   if (!temporary_.empty()) std::remove(temporary_.c_str());
   temporary_.clear();
+  gathered_ = std::string();
 }
 
 void PendingFile::write(std::string_view bytes) {
   if (fd_ < 0) throw FileError(path_, 0, 0, fmt::format("{}: written after it was finished", path_));
+  if (gathered_.size() + bytes.size() < kBlockBytes) {
+    gathered_ += bytes;
+    return;
+  }
+  write_through(gathered_);
+  gathered_.clear();
+  write_through(bytes);
+}
+
+void PendingFile::write_through(std::string_view bytes) {
   const char* data = bytes.data();
   std::size_t left = bytes.size();
   while (left > 0) {
@@ -183,6 +203,8 @@ void PendingFile::write(std::string_view bytes) {
 
 void PendingFile::finish() {
   if (fd_ < 0) throw FileError(path_, 0, 0, fmt::format("{}: finished twice", path_));
+  write_through(gathered_);
+  gathered_ = std::string();
   int error = ::fsync(fd_) == 0 ? 0 : errno;
   const int close_error = ::close(fd_) == 0 ? 0 : errno;
   fd_ = -1;
@@ -236,12 +258,17 @@ void commit_files(std::vector<PendingFile>& files) {
   for (const PendingFile& f : files) sync_folder(f.path_);
 }
 
-void write_file_atomically(const std::string& path, std::string_view bytes) {
+void commit_file(PendingFile&& file) {
   std::vector<PendingFile> files;
-  files.emplace_back(path);
-  files.back().write(bytes);
+  files.push_back(std::move(file));
   files.back().finish();
   commit_files(files);
+}
+
+void write_file_atomically(const std::string& path, std::string_view bytes) {
+  PendingFile file(path);
+  file.write(bytes);
+  commit_file(std::move(file));
 }
 
 void write_files_atomically(const std::vector<FileWrite>& files) {

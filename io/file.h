@@ -44,9 +44,11 @@ void write_files_atomically(const std::vector<FileWrite>& files);
 /// A file being written atomically, piece by piece: its bytes go to a
 /// temporary in the target's folder (created with the process's umask applied
 /// to 0666; stale temporaries of the target left by killed runs removed
-/// first) and reach `path` only through commit_files. Destroying a pending
-/// file that was not committed removes its temporary: nothing partial is ever
-/// left under `path`. Move-only.
+/// first) and reach `path` only through commit_files or commit_file.
+/// Destroying a pending file that was not committed removes its temporary:
+/// nothing partial is ever left under `path`. Small pieces are gathered and
+/// written a block at a time, so a file may be written a line at a time.
+/// Move-only.
 class PendingFile {
  public:
   /// Creates the temporary for `path`. \throw FileError
@@ -57,7 +59,8 @@ class PendingFile {
   PendingFile(const PendingFile&) = delete;
   PendingFile& operator=(const PendingFile&) = delete;
 
-  /// Appends `bytes`. \throw FileError (the temporary is removed)
+  /// Appends `bytes` (pieces smaller than a block are gathered first).
+  /// \throw FileError (the temporary is removed)
   void write(std::string_view bytes);
   /// Flushes the bytes to disk and closes the temporary; no write after it.
   /// \throw FileError (the temporary is removed)
@@ -67,9 +70,15 @@ class PendingFile {
 
  private:
   friend void commit_files(std::vector<PendingFile>& files);
+
+  /// Finishes `file` and renames it into place: commit_files of one file.
+  /// \throw FileError
+  void commit_file(PendingFile&& file);
   void discard() noexcept;
+  void write_through(std::string_view bytes);
   std::string path_;
   std::string temporary_;  ///< empty once renamed into place or removed
+  std::string gathered_;   ///< small pieces not written yet
   int fd_ = -1;
 };
 
@@ -78,6 +87,10 @@ class PendingFile {
 /// fails), and makes the renames durable. \throw FileError naming the file
 /// that failed, or a file not finished
 void commit_files(std::vector<PendingFile>& files);
+
+/// Finishes `file` and renames it into place: commit_files of one file.
+/// \throw FileError
+void commit_file(PendingFile&& file);
 
 /// The name pattern of the temporary files write_file_atomically uses for
 /// `path` (".NAME.tmp-HOST-PID-RANDOM" in the same folder), for tests.

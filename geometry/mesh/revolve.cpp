@@ -17,14 +17,18 @@ int angular_segments(double max_radius, double tolerance) {
   return static_cast<int>(std::max(3.0, std::min(n, 1e9)));
 }
 
+std::size_t revolved_triangles_per_step(const std::vector<Vec2>& loop) {
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < loop.size(); ++i) {
+    const bool a = loop[i].x() == 0.0, b = loop[(i + 1) % loop.size()].x() == 0.0;
+    count += (a && b) ? 0 : (a || b) ? 1 : 2;
+  }
+  return count;
+}
+
 std::size_t revolved_triangle_count(const std::vector<std::vector<Vec2>>& loops, int segments) {
   std::size_t per_slice = 0;
-  for (const auto& loop : loops) {
-    for (std::size_t i = 0; i < loop.size(); ++i) {
-      const bool a = loop[i].x() == 0.0, b = loop[(i + 1) % loop.size()].x() == 0.0;
-      per_slice += (a && b) ? 0 : (a || b) ? 1 : 2;
-    }
-  }
+  for (const auto& loop : loops) per_slice += revolved_triangles_per_step(loop);
   return per_slice * static_cast<std::size_t>(segments);
 }
 
@@ -72,34 +76,12 @@ void require_axis_contacts_along_edges(const std::vector<Vec2>& loop) {
 // m faces of its one off-axis loop edge form one fan.
 void revolve_loop(const std::vector<Vec2>& loop, const std::vector<std::array<double, 2>>& directions,
                   TriangleSoup& out) {
-  const std::size_t n = loop.size();
-  const std::size_t m = directions.size();
-  auto on_axis = [&](std::size_t i) { return loop[i].x() == 0.0; };
-
-  std::vector<std::uint32_t> first(n);  // vertex index of ring i at angle 0, or its pole
-  for (std::size_t i = 0; i < n; ++i) {
-    const Vec2& p = loop[i];
-    first[i] = static_cast<std::uint32_t>(out.vertices.size());
-    if (on_axis(i)) {
-      out.vertices.emplace_back(0.0, 0.0, p.y());
-      continue;
-    }
-    for (std::size_t j = 0; j < m; ++j) out.vertices.push_back(revolved_point(p, directions[j]));
-  }
-  auto v = [&](std::size_t i, std::size_t j) {
-    return on_axis(i) ? first[i] : first[i] + static_cast<std::uint32_t>(j % m);
-  };
-  for (std::size_t e = 0; e < n; ++e) {
-    const std::size_t a = e, b = (e + 1) % n;
-    if (on_axis(a) && on_axis(b)) continue;
-    for (std::size_t j = 0; j < m; ++j) {
-      for_each_edge_face(
-          on_axis(a), on_axis(b), j, [&](bool is_b, std::size_t step) { return v(is_b ? b : a, step); },
-          [&](std::uint32_t c0, std::uint32_t c1, std::uint32_t c2) {
-            out.triangles.push_back({c0, c1, c2});
-          });
-    }
-  }
+  const LoopGrid grid =
+      append_loop_grid(loop, directions.size(), out.vertices,
+                       [&](std::size_t i, std::size_t j) { return revolved_point(loop[i], directions[j]); });
+  for_each_grid_face(grid, directions.size(), [&](std::uint32_t c0, std::uint32_t c1, std::uint32_t c2) {
+    out.triangles.push_back({c0, c1, c2});
+  });
 }
 
 // The components of one loop's revolution and their Euler characteristics,

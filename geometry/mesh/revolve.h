@@ -3,7 +3,9 @@
 // revolved about the height (z) axis into a closed triangle mesh.
 
 #include <array>
+#include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "geometry/core/types.h"
@@ -20,6 +22,17 @@ struct RevolveOptions {
 /// is at most `tolerance`: R (1 - cos(pi / n)) <= tolerance, n >= 3.
 /// \throw RangeError for tolerance <= 0.
 int angular_segments(double max_radius, double tolerance);
+
+/// The angle of one of `segments` uniform angular steps: 2 pi / segments.
+inline double angular_step(int segments) { return 2.0 * M_PI / segments; }
+
+/// The sagitta of a chord over angle `step` of a circle of radius `radius`:
+/// radius (1 - cos(step / 2)), how far the chord is from its arc at most.
+inline double chord_sagitta(double radius, double step) { return radius * (1.0 - std::cos(0.5 * step)); }
+
+/// Triangles one angular step of the revolution of `loop` has: two per loop
+/// edge, one when an end is on the axis, none along the axis.
+std::size_t revolved_triangles_per_step(const std::vector<Vec2>& loop);
 
 /// Triangles the revolution of `loops` has with `segments` angular segments.
 std::size_t revolved_triangle_count(const std::vector<std::vector<Vec2>>& loops, int segments);
@@ -44,6 +57,58 @@ template <class Step, class Corner, class Face>
 void for_each_edge_face(bool a_on_axis, bool b_on_axis, Step j, Corner&& corner, Face&& face) {
   if (!a_on_axis) face(corner(false, j + 1), corner(true, j + 1), corner(false, j));
   if (!b_on_axis) face(corner(true, j + 1), corner(true, j), corner(false, j));
+}
+
+/// Where revolve puts one loop's vertices: loop vertex by loop vertex, a
+/// vertex on the axis (x == 0) as one pole, any other as a ring of `ring`
+/// vertices, one per angular sample (sample 0 first).
+struct LoopGrid {
+  std::vector<std::uint32_t> first;  ///< per loop vertex: its pole or its sample-0 vertex
+  std::vector<char> on_axis;         ///< per loop vertex: nonzero when x == 0
+  std::size_t ring = 0;              ///< vertices of a ring
+
+  /// The vertex of loop vertex `i` at angular sample `j` (mod ring; a pole at every j).
+  std::uint32_t at(std::size_t i, std::size_t j) const {
+    return on_axis[i] ? first[i] : first[i] + static_cast<std::uint32_t>(j % ring);
+  }
+};
+
+/// Appends the vertices of `loop` to `vertices` in revolve's layout: a pole
+/// at (0, 0, y), ring vertex (i, j) at position(i, j) (a Vec3).
+template <class Position>
+LoopGrid append_loop_grid(const std::vector<Vec2>& loop, std::size_t ring, std::vector<Vec3>& vertices,
+                          Position&& position) {
+  LoopGrid grid;
+  grid.ring = ring;
+  grid.first.resize(loop.size());
+  grid.on_axis.resize(loop.size());
+  for (std::size_t i = 0; i < loop.size(); ++i) {
+    grid.on_axis[i] = loop[i].x() == 0.0;
+    grid.first[i] = static_cast<std::uint32_t>(vertices.size());
+    if (grid.on_axis[i]) {
+      vertices.emplace_back(0.0, 0.0, loop[i].y());
+      continue;
+    }
+    for (std::size_t j = 0; j < ring; ++j) vertices.push_back(position(i, j));
+  }
+  return grid;
+}
+
+/// revolve's triangles of `grid`: loop edge by loop edge (an edge along the
+/// axis has none), angular steps j = 0 .. steps - 1 from sample j to j + 1
+/// (mod ring), face(c0, c1, c2) as for_each_edge_face calls it.
+template <class Face>
+void for_each_grid_face(const LoopGrid& grid, std::size_t steps, Face&& face) {
+  const std::size_t n = grid.first.size();
+  for (std::size_t a = 0; a < n; ++a) {
+    const std::size_t b = (a + 1) % n;
+    if (grid.on_axis[a] && grid.on_axis[b]) continue;
+    for (std::size_t j = 0; j < steps; ++j) {
+      for_each_edge_face(
+          grid.on_axis[a] != 0, grid.on_axis[b] != 0, j,
+          [&](bool is_b, std::size_t step) { return grid.at(is_b ? b : a, step); }, face);
+    }
+  }
 }
 
 /// Vertices the revolution of `loops` has with `segments` angular segments.

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "geometry/core/budget.h"
 #include "geometry/core/errors.h"
 
 namespace fabmesh {
@@ -114,13 +115,9 @@ SlabMesh build_slab(const Region2& region, const SlabOptions& options) {
   to.max_triangles = options.max_triangles / 2;
   PlanarTriangulation triangulation = triangulate(region, to);
   const std::size_t triangles = slab_triangle_count(triangulation);
-  if (triangles > options.max_triangles) {
-    throw BudgetError(
-        static_cast<double>(triangles), static_cast<double>(options.max_triangles),
-        fmt::format("the slab needs {} triangles, over the budget of {} (raise max_triangles, the "
-                    "tolerance or max_edge)",
-                    triangles, options.max_triangles));
-  }
+  require_within_budget(
+      triangles, options.max_triangles, [&] { return fmt::format("the slab needs {} triangles", triangles); },
+      "raise max_triangles, the tolerance or max_edge");
   EmbeddingProof proof{
       region.proof +
       fmt::format("; top and bottom are a CGAL constrained Delaunay triangulation of that region "

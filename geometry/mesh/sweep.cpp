@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "geometry/core/errors.h"
+#include "geometry/mesh/revolve.h"
 
 namespace fabmesh {
 namespace {
@@ -45,14 +46,8 @@ void check_section(const SweepSection& section) {
 }  // namespace
 
 std::size_t swept_triangle_count(const SweepSection& section, std::size_t samples, bool closed) {
-  const auto& loop = section.loop;
-  std::size_t per_step = 0;
-  for (std::size_t i = 0; i < loop.size(); ++i) {
-    const bool a = loop[i].x() == 0.0, b = loop[(i + 1) % loop.size()].x() == 0.0;
-    per_step += (a && b) ? 0 : (a || b) ? 1 : 2;
-  }
   const std::size_t steps = closed ? samples : (samples == 0 ? 0 : samples - 1);
-  return per_step * steps;
+  return revolved_triangles_per_step(section.loop) * steps;
 }
 
 SweptSurface sweep_section(const SweepSection& section, const SweepPath& path) {
@@ -69,44 +64,24 @@ SweptSurface sweep_section(const SweepSection& section, const SweepPath& path) {
                      "the path needs one outline point per sample when the section has outline vertices");
   }
   const auto& loop = section.loop;
-  const std::size_t n = loop.size();
-  auto on_axis = [&](std::size_t i) { return loop[i].x() == 0.0; };
-
   SweptSurface out;
-  std::vector<std::uint32_t> first(n);  // index of vertex i at sample 0 (or its pole)
-  for (std::size_t i = 0; i < n; ++i) {
-    const Vec2& p = loop[i];
-    first[i] = static_cast<std::uint32_t>(out.soup.vertices.size());
-    if (on_axis(i)) {
-      out.soup.vertices.emplace_back(0.0, 0.0, p.y());
-      continue;
-    }
-    const bool outline = any_outline && section.on_outline[i];
-    for (std::size_t j = 0; j < m; ++j) {
-      const Vec2 xy = outline ? path.outline[j] : Vec2(p.x() * path.directions[j]);
-      out.soup.vertices.emplace_back(xy.x(), xy.y(), p.y());
-    }
-  }
-  auto v = [&](std::size_t i, std::size_t j) {
-    return on_axis(i) ? first[i] : first[i] + static_cast<std::uint32_t>(j % m);
-  };
+  // revolve's layout, with outline vertices at the path's outline points.
+  const LoopGrid grid = append_loop_grid(loop, m, out.soup.vertices, [&](std::size_t i, std::size_t j) {
+    if (any_outline && section.on_outline[i])
+      return Vec3(path.outline[j].x(), path.outline[j].y(), loop[i].y());
+    return revolved_point(loop[i], {path.directions[j].x(), path.directions[j].y()});
+  });
   const std::size_t steps = path.closed ? m : m - 1;
   out.soup.triangles.reserve(swept_triangle_count(section, m, path.closed));
-  // Faces of loop edge (a, b) between samples j and j+1, as revolve: for a
-  // counter-clockwise loop (a_j, a_j+1, b_j+1) and (a_j, b_j+1, b_j) point outward.
-  for (std::size_t e = 0; e < n; ++e) {
-    const std::size_t a = e, b = (e + 1) % n;
-    if (on_axis(a) && on_axis(b)) continue;
-    for (std::size_t j = 0; j < steps; ++j) {
-      if (!on_axis(a)) out.soup.triangles.push_back({v(a, j), v(a, j + 1), v(b, j + 1)});
-      if (!on_axis(b)) out.soup.triangles.push_back({v(a, j), v(b, j + 1), v(b, j)});
-    }
-  }
-  out.first.resize(n);
-  out.last.resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    out.first[i] = v(i, 0);
-    out.last[i] = v(i, path.closed ? 0 : m - 1);
+  // revolve's faces, each written from its corner at sample j: (a_j, a_j+1, b_j+1), (a_j, b_j+1, b_j).
+  for_each_grid_face(grid, steps, [&](std::uint32_t c0, std::uint32_t c1, std::uint32_t c2) {
+    out.soup.triangles.push_back({c2, c0, c1});
+  });
+  out.first.resize(loop.size());
+  out.last.resize(loop.size());
+  for (std::size_t i = 0; i < loop.size(); ++i) {
+    out.first[i] = grid.at(i, 0);
+    out.last[i] = grid.at(i, path.closed ? 0 : m - 1);
   }
   return out;
 }

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "geometry/core/budget.h"
 #include "geometry/core/errors.h"
 
 namespace fabmesh {
@@ -23,12 +24,10 @@ Mesh thicken(const Mesh& sheet, const std::vector<Vec3>& vertex_normals, const T
                      fmt::format("thicken: {} vertex normals for {} vertices", vertex_normals.size(), n));
   }
   const std::size_t triangles = thickened_triangle_count(sheet);
-  if (triangles > options.max_triangles) {
-    throw BudgetError(static_cast<double>(triangles), static_cast<double>(options.max_triangles),
-                      fmt::format("the thickened shell needs {} triangles, over the budget of {} (raise "
-                                  "max_triangles or the tolerance)",
-                                  triangles, options.max_triangles));
-  }
+  require_within_budget(
+      triangles, options.max_triangles,
+      [&] { return fmt::format("the thickened shell needs {} triangles", triangles); },
+      "raise max_triangles or the tolerance");
   Mesh solid;
   solid.reserve(2 * n, 3 * triangles / 2, triangles);
   const double lower = options.offset, upper = options.offset + options.thickness;

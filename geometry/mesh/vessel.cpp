@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 
+#include "geometry/core/budget.h"
 #include "geometry/core/errors.h"
 #include "geometry/mesh/revolve.h"
 #include "geometry/mesh/revolve_clearance.h"
@@ -27,13 +28,15 @@ void require_budget(const CompositeCurve& profile, const VesselOptions& options,
   }
   const int segments = angular_segments(radius, options.tolerance);
   const double triangles = chords * segments;
-  if (triangles > static_cast<double>(options.max_triangles)) {
-    throw BudgetError(triangles, static_cast<double>(options.max_triangles),
-                      fmt::format("the mesh needs at least {:.4g} triangles (estimated before sampling: "
-                                  "{:.4g} profile chords x {} angular steps), over the budget of {} (raise "
-                                  "max_triangles or the tolerance)",
-                                  triangles, chords, segments, options.max_triangles));
-  }
+  require_within_budget(
+      triangles, options.max_triangles,
+      [&] {
+        return fmt::format(
+            "the mesh needs at least {:.4g} triangles (estimated before sampling: {:.4g} "
+            "profile chords x {} angular steps)",
+            triangles, chords, segments);
+      },
+      "raise max_triangles or the tolerance");
 }
 
 }  // namespace
@@ -55,13 +58,9 @@ VesselMesh build_vessel(const CompositeCurve& profile, const VesselOptions& opti
   const double angular_tolerance = options.tolerance - section.max_deviation;
   const int segments = angular_segments(section.max_radius, angular_tolerance);
   const std::size_t triangles = revolved_triangle_count(section.loops, segments);
-  if (triangles > options.max_triangles) {
-    throw BudgetError(
-        static_cast<double>(triangles), static_cast<double>(options.max_triangles),
-        fmt::format("the mesh needs {} triangles, over the budget of {} (raise max_triangles or the "
-                    "tolerance)",
-                    triangles, options.max_triangles));
-  }
+  require_within_budget(
+      triangles, options.max_triangles, [&] { return fmt::format("the mesh needs {} triangles", triangles); },
+      "raise max_triangles or the tolerance");
   const std::size_t vertices = revolved_vertex_count(section.loops, segments);
   const double bytes = static_cast<double>(triangles) * sizeof(std::array<std::uint32_t, 3>) +
                        static_cast<double>(vertices) * sizeof(Vec3);
@@ -74,7 +73,7 @@ VesselMesh build_vessel(const CompositeCurve& profile, const VesselOptions& opti
   }
   RevolveOptions ro;
   ro.segments = segments;
-  const double sagitta = section.max_radius * (1.0 - std::cos(M_PI / segments));
+  const double sagitta = chord_sagitta(section.max_radius, angular_step(segments));
   const double max_deviation = section.max_deviation + sagitta;
   EmbeddingProof proof{section.proof + fmt::format("; revolved in {} uniform angular steps", segments),
                        revolution_margin(section.loops, segments)};

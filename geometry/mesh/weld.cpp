@@ -14,21 +14,13 @@
 #include <memory>
 
 #include "geometry/core/errors.h"
+#include "geometry/mesh/hash_mix.h"
 #include "geometry/mesh/weld_grid.h"
 
 namespace fabmesh {
 namespace {
 
 bool finite(const Vec3& p) { return std::isfinite(p.x()) && std::isfinite(p.y()) && std::isfinite(p.z()); }
-
-std::uint64_t mix(std::uint64_t h) {
-  h ^= h >> 33;
-  h *= 0xff51afd7ed558ccdULL;
-  h ^= h >> 33;
-  h *= 0xc4ceb9fe1a85ec53ULL;
-  h ^= h >> 33;
-  return h;
-}
 
 /// A vertex in the bucket partition: its coordinates with -0.0 turned into
 /// +0.0 (so that equal coordinates have equal bits), its index and hash.
@@ -44,7 +36,7 @@ Entry entry(const Vec3& p, std::uint32_t index, std::uint64_t& hash) {
   for (const double c : e.c) {
     std::uint64_t bits = 0;
     std::memcpy(&bits, &c, sizeof bits);
-    h = mix(h ^ bits);
+    h = mix64(h ^ bits);
   }
   hash = h;
   e.hash = static_cast<std::uint32_t>(h);

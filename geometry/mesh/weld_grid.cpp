@@ -36,6 +36,7 @@
 
 #include "geometry/core/disjoint_sets.h"
 #include "geometry/core/errors.h"
+#include "geometry/mesh/hash_mix.h"
 
 namespace fabmesh {
 namespace {
@@ -121,14 +122,7 @@ class CellTable {
  private:
   static std::uint64_t hash(const Cell& c) {
     std::uint64_t h = 0;
-    for (const std::int64_t v : c) {  // murmur3's finalizer after each coordinate
-      h ^= static_cast<std::uint64_t>(v);
-      h ^= h >> 33;
-      h *= 0xff51afd7ed558ccdULL;
-      h ^= h >> 33;
-      h *= 0xc4ceb9fe1a85ec53ULL;
-      h ^= h >> 33;
-    }
+    for (const std::int64_t v : c) h = mix64(h ^ static_cast<std::uint64_t>(v));
     return h;
   }
   const std::vector<Cell>& cells_;

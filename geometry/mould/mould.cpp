@@ -105,7 +105,7 @@ std::string side_proof(const Mould& m, const MouldPart& p, const MouldOptions& o
       m.max_angular_step * 180.0 / M_PI,
       o.block == BlockShape::Box ? " and its block side on the box's flat side (every corner is a sample)"
                                  : "",
-      m.section.block_radius * (1.0 - std::cos(0.5 * m.max_angular_step)));
+      chord_sagitta(m.section.block_radius, m.max_angular_step));
 }
 
 void validate_part(MouldPart& part) {
@@ -133,13 +133,13 @@ Mould build_mould(const CompositeCurve& profile, const MouldOptions& o) {
   // Angular step: sagitta of the largest revolved radius within what the profile sampling left.
   const double revolved_radius = o.block == BlockShape::Box ? s.cavity_radius : s.block_radius;
   const int turn = angular_segments(revolved_radius, o.tolerance - s.max_deviation);
-  m.max_angular_step = 2.0 * M_PI / turn;
-  const double sagitta = revolved_radius * (1.0 - std::cos(0.5 * m.max_angular_step));
+  m.max_angular_step = angular_step(turn);
+  const double sagitta = chord_sagitta(revolved_radius, m.max_angular_step);
   m.max_deviation = std::max(s.max_deviation + sagitta, 0.0);
   m.keys = place_keys(s, o, sagitta);
   if (!m.keys.centres.empty()) {
-    const double n = m.keys.segments;
-    m.max_deviation = std::max(m.max_deviation, 2.0 * m.keys.socket_radius * (1.0 - std::cos(M_PI / n)));
+    m.max_deviation =
+        std::max(m.max_deviation, 2.0 * chord_sagitta(m.keys.socket_radius, angular_step(m.keys.segments)));
   }
   check_release(m, o);
   timer.lap("section");

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <map>
 
+#include "geometry/core/budget.h"
 #include "geometry/core/errors.h"
 #include "geometry/mesh/sweep.h"
 #include "geometry/section/simple_polygon.h"
@@ -112,13 +113,9 @@ void add_features(MouldPart& part, const std::vector<std::vector<std::uint32_t>>
 }
 
 void check_budget(std::size_t triangles, std::size_t budget, const std::string& name) {
-  if (triangles > budget) {
-    throw BudgetError(
-        static_cast<double>(triangles), static_cast<double>(budget),
-        fmt::format("mould part {} needs {} triangles, over the budget of {} (raise max_triangles "
-                    "or the tolerance)",
-                    name, triangles, budget));
-  }
+  require_within_budget(
+      triangles, budget, [&] { return fmt::format("mould part {} needs {} triangles", name, triangles); },
+      "raise max_triangles or the tolerance");
 }
 
 std::size_t key_triangles(const KeyLayout& keys) {

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "geometry/core/budget.h"
 #include "geometry/core/errors.h"
 
 namespace fabmesh {
@@ -123,12 +124,12 @@ Polyline2 sample_curve(const CompositeCurve& curve, const SampleOptions& options
   double estimate = 0.0;
   for (const Segment& seg : segs)
     estimate += min_chord_count(seg, options.tolerance, options.min_pieces_per_segment);
-  if (estimate > static_cast<double>(options.max_points)) {
-    throw BudgetError(estimate, static_cast<double>(options.max_points),
-                      fmt::format("the curve needs at least {:.4g} samples (estimated from its second "
-                                  "derivatives before sampling), over the budget of {}",
-                                  estimate, options.max_points));
-  }
+  require_within_budget(estimate, options.max_points, [&] {
+    return fmt::format(
+        "the curve needs at least {:.4g} samples (estimated from its second derivatives before "
+        "sampling)",
+        estimate);
+  });
   Polyline2 out;
   out.closed = curve.closed();
   double worst = 0.0, worst_gap = 0.0;

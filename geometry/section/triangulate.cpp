@@ -15,6 +15,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "geometry/core/budget.h"
 #include "geometry/core/errors.h"
 
 namespace fabmesh {
@@ -132,13 +133,10 @@ PlanarTriangulation triangulate(const Region2& region, const TriangulateOptions&
   if (options.max_edge > 0.0) {
     // A triangle whose longest edge is <= e has area <= sqrt(3)/4 e^2: a lower bound on the count.
     const double fewest = region.area / (std::sqrt(3.0) / 4.0 * options.max_edge * options.max_edge);
-    if (fewest > static_cast<double>(options.max_triangles)) {
-      throw BudgetError(
-          fewest, static_cast<double>(options.max_triangles),
-          fmt::format("max_edge {} needs at least {:.0f} triangles, over the budget of {} (raise "
-                      "max_triangles or max_edge)",
-                      options.max_edge, fewest, options.max_triangles));
-    }
+    require_within_budget(
+        fewest, options.max_triangles,
+        [&] { return fmt::format("max_edge {} needs at least {:.0f} triangles", options.max_edge, fewest); },
+        "raise max_triangles or max_edge");
   }
   Cdt cdt;
   cdt.insert_constraints(points.begin(), points.end(), constraints.begin(), constraints.end());
@@ -165,11 +163,8 @@ PlanarTriangulation triangulate(const Region2& region, const TriangulateOptions&
     }
     out.triangles.push_back(t);
   }
-  if (out.triangles.size() > options.max_triangles) {
-    throw BudgetError(static_cast<double>(out.triangles.size()), static_cast<double>(options.max_triangles),
-                      fmt::format("the region needs {} triangles, over the budget of {}",
-                                  out.triangles.size(), options.max_triangles));
-  }
+  require_within_budget(out.triangles.size(), options.max_triangles,
+                        [&] { return fmt::format("the region needs {} triangles", out.triangles.size()); });
   out.boundary = boundary_cycles(cdt, out.vertices.size());
   out.steiner_points = out.vertices.size() > points.size() ? out.vertices.size() - points.size() : 0;
   return out;

@@ -8,6 +8,7 @@
 #include <limits>
 #include <numeric>
 
+#include "geometry/core/budget.h"
 #include "geometry/core/disjoint_sets.h"
 #include "geometry/core/errors.h"
 #include "geometry/surfaces/cell_bound.h"
@@ -424,13 +425,15 @@ SurfaceTessellation tessellate(const PatchNetwork& network, const TessellateOpti
     throw RangeError("initial_segments", options.initial_segments, "initial_segments must be >= 1");
   }
   const double estimate = min_triangle_count(network, options.tolerance);
-  if (estimate > static_cast<double>(options.max_triangles)) {
-    throw BudgetError(estimate, static_cast<double>(options.max_triangles),
-                      fmt::format("the mesh needs at least {:.4g} triangles (estimated from the surface's "
-                                  "second derivatives before refining), over the budget of {} (raise "
-                                  "max_triangles or the tolerance)",
-                                  estimate, options.max_triangles));
-  }
+  require_within_budget(
+      estimate, options.max_triangles,
+      [&] {
+        return fmt::format(
+            "the mesh needs at least {:.4g} triangles (estimated from the surface's second "
+            "derivatives before refining)",
+            estimate);
+      },
+      "raise max_triangles or the tolerance");
   const std::size_t np = network.patches.size();
   DirectionClasses classes(2 * np);
   for (const SharedBorder& b : network.borders) {
@@ -486,12 +489,10 @@ SurfaceTessellation tessellate(const PatchNetwork& network, const TessellateOpti
     for (std::size_t c = 0; c < 2 * np; ++c)
       breaks[c] = refine(breaks[c], split[c], classes.symmetric(c), options.tolerance);
     const std::size_t count = triangles();
-    if (count > options.max_triangles) {
-      throw BudgetError(static_cast<double>(count), static_cast<double>(options.max_triangles),
-                        fmt::format("the mesh needs more than {} triangles, over the budget of {} (raise "
-                                    "max_triangles or the tolerance)",
-                                    count, options.max_triangles));
-    }
+    require_within_budget(
+        count, options.max_triangles,
+        [&] { return fmt::format("the mesh needs more than {} triangles", count); },
+        "raise max_triangles or the tolerance");
   }
 
   SurfaceTessellation out;

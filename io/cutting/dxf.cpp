@@ -10,6 +10,7 @@
 #include <memory>
 
 #include "geometry/core/errors.h"
+#include "geometry/core/units.h"
 #include "io/file.h"
 
 namespace fabmesh {
@@ -39,10 +40,10 @@ class TempFile {
 };
 
 int insunits(const std::string& units) {
-  if (units == "in") return 1;
-  if (units == "cm") return 5;
-  if (units == "m") return 6;
-  return 4;  // mm
+  for (const LengthUnit& u : kLengthUnits) {
+    if (u.name == units) return u.dxf_insunits;
+  }
+  return length_unit("mm").dxf_insunits;
 }
 
 void write_tables(DL_Dxf& dxf, DL_WriterA& dw) {

@@ -7,29 +7,16 @@
 #include <limits>
 
 #include "geometry/core/errors.h"
+#include "io/cutting/svg_writing.h"
 #include "io/file.h"
 
 namespace fabmesh {
 namespace {
 
-std::string num(double v) { return fmt::format("{}", v == 0.0 ? 0.0 : v); }
-std::string pt(const Vec2& p) { return num(p.x()) + " " + num(-p.y()); }
-
-// Exact part arcs as A commands of at most 120 degrees (as svg.cpp draws them).
-void append_part_arc(std::string& d, const EllipseArcParams& a) {
-  const double span = a.to_deg - a.from_deg;
-  const int pieces = std::max(1, static_cast<int>(std::ceil(std::abs(span) / 120.0)));
-  const int sweep = span > 0.0 ? 0 : 1;
-  for (int i = 1; i <= pieces; ++i) {
-    const Vec2 end = arc_point(a, a.from_deg + span * i / pieces);
-    d += fmt::format(" A {} {} {} 0 {} {}", num(a.a), num(a.b), num(-a.rotation_deg), sweep, pt(end));
-  }
-}
-
 // A path piece as L or A commands (arcs in pieces of at most 120 degrees).
 void append_piece(std::string& d, const PathPiece& p) {
   if (p.kind == PieceKind::Line) {
-    d += " L " + pt(p.to);
+    d += " L " + svg_point(p.to);
     return;
   }
   const double r = piece_radius(p);
@@ -39,7 +26,8 @@ void append_piece(std::string& d, const PathPiece& p) {
     const Vec2 end = i == pieces ? p.to
                                  : p.center + r * Vec2(std::cos(a0 + p.sweep * i / pieces),
                                                        std::sin(a0 + p.sweep * i / pieces));
-    d += fmt::format(" A {} {} 0 0 {} {}", num(r), num(r), p.sweep > 0.0 ? 0 : 1, pt(end));
+    d += fmt::format(" A {} {} 0 0 {} {}", svg_number(r), svg_number(r), p.sweep > 0.0 ? 0 : 1,
+                     svg_point(end));
   }
 }
 
@@ -70,7 +58,7 @@ struct Bounds {
 };
 
 std::string chain(const std::vector<PathPiece>& pieces) {
-  std::string d = "M " + pt(pieces.front().from);
+  std::string d = "M " + svg_point(pieces.front().from);
   for (const PathPiece& p : pieces) append_piece(d, p);
   return d;
 }
@@ -94,53 +82,42 @@ std::string encode_toolpath_svg(const std::vector<CutLoop>& part, const Toolpath
   }
   const double m = options.margin;
   const double w = box.hi.x() - box.lo.x() + 2 * m, h = box.hi.y() - box.lo.y() + 2 * m;
-  const double scale = options.units == "m" ? 1000.0 : 1.0;
-  const std::string unit = options.units == "m" ? "mm" : options.units;
   const double stroke = std::max(w, h) / 1500.0;
-  std::string out = fmt::format(
-      "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
-      "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{}{}\" height=\"{}{}\" viewBox=\"{} {} {} {}\">\n"
-      "  <title>toolpath: tool diameter {}, {} passes, {} cutting</title>\n",
-      num(w * scale), unit, num(h * scale), unit, num(box.lo.x() - m), num(-(box.hi.y() + m)), num(w), num(h),
-      num(path.options.tool_diameter), path.pass_z.size(), to_string(path.options.direction));
+  std::string out = svg_start(box.lo, box.hi, m, options.units);
+  out += fmt::format("  <title>toolpath: tool diameter {}, {} passes, {} cutting</title>\n",
+                     svg_number(path.options.tool_diameter), path.pass_z.size(),
+                     to_string(path.options.direction));
   std::string d;
   for (const CutLoop& loop : part) {
-    for (const CutEntity& e : loop.entities) {
-      if (&e == &loop.entities.front()) d += (d.empty() ? "M " : " M ") + pt(e.points.front());
-      if (e.kind == CutKind::Arc) {
-        append_part_arc(d, e.arc);
-      } else {
-        for (std::size_t i = 1; i < e.points.size(); ++i) d += " L " + pt(e.points[i]);
-      }
-    }
+    append_svg_loop(d, loop);
     d += " Z";
   }
   if (!d.empty()) {
     out += fmt::format(
         "  <path id=\"part\" d=\"{}\" fill=\"#e8e2d6\" fill-rule=\"evenodd\" stroke=\"black\" "
         "stroke-width=\"{}\"/>\n",
-        d, num(2 * stroke));
+        d, svg_number(2 * stroke));
   }
   for (std::size_t i = 0; i < path.loops.size(); ++i) {
     const LoopPath& lp = path.loops[i];
     out += fmt::format(
         "  <path id=\"path-{}\" d=\"{} Z\" fill=\"none\" stroke=\"#1f5fbf\" stroke-width=\"{}\" "
         "stroke-dasharray=\"{} {}\"/>\n",
-        i, chain(lp.pieces), num(stroke), num(8 * stroke), num(4 * stroke));
+        i, chain(lp.pieces), svg_number(stroke), svg_number(8 * stroke), svg_number(4 * stroke));
     if (lp.lead) {
       out += fmt::format(
           "  <path id=\"lead-{}\" d=\"{}\" fill=\"none\" stroke=\"#1a9a3a\" stroke-width=\"{}\"/>\n", i,
-          chain({*lp.lead}), num(2 * stroke));
+          chain({*lp.lead}), svg_number(2 * stroke));
     }
     const Vec2 plunge = lp.lead ? lp.lead->from : lp.pieces.front().from;
     out += fmt::format(
         "  <circle id=\"plunge-{}\" cx=\"{}\" cy=\"{}\" r=\"{}\" fill=\"none\" stroke=\"#d02020\" "
         "stroke-width=\"{}\"/>\n",
-        i, num(plunge.x()), num(-plunge.y()), num(r), num(stroke));
+        i, svg_number(plunge.x()), svg_number(-plunge.y()), svg_number(r), svg_number(stroke));
     for (std::size_t j = 0; j < lp.tabs.size(); ++j) {
       out += fmt::format(
           "  <path id=\"tab-{}-{}\" d=\"{}\" fill=\"none\" stroke=\"#f08000\" stroke-width=\"{}\"/>\n", i, j,
-          chain(sub_path(lp.pieces, lp.tabs[j].first, lp.tabs[j].second)), num(r));
+          chain(sub_path(lp.pieces, lp.tabs[j].first, lp.tabs[j].second)), svg_number(r));
     }
     // A dog-bone is a run X -> D and back: draw the run and the tool's disc at D (the overcut).
     std::size_t k = 0;
@@ -150,7 +127,8 @@ std::string encode_toolpath_svg(const std::vector<CutLoop>& part, const Toolpath
       out += fmt::format(
           "  <g id=\"dogbone-{}-{}\" fill=\"none\" stroke=\"#b000b0\" stroke-width=\"{}\">"
           "<path d=\"M {} L {}\"/><circle cx=\"{}\" cy=\"{}\" r=\"{}\"/></g>\n",
-          i, k++, num(stroke), pt(p.from), pt(p.to), num(p.to.x()), num(-p.to.y()), num(r));
+          i, k++, svg_number(stroke), svg_point(p.from), svg_point(p.to), svg_number(p.to.x()),
+          svg_number(-p.to.y()), svg_number(r));
       ++j;
     }
   }

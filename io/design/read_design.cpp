@@ -7,6 +7,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "geometry/core/units.h"
 #include "io/design/number_limits.h"
 #include "io/design/utf8.h"
 #include "io/design/yaml/design_tree.h"
@@ -175,10 +176,10 @@ DesignCommon read_common(const yaml::Fields& f, const YAML::Node& root) {
                shown, problem, kMaxNameBytes,
                root["name"].IsDefined() ? "" : "; the default name is the file's; set `name:`"));
   }
-  c.units = f.choice(root["units"].IsDefined() ? root["units"] : YAML::Node("mm"), "units",
-                     {"mm", "cm", "m", "in"});
+  c.units =
+      f.choice(root["units"].IsDefined() ? root["units"] : YAML::Node("mm"), "units", length_unit_names());
   c.export_units = f.choice(root["export_units"].IsDefined() ? root["export_units"] : YAML::Node("mm"),
-                            "export_units", {"mm", "cm", "m", "in"});
+                            "export_units", length_unit_names());
   if (root["purpose"].IsDefined()) {
     c.purpose = f.choice(root["purpose"], "purpose", {"fabrication", "view"}) == "view"
                     ? Purpose::View

@@ -17,6 +17,7 @@
 #include <unordered_map>
 
 #include "geometry/core/errors.h"
+#include "geometry/mesh/bounding_box.h"
 #include "io/file.h"
 
 namespace fabmesh {
@@ -26,15 +27,10 @@ namespace {
   throw FileError(name, 0, 0, fmt::format("{}: {}", name, message));
 }
 
-void bounding_box(const TriangleSoup& soup, Vec3& lo, Vec3& hi) {
-  lo = Vec3::Zero();
-  hi = Vec3::Zero();
-  if (soup.vertices.empty()) return;
-  lo = hi = soup.vertices.front();
-  for (const Vec3& p : soup.vertices) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  }
+// The bounding box of the soup's vertices; an empty soup's is the origin.
+BoundingBox box_of(const TriangleSoup& soup) {
+  if (soup.vertices.empty()) return {Vec3::Zero(), Vec3::Zero()};
+  return bounding_box(soup.vertices);
 }
 
 /// Reads Draco's header fields in order; every read fails cleanly past the end.
@@ -464,10 +460,8 @@ std::optional<TriangleSoup> decode_matched(const std::string& bytes, const Trian
 
 std::string encode_draco(const TriangleSoup& soup, const DracoOptions& options) {
   require_indices_in_range(soup);
-  Vec3 lo;
-  Vec3 hi;
-  bounding_box(soup, lo, hi);
-  return encode_draco_bits(soup, draco_quantization(lo, hi, options.tolerance).bits, options);
+  const BoundingBox box = box_of(soup);
+  return encode_draco_bits(soup, draco_quantization(box.lo, box.hi, options.tolerance).bits, options);
 }
 
 std::string encode_draco_bits(const TriangleSoup& soup, int bits, const DracoOptions& options) {
@@ -481,10 +475,8 @@ DracoFit fit_draco(const TriangleSoup& soup, double tolerance,
                    const DracoOptions& options) {
   require_positive("draco tolerance", tolerance);
   require_indices_in_range(soup);
-  Vec3 lo;
-  Vec3 hi;
-  bounding_box(soup, lo, hi);
-  const double extent = (hi - lo).maxCoeff();
+  const BoundingBox box = box_of(soup);
+  const double extent = box.size().maxCoeff();
   // The fewest bits whose half step alone fits; float32 rounding is measured, not assumed.
   int bits = 1;
   while (bits < 30 && std::sqrt(3.0) * 0.5 * extent / (std::ldexp(1.0, bits) - 1.0) > tolerance) ++bits;
@@ -525,8 +517,8 @@ DracoFit fit_draco(const TriangleSoup& soup, double tolerance,
                   "bits of quantization vertices move by up to {:.3g} (float32 positions at "
                   "coordinates up to {:.6g}); raise the tolerance so that at least {:.3g} is left for "
                   "the outputs, move the design nearer the origin, or drop {}",
-                  format, tolerance, best, std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff()), best,
-                  format));
+                  format, tolerance, best,
+                  std::max(box.lo.cwiseAbs().maxCoeff(), box.hi.cwiseAbs().maxCoeff()), best, format));
 }
 
 void require_draco_matches(std::string_view bytes, const DracoFit& fit) {

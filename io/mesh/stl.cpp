@@ -239,11 +239,9 @@ void encode_stl_pieces(const TriangleSoup& soup, const std::function<void(std::s
 }
 
 void write_stl(const TriangleSoup& soup, const std::string& path) {
-  std::vector<PendingFile> file;
-  file.emplace_back(path);
-  encode_stl_pieces(soup, [&](std::string_view piece) { file.back().write(piece); });
-  file.back().finish();
-  commit_files(file);
+  PendingFile file(path);
+  encode_stl_pieces(soup, [&](std::string_view piece) { file.write(piece); });
+  commit_file(std::move(file));
 }
 
 void write_stl(const Mesh& mesh, const std::string& path) { write_stl(to_soup(mesh), path); }

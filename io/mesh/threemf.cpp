@@ -17,6 +17,7 @@
 #include <utility>
 
 #include "geometry/core/errors.h"
+#include "geometry/core/units.h"
 #include "io/mesh/zip_archive.h"
 
 // lib3mf 1.8.1 leaks what libzip's zip_fopen_index allocates for each part
@@ -74,11 +75,12 @@ struct Unit {
   double metres;
 };
 
+// 3MF's units: fabmesh's own (geometry/core/units.h) and two more.
 constexpr std::array<Unit, 6> kUnits = {{{"micron", NMR::MODELUNIT_MICROMETER, 1e-6},
-                                         {"mm", NMR::MODELUNIT_MILLIMETER, 1e-3},
-                                         {"cm", NMR::MODELUNIT_CENTIMETER, 1e-2},
-                                         {"m", NMR::MODELUNIT_METER, 1.0},
-                                         {"in", NMR::MODELUNIT_INCH, 0.0254},
+                                         {"mm", NMR::MODELUNIT_MILLIMETER, metres_per_unit("mm")},
+                                         {"cm", NMR::MODELUNIT_CENTIMETER, metres_per_unit("cm")},
+                                         {"m", NMR::MODELUNIT_METER, metres_per_unit("m")},
+                                         {"in", NMR::MODELUNIT_INCH, metres_per_unit("in")},
                                          {"ft", NMR::MODELUNIT_FOOT, 0.3048}}};
 
 const Unit& unit_named(const std::string& units) {

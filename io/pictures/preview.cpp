@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "geometry/core/errors.h"
+#include "geometry/mesh/bounding_box.h"
 
 namespace fabmesh {
 namespace {
@@ -254,12 +255,8 @@ Image render_preview(const TriangleSoup& soup, const PreviewOptions& options) {
   if (!std::isfinite(scale)) scale = 1.0;  // every vertex projects to one point
 
   // Depth relative to the mesh's middle keeps float precision for models far from the origin.
-  Vec3 lo = soup.vertices.front(), hi = lo;
-  for (const Vec3& q : soup.vertices) {
-    lo = lo.cwiseMin(q);
-    hi = hi.cwiseMax(q);
-  }
-  const Vec3 middle = 0.5 * (lo + hi);
+  const BoundingBox box = bounding_box(soup.vertices);
+  const Vec3 middle = 0.5 * (box.lo + box.hi);
   Projected p;
   const std::size_t nv = soup.vertices.size();
   p.x.resize(nv);

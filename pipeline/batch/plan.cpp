@@ -11,7 +11,6 @@
 #include "geometry/core/errors.h"
 #include "io/file.h"
 #include "pipeline/batch/sha256.h"
-#include "pipeline/batch/streamed_file.h"
 
 namespace fabmesh {
 namespace {
@@ -180,12 +179,12 @@ void save_plan(const BatchPlan& plan, const std::string& folder) {
   head["parameters"] = plan.parameters;
   std::string text = head.dump();
   text.pop_back();  // the closing brace: the variants follow, one a line
-  StreamedFile file(path);
-  file.append(text + ",\n\"variants\": [\n");
+  PendingFile file(path);
+  file.write(text + ",\n\"variants\": [\n");
   for (std::size_t i = 0; i < plan.size(); ++i)
-    file.append((i == 0 ? "" : ",\n") + variant_json(plan.variant(i)));
-  file.append("\n]}\n");
-  file.commit();
+    file.write((i == 0 ? "" : ",\n") + variant_json(plan.variant(i)));
+  file.write("\n]}\n");
+  commit_file(std::move(file));
 }
 
 }  // namespace fabmesh

@@ -6,7 +6,6 @@
 #include "geometry/core/errors.h"
 #include "io/file.h"
 #include "pipeline/batch/ledger.h"
-#include "pipeline/batch/streamed_file.h"
 
 namespace fabmesh {
 
@@ -107,17 +106,17 @@ BatchRow summary_row(const BatchPlan& plan, const PlanRows& rows, std::size_t i)
 SummaryCounts write_summary(const BatchPlan& plan, const PlanRows& rows, const std::string& out_dir) {
   SummaryCounts counts;
   const std::filesystem::path dir(out_dir);
-  StreamedFile jsonl((dir / "summary.jsonl").string());
-  StreamedFile csv((dir / "summary.csv").string());
-  csv.append(csv_header(plan.parameters));
+  PendingFile jsonl((dir / "summary.jsonl").string());
+  PendingFile csv((dir / "summary.csv").string());
+  csv.write(csv_header(plan.parameters));
   for (std::size_t i = 0; i < plan.size(); ++i) {
     const BatchRow row = summary_row(plan, rows, i);
     counts.add(row.status, exit_code_of(row.status));
-    jsonl.append(row_json(row).dump() + "\n");
-    csv.append(csv_line(row, plan.parameters));
+    jsonl.write(row_json(row).dump() + "\n");
+    csv.write(csv_line(row, plan.parameters));
   }
-  jsonl.commit();
-  csv.commit();
+  commit_file(std::move(jsonl));
+  commit_file(std::move(csv));
   return counts;
 }
 

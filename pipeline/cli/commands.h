@@ -39,7 +39,9 @@ Runner add_plot_command(CLI::App& app);     ///< `fabmesh plot DESIGN... [-o FIL
 Runner add_preview_command(CLI::App& app);  ///< `fabmesh preview MESH|DESIGN -o FILE.png`
 Runner add_batch_command(CLI::App& app);    ///< `fabmesh batch MANIFEST ...`, `fabmesh batch --merge DIR`
 
-/// `fabmesh` without arguments: runs the bundled vessel example into ./out.
+/// `fabmesh` without arguments: runs the bundled vessel example into ./out,
+/// found at ../share/fabmesh/examples from the program's own folder (2, with
+/// a message saying where it looked, when it is not there).
 int run_bundled_example(Streams streams);
 
 /// Parses argv, runs the chosen command and maps exceptions to exit codes:

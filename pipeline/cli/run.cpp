@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "geometry/core/errors.h"
+#include "geometry/core/units.h"
 #include "io/file.h"
 #include "pipeline/cli/commands.h"
 #include "pipeline/cli/run_progress.h"
@@ -216,9 +217,20 @@ int run_designs(const RunArgs& args, Streams io) {
   return code;
 }
 
-}  // namespace
+// Where the example designs are, from the folder of the running program:
+// FABMESH_EXAMPLES_FROM_PROGRAM (relative: "../share/fabmesh/examples" for an
+// installed bin/fabmesh; the build puts a copy at the same place from
+// build/pipeline/fabmesh). Empty when the program's own path is unknown.
+fs::path examples_folder() {
+  std::error_code ec;
+  const fs::path program = fs::read_symlink("/proc/self/exe", ec);
+  if (ec || program.empty()) return {};
+  return (program.parent_path() / FABMESH_EXAMPLES_FROM_PROGRAM).lexically_normal();
+}
 
-std::string bundled_example() { return std::string(FABMESH_EXAMPLES_DIR) + "/vessel_golden_shell.yaml"; }
+constexpr const char* kBundledExample = "vessel_golden_shell.yaml";
+
+}  // namespace
 
 Runner add_run_command(CLI::App& app) {
   auto args = std::make_shared<RunArgs>();
@@ -236,7 +248,7 @@ Runner add_run_command(CLI::App& app) {
   cmd->add_option("--export-units", args->export_units,
                   "Unit of the files that carry none (STL, OBJ, PLY, OFF, Draco) and of 3MF, instead of the "
                   "design's export_units (default mm)")
-      ->check(CLI::IsMember({"mm", "cm", "m", "in"}));
+      ->check(CLI::IsMember(length_unit_names()));
   cmd->add_flag("--json", args->json, "Print the JSON reports (an array, one entry per design)");
   cmd->add_option("--report", args->report,
                   "Also write an HTML report (one self-contained page: summary table, each design's preview "
@@ -246,13 +258,23 @@ Runner add_run_command(CLI::App& app) {
 }
 
 int run_bundled_example(Streams io) {
+  const fs::path folder = examples_folder();
+  const fs::path example = folder / kBundledExample;
+  std::error_code ec;
+  if (folder.empty() || !fs::is_regular_file(example, ec)) {
+    io.err << fmt::format(
+        "fabmesh: no design given, and the bundled example is not at {} (fabmesh looks for its examples "
+        "at {} from its own folder); give a design: fabmesh run DESIGN.yaml\n",
+        folder.empty() ? std::string(kBundledExample) : example.string(), FABMESH_EXAMPLES_FROM_PROGRAM);
+    return 2;
+  }
   RunArgs args;
-  args.designs = {bundled_example()};
+  args.designs = {example.string()};
   io.out << fmt::format("fabmesh: no design given; running the bundled example {}\n", args.designs[0]);
   const int code = run_designs(args, io);
   if (code == 0) {
     io.out << fmt::format("Files are in {}/. Try `fabmesh run --help` and the designs in {}.\n",
-                          fs::absolute(args.out).string(), FABMESH_EXAMPLES_DIR);
+                          fs::absolute(args.out).string(), folder.string());
   }
   return code;
 }

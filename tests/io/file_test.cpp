@@ -106,6 +106,30 @@ TEST_CASE("write_file_atomically: the file gets the process's umask", "[io][file
   CHECK((b.st_mode & 0777) == 0600);
 }
 
+TEST_CASE("PendingFile: a line at a time and in blocks, committed alone with commit_file", "[io][file]") {
+  const TempDir dir;
+  const std::string target = dir.file("summary.csv");
+  std::string expected;
+  {
+    PendingFile file(target);
+    for (int i = 0; i < 200000; ++i) {  // 2.3 MB of small pieces: gathered, written a block at a time
+      const std::string line = std::to_string(i) + ",ok\n";
+      file.write(line);
+      expected += line;
+    }
+    const std::string block(3 << 20, 'x');  // larger than a block: written through
+    file.write(block);
+    expected += block;
+    file.write("end\n");
+    expected += "end\n";
+    PendingFile moved(std::move(file));            // what is gathered moves along
+    CHECK_FALSE(std::filesystem::exists(target));  // nothing under the name before the commit
+    commit_file(std::move(moved));
+  }
+  CHECK(read_file(target) == expected);
+  CHECK(dir.listing() == std::vector<std::string>{"summary.csv"});
+}
+
 TEST_CASE("PendingFile: bytes written in pieces reach the target only when committed, and never partly",
           "[io][file]") {
   const TempDir dir;

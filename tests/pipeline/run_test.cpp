@@ -1,3 +1,5 @@
+#include <sys/wait.h>
+
 #include <catch2/catch.hpp>
 #include <cstdlib>
 #include <filesystem>
@@ -166,7 +168,25 @@ TEST_CASE("fabmesh with no arguments runs the bundled example into ./out", "[pip
   REQUIRE(std::system(cmd.c_str()) == 0);
   CHECK(fs::exists(dir / "out" / "vessel_golden_shell.stl"));
   CHECK(fs::exists(dir / "out" / "vessel_golden_shell.drc"));
-  CHECK_THAT(read_file((dir / "log.txt").string()), Catch::Contains("Files are in"));
+  const std::string log = read_file((dir / "log.txt").string());
+  CHECK_THAT(log, Catch::Contains("Files are in"));
+  // Found beside the program (build/share/fabmesh/examples), not in the sources.
+  CHECK_THAT(log, Catch::Contains("share/fabmesh/examples/vessel_golden_shell.yaml"));
+}
+
+TEST_CASE("fabmesh with no arguments and no examples beside it says where it looked (exit 2)",
+          "[pipeline][run]") {
+  const fs::path dir = fresh_dir("run_default_alone");
+  fs::create_directories(dir / "bin");
+  fs::copy_file(FABMESH_BINARY, dir / "bin" / "fabmesh");
+  const std::string cmd = "cd '" + dir.string() + "' && bin/fabmesh > log.txt 2>&1";
+  const int status = std::system(cmd.c_str());
+  REQUIRE(WIFEXITED(status));
+  CHECK(WEXITSTATUS(status) == 2);
+  const std::string log = read_file((dir / "log.txt").string());
+  CHECK_THAT(log, Catch::Contains("bundled example is not at " +
+                                  (dir / "share/fabmesh/examples/vessel_golden_shell.yaml").string()));
+  CHECK_FALSE(fs::exists(dir / "out"));
 }
 
 TEST_CASE("run: a job written straight to its files has the bytes of the same job prepared in memory",

@@ -174,9 +174,9 @@ std::string Fields::text_or(const YAML::Node& parent, const char* key, const std
 }
 
 std::string Fields::choice(const YAML::Node& node, const std::string& field,
-                           std::initializer_list<const char*> choices) const {
+                           const std::vector<std::string>& choices) const {
   std::string value = text(node, field);
-  for (const char* c : choices) {
+  for (const std::string& c : choices) {
     if (value == c) return value;
   }
   fail(node, field, fmt::format("'{}' is not one of: {}", value, join(choices)));

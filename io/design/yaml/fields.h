@@ -57,7 +57,7 @@ class Fields {
                       const std::string& fallback) const;
   /// One of `choices`.
   std::string choice(const YAML::Node& node, const std::string& field,
-                     std::initializer_list<const char*> choices) const;
+                     const std::vector<std::string>& choices) const;
   /// A work budget (`max_triangles`): a whole number in [1, 2e9], or `fallback` when absent.
   std::size_t budget_or(const YAML::Node& parent, const char* key, std::size_t fallback) const;
   /// A whole number in [lo, hi].

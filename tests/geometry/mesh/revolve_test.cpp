@@ -129,6 +129,19 @@ TEST_CASE("revolve: bad sections are refused", "[mesh][revolve][errors]") {
                     Catch::Contains("axis neighbours"));
 }
 
+TEST_CASE("angular_segments: the fewest steps whose chord sagitta is within the tolerance",
+          "[mesh][revolve]") {
+  for (const double radius : {0.5, 3.0, 47.0, 1e4}) {
+    for (const double tol : {1e-3, 0.05, 0.4}) {
+      const int n = angular_segments(radius, tol);
+      CHECK(angular_step(n) == Approx(2.0 * M_PI / n));
+      CHECK(chord_sagitta(radius, angular_step(n)) <= tol * (1.0 + 1e-12));
+      if (n > 3) CHECK(chord_sagitta(radius, angular_step(n - 1)) > tol);
+    }
+  }
+  CHECK(chord_sagitta(2.0, M_PI) == Approx(2.0));  // a diameter: the chord passes through the centre
+}
+
 namespace {
 
 // `soup` with every vertex moved by `distance` in a random direction.
