@@ -140,3 +140,35 @@ TEST_CASE("run: a file of -o DIR that is a link is replaced, its target left alo
   CHECK(fs::is_regular_file(fs::symlink_status(out / "cup.stl")));
   check_victim_untouched(victim);
 }
+
+TEST_CASE("batch: a ledger that is a link or a FIFO is refused at once, its target untouched",
+          "[pipeline][batch][hostile]") {
+  const fs::path dir = batch_folder("hostile_ledger", kWallGrid);
+  const fs::path out = dir / "out";
+  fs::create_directories(out / ".batch");
+  write_text(dir / "outside.txt", "not a ledger\n");
+  const fs::path ledger = out / ".batch" / "ledger-0-of-1.jsonl";
+  fs::create_symlink(dir / "outside.txt", ledger);
+  const LimitedRun linked = run_limited({"batch", (dir / "m.yaml").string(), "-o", out.string()},
+                                        kQuickSeconds, kBuildMemory, dir.string());
+  INFO(linked.describe());
+  CHECK(linked.code == 2);
+  CHECK_THAT(linked.err, Catch::Contains(ledger.string()) && Catch::Contains("not a regular file"));
+  CHECK(file_text(dir / "outside.txt") == "not a ledger\n");
+  CHECK(is_link(ledger));
+  fs::remove(ledger);
+
+  // A FIFO no writer opens: reading it would wait forever.
+  const fs::path fifo = out / ".batch" / "ledger-1-of-2.jsonl";
+  REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"batch", (dir / "m.yaml").string(), "-o", out.string()},
+        std::vector<std::string>{"batch", (dir / "m.yaml").string(), "-o", out.string(), "--shard", "1/2"},
+        std::vector<std::string>{"batch", "--merge", out.string()}}) {
+    INFO(args.back());
+    const LimitedRun r = run_limited(args, kQuickSeconds, kBuildMemory, dir.string());
+    INFO(r.describe());
+    CHECK(r.code == 2);
+    CHECK_THAT(r.err, Catch::Contains(fifo.string()) && Catch::Contains("FIFO"));
+  }
+}
