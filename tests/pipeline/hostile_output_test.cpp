@@ -172,3 +172,43 @@ TEST_CASE("batch: a ledger that is a link or a FIFO is refused at once, its targ
     CHECK_THAT(r.err, Catch::Contains(fifo.string()) && Catch::Contains("FIFO"));
   }
 }
+
+TEST_CASE("batch --slurm: a manifest path with a newline and shell syntax runs no line but ours",
+          "[pipeline][batch][hostile]") {
+  const fs::path dir = batch_folder("hostile_slurm",
+                                    "design: cup.yaml\nname: cup_{body.wall}\ngrid:\n"
+                                    "  body.wall: [0.3]\n");
+  const std::string name = "m\ntouch PWNED\n$(touch PWNED2)`touch PWNED3`'\".yaml";
+  fs::copy_file(dir / "m.yaml", dir / name);
+  const fs::path out = dir / "out";
+  const LimitedRun r =
+      run_limited({"batch", name, "-o", "out", "--slurm"}, kQuickSeconds, kSmallMemory, dir.string());
+  INFO(r.describe());
+  REQUIRE(r.code == 0);
+  const std::string script = file_text(out / "slurm.sbatch");
+  INFO(script);
+  // Every line is a comment, an #SBATCH line before any command, or one of the two commands.
+  std::istringstream lines(script);
+  std::string line;
+  int commands = 0;
+  while (std::getline(lines, line)) {
+    if (line.rfind("#SBATCH ", 0) == 0) {
+      CHECK(commands == 0);
+    } else if (line.rfind("#", 0) == 0) {
+      continue;
+    } else if (line == "set -euo pipefail" || line.rfind("exec '", 0) == 0) {
+      ++commands;
+    } else {
+      FAIL_CHECK("a line that is not the script's own: " << line);
+    }
+  }
+  CHECK(commands == 2);
+  // bash reads it, and running it builds the manifest, nothing else.
+  CHECK(std::system(fmt::format("bash -n '{}'", (out / "slurm.sbatch").string()).c_str()) == 0);
+  const std::string run =
+      fmt::format("cd '{}' && SLURM_ARRAY_TASK_ID=0 bash out/slurm.sbatch >/dev/null 2>&1", dir.string());
+  CHECK(std::system(run.c_str()) == 0);
+  CHECK(fs::is_regular_file(out / "cup_0.3" / "cup_0.3.stl"));
+  for (const char* planted : {"PWNED", "PWNED2", "PWNED3"}) CHECK_FALSE(fs::exists(dir / planted));
+  for (const char* planted : {"PWNED", "PWNED2", "PWNED3"}) CHECK_FALSE(fs::exists(out / planted));
+}
