@@ -59,6 +59,10 @@ struct DesignCommon {
   /// "mould.wall"; two levels): "path:line:column", or "-D path=value" for an
   /// override. For messages about a value that only building can judge.
   std::map<std::string, std::string> where;
+  /// Facts about how the design's files were read that change nothing but
+  /// deserve a look, e.g. "points.csv:1: a header row (not numbers) was
+  /// skipped, for ...". Shown in the report (`notes`).
+  std::vector<std::string> notes;
 };
 
 /// "where: key" for a message about `key`'s value: the key's own place, else

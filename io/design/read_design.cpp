@@ -301,6 +301,7 @@ Design read_design_tree(const YAML::Node& root, const std::string& path,
   Design d;
   d.common = read_common(f, root);
   d.body = read_body(kind, f, root, d.common);
+  d.common.notes = f.notes();
   // Where each key is given, two levels deep (the design is valid by now: keys are scalars).
   for (const auto& kv : root) {
     const std::string key = kv.first.Scalar();

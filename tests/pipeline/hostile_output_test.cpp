@@ -18,6 +18,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "io/design/points_csv.h"
 #include "io/file.h"
 #include "tests/pipeline/batch/batch_fixture.h"
 #include "tests/pipeline/cli_harness.h"
@@ -63,6 +64,15 @@ void check_victim_untouched(const fs::path& victim) {
 bool is_link(const fs::path& path) {
   std::error_code ec;
   return fs::is_symlink(fs::symlink_status(path, ec));
+}
+
+// The report `run --json` prints for `design`, after checking the run ended with exit 0.
+nlohmann::json run_report(const fs::path& design, const fs::path& out) {
+  const LimitedRun r =
+      run_limited({"run", "--json", "-q", design.string(), "-o", out.string()}, kBuildSeconds, kBuildMemory);
+  INFO(r.describe());
+  REQUIRE(r.code == 0);
+  return nlohmann::json::parse(r.out).at(0);  // an array, one entry per design
 }
 
 }  // namespace
@@ -211,4 +221,41 @@ TEST_CASE("batch --slurm: a manifest path with a newline and shell syntax runs n
   CHECK(fs::is_regular_file(out / "cup_0.3" / "cup_0.3.stl"));
   for (const char* planted : {"PWNED", "PWNED2", "PWNED3"}) CHECK_FALSE(fs::exists(dir / planted));
   for (const char* planted : {"PWNED", "PWNED2", "PWNED3"}) CHECK_FALSE(fs::exists(out / planted));
+}
+
+TEST_CASE("points csv: a byte order mark loses no point, and a skipped header row is reported",
+          "[pipeline][design][hostile]") {
+  const fs::path dir = fresh_dir("hostile_bom");
+  // A vase turned from a digitised profile (radius, height): losing its first
+  // point builds it from z = 10, silently.
+  const std::string top =
+      "kind: vessel\nunits: mm\ntolerance: 0.05\nprofile:\n  family: tbezier\n  segments:\n"
+      "    - polyline: {file: FILE}\nbody:\n  mode: solid\n";
+  const std::string points = "30,0\n40,10\n35,40\n20,60\n";
+  const auto design = [&](const std::string& name, const std::string& csv) {
+    write_text(dir / (name + ".csv"), csv);
+    std::string text = top;
+    text.replace(text.find("FILE"), 4, name + ".csv");
+    write_text(dir / (name + ".yaml"), text);
+    return dir / (name + ".yaml");
+  };
+  const nlohmann::json plain = run_report(design("plain", points), dir / "out");
+  const nlohmann::json bom = run_report(design("bom", "\xEF\xBB\xBF" + points), dir / "out");
+  CHECK(plain["bounding_box"]["min"][2] == 0.0);
+  CHECK(bom["bounding_box"] == plain["bounding_box"]);
+  CHECK(bom["volume"] == plain["volume"]);
+  CHECK_FALSE(bom.contains("notes"));
+  // A header (with or without a byte order mark) is skipped, and the report says so.
+  for (const std::string& head : {std::string("x,y\n"), std::string("\xEF\xBB\xBFx,y\n")}) {
+    const nlohmann::json headed = run_report(design("headed", head + points), dir / "out");
+    CHECK(headed["volume"] == plain["volume"]);
+    REQUIRE(headed.contains("notes"));
+    CHECK_THAT(headed["notes"].dump(), Catch::Contains("headed.csv:1") && Catch::Contains("header"));
+  }
+  // The CSV fuzzer starts from such a file too: all four points read.
+  int header_line = -1;
+  CHECK(read_points_csv(std::string(FABMESH_SOURCE_DIR) + "/tests/data/fuzz-seeds/csv/byte_order_mark.csv",
+                        &header_line)
+            .size() == 4);
+  CHECK(header_line == 0);
 }
