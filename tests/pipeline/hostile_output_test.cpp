@@ -22,6 +22,7 @@
 #include "io/file.h"
 #include "tests/pipeline/batch/batch_fixture.h"
 #include "tests/pipeline/cli_harness.h"
+#include "tests/pipeline/hostile_files.h"
 #include "tests/pipeline/limited_run.h"
 
 using namespace fabmesh;
@@ -258,4 +259,19 @@ TEST_CASE("points csv: a byte order mark loses no point, and a skipped header ro
                         &header_line)
             .size() == 4);
   CHECK(header_line == 0);
+}
+
+TEST_CASE("check: a 3MF of 20^10 component instances of an empty mesh is refused at once",
+          "[pipeline][check][hostile]") {
+  const fs::path dir = fresh_dir("hostile_3mf");
+  write_text(dir / "nested.3mf", threemf_package(nested_components_model()));
+  CHECK(fs::file_size(dir / "nested.3mf") < 8192);
+  const LimitedRun r = run_limited({"check", (dir / "nested.3mf").string()}, kQuickSeconds, kSmallMemory);
+  INFO(r.describe());
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err, Catch::Contains("nested.3mf") && Catch::Contains("component"));
+  // The fuzzers start from the same file.
+  CHECK(read_file(std::string(FABMESH_SOURCE_DIR) +
+                  "/tests/data/fuzz-seeds/3mf/regression-components-20-pow-10.model") ==
+        nested_components_model());
 }
