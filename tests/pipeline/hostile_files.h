@@ -28,4 +28,26 @@ inline std::string nested_components_model() {
   return xml;
 }
 
+/// A glTF document whose one triangle list takes its POSITION from an
+/// accessor of 60 million VEC3 floats with no bufferView (all zeros, and no
+/// byte of the file behind them).
+inline std::string unbacked_positions_gltf() {
+  return "{\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0]}],"
+         "\"nodes\":[{\"mesh\":0}],\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},"
+         "\"mode\":4}]}],\"accessors\":[{\"componentType\":5126,\"count\":60000000,\"type\":\"VEC3\"}]}\n";
+}
+
+/// `json` as a binary glTF (GLB): the header and one JSON chunk, padded with spaces.
+inline std::string glb_of(std::string json) {
+  while (json.size() % 4 != 0) json += ' ';
+  const auto u32 = [](std::uint32_t v) {
+    std::string bytes(4, '\0');
+    for (int i = 0; i < 4; ++i) bytes[static_cast<std::size_t>(i)] = static_cast<char>((v >> (8 * i)) & 0xFF);
+    return bytes;
+  };
+  const auto length = static_cast<std::uint32_t>(12 + 8 + json.size());
+  return "glTF" + u32(2) + u32(length) + u32(static_cast<std::uint32_t>(json.size())) + u32(0x4E4F534A) +
+         json;
+}
+
 }  // namespace fabmesh::testing

@@ -275,3 +275,22 @@ TEST_CASE("check: a 3MF of 20^10 component instances of an empty mesh is refused
                   "/tests/data/fuzz-seeds/3mf/regression-components-20-pow-10.model") ==
         nested_components_model());
 }
+
+TEST_CASE("check: a glTF accessor of 60 million positions without data is refused in little memory",
+          "[pipeline][check][hostile]") {
+  const fs::path dir = fresh_dir("hostile_gltf");
+  write_text(dir / "empty.glb", glb_of(unbacked_positions_gltf()));
+  write_text(dir / "empty.gltf", unbacked_positions_gltf());
+  CHECK(fs::file_size(dir / "empty.glb") < 512);
+  for (const char* name : {"empty.glb", "empty.gltf"}) {
+    INFO(name);
+    const LimitedRun r = run_limited({"check", (dir / name).string()}, kQuickSeconds, kSmallMemory);
+    INFO(r.describe());
+    CHECK(r.code == 2);
+    CHECK_THAT(r.err,
+               Catch::Contains(name) && Catch::Contains("accessors[0]") && Catch::Contains("bufferView"));
+  }
+  CHECK(read_file(std::string(FABMESH_SOURCE_DIR) +
+                  "/tests/data/fuzz-seeds/gltf/regression-unbacked-60m-positions.gltf") ==
+        unbacked_positions_gltf());
+}
