@@ -66,6 +66,7 @@ JobReport build_and_encode(const Design& design, const JobOptions& options, cons
   report.units = common.units;
   report.export_units = common.export_units;
   report.tolerance = common.tolerance;
+  report.notes = common.notes;
   StageTimer watch(report.timings_ms, options.on_stage);
   const std::vector<const OutputFormat*> formats = formats_of(design, options);
   if (options.output_file && formats.size() != 1) {

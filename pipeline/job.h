@@ -55,6 +55,7 @@ struct JobReport {
   std::vector<std::string> outputs;  ///< paths written (or to be written, for a prepared job)
   std::vector<OutputFile> files;     ///< the same with their format, unit and added error
   std::vector<SkippedOutput> skipped;
+  std::vector<std::string> notes;  ///< DesignCommon::notes: how the design's files were read
   ValidationReport validation;
   MeshPurpose purpose = MeshPurpose::Fabrication;
   double max_deviation = 0.0;  ///< proven bound of the mesh against the exact shape, model units

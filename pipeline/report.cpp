@@ -73,6 +73,7 @@ nlohmann::ordered_json to_json(const JobReport& r) {
   j["skipped_outputs"] = nlohmann::ordered_json::array();
   for (const SkippedOutput& s : r.skipped)
     j["skipped_outputs"].push_back({{"format", s.format}, {"reason", s.reason}});
+  if (!r.notes.empty()) j["notes"] = r.notes;
   j["purpose"] = r.purpose == MeshPurpose::Fabrication ? "fabrication"
                  : r.purpose == MeshPurpose::Viewing   ? "viewing"
                                                        : "drawing";
@@ -144,6 +145,7 @@ void print_summary(const JobReport& r, std::ostream& out) {
   for (const OutputFile& f : r.files) out << fmt::format("  wrote {} (in {})\n", f.path, f.units);
   for (const SkippedOutput& s : r.skipped)
     out << fmt::format("  warning: skipped {}: {}\n", s.format, s.reason);
+  for (const std::string& note : r.notes) out << fmt::format("  note: {}\n", note);
   out << fmt::format("  {:.1f} ms\n", total);
 }
 

@@ -67,6 +67,10 @@ struct DesignCommon {
   /// lists of lists such as points). For messages about a value that only
   /// building can judge.
   std::map<std::string, KeySource> where;
+  /// Facts about how the design's files were read that change nothing but
+  /// deserve a look, e.g. "points.csv:1: a header row (not numbers) was
+  /// skipped, for ...". Shown in the report (`notes`).
+  std::vector<std::string> notes;
 };
 
 /// `location` placed in the design: `place` is where the design gives its key

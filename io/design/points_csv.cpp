@@ -52,7 +52,10 @@ std::string shown(const std::string& field) {
 
 }  // namespace
 
-std::vector<Vec2> parse_points_csv(std::string_view text, const std::string& path) {
+std::vector<Vec2> parse_points_csv(std::string_view text, const std::string& path, int* header_line) {
+  // Excel's "CSV UTF-8" starts with a byte order mark: not part of the first row.
+  if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);
+  if (header_line != nullptr) *header_line = 0;
   std::vector<Vec2> points;
   std::vector<Field> fields;
   Field bad;
@@ -69,6 +72,7 @@ std::vector<Vec2> parse_points_csv(std::string_view text, const std::string& pat
     if (!parse_row(row, fields, bad)) {
       if (header_allowed) {
         header_allowed = false;
+        if (header_line != nullptr) *header_line = line;
         continue;
       }
       throw FileError(path, line, bad.column,
@@ -102,9 +106,9 @@ std::vector<Vec2> parse_points_csv(std::string_view text, const std::string& pat
   return points;
 }
 
-std::vector<Vec2> read_points_csv(const std::string& path) {
+std::vector<Vec2> read_points_csv(const std::string& path, int* header_line) {
   constexpr std::size_t kMaxPointsFileBytes = 64u << 20;
-  return parse_points_csv(read_file(path, kMaxPointsFileBytes, "points file"), path);
+  return parse_points_csv(read_file(path, kMaxPointsFileBytes, "points file"), path, header_line);
 }
 
 }  // namespace fabmesh

@@ -368,6 +368,7 @@ Design read_design_tree(const YAML::Node& root, const std::string& path,
   Design d;
   d.common = read_common(f, root);
   d.body = read_body(kind, f, root, d.common);
+  d.common.notes = f.notes();
   // Where each key is given (the design is valid by now: keys are scalars).
   record_sources(f, root, "", d.common.where);
   return d;

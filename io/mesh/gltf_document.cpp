@@ -134,6 +134,8 @@ GltfDocument::GltfDocument(std::string_view bytes, const std::string& name) : na
     fail(fmt::format("asset.version is {}, fabmesh reads glTF 2.x", version.dump()));
   }
   load_buffers();
+  size_ = bytes.size();
+  for (const std::string& d : decoded_) size_ += d.size();
 }
 
 void GltfDocument::fail(const std::string& message) const {
@@ -285,13 +287,21 @@ GltfAccessorValues GltfDocument::accessor(std::uint64_t index, const GltfAccesso
   }
   if (count == 0) fail(where + ".count is 0");
   if (count > request.max_count) fail(fmt::format("{}.count = {} exceeds the reader's budget", where, count));
+  const auto view_index = optional_uint(a, "bufferView", where);
+  // Without a bufferView the elements are zeros no byte of the file carries: bound them by the file's
+  // size, as every reader bounds a declared count by the bytes behind it.
+  if (!view_index && count > size_) {
+    fail(
+        fmt::format("{}.count = {} without a bufferView: more elements than the {} bytes of the file could "
+                    "describe",
+                    where, count, size_));
+  }
   const int ct = static_cast<int>(component_type);
   const std::size_t components = request.components;
   const std::size_t element_size = components * component_size(ct);
   std::string_view bytes;
   std::size_t stride = 0;
   const std::uint64_t offset = optional_uint(a, "byteOffset", where).value_or(0);
-  const auto view_index = optional_uint(a, "bufferView", where);
   if (view_index) {
     bytes = view(*view_index, stride);
     if (stride != 0 && stride < element_size) {

@@ -70,7 +70,10 @@ class GltfDocument {
 
   /// Accessor `index` read as numbers (normalized integers mapped to [-1, 1]
   /// or [0, 1] as glTF specifies), sparse substitution applied; an accessor
-  /// without bufferView starts from zeros.
+  /// without bufferView starts from zeros. Its count is checked against
+  /// request.max_count and, without a bufferView (no byte of the file behind
+  /// its elements), against the document's size in bytes, before anything is
+  /// allocated: a few bytes of JSON cannot declare gigabytes of zeros.
   GltfAccessorValues accessor(std::uint64_t index, const GltfAccessorRequest& request) const;
 
  private:
@@ -87,6 +90,7 @@ class GltfDocument {
   bool has_bin_ = false;
   std::vector<std::string> decoded_;       ///< payloads of data: URIs
   std::vector<std::string_view> buffers_;  ///< every buffer's bytes (BIN chunk or decoded_)
+  std::size_t size_ = 0;                   ///< bytes of the file and of its decoded data: URIs
 };
 
 }  // namespace fabmesh

@@ -11,10 +11,14 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <functional>
 #include <limits>
+#include <map>
 #include <optional>
+#include <set>
 #include <stdexcept>
 #include <utility>
+#include <vector>
 
 #include "geometry/core/errors.h"
 #include "geometry/core/units.h"
@@ -237,6 +241,12 @@ std::uint32_t sink_seek(std::uint64_t position, void* user) {
 /// defined before it) but the depth is bounded all the same.
 constexpr int kMaxComponentDepth = 64;
 
+/// Object instances (meshes and components objects, each placed once per
+/// path from a build item) expanded at most: components of components
+/// multiply, and instances of an empty mesh cost time without adding a
+/// triangle the budget would count.
+constexpr std::uint64_t kMaxComponentVisits = 1000000;
+
 Eigen::Affine3d to_affine(const NMR::MODELTRANSFORM& t) {
   Eigen::Affine3d a = Eigen::Affine3d::Identity();
   for (int r = 0; r < 3; ++r) {
@@ -365,6 +375,89 @@ std::string attribute(std::string_view tag, const std::string& name) {
     return std::string(tag.substr(k + 1, close - k - 1));
   }
   return "";
+}
+
+/// What expanding an object makes (its instances counted as visits), saturating at kSaturated.
+constexpr std::uint64_t kSaturated = std::uint64_t{1} << 62;
+struct Expansion {
+  std::uint64_t triangles = 0, vertices = 0, visits = 0;
+  Expansion operator+(const Expansion& o) const {
+    const auto sum = [](std::uint64_t a, std::uint64_t b) { return std::min(a + b, kSaturated); };
+    return {sum(triangles, o.triangles), sum(vertices, o.vertices), sum(visits, o.visits)};
+  }
+};
+
+/// An object of a model part as its XML declares it.
+struct DeclaredObject {
+  std::uint64_t triangles = 0, vertices = 0;
+  std::vector<std::string> components;  ///< the objectid of each component
+};
+
+/// Fails unless the build of the 3MF model part `xml` expands within
+/// `max_triangles` (and 3 x as many vertices) and kMaxComponentVisits object
+/// instances. Worked out from the XML's own counts, once per object, before
+/// lib3mf reads the part: lib3mf itself walks every path through the
+/// components of each build item while reading it (ten levels of 20
+/// components are 20^10 paths), and so would the expansion after it.
+void require_bounded_expansion(std::string_view xml, const ModelReader& reader, std::size_t max_triangles) {
+  std::map<std::string, DeclaredObject, std::less<>> objects;
+  std::vector<std::string> items;
+  DeclaredObject* current = nullptr;
+  for (std::size_t at = xml.find('<'); at != std::string_view::npos; at = xml.find('<', at + 1)) {
+    const std::size_t end = xml.find('>', at);
+    if (end == std::string_view::npos) break;
+    const std::string_view tag = xml.substr(at + 1, end - at - 1);
+    std::string_view name = tag.substr(0, std::min(tag.size(), tag.find_first_of(" \t\r\n/")));
+    const bool closing = !tag.empty() && tag.front() == '/';
+    if (closing) name = tag.substr(1, std::min(tag.size(), tag.find_first_of(" \t\r\n>", 1)) - 1);
+    if (const std::size_t colon = name.find(':'); colon != std::string_view::npos)
+      name.remove_prefix(colon + 1);
+    if (closing) {
+      if (name == "object") current = nullptr;
+    } else if (name == "object") {
+      current = &objects[attribute(tag, "id")];
+    } else if (current != nullptr && name == "triangle") {
+      ++current->triangles;
+    } else if (current != nullptr && name == "vertex") {
+      ++current->vertices;
+    } else if (current != nullptr && name == "component") {
+      current->components.push_back(attribute(tag, "objectid"));
+    } else if (name == "item") {
+      items.push_back(attribute(tag, "objectid"));
+    }
+    at = end;
+  }
+  std::map<std::string, Expansion, std::less<>> known;
+  std::set<std::string, std::less<>> open;  // on the current path: a cycle when met again
+  const std::function<Expansion(const std::string&, int)> expansion = [&](const std::string& id, int depth) {
+    if (depth > kMaxComponentDepth)
+      reader.fail(fmt::format("components nest deeper than {}", kMaxComponentDepth));
+    if (const auto k = known.find(id); k != known.end()) return k->second;
+    const auto object = objects.find(id);
+    if (object == objects.end()) return Expansion{0, 0, 1};  // lib3mf names the missing object
+    if (!open.insert(id).second) reader.fail(fmt::format("object {} is its own component (a cycle)", id));
+    Expansion e{object->second.triangles, object->second.vertices, 1};
+    for (const std::string& child : object->second.components) e = e + expansion(child, depth + 1);
+    open.erase(id);
+    known.emplace(id, e);
+    return e;
+  };
+  Expansion build;
+  for (const std::string& item : items) build = build + expansion(item, 0);
+  if (build.visits > kMaxComponentVisits) {
+    reader.fail(fmt::format(
+        "its build places {} object instances through components (components of components multiply), more "
+        "than the {} fabmesh expands",
+        build.visits >= kSaturated ? std::string("over 10^18") : std::to_string(build.visits),
+        kMaxComponentVisits));
+  }
+  if (build.triangles > max_triangles || build.vertices > 3 * std::uint64_t{max_triangles}) {
+    reader.fail(
+        fmt::format("its build would make more than {} triangles or {} vertices (components instance meshes; "
+                    "the reader's "
+                    "budget)",
+                    max_triangles, 3 * max_triangles));
+  }
 }
 
 /// PrusaSlicer 2.5's command line (no OpenGL, so no thumbnail) writes a root
@@ -500,6 +593,18 @@ ThreeMfContent parse_3mf(std::string_view bytes, const std::string& name, const 
     const LIB3MFRESULT result = NMR::lib3mf_reader_readfrombuffer(lib_reader.get(), data, package.size());
     return result == LIB3MF_OK ? std::string() : last_error(lib_reader.get());
   };
+  // The model parts' components are bounded before lib3mf reads them (it expands them while reading).
+  if (const auto entries = zip_entries(bytes)) {
+    constexpr std::size_t kMaxScannedPart = std::size_t{1} << 31;
+    for (const ZipEntry& entry : *entries) {
+      std::string lower = entry.name;
+      std::transform(lower.begin(), lower.end(), lower.begin(),
+                     [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+      if (lower.size() <= 6 || lower.compare(lower.size() - 6, 6, ".model") != 0) continue;
+      if (const auto xml = zip_read(bytes, entry, kMaxScannedPart))
+        require_bounded_expansion(*xml, reader, options.max_triangles);
+    }
+  }
   const std::string error = read(bytes);
   if (!error.empty()) {
     const auto repaired = add_missing_thumbnail(bytes);

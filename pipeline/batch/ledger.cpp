@@ -15,6 +15,7 @@
 
 #include "geometry/core/errors.h"
 #include "io/file.h"
+#include "pipeline/batch/output_links.h"
 #include "pipeline/batch/sha256.h"
 
 namespace fabmesh {
@@ -26,6 +27,44 @@ constexpr std::size_t kCheckDigits = 16;
 
 [[noreturn]] void fail(const std::string& path, const std::string& what, int error) {
   throw FileError(path, 0, 0, fmt::format("{}: {}: {}", path, what, std::strerror(error)));
+}
+
+const char* kind_of(mode_t mode) {
+  if (S_ISDIR(mode)) return "a folder";
+  if (S_ISFIFO(mode)) return "a FIFO";
+  if (S_ISCHR(mode)) return "a character device";
+  if (S_ISBLK(mode)) return "a block device";
+  if (S_ISSOCK(mode)) return "a socket";
+  return "not a regular file";
+}
+
+// Opens the ledger `path` with `flags`, only when it is a regular file: a
+// link is not followed (O_NOFOLLOW: writing through it would truncate its
+// target) and a FIFO, device or socket is refused before any byte is read
+// (O_NONBLOCK: opening a FIFO does not wait for a writer).
+int open_ledger(const std::string& path, int flags) {
+  const int fd = ::open(path.c_str(), flags | O_NOFOLLOW | O_NONBLOCK | O_NOCTTY | O_CLOEXEC, 0666);
+  if (fd < 0 && errno == ELOOP) {
+    throw FileError(path, 0, 0,
+                    fmt::format("{}: the ledger is a symbolic link, not a regular file: fabmesh reads and "
+                                "writes only its own files in a batch folder; remove it",
+                                path));
+  }
+  if (fd < 0) fail(path, "cannot open the ledger", errno);
+  struct stat st {};
+  if (::fstat(fd, &st) != 0) {
+    const int error = errno;
+    ::close(fd);
+    fail(path, "cannot inspect the ledger", error);
+  }
+  if (!S_ISREG(st.st_mode)) {
+    ::close(fd);
+    throw FileError(path, 0, 0,
+                    fmt::format("{}: the ledger is {}, not a regular file: fabmesh reads and writes only its "
+                                "own files in a batch folder; remove it",
+                                path, kind_of(st.st_mode)));
+  }
+  return fd;
 }
 
 std::string header_json(const LedgerHeader& h) {
@@ -58,8 +97,7 @@ std::optional<LedgerHeader> parse_header(std::string_view json) {
 // a block at a time (memory stays bounded by the longest line), while it returns true.
 template <class Each>
 void each_committed_in_file(const std::string& path, Each each) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) fail(path, "cannot open the ledger", errno);
+  const int fd = open_ledger(path, O_RDONLY);
   std::string pending;           // the start of a line the last block did not end
   std::uint64_t pending_at = 0;  // its offset in the file
   char buffer[1 << 16];
@@ -100,8 +138,7 @@ void write_all(int fd, std::string_view bytes, const std::string& path) {
 
 // Opens and locks `path`; -1 with errno EWOULDBLOCK when another process holds it.
 int open_locked(const std::string& path) {
-  const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_APPEND | O_CLOEXEC, 0666);
-  if (fd < 0) fail(path, "cannot open the ledger", errno);
+  const int fd = open_ledger(path, O_RDWR | O_CREAT | O_APPEND);
   if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
     const int error = errno;
     ::close(fd);
@@ -146,6 +183,7 @@ std::string ledger_name(const Shard& s) { return "ledger-" + s.tag() + ".jsonl";
 
 LedgerWriter::LedgerWriter(const std::string& folder, const LedgerHeader& header)
     : path_((fs::path(folder) / ledger_name(header.shard)).string()) {
+  refuse_link(folder, "batch folder");
   std::error_code ec;
   fs::create_directories(folder, ec);
   if (ec)
@@ -220,6 +258,7 @@ std::vector<LedgerFile> list_ledgers(const std::string& folder) {
     fs::file_time_type time;
   };
   std::vector<Found> found;
+  refuse_link(folder, "batch folder");
   std::error_code ec;
   for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
     const std::string name = it->path().filename().string();
@@ -256,8 +295,7 @@ void for_each_row(const LedgerFile& file,
 }
 
 std::string read_row(const std::string& path, std::uint64_t offset, std::size_t size) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) fail(path, "cannot open the ledger", errno);
+  const int fd = open_ledger(path, O_RDONLY);
   std::string json(size, '\0');
   std::size_t got = 0;
   while (got < size) {

@@ -1,5 +1,6 @@
 #include "pipeline/batch/run_batch.h"
 
+#include <fmt/format.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -7,10 +8,13 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <filesystem>
 #include <mutex>
 #include <optional>
 
+#include "geometry/core/errors.h"
 #include "pipeline/batch/ledger.h"
+#include "pipeline/batch/output_links.h"
 #include "pipeline/batch/plan.h"
 #include "pipeline/batch/run_variant.h"
 
@@ -57,6 +61,29 @@ class Tally {
   Clock::time_point start_ = Clock::now();
 };
 
+// Refuses a variant folder of the shard that is a link, before anything is
+// written: the batch would write its files, then tidy, through the link.
+void refuse_linked_variant_folders(const BatchPlan& plan, const Shard& shard, std::size_t in_shard,
+                                   const std::string& out_dir) {
+  std::vector<std::string> links;
+  for (std::size_t k = 0; k < in_shard; ++k) {
+    const std::string folder =
+        (std::filesystem::path(out_dir) / plan.name(shard.index + k * shard.count)).string();
+    if (is_link(folder)) links.push_back(folder);
+  }
+  if (links.empty()) return;
+  constexpr std::size_t kShown = 5;
+  std::string others;
+  for (std::size_t k = 1; k < links.size() && k <= kShown; ++k) others += (k == 1 ? "" : ", ") + links[k];
+  if (links.size() > kShown + 1) others += fmt::format(" and {} more", links.size() - kShown - 1);
+  try {
+    refuse_link(links.front(), "variant folder");
+  } catch (const InputError& e) {
+    if (others.empty()) throw;
+    throw InputError(fmt::format("{} (so are {})", e.what(), others));
+  }
+}
+
 }  // namespace
 
 BatchOutcome run_batch(const BatchManifest& manifest, const BatchOptions& options) {
@@ -76,6 +103,7 @@ BatchOutcome run_batch(const BatchManifest& manifest, const BatchOptions& option
   arena.execute([&] { plan = plan_batch(manifest); });
   out.variants = plan.size();
   out.in_shard = shard.size_of(plan.size());
+  refuse_linked_variant_folders(plan, shard, out.in_shard, options.out_dir);
   LedgerWriter ledger(folder, {plan.digest, plan.size(), shard});
   out.ledger = ledger.path();
   save_plan(plan, folder);

@@ -1,6 +1,10 @@
 #include "pipeline/batch/run_variant.h"
 
+#include <dirent.h>
+#include <fcntl.h>
 #include <fmt/format.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <filesystem>
@@ -8,6 +12,7 @@
 #include <set>
 
 #include "geometry/core/errors.h"
+#include "pipeline/batch/output_links.h"
 #include "pipeline/batch/sha256.h"
 #include "pipeline/failure.h"
 #include "pipeline/job.h"
@@ -24,16 +29,27 @@ double ms_since(Clock::time_point start) {
 }
 
 // Removes the regular files of `folder` not in `keep` (file names); the folder
-// too when nothing is left. Hidden files (temporaries of writers) are left alone.
+// too when nothing is left. Hidden files (temporaries of writers) are left
+// alone, and so are links: a folder that is a link is not tidied at all, and
+// a link in it is not followed (opened with O_NOFOLLOW, entries judged by
+// lstat and removed relative to the folder's descriptor).
 void tidy_folder(const fs::path& folder, const std::set<std::string>& keep) {
-  std::error_code ec;
-  for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
-    const std::string name = it->path().filename().string();
-    std::error_code type_ec;
-    if (keep.count(name) || name.front() == '.' || !it->is_regular_file(type_ec)) continue;
-    fs::remove(it->path(), type_ec);
+  const int fd = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+  if (fd < 0) return;  // missing, not a folder, or a link
+  DIR* dir = ::fdopendir(fd);
+  if (dir == nullptr) {
+    ::close(fd);
+    return;
   }
-  if (keep.empty()) fs::remove(folder, ec);  // only when empty
+  while (const dirent* entry = ::readdir(dir)) {
+    const std::string name = entry->d_name;
+    if (name.empty() || keep.count(name) || name.front() == '.') continue;
+    struct stat st {};
+    if (::fstatat(fd, name.c_str(), &st, AT_SYMLINK_NOFOLLOW) != 0 || !S_ISREG(st.st_mode)) continue;
+    ::unlinkat(fd, name.c_str(), 0);
+  }
+  ::closedir(dir);
+  if (keep.empty()) ::rmdir(folder.c_str());  // only when empty; never a link
 }
 
 RowMesh mesh_of(const JobReport& r) {
@@ -69,12 +85,14 @@ BatchRow run_variant(const BatchManifest& manifest, std::size_t index, const Pla
   row.key = planned.key;
   const fs::path folder = variant_folder(out_dir, v.name);
   std::error_code ec;
+  const bool linked = is_link(folder.string());  // refused below: never written or tidied through
   const bool existed = fs::exists(folder, ec);
   std::set<std::string> written;
   Clock::time_point start = Clock::now();
   double job_ms = 0.0, record_ms = 0.0;
   StageTimings stages;
   try {
+    refuse_link(folder.string(), "variant folder");
     std::string canonical;
     const Design design = manifest.bases[v.base].resolve(variant_overrides(manifest, v), &canonical);
     if (variant_key(canonical) != planned.key) {
@@ -116,7 +134,7 @@ BatchRow run_variant(const BatchManifest& manifest, std::size_t index, const Pla
     if (row.timings_ms.empty()) row.timings_ms.emplace_back("resolve", ms_since(start));
   }
   const Clock::time_point tidy_start = Clock::now();
-  if (existed || row.status != VariantStatus::Ok) tidy_folder(folder, written);
+  if (!linked && (existed || row.status != VariantStatus::Ok)) tidy_folder(folder, written);
   record_ms += ms_since(tidy_start);
   row.timings_ms.emplace_back("job", job_ms);
   row.timings_ms.emplace_back("record", record_ms);

@@ -20,8 +20,11 @@ struct SlurmScriptOptions {
 /// The script's text: #SBATCH --array=0-(N-1), --cpus-per-task, --output into
 /// out_dir/.batch/slurm/ (which must exist before submission), then `exec
 /// fabmesh batch MANIFEST -o DIR --shard ${SLURM_ARRAY_TASK_ID}/N --jobs C -q`.
-/// Paths are quoted for the shell. \throw InputError when out_dir holds a
-/// character an #SBATCH line cannot carry (space, tab, newline, '%', quotes)
+/// Every value is quoted for the shell (shell_quote), comment lines
+/// included: a path holding a newline, quotes, $(...) or backticks stays one
+/// word of its line. \throw InputError when out_dir holds a character an
+/// #SBATCH line cannot carry (space, control characters, '%', quotes, '\\'),
+/// or job_name anything but letters, digits, '_', '-' and '.'.
 std::string slurm_script(const SlurmScriptOptions& options);
 
 }  // namespace fabmesh

@@ -14,6 +14,7 @@
 #include "io/file.h"
 #include "pipeline/batch/batch_report.h"
 #include "pipeline/batch/merge.h"
+#include "pipeline/batch/output_links.h"
 #include "pipeline/batch/plan.h"
 #include "pipeline/batch/progress.h"
 #include "pipeline/batch/run_batch.h"
@@ -159,7 +160,10 @@ int write_slurm(const BatchArgs& args, Streams io) {
       std::max<std::size_t>(1, std::min(args.array_size > 0 ? args.array_size : kDefaultArraySize, variants));
   o.cpus_per_task = args.jobs > 0 ? args.jobs : 1;
   const std::string script = slurm_script(o);
-  // Slurm opens the tasks' log files in this folder: it must exist before they start.
+  // Slurm opens the tasks' log files in this folder: it must exist before they start (and not be
+  // reached through a link: the tasks would write their logs wherever it leads).
+  refuse_link((fs::path(out_dir) / ".batch").string(), "batch folder");
+  refuse_link((fs::path(out_dir) / ".batch" / "slurm").string(), "folder of the Slurm logs");
   fs::create_directories(fs::path(out_dir) / ".batch" / "slurm", ec);
   if (ec)
     throw FileError(out_dir, 0, 0, fmt::format("{}: cannot create the folder: {}", out_dir, ec.message()));

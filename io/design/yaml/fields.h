@@ -53,6 +53,11 @@ class Fields {
   double number_or(const YAML::Node& parent, const char* key, const std::string& field,
                    double fallback) const;
   std::string text(const YAML::Node& node, const std::string& field) const;
+
+  /// Records a fact about how the design's files were read (e.g. a header
+  /// row skipped), for DesignCommon::notes and so the report.
+  void note(std::string text) const { notes_.push_back(std::move(text)); }
+  const std::vector<std::string>& notes() const { return notes_; }
   std::string text_or(const YAML::Node& parent, const char* key, const std::string& field,
                       const std::string& fallback) const;
   /// One of `choices`.
@@ -89,6 +94,7 @@ class Fields {
 
   std::string path_;
   std::vector<OverrideOrigin> overrides_;
+  mutable std::vector<std::string> notes_;  ///< note(): facts found while reading, not state
 };
 
 }  // namespace fabmesh::yaml

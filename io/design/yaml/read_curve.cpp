@@ -148,7 +148,12 @@ void read_polyline(const yaml::Fields& f, const YAML::Node& n, const std::string
     const std::filesystem::path name = f.text(file, field + ".polyline.file");
     const std::filesystem::path path =
         name.is_absolute() ? name : std::filesystem::path(f.path()).parent_path() / name;
-    f.checked(file, field + ".polyline.file", [&] { pts = read_points_csv(path.string()); });
+    int header_line = 0;
+    f.checked(file, field + ".polyline.file", [&] { pts = read_points_csv(path.string(), &header_line); });
+    if (header_line > 0) {
+      f.note(fmt::format("{}:{}: a header row (not numbers) was skipped, for {}", path.string(), header_line,
+                         f.label(file, field + ".polyline.file")));
+    }
     if (pts.size() < needed) {
       f.fail(file, field + ".polyline.file",
              fmt::format("{} holds {} point(s); this polyline needs at least {}", path.string(), pts.size(),

@@ -150,6 +150,11 @@ TEST_CASE("manifest: CSV cells may hold quoted commas, quotes and line breaks",
   CHECK(t.rows[0][0].text == "x,\"y\"");
   CHECK(t.rows[0][1].text == "two\nlines");
   CHECK_THROWS_AS(parse_csv_table("a\n\"open\n", "t.csv"), FileError);
+  // A spreadsheet's UTF-8 byte order mark is not part of the first column's name.
+  const CsvTable bom = parse_csv_table("\xEF\xBB\xBFname,body.wall\nthin,0.2\n", "t.csv");
+  REQUIRE(bom.header.size() == 2);
+  CHECK(bom.header[0].text == "name");
+  CHECK(bom.rows.size() == 1);
 }
 
 TEST_CASE("manifest: an explicit variant list, several bases and {design} in names",
