@@ -6,7 +6,7 @@
 
 #include "geometry/core/types.h"
 #include "geometry/curves/segment.h"
-#include "io/cutting/cutting_outline.h"
+#include "geometry/sampling/cut_loop.h"
 
 namespace fabmesh {
 
