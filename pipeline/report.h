@@ -7,7 +7,7 @@
 #include <string>
 
 #include "geometry/curves/build_curve.h"
-#include "geometry/mesh/validate.h"
+#include "geometry/validation/validate.h"
 #include "pipeline/job.h"
 
 namespace fabmesh {
