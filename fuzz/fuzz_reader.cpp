@@ -12,8 +12,8 @@
 #include <string_view>
 
 #include "geometry/core/errors.h"
-#include "geometry/mesh/validate.h"
 #include "geometry/mesh/weld.h"
+#include "geometry/validation/validate.h"
 #include "io/mesh/draco.h"
 #include "io/mesh/gltf.h"
 #include "io/mesh/obj.h"

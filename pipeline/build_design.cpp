@@ -10,17 +10,9 @@
 #include <string>
 
 #include "geometry/core/errors.h"
-#include "geometry/mesh/constructed_validation.h"
 #include "pipeline/load_design.h"
 
 namespace fabmesh {
-
-bool fit_for(const ValidationReport& report, MeshPurpose purpose) {
-  if (purpose == MeshPurpose::Drawing || report.valid()) return true;
-  return purpose == MeshPurpose::Viewing && report.self_intersection != IntersectionCheck::NotRun &&
-         std::all_of(report.defects.begin(), report.defects.end(),
-                     [](const DefectReport& d) { return d.kind == Defect::BoundaryEdge; });
-}
 
 std::size_t process_memory_limit() {
   std::size_t limit = std::numeric_limits<std::size_t>::max();
@@ -54,15 +46,6 @@ BuiltMesh build_design(const Design& design, const BuildContext& context) {
                         ErrorLocation{"tolerance"});
     }
   });
-}
-
-BuiltMesh validated(const Mesh& mesh, const std::optional<EmbeddingProof>& proof,
-                    const BuildContext& context) {
-  BuiltMesh out;
-  out.soup = to_soup(mesh);
-  out.validation = proof ? validate_constructed(mesh, out.soup, *proof) : validate(mesh, out.soup);
-  context.watch.lap("validate");
-  return out;
 }
 
 }  // namespace fabmesh

@@ -136,7 +136,9 @@ BuiltMesh build(const SurfaceDesign& design, const BuildContext& context) {
                           {"rim_edges", rim_edges}};
   if (!thick) {
     context.watch.lap("build");
-    BuiltMesh out = validated(sheet.mesh, std::nullopt, context);
+    BuiltMesh out;
+    out.soup = to_soup(sheet.mesh);
+    validate_built(out, context);
     out.purpose = MeshPurpose::Viewing;
     out.max_deviation = sheet.max_deviation;
     facts["fabrication"] = "not valid: open surface (no thickness)";
@@ -150,7 +152,9 @@ BuiltMesh build(const SurfaceDesign& design, const BuildContext& context) {
   th.max_triangles = design.max_triangles;
   const Mesh solid = thicken(sheet.mesh, sheet.normals, th);
   context.watch.lap("build");
-  BuiltMesh out = validated(solid, std::nullopt, context);
+  BuiltMesh out;
+  out.soup = to_soup(solid);  // no proof: the 3D self-intersection test catches a folding shell
+  validate_built(out, context);
   if (out.validation.self_intersecting)
     too_thick(design, context, out, fold_hint(network, sheet, span[0], span[1]));
   out.max_deviation = sheet.max_deviation;

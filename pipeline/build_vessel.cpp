@@ -10,7 +10,6 @@
 #include "geometry/core/errors.h"
 #include "geometry/fairing/build_curve.h"
 #include "geometry/mesh/bounding_box.h"
-#include "geometry/mesh/constructed_validation.h"
 #include "geometry/mesh/vessel.h"
 #include "geometry/mould/mould.h"
 #include "geometry/mould/shrinkage.h"
@@ -60,24 +59,31 @@ nlohmann::json size_json(const Vec3& lo, const Vec3& hi) {
   return {s.x(), s.y(), s.z()};
 }
 
-// The mould's parts (validated by build_mould) and what a workshop needs to know.
+// The mould's parts, each validated with its proof of embedding and required
+// valid, and what a workshop needs to know.
 void add_mould(const VesselDesign& design, const CompositeCurve& fired_profile, const BuildContext& context,
                BuiltMesh& out) {
   MouldOptions options = *design.mould;
   options.tolerance = context.tolerance;
-  const Mould mould = keyed_in("vessel.mould", "mould.", [&] { return build_mould(fired_profile, options); });
-  context.watch.lap("mould");
-  nlohmann::json parts = nlohmann::json::array();
-  for (const MouldPart& p : mould.parts) {
+  Mould mould = keyed_in("vessel.mould", "mould.", [&] { return build_mould(fired_profile, options); });
+  for (MouldPart& p : mould.parts) {
     std::string name = p.name;  // "side 1 of 2", "base"
     if (p.kind == MouldPartKind::Side) name = fmt::format("side-{}", out.mould_parts.size() + 1);
-    parts.push_back(
-        {{"name", name},
-         {"triangles", p.soup.triangles.size()},
-         {"volume", p.validation.volume},
-         {"genus", p.validation.genus ? nlohmann::json(*p.validation.genus) : nlohmann::json(nullptr)},
-         {"self_intersection", to_string(p.validation.self_intersection)}});
-    out.mould_parts.push_back({name, p.soup});
+    ValidationOptions checks;
+    checks.embedding = p.proof;
+    ValidationReport validation = validate_built(p.soup, checks);
+    require_fit(validation, MeshPurpose::Fabrication, "mould part '" + p.name + "'");
+    out.mould_parts.push_back({name, std::move(p.soup), std::move(validation)});
+  }
+  context.watch.lap("mould");
+  nlohmann::json parts = nlohmann::json::array();
+  for (const NamedSoup& p : out.mould_parts) {
+    const ValidationReport& v = p.validation;
+    parts.push_back({{"name", p.name},
+                     {"triangles", p.soup.triangles.size()},
+                     {"volume", v.volume},
+                     {"genus", v.genus ? nlohmann::json(*v.genus) : nlohmann::json(nullptr)},
+                     {"self_intersection", to_string(v.self_intersection)}});
   }
   out.max_deviation = std::max(out.max_deviation, mould.max_deviation);
   out.facts["mould"] = {{"parts", parts},
@@ -114,9 +120,10 @@ BuiltMesh build(const VesselDesign& design, const BuildContext& context) {
   std::size_t section_points = 0;
   for (const auto& loop : vessel.section.loops) section_points += loop.size();
   BuiltMesh out;
-  out.validation = validate_constructed(vessel.soup, vessel.topology, vessel.proof);
   out.soup = std::move(vessel.soup);
-  context.watch.lap("validate");
+  out.checks.topology = std::move(vessel.topology);  // the revolution grid's connectivity
+  out.checks.embedding = std::move(vessel.proof);    // the simple section's revolution
+  validate_built(out, context);
   out.max_deviation = vessel.max_deviation;
   out.facts = {{"angular_segments", vessel.segments},
                {"section_loops", vessel.section.loops.size()},

@@ -1,6 +1,6 @@
 #pragma once
-// What a builder hands to the job: the validated result of one design, in
-// memory, before any file is encoded or written.
+// What a builder hands to the job: the result of one design, in memory,
+// validated (pipeline/validate_built.h) before any file is encoded or written.
 
 #include <cstddef>
 #include <limits>
@@ -12,30 +12,20 @@
 #include "geometry/core/stage_timer.h"
 #include "geometry/fairing/build_curve.h"
 #include "geometry/mesh/soup.h"
-#include "geometry/mesh/validate.h"
 #include "geometry/sampling/cut_loop.h"
 #include "geometry/surfaces/patch_network.h"
 #include "geometry/toolpath/toolpath.h"
+#include "geometry/validation/validate.h"
 #include "io/cutting/gcode.h"
 #include "io/design/design.h"
 
 namespace fabmesh {
 
-/// What a mesh is fit for.
-enum class MeshPurpose {
-  Fabrication,  ///< closed, manifold, outward, embedded: every check passed
-  Viewing,      ///< an open surface (no thickness): its only defect is its own border
-  Drawing,      ///< no mesh at all: a curve design, drawn at true size
-};
-
-/// True when `report` is fit for `purpose`: valid; or, for viewing, its
-/// only defects are boundary edges (an open surface's own border).
-bool fit_for(const ValidationReport& report, MeshPurpose purpose);
-
 /// A further mesh of a design, validated like the main one (a mould part).
 struct NamedSoup {
   std::string name;  ///< used in file names: "side-1", "base"
   TriangleSoup soup;
+  ValidationReport validation;  ///< validate_built's report of `soup`, with its builder's proof
 };
 
 /// A design's curve as built (build_curve), under its design key: "curve",
@@ -56,14 +46,17 @@ struct BuiltShape {
 /// (vertices and triangles as validated); a curve design has none.
 struct BuiltMesh {
   TriangleSoup soup;
-  ValidationReport validation;
+  /// What the builder proved about `soup` (topology, embedding), for
+  /// validate_built; empty: everything is analysed and tested.
+  ValidationOptions checks;
+  ValidationReport validation;  ///< validate_built(soup, checks)
   MeshPurpose purpose = MeshPurpose::Fabrication;
   double max_deviation = 0.0;  ///< proven bound of the mesh (or the curves) against the exact shape
   nlohmann::json facts;        ///< builder facts for the report, e.g. {"angular_segments": 128}
   /// Drawing of the design's curves at true size: a countertop's cutting
   /// outline (outline first, then holes), a vessel's profile template, a curve.
   std::vector<CutLoop> cutting;
-  std::vector<NamedSoup> mould_parts;  ///< a vessel's mould, each part validated (build_mould)
+  std::vector<NamedSoup> mould_parts;  ///< a vessel's mould, each part validated (validate_built)
   std::optional<Toolpath> toolpath;    ///< a countertop's router path (key `cnc`)
   std::optional<GcodeOptions> gcode;   ///< how its program is written (with `toolpath`)
   BuiltShape shape;                    ///< the curves and patches the mesh was built from

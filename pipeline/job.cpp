@@ -11,6 +11,7 @@
 #include "geometry/mesh/bounding_box.h"
 #include "pipeline/build_design.h"
 #include "pipeline/outputs.h"
+#include "pipeline/validate_built.h"
 
 namespace fabmesh {
 namespace {
@@ -88,7 +89,7 @@ JobReport build_and_encode(const Design& design, const JobOptions& options, cons
   report.validation = built.validation;
   report.purpose = built.purpose;
   const std::string what = fmt::format("{} '{}'", report.kind, report.name);
-  if (!fit_for(report.validation, built.purpose)) require_valid(report.validation, what);
+  require_fit(report.validation, built.purpose, what);  // the builder validated it (validate_built)
   if (built.purpose == MeshPurpose::Viewing && common.purpose != Purpose::View) {
     throw ValidationFailed(fmt::format(
         "{}: the mesh is open ({} boundary edges): not fit for fabrication, so nothing is written; give the "

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "geometry/core/stage_timer.h"
-#include "geometry/mesh/validate.h"
+#include "geometry/validation/validate.h"
 #include "io/design/design.h"
 #include "io/file.h"
 #include "pipeline/built_mesh.h"

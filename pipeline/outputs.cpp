@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "geometry/core/errors.h"
-#include "geometry/mesh/validate.h"
+#include "geometry/validation/validate.h"
 #include "io/cutting/dxf.h"
 #include "io/cutting/gcode.h"
 #include "io/cutting/svg.h"
@@ -44,10 +44,7 @@ double double_error(const EncodeContext& c) {
 }
 
 // Whether a mesh moved by at most `moved` (model units) is still the valid mesh it was.
-bool still_valid(const EncodeContext& c, double moved) {
-  const ValidationReport& v = c.built.validation;
-  return v.valid() && (moved == 0.0 || moved < v.embedding_margin);
-}
+bool still_valid(const EncodeContext& c, double moved) { return valid_when_moved(c.built.validation, moved); }
 
 Encoded within_tolerance(Encoded e, const EncodeContext& c, std::string_view format) {
   if (e.added_error > c.output_tolerance) {
@@ -100,7 +97,8 @@ Files encode_3mf_output(const EncodeContext& c) {
 // Quantization may collapse or fold faces: each candidate's decoded mesh is
 // validated. Its faces are `input`'s (fit_draco checks that), so its
 // combinatorial facts are the built mesh's (validated by the job) and only
-// its geometry is tested again (validate_moved: the same verdict as validate).
+// its geometry is tested again (validate with moved_from: the same verdict as
+// validating it from scratch).
 // A proven embedding margin (a vessel's) carries over to `input`, the built
 // mesh times `scale` (and turned by quarter turns, which round nothing):
 // times the scale, less what scaling rounded.
@@ -112,7 +110,9 @@ std::function<bool(const TriangleSoup&)> still_fit(const EncodeContext& c, const
       scale == 1.0 ? 0.0 : std::sqrt(3.0) * std::ldexp(1.0, -52) * max_abs_coordinate(input);
   built.embedding_margin = std::max(0.0, built.embedding_margin * scale * (1.0 - 1e-12) - rounding);
   return [purpose, built = std::move(built), &input](const TriangleSoup& decoded) {
-    return fit_for(validate_moved(input, built, decoded), purpose);
+    ValidationOptions options;
+    options.moved_from = MovedFrom{&input, &built};
+    return fit_for(validate(decoded, options), purpose);
   };
 }
 

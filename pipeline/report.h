@@ -7,7 +7,7 @@
 #include <string>
 
 #include "geometry/fairing/build_curve.h"
-#include "geometry/mesh/validate.h"
+#include "geometry/validation/validate.h"
 #include "pipeline/job.h"
 
 namespace fabmesh {

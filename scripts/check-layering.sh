@@ -2,7 +2,9 @@
 # Fails when the code breaks the layering of docs/architecture.md (pipeline -> io
 # -> geometry, never back), includes CGAL from a header (every includer would
 # compile it), or includes the private YAML readers (yaml-cpp is a private
-# dependency of fabmesh::io) from outside io/design.
+# dependency of fabmesh::io) from outside io/design, or includes the private
+# parts of validation (geometry/validation/detail/: only validate.h is public;
+# tests and benchmarks may check them) from outside geometry/validation.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 status=0
@@ -24,6 +26,8 @@ while IFS= read -r hit; do complain "private YAML reader used outside io/design:
   < <(grep -rnE '#include "io/design/yaml/' geometry io pipeline tests bench fuzz 2>/dev/null | grep -v '^io/design/' || true)
 while IFS= read -r hit; do complain "yaml-cpp outside io/design: $hit"; done \
   < <(grep -rnE '#include <yaml-cpp/' geometry io pipeline 2>/dev/null | grep -v '^io/design/' || true)
+while IFS= read -r hit; do complain "validation's private parts used outside geometry/validation: $hit"; done \
+  < <(grep -rnE '#include "geometry/validation/detail/' geometry io pipeline 2>/dev/null | grep -v '^geometry/validation/' || true)
 
-[[ $status -eq 0 ]] && echo "check-layering: pipeline -> io -> geometry holds; encoders see built data only; CGAL and yaml-cpp stay private"
+[[ $status -eq 0 ]] && echo "check-layering: pipeline -> io -> geometry holds; encoders see built data only; CGAL, yaml-cpp and validation/detail stay private"
 exit $status

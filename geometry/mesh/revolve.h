@@ -10,7 +10,7 @@
 
 #include "geometry/core/types.h"
 #include "geometry/mesh/soup.h"
-#include "geometry/mesh/topology_proof.h"
+#include "geometry/validation/proofs.h"
 
 namespace fabmesh {
 

@@ -6,9 +6,9 @@
 #include <optional>
 
 #include "geometry/core/limits.h"
-#include "geometry/mesh/embedding_proof.h"
 #include "geometry/section/region.h"
 #include "geometry/section/triangulate.h"
+#include "geometry/validation/proofs.h"
 
 namespace fabmesh {
 

@@ -7,10 +7,9 @@
 
 #include "geometry/core/limits.h"
 #include "geometry/curves/composite.h"
-#include "geometry/mesh/embedding_proof.h"
 #include "geometry/mesh/soup.h"
-#include "geometry/mesh/topology_proof.h"
 #include "geometry/section/vessel_section.h"
+#include "geometry/validation/proofs.h"
 
 namespace fabmesh {
 

@@ -7,8 +7,8 @@
 
 #include "geometry/core/errors.h"
 #include "geometry/fairing/gauss_legendre.h"
-#include "geometry/mesh/constructed_validation.h"
 #include "geometry/mesh/revolve.h"
+#include "geometry/mesh/volume.h"
 #include "geometry/mould/shrinkage.h"
 
 namespace fabmesh {
@@ -108,16 +108,6 @@ std::string side_proof(const Mould& m, const MouldPart& p, const MouldOptions& o
       chord_sagitta(m.section.block_radius, m.max_angular_step));
 }
 
-void validate_part(MouldPart& part) {
-  const SoupToMesh sm = to_mesh(part.soup);
-  if (sm.refused_faces != 0) {
-    throw std::logic_error(fmt::format("mould part {}: {} faces refused by the mesh (not a manifold)",
-                                       part.name, sm.refused_faces));
-  }
-  part.validation = validate_constructed(sm.mesh, part.soup, part.proof);
-  require_valid(part.validation, "mould part '" + part.name + "'");
-}
-
 }  // namespace
 
 Mould build_mould(const CompositeCurve& profile, const MouldOptions& o) {
@@ -165,8 +155,6 @@ Mould build_mould(const CompositeCurve& profile, const MouldOptions& o) {
     m.parts.push_back(std::move(base));
   }
   timer.lap("parts");
-  for (MouldPart& part : m.parts) validate_part(part);
-  timer.lap("validate");
 
   const double h = s.z_top - s.z_bottom, r = s.block_radius;
   m.block_volume = o.block == BlockShape::Box ? 4.0 * r * r * h : M_PI * r * r * h;
@@ -179,7 +167,7 @@ Mould build_mould(const CompositeCurve& profile, const MouldOptions& o) {
   const double rs = m.keys.socket_radius, rk = m.keys.radius;
   const auto keys = static_cast<double>(m.splits.size() * m.keys.centres.size());
   m.key_volume = keys * 2.0 / 3.0 * M_PI * (rk * rk * rk - rs * rs * rs);
-  for (const MouldPart& part : m.parts) m.plaster_volume += part.validation.volume;
+  for (const MouldPart& part : m.parts) m.plaster_volume += signed_volume(part.soup);
   // Only curved surfaces deviate: the cavity's, a cylinder's side, the hemispheres (mould.h).
   const double curved = cavity_area + (o.block == BlockShape::Box ? 0.0 : 2.0 * M_PI * r * h) +
                         keys * 2.0 * M_PI * (rk * rk + rs * rs);

@@ -41,7 +41,7 @@ struct Mould {
   /// Exact net key volume over every split plane: bumps add (2/3) pi r^3,
   /// sockets remove (2/3) pi r_s^3.
   double key_volume = 0.0;
-  double plaster_volume = 0.0;  ///< sum of the parts' mesh volumes: the plaster needed
+  double plaster_volume = 0.0;  ///< sum of the parts' mesh volumes (signed_volume): the plaster needed
   /// |plaster + cavity - block - key_volume| <= this, to first order in the
   /// deviation: every mesh lies within max_deviation of its exact surface and
   /// only curved surfaces deviate (caps, cut, top, bottom and a box's sides are
@@ -58,13 +58,13 @@ struct Mould {
 
 /// Builds the mould of the vessel whose fired outer profile is `profile`
 /// ((radius, height) plane, the higher end is the rim), scaled by
-/// shrinkage_factor(options.shrinkage). Every part is validated
-/// (validate_constructed with its embedding proof) and required valid.
+/// shrinkage_factor(options.shrinkage). The parts are not validated here:
+/// validate each part's soup with its embedding proof
+/// (ValidationOptions::embedding) before writing it.
 /// \throw RangeError (options, naming the option), GeometryError (profile;
 ///        keys, where = "keys[i]"; undercuts, where = "profile", naming the
 ///        points and heights, unless allow_undercuts; keys that bind with 3
-///        parts, where = "key_clearance"), BudgetError (max_triangles),
-///        ValidationFailed (an internal error: a part failed validation).
+///        parts, where = "key_clearance"), BudgetError (max_triangles).
 Mould build_mould(const CompositeCurve& profile, const MouldOptions& options = {});
 
 }  // namespace fabmesh

@@ -10,12 +10,11 @@
 #include <string>
 #include <vector>
 
-#include "geometry/mesh/embedding_proof.h"
 #include "geometry/mesh/soup.h"
-#include "geometry/mesh/validate.h"
 #include "geometry/mould/keys.h"
 #include "geometry/mould/mould_section.h"
 #include "geometry/mould/release.h"
+#include "geometry/validation/proofs.h"
 
 namespace fabmesh {
 
@@ -59,8 +58,7 @@ struct MouldPart {
   std::size_t angular_steps = 0;
   TriangleSoup soup;             ///< closed, outward, sharing vertices
   std::vector<KeyFeature> keys;  ///< sockets on the `from` plane, bumps on the `to` plane
-  EmbeddingProof proof;          ///< why the mesh is embedded without a 3D test
-  ValidationReport validation;   ///< filled by build_mould (validate_constructed)
+  EmbeddingProof proof;          ///< why the mesh is embedded: validation replaces the 3D test with it
 };
 
 /// A side part between two split planes, with sockets on `from` and bumps on `to`.

@@ -13,8 +13,8 @@
 
 #include "geometry/core/errors.h"
 #include "geometry/core/stage_timer.h"
-#include "geometry/mesh/validate.h"
 #include "geometry/mesh/weld.h"
+#include "geometry/validation/validate.h"
 #include "io/mesh/read_mesh.h"
 #include "pipeline/cli/commands.h"
 #include "pipeline/failure.h"

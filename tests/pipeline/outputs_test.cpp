@@ -9,8 +9,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "geometry/mesh/validate.h"
 #include "geometry/mesh/weld.h"
+#include "geometry/validation/validate.h"
 #include "io/design/read_design.h"
 #include "io/file.h"
 #include "io/mesh/draco.h"

@@ -5,8 +5,8 @@
 #include <sstream>
 
 #include "geometry/core/errors.h"
-#include "geometry/mesh/validate.h"
 #include "geometry/mesh/weld.h"
+#include "geometry/validation/validate.h"
 #include "io/design/read_design.h"
 #include "io/file.h"
 #include "io/mesh/draco.h"

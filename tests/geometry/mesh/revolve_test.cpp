@@ -11,16 +11,25 @@
 #include <set>
 
 #include "geometry/core/errors.h"
-#include "geometry/mesh/constructed_validation.h"
 #include "geometry/mesh/revolve_clearance.h"
-#include "geometry/mesh/topology.h"
-#include "geometry/mesh/validate.h"
+#include "geometry/validation/detail/topology.h"
+#include "geometry/validation/validate.h"
+#include "tests/geometry/validation/moved_from.h"
 
 using namespace fabmesh;
 
 namespace {
 
 using Loops = std::vector<std::vector<Vec2>>;
+using test::validate_moved;
+
+// Validation with the revolution's own proof of its connectivity and `embedding`.
+ValidationOptions proven(const RevolvedSoup& r, const EmbeddingProof& embedding) {
+  ValidationOptions options;
+  options.topology = r.topology;
+  options.embedding = embedding;
+  return options;
+}
 
 // A star-shaped loop around `centre` (counter-clockwise, off the axis when
 // the radii stay below centre.x()): it revolves into a torus.
@@ -64,7 +73,7 @@ void require_proof_holds(const Loops& loops, int segments) {
 
   // The whole report: the full validation (3D test included) against the constructed one.
   const ValidationReport full = validate(r.soup);
-  const ValidationReport built = validate_constructed(r.soup, r.topology, EmbeddingProof{"simple section"});
+  const ValidationReport built = validate(r.soup, proven(r, EmbeddingProof{"simple section"}));
   CHECK(full.valid());
   CHECK(built.valid());
   CHECK(built.components == full.components);
@@ -227,7 +236,7 @@ TEST_CASE("validate_moved: within the margin the proof replaces the 3D test, bey
   const RevolvedSoup r = revolve(loops, RevolveOptions{32});
   const double margin = revolution_margin(loops, 32);
   REQUIRE(margin > 0.0);
-  const ValidationReport built = validate_constructed(r.soup, r.topology, EmbeddingProof{"simple", margin});
+  const ValidationReport built = validate(r.soup, proven(r, EmbeddingProof{"simple", margin}));
   CHECK(built.embedding_margin == margin);
 
   const TriangleSoup near = jittered(r.soup, 0.5 * margin, rng);

@@ -3,9 +3,8 @@
 #include <catch2/catch.hpp>
 
 #include "geometry/core/errors.h"
-#include "geometry/mesh/constructed_validation.h"
 #include "geometry/mesh/soup.h"
-#include "geometry/mesh/validate.h"
+#include "geometry/validation/validate.h"
 #include "tests/geometry/section/region_shapes.h"
 
 using namespace fabmesh;
@@ -61,7 +60,7 @@ TEST_CASE("slab: valid with the 3D self-intersection test, genus = holes, volume
     SlabOptions so;
     so.thickness = 30.0;
     const SlabMesh slab = build_slab(region, so);
-    const ValidationReport full = validate(slab.mesh);
+    const ValidationReport full = validate(to_soup(slab.mesh));
     INFO(describe_defects(full).size());
     CHECK(full.valid());
     CHECK(full.self_intersection == IntersectionCheck::Tested);
@@ -76,7 +75,9 @@ TEST_CASE("slab: valid with the 3D self-intersection test, genus = holes, volume
     CHECK(full.volume == Approx(region.area * so.thickness).epsilon(1e-12));
     // The construction proof agrees with the full test.
     REQUIRE(slab.proof);
-    const ValidationReport constructed = validate_constructed(slab.mesh, to_soup(slab.mesh), *slab.proof);
+    ValidationOptions proven;
+    proven.embedding = *slab.proof;
+    const ValidationReport constructed = validate(to_soup(slab.mesh), proven);
     CHECK(constructed.self_intersection == IntersectionCheck::ProvenByConstruction);
     CHECK(constructed.valid());
     CHECK(constructed.volume == full.volume);
@@ -95,7 +96,7 @@ TEST_CASE("slab: max_edge bounds top and bottom edges, walls follow the refined 
   so.max_edge = 50.0;
   const SlabMesh slab = build_slab(region, so);
   CHECK(slab.triangulation.steiner_points > 0);
-  const ValidationReport full = validate(slab.mesh);
+  const ValidationReport full = validate(to_soup(slab.mesh));
   CHECK(full.valid());
   REQUIRE(full.genus);
   CHECK(*full.genus == 2);
@@ -145,7 +146,7 @@ TEST_CASE(
     CHECK(mesh.face_handle(h).is_valid());
     CHECK(mesh.from_vertex_handle(h) == mesh.to_vertex_handle(mesh.opposite_halfedge_handle(h)));
   }
-  const ValidationReport report = validate(mesh);
+  const ValidationReport report = validate(to_soup(mesh));
   CHECK(report.valid());
   CHECK(report.genus == 1);
   CHECK(report.volume == Approx(8.0 * 0.5).epsilon(1e-12));

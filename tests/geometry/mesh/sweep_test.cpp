@@ -5,7 +5,7 @@
 
 #include "geometry/core/errors.h"
 #include "geometry/mesh/revolve.h"
-#include "geometry/mesh/validate.h"
+#include "geometry/validation/validate.h"
 
 using namespace fabmesh;
 

@@ -3,8 +3,8 @@
 #include <catch2/catch.hpp>
 
 #include "geometry/core/errors.h"
-#include "geometry/mesh/validate.h"
 #include "geometry/surfaces/tessellate.h"
+#include "geometry/validation/validate.h"
 #include "tests/geometry/surfaces/test_networks.h"
 
 using namespace fabmesh;
@@ -17,7 +17,7 @@ TEST_CASE("thicken: a disk-like G1 network becomes a valid outward solid of genu
   o.shell_to = 0.05;
   const SurfaceTessellation sheet = tessellate(net, o);
   const Mesh solid = thicken(sheet.mesh, sheet.normals, {0.05});
-  const ValidationReport r = validate(solid);
+  const ValidationReport r = validate(to_soup(solid));
   std::string defects;
   for (const std::string& d : describe_defects(r)) defects += d + "; ";
   INFO(defects);
@@ -28,7 +28,7 @@ TEST_CASE("thicken: a disk-like G1 network becomes a valid outward solid of genu
   REQUIRE(r.genus);
   CHECK(*r.genus == 0);
   // A thin shell: volume ~ sheet area x thickness.
-  const ValidationReport s = validate(sheet.mesh);
+  const ValidationReport s = validate(to_soup(sheet.mesh));
   CHECK(r.volume == Approx(s.area * 0.05).epsilon(0.05));
 }
 
@@ -38,9 +38,9 @@ TEST_CASE("thicken: a shell thicker than the radius of curvature intersects itse
   TessellateOptions o;
   o.tolerance = 0.01;
   const SurfaceTessellation sheet = tessellate(net, o);
-  CHECK(validate(thicken(sheet.mesh, sheet.normals, {0.1})).valid());  // thin: fine
+  CHECK(validate(to_soup(thicken(sheet.mesh, sheet.normals, {0.1}))).valid());  // thin: fine
   const ValidationReport r =
-      validate(thicken(sheet.mesh, sheet.normals, {2.5}));  // beyond the axis: walls cross
+      validate(to_soup(thicken(sheet.mesh, sheet.normals, {2.5})));  // beyond the axis: walls cross
   CHECK_FALSE(r.valid());
   CHECK(r.self_intersecting);
 }
@@ -83,10 +83,10 @@ TEST_CASE("thicken: outward, inward and centered shells of a dish are valid outw
     th.thickness = thickness;
     th.offset = span[0];
     const Mesh solid = thicken(sheet.mesh, sheet.normals, th);
-    const ValidationReport r = validate(solid);
+    const ValidationReport r = validate(to_soup(solid));
     CHECK(r.valid());
     CHECK(r.oriented_outward);
-    CHECK(r.volume == Approx(validate(sheet.mesh).area * thickness).epsilon(0.05));
+    CHECK(r.volume == Approx(validate(to_soup(sheet.mesh)).area * thickness).epsilon(0.05));
     double lowest = INFINITY;
     for (const auto v : solid.vertices()) lowest = std::min(lowest, solid.point(v)[2]);
     CHECK(lowest == Approx(c.lowest).margin(o.tolerance));

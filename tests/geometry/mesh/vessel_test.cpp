@@ -9,7 +9,7 @@
 #include "geometry/fairing/gauss_legendre.h"
 #include "geometry/mesh/revolve.h"
 #include "geometry/mesh/soup.h"
-#include "geometry/mesh/validate.h"
+#include "geometry/validation/validate.h"
 #include "tests/geometry/mesh/point_triangle.h"
 
 using namespace fabmesh;

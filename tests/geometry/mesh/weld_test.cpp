@@ -8,7 +8,7 @@
 #include <random>
 
 #include "geometry/core/errors.h"
-#include "geometry/mesh/validate.h"
+#include "geometry/validation/validate.h"
 #include "tests/geometry/mesh/shapes.h"
 
 using namespace fabmesh;

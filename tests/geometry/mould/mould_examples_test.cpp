@@ -1,7 +1,7 @@
 #include <catch2/catch.hpp>
 
-#include "geometry/mesh/validate.h"
 #include "geometry/mould/mould.h"
+#include "geometry/validation/validate.h"
 #include "tests/geometry/mould/mould_example.h"
 #include "tests/geometry/mould/mould_fixtures.h"
 

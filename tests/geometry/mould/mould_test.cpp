@@ -5,14 +5,22 @@
 
 #include "geometry/core/errors.h"
 #include "geometry/fairing/gauss_legendre.h"
-#include "geometry/mesh/validate.h"
 #include "geometry/mould/shrinkage.h"
+#include "geometry/validation/validate.h"
 #include "tests/geometry/mould/mould_fixtures.h"
 
 using namespace fabmesh;
 using namespace fabmesh::test;
 
 namespace {
+
+// A part validated as the pipeline validates it: its proof of embedding in
+// place of the 3D self-intersection test.
+ValidationReport validated(const MouldPart& part) {
+  ValidationOptions options;
+  options.embedding = part.proof;
+  return validate(part.soup, options);
+}
 
 struct Variant {
   std::string name;
@@ -69,8 +77,9 @@ TEST_CASE("mould: every part of the golden vessel's mould is a closed outward em
       REQUIRE(full.genus.has_value());
       CHECK(*full.genus == 0);
       CHECK(full.oriented_outward);
-      CHECK(part.validation.valid());
-      CHECK(part.validation.volume == Approx(full.volume).epsilon(1e-12));
+      const ValidationReport proven = validated(part);
+      CHECK(proven.valid());
+      CHECK(proven.volume == Approx(full.volume).epsilon(1e-12));
     }
   }
 }
@@ -114,7 +123,7 @@ TEST_CASE(
     const Mould m = build_mould(profile, v.options);
     const MouldSection& s = m.section;
     double plaster = 0.0;
-    for (const MouldPart& part : m.parts) plaster += part.validation.volume;
+    for (const MouldPart& part : m.parts) plaster += validated(part).volume;
     const double block_side =
         v.options.block == BlockShape::Box ? 0.0 : 2.0 * M_PI * s.block_radius * (s.z_top - s.z_bottom);
     const double r = m.keys.radius, rs = m.keys.socket_radius;
@@ -228,7 +237,7 @@ TEST_CASE("mould: a profile whose cavity folds back is refused, naming the point
   for (const Undercut& u : m.undercuts) CHECK(u.point.y() <= 0.5);  // only the foot is in a fold
   CHECK_FALSE(m.warnings.empty());
   CHECK_THAT(m.release_proof, Catch::StartsWith("NOT RELEASABLE"));
-  for (const MouldPart& part : m.parts) CHECK(part.validation.valid());
+  for (const MouldPart& part : m.parts) CHECK(validated(part).valid());
 }
 
 TEST_CASE("mould: a cavity widening downward inside the base part is refused, not above a floor cut",

@@ -4,7 +4,7 @@
 #include <random>
 
 #include "geometry/core/errors.h"
-#include "geometry/mesh/validate.h"
+#include "geometry/validation/validate.h"
 #include "tests/geometry/mesh/point_triangle.h"
 #include "tests/geometry/surfaces/test_networks.h"
 
@@ -37,7 +37,7 @@ TEST_CASE("tessellate: a G1 network becomes one conforming sheet whose only boun
   TessellateOptions o;
   o.tolerance = 0.01;
   const SurfaceTessellation t = tessellate(net, o);
-  const ValidationReport r = validate(t.mesh);
+  const ValidationReport r = validate(to_soup(t.mesh));
   // Open, but otherwise clean: manifold, consistently oriented, no degenerate or crossing faces.
   REQUIRE(r.defects.size() == 1);
   CHECK(r.defects[0].kind == Defect::BoundaryEdge);

@@ -6,11 +6,14 @@
 #include <catch2/catch.hpp>
 
 #include "geometry/core/errors.h"
-#include "geometry/mesh/validate.h"
+#include "geometry/validation/validate.h"
 #include "tests/geometry/mesh/shapes.h"
+#include "tests/geometry/validation/moved_from.h"
 
 namespace fabmesh {
 namespace {
+
+using test::validate_moved;
 
 bool valid(const TriangleSoup& decoded) { return validate(decoded).valid(); }
 

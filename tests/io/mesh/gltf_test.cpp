@@ -10,8 +10,8 @@
 #include <nlohmann/json.hpp>
 
 #include "geometry/core/errors.h"
-#include "geometry/mesh/validate.h"
 #include "geometry/mesh/weld.h"
+#include "geometry/validation/validate.h"
 #include "io/file.h"
 #include "io/mesh/draco.h"
 #include "io/mesh/obj.h"

@@ -10,8 +10,8 @@
 #include <sstream>
 
 #include "geometry/core/errors.h"
-#include "geometry/mesh/validate.h"
 #include "geometry/mesh/weld.h"
+#include "geometry/validation/validate.h"
 #include "io/file.h"
 #include "io/mesh/read_mesh.h"
 #include "io/mesh/stl.h"

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "geometry/mesh/validate.h"
 #include "geometry/mesh/weld.h"
+#include "geometry/validation/validate.h"
 #include "io/mesh/read_mesh.h"
 #include "tests/pipeline/batch/batch_fixture.h"
 

@@ -2,13 +2,16 @@
 // The reference self-intersection test: CGAL's box_intersection_d for the
 // candidates and CGAL Epick for every pair. Slow but simple; kept so that
 // the fast find_self_intersections can be tested against it pair for pair
-// (tests/geometry/mesh/self_intersect_test.cpp) and timed against it (bench/).
+// (tests/geometry/validation/self_intersect_test.cpp) and timed against it (bench/).
+//
+// Internal to geometry/validation (validate.h is the public entry); the
+// tests and the benchmarks include it to check and time this part alone.
 
 #include <cstdint>
 #include <vector>
 
-#include "geometry/mesh/self_intersect.h"
 #include "geometry/mesh/soup.h"
+#include "geometry/validation/detail/self_intersect.h"
 
 namespace fabmesh {
 

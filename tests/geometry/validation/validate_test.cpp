@@ -1,12 +1,13 @@
-#include "geometry/mesh/validate.h"
+#include "geometry/validation/validate.h"
 
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 
 #include "geometry/core/errors.h"
-#include "geometry/mesh/self_intersect.h"
+#include "geometry/mesh/volume.h"
 #include "geometry/mesh/weld.h"
+#include "geometry/validation/detail/self_intersect.h"
 #include "tests/geometry/mesh/shapes.h"
 
 using namespace fabmesh;
@@ -288,7 +289,7 @@ TEST_CASE("validate: an index out of range is an InputError", "[mesh][validate]"
 }
 
 TEST_CASE("validate: skipping the self-intersection test never yields valid", "[mesh][validate]") {
-  ValidateOptions options;
+  ValidationOptions options;
   options.check_self_intersections = false;
   const ValidationReport r = validate(box(), options);
   CHECK(r.defects.empty());
@@ -312,11 +313,11 @@ TEST_CASE("require_valid: throws ValidationFailed listing every defect, passes a
   }
 }
 
-TEST_CASE("validate: a Mesh and its soup give the same report", "[mesh][validate]") {
+TEST_CASE("validate: a Mesh (through to_soup) and its soup give the same report", "[mesh][validate]") {
   const TriangleSoup torus = test::torus(2.0, 0.5, 24, 12);
   const SoupToMesh converted = to_mesh(torus);
   CHECK(converted.refused_faces == 0);
-  const ValidationReport a = validate(converted.mesh);
+  const ValidationReport a = validate(to_soup(converted.mesh));
   const ValidationReport b = validate(torus);
   CHECK(a.valid());
   CHECK(a.genus == b.genus);
@@ -336,4 +337,72 @@ TEST_CASE("to_mesh: faces OpenMesh refuses are counted, never dropped silently",
   const SoupToMesh m = to_mesh(s);
   CHECK(m.refused_faces == 2);
   CHECK(m.mesh.n_faces() + m.refused_faces == s.triangles.size());
+}
+
+TEST_CASE("validate: a builder's proofs replace the connectivity analysis and the 3D test",
+          "[mesh][validate]") {
+  const TriangleSoup s = box();
+  ValidationOptions proven;
+  proven.topology = TopologyProof{"a box by construction", 1, {2}};
+  proven.embedding = EmbeddingProof{"a convex box", 0.25};
+  const ValidationReport r = validate(s, proven);
+  const ValidationReport full = validate(s);
+  CHECK(r.valid());
+  CHECK(r.self_intersection == IntersectionCheck::ProvenByConstruction);
+  CHECK(r.embedding_proof == "a convex box");
+  CHECK(r.embedding_margin == 0.25);
+  CHECK(r.topology_proof == "a box by construction");
+  CHECK(r.genus == full.genus);
+  CHECK(r.volume == full.volume);
+  CHECK(r.area == full.area);
+  CHECK(r.volume == signed_volume(s));
+  // A proof about the exact construction says nothing about NaNs.
+  TriangleSoup nan = s;
+  nan.vertices[0].x() = std::nan("");
+  const ValidationReport bad = validate(nan, proven);
+  CHECK(bad.self_intersection == IntersectionCheck::NotRun);
+  CHECK_FALSE(bad.valid());
+}
+
+TEST_CASE("validate: a moved copy takes its proofs from the original's report only", "[mesh][validate]") {
+  const TriangleSoup s = box();
+  const ValidationReport report = validate(s);
+  ValidationOptions options;
+  options.moved_from = MovedFrom{&s, &report};
+  CHECK(validate(s, options).valid());
+  options.embedding = EmbeddingProof{"a convex box", 0.25};
+  CHECK_THROWS_AS(validate(s, options), InputError);
+}
+
+TEST_CASE("fit_for: fabrication needs a valid mesh, viewing tolerates only an open border",
+          "[mesh][validate]") {
+  const ValidationReport closed = validate(box());
+  CHECK(fit_for(closed, MeshPurpose::Fabrication));
+  CHECK(fit_for(closed, MeshPurpose::Viewing));
+  TriangleSoup open = box();
+  open.triangles.pop_back();
+  const ValidationReport holed = validate(open);
+  CHECK_FALSE(fit_for(holed, MeshPurpose::Fabrication));
+  CHECK(fit_for(holed, MeshPurpose::Viewing));
+  CHECK(fit_for(holed, MeshPurpose::Drawing));
+  open.triangles.push_back({0, 0, 1});  // a degenerate face besides the border
+  CHECK_FALSE(fit_for(validate(open), MeshPurpose::Viewing));
+  ValidationOptions untested;
+  untested.check_self_intersections = false;
+  CHECK_FALSE(fit_for(validate(box(), untested), MeshPurpose::Viewing));
+}
+
+TEST_CASE("valid_when_moved: unmoved, or moved less than the embedding margin", "[mesh][validate]") {
+  ValidationOptions proven;
+  proven.embedding = EmbeddingProof{"a convex box", 0.25};
+  const ValidationReport r = validate(box(), proven);
+  CHECK(valid_when_moved(r, 0.0));
+  CHECK(valid_when_moved(r, 0.2));
+  CHECK_FALSE(valid_when_moved(r, 0.25));
+  const ValidationReport tested = validate(box());  // no margin: only an exact copy stays proven
+  CHECK(valid_when_moved(tested, 0.0));
+  CHECK_FALSE(valid_when_moved(tested, 1e-12));
+  TriangleSoup open = box();
+  open.triangles.pop_back();
+  CHECK_FALSE(valid_when_moved(validate(open), 0.0));
 }

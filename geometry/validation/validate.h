@@ -1,7 +1,11 @@
 #pragma once
 // Mesh validity for fabrication: closed, manifold, consistently and outward
 // oriented, free of self-intersections, degenerate and duplicate faces.
-// Every mesh fabmesh writes passes through validate + require_valid.
+// The one public entry of geometry/validation: validate(soup, options), the
+// options carrying what a builder already proved. Every mesh fabmesh writes
+// passes through it and require_valid (pipeline/validate_built.h). Its
+// private parts (connectivity analysis, bounding-volume hierarchy, face-pair
+// filters, self-intersection test) are in geometry/validation/detail/.
 
 #include <cstddef>
 #include <optional>
@@ -12,7 +16,7 @@
 #include "geometry/core/stage_timer.h"
 #include "geometry/core/types.h"
 #include "geometry/mesh/soup.h"
-#include "geometry/mesh/topology.h"
+#include "geometry/validation/proofs.h"
 
 namespace fabmesh {
 
@@ -48,13 +52,6 @@ struct DefectReport {
   Defect kind;
   std::size_t count = 0;
   std::vector<Vec3> examples;  ///< edge midpoints, vertices or face centroids
-};
-
-/// Options of validate.
-struct ValidateOptions {
-  bool check_self_intersections = true;  ///< the slowest stage; off only for diagnostics
-  bool parallel = true;                  ///< use all cores for the self-intersection test
-  std::size_t max_examples = 5;          ///< example locations kept per defect kind
 };
 
 /// Everything validate found out about a mesh.
@@ -98,43 +95,75 @@ struct ValidationReport {
   const DefectReport* find(Defect kind) const;
 };
 
+/// A mesh already validated of which the soup being validated is a moved
+/// copy: the same triangles (same indices, same order), its vertices moved
+/// (quantized for Draco, rounded to float32, scaled).
+struct MovedFrom {
+  const TriangleSoup* soup = nullptr;        ///< the mesh as it was validated
+  const ValidationReport* report = nullptr;  ///< its report (validate(*soup, ...))
+};
+
+/// What validate checks and what the caller (a builder) already proved.
+struct ValidationOptions {
+  bool check_self_intersections = true;  ///< the slowest stage; off only for diagnostics
+  bool parallel = true;                  ///< use all cores for the self-intersection test
+  std::size_t max_examples = 5;          ///< example locations kept per defect kind
+  /// Which boundary edges are kept as examples: the first in face order
+  /// (true: the order a builder made its faces, as the reports of built
+  /// meshes list them) or the first by vertex index (false: as `check`
+  /// lists a file's). Counts and the verdict do not depend on it.
+  bool examples_in_face_order = false;
+  /// The builder's proof of the connectivity: replaces the connectivity
+  /// analysis (the report's counts, components, Euler characteristics and
+  /// genus come from it; the report carries its statement as topology_proof).
+  std::optional<TopologyProof> topology;
+  /// The builder's proof of embedding: replaces the 3D self-intersection
+  /// test (IntersectionCheck::ProvenByConstruction, with its statement and
+  /// margin). A mesh with a non-finite vertex keeps IntersectionCheck::NotRun
+  /// (a proof about the exact construction says nothing about NaNs), so it
+  /// is never called valid.
+  std::optional<EmbeddingProof> embedding;
+  /// Set when the soup is a moved copy of a validated mesh: everything
+  /// combinatorial (edges, fans, orientation, components, Euler
+  /// characteristics, genus, duplicate faces, topology_proof) is a function
+  /// of the triangles alone and is taken from that mesh's report (its
+  /// example locations are the original positions, within the displacement
+  /// of the moved ones). Everything geometric is recomputed on the soup:
+  /// finiteness, area, signed volume and orientation, exact degeneracy, and
+  /// the exact self-intersection test. So valid() and every defect kind and
+  /// count equal those of a validation without it. Except that when the
+  /// original report carries an embedding margin and no vertex moved as far,
+  /// the 3D test is replaced by that proof (the report says
+  /// ProvenByConstruction and how far the vertices moved). Not to be
+  /// combined with `topology` or `embedding`.
+  std::optional<MovedFrom> moved_from;
+};
+
 /// Validates an indexed triangle soup (no topology assumed: non-manifold
-/// input is fully analysed). Vertices are taken as they are; weld a soup
-/// from a file first. \throw InputError when an index is out of range.
-ValidationReport validate(const TriangleSoup& soup, const ValidateOptions& options = {});
+/// input is fully analysed, unless options.topology proves it). Vertices are
+/// taken as they are; weld a soup from a file first.
+/// \throw InputError when an index is out of range; with options.moved_from,
+///        when the soup's triangles or vertex count differ from the
+///        original's, or when topology or embedding is also given.
+ValidationReport validate(const TriangleSoup& soup, const ValidationOptions& options = {});
 
-/// Validates an OpenMesh mesh: its connectivity in linear time from the
-/// halfedges (analyse_topology(Mesh)), its geometry through its soup.
-ValidationReport validate(const Mesh& mesh, const ValidateOptions& options = {});
+/// What a mesh is fit for.
+enum class MeshPurpose {
+  Fabrication,  ///< closed, manifold, outward, embedded: every check passed
+  Viewing,      ///< an open surface (no thickness): its only defect is its own border
+  Drawing,      ///< no mesh at all: a curve design, drawn at true size
+};
 
-/// The same when the caller already has `soup` == to_soup(mesh).
-ValidationReport validate(const Mesh& mesh, const TriangleSoup& soup, const ValidateOptions& options = {});
+/// True when `report` is fit for `purpose`: valid; or, for viewing, its
+/// only defects are boundary edges (an open surface's own border) and the
+/// self-intersection test ran or was proven; always for drawing.
+bool fit_for(const ValidationReport& report, MeshPurpose purpose);
 
-/// Validates `soup` given its connectivity facts `topology` (from
-/// analyse_topology on the same triangles, or from a construction proof):
-/// every geometric check of validate (finiteness, exact degeneracy, area,
-/// signed volume and orientation, the exact self-intersection test) runs on
-/// `soup`, the combinatorial counts and the genus come from `topology`.
-ValidationReport validate_geometry(const TriangleSoup& soup, const Topology& topology,
-                                   const ValidateOptions& options = {});
-
-/// The report validate(moved) would give, without redoing what cannot have
-/// changed. `moved` has the same triangles as `original` (same indices, same
-/// order) and `original_report` is validate(original) (or
-/// validate_constructed). Everything combinatorial is a function of the
-/// triangles alone (edges, fans, orientation, components, Euler
-/// characteristics, genus, duplicate faces), so it is taken from
-/// `original_report` (its example locations are the original positions,
-/// within the displacement of the moved ones). Everything geometric is
-/// recomputed on `moved` exactly as validate does: finiteness, area, signed
-/// volume and orientation, exact degeneracy, and the exact self-intersection
-/// test. So valid() and every defect kind and count equal validate(moved)'s.
-/// Except that when `original_report` carries an embedding margin and no
-/// vertex moved as far, the 3D test is replaced by that proof (the report
-/// says ProvenByConstruction and how far the vertices moved).
-/// \throw InputError when the triangles differ or an index is out of range.
-ValidationReport validate_moved(const TriangleSoup& original, const ValidationReport& original_report,
-                                const TriangleSoup& moved, const ValidateOptions& options = {});
+/// True when a mesh validated as `report`, whose vertices then moved by at
+/// most `moved_by` (model units), is proven still valid without validating
+/// it again: it was valid and did not move, or moved by less than its
+/// embedding margin (which keeps it embedded and its faces non-degenerate).
+bool valid_when_moved(const ValidationReport& report, double moved_by);
 
 /// One line per defect kind: "3 boundary edges (e.g. at (0, 0.5, 1))". Empty when valid.
 std::vector<std::string> describe_defects(const ValidationReport& report);

@@ -1,4 +1,4 @@
-#include "geometry/mesh/validate.h"
+#include "geometry/validation/validate.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <fmt/format.h>
@@ -6,12 +6,12 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 #include "geometry/core/errors.h"
 #include "geometry/core/stage_timer.h"
-#include "geometry/mesh/halfedge_topology.h"
-#include "geometry/mesh/self_intersect.h"
+#include "geometry/mesh/volume.h"
+#include "geometry/validation/detail/self_intersect.h"
+#include "geometry/validation/detail/topology.h"
 
 namespace fabmesh {
 namespace {
@@ -27,26 +27,13 @@ void add_defect(ValidationReport& report, Defect kind, const DefectCount& found)
 /// Area, signed volume and exact degeneracy; marks degenerate faces in `degenerate`.
 void measure(const TriangleSoup& soup, std::size_t max_examples, ValidationReport& report,
              DefectCount& degenerate_found, std::vector<char>& degenerate) {
-  // Signed volume about the bounding-box centre: exact for closed meshes,
-  // and with less cancellation than about the origin.
-  constexpr double kInf = std::numeric_limits<double>::infinity();
-  Vec3 lo = Vec3::Constant(kInf);
-  Vec3 hi = Vec3::Constant(-kInf);
-  for (const Vec3& p : soup.vertices) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  }
-  const Vec3 centre = soup.vertices.empty() ? Vec3::Zero() : Vec3(0.5 * (lo + hi));
   double area = 0.0;
-  double volume6 = 0.0;
   for (std::size_t f = 0; f < soup.triangles.size(); ++f) {
     const auto& t = soup.triangles[f];
     const Vec3& a = soup.vertices[t[0]];
     const Vec3& b = soup.vertices[t[1]];
     const Vec3& c = soup.vertices[t[2]];
-    const Vec3 n = (b - a).cross(c - a);
-    area += 0.5 * n.norm();
-    volume6 += (a - centre).dot((b - centre).cross(c - centre));
+    area += 0.5 * (b - a).cross(c - a).norm();
     const bool repeated = t[0] == t[1] || t[1] == t[2] || t[2] == t[0];
     if (repeated ||
         CGAL::collinear(Kernel::Point_3(a.x(), a.y(), a.z()), Kernel::Point_3(b.x(), b.y(), b.z()),
@@ -56,7 +43,7 @@ void measure(const TriangleSoup& soup, std::size_t max_examples, ValidationRepor
     }
   }
   report.area = area;
-  report.volume = volume6 / 6.0;
+  report.volume = signed_volume(soup);
 }
 
 void set_genus(ValidationReport& report, const Topology& topo) {
@@ -122,46 +109,13 @@ const DefectReport* ValidationReport::find(Defect kind) const {
 
 namespace {
 
-// The stages after the connectivity analysis, shared by every entry point.
+// The stages after the connectivity analysis, shared by every path of validate.
 ValidationReport validate_with(const TriangleSoup& soup, const Topology& topo, ValidationReport report,
-                               const ValidateOptions& options);
+                               const ValidationOptions& options);
 
-}  // namespace
-
-ValidationReport validate_geometry(const TriangleSoup& soup, const Topology& topology,
-                                   const ValidateOptions& options) {
-  require_indices_in_range(soup);
-  return validate_with(soup, topology, ValidationReport{}, options);
-}
-
-ValidationReport validate(const TriangleSoup& soup, const ValidateOptions& options) {
-  require_indices_in_range(soup);
-  ValidationReport report;
-  StageTimer timer(report.timings_ms);
-  const Topology topo = analyse_topology(soup, options.max_examples);
-  timer.lap("topology");
-  return validate_with(soup, topo, std::move(report), options);
-}
-
-ValidationReport validate(const Mesh& mesh, const TriangleSoup& soup, const ValidateOptions& options) {
-  ValidationReport report;
-  StageTimer timer(report.timings_ms);
-  const Topology topo = analyse_topology(mesh, options.max_examples);  // linear time on the halfedges
-  timer.lap("topology");
-  return validate_with(soup, topo, std::move(report), options);
-}
-
-ValidationReport validate(const Mesh& mesh, const ValidateOptions& options) {
-  return validate(mesh, to_soup(mesh), options);
-}
-
-ValidationReport validate_moved(const TriangleSoup& original, const ValidationReport& original_report,
-                                const TriangleSoup& moved, const ValidateOptions& options) {
-  require_indices_in_range(moved);
-  if (moved.triangles != original.triangles || moved.vertices.size() != original.vertices.size()) {
-    throw InputError("validate_moved: the moved mesh does not have the original's vertices and triangles");
-  }
-  // Combinatorial facts are functions of the triangles alone, which are the original's.
+// The connectivity facts a moved copy shares with its original: functions of
+// the triangles alone, taken from the original's report.
+Topology inherited_topology(const ValidationReport& original_report) {
   const auto inherited = [&](Defect kind) {
     DefectCount out;
     if (const DefectReport* d = original_report.find(kind)) {
@@ -178,6 +132,20 @@ ValidationReport validate_moved(const TriangleSoup& original, const ValidationRe
   topo.duplicate_faces = inherited(Defect::DuplicateFace);
   topo.components = original_report.components;
   topo.euler_characteristics = original_report.euler_characteristics;
+  return topo;
+}
+
+// validate(moved) with options.moved_from: the original's combinatorial facts,
+// the geometry tested again, and the original's embedding margin when no
+// vertex moved as far.
+ValidationReport validate_moved(const TriangleSoup& moved, const MovedFrom& from,
+                                const ValidationOptions& options) {
+  const TriangleSoup& original = *from.soup;
+  const ValidationReport& original_report = *from.report;
+  if (moved.triangles != original.triangles || moved.vertices.size() != original.vertices.size()) {
+    throw InputError(
+        "validate: the moved mesh (moved_from) does not have the original's vertices and triangles");
+  }
   // Within the original's embedding margin the move cannot create an intersection.
   double moved_by = 0.0;
   for (std::size_t v = 0; v < moved.vertices.size(); ++v) {
@@ -186,9 +154,10 @@ ValidationReport validate_moved(const TriangleSoup& original, const ValidationRe
   moved_by *= 1.0 + 1e-12;  // the norm's rounding, upward
   const bool within_margin = original_report.self_intersection == IntersectionCheck::ProvenByConstruction &&
                              moved_by < original_report.embedding_margin;
-  ValidateOptions checks = options;
+  ValidationOptions checks = options;
   if (within_margin) checks.check_self_intersections = false;
-  ValidationReport report = validate_with(moved, topo, ValidationReport{}, checks);
+  ValidationReport report =
+      validate_with(moved, inherited_topology(original_report), ValidationReport{}, checks);
   report.topology_proof = original_report.topology_proof;
   if (within_margin && report.non_finite_vertices == 0) {
     report.self_intersection = IntersectionCheck::ProvenByConstruction;
@@ -200,10 +169,64 @@ ValidationReport validate_moved(const TriangleSoup& original, const ValidationRe
   return report;
 }
 
+// The report with the builder's proof of embedding in place of the 3D test.
+ValidationReport with_embedding(ValidationReport report, const EmbeddingProof& proof) {
+  if (report.non_finite_vertices == 0) {
+    report.self_intersection = IntersectionCheck::ProvenByConstruction;
+    report.embedding_proof = proof.statement;
+    report.embedding_margin = proof.margin;
+    report.self_intersecting = false;
+  }
+  return report;
+}
+
+}  // namespace
+
+ValidationReport validate(const TriangleSoup& soup, const ValidationOptions& options) {
+  require_indices_in_range(soup);
+  if (options.moved_from) {
+    if (options.topology || options.embedding) {
+      throw InputError(
+          "validate: a moved copy takes its proofs from the original's report, not from options");
+    }
+    return validate_moved(soup, *options.moved_from, options);
+  }
+  ValidationOptions checks = options;
+  if (options.embedding) checks.check_self_intersections = false;  // the proof replaces the 3D test
+  ValidationReport report;
+  if (options.topology) {
+    Topology known;
+    known.components = options.topology->components;
+    known.euler_characteristics = options.topology->euler_characteristics;
+    report = validate_with(soup, known, std::move(report), checks);
+    report.topology_proof = options.topology->statement;
+  } else {
+    StageTimer timer(report.timings_ms);
+    const Topology topo =
+        analyse_topology(soup, options.max_examples,
+                         options.examples_in_face_order ? ExampleOrder::ByFace : ExampleOrder::ByVertex);
+    timer.lap("topology");
+    report = validate_with(soup, topo, std::move(report), checks);
+  }
+  if (options.embedding) return with_embedding(std::move(report), *options.embedding);
+  return report;
+}
+
+bool fit_for(const ValidationReport& report, MeshPurpose purpose) {
+  if (purpose == MeshPurpose::Drawing || report.valid()) return true;
+  return purpose == MeshPurpose::Viewing && report.self_intersection != IntersectionCheck::NotRun &&
+         std::all_of(report.defects.begin(), report.defects.end(),
+                     [](const DefectReport& d) { return d.kind == Defect::BoundaryEdge; });
+}
+
+bool valid_when_moved(const ValidationReport& report, double moved_by) {
+  return report.valid() && (moved_by == 0.0 || moved_by < report.embedding_margin);
+}
+
 namespace {
 
 ValidationReport validate_with(const TriangleSoup& soup, const Topology& topo, ValidationReport report,
-                               const ValidateOptions& options) {
+                               const ValidationOptions& options) {
   StageTimer timer(report.timings_ms);
   report.vertices = soup.vertices.size();
   report.triangles = soup.triangles.size();

@@ -24,6 +24,9 @@
 // whose every coordinate is 0 or has a magnitude in [1e-30, 1e30] (then every
 // nonzero difference is >= 1e-46, every nonzero intermediate >= 1e-240,
 // every intermediate <= 1e130).
+//
+// Internal to geometry/validation (validate.h is the public entry); the
+// tests and the benchmarks include it to check and time this part alone.
 
 #include <array>
 #include <cmath>

@@ -1,6 +1,9 @@
 #pragma once
 // Self-intersection of a triangle soup: pairs of faces that meet anywhere
 // other than at the vertices and edges they share by index.
+//
+// Internal to geometry/validation (validate.h is the public entry); the
+// tests and the benchmarks include it to check and time this part alone.
 
 #include <cstddef>
 #include <cstdint>

@@ -1,14 +1,18 @@
-// validate_moved against validate: the same verdict on meshes whose vertices moved.
+// validate with moved_from (test::validate_moved) against validate: the same verdict on meshes whose vertices
+// moved.
 
 #include <catch2/catch.hpp>
 #include <random>
 
 #include "geometry/core/errors.h"
-#include "geometry/mesh/validate.h"
+#include "geometry/validation/validate.h"
 #include "tests/geometry/mesh/shapes.h"
+#include "tests/geometry/validation/moved_from.h"
 
 namespace fabmesh {
 namespace {
+
+using test::validate_moved;
 
 // The defect kinds and counts of a report, for comparison.
 std::vector<std::pair<Defect, std::size_t>> defects_of(const ValidationReport& r) {

@@ -7,6 +7,9 @@
 // leaf_base + l). Boxes are floats rounded outwards, so every pair of
 // triangles whose exact (closed) boxes overlap is reported; a few pairs whose
 // exact boxes only nearly touch may be reported too.
+//
+// Internal to geometry/validation (validate.h is the public entry); the
+// tests and the benchmarks include it to check and time this part alone.
 
 #include <cstddef>
 #include <cstdint>

@@ -1,4 +1,4 @@
-#include "geometry/mesh/self_intersect_reference.h"
+#include "geometry/validation/detail/self_intersect_reference.h"
 
 #include "geometry/core/errors.h"
 

@@ -1,4 +1,4 @@
-#include "geometry/mesh/topology.h"
+#include "geometry/validation/detail/topology.h"
 
 #include <tbb/parallel_sort.h>
 
@@ -51,17 +51,33 @@ std::vector<Side> collect_sides(const TriangleSoup& soup) {
 /// inconsistent edges, and joins the corners of the two faces of each
 /// manifold edge into fans.
 void classify_edges(const TriangleSoup& soup, const std::vector<Side>& sides, std::size_t max_examples,
-                    Topology& topo, DisjointSets<std::uint32_t>& fans, std::vector<char>& on_complex_edge) {
+                    ExampleOrder order, Topology& topo, DisjointSets<std::uint32_t>& fans,
+                    std::vector<char>& on_complex_edge) {
   const auto& tri = soup.triangles;
   auto midpoint = [&](std::uint64_t key) {
     return 0.5 * (soup.vertices[key >> 32] + soup.vertices[key & 0xffffffffu]);
+  };
+  // By face: the first max_examples boundary sides in (face, corner) order, kept sorted.
+  const bool by_face = order == ExampleOrder::ByFace;
+  std::vector<const Side*> first_in_faces;
+  const auto face_order = [](const Side* x, const Side* y) {
+    return x->face != y->face ? x->face < y->face : x->corner < y->corner;
   };
   for (std::size_t i = 0; i < sides.size();) {
     std::size_t j = i;
     while (j < sides.size() && sides[j].key == sides[i].key) ++j;
     const std::size_t n = j - i;
     ++topo.edges;
-    if (n == 1) {
+    if (n == 1 && by_face) {
+      ++topo.boundary_edges.count;
+      const Side* s = &sides[i];
+      if (first_in_faces.size() < max_examples ||
+          (!first_in_faces.empty() && face_order(s, first_in_faces.back()))) {
+        first_in_faces.insert(std::upper_bound(first_in_faces.begin(), first_in_faces.end(), s, face_order),
+                              s);
+        if (first_in_faces.size() > max_examples) first_in_faces.pop_back();
+      }
+    } else if (n == 1) {
       topo.boundary_edges.add(midpoint(sides[i].key), max_examples);
     } else if (n > 2) {
       topo.non_manifold_edges.add(midpoint(sides[i].key), max_examples);
@@ -88,6 +104,7 @@ void classify_edges(const TriangleSoup& soup, const std::vector<Side>& sides, st
     }
     i = j;
   }
+  for (const Side* s : first_in_faces) topo.boundary_edges.examples.push_back(midpoint(s->key));
 }
 
 void count_duplicates(const TriangleSoup& soup, std::size_t max_examples, Topology& topo) {
@@ -142,13 +159,13 @@ void count_components(const TriangleSoup& soup, const std::vector<Side>& sides, 
 
 }  // namespace
 
-Topology analyse_topology(const TriangleSoup& soup, std::size_t max_examples) {
+Topology analyse_topology(const TriangleSoup& soup, std::size_t max_examples, ExampleOrder order) {
   require_indices_in_range(soup);
   Topology topo;
   const std::vector<Side> sides = collect_sides(soup);
   DisjointSets<std::uint32_t> fans(3 * soup.triangles.size());
   std::vector<char> on_complex_edge(soup.vertices.size(), 0);
-  classify_edges(soup, sides, max_examples, topo, fans, on_complex_edge);
+  classify_edges(soup, sides, max_examples, order, topo, fans, on_complex_edge);
 
   // Each fan root is a corner; a vertex with more than one root has several fans.
   std::vector<std::uint32_t> fan_count(soup.vertices.size(), 0);

@@ -3,7 +3,7 @@
 // coincidences, coplanar folds, touching and crossing faces, near-degenerate
 // faces, and on closed meshes before and after random perturbations.
 
-#include "geometry/mesh/self_intersect.h"
+#include "geometry/validation/detail/self_intersect.h"
 
 #include <tbb/task_arena.h>
 
@@ -15,9 +15,9 @@
 
 #include "geometry/core/errors.h"
 #include "geometry/mesh/revolve.h"
-#include "geometry/mesh/self_intersect_reference.h"
 #include "geometry/mesh/slab.h"
 #include "geometry/section/region.h"
+#include "geometry/validation/detail/self_intersect_reference.h"
 #include "tests/geometry/mesh/shapes.h"
 #include "tests/geometry/section/region_shapes.h"
 

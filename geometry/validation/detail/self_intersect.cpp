@@ -9,7 +9,7 @@
 // each run by one thread, and their findings combined in task order, so the result
 // does not depend on the thread count.
 
-#include "geometry/mesh/self_intersect.h"
+#include "geometry/validation/detail/self_intersect.h"
 
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
@@ -19,9 +19,9 @@
 #include <cmath>
 
 #include "geometry/core/errors.h"
-#include "geometry/mesh/face_pair_filter.h"
-#include "geometry/mesh/self_intersect_reference.h"
-#include "geometry/mesh/triangle_bvh.h"
+#include "geometry/validation/detail/face_pair_filter.h"
+#include "geometry/validation/detail/self_intersect_reference.h"
+#include "geometry/validation/detail/triangle_bvh.h"
 
 namespace fabmesh {
 namespace {

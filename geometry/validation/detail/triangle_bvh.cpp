@@ -1,4 +1,4 @@
-#include "geometry/mesh/triangle_bvh.h"
+#include "geometry/validation/detail/triangle_bvh.h"
 
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>

@@ -2,6 +2,9 @@
 // Combinatorial analysis of an indexed triangle soup: edges, fans,
 // orientation, components and Euler characteristics. Works on any soup,
 // including non-manifold ones (it builds its own edge map; nothing is refused).
+//
+// Internal to geometry/validation (validate.h is the public entry); the
+// tests and the benchmarks include it to check and time this part alone.
 
 #include <cstddef>
 #include <vector>
@@ -41,9 +44,16 @@ struct Topology {
   std::vector<long> euler_characteristics;
 };
 
+/// Which boundary edges are kept as examples: the first by their vertex
+/// indices (the lower, then the higher), or the first in face order (by the
+/// face, then the side: side k runs from corner k to corner k + 1).
+enum class ExampleOrder { ByVertex, ByFace };
+
 /// Analyses the connectivity of `soup` in O(n log n).
 /// \param max_examples  how many example locations to keep per defect kind
+/// \param order  which boundary edges are the examples (counts do not depend on it)
 /// \throw InputError when an index is out of range.
-Topology analyse_topology(const TriangleSoup& soup, std::size_t max_examples = 5);
+Topology analyse_topology(const TriangleSoup& soup, std::size_t max_examples = 5,
+                          ExampleOrder order = ExampleOrder::ByVertex);
 
 }  // namespace fabmesh
