@@ -65,7 +65,9 @@ TEST_CASE("sweep: a partial sweep leaves both end sections open along the loop's
   SweepSection s;
   s.loop = {{0, 0}, {2, 0}, {2, 1}, {0, 1}};
   const SweptSurface swept = sweep_section(s, uniform_path(10, false, M_PI / 2));
-  const ValidationReport r = validate(swept.soup, {false});
+  ValidationOptions untested;
+  untested.check_self_intersections = false;
+  const ValidationReport r = validate(swept.soup, untested);
   // The open ends: the three off-axis loop edges at each end (the axis edge has no lateral face).
   CHECK(r.boundary_edges == 6);
   CHECK(swept.first[0] == swept.last[0]);  // pole vertices are shared
