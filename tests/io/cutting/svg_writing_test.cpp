@@ -15,7 +15,7 @@ TEST_CASE("svg_writing: numbers round-trip, y is flipped, -0 is 0", "[io][svg]")
   CHECK(svg_point(Vec2(-3.0, 0.0)) == "-3 0");
 }
 
-TEST_CASE("svg_writing: the start tag spans the box and margin; m is drawn in mm", "[io][svg]") {
+TEST_CASE("svg_writing: the start tag spans the box and margin, m is drawn in mm", "[io][svg]") {
   const std::string mm = svg_start(Vec2(0, 0), Vec2(10, 4), 1.0, "mm");
   CHECK(mm ==
         "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
@@ -24,7 +24,7 @@ TEST_CASE("svg_writing: the start tag spans the box and margin; m is drawn in mm
              Catch::Contains("width=\"1000mm\" height=\"1000mm\" viewBox=\"0 -1 1 1\""));
 }
 
-TEST_CASE("svg_writing: a loop is M, then L and A commands; the next loop starts with M", "[io][svg]") {
+TEST_CASE("svg_writing: a loop is M then L and A commands, the next loop starts with M", "[io][svg]") {
   CutLoop square;
   square.entities.push_back({CutKind::Polyline, {{0, 0}, {1, 0}, {1, 1}, {0, 1}, {0, 0}}, {}});
   std::string d;
