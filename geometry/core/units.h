@@ -29,6 +29,7 @@ inline constexpr std::array<LengthUnit, 4> kLengthUnits = {{
 /// The names of kLengthUnits in order: the choices of a `units` field.
 inline std::vector<std::string> length_unit_names() {
   std::vector<std::string> names;
+  names.reserve(kLengthUnits.size());
   for (const LengthUnit& u : kLengthUnits) names.emplace_back(u.name);
   return names;
 }

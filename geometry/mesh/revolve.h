@@ -83,7 +83,7 @@ LoopGrid append_loop_grid(const std::vector<Vec2>& loop, std::size_t ring, std::
   grid.first.resize(loop.size());
   grid.on_axis.resize(loop.size());
   for (std::size_t i = 0; i < loop.size(); ++i) {
-    grid.on_axis[i] = loop[i].x() == 0.0;
+    grid.on_axis[i] = static_cast<char>(loop[i].x() == 0.0 ? 1 : 0);
     grid.first[i] = static_cast<std::uint32_t>(vertices.size());
     if (grid.on_axis[i]) {
       vertices.emplace_back(0.0, 0.0, loop[i].y());
