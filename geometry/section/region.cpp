@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <memory>
+#include <optional>
 
 #include "geometry/core/errors.h"
 #include "geometry/sampling/sample_curve.h"
@@ -125,6 +126,20 @@ void require_nesting(const std::vector<Loop>& loops) {
   }
 }
 
+// No loop may come within `tolerance` of itself across a neck (its two
+// sides nearly touching): as for two loops, the mesh could not tell them apart.
+void require_no_neck(const std::vector<Loop>& loops, double tolerance) {
+  for (const Loop& l : loops) {
+    const std::optional<PolygonNeck> neck = find_neck(l.points, tolerance);
+    if (!neck) continue;
+    throw GeometryError(near(l.key, neck->b),
+                        fmt::format("{} comes within {:.6g} of itself ({} near {}, {} near {}), closer than "
+                                    "the tolerance {:.6g}: its two sides nearly touch there",
+                                    l.label, neck->distance, edge_name(l, neck->first), at(neck->a),
+                                    edge_name(l, neck->second), at(neck->b), tolerance));
+  }
+}
+
 // The exact curves of different loops must stay `tolerance` apart.
 void require_clearance(const std::vector<Loop>& loops, double tolerance, Region2& region) {
   if (loops.size() < 2) return;
@@ -183,6 +198,7 @@ Region2 build_region(const CompositeCurve& outline, const std::vector<RegionHole
     }
   }
   require_disjoint(loops);
+  require_no_neck(loops, options.tolerance);
   require_nesting(loops);
   require_clearance(loops, options.tolerance, region);
 

@@ -49,7 +49,8 @@ struct Region2 {
 
 /// Samples the outline and the holes and checks that they bound a region:
 /// the outline is closed and closes (its closing joint has no gap), each loop
-/// is simple, no two loops meet (no touching), every hole lies strictly
+/// is simple and comes nowhere within `tolerance` of itself across a neck
+/// (find_neck), no two loops meet (no touching), every hole lies strictly
 /// inside the outline and outside every other hole, and the exact curves of
 /// different loops stay at least `tolerance` apart (exact_clearance: decided
 /// on the curves, not on the polylines, which may be up to twice their

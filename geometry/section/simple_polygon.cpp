@@ -83,7 +83,62 @@ std::optional<EdgeCrossing> find_crossing_in(const std::vector<Chain>& chains) {
   return EdgeCrossing{first.first, first.second, where};
 }
 
+// The point of segment [a, b] nearest to p, as its parameter in [0, 1].
+double nearest_parameter(const Vec2& p, const Vec2& a, const Vec2& b) {
+  const Vec2 d = b - a;
+  const double length2 = d.squaredNorm();
+  return length2 > 0.0 ? std::clamp((p - a).dot(d) / length2, 0.0, 1.0) : 0.0;
+}
+
+// The polygon's arc length at each vertex, and its whole length last.
+std::vector<double> arc_lengths(const std::vector<Vec2>& points) {
+  std::vector<double> s(points.size() + 1, 0.0);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    s[i + 1] = s[i] + (points[(i + 1) % points.size()] - points[i]).norm();
+  }
+  return s;
+}
+
 }  // namespace
+
+std::optional<PolygonNeck> find_neck(const std::vector<Vec2>& points, double width, double detour) {
+  const std::size_t n = points.size();
+  if (n < 4 || !(width > 0.0)) return std::nullopt;
+  const std::vector<double> s = arc_lengths(points);
+  const double total = s[n];
+  std::vector<Box> boxes;
+  boxes.reserve(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec2& a = points[i];
+    const Vec2& b = points[(i + 1) % n];
+    // Each box grown by half the width: boxes of edges within `width` meet.
+    double lo[2] = {std::min(a.x(), b.x()) - 0.5 * width, std::min(a.y(), b.y()) - 0.5 * width};
+    double hi[2] = {std::max(a.x(), b.x()) + 0.5 * width, std::max(a.y(), b.y()) + 0.5 * width};
+    boxes.emplace_back(lo, hi, i);
+  }
+  std::optional<PolygonNeck> narrowest;
+  // Vertex v of one edge against the other edge e (v not on e).
+  auto try_vertex = [&](std::size_t v, std::size_t e, std::size_t edge_of_v) {
+    if (v == e || v == (e + 1) % n) return;
+    const Vec2& a = points[e];
+    const Vec2& b = points[(e + 1) % n];
+    const double t = nearest_parameter(points[v], a, b);
+    const Vec2 q = a + t * (b - a);
+    const double distance = (points[v] - q).norm();
+    if (distance >= width || (narrowest && distance >= narrowest->distance)) return;
+    const double along = std::abs(s[e] + t * (s[e + 1] - s[e]) - s[v]);
+    if (std::min(along, total - along) <= detour * width) return;
+    const bool v_first = edge_of_v < e;
+    narrowest = v_first ? PolygonNeck{edge_of_v, e, distance, points[v], q}
+                        : PolygonNeck{e, edge_of_v, distance, q, points[v]};
+  };
+  CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), [&](const Box& ba, const Box& bb) {
+    const std::size_t i = ba.info(), j = bb.info();
+    for (const std::size_t v : {i, (i + 1) % n}) try_vertex(v, j, i);
+    for (const std::size_t v : {j, (j + 1) % n}) try_vertex(v, i, j);
+  });
+  return narrowest;
+}
 
 double signed_area2(const std::vector<Vec2>& p) {
   double a = 0.0;

@@ -28,6 +28,26 @@ std::optional<EdgeCrossing> find_crossing(const std::vector<Vec2>& points, bool 
 /// of another loop either. Edge indices count through the loops in order.
 std::optional<EdgeCrossing> find_crossing(const std::vector<std::vector<Vec2>>& loops);
 
+/// Where a closed polygon comes near itself across a neck: two points, on
+/// edges `first` and `second`, `distance` apart.
+struct PolygonNeck {
+  std::size_t first = 0;
+  std::size_t second = 0;
+  double distance = 0.0;
+  Vec2 a{0.0, 0.0};  ///< on edge `first`
+  Vec2 b{0.0, 0.0};  ///< on edge `second`
+};
+
+/// The narrowest neck of a simple closed polygon narrower than `width`: a
+/// vertex and a point of an edge not incident to it closer than `width`
+/// while the polygon's shorter way between them is longer than
+/// `detour` x `width` (so a fine run of points, whose neighbours are close
+/// along the polygon too, is no neck; nor is a bend whose sides come within
+/// `width` of each other over a way shorter than that). nullopt when there is
+/// none. O(n log n + k) with box intersection, k the pairs of edges whose
+/// boxes come within `width`.
+std::optional<PolygonNeck> find_neck(const std::vector<Vec2>& points, double width, double detour = 2.0);
+
 /// Twice the signed area of a closed polygon (positive: counter-clockwise).
 double signed_area2(const std::vector<Vec2>& points);
 
