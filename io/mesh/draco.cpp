@@ -17,6 +17,7 @@
 #include <unordered_map>
 
 #include "geometry/core/errors.h"
+#include "geometry/core/float32.h"
 #include "geometry/mesh/bounding_box.h"
 #include "io/file.h"
 
@@ -470,6 +471,51 @@ std::string encode_draco_bits(const TriangleSoup& soup, int bits, const DracoOpt
   return encode(*draco_mesh(soup, false), bits, options);
 }
 
+namespace {
+
+/// The least any quantization can move a vertex: decoded coordinates are
+/// float32, so each referenced vertex moves at least to its nearest float32
+/// point (the cast rounds to nearest).
+double float32_floor(const TriangleSoup& soup) {
+  std::vector<char> referenced(soup.vertices.size(), 0);
+  for (const auto& t : soup.triangles) referenced[t[0]] = referenced[t[1]] = referenced[t[2]] = 1;
+  double floor = 0.0;
+  for (std::size_t i = 0; i < soup.vertices.size(); ++i) {
+    if (!referenced[i]) continue;
+    const Vec3& p = soup.vertices[i];
+    floor = std::max(floor, (rounded_to_float32(p) - p).norm());
+  }
+  return floor;
+}
+
+/// The most quantization bits worth trying: the fewest (from `first`) whose
+/// step is at most half a float32 unit in the last place of the largest
+/// coordinate. More bits cannot bring the decoded float32 positions nearer
+/// (every extent is at most twice the largest coordinate, so this is never
+/// more than 26), and Draco's encoder needs memory in proportion to the
+/// number of quantization levels (about 3 bytes each: 3.3 GB at 30 bits).
+int useful_bits(const BoundingBox& box, int first) {
+  const double largest = std::max(box.lo.cwiseAbs().maxCoeff(), box.hi.cwiseAbs().maxCoeff());
+  const double extent = box.size().maxCoeff();
+  if (!(largest > 0.0) || !(extent > 0.0)) return first;
+  const double half_ulp = std::ldexp(1.0, std::ilogb(largest) - 24);
+  int bits = first;
+  while (bits < 30 && extent / (std::ldexp(1.0, bits) - 1.0) > half_ulp) ++bits;
+  return bits;
+}
+
+/// The most quantization bits whose encoding takes memory in proportion to
+/// the mesh: Draco's encoder allocates about 3 bytes per quantization level
+/// (55 MB at 24 bits, 3.3 GB at 30), so at most 2^24 levels, or 64 per vertex
+/// for larger meshes.
+int affordable_bits(const TriangleSoup& soup) {
+  int bits = 24;
+  while (bits < 30 && std::ldexp(1.0, bits + 1) <= 64.0 * static_cast<double>(soup.vertices.size())) ++bits;
+  return bits;
+}
+
+}  // namespace
+
 DracoFit fit_draco(const TriangleSoup& soup, double tolerance,
                    const std::function<bool(const TriangleSoup& decoded)>& accept, const std::string& format,
                    const DracoOptions& options) {
@@ -477,14 +523,38 @@ DracoFit fit_draco(const TriangleSoup& soup, double tolerance,
   require_indices_in_range(soup);
   const BoundingBox box = box_of(soup);
   const double extent = box.size().maxCoeff();
+  const double largest = std::max(box.lo.cwiseAbs().maxCoeff(), box.hi.cwiseAbs().maxCoeff());
+  auto cannot_keep = [&](double best) {
+    return OutputError(
+        format,
+        fmt::format("{}: Draco cannot keep every vertex within the {:.3g} left for this output: at any "
+                    "quantization vertices move by up to {:.3g} (float32 positions at coordinates up to "
+                    "{:.6g}); raise the tolerance so that at least {:.3g} is left for the outputs, move the "
+                    "design nearer the origin, or drop {}",
+                    format, tolerance, best, largest, best, format));
+  };
+  // No quantization moves a vertex less than float32 rounding does: then no try can fit.
+  const double floor = float32_floor(soup);
+  if (floor > tolerance) throw cannot_keep(floor);
   // The fewest bits whose half step alone fits; float32 rounding is measured, not assumed.
-  int bits = 1;
-  while (bits < 30 && std::sqrt(3.0) * 0.5 * extent / (std::ldexp(1.0, bits) - 1.0) > tolerance) ++bits;
+  int first = 1;
+  while (first < 30 && std::sqrt(3.0) * 0.5 * extent / (std::ldexp(1.0, first) - 1.0) > tolerance) ++first;
+  const int affordable = affordable_bits(soup);
+  if (first > affordable) {
+    throw OutputError(format,
+                      fmt::format("{}: keeping every vertex within the {:.3g} left for this output needs {} "
+                                  "bits of Draco quantization, more than the {} whose encoding takes memory "
+                                  "in proportion to this mesh; raise the tolerance, or drop {}",
+                                  format, tolerance, first, affordable, format));
+  }
+  const int last = std::min(affordable, std::max(first, useful_bits(box, first)));
   const std::unique_ptr<draco::Mesh> plain = draco_mesh(soup, false);
   std::unique_ptr<draco::Mesh> tagged;  // only when the position match fails
   double best = std::numeric_limits<double>::infinity();
   bool folded = false;
-  for (; bits <= 30; ++bits) {
+  // One try: encode as written, decode, match to the input; the fit when it
+  // keeps every vertex within the tolerance and `accept` takes it.
+  auto attempt = [&](int bits) -> std::optional<DracoFit> {
     std::string bytes = encode(*plain, bits, options);
     std::optional<TriangleSoup> decoded = decode_matched(bytes, soup, bits);
     if (!decoded) {
@@ -497,12 +567,31 @@ DracoFit fit_draco(const TriangleSoup& soup, double tolerance,
     }
     const double moved = max_displacement(soup, *decoded);
     best = std::min(best, moved);
-    if (moved > tolerance) continue;
+    if (moved > tolerance) return std::nullopt;
     if (!accept(*decoded)) {
       folded = true;
-      continue;
+      return std::nullopt;
     }
-    return {bits, moved, std::move(*decoded), std::move(bytes)};
+    return DracoFit{bits, moved, std::move(*decoded), std::move(bytes)};
+  };
+  // The fewest bits first, and the next (the usual answers); then the most
+  // worth trying, and bisection between the last failure and that success:
+  // at most about seven tries, never a scan of every bit count.
+  for (int bits = first; bits <= std::min(first + 1, last); ++bits) {
+    if (std::optional<DracoFit> fit = attempt(bits)) return std::move(*fit);
+  }
+  std::optional<DracoFit> found = first + 1 < last ? attempt(last) : std::nullopt;
+  if (found) {
+    int failed = first + 1;
+    while (found->bits - failed > 1) {
+      const int middle = failed + (found->bits - failed) / 2;
+      if (std::optional<DracoFit> fit = attempt(middle)) {
+        found = std::move(fit);
+      } else {
+        failed = middle;
+      }
+    }
+    return std::move(*found);
   }
   if (folded) {
     throw OutputError(format,
@@ -511,14 +600,7 @@ DracoFit fit_draco(const TriangleSoup& soup, double tolerance,
                                   "(faces collapse or fold); raise the tolerance, or drop {}",
                                   format, tolerance, format));
   }
-  throw OutputError(
-      format,
-      fmt::format("{}: Draco cannot keep every vertex within the {:.3g} left for this output: even at 30 "
-                  "bits of quantization vertices move by up to {:.3g} (float32 positions at "
-                  "coordinates up to {:.6g}); raise the tolerance so that at least {:.3g} is left for "
-                  "the outputs, move the design nearer the origin, or drop {}",
-                  format, tolerance, best,
-                  std::max(box.lo.cwiseAbs().maxCoeff(), box.hi.cwiseAbs().maxCoeff()), best, format));
+  throw cannot_keep(best);
 }
 
 void require_draco_matches(std::string_view bytes, const DracoFit& fit) {

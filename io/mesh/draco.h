@@ -71,9 +71,15 @@ struct DracoFit {
   std::string bytes;              ///< the Draco file (no extra attributes) that decodes to `decoded`
 };
 
-/// The fewest quantization bits whose MEASURED displacement of every vertex
-/// is <= `tolerance` and whose decoded mesh `accept` takes (quantization can
-/// collapse or fold faces). Each try encodes the mesh once, as it is written,
+/// A quantization whose MEASURED displacement of every vertex is <=
+/// `tolerance` and whose decoded mesh `accept` takes (quantization can
+/// collapse or fold faces): the fewest bits whose half step fits, or the
+/// next; failing both, the fewest found by bisection up to the most bits
+/// worth trying (where the step falls below float32 rounding) and affordable
+/// (Draco's encoder needs memory per quantization level: at most 2^24
+/// levels, or 64 per vertex). About seven tries at most; none when float32
+/// rounding alone moves a vertex farther than the tolerance, or when the
+/// fewest bits that could fit are not affordable. Each try encodes the mesh once, as it is written,
 /// decodes it, and matches every decoded point to its input vertex by the
 /// position Draco's quantizer gives that vertex; the match is accepted only
 /// as a bijection under which the decoded faces are the input's faces with
