@@ -16,7 +16,8 @@
 namespace fabmesh {
 namespace {
 
-// Share of the tolerance kept for output quantization (Draco, float32 files).
+// Share of the tolerance kept for output quantization (Draco, float32 files),
+// unless the outputs' number formats need more (build_within_budget).
 constexpr double kOutputShare = 0.1;
 
 TriangleSoup scaled(const TriangleSoup& soup, double factor) {
@@ -42,6 +43,34 @@ std::vector<const OutputFormat*> formats_of(const Design& design, const JobOptio
     if (std::find(formats.begin(), formats.end(), f) == formats.end()) formats.push_back(f);
   }
   return formats;
+}
+
+double largest_coordinate(const BuiltMesh& built) {
+  double largest = 0.0;
+  for (const Vec3& p : built.soup.vertices) largest = std::max(largest, p.cwiseAbs().maxCoeff());
+  for (const NamedSoup& part : built.mould_parts) {
+    for (const Vec3& p : part.soup.vertices) largest = std::max(largest, p.cwiseAbs().maxCoeff());
+  }
+  return largest;
+}
+
+// Builds `design` within its tolerance less what writing needs. The build
+// first gets all but a tenth; when the outputs' number formats (float32,
+// 3MF's decimals) move vertices of a mesh this large by more than the build
+// left, it builds again keeping exactly what they need: a mesh built within a
+// smaller tolerance lies within twice the tolerance of the first one's
+// coordinates, so that need, taken at coordinates 2 x tolerance larger, holds.
+BuiltMesh build_within_budget(const Design& design, BuildContext& context,
+                              const std::vector<const OutputFormat*>& formats, double export_scale) {
+  BuiltMesh built = build_design(design, context);
+  const double tolerance = context.common.tolerance;
+  const double largest = largest_coordinate(built) + 2.0 * tolerance;
+  double need = 0.0;
+  for (const OutputFormat* f : formats)
+    need = std::max(need, writing_error_bound(f->name, largest, export_scale));
+  if (need <= tolerance - built.max_deviation || need >= tolerance) return built;
+  context.tolerance = tolerance - need;
+  return build_design(design, context);
 }
 
 std::string path_with_suffix(const Design& design, const std::string& suffix, const JobOptions& options) {
@@ -81,9 +110,11 @@ JobReport build_and_encode(const Design& design, const JobOptions& options, cons
   const bool wants_cutting = std::any_of(formats.begin(), formats.end(), [](const OutputFormat* f) {
     return f->content == OutputContent::Drawing || f->content == OutputContent::Toolpath;
   });
-  const BuildContext context{common, (1.0 - kOutputShare) * common.tolerance, wants_cutting, watch,
-                             process_memory_limit()};
-  const BuiltMesh built = build_design(design, context);
+  const double export_scale = metres_per_unit(common.units) / metres_per_unit(common.export_units);
+  BuildContext context{common, (1.0 - kOutputShare) * common.tolerance, wants_cutting, watch,
+                       process_memory_limit()};
+  const BuiltMesh built = build_within_budget(design, context, formats, export_scale);
+  report.build_tolerance = context.tolerance;
   report.max_deviation = built.max_deviation;
   report.build = built.facts;
   report.validation = built.validation;
@@ -110,7 +141,6 @@ JobReport build_and_encode(const Design& design, const JobOptions& options, cons
   }
   // The encoders get the tolerance the build left unused, and the mesh in the
   // export unit (the built mesh itself when the units agree: no copy).
-  const double export_scale = metres_per_unit(common.units) / metres_per_unit(common.export_units);
   const std::optional<TriangleSoup> rescaled =
       export_scale == 1.0 ? std::nullopt : std::optional<TriangleSoup>(scaled(built.soup, export_scale));
   const TriangleSoup& exported = rescaled ? *rescaled : built.soup;
@@ -138,6 +168,14 @@ JobReport build_and_encode(const Design& design, const JobOptions& options, cons
       report.skipped.push_back({std::string(format->name), e.what()});
     }
     watch.lap("encode_" + std::string(format->name));
+  }
+  if (report.files.empty() && !report.skipped.empty()) {
+    // `skip` writes the others; with none left, the job would make nothing it was asked for.
+    std::string reasons;
+    for (const SkippedOutput& s : report.skipped) reasons += (reasons.empty() ? "" : "; ") + s.reason;
+    throw OutputError(report.skipped.front().format,
+                      fmt::format("every output was skipped, so nothing is written: {}", reasons),
+                      placed(common, ErrorLocation{"outputs"}));
   }
   return report;
 }

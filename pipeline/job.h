@@ -60,6 +60,10 @@ struct JobReport {
   MeshPurpose purpose = MeshPurpose::Fabrication;
   double max_deviation = 0.0;  ///< proven bound of the mesh against the exact shape, model units
   double tolerance = 0.0;
+  /// The share of the tolerance the build was given (the rest is kept for
+  /// writing the outputs: a tenth, or what their number formats need when
+  /// that is more), model units.
+  double build_tolerance = 0.0;
   Vec3 bbox_min = Vec3::Zero(), bbox_max = Vec3::Zero();  ///< of the mesh, model units
   nlohmann::json build;  ///< builder facts, e.g. {"angular_segments": 128, "section_points": 90}
   StageTimings timings_ms;

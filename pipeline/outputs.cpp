@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "geometry/core/errors.h"
+#include "geometry/core/float32.h"
 #include "geometry/validation/validate.h"
 #include "io/cutting/dxf.h"
 #include "io/cutting/gcode.h"
@@ -31,20 +32,27 @@ double max_abs_coordinate(const TriangleSoup& soup) {
 
 // Rounding each coordinate to float32 moves a vertex by at most sqrt(3) 2^-24 max|x|
 // (export units); scaling by a double adds at most 2^-52 of it. In model units.
-double float32_error(const EncodeContext& c) {
-  return std::sqrt(3.0) * (std::ldexp(1.0, -24) + std::ldexp(1.0, -52)) * max_abs_coordinate(c.exported) /
-         c.export_scale;
+double float32_bound(double largest_exported, double export_scale) {
+  return std::sqrt(3.0) * (std::ldexp(1.0, -24) + std::ldexp(1.0, -52)) * largest_exported / export_scale;
 }
 
 // Shortest round-trip decimals are exact; only the scaling to the export unit rounds.
-double double_error(const EncodeContext& c) {
-  return c.export_scale == 1.0
-             ? 0.0
-             : std::sqrt(3.0) * std::ldexp(1.0, -52) * max_abs_coordinate(c.exported) / c.export_scale;
+double decimal_bound(double largest_exported, double export_scale) {
+  return export_scale == 1.0 ? 0.0 : std::sqrt(3.0) * std::ldexp(1.0, -52) * largest_exported / export_scale;
 }
 
-// Whether a mesh moved by at most `moved` (model units) is still the valid mesh it was.
-bool still_valid(const EncodeContext& c, double moved) { return valid_when_moved(c.built.validation, moved); }
+// 3MF's micro-unit decimals of float32 values, and the scaling.
+double threemf_bound(double largest_exported, double export_scale) {
+  return threemf_max_error(largest_exported) / export_scale + decimal_bound(largest_exported, export_scale);
+}
+
+double float32_error(const EncodeContext& c) {
+  return float32_bound(max_abs_coordinate(c.exported), c.export_scale);
+}
+
+double double_error(const EncodeContext& c) {
+  return decimal_bound(max_abs_coordinate(c.exported), c.export_scale);
+}
 
 Encoded within_tolerance(Encoded e, const EncodeContext& c, std::string_view format) {
   if (e.added_error > c.output_tolerance) {
@@ -56,8 +64,95 @@ Encoded within_tolerance(Encoded e, const EncodeContext& c, std::string_view for
                     format, e.added_error, c.common.units, max_abs_coordinate(c.exported),
                     c.common.export_units, c.output_tolerance));
   }
-  e.valid_as_written = still_valid(c, e.added_error);
   return e;
+}
+
+// The validation of `stored`, a mesh as a file stores it: `input`'s triangles
+// (the same indices, the same order) with its vertices as written. `input` is
+// the built mesh (validated as `built`) times `scale` (and turned by quarter
+// turns, which round nothing): its combinatorial facts carry over, and only
+// its geometry is tested again (validate with moved_from: the same verdict
+// as validating it from scratch). A proven embedding margin carries over
+// times the scale, less what scaling rounded.
+ValidationReport validate_stored(const ValidationReport& built, const TriangleSoup& input, double scale,
+                                 const TriangleSoup& stored) {
+  ValidationReport original = built;
+  const double rounding =
+      scale == 1.0 ? 0.0 : std::sqrt(3.0) * std::ldexp(1.0, -52) * max_abs_coordinate(input);
+  original.embedding_margin = std::max(0.0, built.embedding_margin * scale * (1.0 - 1e-12) - rounding);
+  ValidationOptions options;
+  options.moved_from = MovedFrom{&input, &original};
+  return validate(stored, options);
+}
+
+// Quantization may collapse or fold faces: each candidate's decoded mesh
+// (whose faces are `input`'s: fit_draco checks that) is validated as stored.
+std::function<bool(const TriangleSoup&)> still_fit(const EncodeContext& c, const TriangleSoup& input,
+                                                   double scale) {
+  return [&c, &input, scale](const TriangleSoup& decoded) {
+    return fit_for(validate_stored(c.built.validation, input, scale, decoded), c.built.purpose);
+  };
+}
+
+// Every coordinate rounded to float32, as STL and PLY store them.
+TriangleSoup soup_in_float32(const TriangleSoup& soup) {
+  TriangleSoup out = soup;
+  for (Vec3& p : out.vertices) {
+    p = rounded_to_float32(p);
+  }
+  return out;
+}
+
+// Marks a mesh output's file valid as written once the mesh it stores is proven fit
+// for the built mesh's purpose (valid; for viewing, open only at its border):
+// stored exactly as built, or moved by less than the built mesh's embedding
+// margin, or else `stored()` (the mesh as a reader of the file gets it, in
+// the frame of `input`, the built mesh times `scale`) validated.
+// \throw OutputError when the stored mesh is not fit: that file is not written.
+struct StoredMesh {
+  const ValidationReport& built;  ///< the built mesh's report
+  const TriangleSoup& input;      ///< the built mesh in the file's frame, before rounding
+  double scale = 1.0;             ///< input = built mesh x scale
+  std::function<TriangleSoup()> stored;
+};
+
+void prove_as_stored(Encoded& e, const EncodeContext& c, std::string_view format, const StoredMesh& mesh) {
+  const MeshPurpose purpose = c.built.purpose;
+  const bool moved = e.added_error != 0.0;
+  if (fit_for(mesh.built, purpose) && (!moved || e.added_error < mesh.built.embedding_margin)) {
+    e.valid_as_written = true;
+    return;
+  }
+  const ValidationReport report = validate_stored(mesh.built, mesh.input, mesh.scale, mesh.stored());
+  if (!fit_for(report, purpose)) {
+    std::string defects;
+    for (const std::string& line : describe_defects(report)) defects += "; " + line;
+    throw OutputError(
+        std::string(format),
+        fmt::format("{}: as the file stores it (vertices moved by up to {:.3g} {}), the mesh is "
+                    "no longer valid{}; nothing is written to it: the design has features "
+                    "finer than that (points or edges nearly touching), or drop {}",
+                    format, e.added_error, c.common.units, defects, format));
+  }
+  e.valid_as_written = true;
+}
+
+// The exported mesh as a float32 file (STL, PLY) stores it.
+StoredMesh float32_file(const EncodeContext& c) {
+  return {c.built.validation, c.exported, c.export_scale, [&c] { return soup_in_float32(c.exported); }};
+}
+
+// The exported mesh as a file of exact decimals (OBJ, OFF) stores it.
+StoredMesh decimal_file(const EncodeContext& c) {
+  return {c.built.validation, c.exported, c.export_scale, [&c] { return c.exported; }};
+}
+
+// The objects of a 3MF file as its reader gets them, in file order.
+std::vector<TriangleSoup> stored_3mf_objects(const std::string& bytes) {
+  std::vector<TriangleSoup> soups;
+  for (ThreeMfObject& object : parse_3mf(bytes, "3mf output").objects)
+    soups.push_back(std::move(object.soup));
+  return soups;
 }
 
 using Files = std::vector<Encoded>;
@@ -74,46 +169,37 @@ Files encode_stl_output(const EncodeContext& c) {
   Encoded e = unitless({}, c, float32_error(c));
   const TriangleSoup& soup = c.exported;
   e.stream = [&soup](const std::function<void(std::string_view)>& sink) { encode_stl_pieces(soup, sink); };
-  return {within_tolerance(std::move(e), c, "stl")};
+  e = within_tolerance(std::move(e), c, "stl");
+  prove_as_stored(e, c, "stl", float32_file(c));
+  return {std::move(e)};
 }
 Files encode_obj_output(const EncodeContext& c) {
-  return {within_tolerance(unitless(encode_obj(c.exported), c, double_error(c)), c, "obj")};
+  Encoded e = within_tolerance(unitless(encode_obj(c.exported), c, double_error(c)), c, "obj");
+  prove_as_stored(e, c, "obj", decimal_file(c));
+  return {std::move(e)};
 }
 Files encode_ply_output(const EncodeContext& c) {
-  return {within_tolerance(unitless(encode_ply(c.exported), c, float32_error(c)), c, "ply")};
+  Encoded e = within_tolerance(unitless(encode_ply(c.exported), c, float32_error(c)), c, "ply");
+  prove_as_stored(e, c, "ply", float32_file(c));
+  return {std::move(e)};
 }
 Files encode_off_output(const EncodeContext& c) {
-  return {within_tolerance(unitless(encode_off(c.exported), c, double_error(c)), c, "off")};
+  Encoded e = within_tolerance(unitless(encode_off(c.exported), c, double_error(c)), c, "off");
+  prove_as_stored(e, c, "off", decimal_file(c));
+  return {std::move(e)};
 }
 
 Files encode_3mf_output(const EncodeContext& c) {
   ThreeMfOptions options;
   options.units = c.common.export_units;
   options.title = c.common.name;
-  const double error = threemf_max_error(max_abs_coordinate(c.exported)) / c.export_scale + double_error(c);
-  return {within_tolerance(unitless(encode_3mf({{c.common.name, c.exported}}, options), c, error), c, "3mf")};
-}
-
-// Quantization may collapse or fold faces: each candidate's decoded mesh is
-// validated. Its faces are `input`'s (fit_draco checks that), so its
-// combinatorial facts are the built mesh's (validated by the job) and only
-// its geometry is tested again (validate with moved_from: the same verdict as
-// validating it from scratch).
-// A proven embedding margin (a vessel's) carries over to `input`, the built
-// mesh times `scale` (and turned by quarter turns, which round nothing):
-// times the scale, less what scaling rounded.
-std::function<bool(const TriangleSoup&)> still_fit(const EncodeContext& c, const TriangleSoup& input,
-                                                   double scale) {
-  const MeshPurpose purpose = c.built.purpose;
-  ValidationReport built = c.built.validation;
-  const double rounding =
-      scale == 1.0 ? 0.0 : std::sqrt(3.0) * std::ldexp(1.0, -52) * max_abs_coordinate(input);
-  built.embedding_margin = std::max(0.0, built.embedding_margin * scale * (1.0 - 1e-12) - rounding);
-  return [purpose, built = std::move(built), &input](const TriangleSoup& decoded) {
-    ValidationOptions options;
-    options.moved_from = MovedFrom{&input, &built};
-    return fit_for(validate(decoded, options), purpose);
-  };
+  const double error = threemf_bound(max_abs_coordinate(c.exported), c.export_scale);
+  Encoded e =
+      within_tolerance(unitless(encode_3mf({{c.common.name, c.exported}}, options), c, error), c, "3mf");
+  prove_as_stored(e, c, "3mf", {c.built.validation, c.exported, c.export_scale, [&e] {
+                                  return stored_3mf_objects(e.bytes).front();
+                                }});
+  return {std::move(e)};
 }
 
 Files encode_drc_output(const EncodeContext& c) {
@@ -121,7 +207,7 @@ Files encode_drc_output(const EncodeContext& c) {
   DracoFit fit = fit_draco(c.exported, tolerance, still_fit(c, c.exported, c.export_scale), "drc");
   // fit.bytes are the file whose decoding was matched to the mesh and validated.
   Encoded e = unitless(std::move(fit.bytes), c, fit.max_displacement / c.export_scale);
-  e.valid_as_written = c.built.validation.valid();
+  e.valid_as_written = true;  // its decoding was validated (still_fit)
   return {std::move(e)};
 }
 
@@ -135,10 +221,14 @@ GlbOptions glb_options(const EncodeContext& c) {
 Files encode_glb_output(const EncodeContext& c) {
   const GlbOptions options = glb_options(c);
   // float32 metres: relative rounding as for STL, of the model's own coordinates.
-  const double error =
-      std::sqrt(3.0) * (std::ldexp(1.0, -24) + std::ldexp(1.0, -52)) * max_abs_coordinate(c.built.soup);
+  const double error = float32_bound(max_abs_coordinate(c.built.soup), 1.0);
   Encoded e{encode_glb(c.built.soup, options), "m", error, ""};
-  return {within_tolerance(std::move(e), c, "glb")};
+  const TriangleSoup metres = to_gltf_frame(c.built.soup, options.scale_to_metres);
+  e = within_tolerance(std::move(e), c, "glb");
+  prove_as_stored(e, c, "glb", {c.built.validation, metres, options.scale_to_metres, [&metres] {
+                                  return soup_in_float32(metres);
+                                }});
+  return {std::move(e)};
 }
 
 Files encode_glb_draco_output(const EncodeContext& c) {
@@ -149,7 +239,7 @@ Files encode_glb_draco_output(const EncodeContext& c) {
   options.draco = true;
   options.draco_position_bits = fit.bits;
   Encoded e{encode_glb(c.built.soup, options), "m", fit.max_displacement / options.scale_to_metres, ""};
-  e.valid_as_written = c.built.validation.valid();
+  e.valid_as_written = true;  // its decoding was validated (still_fit)
   return {std::move(e)};
 }
 
@@ -176,9 +266,19 @@ std::vector<NamedSoup> exported_parts(const EncodeContext& c) {
 
 Files encode_mould_stl_output(const EncodeContext& c) {
   Files files;
-  for (const NamedSoup& p : exported_parts(c)) {
-    files.push_back({encode_stl(p.soup), c.common.export_units, float32_error(c), ".mould-" + p.name + ".stl",
-                     nullptr, false});
+  const std::vector<NamedSoup> parts = exported_parts(c);
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    const NamedSoup& p = parts[i];
+    Encoded e{encode_stl(p.soup),
+              c.common.export_units,
+              float32_bound(max_abs_coordinate(p.soup), c.export_scale),
+              ".mould-" + p.name + ".stl",
+              nullptr,
+              std::nullopt};
+    prove_as_stored(e, c, "mould_stl", {c.built.mould_parts[i].validation, p.soup, c.export_scale, [&p] {
+                                          return soup_in_float32(p.soup);
+                                        }});
+    files.push_back(std::move(e));
   }
   return files;
 }
@@ -193,8 +293,24 @@ Files encode_mould_3mf_output(const EncodeContext& c) {
   ThreeMfOptions options;
   options.units = c.common.export_units;
   options.title = c.common.name + " mould";
-  return {{encode_3mf(objects, options), c.common.export_units, threemf_max_error(largest) / c.export_scale,
-           "", nullptr, false}};
+  Encoded e{encode_3mf(objects, options),
+            c.common.export_units,
+            threemf_max_error(largest) / c.export_scale,
+            "",
+            nullptr,
+            std::nullopt};
+  // Each part as the file stores it: its own object, read back (once, when a part needs it).
+  std::optional<std::vector<TriangleSoup>> stored;
+  for (std::size_t i = 0; i < objects.size(); ++i) {
+    prove_as_stored(e, c, "mould_3mf",
+                    {c.built.mould_parts[i].validation, objects[i].soup, c.export_scale, [&, i] {
+                       if (!stored) stored = stored_3mf_objects(e.bytes);
+                       if (stored->size() != objects.size())
+                         throw std::logic_error("mould_3mf: the file lost a part");
+                       return (*stored)[i];
+                     }});
+  }
+  return {std::move(e)};
 }
 
 Files encode_nc_output(const EncodeContext& c) {
@@ -300,6 +416,16 @@ std::string kind_list(const KindSet& set) {
 }
 
 }  // namespace
+
+double writing_error_bound(std::string_view format, double largest, double export_scale) {
+  const double exported = largest * export_scale;
+  if (format == "stl" || format == "ply" || format == "mould_stl")
+    return float32_bound(exported, export_scale);
+  if (format == "glb") return float32_bound(largest, 1.0);
+  if (format == "3mf" || format == "mould_3mf") return threemf_bound(exported, export_scale);
+  if (format == "obj" || format == "off") return decimal_bound(exported, export_scale);
+  return 0.0;
+}
 
 bool has_content(const Design& design, OutputContent content) {
   switch (content) {

@@ -71,6 +71,14 @@ struct Encoded {
   std::optional<bool> valid_as_written = std::nullopt;
 };
 
+/// A bound on how far writing `format` moves a vertex whose coordinates are
+/// at most `largest` in absolute value (model units; `export_scale` export
+/// units per model unit), in model units: float32 rounding (stl, ply, glb,
+/// mould_stl), 3MF's micro-unit decimals (3mf, mould_3mf), the scaling of
+/// exact decimals (obj, off). 0 for the others: no mesh, or Draco, which
+/// measures its own within what is left.
+double writing_error_bound(std::string_view format, double largest, double export_scale);
+
 /// What an output is made from: the builders make the cutting outline only when an output needs it.
 enum class OutputContent {
   Triangles,  ///< the design's mesh

@@ -61,6 +61,7 @@ nlohmann::ordered_json to_json(const JobReport& r) {
   j["export_units"] = r.export_units;
   j["tolerance"] = r.tolerance;
   j["max_deviation"] = r.max_deviation;
+  j["tolerance_split"] = {{"build", r.build_tolerance}, {"outputs", r.tolerance - r.build_tolerance}};
   j["bounding_box"] = bounding_box_json(r.bbox_min, r.bbox_max, r.units);
   j["outputs"] = r.outputs;
   j["files"] = nlohmann::ordered_json::array();

@@ -95,9 +95,9 @@ TEST_CASE("countertop run: default outputs are STL, Draco, DXF and SVG, and the 
   CHECK(j["build"]["holes"] == 2);
   CHECK(j.contains("self_intersection_proof"));
   CHECK(j["topology"] == "analysed");
-  // No embedding margin for slabs yet: float32 rounding is bounded, not re-proven.
+  // No embedding margin for slabs yet: the STL as stored (float32) is validated again.
   CHECK(j["files"][0]["format"] == "stl");
-  CHECK(j["files"][0]["valid_as_written"] == false);
+  CHECK(j["files"][0]["valid_as_written"] == true);
   CHECK_FALSE(j.contains("topology_proof"));
   for (const char* stage : {"curve", "region", "build", "validate", "encode_stl", "encode_dxf", "write"}) {
     CHECK(j["timings_ms"].contains(stage));
