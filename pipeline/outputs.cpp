@@ -424,6 +424,10 @@ double writing_error_bound(std::string_view format, double largest, double expor
   if (format == "glb") return float32_bound(largest, 1.0);
   if (format == "3mf" || format == "mould_3mf") return threemf_bound(exported, export_scale);
   if (format == "obj" || format == "off") return decimal_bound(exported, export_scale);
+  // Draco measures its own; its decoded positions are float32, and the fewest
+  // bits that fit round about as much again: a share to keep, not a bound.
+  if (format == "drc") return 2.0 * float32_bound(exported, export_scale);
+  if (format == "glb_draco") return 2.0 * float32_bound(largest, 1.0);
   return 0.0;
 }
 

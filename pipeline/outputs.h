@@ -75,8 +75,10 @@ struct Encoded {
 /// at most `largest` in absolute value (model units; `export_scale` export
 /// units per model unit), in model units: float32 rounding (stl, ply, glb,
 /// mould_stl), 3MF's micro-unit decimals (3mf, mould_3mf), the scaling of
-/// exact decimals (obj, off). 0 for the others: no mesh, or Draco, which
-/// measures its own within what is left.
+/// exact decimals (obj, off). For Draco (drc, glb_draco), which measures its
+/// own within what is left, the share to keep: twice float32's rounding (its
+/// decoded positions are float32, and the fewest bits that fit round about
+/// as much again). 0 for outputs that are no mesh.
 double writing_error_bound(std::string_view format, double largest, double export_scale);
 
 /// What an output is made from: the builders make the cutting outline only when an output needs it.
