@@ -11,7 +11,7 @@
 #include <array>
 #include <iterator>
 #include <memory>
-#include <optional>
+#include <utility>
 
 #include "geometry/mesh/bounding_box.h"
 
@@ -183,26 +183,50 @@ bool reaches_into(const Solid& a, const Solid& b) {
 
 }  // namespace
 
-std::vector<std::pair<std::size_t, std::size_t>> interpenetrating_pairs(
-    const std::vector<const TriangleSoup*>& solids) {
-  std::vector<std::optional<BoundingBox>> boxes(solids.size());
+std::size_t interpenetration_work_bound(std::size_t triangles) { return 16 * triangles + 100000; }
+
+Interpenetration interpenetrating_pairs(const std::vector<const TriangleSoup*>& solids,
+                                        std::size_t max_work) {
+  std::vector<std::size_t> judged;
+  std::vector<BoundingBox> boxes(solids.size());
+  std::size_t triangles = 0;
   for (std::size_t i = 0; i < solids.size(); ++i) {
-    if (solids[i] != nullptr) boxes[i] = bounding_box(solids[i]->vertices);
+    if (solids[i] == nullptr) continue;
+    judged.push_back(i);
+    boxes[i] = bounding_box(solids[i]->vertices);
+    triangles += solids[i]->triangles.size();
   }
+  if (max_work == 0) max_work = interpenetration_work_bound(triangles);
+  // A sweep along x: only pairs whose x ranges overlap are compared.
+  std::sort(judged.begin(), judged.end(), [&](std::size_t a, std::size_t b) {
+    return std::make_pair(boxes[a].lo.x(), a) < std::make_pair(boxes[b].lo.x(), b);
+  });
   std::vector<std::unique_ptr<Solid>> ready(solids.size());
   const auto solid = [&](std::size_t i) -> const Solid& {
     if (!ready[i]) ready[i] = std::make_unique<Solid>(*solids[i]);
     return *ready[i];
   };
-  std::vector<std::pair<std::size_t, std::size_t>> pairs;
-  for (std::size_t i = 0; i < solids.size(); ++i) {
-    for (std::size_t j = i + 1; j < solids.size(); ++j) {
-      if (!boxes[i] || !boxes[j] || !boxes_overlap(*boxes[i], *boxes[j])) continue;
-      if (!boxes_overlap(solid(i).box(), solid(j).box())) continue;
-      if (reaches_into(solid(i), solid(j)) || reaches_into(solid(j), solid(i))) pairs.emplace_back(i, j);
+  Interpenetration found;
+  std::size_t work = 0;
+  for (std::size_t a = 0; a < judged.size() && found.complete; ++a) {
+    for (std::size_t b = a + 1; b < judged.size() && boxes[judged[b]].lo.x() < boxes[judged[a]].hi.x(); ++b) {
+      const std::size_t i = std::min(judged[a], judged[b]);
+      const std::size_t j = std::max(judged[a], judged[b]);
+      const std::size_t cost = boxes_overlap(boxes[i], boxes[j])
+                                   ? 1 + solids[i]->triangles.size() + solids[j]->triangles.size()
+                                   : 1;
+      if (work + cost > max_work) {
+        found.complete = false;
+        break;
+      }
+      work += cost;
+      if (cost == 1 || !boxes_overlap(solid(i).box(), solid(j).box())) continue;
+      if (reaches_into(solid(i), solid(j)) || reaches_into(solid(j), solid(i)))
+        found.pairs.emplace_back(i, j);
     }
   }
-  return pairs;
+  std::sort(found.pairs.begin(), found.pairs.end());
+  return found;
 }
 
 }  // namespace fabmesh

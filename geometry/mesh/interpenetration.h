@@ -10,12 +10,25 @@
 
 namespace fabmesh {
 
-/// The pairs (i, j), i < j, of `solids` whose interiors surely overlap, in
-/// increasing order. Every non-null solid must be valid (closed, manifold,
-/// consistently and outward oriented, without self-intersection: it has an
-/// inside); null entries are not judged. Sound and conservative, with exact
-/// predicates: only pairs whose bounding boxes overlap with positive volume
-/// are tested, and a pair is reported when
+/// What interpenetrating_pairs found.
+struct Interpenetration {
+  std::vector<std::pair<std::size_t, std::size_t>> pairs;  ///< (i, j), i < j, in increasing order
+  /// False when the work bound stopped the search: the pairs it had not
+  /// reached were not tested (none of them is in `pairs`).
+  bool complete = true;
+};
+
+/// Work units interpenetrating_pairs may spend on `triangles` triangles in
+/// all: 16 per triangle and 100000 more. A candidate pair (bounding boxes
+/// compared) costs 1, a pair tested the triangles of both.
+std::size_t interpenetration_work_bound(std::size_t triangles);
+
+/// The pairs (i, j), i < j, of `solids` whose interiors surely overlap.
+/// Every non-null solid must be valid (closed, manifold, consistently and
+/// outward oriented, without self-intersection: it has an inside); null
+/// entries are not judged. Sound and conservative, with exact predicates:
+/// only pairs whose bounding boxes overlap with positive volume are tested,
+/// and a pair is reported when
 /// 1. a vertex (of a triangle) of one lies strictly inside the other
 ///    (ray parity), or
 /// 2. an edge of one crosses a face of the other transversally, through the
@@ -26,11 +39,13 @@ namespace fabmesh {
 ///    side of it: two copies of one body).
 /// Each is a point where both insides meet. Touching is never reported:
 /// faces meeting back to back (mould halves on their split plane), at an
-/// edge or a vertex. A pair whose surfaces meet only where one's vertices,
-/// edges and faces lie on the other's surface without any of the three
-/// (a tetrahedron inscribed in a cube, its corners at the cube's corners)
-/// is not reported.
-std::vector<std::pair<std::size_t, std::size_t>> interpenetrating_pairs(
-    const std::vector<const TriangleSoup*>& solids);
+/// edge or a vertex. A pair whose surfaces meet only where each one's
+/// vertices and edges lie on the other's surface, without coincident faces
+/// facing alike (a tetrahedron inscribed in a cube), is not reported.
+/// Stops when the next pair would exceed `max_work` (see
+/// interpenetration_work_bound; 0: that bound for all the solids' triangles),
+/// so that many bodies piled together cost a bounded time.
+Interpenetration interpenetrating_pairs(const std::vector<const TriangleSoup*>& solids,
+                                        std::size_t max_work = 0);
 
 }  // namespace fabmesh

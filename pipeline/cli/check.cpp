@@ -49,7 +49,7 @@ struct FileCheck {
   std::vector<std::string> notes;
   std::vector<ObjectCheck> objects;  ///< one for a single-object file
   /// Several objects: the pairs of them that interpenetrate (indices into objects).
-  std::vector<std::pair<std::size_t, std::size_t>> interpenetrating;
+  Interpenetration assembly;
   StageTimings timings_ms;  ///< several objects: read and assembly
   Failure failure;          ///< why it could not be read, when not readable
 
@@ -73,7 +73,7 @@ ObjectCheck check_object(std::string name, const TriangleSoup& soup, double weld
 }
 
 /// The interpenetrating pairs of `objects`, the invalid ones not judged.
-std::vector<std::pair<std::size_t, std::size_t>> assembly_pairs(const std::vector<ObjectCheck>& objects) {
+Interpenetration assembly_pairs(const std::vector<ObjectCheck>& objects) {
   std::vector<const TriangleSoup*> solids;
   for (const ObjectCheck& o : objects) solids.push_back(o.report.valid() ? &o.welded : nullptr);
   return interpenetrating_pairs(solids);
@@ -97,7 +97,7 @@ FileCheck check_file(const std::string& path, double weld_tolerance) {
       for (MeshObject& object : file.objects)
         result.objects.push_back(check_object(std::move(object.name), object.soup, weld_tolerance, {}));
       StageTimer assembly(result.timings_ms);
-      result.interpenetrating = assembly_pairs(result.objects);
+      result.assembly = assembly_pairs(result.objects);
       assembly.lap("assembly");
     }
     for (ObjectCheck& o : result.objects) o.welded = {};
@@ -125,8 +125,9 @@ nlohmann::ordered_json assembly_json(const FileCheck& check) {
   }
   j["judged"] = judged;
   nlohmann::ordered_json pairs = nlohmann::ordered_json::array();
-  for (const auto& [a, b] : check.interpenetrating) pairs.push_back({a, b});
+  for (const auto& [a, b] : check.assembly.pairs) pairs.push_back({a, b});
   j["interpenetrating"] = pairs;
+  j["complete"] = check.assembly.complete;
   return j;
 }
 
@@ -204,11 +205,11 @@ std::string single_verdict(const FileCheck& check) {
 /// "assembly: 3 objects, none interpenetrating" or naming the pairs.
 std::string assembly_line(const FileCheck& check) {
   std::string text = fmt::format("  assembly: {} objects, ", check.objects.size());
-  if (check.interpenetrating.empty()) {
+  if (check.assembly.pairs.empty()) {
     text += "none interpenetrating";
   } else {
     std::vector<std::string> pairs;
-    for (const auto& [a, b] : check.interpenetrating) {
+    for (const auto& [a, b] : check.assembly.pairs) {
       pairs.push_back(
           fmt::format("{} '{}' and {} '{}'", a + 1, check.objects[a].name, b + 1, check.objects[b].name));
     }
@@ -218,6 +219,7 @@ std::string assembly_line(const FileCheck& check) {
                                     [](const ObjectCheck& o) { return o.report.valid(); });
   if (static_cast<std::size_t>(judged) < check.objects.size())
     text += fmt::format(" (judged among the {} valid: an invalid object has no inside)", judged);
+  if (!check.assembly.complete) text += " (the search stopped at its work bound: later pairs not tested)";
   return text + "\n";
 }
 
