@@ -188,8 +188,16 @@ ObjContent parse_obj_objects(std::string_view bytes, const std::string& name) {
   ObjGroups groups;
   ObjContent content;
   content.soup = parse_records(bytes, name, &groups);
-  DisjointSets<std::uint32_t> sets = shells(content.soup, groups);
   const std::vector<ObjGroups::Group>& declared = groups.groups();
+  if (declared.size() < 2) {  // one group at most: one object, no shells to tell apart
+    if (!declared.empty()) {
+      const ObjGroups::Group& only = declared.front();
+      content.object_names.push_back(only.object_name.empty() ? only.name : only.object_name);
+    }
+    content.face_object.assign(content.soup.triangles.size(), 0);
+    return content;
+  }
+  DisjointSets<std::uint32_t> sets = shells(content.soup, groups);
   std::vector<std::size_t> shells_of_object(declared.empty() ? 0 : declared.back().object + 1, 0);
   for (std::uint32_t g = 0; g < declared.size(); ++g) {
     if (sets.find(g) == g) ++shells_of_object[declared[g].object];
