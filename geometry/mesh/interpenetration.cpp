@@ -65,6 +65,7 @@ class Solid {
     std::vector<Face> hits;
     tree_->all_intersected_primitives(query, std::back_inserter(hits));
     std::vector<std::array<Point, 3>> out;
+    out.reserve(hits.size());
     for (const Face f : hits) out.push_back(corners_of(f));
     return out;
   }

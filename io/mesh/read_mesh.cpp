@@ -120,11 +120,15 @@ std::vector<MeshObject> gltf_objects(const GltfContent& content) {
   return objects;
 }
 
-/// MeshFile::objects of a 3MF build with several items (moved out of `content`).
+/// MeshFile::objects of a 3MF build with several items that have triangles
+/// (moved out of `content`; items without any are left out).
 std::vector<MeshObject> threemf_objects(ThreeMfContent& content) {
-  if (content.objects.size() < 2) return {};
+  const auto bodies = std::count_if(content.objects.begin(), content.objects.end(),
+                                    [](const ThreeMfObject& o) { return !o.soup.triangles.empty(); });
+  if (bodies < 2) return {};
   std::vector<MeshObject> objects;
   for (ThreeMfObject& object : content.objects) {
+    if (object.soup.triangles.empty()) continue;
     std::string name =
         object.name.empty() ? fmt::format("object {}", object.resource_id) : std::move(object.name);
     objects.push_back({std::move(name), std::move(object.soup)});

@@ -47,8 +47,8 @@ struct MeshFile {
   /// The file's objects when it holds more than one; empty when it holds one
   /// (then `soup` is that object). An object is
   /// - 3MF: a build item, its object's components expanded and every
-  ///   transform applied; named by the object's name attribute, else
-  ///   "object ID" (its resource id);
+  ///   transform applied (items without a triangle left out); named by the
+  ///   object's name attribute, else "object ID" (its resource id);
   /// - glTF/GLB: a node instance of a mesh in the scene (all the mesh's
   ///   primitives), placed by the node's global transform; named as
   ///   GltfInstance::name;

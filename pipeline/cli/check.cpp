@@ -75,6 +75,7 @@ ObjectCheck check_object(std::string name, const TriangleSoup& soup, double weld
 /// The interpenetrating pairs of `objects`, the invalid ones not judged.
 Interpenetration assembly_pairs(const std::vector<ObjectCheck>& objects) {
   std::vector<const TriangleSoup*> solids;
+  solids.reserve(objects.size());
   for (const ObjectCheck& o : objects) solids.push_back(o.report.valid() ? &o.welded : nullptr);
   return interpenetrating_pairs(solids);
 }
@@ -93,6 +94,7 @@ FileCheck check_file(const std::string& path, double weld_tolerance) {
     if (file.objects.empty()) {
       result.objects.push_back(check_object("", file.soup, weld_tolerance, timings));
     } else {
+      file.soup = {};  // the objects hold the same triangles
       result.timings_ms = timings;
       for (MeshObject& object : file.objects)
         result.objects.push_back(check_object(std::move(object.name), object.soup, weld_tolerance, {}));

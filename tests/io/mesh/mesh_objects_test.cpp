@@ -41,8 +41,8 @@ std::string corpus(const std::string& name) {
   return std::string(FABMESH_SOURCE_DIR) + "/tests/data/check-corpus/objects/" + name;
 }
 
-/// A 3MF model part: a mesh object id 1 (`name`), a components object id 2
-/// placing it twice, and build items as `items` says.
+/// A 3MF model part: a mesh object id 1 ("cube"), a components object id 2
+/// placing it twice, an empty mesh id 3, and build items as `items` says.
 std::string components_model(const std::string& items) {
   const TriangleSoup cube = test::box();
   std::string xml = R"(<?xml version="1.0" encoding="UTF-8"?><model unit="millimeter" )"
@@ -58,6 +58,7 @@ std::string components_model(const std::string& items) {
   xml += "</triangles></mesh></object>";
   xml += R"(<object id="2" type="model"><components><component objectid="1"/>)"
          R"(<component objectid="1" transform="1 0 0 0 1 0 0 0 1 5 0 0"/></components></object>)";
+  xml += R"(<object id="3" type="model" name="empty"><mesh><vertices/><triangles/></mesh></object>)";
   return xml + "</resources><build>" + items + "</build></model>";
 }
 
@@ -87,6 +88,16 @@ TEST_CASE("objects: 3MF build items with components expanded and transforms appl
   // The merged soup is parse_mesh's, as before.
   CHECK(file.soup.triangles.size() == 36);
   CHECK(parse_mesh(bytes, "two.3mf").triangles.size() == 36);
+}
+
+TEST_CASE("objects: 3MF build items without a triangle are left out", "[mesh][objects]") {
+  const std::string one = threemf_package(components_model(R"(<item objectid="1"/><item objectid="3"/>)"));
+  CHECK(parse_mesh_file(one, "one.3mf").objects.empty());
+  const std::string two =
+      threemf_package(components_model(R"(<item objectid="3"/><item objectid="1"/><item objectid="2"/>)"));
+  const MeshFile file = parse_mesh_file(two, "two.3mf");
+  REQUIRE(file.objects.size() == 2);
+  CHECK(file.objects[0].name == "cube");
 }
 
 TEST_CASE("objects: OBJ o objects are apart, named", "[mesh][objects]") {
