@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "geometry/mesh/soup.h"
 
@@ -50,6 +51,15 @@ struct GlbOptions {
 /// Draco options out of range.
 std::string encode_glb(const TriangleSoup& soup, const GlbOptions& options);
 
+/// One mesh instance of a glTF scene: a node with a mesh that gave triangles.
+struct GltfInstance {
+  /// The node's name; else its mesh's name and the node's index ("cup (node
+  /// 3)"); else "node 3".
+  std::string name;
+  std::size_t first_vertex = 0;    ///< its vertices in GltfContent::soup start here
+  std::size_t first_triangle = 0;  ///< and its triangles here; both end where the next instance's start
+};
+
 /// What parse_gltf read and what it did to it.
 struct GltfContent {
   /// Every triangle of the scene, metres, in the file's frame (Y-up), each
@@ -61,6 +71,9 @@ struct GltfContent {
   std::size_t skipped_primitives = 0;     ///< points and lines (modes 0-3): no surface
   std::size_t transformed_instances = 0;  ///< mesh instances with a non-identity transform
   std::size_t mirrored_instances = 0;     ///< of which mirrored (negative determinant): winding reversed
+  /// Every node instance of a mesh that gave triangles, in scene order
+  /// (depth first): the soup is their concatenation.
+  std::vector<GltfInstance> instances;
 };
 
 /// Limits of the glTF reader.

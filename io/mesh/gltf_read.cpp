@@ -232,6 +232,19 @@ class GltfReader {
     return out;
   }
 
+  /// The "name" string of `o`, or "" when it has none.
+  static std::string name_of(const Json& o) {
+    const auto name = o.find("name");
+    return name != o.end() && name->is_string() ? name->get<std::string>() : std::string();
+  }
+
+  /// GltfInstance::name of node `index` (which has mesh `mesh`).
+  std::string instance_name(const Json& node, std::uint64_t index, std::uint64_t mesh) const {
+    if (std::string name = name_of(node); !name.empty()) return name;
+    const std::string mesh_name = name_of(doc_.element("meshes", mesh));
+    return mesh_name.empty() ? fmt::format("node {}", index) : fmt::format("{} (node {})", mesh_name, index);
+  }
+
   void walk_scene(GltfContent& c) const {
     const std::size_t node_count = doc_.array(doc_.root(), "nodes", "").size();
     std::vector<std::uint64_t> roots;
@@ -264,15 +277,19 @@ class GltfReader {
       visited[index] = 1;
       const Eigen::Affine3d world = parent * local_transform(node, where);
       if (const auto mesh = doc_.optional_uint(node, "mesh", where)) {
-        const std::size_t before = c.soup.triangles.size();
+        const GltfInstance instance{instance_name(node, index, *mesh), c.soup.vertices.size(),
+                                    c.soup.triangles.size()};
         const std::string mesh_where = fmt::format("meshes[{}]", *mesh);
         const Json& primitives = doc_.array(doc_.element("meshes", *mesh), "primitives", mesh_where + ".");
         for (std::size_t k = 0; k < primitives.size(); ++k) {
           append_primitive(primitives[k], fmt::format("{}.primitives[{}]", mesh_where, k), world, c);
         }
-        if (c.soup.triangles.size() > before && !world.matrix().isIdentity(0.0)) {
-          ++c.transformed_instances;
-          if (world.linear().determinant() < 0) ++c.mirrored_instances;
+        if (c.soup.triangles.size() > instance.first_triangle) {
+          c.instances.push_back(instance);
+          if (!world.matrix().isIdentity(0.0)) {
+            ++c.transformed_instances;
+            if (world.linear().determinant() < 0) ++c.mirrored_instances;
+          }
         }
       }
       const std::vector<std::uint64_t> children = indices_in(node, "children", where);

@@ -3,8 +3,12 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cctype>
+#include <cstdint>
 #include <filesystem>
+#include <unordered_map>
+#include <utility>
 
 #include "geometry/core/errors.h"
 #include "io/file.h"
@@ -63,6 +67,75 @@ bool looks_like_gltf_json(std::string_view bytes) {
   return i < bytes.size() && bytes[i] == '{' && bytes.find("\"asset\"") != std::string_view::npos;
 }
 
+/// The triangles `faces` of `soup` with only the vertices they use, in
+/// the order of their first use.
+TriangleSoup sub_soup(const TriangleSoup& soup, const std::vector<std::uint32_t>& faces) {
+  TriangleSoup out;
+  std::unordered_map<std::uint32_t, std::uint32_t> index;
+  out.triangles.reserve(faces.size());
+  for (const std::uint32_t f : faces) {
+    std::array<std::uint32_t, 3> t{};
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t v = soup.triangles[f][k];
+      const auto [it, added] = index.emplace(v, static_cast<std::uint32_t>(out.vertices.size()));
+      if (added) out.vertices.push_back(soup.vertices[v]);
+      t[k] = it->second;
+    }
+    out.triangles.push_back(t);
+  }
+  return out;
+}
+
+/// MeshFile::objects of an OBJ file with several objects.
+std::vector<MeshObject> obj_objects(const ObjContent& content) {
+  if (content.object_names.size() < 2) return {};
+  std::vector<std::vector<std::uint32_t>> faces(content.object_names.size());
+  for (std::uint32_t f = 0; f < content.face_object.size(); ++f) faces[content.face_object[f]].push_back(f);
+  std::vector<MeshObject> objects;
+  for (std::size_t i = 0; i < faces.size(); ++i)
+    objects.push_back({content.object_names[i], sub_soup(content.soup, faces[i])});
+  return objects;
+}
+
+/// MeshFile::objects of a glTF scene with several mesh instances.
+std::vector<MeshObject> gltf_objects(const GltfContent& content) {
+  const std::vector<GltfInstance>& instances = content.instances;
+  if (instances.size() < 2) return {};
+  std::vector<MeshObject> objects;
+  for (std::size_t i = 0; i < instances.size(); ++i) {
+    const bool last = i + 1 == instances.size();
+    const std::size_t v0 = instances[i].first_vertex;
+    const std::size_t v1 = last ? content.soup.vertices.size() : instances[i + 1].first_vertex;
+    const std::size_t t1 = last ? content.soup.triangles.size() : instances[i + 1].first_triangle;
+    MeshObject object{instances[i].name, {}};
+    object.soup.vertices.assign(content.soup.vertices.begin() + static_cast<std::ptrdiff_t>(v0),
+                                content.soup.vertices.begin() + static_cast<std::ptrdiff_t>(v1));
+    const auto base = static_cast<std::uint32_t>(v0);
+    for (std::size_t t = instances[i].first_triangle; t < t1; ++t) {
+      const auto& c = content.soup.triangles[t];
+      object.soup.triangles.push_back({c[0] - base, c[1] - base, c[2] - base});
+    }
+    objects.push_back(std::move(object));
+  }
+  return objects;
+}
+
+/// MeshFile::objects of a 3MF build with several items that have triangles
+/// (moved out of `content`; items without any are left out).
+std::vector<MeshObject> threemf_objects(ThreeMfContent& content) {
+  const auto bodies = std::count_if(content.objects.begin(), content.objects.end(),
+                                    [](const ThreeMfObject& o) { return !o.soup.triangles.empty(); });
+  if (bodies < 2) return {};
+  std::vector<MeshObject> objects;
+  for (ThreeMfObject& object : content.objects) {
+    if (object.soup.triangles.empty()) continue;
+    std::string name =
+        object.name.empty() ? fmt::format("object {}", object.resource_id) : std::move(object.name);
+    objects.push_back({std::move(name), std::move(object.soup)});
+  }
+  return objects;
+}
+
 }  // namespace
 
 MeshFormat detect_format(std::string_view bytes, const std::string& path) {
@@ -112,9 +185,12 @@ MeshFile parse_mesh_file(std::string_view bytes, const std::string& path) {
     case MeshFormat::Stl:
       out.soup = parse_stl(bytes, path);
       break;
-    case MeshFormat::Obj:
-      out.soup = parse_obj(bytes, path);
+    case MeshFormat::Obj: {
+      ObjContent content = parse_obj_objects(bytes, path);
+      out.objects = obj_objects(content);
+      out.soup = std::move(content.soup);
       break;
+    }
     case MeshFormat::Ply:
       out.soup = parse_ply(bytes, path);
       break;
@@ -130,11 +206,13 @@ MeshFile parse_mesh_file(std::string_view bytes, const std::string& path) {
       out.units = content.unit;
       out.notes = content.warnings;
       out.notes.push_back(fmt::format("{} object(s)", content.objects.size()));
+      out.objects = threemf_objects(content);
       break;
     }
     case MeshFormat::Glb:
     case MeshFormat::Gltf: {
       GltfContent content = parse_gltf(bytes, path);
+      out.objects = gltf_objects(content);
       out.soup = std::move(content.soup);
       out.units = "m";
       out.notes.push_back(

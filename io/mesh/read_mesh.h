@@ -31,19 +31,39 @@ TriangleSoup parse_mesh(std::string_view bytes, const std::string& path);
 /// "STL", "OBJ", "PLY", "OFF", "Draco", "3MF", "GLB" or "glTF".
 const char* to_string(MeshFormat format);
 
+/// One body of a mesh file (see MeshFile::objects).
+struct MeshObject {
+  std::string name;   ///< as the file names it, or by its place: see MeshFile::objects
+  TriangleSoup soup;  ///< only the vertices its triangles use, in the file's order
+};
+
 /// A mesh file read: its soup, its format, and its unit when the file says
 /// (3MF's unit, glTF's metres; empty for formats that carry none).
 struct MeshFile {
-  TriangleSoup soup;
+  TriangleSoup soup;  ///< every triangle of the file (all its objects: parse_mesh's soup)
   MeshFormat format = MeshFormat::Stl;
   std::string units;
   std::vector<std::string> notes;  ///< what the reader did, e.g. "3 primitives, 1 Draco-compressed"
+  /// The file's objects when it holds more than one; empty when it holds one
+  /// (then `soup` is that object). An object is
+  /// - 3MF: a build item, its object's components expanded and every
+  ///   transform applied (items without a triangle left out); named by the
+  ///   object's name attribute, else "object ID" (its resource id);
+  /// - glTF/GLB: a node instance of a mesh in the scene (all the mesh's
+  ///   primitives), placed by the node's global transform; named as
+  ///   GltfInstance::name;
+  /// - OBJ: an `o` object, and the `g` groups of one only when they are
+  ///   separate shells (see parse_obj_objects); named by `o`, else `g`;
+  /// - STL, PLY, OFF, Draco: always one object.
+  /// `soup` holds the same triangles in the same order, objects one after
+  /// the other for 3MF and glTF (as read, for OBJ).
+  std::vector<MeshObject> objects;
 };
 
 /// Largest mesh file fabmesh reads (4 GiB: a binary STL of about 86 million triangles).
 inline constexpr std::size_t kMaxMeshFileBytes = std::size_t{4} << 30;
 
-/// Parses `bytes` as parse_mesh does, keeping the format, unit and notes.
+/// Parses `bytes` as parse_mesh does, keeping the format, unit, notes and objects.
 MeshFile parse_mesh_file(std::string_view bytes, const std::string& path);
 
 /// Reads the regular file at `path` (at most kMaxMeshFileBytes) and parses it.

@@ -642,6 +642,9 @@ ThreeMfContent parse_3mf(std::string_view bytes, const std::string& name, const 
     }
     ThreeMfObject body;
     body.name = reader.object_name(object.get());
+    DWORD id = 0;
+    reader.check(NMR::lib3mf_resource_getresourceid(object.get(), &id), object.get(), "object id");
+    body.resource_id = id;
     reader.append(object.get(), transform, 0, body.soup);
     content.objects.push_back(std::move(body));
   }

@@ -3,6 +3,7 @@
 // one mesh object and one build item per body, the unit in the model.
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -15,6 +16,9 @@ namespace fabmesh {
 struct ThreeMfObject {
   std::string name;   ///< the object's name attribute (may be empty)
   TriangleSoup soup;  ///< model units (ThreeMfOptions::units / ThreeMfContent::unit)
+  /// Read: the id of the build item's object in the model part (0 when
+  /// unknown); ignored by the writer, which numbers the objects itself.
+  std::uint32_t resource_id = 0;
 };
 
 /// Options of the 3MF writer.

@@ -3,16 +3,19 @@
 // when any cannot be read.
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "geometry/core/errors.h"
 #include "geometry/core/stage_timer.h"
+#include "geometry/mesh/interpenetration.h"
 #include "geometry/mesh/weld.h"
 #include "geometry/validation/validate.h"
 #include "io/mesh/read_mesh.h"
@@ -29,16 +32,53 @@ struct CheckArgs {
   double weld_tolerance = 0.0;
 };
 
-/// The outcome for one file: a report, or why it could not be read.
+/// One object of a file, welded and validated.
+struct ObjectCheck {
+  std::string name;  ///< empty for a file of one object
+  ValidationReport report;
+  std::size_t welded_vertices = 0;
+  TriangleSoup welded;  ///< kept for the assembly test when the file has several objects
+};
+
+/// The outcome for one file: a report per object, or why it could not be read.
 struct FileCheck {
   std::string file;
-  std::optional<ValidationReport> report;
+  bool readable = false;
   std::string format;
   std::string units;  ///< as the file states it; empty for formats that carry none
   std::vector<std::string> notes;
-  std::size_t welded_vertices = 0;
-  Failure failure;  ///< why it could not be read, when there is no report
+  std::vector<ObjectCheck> objects;  ///< one for a single-object file
+  /// Several objects: the pairs of them that interpenetrate (indices into objects).
+  Interpenetration assembly;
+  StageTimings timings_ms;  ///< several objects: read and assembly
+  Failure failure;          ///< why it could not be read, when not readable
+
+  bool several() const { return objects.size() > 1; }
+  bool valid() const {
+    return readable &&
+           std::all_of(objects.begin(), objects.end(), [](const ObjectCheck& o) { return o.report.valid(); });
+  }
 };
+
+ObjectCheck check_object(std::string name, const TriangleSoup& soup, double weld_tolerance,
+                         const StageTimings& before) {
+  StageTimings timings = before;
+  StageTimer timer(timings);
+  WeldResult welded = weld(soup, WeldOptions{weld_tolerance});
+  timer.lap("weld");
+  ObjectCheck result{std::move(name), validate(welded.soup), welded.merged_vertices, {}};
+  result.report.timings_ms.insert(result.report.timings_ms.begin(), timings.begin(), timings.end());
+  result.welded = std::move(welded.soup);
+  return result;
+}
+
+/// The interpenetrating pairs of `objects`, the invalid ones not judged.
+Interpenetration assembly_pairs(const std::vector<ObjectCheck>& objects) {
+  std::vector<const TriangleSoup*> solids;
+  solids.reserve(objects.size());
+  for (const ObjectCheck& o : objects) solids.push_back(o.report.valid() ? &o.welded : nullptr);
+  return interpenetrating_pairs(solids);
+}
 
 FileCheck check_file(const std::string& path, double weld_tolerance) {
   FileCheck result;
@@ -51,56 +91,160 @@ FileCheck check_file(const std::string& path, double weld_tolerance) {
     result.units = file.units;
     result.notes = std::move(file.notes);
     timer.lap("read");
-    WeldResult welded = weld(file.soup, WeldOptions{weld_tolerance});
-    timer.lap("weld");
-    ValidationReport report = validate(welded.soup);
-    report.timings_ms.insert(report.timings_ms.begin(), timings.begin(), timings.end());
-    result.report = std::move(report);
-    result.welded_vertices = welded.merged_vertices;
+    if (file.objects.empty()) {
+      result.objects.push_back(check_object("", file.soup, weld_tolerance, timings));
+    } else {
+      file.soup = {};  // the objects hold the same triangles
+      result.timings_ms = timings;
+      for (MeshObject& object : file.objects)
+        result.objects.push_back(check_object(std::move(object.name), object.soup, weld_tolerance, {}));
+      StageTimer assembly(result.timings_ms);
+      result.assembly = assembly_pairs(result.objects);
+      assembly.lap("assembly");
+    }
+    for (ObjectCheck& o : result.objects) o.welded = {};
+    result.readable = true;
   } catch (const InputError&) {
     result.failure = describe_failure(std::current_exception());
   }
   return result;
 }
 
+nlohmann::ordered_json object_json(const ObjectCheck& object) {
+  nlohmann::ordered_json j;
+  j["welded_vertices"] = object.welded_vertices;
+  j.update(validation_json(object.report));
+  j["timings_ms"] = timings_json(object.report.timings_ms);
+  return j;
+}
+
+nlohmann::ordered_json assembly_json(const FileCheck& check) {
+  nlohmann::ordered_json j;
+  j["objects"] = check.objects.size();
+  nlohmann::ordered_json judged = nlohmann::ordered_json::array();
+  for (std::size_t i = 0; i < check.objects.size(); ++i) {
+    if (check.objects[i].report.valid()) judged.push_back(i);
+  }
+  j["judged"] = judged;
+  nlohmann::ordered_json pairs = nlohmann::ordered_json::array();
+  for (const auto& [a, b] : check.assembly.pairs) pairs.push_back({a, b});
+  j["interpenetrating"] = pairs;
+  j["complete"] = check.assembly.complete;
+  return j;
+}
+
 nlohmann::ordered_json to_json(const FileCheck& check) {
   nlohmann::ordered_json j;
   j["file"] = check.file;
-  if (!check.report) {
+  if (!check.readable) {
     j["error"] = check.failure.message;
     j["valid"] = false;
     return j;
   }
   j["format"] = check.format;
   j["units"] = check.units.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(check.units);
-  j["welded_vertices"] = check.welded_vertices;
+  if (!check.several()) {
+    const ObjectCheck& only = check.objects.front();
+    j["welded_vertices"] = only.welded_vertices;
+    j["notes"] = check.notes;
+    j.update(validation_json(only.report));
+    j["timings_ms"] = timings_json(only.report.timings_ms);
+    return j;
+  }
   j["notes"] = check.notes;
-  j.update(validation_json(*check.report));
-  j["timings_ms"] = timings_json(check.report->timings_ms);
+  nlohmann::ordered_json objects = nlohmann::ordered_json::array();
+  for (const ObjectCheck& o : check.objects) {
+    nlohmann::ordered_json entry;
+    entry["name"] = o.name;
+    entry.update(object_json(o));
+    objects.push_back(std::move(entry));
+  }
+  j["objects"] = std::move(objects);
+  j["assembly"] = assembly_json(check);
+  j["valid"] = check.valid();
+  j["timings_ms"] = timings_json(check.timings_ms);
   return j;
 }
 
-std::string human_verdict(const FileCheck& check) {
-  if (!check.report) return fmt::format("{}: UNREADABLE: {}\n", check.file, check.failure.message);
-  const ValidationReport& r = *check.report;
-  std::string text = fmt::format("{}: {} ({} vertices, {} triangles, {} component{}", check.file,
-                                 r.valid() ? "valid" : "INVALID", r.vertices, r.triangles, r.components,
-                                 r.components == 1 ? "" : "s");
+/// "(V vertices, T triangles, C components, genus G, volume X u^3, area Y u^2)".
+std::string facts(const ValidationReport& r, const std::string& units) {
+  std::string text = fmt::format("({} vertices, {} triangles, {} component{}", r.vertices, r.triangles,
+                                 r.components, r.components == 1 ? "" : "s");
   if (r.genus) text += fmt::format(", genus {}", *r.genus);
-  const std::string unit = check.units.empty() ? "" : " " + check.units;
-  text += fmt::format(", volume {:g}{}, area {:g}{})\n", r.volume, unit.empty() ? "" : unit + "^3", r.area,
+  const std::string unit = units.empty() ? "" : " " + units;
+  text += fmt::format(", volume {:g}{}, area {:g}{})", r.volume, unit.empty() ? "" : unit + "^3", r.area,
                       unit.empty() ? "" : unit + "^2");
-  text += fmt::format("  {} file{}{}\n", check.format,
-                      check.units.empty() ? " (no unit in the file)" : ", unit " + check.units,
-                      check.format == "GLB" || check.format == "glTF" ? ", Y up" : "");
-  if (check.welded_vertices > 0) {
-    text += fmt::format(
-        "  welded {} coincident vertices{}\n", check.welded_vertices,
-        check.format == "STL" ? " (normal for STL, which repeats every vertex per triangle)" : "");
-  }
+  return text;
+}
+
+/// The file's format and unit line, then its notes.
+std::string file_lines(const FileCheck& check) {
+  std::string text = fmt::format("  {} file{}{}\n", check.format,
+                                 check.units.empty() ? " (no unit in the file)" : ", unit " + check.units,
+                                 check.format == "GLB" || check.format == "glTF" ? ", Y up" : "");
+  return text;
+}
+
+std::string welded_line(const FileCheck& check, const ObjectCheck& object, const char* indent) {
+  if (object.welded_vertices == 0) return "";
+  return fmt::format(
+      "{}welded {} coincident vertices{}\n", indent, object.welded_vertices,
+      check.format == "STL" ? " (normal for STL, which repeats every vertex per triangle)" : "");
+}
+
+std::string single_verdict(const FileCheck& check) {
+  const ObjectCheck& only = check.objects.front();
+  const ValidationReport& r = only.report;
+  std::string text =
+      fmt::format("{}: {} {}\n", check.file, r.valid() ? "valid" : "INVALID", facts(r, check.units));
+  text += file_lines(check);
+  text += welded_line(check, only, "  ");
   for (const std::string& note : check.notes) text += "  " + note + "\n";
   for (const std::string& line : describe_defects(r)) text += "  - " + line + "\n";
   return text;
+}
+
+/// "assembly: 3 objects, none interpenetrating" or naming the pairs.
+std::string assembly_line(const FileCheck& check) {
+  std::string text = fmt::format("  assembly: {} objects, ", check.objects.size());
+  if (check.assembly.pairs.empty()) {
+    text += "none interpenetrating";
+  } else {
+    std::vector<std::string> pairs;
+    for (const auto& [a, b] : check.assembly.pairs) {
+      pairs.push_back(
+          fmt::format("{} '{}' and {} '{}'", a + 1, check.objects[a].name, b + 1, check.objects[b].name));
+    }
+    text += fmt::format("interpenetrating: {}", fmt::join(pairs, ", "));
+  }
+  const auto judged = std::count_if(check.objects.begin(), check.objects.end(),
+                                    [](const ObjectCheck& o) { return o.report.valid(); });
+  if (static_cast<std::size_t>(judged) < check.objects.size())
+    text += fmt::format(" (judged among the {} valid: an invalid object has no inside)", judged);
+  if (!check.assembly.complete) text += " (the search stopped at its work bound: later pairs not tested)";
+  return text + "\n";
+}
+
+std::string several_verdict(const FileCheck& check) {
+  const auto valid = std::count_if(check.objects.begin(), check.objects.end(),
+                                   [](const ObjectCheck& o) { return o.report.valid(); });
+  std::string text = fmt::format("{}: {} ({} objects, {} valid)\n", check.file,
+                                 check.valid() ? "valid" : "INVALID", check.objects.size(), valid);
+  text += file_lines(check);
+  for (const std::string& note : check.notes) text += "  " + note + "\n";
+  for (std::size_t i = 0; i < check.objects.size(); ++i) {
+    const ObjectCheck& o = check.objects[i];
+    text += fmt::format("  object {} '{}': {} {}\n", i + 1, o.name, o.report.valid() ? "valid" : "INVALID",
+                        facts(o.report, check.units));
+    text += welded_line(check, o, "    ");
+    for (const std::string& line : describe_defects(o.report)) text += "    - " + line + "\n";
+  }
+  return text + assembly_line(check);
+}
+
+std::string human_verdict(const FileCheck& check) {
+  if (!check.readable) return fmt::format("{}: UNREADABLE: {}\n", check.file, check.failure.message);
+  return check.several() ? several_verdict(check) : single_verdict(check);
 }
 
 int run_check(const CheckArgs& args, Streams streams) {
@@ -110,10 +254,10 @@ int run_check(const CheckArgs& args, Streams streams) {
   for (const std::string& file : args.files) {
     checks.push_back(check_file(file, args.weld_tolerance));
     const FileCheck& c = checks.back();
-    if (!c.report) {
+    if (!c.readable) {
       streams.err << failure_line(c.failure) << "\n";
       code = std::max(code, c.failure.exit_code);
-    } else if (!c.report->valid()) {
+    } else if (!c.valid()) {
       code = std::max(code, kExitInvalid);
     }
     if (!args.json) streams.out << human_verdict(c);

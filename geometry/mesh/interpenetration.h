@@ -1,0 +1,51 @@
+#pragma once
+// Whether solids placed together (the objects of one file: mould parts, a
+// slicer's plate) overlap, as opposed to touch.
+
+#include <cstddef>
+#include <utility>
+#include <vector>
+
+#include "geometry/mesh/soup.h"
+
+namespace fabmesh {
+
+/// What interpenetrating_pairs found.
+struct Interpenetration {
+  std::vector<std::pair<std::size_t, std::size_t>> pairs;  ///< (i, j), i < j, in increasing order
+  /// False when the work bound stopped the search: the pairs it had not
+  /// reached were not tested (none of them is in `pairs`).
+  bool complete = true;
+};
+
+/// Work units interpenetrating_pairs may spend on `triangles` triangles in
+/// all: 16 per triangle and 100000 more. A candidate pair (bounding boxes
+/// compared) costs 1, a pair tested the triangles of both.
+std::size_t interpenetration_work_bound(std::size_t triangles);
+
+/// The pairs (i, j), i < j, of `solids` whose interiors surely overlap.
+/// Every non-null solid must be valid (closed, manifold, consistently and
+/// outward oriented, without self-intersection: it has an inside); null
+/// entries are not judged. Sound and conservative, with exact predicates:
+/// only pairs whose bounding boxes overlap with positive volume are tested,
+/// and a pair is reported when
+/// 1. a vertex (of a triangle) of one lies strictly inside the other
+///    (ray parity), or
+/// 2. an edge of one crosses a face of the other transversally, through the
+///    face's interior, its ends strictly on either side of the face's
+///    plane, or
+/// 3. a face of one and a face of the other lie in one plane, facing the
+///    same way, and overlap with positive area (the solids are on the same
+///    side of it: two copies of one body).
+/// Each is a point where both insides meet. Touching is never reported:
+/// faces meeting back to back (mould halves on their split plane), at an
+/// edge or a vertex. A pair whose surfaces meet only where each one's
+/// vertices and edges lie on the other's surface, without coincident faces
+/// facing alike (a tetrahedron inscribed in a cube), is not reported.
+/// Stops when the next pair would exceed `max_work` (see
+/// interpenetration_work_bound; 0: that bound for all the solids' triangles),
+/// so that many bodies piled together cost a bounded time.
+Interpenetration interpenetrating_pairs(const std::vector<const TriangleSoup*>& solids,
+                                        std::size_t max_work = 0);
+
+}  // namespace fabmesh

@@ -1,0 +1,213 @@
+// `fabmesh check` of files holding several objects, end to end: the real
+// executable on fabmesh's own mould 3MF and on the corpus of
+// tests/data/check-corpus/objects/ (scripts/make-check-corpus-objects.py).
+
+#include <sys/wait.h>
+
+#include <array>
+#include <catch2/catch.hpp>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+#include "tests/io/mesh/temp_dir.h"
+
+using fabmesh::test::TempDir;
+
+namespace {
+
+struct Run {
+  int code = -1;
+  std::string out;
+};
+
+/// Runs `fabmesh ARGS` (stderr to /dev/null) and returns its exit code and stdout.
+Run run_fabmesh(const std::string& args) {
+  const std::string command = std::string("'") + FABMESH_BINARY + "' " + args + " 2>/dev/null";
+  Run run;
+  FILE* pipe = popen(command.c_str(), "r");
+  REQUIRE(pipe != nullptr);
+  std::array<char, 4096> buffer{};
+  std::size_t n = 0;
+  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) run.out.append(buffer.data(), n);
+  const int status = pclose(pipe);
+  run.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return run;
+}
+
+std::string quoted(const std::string& path) { return "'" + path + "'"; }
+
+std::string corpus(const std::string& name) {
+  return std::string(FABMESH_SOURCE_DIR) + "/tests/data/check-corpus/objects/" + name;
+}
+
+nlohmann::json manifest() {
+  std::ifstream in(corpus("manifest.json"));
+  REQUIRE(in.good());
+  std::stringstream text;
+  text << in.rdbuf();
+  return nlohmann::json::parse(text.str());
+}
+
+/// The manifest's case for `file`.
+nlohmann::json expected(const std::string& file) {
+  const nlohmann::json all = manifest();
+  for (const auto& c : all["cases"]) {
+    if (c["file"] == file) return c;
+  }
+  FAIL("no case " << file << " in the manifest");
+  return {};
+}
+
+/// check --json of the corpus file matches its manifest case: exit code,
+/// verdict, and per object name and verdict, and the interpenetrating pairs.
+void require_as_expected(const std::string& file) {
+  const nlohmann::json want = expected(file);
+  const Run run = run_fabmesh("check --json " + quoted(corpus(file)));
+  INFO(file << ": " << run.out);
+  CHECK(run.code == want["exit_code"]);
+  const auto j = nlohmann::json::parse(run.out);
+  CHECK(j["valid"] == want["valid"]);
+  CHECK(j["format"] == want["format"]);
+  if (want["objects"].empty()) {
+    CHECK_FALSE(j.contains("objects"));
+    CHECK_FALSE(j.contains("assembly"));
+    return;
+  }
+  REQUIRE(j.contains("objects"));
+  REQUIRE(j["objects"].size() == want["objects"].size());
+  for (std::size_t i = 0; i < want["objects"].size(); ++i) {
+    CHECK(j["objects"][i]["name"] == want["objects"][i]["name"]);
+    CHECK(j["objects"][i]["valid"] == want["objects"][i]["valid"]);
+  }
+  CHECK(j["assembly"]["objects"] == want["objects"].size());
+  CHECK(j["assembly"]["interpenetrating"] == want["interpenetrating"]);
+}
+
+}  // namespace
+
+TEST_CASE("check objects: fabmesh's own mould 3MF is valid object by object", "[mesh][check][cli][objects]") {
+  const TempDir dir;
+  const std::string design = std::string(FABMESH_SOURCE_DIR) + "/configs/examples/mould_golden.yaml";
+  REQUIRE(run_fabmesh("run " + quoted(design) + " --export-format mould_3mf -q -o " + quoted(dir.file("")))
+              .code == 0);
+  const std::string mould = dir.file("mould_golden.mould.3mf");
+
+  const Run human = run_fabmesh("check " + quoted(mould));
+  INFO(human.out);
+  CHECK(human.code == 0);
+  CHECK(human.out.find(mould + ": valid (2 objects, 2 valid)\n") == 0);
+  CHECK(human.out.find("  object 1 'mould_golden mould side-1': valid (") != std::string::npos);
+  CHECK(human.out.find("  object 2 'mould_golden mould side-2': valid (") != std::string::npos);
+  CHECK(human.out.find("  assembly: 2 objects, none interpenetrating\n") != std::string::npos);
+  CHECK(human.out.find("non-manifold") == std::string::npos);
+
+  const Run json = run_fabmesh("check --json " + quoted(mould));
+  CHECK(json.code == 0);
+  const auto j = nlohmann::json::parse(json.out);
+  CHECK(j["valid"] == true);
+  CHECK(j["format"] == "3MF");
+  CHECK(j["units"] == "mm");
+  REQUIRE(j["objects"].size() == 2);
+  for (const auto& object : j["objects"]) {
+    CHECK(object["valid"] == true);
+    CHECK(object["manifold"] == true);
+    CHECK(object["self_intersecting"] == false);
+    CHECK(object["genus"] == 0);
+    CHECK(object["timings_ms"].contains("self_intersection"));
+  }
+  CHECK(j["assembly"]["interpenetrating"].empty());
+  CHECK(j["assembly"]["judged"] == nlohmann::json::array({0, 1}));
+  CHECK(j["timings_ms"].contains("assembly"));
+}
+
+TEST_CASE("check objects: a 3MF of two cubes touching on a face is valid, none interpenetrating",
+          "[mesh][check][cli][objects]") {
+  require_as_expected("touching-cubes.3mf");
+  const Run human = run_fabmesh("check " + quoted(corpus("touching-cubes.3mf")));
+  CHECK(human.out.find("  object 1 'left': valid (8 vertices, 12 triangles, 1 component, genus 0, volume 1 "
+                       "mm^3, area 6 mm^2)\n") != std::string::npos);
+  CHECK(human.out.find("  assembly: 2 objects, none interpenetrating\n") != std::string::npos);
+}
+
+TEST_CASE("check objects: a 3MF of interpenetrating cubes has each valid and names the pair",
+          "[mesh][check][cli][objects]") {
+  require_as_expected("interpenetrating-cubes.3mf");
+  const Run human = run_fabmesh("check " + quoted(corpus("interpenetrating-cubes.3mf")));
+  CHECK(human.code == 0);
+  CHECK(human.out.find("  assembly: 2 objects, interpenetrating: 1 'a' and 2 'b'\n") != std::string::npos);
+}
+
+TEST_CASE("check objects: bars crossing with no corner inside each other interpenetrate",
+          "[mesh][check][cli][objects]") {
+  require_as_expected("crossing-bars.3mf");
+}
+
+TEST_CASE("check objects: one cube placed twice interpenetrates, unnamed objects named by id",
+          "[mesh][check][cli][objects]") {
+  require_as_expected("copies.3mf");
+}
+
+TEST_CASE("check objects: one invalid object makes the file invalid, the other still judged",
+          "[mesh][check][cli][objects]") {
+  require_as_expected("open-and-closed.3mf");
+  const Run human = run_fabmesh("check " + quoted(corpus("open-and-closed.3mf")));
+  CHECK(human.out.find("  object 2 'open': INVALID (") != std::string::npos);
+  CHECK(human.out.find("    - 3 boundary edges") != std::string::npos);
+  const auto j =
+      nlohmann::json::parse(run_fabmesh("check --json " + quoted(corpus("open-and-closed.3mf"))).out);
+  CHECK(j["assembly"]["judged"] == nlohmann::json::array({0}));
+}
+
+TEST_CASE("check objects: an OBJ of two o objects touching is two valid objects",
+          "[mesh][check][cli][objects]") {
+  require_as_expected("two-objects.obj");
+}
+
+TEST_CASE("check objects: an OBJ of one shell split in two g groups stays one object",
+          "[mesh][check][cli][objects]") {
+  require_as_expected("groups-in-objects.obj");
+  require_as_expected("one-shell-two-groups.obj");
+  const Run human = run_fabmesh("check " + quoted(corpus("one-shell-two-groups.obj")));
+  CHECK(human.out == corpus("one-shell-two-groups.obj") +
+                         ": valid (8 vertices, 12 triangles, 1 component, genus 0, volume 1, area 6)\n"
+                         "  OBJ file (no unit in the file)\n");
+}
+
+TEST_CASE("check objects: an OBJ of two g groups sharing no vertex is two objects",
+          "[mesh][check][cli][objects]") {
+  require_as_expected("two-shells-groups.obj");
+}
+
+TEST_CASE("check objects: a glTF of one mesh on two nodes is two objects, placed",
+          "[mesh][check][cli][objects]") {
+  require_as_expected("two-nodes.gltf");
+}
+
+TEST_CASE("check objects: the corpus manifest covers every file of the corpus", "[mesh][check][objects]") {
+  const nlohmann::json m = manifest();
+  std::size_t files = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(corpus(""))) {
+    if (entry.path().filename() == "manifest.json") continue;
+    ++files;
+    bool listed = false;
+    for (const auto& c : m["cases"]) listed = listed || c["file"] == entry.path().filename().string();
+    CHECK(listed);
+  }
+  CHECK(files == m["cases"].size());
+}
+
+TEST_CASE("check objects: several files, one of several objects, give one entry per file",
+          "[mesh][check][cli][objects]") {
+  const Run run = run_fabmesh("check --json " + quoted(corpus("touching-cubes.3mf")) + " " +
+                              quoted(corpus("one-shell-two-groups.obj")));
+  CHECK(run.code == 0);
+  const auto j = nlohmann::json::parse(run.out);
+  REQUIRE(j.is_array());
+  REQUIRE(j.size() == 2);
+  CHECK(j[0]["objects"].size() == 2);
+  CHECK(j[1]["triangles"] == 12);
+}
