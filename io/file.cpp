@@ -43,15 +43,6 @@ class Descriptor {
   int fd_;
 };
 
-const char* kind_of(mode_t mode) {
-  if (S_ISDIR(mode)) return "a folder";
-  if (S_ISFIFO(mode)) return "a FIFO";
-  if (S_ISCHR(mode)) return "a character device";
-  if (S_ISBLK(mode)) return "a block device";
-  if (S_ISSOCK(mode)) return "a socket";
-  return "not a regular file";
-}
-
 std::string read_bounded(const std::string& path, std::size_t max_bytes, std::string_view what) {
   // O_NONBLOCK: opening a FIFO must not wait for a writer before fstat can refuse it.
   Descriptor fd(::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK | O_NOCTTY));
@@ -60,7 +51,7 @@ std::string read_bounded(const std::string& path, std::size_t max_bytes, std::st
   if (::fstat(fd.get(), &st) != 0) fail(path, fmt::format("cannot inspect the {}", what), errno);
   if (!S_ISREG(st.st_mode)) {
     throw FileError(path, 0, 0,
-                    fmt::format("{}: the {} is {}, not a regular file", path, what, kind_of(st.st_mode)));
+                    fmt::format("{}: the {} is {}, not a regular file", path, what, file_kind(st.st_mode)));
   }
   auto too_large = [&]() {
     return FileError(path, 0, 0, fmt::format("{}: the {} is larger than {} bytes", path, what, max_bytes));
@@ -136,6 +127,15 @@ void sync_folder(const std::string& path) {
 }
 
 }  // namespace
+
+const char* file_kind(mode_t mode) {
+  if (S_ISDIR(mode)) return "a folder";
+  if (S_ISFIFO(mode)) return "a FIFO";
+  if (S_ISCHR(mode)) return "a character device";
+  if (S_ISBLK(mode)) return "a block device";
+  if (S_ISSOCK(mode)) return "a socket";
+  return "not a regular file";
+}
 
 std::string temporary_prefix(const std::string& path) {
   const fs::path target(path);

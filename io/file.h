@@ -1,6 +1,8 @@
 #pragma once
 // Files in and out: bounded reads of regular files, atomic writes.
 
+#include <sys/types.h>
+
 #include <cstddef>
 #include <string>
 #include <string_view>
@@ -19,6 +21,11 @@ std::string read_file(const std::string& path, std::size_t max_bytes, std::strin
 /// read_file with no size limit beyond the memory the file needs (for files
 /// fabmesh wrote itself). \throw FileError
 std::string read_file(const std::string& path);
+
+/// What a file that is not a regular one is, from its st_mode, for
+/// messages: "a folder", "a FIFO", "a character device", "a block device",
+/// "a socket", or "not a regular file".
+const char* file_kind(mode_t mode);
 
 /// One file to write: where, and its bytes.
 struct FileWrite {

@@ -252,6 +252,31 @@ std::array<Vec3, 3> join_curve_points(const std::array<Vec3, 4>& p, const HBezie
   return q;
 }
 
+namespace {
+
+// Whether the 16 control points lie on one line (or in one point), to
+// 1e-12 of their extent: the patch is then a curve, with no area to mesh.
+bool collinear_net(const ControlNet& net) {
+  const Vec3 a = net[0][0];
+  Vec3 far = a;
+  for (const auto& row : net) {
+    for (const Vec3& p : row) {
+      if ((p - a).squaredNorm() > (far - a).squaredNorm()) far = p;
+    }
+  }
+  const Vec3 axis = far - a;
+  const double length2 = axis.squaredNorm();
+  if (length2 == 0.0) return true;
+  for (const auto& row : net) {
+    for (const Vec3& p : row) {
+      if ((p - a).cross(axis).squaredNorm() > 1e-24 * length2 * length2) return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
 PatchNetwork build_patch_network(const std::vector<PatchSpec>& specs, const NetworkOptions& options) {
   if (specs.empty()) throw GeometryError("patches", "a surface needs at least one patch");
   PatchNetwork net;
@@ -279,6 +304,11 @@ PatchNetwork build_patch_network(const std::vector<PatchSpec>& specs, const Netw
       if (j.continuity == Continuity::G2) require_positive("k", j.k);
       require_in_range("m", j.m, -1e12, 1e12);
       net.patches.push_back(joined_patch(s, i, net.patches[j.to], net.names[j.to]));
+    }
+    if (collinear_net(net.patches.back().points())) {
+      throw patch_error(s, i,
+                        "its 16 control points lie on one line: the patch is a curve, with no surface to "
+                        "mesh; move the points apart across the line");
     }
     net.names.push_back(s.name);
   }

@@ -94,7 +94,8 @@ std::array<Vec3, 3> join_curve_points(const std::array<Vec3, 4>& p, const HBezie
 
 /// Builds every patch (computing joined rows), finds every shared border and
 /// measures it. \throw RangeError (parameters), GeometryError (unknown or
-/// later `to`, wrong number of free rows, a border direction parameterised
+/// later `to`, wrong number of free rows, control points all on one line
+/// (the patch is a curve), a border direction parameterised
 /// differently from the patch it joins, a declared continuity the
 /// measurement contradicts, a side shared by more than two patches).
 PatchNetwork build_patch_network(const std::vector<PatchSpec>& specs, const NetworkOptions& options = {});

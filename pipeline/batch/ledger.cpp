@@ -29,15 +29,6 @@ constexpr std::size_t kCheckDigits = 16;
   throw FileError(path, 0, 0, fmt::format("{}: {}: {}", path, what, std::strerror(error)));
 }
 
-const char* kind_of(mode_t mode) {
-  if (S_ISDIR(mode)) return "a folder";
-  if (S_ISFIFO(mode)) return "a FIFO";
-  if (S_ISCHR(mode)) return "a character device";
-  if (S_ISBLK(mode)) return "a block device";
-  if (S_ISSOCK(mode)) return "a socket";
-  return "not a regular file";
-}
-
 // Opens the ledger `path` with `flags`, only when it is a regular file: a
 // link is not followed (O_NOFOLLOW: writing through it would truncate its
 // target) and a FIFO, device or socket is refused before any byte is read
@@ -62,7 +53,7 @@ int open_ledger(const std::string& path, int flags) {
     throw FileError(path, 0, 0,
                     fmt::format("{}: the ledger is {}, not a regular file: fabmesh reads and writes only its "
                                 "own files in a batch folder; remove it",
-                                path, kind_of(st.st_mode)));
+                                path, file_kind(st.st_mode)));
   }
   return fd;
 }

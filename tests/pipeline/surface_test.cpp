@@ -14,6 +14,7 @@
 #include "pipeline/cli/commands.h"
 #include "pipeline/job.h"
 #include "tests/pipeline/cli_harness.h"
+#include "tests/pipeline/limited_run.h"
 
 using namespace fabmesh;
 namespace fs = std::filesystem;
@@ -205,4 +206,33 @@ TEST_CASE("surface designs: thicken chooses the shell's side, and the report say
   write_file_atomically((dir / "lonely.yaml").string(), edited_shell("thickness: 6\n", "thicken: outward\n"));
   CHECK(run_cli({"run", (dir / "lonely.yaml").string(), "-o", (dir / "out").string()}, &out) == 2);
   CHECK_THAT(out, Catch::Contains("give a thickness too"));
+}
+
+TEST_CASE("surface run: a patch whose control points lie on one line is refused at once",
+          "[pipeline][surface][cli]") {
+  // It used to refine toward a zero normal for 25 s, then hit the triangle budget.
+  const fs::path dir = fresh_dir("surface_on_a_line");
+  const fs::path design = dir / "line.yaml";
+  std::ofstream(design) << R"(name: line
+kind: surface
+units: mm
+tolerance: 0.5
+thickness: 2
+patches:
+  - name: flat
+    u: {alpha: 1, lambda: 0, mu: 0}
+    v: {alpha: 1, lambda: 0, mu: 0}
+    points:
+      - [[0,0,0],[1,1,1],[2,2,2],[3,3,3]]
+      - [[4,4,4],[5,5,5],[6,6,6],[7,7,7]]
+      - [[8,8,8],[9,9,9],[10,10,10],[11,11,11]]
+      - [[12,12,12],[13,13,13],[14,14,14],[15,15,15]]
+)";
+  const testing::LimitedRun run =
+      testing::run_limited({"run", design.string(), "-o", (dir / "out/").string()}, 20, std::size_t{1} << 30);
+  INFO(run.describe());
+  CHECK(run.code == 2);
+  CHECK(run.err.find("line.yaml:7:5: patches[0] ('flat'): its 16 control points lie on one line") !=
+        std::string::npos);
+  CHECK_FALSE(fs::exists(dir / "out"));
 }
