@@ -357,7 +357,7 @@ Nesting nest_components(const TriangleSoup& soup, const ComponentLabels& labels)
   // those are C's candidates, found with a hierarchy over the component boxes.
   const std::vector<Box> boxes = component_boxes(soup, labels);
   const BoxTree box_tree(boxes);
-  RayCaster caster(soup, labels);
+  std::optional<RayCaster> caster;  // built at the first candidate: separate parts need none
   std::vector<std::vector<std::size_t>> containers(labels.count);
   for (std::size_t c = 0; c < labels.count; ++c) {
     std::optional<std::vector<std::size_t>> found;
@@ -373,7 +373,8 @@ Nesting nest_components(const TriangleSoup& soup, const ComponentLabels& labels)
       }
       std::sort(candidates.begin(), candidates.end());
       ++nesting.rays;
-      found = caster.containers(from, candidates, boxes, attempt % kDirections);
+      if (!caster) caster.emplace(soup, labels);
+      found = caster->containers(from, candidates, boxes, attempt % kDirections);
       if (!found) ++nesting.retries;
     }
     if (!found) {
