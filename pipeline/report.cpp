@@ -4,6 +4,27 @@
 
 namespace fabmesh {
 
+namespace {
+
+/// One object per component: faces, signed volume, orientation, and its
+/// nesting (null when not determined).
+nlohmann::ordered_json component_shells_json(const ValidationReport& r) {
+  nlohmann::ordered_json shells = nlohmann::ordered_json::array();
+  for (const ComponentShell& s : r.component_shells) {
+    nlohmann::ordered_json j;
+    j["faces"] = s.faces;
+    j["volume"] = s.volume;
+    j["orientation"] = s.outward ? "outward" : "inward";
+    j["depth"] = s.depth ? nlohmann::ordered_json(*s.depth) : nlohmann::ordered_json(nullptr);
+    j["inside"] = s.inside ? nlohmann::ordered_json(*s.inside) : nlohmann::ordered_json(nullptr);
+    j["location"] = {s.location.x(), s.location.y(), s.location.z()};
+    shells.push_back(std::move(j));
+  }
+  return shells;
+}
+
+}  // namespace
+
 nlohmann::ordered_json validation_json(const ValidationReport& r) {
   nlohmann::ordered_json j;
   j["vertices"] = r.vertices;
@@ -32,7 +53,10 @@ nlohmann::ordered_json validation_json(const ValidationReport& r) {
     if (r.embedding_margin > 0.0) j["embedding_margin"] = r.embedding_margin;
   }
   j["intersecting_pairs"] = r.intersecting_pairs;
+  j["component_shells"] = component_shells_json(r);
   j["defects"] = describe_defects(r);
+  j["defect_kinds"] = nlohmann::ordered_json::array();
+  for (const DefectReport& d : r.defects) j["defect_kinds"].push_back(to_key(d.kind));
   j["valid"] = r.valid();
   return j;
 }

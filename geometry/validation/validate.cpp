@@ -10,6 +10,7 @@
 #include "geometry/core/errors.h"
 #include "geometry/core/stage_timer.h"
 #include "geometry/mesh/volume.h"
+#include "geometry/validation/detail/components.h"
 #include "geometry/validation/detail/self_intersect.h"
 #include "geometry/validation/detail/topology.h"
 
@@ -78,6 +79,10 @@ const char* to_string(Defect kind) {
       return "inconsistently oriented edges";
     case Defect::InsideOut:
       return "inside-out (non-positive volume)";
+    case Defect::InvertedComponent:
+      return "inverted components";
+    case Defect::NestedSameOrientation:
+      return "nested components of the same orientation";
     case Defect::DegenerateFace:
       return "degenerate faces";
     case Defect::DuplicateFace:
@@ -86,6 +91,36 @@ const char* to_string(Defect kind) {
       return "self-intersecting face pairs";
   }
   return "unknown defect";
+}
+
+const char* to_key(Defect kind) {
+  switch (kind) {
+    case Defect::Empty:
+      return "empty";
+    case Defect::NonFiniteVertex:
+      return "non_finite_vertex";
+    case Defect::BoundaryEdge:
+      return "boundary_edge";
+    case Defect::NonManifoldEdge:
+      return "non_manifold_edge";
+    case Defect::NonManifoldVertex:
+      return "non_manifold_vertex";
+    case Defect::InconsistentOrientation:
+      return "inconsistent_orientation";
+    case Defect::InsideOut:
+      return "inside_out";
+    case Defect::InvertedComponent:
+      return "inverted_component";
+    case Defect::NestedSameOrientation:
+      return "nested_same_orientation";
+    case Defect::DegenerateFace:
+      return "degenerate_face";
+    case Defect::DuplicateFace:
+      return "duplicate_face";
+    case Defect::SelfIntersection:
+      return "self_intersection";
+  }
+  return "unknown";
 }
 
 const char* to_string(IntersectionCheck check) {
@@ -180,6 +215,84 @@ ValidationReport with_embedding(ValidationReport report, const EmbeddingProof& p
   return report;
 }
 
+/// Adds `found` as a defect of `kind`, keeping the defects in enum order.
+void insert_defect(ValidationReport& report, Defect kind, const DefectCount& found) {
+  if (found.count == 0) return;
+  const auto at = std::find_if(report.defects.begin(), report.defects.end(),
+                               [&](const DefectReport& d) { return d.kind > kind; });
+  report.defects.insert(at, {kind, found.count, found.examples});
+}
+
+/// The one shell of a single-component mesh, from the totals: no other
+/// component can contain it, so its orientation is the InsideOut check.
+ComponentShell single_shell(const TriangleSoup& soup, const ValidationReport& report) {
+  ComponentShell shell;
+  std::uint32_t lowest = UINT32_MAX;
+  for (const auto& t : soup.triangles) {
+    if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0]) continue;
+    ++shell.faces;
+    lowest = std::min({lowest, t[0], t[1], t[2]});
+  }
+  shell.volume = report.volume;
+  shell.outward = report.oriented_outward;
+  if (lowest != UINT32_MAX) shell.location = soup.vertices[lowest];
+  shell.depth = 0;
+  return shell;
+}
+
+/// Whether the components of a mesh so validated are disjoint closed
+/// surfaces, so that one lies inside another or not: the mesh has no
+/// defect other than its total volume's sign, and was tested or proven
+/// free of self-intersections.
+bool nesting_determined(const ValidationReport& report) {
+  return report.self_intersection != IntersectionCheck::NotRun &&
+         std::all_of(report.defects.begin(), report.defects.end(),
+                     [](const DefectReport& d) { return d.kind == Defect::InsideOut; });
+}
+
+/// The shells of a mesh with several components: labels, volumes and, when
+/// determined, the nesting with the components that contradict it.
+void add_shells(const TriangleSoup& soup, ValidationReport& report, std::size_t max_examples) {
+  const ComponentLabels labels = label_components(soup);
+  const std::vector<double> volumes = component_volumes(soup, labels);
+  auto& shells = report.component_shells;
+  shells.resize(labels.count);
+  for (std::size_t c = 0; c < labels.count; ++c) {
+    shells[c].faces = labels.faces[c];
+    shells[c].volume = volumes[c];
+    shells[c].outward = volumes[c] > 0.0;
+    shells[c].location = soup.vertices[labels.lowest_vertex[c]];
+  }
+  if (!nesting_determined(report)) return;
+  const Nesting nesting = nest_components(soup, labels);
+  DefectCount inverted;
+  DefectCount nested;
+  for (std::size_t c = 0; c < labels.count; ++c) {
+    shells[c].depth = nesting.depth[c];
+    shells[c].inside = nesting.inside[c];
+    if (!nesting.inside[c] && !shells[c].outward) inverted.add(shells[c].location, max_examples);
+    if (nesting.inside[c] && shells[c].outward == shells[*nesting.inside[c]].outward) {
+      nested.add(shells[c].location, max_examples);
+    }
+  }
+  insert_defect(report, Defect::InvertedComponent, inverted);
+  insert_defect(report, Defect::NestedSameOrientation, nested);
+}
+
+/// The report with its component shells: from the totals for one component
+/// (nothing more to compute), by labelling and ray casting for several.
+ValidationReport with_shells(const TriangleSoup& soup, ValidationReport report, std::size_t max_examples) {
+  if (soup.triangles.empty() || report.non_finite_vertices > 0 || report.components == 0) return report;
+  if (report.components == 1) {
+    report.component_shells.push_back(single_shell(soup, report));
+    return report;
+  }
+  StageTimer timer(report.timings_ms);
+  add_shells(soup, report, max_examples);
+  timer.lap("components");
+  return report;
+}
+
 }  // namespace
 
 ValidationReport validate(const TriangleSoup& soup, const ValidationOptions& options) {
@@ -189,7 +302,7 @@ ValidationReport validate(const TriangleSoup& soup, const ValidationOptions& opt
       throw InputError(
           "validate: a moved copy takes its proofs from the original's report, not from options");
     }
-    return validate_moved(soup, *options.moved_from, options);
+    return with_shells(soup, validate_moved(soup, *options.moved_from, options), options.max_examples);
   }
   ValidationOptions checks = options;
   if (options.embedding) checks.check_self_intersections = false;  // the proof replaces the 3D test
@@ -208,8 +321,8 @@ ValidationReport validate(const TriangleSoup& soup, const ValidationOptions& opt
     timer.lap("topology");
     report = validate_with(soup, topo, std::move(report), checks);
   }
-  if (options.embedding) return with_embedding(std::move(report), *options.embedding);
-  return report;
+  if (options.embedding) report = with_embedding(std::move(report), *options.embedding);
+  return with_shells(soup, std::move(report), options.max_examples);
 }
 
 bool fit_for(const ValidationReport& report, MeshPurpose purpose) {
@@ -288,9 +401,42 @@ ValidationReport validate_with(const TriangleSoup& soup, const Topology& topo, V
 
 }  // namespace
 
+namespace {
+
+std::string point_text(const Vec3& p) { return fmt::format("({:g}, {:g}, {:g})", p.x(), p.y(), p.z()); }
+
+/// "1 inverted components: component 2 of 2 (12 faces, volume -125, at
+/// (20, 0, 0)) faces inward inside no other component", naming as many
+/// components as the report kept examples.
+std::string describe_shells(const ValidationReport& report, const DefectReport& d) {
+  const auto& shells = report.component_shells;
+  std::string line = fmt::format("{} {}:", d.count, to_string(d.kind));
+  std::size_t named = 0;
+  for (std::size_t c = 0; c < shells.size() && named < d.examples.size(); ++c) {
+    const ComponentShell& s = shells[c];
+    if (!s.depth) continue;
+    const bool inverted = !s.inside && !s.outward;
+    const bool nested = s.inside && s.outward == shells[*s.inside].outward;
+    if (d.kind == Defect::InvertedComponent ? !inverted : !nested) continue;
+    line += fmt::format("{} component {} of {} ({} faces, volume {:g}, at {}) faces {}",
+                        named == 0 ? "" : ";", c + 1, shells.size(), s.faces, s.volume,
+                        point_text(s.location), s.outward ? "outward" : "inward");
+    line += s.inside ? fmt::format(" like component {}, the innermost containing it", *s.inside + 1)
+                     : std::string(" inside no other component");
+    ++named;
+  }
+  return line;
+}
+
+}  // namespace
+
 std::vector<std::string> describe_defects(const ValidationReport& report) {
   std::vector<std::string> lines;
   for (const DefectReport& d : report.defects) {
+    if (d.kind == Defect::InvertedComponent || d.kind == Defect::NestedSameOrientation) {
+      lines.push_back(describe_shells(report, d));
+      continue;
+    }
     std::string line = d.kind == Defect::Empty || d.kind == Defect::InsideOut
                            ? std::string(to_string(d.kind))
                            : fmt::format("{} {}", d.count, to_string(d.kind));

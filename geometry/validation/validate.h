@@ -29,6 +29,8 @@ enum class Defect {
   NonManifoldVertex,        ///< a vertex whose faces form more than one fan
   InconsistentOrientation,  ///< two faces traverse their shared edge the same way
   InsideOut,                ///< closed, but the signed volume is not positive
+  InvertedComponent,        ///< of several components, one inside no other faces inward
+  NestedSameOrientation,    ///< a component faces the way of the innermost one containing it
   DegenerateFace,           ///< zero area: a repeated index or collinear corners (exact test)
   DuplicateFace,            ///< another face has the same three vertices
   SelfIntersection,         ///< two faces meet away from their shared vertices and edges
@@ -36,6 +38,9 @@ enum class Defect {
 
 /// A short lower-case name of a defect kind, e.g. "boundary edges".
 const char* to_string(Defect kind);
+
+/// The defect kind as a JSON key, e.g. "boundary_edge", "inverted_component".
+const char* to_key(Defect kind);
 
 /// How the self-intersection question was settled for a report.
 enum class IntersectionCheck {
@@ -52,6 +57,25 @@ struct DefectReport {
   Defect kind;
   std::size_t count = 0;
   std::vector<Vec3> examples;  ///< edge midpoints, vertices or face centroids
+};
+
+/// One connected component as a shell: its orientation, and where it lies
+/// among the others. A closed component facing outward encloses solid; one
+/// facing inward bounds a cavity, and must then lie inside an odd number of
+/// other components.
+struct ComponentShell {
+  std::size_t faces = 0;         ///< faces of the component (index-degenerate faces belong to none)
+  double volume = 0.0;           ///< signed enclosed volume, model units^3 (meaningful when closed)
+  bool outward = false;          ///< volume > 0
+  Vec3 location = Vec3::Zero();  ///< its lowest-indexed vertex, to point at it
+  /// How many other components contain it; unset when the nesting was not
+  /// determined (a mesh with one component has depth 0; with several, the
+  /// nesting is determined only when the mesh has no other defect than
+  /// InsideOut and its self-intersection was tested or proven absent).
+  std::optional<std::size_t> depth;
+  /// The innermost component containing it (index into component_shells);
+  /// unset at depth 0 or when the nesting was not determined.
+  std::optional<std::size_t> inside;
 };
 
 /// Everything validate found out about a mesh.
@@ -88,6 +112,12 @@ struct ValidationReport {
   std::vector<long> euler_characteristics;  ///< V - E + F of each component
   std::vector<DefectReport> defects;        ///< one entry per kind found, in enum order
   StageTimings timings_ms;                  ///< stage name -> wall time, ms
+  /// Each component as a shell, in the order of euler_characteristics (each
+  /// component's lowest vertex): with several, InvertedComponent and
+  /// NestedSameOrientation judge their orientations against their nesting.
+  /// One entry, from the totals, when the mesh has one component; none when
+  /// it has no faces or a non-finite vertex.
+  std::vector<ComponentShell> component_shells;
 
   /// True when no defect was found and self-intersection was tested or proven absent.
   bool valid() const { return defects.empty() && self_intersection != IntersectionCheck::NotRun; }
@@ -129,9 +159,10 @@ struct ValidationOptions {
   /// of the triangles alone and is taken from that mesh's report (its
   /// example locations are the original positions, within the displacement
   /// of the moved ones). Everything geometric is recomputed on the soup:
-  /// finiteness, area, signed volume and orientation, exact degeneracy, and
-  /// the exact self-intersection test. So valid() and every defect kind and
-  /// count equal those of a validation without it. Except that when the
+  /// finiteness, area, signed volume and orientation (of every component,
+  /// with their nesting), exact degeneracy, and the exact self-intersection
+  /// test. So valid() and every defect kind and count equal those of a
+  /// validation without it. Except that when the
   /// original report carries an embedding margin and no vertex moved as far,
   /// the 3D test is replaced by that proof (the report says
   /// ProvenByConstruction and how far the vertices moved). Not to be
