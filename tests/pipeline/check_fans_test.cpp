@@ -57,10 +57,10 @@ fs::path fan_cylinder(std::uint32_t n) {
 
 }  // namespace
 
-TEST_CASE("check: a cylinder with 20000-face fan caps is valid within a hang guard",
+TEST_CASE("check: a cylinder with 20000-face fan caps is valid within a hang guard of 50 s",
           "[mesh][check][cli][time-bounded]") {
   const fs::path obj = fan_cylinder(20000);
-  const LimitedRun r = run_limited({"check", obj.string()}, 30.0, kMemory);
+  const LimitedRun r = run_limited({"check", obj.string()}, 50.0, kMemory);
   INFO(r.describe());
   REQUIRE_FALSE(r.timed_out);
   REQUIRE(r.code == 0);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 #include "geometry/validation/detail/face_pair_filter.h"
@@ -83,8 +84,9 @@ std::uint32_t smallest_shared_centre(const VertexStars& stars, const std::array<
 
 /// The axis along which the box centres spread most: the sweep's axis.
 int sweep_axis(const std::vector<DirectionBox>& boxes) {
-  double lo[3] = {INFINITY, INFINITY, INFINITY};
-  double hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+  constexpr double kInfinity = std::numeric_limits<double>::infinity();
+  double lo[3] = {kInfinity, kInfinity, kInfinity};
+  double hi[3] = {-kInfinity, -kInfinity, -kInfinity};
   for (const DirectionBox& b : boxes) {
     for (int c = 0; c < 3; ++c) {
       const double m = 0.5 * (b.lo[c] + b.hi[c]);

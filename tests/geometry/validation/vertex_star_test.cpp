@@ -119,9 +119,9 @@ TEST_CASE("A cone apex of many faces is valid, and a crossing face is found",
   REQUIRE(require_same(c).count == 0);
   ValidationReport report = validate(c);
   REQUIRE(report.valid());
-  SECTION("a face through the cone's side from its apex") {
-    const std::uint32_t p = add_vertex(c, 2.0, 0.1, -0.5);
-    const std::uint32_t q = add_vertex(c, 2.0, -0.1, -0.5);
+  SECTION("a face from the apex whose far edge crosses the cone's side") {
+    const std::uint32_t p = add_vertex(c, 0.2, 0.01, 0.5);  // inside the cone
+    const std::uint32_t q = add_vertex(c, 1.0, 0.05, 0.5);  // outside
     c.triangles.push_back({400, p, q});
     REQUIRE(require_same(c).count > 0);
   }
