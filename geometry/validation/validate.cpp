@@ -371,8 +371,11 @@ ValidationReport validate_with(const TriangleSoup& soup, const Topology& topo, V
     SelfIntersectOptions si;
     si.parallel = options.parallel;
     si.max_pairs = max_examples;
+    si.deadline = deadline_after(options.max_self_intersection_seconds);
     const SelfIntersections found = find_self_intersections(soup, degenerate, si);
-    report.self_intersection = IntersectionCheck::Tested;
+    report.self_intersection = found.incomplete ? IntersectionCheck::NotRun : IntersectionCheck::Tested;
+    report.self_intersection_timed_out = found.incomplete;
+    report.self_intersection_pairs_tested = found.candidates_tested;
     report.intersecting_pairs = found.count;
     report.self_intersecting = found.count > 0;
     intersections.count = found.count;
@@ -451,7 +454,11 @@ std::vector<std::string> describe_defects(const ValidationReport& report) {
     }
     lines.push_back(std::move(line));
   }
-  if (report.self_intersection == IntersectionCheck::NotRun && report.non_finite_vertices == 0) {
+  if (report.self_intersection_timed_out) {
+    lines.push_back(
+        fmt::format("self-intersection test unfinished: out of time after {} candidate face pairs",
+                    report.self_intersection_pairs_tested));
+  } else if (report.self_intersection == IntersectionCheck::NotRun && report.non_finite_vertices == 0) {
     lines.emplace_back("self-intersection test not run");
   }
   return lines;

@@ -100,7 +100,11 @@ struct ValidationReport {
   /// TopologyProof); empty when the connectivity was analysed.
   std::string topology_proof;
   bool self_intersecting = false;
-  std::size_t intersecting_pairs = 0;  ///< face pairs that intersect
+  std::size_t intersecting_pairs = 0;  ///< face pairs that intersect (found so far when timed out)
+  /// The self-intersection test ran out of its time budget (it stays NotRun);
+  /// with the number of candidate face pairs it had tested by then.
+  bool self_intersection_timed_out = false;
+  std::size_t self_intersection_pairs_tested = 0;
   bool consistently_oriented = false;  ///< no inconsistent edge
   bool oriented_outward = false;       ///< signed volume > 0
   double volume = 0.0;                 ///< signed enclosed volume, model units^3 (meaningful when closed)
@@ -143,6 +147,9 @@ struct ValidationOptions {
   /// meshes list them) or the first by vertex index (false: as `check`
   /// lists a file's). Counts and the verdict do not depend on it.
   bool examples_in_face_order = false;
+  /// Time budget of the self-intersection test, seconds (0: none). Past it
+  /// the test stops: the report says NotRun and self_intersection_timed_out.
+  double max_self_intersection_seconds = 0.0;
   /// The builder's proof of the connectivity: replaces the connectivity
   /// analysis (the report's counts, components, Euler characteristics and
   /// genus come from it; the report carries its statement as topology_proof).

@@ -1,4 +1,4 @@
-// `fabmesh check MESH... [--json] [--weld-tolerance X]`: validates mesh files
+// `fabmesh check MESH... [--json] [--weld-tolerance X] [--max-seconds S]`: validates mesh files
 // made anywhere. Exit 0 when every mesh is valid, 1 when any is invalid, 2
 // when any cannot be read.
 
@@ -30,6 +30,7 @@ struct CheckArgs {
   std::vector<std::string> files;
   bool json = false;
   double weld_tolerance = 0.0;
+  double max_seconds = 600.0;  ///< time budget of each object's self-intersection test (0: none)
 };
 
 /// One object of a file, welded and validated.
@@ -60,13 +61,15 @@ struct FileCheck {
   }
 };
 
-ObjectCheck check_object(std::string name, const TriangleSoup& soup, double weld_tolerance,
+ObjectCheck check_object(std::string name, const TriangleSoup& soup, const CheckArgs& args,
                          const StageTimings& before) {
   StageTimings timings = before;
   StageTimer timer(timings);
-  WeldResult welded = weld(soup, WeldOptions{weld_tolerance});
+  WeldResult welded = weld(soup, WeldOptions{args.weld_tolerance});
   timer.lap("weld");
-  ObjectCheck result{std::move(name), validate(welded.soup), welded.merged_vertices, {}};
+  ValidationOptions options;
+  options.max_self_intersection_seconds = args.max_seconds;
+  ObjectCheck result{std::move(name), validate(welded.soup, options), welded.merged_vertices, {}};
   result.report.timings_ms.insert(result.report.timings_ms.begin(), timings.begin(), timings.end());
   result.welded = std::move(welded.soup);
   return result;
@@ -80,7 +83,7 @@ Interpenetration assembly_pairs(const std::vector<ObjectCheck>& objects) {
   return interpenetrating_pairs(solids);
 }
 
-FileCheck check_file(const std::string& path, double weld_tolerance) {
+FileCheck check_file(const std::string& path, const CheckArgs& args) {
   FileCheck result;
   result.file = path;
   try {
@@ -92,12 +95,12 @@ FileCheck check_file(const std::string& path, double weld_tolerance) {
     result.notes = std::move(file.notes);
     timer.lap("read");
     if (file.objects.empty()) {
-      result.objects.push_back(check_object("", file.soup, weld_tolerance, timings));
+      result.objects.push_back(check_object("", file.soup, args, timings));
     } else {
       file.soup = {};  // the objects hold the same triangles
       result.timings_ms = timings;
       for (MeshObject& object : file.objects)
-        result.objects.push_back(check_object(std::move(object.name), object.soup, weld_tolerance, {}));
+        result.objects.push_back(check_object(std::move(object.name), object.soup, args, {}));
       StageTimer assembly(result.timings_ms);
       result.assembly = assembly_pairs(result.objects);
       assembly.lap("assembly");
@@ -252,7 +255,7 @@ int run_check(const CheckArgs& args, Streams streams) {
   std::vector<FileCheck> checks;
   int code = kExitOk;  // the worst file's: unreadable, then invalid
   for (const std::string& file : args.files) {
-    checks.push_back(check_file(file, args.weld_tolerance));
+    checks.push_back(check_file(file, args));
     const FileCheck& c = checks.back();
     if (!c.readable) {
       streams.err << failure_line(c.failure) << "\n";
@@ -286,6 +289,11 @@ Runner add_check_command(CLI::App& app) {
   cmd->add_option("--weld-tolerance", args->weld_tolerance,
                   "Merge vertices closer than this (model units) before judging topology; default 0: only "
                   "exactly equal coordinates merge")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--max-seconds", args->max_seconds,
+                  "Time budget of each object's self-intersection test, seconds; past it the test stops "
+                  "and the mesh is not called valid (exit 1, 'self-intersection test unfinished'); "
+                  "default 600, 0: no limit")
       ->check(CLI::NonNegativeNumber);
   return [args](Streams streams) { return run_check(*args, streams); };
 }

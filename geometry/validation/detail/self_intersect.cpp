@@ -8,6 +8,14 @@
 // the reference's. The search is split into fixed tasks (pairs of subtrees),
 // each run by one thread, and their findings combined in task order, so the result
 // does not depend on the thread count.
+//
+// The pairs sharing a vertex of high degree (the apex of a fan, a pole) are
+// not enumerated by the hierarchy, whose boxes all overlap at that vertex:
+// the faces around it are grouped (TriangleBvh skips pairs within a group
+// and subtrees all in one group) and their pairs come from the vertex's
+// star instead (vertex_star.h), after the tasks, star by star in vertex
+// order: O(d log d) for d faces around a vertex rather than d^2 / 2 pairs.
+// A pair of faces sharing a star centre is tested there and only there.
 
 #include "geometry/validation/detail/self_intersect.h"
 
@@ -22,14 +30,16 @@
 #include "geometry/validation/detail/face_pair_filter.h"
 #include "geometry/validation/detail/self_intersect_reference.h"
 #include "geometry/validation/detail/triangle_bvh.h"
+#include "geometry/validation/detail/vertex_star.h"
 
 namespace fabmesh {
 namespace {
 
 using Pair = std::pair<std::uint32_t, std::uint32_t>;
 
-constexpr std::size_t kLeavesPerTask = 64;    ///< the unit of parallel work: 256 triangles
-constexpr std::size_t kTasksPerBatch = 4096;  ///< tasks in flight (memory bound on piles of faces)
+constexpr std::size_t kLeavesPerTask = 64;         ///< the unit of parallel work: 256 triangles
+constexpr std::size_t kTasksPerBatch = 4096;       ///< tasks in flight (memory bound on piles of faces)
+constexpr std::size_t kPairsPerClockCheck = 4096;  ///< candidate pairs between two looks at the deadline
 
 /// The smallest `keep` pairs of those added.
 class SmallestPairs {
@@ -64,7 +74,14 @@ struct TaskResult {
   std::size_t count = 0;   ///< intersecting pairs counted (at most the task's limit)
   SmallestPairs smallest;  ///< the smallest max_pairs of them
   bool complete = false;   ///< false when the search gave up before starting
+  bool timed_out = false;  ///< the deadline passed: some pairs of the task were not tested
+  std::size_t tested = 0;  ///< candidate pairs decided
 };
+
+/// Whether the deadline of `options` has passed.
+bool past_deadline(const SelfIntersectOptions& options) {
+  return options.deadline && std::chrono::steady_clock::now() >= *options.deadline;
+}
 
 /// Whether the exact (closed) boxes of faces f and g overlap: the reference
 /// never tests other pairs, so neither may we (it matters only for
@@ -84,9 +101,9 @@ bool boxes_overlap(const TriangleSoup& soup, std::uint32_t f, std::uint32_t g) {
 
 class Search {
  public:
-  Search(const TriangleSoup& soup, const TriangleBvh& bvh, const detail::FacePairFilter& filter,
-         const SelfIntersectOptions& options)
-      : soup_(soup), bvh_(bvh), filter_(filter), options_(options) {
+  Search(const TriangleSoup& soup, const TriangleBvh& bvh, const detail::VertexStars& stars,
+         const detail::FacePairFilter& filter, const SelfIntersectOptions& options)
+      : soup_(soup), bvh_(bvh), stars_(stars), filter_(filter), options_(options) {
     // The filter's data in the hierarchy's order: neighbours in space are neighbours in memory.
     face_.resize(bvh.size());
     auto body = [&](std::size_t i) { face_[i] = detail::face_data(soup, bvh.face(i)); };
@@ -103,8 +120,22 @@ class Search {
   TaskResult run(const TriangleBvh::Task& task, std::size_t limit, std::atomic<std::size_t>* total) const {
     TaskResult r{0, SmallestPairs(options_.max_pairs), false};
     if (total && total->load(std::memory_order_relaxed) >= options_.count_limit) return r;
+    if (past_deadline(options_)) {
+      r.timed_out = true;
+      return r;
+    }
+    const bool stars = !stars_.centres.empty();
     bvh_.run(task, [&](std::size_t i, std::size_t j) {
-      if (r.count >= limit || filter_.disjoint(face_[i], face_[j])) return;
+      if (r.count >= limit || r.timed_out) return;
+      if (stars && face_[i].certified && face_[j].certified && stars_.shares_centre(face_[i].v, face_[j].v)) {
+        return;  // the star's pair
+      }
+      if (++r.tested % kPairsPerClockCheck == 0 && past_deadline(options_)) {
+        --r.tested;
+        r.timed_out = true;
+        return;
+      }
+      if (filter_.disjoint(face_[i], face_[j])) return;
       // The smaller index first: on degenerate faces (not skipped) CGAL's
       // tests are undefined and may depend on the order.
       const std::uint32_t f = std::min(bvh_.face(i), bvh_.face(j));
@@ -114,13 +145,34 @@ class Search {
       r.smallest.add({f, g});
     });
     if (total && r.count > 0) total->fetch_add(r.count);
-    r.complete = true;
+    r.complete = !r.timed_out;
     return r;
+  }
+
+  /// Tests the candidate pairs of every star in order, adding to `counted`
+  /// (at most count_limit) and `smallest`; sets capped or incomplete.
+  void run_stars(std::size_t& counted, SmallestPairs& smallest, SelfIntersections& result) const {
+    for (std::size_t s = 0; s < stars_.centres.size() && !result.capped && !result.incomplete; ++s) {
+      detail::for_each_star_candidate(soup_, stars_, s, [&](std::uint32_t f, std::uint32_t g) {
+        if (++result.candidates_tested % kPairsPerClockCheck == 0 && past_deadline(options_)) {
+          --result.candidates_tested;
+          result.incomplete = true;
+          return false;
+        }
+        if (filter_.disjoint(detail::face_data(soup_, f), detail::face_data(soup_, g))) return true;
+        if (!boxes_overlap(soup_, f, g) || !faces_intersect_exact(soup_, f, g)) return true;
+        ++counted;
+        smallest.add({f, g});
+        result.capped = counted >= options_.count_limit;
+        return !result.capped;
+      });
+    }
   }
 
  private:
   const TriangleSoup& soup_;
   const TriangleBvh& bvh_;
+  const detail::VertexStars& stars_;
   const detail::FacePairFilter& filter_;
   const SelfIntersectOptions& options_;
   std::vector<detail::FaceData> face_;
@@ -149,8 +201,9 @@ SelfIntersections find_self_intersections(const TriangleSoup& soup, const std::v
   SelfIntersections result;
   if (options.count_limit == 0) return result;
   const detail::FacePairFilter filter;
-  const TriangleBvh bvh(soup, skip, options.parallel);
-  const Search search(soup, bvh, filter, options);
+  const detail::VertexStars stars = detail::find_vertex_stars(soup, skip);
+  const TriangleBvh bvh(soup, skip, options.parallel, stars.group);
+  const Search search(soup, bvh, stars, filter, options);
   const std::size_t limit = options.count_limit;
 
   // Tasks in batches, each batch in parallel; once the count reaches the
@@ -163,7 +216,7 @@ SelfIntersections find_self_intersections(const TriangleSoup& soup, const std::v
   SmallestPairs smallest(options.max_pairs);
   std::size_t counted = 0;
   std::atomic<std::size_t> total{0};
-  while (!result.capped && cursor.next(kTasksPerBatch, batch)) {
+  while (!result.capped && !result.incomplete && cursor.next(kTasksPerBatch, batch)) {
     done.assign(batch.size(), TaskResult{0, SmallestPairs(0), false});
     total = counted;
     auto body = [&](std::size_t c) { done[c] = search.run(batch[c], limit, &total); };
@@ -172,15 +225,18 @@ SelfIntersections find_self_intersections(const TriangleSoup& soup, const std::v
     } else {
       for (std::size_t c = 0; c < batch.size(); ++c) body(c);
     }
-    for (std::size_t c = 0; c < batch.size() && !result.capped; ++c) {
+    for (std::size_t c = 0; c < batch.size() && !result.capped && !result.incomplete; ++c) {
       const std::size_t quota = limit - counted;
       TaskResult& r = done[c];
-      if (!r.complete || r.count > quota) r = search.run(batch[c], quota, nullptr);
+      if (!r.timed_out && (!r.complete || r.count > quota)) r = search.run(batch[c], quota, nullptr);
       counted += r.count;
+      result.candidates_tested += r.tested;
       smallest.add(r.smallest);
       result.capped = counted >= limit;
+      result.incomplete = r.timed_out;
     }
   }
+  if (!result.capped && !result.incomplete) search.run_stars(counted, smallest, result);
   result.count = counted;
   result.pairs = smallest.take();
   return result;

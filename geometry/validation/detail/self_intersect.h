@@ -5,8 +5,10 @@
 // Internal to geometry/validation (validate.h is the public entry); the
 // tests and the benchmarks include it to check and time this part alone.
 
+#include <chrono>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -21,12 +23,28 @@ struct SelfIntersectOptions {
   /// Stop once this many intersecting pairs are found (bounds the time spent
   /// on a soup that is a pile of overlapping faces).
   std::size_t count_limit = 10'000'000;
+  /// Give up when the search is still running at this time: the result is
+  /// then `incomplete` (checked between units of work of at most a few
+  /// thousand candidate pairs). None: no limit.
+  std::optional<std::chrono::steady_clock::time_point> deadline;
 };
+
+/// The deadline `seconds` from now; none when seconds is not positive, not
+/// finite or beyond a year (no limit in practice).
+inline std::optional<std::chrono::steady_clock::time_point> deadline_after(double seconds) {
+  if (!(seconds > 0.0) || !(seconds < 3.2e7)) return std::nullopt;
+  return std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                                std::chrono::duration<double>(seconds));
+}
 
 /// The outcome of a self-intersection test.
 struct SelfIntersections {
   std::size_t count = 0;  ///< number of intersecting face pairs (exact unless capped)
   bool capped = false;    ///< the search stopped at count_limit; count is a lower bound
+  /// The search stopped at the deadline: pairs were left untested; count
+  /// and pairs are what was found until then (a lower bound).
+  bool incomplete = false;
+  std::size_t candidates_tested = 0;  ///< candidate pairs decided (by filter or exact test)
   /// Up to max_pairs intersecting pairs of face indices (first < second),
   /// in ascending order.
   std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
@@ -37,7 +55,9 @@ struct SelfIntersections {
 /// the shared edge; faces sharing one vertex only if the edge opposite it in
 /// one face touches the other; faces sharing none if the triangles meet
 /// (faces_intersect_exact in self_intersect_reference.h is the definition).
-/// Candidates come from a bounding-volume hierarchy over the triangle boxes;
+/// Candidates come from a bounding-volume hierarchy over the triangle boxes,
+/// except the pairs sharing a vertex of high degree, which come from that
+/// vertex's star (vertex_star.h: d faces around a vertex in O(d log d));
 /// a floating-point filter with proven error bounds dismisses the pairs that
 /// certainly do not intersect and the others are decided with exact
 /// predicates (CGAL Epick). The result equals find_self_intersections_reference

@@ -1,0 +1,182 @@
+// The stars of high-degree vertices (vertex_star.h) in the fast
+// self-intersection test, against the reference pair for pair: planar and
+// conical fans, valid and with folded, crossing and apex-only overlapping
+// faces, random soups with high-degree vertices; and the deadline.
+
+#include "geometry/validation/detail/vertex_star.h"
+
+#include <catch2/catch.hpp>
+#include <chrono>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "geometry/validation/detail/self_intersect.h"
+#include "geometry/validation/detail/self_intersect_reference.h"
+#include "geometry/validation/validate.h"
+
+using namespace fabmesh;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+/// Requires the fast test, parallel and sequential, to equal the reference.
+SelfIntersections require_same(const TriangleSoup& s, const std::vector<char>& skip = {}) {
+  SelfIntersectOptions options;
+  const SelfIntersections expected = find_self_intersections_reference(s, skip, options);
+  const SelfIntersections parallel = find_self_intersections(s, skip, options);
+  options.parallel = false;
+  const SelfIntersections sequential = find_self_intersections(s, skip, options);
+  REQUIRE(parallel.count == expected.count);
+  REQUIRE(parallel.pairs == expected.pairs);
+  REQUIRE_FALSE(parallel.incomplete);
+  REQUIRE(sequential.count == expected.count);
+  REQUIRE(sequential.pairs == expected.pairs);
+  return parallel;
+}
+
+/// A convex polygon of `n` corners on a circle of radius 10 in the plane
+/// z = 0, triangulated as a fan from corner 0 (as the OBJ reader does).
+TriangleSoup polygon_fan(std::uint32_t n) {
+  TriangleSoup s;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const double a = 2 * kPi * i / n;
+    s.vertices.emplace_back(10 * std::cos(a), 10 * std::sin(a), 0.0);
+  }
+  for (std::uint32_t i = 1; i + 1 < n; ++i) s.triangles.push_back({0, i, i + 1});
+  return s;
+}
+
+/// A closed cone: apex (vertex n) over a circle of n corners, the base a fan
+/// from corner 0.
+TriangleSoup cone(std::uint32_t n) {
+  TriangleSoup s;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const double a = 2 * kPi * i / n;
+    s.vertices.emplace_back(std::cos(a), std::sin(a), 0.0);
+  }
+  s.vertices.emplace_back(0.0, 0.0, 1.0);
+  for (std::uint32_t i = 0; i < n; ++i) s.triangles.push_back({n, i, (i + 1) % n});
+  for (std::uint32_t i = 1; i + 1 < n; ++i) s.triangles.push_back({0, i + 1, i});
+  return s;
+}
+
+std::uint32_t add_vertex(TriangleSoup& s, double x, double y, double z) {
+  s.vertices.emplace_back(x, y, z);
+  return static_cast<std::uint32_t>(s.vertices.size() - 1);
+}
+
+}  // namespace
+
+TEST_CASE("Stars are found around high-degree vertices with certified faces", "[vertex_star]") {
+  const TriangleSoup fan = polygon_fan(100);
+  const detail::VertexStars stars = detail::find_vertex_stars(fan, {});
+  REQUIRE(stars.centres == std::vector<std::uint32_t>{0});
+  REQUIRE(stars.offsets.back() == 98);
+  TriangleSoup broken = fan;
+  broken.triangles.push_back({0, 5, 5});  // a repeated index: not certified, no member
+  const detail::VertexStars with_broken = detail::find_vertex_stars(broken, {});
+  REQUIRE(with_broken.centres == std::vector<std::uint32_t>{0});
+  REQUIRE(with_broken.offsets.back() == 98);
+  REQUIRE(with_broken.group.back() == detail::kNoStar);
+  std::vector<char> skip(fan.triangles.size(), 0);
+  for (std::size_t f = 0; f < 70; ++f) skip[f] = 1;  // skipped faces take no part
+  REQUIRE(detail::find_vertex_stars(fan, skip).centres.empty());
+}
+
+TEST_CASE("A planar fan is valid and a folded fan triangle is found", "[vertex_star][self_intersect]") {
+  TriangleSoup fan = polygon_fan(500);
+  REQUIRE(require_same(fan).count == 0);
+  SECTION("folded over its neighbours") {
+    fan.triangles[200] = {0, 201, 190};  // reversed and widened: covers faces 190 to 199
+    REQUIRE(require_same(fan).count > 0);
+  }
+  SECTION("an extra face over ten fan faces") {
+    fan.triangles.push_back({0, 300, 310});
+    REQUIRE(require_same(fan).count >= 10);
+  }
+}
+
+TEST_CASE("Two fan triangles overlapping only near the apex are found", "[vertex_star][self_intersect]") {
+  TriangleSoup fan = polygon_fan(300);
+  // A small triangle at the apex whose sector spans several fan faces: it
+  // meets them only within 0.01 of the apex.
+  const Vec3 apex = fan.vertices[0];
+  const Vec3 towards_a = fan.vertices[100] - apex;
+  const Vec3 towards_b = fan.vertices[110] - apex;
+  const Vec3 a = apex + 1e-3 * towards_a;
+  const Vec3 b = apex + 1e-3 * towards_b;
+  const std::uint32_t ia = add_vertex(fan, a.x(), a.y(), a.z());
+  const std::uint32_t ib = add_vertex(fan, b.x(), b.y(), b.z());
+  fan.triangles.push_back({0, ia, ib});
+  REQUIRE(require_same(fan).count >= 9);
+}
+
+TEST_CASE("A cone apex of many faces is valid, and a crossing face is found",
+          "[vertex_star][self_intersect]") {
+  TriangleSoup c = cone(400);
+  REQUIRE(require_same(c).count == 0);
+  ValidationReport report = validate(c);
+  REQUIRE(report.valid());
+  SECTION("a face from the apex whose far edge crosses the cone's side") {
+    const std::uint32_t p = add_vertex(c, 0.2, 0.01, 0.5);  // inside the cone
+    const std::uint32_t q = add_vertex(c, 1.0, 0.05, 0.5);  // outside
+    c.triangles.push_back({400, p, q});
+    REQUIRE(require_same(c).count > 0);
+  }
+  SECTION("an apex face pushed inside its neighbours") {
+    c.vertices[200] = Vec3(-0.2, 0.0, 0.2);
+    require_same(c);
+  }
+}
+
+TEST_CASE("Random soups with high-degree vertices agree with the reference",
+          "[vertex_star][self_intersect]") {
+  std::mt19937_64 rng(7);
+  const auto below = [&](std::uint32_t n) { return static_cast<std::uint32_t>(rng() % n); };
+  for (int round = 0; round < 60; ++round) {
+    TriangleSoup s;
+    const std::uint32_t points = 40 + below(60);
+    const bool grid = round % 2 == 0;  // exact coplanarities and coincidences
+    for (std::uint32_t i = 0; i < points; ++i) {
+      Vec3 p;
+      for (int k = 0; k < 3; ++k) p[k] = grid ? below(5) / 2.0 : static_cast<double>(rng() >> 11) * 0x1.0p-53;
+      if (round % 3 == 0) p.z() = 0.0;  // a planar soup: coplanar fans
+      s.vertices.push_back(p);
+    }
+    const std::uint32_t faces = 150 + below(150);
+    for (std::uint32_t f = 0; f < faces; ++f) {
+      const std::uint32_t hub = below(4) == 0 ? below(points) : below(3);
+      std::uint32_t b = below(points);
+      std::uint32_t c = below(points);
+      if (b == hub || c == hub || b == c) continue;
+      s.triangles.push_back({hub, b, c});
+    }
+    std::vector<char> skip(s.triangles.size(), 0);
+    for (std::size_t f = 0; f < s.triangles.size(); ++f) {
+      const auto& t = s.triangles[f];
+      skip[f] =
+          (s.vertices[t[1]] - s.vertices[t[0]]).cross(s.vertices[t[2]] - s.vertices[t[0]]).squaredNorm() == 0;
+    }
+    REQUIRE_FALSE(detail::find_vertex_stars(s, skip).centres.empty());
+    require_same(s, skip);
+  }
+}
+
+TEST_CASE("A self-intersection test past its deadline says it is incomplete",
+          "[vertex_star][self_intersect]") {
+  const TriangleSoup c = cone(400);
+  SelfIntersectOptions options;
+  options.deadline = std::chrono::steady_clock::now();
+  const SelfIntersections found = find_self_intersections(c, {}, options);
+  REQUIRE(found.incomplete);
+  REQUIRE(found.count == 0);
+  ValidationOptions budget;
+  budget.max_self_intersection_seconds = 1e-9;
+  const ValidationReport report = validate(c, budget);
+  REQUIRE(report.self_intersection_timed_out);
+  REQUIRE(report.self_intersection == IntersectionCheck::NotRun);
+  REQUIRE_FALSE(report.valid());
+  REQUIRE_FALSE(describe_defects(report).empty());
+}

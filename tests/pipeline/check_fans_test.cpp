@@ -1,0 +1,80 @@
+// `fabmesh check` on triangle fans (tracker issue 23): a closed cylinder whose
+// caps are fans from one rim vertex took minutes (every pair of fan faces
+// has overlapping boxes at the apex); it must check valid well within a
+// hang guard. And the time budget of the self-intersection test: past it
+// the report says the test is unfinished and never calls the mesh valid.
+// Each case runs the real binary under a time and memory limit.
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "tests/pipeline/limited_run.h"
+
+using namespace fabmesh::testing;
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr std::size_t kMemory = std::size_t{2} << 30;  // 2 GiB
+
+/// Writes an OBJ of a closed cylinder (radius 10, height 5) over `n` rim
+/// vertices, each cap a fan from one rim vertex (no centre vertex): the mesh
+/// of the issue, in full double precision (as a float STL it has slivers at
+/// the apex that rounding made degenerate, which are real defects).
+void write_fan_cylinder(const fs::path& path, std::uint32_t n) {
+  const double pi = 3.14159265358979323846;
+  std::ofstream out(path);
+  out.precision(17);
+  for (const double z : {0.0, 5.0}) {
+    for (std::uint32_t i = 0; i < n; ++i) {
+      const double a = 2 * pi * i / n;
+      out << "v " << 10 * std::cos(a) << " " << 10 * std::sin(a) << " " << z << "\n";
+    }
+  }
+  const auto face = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+    out << "f " << a + 1 << " " << b + 1 << " " << c + 1 << "\n";
+  };
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const std::uint32_t j = (i + 1) % n;
+    face(i, j, n + j);
+    face(i, n + j, n + i);
+  }
+  for (std::uint32_t i = 1; i + 1 < n; ++i) {
+    face(0, i + 1, i);
+    face(n, n + i, n + i + 1);
+  }
+}
+
+fs::path fan_cylinder(std::uint32_t n) {
+  const fs::path path = fs::path(FABMESH_TEST_TMP) / ("fan-cylinder-" + std::to_string(n) + ".obj");
+  write_fan_cylinder(path, n);
+  return path;
+}
+
+}  // namespace
+
+TEST_CASE("check: a cylinder with 20000-face fan caps is valid within a hang guard of 50 s",
+          "[mesh][check][cli][time-bounded]") {
+  const fs::path obj = fan_cylinder(20000);
+  const LimitedRun r = run_limited({"check", obj.string()}, 50.0, kMemory);
+  INFO(r.describe());
+  REQUIRE_FALSE(r.timed_out);
+  REQUIRE(r.code == 0);
+  REQUIRE(r.out.find(": valid") != std::string::npos);
+}
+
+TEST_CASE("check: --max-seconds reports an unfinished self-intersection test, never valid",
+          "[mesh][check][cli][time-bounded]") {
+  const fs::path obj = fan_cylinder(20000);
+  const LimitedRun r = run_limited({"check", obj.string(), "--max-seconds", "1e-9", "--json"}, 30.0, kMemory);
+  INFO(r.describe());
+  REQUIRE_FALSE(r.timed_out);
+  REQUIRE(r.code == 1);
+  REQUIRE(r.out.find("self-intersection test unfinished") != std::string::npos);
+  REQUIRE(r.out.find("\"valid\": false") != std::string::npos);
+  REQUIRE(r.out.find("\"self_intersection\": \"not run\"") != std::string::npos);
+}
