@@ -2,11 +2,7 @@
 // executable on fabmesh's own mould 3MF and on the corpus of
 // tests/data/check-corpus/objects/ (scripts/make-check-corpus-objects.py).
 
-#include <sys/wait.h>
-
-#include <array>
 #include <catch2/catch.hpp>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -14,31 +10,15 @@
 #include <string>
 
 #include "tests/io/mesh/temp_dir.h"
+#include "tests/pipeline/shell_run.h"
 
 using fabmesh::test::TempDir;
 
+using fabmesh::testing::quoted;
+using fabmesh::testing::run_in_shell;
+using fabmesh::testing::ShellRun;
+
 namespace {
-
-struct Run {
-  int code = -1;
-  std::string out;
-};
-
-/// Runs `fabmesh ARGS` (stderr to /dev/null) and returns its exit code and stdout.
-Run run_fabmesh(const std::string& args) {
-  const std::string command = std::string("'") + FABMESH_BINARY + "' " + args + " 2>/dev/null";
-  Run run;
-  FILE* pipe = popen(command.c_str(), "r");
-  REQUIRE(pipe != nullptr);
-  std::array<char, 4096> buffer{};
-  std::size_t n = 0;
-  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) run.out.append(buffer.data(), n);
-  const int status = pclose(pipe);
-  run.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return run;
-}
-
-std::string quoted(const std::string& path) { return "'" + path + "'"; }
 
 std::string corpus(const std::string& name) {
   return std::string(FABMESH_SOURCE_DIR) + "/tests/data/check-corpus/objects/" + name;
@@ -66,7 +46,7 @@ nlohmann::json expected(const std::string& file) {
 /// verdict, and per object name and verdict, and the interpenetrating pairs.
 void require_as_expected(const std::string& file) {
   const nlohmann::json want = expected(file);
-  const Run run = run_fabmesh("check --json " + quoted(corpus(file)));
+  const ShellRun run = run_in_shell("check --json " + quoted(corpus(file)));
   INFO(file << ": " << run.out);
   CHECK(run.code == want["exit_code"]);
   const auto j = nlohmann::json::parse(run.out);
@@ -92,11 +72,11 @@ void require_as_expected(const std::string& file) {
 TEST_CASE("check objects: fabmesh's own mould 3MF is valid object by object", "[mesh][check][cli][objects]") {
   const TempDir dir;
   const std::string design = std::string(FABMESH_SOURCE_DIR) + "/configs/examples/mould_golden.yaml";
-  REQUIRE(run_fabmesh("run " + quoted(design) + " --export-format mould_3mf -q -o " + quoted(dir.file("")))
+  REQUIRE(run_in_shell("run " + quoted(design) + " --export-format mould_3mf -q -o " + quoted(dir.file("")))
               .code == 0);
   const std::string mould = dir.file("mould_golden.mould.3mf");
 
-  const Run human = run_fabmesh("check " + quoted(mould));
+  const ShellRun human = run_in_shell("check " + quoted(mould));
   INFO(human.out);
   CHECK(human.code == 0);
   CHECK(human.out.find(mould + ": valid (2 objects, 2 valid)\n") == 0);
@@ -105,7 +85,7 @@ TEST_CASE("check objects: fabmesh's own mould 3MF is valid object by object", "[
   CHECK(human.out.find("  assembly: 2 objects, none interpenetrating\n") != std::string::npos);
   CHECK(human.out.find("non-manifold") == std::string::npos);
 
-  const Run json = run_fabmesh("check --json " + quoted(mould));
+  const ShellRun json = run_in_shell("check --json " + quoted(mould));
   CHECK(json.code == 0);
   const auto j = nlohmann::json::parse(json.out);
   CHECK(j["valid"] == true);
@@ -127,7 +107,7 @@ TEST_CASE("check objects: fabmesh's own mould 3MF is valid object by object", "[
 TEST_CASE("check objects: a 3MF of two cubes touching on a face is valid, none interpenetrating",
           "[mesh][check][cli][objects]") {
   require_as_expected("touching-cubes.3mf");
-  const Run human = run_fabmesh("check " + quoted(corpus("touching-cubes.3mf")));
+  const ShellRun human = run_in_shell("check " + quoted(corpus("touching-cubes.3mf")));
   CHECK(human.out.find("  object 1 'left': valid (8 vertices, 12 triangles, 1 component, genus 0, volume 1 "
                        "mm^3, area 6 mm^2)\n") != std::string::npos);
   CHECK(human.out.find("  assembly: 2 objects, none interpenetrating\n") != std::string::npos);
@@ -136,7 +116,7 @@ TEST_CASE("check objects: a 3MF of two cubes touching on a face is valid, none i
 TEST_CASE("check objects: a 3MF of interpenetrating cubes has each valid and names the pair",
           "[mesh][check][cli][objects]") {
   require_as_expected("interpenetrating-cubes.3mf");
-  const Run human = run_fabmesh("check " + quoted(corpus("interpenetrating-cubes.3mf")));
+  const ShellRun human = run_in_shell("check " + quoted(corpus("interpenetrating-cubes.3mf")));
   CHECK(human.code == 0);
   CHECK(human.out.find("  assembly: 2 objects, interpenetrating: 1 'a' and 2 'b'\n") != std::string::npos);
 }
@@ -154,11 +134,11 @@ TEST_CASE("check objects: one cube placed twice interpenetrates, unnamed objects
 TEST_CASE("check objects: one invalid object makes the file invalid, the other still judged",
           "[mesh][check][cli][objects]") {
   require_as_expected("open-and-closed.3mf");
-  const Run human = run_fabmesh("check " + quoted(corpus("open-and-closed.3mf")));
+  const ShellRun human = run_in_shell("check " + quoted(corpus("open-and-closed.3mf")));
   CHECK(human.out.find("  object 2 'open': INVALID (") != std::string::npos);
   CHECK(human.out.find("    - 3 boundary edges") != std::string::npos);
   const auto j =
-      nlohmann::json::parse(run_fabmesh("check --json " + quoted(corpus("open-and-closed.3mf"))).out);
+      nlohmann::json::parse(run_in_shell("check --json " + quoted(corpus("open-and-closed.3mf"))).out);
   CHECK(j["assembly"]["judged"] == nlohmann::json::array({0}));
 }
 
@@ -171,7 +151,7 @@ TEST_CASE("check objects: an OBJ of one shell split in two g groups stays one ob
           "[mesh][check][cli][objects]") {
   require_as_expected("groups-in-objects.obj");
   require_as_expected("one-shell-two-groups.obj");
-  const Run human = run_fabmesh("check " + quoted(corpus("one-shell-two-groups.obj")));
+  const ShellRun human = run_in_shell("check " + quoted(corpus("one-shell-two-groups.obj")));
   CHECK(human.out == corpus("one-shell-two-groups.obj") +
                          ": valid (8 vertices, 12 triangles, 1 component, genus 0, volume 1, area 6)\n"
                          "  OBJ file (no unit in the file)\n");
@@ -202,8 +182,8 @@ TEST_CASE("check objects: the corpus manifest covers every file of the corpus", 
 
 TEST_CASE("check objects: several files, one of several objects, give one entry per file",
           "[mesh][check][cli][objects]") {
-  const Run run = run_fabmesh("check --json " + quoted(corpus("touching-cubes.3mf")) + " " +
-                              quoted(corpus("one-shell-two-groups.obj")));
+  const ShellRun run = run_in_shell("check --json " + quoted(corpus("touching-cubes.3mf")) + " " +
+                                    quoted(corpus("one-shell-two-groups.obj")));
   CHECK(run.code == 0);
   const auto j = nlohmann::json::parse(run.out);
   REQUIRE(j.is_array());

@@ -4,12 +4,8 @@
 // written in a temp folder and on the generated corpus of
 // tests/data/check-corpus (scripts/make-check-corpus.py).
 
-#include <sys/wait.h>
-
 #include <algorithm>
-#include <array>
 #include <catch2/catch.hpp>
-#include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -19,32 +15,16 @@
 #include "io/mesh/stl.h"
 #include "tests/geometry/mesh/shapes.h"
 #include "tests/io/mesh/temp_dir.h"
+#include "tests/pipeline/shell_run.h"
 
 using namespace fabmesh;
 using test::TempDir;
 
+using fabmesh::testing::quoted;
+using fabmesh::testing::run_in_shell;
+using fabmesh::testing::ShellRun;
+
 namespace {
-
-struct Run {
-  int code = -1;
-  std::string out;
-};
-
-/// Runs `fabmesh ARGS` (stderr to /dev/null) and returns its exit code and stdout.
-Run run_fabmesh(const std::string& args) {
-  const std::string command = std::string("'") + FABMESH_BINARY + "' " + args + " 2>/dev/null";
-  Run run;
-  FILE* pipe = popen(command.c_str(), "r");
-  REQUIRE(pipe != nullptr);
-  std::array<char, 4096> buffer{};
-  std::size_t n = 0;
-  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) run.out.append(buffer.data(), n);
-  const int status = pclose(pipe);
-  run.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return run;
-}
-
-std::string quoted(const std::string& path) { return "'" + path + "'"; }
 
 TriangleSoup inverted(TriangleSoup soup) {
   for (auto& t : soup.triangles) std::swap(t[1], t[2]);
@@ -63,7 +43,7 @@ std::pair<int, nlohmann::json> check_json(const TriangleSoup& soup) {
   const TempDir dir;
   const std::string path = dir.file("mesh.obj");
   write_obj(soup, path);
-  const Run run = run_fabmesh("check --json " + quoted(path));
+  const ShellRun run = run_in_shell("check --json " + quoted(path));
   return {run.code, nlohmann::json::parse(run.out)};
 }
 
@@ -91,7 +71,7 @@ TEST_CASE("check: a cube and a separate inverted cube is invalid, an inverted co
 
   const TempDir dir;
   write_obj(soup, dir.file("pair.obj"));
-  const Run human = run_fabmesh("check " + quoted(dir.file("pair.obj")));
+  const ShellRun human = run_in_shell("check " + quoted(dir.file("pair.obj")));
   CHECK(human.code == 1);
   CHECK_THAT(human.out, Catch::Contains("INVALID") && Catch::Contains("2 components") &&
                             Catch::Contains("inverted components: component 2 of 2") &&
@@ -135,7 +115,7 @@ TEST_CASE("check: a torus and a single inside-out cube keep their verdicts",
           "[mesh][check][cli][orientation]") {
   const TempDir dir;
   write_stl(test::torus(3.0, 1.0, 32, 16), dir.file("torus.stl"));
-  const Run torus = run_fabmesh("check --json " + quoted(dir.file("torus.stl")));
+  const ShellRun torus = run_in_shell("check --json " + quoted(dir.file("torus.stl")));
   CHECK(torus.code == 0);
   const auto t = nlohmann::json::parse(torus.out);
   REQUIRE(t["component_shells"].size() == 1);
@@ -148,7 +128,7 @@ TEST_CASE("check: a torus and a single inside-out cube keep their verdicts",
   REQUIRE(j["component_shells"].size() == 1);
   CHECK(j["component_shells"][0]["orientation"] == "inward");
   write_obj(inverted(cube(0, 1)), dir.file("inside-out.obj"));
-  const Run human = run_fabmesh("check " + quoted(dir.file("inside-out.obj")));
+  const ShellRun human = run_in_shell("check " + quoted(dir.file("inside-out.obj")));
   CHECK_THAT(human.out, Catch::Contains("inside-out (non-positive volume) (volume -1)") &&
                             !Catch::Contains("inverted components"));
 }
@@ -182,7 +162,7 @@ TEST_CASE("check: the corpus of tests/data/check-corpus gets its expected verdic
   for (const auto& entry : manifest["cases"]) {
     const std::string file = entry["file"];
     INFO(file);
-    const Run run = run_fabmesh("check --json " + quoted(folder + file));
+    const ShellRun run = run_in_shell("check --json " + quoted(folder + file));
     const bool valid = entry["valid"];
     CHECK(run.code == (valid ? 0 : 1));
     const auto j = nlohmann::json::parse(run.out);

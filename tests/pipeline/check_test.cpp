@@ -1,10 +1,6 @@
 // `fabmesh check` end to end: the real executable on files written in a temp folder.
 
-#include <sys/wait.h>
-
-#include <array>
 #include <catch2/catch.hpp>
-#include <cstdio>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -13,47 +9,27 @@
 #include "io/mesh/stl.h"
 #include "tests/geometry/mesh/shapes.h"
 #include "tests/io/mesh/temp_dir.h"
+#include "tests/pipeline/shell_run.h"
 
 using namespace fabmesh;
 using test::TempDir;
 
-namespace {
-
-struct Run {
-  int code = -1;
-  std::string out;
-};
-
-/// Runs `fabmesh ARGS` (stderr to /dev/null) and returns its exit code and stdout.
-Run run_fabmesh(const std::string& args) {
-  const std::string command = std::string("'") + FABMESH_BINARY + "' " + args + " 2>/dev/null";
-  Run run;
-  FILE* pipe = popen(command.c_str(), "r");
-  REQUIRE(pipe != nullptr);
-  std::array<char, 4096> buffer{};
-  std::size_t n = 0;
-  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) run.out.append(buffer.data(), n);
-  const int status = pclose(pipe);
-  run.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return run;
-}
-
-std::string quoted(const std::string& path) { return "'" + path + "'"; }
-
-}  // namespace
+using fabmesh::testing::quoted;
+using fabmesh::testing::run_in_shell;
+using fabmesh::testing::ShellRun;
 
 TEST_CASE("check: a valid STL exits 0 and reports what the weld merged", "[mesh][check][cli]") {
   const TempDir dir;
   const std::string path = dir.file("torus.stl");
   write_stl(test::torus(3.0, 1.0, 32, 16), path);
-  const Run human = run_fabmesh("check " + quoted(path));
+  const ShellRun human = run_in_shell("check " + quoted(path));
   CHECK(human.code == 0);
   CHECK(human.out.find("valid") != std::string::npos);
   CHECK(human.out.find("genus 1") != std::string::npos);
   CHECK(human.out.find("welded 2560 coincident vertices (normal for STL") !=
         std::string::npos);  // 3 * 1024 - 512
 
-  const Run json = run_fabmesh("check --json " + quoted(path));
+  const ShellRun json = run_in_shell("check --json " + quoted(path));
   CHECK(json.code == 0);
   const auto j = nlohmann::json::parse(json.out);
   REQUIRE(j.is_object());
@@ -77,11 +53,11 @@ TEST_CASE("check: an invalid mesh exits 1 and names its defects", "[mesh][check]
   TriangleSoup open = test::box();
   open.triangles.pop_back();
   write_off(open, dir.file("open.off"));
-  const Run human = run_fabmesh("check " + quoted(dir.file("open.off")));
+  const ShellRun human = run_in_shell("check " + quoted(dir.file("open.off")));
   CHECK(human.code == 1);
   CHECK(human.out.find("INVALID") != std::string::npos);
   CHECK(human.out.find("3 boundary edges") != std::string::npos);
-  const auto j = nlohmann::json::parse(run_fabmesh("check --json " + quoted(dir.file("open.off"))).out);
+  const auto j = nlohmann::json::parse(run_in_shell("check --json " + quoted(dir.file("open.off"))).out);
   CHECK(j["boundary_edges"] == 3);
   CHECK(j["valid"] == false);
   CHECK(j["genus"].is_null());
@@ -98,8 +74,8 @@ TEST_CASE("check: several files give a JSON array, and any invalid exits 1, any 
   lying[80] = 13;  // claims 13 triangles, holds 12
   dir.write("lying.stl", lying);
 
-  const Run both =
-      run_fabmesh("check --json " + quoted(dir.file("cube.obj")) + " " + quoted(dir.file("inside_out.obj")));
+  const ShellRun both =
+      run_in_shell("check --json " + quoted(dir.file("cube.obj")) + " " + quoted(dir.file("inside_out.obj")));
   CHECK(both.code == 1);
   const auto j = nlohmann::json::parse(both.out);
   REQUIRE(j.is_array());
@@ -108,12 +84,13 @@ TEST_CASE("check: several files give a JSON array, and any invalid exits 1, any 
   CHECK(j[1]["valid"] == false);
   CHECK(j[1]["oriented_outward"] == false);
 
-  CHECK(run_fabmesh("check " + quoted(dir.file("cube.obj"))).code == 0);
-  CHECK(run_fabmesh("check " + quoted(dir.file("lying.stl"))).code == 2);
-  CHECK(run_fabmesh("check " + quoted(dir.file("cube.obj")) + " " + quoted(dir.file("lying.stl"))).code == 2);
-  CHECK(run_fabmesh("check " + quoted(dir.file("missing.stl"))).code == 2);
-  CHECK(run_fabmesh("check --weld-tolerance -1 " + quoted(dir.file("cube.obj"))).code == 2);
-  CHECK(run_fabmesh("check").code == 2);  // MESH is required
+  CHECK(run_in_shell("check " + quoted(dir.file("cube.obj"))).code == 0);
+  CHECK(run_in_shell("check " + quoted(dir.file("lying.stl"))).code == 2);
+  CHECK(run_in_shell("check " + quoted(dir.file("cube.obj")) + " " + quoted(dir.file("lying.stl"))).code ==
+        2);
+  CHECK(run_in_shell("check " + quoted(dir.file("missing.stl"))).code == 2);
+  CHECK(run_in_shell("check --weld-tolerance -1 " + quoted(dir.file("cube.obj"))).code == 2);
+  CHECK(run_in_shell("check").code == 2);  // MESH is required
 }
 
 TEST_CASE("check: --weld-tolerance closes cracks that exact welding leaves open", "[mesh][check][cli]") {
@@ -121,6 +98,6 @@ TEST_CASE("check: --weld-tolerance closes cracks that exact welding leaves open"
   TriangleSoup cracked = test::unwelded(test::box());
   cracked.vertices[0].x() += 1e-9;  // one corner copy is a hair off
   write_obj(cracked, dir.file("cracked.obj"));
-  CHECK(run_fabmesh("check " + quoted(dir.file("cracked.obj"))).code == 1);
-  CHECK(run_fabmesh("check --weld-tolerance 1e-6 " + quoted(dir.file("cracked.obj"))).code == 0);
+  CHECK(run_in_shell("check " + quoted(dir.file("cracked.obj"))).code == 1);
+  CHECK(run_in_shell("check --weld-tolerance 1e-6 " + quoted(dir.file("cracked.obj"))).code == 0);
 }

@@ -54,6 +54,29 @@ void require_written_files_valid(const nlohmann::json& report) {
   }
 }
 
+// Runs a 30 mm slab whose outline is the polyline `points`, at tolerance
+// 1e-5 mm, asking for OBJ and Draco, under 256 MiB: its report (exit 0).
+nlohmann::json run_slab_with_draco(const std::string& folder, const std::string& points) {
+  const fs::path dir = fresh_dir(folder);
+  const fs::path design = write_design(dir, "slab", R"(name: slab
+kind: countertop
+units: mm
+tolerance: 0.00001
+thickness: 30
+outline:
+  family: tbezier
+  closed: true
+  segments:
+    - polyline: )" + points + R"(
+outputs: [obj, drc]
+)");
+  const LimitedRun run = run_limited({"run", design.string(), "-o", (dir / "out/").string(), "--json"}, 20,
+                                     std::size_t{256} << 20);
+  INFO(run.describe());
+  REQUIRE(run.code == 0);
+  return nlohmann::json::parse(run.out).at(0);
+}
+
 }  // namespace
 
 TEST_CASE("run: float32 files that rounding breaks are skipped with the reason, never written",
@@ -132,24 +155,8 @@ TEST_CASE("run: Draco that needs more quantization than memory allows is skipped
           "[pipeline][outputs][draco][cli]") {
   // Coordinates up to 1000 mm held within 9e-6 mm: 27 bits, whose encoding
   // takes about 430 MB whatever the mesh (24 triangles here).
-  const fs::path dir = fresh_dir("stored_draco_bits");
-  const fs::path design = write_design(dir, "slab", R"(name: slab
-kind: countertop
-units: mm
-tolerance: 0.00001
-thickness: 30
-outline:
-  family: tbezier
-  closed: true
-  segments:
-    - polyline: [[0,0],[1000,0],[1000,600],[0,600],[0,0]]
-outputs: [obj, drc]
-)");
-  const LimitedRun run = run_limited({"run", design.string(), "-o", (dir / "out/").string(), "--json"}, 20,
-                                     std::size_t{256} << 20);
-  INFO(run.describe());
-  REQUIRE(run.code == 0);
-  const auto report = nlohmann::json::parse(run.out).at(0);
+  const nlohmann::json report =
+      run_slab_with_draco("stored_draco_bits", "[[0,0],[1000,0],[1000,600],[0,600],[0,0]]");
   REQUIRE(report["skipped_outputs"].size() == 1);
   CHECK(report["skipped_outputs"][0]["format"] == "drc");
   CHECK(report["skipped_outputs"][0]["reason"].get<std::string>().find("bits of Draco quantization") !=
@@ -159,24 +166,8 @@ outputs: [obj, drc]
 
 TEST_CASE("run: Draco that float32 alone cannot hold is skipped without a try",
           "[pipeline][outputs][draco][cli]") {
-  const fs::path dir = fresh_dir("stored_draco_floor");
-  const fs::path design = write_design(dir, "slab", R"(name: slab
-kind: countertop
-units: mm
-tolerance: 0.00001
-thickness: 30
-outline:
-  family: tbezier
-  closed: true
-  segments:
-    - polyline: [[0,0],[1000.00001,0],[1000.00001,600.00001],[0,600.00001],[0,0]]
-outputs: [obj, drc]
-)");
-  const LimitedRun run = run_limited({"run", design.string(), "-o", (dir / "out/").string(), "--json"}, 20,
-                                     std::size_t{256} << 20);
-  INFO(run.describe());
-  REQUIRE(run.code == 0);
-  const auto report = nlohmann::json::parse(run.out).at(0);
+  const nlohmann::json report = run_slab_with_draco(
+      "stored_draco_floor", "[[0,0],[1000.00001,0],[1000.00001,600.00001],[0,600.00001],[0,0]]");
   REQUIRE(report["skipped_outputs"].size() == 1);
   CHECK(report["skipped_outputs"][0]["reason"].get<std::string>().find("at any quantization") !=
         std::string::npos);

@@ -20,10 +20,13 @@
 #include "geometry/validation/detail/self_intersect_reference.h"
 #include "tests/geometry/mesh/shapes.h"
 #include "tests/geometry/section/region_shapes.h"
+#include "tests/geometry/validation/same_as_reference.h"
 
 using namespace fabmesh;
 using fabmesh::test::append;
 using fabmesh::test::box;
+
+using fabmesh::test::require_same;
 
 namespace {
 
@@ -52,23 +55,6 @@ std::vector<char> degenerate_faces(const TriangleSoup& s) {
     skip[f] = t[0] == t[1] || t[1] == t[2] || t[0] == t[2] || n.squaredNorm() == 0.0;
   }
   return skip;
-}
-
-/// Requires both implementations to give the same answer, sequential and parallel.
-void require_same(const TriangleSoup& s, const std::vector<char>& skip, std::size_t max_pairs = 100,
-                  std::size_t count_limit = 10'000'000) {
-  SelfIntersectOptions options;
-  options.max_pairs = max_pairs;
-  options.count_limit = count_limit;
-  const SelfIntersections expected = find_self_intersections_reference(s, skip, options);
-  const SelfIntersections parallel = find_self_intersections(s, skip, options);
-  options.parallel = false;
-  const SelfIntersections sequential = find_self_intersections(s, skip, options);
-  REQUIRE(parallel.count == expected.count);
-  REQUIRE(parallel.capped == expected.capped);
-  REQUIRE(parallel.pairs == expected.pairs);
-  REQUIRE(sequential.count == parallel.count);
-  REQUIRE(sequential.pairs == parallel.pairs);
 }
 
 /// A soup of `triangles` faces over a pool of points of one kind: small

@@ -14,27 +14,15 @@
 #include "geometry/validation/detail/self_intersect.h"
 #include "geometry/validation/detail/self_intersect_reference.h"
 #include "geometry/validation/validate.h"
+#include "tests/geometry/validation/same_as_reference.h"
 
 using namespace fabmesh;
+
+using fabmesh::test::require_same;
 
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-
-/// Requires the fast test, parallel and sequential, to equal the reference.
-SelfIntersections require_same(const TriangleSoup& s, const std::vector<char>& skip = {}) {
-  SelfIntersectOptions options;
-  const SelfIntersections expected = find_self_intersections_reference(s, skip, options);
-  const SelfIntersections parallel = find_self_intersections(s, skip, options);
-  options.parallel = false;
-  const SelfIntersections sequential = find_self_intersections(s, skip, options);
-  REQUIRE(parallel.count == expected.count);
-  REQUIRE(parallel.pairs == expected.pairs);
-  REQUIRE_FALSE(parallel.incomplete);
-  REQUIRE(sequential.count == expected.count);
-  REQUIRE(sequential.pairs == expected.pairs);
-  return parallel;
-}
 
 /// A convex polygon of `n` corners on a circle of radius 10 in the plane
 /// z = 0, triangulated as a fan from corner 0 (as the OBJ reader does).
