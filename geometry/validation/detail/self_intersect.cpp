@@ -9,13 +9,16 @@
 // each run by one thread, and their findings combined in task order, so the result
 // does not depend on the thread count.
 //
-// The pairs sharing a vertex of high degree (the apex of a fan, a pole) are
-// not enumerated by the hierarchy, whose boxes all overlap at that vertex:
-// the faces around it are grouped (TriangleBvh skips pairs within a group
-// and subtrees all in one group) and their pairs come from the vertex's
-// star instead (vertex_star.h), after the tasks, star by star in vertex
-// order: O(d log d) for d faces around a vertex rather than d^2 / 2 pairs.
-// A pair of faces sharing a star centre is tested there and only there.
+// The faces around a vertex of high degree (the apex of a fan, a pole) are
+// not in the hierarchy: their boxes all overlap at that vertex, and a fan's
+// long faces have boxes overlapping much of the mesh around it. Their pairs
+// come from the vertex's star instead (vertex_star.h), after the tasks, star
+// by star in vertex order: the pairs within the star by their arcs, then
+// the pairs with the faces around it (found by box queries on a hierarchy
+// of the other faces and one of the stars' faces) by arcs against cones.
+// O(d log d) for d faces around a vertex rather than d^2 / 2 pairs. Each
+// pair is tested once: a pair sharing star centres by the smallest shared
+// one, any other pair with a star's face by the smallest centre of the two.
 
 #include "geometry/validation/detail/self_intersect.h"
 
@@ -25,6 +28,8 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <limits>
+#include <optional>
 
 #include "geometry/core/errors.h"
 #include "geometry/validation/detail/face_pair_filter.h"
@@ -101,9 +106,10 @@ bool boxes_overlap(const TriangleSoup& soup, std::uint32_t f, std::uint32_t g) {
 
 class Search {
  public:
-  Search(const TriangleSoup& soup, const TriangleBvh& bvh, const detail::VertexStars& stars,
-         const detail::FacePairFilter& filter, const SelfIntersectOptions& options)
-      : soup_(soup), bvh_(bvh), stars_(stars), filter_(filter), options_(options) {
+  Search(const TriangleSoup& soup, const TriangleBvh& bvh, const TriangleBvh* star_bvh,
+         const detail::VertexStars& stars, const detail::FacePairFilter& filter,
+         const SelfIntersectOptions& options)
+      : soup_(soup), bvh_(bvh), star_bvh_(star_bvh), stars_(stars), filter_(filter), options_(options) {
     // The filter's data in the hierarchy's order: neighbours in space are neighbours in memory.
     face_.resize(bvh.size());
     auto body = [&](std::size_t i) { face_[i] = detail::face_data(soup, bvh.face(i)); };
@@ -124,12 +130,8 @@ class Search {
       r.timed_out = true;
       return r;
     }
-    const bool stars = !stars_.centres.empty();
     bvh_.run(task, [&](std::size_t i, std::size_t j) {
       if (r.count >= limit || r.timed_out) return;
-      if (stars && face_[i].certified && face_[j].certified && stars_.shares_centre(face_[i].v, face_[j].v)) {
-        return;  // the star's pair
-      }
       if (++r.tested % kPairsPerClockCheck == 0 && past_deadline(options_)) {
         --r.tested;
         r.timed_out = true;
@@ -152,26 +154,57 @@ class Search {
   /// Tests the candidate pairs of every star in order, adding to `counted`
   /// (at most count_limit) and `smallest`; sets capped or incomplete.
   void run_stars(std::size_t& counted, SmallestPairs& smallest, SelfIntersections& result) const {
+    const auto test = [&](std::uint32_t a, std::uint32_t b) {
+      if (++result.candidates_tested % kPairsPerClockCheck == 0 && past_deadline(options_)) {
+        --result.candidates_tested;
+        result.incomplete = true;
+        return false;
+      }
+      const std::uint32_t f = std::min(a, b);
+      const std::uint32_t g = std::max(a, b);
+      if (filter_.disjoint(detail::face_data(soup_, f), detail::face_data(soup_, g))) return true;
+      if (!boxes_overlap(soup_, f, g) || !faces_intersect_exact(soup_, f, g)) return true;
+      ++counted;
+      smallest.add({f, g});
+      result.capped = counted >= options_.count_limit;
+      return !result.capped;
+    };
     for (std::size_t s = 0; s < stars_.centres.size() && !result.capped && !result.incomplete; ++s) {
-      detail::for_each_star_candidate(soup_, stars_, s, [&](std::uint32_t f, std::uint32_t g) {
-        if (++result.candidates_tested % kPairsPerClockCheck == 0 && past_deadline(options_)) {
-          --result.candidates_tested;
-          result.incomplete = true;
-          return false;
-        }
-        if (filter_.disjoint(detail::face_data(soup_, f), detail::face_data(soup_, g))) return true;
-        if (!boxes_overlap(soup_, f, g) || !faces_intersect_exact(soup_, f, g)) return true;
-        ++counted;
-        smallest.add({f, g});
-        result.capped = counted >= options_.count_limit;
-        return !result.capped;
-      });
+      detail::for_each_star_candidate(soup_, stars_, s, test);
+      if (result.capped || result.incomplete) break;
+      detail::for_each_star_neighbour_candidate(soup_, stars_, s, neighbours(s), test);
     }
   }
 
  private:
+  /// The faces whose boxes overlap the box of the faces whose smallest star
+  /// centre is that of star s, with a greater smallest centre (or none),
+  /// ascending.
+  std::vector<std::uint32_t> neighbours(std::size_t s) const {
+    const std::uint32_t v = stars_.centres[s];
+    const float inf = std::numeric_limits<float>::infinity();
+    BoxF box{{inf, inf, inf}, {-inf, -inf, -inf}};
+    for (std::size_t i = stars_.offsets[s]; i < stars_.offsets[s + 1]; ++i) {
+      if (stars_.group[stars_.faces[i]] != v) continue;
+      const BoxF b = triangle_box(soup_, stars_.faces[i]);
+      for (int k = 0; k < 3; ++k) {
+        box.lo[k] = std::min(box.lo[k], b.lo[k]);
+        box.hi[k] = std::max(box.hi[k], b.hi[k]);
+      }
+    }
+    std::vector<std::uint32_t> found;
+    const auto keep = [&](std::uint32_t g) {
+      if (stars_.group[g] > v) found.push_back(g);
+    };
+    bvh_.for_each_overlapping(box, keep);
+    if (star_bvh_) star_bvh_->for_each_overlapping(box, keep);
+    std::sort(found.begin(), found.end());
+    return found;
+  }
+
   const TriangleSoup& soup_;
   const TriangleBvh& bvh_;
+  const TriangleBvh* star_bvh_;  ///< the stars' faces (null when there are none)
   const detail::VertexStars& stars_;
   const detail::FacePairFilter& filter_;
   const SelfIntersectOptions& options_;
@@ -202,8 +235,22 @@ SelfIntersections find_self_intersections(const TriangleSoup& soup, const std::v
   if (options.count_limit == 0) return result;
   const detail::FacePairFilter filter;
   const detail::VertexStars stars = detail::find_vertex_stars(soup, skip);
-  const TriangleBvh bvh(soup, skip, options.parallel, stars.group);
-  const Search search(soup, bvh, stars, filter, options);
+  // The hierarchy of the faces in no star; when there are stars, another of theirs.
+  std::vector<char> outside(skip);
+  std::vector<char> inside;
+  std::optional<TriangleBvh> star_bvh;
+  if (!stars.centres.empty()) {
+    outside.resize(soup.triangles.size(), 0);
+    inside.assign(soup.triangles.size(), 1);
+    for (std::size_t f = 0; f < soup.triangles.size(); ++f) {
+      const bool member = stars.group[f] != detail::kNoStar;
+      outside[f] = static_cast<char>(outside[f] || member);
+      inside[f] = static_cast<char>(!member);
+    }
+    star_bvh.emplace(soup, inside, options.parallel);
+  }
+  const TriangleBvh bvh(soup, outside, options.parallel);
+  const Search search(soup, bvh, star_bvh ? &*star_bvh : nullptr, stars, filter, options);
   const std::size_t limit = options.count_limit;
 
   // Tasks in batches, each batch in parallel; once the count reaches the

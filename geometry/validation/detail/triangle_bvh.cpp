@@ -36,19 +36,6 @@ void grow(BoxF& a, const BoxF& b) {
   }
 }
 
-BoxF triangle_box(const TriangleSoup& soup, std::uint32_t f) {
-  const auto& t = soup.triangles[f];
-  const Vec3& p = soup.vertices[t[0]];
-  const Vec3& q = soup.vertices[t[1]];
-  const Vec3& r = soup.vertices[t[2]];
-  BoxF b;
-  for (int k = 0; k < 3; ++k) {
-    b.lo[k] = round_down(std::min({p[k], q[k], r[k]}));
-    b.hi[k] = round_up(std::max({p[k], q[k], r[k]}));
-  }
-  return b;
-}
-
 /// Spreads the low 10 bits of x so that there are two zero bits between each.
 std::uint64_t spread_bits(std::uint64_t x) {
   x &= 0x3ff;
@@ -71,17 +58,22 @@ void for_range(std::size_t n, bool parallel, const Body& body) {
   }
 }
 
-/// The group of two nodes together.
-std::uint32_t join_groups(std::uint32_t a, std::uint32_t b, std::uint32_t empty, std::uint32_t none) {
-  if (a == empty) return b;
-  if (b == empty) return a;
-  return a == b ? a : none;
-}
-
 }  // namespace
 
-TriangleBvh::TriangleBvh(const TriangleSoup& soup, const std::vector<char>& skip, bool parallel,
-                         const std::vector<std::uint32_t>& group) {
+BoxF triangle_box(const TriangleSoup& soup, std::uint32_t f) {
+  const auto& t = soup.triangles[f];
+  const Vec3& p = soup.vertices[t[0]];
+  const Vec3& q = soup.vertices[t[1]];
+  const Vec3& r = soup.vertices[t[2]];
+  BoxF b;
+  for (int k = 0; k < 3; ++k) {
+    b.lo[k] = round_down(std::min({p[k], q[k], r[k]}));
+    b.hi[k] = round_up(std::max({p[k], q[k], r[k]}));
+  }
+  return b;
+}
+
+TriangleBvh::TriangleBvh(const TriangleSoup& soup, const std::vector<char>& skip, bool parallel) {
   std::vector<std::uint32_t> active;
   active.reserve(soup.triangles.size());
   for (std::uint32_t f = 0; f < soup.triangles.size(); ++f) {
@@ -124,19 +116,16 @@ TriangleBvh::TriangleBvh(const TriangleSoup& soup, const std::vector<char>& skip
   }
   faces_.resize(n);
   boxes_.resize(n);
-  groups_.resize(n);
   for_range(n, parallel, [&](std::size_t k) {
     const auto i = static_cast<std::size_t>(key[k] & 0xffffffffu);
     faces_[k] = active[i];
     boxes_[k] = box[i];
-    groups_[k] = group.empty() ? kNoGroup : group[active[i]];
   });
   // Leaves, then each level of the tree from its children.
   const std::size_t leaves = leaf_count();
   leaf_base_ = 1;
   while (leaf_base_ < leaves) leaf_base_ *= 2;
   nodes_.assign(2 * leaf_base_, empty_box());
-  node_groups_.assign(2 * leaf_base_, kEmptyGroup);
   leaf_boxes_.resize(leaves);
   for_range(leaves, parallel, [&](std::size_t l) {
     BoxF& b = nodes_[leaf_base_ + l];
@@ -145,11 +134,6 @@ TriangleBvh::TriangleBvh(const TriangleSoup& soup, const std::vector<char>& skip
       const std::size_t k = l * kLeafSize + lane;
       const BoxF tri = k < n ? boxes_[k] : empty_box();
       grow(b, tri);
-      lanes.group[lane] = k < n ? groups_[k] : kNoGroup;
-      if (k < n) {
-        node_groups_[leaf_base_ + l] =
-            join_groups(node_groups_[leaf_base_ + l], groups_[k], kEmptyGroup, kNoGroup);
-      }
       for (int c = 0; c < 3; ++c) {
         lanes.lo[c][lane] = tri.lo[c];
         lanes.hi[c][lane] = tri.hi[c];
@@ -161,8 +145,6 @@ TriangleBvh::TriangleBvh(const TriangleSoup& soup, const std::vector<char>& skip
       BoxF& b = nodes_[level + i];
       b = nodes_[2 * (level + i)];
       grow(b, nodes_[2 * (level + i) + 1]);
-      node_groups_[level + i] = join_groups(node_groups_[2 * (level + i)], node_groups_[2 * (level + i) + 1],
-                                            kEmptyGroup, kNoGroup);
     });
   }
 }
@@ -181,8 +163,7 @@ bool TriangleBvh::TaskCursor::next(std::size_t n, std::vector<Task>& out) {
     const Task t = stack_.back();
     stack_.pop_back();
     const BoxF& box = bvh_.nodes_[t.a];
-    if (t.a == t.b ? box.lo[0] > box.hi[0] || bvh_.grouped(t.a)
-                   : !overlap(box, bvh_.nodes_[t.b]) || bvh_.same_group(t.a, t.b)) {
+    if (t.a == t.b ? box.lo[0] > box.hi[0] : !overlap(box, bvh_.nodes_[t.b])) {
       continue;
     }
     if (t.a >= level_) {

@@ -8,11 +8,8 @@
 // triangles whose exact (closed) boxes overlap is reported; a few pairs whose
 // exact boxes only nearly touch may be reported too.
 //
-// Triangles may carry a group (a vertex they all contain, see vertex_star.h):
-// pairs of triangles of one group are never visited, and a subtree whose
-// triangles are all of one group is not searched against itself or another
-// such subtree of the same group, so the d^2 / 2 pairs of a fan whose boxes
-// all overlap at its apex cost nothing.
+// Besides the search of all overlapping pairs, the hierarchy answers box
+// queries: the triangles whose boxes overlap a given box.
 //
 // Internal to geometry/validation (validate.h is the public entry); the
 // tests and the benchmarks include it to check and time this part alone.
@@ -39,22 +36,19 @@ inline bool overlap(const BoxF& a, const BoxF& b) {
                            static_cast<int>(a.lo[2] <= b.hi[2]) & static_cast<int>(b.lo[2] <= a.hi[2]));
 }
 
+/// The box of face f of `soup`, its coordinates rounded outwards.
+/// \pre indices in range.
+BoxF triangle_box(const TriangleSoup& soup, std::uint32_t f);
+
 class TriangleBvh {
  public:
   static constexpr std::size_t kLeafSize = 4;  ///< triangles per leaf: one lane each
 
-  /// The group of a triangle in no group.
-  static constexpr std::uint32_t kNoGroup = 0xffffffffu;
-
   /// Builds the hierarchy over the triangles f of `soup` with skip[f] == 0
   /// (all of them when `skip` is empty), using all cores when `parallel`.
-  /// Pairs of triangles f, g with group[f] == group[g] != kNoGroup are left
-  /// out of the search (`group` empty: no groups). The result does not
-  /// depend on the number of threads.
-  /// \pre indices in range, coordinates finite; group empty or one entry
-  ///      per triangle, each < kNoGroup - 1 or kNoGroup.
-  TriangleBvh(const TriangleSoup& soup, const std::vector<char>& skip, bool parallel,
-              const std::vector<std::uint32_t>& group = {});
+  /// The result does not depend on the number of threads.
+  /// \pre indices in range, coordinates finite.
+  TriangleBvh(const TriangleSoup& soup, const std::vector<char>& skip, bool parallel);
 
   /// Number of triangles in the hierarchy.
   std::size_t size() const { return faces_.size(); }
@@ -84,8 +78,7 @@ class TriangleBvh {
   };
 
   /// Calls visit(i, j) for each pair of sorted positions i < j in `task`
-  /// whose boxes overlap and whose groups differ (or are kNoGroup), in an
-  /// order that depends only on the soup.
+  /// whose boxes overlap, in an order that depends only on the soup.
   template <class Visit>
   void run(const Task& task, Visit&& visit) const {
     if (task.a == task.b) {
@@ -95,22 +88,34 @@ class TriangleBvh {
     }
   }
 
+  /// Calls visit(f) for each face f whose box overlaps `box`, in an order
+  /// that depends only on the soup.
+  template <class Visit>
+  void for_each_overlapping(const BoxF& box, Visit&& visit) const {
+    std::vector<std::size_t> stack{1};
+    while (!stack.empty()) {
+      const std::size_t n = stack.back();
+      stack.pop_back();
+      if (!overlap(nodes_[n], box)) continue;
+      if (n < leaf_base_) {
+        stack.push_back(2 * n + 1);
+        stack.push_back(2 * n);
+        continue;
+      }
+      const std::size_t first = (n - leaf_base_) * kLeafSize;
+      for (std::size_t i = first; i < std::min(first + kLeafSize, faces_.size()); ++i) {
+        if (overlap(boxes_[i], box)) visit(faces_[i]);
+      }
+    }
+  }
+
   /// The face at sorted position i.
   std::uint32_t face(std::size_t i) const { return faces_[i]; }
 
  private:
-  /// The group of a node: of all its triangles; kEmptyGroup when it has none.
-  static constexpr std::uint32_t kEmptyGroup = kNoGroup - 1;
-  /// Whether every triangle of node n is in one group (n not empty).
-  bool grouped(std::size_t n) const { return node_groups_[n] < kEmptyGroup; }
-  /// Whether all pairs between nodes a and b are of one group.
-  bool same_group(std::size_t a, std::size_t b) const {
-    return node_groups_[a] == node_groups_[b] && grouped(a);
-  }
-
   template <class Visit>
   void self(std::size_t n, Visit& visit) const {
-    if (nodes_[n].lo[0] > nodes_[n].hi[0] || grouped(n)) return;  // empty, or all of one group
+    if (nodes_[n].lo[0] > nodes_[n].hi[0]) return;  // empty
     if (n >= leaf_base_) {
       leaf_pairs(n - leaf_base_, n - leaf_base_, visit);
       return;
@@ -122,7 +127,7 @@ class TriangleBvh {
 
   template <class Visit>
   void pair(std::size_t a, std::size_t b, Visit& visit) const {
-    if (!overlap(nodes_[a], nodes_[b]) || same_group(a, b)) return;
+    if (!overlap(nodes_[a], nodes_[b])) return;
     if (a >= leaf_base_) {  // both are leaves: the tree is perfect
       leaf_pairs(a - leaf_base_, b - leaf_base_, visit);
       return;
@@ -136,14 +141,12 @@ class TriangleBvh {
   /// Four lanes of floats (GCC/Clang vector extension: SSE on x86-64, NEON on ARM).
   typedef float Lanes __attribute__((vector_size(16)));
   typedef int LaneMask __attribute__((vector_size(16)));
-  typedef std::uint32_t LaneGroups __attribute__((vector_size(16)));
 
   /// The boxes of one leaf's kLeafSize triangles, one lane each (empty lanes
   /// hold empty boxes), so that a box is tested against a whole leaf at once.
   struct LeafBoxes {
     Lanes lo[3];
     Lanes hi[3];
-    LaneGroups group;  ///< kNoGroup in empty lanes
   };
 
   template <class Visit>
@@ -156,20 +159,17 @@ class TriangleBvh {
       const BoxF& x = boxes_[i];
       LaneMask m = (other.lo[0] <= x.hi[0]) & (other.hi[0] >= x.lo[0]) & (other.lo[1] <= x.hi[1]) &
                    (other.hi[1] >= x.lo[1]) & (other.lo[2] <= x.hi[2]) & (other.hi[2] >= x.lo[2]);
-      if (groups_[i] != kNoGroup) m &= (other.group != groups_[i]);
       unsigned bits = (m[0] & 1u) | (m[1] & 2u) | (m[2] & 4u) | (m[3] & 8u);
       if (a == b) bits &= ~((2u << (i - a0)) - 1);  // within a leaf: only the triangles after i
       for (; bits != 0; bits &= bits - 1) visit(i, b0 + static_cast<std::size_t>(__builtin_ctz(bits)));
     }
   }
 
-  std::vector<std::uint32_t> faces_;        ///< face index at each sorted position
-  std::vector<BoxF> boxes_;                 ///< box of each sorted position
-  std::vector<std::uint32_t> groups_;       ///< group of each sorted position
-  std::vector<std::uint32_t> node_groups_;  ///< group of each node (see grouped)
-  std::vector<BoxF> nodes_;                 ///< 2 * leaf_base_ node boxes (index 0 unused)
-  std::vector<LeafBoxes> leaf_boxes_;       ///< the triangle boxes of each leaf, in lanes
-  std::size_t leaf_base_ = 1;               ///< power of two >= leaf_count()
+  std::vector<std::uint32_t> faces_;   ///< face index at each sorted position
+  std::vector<BoxF> boxes_;            ///< box of each sorted position
+  std::vector<BoxF> nodes_;            ///< 2 * leaf_base_ node boxes (index 0 unused)
+  std::vector<LeafBoxes> leaf_boxes_;  ///< the triangle boxes of each leaf, in lanes
+  std::size_t leaf_base_ = 1;          ///< power of two >= leaf_count()
 };
 
 }  // namespace fabmesh

@@ -5,72 +5,11 @@
 #include <limits>
 #include <numeric>
 
+#include "geometry/validation/detail/direction_box.h"
 #include "geometry/validation/detail/face_pair_filter.h"
 
 namespace fabmesh::detail {
 namespace {
-
-/// A box in direction space (around the unit sphere).
-struct DirectionBox {
-  double lo[3];
-  double hi[3];
-};
-
-/// Margin added to every direction box: far above the rounding errors
-/// bounded below (<= 1e-8), far below the arc of a face in any fan that
-/// fits in memory (a 10^6-face fan: arcs of about 3e-6).
-constexpr double kDirectionMargin = 1e-7;
-/// Arcs whose end directions nearly oppose (|mid| below this) get the box of
-/// the whole sphere: their bulge would not be bounded accurately.
-constexpr double kMinMid = 1e-6;
-
-/// The unit vector along d, computed: within 1e-14 of the exact one (a
-/// difference of two doubles and a normalization, a few roundings of
-/// relative size 2^-53 each; filterable coordinates keep every square
-/// between 1e-92 and 1e61, away from underflow and overflow).
-D3 unit(const D3& d) {
-  const double n = std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
-  return {d.x / n, d.y / n, d.z / n};
-}
-
-/// A box containing the directions from corner k of face `p` to all its
-/// other points: the arc from ua to ub (the directions of the other two
-/// corners, not opposite since the face is certified non-degenerate) is
-/// {q / |q| : q on the segment ua ub}, with 1 <= 1 / |q| <= 1 / |mid|,
-/// so it lies in the hull of ua, ub, K ua, K ub for any K >= 1 / |mid|.
-/// Computed: ua, ub, mid within 1e-14 of the exact ones; K = (1 + 1e-6) /
-/// |mid| exceeds the exact 1 / |mid| when |mid| >= 1e-6; the corners K ua,
-/// K ub are then within 1e-8 of exact points of that hull. So the box of the
-/// computed corners grown by kDirectionMargin contains the exact arc; and,
-/// the arc being on the unit sphere, so does its intersection with the box
-/// [-1, 1]^3 grown by the margin.
-DirectionBox arc_box(const std::array<Vec3, 3>& p, int k) {
-  const Vec3& v = p[k];
-  const D3 ua = unit(sub(p[(k + 1) % 3], v));
-  const D3 ub = unit(sub(p[(k + 2) % 3], v));
-  const double limit = 1.0 + kDirectionMargin;
-  DirectionBox box{{-limit, -limit, -limit}, {limit, limit, limit}};
-  const D3 mid{0.5 * (ua.x + ub.x), 0.5 * (ua.y + ub.y), 0.5 * (ua.z + ub.z)};
-  const double mid_norm = std::sqrt(dot(mid, mid));
-  if (mid_norm < kMinMid) return box;
-  const double far = (1.0 + 1e-6) / mid_norm;
-  const double a[3] = {ua.x, ua.y, ua.z};
-  const double b[3] = {ub.x, ub.y, ub.z};
-  for (int c = 0; c < 3; ++c) {
-    const double lo = std::min({a[c], b[c], far * a[c], far * b[c]}) - kDirectionMargin;
-    const double hi = std::max({a[c], b[c], far * a[c], far * b[c]}) + kDirectionMargin;
-    box.lo[c] = std::max(box.lo[c], lo);
-    box.hi[c] = std::min(box.hi[c], hi);
-  }
-  return box;
-}
-
-bool overlap(const DirectionBox& a, const DirectionBox& b) {
-  for (int c = 0; c < 3; ++c) {
-    if (a.lo[c] > b.hi[c] || b.lo[c] > a.hi[c]) return false;
-  }
-  return true;
-}
 
 /// The smallest star centre faces a and b share (kNoStar when none).
 std::uint32_t smallest_shared_centre(const VertexStars& stars, const std::array<std::uint32_t, 3>& a,
@@ -167,6 +106,40 @@ void for_each_star_candidate(const TriangleSoup& soup, const VertexStars& stars,
       if (smallest_shared_centre(stars, soup.triangles[f], soup.triangles[g]) != v) continue;
       if (!visit(f, g)) return;
     }
+  }
+}
+
+void for_each_star_neighbour_candidate(const TriangleSoup& soup, const VertexStars& stars, std::size_t s,
+                                       const std::vector<std::uint32_t>& others,
+                                       const std::function<bool(std::uint32_t, std::uint32_t)>& visit) {
+  const std::uint32_t v = stars.centres[s];
+  const Vec3& centre = soup.vertices[v];
+  const auto corners = [&](std::uint32_t f) {
+    const auto& t = soup.triangles[f];
+    return std::array<Vec3, 3>{soup.vertices[t[0]], soup.vertices[t[1]], soup.vertices[t[2]]};
+  };
+  std::vector<std::uint32_t> own;  // the faces whose smallest star centre is v
+  std::vector<DirectionBox> arcs;
+  for (std::size_t i = stars.offsets[s]; i < stars.offsets[s + 1]; ++i) {
+    const std::uint32_t f = stars.faces[i];
+    if (stars.group[f] != v) continue;
+    const auto& t = soup.triangles[f];
+    own.push_back(f);
+    arcs.push_back(arc_box(corners(f), t[0] == v ? 0 : t[1] == v ? 1 : 2));
+  }
+  if (own.empty()) return;
+  const DirectionTree tree(arcs);
+  for (const std::uint32_t g : others) {
+    const auto& tg = soup.triangles[g];
+    const bool member = stars.group[g] != kNoStar;
+    const bool touches = tg[0] == v || tg[1] == v || tg[2] == v;
+    const DirectionBox cone = touches ? sphere_box() : cone_box(centre, corners(g));
+    const bool go_on = tree.for_each_overlapping(cone, [&](std::uint32_t i) {
+      const std::uint32_t f = own[i];
+      if (member && stars.shares_centre(soup.triangles[f], tg)) return true;  // a star's own pair
+      return visit(f, g);
+    });
+    if (!go_on) return;
   }
 }
 

@@ -79,4 +79,22 @@ VertexStars find_vertex_stars(const TriangleSoup& soup, const std::vector<char>&
 void for_each_star_candidate(const TriangleSoup& soup, const VertexStars& stars, std::size_t s,
                              const std::function<bool(std::uint32_t, std::uint32_t)>& visit);
 
+/// Calls visit(f, g) for each pair of a face f whose smallest star centre is
+/// that of star s (group[f] == centres[s]) and a face g of `others` that may
+/// meet: a superset of the pairs (f, g) for which faces_intersect_exact is
+/// true, leaving out the pairs that share a star centre with g a member
+/// (those are the stars' own, for_each_star_candidate). `others` are the
+/// faces whose boxes may overlap those faces and whose group is greater than
+/// the centre (kNoStar included), ascending, without duplicates. Stops when
+/// visit returns false. The order depends only on the soup.
+///
+/// Seen from the centre v, a point x of g that lies in f is in f's arc and
+/// in g's cone (the directions from v to g's points), so only pairs whose
+/// boxes in direction space overlap are visited: a fan's long faces have
+/// boxes overlapping most of the mesh around them in space, but arcs
+/// overlapping few cones.
+void for_each_star_neighbour_candidate(const TriangleSoup& soup, const VertexStars& stars, std::size_t s,
+                                       const std::vector<std::uint32_t>& others,
+                                       const std::function<bool(std::uint32_t, std::uint32_t)>& visit);
+
 }  // namespace fabmesh::detail

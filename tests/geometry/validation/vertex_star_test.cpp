@@ -119,6 +119,54 @@ TEST_CASE("A cone apex of many faces is valid, and a crossing face is found",
   }
 }
 
+/// A closed cylinder (radius 10, height 5) over n rim vertices, each cap a
+/// fan from one rim vertex (vertices 0 and n).
+TriangleSoup fan_cylinder(std::uint32_t n) {
+  TriangleSoup s;
+  for (const double z : {0.0, 5.0}) {
+    for (std::uint32_t i = 0; i < n; ++i) {
+      const double a = 2 * kPi * i / n;
+      s.vertices.emplace_back(10 * std::cos(a), 10 * std::sin(a), z);
+    }
+  }
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const std::uint32_t j = (i + 1) % n;
+    s.triangles.push_back({i, j, n + j});
+    s.triangles.push_back({i, n + j, n + i});
+  }
+  for (std::uint32_t i = 1; i + 1 < n; ++i) {
+    s.triangles.push_back({0, i + 1, i});
+    s.triangles.push_back({n, n + i, n + i + 1});
+  }
+  return s;
+}
+
+TEST_CASE("A cylinder with fan caps is valid, and faces crossing a cap away from its apex are found",
+          "[vertex_star][self_intersect]") {
+  TriangleSoup c = fan_cylinder(300);
+  REQUIRE(require_same(c).count == 0);
+  REQUIRE(validate(c).valid());
+  SECTION("a face through both caps, far from the apexes") {
+    const std::uint32_t a = add_vertex(c, -5, 0.5, -1);
+    const std::uint32_t b = add_vertex(c, -5, -0.5, -1);
+    const std::uint32_t t = add_vertex(c, -5, 0, 6);
+    c.triangles.push_back({a, b, t});
+    REQUIRE(require_same(c).count >= 2);
+  }
+  SECTION("a face from an apex of one cap through the other") {
+    const std::uint32_t a = add_vertex(c, -9, 1, 6);
+    const std::uint32_t b = add_vertex(c, -9, -1, 6);
+    c.triangles.push_back({0, a, b});
+    REQUIRE(require_same(c).count > 0);
+  }
+  SECTION("a sliver at an apex, touching it, across its fan") {
+    const std::uint32_t a = add_vertex(c, 10, 1e-35, 0);  // not filterable: no member of the star
+    const std::uint32_t b = add_vertex(c, -9, 0, 0);
+    c.triangles.push_back({0, a, b});
+    REQUIRE(require_same(c).count > 0);
+  }
+}
+
 TEST_CASE("Random soups with high-degree vertices agree with the reference",
           "[vertex_star][self_intersect]") {
   std::mt19937_64 rng(7);
