@@ -87,11 +87,17 @@ ValidationReport validate_stored(const ValidationReport& built, const TriangleSo
 
 // Quantization may collapse or fold faces: each candidate's decoded mesh
 // (whose faces are `input`'s: fit_draco checks that) is validated as stored.
-std::function<bool(const TriangleSoup&)> still_fit(const EncodeContext& c, const TriangleSoup& input,
-                                                   double scale) {
-  return [&c, &input, scale](const TriangleSoup& decoded) {
+// Moves within the built mesh's embedding margin (times the scale, as
+// validate_stored carries it) keep it valid; a mesh that must be valid
+// cannot have two vertices at one position.
+DracoAccept still_fit(const EncodeContext& c, const TriangleSoup& input, double scale) {
+  DracoAccept a;
+  a.accept = [&c, &input, scale](const TriangleSoup& decoded) {
     return fit_for(validate_stored(c.built.validation, input, scale, decoded), c.built.purpose);
   };
+  a.margin = c.built.validation.valid() ? 0.5 * c.built.validation.embedding_margin * scale : 0.0;
+  a.distinct_positions = c.built.purpose != MeshPurpose::Drawing;
+  return a;
 }
 
 // Every coordinate rounded to float32, as STL and PLY store them.

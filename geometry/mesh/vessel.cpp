@@ -16,6 +16,12 @@ namespace fabmesh {
 
 namespace {
 
+// The share of the tolerance that keeps rings off the axis (see
+// VesselSectionOptions::axis_clearance): a profile leaving the axis tangent
+// to it would otherwise put rings of radius 1e-4 around the pole, whose
+// vertices sit a few micrometres apart and break under any rounding.
+constexpr double kAxisClearance = 0.1;
+
 // Refuses a tolerance whose lower bound of triangles is over the budget
 // before anything is sampled: every chord of a curved segment revolves into
 // at least `segments` triangles, and the angular step must keep the sagitta
@@ -50,6 +56,7 @@ VesselMesh build_vessel(const CompositeCurve& profile, const VesselOptions& opti
   so.rim = options.rim;
   so.tolerance = 0.5 * options.tolerance;
   so.min_clearance = options.tolerance;
+  so.axis_clearance = kAxisClearance * options.tolerance;
   so.max_points = options.max_triangles / 3 * 2 + 1;  // see VesselOptions::max_triangles
   so.name_key = options.name_key;
   require_budget(profile, options, so.tolerance);

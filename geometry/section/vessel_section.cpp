@@ -29,6 +29,24 @@ void snap_to_axis(std::vector<Vec2>& pts, double eps) {
   }
 }
 
+// Moves the off-axis vertices of `loops` closer than `clearance` to the axis
+// out to it, when the loops stay simple (else leaves them); returns the
+// largest move (0 when none).
+double clear_axis(std::vector<std::vector<Vec2>>& loops, double clearance) {
+  std::vector<std::vector<Vec2>> moved = loops;
+  double largest = 0.0;
+  for (std::vector<Vec2>& loop : moved) {
+    for (Vec2& p : loop) {
+      if (p.x() == 0.0 || p.x() >= clearance) continue;
+      largest = std::max(largest, clearance - p.x());
+      p.x() = clearance;
+    }
+  }
+  if (largest == 0.0 || find_crossing(moved)) return 0.0;
+  loops = std::move(moved);
+  return largest;
+}
+
 // An axis vertex whose neighbours are both off the axis pinches the body to a point.
 void reject_isolated_axis_contacts(const std::vector<Vec2>& loop) {
   const std::size_t n = loop.size();
@@ -247,6 +265,7 @@ VesselSection build_vessel_section(const CompositeCurve& profile, const VesselSe
                         fmt::format("the profile crosses itself near {}", at(c->where)));
   }
   if (shell) check_clearance(profile, params, *shell, options, section);
+  section.max_deviation += clear_axis(section.loops, options.axis_clearance);
   section.proof =
       "the section loops are simple and disjoint in r >= 0 (exact predicates), so its revolution is embedded";
   return section;

@@ -39,6 +39,12 @@ struct VesselSectionOptions {
   /// Shell: the exact inner and outer walls (with the base and the bottom)
   /// must stay at least this far apart, model units; 0: `tolerance`.
   double min_clearance = 0.0;
+  /// Off-axis loop vertices closer to the axis than this are moved out to
+  /// it (radially; when the loops stay simple), and max_deviation grows by
+  /// the largest move: rings of tiny radius would crowd the pole of the
+  /// revolution and leave it no margin for rounding (revolution_margin).
+  /// Model units, >= 0; 0: none moved.
+  double axis_clearance = 0.0;
   std::size_t max_points = kDefaultMaxPoints;
   /// Names the profile where a message points at one of its segments
   /// ("segment 3 of NAME"); null: "segment 3 of profile". Errors are at the

@@ -15,6 +15,7 @@
 #include <memory>
 #include <optional>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "geometry/core/errors.h"
 #include "geometry/core/float32.h"
@@ -394,6 +395,21 @@ FloatKey key_of(const float xyz[3]) {
 /// orientation (the same cyclic order). Then relabelling by sigma turns the
 /// decoded mesh into the returned one: the same faces over the same
 /// positions. The prediction is only a guess; the checks make it a proof.
+/// Whether Draco's quantizer with `bits` puts two vertices that faces use
+/// at one position (predicted_positions).
+bool positions_collide(const TriangleSoup& soup, int bits) {
+  const std::vector<std::array<float, 3>> predicted = predicted_positions(soup, bits);
+  if (predicted.size() != soup.vertices.size()) return false;
+  std::vector<char> referenced(soup.vertices.size(), 0);
+  for (const auto& t : soup.triangles) referenced[t[0]] = referenced[t[1]] = referenced[t[2]] = 1;
+  std::unordered_set<FloatKey, FloatKeyHash> seen;
+  seen.reserve(2 * soup.vertices.size());
+  for (std::size_t i = 0; i < soup.vertices.size(); ++i) {
+    if (referenced[i] && !seen.insert(key_of(predicted[i].data())).second) return true;
+  }
+  return false;
+}
+
 std::optional<TriangleSoup> decode_matched(const std::string& bytes, const TriangleSoup& soup, int bits) {
   const std::unique_ptr<draco::Mesh> mesh = decode(bytes);
   const draco::PointAttribute* position = mesh->GetNamedAttribute(draco::GeometryAttribute::POSITION);
@@ -516,9 +532,8 @@ int affordable_bits(const TriangleSoup& soup) {
 
 }  // namespace
 
-DracoFit fit_draco(const TriangleSoup& soup, double tolerance,
-                   const std::function<bool(const TriangleSoup& decoded)>& accept, const std::string& format,
-                   const DracoOptions& options) {
+DracoFit fit_draco(const TriangleSoup& soup, double tolerance, const DracoAccept& accept,
+                   const std::string& format, const DracoOptions& options) {
   require_positive("draco tolerance", tolerance);
   require_indices_in_range(soup);
   const BoundingBox box = box_of(soup);
@@ -555,6 +570,12 @@ DracoFit fit_draco(const TriangleSoup& soup, double tolerance,
   // One try: encode as written, decode, match to the input; the fit when it
   // keeps every vertex within the tolerance and `accept` takes it.
   auto attempt = [&](int bits) -> std::optional<DracoFit> {
+    // Two vertices at one position: not acceptable, and no need to encode to see it. (Should
+    // the prediction be wrong, a quantization that might fit is passed over, nothing worse.)
+    if (accept.distinct_positions && positions_collide(soup, bits)) {
+      folded = true;
+      return std::nullopt;
+    }
     std::string bytes = encode(*plain, bits, options);
     std::optional<TriangleSoup> decoded = decode_matched(bytes, soup, bits);
     if (!decoded) {
@@ -568,21 +589,43 @@ DracoFit fit_draco(const TriangleSoup& soup, double tolerance,
     const double moved = max_displacement(soup, *decoded);
     best = std::min(best, moved);
     if (moved > tolerance) return std::nullopt;
-    if (!accept(*decoded)) {
+    if (!accept.accept(*decoded)) {
       folded = true;
       return std::nullopt;
     }
     return DracoFit{bits, moved, std::move(*decoded), std::move(bytes)};
   };
-  // The fewest bits first, and the next (the usual answers); then the most
-  // worth trying, and bisection between the last failure and that success:
-  // at most about seven tries, never a scan of every bit count.
-  for (int bits = first; bits <= std::min(first + 1, last); ++bits) {
+  // The fewest bits that keep vertices apart (when that matters: found by
+  // bisection of the quantizer's prediction, no encoding), and the next: the
+  // usual answers. Then the fewest whose moves the margin proves harmless
+  // (or else the most worth trying), and bisection between the last failure
+  // and that success: at most about seven tries, never a scan of every bit
+  // count.
+  int start = first;
+  if (accept.distinct_positions && first < last && positions_collide(soup, first)) {
+    int collide = first;  // bits known to collide; `last` is tried anyway
+    int apart = last;
+    while (apart - collide > 1) {
+      const int middle = collide + (apart - collide) / 2;
+      (positions_collide(soup, middle) ? collide : apart) = middle;
+    }
+    start = apart;
+    folded = true;  // the fewer bits collapse vertices
+  }
+  for (int bits = start; bits <= std::min(start + 1, last); ++bits) {
     if (std::optional<DracoFit> fit = attempt(bits)) return std::move(*fit);
   }
-  std::optional<DracoFit> found = first + 1 < last ? attempt(last) : std::nullopt;
+  int target = last;
+  for (int bits = start + 2; bits < last; ++bits) {
+    if (draco_max_error(box.lo, box.hi, bits) < accept.margin) {
+      target = bits;
+      break;
+    }
+  }
+  std::optional<DracoFit> found = start + 1 < last ? attempt(target) : std::nullopt;
+  if (!found && target < last) found = attempt(last);
   if (found) {
-    int failed = first + 1;
+    int failed = start + 1;
     while (found->bits - failed > 1) {
       const int middle = failed + (found->bits - failed) / 2;
       if (std::optional<DracoFit> fit = attempt(middle)) {

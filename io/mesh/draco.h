@@ -71,28 +71,50 @@ struct DracoFit {
   std::string bytes;              ///< the Draco file (no extra attributes) that decodes to `decoded`
 };
 
+/// What fit_draco knows of which decoded meshes are acceptable.
+struct DracoAccept {
+  /// Takes or refuses a decoded mesh (its triangles are the input's).
+  std::function<bool(const TriangleSoup& decoded)> accept;
+  /// Vertex moves below this keep the mesh acceptable (its proven embedding
+  /// margin in the input's frame; 0: none proven): the search jumps to the
+  /// fewest bits whose bound (draco_max_error) stays below it.
+  double margin = 0.0;
+  /// Whether a mesh with two vertices at one position is never acceptable
+  /// (a valid mesh: two faces then touch, or one collapses). Bit counts at
+  /// which Draco's quantizer puts two vertices at one position are then
+  /// passed over without encoding.
+  bool distinct_positions = false;
+};
+
 /// A quantization whose MEASURED displacement of every vertex is <=
 /// `tolerance` and whose decoded mesh `accept` takes (quantization can
 /// collapse or fold faces): the fewest bits whose half step fits, or the
-/// next; failing both, the fewest found by bisection up to the most bits
-/// worth trying (where the step falls below float32 rounding) and affordable
-/// (Draco's encoder needs memory per quantization level: at most 2^24
-/// levels, or 64 per vertex). About seven tries at most; none when float32
-/// rounding alone moves a vertex farther than the tolerance, or when the
-/// fewest bits that could fit are not affordable. Each try encodes the mesh once, as it is written,
-/// decodes it, and matches every decoded point to its input vertex by the
-/// position Draco's quantizer gives that vertex; the match is accepted only
-/// as a bijection under which the decoded faces are the input's faces with
-/// their orientation, so `decoded` is exactly what the file decodes to, in
-/// the input's order. When the match fails (two vertices quantize to the same
-/// position, or Draco split a vertex), that try falls back to an encoding
-/// with an extra id attribute and checks the id-free file against it.
-/// `accept` gets `decoded`, whose triangles are the input's. `format` names
-/// the output in messages ("drc", "glb_draco").
+/// next; failing both, the fewest found by bisection up to the fewest bits
+/// whose bound stays below accept.margin, or else the most bits worth trying
+/// (where the step falls below float32 rounding) and affordable (Draco's
+/// encoder needs memory per quantization level: at most 2^24 levels, or 64
+/// per vertex). About seven tries at most; none when float32 rounding alone
+/// moves a vertex farther than the tolerance, or when the fewest bits that
+/// could fit are not affordable. Each try encodes the mesh once, as it is
+/// written, decodes it, and matches every decoded point to its input vertex
+/// by the position Draco's quantizer gives that vertex; the match is
+/// accepted only as a bijection under which the decoded faces are the
+/// input's faces with their orientation, so `decoded` is exactly what the
+/// file decodes to, in the input's order. When the match fails (two
+/// vertices quantize to the same position, or Draco split a vertex), that
+/// try falls back to an encoding with an extra id attribute and checks the
+/// id-free file against it. `format` names the output in messages ("drc",
+/// "glb_draco").
 /// \throw OutputError when no quantization fits, saying by how much and what to change
-DracoFit fit_draco(const TriangleSoup& soup, double tolerance,
-                   const std::function<bool(const TriangleSoup& decoded)>& accept, const std::string& format,
-                   const DracoOptions& options = {});
+DracoFit fit_draco(const TriangleSoup& soup, double tolerance, const DracoAccept& accept,
+                   const std::string& format, const DracoOptions& options = {});
+
+/// fit_draco knowing nothing of `accept` but its answers.
+inline DracoFit fit_draco(const TriangleSoup& soup, double tolerance,
+                          std::function<bool(const TriangleSoup& decoded)> accept, const std::string& format,
+                          const DracoOptions& options = {}) {
+  return fit_draco(soup, tolerance, DracoAccept{std::move(accept)}, format, options);
+}
 
 /// Throws std::logic_error unless `bytes` decode to `fit.decoded`'s faces and
 /// positions (as multisets): the file written is the mesh that was validated.

@@ -161,7 +161,6 @@ TEST_CASE("run: Draco that needs more quantization than memory allows is skipped
   CHECK(report["skipped_outputs"][0]["format"] == "drc");
   CHECK(report["skipped_outputs"][0]["reason"].get<std::string>().find("bits of Draco quantization") !=
         std::string::npos);
-  CHECK(report["timings_ms"]["encode_drc"].get<double>() < 5000.0);
 }
 
 TEST_CASE("run: Draco that float32 alone cannot hold is skipped without a try",
@@ -193,5 +192,36 @@ TEST_CASE("run: the outputs keep what float32 needs, so a fine tolerance far fro
   CHECK(deviation <= build);
   REQUIRE(report["files"].size() == 1);
   CHECK(deviation + report["files"][0]["max_added_error"].get<double>() <= tolerance);
+  require_written_files_valid(report);
+}
+
+TEST_CASE("run: a platter whose profile leaves the axis tangent to it writes its Draco file, valid",
+          "[pipeline][outputs][draco][cli]") {
+  // Its first samples lay micrometres from the axis: rings of vertices 7e-6
+  // mm apart around the pole, an embedding margin of 3.3e-6 mm, and every
+  // Draco quantization within the tolerance broke the mesh (the output was
+  // skipped). Rings now keep a tenth of the tolerance from the axis.
+  const fs::path dir = fresh_dir("stored_platter");
+  const fs::path design = write_design(dir, "platter", R"(name: platter
+kind: vessel
+units: mm
+tolerance: 0.05
+profile:
+  family: quasi_bspline
+  points: [[0, 0], [0, 35], [40, 45], [110, 20], [150, 15], [170, 22]]
+body:
+  mode: shell
+  wall: 2.5
+outputs: [stl, drc]
+)");
+  const LimitedRun run =
+      run_limited({"run", design.string(), "-o", (dir / "out/").string(), "--json"}, 60, kMemory);
+  INFO(run.describe());
+  REQUIRE(run.code == 0);
+  const auto report = nlohmann::json::parse(run.out).at(0);
+  CHECK(report["skipped_outputs"].empty());
+  REQUIRE(report["files"].size() == 2);
+  CHECK(report["embedding_margin"].get<double>() > 1e-5);
+  CHECK(report["max_deviation"].get<double>() <= report["tolerance_split"]["build"].get<double>());
   require_written_files_valid(report);
 }

@@ -29,7 +29,8 @@ V operator+(const V& a, const V& b) { return {{a.c[0] + b.c[0], a.c[1] + b.c[1],
 V operator*(double s, const V& a) { return {{s * a.c[0], s * a.c[1], s * a.c[2]}}; }
 double dot(const V& a, const V& b) { return a.c[0] * b.c[0] + a.c[1] * b.c[1] + a.c[2] * b.c[2]; }
 V cross(const V& a, const V& b) {
-  return {{a.c[1] * b.c[2] - a.c[2] * b.c[1], a.c[2] * b.c[0] - a.c[0] * b.c[2], a.c[0] * b.c[1] - a.c[1] * b.c[0]}};
+  return {{a.c[1] * b.c[2] - a.c[2] * b.c[1], a.c[2] * b.c[0] - a.c[0] * b.c[2],
+           a.c[0] * b.c[1] - a.c[1] * b.c[0]}};
 }
 double norm(const V& a) { return std::sqrt(dot(a, a)); }
 double det(const V& a, const V& b, const V& c) { return dot(a, cross(b, c)); }

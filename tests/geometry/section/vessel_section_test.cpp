@@ -131,3 +131,32 @@ TEST_CASE("vessel section: exact walls closer than the tolerance are refused", "
   CHECK_THROWS_WITH(build_vessel_section(golden(), shell(0.001, 0.4, 0.0025)),
                     Catch::Contains("closer than the tolerance"));
 }
+
+TEST_CASE("vessel section: vertices crowding the axis are moved out to the axis clearance, within the bound",
+          "[section][vessel]") {
+  // The platter of tracker issue 23, in cm: its profile leaves the axis
+  // tangent to it, so its first samples lie micrometres from the axis.
+  const CompositeCurve p = profile({{0, 0}, {0, 3.5}, {4, 4.5}, {11, 2}, {15, 1.5}, {17, 2.2}});
+  {
+    VesselSectionOptions o = shell(0.25, 0.25, 0.0025);
+    const VesselSection plain = build_vessel_section(p, o);
+    double nearest = INFINITY;
+    for (const Vec2& q : plain.loops[0]) {
+      if (q.x() > 0.0) nearest = std::min(nearest, q.x());
+    }
+    REQUIRE(nearest < 1e-4);  // the crowding the clearance removes
+    o.axis_clearance = 0.0005;
+    const VesselSection cleared = build_vessel_section(p, o);
+    REQUIRE(cleared.loops.size() == plain.loops.size());
+    REQUIRE(cleared.loops[0].size() == plain.loops[0].size());  // the same vertices, moved
+    for (const Vec2& q : cleared.loops[0]) CHECK((q.x() == 0.0 || q.x() >= 0.0005));
+    CHECK(cleared.max_deviation <= plain.max_deviation + 0.0005);
+    CHECK(cleared.max_deviation > plain.max_deviation);
+    double worst = 0.0;
+    for (const Segment& seg : p.segments()) {
+      for (int i = 0; i <= 2000; ++i)
+        worst = std::max(worst, distance_to_loop(seg.point(i / 2000.0), cleared.loops[0]));
+    }
+    CHECK(worst <= cleared.max_deviation);
+  }
+}

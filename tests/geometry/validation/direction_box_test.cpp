@@ -18,7 +18,8 @@ using namespace fabmesh::detail;
 namespace {
 
 /// The direction from v to a + s (b - a) + t (c - a), in long double.
-std::array<long double, 3> direction(const Vec3& v, const std::array<Vec3, 3>& p, long double s, long double t) {
+std::array<long double, 3> direction(const Vec3& v, const std::array<Vec3, 3>& p, long double s,
+                                     long double t) {
   std::array<long double, 3> d;
   long double n2 = 0;
   for (int k = 0; k < 3; ++k) {
@@ -39,9 +40,11 @@ void require_holds(const DirectionBox& box, const Vec3& v, const std::array<Vec3
   for (int i = 0; i <= kSteps; ++i) {
     for (int j = 0; i + j <= kSteps; ++j) {
       if (i == 0 && j == 0 && p[0] == v) continue;  // the arc's apex: no direction
-      const auto d = direction(v, p, static_cast<long double>(i) / kSteps, static_cast<long double>(j) / kSteps);
+      const auto d =
+          direction(v, p, static_cast<long double>(i) / kSteps, static_cast<long double>(j) / kSteps);
       for (int k = 0; k < 3; ++k) {
-        outside += !(static_cast<long double>(box.lo[k]) <= d[k] && d[k] <= static_cast<long double>(box.hi[k]));
+        outside +=
+            !(static_cast<long double>(box.lo[k]) <= d[k] && d[k] <= static_cast<long double>(box.hi[k]));
       }
     }
   }
@@ -57,7 +60,9 @@ double width(const DirectionBox& b, int k) { return b.hi[k] - b.lo[k]; }
 TEST_CASE("Direction boxes hold every direction of random arcs and cones", "[direction_box]") {
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
-  const auto random_point = [&](double scale) -> Vec3 { return Vec3(unit(rng), unit(rng), unit(rng)) * scale; };
+  const auto random_point = [&](double scale) -> Vec3 {
+    return Vec3(unit(rng), unit(rng), unit(rng)) * scale;
+  };
   for (int round = 0; round < 3000; ++round) {
     const double scale = std::pow(10.0, unit(rng) * 6);
     const Vec3 v = random_point(scale);

@@ -85,6 +85,62 @@ TEST_CASE("draco: when every quantization collapses the mesh, the OutputError sa
                         Catch::Contains("the decoded mesh is no longer valid (faces collapse or fold)"));
 }
 
+TEST_CASE("draco: quantizations that put two vertices at one position are passed over without a try",
+          "[io][mesh][draco]") {
+  // A second tent standing on the apex of the first, its corner 2e-6 beside
+  // it: the two vertices meet at one position at the fewest bits (7) and for
+  // many more. With distinct_positions the search finds the first bit count
+  // that keeps them apart by the quantizer's prediction and asks `accept`
+  // about that one first (without it: every bit count up to it in turn, each
+  // encoded, decoded and validated).
+  TriangleSoup soup = tent(0.5);
+  const TriangleSoup other = tent(0.5);
+  for (const Vec3& p : other.vertices) soup.vertices.push_back(p + Vec3(0.3 + 2e-6, 0.3, 0.5));
+  for (const auto& t : other.triangles) soup.triangles.push_back({t[0] + 4, t[1] + 4, t[2] + 4});
+  const ValidationReport report = validate(soup);
+  REQUIRE(report.valid());
+  int tries = 0;
+  DracoAccept accept;
+  accept.accept = [&](const TriangleSoup& decoded) {
+    ++tries;
+    return validate_moved(soup, report, decoded).valid();
+  };
+  accept.distinct_positions = true;
+  const DracoFit fit = fit_draco(soup, 0.01, accept, "drc");
+  CHECK(tries == 1);
+  CHECK(fit.bits >= 12);
+  CHECK(validate(parse_draco(fit.bytes, "drc")).valid());
+  // One bit fewer puts the two corners at one position: the decoded mesh is not valid.
+  CHECK_FALSE(validate(parse_draco(encode_draco_bits(soup, fit.bits - 1), "fewer")).valid());
+}
+
+TEST_CASE("draco: a proven margin bounds the bits the search tries", "[io][mesh][draco]") {
+  // An apex 0.0008 high folds onto the base up to 9 bits and stands from 10.
+  // The fewest bits for the tolerance (7) and the next fail; then the search
+  // tries the fewest bits a margin of 1e-4 covers (14), not the most worth
+  // trying (about 23), and bisects below: the same answer in fewer tries.
+  const TriangleSoup soup = tent(0.0008);
+  const ValidationReport report = validate(soup);
+  REQUIRE(report.valid());
+  const auto search = [&](double margin) {
+    DracoAccept accept;
+    int tries = 0;
+    accept.accept = [&](const TriangleSoup& decoded) {
+      ++tries;
+      return validate_moved(soup, report, decoded).valid();
+    };
+    accept.margin = margin;
+    const int bits = fit_draco(soup, 0.01, accept, "drc").bits;
+    return std::make_pair(bits, tries);
+  };
+  const auto [bits_without, tries_without] = search(0.0);
+  const auto [bits_with, tries_with] = search(1e-4);
+  CHECK(bits_without == 10);
+  CHECK(bits_with == 10);
+  CHECK(tries_with == 6);  // 7, 8, 14, 11, 9, 10
+  CHECK(tries_with < tries_without);
+}
+
 TEST_CASE("draco: a tolerance below what 30 bits can keep is refused with the measured error",
           "[io][mesh][draco][errors]") {
   const TriangleSoup soup =
