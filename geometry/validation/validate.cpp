@@ -223,6 +223,24 @@ void insert_defect(ValidationReport& report, Defect kind, const DefectCount& fou
   report.defects.insert(at, {kind, found.count, found.examples});
 }
 
+/// The exact sign of the signed volume of all of `soup`'s faces (but those
+/// with a repeated index) about one of its vertices: the total signed volume
+/// when the mesh is closed (then it does not depend on the point).
+int total_volume_sign(const TriangleSoup& soup) {
+  ComponentLabels all;  // one "component" of every face, about the first face's first vertex
+  all.face_component.assign(soup.triangles.size(), ComponentLabels::kNone);
+  all.faces = {0};
+  for (std::size_t f = 0; f < soup.triangles.size(); ++f) {
+    const auto& t = soup.triangles[f];
+    if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0]) continue;
+    if (all.faces[0]++ == 0) all.lowest_vertex = {t[0]};
+    all.face_component[f] = 0;
+  }
+  if (all.faces[0] == 0) return 0;
+  all.count = 1;
+  return component_volume_signs(soup, all).front();
+}
+
 /// The one shell of a single-component mesh, from the totals: no other
 /// component can contain it, so its orientation is the InsideOut check.
 ComponentShell single_shell(const TriangleSoup& soup, const ValidationReport& report) {
@@ -255,12 +273,13 @@ bool nesting_determined(const ValidationReport& report) {
 void add_shells(const TriangleSoup& soup, ValidationReport& report, std::size_t max_examples) {
   const ComponentLabels labels = label_components(soup);
   const std::vector<double> volumes = component_volumes(soup, labels);
+  const std::vector<int> signs = component_volume_signs(soup, labels);
   auto& shells = report.component_shells;
   shells.resize(labels.count);
   for (std::size_t c = 0; c < labels.count; ++c) {
     shells[c].faces = labels.faces[c];
     shells[c].volume = volumes[c];
-    shells[c].outward = volumes[c] > 0.0;
+    shells[c].outward = signs[c] > 0;
     shells[c].location = soup.vertices[labels.lowest_vertex[c]];
   }
   if (!nesting_determined(report)) return;
@@ -363,7 +382,7 @@ ValidationReport validate_with(const TriangleSoup& soup, const Topology& topo, V
   std::vector<char> degenerate(soup.triangles.size(), 0);
   if (non_finite.count == 0) measure(soup, max_examples, report, degenerate_found, degenerate);
   report.degenerate_faces = degenerate_found.count;
-  report.oriented_outward = report.volume > 0.0;
+  report.oriented_outward = non_finite.count == 0 && total_volume_sign(soup) > 0;
   timer.lap("geometry");
 
   DefectCount intersections;

@@ -9,6 +9,7 @@
 #include "geometry/validation/detail/components.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Mpzf.h>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -321,6 +322,63 @@ std::vector<double> component_volumes(const TriangleSoup& soup, const ComponentL
   }
   for (double& v : volume6) v /= 6.0;
   return volume6;
+}
+
+std::vector<int> component_volume_signs(const TriangleSoup& soup, const ComponentLabels& labels) {
+  // Each term t = a . (b x c) (a, b, c the corners less the centre) is
+  // computed within 1e-15 times its permanent, the sum of the magnitudes of
+  // its six products (a few roundings of relative size 2^-53 each), and a
+  // sum of n terms within (n - 1) 2^-53 of the sum of their magnitudes.
+  std::vector<double> sum(labels.count, 0.0);
+  std::vector<double> magnitude(labels.count, 0.0);  // sum of the permanents
+  const auto corners = [&](std::size_t f, std::uint32_t c) {
+    const Vec3& centre = soup.vertices[labels.lowest_vertex[c]];
+    const auto& t = soup.triangles[f];
+    return std::array<Vec3, 3>{soup.vertices[t[0]] - centre, soup.vertices[t[1]] - centre,
+                               soup.vertices[t[2]] - centre};
+  };
+  for (std::size_t f = 0; f < soup.triangles.size(); ++f) {
+    const std::uint32_t c = labels.face_component[f];
+    if (c == ComponentLabels::kNone) continue;
+    const auto [a, b, d] = corners(f, c);
+    sum[c] += a.dot(b.cross(d));
+    const Vec3 x = a.cwiseAbs(), y = b.cwiseAbs(), z = d.cwiseAbs();
+    magnitude[c] += x[0] * (y[1] * z[2] + y[2] * z[1]) + x[1] * (y[0] * z[2] + y[2] * z[0]) +
+                    x[2] * (y[0] * z[1] + y[1] * z[0]);
+  }
+  std::vector<int> sign(labels.count, 0);
+  std::vector<char> exact(labels.count, 0);
+  for (std::size_t c = 0; c < labels.count; ++c) {
+    const double n = static_cast<double>(labels.faces[c]);
+    const double bound = 1.01 * (1e-15 + n * 0x1p-53) * magnitude[c];  // the terms' own errors included
+    if (std::abs(sum[c]) > bound) {
+      sign[c] = sum[c] > 0 ? 1 : -1;
+    } else {
+      exact[c] = 1;
+    }
+  }
+  if (std::find(exact.begin(), exact.end(), 1) == exact.end()) return sign;
+  // The exact sums, only for the components the bound left open. The
+  // differences of corners are exact as Mpzf, and so are their products.
+  std::vector<CGAL::Mpzf> total(labels.count, CGAL::Mpzf(0));
+  for (std::size_t f = 0; f < soup.triangles.size(); ++f) {
+    const std::uint32_t c = labels.face_component[f];
+    if (c == ComponentLabels::kNone || !exact[c]) continue;
+    const Vec3& centre = soup.vertices[labels.lowest_vertex[c]];
+    std::array<std::array<CGAL::Mpzf, 3>, 3> m;
+    for (int i = 0; i < 3; ++i) {
+      for (int k = 0; k < 3; ++k) {
+        m[i][k] = CGAL::Mpzf(soup.vertices[soup.triangles[f][i]][k]) - CGAL::Mpzf(centre[k]);
+      }
+    }
+    total[c] = total[c] + m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
+               m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+               m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+  }
+  for (std::size_t c = 0; c < labels.count; ++c) {
+    if (exact[c]) sign[c] = static_cast<int>(CGAL::sign(total[c]));
+  }
+  return sign;
 }
 
 SegmentMeeting segment_meets_triangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b,

@@ -39,6 +39,13 @@ ComponentLabels label_components(const TriangleSoup& soup);
 /// \pre every index in range, every coordinate finite
 std::vector<double> component_volumes(const TriangleSoup& soup, const ComponentLabels& labels);
 
+/// The exact sign (+1, 0, -1) of the signed volume each component encloses,
+/// about its lowest vertex: the double sum when its error bound decides it,
+/// else the exact sum (CGAL::Mpzf). So a closed component of tiny volume is
+/// judged outward or inward as it is, not as rounding makes it.
+/// \pre every index in range, every coordinate finite
+std::vector<int> component_volume_signs(const TriangleSoup& soup, const ComponentLabels& labels);
+
 /// How the components nest.
 struct Nesting {
   std::vector<std::size_t> depth;  ///< per component: how many other components contain it

@@ -2,7 +2,10 @@
 // component shells and the InvertedComponent and NestedSameOrientation
 // defects, and the ray casting of detail/components.h under it.
 
+#include <array>
 #include <catch2/catch.hpp>
+#include <cstdint>
+#include <random>
 #include <string>
 
 #include "geometry/validation/detail/components.h"
@@ -263,4 +266,74 @@ TEST_CASE("components: nested shells on shared planes nest by exact parity",
   CHECK(r.component_shells.at(1).depth == std::optional<std::size_t>(1));
   CHECK(has_only(validate(both(octahedron, box(Vec3(8, 8, 8), Vec3(12, 12, 10)))),
                  Defect::NestedSameOrientation));
+}
+
+/// x, y with a x + b y = gcd(a, b) (>= 0).
+std::array<std::int64_t, 3> extended_gcd(std::int64_t a, std::int64_t b) {
+  if (b == 0) return {a < 0 ? -a : a, a < 0 ? -1 : 1, 0};
+  const auto [g, x, y] = extended_gcd(b, a % b);
+  return {g, y, x - (a / b) * y};
+}
+
+TEST_CASE("Orientation is the exact sign of the volume, even where rounding decides it wrongly",
+          "[orientation][validate]") {
+  // Nearly flat tetrahedra on an integer lattice: b and c span the lattice
+  // plane n . x = 0 of a normal n of about 2^23, d lies one lattice step off
+  // it (n . d = 1), so det(b, c, d) is about 2^37 where the products of
+  // coordinates reach 2^106: a sum in double gets its sign wrong for many
+  // of them. The exact determinant (128-bit integers) says which way each
+  // faces; validate must agree with it.
+  std::mt19937_64 rng(3);
+  const auto small = [&](int bits) { return static_cast<std::int64_t>(rng() >> (64 - bits)) + 1; };
+  using I = __int128;
+  int naive_wrong = 0;
+  int judged = 0;
+  for (int round = 0; round < 300; ++round) {
+    const std::int64_t n[3] = {small(23), small(23), small(23)};
+    const auto [g12, x, y] = extended_gcd(n[0], n[1]);
+    const auto [g, s, t] = extended_gcd(g12, n[2]);
+    if (g != 1) continue;
+    const std::int64_t u[3] = {n[1], -n[0], 0};
+    const std::int64_t v[3] = {n[2], 0, -n[0]};
+    const std::int64_t a1 = small(7), b1 = -small(7), a2 = small(7), b2 = small(7);
+    std::int64_t b[3], c[3], d[3];
+    const std::int64_t d0[3] = {x * s, y * s, t};  // n . d0 = 1
+    for (int k = 0; k < 3; ++k) {
+      b[k] = a1 * u[k] + b1 * v[k];
+      c[k] = a2 * u[k] + b2 * v[k];
+      d[k] = d0[k];
+    }
+    const I det = I(b[0]) * (I(c[1]) * d[2] - I(c[2]) * d[1]) - I(b[1]) * (I(c[0]) * d[2] - I(c[2]) * d[0]) +
+                  I(b[2]) * (I(c[0]) * d[1] - I(c[1]) * d[0]);
+    if (det == 0) continue;
+    TriangleSoup tet;
+    const auto vec = [](const std::int64_t* p) {
+      return Vec3(static_cast<double>(p[0]), static_cast<double>(p[1]), static_cast<double>(p[2]));
+    };
+    tet.vertices = {Vec3(0, 0, 0), vec(b), vec(c), vec(d)};
+    // Outward for a positive det(b, c, d): faces (1, 2, 3), (0, 2, 1), (0, 3, 2), (0, 1, 3).
+    tet.triangles = {{1, 2, 3}, {0, 2, 1}, {0, 3, 2}, {0, 1, 3}};
+    if (det < 0) tet = inverted(tet);
+    const Vec3 &p = tet.vertices[1], &q = tet.vertices[2], &r = tet.vertices[3];
+    naive_wrong += (det > 0) != (p.dot(q.cross(r)) > 0.0);
+    ++judged;
+    INFO("round " << round);
+    ComponentLabels about = label_components(tet);
+    for (std::uint32_t centre = 0; centre < 4; ++centre) {
+      about.lowest_vertex[0] = centre;
+      CHECK(component_volume_signs(tet, about)[0] == 1);
+    }
+    const ValidationReport report = validate(tet);
+    CHECK(report.oriented_outward);
+    CHECK_FALSE(report.find(Defect::InsideOut));
+    const ValidationReport turned = validate(inverted(tet));
+    CHECK_FALSE(turned.oriented_outward);
+    CHECK(turned.find(Defect::InsideOut));
+    // As one of two components (the other a unit cube far away), its shell's orientation.
+    const ValidationReport two = validate(both(cube(1e12, 1e12 + 1), inverted(tet)));
+    REQUIRE(two.component_shells.size() == 2);
+    CHECK_FALSE(two.component_shells[1].outward);
+  }
+  REQUIRE(judged > 100);
+  REQUIRE(naive_wrong > 10);  // the cases the exact sign exists for
 }
