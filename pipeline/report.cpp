@@ -54,6 +54,7 @@ nlohmann::ordered_json validation_json(const ValidationReport& r) {
   }
   j["intersecting_pairs"] = r.intersecting_pairs;
   j["component_shells"] = component_shells_json(r);
+  j["undetermined_components"] = r.undetermined_components;
   j["defects"] = describe_defects(r);
   j["defect_kinds"] = nlohmann::ordered_json::array();
   for (const DefectReport& d : r.defects) j["defect_kinds"].push_back(to_key(d.kind));

@@ -287,10 +287,15 @@ void add_shells(const TriangleSoup& soup, ValidationReport& report, std::size_t 
   DefectCount inverted;
   DefectCount nested;
   for (std::size_t c = 0; c < labels.count; ++c) {
+    if (!nesting.determined[c]) {
+      ++report.undetermined_components;
+      continue;
+    }
     shells[c].depth = nesting.depth[c];
     shells[c].inside = nesting.inside[c];
     if (!nesting.inside[c] && !shells[c].outward) inverted.add(shells[c].location, max_examples);
-    if (nesting.inside[c] && shells[c].outward == shells[*nesting.inside[c]].outward) {
+    if (nesting.inside[c] && nesting.determined[*nesting.inside[c]] &&
+        shells[c].outward == shells[*nesting.inside[c]].outward) {
       nested.add(shells[c].location, max_examples);
     }
   }
@@ -472,6 +477,12 @@ std::vector<std::string> describe_defects(const ValidationReport& report) {
       line += ")";
     }
     lines.push_back(std::move(line));
+  }
+  if (report.undetermined_components > 0) {
+    lines.push_back(
+        fmt::format("orientation of {} of {} components undetermined: every ray cast from them met "
+                    "another component at an edge, a vertex or within a face's plane",
+                    report.undetermined_components, report.component_shells.size()));
   }
   if (report.self_intersection_timed_out) {
     lines.push_back(

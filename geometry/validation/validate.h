@@ -105,6 +105,12 @@ struct ValidationReport {
   /// with the number of candidate face pairs it had tested by then.
   bool self_intersection_timed_out = false;
   std::size_t self_intersection_pairs_tested = 0;
+  /// Components whose nesting (so whether they must face outward or inward)
+  /// no ray settled: every ray cast from 16 of their vertices in 32
+  /// directions met another component at an edge, a vertex or within a
+  /// face's plane. Their orientation is then unknown, and the mesh is not
+  /// called valid (a verdict not reached is not a pass).
+  std::size_t undetermined_components = 0;
   bool consistently_oriented = false;  ///< no inconsistent edge
   bool oriented_outward = false;       ///< signed volume > 0
   double volume = 0.0;                 ///< signed enclosed volume, model units^3 (meaningful when closed)
@@ -124,7 +130,9 @@ struct ValidationReport {
   std::vector<ComponentShell> component_shells;
 
   /// True when no defect was found and self-intersection was tested or proven absent.
-  bool valid() const { return defects.empty() && self_intersection != IntersectionCheck::NotRun; }
+  bool valid() const {
+    return defects.empty() && self_intersection != IntersectionCheck::NotRun && undetermined_components == 0;
+  }
   /// The entry for `kind`, or nullptr when that defect was not found.
   const DefectReport* find(Defect kind) const;
 };

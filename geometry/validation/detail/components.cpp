@@ -399,17 +399,22 @@ std::array<double, 3> ray_direction(std::size_t k) {
 
 Nesting nest_components(const TriangleSoup& soup, const ComponentLabels& labels) {
   constexpr std::size_t kDirections = 32;
+  constexpr std::size_t kStarts = 16;  // vertices of a component to cast from, at most
   Nesting nesting;
   nesting.depth.assign(labels.count, 0);
+  nesting.determined.assign(labels.count, 1);
   nesting.inside.assign(labels.count, std::nullopt);
   if (labels.count < 2) return nesting;
-  std::vector<std::array<std::uint32_t, 3>> first_face(labels.count);
-  std::vector<char> seen(labels.count, 0);
+  // The start points of each component's rays: its first distinct vertices, in face order.
+  std::vector<std::vector<std::uint32_t>> starts(labels.count);
   for (std::size_t f = 0; f < soup.triangles.size(); ++f) {
     const std::uint32_t c = labels.face_component[f];
-    if (c == ComponentLabels::kNone || seen[c]) continue;
-    seen[c] = 1;
-    first_face[c] = soup.triangles[f];
+    if (c == ComponentLabels::kNone || starts[c].size() >= kStarts) continue;
+    for (const std::uint32_t v : soup.triangles[f]) {
+      if (starts[c].size() < kStarts && std::find(starts[c].begin(), starts[c].end(), v) == starts[c].end()) {
+        starts[c].push_back(v);
+      }
+    }
   }
   // Another component can contain a vertex of C only if its box holds it:
   // those are C's candidates, found with a hierarchy over the component boxes.
@@ -419,8 +424,8 @@ Nesting nest_components(const TriangleSoup& soup, const ComponentLabels& labels)
   std::vector<std::vector<std::size_t>> containers(labels.count);
   for (std::size_t c = 0; c < labels.count; ++c) {
     std::optional<std::vector<std::size_t>> found;
-    for (std::size_t attempt = 0; !found && attempt < 3 * kDirections; ++attempt) {
-      const Vec3& from = soup.vertices[first_face[c][attempt / kDirections]];
+    for (std::size_t attempt = 0; !found && attempt < starts[c].size() * kDirections; ++attempt) {
+      const Vec3& from = soup.vertices[starts[c][attempt / kDirections]];
       std::vector<std::size_t> candidates;
       box_tree.query(from, from, 0.0, [&](std::uint32_t d) {
         if (d != c) candidates.push_back(d);
@@ -436,8 +441,8 @@ Nesting nest_components(const TriangleSoup& soup, const ComponentLabels& labels)
       if (!found) ++nesting.retries;
     }
     if (!found) {
-      throw std::logic_error(fmt::format(
-          "nest_components: every ray from component {} touched an edge, a vertex or a face's plane", c));
+      nesting.determined[c] = 0;  // every ray touched: C meets another component, or nearly so
+      continue;
     }
     containers[c] = std::move(*found);
     nesting.depth[c] = containers[c].size();

@@ -49,6 +49,10 @@ std::vector<int> component_volume_signs(const TriangleSoup& soup, const Componen
 /// How the components nest.
 struct Nesting {
   std::vector<std::size_t> depth;  ///< per component: how many other components contain it
+  /// Per component: nonzero when its nesting was settled; zero when every
+  /// ray cast from it met another component other than transversally (then
+  /// depth is 0 and inside unset: unknown).
+  std::vector<char> determined;
   /// Per component: the innermost component containing it (the container of
   /// greatest depth), none at depth 0.
   std::vector<std::optional<std::size_t>> inside;

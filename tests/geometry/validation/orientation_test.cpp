@@ -337,3 +337,28 @@ TEST_CASE("Orientation is the exact sign of the volume, even where rounding deci
   REQUIRE(judged > 100);
   REQUIRE(naive_wrong > 10);  // the cases the exact sign exists for
 }
+
+TEST_CASE("A component every ray from which touches another is undetermined, and the mesh is not valid",
+          "[orientation]") {
+  // A tetrahedron whose four corners lie on the faces of a cube: every ray
+  // from them starts on the cube (validate never gets here: the test of
+  // self-intersections finds the contact first). Its nesting is unknown,
+  // not an internal error; the cube's is settled (no other box holds it).
+  TriangleSoup tetra;
+  tetra.vertices = {Vec3(5, 5, 0), Vec3(5, 5, 10), Vec3(0, 5, 5), Vec3(10, 2, 5)};
+  tetra.triangles = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {2, 0, 3}};
+  const TriangleSoup soup = both(cube(0, 10), tetra);
+  const ComponentLabels labels = label_components(soup);
+  REQUIRE(labels.count == 2);
+  const Nesting nesting = nest_components(soup, labels);
+  CHECK(nesting.determined == std::vector<char>{1, 0});
+  CHECK(nesting.retries == 4 * 32);  // four start vertices, 32 directions each
+  CHECK_FALSE(nesting.inside[1]);
+  ValidationReport report = validate(cube(0, 10));
+  REQUIRE(report.valid());
+  report.undetermined_components = 1;
+  CHECK_FALSE(report.valid());
+  const std::vector<std::string> lines = describe_defects(report);
+  REQUIRE(lines.size() == 1);
+  CHECK(lines[0].find("orientation of 1 of 1 components undetermined") != std::string::npos);
+}
