@@ -20,6 +20,7 @@
 #include "pipeline/load_design.h"
 #include "pipeline/outputs.h"
 #include "pipeline/pictures.h"
+#include "pipeline/planned_outputs.h"
 #include "pipeline/report.h"
 
 namespace fabmesh::cli {
@@ -199,12 +200,11 @@ int run_designs(const RunArgs& args, Streams io) {
           report_out << fmt::format("    {} {:.2f} ms\n", stage, ms);
       }
     }
-    if (o.report) {
-      for (const SkippedOutput& s : o.report->skipped) {
-        if (args.json)
-          io.err << fmt::format("fabmesh: warning: {}: skipped {}: {}\n", args.designs[i], s.format,
-                                s.reason);
-      }
+    if (o.report && args.json) {
+      for (const SkippedOutput& s : o.report->skipped)
+        io.err << fmt::format("fabmesh: warning: {}: skipped {}: {}\n", args.designs[i], s.format, s.reason);
+      for (const std::string& warning : o.report->warnings)
+        io.err << fmt::format("fabmesh: warning: {}\n", warning);
     }
   }
   // `run --json` prints an array always: one entry per design, whatever their number.

@@ -1,0 +1,138 @@
+// Issue 24, round three: the real executable tells the truth about what it
+// did. A run that writes nothing it was asked for fails with the reasons, two
+// designs never write one file, an environment failure (disk full, I/O,
+// permission) is not bad input, and messages name the user's own values at
+// their place. Each under the time and memory bounds the test enforces
+// (tests/pipeline/limited_run.h).
+
+#include <fmt/format.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <tuple>
+
+#include "io/file.h"
+#include "tests/pipeline/batch/batch_fixture.h"
+#include "tests/pipeline/cli_harness.h"
+#include "tests/pipeline/limited_run.h"
+
+using namespace fabmesh;
+using namespace fabmesh::testing;
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr double kSeconds = 60.0;
+constexpr std::size_t kMemory = 2048 * kMiB;
+
+void write_text(const fs::path& path, const std::string& text) {
+  std::ofstream(path, std::ios::binary) << text;
+}
+
+// Runs the program with files limited to 8 KiB (16 blocks of 512 bytes, or
+// 16 KiB where the shell counts kilobytes) and SIGXFSZ ignored, so that
+// writing past it fails with EFBIG, as a full disk fails with ENOSPC.
+// Messages and the batch's own small files fit; a cup's STL does not.
+const char* const kSmallFiles = "ulimit -f 16; trap '' XFSZ;";
+
+// A 10 x 10 x 1 mm slab 100 m from the origin held within 1 um: float32
+// (STL, glTF) moves its vertices by 10 um, so those outputs are skipped.
+const char* const kFarSlab = R"(name: far
+kind: countertop
+units: mm
+tolerance: 0.001
+thickness: 1
+outline:
+  family: tbezier
+  closed: true
+  segments:
+    - polyline: [[100000, 0], [100010, 0], [100010, 10], [100000, 10], [100000, 0]]
+outputs: [stl]
+)";
+
+// A small slab at the origin named NAME writing OUTPUTS.
+std::string slab(const std::string& name, const std::string& outputs) {
+  return fmt::format(R"(name: {}
+kind: countertop
+units: mm
+tolerance: 0.05
+thickness: 10
+outline:
+  family: tbezier
+  closed: true
+  segments:
+    - polyline: [[0, 0], [100, 0], [100, 60], [0, 60], [0, 0]]
+outputs: {}
+)",
+                     name, outputs);
+}
+
+}  // namespace
+
+TEST_CASE("run: -o FILE.stl, -o - and a list of outputs that are all skipped fail with the reasons",
+          "[pipeline][run][honest]") {
+  const fs::path dir = fresh_dir("honest_all_skipped");
+  write_text(dir / "far.yaml", kFarSlab);
+  const std::string design = (dir / "far.yaml").string();
+  const std::vector<std::vector<std::string>> runs{
+      {"run", design, "-o", (dir / "out/x.stl").string()},
+      {"run", design, "-o", "-", "--export-format", "stl"},
+      {"run", design, "-D", "outputs=[stl, glb, glb_draco]", "-o", (dir / "out").string()},
+      {"run", design, "--json", "-o", (dir / "out").string()}};
+  for (const std::vector<std::string>& args : runs) {
+    INFO(fmt::format("{}", fmt::join(args, " ")));
+    const LimitedRun r = run_limited(args, kSeconds, kMemory);
+    INFO(r.describe());
+    CHECK(r.code == 2);
+    CHECK_THAT(r.err, Catch::Contains("every output was skipped, so nothing is written") &&
+                          Catch::Contains("stl: writing moves vertices by up to"));
+    if (args[3] == "-") CHECK(r.out.empty());  // not a byte on the pipe
+    CHECK_FALSE(fs::exists(dir / "out"));
+  }
+}
+
+TEST_CASE("run: a mould or cnc block that no output uses is a warning naming the outputs that would",
+          "[pipeline][run][honest]") {
+  const fs::path dir = fresh_dir("honest_unused_block");
+  write_text(dir / "cut.yaml", slab("cut", "[stl]") + "cnc: {tool_diameter: 6}\n");
+  write_text(dir / "cup.yaml", R"(name: cup
+kind: vessel
+units: cm
+tolerance: 0.05
+profile:
+  family: quasi_bspline
+  points: [[1.5, 6], [1, 5], [2, 4], [3, 3], [1.5, 2]]
+body: {mode: solid}
+outputs: [stl]
+mould: {parts: 2, wall: 3, spare: 2.5, key_radius: 0.6, key_clearance: 0.02}
+)");
+  for (const auto& [name, place, users] :
+       {std::tuple<std::string, std::string, std::string>{"cut", ":12:6: cnc", "add nc or toolpath_svg"},
+        {"cup", ":10:8: mould", "add mould_stl or mould_3mf"}}) {
+    const std::string design = (dir / (name + ".yaml")).string();
+    const std::string key = design + place;
+    const LimitedRun text = run_limited({"run", design, "-o", (dir / "out").string()}, kSeconds, kMemory);
+    INFO(text.describe());
+    CHECK(text.code == 0);
+    CHECK_THAT(text.out, Catch::Contains("  warning: " + key) && Catch::Contains(users));
+    const LimitedRun json =
+        run_limited({"run", design, "--json", "-o", (dir / "out").string()}, kSeconds, kMemory);
+    INFO(json.describe());
+    REQUIRE(json.code == 0);
+    const nlohmann::json report = nlohmann::json::parse(json.out).at(0);
+    REQUIRE(report.contains("warnings"));
+    REQUIRE(report["warnings"].size() == 1);
+    CHECK_THAT(report["warnings"][0].get<std::string>(), Catch::StartsWith(key) && Catch::Contains(users));
+    CHECK_THAT(json.err, Catch::Contains("fabmesh: warning: " + key));
+    // Asked for on the command line: no warning.
+    const LimitedRun asked = run_limited(
+        {"run", design, "--export-format", "stl", "--json", "-o", (dir / "out").string()}, kSeconds, kMemory);
+    REQUIRE(asked.code == 0);
+    CHECK_FALSE(nlohmann::json::parse(asked.out).at(0).contains("warnings"));
+  }
+}
