@@ -105,6 +105,31 @@ void require_unique_names(std::vector<Outcome>& outcomes, const RunArgs& args) {
   }
 }
 
+// Two designs whose outputs resolve to one file (`name: x` with glb_draco and
+// `name: x.draco` with glb both write x.draco.glb) would lose one of them.
+void require_distinct_files(const std::vector<Outcome>& outcomes, const JobOptions& options,
+                            const RunArgs& args) {
+  std::map<std::string, std::pair<std::size_t, std::string>> first;  // path -> design, format
+  for (std::size_t i = 0; i < outcomes.size(); ++i) {
+    if (!outcomes[i].design) continue;
+    std::vector<PlannedFile> files;
+    try {
+      files = planned_files(*outcomes[i].design, options);
+    } catch (const InputError&) {
+      continue;  // a bad `outputs` entry: that design's job reports it
+    }
+    for (const PlannedFile& f : files) {
+      const std::string path = fs::path(f.path).lexically_normal().string();
+      const auto [it, fresh] = first.emplace(path, std::make_pair(i, f.format));
+      if (fresh || it->second.first == i) continue;
+      throw InputError(fmt::format(
+          "{} ({} output) and {} ({} output) would both write {}: one file would be lost; give one "
+          "another `name:` (nothing was run)",
+          args.designs[it->second.first], it->second.second, args.designs[i], f.format, path));
+    }
+  }
+}
+
 // The HTML page of `--report`: one row per design, its preview and plot linked from the output folder.
 void write_report(const RunArgs& args, const std::vector<Outcome>& outcomes) {
   const std::string base = fs::path(args.report).parent_path().string();
@@ -149,6 +174,7 @@ int run_designs(const RunArgs& args, Streams io) {
     }
   });
   require_unique_names(outcomes, args);
+  require_distinct_files(outcomes, options, args);
   std::optional<RunProgress> progress;
   if (io.verbosity > 0) {
     const bool terminal = &io.err == &std::cerr && ::isatty(STDERR_FILENO) == 1;

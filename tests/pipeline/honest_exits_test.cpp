@@ -136,3 +136,33 @@ mould: {parts: 2, wall: 3, spare: 2.5, key_radius: 0.6, key_clearance: 0.02}
     CHECK_FALSE(nlohmann::json::parse(asked.out).at(0).contains("warnings"));
   }
 }
+
+TEST_CASE("run: outputs of two designs that resolve to one file are refused before anything runs",
+          "[pipeline][run][honest]") {
+  const fs::path dir = fresh_dir("honest_collide");
+  write_text(dir / "a.yaml", slab("x", "[stl, glb_draco]"));
+  write_text(dir / "b.yaml", slab("x.draco", "[glb]"));
+  write_text(dir / "c.yaml", slab("y.mould", "[3mf]"));
+  write_text(dir / "d.yaml", slab("y", "[toolpath_svg]") + "cnc: {tool_diameter: 6}\n");
+  write_text(dir / "e.yaml", slab("y.toolpath", "[svg]"));
+  const std::string out = (dir / "out").string();
+  const LimitedRun r = run_limited({"run", (dir / "a.yaml").string(), (dir / "b.yaml").string(), "-o", out},
+                                   kSeconds, kMemory);
+  INFO(r.describe());
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err, Catch::Contains("a.yaml (glb_draco output) and ") &&
+                        Catch::Contains("b.yaml (glb output) would both write " + out + "/x.draco.glb") &&
+                        Catch::Contains("nothing was run"));
+  CHECK_FALSE(fs::exists(dir / "out"));
+  const LimitedRun svg = run_limited(
+      {"run", (dir / "c.yaml").string(), (dir / "d.yaml").string(), (dir / "e.yaml").string(), "-o", out},
+      kSeconds, kMemory);
+  INFO(svg.describe());
+  CHECK(svg.code == 2);
+  CHECK_THAT(svg.err, Catch::Contains("would both write " + out + "/y.toolpath.svg"));
+  CHECK_FALSE(fs::exists(dir / "out"));
+  // Apart, each writes its own files.
+  CHECK(
+      run_limited({"run", (dir / "a.yaml").string(), (dir / "c.yaml").string(), "-o", out}, kSeconds, kMemory)
+          .code == 0);
+}
