@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "geometry/core/errors.h"
+#include "io/file.h"
 
 namespace fabmesh {
 
@@ -22,6 +23,10 @@ Failure describe_failure(const std::exception_ptr& error, const std::string& sub
     if (!at.key.empty() && !at.place.empty())
       return {kExitBadInput, "error", location_text(at) + ": " + e.what()};
     return {kExitBadInput, "error", about_subject(e.what())};
+  } catch (const EnvironmentError& e) {
+    return {
+        kExitEnvironment, "environment error",
+        fmt::format("{} (a failure of the machine, not of the input: run again once it is fixed)", e.what())};
   } catch (const ValidationFailed& e) {
     return {kExitInvalid, "invalid", about_subject(e.what())};
   } catch (const std::exception& e) {

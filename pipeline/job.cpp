@@ -188,10 +188,7 @@ void create_folders(const std::vector<std::string>& paths) {
     if (folder.empty()) continue;
     std::error_code ec;
     std::filesystem::create_directories(folder, ec);
-    if (ec) {
-      throw FileError(folder.string(), 0, 0,
-                      fmt::format("{}: cannot create the output folder: {}", folder.string(), ec.message()));
-    }
+    if (ec) throw_write_failure(folder.string(), "cannot create the output folder", ec.value());
   }
 }
 

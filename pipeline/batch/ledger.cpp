@@ -25,8 +25,10 @@ namespace fs = std::filesystem;
 
 constexpr std::size_t kCheckDigits = 16;
 
+// The ledger is the batch's own file: a failure to use it is the machine's
+// (disk full, permission: EnvironmentError) or, rarely, the folder's (FileError).
 [[noreturn]] void fail(const std::string& path, const std::string& what, int error) {
-  throw FileError(path, 0, 0, fmt::format("{}: {}: {}", path, what, std::strerror(error)));
+  throw_write_failure(path, what, error);
 }
 
 // Opens the ledger `path` with `flags`, only when it is a regular file: a
@@ -177,8 +179,7 @@ LedgerWriter::LedgerWriter(const std::string& folder, const LedgerHeader& header
   refuse_link(folder, "batch folder");
   std::error_code ec;
   fs::create_directories(folder, ec);
-  if (ec)
-    throw FileError(folder, 0, 0, fmt::format("{}: cannot create the folder: {}", folder, ec.message()));
+  if (ec) fail(folder, "cannot create the folder", ec.value());
   fd_ = open_locked(path_);
   if (fd_ < 0) {
     throw InputError(

@@ -125,7 +125,8 @@ BatchRow run_variant(const BatchManifest& manifest, std::size_t index, const Pla
     row.exit_code = 0;
   } catch (...) {
     const Failure failure = describe_failure(std::current_exception(), planned.design);
-    row.status = status_of<VariantStatus>(failure.exit_code);
+    row.status = failure.exit_code == kExitEnvironment ? VariantStatus::Environment
+                                                       : status_of<VariantStatus>(failure.exit_code);
     row.exit_code = failure.exit_code;
     row.message = failure.message;
     row.files.clear();

@@ -50,12 +50,19 @@ std::string out_dir_of(const BatchArgs& args) {
 }
 
 Json counts_json(const SummaryCounts& c) {
-  return {{"ok", c.ok}, {"invalid", c.invalid}, {"bad_input", c.bad_input}, {"error", c.error}};
+  return {{"ok", c.ok},
+          {"invalid", c.invalid},
+          {"bad_input", c.bad_input},
+          {"error", c.error},
+          {"environment", c.environment}};
 }
 
 std::string counts_text(const SummaryCounts& c) {
-  return fmt::format("{} ok, {} invalid, {} bad input, {} error{}", c.ok, c.invalid, c.bad_input, c.error,
-                     c.error == 1 ? "" : "s");
+  std::string text = fmt::format("{} ok, {} invalid, {} bad input, {} error{}", c.ok, c.invalid, c.bad_input,
+                                 c.error, c.error == 1 ? "" : "s");
+  // Only when there are some: the machine's failures (disk full, permission), redone by a rerun.
+  if (c.environment > 0) text += fmt::format(", {} environment (run again once fixed)", c.environment);
+  return text;
 }
 
 void print_failures(const std::vector<BatchFailure>& failures, const std::string& summary,
@@ -165,8 +172,7 @@ int write_slurm(const BatchArgs& args, Streams io) {
   refuse_link((fs::path(out_dir) / ".batch").string(), "batch folder");
   refuse_link((fs::path(out_dir) / ".batch" / "slurm").string(), "folder of the Slurm logs");
   fs::create_directories(fs::path(out_dir) / ".batch" / "slurm", ec);
-  if (ec)
-    throw FileError(out_dir, 0, 0, fmt::format("{}: cannot create the folder: {}", out_dir, ec.message()));
+  if (ec) throw_write_failure(out_dir, "cannot create the folder", ec.value());
   const std::string path = (fs::path(out_dir) / "slurm.sbatch").string();
   write_file_atomically(path, script);
   fs::permissions(path, fs::perms::owner_exec | fs::perms::group_exec | fs::perms::others_exec,

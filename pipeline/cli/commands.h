@@ -18,7 +18,7 @@ struct Streams {
   int verbosity = 1;
 };
 
-/// Runs a parsed command; returns the process exit code (0, 1, 2 or 3).
+/// Runs a parsed command; returns the process exit code (0 to 5, pipeline/failure.h).
 using Runner = std::function<int(Streams)>;
 
 /// Registers `-D path=value` (repeatable) on a command that reads designs.

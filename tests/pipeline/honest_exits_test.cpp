@@ -166,3 +166,49 @@ TEST_CASE("run: outputs of two designs that resolve to one file are refused befo
       run_limited({"run", (dir / "a.yaml").string(), (dir / "c.yaml").string(), "-o", out}, kSeconds, kMemory)
           .code == 0);
 }
+
+TEST_CASE("run: a file size limit met while writing is an environment failure, exit 5, nothing left",
+          "[pipeline][run][honest]") {
+  const fs::path dir = fresh_dir("honest_environment_run");
+  write_text(dir / "cup.yaml", kBatchCup);
+  const fs::path out = dir / "out";
+  const LimitedRun r = run_limited({"run", (dir / "cup.yaml").string(), "-o", out.string()}, kSeconds,
+                                   kMemory, "", kSmallFiles);
+  INFO(r.describe());
+  CHECK(r.code == 5);
+  CHECK_THAT(r.err, Catch::Contains("fabmesh: environment error: " + (out / "cup.stl").string()) &&
+                        Catch::Contains("File too large") && Catch::Contains("not of the input"));
+  CHECK(fs::is_empty(out));  // no file, no temporary
+}
+
+TEST_CASE("batch: variants the machine failed are recorded as environment and run again without --force",
+          "[pipeline][batch][honest]") {
+  const fs::path dir = batch_folder("honest_environment",
+                                    "design: cup.yaml\nname: cup_{body.wall}\n"
+                                    "grid:\n  body.wall: [0.3, 0.35]\n");
+  const std::string manifest = (dir / "m.yaml").string(), out = (dir / "out").string();
+  const LimitedRun limited =
+      run_limited({"batch", manifest, "-o", out, "--json", "-q"}, kSeconds, kMemory, "", kSmallFiles);
+  INFO(limited.describe());
+  CHECK(limited.code == 5);
+  const nlohmann::json first = nlohmann::json::parse(limited.out);
+  CHECK(first["environment"] == 2);
+  CHECK(first["bad_input"] == 0);
+  CHECK(first["exit_code"] == 5);
+  CHECK_THAT(limited.err,
+             Catch::Contains("fabmesh: environment: cup_0.3: ") && Catch::Contains("File too large"));
+  const std::vector<nlohmann::json> rows = summary_rows(out);
+  REQUIRE(rows.size() == 2);
+  for (const nlohmann::json& row : rows) {
+    CHECK(row["status"] == "environment");
+    CHECK(row["exit_code"] == 5);
+  }
+  CHECK_FALSE(fs::exists(dir / "out" / "cup_0.3"));
+  // Once the machine is fixed, a plain rerun builds them.
+  int code = -1;
+  const nlohmann::json second = batch_json({manifest, "-o", out}, &code);
+  CHECK(code == 0);
+  CHECK(second["ran"] == 2);
+  CHECK(second["ok"] == 2);
+  CHECK(fs::exists(dir / "out" / "cup_0.3" / "cup_0.3.stl"));
+}
