@@ -116,6 +116,7 @@ BatchOutcome run_batch(const BatchManifest& manifest, const BatchOptions& option
   const std::size_t own_ledger = rows.add_ledger(ledger.path());
   std::vector<std::pair<std::size_t, BatchFailure>> failures;  // by k, in finishing order
   std::mutex failing;
+  std::vector<std::pair<std::size_t, std::pair<std::string, std::string>>> rebuilt;  // by k
   const auto failed = [&](std::size_t k, const BatchRow& row) {
     std::lock_guard<std::mutex> lock(failing);
     failures.push_back({k, {row.name, row.status, row.exit_code, row.message}});
@@ -130,7 +131,8 @@ BatchOutcome run_batch(const BatchManifest& manifest, const BatchOptions& option
                         for (std::size_t k = r.begin(); k != r.end(); ++k) {
                           const std::size_t i = shard.index + k * shard.count;
                           const std::optional<std::string> earlier = rows.row(i);
-                          if (!options.force && earlier && row_stands(*earlier, options.out_dir)) {
+                          std::string why;
+                          if (!options.force && earlier && row_stands(*earlier, options.out_dir, &why)) {
                             status[k] = rows.status(i);
                             if (status[k] != VariantStatus::Ok) {
                               const BatchRow row = summary_row(plan, rows, i);
@@ -138,6 +140,10 @@ BatchOutcome run_batch(const BatchManifest& manifest, const BatchOptions& option
                             }
                             tally.finished(true, status[k] == VariantStatus::Ok);
                             continue;
+                          }
+                          if (!why.empty()) {
+                            std::lock_guard<std::mutex> lock(failing);
+                            rebuilt.push_back({k, {plan.name(i), why}});
                           }
                           const BatchRow row = run_variant(manifest, i, plan.variant(i), options.out_dir);
                           const std::string json = row_json(row).dump();
@@ -165,6 +171,8 @@ BatchOutcome run_batch(const BatchManifest& manifest, const BatchOptions& option
   }
   std::sort(failures.begin(), failures.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   for (auto& f : failures) out.failures.push_back(std::move(f.second));
+  std::sort(rebuilt.begin(), rebuilt.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (auto& r : rebuilt) out.rebuilt.push_back(std::move(r.second));
   if (shard.count == 1) {
     write_summary(plan, rows, options.out_dir);
     out.summary_written = true;

@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "io/design/manifest.h"
@@ -50,11 +51,14 @@ struct BatchOutcome {
   std::size_t reused = 0;
   SummaryCounts counts;                ///< over this run's shard (exit_code: the worst)
   std::vector<BatchFailure> failures;  ///< in plan order
-  std::string ledger;                  ///< this shard's ledger
-  bool summary_written = false;        ///< out_dir/summary.{csv,jsonl} (whole batches only)
-  double plan_ms = 0.0;                ///< reading done: keys of every variant
-  double wall_ms = 0.0;                ///< the whole run
-  double jobs_ms = 0.0;                ///< the variants' own job times, summed
+  /// Variants whose earlier ok row did not stand because a file it lists is
+  /// missing or changed (row_stands' why): name, why. In plan order.
+  std::vector<std::pair<std::string, std::string>> rebuilt;
+  std::string ledger;            ///< this shard's ledger
+  bool summary_written = false;  ///< out_dir/summary.{csv,jsonl} (whole batches only)
+  double plan_ms = 0.0;          ///< reading done: keys of every variant
+  double wall_ms = 0.0;          ///< the whole run
+  double jobs_ms = 0.0;          ///< the variants' own job times, summed
 };
 
 /// Runs `manifest`'s variants of `options.shard` into `options.out_dir`.

@@ -96,6 +96,8 @@ int run_manifest(const BatchArgs& args, Streams io) {
                                   ? (dir / "summary.csv").string()
                                   : (dir / ".batch" / fs::path(out.ledger).filename()).string();
   print_failures(out.failures, summary, io.err);
+  for (std::size_t i = 0; i < out.rebuilt.size() && i < kShownFailures; ++i)
+    io.err << fmt::format("fabmesh: note: {}: {}\n", out.rebuilt[i].first, out.rebuilt[i].second);
   const std::string shard = fmt::format("{}/{}", options.shard.index, options.shard.count);
   if (args.json) {
     Json j;
@@ -119,6 +121,8 @@ int run_manifest(const BatchArgs& args, Streams io) {
                                {"exit_code", f.exit_code},
                                {"message", f.message}});
     }
+    j["rebuilt"] = Json::array();
+    for (const auto& [name, why] : out.rebuilt) j["rebuilt"].push_back({{"name", name}, {"reason", why}});
     j["timings_ms"] = {{"plan", out.plan_ms}, {"jobs", out.jobs_ms}, {"wall", out.wall_ms}};
     io.out << j.dump(2) << "\n";
   } else if (io.verbosity > 0) {

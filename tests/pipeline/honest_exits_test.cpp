@@ -212,3 +212,32 @@ TEST_CASE("batch: variants the machine failed are recorded as environment and ru
   CHECK(second["ok"] == 2);
   CHECK(fs::exists(dir / "out" / "cup_0.3" / "cup_0.3.stl"));
 }
+
+TEST_CASE("batch: a reused variant whose file changed but kept its size is built again, and said so",
+          "[pipeline][batch][honest]") {
+  const fs::path dir = batch_folder("honest_digest",
+                                    "design: cup.yaml\nname: cup_{body.wall}\n"
+                                    "grid:\n  body.wall: [0.3, 0.35]\n");
+  const std::string manifest = (dir / "m.yaml").string(), out = (dir / "out").string();
+  int code = -1;
+  batch_json({manifest, "-o", out}, &code);
+  REQUIRE(code == 0);
+  const fs::path stl = dir / "out" / "cup_0.35" / "cup_0.35.stl";
+  const std::string good = file_text(stl);
+  std::string bad = good;
+  bad[100] = static_cast<char>(bad[100] ^ 0x55);  // a flipped byte in the first triangle
+  write_text(stl, bad);
+  const LimitedRun rerun = run_limited({"batch", manifest, "-o", out, "--json", "-q"}, kSeconds, kMemory);
+  INFO(rerun.describe());
+  CHECK(rerun.code == 0);
+  const nlohmann::json again = nlohmann::json::parse(rerun.out);
+  const std::string& err = rerun.err;
+  CHECK(again["ran"] == 1);
+  CHECK(again["reused"] == 1);
+  REQUIRE(again["rebuilt"].size() == 1);
+  CHECK(again["rebuilt"][0]["name"] == "cup_0.35");
+  CHECK_THAT(err,
+             Catch::Contains("fabmesh: note: cup_0.35: its file cup_0.35/cup_0.35.stl no longer matches the "
+                             "digest recorded: built again"));
+  CHECK(file_text(stl) == good);
+}
