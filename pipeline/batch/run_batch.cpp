@@ -84,6 +84,26 @@ void refuse_linked_variant_folders(const BatchPlan& plan, const Shard& shard, st
   }
 }
 
+// The row's JSON for the ledger, within kMaxLedgerRowBytes: a row quoting a
+// huge value in its message (a table cell of megabytes, say) is written
+// without its overrides (the summary takes them from the plan) and with its
+// message cut at a character's start.
+std::string ledger_row_json(BatchRow row) {
+  std::string json = row_json(row).dump();
+  if (json.size() <= kMaxLedgerRowBytes) return json;
+  constexpr std::size_t kKeptMessage = std::size_t{64} << 10;
+  row.overrides.clear();
+  if (row.message.size() > kKeptMessage) {
+    std::size_t cut = kKeptMessage;
+    while (cut > 0 && (static_cast<unsigned char>(row.message[cut]) & 0xC0) == 0x80) --cut;
+    row.message = fmt::format("{}... ({} more bytes)", row.message.substr(0, cut), row.message.size() - cut);
+  }
+  for (SkippedOutput& s : row.skipped) {
+    if (s.reason.size() > kKeptMessage) s.reason.resize(kKeptMessage);
+  }
+  return row_json(row).dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
+}
+
 }  // namespace
 
 BatchOutcome run_batch(const BatchManifest& manifest, const BatchOptions& options) {
@@ -146,7 +166,7 @@ BatchOutcome run_batch(const BatchManifest& manifest, const BatchOptions& option
                             rebuilt.push_back({k, {plan.name(i), why}});
                           }
                           const BatchRow row = run_variant(manifest, i, plan.variant(i), options.out_dir);
-                          const std::string json = row_json(row).dump();
+                          const std::string json = ledger_row_json(row);
                           const std::uint64_t offset = ledger.append(json);
                           for (const auto& [stage, ms] : row.timings_ms) {
                             if (stage == "job") jobs_us += static_cast<long long>(ms * 1000.0);

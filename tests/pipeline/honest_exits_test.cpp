@@ -241,3 +241,28 @@ TEST_CASE("batch: a reused variant whose file changed but kept its size is built
                              "digest recorded: built again"));
   CHECK(file_text(stl) == good);
 }
+
+TEST_CASE("batch: a ledger line longer than any row is reported as corruption, in bounded memory",
+          "[pipeline][batch][honest]") {
+  const fs::path dir = batch_folder("honest_long_ledger",
+                                    "design: cup.yaml\nname: cup_{body.wall}\n"
+                                    "grid:\n  body.wall: [0.3]\n");
+  const std::string manifest = (dir / "m.yaml").string(), out = (dir / "out").string();
+  int code = -1;
+  batch_json({manifest, "-o", out}, &code);
+  REQUIRE(code == 0);
+  const fs::path ledger = dir / "out" / ".batch" / "ledger-0-of-1.jsonl";
+  const std::string before = file_text(ledger);
+  std::ofstream(ledger, std::ios::app | std::ios::binary) << std::string(6u << 20, 'x');  // no line end
+  for (const std::vector<std::string>& args : {std::vector<std::string>{"batch", manifest, "-o", out},
+                                               std::vector<std::string>{"batch", "--merge", out}}) {
+    INFO(args[1]);
+    const LimitedRun r = run_limited(args, kSeconds, 256 * kMiB);
+    INFO(r.describe());
+    CHECK(r.code == 2);
+    CHECK_THAT(r.err, Catch::Contains(ledger.string() + ": the ledger is corrupt: the line at byte " +
+                                      std::to_string(before.size())) &&
+                          Catch::Contains("longer than any ledger line can be"));
+  }
+  CHECK(fs::file_size(ledger) == before.size() + (6u << 20));  // reported, not cut
+}
