@@ -36,17 +36,24 @@ Failure describe_failure(const std::exception_ptr& error, const std::string& sub
   }
 }
 
-std::string failure_line(const Failure& failure) {
+std::string printable_message(const std::string& message) {
   std::string text;
-  for (const char c : failure.message) {
-    const auto u = static_cast<unsigned char>(c);
-    if (u < 0x20 || u == 0x7f) {
+  for (std::size_t i = 0; i < message.size(); ++i) {
+    const auto u = static_cast<unsigned char>(message[i]);
+    if (u == '\r' && i + 1 < message.size() && message[i + 1] == '\n') continue;  // CRLF: one break
+    if (u == '\n') {
+      text += "\n  ";
+    } else if (u < 0x20 || u == 0x7f) {
       text += fmt::format("\\x{:02x}", u);
     } else {
-      text += c;
+      text += message[i];
     }
   }
-  return fmt::format("fabmesh: {}: {}", failure.label, text);
+  return text;
+}
+
+std::string failure_line(const Failure& failure) {
+  return fmt::format("fabmesh: {}: {}", failure.label, printable_message(failure.message));
 }
 
 }  // namespace fabmesh

@@ -29,7 +29,13 @@ struct Failure {
 /// `subject` (the design or mesh file at hand) prefixes any other message.
 Failure describe_failure(const std::exception_ptr& error, const std::string& subject = "");
 
-/// "fabmesh: error: message" (one line: control characters are escaped).
+/// `message` fit to print: a line break continues the message on an
+/// indented line (so no line of it can pass for a message of its own), and
+/// any other control character is escaped ("\x09").
+std::string printable_message(const std::string& message);
+
+/// "fabmesh: error: message" (printable_message: a multi-line message's
+/// further lines indented, other control characters escaped).
 std::string failure_line(const Failure& failure);
 
 /// The status a report or batch row shows for a job that ended with

@@ -20,6 +20,7 @@
 #include "pipeline/batch/run_batch.h"
 #include "pipeline/batch/slurm_script.h"
 #include "pipeline/cli/commands.h"
+#include "pipeline/failure.h"
 
 namespace fabmesh::cli {
 namespace {
@@ -69,7 +70,7 @@ void print_failures(const std::vector<BatchFailure>& failures, const std::string
                     std::ostream& err) {
   for (std::size_t i = 0; i < failures.size() && i < kShownFailures; ++i) {
     const BatchFailure& f = failures[i];
-    err << fmt::format("fabmesh: {}: {}: {}\n", to_string(f.status), f.name, f.message);
+    err << fmt::format("fabmesh: {}: {}: {}\n", to_string(f.status), f.name, printable_message(f.message));
   }
   if (failures.size() > kShownFailures) {
     err << fmt::format("fabmesh: ... and {} more failed variants (see {})\n",

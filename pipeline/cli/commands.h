@@ -3,6 +3,7 @@
 // options on `app` and returns the function that runs it once parsed.
 
 #include <CLI/CLI.hpp>
+#include <cmath>
 #include <functional>
 #include <ostream>
 #include <string>
@@ -28,6 +29,21 @@ inline void add_define_option(CLI::App* cmd, std::vector<std::string>& defines) 
          "Override a design field, e.g. -D body.wall=2.5 -D profile.points[1]=[1,5] (the value is YAML; "
          "repeatable)")
       ->allow_extra_args(false);
+}
+
+/// A check of a number option that is at least 0: a finite number, its
+/// message naming the value as given ("-1 is below 0"), never a bound's
+/// digits (CLI::NonNegativeNumber prints the largest double's 310).
+inline CLI::Validator non_negative_number() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        double value = 0.0;
+        if (!CLI::detail::lexical_cast(text, value) || !std::isfinite(value))
+          return "'" + text + "' is not a number";
+        if (value < 0) return text + " is below 0: give a number >= 0";
+        return std::string();
+      },
+      "NUMBER >= 0", "NONNEGATIVE");
 }
 
 // --- commands ---

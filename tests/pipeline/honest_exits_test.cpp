@@ -266,3 +266,140 @@ TEST_CASE("batch: a ledger line longer than any row is reported as corruption, i
   }
   CHECK(fs::file_size(ledger) == before.size() + (6u << 20));  // reported, not cut
 }
+
+TEST_CASE("run -D kind=... and a table column kind say a variant cannot change the kind",
+          "[pipeline][honest][messages]") {
+  const fs::path dir = batch_folder("honest_kind", "design: cup.yaml\ntable: t.csv\n");
+  write_text(dir / "t.csv", "body.wall,kind\n0.3,countertop\n");
+  const LimitedRun run =
+      run_limited({"run", (dir / "cup.yaml").string(), "-D", "kind=countertop", "-o", (dir / "out").string()},
+                  kSeconds, kMemory);
+  INFO(run.describe());
+  CHECK(run.code == 2);
+  CHECK_THAT(run.err, Catch::Contains("-D kind=countertop: kind: an override cannot change the design's kind "
+                                      "(vessel)"));
+  CHECK_THAT(run.err, !Catch::Contains("unknown key"));
+  const LimitedRun batch =
+      run_limited({"batch", (dir / "m.yaml").string(), "-o", (dir / "out").string()}, kSeconds, kMemory);
+  INFO(batch.describe());
+  CHECK(batch.code == 2);
+  CHECK_THAT(batch.err, Catch::Contains((dir / "t.csv").string() +
+                                        ":1:11: column 'kind': a variant cannot change the design's kind"));
+  CHECK_FALSE(fs::exists(dir / "out"));
+}
+
+TEST_CASE("batch: a NUL byte in a table cell is refused at its place, the message whole",
+          "[pipeline][honest][messages]") {
+  const fs::path dir = batch_folder("honest_nul", "design: cup.yaml\ntable: t.csv\nname: v{index}\n");
+  write_text(dir / "t.csv", std::string("body.wall\n0.3\0zz\n", 17));
+  const LimitedRun r =
+      run_limited({"batch", (dir / "m.yaml").string(), "-o", (dir / "out").string()}, kSeconds, kMemory);
+  INFO(r.describe());
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err,
+             Catch::Contains((dir / "t.csv").string() + ":2:4: a NUL byte in a cell: a table is text"));
+  CHECK_FALSE(fs::exists(dir / "out"));
+}
+
+TEST_CASE("batch --merge: a message of several lines prints them as lines, indented",
+          "[pipeline][honest][messages]") {
+  const fs::path dir = batch_folder("honest_lines",
+                                    "design: cup.yaml\nname: cup_{body.wall}\n"
+                                    "grid:\n  body.wall: [0.3, 0.35]\n");
+  const std::string manifest = (dir / "m.yaml").string(), out = (dir / "out").string();
+  int code = -1;
+  batch_json({manifest, "-o", out, "--shard", "0/2"}, &code);
+  REQUIRE(code == 0);
+  write_text(dir / "m.yaml", "design: cup.yaml\nname: cup_{body.wall}\ngrid:\n  body.wall: [0.3, 0.4]\n");
+  batch_json({manifest, "-o", out, "--shard", "1/2"}, &code);
+  REQUIRE(code == 0);
+  const LimitedRun r = run_limited({"batch", "--merge", out}, kSeconds, kMemory);
+  INFO(r.describe());
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err, Catch::Contains("the shards here ran different plans") &&
+                        Catch::Contains("\n    plan ") && Catch::Contains("\n  rerun every shard"));
+  CHECK_THAT(r.err, !Catch::Contains("\\x0a"));
+}
+
+TEST_CASE("check --weld-tolerance -1 names the value, not the largest double",
+          "[pipeline][honest][messages]") {
+  const LimitedRun r = run_limited({"check", "--weld-tolerance", "-1", example("vessel_golden_shell.yaml")},
+                                   kSeconds, kMemory);
+  INFO(r.describe());
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err, Catch::Contains("--weld-tolerance") && Catch::Contains("-1 is below 0"));
+  CHECK_THAT(r.err, !Catch::Contains("17976931348623157"));
+  CHECK(r.err.size() < 300);
+}
+
+TEST_CASE("check: a glTF whose nodes form a cycle and no scene is bad input, exit 2",
+          "[pipeline][honest][messages]") {
+  const fs::path dir = fresh_dir("honest_gltf_cycle");
+  // A triangle's mesh on node 0, whose child's child is node 0 again: no node is a root.
+  write_text(dir / "cycle.gltf", R"({"asset": {"version": "2.0"},
+ "buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}],
+ "bufferViews": [{"buffer": 0, "byteLength": 36}],
+ "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}],
+ "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+ "nodes": [{"children": [1], "mesh": 0}, {"children": [0]}]})");
+  const LimitedRun r = run_limited({"check", (dir / "cycle.gltf").string()}, kSeconds, 256 * kMiB);
+  INFO(r.describe());
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err, Catch::Contains("cycle.gltf") && Catch::Contains("nodes[0] lies on a cycle of children"));
+}
+
+TEST_CASE("optimize and CNC errors name the file, line and column of their key",
+          "[pipeline][honest][messages]") {
+  const fs::path dir = fresh_dir("honest_located");
+  write_text(dir / "h.yaml", R"(kind: curve
+curve:
+  family: hbezier
+  segments:
+    - points: [[0, 0], [1, 2], [3, 3], [4, 1]]
+)");
+  const LimitedRun opt = run_limited({"optimize", (dir / "h.yaml").string()}, kSeconds, kMemory);
+  INFO(opt.describe());
+  CHECK(opt.code == 2);
+  CHECK(names_place(opt.err, (dir / "h.yaml").string(), "curve"));
+  // A 12 mm tool cannot cut the 5 mm corners of a hole.
+  write_text(dir / "sink.yaml",
+             slab("sink", "[nc]") +
+                 "holes:\n  - rounded_rect: {center: [50, 30], size: [40, 20], radius: 5}\n"
+                 "cnc: {tool_diameter: 12}\n");
+  const LimitedRun cnc =
+      run_limited({"run", (dir / "sink.yaml").string(), "-o", (dir / "out").string()}, kSeconds, kMemory);
+  INFO(cnc.describe());
+  CHECK(cnc.code == 2);
+  CHECK(names_place(cnc.err, (dir / "sink.yaml").string(), "holes[0] (rounded_rect)"));
+  CHECK_THAT(cnc.err, Catch::Contains("below the tool radius 6"));
+  CHECK_FALSE(fs::exists(dir / "out"));
+}
+
+TEST_CASE("a design nested 1000 lists deep says how deep, at its place", "[pipeline][honest][messages]") {
+  const fs::path dir = fresh_dir("honest_deep");
+  write_text(dir / "deep.yaml",
+             "kind: curve\ncurve: " + std::string(1000, '[') + std::string(1000, ']') + "\n");
+  write_text(dir / "m.yaml", "design: " + std::string(1000, '[') + std::string(1000, ']') + "\n");
+  const LimitedRun design = run_limited({"sample", (dir / "deep.yaml").string()}, kSeconds, 256 * kMiB);
+  INFO(design.describe());
+  CHECK(design.code == 2);
+  CHECK_THAT(design.err, Catch::Contains((dir / "deep.yaml").string() + ":2:71: lists and maps nested more "
+                                                                        "than 64 deep"));
+  const LimitedRun manifest = run_limited({"batch", (dir / "m.yaml").string()}, kSeconds, 256 * kMiB);
+  INFO(manifest.describe());
+  CHECK(manifest.code == 2);
+  CHECK_THAT(manifest.err, Catch::Contains("invalid YAML: lists and maps nested more than") &&
+                               !Catch::Contains("bad file"));
+}
+
+TEST_CASE("a NUL byte in a points CSV cell is shown escaped, the message whole",
+          "[pipeline][honest][messages]") {
+  const fs::path dir = fresh_dir("honest_points_nul");
+  write_text(dir / "p.csv", std::string("0,0\n1\0x,2\n3,3\n", 14));
+  write_text(dir / "c.yaml",
+             "kind: curve\ncurve:\n  family: tbezier\n  segments:\n    - polyline: {file: p.csv}\n");
+  const LimitedRun r = run_limited({"sample", (dir / "c.yaml").string()}, kSeconds, 256 * kMiB);
+  INFO(r.describe());
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err, Catch::Contains("p.csv:2:1: '1\\x00x' is not a number"));
+}
