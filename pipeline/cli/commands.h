@@ -46,6 +46,34 @@ inline CLI::Validator non_negative_number() {
       "NUMBER >= 0", "NONNEGATIVE");
 }
 
+/// `text` in ASCII lower case: file endings are told apart case-insensitively (X.STL is an STL).
+inline std::string ascii_lower(std::string text) {
+  for (char& c : text) {
+    if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+  }
+  return text;
+}
+
+/// True when `-o out` names a file by its ending rather than a folder: no
+/// trailing '/', and its last part ends in a '.' and 1 to 8 letters or digits,
+/// a letter among them ("x.xyz", "mug.gltf"; not "out", "v1.2" or ".cache").
+inline bool names_a_file(const std::string& out) {
+  if (out.empty() || out.back() == '/') return false;
+  const std::size_t slash = out.find_last_of('/');
+  const std::string last = out.substr(slash == std::string::npos ? 0 : slash + 1);
+  const std::size_t dot = last.find_last_of('.');
+  if (dot == std::string::npos || dot == 0 || last.size() - dot - 1 > 8 || dot + 1 == last.size())
+    return false;
+  bool letter = false;
+  for (std::size_t i = dot + 1; i < last.size(); ++i) {
+    const char c = last[i];
+    const bool is_letter = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z');
+    if (!is_letter && !(c >= '0' && c <= '9')) return false;
+    letter = letter || is_letter;
+  }
+  return letter;
+}
+
 // --- commands ---
 Runner add_check_command(CLI::App& app);  ///< `fabmesh check MESH... [--json] [--weld-tolerance X]`
 Runner add_sample_command(CLI::App& app);

@@ -53,8 +53,10 @@ void fail_with(Outcome& o, const std::string& subject) {
   o.error = failure_line(failure);
 }
 
-// The format a file name asks for by its ending (".draco.glb" before ".glb"), or nullptr.
-const OutputFormat* format_of_file(const std::string& path) {
+// The format a file name asks for by its ending, in any case (".draco.glb"
+// before ".glb", "X.STL" an STL), or nullptr.
+const OutputFormat* format_of_file(const std::string& name) {
+  const std::string path = ascii_lower(name);
   const OutputFormat* best = nullptr;
   for (const OutputFormat& f : output_formats()) {
     const std::string_view suffix = f.file_suffix;
@@ -85,6 +87,18 @@ JobOptions output_options(const RunArgs& args) {
     options.output_file = out;
     options.out_dir = ".";
     return options;
+  }
+  if (!folder && names_a_file(out)) {
+    // Never a folder named like a file: say which endings fabmesh writes.
+    std::string endings;
+    for (const OutputFormat& f : output_formats()) {
+      if (f.file_suffix.find("PART") != std::string_view::npos) continue;  // one file per mould part
+      endings += (endings.empty() ? "" : ", ") + std::string(f.file_suffix);
+    }
+    throw InputError(fmt::format(
+        "-o {}: fabmesh writes no '{}' files; -o FILE takes one of these endings (in any case): {}; for a "
+        "folder of that name write -o {}/",
+        out, fs::path(out).extension().string(), endings, out));
   }
   options.out_dir = out;
   return options;

@@ -392,6 +392,35 @@ TEST_CASE("a design nested 1000 lists deep says how deep, at its place", "[pipel
                                !Catch::Contains("bad file"));
 }
 
+TEST_CASE("run -o with an ending fabmesh does not write is exit 2 listing the endings it writes",
+          "[pipeline][honest][files]") {
+  const fs::path dir = fresh_dir("honest_endings");
+  write_text(dir / "s.yaml", slab("s", "[stl]"));
+  const std::string design = (dir / "s.yaml").string();
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"run", design, "-o", (dir / "x.xyz").string()},
+        std::vector<std::string>{"run", design, "-o", (dir / "mug.gltf").string()},
+        std::vector<std::string>{"plot", design, "-o", (dir / "mug.png").string()}}) {
+    INFO(args[0] << " -o " << args[3]);
+    const LimitedRun r = run_limited(args, kSeconds, kMemory);
+    INFO(r.describe());
+    CHECK(r.code == 2);
+    CHECK_FALSE(fs::exists(args[3]));
+    if (args[0] == "run") {
+      CHECK_THAT(r.err, Catch::Contains("fabmesh writes no '") && Catch::Contains(".stl, .drc, .3mf, .glb") &&
+                            Catch::Contains(".draco.glb"));
+    } else {
+      CHECK_THAT(r.err, Catch::Contains("plot writes SVG"));
+    }
+  }
+  // Endings in any case: MUG.STL is an STL.
+  const LimitedRun upper = run_limited({"run", design, "-o", (dir / "MUG.STL").string()}, kSeconds, kMemory);
+  INFO(upper.describe());
+  CHECK(upper.code == 0);
+  REQUIRE(fs::is_regular_file(dir / "MUG.STL"));
+  CHECK(fs::file_size(dir / "MUG.STL") == 84 + 50 * 12u);  // binary STL of the slab's 12 triangles
+}
+
 TEST_CASE("a NUL byte in a points CSV cell is shown escaped, the message whole",
           "[pipeline][honest][messages]") {
   const fs::path dir = fresh_dir("honest_points_nul");
