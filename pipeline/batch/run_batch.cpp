@@ -13,6 +13,7 @@
 #include <optional>
 
 #include "geometry/core/errors.h"
+#include "io/design/read_design.h"
 #include "pipeline/batch/ledger.h"
 #include "pipeline/batch/output_links.h"
 #include "pipeline/batch/plan.h"
@@ -106,6 +107,34 @@ std::string ledger_row_json(BatchRow row) {
 
 }  // namespace
 
+void refuse_unknown_override_paths(const BatchManifest& manifest) {
+  const std::size_t per_base = manifest.variant_count() / std::max<std::size_t>(1, manifest.bases.size());
+  if (per_base == 0) return;
+  for (std::size_t b = 0; b < manifest.bases.size(); ++b) {
+    // The paths with the values of the base's first variant where it gives one (its text names
+    // the manifest's place), else a null value: an unknown key is found before any value is read.
+    std::vector<Override> paths = variant_overrides(manifest, manifest.variant(b * per_base));
+    for (const std::string& p : manifest.parameters) {
+      const bool given =
+          std::any_of(paths.begin(), paths.end(), [&](const Override& o) { return o.path == p; });
+      if (!given) paths.push_back({p, "null", p});
+    }
+    for (const Override& o : paths) {
+      try {
+        manifest.bases[b].resolve({o});
+      } catch (const UnknownKeyError& e) {
+        const std::string& key = e.field();
+        if (o.path == key || o.path.rfind(key + ".", 0) == 0 || o.path.rfind(key + "[", 0) == 0) {
+          throw UnknownKeyError(key, e.path(), e.line(), e.column(),
+                                std::string(e.what()) + "; every variant sets this path, so none was run");
+        }
+      } catch (const InputError&) {
+        // a value, or a path that needs another override first: its variants report it
+      }
+    }
+  }
+}
+
 BatchOutcome run_batch(const BatchManifest& manifest, const BatchOptions& options) {
   const Clock::time_point start = Clock::now();
   BatchOutcome out;
@@ -119,6 +148,7 @@ BatchOutcome run_batch(const BatchManifest& manifest, const BatchOptions& option
   const Shard shard = options.shard;
   const std::string folder = ledger_folder(options.out_dir);
 
+  refuse_unknown_override_paths(manifest);
   BatchPlan plan;
   arena.execute([&] { plan = plan_batch(manifest); });
   out.variants = plan.size();

@@ -61,6 +61,13 @@ struct BatchOutcome {
   double jobs_ms = 0.0;          ///< the variants' own job times, summed
 };
 
+/// Refuses an override path that is not a key of a base design (`body.wal`
+/// for `body.wall`): every variant would fail alike, so the batch fails once,
+/// before any runs, naming the path where the manifest gives it. Each path
+/// the manifest sets is applied alone to each base; a value that is bad is
+/// left for its variant to report. \throw UnknownKeyError (exit 2)
+void refuse_unknown_override_paths(const BatchManifest& manifest);
+
 /// Runs `manifest`'s variants of `options.shard` into `options.out_dir`.
 /// Every variant's key is computed first (the plan, saved in out_dir/.batch);
 /// a variant with a committed row of the same name and key that still stands

@@ -158,6 +158,7 @@ std::string job_name(const std::string& manifest) {
 
 int write_slurm(const BatchArgs& args, Streams io) {
   const BatchManifest manifest = read_manifest(args.manifest);
+  refuse_unknown_override_paths(manifest);  // now, not in every task of the job
   const std::string out_dir = fs::absolute(out_dir_of(args)).lexically_normal().string();
   const std::size_t variants = manifest.variant_count();
   SlurmScriptOptions o;

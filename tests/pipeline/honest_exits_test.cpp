@@ -421,6 +421,22 @@ TEST_CASE("run -o with an ending fabmesh does not write is exit 2 listing the en
   CHECK(fs::file_size(dir / "MUG.STL") == 84 + 50 * 12u);  // binary STL of the slab's 12 triangles
 }
 
+TEST_CASE("batch: a typo in an override path fails once, before any variant runs",
+          "[pipeline][batch][honest]") {
+  const fs::path dir = batch_folder("honest_typo",
+                                    "design: cup.yaml\nname: cup_{body.wal}\n"
+                                    "grid:\n  body.wal: [0.3, 0.35, 0.4]\n");
+  const LimitedRun r =
+      run_limited({"batch", (dir / "m.yaml").string(), "-o", (dir / "out").string()}, kSeconds, kMemory);
+  INFO(r.describe());
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err, Catch::Contains("body.wal=0.3 (" + (dir / "m.yaml").string() + ":4:14)") &&
+                        Catch::Contains("unknown key 'wal'"));
+  CHECK_THAT(r.err, !Catch::Contains("0.35"));  // once, not per variant
+  CHECK_FALSE(fs::exists(dir / "out" / "cup_0.3"));
+  CHECK_FALSE(fs::exists(dir / "out" / "summary.csv"));
+}
+
 TEST_CASE("a NUL byte in a points CSV cell is shown escaped, the message whole",
           "[pipeline][honest][messages]") {
   const fs::path dir = fresh_dir("honest_points_nul");
