@@ -437,6 +437,17 @@ TEST_CASE("batch: a typo in an override path fails once, before any variant runs
   CHECK_FALSE(fs::exists(dir / "out" / "summary.csv"));
 }
 
+TEST_CASE("check: a text file named .stl that is neither STL says so", "[pipeline][honest][messages]") {
+  const fs::path dir = fresh_dir("honest_text_stl");
+  write_text(dir / "notes.stl", "These are my notes about the mug.\nNot a mesh at all.\n");
+  const LimitedRun r = run_limited({"check", (dir / "notes.stl").string()}, kSeconds, 256 * kMiB);
+  INFO(r.describe());
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err, Catch::Contains("a text file that is no STL") &&
+                        Catch::Contains("starts with 'These are my notes about the mug.'"));
+  CHECK_THAT(r.err, !Catch::Contains("binary STL header says"));
+}
+
 TEST_CASE("a NUL byte in a points CSV cell is shown escaped, the message whole",
           "[pipeline][honest][messages]") {
   const fs::path dir = fresh_dir("honest_points_nul");
