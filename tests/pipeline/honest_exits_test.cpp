@@ -448,6 +448,45 @@ TEST_CASE("check: a text file named .stl that is neither STL says so", "[pipelin
   CHECK_THAT(r.err, !Catch::Contains("binary STL header says"));
 }
 
+namespace {
+
+// A small solid cup in cm with a mould of `mould` (its key sizes left to their defaults).
+std::string cup_with_mould(const std::string& mould) {
+  return R"(name: cup
+kind: vessel
+units: cm
+tolerance: 0.05
+profile:
+  family: quasi_bspline
+  points: [[1.5, 6], [1, 5], [2, 4], [3, 3], [1.5, 2]]
+body: {mode: solid}
+outputs: [mould_3mf]
+mould: )" +
+         mould + "\n";
+}
+
+}  // namespace
+
+TEST_CASE("mould: three parts with the default keys build, and messages print numbers in shortest form",
+          "[pipeline][honest][messages]") {
+  const fs::path dir = fresh_dir("honest_three_parts");
+  write_text(dir / "three.yaml", cup_with_mould("{parts: 3, wall: 3, spare: 2.5}"));
+  const LimitedRun built =
+      run_limited({"run", (dir / "three.yaml").string(), "-o", (dir / "out").string()}, kSeconds, kMemory);
+  INFO(built.describe());
+  CHECK(built.code == 0);
+  CHECK(fs::is_regular_file(dir / "out" / "cup.mould.3mf"));
+  // Too tight when given: the message names 6 mm as 0.6 cm, not 0.6000000000000001.
+  write_text(dir / "tight.yaml", cup_with_mould("{parts: 3, wall: 3, spare: 2.5, key_clearance: 0.05}"));
+  const LimitedRun tight =
+      run_limited({"run", (dir / "tight.yaml").string(), "-o", (dir / "out2").string()}, kSeconds, kMemory);
+  INFO(tight.describe());
+  CHECK(tight.code == 2);
+  CHECK_THAT(tight.err, Catch::Contains("a bump of radius 0.6 binds in a socket of radius 0.65") &&
+                            Catch::Contains("key_clearance 0.05 must be >="));
+  CHECK_THAT(tight.err, !Catch::Contains("00000000"));
+}
+
 TEST_CASE("a NUL byte in a points CSV cell is shown escaped, the message whole",
           "[pipeline][honest][messages]") {
   const fs::path dir = fresh_dir("honest_points_nul");
