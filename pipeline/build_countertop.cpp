@@ -62,7 +62,9 @@ BuiltMesh build(const CountertopDesign& design, const BuildContext& context) {
   ro.tolerance = context.tolerance;
   ro.max_points = design.max_triangles / 2;  // every loop point makes two wall triangles
   ro.outline_key = design.outline.key;
-  const Region2 region = build_region(outline.curve, holes, ro);
+  const Region2 region = within_share(ro.max_points, design.max_triangles, "the loops' points",
+                                      "each point of a loop makes two wall triangles",
+                                      [&] { return build_region(outline.curve, holes, ro); });
   context.watch.lap("region");
   SlabOptions so;
   so.thickness = design.thickness;

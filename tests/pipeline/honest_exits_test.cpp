@@ -487,6 +487,32 @@ TEST_CASE("mould: three parts with the default keys build, and messages print nu
   CHECK_THAT(tight.err, !Catch::Contains("00000000"));
 }
 
+TEST_CASE("surface: a shell over its budget is told the design's max_triangles",
+          "[pipeline][honest][messages]") {
+  const fs::path dir = fresh_dir("honest_budget");
+  write_text(dir / "lid.yaml", R"(name: lid
+kind: surface
+units: mm
+tolerance: 0.2
+max_triangles: 1000
+patches:
+  - name: lid
+    points:
+      - [[0, 0, 0], [33, 0, 0], [67, 0, 0], [100, 0, 0]]
+      - [[0, 33, 0], [33, 33, 12], [67, 33, 12], [100, 33, 0]]
+      - [[0, 67, 0], [33, 67, 12], [67, 67, 12], [100, 67, 0]]
+      - [[0, 100, 0], [33, 100, 0], [67, 100, 0], [100, 100, 0]]
+thickness: 3
+)");
+  const LimitedRun r =
+      run_limited({"run", (dir / "lid.yaml").string(), "-o", (dir / "out").string()}, kSeconds, kMemory);
+  INFO(r.describe());
+  CHECK(r.code == 2);
+  CHECK(names_place(r.err, (dir / "lid.yaml").string(), "tolerance"));
+  CHECK_THAT(r.err, Catch::Contains("tolerance: 0.2 mm: a sheet of the shell needs") &&
+                        Catch::Contains("of the budget of 1000 (max_triangles"));
+}
+
 TEST_CASE("a NUL byte in a points CSV cell is shown escaped, the message whole",
           "[pipeline][honest][messages]") {
   const fs::path dir = fresh_dir("honest_points_nul");
