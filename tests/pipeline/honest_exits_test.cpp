@@ -524,3 +524,28 @@ TEST_CASE("a NUL byte in a points CSV cell is shown escaped, the message whole",
   CHECK(r.code == 2);
   CHECK_THAT(r.err, Catch::Contains("p.csv:2:1: '1\\x00x' is not a number"));
 }
+
+TEST_CASE("vessel: a shell whose profile crosses itself says so, as the solid does",
+          "[pipeline][honest][messages]") {
+  const fs::path dir = fresh_dir("honest_crossing_shell");
+  // The third stretch crosses the first near (2.5, 1.5): no wall, however thin, can follow it.
+  write_text(dir / "x.yaml", R"(name: x
+kind: vessel
+tolerance: 0.01
+profile:
+  family: tbezier
+  segments:
+    - polyline: [[2, 0], [3, 3], [1, 3], [3, 1], [2, 5]]
+body: {mode: shell, wall: 0.1}
+)");
+  for (const char* body : {"body={mode: shell, wall: 0.1}", "body={mode: solid}"}) {
+    INFO(body);
+    const LimitedRun r = run_limited(
+        {"run", (dir / "x.yaml").string(), "-D", body, "-o", (dir / "out").string()}, kSeconds, kMemory);
+    INFO(r.describe());
+    CHECK(r.code == 2);
+    CHECK(names_place(r.err, (dir / "x.yaml").string(), "profile"));
+    CHECK_THAT(r.err, Catch::Contains("the profile crosses itself") && !Catch::Contains("too thick"));
+  }
+  CHECK_FALSE(fs::exists(dir / "out"));
+}
