@@ -549,3 +549,28 @@ body: {mode: shell, wall: 0.1}
   }
   CHECK_FALSE(fs::exists(dir / "out"));
 }
+
+TEST_CASE("run and sample both refuse a closed curve that crosses itself", "[pipeline][honest][messages]") {
+  const fs::path dir = fresh_dir("honest_figure8");
+  write_text(dir / "f.yaml", R"(name: f
+kind: curve
+tolerance: 0.01
+curve:
+  family: tbezier
+  closed: true
+  segments:
+    - polyline: [[0, 0], [2, 2], [2, 0], [0, 2], [0, 0]]
+)");
+  const std::string design = (dir / "f.yaml").string();
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"sample", design},
+        std::vector<std::string>{"run", design, "-o", (dir / "out").string()}}) {
+    INFO(args[0]);
+    const LimitedRun r = run_limited(args, kSeconds, kMemory);
+    INFO(r.describe());
+    CHECK(r.code == 2);
+    CHECK(names_place(r.err, design, "curve"));
+    CHECK_THAT(r.err, Catch::Contains("the closed curve crosses itself near (1, 1) (segments 1 and 3)"));
+  }
+  CHECK_FALSE(fs::exists(dir / "out"));
+}
