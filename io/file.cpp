@@ -113,7 +113,7 @@ std::pair<std::string, int> create_temporary(const std::string& path) {
     const std::string temp = fmt::format("{}{}-{:08x}", temporary_prefix(path), ::getpid(), entropy());
     const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
     if (fd >= 0) return {temp, fd};
-    if (errno != EEXIST) fail(path, "cannot create a temporary file", errno);
+    if (errno != EEXIST) throw_write_failure(path, "cannot create a temporary file", errno);
   }
   fail(path, "cannot create a temporary file", EEXIST);
 }
@@ -127,6 +127,27 @@ void sync_folder(const std::string& path) {
 }
 
 }  // namespace
+
+bool is_environment_errno(int error) {
+  switch (error) {
+    case ENOSPC:
+    case EDQUOT:
+    case EFBIG:
+    case EIO:
+    case EACCES:
+    case EPERM:
+    case EROFS:
+      return true;
+    default:
+      return false;
+  }
+}
+
+void throw_write_failure(const std::string& path, const std::string& what, int error) {
+  const std::string message = fmt::format("{}: {}: {}", path, what, std::strerror(error));
+  if (is_environment_errno(error)) throw EnvironmentError(path, error, message);
+  throw FileError(path, 0, 0, message);
+}
 
 const char* file_kind(mode_t mode) {
   if (S_ISDIR(mode)) return "a folder";
@@ -194,7 +215,7 @@ void PendingFile::write_through(std::string_view bytes) {
     if (n <= 0) {
       const int error = n < 0 ? errno : EIO;
       discard();
-      fail(path_, "write failed", error);
+      throw_write_failure(path_, "write failed", error);
     }
     data += n;
     left -= static_cast<std::size_t>(n);
@@ -211,7 +232,7 @@ void PendingFile::finish() {
   if (error == 0) error = close_error;
   if (error != 0) {
     discard();
-    fail(path_, "flush failed", error);
+    throw_write_failure(path_, "flush failed", error);
   }
 }
 
@@ -249,10 +270,11 @@ void commit_files(std::vector<PendingFile>& files) {
     }
     remove_backups();
     for (PendingFile& f : files) f.discard();  // the temporaries not renamed
-    fail(files[i].path_,
-         files.size() > 1 ? "cannot rename the temporary file into place (no output of this job was kept)"
-                          : "cannot rename the temporary file into place",
-         error);
+    throw_write_failure(files[i].path_,
+                        files.size() > 1
+                            ? "cannot rename the temporary file into place (no output of this job was kept)"
+                            : "cannot rename the temporary file into place",
+                        error);
   }
   remove_backups();
   for (const PendingFile& f : files) sync_folder(f.path_);

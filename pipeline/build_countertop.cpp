@@ -9,6 +9,43 @@
 #include "pipeline/build_design.h"
 
 namespace fabmesh {
+namespace {
+
+// Runs `plan`, rethrowing a GeometryError at a loop's label ("outline",
+// "holes[1] (ellipse)") at that loop's design key, so that it is reported at
+// the line and column of the hole or outline; the message's leading label,
+// which the location now gives, is left out.
+template <class Plan>
+auto at_loop_keys(const CountertopDesign& design, const std::vector<RegionHole>& holes, Plan plan)
+    -> decltype(plan()) {
+  try {
+    return plan();
+  } catch (const GeometryError& e) {
+    ErrorLocation at = e.location();
+    std::string label;
+    if (at.key == "outline") {
+      label = "outline";
+      at.key = design.outline.key.empty() ? "outline" : design.outline.key;
+    }
+    for (std::size_t i = 0; i < holes.size() && label.empty(); ++i) {
+      if (at.key != holes[i].label) continue;
+      label = holes[i].label;
+      at.key = holes[i].key.empty() ? fmt::format("holes[{}]", i) : holes[i].key;
+      at.name = label;
+    }
+    if (label.empty()) throw;
+    std::string message = e.what();
+    for (const std::string& lead : {label + ": ", label + " "}) {
+      if (message.rfind(lead, 0) == 0) {
+        message.erase(0, lead.size());
+        break;
+      }
+    }
+    throw GeometryError(at, message);
+  }
+}
+
+}  // namespace
 
 BuiltMesh build(const CountertopDesign& design, const BuildContext& context) {
   BuiltShape shape;
@@ -25,7 +62,9 @@ BuiltMesh build(const CountertopDesign& design, const BuildContext& context) {
   ro.tolerance = context.tolerance;
   ro.max_points = design.max_triangles / 2;  // every loop point makes two wall triangles
   ro.outline_key = design.outline.key;
-  const Region2 region = build_region(outline.curve, holes, ro);
+  const Region2 region = within_share(ro.max_points, design.max_triangles, "the loops' points",
+                                      "each point of a loop makes two wall triangles",
+                                      [&] { return build_region(outline.curve, holes, ro); });
   context.watch.lap("region");
   SlabOptions so;
   so.thickness = design.thickness;
@@ -69,7 +108,7 @@ BuiltMesh build(const CountertopDesign& design, const BuildContext& context) {
   if (design.cnc) {
     CncOptions cnc = design.cnc->options;
     cnc.tolerance = context.tolerance;
-    out.toolpath = plan_toolpath(outline.curve, holes, cnc);
+    out.toolpath = at_loop_keys(design, holes, [&] { return plan_toolpath(outline.curve, holes, cnc); });
     out.gcode = GcodeOptions{context.common.name, context.common.units, design.cnc->program_units,
                              design.cnc->decimals};
     context.watch.lap("toolpath");

@@ -3,6 +3,7 @@
 #include "geometry/fairing/build_curve.h"
 #include "geometry/sampling/sample_curve.h"
 #include "pipeline/build_design.h"
+#include "pipeline/design_curves.h"
 
 namespace fabmesh {
 
@@ -17,7 +18,10 @@ BuiltMesh build(const CurveDesign& design, const BuildContext& context) {
   // Lines and exact arcs are drawn exactly; the rest as polylines sampled within the tolerance.
   SampleOptions so;
   so.tolerance = context.tolerance;
-  out.max_deviation = sample_curve(curve.curve, so).max_deviation;
+  std::vector<CurveParam> params;
+  const Polyline2 line = sample_curve(curve.curve, so, &params);
+  require_simple_closed(line, params, design.curve.key.empty() ? "curve" : design.curve.key);  // as `sample`
+  out.max_deviation = line.max_deviation;
   out.facts = {{"segments", curve.curve.size()}, {"closed", curve.curve.closed()}};
   context.watch.lap("drawing");
   out.shape.curves.push_back({"curve", curve});

@@ -35,12 +35,12 @@ BuiltMesh build_design(const Design& design, const BuildContext& context) {
     } catch (const BudgetError& e) {
       // Every budget is the tolerance's (and max_triangles'): at the tolerance, in the design's words.
       throw BudgetError(e.requested(), e.budget(),
-                        fmt::format("{:g} {}: {}", common.tolerance, common.units, e.what()),
+                        fmt::format("{} {}: {}", common.tolerance, common.units, e.what()),
                         ErrorLocation{"tolerance"});
     } catch (const std::bad_alloc&) {
       // A budget the design allows (max_triangles) that this machine's memory does not.
       throw BudgetError(0.0, 0.0,
-                        fmt::format("{:g} {}: the mesh does not fit in this machine's memory; raise the "
+                        fmt::format("{} {}: the mesh does not fit in this machine's memory; raise the "
                                     "tolerance or lower max_triangles",
                                     common.tolerance, common.units),
                         ErrorLocation{"tolerance"});

@@ -127,7 +127,10 @@ BuiltMesh build(const SurfaceDesign& design, const BuildContext& context) {
   to.shell_to = span[1];
   // Two sheets and the rim: the sheet may use a little under half the budget.
   to.max_triangles = thick ? design.max_triangles / 2 : design.max_triangles;
-  const SurfaceTessellation sheet = tessellate(network, to);
+  const SurfaceTessellation sheet =
+      thick ? within_share(to.max_triangles, design.max_triangles, "a sheet of the shell",
+                           "the shell is two sheets and a rim", [&] { return tessellate(network, to); })
+            : tessellate(network, to);
   std::size_t rim_edges = 0;
   for (const auto h : sheet.mesh.halfedges()) rim_edges += sheet.mesh.is_boundary(h) ? 1 : 0;
   nlohmann::json facts = {{"patches", network.patches.size()},

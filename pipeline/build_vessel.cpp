@@ -13,6 +13,7 @@
 #include "geometry/mesh/vessel.h"
 #include "geometry/mould/mould.h"
 #include "geometry/mould/shrinkage.h"
+#include "geometry/section/vessel_section.h"
 #include "io/design/schema.h"
 #include "pipeline/build_design.h"
 
@@ -115,7 +116,21 @@ BuiltMesh build(const VesselDesign& design, const BuildContext& context) {
   options.max_triangles = design.max_triangles;
   options.max_bytes = context.memory_limit;
   options.name_key = [&](const std::string& key) { return key_label(context.common, key); };
-  VesselMesh vessel = keyed_in("vessel.body", "body.", [&] { return build_vessel(master, options); });
+  VesselMesh vessel = keyed_in("vessel.body", "body.", [&] {
+    try {
+      return build_vessel(master, options);
+    } catch (const GeometryError& e) {
+      if (design.mode != BodyMode::Shell || e.location().key != "wall") throw;
+      // A shell over a profile that crosses itself fails at the wall whatever its thickness:
+      // say what the solid says (build_vessel_section throws at the crossing), else the wall error.
+      VesselSectionOptions solid;
+      solid.mode = BodyMode::Solid;
+      solid.tolerance = options.tolerance / 2.0;  // the share build_vessel samples the profile with
+      solid.name_key = options.name_key;
+      build_vessel_section(master, solid);
+      throw;
+    }
+  });
   context.watch.lap("build");
   std::size_t section_points = 0;
   for (const auto& loop : vessel.section.loops) section_points += loop.size();

@@ -1,10 +1,26 @@
 #include "pipeline/design_curves.h"
 
+#include <fmt/format.h>
+
 #include <type_traits>
 
+#include "geometry/core/errors.h"
+#include "geometry/section/simple_polygon.h"
 #include "geometry/surfaces/patch_network.h"
 
 namespace fabmesh {
+
+void require_simple_closed(const Polyline2& line, const std::vector<CurveParam>& params,
+                           const std::string& key) {
+  if (!line.closed) return;
+  // Exact predicates on the sampled loop.
+  if (const auto c = find_crossing(line.points, true)) {
+    throw GeometryError(
+        ErrorLocation{key, {}, {c->where.x(), c->where.y()}},
+        fmt::format("the closed curve crosses itself near ({:.6g}, {:.6g}) (segments {} and {})",
+                    c->where.x(), c->where.y(), params[c->first].segment + 1, params[c->second].segment + 1));
+  }
+}
 
 std::vector<NamedCurve> design_curves(const Design& design) {
   return std::visit(

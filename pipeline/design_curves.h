@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "geometry/sampling/sample_curve.h"
 #include "io/design/design.h"
 #include "pipeline/built_mesh.h"
 
@@ -17,6 +18,12 @@ struct NamedCurve {
 
 /// Every curve a design declares, in file order.
 std::vector<NamedCurve> design_curves(const Design& design);
+
+/// Throws GeometryError at `key` when `line` (a curve sampled with `params`)
+/// is closed and crosses itself: "the closed curve crosses itself near (x, y)
+/// (segments i and j)". `sample` and `run` judge a closed curve by this one rule.
+void require_simple_closed(const Polyline2& line, const std::vector<CurveParam>& params,
+                           const std::string& key);
 
 /// The design's curves built (build_curve, in design_curves' order) and a
 /// surface's patch network (build_patch_network), without building a mesh:

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "geometry/core/errors.h"
+#include "io/file.h"
 
 namespace fabmesh {
 
@@ -22,6 +23,10 @@ Failure describe_failure(const std::exception_ptr& error, const std::string& sub
     if (!at.key.empty() && !at.place.empty())
       return {kExitBadInput, "error", location_text(at) + ": " + e.what()};
     return {kExitBadInput, "error", about_subject(e.what())};
+  } catch (const EnvironmentError& e) {
+    return {
+        kExitEnvironment, "environment error",
+        fmt::format("{} (a failure of the machine, not of the input: run again once it is fixed)", e.what())};
   } catch (const ValidationFailed& e) {
     return {kExitInvalid, "invalid", about_subject(e.what())};
   } catch (const std::exception& e) {
@@ -31,17 +36,24 @@ Failure describe_failure(const std::exception_ptr& error, const std::string& sub
   }
 }
 
-std::string failure_line(const Failure& failure) {
+std::string printable_message(const std::string& message) {
   std::string text;
-  for (const char c : failure.message) {
-    const auto u = static_cast<unsigned char>(c);
-    if (u < 0x20 || u == 0x7f) {
+  for (std::size_t i = 0; i < message.size(); ++i) {
+    const auto u = static_cast<unsigned char>(message[i]);
+    if (u == '\r' && i + 1 < message.size() && message[i + 1] == '\n') continue;  // CRLF: one break
+    if (u == '\n') {
+      text += "\n  ";
+    } else if (u < 0x20 || u == 0x7f) {
       text += fmt::format("\\x{:02x}", u);
     } else {
-      text += c;
+      text += message[i];
     }
   }
-  return fmt::format("fabmesh: {}: {}", failure.label, text);
+  return text;
+}
+
+std::string failure_line(const Failure& failure) {
+  return fmt::format("fabmesh: {}: {}", failure.label, printable_message(failure.message));
 }
 
 }  // namespace fabmesh

@@ -11,6 +11,7 @@
 #include "geometry/mesh/bounding_box.h"
 #include "pipeline/build_design.h"
 #include "pipeline/outputs.h"
+#include "pipeline/planned_outputs.h"
 #include "pipeline/validate_built.h"
 
 namespace fabmesh {
@@ -99,6 +100,7 @@ JobReport build_and_encode(const Design& design, const JobOptions& options, cons
   report.notes = common.notes;
   StageTimer watch(report.timings_ms, options.on_stage);
   const std::vector<const OutputFormat*> formats = formats_of(design, options);
+  report.warnings = unused_block_warnings(design, options, formats);
   if (options.output_file && formats.size() != 1) {
     std::string names;
     for (const OutputFormat* f : formats) names += (names.empty() ? "" : ", ") + std::string(f->name);
@@ -186,14 +188,15 @@ void create_folders(const std::vector<std::string>& paths) {
     if (folder.empty()) continue;
     std::error_code ec;
     std::filesystem::create_directories(folder, ec);
-    if (ec) {
-      throw FileError(folder.string(), 0, 0,
-                      fmt::format("{}: cannot create the output folder: {}", folder.string(), ec.message()));
-    }
+    if (ec) throw_write_failure(folder.string(), "cannot create the output folder", ec.value());
   }
 }
 
 }  // namespace
+
+std::vector<const OutputFormat*> job_formats(const Design& design, const JobOptions& options) {
+  return formats_of(design, options);
+}
 
 PreparedJob prepare_job(const Design& design, const JobOptions& options) {
   PreparedJob job;

@@ -15,6 +15,8 @@
 
 namespace fabmesh {
 
+struct OutputFormat;
+
 struct JobOptions {
   std::string out_dir = "out";  ///< created when missing
   /// Replaces the design's export unit (`--export-units`) when set.
@@ -56,6 +58,9 @@ struct JobReport {
   std::vector<OutputFile> files;     ///< the same with their format, unit and added error
   std::vector<SkippedOutput> skipped;
   std::vector<std::string> notes;  ///< DesignCommon::notes: how the design's files were read
+  /// What the design asks for that deserves a look, e.g. a `mould:` block no
+  /// output uses (unused_block_warnings). Shown in the report (`warnings`).
+  std::vector<std::string> warnings;
   ValidationReport validation;
   MeshPurpose purpose = MeshPurpose::Fabrication;
   double max_deviation = 0.0;  ///< proven bound of the mesh against the exact shape, model units
@@ -75,6 +80,11 @@ struct PreparedJob {
   std::vector<FileWrite> files;  ///< every output's path and bytes
   StageObserver on_stage;        ///< JobOptions::on_stage, for write_job's stage
 };
+
+/// The formats a job of `design` writes under `options`: the design's outputs
+/// (or --export-format's one), and the pictures options.also_formats adds.
+/// \throw FileError at a bad `outputs` entry
+std::vector<const OutputFormat*> job_formats(const Design& design, const JobOptions& options);
 
 /// Builds, validates and encodes `design` into its outputs' bytes. Does no
 /// I/O. A mesh that is not valid for fabrication stops the job here; an open

@@ -100,6 +100,7 @@ nlohmann::ordered_json to_json(const JobReport& r) {
   for (const SkippedOutput& s : r.skipped)
     j["skipped_outputs"].push_back({{"format", s.format}, {"reason", s.reason}});
   if (!r.notes.empty()) j["notes"] = r.notes;
+  if (!r.warnings.empty()) j["warnings"] = r.warnings;
   j["purpose"] = r.purpose == MeshPurpose::Fabrication ? "fabrication"
                  : r.purpose == MeshPurpose::Viewing   ? "viewing"
                                                        : "drawing";
@@ -171,6 +172,7 @@ void print_summary(const JobReport& r, std::ostream& out) {
   for (const OutputFile& f : r.files) out << fmt::format("  wrote {} (in {})\n", f.path, f.units);
   for (const SkippedOutput& s : r.skipped)
     out << fmt::format("  warning: skipped {}: {}\n", s.format, s.reason);
+  for (const std::string& warning : r.warnings) out << fmt::format("  warning: {}\n", warning);
   for (const std::string& note : r.notes) out << fmt::format("  note: {}\n", note);
   out << fmt::format("  {:.1f} ms\n", total);
 }

@@ -59,6 +59,7 @@ class Scanner {
     if (!done() && text_[pos_] == '"') return quoted(c);
     while (!done() && text_[pos_] != ',' && !at_line_end()) {
       if (text_[pos_] == '"') fail(line_, column_, "a quote inside an unquoted cell (quote the whole cell)");
+      refuse_nul();
       c.text += text_[pos_];
       ++pos_, ++column_;
     }
@@ -71,6 +72,7 @@ class Scanner {
     while (true) {
       if (done()) fail(c.line, c.column, "this quoted cell is never closed");
       const char ch = text_[pos_];
+      refuse_nul();
       if (ch == '"') {
         if (pos_ + 1 < text_.size() && text_[pos_ + 1] == '"') {
           c.text += '"';
@@ -88,6 +90,11 @@ class Scanner {
     if (!done() && text_[pos_] != ',' && !at_line_end())
       fail(line_, column_, "text after a closing quote (a cell is quoted whole)");
     return c;
+  }
+
+  // A NUL byte is no text: every message quoting the cell would end at it.
+  void refuse_nul() const {
+    if (text_[pos_] == '\0') fail(line_, column_, "a NUL byte in a cell: a table is text");
   }
 
   std::string_view text_;

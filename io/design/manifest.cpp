@@ -1,6 +1,7 @@
 #include "io/design/manifest.h"
 
 #include <fmt/format.h>
+#include <yaml-cpp/depthguard.h>
 
 #include <algorithm>
 #include <cmath>
@@ -264,6 +265,10 @@ Form ManifestReader::read_table(const YAML::Node& node) {
                       fmt::format("{}: column '{}' is not an override path: {}", at, h.text,
                                   what.substr(std::min(what.size(), what.find(": ") + 2))));
     }
+    if (h.text == "kind") {
+      throw FileError(path, h.line, h.column,
+                      fmt::format("{}: column 'kind': a variant cannot change the design's kind", at));
+    }
     if (const auto [it, fresh] = owner_.emplace(h.text, "table"); !fresh) {
       throw FileError(path, h.line, h.column,
                       fmt::format("{}: column '{}' is also set by `{}`: give each parameter one place", at,
@@ -510,6 +515,11 @@ BatchManifest parse_manifest(const std::string& text, const std::string& path) {
   YAML::Node root;
   try {
     root = YAML::Load(text);
+  } catch (const YAML::DeepRecursion& e) {
+    // yaml-cpp's guard says only "bad file".
+    throw FileError(path, e.mark.line + 1, e.mark.column + 1,
+                    fmt::format("{}:{}:{}: invalid YAML: lists and maps nested more than {} deep here", path,
+                                e.mark.line + 1, e.mark.column + 1, e.depth() - 1));
   } catch (const YAML::Exception& e) {
     throw FileError(
         path, e.mark.line + 1, e.mark.column + 1,

@@ -45,9 +45,19 @@ bool parse_row(std::string_view row, std::vector<Field>& fields, Field& bad) {
   return true;
 }
 
-// A field as messages show it: at most 40 bytes.
+// A field as messages show it: at most 40 bytes, control characters escaped
+// ("\x00"): a NUL would end the message there.
 std::string shown(const std::string& field) {
-  return field.size() <= 40 ? field : field.substr(0, 40) + "...";
+  std::string text;
+  for (std::size_t i = 0; i < field.size() && i < 40; ++i) {
+    const auto c = static_cast<unsigned char>(field[i]);
+    if (c < 0x20 || c == 0x7f) {
+      text += fmt::format("\\x{:02x}", c);
+    } else {
+      text += field[i];
+    }
+  }
+  return field.size() <= 40 ? text : text + "...";
 }
 
 }  // namespace

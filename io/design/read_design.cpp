@@ -351,6 +351,16 @@ std::vector<OverrideOrigin> apply_overrides(YAML::Node root, const std::string& 
     } catch (const YAML::Exception& e) {
       throw FileError(path, 0, 0, fmt::format("-D {}: the value is not valid YAML: {}", o.text, e.msg));
     }
+    // The kind decides which keys exist: changing it would only be reported as the
+    // old kind's keys being unknown to the new one.
+    if (o.path == "kind" &&
+        !(value.IsScalar() && root["kind"].IsScalar() && value.Scalar() == root["kind"].Scalar())) {
+      throw FileError(
+          path, 0, 0,
+          fmt::format("-D {}: kind: an override cannot change the design's kind{}: write a design "
+                      "of that kind",
+                      o.text, root["kind"].IsScalar() ? " (" + root["kind"].Scalar() + ")" : std::string()));
+    }
     try {
       apply_override(root, o, value);
     } catch (const FileError& e) {

@@ -2,12 +2,29 @@
 // Reads YAML design files into Design structs.
 
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "geometry/core/errors.h"
 #include "io/design/design.h"
 #include "io/design/overrides.h"
 
 namespace fabmesh {
+
+/// A key the design's map does not have (`body.wal`, `bodyy`): a FileError
+/// that also carries the key's full path, so that a batch can tell a typo in
+/// an override path (every variant would fail alike) from a bad value.
+class UnknownKeyError : public FileError {
+ public:
+  UnknownKeyError(std::string field, const std::string& path, int line, int column,
+                  const std::string& message)
+      : FileError(path, line, column, message), field_(std::move(field)) {}
+  /// The key's path in the design: "body.wal", "bodyy", "holes[0].elipse".
+  const std::string& field() const { return field_; }
+
+ private:
+  std::string field_;
+};
 
 /// Reads and validates a design file (a regular file of at most 64 MiB, one
 /// YAML document). Every error is a FileError whose message starts with

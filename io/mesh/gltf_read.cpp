@@ -295,6 +295,17 @@ class GltfReader {
       const std::vector<std::uint64_t> children = indices_in(node, "children", where);
       for (auto it = children.rbegin(); it != children.rend(); ++it) stack.emplace_back(*it, world);
     }
+    if (!scenes.empty()) return;  // nodes no scene lists are not drawn
+    // Without scenes every node is drawn from the roots: one not reached is a
+    // child of a cycle of children (a node its own ancestor), never a forest.
+    for (std::size_t i = 0; i < node_count; ++i) {
+      if (!visited[i]) {
+        doc_.fail(
+            fmt::format("nodes[{}] lies on a cycle of children (or under one), so it has no root: the "
+                        "node hierarchy must be a forest",
+                        i));
+      }
+    }
   }
 
   const GltfDocument& doc_;

@@ -189,9 +189,38 @@ bool looks_like_ascii_stl(std::string_view bytes) {
   return true;
 }
 
+namespace {
+
+// True when the first bytes are text (printable, white space, or beyond ASCII):
+// no binary STL header and float records look like that for long.
+bool looks_like_text(std::string_view bytes) {
+  if (bytes.empty()) return false;
+  for (std::size_t k = 0; k < bytes.size() && k < 512; ++k) {
+    const auto c = static_cast<unsigned char>(bytes[k]);
+    if (c < 9 || (c > 13 && c < 32) || c == 127) return false;
+  }
+  return true;
+}
+
+// The first line of a text, cut to 40 bytes, for a message.
+std::string first_line(std::string_view bytes) {
+  std::string line(bytes.substr(0, std::min<std::size_t>(bytes.find_first_of("\r\n"), 40)));
+  return line.size() < bytes.size() && bytes[line.size()] != '\r' && bytes[line.size()] != '\n' ? line + "..."
+                                                                                                : line;
+}
+
+}  // namespace
+
 TriangleSoup parse_stl(std::string_view bytes, const std::string& name) {
   if (is_binary_stl(bytes)) return parse_binary(bytes, name);
   if (looks_like_ascii_stl(bytes)) return parse_ascii(bytes, name);
+  if (looks_like_text(bytes)) {
+    throw FileError(
+        name, 0, 0,
+        fmt::format("{}: a text file that is no STL: an ASCII STL starts with 'solid', a binary STL "
+                    "is an 84-byte header and 50 bytes a triangle; this one starts with '{}'",
+                    name, first_line(bytes)));
+  }
   return parse_binary(bytes, name);  // fails with the size mismatch
 }
 

@@ -28,6 +28,7 @@ ReportStatus report_status(VariantStatus s) {
       return ReportStatus::BadInput;
     case VariantStatus::Error:
     case VariantStatus::Missing:
+    case VariantStatus::Environment:
       return ReportStatus::Error;
   }
   return ReportStatus::Error;

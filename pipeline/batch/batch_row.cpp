@@ -66,13 +66,19 @@ const char* to_string(VariantStatus status) {
       return "error";
     case VariantStatus::Missing:
       return "missing";
+    case VariantStatus::Environment:
+      return "environment";
   }
   return "error";
 }
 
+bool is_final(VariantStatus status) {
+  return status == VariantStatus::Ok || status == VariantStatus::Invalid || status == VariantStatus::BadInput;
+}
+
 VariantStatus parse_variant_status(const std::string& text) {
   for (const VariantStatus s : {VariantStatus::Ok, VariantStatus::Invalid, VariantStatus::BadInput,
-                                VariantStatus::Error, VariantStatus::Missing}) {
+                                VariantStatus::Error, VariantStatus::Missing, VariantStatus::Environment}) {
     if (text == to_string(s)) return s;
   }
   throw InputError(fmt::format("summary row: unknown status '{}'", text));

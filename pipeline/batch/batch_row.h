@@ -22,9 +22,16 @@ enum class VariantStatus {
   BadInput,  ///< its design, with its values, is bad input (exit code 2)
   Error,     ///< an internal error (exit code 3); redone by the next run
   Missing,   ///< no shard has run it yet (merge only)
+  /// Writing failed for a reason of the machine (disk full, I/O error,
+  /// permission: exit code 5); redone by the next run.
+  Environment,
 };
 
-/// "ok", "invalid", "bad input", "error", "missing".
+/// True for a status that stands on a rerun (ok, invalid, bad input): the
+/// same key gives the same outcome. Error and environment are redone.
+bool is_final(VariantStatus status);
+
+/// "ok", "invalid", "bad input", "error", "missing", "environment".
 const char* to_string(VariantStatus status);
 /// The inverse of to_string. \throw InputError for another text
 VariantStatus parse_variant_status(const std::string& text);

@@ -25,8 +25,10 @@ namespace fs = std::filesystem;
 
 constexpr std::size_t kCheckDigits = 16;
 
+// The ledger is the batch's own file: a failure to use it is the machine's
+// (disk full, permission: EnvironmentError) or, rarely, the folder's (FileError).
 [[noreturn]] void fail(const std::string& path, const std::string& what, int error) {
-  throw FileError(path, 0, 0, fmt::format("{}: {}: {}", path, what, std::strerror(error)));
+  throw_write_failure(path, what, error);
 }
 
 // Opens the ledger `path` with `flags`, only when it is a regular file: a
@@ -84,8 +86,13 @@ std::optional<LedgerHeader> parse_header(std::string_view json) {
   }
 }
 
+// The longest line a ledger can hold: the longest row, its tab, check and newline.
+constexpr std::size_t kMaxLineBytes = kMaxLedgerRowBytes + kCheckDigits + 2;
+
 // Calls `each(json, offset)` for the committed lines of the file at `path`, read
-// a block at a time (memory stays bounded by the longest line), while it returns true.
+// a block at a time, while it returns true. Every byte is searched for a line
+// end once, and a line longer than any ledger line is refused as corruption
+// as soon as it is seen: time linear in the file, memory bounded by kMaxLineBytes.
 template <class Each>
 void each_committed_in_file(const std::string& path, Each each) {
   const int fd = open_ledger(path, O_RDONLY);
@@ -104,7 +111,8 @@ void each_committed_in_file(const std::string& path, Each each) {
     offset += n;
     pending.append(buffer, static_cast<std::size_t>(n));
     std::size_t start = 0;
-    for (std::size_t newline; (newline = pending.find('\n', start)) != std::string::npos;
+    const std::size_t fresh = pending.size() - static_cast<std::size_t>(n);  // searched before
+    for (std::size_t newline; (newline = pending.find('\n', std::max(start, fresh))) != std::string::npos;
          start = newline + 1) {
       const auto json = committed_json(std::string_view(pending).substr(start, newline - start + 1));
       if (json && !each(*json, pending_at + start)) {
@@ -114,6 +122,14 @@ void each_committed_in_file(const std::string& path, Each each) {
     }
     pending.erase(0, start);
     pending_at += start;
+    if (pending.size() > kMaxLineBytes) {
+      ::close(fd);
+      throw FileError(path, 0, 0,
+                      fmt::format("{}: the ledger is corrupt: the line at byte {} runs over {} bytes without "
+                                  "ending, longer than any ledger line can be ({} at most); move the file "
+                                  "away (its shard's variants then run again)",
+                                  path, pending_at, pending.size(), kMaxLineBytes));
+    }
   }
   ::close(fd);
 }
@@ -177,8 +193,7 @@ LedgerWriter::LedgerWriter(const std::string& folder, const LedgerHeader& header
   refuse_link(folder, "batch folder");
   std::error_code ec;
   fs::create_directories(folder, ec);
-  if (ec)
-    throw FileError(folder, 0, 0, fmt::format("{}: cannot create the folder: {}", folder, ec.message()));
+  if (ec) fail(folder, "cannot create the folder", ec.value());
   fd_ = open_locked(path_);
   if (fd_ < 0) {
     throw InputError(

@@ -25,6 +25,11 @@ struct LedgerHeader {
   Shard shard;
 };
 
+/// The longest JSON a ledger row may hold: a row longer than this is written
+/// without its overrides (the plan has them) and with its message cut
+/// (run_batch), so a longer line in a ledger is corruption.
+inline constexpr std::size_t kMaxLedgerRowBytes = std::size_t{4} << 20;
+
 /// `json` as a committed ledger line (with its check and newline).
 std::string ledger_line(std::string_view json);
 
@@ -40,7 +45,8 @@ class LedgerWriter {
   /// Cuts a torn last line. A ledger of another plan is moved aside (its rows
   /// stay readable, as ledger-I-of-N.DIGEST.jsonl) and a new one begun.
   /// \throw InputError when another process writes this shard's ledger,
-  /// FileError when it cannot be opened or written
+  /// FileError when it cannot be opened or written or is corrupt (a line
+  /// longer than any ledger line can be)
   LedgerWriter(const std::string& folder, const LedgerHeader& header);
   ~LedgerWriter();
   LedgerWriter(const LedgerWriter&) = delete;
@@ -77,7 +83,9 @@ std::vector<LedgerFile> list_ledgers(const std::string& folder);
 
 /// Calls `row(json, offset)` for every committed row (not header) of `file`, in
 /// order; `offset` is where the JSON starts in the file. A torn or failing line
-/// is skipped. \throw FileError when the file cannot be read
+/// is skipped. Each block of the file is read and searched once, and memory
+/// stays bounded by kMaxLedgerRowBytes. \throw FileError when the file cannot
+/// be read, or holds a line longer than any ledger line can be (corrupt)
 void for_each_row(const LedgerFile& file,
                   const std::function<void(std::string_view json, std::uint64_t offset)>& row);
 

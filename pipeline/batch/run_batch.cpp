@@ -13,6 +13,7 @@
 #include <optional>
 
 #include "geometry/core/errors.h"
+#include "io/design/read_design.h"
 #include "pipeline/batch/ledger.h"
 #include "pipeline/batch/output_links.h"
 #include "pipeline/batch/plan.h"
@@ -84,7 +85,55 @@ void refuse_linked_variant_folders(const BatchPlan& plan, const Shard& shard, st
   }
 }
 
+// The row's JSON for the ledger, within kMaxLedgerRowBytes: a row quoting a
+// huge value in its message (a table cell of megabytes, say) is written
+// without its overrides (the summary takes them from the plan) and with its
+// message cut at a character's start.
+std::string ledger_row_json(BatchRow row) {
+  std::string json = row_json(row).dump();
+  if (json.size() <= kMaxLedgerRowBytes) return json;
+  constexpr std::size_t kKeptMessage = std::size_t{64} << 10;
+  row.overrides.clear();
+  if (row.message.size() > kKeptMessage) {
+    std::size_t cut = kKeptMessage;
+    while (cut > 0 && (static_cast<unsigned char>(row.message[cut]) & 0xC0) == 0x80) --cut;
+    row.message = fmt::format("{}... ({} more bytes)", row.message.substr(0, cut), row.message.size() - cut);
+  }
+  for (SkippedOutput& s : row.skipped) {
+    if (s.reason.size() > kKeptMessage) s.reason.resize(kKeptMessage);
+  }
+  return row_json(row).dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
+}
+
 }  // namespace
+
+void refuse_unknown_override_paths(const BatchManifest& manifest) {
+  const std::size_t per_base = manifest.variant_count() / std::max<std::size_t>(1, manifest.bases.size());
+  if (per_base == 0) return;
+  for (std::size_t b = 0; b < manifest.bases.size(); ++b) {
+    // The paths with the values of the base's first variant where it gives one (its text names
+    // the manifest's place), else a null value: an unknown key is found before any value is read.
+    std::vector<Override> paths = variant_overrides(manifest, manifest.variant(b * per_base));
+    for (const std::string& p : manifest.parameters) {
+      const bool given =
+          std::any_of(paths.begin(), paths.end(), [&](const Override& o) { return o.path == p; });
+      if (!given) paths.push_back({p, "null", p});
+    }
+    for (const Override& o : paths) {
+      try {
+        manifest.bases[b].resolve({o});
+      } catch (const UnknownKeyError& e) {
+        const std::string& key = e.field();
+        if (o.path == key || o.path.rfind(key + ".", 0) == 0 || o.path.rfind(key + "[", 0) == 0) {
+          throw UnknownKeyError(key, e.path(), e.line(), e.column(),
+                                std::string(e.what()) + "; every variant sets this path, so none was run");
+        }
+      } catch (const InputError&) {
+        // a value, or a path that needs another override first: its variants report it
+      }
+    }
+  }
+}
 
 BatchOutcome run_batch(const BatchManifest& manifest, const BatchOptions& options) {
   const Clock::time_point start = Clock::now();
@@ -99,6 +148,7 @@ BatchOutcome run_batch(const BatchManifest& manifest, const BatchOptions& option
   const Shard shard = options.shard;
   const std::string folder = ledger_folder(options.out_dir);
 
+  refuse_unknown_override_paths(manifest);
   BatchPlan plan;
   arena.execute([&] { plan = plan_batch(manifest); });
   out.variants = plan.size();
@@ -116,6 +166,7 @@ BatchOutcome run_batch(const BatchManifest& manifest, const BatchOptions& option
   const std::size_t own_ledger = rows.add_ledger(ledger.path());
   std::vector<std::pair<std::size_t, BatchFailure>> failures;  // by k, in finishing order
   std::mutex failing;
+  std::vector<std::pair<std::size_t, std::pair<std::string, std::string>>> rebuilt;  // by k
   const auto failed = [&](std::size_t k, const BatchRow& row) {
     std::lock_guard<std::mutex> lock(failing);
     failures.push_back({k, {row.name, row.status, row.exit_code, row.message}});
@@ -130,7 +181,8 @@ BatchOutcome run_batch(const BatchManifest& manifest, const BatchOptions& option
                         for (std::size_t k = r.begin(); k != r.end(); ++k) {
                           const std::size_t i = shard.index + k * shard.count;
                           const std::optional<std::string> earlier = rows.row(i);
-                          if (!options.force && earlier && row_stands(*earlier, options.out_dir)) {
+                          std::string why;
+                          if (!options.force && earlier && row_stands(*earlier, options.out_dir, &why)) {
                             status[k] = rows.status(i);
                             if (status[k] != VariantStatus::Ok) {
                               const BatchRow row = summary_row(plan, rows, i);
@@ -139,8 +191,12 @@ BatchOutcome run_batch(const BatchManifest& manifest, const BatchOptions& option
                             tally.finished(true, status[k] == VariantStatus::Ok);
                             continue;
                           }
+                          if (!why.empty()) {
+                            std::lock_guard<std::mutex> lock(failing);
+                            rebuilt.push_back({k, {plan.name(i), why}});
+                          }
                           const BatchRow row = run_variant(manifest, i, plan.variant(i), options.out_dir);
-                          const std::string json = row_json(row).dump();
+                          const std::string json = ledger_row_json(row);
                           const std::uint64_t offset = ledger.append(json);
                           for (const auto& [stage, ms] : row.timings_ms) {
                             if (stage == "job") jobs_us += static_cast<long long>(ms * 1000.0);
@@ -165,6 +221,8 @@ BatchOutcome run_batch(const BatchManifest& manifest, const BatchOptions& option
   }
   std::sort(failures.begin(), failures.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   for (auto& f : failures) out.failures.push_back(std::move(f.second));
+  std::sort(rebuilt.begin(), rebuilt.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (auto& r : rebuilt) out.rebuilt.push_back(std::move(r.second));
   if (shard.count == 1) {
     write_summary(plan, rows, options.out_dir);
     out.summary_written = true;

@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "io/design/manifest.h"
@@ -50,12 +51,22 @@ struct BatchOutcome {
   std::size_t reused = 0;
   SummaryCounts counts;                ///< over this run's shard (exit_code: the worst)
   std::vector<BatchFailure> failures;  ///< in plan order
-  std::string ledger;                  ///< this shard's ledger
-  bool summary_written = false;        ///< out_dir/summary.{csv,jsonl} (whole batches only)
-  double plan_ms = 0.0;                ///< reading done: keys of every variant
-  double wall_ms = 0.0;                ///< the whole run
-  double jobs_ms = 0.0;                ///< the variants' own job times, summed
+  /// Variants whose earlier ok row did not stand because a file it lists is
+  /// missing or changed (row_stands' why): name, why. In plan order.
+  std::vector<std::pair<std::string, std::string>> rebuilt;
+  std::string ledger;            ///< this shard's ledger
+  bool summary_written = false;  ///< out_dir/summary.{csv,jsonl} (whole batches only)
+  double plan_ms = 0.0;          ///< reading done: keys of every variant
+  double wall_ms = 0.0;          ///< the whole run
+  double jobs_ms = 0.0;          ///< the variants' own job times, summed
 };
+
+/// Refuses an override path that is not a key of a base design (`body.wal`
+/// for `body.wall`): every variant would fail alike, so the batch fails once,
+/// before any runs, naming the path where the manifest gives it. Each path
+/// the manifest sets is applied alone to each base; a value that is bad is
+/// left for its variant to report. \throw UnknownKeyError (exit 2)
+void refuse_unknown_override_paths(const BatchManifest& manifest);
 
 /// Runs `manifest`'s variants of `options.shard` into `options.out_dir`.
 /// Every variant's key is computed first (the plan, saved in out_dir/.batch);

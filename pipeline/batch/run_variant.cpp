@@ -6,9 +6,11 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <set>
 
 #include "geometry/core/errors.h"
@@ -68,6 +70,39 @@ RowMesh mesh_of(const JobReport& r) {
   return m;
 }
 
+// How the file at `path` differs from a ledger's record of it (`bytes`,
+// `sha256`): "is missing", "is not a regular file", "has N bytes, not M",
+// "no longer matches its digest"; nothing when it is the same. Read a block
+// at a time, never through a link.
+std::optional<std::string> file_differs(const std::string& path, std::uint64_t bytes,
+                                        const std::string& sha256) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC | O_NONBLOCK);
+  if (fd < 0) return std::string(errno == ENOENT ? "is missing" : "cannot be read");
+  struct stat st {};
+  std::optional<std::string> differs;
+  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+    differs = "is not a regular file";
+  } else if (static_cast<std::uint64_t>(st.st_size) != bytes) {
+    differs = fmt::format("has {} bytes, not the {} recorded", st.st_size, bytes);
+  } else {
+    Sha256 digest;
+    std::string block(std::size_t{1} << 16, '\0');
+    for (;;) {
+      const ssize_t n = ::read(fd, block.data(), block.size());
+      if (n < 0 && errno == EINTR) continue;
+      if (n < 0) {
+        differs = "cannot be read";
+        break;
+      }
+      if (n == 0) break;
+      digest.update(std::string_view(block.data(), static_cast<std::size_t>(n)));
+    }
+    if (!differs && digest.hex_digest() != sha256) differs = "no longer matches the digest recorded";
+  }
+  ::close(fd);
+  return differs;
+}
+
 }  // namespace
 
 std::string variant_folder(const std::string& out_dir, const std::string& name) {
@@ -125,7 +160,8 @@ BatchRow run_variant(const BatchManifest& manifest, std::size_t index, const Pla
     row.exit_code = 0;
   } catch (...) {
     const Failure failure = describe_failure(std::current_exception(), planned.design);
-    row.status = status_of<VariantStatus>(failure.exit_code);
+    row.status = failure.exit_code == kExitEnvironment ? VariantStatus::Environment
+                                                       : status_of<VariantStatus>(failure.exit_code);
     row.exit_code = failure.exit_code;
     row.message = failure.message;
     row.files.clear();
@@ -142,17 +178,21 @@ BatchRow run_variant(const BatchManifest& manifest, std::size_t index, const Pla
   return row;
 }
 
-bool row_stands(std::string_view row_json, const std::string& out_dir) {
+bool row_stands(std::string_view row_json, const std::string& out_dir, std::string* why) {
   const nlohmann::json j = nlohmann::json::parse(row_json, nullptr, false);
   if (j.is_discarded()) return false;
   const std::string status = j.value("status", "");
   if (status == "invalid" || status == "bad input") return true;
   if (status != "ok" || !j.contains("files")) return false;
   for (const auto& f : j.at("files")) {
-    std::error_code ec;
-    const fs::path path = fs::path(out_dir) / f.value("path", "");
-    const std::uintmax_t size = fs::file_size(path, ec);
-    if (ec || size != f.value("bytes", std::uint64_t{0})) return false;
+    const std::string relative = f.value("path", "");
+    const std::string path = (fs::path(out_dir) / relative).string();
+    const std::optional<std::string> changed =
+        file_differs(path, f.value("bytes", std::uint64_t{0}), f.value("sha256", ""));
+    if (changed) {
+      if (why != nullptr) *why = fmt::format("its file {} {}: built again", relative, *changed);
+      return false;
+    }
   }
   return true;
 }

@@ -26,8 +26,10 @@ BatchRow run_variant(const BatchManifest& manifest, std::size_t index, const Pla
                      const std::string& out_dir);
 
 /// True when the committed `row_json` of a variant can stand for running it
-/// again: its status is final (ok, invalid, bad input; not an internal error)
-/// and, when ok, every file it lists exists in `out_dir` with its size.
-bool row_stands(std::string_view row_json, const std::string& out_dir);
+/// again: its status is final (ok, invalid, bad input; not an internal error
+/// nor the machine's) and, when ok, every file it lists is a regular file in
+/// `out_dir` with its size and SHA-256 digest. When an ok row does not stand
+/// because a file is missing or changed, `*why` says which and how.
+bool row_stands(std::string_view row_json, const std::string& out_dir, std::string* why = nullptr);
 
 }  // namespace fabmesh

@@ -21,6 +21,8 @@ int exit_code_of(VariantStatus status) {
       return 3;
     case VariantStatus::Missing:
       return 0;
+    case VariantStatus::Environment:
+      return 5;
   }
   return 3;
 }
@@ -41,6 +43,9 @@ void SummaryCounts::add(VariantStatus status, int code) {
       break;
     case VariantStatus::Missing:
       ++missing;
+      break;
+    case VariantStatus::Environment:
+      ++environment;
       break;
   }
   exit_code = std::max(exit_code, code);
@@ -77,8 +82,8 @@ void PlanRows::offer(std::string_view json, std::size_t ledger, std::uint64_t of
     return;
   }
   const std::size_t i = *found;
-  const bool kept_finished = status_[i] != VariantStatus::Missing && status_[i] != VariantStatus::Error;
-  if (s == VariantStatus::Missing || (kept_finished && s == VariantStatus::Error)) return;
+  // A final row is never replaced by one that is not (another shard's error, say).
+  if (s == VariantStatus::Missing || (is_final(status_[i]) && !is_final(s))) return;
   places_[i] = {offset, static_cast<std::uint32_t>(json.size()), static_cast<std::uint32_t>(ledger)};
   status_[i] = s;
 }

@@ -48,7 +48,7 @@ class PlanRows {
 
 /// How many variants ended how, and the batch's exit code.
 struct SummaryCounts {
-  std::size_t ok = 0, invalid = 0, bad_input = 0, error = 0, missing = 0;
+  std::size_t ok = 0, invalid = 0, bad_input = 0, error = 0, missing = 0, environment = 0;
   int exit_code = 0;  ///< the worst of the variants' (missing ones aside)
   void add(VariantStatus status, int code);
 };

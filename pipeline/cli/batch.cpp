@@ -20,6 +20,7 @@
 #include "pipeline/batch/run_batch.h"
 #include "pipeline/batch/slurm_script.h"
 #include "pipeline/cli/commands.h"
+#include "pipeline/failure.h"
 
 namespace fabmesh::cli {
 namespace {
@@ -50,19 +51,26 @@ std::string out_dir_of(const BatchArgs& args) {
 }
 
 Json counts_json(const SummaryCounts& c) {
-  return {{"ok", c.ok}, {"invalid", c.invalid}, {"bad_input", c.bad_input}, {"error", c.error}};
+  return {{"ok", c.ok},
+          {"invalid", c.invalid},
+          {"bad_input", c.bad_input},
+          {"error", c.error},
+          {"environment", c.environment}};
 }
 
 std::string counts_text(const SummaryCounts& c) {
-  return fmt::format("{} ok, {} invalid, {} bad input, {} error{}", c.ok, c.invalid, c.bad_input, c.error,
-                     c.error == 1 ? "" : "s");
+  std::string text = fmt::format("{} ok, {} invalid, {} bad input, {} error{}", c.ok, c.invalid, c.bad_input,
+                                 c.error, c.error == 1 ? "" : "s");
+  // Only when there are some: the machine's failures (disk full, permission), redone by a rerun.
+  if (c.environment > 0) text += fmt::format(", {} environment (run again once fixed)", c.environment);
+  return text;
 }
 
 void print_failures(const std::vector<BatchFailure>& failures, const std::string& summary,
                     std::ostream& err) {
   for (std::size_t i = 0; i < failures.size() && i < kShownFailures; ++i) {
     const BatchFailure& f = failures[i];
-    err << fmt::format("fabmesh: {}: {}: {}\n", to_string(f.status), f.name, f.message);
+    err << fmt::format("fabmesh: {}: {}: {}\n", to_string(f.status), f.name, printable_message(f.message));
   }
   if (failures.size() > kShownFailures) {
     err << fmt::format("fabmesh: ... and {} more failed variants (see {})\n",
@@ -89,6 +97,8 @@ int run_manifest(const BatchArgs& args, Streams io) {
                                   ? (dir / "summary.csv").string()
                                   : (dir / ".batch" / fs::path(out.ledger).filename()).string();
   print_failures(out.failures, summary, io.err);
+  for (std::size_t i = 0; i < out.rebuilt.size() && i < kShownFailures; ++i)
+    io.err << fmt::format("fabmesh: note: {}: {}\n", out.rebuilt[i].first, out.rebuilt[i].second);
   const std::string shard = fmt::format("{}/{}", options.shard.index, options.shard.count);
   if (args.json) {
     Json j;
@@ -112,6 +122,8 @@ int run_manifest(const BatchArgs& args, Streams io) {
                                {"exit_code", f.exit_code},
                                {"message", f.message}});
     }
+    j["rebuilt"] = Json::array();
+    for (const auto& [name, why] : out.rebuilt) j["rebuilt"].push_back({{"name", name}, {"reason", why}});
     j["timings_ms"] = {{"plan", out.plan_ms}, {"jobs", out.jobs_ms}, {"wall", out.wall_ms}};
     io.out << j.dump(2) << "\n";
   } else if (io.verbosity > 0) {
@@ -146,6 +158,7 @@ std::string job_name(const std::string& manifest) {
 
 int write_slurm(const BatchArgs& args, Streams io) {
   const BatchManifest manifest = read_manifest(args.manifest);
+  refuse_unknown_override_paths(manifest);  // now, not in every task of the job
   const std::string out_dir = fs::absolute(out_dir_of(args)).lexically_normal().string();
   const std::size_t variants = manifest.variant_count();
   SlurmScriptOptions o;
@@ -165,8 +178,7 @@ int write_slurm(const BatchArgs& args, Streams io) {
   refuse_link((fs::path(out_dir) / ".batch").string(), "batch folder");
   refuse_link((fs::path(out_dir) / ".batch" / "slurm").string(), "folder of the Slurm logs");
   fs::create_directories(fs::path(out_dir) / ".batch" / "slurm", ec);
-  if (ec)
-    throw FileError(out_dir, 0, 0, fmt::format("{}: cannot create the folder: {}", out_dir, ec.message()));
+  if (ec) throw_write_failure(out_dir, "cannot create the folder", ec.value());
   const std::string path = (fs::path(out_dir) / "slurm.sbatch").string();
   write_file_atomically(path, script);
   fs::permissions(path, fs::perms::owner_exec | fs::perms::group_exec | fs::perms::others_exec,

@@ -289,12 +289,12 @@ Runner add_check_command(CLI::App& app) {
   cmd->add_option("--weld-tolerance", args->weld_tolerance,
                   "Merge vertices closer than this (model units) before judging topology; default 0: only "
                   "exactly equal coordinates merge")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   cmd->add_option("--max-seconds", args->max_seconds,
                   "Time budget of each object's self-intersection test, seconds; past it the test stops "
                   "and the mesh is not called valid (exit 1, 'self-intersection test unfinished'); "
                   "default 600, 0: no limit")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   return [args](Streams streams) { return run_check(*args, streams); };
 }
 

@@ -3,6 +3,7 @@
 // options on `app` and returns the function that runs it once parsed.
 
 #include <CLI/CLI.hpp>
+#include <cmath>
 #include <functional>
 #include <ostream>
 #include <string>
@@ -18,7 +19,7 @@ struct Streams {
   int verbosity = 1;
 };
 
-/// Runs a parsed command; returns the process exit code (0, 1, 2 or 3).
+/// Runs a parsed command; returns the process exit code (0 to 5, pipeline/failure.h).
 using Runner = std::function<int(Streams)>;
 
 /// Registers `-D path=value` (repeatable) on a command that reads designs.
@@ -28,6 +29,49 @@ inline void add_define_option(CLI::App* cmd, std::vector<std::string>& defines) 
          "Override a design field, e.g. -D body.wall=2.5 -D profile.points[1]=[1,5] (the value is YAML; "
          "repeatable)")
       ->allow_extra_args(false);
+}
+
+/// A check of a number option that is at least 0: a finite number, its
+/// message naming the value as given ("-1 is below 0"), never a bound's
+/// digits (CLI::NonNegativeNumber prints the largest double's 310).
+inline CLI::Validator non_negative_number() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        double value = 0.0;
+        if (!CLI::detail::lexical_cast(text, value) || !std::isfinite(value))
+          return "'" + text + "' is not a number";
+        if (value < 0) return text + " is below 0: give a number >= 0";
+        return std::string();
+      },
+      "NUMBER >= 0", "NONNEGATIVE");
+}
+
+/// `text` in ASCII lower case: file endings are told apart case-insensitively (X.STL is an STL).
+inline std::string ascii_lower(std::string text) {
+  for (char& c : text) {
+    if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+  }
+  return text;
+}
+
+/// True when `-o out` names a file by its ending rather than a folder: no
+/// trailing '/', and its last part ends in a '.' and 1 to 8 letters or digits,
+/// a letter among them ("x.xyz", "mug.gltf"; not "out", "v1.2" or ".cache").
+inline bool names_a_file(const std::string& out) {
+  if (out.empty() || out.back() == '/') return false;
+  const std::size_t slash = out.find_last_of('/');
+  const std::string last = out.substr(slash == std::string::npos ? 0 : slash + 1);
+  const std::size_t dot = last.find_last_of('.');
+  if (dot == std::string::npos || dot == 0 || last.size() - dot - 1 > 8 || dot + 1 == last.size())
+    return false;
+  bool letter = false;
+  for (std::size_t i = dot + 1; i < last.size(); ++i) {
+    const char c = last[i];
+    const bool is_letter = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z');
+    if (!is_letter && !(c >= '0' && c <= '9')) return false;
+    letter = letter || is_letter;
+  }
+  return letter;
 }
 
 // --- commands ---

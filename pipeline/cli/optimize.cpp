@@ -39,8 +39,8 @@ Optimized optimize_curve(const NamedCurve& nc) {
     j["lambdas"] = out.built.bspline->lambdas;
     j["energy"] = out.built.bspline->energy;
   } else if (spec.family == CurveFamily::HBezier) {
-    throw GeometryError(ErrorLocation{},
-                        fmt::format("{}: optimize is defined for tbezier and quasi_bspline curves", nc.name));
+    // At the curve's key (in_design places it): "cup.yaml:5:3: profile: ...".
+    throw GeometryError(nc.name, "optimize is defined for tbezier and quasi_bspline curves, not hbezier");
   } else {
     spec.fair = FairMode::CurvatureVariation;
     spec.fair_keeps = Continuity::None;  // optimize reports what fairing would lose (continuity_lost)
@@ -80,8 +80,8 @@ int run_optimize(const OptimizeArgs& args, Streams io) {
   const Design design = load_design(args.design, parse_overrides(args.defines));
   const auto curves = design_curves(design);
   if (curves.empty()) {
-    throw InputError(
-        fmt::format("{}: a {} design has no curves to optimize", design.common.path, kind_name(design)));
+    throw InputError(fmt::format("a {} design has no curves to optimize", kind_name(design)),
+                     placed(design.common, ErrorLocation{"kind"}));
   }
   nlohmann::ordered_json all = nlohmann::ordered_json::array();
   for (const NamedCurve& nc : curves) {

@@ -31,7 +31,12 @@ bool ends_with(const std::string& s, std::string_view suffix) {
 
 int plot_designs(const PlotArgs& args, Streams io) {
   const std::vector<Override> overrides = parse_overrides(args.defines);
-  const bool one_file = ends_with(args.out, ".svg");
+  const bool one_file = ends_with(ascii_lower(args.out), ".svg");
+  std::error_code ec;
+  if (!one_file && names_a_file(args.out) && !fs::is_directory(args.out, ec)) {
+    throw InputError(fmt::format("-o {}: plot writes SVG: name the file *.svg, or give a folder (-o {}/)",
+                                 args.out, args.out));
+  }
   if (one_file && args.designs.size() != 1) {
     throw InputError(fmt::format("-o {}: one SVG file takes one design ({} given); use -o DIR", args.out,
                                  args.designs.size()));

@@ -33,7 +33,7 @@ bool is_design(const std::string& path) {
 }
 
 int preview(const PreviewArgs& args, Streams io) {
-  if (fs::path(args.out).extension() != ".png")
+  if (ascii_lower(fs::path(args.out).extension().string()) != ".png")
     throw InputError(fmt::format("-o {}: the preview is a PNG file; name it *.png", args.out));
   if (!args.defines.empty() && !is_design(args.input))
     throw InputError(fmt::format("-D applies to designs; {} is a mesh file", args.input));

@@ -20,6 +20,7 @@
 #include "pipeline/load_design.h"
 #include "pipeline/outputs.h"
 #include "pipeline/pictures.h"
+#include "pipeline/planned_outputs.h"
 #include "pipeline/report.h"
 
 namespace fabmesh::cli {
@@ -52,8 +53,10 @@ void fail_with(Outcome& o, const std::string& subject) {
   o.error = failure_line(failure);
 }
 
-// The format a file name asks for by its ending (".draco.glb" before ".glb"), or nullptr.
-const OutputFormat* format_of_file(const std::string& path) {
+// The format a file name asks for by its ending, in any case (".draco.glb"
+// before ".glb", "X.STL" an STL), or nullptr.
+const OutputFormat* format_of_file(const std::string& name) {
+  const std::string path = ascii_lower(name);
   const OutputFormat* best = nullptr;
   for (const OutputFormat& f : output_formats()) {
     const std::string_view suffix = f.file_suffix;
@@ -85,6 +88,18 @@ JobOptions output_options(const RunArgs& args) {
     options.out_dir = ".";
     return options;
   }
+  if (!folder && names_a_file(out)) {
+    // Never a folder named like a file: say which endings fabmesh writes.
+    std::string endings;
+    for (const OutputFormat& f : output_formats()) {
+      if (f.file_suffix.find("PART") != std::string_view::npos) continue;  // one file per mould part
+      endings += (endings.empty() ? "" : ", ") + std::string(f.file_suffix);
+    }
+    throw InputError(fmt::format(
+        "-o {}: fabmesh writes no '{}' files; -o FILE takes one of these endings (in any case): {}; for a "
+        "folder of that name write -o {}/",
+        out, fs::path(out).extension().string(), endings, out));
+  }
   options.out_dir = out;
   return options;
 }
@@ -101,6 +116,31 @@ void require_unique_names(std::vector<Outcome>& outcomes, const RunArgs& args) {
         fmt::format("{} and {} are both named '{}': their files would overwrite each other in {}; "
                     "give one another `name:` (nothing was run)",
                     args.designs[it->second], args.designs[i], name, args.out));
+  }
+}
+
+// Two designs whose outputs resolve to one file (`name: x` with glb_draco and
+// `name: x.draco` with glb both write x.draco.glb) would lose one of them.
+void require_distinct_files(const std::vector<Outcome>& outcomes, const JobOptions& options,
+                            const RunArgs& args) {
+  std::map<std::string, std::pair<std::size_t, std::string>> first;  // path -> design, format
+  for (std::size_t i = 0; i < outcomes.size(); ++i) {
+    if (!outcomes[i].design) continue;
+    std::vector<PlannedFile> files;
+    try {
+      files = planned_files(*outcomes[i].design, options);
+    } catch (const InputError&) {
+      continue;  // a bad `outputs` entry: that design's job reports it
+    }
+    for (const PlannedFile& f : files) {
+      const std::string path = fs::path(f.path).lexically_normal().string();
+      const auto [it, fresh] = first.emplace(path, std::make_pair(i, f.format));
+      if (fresh || it->second.first == i) continue;
+      throw InputError(fmt::format(
+          "{} ({} output) and {} ({} output) would both write {}: one file would be lost; give one "
+          "another `name:` (nothing was run)",
+          args.designs[it->second.first], it->second.second, args.designs[i], f.format, path));
+    }
   }
 }
 
@@ -148,6 +188,7 @@ int run_designs(const RunArgs& args, Streams io) {
     }
   });
   require_unique_names(outcomes, args);
+  require_distinct_files(outcomes, options, args);
   std::optional<RunProgress> progress;
   if (io.verbosity > 0) {
     const bool terminal = &io.err == &std::cerr && ::isatty(STDERR_FILENO) == 1;
@@ -199,12 +240,11 @@ int run_designs(const RunArgs& args, Streams io) {
           report_out << fmt::format("    {} {:.2f} ms\n", stage, ms);
       }
     }
-    if (o.report) {
-      for (const SkippedOutput& s : o.report->skipped) {
-        if (args.json)
-          io.err << fmt::format("fabmesh: warning: {}: skipped {}: {}\n", args.designs[i], s.format,
-                                s.reason);
-      }
+    if (o.report && args.json) {
+      for (const SkippedOutput& s : o.report->skipped)
+        io.err << fmt::format("fabmesh: warning: {}: skipped {}: {}\n", args.designs[i], s.format, s.reason);
+      for (const std::string& warning : o.report->warnings)
+        io.err << fmt::format("fabmesh: warning: {}\n", warning);
     }
   }
   // `run --json` prints an array always: one entry per design, whatever their number.

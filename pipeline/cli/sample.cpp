@@ -7,7 +7,6 @@
 #include "geometry/core/errors.h"
 #include "geometry/fairing/build_curve.h"
 #include "geometry/sampling/sample_curve.h"
-#include "geometry/section/simple_polygon.h"
 #include "pipeline/cli/commands.h"
 #include "pipeline/design_curves.h"
 #include "pipeline/load_design.h"
@@ -57,16 +56,7 @@ int run_sample(const SampleArgs& args, Streams io) {
                           fmt::format("{:g} {}: {}", options.tolerance, design.common.units, e.what()),
                           ErrorLocation{"tolerance"});
       }
-      if (line.closed) {
-        // A closed outline must be simple (exact predicates on the sampled loop).
-        if (const auto c = find_crossing(line.points, true)) {
-          throw GeometryError(
-              ErrorLocation{nc.spec.key, {}, {c->where.x(), c->where.y()}},
-              fmt::format("the closed curve crosses itself near ({:.6g}, {:.6g}) (segments {} and {})",
-                          c->where.x(), c->where.y(), params[c->first].segment + 1,
-                          params[c->second].segment + 1));
-        }
-      }
+      require_simple_closed(line, params, nc.spec.key);  // as `run` does
       if (args.csv) {
         for (const Vec2& p : line.points) io.out << fmt::format("{},{},{}\n", nc.name, p.x(), p.y());
         continue;

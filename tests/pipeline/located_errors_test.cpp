@@ -97,9 +97,11 @@ TEST_CASE("located errors: a mould option is reported at its key under mould, ne
 TEST_CASE("located errors: a value the design never wrote is reported at its key as (default)",
           "[pipeline][errors]") {
   const fs::path dir = fresh_dir("located_default");
-  // A mould the design does not have, made by -D: its key_clearance is the default, 0.2 mm.
+  // A mould the design does not have, made by -D: its keys are placed at the default
+  // positions, where 30 mm keys do not fit (the default key_clearance releases for every
+  // `parts` since issue 24, so `-D mould.parts=3` alone builds).
   const std::string design = example("vessel_golden_solid.yaml");
-  const CliResult r = refused(dir, {"run", design, "-D", "mould.parts=3"});
-  CHECK_THAT(r.err, Catch::StartsWith("fabmesh: error: " + design + ": mould.key_clearance (default): "));
+  const CliResult r = refused(dir, {"run", design, "-D", "mould.key_radius=3"});
+  CHECK_THAT(r.err, Catch::StartsWith("fabmesh: error: " + design + ": mould.keys[0] (default): "));
   CHECK_THAT(r.err, !Catch::Contains("body."));
 }

@@ -8,6 +8,7 @@
 
 #include "geometry/core/limits.h"
 #include "io/design/number_limits.h"
+#include "io/design/read_design.h"
 
 namespace fabmesh::yaml {
 namespace {
@@ -107,8 +108,21 @@ void Fields::require_map(const YAML::Node& node, const std::string& field, const
     seen.emplace_back(key, kv.first.Mark());
     const bool known = std::find(allowed.keys.begin(), allowed.keys.end(), key) != allowed.keys.end();
     if (!known) {
-      fail_key(kv.first, kv.second, field.empty() ? key : child_field(field, key),
-               fmt::format("unknown key '{}' (expected one of: {})", key, join(allowed.keys)));
+      const std::string at = field.empty() ? key : child_field(field, key);
+      const std::string message =
+          fmt::format("unknown key '{}' (expected one of: {})", key, join(allowed.keys));
+      // An override whose path runs through this key made it (`-D bodyy.wall=1` makes `bodyy`).
+      const OverrideOrigin* o = origin_of(kv.second);
+      for (std::size_t i = 0; o == nullptr && i < overrides_.size(); ++i) {
+        const std::string& text = overrides_[i].text;
+        const std::string path = text.substr(0, text.find('='));
+        if (path == at || path.rfind(at + ".", 0) == 0 || path.rfind(at + "[", 0) == 0) o = &overrides_[i];
+      }
+      if (o != nullptr)
+        throw UnknownKeyError(at, path_, 0, 0, fmt::format("-D {}: {}: {}", o->text, at, message));
+      const YAML::Mark m = kv.first.Mark();
+      throw UnknownKeyError(at, path_, m.line + 1, m.column + 1,
+                            fmt::format("{}: {}", label(kv.first, at), message));
     }
   }
 }

@@ -84,6 +84,11 @@ class NodeCounter : public YAML::EventHandler {
 
   void open(const YAML::Mark& mark, YAML::anchor_t anchor) {
     add(mark, 1);
+    if (stack_.size() >= kMaxYamlDepth) {
+      fail(mark,
+           fmt::format("lists and maps nested more than {} deep here: a design needs a handful of levels",
+                       kMaxYamlDepth));
+    }
     if (anchor != YAML::NullAnchor && anchor >= anchor_sizes_.size()) anchor_sizes_.resize(anchor + 1, 0);
     stack_.push_back({anchor, count_ - 1});
   }

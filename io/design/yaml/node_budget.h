@@ -11,14 +11,18 @@
 
 namespace fabmesh::yaml {
 
+/// The deepest nesting of lists and maps a design may have (its own deepest
+/// is a handful of levels); beyond it yaml-cpp's own guard would say only
+/// "bad file".
+inline constexpr std::size_t kMaxYamlDepth = 64;
+
 /// Throws FileError unless the YAML `text` holds at most `max_nodes` nodes
 /// (scalars, lists and maps, keys included, in every document), each alias
 /// counted as the nodes of what it stands for (so aliases cannot multiply a
 /// small file into a huge tree), and no alias stands for a node that contains
-/// it. The message starts "path:line:column:" where the count passed the
-/// limit (or at the alias), or "-D TEXT:" when `override_text` is given (the
-/// text is then an override's value).
-/// \throw FileError; YAML::Exception for text that is not YAML
+/// it, and lists and maps are nested at most kMaxYamlDepth deep. The message starts "path:line:column:" where
+/// the count passed the limit (or at the alias), or "-D TEXT:" when `override_text` is given (the text is
+/// then an override's value). \throw FileError; YAML::Exception for text that is not YAML
 void require_node_budget(const std::string& text, const std::string& path, std::size_t max_nodes,
                          const std::string& override_text = "");
 

@@ -54,11 +54,13 @@ CountertopHole read_hole(const yaml::Fields& f, const YAML::Node& n, const std::
 
 CncDesign read_cnc(const yaml::Fields& f, const YAML::Node& n, const DesignCommon& common, double thickness) {
   f.require_map(n, "cnc", key_group("countertop.cnc"));
-  const double mm = 1e-3 / metres_per_unit(common.units);  // the defaults are in millimetres
+  // The defaults are in millimetres: divided (not multiplied by a rounded 1/10) so that
+  // 6 mm is 0.6 cm, not 0.6000000000000001.
+  const double mm_per_unit = millimetres_per_unit(common.units);
   CncDesign d;
   CncOptions& o = d.options;
   auto length = [&](const char* key, double fallback_mm) {
-    return f.number_or(n, key, std::string("cnc.") + key, fallback_mm * mm);
+    return f.number_or(n, key, std::string("cnc.") + key, fallback_mm / mm_per_unit);
   };
   o.tool_diameter = length("tool_diameter", o.tool_diameter);
   o.depth = f.number_or(n, "depth", "cnc.depth", thickness);
@@ -74,12 +76,12 @@ CncDesign read_cnc(const yaml::Fields& f, const YAML::Node& n, const DesignCommo
     f.require_map(t, "cnc.tabs", key_group("countertop.cnc.tabs"));
     if (t["count"].IsDefined())
       o.tabs.count = static_cast<std::size_t>(f.integer(t["count"], "cnc.tabs.count", 0, 1000));
-    o.tabs.width = f.number_or(t, "width", "cnc.tabs.width", o.tabs.width * mm);
-    o.tabs.height = f.number_or(t, "height", "cnc.tabs.height", o.tabs.height * mm);
+    o.tabs.width = f.number_or(t, "width", "cnc.tabs.width", o.tabs.width / mm_per_unit);
+    o.tabs.height = f.number_or(t, "height", "cnc.tabs.height", o.tabs.height / mm_per_unit);
     if (t["min_radius"].IsDefined()) o.tabs.min_radius = f.number(t["min_radius"], "cnc.tabs.min_radius");
   } else {
-    o.tabs.width *= mm;
-    o.tabs.height *= mm;
+    o.tabs.width /= mm_per_unit;
+    o.tabs.height /= mm_per_unit;
   }
   if (n["direction"].IsDefined()) {
     o.direction = f.choice(n["direction"], "cnc.direction", {"climb", "conventional"}) == "conventional"

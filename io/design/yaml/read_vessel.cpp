@@ -2,7 +2,10 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+
 #include "geometry/mould/mould_section.h"
+#include "geometry/mould/release.h"
 #include "io/design/yaml/read_curve.h"
 
 namespace fabmesh {
@@ -12,10 +15,12 @@ namespace {
 MouldOptions read_mould(const yaml::Fields& f, const YAML::Node& m, const DesignCommon& common,
                         const VesselDesign& v) {
   f.require_map(m, "mould", key_group("vessel.mould"));
-  const double mm = 1e-3 / metres_per_unit(common.units);  // the defaults are in millimetres
+  // The defaults are in millimetres: divided (not multiplied by a rounded 1/10) so that
+  // 6 mm is 0.6 cm, not 0.6000000000000001.
+  const double mm_per_unit = millimetres_per_unit(common.units);
   MouldOptions o;
   auto length = [&](const char* key, double fallback_mm) {
-    return f.number_or(m, key, std::string("mould.") + key, fallback_mm * mm);
+    return f.number_or(m, key, std::string("mould.") + key, fallback_mm / mm_per_unit);
   };
   if (m["parts"].IsDefined()) o.parts = static_cast<int>(f.integer(m["parts"], "mould.parts", 2, 3));
   o.wall = length("wall", o.wall);
@@ -35,7 +40,12 @@ MouldOptions read_mould(const yaml::Fields& f, const YAML::Node& m, const Design
   o.base_height = f.number_or(m, "base_height", "mould.base_height", 0.0);
   if (m["keys"].IsDefined()) o.keys = static_cast<int>(f.integer(m["keys"], "mould.keys", 0, 64));
   o.key_radius = length("key_radius", o.key_radius);
-  o.key_clearance = length("key_clearance", o.key_clearance);
+  // The default clearance lets the keys release for every `parts`: 0.2 mm, or with 3 parts (pulled
+  // 30 degrees off the keys' axes) the least that releases, rounded up to a hundredth of a millimetre.
+  double clearance_mm = o.key_clearance;
+  const double release_mm = o.key_radius * mm_per_unit * (1.0 / std::cos(key_pull_angle(o.parts)) - 1.0);
+  if (release_mm > clearance_mm) clearance_mm = std::ceil(release_mm * 100.0) / 100.0;
+  o.key_clearance = length("key_clearance", clearance_mm);
   o.key_margin = f.number_or(m, "key_margin", "mould.key_margin", 0.0);
   if (m["key_positions"].IsDefined()) o.key_positions = f.points2(m["key_positions"], "mould.key_positions");
   o.allow_undercuts = f.boolean_or(m, "allow_undercuts", "mould.allow_undercuts", false);
