@@ -7,7 +7,10 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <map>
 #include <memory>
+#include <sstream>
+#include <vector>
 
 #include "geometry/core/errors.h"
 #include "geometry/core/units.h"
@@ -135,6 +138,47 @@ void write_entity(DL_Dxf& dxf, DL_WriterA& dw, const CutEntity& e, bool whole_lo
   }
 }
 
+// dxflib writes the OBJECTS section without owner handles (group 330), so a
+// reader that audits the file (ezdxf: "Fixed invalid owner handle in
+// DICTIONARY(#D)", 13 such fixes a file) repairs it. Each object is owned by
+// the dictionary that lists it (groups 350 and 360 of a DICTIONARY or an
+// ACDBDICTIONARYWDFLT); the root dictionary has none. This writes each
+// listed object's owner after its handle.
+std::string with_object_owners(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  const auto code = [&](std::size_t i) { return std::atoi(lines[i].c_str()); };
+  std::size_t first = lines.size();  // the first group of the OBJECTS section
+  for (std::size_t i = 0; i + 1 < lines.size(); i += 2) {
+    if (code(i) == 2 && lines[i + 1] == "OBJECTS") {
+      first = i + 2;
+      break;
+    }
+  }
+  std::size_t end = first;
+  while (end + 1 < lines.size() && !(code(end) == 0 && lines[end + 1] == "ENDSEC")) end += 2;
+  std::map<std::string, std::string> owner;
+  std::string type, handle;
+  for (std::size_t i = first; i < end; i += 2) {
+    const int c = code(i);
+    const std::string& value = lines[i + 1];
+    if (c == 0) type = value;
+    if (c == 5) handle = value;
+    if ((c == 350 || c == 360) && (type == "DICTIONARY" || type == "ACDBDICTIONARYWDFLT"))
+      owner[value] = handle;
+  }
+  std::string out;
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    out += lines[i];
+    out += '\n';
+    const bool object_handle = i >= first && i < end && (i - first) % 2 == 1 && code(i - 1) == 5;
+    const auto it = object_handle ? owner.find(lines[i]) : owner.end();
+    if (it != owner.end() && !(i + 1 < end && code(i + 1) == 330)) out += "330\n" + it->second + "\n";
+  }
+  return out;
+}
+
 }  // namespace
 
 std::string encode_dxf(const std::vector<CutLoop>& loops, const DxfOptions& options) {
@@ -160,7 +204,7 @@ std::string encode_dxf(const std::vector<CutLoop>& loops, const DxfOptions& opti
     dw->dxfEOF();
     dw->close();
   }
-  return read_file(tmp.path());
+  return with_object_owners(read_file(tmp.path()));
 }
 
 }  // namespace fabmesh

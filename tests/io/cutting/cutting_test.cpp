@@ -1,4 +1,6 @@
 #include <catch2/catch.hpp>
+#include <cstdio>
+#include <fstream>
 #include <map>
 #include <set>
 #include <sstream>
@@ -165,6 +167,36 @@ TEST_CASE("dxf: two encodes are byte-identical and every handle reference names 
     ++references;
   }
   CHECK(references > 0);
+}
+
+TEST_CASE("dxf: ezdxf reads the file and its audit finds nothing to fix", "[io][cutting][dxf]") {
+  // ezdxf from Debian (python3-ezdxf, installed by scripts/install-deps.sh)
+  // under the system interpreter. dxflib alone leaves the OBJECTS without
+  // owners: 13 "invalid owner handle" fixes a file.
+  const std::string path = std::string(FABMESH_TEST_TMP) + "/audit-kitchen.dxf";
+  { std::ofstream(path, std::ios::binary) << encode_dxf(kitchen_loops(0.01)); }
+  const std::string script =
+      "import sys, ezdxf\n"
+      "doc = ezdxf.readfile(sys.argv[1])\n"
+      "a = doc.audit()\n"
+      "print(len(a.errors), len(a.fixes), len(doc.modelspace()))\n"
+      "for e in list(a.errors) + list(a.fixes): print(e.message)\n";
+  const std::string command = "/usr/bin/python3 -c '" + script + "' " + path + " 2>&1";
+  std::string out;
+  {
+    FILE* pipe = popen(command.c_str(), "r");
+    REQUIRE(pipe != nullptr);
+    char buffer[4096];
+    while (const std::size_t n = fread(buffer, 1, sizeof buffer, pipe)) out.append(buffer, n);
+    REQUIRE(pclose(pipe) == 0);
+  }
+  INFO(out);
+  std::istringstream first(out);
+  int errors = -1, fixes = -1, entities = -1;
+  first >> errors >> fixes >> entities;
+  CHECK(errors == 0);
+  CHECK(fixes == 0);
+  CHECK(entities > 0);
 }
 
 TEST_CASE("dxf: a loop that is one T-Bezier run is a single closed LWPOLYLINE",
