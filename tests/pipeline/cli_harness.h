@@ -4,6 +4,7 @@
 
 #include <catch2/catch.hpp>
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -20,6 +21,11 @@ inline std::string example(const std::string& name) {
 }
 
 /// An empty folder under the test build folder, named for the test.
+/// Writes `text` to `path` as it is (binary: no line-end translation).
+inline void write_text(const std::filesystem::path& path, const std::string& text) {
+  std::ofstream(path, std::ios::binary) << text;
+}
+
 inline std::filesystem::path fresh_dir(const std::string& name) {
   const std::filesystem::path dir = std::filesystem::path(FABMESH_TEST_TMP) / name;
   std::filesystem::remove_all(dir);

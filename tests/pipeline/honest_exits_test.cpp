@@ -30,10 +30,6 @@ namespace {
 constexpr double kSeconds = 60.0;
 constexpr std::size_t kMemory = 2048 * kMiB;
 
-void write_text(const fs::path& path, const std::string& text) {
-  std::ofstream(path, std::ios::binary) << text;
-}
-
 // Runs the program with files limited to 8 KiB (16 blocks of 512 bytes, or
 // 16 KiB where the shell counts kilobytes) and SIGXFSZ ignored, so that
 // writing past it fails with EFBIG, as a full disk fails with ENOSPC.

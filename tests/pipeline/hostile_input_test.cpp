@@ -28,8 +28,6 @@ namespace {
 constexpr double kQuickSeconds = 20.0;
 constexpr std::size_t kSmallMemory = 256 * kMiB;
 
-void write_text(const fs::path& path, const std::string& text) { std::ofstream(path) << text; }
-
 std::vector<std::string> names_in(const fs::path& dir) {
   std::vector<std::string> names;
   for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());

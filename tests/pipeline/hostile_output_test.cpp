@@ -40,10 +40,6 @@ constexpr std::size_t kBuildMemory = 2048 * kMiB;
 
 const char* const kWallGrid = "design: cup.yaml\nname: cup_{body.wall}\ngrid:\n  body.wall: [0.3, 5]\n";
 
-void write_text(const fs::path& path, const std::string& text) {
-  std::ofstream(path, std::ios::binary) << text;
-}
-
 // A folder `victim` beside the batch holding the user's files.
 fs::path victim_folder(const fs::path& dir) {
   const fs::path victim = dir / "victim";

@@ -1,5 +1,4 @@
 #include <catch2/catch.hpp>
-#include <cstdio>
 #include <fstream>
 #include <map>
 #include <set>
@@ -11,6 +10,7 @@
 #include "io/cutting/read_dxf.h"
 #include "io/cutting/svg.h"
 #include "tests/geometry/section/region_shapes.h"
+#include "tests/io/mesh/external_tool.h"
 
 using namespace fabmesh;
 using namespace fabmesh::test;
@@ -181,15 +181,9 @@ TEST_CASE("dxf: ezdxf reads the file and its audit finds nothing to fix", "[io][
       "a = doc.audit()\n"
       "print(len(a.errors), len(a.fixes), len(doc.modelspace()))\n"
       "for e in list(a.errors) + list(a.fixes): print(e.message)\n";
-  const std::string command = "/usr/bin/python3 -c '" + script + "' " + path + " 2>&1";
-  std::string out;
-  {
-    FILE* pipe = popen(command.c_str(), "r");
-    REQUIRE(pipe != nullptr);
-    char buffer[4096];
-    while (const std::size_t n = fread(buffer, 1, sizeof buffer, pipe)) out.append(buffer, n);
-    REQUIRE(pclose(pipe) == 0);
-  }
+  const test::ToolRun run = test::run_tool("/usr/bin/python3 -c '" + script + "' " + path);
+  REQUIRE(run.code == 0);
+  const std::string& out = run.output;
   INFO(out);
   std::istringstream first(out);
   int errors = -1, fixes = -1, entities = -1;

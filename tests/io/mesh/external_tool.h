@@ -20,10 +20,10 @@ struct ToolRun {
   std::string output;  ///< standard output and standard error, interleaved
 };
 
-/// Runs `command` with /bin/sh, standard error joined to standard output.
-inline ToolRun run_tool(const std::string& command) {
+/// Runs `command` with /bin/sh as it is: its standard output and exit status.
+inline ToolRun run_command(const std::string& command) {
   ToolRun run;
-  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
+  FILE* pipe = popen(command.c_str(), "r");
   if (pipe == nullptr) return run;
   std::array<char, 4096> buffer{};
   std::size_t n = 0;
@@ -32,6 +32,9 @@ inline ToolRun run_tool(const std::string& command) {
   run.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return run;
 }
+
+/// Runs `command` with /bin/sh, standard error joined to standard output.
+inline ToolRun run_tool(const std::string& command) { return run_command(command + " 2>&1"); }
 
 /// True when `program` is an executable on PATH.
 inline bool on_path(const std::string& program) {

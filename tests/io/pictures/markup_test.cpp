@@ -55,7 +55,8 @@ TEST_CASE("escape_markup: hostile names stay text in elements and in quoted attr
     CHECK(escaped.find('"') == std::string::npos);
     CHECK(escaped.find('\'') == std::string::npos);
     CHECK(escaped.find('\0') == std::string::npos);
-    const std::string doc = "<root><item a=\"" + escaped + "\" b='" + escaped + "'>" + escaped + "</item></root>";
+    const std::string doc =
+        "<root><item a=\"" + escaped + "\" b='" + escaped + "'>" + escaped + "</item></root>";
     const std::vector<test::XmlElement> all = test::scan_xml(doc);
     REQUIRE(all.size() == 2);
     CHECK(all[1].name == "item");
