@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "geometry/core/errors.h"
+#include "pipeline/batch/csv_cell.h"
 
 namespace fabmesh {
 namespace {
@@ -17,26 +18,13 @@ constexpr const char* kFixedColumns[] = {
     "area",       "valid",      "bbox_min_x",    "bbox_min_y", "bbox_min_z", "bbox_max_x",
     "bbox_max_y", "bbox_max_z", "max_deviation", "tolerance",  "files"};
 
-// A CSV cell, quoted when it holds a separator, a quote, a line break or edge spaces.
-std::string cell(const std::string& text) {
-  const bool quote = text.find_first_of(",\"\r\n") != std::string::npos ||
-                     (!text.empty() && (text.front() == ' ' || text.back() == ' '));
-  if (!quote) return text;
-  std::string out = "\"";
-  for (const char c : text) {
-    if (c == '"') out += '"';
-    out += c;
-  }
-  return out + "\"";
-}
-
 std::string number(double x) { return fmt::format("{}", x); }
 
-// A parameter's column: its path, unless a fixed column has that name.
+// A parameter's column: its path, or parameter:PATH when a fixed column has that name.
 std::string parameter_column(const std::string& path) {
   const bool taken = std::any_of(std::begin(kFixedColumns), std::end(kFixedColumns),
                                  [&](const char* c) { return path == c; });
-  return taken ? "-D " + path : path;
+  return taken ? "parameter:" + path : path;
 }
 
 double timing(const StageTimings& timings, const std::string& stage) {
@@ -169,23 +157,23 @@ BatchRow row_from_json(const nlohmann::ordered_json& j) {
 std::string csv_header(const std::vector<std::string>& parameters) {
   std::string line;
   for (const char* c : {"index", "name", "design"}) line += std::string(line.empty() ? "" : ",") + c;
-  for (const std::string& p : parameters) line += "," + cell(parameter_column(p));
+  for (const std::string& p : parameters) line += "," + csv_cell(parameter_column(p));
   for (std::size_t i = 3; i < std::size(kFixedColumns); ++i) line += std::string(",") + kFixedColumns[i];
   return line + ",resolve_ms,job_ms,record_ms\n";
 }
 
 std::string csv_line(const BatchRow& r, const std::vector<std::string>& parameters) {
-  std::string line = fmt::format("{},{},{}", r.index, cell(r.name), cell(r.design));
+  std::string line = fmt::format("{},{},{}", r.index, csv_cell(r.name), csv_cell(r.design));
   for (const std::string& p : parameters) {
     std::string value;
     for (const auto& [path, v] : r.overrides) {
       if (path == p) value = v;
     }
-    line += "," + cell(value);
+    line += "," + csv_cell(value);
   }
   line += fmt::format(",{},{},{},{}", to_string(r.status),
-                      r.status == VariantStatus::Missing ? "" : std::to_string(r.exit_code), cell(r.message),
-                      r.key);
+                      r.status == VariantStatus::Missing ? "" : std::to_string(r.exit_code),
+                      csv_cell(r.message), r.key);
   if (r.mesh) {
     const RowMesh& m = *r.mesh;
     line += fmt::format(",{},{},{},{},{},{},{}", m.kind, m.units, m.vertices, m.triangles, number(m.volume),
@@ -198,7 +186,7 @@ std::string csv_line(const BatchRow& r, const std::vector<std::string>& paramete
   }
   std::string files;
   for (const RowFile& f : r.files) files += (files.empty() ? "" : ";") + f.path;
-  line += "," + cell(files);
+  line += "," + csv_cell(files);
   line += fmt::format(",{:.3f},{:.3f},{:.3f}\n", timing(r.timings_ms, "resolve"), timing(r.timings_ms, "job"),
                       timing(r.timings_ms, "record"));
   return line;
