@@ -62,7 +62,7 @@ job = [r["timings_ms"]["job"] for r in one]
 mean_job = sum(job) / len(job)
 resolve = sum(r["timings_ms"]["resolve"] for r in one) / n
 record = sum(r["timings_ms"]["record"] for r in one) / n
-report1 = json.load(open(f"{tmp}/jobs1.json"))
+report1 = json.load(open(f"{tmp}/jobs1.json"))[0]  # batch --json: an array of one item
 overhead = wall1 * 1000 / n - mean_job
 print(f"  --jobs 1: {wall1:.2f} s wall, {wall1 * 1000 / n:.2f} ms per variant, peak RSS {rss1 / 1024:.0f} MiB")
 print(f"  --jobs 2: {wall2:.2f} s wall, peak RSS {rss2 / 1024:.0f} MiB; speedup {wall1 / wall2:.2f}x")

@@ -23,7 +23,7 @@ echo "input: $((2 * nu * nv)) triangles, $(stat -c %s "$stl") bytes"
 "$fabmesh" check --json "$stl" > "$work/report.json"
 python3 - "$work/report.json" <<'PY'
 import json, sys
-r = json.load(open(sys.argv[1]))
+r = json.load(open(sys.argv[1]))[0]  # one item per file
 print("fabmesh verdict: valid=%s genus=%s triangles=%d welded=%d" % (r["valid"], r["genus"], r["triangles"], r["welded_vertices"]))
 print("fabmesh stages (ms): " + ", ".join("%s %.0f" % kv for kv in r["timings_ms"].items()))
 PY

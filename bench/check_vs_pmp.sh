@@ -46,7 +46,10 @@ stages() {  # stages PREFIX: "stage median_ms" lines over the runs
   python3 - "$tmp" "$1" "$runs" <<'PY'
 import json, statistics, sys
 tmp, prefix, runs = sys.argv[1], sys.argv[2], int(sys.argv[3])
-rows = [json.load(open("%s/%s_%d.json" % (tmp, prefix, r)))["timings_ms"] for r in range(runs)]
+def report(path):  # fabmesh check --json prints an array of one item per file
+    j = json.load(open(path))
+    return j[0] if isinstance(j, list) else j
+rows = [report("%s/%s_%d.json" % (tmp, prefix, r))["timings_ms"] for r in range(runs)]
 for stage in rows[0]:
     print(stage, "%.1f" % statistics.median(row[stage] for row in rows))
 PY

@@ -130,12 +130,10 @@ JobReport build_and_encode(const Design& design, const JobOptions& options, cons
         what, report.validation.boundary_edges));
   }
   if (!built.soup.vertices.empty()) {
-    // The mesh's box, in model units: in the report and among the build facts.
+    // The mesh's box, in model units (the report's bounding_box).
     const BoundingBox box = bounding_box(built.soup.vertices);
     report.bbox_min = box.lo;
     report.bbox_max = box.hi;
-    report.build["bbox_min"] = {box.lo.x(), box.lo.y(), box.lo.z()};
-    report.build["bbox_max"] = {box.hi.x(), box.hi.y(), box.hi.z()};
   } else if (!built.cutting.empty()) {
     const auto [lo, hi] = cut_bounds(built.cutting);
     report.bbox_min = Vec3(lo.x(), lo.y(), 0.0);

@@ -2,6 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <stdexcept>
+
 namespace fabmesh {
 
 namespace {
@@ -111,6 +114,17 @@ nlohmann::ordered_json to_json(const JobReport& r) {
   timings.update(timings_json(r.validation.timings_ms, "validate."));
   j["timings_ms"] = timings;
   return j;
+}
+
+nlohmann::ordered_json error_item(const std::string& key, const std::string& input, const Failure& failure) {
+  return {{key, input}, {"error", failure.message}, {"exit_code", failure.exit_code}};
+}
+
+void print_json_items(const nlohmann::ordered_json& items, std::ostream& out) {
+  const bool shaped = items.is_array() && std::all_of(items.begin(), items.end(),
+                                                      [](const auto& item) { return item.is_object(); });
+  if (!shaped) throw std::logic_error("a --json document must be an array of objects");
+  out << items.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) << "\n";
 }
 
 void print_summary(const JobReport& r, std::ostream& out) {

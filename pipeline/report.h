@@ -8,6 +8,7 @@
 
 #include "geometry/fairing/build_curve.h"
 #include "geometry/validation/validate.h"
+#include "pipeline/failure.h"
 #include "pipeline/job.h"
 
 namespace fabmesh {
@@ -19,9 +20,24 @@ nlohmann::ordered_json validation_json(const ValidationReport& report);
 /// Stage timings as a JSON object (stage -> ms); `prefix` is put before each name.
 nlohmann::ordered_json timings_json(const StageTimings& timings, const std::string& prefix = "");
 
+/// A bounding box as every report writes it: `min`, `max`, `size` (each
+/// [x, y, z]) and `units`.
+nlohmann::ordered_json bounding_box_json(const Vec3& lo, const Vec3& hi, const std::string& units);
+
 /// A job's JSON report (docs/reports.md): name, kind, units, tolerance,
 /// max_deviation, outputs, the validation facts, builder facts and timings.
 nlohmann::ordered_json to_json(const JobReport& report);
+
+/// The item of a `--json` array for an input that failed (docs/reports.md,
+/// "JSON"): {KEY: input, "error": the message, "exit_code": its code}.
+nlohmann::ordered_json error_item(const std::string& key, const std::string& input, const Failure& failure);
+
+/// Prints a command's `--json` document: `items`, an array of objects, one per
+/// input (design, mesh file, curve, manifest), failed ones as error_item. A
+/// string that is not UTF-8 (a file name from the command line) is printed with
+/// U+FFFD in place of each bad byte. \throw std::logic_error when `items` is
+/// not an array of objects (a bug)
+void print_json_items(const nlohmann::ordered_json& items, std::ostream& out);
 
 /// A job's human summary (a few lines).
 void print_summary(const JobReport& report, std::ostream& out);

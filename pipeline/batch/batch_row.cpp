@@ -6,6 +6,7 @@
 
 #include "geometry/core/errors.h"
 #include "pipeline/batch/csv_cell.h"
+#include "pipeline/report.h"
 
 namespace fabmesh {
 namespace {
@@ -92,7 +93,8 @@ Json row_json(const BatchRow& r) {
     j["volume"] = m.volume;
     j["area"] = m.area;
     j["valid"] = m.valid;
-    j["bounding_box"] = {{"min", m.bbox_min}, {"max", m.bbox_max}};
+    j["bounding_box"] = bounding_box_json(Vec3(m.bbox_min[0], m.bbox_min[1], m.bbox_min[2]),
+                                          Vec3(m.bbox_max[0], m.bbox_max[1], m.bbox_max[2]), m.units);
     j["max_deviation"] = m.max_deviation;
     j["tolerance"] = m.tolerance;
   }

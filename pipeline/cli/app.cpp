@@ -1,11 +1,41 @@
 #include <exception>
 #include <map>
 #include <string>
+#include <vector>
 
 #include "pipeline/cli/commands.h"
 #include "pipeline/failure.h"
+#include "pipeline/report.h"
 
 namespace fabmesh::cli {
+namespace {
+
+// Whether `command` was given --json, and not told to write a file to
+// standard output (`run -o -`, whose reports go to the error stream).
+bool wants_json(const CLI::App* command) {
+  if (command == nullptr || command->get_option_no_throw("--json") == nullptr ||
+      command->count("--json") == 0)
+    return false;
+  const CLI::Option* output = command->get_option_no_throw("--output");
+  return output == nullptr || output->count() == 0 || output->as<std::string>() != "-";
+}
+
+// The --json item of a command that failed before any of its inputs had an
+// item of its own (a bad manifest, two designs of one name): the command,
+// its inputs (positional arguments) and the failure.
+nlohmann::ordered_json command_error_item(const CLI::App& command, const Failure& failure) {
+  std::vector<std::string> inputs;
+  for (const CLI::Option* option : command.get_options()) {
+    if (!option->get_positional()) continue;
+    for (const std::string& value : option->results()) inputs.push_back(value);
+  }
+  nlohmann::ordered_json item = {{"command", command.get_name()}, {"inputs", inputs}};
+  item["error"] = failure.message;
+  item["exit_code"] = failure.exit_code;
+  return item;
+}
+
+}  // namespace
 
 int run_app(int argc, const char* const* argv, Streams streams) {
   CLI::App app{"fabmesh: parametric product designs to fabrication-ready meshes"};
@@ -50,6 +80,8 @@ int run_app(int argc, const char* const* argv, Streams streams) {
   } catch (...) {
     const Failure failure = describe_failure(std::current_exception());
     streams.err << failure_line(failure) << "\n";
+    if (wants_json(chosen))
+      print_json_items(nlohmann::ordered_json::array({command_error_item(*chosen, failure)}), streams.out);
     return failure.exit_code;
   }
 }

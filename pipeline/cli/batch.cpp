@@ -21,6 +21,7 @@
 #include "pipeline/batch/slurm_script.h"
 #include "pipeline/cli/commands.h"
 #include "pipeline/failure.h"
+#include "pipeline/report.h"
 
 namespace fabmesh::cli {
 namespace {
@@ -125,7 +126,7 @@ int run_manifest(const BatchArgs& args, Streams io) {
     j["rebuilt"] = Json::array();
     for (const auto& [name, why] : out.rebuilt) j["rebuilt"].push_back({{"name", name}, {"reason", why}});
     j["timings_ms"] = {{"plan", out.plan_ms}, {"jobs", out.jobs_ms}, {"wall", out.wall_ms}};
-    io.out << j.dump(2) << "\n";
+    print_json_items(Json::array({j}), io.out);
   } else if (io.verbosity > 0) {
     const std::string what = options.shard.count == 1 ? fmt::format("{} variants", out.variants)
                                                       : fmt::format("shard {} ({} of {} variants)", shard,
@@ -184,14 +185,14 @@ int write_slurm(const BatchArgs& args, Streams io) {
   fs::permissions(path, fs::perms::owner_exec | fs::perms::group_exec | fs::perms::others_exec,
                   fs::perm_options::add, ec);
   if (args.json) {
-    io.out << Json{{"script", path},
-                   {"variants", variants},
-                   {"shards", o.shards},
-                   {"cpus_per_task", o.cpus_per_task},
-                   {"submit", "sbatch " + path},
-                   {"merge", "fabmesh batch --merge " + out_dir}}
-                  .dump(2)
-           << "\n";
+    const Json j = {{"manifest", args.manifest},
+                    {"script", path},
+                    {"variants", variants},
+                    {"shards", o.shards},
+                    {"cpus_per_task", o.cpus_per_task},
+                    {"submit", "sbatch " + path},
+                    {"merge", "fabmesh batch --merge " + out_dir}};
+    print_json_items(Json::array({j}), io.out);
   } else {
     io.out << fmt::format("wrote {}: {} variants in {} shards (array tasks 0-{}, {} CPU each)\n", path,
                           variants, o.shards, o.shards - 1, o.cpus_per_task);
@@ -230,7 +231,7 @@ int merge(const BatchArgs& args, Streams io) {
                                      {"variants", g.owned},
                                      {"missing", g.missing}});
     }
-    io.out << j.dump(2) << "\n";
+    print_json_items(Json::array({j}), io.out);
   } else if (io.verbosity > 0) {
     io.out << fmt::format("{}: {} variants: {}, {} missing\n", args.merge, out.variants, counts_text(c),
                           c.missing);
@@ -280,7 +281,8 @@ Runner add_batch_command(CLI::App& app) {
   cmd->add_option("--shard", args->shard,
                   "Run only shard I of N (counted from 0): the variants i with i mod N = I");
   cmd->add_flag("--force", args->force, "Run every variant again, even those done by earlier runs");
-  cmd->add_flag("--json", args->json, "Print one JSON document about the run (docs/batch.md)");
+  cmd->add_flag("--json", args->json,
+                "Print the JSON report (an array of one entry, about the run: docs/batch.md)");
   cmd->add_flag("--slurm", args->slurm,
                 "Write DIR/slurm.sbatch, a Slurm job array running the shards, and say how to submit it");
   cmd->add_option("--array-size", args->array_size, "With --slurm: the number of shards (default: 100)")

@@ -137,13 +137,13 @@ nlohmann::ordered_json assembly_json(const FileCheck& check) {
 }
 
 nlohmann::ordered_json to_json(const FileCheck& check) {
-  nlohmann::ordered_json j;
-  j["file"] = check.file;
   if (!check.readable) {
-    j["error"] = check.failure.message;
-    j["valid"] = false;
+    nlohmann::ordered_json j = error_item("file", check.file, check.failure);
+    j["valid"] = false;  // every item of `check --json` says whether its file is valid
     return j;
   }
+  nlohmann::ordered_json j;
+  j["file"] = check.file;
   j["format"] = check.format;
   j["units"] = check.units.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(check.units);
   if (!check.several()) {
@@ -266,14 +266,9 @@ int run_check(const CheckArgs& args, Streams streams) {
     if (!args.json) streams.out << human_verdict(c);
   }
   if (args.json) {
-    nlohmann::ordered_json out;
-    if (checks.size() == 1) {
-      out = to_json(checks.front());
-    } else {
-      out = nlohmann::ordered_json::array();
-      for (const FileCheck& c : checks) out.push_back(to_json(c));
-    }
-    streams.out << out.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) << "\n";
+    nlohmann::ordered_json items = nlohmann::ordered_json::array();
+    for (const FileCheck& c : checks) items.push_back(to_json(c));
+    print_json_items(items, streams.out);
   }
   return code;
 }
@@ -285,7 +280,7 @@ Runner add_check_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "check", "Validate mesh files (STL, OBJ, PLY, OFF, Draco, 3MF, GLB, glTF) for fabrication");
   cmd->add_option("MESH", args->files, "Mesh files to check; the format is told by content")->required();
-  cmd->add_flag("--json", args->json, "Print a JSON report per file (an array for several files)");
+  cmd->add_flag("--json", args->json, "Print the JSON reports (an array, one entry per file)");
   cmd->add_option("--weld-tolerance", args->weld_tolerance,
                   "Merge vertices closer than this (model units) before judging topology; default 0: only "
                   "exactly equal coordinates merge")

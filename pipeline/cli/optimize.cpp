@@ -87,13 +87,11 @@ int run_optimize(const OptimizeArgs& args, Streams io) {
   for (const NamedCurve& nc : curves) {
     Optimized o = in_design(design, [&] { return optimize_curve(nc); });
     if (!args.json) print_human(design.common.name + " " + nc.name, o, io.out);
-    if (curves.size() > 1) o.json["curve"] = nc.name;
-    all.push_back(std::move(o.json));
+    nlohmann::ordered_json item = {{"design", args.design}, {"curve", nc.name}};
+    item.update(o.json);
+    all.push_back(std::move(item));
   }
-  if (args.json)
-    io.out << (all.size() == 1 ? all[0] : all)
-                  .dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace)
-           << "\n";
+  if (args.json) print_json_items(all, io.out);
   return 0;
 }
 
@@ -104,7 +102,7 @@ Runner add_optimize_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("optimize", "Fairest shape parameters of a design's curves");
   cmd->add_option("design", args->design, "Design file (YAML)")->required();
   add_define_option(cmd, args->defines);
-  cmd->add_flag("--json", args->json, "Print the result as JSON");
+  cmd->add_flag("--json", args->json, "Print the JSON results (an array, one entry per curve)");
   return [args](Streams io) { return run_optimize(*args, io); };
 }
 

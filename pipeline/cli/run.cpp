@@ -43,14 +43,27 @@ struct Outcome {
   std::optional<Design> design;
   std::optional<JobReport> report;
   std::optional<PreparedJob> streamed;  ///< `-o -`: the job's bytes go to standard output
-  int code = 0;
-  std::string error;
+  std::optional<Failure> failure;
+  int code() const { return failure ? failure->exit_code : kExitOk; }
 };
 
 void fail_with(Outcome& o, const std::string& subject) {
-  const Failure failure = describe_failure(std::current_exception(), subject);
-  o.code = failure.exit_code;
-  o.error = failure_line(failure);
+  o.failure = describe_failure(std::current_exception(), subject);
+}
+
+// The output formats' names, "stl, drc, ...", in the output table's order.
+std::string format_names() {
+  std::string names;
+  for (const OutputFormat& f : output_formats())
+    names += std::string(names.empty() ? "" : ", ") + std::string(f.name);
+  return names;
+}
+
+// A design's --json item: the design file it was read from, then its report.
+nlohmann::ordered_json design_item(const std::string& design_file, const JobReport& report) {
+  nlohmann::ordered_json item = {{"design", design_file}};
+  item.update(to_json(report));
+  return item;
 }
 
 // The format a file name asks for by its ending, in any case (".draco.glb"
@@ -153,7 +166,7 @@ void write_report(const RunArgs& args, const std::vector<Outcome>& outcomes) {
   for (std::size_t i = 0; i < outcomes.size(); ++i) {
     const Outcome& o = outcomes[i];
     if (!o.report) {
-      page.rows.push_back(failed_row(args.designs[i], o.code, o.error));
+      page.rows.push_back(failed_row(args.designs[i], o.code(), failure_line(*o.failure)));
       continue;
     }
     ReportRow row = report_row(*o.report, base);
@@ -223,16 +236,15 @@ int run_designs(const RunArgs& args, Streams io) {
   nlohmann::ordered_json all = nlohmann::ordered_json::array();
   for (std::size_t i = 0; i < outcomes.size(); ++i) {
     const Outcome& o = outcomes[i];
-    code = std::max(code, o.code);
-    if (!o.error.empty()) io.err << o.error << "\n";
+    code = std::max(code, o.code());
+    if (o.failure) io.err << failure_line(*o.failure) << "\n";
     if (o.streamed) {
       for (const FileWrite& f : o.streamed->files)
         io.out.write(f.bytes.data(), static_cast<std::streamsize>(f.bytes.size()));
     }
     if (args.json) {
-      all.push_back(o.report ? to_json(*o.report)
-                             : nlohmann::ordered_json{
-                                   {"design", args.designs[i]}, {"error", o.error}, {"exit_code", o.code}});
+      all.push_back(o.report ? design_item(args.designs[i], *o.report)
+                             : error_item("design", args.designs[i], *o.failure));
     } else if (o.report && io.verbosity > 0) {
       print_summary(*o.report, report_out);
       if (io.verbosity > 1) {
@@ -248,8 +260,7 @@ int run_designs(const RunArgs& args, Streams io) {
     }
   }
   // `run --json` prints an array always: one entry per design, whatever their number.
-  if (args.json)
-    report_out << all.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) << "\n";
+  if (args.json) print_json_items(all, report_out);
   if (!args.report.empty()) {
     write_report(args, outcomes);
     if (io.verbosity > 0 && !args.json) report_out << fmt::format("report: {}\n", args.report);
@@ -281,10 +292,8 @@ Runner add_run_command(CLI::App& app) {
       "Where to write: a folder (default: out; a trailing / or an existing folder), one file whose "
       "ending picks the format (x.stl, x.3mf, x.glb, x.draco.glb, ...: one design only), or - for "
       "standard output (one design, one format)");
-  cmd->add_option(
-      "--export-format", args->export_format,
-      "Write only this format, whatever the design's outputs (stl, 3mf, glb, glb_draco, drc, obj, ply, "
-      "off, dxf, svg, mould_stl, mould_3mf, nc, toolpath_svg, plot, png)");
+  cmd->add_option("--export-format", args->export_format,
+                  "Write only this format, whatever the design's outputs (" + format_names() + ")");
   cmd->add_option("--export-units", args->export_units,
                   "Unit of the files that carry none (STL, OBJ, PLY, OFF, Draco) and of 3MF, instead of the "
                   "design's export_units (default mm)")

@@ -10,10 +10,12 @@
 #include <string>
 
 #include "tests/io/mesh/temp_dir.h"
+#include "tests/pipeline/json_item.h"
 #include "tests/pipeline/shell_run.h"
 
 using fabmesh::test::TempDir;
 
+using fabmesh::testing::only_item;
 using fabmesh::testing::quoted;
 using fabmesh::testing::run_in_shell;
 using fabmesh::testing::ShellRun;
@@ -49,7 +51,7 @@ void require_as_expected(const std::string& file) {
   const ShellRun run = run_in_shell("check --json " + quoted(corpus(file)));
   INFO(file << ": " << run.out);
   CHECK(run.code == want["exit_code"]);
-  const auto j = nlohmann::json::parse(run.out);
+  const auto j = only_item(run.out);
   CHECK(j["valid"] == want["valid"]);
   CHECK(j["format"] == want["format"]);
   if (want["objects"].empty()) {
@@ -87,7 +89,7 @@ TEST_CASE("check objects: fabmesh's own mould 3MF is valid object by object", "[
 
   const ShellRun json = run_in_shell("check --json " + quoted(mould));
   CHECK(json.code == 0);
-  const auto j = nlohmann::json::parse(json.out);
+  const auto j = only_item(json.out);
   CHECK(j["valid"] == true);
   CHECK(j["format"] == "3MF");
   CHECK(j["units"] == "mm");
@@ -137,8 +139,7 @@ TEST_CASE("check objects: one invalid object makes the file invalid, the other s
   const ShellRun human = run_in_shell("check " + quoted(corpus("open-and-closed.3mf")));
   CHECK(human.out.find("  object 2 'open': INVALID (") != std::string::npos);
   CHECK(human.out.find("    - 3 boundary edges") != std::string::npos);
-  const auto j =
-      nlohmann::json::parse(run_in_shell("check --json " + quoted(corpus("open-and-closed.3mf"))).out);
+  const auto j = only_item(run_in_shell("check --json " + quoted(corpus("open-and-closed.3mf"))).out);
   CHECK(j["assembly"]["judged"] == nlohmann::json::array({0}));
 }
 

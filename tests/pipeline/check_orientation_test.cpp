@@ -15,11 +15,13 @@
 #include "io/mesh/stl.h"
 #include "tests/geometry/mesh/shapes.h"
 #include "tests/io/mesh/temp_dir.h"
+#include "tests/pipeline/json_item.h"
 #include "tests/pipeline/shell_run.h"
 
 using namespace fabmesh;
 using test::TempDir;
 
+using fabmesh::testing::only_item;
 using fabmesh::testing::quoted;
 using fabmesh::testing::run_in_shell;
 using fabmesh::testing::ShellRun;
@@ -44,7 +46,7 @@ std::pair<int, nlohmann::json> check_json(const TriangleSoup& soup) {
   const std::string path = dir.file("mesh.obj");
   write_obj(soup, path);
   const ShellRun run = run_in_shell("check --json " + quoted(path));
-  return {run.code, nlohmann::json::parse(run.out)};
+  return {run.code, only_item(run.out)};
 }
 
 std::set<std::string> kinds(const nlohmann::json& report) {
@@ -117,7 +119,7 @@ TEST_CASE("check: a torus and a single inside-out cube keep their verdicts",
   write_stl(test::torus(3.0, 1.0, 32, 16), dir.file("torus.stl"));
   const ShellRun torus = run_in_shell("check --json " + quoted(dir.file("torus.stl")));
   CHECK(torus.code == 0);
-  const auto t = nlohmann::json::parse(torus.out);
+  const auto t = only_item(torus.out);
   REQUIRE(t["component_shells"].size() == 1);
   CHECK(t["component_shells"][0]["faces"] == 1024);
   CHECK(t["component_shells"][0]["depth"] == 0);
@@ -165,7 +167,7 @@ TEST_CASE("check: the corpus of tests/data/check-corpus gets its expected verdic
     const ShellRun run = run_in_shell("check --json " + quoted(folder + file));
     const bool valid = entry["valid"];
     CHECK(run.code == (valid ? 0 : 1));
-    const auto j = nlohmann::json::parse(run.out);
+    const auto j = only_item(run.out);
     CHECK(j["valid"] == valid);
     std::set<std::string> expected;
     for (const auto& k : entry["defect_kinds"]) expected.insert(k.get<std::string>());

@@ -9,11 +9,13 @@
 #include "io/mesh/stl.h"
 #include "tests/geometry/mesh/shapes.h"
 #include "tests/io/mesh/temp_dir.h"
+#include "tests/pipeline/json_item.h"
 #include "tests/pipeline/shell_run.h"
 
 using namespace fabmesh;
 using test::TempDir;
 
+using fabmesh::testing::only_item;
 using fabmesh::testing::quoted;
 using fabmesh::testing::run_in_shell;
 using fabmesh::testing::ShellRun;
@@ -31,8 +33,7 @@ TEST_CASE("check: a valid STL exits 0 and reports what the weld merged", "[mesh]
 
   const ShellRun json = run_in_shell("check --json " + quoted(path));
   CHECK(json.code == 0);
-  const auto j = nlohmann::json::parse(json.out);
-  REQUIRE(j.is_object());
+  const auto j = only_item(json.out);
   for (const char* key :
        {"file", "vertices", "triangles", "components", "boundary_edges", "non_manifold_edges",
         "non_manifold_vertices", "degenerate_faces", "duplicate_faces", "self_intersecting",
@@ -57,7 +58,7 @@ TEST_CASE("check: an invalid mesh exits 1 and names its defects", "[mesh][check]
   CHECK(human.code == 1);
   CHECK(human.out.find("INVALID") != std::string::npos);
   CHECK(human.out.find("3 boundary edges") != std::string::npos);
-  const auto j = nlohmann::json::parse(run_in_shell("check --json " + quoted(dir.file("open.off"))).out);
+  const auto j = only_item(run_in_shell("check --json " + quoted(dir.file("open.off"))).out);
   CHECK(j["boundary_edges"] == 3);
   CHECK(j["valid"] == false);
   CHECK(j["genus"].is_null());

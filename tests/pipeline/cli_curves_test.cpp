@@ -23,7 +23,9 @@ std::string write_temp(const std::string& name, const std::string& text) {
 TEST_CASE("cli optimize --json: Example 4 strain lambdas", "[pipeline][cli]") {
   const CliResult r = run_fabmesh({"optimize", example("example4_profile.yaml"), "--json"});
   REQUIRE(r.code == 0);
-  const auto j = nlohmann::json::parse(r.out);
+  const auto j = only_item(r.out);  // one curve: one item, naming its design and curve
+  CHECK(j["design"] == example("example4_profile.yaml"));
+  CHECK(j["curve"] == "curve");
   CHECK(j["family"] == "quasi_bspline");
   CHECK(j["energy_kind"] == "strain");
   REQUIRE(j["lambdas"].size() == 3);
@@ -34,7 +36,7 @@ TEST_CASE("cli optimize --json: Example 4 strain lambdas", "[pipeline][cli]") {
 TEST_CASE("cli optimize --json: T-Bezier segments with lambda, mu, energy", "[pipeline][cli]") {
   const CliResult r = run_fabmesh({"optimize", example("tbezier_outline_g2.yaml"), "--json"});
   REQUIRE(r.code == 0);
-  const auto j = nlohmann::json::parse(r.out);
+  const auto j = only_item(r.out);
   CHECK(j["family"] == "tbezier");
   REQUIRE(j["segments"].size() >= 4);
   for (const auto& s : j["segments"]) {

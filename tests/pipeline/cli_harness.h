@@ -12,6 +12,7 @@
 #include "io/file.h"
 #include "pipeline/cli/commands.h"
 #include "pipeline/job.h"
+#include "tests/pipeline/json_item.h"
 
 namespace fabmesh::testing {
 

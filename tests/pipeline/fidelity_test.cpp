@@ -42,8 +42,8 @@ TEST_CASE("vessel run: a base as tall as the golden cup or taller is bad input a
   REQUIRE(run_cli({"run", example("vessel_golden_shell.yaml"), "-o", (dir / "out").string(), "--json"},
                   &out) == 0);
   const nlohmann::json j = nlohmann::json::parse(out).at(0);
-  CHECK(j["build"]["bbox_max"][2].get<double>() == Approx(6.134164).margin(1e-4));
-  CHECK(j["build"]["bbox_min"][2].get<double>() == 2.0);
+  CHECK(j["bounding_box"]["max"][2].get<double>() == Approx(6.134164).margin(1e-4));
+  CHECK(j["bounding_box"]["min"][2].get<double>() == 2.0);
   CHECK(j["build"]["min_clearance"].get<double>() == Approx(0.3).margin(1e-5));
 }
 

@@ -187,7 +187,7 @@ TEST_CASE("batch: variants the machine failed are recorded as environment and ru
       run_limited({"batch", manifest, "-o", out, "--json", "-q"}, kSeconds, kMemory, "", kSmallFiles);
   INFO(limited.describe());
   CHECK(limited.code == 5);
-  const nlohmann::json first = nlohmann::json::parse(limited.out);
+  const nlohmann::json first = only_item(limited.out);
   CHECK(first["environment"] == 2);
   CHECK(first["bad_input"] == 0);
   CHECK(first["exit_code"] == 5);
@@ -226,7 +226,7 @@ TEST_CASE("batch: a reused variant whose file changed but kept its size is built
   const LimitedRun rerun = run_limited({"batch", manifest, "-o", out, "--json", "-q"}, kSeconds, kMemory);
   INFO(rerun.describe());
   CHECK(rerun.code == 0);
-  const nlohmann::json again = nlohmann::json::parse(rerun.out);
+  const nlohmann::json again = only_item(rerun.out);
   const std::string& err = rerun.err;
   CHECK(again["ran"] == 1);
   CHECK(again["reused"] == 1);

@@ -291,6 +291,6 @@ TEST_CASE("check --weld-tolerance larger than the model ends within a bound on a
     REQUIRE_FALSE(r.timed_out);
     CHECK(r.code == 1);  // welded into degenerate or non-manifold triangles: a verdict, not a hang
     const nlohmann::json report = nlohmann::json::parse(r.out, nullptr, false);
-    CHECK(report.is_object());
+    CHECK(report.is_array());  // one item per file, whatever their number
   }
 }

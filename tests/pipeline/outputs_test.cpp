@@ -107,7 +107,7 @@ TEST_CASE("3mf: PrusaSlicer reads fabmesh's 3MF of a cm design at its size in mm
   CHECK(fs::file_size(dir / "cup.gcode") > 10000);
   // fabmesh check reads its own 3MF back, unit and all.
   REQUIRE(run_cli({"check", (dir / "cup.3mf").string(), "--json"}, &out) == 0);
-  const auto c = nlohmann::json::parse(out);
+  const auto c = only_item(out);
   CHECK(c["format"] == "3MF");
   CHECK(c["units"] == "mm");
   CHECK(c["valid"] == true);

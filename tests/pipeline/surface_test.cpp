@@ -196,7 +196,7 @@ TEST_CASE("surface designs: thicken chooses the shell's side, and the report say
     const nlohmann::json j = nlohmann::json::parse(out).at(0);
     CHECK(j["valid"] == true);
     CHECK(j["build"]["thicken"] == c.side);
-    CHECK(j["build"]["bbox_min"][2].get<double>() == Approx(c.z_min).margin(0.1));
+    CHECK(j["bounding_box"]["min"][2].get<double>() == Approx(c.z_min).margin(0.1));
     CHECK(j["max_deviation"].get<double>() <= 0.5);
   }
   write_file_atomically((dir / "bad.yaml").string(), edited_shell("thickness: 6\n", "thicken: sideways\n"));

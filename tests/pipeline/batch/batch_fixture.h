@@ -101,7 +101,7 @@ inline nlohmann::json batch_json(std::vector<std::string> args, int* code = null
   if (err) *err = r.err;
   INFO(r.out << r.err);
   REQUIRE_FALSE(r.out.empty());
-  return nlohmann::json::parse(r.out);
+  return only_item(r.out);
 }
 
 }  // namespace fabmesh::testing
