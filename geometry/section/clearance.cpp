@@ -148,21 +148,13 @@ struct Chunk {
   Vec2 lo, hi;  // bounding box of the chords, grown by the largest chord bound
 };
 
-double box_distance(const Chunk& a, const Chunk& b) {
-  const Vec2 gap = (a.lo - b.hi).cwiseMax(b.lo - a.hi).cwiseMax(Vec2::Zero());
+double box_distance(const Vec2& alo, const Vec2& ahi, const Vec2& blo, const Vec2& bhi) {
+  const Vec2 gap = (alo - bhi).cwiseMax(blo - ahi).cwiseMax(Vec2::Zero());
   return gap.norm();
 }
 
-}  // namespace
-
-Clearance exact_clearance(const std::vector<ArcPiece>& pieces, const ClearanceOptions& options) {
-  std::vector<Sub> subs;
-  subs.reserve(pieces.size());
-  for (const ArcPiece& p : pieces) {
-    const ChordBound& cb = p.arc->chord_bound();
-    subs.push_back(
-        make_sub(p.arc, p.s0, p.s1, p.arc->point(p.s0), p.arc->point(p.s1), cb.at(p.s0), cb.at(p.s1)));
-  }
+// Runs of up to kChunk consecutive pieces of one group, boxed.
+std::vector<Chunk> make_chunks(const std::vector<ArcPiece>& pieces, const std::vector<Sub>& subs) {
   std::vector<Chunk> chunks;
   for (std::size_t i = 0; i < pieces.size();) {
     constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -180,24 +172,135 @@ Clearance exact_clearance(const std::vector<ArcPiece>& pieces, const ClearanceOp
     chunks.push_back(c);
     i = c.last;
   }
-  struct ChunkPair {
-    double distance;
-    std::size_t a, b;
+  return chunks;
+}
+
+// A hierarchy of boxes over the chunks: each run of one group's consecutive
+// chunks (near each other along a curve) merged two by two up to a root; a
+// group may have several runs. Nodes [0, chunks) are the chunks themselves.
+class ChunkTree {
+ public:
+  static constexpr std::size_t kLeaf = std::numeric_limits<std::size_t>::max();
+  struct Node {
+    Vec2 lo, hi;
+    std::size_t left = kLeaf, right = kLeaf;  ///< children, or kLeaf for a chunk
+    int group = 0;
   };
-  std::vector<ChunkPair> pairs;
-  for (std::size_t a = 0; a < chunks.size(); ++a) {
-    for (std::size_t b = a + 1; b < chunks.size(); ++b) {
-      if (chunks[a].group != chunks[b].group) pairs.push_back({box_distance(chunks[a], chunks[b]), a, b});
+
+  explicit ChunkTree(const std::vector<Chunk>& chunks) {
+    for (const Chunk& c : chunks) nodes_.push_back({c.lo, c.hi, kLeaf, kLeaf, c.group});
+    for (std::size_t first = 0; first < chunks.size();) {
+      std::size_t last = first;
+      while (last < chunks.size() && chunks[last].group == chunks[first].group) ++last;
+      roots_.push_back(merge_run(first, last));
+      first = last;
     }
   }
-  std::sort(pairs.begin(), pairs.end(), [](const ChunkPair& x, const ChunkPair& y) {
-    return x.distance != y.distance ? x.distance < y.distance : (x.a != y.a ? x.a < y.a : x.b < y.b);
-  });
+  const Node& operator[](std::size_t i) const { return nodes_[i]; }
+  const std::vector<std::size_t>& roots() const { return roots_; }
+  bool leaf(std::size_t i) const { return nodes_[i].left == kLeaf; }
+  double distance(std::size_t a, std::size_t b) const {
+    return box_distance(nodes_[a].lo, nodes_[a].hi, nodes_[b].lo, nodes_[b].hi);
+  }
+  double extent(std::size_t i) const { return (nodes_[i].hi - nodes_[i].lo).squaredNorm(); }
+
+ private:
+  // The root over the chunks [first, last), merging neighbours level by level.
+  std::size_t merge_run(std::size_t first, std::size_t last) {
+    std::vector<std::size_t> level(last - first);
+    for (std::size_t i = 0; i < level.size(); ++i) level[i] = first + i;
+    while (level.size() > 1) {
+      std::vector<std::size_t> up;
+      for (std::size_t i = 0; i + 1 < level.size(); i += 2) {
+        const Node& l = nodes_[level[i]];
+        const Node& r = nodes_[level[i + 1]];
+        const Node parent{l.lo.cwiseMin(r.lo), l.hi.cwiseMax(r.hi), level[i], level[i + 1], l.group};
+        nodes_.push_back(parent);
+        up.push_back(nodes_.size() - 1);
+      }
+      if (level.size() % 2 == 1) up.push_back(level.back());
+      level = std::move(up);
+    }
+    return level.front();
+  }
+
+  std::vector<Node> nodes_;
+  std::vector<std::size_t> roots_;
+};
+
+// Pairs of chunks of different groups, nearest boxes first. A pair of nodes
+// is opened only when it comes first, and its children are never nearer
+// than it, so the chunk pairs come in order of box distance (ties by node
+// numbers: deterministic) while memory holds only the open frontier, not
+// every pair: a design's thousands of chunks no longer list millions.
+class NearestChunkPairs {
+ public:
+  explicit NearestChunkPairs(const ChunkTree& tree) : tree_(tree) {
+    const std::vector<std::size_t>& roots = tree.roots();
+    for (std::size_t i = 0; i < roots.size(); ++i) {
+      for (std::size_t j = i + 1; j < roots.size(); ++j) {
+        if (tree[roots[i]].group != tree[roots[j]].group) push(roots[i], roots[j]);
+      }
+    }
+  }
+
+  /// The next pair of chunks whose boxes are nearer than `bound`, or false
+  /// when there is none (then no later pair is nearer either).
+  bool next(double bound, std::size_t& a, std::size_t& b) {
+    while (!queue_.empty() && queue_.top().distance < bound) {
+      const NodePair p = queue_.top();
+      queue_.pop();
+      const bool leaf_a = tree_.leaf(p.a), leaf_b = tree_.leaf(p.b);
+      if (leaf_a && leaf_b) {
+        a = p.a;
+        b = p.b;
+        return true;
+      }
+      // Open the larger node (or the one that is not a chunk).
+      const bool open_a = !leaf_a && (leaf_b || tree_.extent(p.a) >= tree_.extent(p.b));
+      const std::size_t open = open_a ? p.a : p.b, other = open_a ? p.b : p.a;
+      for (const std::size_t child : {tree_[open].left, tree_[open].right}) {
+        if (tree_.distance(child, other) < bound) push(child, other);
+      }
+    }
+    return false;
+  }
+
+ private:
+  struct NodePair {
+    double distance;
+    std::size_t a, b;  // a < b
+  };
+  struct FartherLast {
+    bool operator()(const NodePair& x, const NodePair& y) const {
+      return x.distance != y.distance ? x.distance > y.distance : (x.a != y.a ? x.a > y.a : x.b > y.b);
+    }
+  };
+  void push(std::size_t a, std::size_t b) {
+    queue_.push({tree_.distance(a, b), std::min(a, b), std::max(a, b)});
+  }
+
+  const ChunkTree& tree_;
+  std::priority_queue<NodePair, std::vector<NodePair>, FartherLast> queue_;
+};
+
+}  // namespace
+
+Clearance exact_clearance(const std::vector<ArcPiece>& pieces, const ClearanceOptions& options) {
+  std::vector<Sub> subs;
+  subs.reserve(pieces.size());
+  for (const ArcPiece& p : pieces) {
+    const ChordBound& cb = p.arc->chord_bound();
+    subs.push_back(
+        make_sub(p.arc, p.s0, p.s1, p.arc->point(p.s0), p.arc->point(p.s1), cb.at(p.s0), cb.at(p.s1)));
+  }
+  const std::vector<Chunk> chunks = make_chunks(pieces, subs);
+  const ChunkTree tree(chunks);
+  NearestChunkPairs nearest(tree);
   Search search(options);
-  for (const ChunkPair& cp : pairs) {
-    if (cp.distance >= search.best().upper) break;
-    const Chunk& ca = chunks[cp.a];
-    const Chunk& cb = chunks[cp.b];
+  for (std::size_t a = 0, b = 0; nearest.next(search.best().upper, a, b);) {
+    const Chunk& ca = chunks[a];
+    const Chunk& cb = chunks[b];
     for (std::size_t i = ca.first; i < ca.last; ++i) {
       for (std::size_t j = cb.first; j < cb.last; ++j) search.push(subs[i], subs[j], ca.group, cb.group);
     }
