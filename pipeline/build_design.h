@@ -2,8 +2,8 @@
 // The builders of the design kinds: design in, validated mesh out, no I/O.
 // Each mesh builder validates its mesh with validate_built (validate_built.h)
 // as soon as it is made, with the proofs of its construction.
-// One overload of `build` per DesignBody alternative (build_vessel.cpp,
-// build_countertop.cpp, build_surface.cpp, build_curve_design.cpp);
+// One overload of `build` per DesignBody alternative (build_vessel_design.cpp,
+// build_countertop_design.cpp, build_surface_design.cpp, build_curve_design.cpp);
 // build_design dispatches with std::visit and no fallback, so a kind
 // without a builder does not compile.
 

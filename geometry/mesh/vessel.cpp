@@ -9,7 +9,7 @@
 #include "geometry/core/budget.h"
 #include "geometry/core/errors.h"
 #include "geometry/mesh/revolve.h"
-#include "geometry/mesh/revolve_clearance.h"
+#include "geometry/mesh/revolution_margin.h"
 #include "geometry/sampling/sample_curve.h"
 
 namespace fabmesh {

@@ -9,7 +9,7 @@
 
 #include "geometry/curves/composite.h"
 #include "geometry/sampling/sample_curve.h"
-#include "geometry/section/clearance.h"
+#include "geometry/section/curve_clearance.h"
 
 namespace fabmesh {
 

@@ -10,7 +10,7 @@
 
 #include "geometry/core/errors.h"
 #include "geometry/sampling/sample_curve.h"
-#include "geometry/section/clearance.h"
+#include "geometry/section/curve_clearance.h"
 #include "geometry/section/simple_polygon.h"
 
 namespace fabmesh {

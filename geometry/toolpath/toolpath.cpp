@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "geometry/core/errors.h"
-#include "geometry/toolpath/clearance.h"
+#include "geometry/toolpath/path_clearance.h"
 #include "geometry/toolpath/tabs.h"
 
 namespace fabmesh {

@@ -58,7 +58,8 @@ std::vector<std::string> code_names(const std::string& text) {
     const std::size_t close = text.find('`', open + 1);
     if (close == std::string::npos) break;
     const std::string span = text.substr(open + 1, close - open - 1);
-    if (!span.empty() && span.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789_.") == std::string::npos)
+    if (!span.empty() &&
+        span.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789_.") == std::string::npos)
       names.push_back(span);
     open = close + 1;
   }
@@ -123,12 +124,14 @@ KindSet kinds_named(const std::string& cell) {
 
 }  // namespace
 
-TEST_CASE("docs: every key run --json prints is documented in reports.md, for every kind", "[pipeline][docs]") {
+TEST_CASE("docs: every key run --json prints is documented in reports.md, for every kind",
+          "[pipeline][docs]") {
   std::set<std::string> documented = table_keys("reports.md", "## `fabmesh run --json`");
   documented.merge(table_keys("reports.md", "### Validation facts"));
   std::set<std::string> seen;
-  for (const std::string& design : {"vessel_golden_solid.yaml", "countertop_cnc.yaml", "surface_basin_shell.yaml",
-                                    "example4_profile.yaml", "mould_golden.yaml"}) {
+  for (const std::string& design :
+       {"vessel_golden_solid.yaml", "countertop_cnc.yaml", "surface_basin_shell.yaml",
+        "example4_profile.yaml", "mould_golden.yaml"}) {
     const nlohmann::json item = run_report({example(design)});
     for (const std::string& key : keys_of(item)) {
       INFO(design << ": " << key);
@@ -158,7 +161,8 @@ TEST_CASE("docs: every key check --json prints is documented in reports.md", "[p
     const CliResult r = run_fabmesh({"check", "--json", file.path().string()});
     const nlohmann::json item = only_item(r.out);
     std::vector<nlohmann::json> reports = {item};
-    if (item.contains("objects")) reports.insert(reports.end(), item["objects"].begin(), item["objects"].end());
+    if (item.contains("objects"))
+      reports.insert(reports.end(), item["objects"].begin(), item["objects"].end());
     for (const nlohmann::json& report : reports) {
       for (const std::string& key : keys_of(report)) {
         INFO(file.path().filename().string() << ": " << key);
@@ -191,8 +195,9 @@ TEST_CASE("docs: a failed input is an item of the JSON array, for every command"
 
   // Before any input has an item: one item for the command.
   const std::filesystem::path dir = fresh_dir("reports_doc_clash");
-  const CliResult clash = run_fabmesh({"run", "--json", "-q", "-o", dir.string() + "/",
-                                       example("vessel_golden_solid.yaml"), example("vessel_golden_solid.yaml")});
+  const CliResult clash =
+      run_fabmesh({"run", "--json", "-q", "-o", dir.string() + "/", example("vessel_golden_solid.yaml"),
+                   example("vessel_golden_solid.yaml")});
   CHECK(clash.code == 2);
   const nlohmann::json k = only_item(clash.out);
   CHECK(k["command"] == "run");
@@ -200,7 +205,8 @@ TEST_CASE("docs: a failed input is an item of the JSON array, for every command"
   CHECK_THAT(k["error"].get<std::string>(), Catch::Contains("both named"));
   for (const std::vector<std::string>& args :
        {std::vector<std::string>{"optimize", "--json", "/nonexistent/design.yaml"},
-        std::vector<std::string>{"batch", "--json", "/nonexistent/manifest.yaml", "-o", dir.string() + "/b"}}) {
+        std::vector<std::string>{"batch", "--json", "/nonexistent/manifest.yaml", "-o",
+                                 dir.string() + "/b"}}) {
     const CliResult failed = run_fabmesh(args);
     INFO(args.front());
     CHECK(failed.code == 2);

@@ -11,7 +11,7 @@
 #include <set>
 
 #include "geometry/core/errors.h"
-#include "geometry/mesh/revolve_clearance.h"
+#include "geometry/mesh/revolution_margin.h"
 #include "geometry/validation/detail/topology.h"
 #include "geometry/validation/validate.h"
 #include "tests/geometry/validation/moved_from.h"

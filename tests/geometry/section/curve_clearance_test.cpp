@@ -1,4 +1,4 @@
-#include "geometry/section/clearance.h"
+#include "geometry/section/curve_clearance.h"
 
 #include <catch2/catch.hpp>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "geometry/toolpath/clearance.h"
+#include "geometry/toolpath/path_clearance.h"
 
 #include <algorithm>
 

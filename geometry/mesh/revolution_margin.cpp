@@ -1,4 +1,4 @@
-#include "geometry/mesh/revolve_clearance.h"
+#include "geometry/mesh/revolution_margin.h"
 
 #include <algorithm>
 #include <array>
