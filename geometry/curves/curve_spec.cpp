@@ -142,88 +142,106 @@ const char* to_string(FairMode f) {
   return "unknown";
 }
 
-CompositeCurve construct_curve(const CurveSpec& spec) {
-  if (spec.family == CurveFamily::QuasiBSpline) return construct_quasi_bspline(spec);
-  const std::size_t n = spec.segments.size();
-  if (n == 0) throw GeometryError(spec.key, "a curve needs at least one segment");
+namespace {
 
-  // Unknowns: every control point of every segment, one row each; x and y solved together.
-  std::vector<int> offset(n + 1, 0);
-  std::vector<Segment> bases;
-  for (std::size_t i = 0; i < n; ++i) {
-    bases.push_back(basis_segment(spec.segments[i]));
-    offset[i + 1] = offset[i] + control_count(spec.segments[i].kind);
-  }
-  const int unknowns = offset[n];
+// The linear system of a composite curve's control points: one unknown row
+// (x and y solved together) per control point of every segment, in segment
+// order; given points are identity rows, computed ones the join conditions.
+struct JoinSystem {
+  std::vector<int> offset;     ///< the first unknown of each segment (and the total at the end)
+  std::vector<Segment> bases;  ///< each segment's kind, shape parameters and (for arcs) exact points
   std::vector<Eigen::Triplet<double>> entries;
-  Eigen::MatrixX2d rhs = Eigen::MatrixX2d::Zero(unknowns, 2);
+  Eigen::MatrixX2d rhs;
+};
 
-  for (std::size_t i = 0; i < n; ++i) {
-    const SegmentSpec& s = spec.segments[i];
-    const int count = control_count(s.kind);
-    if (s.kind == SegmentKind::EllipseArc) {
-      if (s.join) throw segment_error(s, i, "an ellipse arc cannot be joined; it is exact");
-      for (int j = 0; j < 4; ++j) {
-        entries.emplace_back(offset[i] + j, offset[i] + j, 1.0);
-        rhs.row(offset[i] + j) = bases[i].control_points()[j].transpose();
-      }
-      continue;
+// Rows k < computed of segment i: its k-th derivative at its start equals
+// the previous segment's at its end (scaled by the join's factors).
+void add_join_rows(const CurveSpec& spec, std::size_t i, int computed, JoinSystem& sys) {
+  const std::size_t n = spec.segments.size();
+  const SegmentSpec& s = spec.segments[i];
+  const std::size_t p = (i + n - 1) % n;
+  const JoinFactors f = s.join ? join_factors(s, i) : JoinFactors{1.0, 1.0, 0.0};
+  // Each derivative order k of the previous segment's end, as weights on its points (or constants).
+  auto add_prev = [&](int row, int k, double factor) {
+    if (spec.segments[p].kind == SegmentKind::EllipseArc) {
+      const CurveJet jet = sys.bases[p].jet(1.0);
+      sys.rhs.row(row) += factor * jet[k].transpose() / std::pow(sys.bases[p].native_scale(), k);
+      return;
     }
-    const int computed = computed_count(spec, i);
-    const int given = static_cast<int>(s.points.size());
-    if (given != count - computed) {
-      const std::string how =
-          s.join ? fmt::format("after a {} join", to_string(s.join->continuity))
-                 : (computed > 0 ? "continuing the previous segment" : "as an explicit segment");
-      throw segment_error(s, i,
-                          fmt::format("a {} segment {} takes {} point(s), got {}", to_string(s.kind), how,
-                                      count - computed, given));
+    const auto w = native_weights(sys.bases[p], 1.0, k);
+    for (int l = 0; l < control_count(spec.segments[p].kind); ++l) {
+      if (w[l] != 0.0) sys.entries.emplace_back(row, sys.offset[p] + l, -factor * w[l]);
     }
-    for (int j = computed; j < count; ++j) {
-      entries.emplace_back(offset[i] + j, offset[i] + j, 1.0);
-      rhs.row(offset[i] + j) = s.points[j - computed].transpose();
+  };
+  for (int k = 0; k < computed; ++k) {
+    const int row = sys.offset[i] + k;
+    const auto wn = native_weights(sys.bases[i], 0.0, k);
+    for (int l = 0; l < control_count(s.kind); ++l) {
+      if (wn[l] != 0.0) sys.entries.emplace_back(row, sys.offset[i] + l, wn[l]);
     }
-    if (computed == 0) continue;
-
-    const std::size_t p = (i + n - 1) % n;
-    const JoinFactors f = s.join ? join_factors(s, i) : JoinFactors{1.0, 1.0, 0.0};
-    // Each derivative order k of the previous segment's end, as weights on its points (or constants).
-    auto add_prev = [&](int row, int k, double factor) {
-      if (spec.segments[p].kind == SegmentKind::EllipseArc) {
-        const CurveJet jet = bases[p].jet(1.0);
-        rhs.row(row) += factor * jet[k].transpose() / std::pow(bases[p].native_scale(), k);
-        return;
-      }
-      const auto w = native_weights(bases[p], 1.0, k);
-      for (int l = 0; l < control_count(spec.segments[p].kind); ++l) {
-        if (w[l] != 0.0) entries.emplace_back(row, offset[p] + l, -factor * w[l]);
-      }
-    };
-    for (int k = 0; k < computed; ++k) {
-      const int row = offset[i] + k;
-      const auto wn = native_weights(bases[i], 0.0, k);
-      for (int l = 0; l < count; ++l) {
-        if (wn[l] != 0.0) entries.emplace_back(row, offset[i] + l, wn[l]);
-      }
-      if (k == 0) add_prev(row, 0, 1.0);
-      if (k == 1) add_prev(row, 1, f.c1);
-      if (k == 2) {
-        add_prev(row, 2, f.c2);
-        add_prev(row, 1, f.c21);
-      }
+    if (k == 0) add_prev(row, 0, 1.0);
+    if (k == 1) add_prev(row, 1, f.c1);
+    if (k == 2) {
+      add_prev(row, 2, f.c2);
+      add_prev(row, 1, f.c21);
     }
   }
+}
 
+// The rows of segment i: its given points, then its join conditions.
+void add_segment_rows(const CurveSpec& spec, std::size_t i, JoinSystem& sys) {
+  const SegmentSpec& s = spec.segments[i];
+  const int count = control_count(s.kind);
+  if (s.kind == SegmentKind::EllipseArc) {
+    if (s.join) throw segment_error(s, i, "an ellipse arc cannot be joined; it is exact");
+    for (int j = 0; j < 4; ++j) {
+      sys.entries.emplace_back(sys.offset[i] + j, sys.offset[i] + j, 1.0);
+      sys.rhs.row(sys.offset[i] + j) = sys.bases[i].control_points()[j].transpose();
+    }
+    return;
+  }
+  const int computed = computed_count(spec, i);
+  const int given = static_cast<int>(s.points.size());
+  if (given != count - computed) {
+    const std::string how =
+        s.join ? fmt::format("after a {} join", to_string(s.join->continuity))
+               : (computed > 0 ? "continuing the previous segment" : "as an explicit segment");
+    throw segment_error(s, i,
+                        fmt::format("a {} segment {} takes {} point(s), got {}", to_string(s.kind), how,
+                                    count - computed, given));
+  }
+  for (int j = computed; j < count; ++j) {
+    sys.entries.emplace_back(sys.offset[i] + j, sys.offset[i] + j, 1.0);
+    sys.rhs.row(sys.offset[i] + j) = s.points[j - computed].transpose();
+  }
+  if (computed > 0) add_join_rows(spec, i, computed, sys);
+}
+
+JoinSystem join_system(const CurveSpec& spec) {
+  const std::size_t n = spec.segments.size();
+  JoinSystem sys;
+  sys.offset.assign(n + 1, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    sys.bases.push_back(basis_segment(spec.segments[i]));
+    sys.offset[i + 1] = sys.offset[i] + control_count(spec.segments[i].kind);
+  }
+  sys.rhs = Eigen::MatrixX2d::Zero(sys.offset[n], 2);
+  for (std::size_t i = 0; i < n; ++i) add_segment_rows(spec, i, sys);
+  return sys;
+}
+
+// The control points. Unknowns are ordered by segment, and a join reads only
+// its own segment's earlier points and its predecessor's: the system is lower
+// triangular (forward substitution, linear time) unless the first segment of
+// a closed curve joins the last, which closes a cycle that needs a full solve.
+Eigen::MatrixX2d solve_join_system(const CurveSpec& spec, const JoinSystem& sys) {
+  const int unknowns = sys.offset.back();
   Eigen::SparseMatrix<double> a(unknowns, unknowns);
-  a.setFromTriplets(entries.begin(), entries.end());
-  // Unknowns are ordered by segment, and a join reads only its own segment's
-  // earlier points and its predecessor's: the system is lower triangular
-  // (forward substitution, linear time) unless the first segment of a closed
-  // curve joins the last, which closes a cycle that needs a full solve.
+  a.setFromTriplets(sys.entries.begin(), sys.entries.end());
   const bool cyclic = spec.closed && computed_count(spec, 0) > 0;
   Eigen::MatrixX2d x;
   if (!cyclic) {
-    x = a.triangularView<Eigen::Lower>().solve(rhs);
+    x = a.triangularView<Eigen::Lower>().solve(sys.rhs);
   } else {
     Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
     lu.compute(a);
@@ -232,20 +250,31 @@ CompositeCurve construct_curve(const CurveSpec& spec) {
                           "the join conditions cannot be satisfied together (the closing join is singular "
                           "for these shape parameters)");
     }
-    x = lu.solve(rhs);
+    x = lu.solve(sys.rhs);
   }
   if (!x.allFinite()) throw GeometryError(spec.key, "the join conditions have no finite solution");
+  return x;
+}
 
+}  // namespace
+
+CompositeCurve construct_curve(const CurveSpec& spec) {
+  if (spec.family == CurveFamily::QuasiBSpline) return construct_quasi_bspline(spec);
+  const std::size_t n = spec.segments.size();
+  if (n == 0) throw GeometryError(spec.key, "a curve needs at least one segment");
+  const JoinSystem sys = join_system(spec);
+  const Eigen::MatrixX2d x = solve_join_system(spec, sys);
   std::vector<Segment> segments;
   for (std::size_t i = 0; i < n; ++i) {
     if (spec.segments[i].kind == SegmentKind::EllipseArc) {
-      segments.push_back(bases[i]);
+      segments.push_back(sys.bases[i]);
       continue;
     }
     std::array<Vec2, 4> pts{};
-    for (int j = 0; j < control_count(spec.segments[i].kind); ++j) pts[j] = x.row(offset[i] + j).transpose();
+    for (int j = 0; j < control_count(spec.segments[i].kind); ++j)
+      pts[j] = x.row(sys.offset[i] + j).transpose();
     try {
-      segments.push_back(bases[i].with_points(pts));
+      segments.push_back(sys.bases[i].with_points(pts));
     } catch (const GeometryError& e) {
       throw segment_error(spec.segments[i], i, e.what());
     }

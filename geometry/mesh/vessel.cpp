@@ -8,8 +8,8 @@
 
 #include "geometry/core/budget.h"
 #include "geometry/core/errors.h"
-#include "geometry/mesh/revolve.h"
 #include "geometry/mesh/revolution_margin.h"
+#include "geometry/mesh/revolve.h"
 #include "geometry/sampling/sample_curve.h"
 
 namespace fabmesh {

@@ -417,7 +417,9 @@ void for_each_cell_bound(
   }
 }
 
-SurfaceTessellation tessellate(const PatchNetwork& network, const TessellateOptions& options) {
+namespace {
+
+void require_tessellation_options(const PatchNetwork& network, const TessellateOptions& options) {
   require_positive("tolerance", options.tolerance);
   require_in_range("shell_from", options.shell_from, -1e12, 1e12);
   require_in_range("shell_to", options.shell_to, -1e12, 1e12);
@@ -434,12 +436,23 @@ SurfaceTessellation tessellate(const PatchNetwork& network, const TessellateOpti
             estimate);
       },
       "raise max_triangles or the tolerance");
+}
+
+// Each patch's s and t breakpoints, and the deviation the grid is proven within.
+struct RefinedGrid {
+  std::vector<std::vector<double>> s_breaks, t_breaks;
+  double achieved = 0.0;
+};
+
+// Splits the cells of every patch until each is within the tolerance. The
+// breakpoints live per class of directions that shared borders tie together
+// (in the class root's orientation), so patches sharing a border split it alike.
+RefinedGrid refine_grid(const PatchNetwork& network, const TessellateOptions& options) {
   const std::size_t np = network.patches.size();
   DirectionClasses classes(2 * np);
   for (const SharedBorder& b : network.borders) {
     classes.unite(slot(b.a, is_u_side(b.side_a)), slot(b.b, is_u_side(b.side_b)), b.reversed ? 1 : 0);
   }
-  // Breakpoints per class root, in the root's orientation.
   std::vector<std::vector<double>> breaks(2 * np);
   for (std::size_t c = 0; c < 2 * np; ++c) {
     const auto n = static_cast<std::size_t>(options.initial_segments);
@@ -494,15 +507,20 @@ SurfaceTessellation tessellate(const PatchNetwork& network, const TessellateOpti
         [&] { return fmt::format("the mesh needs more than {} triangles", count); },
         "raise max_triangles or the tolerance");
   }
-
-  SurfaceTessellation out;
-  out.max_deviation = achieved;
-  std::vector<std::pair<std::size_t, std::size_t>> sizes;
+  RefinedGrid grid;
+  grid.achieved = achieved;
   for (std::size_t p = 0; p < np; ++p) {
-    out.s_breaks.push_back(slot_breaks(slot(p, false)));
-    out.t_breaks.push_back(slot_breaks(slot(p, true)));
-    sizes.emplace_back(out.s_breaks[p].size() - 1, out.t_breaks[p].size() - 1);
+    grid.s_breaks.push_back(slot_breaks(slot(p, false)));
+    grid.t_breaks.push_back(slot_breaks(slot(p, true)));
   }
+  return grid;
+}
+
+using GridSizes = std::vector<std::pair<std::size_t, std::size_t>>;
+
+// The grid vertices that are one mesh vertex: along shared borders, and
+// along a side collapsed to a point (a pole).
+VertexIds shared_vertices(const PatchNetwork& network, const GridSizes& sizes) {
   VertexIds ids(sizes);
   for (const SharedBorder& b : network.borders) {
     const auto [nsa, nta] = sizes[b.a];
@@ -515,7 +533,7 @@ SurfaceTessellation tessellate(const PatchNetwork& network, const TessellateOpti
     }
   }
   const double eps = 1e-12 * network.size;
-  for (std::size_t p = 0; p < np; ++p) {
+  for (std::size_t p = 0; p < sizes.size(); ++p) {
     const auto [ns, nt] = sizes[p];
     for (PatchSide side : {PatchSide::UMin, PatchSide::UMax, PatchSide::VMin, PatchSide::VMax}) {
       if (!collapsed(network.patches[p], side, eps)) continue;
@@ -527,10 +545,17 @@ SurfaceTessellation tessellate(const PatchNetwork& network, const TessellateOpti
       }
     }
   }
-  // Mesh vertices: one per class of grid vertices, placed by the first patch that has it.
+  return ids;
+}
+
+// Adds one mesh vertex per class of grid vertices, placed by the first patch
+// that has it, with the average of the patches' normals there; returns each
+// class root's vertex.
+std::vector<int> place_vertices(const PatchNetwork& network, const GridSizes& sizes, VertexIds& ids,
+                                SurfaceTessellation& out) {
   std::vector<int> handle(ids.size(), -1);
   std::vector<Vec3> normal_sum;
-  for (std::size_t p = 0; p < np; ++p) {
+  for (std::size_t p = 0; p < sizes.size(); ++p) {
     const auto [ns, nt] = sizes[p];
     for (std::size_t a = 0; a <= ns; ++a) {
       for (std::size_t b = 0; b <= nt; ++b) {
@@ -547,8 +572,15 @@ SurfaceTessellation tessellate(const PatchNetwork& network, const TessellateOpti
   }
   out.normals.reserve(normal_sum.size());
   for (const Vec3& n : normal_sum) out.normals.push_back(n.norm() > 0.0 ? Vec3(n.normalized()) : n);
+  return handle;
+}
+
+// Two triangles per grid cell, split along the shorter diagonal (one where a
+// side collapsed); returns how many faces the mesh refused as non-manifold.
+std::size_t connect_cells(const GridSizes& sizes, VertexIds& ids, const std::vector<int>& handle,
+                          SurfaceTessellation& out) {
   std::size_t refused = 0;
-  for (std::size_t p = 0; p < np; ++p) {
+  for (std::size_t p = 0; p < sizes.size(); ++p) {
     const auto [ns, nt] = sizes[p];
     auto vh = [&](std::size_t a, std::size_t b) {
       return Mesh::VertexHandle(handle[ids.root(ids.id(p, a, b))]);
@@ -574,6 +606,24 @@ SurfaceTessellation tessellate(const PatchNetwork& network, const TessellateOpti
       }
     }
   }
+  return refused;
+}
+
+}  // namespace
+
+SurfaceTessellation tessellate(const PatchNetwork& network, const TessellateOptions& options) {
+  require_tessellation_options(network, options);
+  RefinedGrid grid = refine_grid(network, options);
+  SurfaceTessellation out;
+  out.max_deviation = grid.achieved;
+  out.s_breaks = std::move(grid.s_breaks);
+  out.t_breaks = std::move(grid.t_breaks);
+  GridSizes sizes;
+  for (std::size_t p = 0; p < network.patches.size(); ++p)
+    sizes.emplace_back(out.s_breaks[p].size() - 1, out.t_breaks[p].size() - 1);
+  VertexIds ids = shared_vertices(network, sizes);
+  const std::vector<int> handle = place_vertices(network, sizes, ids, out);
+  const std::size_t refused = connect_cells(sizes, ids, handle, out);
   if (refused > 0) {
     throw GeometryError("surface",
                         fmt::format("{} triangles of the surface could not be connected manifoldly: "
