@@ -113,6 +113,7 @@ BuiltMesh build(const CountertopDesign& design, const BuildContext& context) {
                              design.cnc->decimals};
     context.watch.lap("toolpath");
     const Toolpath& t = *out.toolpath;
+    append_shares(out.tolerance_shares, "cnc: ", t.tolerance_shares);
     out.facts["cnc"] = {{"tool_diameter", cnc.tool_diameter},
                         {"passes", t.pass_z.size()},
                         {"moves", t.moves.size()},

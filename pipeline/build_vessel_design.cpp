@@ -87,6 +87,7 @@ void add_mould(const VesselDesign& design, const CompositeCurve& fired_profile, 
                      {"self_intersection", to_string(v.self_intersection)}});
   }
   out.max_deviation = std::max(out.max_deviation, mould.max_deviation);
+  append_shares(out.tolerance_shares, "mould: ", mould.tolerance_shares);
   out.facts["mould"] = {{"parts", parts},
                         {"slip_volume", mould.cavity_volume},
                         {"plaster_volume", mould.plaster_volume},
@@ -140,6 +141,7 @@ BuiltMesh build(const VesselDesign& design, const BuildContext& context) {
   out.checks.embedding = std::move(vessel.proof);    // the simple section's revolution
   validate_built(out, context);
   out.max_deviation = vessel.max_deviation;
+  append_shares(out.tolerance_shares, "", vessel.tolerance_shares);
   out.facts = {{"angular_segments", vessel.segments},
                {"section_loops", vessel.section.loops.size()},
                {"section_points", section_points},

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "geometry/core/stage_timer.h"
+#include "geometry/core/tolerance_budget.h"
 #include "geometry/fairing/build_curve.h"
 #include "geometry/mesh/soup.h"
 #include "geometry/sampling/cut_loop.h"
@@ -52,7 +53,10 @@ struct BuiltMesh {
   ValidationReport validation;  ///< validate_built(soup, checks)
   MeshPurpose purpose = MeshPurpose::Fabrication;
   double max_deviation = 0.0;  ///< proven bound of the mesh (or the curves) against the exact shape
-  nlohmann::json facts;        ///< builder facts for the report, e.g. {"angular_segments": 128}
+  /// How the geometry builders divided the build's tolerance, each stage
+  /// named by what it builds ("section", "mould: revolution", "cnc: G-code rounding").
+  std::vector<ToleranceShare> tolerance_shares;
+  nlohmann::json facts;  ///< builder facts for the report, e.g. {"angular_segments": 128}
   /// Drawing of the design's curves at true size: a countertop's cutting
   /// outline (outline first, then holes), a vessel's profile template, a curve.
   std::vector<CutLoop> cutting;
@@ -76,5 +80,14 @@ struct BuildContext {
 /// The smaller of this machine's physical memory and the process's address
 /// space limit (RLIMIT_AS), bytes.
 std::size_t process_memory_limit();
+
+/// Appends `shares` to `to`, each stage named after `prefix` ("mould: section").
+inline void append_shares(std::vector<ToleranceShare>& to, const std::string& prefix,
+                          const std::vector<ToleranceShare>& shares) {
+  for (ToleranceShare s : shares) {
+    s.stage = prefix + s.stage;
+    to.push_back(std::move(s));
+  }
+}
 
 }  // namespace fabmesh

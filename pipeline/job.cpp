@@ -118,6 +118,7 @@ JobReport build_and_encode(const Design& design, const JobOptions& options, cons
   const BuiltMesh built = build_within_budget(design, context, formats, export_scale);
   report.build_tolerance = context.tolerance;
   report.max_deviation = built.max_deviation;
+  report.tolerance_shares = built.tolerance_shares;
   report.build = built.facts;
   report.validation = built.validation;
   report.purpose = built.purpose;

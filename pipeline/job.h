@@ -69,6 +69,7 @@ struct JobReport {
   /// writing the outputs: a tenth, or what their number formats need when
   /// that is more), model units.
   double build_tolerance = 0.0;
+  std::vector<ToleranceShare> tolerance_shares;  ///< how the builders divided build_tolerance (BuiltMesh)
   Vec3 bbox_min = Vec3::Zero(), bbox_max = Vec3::Zero();  ///< of the mesh, model units
   nlohmann::json build;  ///< builder facts, e.g. {"angular_segments": 128, "section_points": 90}
   StageTimings timings_ms;

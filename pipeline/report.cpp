@@ -90,6 +90,15 @@ nlohmann::ordered_json to_json(const JobReport& r) {
   j["tolerance"] = r.tolerance;
   j["max_deviation"] = r.max_deviation;
   j["tolerance_split"] = {{"build", r.build_tolerance}, {"outputs", r.tolerance - r.build_tolerance}};
+  if (!r.tolerance_shares.empty()) {
+    nlohmann::ordered_json stages = nlohmann::ordered_json::array();
+    for (const ToleranceShare& s : r.tolerance_shares) {
+      nlohmann::ordered_json stage = {{"stage", s.stage}, {"given", s.given}};
+      stage["used"] = s.done ? nlohmann::ordered_json(s.used) : nlohmann::ordered_json(nullptr);
+      stages.push_back(std::move(stage));
+    }
+    j["tolerance_split"]["stages"] = std::move(stages);
+  }
   j["bounding_box"] = bounding_box_json(r.bbox_min, r.bbox_max, r.units);
   j["outputs"] = r.outputs;
   j["files"] = nlohmann::ordered_json::array();

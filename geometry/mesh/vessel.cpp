@@ -54,6 +54,10 @@ VesselMesh build_vessel(const CompositeCurve& profile, const VesselOptions& opti
   so.wall = options.wall;
   so.base = options.base;
   so.rim = options.rim;
+  // The section's share covers its sampling (half the tolerance) and the
+  // move of points near the axis off it (kAxisClearance of it).
+  ToleranceBudget budget(options.tolerance);
+  budget.take("section", 0.5 + kAxisClearance);
   so.tolerance = 0.5 * options.tolerance;
   so.min_clearance = options.tolerance;
   so.axis_clearance = kAxisClearance * options.tolerance;
@@ -61,8 +65,9 @@ VesselMesh build_vessel(const CompositeCurve& profile, const VesselOptions& opti
   so.name_key = options.name_key;
   require_budget(profile, options, so.tolerance);
   VesselSection section = build_vessel_section(profile, so);
+  budget.use("section", section.max_deviation);
 
-  const double angular_tolerance = options.tolerance - section.max_deviation;
+  const double angular_tolerance = budget.take_rest("revolution");
   const int segments = angular_segments(section.max_radius, angular_tolerance);
   const std::size_t triangles = revolved_triangle_count(section.loops, segments);
   require_within_budget(
@@ -81,13 +86,18 @@ VesselMesh build_vessel(const CompositeCurve& profile, const VesselOptions& opti
   RevolveOptions ro;
   ro.segments = segments;
   const double sagitta = chord_sagitta(section.max_radius, angular_step(segments));
+  budget.use("revolution", sagitta);
   const double max_deviation = section.max_deviation + sagitta;
   EmbeddingProof proof{section.proof + fmt::format("; revolved in {} uniform angular steps", segments),
                        revolution_margin(section.loops, segments)};
   RevolvedSoup revolved = revolve(section.loops, ro);
-  return VesselMesh{
-      std::move(revolved.soup), std::move(revolved.topology), std::move(section), segments, max_deviation,
-      std::move(proof)};
+  return VesselMesh{std::move(revolved.soup),
+                    std::move(revolved.topology),
+                    std::move(section),
+                    segments,
+                    max_deviation,
+                    budget.shares(),
+                    std::move(proof)};
 }
 
 }  // namespace fabmesh

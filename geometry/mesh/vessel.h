@@ -4,8 +4,10 @@
 #include <cstddef>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "geometry/core/limits.h"
+#include "geometry/core/tolerance_budget.h"
 #include "geometry/curves/composite.h"
 #include "geometry/mesh/soup.h"
 #include "geometry/section/vessel_section.h"
@@ -38,6 +40,9 @@ struct VesselMesh {
   VesselSection section;
   int segments = 0;            ///< angular segments
   double max_deviation = 0.0;  ///< proven: section deviation + angular sagitta at the largest radius
+  /// How the tolerance was divided: the section (half for sampling, a tenth
+  /// for the axis clearance) and the revolution (what the section left).
+  std::vector<ToleranceShare> tolerance_shares;
   /// Why the mesh is free of self-intersections without a 3D test (always
   /// given: a simple section revolves into an embedded surface).
   EmbeddingProof proof;

@@ -116,15 +116,19 @@ Mould build_mould(const CompositeCurve& profile, const MouldOptions& o) {
   check_mould_options(o);
   const double factor = shrinkage_factor(o.shrinkage);
   const CompositeCurve master = scale_curve(profile, factor);
-  m.section = build_mould_section(master, o, 0.5 * o.tolerance);
+  ToleranceBudget tolerance(o.tolerance);
+  m.section = build_mould_section(master, o, tolerance.take("section", 0.5));
   const MouldSection& s = m.section;
+  tolerance.use("section", s.max_deviation);
   m.sizes = sizes_of(s, factor);
 
   // Angular step: sagitta of the largest revolved radius within what the profile sampling left.
   const double revolved_radius = o.block == BlockShape::Box ? s.cavity_radius : s.block_radius;
-  const int turn = angular_segments(revolved_radius, o.tolerance - s.max_deviation);
+  const int turn = angular_segments(revolved_radius, tolerance.take_rest("revolution"));
   m.max_angular_step = angular_step(turn);
   const double sagitta = chord_sagitta(revolved_radius, m.max_angular_step);
+  tolerance.use("revolution", sagitta);
+  m.tolerance_shares = tolerance.shares();
   m.max_deviation = std::max(s.max_deviation + sagitta, 0.0);
   m.keys = place_keys(s, o, sagitta);
   if (!m.keys.centres.empty()) {

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "geometry/core/stage_timer.h"
+#include "geometry/core/tolerance_budget.h"
 #include "geometry/curves/composite.h"
 #include "geometry/mould/keys.h"
 #include "geometry/mould/mould_options.h"
@@ -48,9 +49,13 @@ struct Mould {
   /// exact planes), so the bound is max_deviation x (exact cavity lateral area
   /// + a cylinder block's side + the keys' hemispheres).
   double volume_error_bound = 0.0;
-  double max_deviation = 0.0;       ///< proven: largest distance between a part's mesh and its exact surface
-  double max_angular_step = 0.0;    ///< radians
-  std::vector<Undercut> undercuts;  ///< empty unless options.allow_undercuts (otherwise they throw)
+  double max_deviation = 0.0;  ///< proven: largest distance between a part's mesh and its exact surface
+  /// How the tolerance was divided among the cavity and block surfaces: the
+  /// section (half) and the revolution (what the section left). The keys'
+  /// hemispheres are surfaces of their own, each within half the tolerance.
+  std::vector<ToleranceShare> tolerance_shares;
+  double max_angular_step = 0.0;      ///< radians
+  std::vector<Undercut> undercuts;    ///< empty unless options.allow_undercuts (otherwise they throw)
   std::vector<std::string> warnings;  ///< release problems accepted by allow_undercuts
   std::string release_proof;          ///< why every part can be withdrawn (or what cannot)
   StageTimings timings_ms;

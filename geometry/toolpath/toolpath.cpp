@@ -14,11 +14,15 @@ namespace {
 
 std::string at(const Vec2& p) { return fmt::format("({:.6g}, {:.6g})", p.x(), p.y()); }
 
-// Tolerance budget (header): chains t/2, boundary samples t/10, arc chords t/20.
+// The tolerance's shares (header): chains t/2, boundary samples t/10, arc chords t/20.
 struct Budget {
   double chain, boundary, sagitta;
 };
-Budget budget(double t) { return {0.5 * t, 0.1 * t, 0.05 * t}; }
+Budget budget(ToleranceBudget& t) {
+  const double chain = t.take("tool path chords", 0.5);
+  const double boundary = t.take("boundary samples", 0.1);
+  return {chain, boundary, t.take("arcs as chords in the clearance check", 0.05)};
+}
 
 ToolMove move_along(const PathPiece& p, double z, MoveKind kind, std::size_t loop) {
   ToolMove m;
@@ -187,8 +191,10 @@ Toolpath plan_toolpath(const CompositeCurve& outline, const std::vector<RegionHo
     loops.push_back({&holes[i].curve, holes[i].label, false, region.reversed[i + 1]});
   }
   const double r = 0.5 * o.tool_diameter;
-  const Budget b = budget(o.tolerance);
+  ToleranceBudget tolerance(o.tolerance);
+  const Budget b = budget(tolerance);
   const SampledBoundary sb = sample_boundary(loops, b.boundary, o.max_points);
+  tolerance.use("boundary samples", sb.deviation);
   const BoundaryIndex index(sb.edges, r);
 
   Toolpath tp;
@@ -210,6 +216,11 @@ Toolpath plan_toolpath(const CompositeCurve& outline, const std::vector<RegionHo
     tp.deviation = std::max(tp.deviation, lp.deviation);
     tp.loops.push_back(std::move(lp));
   }
+  tolerance.use("tool path chords", tp.deviation);
+  // The clearance check measures arcs by their chords within this share: bounded, not measured.
+  tolerance.use("arcs as chords in the clearance check", b.sagitta);
+  tp.rounding_allowance = tolerance.take("G-code rounding", 0.05);
+  tp.tolerance_shares = tolerance.shares();
   tp.pass_z = pass_depths(o);
   tp.tab_z = -(o.depth - o.tabs.height);
   for (std::size_t i = 0; i < tp.loops.size(); ++i) append_loop_moves(tp, i);

@@ -8,6 +8,7 @@
 #include <limits>
 #include <vector>
 
+#include "geometry/core/tolerance_budget.h"
 #include "geometry/section/region.h"
 #include "geometry/toolpath/cnc_options.h"
 #include "geometry/toolpath/loop_path.h"
@@ -55,6 +56,10 @@ struct Toolpath {
   /// (dog-bones excepted) and the exact part boundary: the tool cuts into the
   /// part by at most tool radius - clearance (<= options.tolerance).
   double clearance = 0.0;
+  /// The share of options.tolerance the program's number rounding may use (encode_gcode).
+  double rounding_allowance = 0.0;
+  /// How options.tolerance was divided (see plan_toolpath).
+  std::vector<ToleranceShare> tolerance_shares;
 };
 
 /// Plans the cut of the region bounded by `outline` and `holes` (as
@@ -68,7 +73,8 @@ struct Toolpath {
 /// circle of length lead_in); where it would cut into the part it is halved,
 /// twice, then left out (the plunge then lands on the path).
 /// Tolerance budget (cnc.tolerance = t): chords of chains t/2, boundary
-/// samples for the checks t/10, arcs as chords in the clearance check t/20.
+/// samples for the checks t/10, arcs as chords in the clearance check t/20,
+/// the G-code's rounding t/20 (Toolpath::rounding_allowance).
 /// \throw RangeError, GeometryError, BudgetError
 Toolpath plan_toolpath(const CompositeCurve& outline, const std::vector<RegionHole>& holes,
                        const CncOptions& options);

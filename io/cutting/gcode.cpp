@@ -209,8 +209,9 @@ std::string encode_gcode(const Toolpath& path, const GcodeOptions& o) {
       millimetres_per_unit(o.model_units) / millimetres_per_unit(o.units);  // model -> program
   int decimals = o.decimals;
   if (decimals == 0) {
-    // Rounding moves a point by at most sqrt(2)/2 10^-d program units: keep that <= tolerance / 20.
-    const double allowed = path.options.tolerance / 20.0 * scale;
+    // Rounding moves a point by at most sqrt(2)/2 10^-d program units: keep
+    // that within the toolpath's rounding share (a twentieth of the tolerance).
+    const double allowed = path.rounding_allowance * scale;
     decimals = std::clamp(static_cast<int>(std::ceil(std::log10(std::sqrt(0.5) / allowed))), 3, 6);
   }
   return Encoder(path, scale, decimals).run(o);
