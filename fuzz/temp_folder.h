@@ -28,7 +28,8 @@ inline std::string make_temp_folder(const char* name) {
 
 /// Removes the folder `folder()` names when the process exits normally.
 /// Call it after the static that holds the path is constructed, so that the
-/// handler runs before the path's destructor.
+/// handler runs before the path's destructor. A process that crashes (a
+/// finding, each run of -minimize_crash) leaves its folder behind.
 template <const std::string& (*folder)()>
 void remove_at_exit() {
   std::atexit([] {
