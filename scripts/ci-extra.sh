@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Extra CI, beyond the README's test command:
-#  (a) fuzz every mesh reader and the design reader (design YAML, points CSV)
-#      with libFuzzer (clang, ASan+UBSan) for a fixed time on the seeds in
-#      tests/data/fuzz-seeds/; any finding fails;
+#  (a) fuzz every mesh reader, the design reader (design YAML, points CSV)
+#      and the batch readers (manifests, ledgers) with libFuzzer (clang,
+#      ASan+UBSan) for a fixed time on the seeds in tests/data/fuzz-seeds/;
+#      any finding fails;
 #  (b) build everything with FABMESH_SANITIZE=ON (ASan+UBSan) and run ctest.
 # Usage: scripts/ci-extra.sh [fuzz|sanitize|all]   (default all)
 # Environment: FUZZ_SECONDS (per reader, default 20), JOBS (default 2).
@@ -12,7 +13,7 @@ cd "$(dirname "$0")/.."
 what="${1:-all}"
 FUZZ_SECONDS="${FUZZ_SECONDS:-20}"
 JOBS="${JOBS:-2}"
-readers=(stl obj ply off draco 3mf gltf design csv)
+readers=(stl obj ply off draco 3mf gltf design csv manifest ledger)
 
 fuzz() {
   local dir=build-fuzz

@@ -114,6 +114,15 @@ const KeyGroup& range_keys() {
   return keys;
 }
 
+// Throws parse_override's InputError unless `path` is an override path.
+// parse_override splits at the first '=', so it reads "p=" + "=0" as path "p":
+// a '=' in `path` is refused here.
+void require_override_path(const std::string& path) {
+  if (path.find('=') != std::string::npos)
+    throw InputError(fmt::format("-D {}=0: unexpected '=' in path '{}'", path, path));
+  parse_override(path + "=0");
+}
+
 // A YAML value as the text of an override (flow style, quoted where needed).
 std::string yaml_text(const YAML::Node& node) {
   YAML::Emitter out;
@@ -196,7 +205,7 @@ std::string ManifestReader::parameter(const YAML::Node& key, const std::string& 
                                       const std::string& form) {
   std::string path = f_.text(key, field);
   try {
-    parse_override(path + "=0");
+    require_override_path(path);
   } catch (const InputError& e) {
     // parse_override's message starts with "-D path=0: "; keep what follows.
     const std::string what = e.what();
@@ -258,7 +267,7 @@ Form ManifestReader::read_table(const YAML::Node& node) {
   for (const CsvCell& h : table.header) {
     const std::string at = fmt::format("{}:{}:{}", path, h.line, h.column);
     try {
-      parse_override(h.text + "=0");
+      require_override_path(h.text);
     } catch (const InputError& e) {
       const std::string what = e.what();
       throw FileError(path, h.line, h.column,

@@ -3,6 +3,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cstdint>
+#include <limits>
+#include <type_traits>
 
 #include "geometry/core/errors.h"
 #include "pipeline/batch/csv_cell.h"
@@ -35,10 +38,37 @@ double timing(const StageTimings& timings, const std::string& stage) {
   return 0.0;
 }
 
+// A whole number of type T, as row_json writes one. nlohmann's get<T> casts
+// any number, and a number beyond T's range (1e300 as an int) is undefined
+// behaviour: a damaged row must be bad input instead.
+template <class T>
+T whole_number(const nlohmann::ordered_json& v, const char* key) {
+  static_assert(std::is_integral_v<T> && !std::is_same_v<T, bool>);
+  using Limits = std::numeric_limits<T>;
+  const auto max = static_cast<std::uint64_t>(Limits::max());
+  bool fits = false;
+  if (v.is_number_unsigned()) {
+    fits = v.get<std::uint64_t>() <= max;
+  } else if (v.is_number_integer()) {
+    const auto x = v.get<std::int64_t>();
+    fits = x >= 0 ? static_cast<std::uint64_t>(x) <= max
+                  : Limits::is_signed && x >= static_cast<std::int64_t>(Limits::min());
+  }
+  if (!fits) {
+    throw InputError(fmt::format("summary row: field '{}' is {}, not a whole number in [{}, {}]", key,
+                                 v.dump(), Limits::min(), Limits::max()));
+  }
+  return v.get<T>();
+}
+
 template <class T>
 T field(const nlohmann::ordered_json& j, const char* key) {
   if (!j.contains(key)) throw InputError(fmt::format("summary row: missing field '{}'", key));
-  return j.at(key).get<T>();
+  if constexpr (std::is_integral_v<T> && !std::is_same_v<T, bool>) {
+    return whole_number<T>(j.at(key), key);
+  } else {
+    return j.at(key).get<T>();
+  }
 }
 
 }  // namespace
@@ -124,7 +154,7 @@ BatchRow row_from_json(const nlohmann::ordered_json& j) {
       r.overrides.emplace_back(path, value.get<std::string>());
     r.key = field<std::string>(j, "key");
     r.status = parse_variant_status(field<std::string>(j, "status"));
-    r.exit_code = j.at("exit_code").is_null() ? 0 : j.at("exit_code").get<int>();
+    r.exit_code = j.at("exit_code").is_null() ? 0 : field<int>(j, "exit_code");
     r.message = field<std::string>(j, "message");
     if (j.contains("kind")) {
       RowMesh m;

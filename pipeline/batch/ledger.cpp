@@ -14,6 +14,7 @@
 #include <regex>
 
 #include "geometry/core/errors.h"
+#include "io/design/manifest.h"
 #include "io/file.h"
 #include "pipeline/batch/output_links.h"
 #include "pipeline/batch/sha256.h"
@@ -71,19 +72,27 @@ std::string header_json(const LedgerHeader& h) {
   return j.dump();
 }
 
+// The whole number `key` of `j` when it is in [0, max]. Not get<std::size_t>:
+// it casts any number, and 1e300 beyond size_t's range is undefined behaviour.
+std::optional<std::size_t> count_field(const nlohmann::json& j, const char* key, std::size_t max) {
+  const auto it = j.find(key);
+  if (it == j.end() || !it->is_number_unsigned() || it->get<std::uint64_t>() > max) return std::nullopt;
+  return it->get<std::size_t>();
+}
+
+// The header, or nothing when `json` is not one fabmesh writes: a merge sizes
+// its per-shard tallies by the shard count, so that is bounded as --shard's is.
 std::optional<LedgerHeader> parse_header(std::string_view json) {
   const nlohmann::json j = nlohmann::json::parse(json, nullptr, false);
   if (j.is_discarded() || !j.is_object() || !j.contains("fabmesh_batch_ledger")) return std::nullopt;
-  try {
-    LedgerHeader h;
-    h.plan = j.at("plan").get<std::string>();
-    h.variants = j.at("variants").get<std::size_t>();
-    h.shard = {j.at("shard").get<std::size_t>(), j.at("shards").get<std::size_t>()};
-    if (h.shard.count == 0 || h.shard.index >= h.shard.count) return std::nullopt;
-    return h;
-  } catch (const nlohmann::json::exception&) {
+  const auto plan = j.find("plan");
+  const std::optional<std::size_t> variants = count_field(j, "variants", kMaxBatchVariants);
+  const std::optional<std::size_t> index = count_field(j, "shard", kMaxShards);
+  const std::optional<std::size_t> shards = count_field(j, "shards", kMaxShards);
+  if (plan == j.end() || !plan->is_string() || !variants || !index || !shards || *shards == 0 ||
+      *index >= *shards)
     return std::nullopt;
-  }
+  return LedgerHeader{plan->get<std::string>(), *variants, {*index, *shards}};
 }
 
 // The longest line a ledger can hold: the longest row, its tab, check and newline.

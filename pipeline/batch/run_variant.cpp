@@ -6,6 +6,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <filesystem>
@@ -103,6 +104,22 @@ std::optional<std::string> file_differs(const std::string& path, std::uint64_t b
   return differs;
 }
 
+// True when `j` has no `key`, or one that `is` (a type test) holds for:
+// json::value(key, default) throws for a key of another type.
+bool has_type(const nlohmann::json& j, const char* key, bool (nlohmann::json::*is)() const noexcept) {
+  const auto it = j.find(key);
+  return it == j.end() || ((*it).*is)();
+}
+
+// A file of a row as row_json writes it: an object whose path and digest are
+// text and whose size is a whole number. A row that passed the ledger's check
+// can still hold anything else (edited by hand, or by another program).
+bool is_file_entry(const nlohmann::json& f) {
+  return f.is_object() && has_type(f, "path", &nlohmann::json::is_string) &&
+         has_type(f, "sha256", &nlohmann::json::is_string) &&
+         has_type(f, "bytes", &nlohmann::json::is_number_unsigned);
+}
+
 }  // namespace
 
 std::string variant_folder(const std::string& out_dir, const std::string& name) {
@@ -180,10 +197,14 @@ BatchRow run_variant(const BatchManifest& manifest, std::size_t index, const Pla
 
 bool row_stands(std::string_view row_json, const std::string& out_dir, std::string* why) {
   const nlohmann::json j = nlohmann::json::parse(row_json, nullptr, false);
-  if (j.is_discarded()) return false;
+  if (!j.is_object() || !has_type(j, "status", &nlohmann::json::is_string)) return false;
   const std::string status = j.value("status", "");
   if (status == "invalid" || status == "bad input") return true;
   if (status != "ok" || !j.contains("files")) return false;
+  if (!j.at("files").is_array() || !std::all_of(j.at("files").begin(), j.at("files").end(), is_file_entry)) {
+    if (why != nullptr) *why = "its row lists its files in a form fabmesh does not write: built again";
+    return false;
+  }
   for (const auto& f : j.at("files")) {
     const std::string relative = f.value("path", "");
     const std::string path = (fs::path(out_dir) / relative).string();

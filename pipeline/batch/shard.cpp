@@ -17,8 +17,8 @@ Shard parse_shard(const std::string& text) {
     throw InputError(fmt::format("--shard {}: expected I/N, e.g. 0/8 (shard I of N, counted from 0)", text));
   }
   const Shard s{std::stoul(i), std::stoul(n)};
-  if (s.count == 0 || s.count > 1000000 || s.index >= s.count) {
-    throw InputError(fmt::format("--shard {}: I must be in [0, N) and N in [1, 1000000]", text));
+  if (s.count == 0 || s.count > kMaxShards || s.index >= s.count) {
+    throw InputError(fmt::format("--shard {}: I must be in [0, N) and N in [1, {}]", text, kMaxShards));
   }
   return s;
 }

@@ -7,7 +7,10 @@
 
 namespace fabmesh {
 
-/// Shard `index` of `count` (0 <= index < count).
+/// The most shards a batch may have (N of --shard I/N).
+inline constexpr std::size_t kMaxShards = 1000000;
+
+/// Shard `index` of `count` (0 <= index < count <= kMaxShards).
 struct Shard {
   std::size_t index = 0;
   std::size_t count = 1;
@@ -21,7 +24,7 @@ struct Shard {
   std::string tag() const { return std::to_string(index) + "-of-" + std::to_string(count); }
 };
 
-/// Parses "I/N" (0 <= I < N <= 1000000). \throw InputError naming the text
+/// Parses "I/N" (0 <= I < N <= kMaxShards). \throw InputError naming the text
 Shard parse_shard(const std::string& text);
 
 }  // namespace fabmesh

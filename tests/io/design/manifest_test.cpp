@@ -194,6 +194,14 @@ TEST_CASE("manifest: unknown keys, bad paths and bad ranges are refused with the
   CHECK_THAT(error_of("twice", "design: cup.yaml\nset: {body.wall: 0.2}\ngrid: {body.wall: [0.3]}\n"),
              Catch::Contains("also set by `set`"));
   CHECK_THAT(error_of("kind", "design: cup.yaml\ngrid: {kind: [curve]}\n"), Catch::Contains("kind"));
+  // parse_override splits "p=" + "=0" at the first '=': a key with '=' is still no override path
+  // (found by fuzz_manifest: `set: {w=: }` was accepted).
+  CHECK_THAT(error_of("equals", "design: cup.yaml\nset:\n w=:\n"),
+             Catch::Contains("m.yaml:3:2") && Catch::Contains("unexpected '=' in path 'w='"));
+  CHECK_THAT(error_of("equals_grid", "design: cup.yaml\ngrid: {'body.wall=0.5': [0.2]}\n"),
+             Catch::Contains("unexpected '=' in path 'body.wall=0.5'"));
+  CHECK_THAT(error_of("equals_table", "design: cup.yaml\ntable: t.csv\n", {{"t.csv", "body.wall=,x\n1,2\n"}}),
+             Catch::Contains("t.csv:1:1") && Catch::Contains("unexpected '=' in path 'body.wall='"));
   CHECK_THAT(error_of("nobase", "design: none.yaml\ngrid: {body.wall: [0.3]}\n"),
              Catch::Contains("none.yaml"));
 }

@@ -4,10 +4,12 @@
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <string>
 
 #include "geometry/core/errors.h"
+#include "pipeline/batch/merge.h"
 #include "pipeline/batch/progress.h"
 #include "pipeline/batch/sha256.h"
 #include "pipeline/batch/shard.h"
@@ -67,6 +69,48 @@ TEST_CASE("batch: a reopened ledger cuts its torn end and keeps its rows, one wr
   CHECK_FALSE(files[0].current);
   CHECK(files[0].header->plan == "p1");
   CHECK(files[1].header->plan == "p2");
+}
+
+TEST_CASE("batch: a ledger header with counts fabmesh never writes is no header", "[pipeline][batch]") {
+  const fs::path dir = fabmesh::testing::fresh_dir("batch/ledger_header");
+  const auto header_of = [&](const std::string& json) {
+    std::ofstream(dir / "ledger-0-of-1.jsonl", std::ios::binary | std::ios::trunc) << ledger_line(json);
+    const std::vector<LedgerFile> files = list_ledgers(dir.string());
+    REQUIRE(files.size() == 1);
+    return files[0].header;
+  };
+  const std::string head = R"({"fabmesh_batch_ledger":1,"plan":"p",)";
+  const std::optional<LedgerHeader> good = header_of(head + R"("variants":4,"shard":1,"shards":3})");
+  REQUIRE(good);
+  CHECK(good->plan == "p");
+  CHECK(good->variants == 4);
+  CHECK(good->shard.index == 1);
+  CHECK(good->shard.count == 3);
+  CHECK(header_of(head + R"("variants":1000000,"shard":999999,"shards":1000000})"));
+  // Found by fuzz_ledger: a count of 1e300 was undefined behaviour (a float
+  // converted to a size out of range), and a merge sized its per-shard tallies
+  // by "shards" (1e14 of them: out of memory).
+  for (const char* counts :
+       {R"("variants":4,"shard":0,"shards":100000000000000})", R"("variants":4,"shard":0,"shards":1000001})",
+        R"("variants":1e300,"shard":0,"shards":1})", R"("variants":4,"shard":-1,"shards":3})",
+        R"("variants":4,"shard":0,"shards":2.0})", R"("variants":4,"shard":"0","shards":1})",
+        R"("variants":4,"shard":3,"shards":3})", R"("variants":1000001,"shard":0,"shards":1})"}) {
+    INFO(counts);
+    CHECK_FALSE(header_of(head + counts));
+  }
+  CHECK_FALSE(header_of(R"({"fabmesh_batch_ledger":1,"plan":5,"variants":4,"shard":0,"shards":1})"));
+}
+
+TEST_CASE("batch: a merge of a ledger whose header counts 1e14 shards finds no ledger", "[pipeline][batch]") {
+  // Found by fuzz_ledger: the merge's per-shard tallies were one vector of that many entries.
+  const fs::path out = fabmesh::testing::fresh_dir("batch/merge_shards");
+  const fs::path folder = out / ".batch";
+  fs::create_directories(folder);
+  std::ofstream(folder / "plan-d.json")
+      << R"({"fabmesh_batch_plan":1,"digest":"d","manifest":"m.yaml","parameters":[],"variants":[]})";
+  std::ofstream(folder / "ledger-0-of-1.jsonl") << ledger_line(
+      R"({"fabmesh_batch_ledger":1,"plan":"d","variants":0,"shard":0,"shards":100000000000000})");
+  CHECK_THROWS_WITH(merge_batch(out.string()), Catch::Contains("no batch ledger here"));
 }
 
 TEST_CASE("batch: shards split the variants by index modulo their count", "[pipeline][batch]") {
