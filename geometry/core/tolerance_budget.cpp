@@ -28,11 +28,12 @@ double ToleranceBudget::committed() const {
 
 double ToleranceBudget::take(std::string_view stage, double fraction) {
   if (!(fraction > 0.0 && fraction <= 1.0))
-    throw std::logic_error(fmt::format("tolerance share of {}: fraction {} is outside (0, 1]", stage, fraction));
+    throw std::logic_error(
+        fmt::format("tolerance share of {}: fraction {} is outside (0, 1]", stage, fraction));
   const double given = fraction * total_;
   if (committed() + given > total_ * (1.0 + kRounding)) {
-    throw std::logic_error(fmt::format("tolerance budget: {} takes {} but only {} of {} is left", stage, given,
-                                       total_ - committed(), total_));
+    throw std::logic_error(fmt::format("tolerance budget: {} takes {} but only {} of {} is left", stage,
+                                       given, total_ - committed(), total_));
   }
   shares_.push_back({std::string(stage), given, 0.0, false});
   return given;

@@ -195,6 +195,19 @@ BatchRow run_variant(const BatchManifest& manifest, std::size_t index, const Pla
   return row;
 }
 
+namespace {
+
+// Whether `relative` names a file inside the batch folder as fabmesh writes
+// them: a relative path of plain names (no "..", ".", or empty ones).
+bool inside_batch_folder(const std::string& relative) {
+  const fs::path path(relative);
+  if (relative.empty() || path.is_absolute() || relative.find('\0') != std::string::npos) return false;
+  return std::none_of(path.begin(), path.end(),
+                      [](const fs::path& part) { return part.empty() || part == ".." || part == "."; });
+}
+
+}  // namespace
+
 bool row_stands(std::string_view row_json, const std::string& out_dir, std::string* why) {
   const nlohmann::json j = nlohmann::json::parse(row_json, nullptr, false);
   if (!j.is_object() || !has_type(j, "status", &nlohmann::json::is_string)) return false;
@@ -207,6 +220,12 @@ bool row_stands(std::string_view row_json, const std::string& out_dir, std::stri
   }
   for (const auto& f : j.at("files")) {
     const std::string relative = f.value("path", "");
+    if (!inside_batch_folder(relative)) {
+      // A planted or damaged ledger must not make a rerun read outside DIR.
+      if (why != nullptr)
+        *why = fmt::format("its row names a file outside the batch folder ({}): built again", relative);
+      return false;
+    }
     const std::string path = (fs::path(out_dir) / relative).string();
     const std::optional<std::string> changed =
         file_differs(path, f.value("bytes", std::uint64_t{0}), f.value("sha256", ""));

@@ -53,3 +53,21 @@ TEST_CASE("batch: a row stands when its files are as recorded, and a damaged row
     CHECK_FALSE(row_stands(row, dir.string()));
   }
 }
+
+TEST_CASE("batch: a row naming a file outside the batch folder does not stand, and nothing is read there",
+          "[pipeline][batch]") {
+  const fs::path dir = fabmesh::testing::fresh_dir("batch/row_outside");
+  fs::create_directories(dir / "out");
+  // A file outside DIR whose size and digest the planted row records: were
+  // it read, the row would stand and a rerun would trust it.
+  std::ofstream(dir / "secret.txt", std::ios::binary) << "solid";
+  for (const std::string& path :
+       {(dir / "secret.txt").string(), std::string("../secret.txt"), std::string("cup/../../secret.txt"),
+        std::string("./cup.stl"), std::string("")}) {
+    INFO(path);
+    const nlohmann::json file = {{"path", path}, {"bytes", 5}, {"sha256", sha256_hex("solid")}};
+    std::string why;
+    CHECK_FALSE(row_stands(ok_row(nlohmann::json::array({file})), (dir / "out").string(), &why));
+    CHECK_THAT(why, Catch::Contains("outside the batch folder"));
+  }
+}
