@@ -134,7 +134,7 @@ void require_no_neck(const std::vector<Loop>& loops, double tolerance) {
     if (!neck) continue;
     throw GeometryError(near(l.key, neck->b),
                         fmt::format("{} comes within {:.6g} of itself ({} near {}, {} near {}), closer than "
-                                    "the tolerance {:.6g}: its two sides nearly touch there",
+                                    "the {:.6g} the mesh is built within: its two sides nearly touch there",
                                     l.label, neck->distance, edge_name(l, neck->first), at(neck->a),
                                     edge_name(l, neck->second), at(neck->b), tolerance));
   }
@@ -165,7 +165,7 @@ void require_clearance(const std::vector<Loop>& loops, double tolerance, Region2
   if (c.upper < tolerance) {
     throw GeometryError(near(b.key, pb),
                         fmt::format("{} comes within {:.6g} of {} ({} near {}, {} near {}), closer than "
-                                    "the tolerance {}{}",
+                                    "the {:.6g} the mesh is built within{}",
                                     b.label, c.upper, a.label, b.label, at(pb), a.label, at(pa), tolerance,
                                     c.lower == 0.0 ? " (the exact curves meet)" : ""));
   }

@@ -194,9 +194,11 @@ void check_clearance(const CompositeCurve& profile, const std::vector<CurveParam
                 ? fmt::format("the exact inner surface meets the outer one ({}): the wall is too thick "
                               "for the profile there",
                               where)
-                : fmt::format("the exact outer and inner surfaces come within {:.6g} of each other ({}), "
-                              "closer than the tolerance {}: the shell would be thinner than that there",
-                              c.upper, where, required)));
+                : fmt::format(
+                      "the exact outer and inner surfaces come within {:.6g} of each other ({}), "
+                      "closer than the {:.6g} the mesh is built within: the shell would be thinner than that "
+                      "there",
+                      c.upper, where, required)));
   }
   section.min_clearance = c.lower;
   section.clearance_where = where;

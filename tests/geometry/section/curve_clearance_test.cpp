@@ -80,7 +80,7 @@ TEST_CASE(
     CHECK(e.location().point[0] == Approx(400 + gap).margin(0.01));
     CHECK_THAT(std::string(e.what()), Catch::Contains("holes[1] (ellipse) comes within 0.3") &&
                                           Catch::Contains("holes[0] (ellipse)") &&
-                                          Catch::Contains("closer than the tolerance 0.5"));
+                                          Catch::Contains("closer than the 0.5 the mesh is built within"));
   }
   // Farther than the tolerance: accepted, with the exact clearance reported.
   const std::vector<RegionHole> apart{{circle({300, 300}, 100), "holes[0] (ellipse)", ""},
