@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "geometry/mesh/halfedge_mesh.h"
 #include "geometry/mesh/revolve.h"
 #include "geometry/mesh/soup.h"
 #include "io/mesh/stl.h"

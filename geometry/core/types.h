@@ -3,7 +3,6 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
-#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <vector>
 
 namespace fabmesh {
@@ -23,14 +22,5 @@ struct Polyline2 {
   /// curve it samples (both ways), model units.
   double max_deviation = 0.0;
 };
-
-/// OpenMesh traits: double precision points, no per-element attributes by default.
-struct MeshTraits : public OpenMesh::DefaultTraits {
-  using Point = OpenMesh::Vec3d;
-  using Normal = OpenMesh::Vec3d;
-};
-
-/// The one triangle-mesh type of fabmesh: shared vertices, halfedge connectivity.
-using Mesh = OpenMesh::TriMesh_ArrayKernelT<MeshTraits>;
 
 }  // namespace fabmesh

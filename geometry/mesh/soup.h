@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "geometry/core/types.h"
+#include "geometry/mesh/halfedge_mesh.h"
 
 namespace fabmesh {
 

@@ -7,6 +7,7 @@
 
 #include "geometry/core/limits.h"
 #include "geometry/core/types.h"
+#include "geometry/mesh/halfedge_mesh.h"
 #include "geometry/surfaces/cell_bound.h"
 #include "geometry/surfaces/patch_network.h"
 

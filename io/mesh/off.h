@@ -5,6 +5,7 @@
 #include <string_view>
 
 #include "geometry/core/types.h"
+#include "geometry/mesh/halfedge_mesh.h"
 #include "geometry/mesh/soup.h"
 
 namespace fabmesh {
