@@ -74,12 +74,7 @@ std::string make_batch_folder() {
 }
 
 // This process's batch folder, made on first use, removed at exit.
-const std::string& batch_folder() {
-  static const std::string dir = make_batch_folder();
-  static const bool removing = (fabmesh::fuzz::remove_at_exit<batch_folder>(), true);
-  (void)removing;
-  return dir;
-}
+const std::string& batch_folder() { return fabmesh::fuzz::process_folder<make_batch_folder>(); }
 
 std::string ledger_folder() { return fabmesh::ledger_folder(batch_folder()); }
 

@@ -80,12 +80,7 @@ std::string make_fixture() {
 }
 
 // This process's fixture folder, made on first use, removed at exit.
-const std::string& fixture() {
-  static const std::string dir = make_fixture();
-  static const bool removing = (fabmesh::fuzz::remove_at_exit<fixture>(), true);
-  (void)removing;
-  return dir;
-}
+const std::string& fixture() { return fabmesh::fuzz::process_folder<make_fixture>(); }
 
 bool ends_with(const std::string& text, std::string_view end) {
   return text.size() >= end.size() && text.compare(text.size() - end.size(), end.size(), end) == 0;

@@ -26,16 +26,20 @@ inline std::string make_temp_folder(const char* name) {
   return dir;
 }
 
-/// Removes the folder `folder()` names when the process exits normally.
-/// Call it after the static that holds the path is constructed, so that the
-/// handler runs before the path's destructor. A process that crashes (a
-/// finding, each run of -minimize_crash) leaves its folder behind.
-template <const std::string& (*folder)()>
-void remove_at_exit() {
-  std::atexit([] {
-    std::error_code ec;
-    std::filesystem::remove_all(folder(), ec);
-  });
+/// This process's folder, made by `make` on first use and removed when the
+/// process exits normally (the handler is registered after the path is
+/// constructed, so it runs before the path's destructor). A process that
+/// crashes (a finding, each run of -minimize_crash) leaves its folder behind.
+template <std::string (*make)()>
+const std::string& process_folder() {
+  static const std::string dir = make();
+  static const bool removing = (std::atexit([] {
+                                  std::error_code ec;
+                                  std::filesystem::remove_all(dir, ec);
+                                }),
+                                true);
+  (void)removing;
+  return dir;
 }
 
 }  // namespace fabmesh::fuzz
