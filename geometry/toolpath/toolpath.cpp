@@ -217,8 +217,8 @@ Toolpath plan_toolpath(const CompositeCurve& outline, const std::vector<RegionHo
     tp.loops.push_back(std::move(lp));
   }
   tolerance.use("tool path chords", tp.deviation);
-  // The clearance check measures arcs by their chords within this share: bounded, not measured.
-  tolerance.use("arcs as chords in the clearance check", b.sagitta);
+  // The arcs-as-chords share is a bound the clearance check allows for, not
+  // a measured use: it stays open (reported without `used`), as G-code rounding.
   tp.rounding_allowance = tolerance.take("G-code rounding", 0.05);
   tp.tolerance_shares = tolerance.shares();
   tp.pass_z = pass_depths(o);
