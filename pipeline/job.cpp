@@ -116,6 +116,7 @@ JobReport build_and_encode(const Design& design, const JobOptions& options, cons
   BuildContext context{common, (1.0 - kOutputShare) * common.tolerance, wants_cutting, watch,
                        process_memory_limit()};
   const BuiltMesh built = build_within_budget(design, context, formats, export_scale);
+  if (options.on_built) options.on_built(built);
   report.build_tolerance = context.tolerance;
   report.max_deviation = built.max_deviation;
   report.tolerance_shares = built.tolerance_shares;

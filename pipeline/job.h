@@ -2,6 +2,7 @@
 // One design through the stages: build and validate (no I/O), encode every
 // output, then write them all or none.
 
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -31,6 +32,10 @@ struct JobOptions {
   /// Told after each stage of the job ("curve", "build", "validate", "encode_stl",
   /// "write", ...), from the thread that runs it: progress of a long run.
   StageObserver on_stage;
+  /// Told the design's mesh, curves and validation as soon as they are built
+  /// and validated, before the job judges them or encodes anything (the
+  /// library hands them to its caller, valid or not).
+  std::function<void(const BuiltMesh&)> on_built;
 };
 
 /// One file a job wrote.

@@ -11,6 +11,13 @@ Design load_design(const std::string& path, const std::vector<Override>& overrid
   return design;
 }
 
+Design load_design_text(const std::string& yaml_text, const std::string& path,
+                        const std::vector<Override>& overrides) {
+  Design design = parse_design(yaml_text, path, overrides);
+  resolve_outputs(design);
+  return design;
+}
+
 std::vector<Override> parse_overrides(const std::vector<std::string>& texts) {
   std::vector<Override> out;
   out.reserve(texts.size());

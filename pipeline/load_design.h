@@ -15,6 +15,11 @@ namespace fabmesh {
 /// before any work. \throw FileError naming file, line, column and field (or the override)
 Design load_design(const std::string& path, const std::vector<Override>& overrides = {});
 
+/// The same for YAML text; `path` names it in messages, gives the default
+/// name and the folder relative points files are read from. \throw FileError
+Design load_design_text(const std::string& yaml_text, const std::string& path,
+                        const std::vector<Override>& overrides = {});
+
 /// Parses `-D` texts ("body.wall=2.5"). \throw InputError naming a malformed one
 std::vector<Override> parse_overrides(const std::vector<std::string>& texts);
 

@@ -508,4 +508,20 @@ std::vector<const OutputFormat*> resolve_outputs(const Design& design) {
   return out;
 }
 
+const OutputFormat* format_of_file(const std::string& name) {
+  std::string path = name;
+  std::transform(path.begin(), path.end(), path.begin(),
+                 [](unsigned char c) { return static_cast<char>(c >= 'A' && c <= 'Z' ? c - 'A' + 'a' : c); });
+  const OutputFormat* best = nullptr;
+  for (const OutputFormat& f : output_formats()) {
+    const std::string_view suffix = f.file_suffix;
+    if (path.size() > suffix.size() &&
+        path.compare(path.size() - suffix.size(), suffix.size(), suffix) == 0 &&
+        (best == nullptr || suffix.size() > best->file_suffix.size())) {
+      best = &f;
+    }
+  }
+  return best;
+}
+
 }  // namespace fabmesh

@@ -109,6 +109,10 @@ struct OutputFormat {
 /// Every output format, in the order defaults are listed.
 const std::vector<OutputFormat>& output_formats();
 
+/// The format a file name asks for by its ending, in any case (".draco.glb"
+/// before ".glb", "X.STL" an STL), or nullptr.
+const OutputFormat* format_of_file(const std::string& name);
+
 /// The format called `name`, or nullptr.
 const OutputFormat* find_output_format(std::string_view name);
 

@@ -125,6 +125,12 @@ nlohmann::ordered_json to_json(const JobReport& r) {
   return j;
 }
 
+nlohmann::ordered_json design_item(const std::string& design_file, const JobReport& report) {
+  nlohmann::ordered_json item = {{"design", design_file}};
+  item.update(to_json(report));
+  return item;
+}
+
 nlohmann::ordered_json error_item(const std::string& key, const std::string& input, const Failure& failure) {
   return {{key, input}, {"error", failure.message}, {"exit_code", failure.exit_code}};
 }

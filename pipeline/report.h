@@ -28,6 +28,9 @@ nlohmann::ordered_json bounding_box_json(const Vec3& lo, const Vec3& hi, const s
 /// max_deviation, outputs, the validation facts, builder facts and timings.
 nlohmann::ordered_json to_json(const JobReport& report);
 
+/// A design's `run --json` item: the design file it was read from, then its report (to_json).
+nlohmann::ordered_json design_item(const std::string& design_file, const JobReport& report);
+
 /// The item of a `--json` array for an input that failed (docs/reports.md,
 /// "JSON"): {KEY: input, "error": the message, "exit_code": its code}.
 nlohmann::ordered_json error_item(const std::string& key, const std::string& input, const Failure& failure);

@@ -27,6 +27,15 @@ struct ErrorLocation {
   /// "-D path=value" for an override, or the design's path when `is_default`.
   /// Empty: not looked up.
   std::string place = {};
+  /// The same place as data, for callers that are not printing a message (the
+  /// library): the file, and the 1-based line and column of the key in it (0
+  /// when the value came from an override, is a default, or has no position).
+  std::string file = {};
+  int line = 0;
+  int column = 0;
+  /// The override that gave the value, as the user wrote it ("body.wall=2.5");
+  /// empty when the file did.
+  std::string override_text = {};
   /// The design does not write `key`: its default value is at fault.
   bool is_default = false;
 };
@@ -101,6 +110,10 @@ class FileError : public InputError {
  public:
   FileError(std::string path, int line, int column, const std::string& message)
       : InputError(message), path_(std::move(path)), line_(line), column_(column) {}
+  /// The same at a design key (`location` has its key path and place as
+  /// data; the message already names them).
+  FileError(std::string path, int line, int column, const std::string& message, ErrorLocation location)
+      : InputError(message, std::move(location)), path_(std::move(path)), line_(line), column_(column) {}
   const std::string& path() const { return path_; }
   int line() const { return line_; }
   int column() const { return column_; }

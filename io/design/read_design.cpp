@@ -270,7 +270,9 @@ bool is_key_path(const std::string& key) {
 void record_sources(const yaml::Fields& f, const YAML::Node& node, const std::string& path,
                     std::map<std::string, KeySource>& where) {
   auto record = [&](const std::string& key, const YAML::Node& value) {
-    where[key] = KeySource{f.location(value), !value.IsScalar()};  // a map, a list, or empty
+    KeySource source = f.source(value);
+    source.holds_keys = !value.IsScalar();  // a map, a list, or empty
+    where[key] = std::move(source);
     if (value.IsMap() || value.IsSequence()) record_sources(f, value, key, where);
   };
   if (node.IsMap()) {
@@ -293,10 +295,16 @@ ErrorLocation placed(const DesignCommon& common, ErrorLocation location) {
     const auto it = common.where.find(k);
     if (it == common.where.end()) continue;
     if (k != location.key && it->second.holds_keys) break;  // absent from a map the design gives
-    location.place = it->second.place;  // the key itself, or the value it lies in (`keys: 4`)
+    const KeySource& source = it->second;  // the key itself, or the value it lies in (`keys: 4`)
+    location.place = source.place;
+    location.file = source.file;
+    location.line = source.line;
+    location.column = source.column;
+    location.override_text = source.override_text;
     return location;
   }
   location.place = common.path;
+  location.file = common.path;
   location.is_default = true;
   return location;
 }

@@ -19,6 +19,7 @@
 #include "geometry/mesh/weld.h"
 #include "geometry/validation/validate.h"
 #include "io/mesh/read_mesh.h"
+#include "pipeline/check_mesh.h"
 #include "pipeline/cli/commands.h"
 #include "pipeline/failure.h"
 #include "pipeline/report.h"
@@ -26,148 +27,10 @@
 namespace fabmesh::cli {
 namespace {
 
-struct CheckArgs {
+struct CheckArgs : CheckOptions {
   std::vector<std::string> files;
   bool json = false;
-  double weld_tolerance = 0.0;
-  double max_seconds = 600.0;  ///< time budget of each object's self-intersection test (0: none)
 };
-
-/// One object of a file, welded and validated.
-struct ObjectCheck {
-  std::string name;  ///< empty for a file of one object
-  ValidationReport report;
-  std::size_t welded_vertices = 0;
-  TriangleSoup welded;  ///< kept for the assembly test when the file has several objects
-};
-
-/// The outcome for one file: a report per object, or why it could not be read.
-struct FileCheck {
-  std::string file;
-  bool readable = false;
-  std::string format;
-  std::string units;  ///< as the file states it; empty for formats that carry none
-  std::vector<std::string> notes;
-  std::vector<ObjectCheck> objects;  ///< one for a single-object file
-  /// Several objects: the pairs of them that interpenetrate (indices into objects).
-  Interpenetration assembly;
-  StageTimings timings_ms;  ///< several objects: read and assembly
-  Failure failure;          ///< why it could not be read, when not readable
-
-  bool several() const { return objects.size() > 1; }
-  bool valid() const {
-    return readable &&
-           std::all_of(objects.begin(), objects.end(), [](const ObjectCheck& o) { return o.report.valid(); });
-  }
-};
-
-ObjectCheck check_object(std::string name, const TriangleSoup& soup, const CheckArgs& args,
-                         const StageTimings& before) {
-  StageTimings timings = before;
-  StageTimer timer(timings);
-  WeldResult welded = weld(soup, WeldOptions{args.weld_tolerance});
-  timer.lap("weld");
-  ValidationOptions options;
-  options.max_self_intersection_seconds = args.max_seconds;
-  ObjectCheck result{std::move(name), validate(welded.soup, options), welded.merged_vertices, {}};
-  result.report.timings_ms.insert(result.report.timings_ms.begin(), timings.begin(), timings.end());
-  result.welded = std::move(welded.soup);
-  return result;
-}
-
-/// The interpenetrating pairs of `objects`, the invalid ones not judged.
-Interpenetration assembly_pairs(const std::vector<ObjectCheck>& objects) {
-  std::vector<const TriangleSoup*> solids;
-  solids.reserve(objects.size());
-  for (const ObjectCheck& o : objects) solids.push_back(o.report.valid() ? &o.welded : nullptr);
-  return interpenetrating_pairs(solids);
-}
-
-FileCheck check_file(const std::string& path, const CheckArgs& args) {
-  FileCheck result;
-  result.file = path;
-  try {
-    StageTimings timings;
-    StageTimer timer(timings);
-    MeshFile file = read_mesh_file(path);
-    result.format = to_string(file.format);
-    result.units = file.units;
-    result.notes = std::move(file.notes);
-    timer.lap("read");
-    if (file.objects.empty()) {
-      result.objects.push_back(check_object("", file.soup, args, timings));
-    } else {
-      file.soup = {};  // the objects hold the same triangles
-      result.timings_ms = timings;
-      for (MeshObject& object : file.objects)
-        result.objects.push_back(check_object(std::move(object.name), object.soup, args, {}));
-      StageTimer assembly(result.timings_ms);
-      result.assembly = assembly_pairs(result.objects);
-      assembly.lap("assembly");
-    }
-    for (ObjectCheck& o : result.objects) o.welded = {};
-    result.readable = true;
-  } catch (const InputError&) {
-    result.failure = describe_failure(std::current_exception());
-  }
-  return result;
-}
-
-nlohmann::ordered_json object_json(const ObjectCheck& object) {
-  nlohmann::ordered_json j;
-  j["welded_vertices"] = object.welded_vertices;
-  j.update(validation_json(object.report));
-  j["timings_ms"] = timings_json(object.report.timings_ms);
-  return j;
-}
-
-nlohmann::ordered_json assembly_json(const FileCheck& check) {
-  nlohmann::ordered_json j;
-  j["objects"] = check.objects.size();
-  nlohmann::ordered_json judged = nlohmann::ordered_json::array();
-  for (std::size_t i = 0; i < check.objects.size(); ++i) {
-    if (check.objects[i].report.valid()) judged.push_back(i);
-  }
-  j["judged"] = judged;
-  nlohmann::ordered_json pairs = nlohmann::ordered_json::array();
-  for (const auto& [a, b] : check.assembly.pairs) pairs.push_back({a, b});
-  j["interpenetrating"] = pairs;
-  j["complete"] = check.assembly.complete;
-  return j;
-}
-
-nlohmann::ordered_json to_json(const FileCheck& check) {
-  if (!check.readable) {
-    nlohmann::ordered_json j = error_item("file", check.file, check.failure);
-    j["valid"] = false;  // every item of `check --json` says whether its file is valid
-    return j;
-  }
-  nlohmann::ordered_json j;
-  j["file"] = check.file;
-  j["format"] = check.format;
-  j["units"] = check.units.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(check.units);
-  if (!check.several()) {
-    const ObjectCheck& only = check.objects.front();
-    j["welded_vertices"] = only.welded_vertices;
-    j["notes"] = check.notes;
-    j.update(validation_json(only.report));
-    j["timings_ms"] = timings_json(only.report.timings_ms);
-    return j;
-  }
-  j["notes"] = check.notes;
-  nlohmann::ordered_json objects = nlohmann::ordered_json::array();
-  for (const ObjectCheck& o : check.objects) {
-    nlohmann::ordered_json entry;
-    entry["name"] = o.name;
-    entry.update(object_json(o));
-    objects.push_back(std::move(entry));
-  }
-  j["objects"] = std::move(objects);
-  j["assembly"] = assembly_json(check);
-  j["valid"] = check.valid();
-  j["timings_ms"] = timings_json(check.timings_ms);
-  return j;
-}
 
 /// "(V vertices, T triangles, C components, genus G, volume X u^3, area Y u^2)".
 std::string facts(const ValidationReport& r, const std::string& units) {
@@ -267,7 +130,7 @@ int run_check(const CheckArgs& args, Streams streams) {
   }
   if (args.json) {
     nlohmann::ordered_json items = nlohmann::ordered_json::array();
-    for (const FileCheck& c : checks) items.push_back(to_json(c));
+    for (const FileCheck& c : checks) items.push_back(check_json(c));
     print_json_items(items, streams.out);
   }
   return code;

@@ -59,29 +59,6 @@ std::string format_names() {
   return names;
 }
 
-// A design's --json item: the design file it was read from, then its report.
-nlohmann::ordered_json design_item(const std::string& design_file, const JobReport& report) {
-  nlohmann::ordered_json item = {{"design", design_file}};
-  item.update(to_json(report));
-  return item;
-}
-
-// The format a file name asks for by its ending, in any case (".draco.glb"
-// before ".glb", "X.STL" an STL), or nullptr.
-const OutputFormat* format_of_file(const std::string& name) {
-  const std::string path = ascii_lower(name);
-  const OutputFormat* best = nullptr;
-  for (const OutputFormat& f : output_formats()) {
-    const std::string_view suffix = f.file_suffix;
-    if (path.size() > suffix.size() &&
-        path.compare(path.size() - suffix.size(), suffix.size(), suffix) == 0 &&
-        (best == nullptr || suffix.size() > best->file_suffix.size())) {
-      best = &f;
-    }
-  }
-  return best;
-}
-
 // Where `-o` sends the outputs: a folder, one file (format by its ending), or standard output.
 JobOptions output_options(const RunArgs& args) {
   JobOptions options;

@@ -49,6 +49,15 @@ bool contains(const YAML::Node& tree, const YAML::Node& node) {
 
 }  // namespace
 
+ErrorLocation at_key(const std::string& key, const KeySource& where) {
+  ErrorLocation location{key};
+  location.file = where.file;
+  location.line = where.line;
+  location.column = where.column;
+  location.override_text = where.override_text;
+  return location;
+}
+
 const OverrideOrigin* Fields::origin_of(const YAML::Node& node) const {
   if (!node.IsDefined()) return nullptr;
   for (const OverrideOrigin& o : overrides_) {
@@ -74,17 +83,31 @@ YAML::Node Fields::required(const YAML::Node& parent, const char* key, const std
   return child;
 }
 
-void Fields::fail(const YAML::Node& node, const std::string& field, const std::string& message) const {
-  if (origin_of(node) != nullptr)
-    throw FileError(path_, 0, 0, fmt::format("{}: {}", label(node, field), message));
+KeySource Fields::source(const YAML::Node& node) const {
+  KeySource where{location(node), false, path_};
+  if (const OverrideOrigin* o = origin_of(node)) {
+    where.override_text = o->text;
+    return where;
+  }
   const YAML::Mark m = node.IsDefined() ? node.Mark() : YAML::Mark::null_mark();
-  throw FileError(path_, m.line + 1, m.column + 1, fmt::format("{}: {}", label(node, field), message));
+  if (m.line >= 0) {
+    where.line = m.line + 1;
+    where.column = m.column + 1;
+  }
+  return where;
+}
+
+void Fields::fail(const YAML::Node& node, const std::string& field, const std::string& message) const {
+  const KeySource where = source(node);
+  throw FileError(path_, where.line, where.column, fmt::format("{}: {}", where.place + ": " + field, message),
+                  at_key(field, where));
 }
 
 void Fields::fail_key(const YAML::Node& key, const YAML::Node& value, const std::string& field,
                       const std::string& message) const {
-  if (const OverrideOrigin* o = origin_of(value)) {
-    throw FileError(path_, 0, 0, fmt::format("-D {}: {}: {}", o->text, field, message));
+  if (origin_of(value) != nullptr) {
+    const KeySource where = source(value);
+    throw FileError(path_, 0, 0, fmt::format("{}: {}: {}", where.place, field, message), at_key(field, where));
   }
   fail(key, field, message);
 }

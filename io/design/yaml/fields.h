@@ -11,6 +11,7 @@
 
 #include "geometry/core/errors.h"
 #include "geometry/core/types.h"
+#include "io/design/design.h"
 #include "io/design/schema.h"
 
 namespace fabmesh::yaml {
@@ -20,6 +21,10 @@ struct OverrideOrigin {
   YAML::Node value;
   std::string text;  ///< "body.wall=2.5"
 };
+
+/// An ErrorLocation at design key `key`, given where the design has it (no
+/// `place`: a FileError's message already names it).
+ErrorLocation at_key(const std::string& key, const KeySource& where);
 
 /// The file being read; makes errors and labels with locations.
 class Fields {
@@ -31,6 +36,9 @@ class Fields {
   /// "path:line:column" of a node (1-based), "-D path=value" for a node an
   /// override put there, or the path alone when the node has no mark.
   std::string location(const YAML::Node& node) const;
+  /// Where `node` is, as text (location) and as data: file, line and column,
+  /// or the override that put it there. `holds_keys` is left false.
+  KeySource source(const YAML::Node& node) const;
   /// "path:line:column: field" for a node (1-based line and column), or
   /// "-D path=value: field" for a node an override put there.
   std::string label(const YAML::Node& node, const std::string& field) const;

@@ -1,0 +1,63 @@
+#pragma once
+// Designs: read from a YAML file or text, with `-D`-style overrides
+// (docs/design-files.md describes the file).
+
+#include <filesystem>
+#include <memory>
+#include <utility>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace fabmesh {
+namespace api {
+
+/// One override of a design value, as `fabmesh run -D key=value` gives it.
+struct Override {
+  std::string key;    ///< "body.wall", "profile.points[1]", "profile.segments[0].lambda"
+  std::string value;  ///< YAML text: "2.5", "[1, 5]", "{mode: solid}"
+};
+using Overrides = std::vector<Override>;
+
+namespace detail {
+struct DesignData;
+}
+
+/// A design, read and checked: every key known, every value in range, its
+/// outputs known. Cheap to copy (the data is shared and never changes), safe
+/// to use from several threads at once.
+class Design {
+ public:
+  std::string kind() const;                  ///< "vessel", "countertop", "surface" or "curve"
+  std::string name() const;                  ///< the design's name (default: its file's stem)
+  std::string units() const;                 ///< the design's model unit: "mm", "cm", "m", "in", ...
+  double tolerance() const;                  ///< the proven deviation the mesh may have, model units
+  std::filesystem::path path() const;        ///< the file it was read from (for text: the name given)
+  std::vector<std::string> outputs() const;  ///< the formats `run` writes for it: "stl", "3mf", ...
+
+  /// For the library's own implementation.
+  const detail::DesignData& data() const { return *data_; }
+  explicit Design(std::shared_ptr<const detail::DesignData> data) : data_(std::move(data)) {}
+
+ private:
+  std::shared_ptr<const detail::DesignData> data_;
+};
+
+/// Reads the design file at `path` with `overrides` applied in order, as
+/// `fabmesh run PATH -D key=value ...` does.
+/// \throw InputError naming the file, line, column and key (or the override)
+///        of a malformed or out-of-range value, an unknown key, an unreadable file
+Design read_design(const std::filesystem::path& path, const Overrides& overrides = {});
+
+/// The same from YAML text. `source` names it in messages and gives the
+/// default name (its stem) and the folder that relative `points_file`s are
+/// read from (the current folder when it has none).
+/// \throw InputError as read_design, at `source`'s lines and columns
+Design parse_design(std::string_view yaml_text, const Overrides& overrides = {},
+                    const std::filesystem::path& source = "design.yaml");
+
+}  // namespace api
+#ifndef FABMESH_BUILDING_LIBRARY
+using namespace api;  // fabmesh::Design, fabmesh::build, ...
+#endif
+}  // namespace fabmesh

@@ -1,0 +1,43 @@
+#pragma once
+// The library's private parts: what its handles hold, and the translation of
+// the pipeline's exceptions into the public ones. Compiled with
+// FABMESH_BUILDING_LIBRARY, so the public names stay in fabmesh::api and
+// fabmesh::X is always the pipeline's X here.
+
+#include <utility>
+
+#include "geometry/curves/composite.h"
+#include "io/design/design.h"
+
+// The public headers last: they only add fabmesh::api.
+#include "fabmesh/errors.h"
+
+namespace fabmesh::api::detail {
+
+struct DesignData {
+  fabmesh::Design design;
+};
+
+struct CurveData {
+  fabmesh::CompositeCurve curve;
+};
+
+/// Rethrows the exception being handled as the public one of its kind, with
+/// the command line's message: InputError (with its key and place),
+/// ValidationFailed, EnvironmentError, or Error with exit code 3.
+[[noreturn]] void rethrow_public();
+
+/// Runs `f`, with every exception it throws made public (rethrow_public).
+template <class F>
+auto translated(F&& f) -> decltype(f()) {
+  try {
+    return std::forward<F>(f)();
+  } catch (...) {
+    rethrow_public();
+  }
+}
+
+/// An InputError at a library call's argument ("triangles", "t").
+[[noreturn]] void bad_argument(const std::string& argument, const std::string& message);
+
+}  // namespace fabmesh::api::detail

@@ -1,0 +1,20 @@
+#pragma once
+// The pipeline's validation report as the library's.
+
+#include <nlohmann/json.hpp>
+
+#include "geometry/validation/validate.h"
+#include "pipeline/check_mesh.h"
+
+#include "fabmesh/mesh.h"
+
+namespace fabmesh::api::detail {
+
+/// The public verdict of `report`, with `json` (the command line's facts) as its text.
+ValidationReport public_report(const fabmesh::ValidationReport& report, const nlohmann::ordered_json& json);
+
+/// The public verdict of a checked file: its one object's, or the sums over
+/// its objects with the assembly's verdict, or why it could not be read.
+ValidationReport file_report(const fabmesh::FileCheck& check, const nlohmann::ordered_json& json);
+
+}  // namespace fabmesh::api::detail

@@ -1,0 +1,411 @@
+// The Python module `fabmesh` (docs/python.md): the library's calls over
+// numpy arrays and dicts. The GIL is released while fabmesh works, so builds
+// of distinct designs run in parallel threads.
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include <fabmesh/fabmesh.h>
+
+#include <cstring>
+#include <optional>
+#include <type_traits>
+#include <string>
+#include <vector>
+
+namespace py = pybind11;
+
+namespace {
+
+PyObject* new_exception(py::module_& m, const char* name, const char* doc, PyObject* bases) {
+  const std::string qualified = std::string("fabmesh.") + name;
+  PyObject* type = PyErr_NewExceptionWithDoc(qualified.c_str(), doc, bases, nullptr);
+  if (type == nullptr) throw py::error_already_set();
+  m.add_object(name, py::handle(type));
+  return type;
+}
+
+// Raises the module's exception class `name` for `e`, with the place of bad input as attributes.
+void raise(const char* name, const fabmesh::Error& e, const fabmesh::ErrorPlace* place) {
+  const py::object type = py::module_::import("fabmesh").attr(name);
+  py::object exc = type(e.what());
+  exc.attr("exit_code") = e.exit_code();
+  if (place != nullptr) {
+    exc.attr("key") = place->key.empty() ? py::none() : py::str(place->key);
+    exc.attr("file") = place->file.empty() ? py::none() : py::str(place->file);
+    exc.attr("line") = place->line > 0 ? py::object(py::int_(place->line)) : py::none();
+    exc.attr("column") = place->column > 0 ? py::object(py::int_(place->column)) : py::none();
+    exc.attr("override") = place->override_text.empty() ? py::none() : py::str(place->override_text);
+    exc.attr("is_default") = place->is_default;
+  }
+  PyErr_SetObject(type.ptr(), exc.ptr());
+}
+
+void register_errors(py::module_& m) {
+  PyObject* error = new_exception(m, "Error",
+                          "Any failure of a fabmesh call. `exit_code` is the command line's code for the same "
+                          "failure (1 invalid mesh, 2 bad input, 3 internal error, 5 the machine).",
+                          PyExc_Exception);
+  py::tuple input_bases = py::make_tuple(py::handle(error), py::handle(PyExc_ValueError));
+  new_exception(m, "InputError",
+                          "Bad input (exit code 2): a malformed design or mesh file, a value out of range, "
+                          "geometry that cannot be built as designed, arrays of the wrong shape. The message is "
+                          "the command line's. Attributes: key (the design key path or the argument), file, "
+                          "line, column (None when unknown), override (the override that gave the value), "
+                          "is_default.",
+                          input_bases.ptr());
+  new_exception(m, "ValidationFailed",
+                            "A mesh that is not valid for what it is asked for (exit code 1), e.g. "
+                            "Result.write of a design whose mesh is invalid.",
+                            error);
+  py::tuple env_bases = py::make_tuple(py::handle(error), py::handle(PyExc_OSError));
+  new_exception(m, "EnvironmentError",
+                                "Writing failed for a reason of the machine (exit code 5): disk full, I/O "
+                                "error, permission denied.",
+                                env_bases.ptr());
+  py::register_exception_translator([](std::exception_ptr p) {
+    if (!p) return;
+    try {
+      std::rethrow_exception(p);
+    } catch (const fabmesh::InputError& e) {
+      raise("InputError", e, &e.place());
+    } catch (const fabmesh::ValidationFailed& e) {
+      raise("ValidationFailed", e, nullptr);
+    } catch (const fabmesh::EnvironmentError& e) {
+      raise("EnvironmentError", e, nullptr);
+    } catch (const fabmesh::Error& e) {
+      raise("Error", e, nullptr);
+    }
+  });
+}
+
+[[noreturn]] void bad_argument(const std::string& argument, const std::string& message) {
+  fabmesh::ErrorPlace place;
+  place.key = argument;
+  throw fabmesh::InputError(argument + ": " + message, place);
+}
+
+py::object json_loads(const std::string& text) { return py::module_::import("json").attr("loads")(text); }
+
+// An override value as YAML text: JSON is YAML, so numbers, lists, strings and dicts keep their meaning.
+std::string yaml_text(const py::handle& value) {
+  return py::module_::import("json").attr("dumps")(value).cast<std::string>();
+}
+
+fabmesh::Overrides overrides_of(const std::optional<py::dict>& overrides) {
+  fabmesh::Overrides out;
+  if (!overrides) return out;
+  for (const auto& [key, value] : *overrides) {
+    if (!py::isinstance<py::str>(key)) bad_argument("overrides", "keys must be strings such as 'body.wall'");
+    out.push_back({key.cast<std::string>(), yaml_text(value)});
+  }
+  return out;
+}
+
+fabmesh::Design load_design(const std::optional<std::filesystem::path>& path, const std::optional<std::string>& text,
+                            const std::optional<py::dict>& overrides) {
+  if (path.has_value() == text.has_value()) bad_argument("path", "give exactly one of path and text");
+  fabmesh::Overrides o = overrides_of(overrides);
+  py::gil_scoped_release free;
+  return path ? fabmesh::read_design(*path, o) : fabmesh::parse_design(*text, o);
+}
+
+// Arrays of shape (rows, 3): the argument checked, as numpy holds it (C order, no copy when it already is).
+template <class T>
+py::array_t<T, py::array::c_style> rows_of_three(const py::handle& value, const char* argument) {
+  py::array array = py::array::ensure(value);
+  if (!array) bad_argument(argument, "is not an array");
+  if (array.ndim() != 2 || array.shape(1) != 3) {
+    std::string shape;
+    for (py::ssize_t i = 0; i < array.ndim(); ++i) shape += (i ? ", " : "") + std::to_string(array.shape(i));
+    bad_argument(argument, "must have shape (N, 3), not (" + shape + ")");
+  }
+  const char kind = array.dtype().kind();
+  if (std::is_integral_v<T> && kind != 'i' && kind != 'u' && !(kind == 'f' && array.shape(0) == 0))
+    bad_argument(argument, std::string("must hold integers, not dtype ") + py::str(array.dtype()).cast<std::string>());
+  if (!std::is_integral_v<T> && kind != 'f' && kind != 'i' && kind != 'u')
+    bad_argument(argument, std::string("must hold numbers, not dtype ") + py::str(array.dtype()).cast<std::string>());
+  return py::array_t<T, py::array::c_style | py::array::forcecast>::ensure(array);
+}
+
+fabmesh::ValidationOptions validation_options(double weld_tolerance, double max_seconds) {
+  fabmesh::ValidationOptions o;
+  o.weld_tolerance = weld_tolerance;
+  o.max_seconds = max_seconds;
+  return o;
+}
+
+py::object check(const py::handle& vertices, const py::handle& triangles, double weld_tolerance,
+                 double max_seconds) {
+  const auto v = rows_of_three<double>(vertices, "vertices");
+  const auto t = rows_of_three<std::int64_t>(triangles, "triangles");
+  fabmesh::MeshView view;
+  view.vertices = v.data();
+  view.vertex_count = static_cast<std::size_t>(v.shape(0));
+  view.triangles = t.data();
+  view.triangle_count = static_cast<std::size_t>(t.shape(0));
+  fabmesh::ValidationReport report;
+  {
+    py::gil_scoped_release free;
+    report = fabmesh::validate(view, validation_options(weld_tolerance, max_seconds));
+  }
+  return json_loads(report.json);
+}
+
+py::object check_file(const std::filesystem::path& path, double weld_tolerance, double max_seconds) {
+  fabmesh::ValidationReport report;
+  {
+    py::gil_scoped_release free;
+    report = fabmesh::check_file(path, validation_options(weld_tolerance, max_seconds));
+  }
+  return json_loads(report.json);
+}
+
+// A (rows, columns) float64 array holding a copy of `rows`.
+template <std::size_t N, class T>
+py::array_t<T> matrix(const std::vector<std::array<T, N>>& rows) {
+  py::array_t<T> out({static_cast<py::ssize_t>(rows.size()), static_cast<py::ssize_t>(N)});
+  if (!rows.empty()) std::memcpy(out.mutable_data(), rows.front().data(), rows.size() * sizeof(rows.front()));
+  return out;
+}
+
+// A build's result with the design it came from (for write and outputs).
+struct Result {
+  fabmesh::Design design;
+  fabmesh::BuildResult built;
+};
+
+Result build(const fabmesh::Design& design) {
+  py::gil_scoped_release free;
+  return Result{design, fabmesh::build(design)};
+}
+
+py::array_t<std::int64_t> triangles_of(const Result& r) {
+  const auto& t = r.built.triangles;
+  py::array_t<std::int64_t> out({static_cast<py::ssize_t>(t.size()), py::ssize_t{3}});
+  std::int64_t* p = out.mutable_data();
+  for (std::size_t f = 0; f < t.size(); ++f) {
+    for (std::size_t k = 0; k < 3; ++k) p[3 * f + k] = t[f][k];
+  }
+  return out;
+}
+
+// Curves: parameters as a float or an array of them.
+template <class F>
+py::object per_parameter(const py::handle& t, F&& f) {
+  if (py::isinstance<py::float_>(t) || py::isinstance<py::int_>(t)) {
+    const auto p = f(t.cast<double>());
+    return py::array_t<double>(2, p.data());
+  }
+  const auto ts = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(t);
+  if (!ts || ts.ndim() != 1) bad_argument("t", "must be a number or a 1-D array of numbers");
+  py::array_t<double> out({ts.shape(0), py::ssize_t{2}});
+  double* o = out.mutable_data();
+  for (py::ssize_t i = 0; i < ts.shape(0); ++i) {
+    const auto p = f(ts.data()[i]);
+    o[2 * i] = p[0];
+    o[2 * i + 1] = p[1];
+  }
+  return out;
+}
+
+std::vector<fabmesh::Point2> plane_points(const py::handle& points) {
+  py::array_t<double, py::array::c_style | py::array::forcecast> a =
+      py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(points);
+  if (!a || a.ndim() != 2 || a.shape(1) != 2) bad_argument("points", "must have shape (N, 2)");
+  std::vector<fabmesh::Point2> out(static_cast<std::size_t>(a.shape(0)));
+  for (std::size_t i = 0; i < out.size(); ++i) out[i] = {a.data()[2 * i], a.data()[2 * i + 1]};
+  return out;
+}
+
+}  // namespace
+
+PYBIND11_MODULE(fabmesh, m) {
+  m.doc() =
+      "fabmesh: exact curves (T-Bezier, quasi-cubic B-splines, H-Bezier) to proven-valid meshes and "
+      "fabrication files, and validity checks of any mesh (docs/python.md).";
+  m.attr("__version__") = fabmesh::version();
+  register_errors(m);
+
+  py::class_<fabmesh::Design>(m, "Design", "A design, read and checked; immutable, safe to share between threads.")
+      .def_property_readonly("kind", &fabmesh::Design::kind, "'vessel', 'countertop', 'surface' or 'curve'")
+      .def_property_readonly("name", &fabmesh::Design::name, "The design's name (default: its file's stem)")
+      .def_property_readonly("units", &fabmesh::Design::units, "The model unit: 'mm', 'cm', 'm' or 'in'")
+      .def_property_readonly("tolerance", &fabmesh::Design::tolerance,
+                             "The proven deviation the mesh may have, model units")
+      .def_property_readonly("path", [](const fabmesh::Design& d) { return d.path().string(); },
+                             "The file it was read from (for text: 'design.yaml')")
+      .def_property_readonly("outputs", &fabmesh::Design::outputs, "The formats `fabmesh run` writes for it")
+      .def("__repr__", [](const fabmesh::Design& d) {
+        return "<fabmesh.Design " + d.kind() + " '" + d.name() + "' from " + d.path().string() + ">";
+      });
+
+  m.def("load_design", &load_design, py::arg("path") = py::none(), py::kw_only(), py::arg("text") = py::none(),
+        py::arg("overrides") = py::none(),
+        R"(Reads a design, from a file (path) or from YAML text (text=...), with overrides applied.
+
+overrides: a dict {"body.wall": 0.25, "profile.points[1]": [1, 5]} with the
+meaning of `fabmesh run -D key=value` (values as YAML/JSON).
+Returns a Design. Raises InputError (with key, file, line, column) for a
+malformed or out-of-range value, an unknown key or an unreadable file.)");
+
+  py::class_<fabmesh::BuiltCurve>(m, "BuiltCurve", "One of a design's curves as built")
+      .def_readonly("key", &fabmesh::BuiltCurve::key, "The design key: 'curve', 'profile', 'outline', 'holes[0]'")
+      .def_property_readonly("points", [](const fabmesh::BuiltCurve& c) { return matrix<2>(c.points); },
+                             "The sampled polyline, shape (K, 2), model units")
+      .def_readonly("closed", &fabmesh::BuiltCurve::closed)
+      .def_readonly("max_deviation", &fabmesh::BuiltCurve::max_deviation,
+                    "Proven bound of the polyline against the exact curve, model units")
+      .def_readonly("curve", &fabmesh::BuiltCurve::curve, "The exact curve, to evaluate");
+
+  py::class_<Result>(m, "Result", "A design built and validated as `fabmesh run` builds it")
+      .def_property_readonly("valid", [](const Result& r) { return r.built.valid; },
+                             "True when the mesh is valid for what the design is for")
+      .def_property_readonly("vertices", [](const Result& r) { return matrix<3>(r.built.vertices); },
+                             "float64 array of shape (N, 3), model units (Design.units)")
+      .def_property_readonly("triangles", &triangles_of, "int64 array of shape (M, 3): outward, counter-clockwise")
+      .def_property_readonly("units", [](const Result& r) { return r.built.units; })
+      .def_property_readonly("tolerance", [](const Result& r) { return r.built.tolerance; })
+      .def_property_readonly("max_deviation", [](const Result& r) { return r.built.max_deviation; },
+                             "Proven bound of the mesh against the exact shape, model units")
+      .def_property_readonly("error", [](const Result& r) { return r.built.error; },
+                             "Why the mesh is not valid; '' when it is")
+      .def_property_readonly("curves", [](const Result& r) { return r.built.curves; }, "The design's curves")
+      .def_property_readonly("report", [](const Result& r) { return json_loads(r.built.report_json); },
+                             "The design's item of `fabmesh run --json`, as a dict")
+      .def_property_readonly("validation", [](const Result& r) { return json_loads(r.built.validation.json); },
+                             "The validation facts, as in the report")
+      .def(
+          "write",
+          [](const Result& r, const std::filesystem::path& path) {
+            py::gil_scoped_release free;
+            fabmesh::write_output(r.design, path);
+          },
+          py::arg("path"),
+          "Writes the output the path's extension names, the same bytes as `fabmesh run DESIGN -o path`. "
+          "Raises InputError, ValidationFailed or EnvironmentError.")
+      .def(
+          "outputs",
+          [](const Result& r, const std::filesystem::path& folder) {
+            std::vector<std::filesystem::path> files;
+            {
+              py::gil_scoped_release free;
+              files = fabmesh::write_outputs(r.design, folder);
+            }
+            std::vector<std::string> out;
+            for (const auto& f : files) out.push_back(f.string());
+            return out;
+          },
+          py::arg("folder"),
+          "Writes every output of the design into folder, as `fabmesh run DESIGN -o folder/`; returns the paths.")
+      .def("__repr__", [](const Result& r) {
+        return "<fabmesh.Result " + std::string(r.built.valid ? "valid" : "INVALID") + ", " +
+               std::to_string(r.built.vertices.size()) + " vertices, " + std::to_string(r.built.triangles.size()) +
+               " triangles>";
+      });
+
+  m.def("build", &build, py::arg("design"),
+        R"(Builds and validates a design as `fabmesh run` does (same tolerance budget, same proofs).
+
+Returns a Result: .vertices (N, 3) float64, .triangles (M, 3) int64, .valid,
+.report (dict), .write(path), .outputs(folder). An invalid mesh gives
+valid=False and .error; a design that cannot be built raises InputError.
+The GIL is released while building.)");
+
+  m.def("check", &check, py::arg("vertices"), py::arg("triangles"), py::kw_only(), py::arg("weld_tolerance") = 0.0,
+        py::arg("max_seconds") = 600.0,
+        R"(Validates a mesh given as arrays, as `fabmesh check` validates a file.
+
+vertices: (N, 3) numbers; triangles: (M, 3) integer indices into vertices.
+Returns a dict with the keys of one item of `fabmesh check --json` (file,
+format and units None); an invalid mesh is {"valid": False, ...}, never an
+exception. Raises InputError naming the argument for arrays of the wrong
+shape or dtype, or an index out of range.)");
+
+  m.def("check_file", &check_file, py::arg("path"), py::kw_only(), py::arg("weld_tolerance") = 0.0,
+        py::arg("max_seconds") = 600.0,
+        R"(Validates a mesh file exactly as `fabmesh check FILE --json`; returns its item as a dict.
+
+An unreadable file gives {"file": ..., "error": ..., "exit_code": 2, "valid": False}.)");
+
+  py::class_<fabmesh::Curve>(m, "Curve",
+                             "A composite plane curve of n segments, parameter t in [0, n]: segment floor(t) at "
+                             "t - floor(t)")
+      .def_property_readonly("segments", &fabmesh::Curve::segments)
+      .def_property_readonly("closed", &fabmesh::Curve::closed)
+      .def(
+          "evaluate",
+          [](const fabmesh::Curve& c, const py::handle& t) {
+            return per_parameter(t, [&](double s) { return c.point(s); });
+          },
+          py::arg("t"), "The point at t (a float: shape (2,); an array of K parameters: shape (K, 2))")
+      .def(
+          "derivative",
+          [](const fabmesh::Curve& c, const py::handle& t, int order) {
+            return per_parameter(t, [&](double s) { return c.derivative(s, order); });
+          },
+          py::arg("t"), py::arg("order") = 1, "The derivative of order 1, 2 or 3 with respect to t")
+      .def(
+          "curvature",
+          [](const fabmesh::Curve& c, const py::handle& t) -> py::object {
+            if (py::isinstance<py::float_>(t) || py::isinstance<py::int_>(t)) return py::float_(c.curvature(t.cast<double>()));
+            const auto ts = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(t);
+            if (!ts || ts.ndim() != 1) bad_argument("t", "must be a number or a 1-D array of numbers");
+            py::array_t<double> out(ts.shape(0));
+            for (py::ssize_t i = 0; i < ts.shape(0); ++i) out.mutable_data()[i] = c.curvature(ts.data()[i]);
+            return std::move(out);
+          },
+          py::arg("t"), "Signed curvature at t (positive turning left), 1 / model units")
+      .def(
+          "sample",
+          [](const fabmesh::Curve& c, double tolerance) {
+            fabmesh::SampledCurve s;
+            {
+              py::gil_scoped_release free;
+              s = c.sample(tolerance);
+            }
+            return py::make_tuple(matrix<2>(s.points), s.max_deviation);
+          },
+          py::arg("tolerance"),
+          "Samples the curve within tolerance: returns (points of shape (K, 2), the proven bound achieved)")
+      .def("__repr__", [](const fabmesh::Curve& c) {
+        return "<fabmesh.Curve of " + std::to_string(c.segments()) + " segment" + (c.segments() == 1 ? "" : "s") + ">";
+      });
+
+  m.def(
+      "tbezier",
+      [](const py::handle& points, double lam, double mu) { return fabmesh::tbezier(plane_points(points), lam, mu); },
+      py::arg("points"), py::arg("lam") = 0.0, py::arg("mu") = 0.0,
+      "Cubic T-Bezier segments through 3n + 1 control points (shape (3n + 1, 2)), shape parameters lam, mu in "
+      "[-2, 1]. Raises InputError.");
+  m.def(
+      "quasi_bspline",
+      [](const py::handle& points, const std::optional<std::vector<double>>& lambdas) {
+        return fabmesh::quasi_bspline(plane_points(points), lambdas.value_or(std::vector<double>{}));
+      },
+      py::arg("points"), py::arg("lambdas") = py::none(),
+      "A quasi-cubic B-spline with control points p0..pn (shape (n + 1, 2), n >= 2) and shape parameters "
+      "lambda_1..lambda_{n-1} in [-8, 1] (None: all 0). Raises InputError.");
+  m.def(
+      "hbezier",
+      [](const py::handle& points, double alpha, double lam, double mu) {
+        return fabmesh::hbezier(plane_points(points), alpha, lam, mu);
+      },
+      py::arg("points"), py::arg("alpha") = 1.0, py::arg("lam") = 0.0, py::arg("mu") = 0.0,
+      "Generalized cubic H-Bezier segments through 3n + 1 control points, alpha in (0, 10]. Raises InputError.");
+  m.def(
+      "optimize",
+      [](const fabmesh::Design& design) {
+        std::string text;
+        {
+          py::gil_scoped_release free;
+          text = fabmesh::optimize(design);
+        }
+        return json_loads(text);
+      },
+      py::arg("design"),
+      "The fairest shape parameters of the design's curves, as `fabmesh optimize --json`: a list, one dict per "
+      "curve. Raises InputError.");
+}
