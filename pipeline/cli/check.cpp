@@ -53,12 +53,10 @@ struct FileCheck {
   Interpenetration assembly;
   StageTimings timings_ms;  ///< several objects: read and assembly
   Failure failure;          ///< why it could not be read, when not readable
+  ItemFacts facts;          ///< its verdict: check_facts, or failed_facts when not readable
 
   bool several() const { return objects.size() > 1; }
-  bool valid() const {
-    return readable &&
-           std::all_of(objects.begin(), objects.end(), [](const ObjectCheck& o) { return o.report.valid(); });
-  }
+  bool valid() const { return facts.status == ItemStatus::Ok; }
 };
 
 ObjectCheck check_object(std::string name, const TriangleSoup& soup, const CheckArgs& args,
@@ -81,6 +79,13 @@ Interpenetration assembly_pairs(const std::vector<ObjectCheck>& objects) {
   solids.reserve(objects.size());
   for (const ObjectCheck& o : objects) solids.push_back(o.report.valid() ? &o.welded : nullptr);
   return interpenetrating_pairs(solids);
+}
+
+/// The facts of each object of a file read, in the file's units.
+std::vector<MeshFacts> object_facts(const FileCheck& check) {
+  std::vector<MeshFacts> facts;
+  for (const ObjectCheck& o : check.objects) facts.push_back(mesh_facts(o.report, check.units));
+  return facts;
 }
 
 FileCheck check_file(const std::string& path, const CheckArgs& args) {
@@ -107,8 +112,10 @@ FileCheck check_file(const std::string& path, const CheckArgs& args) {
     }
     for (ObjectCheck& o : result.objects) o.welded = {};
     result.readable = true;
+    result.facts = check_facts(path, object_facts(result));
   } catch (const InputError&) {
     result.failure = describe_failure(std::current_exception());
+    result.facts = failed_facts(path, result.failure.exit_code, result.failure.message);
   }
   return result;
 }
@@ -198,8 +205,7 @@ std::string welded_line(const FileCheck& check, const ObjectCheck& object, const
 std::string single_verdict(const FileCheck& check) {
   const ObjectCheck& only = check.objects.front();
   const ValidationReport& r = only.report;
-  std::string text =
-      fmt::format("{}: {} {}\n", check.file, r.valid() ? "valid" : "INVALID", facts(r, check.units));
+  std::string text = fmt::format("{}: {} {}\n", check.file, check.facts.message, facts(r, check.units));
   text += file_lines(check);
   text += welded_line(check, only, "  ");
   for (const std::string& note : check.notes) text += "  " + note + "\n";
@@ -231,8 +237,8 @@ std::string assembly_line(const FileCheck& check) {
 std::string several_verdict(const FileCheck& check) {
   const auto valid = std::count_if(check.objects.begin(), check.objects.end(),
                                    [](const ObjectCheck& o) { return o.report.valid(); });
-  std::string text = fmt::format("{}: {} ({} objects, {} valid)\n", check.file,
-                                 check.valid() ? "valid" : "INVALID", check.objects.size(), valid);
+  std::string text = fmt::format("{}: {} ({} objects, {} valid)\n", check.file, check.facts.message,
+                                 check.objects.size(), valid);
   text += file_lines(check);
   for (const std::string& note : check.notes) text += "  " + note + "\n";
   for (std::size_t i = 0; i < check.objects.size(); ++i) {
@@ -257,12 +263,8 @@ int run_check(const CheckArgs& args, Streams streams) {
   for (const std::string& file : args.files) {
     checks.push_back(check_file(file, args));
     const FileCheck& c = checks.back();
-    if (!c.readable) {
-      streams.err << failure_line(c.failure) << "\n";
-      code = std::max(code, c.failure.exit_code);
-    } else if (!c.valid()) {
-      code = std::max(code, kExitInvalid);
-    }
+    if (!c.readable) streams.err << failure_line(c.failure) << "\n";
+    code = std::max(code, exit_code_of(c.facts.status));
     if (!args.json) streams.out << human_verdict(c);
   }
   if (args.json) {

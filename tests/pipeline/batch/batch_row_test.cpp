@@ -21,7 +21,7 @@ BatchRow written_row() {
   r.key = std::string(64, 'a');
   r.status = VariantStatus::Ok;
   r.message = "";
-  RowMesh m;
+  MeshFacts m;
   m.kind = "vessel";
   m.units = "cm";
   m.vertices = 2928;
@@ -29,8 +29,8 @@ BatchRow written_row() {
   m.volume = 13.74;
   m.area = 123.4;
   m.valid = true;
-  m.bbox_min = {-2.5, -2.5, 2.0};
-  m.bbox_max = {2.5, 2.5, 6.0};
+  m.bbox_min = Vec3(-2.5, -2.5, 2.0);
+  m.bbox_max = Vec3(2.5, 2.5, 6.0);
   m.max_deviation = 0.017;
   m.tolerance = 0.02;
   r.mesh = m;
@@ -86,3 +86,4 @@ TEST_CASE("batch: a row's count beyond its type's range is bad input, not undefi
   CHECK(r.exit_code == -2147483648LL);
   CHECK(r.mesh->vertices == 18446744073709551615ULL);
 }
+
