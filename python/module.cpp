@@ -27,12 +27,20 @@ PyObject* new_exception(py::module_& m, const char* name, const char* doc, PyObj
   return type;
 }
 
-py::object text_or_none(const std::string& text) { return text.empty() ? py::object(py::none()) : py::object(py::str(text)); }
+// `text` as a Python str: a byte that is not UTF-8 (a file name from the disk) kept as a surrogate
+// escape, as Python's own os.fsdecode keeps it, never a UnicodeDecodeError in place of ours.
+py::str decoded(const std::string& text) {
+  PyObject* s = PyUnicode_DecodeUTF8(text.data(), static_cast<Py_ssize_t>(text.size()), "surrogateescape");
+  if (s == nullptr) throw py::error_already_set();
+  return py::reinterpret_steal<py::str>(s);
+}
+
+py::object text_or_none(const std::string& text) { return text.empty() ? py::object(py::none()) : py::object(decoded(text)); }
 
 // Raises the module's exception class `name` for `e`, with the place of bad input as attributes.
 void raise(const char* name, const fabmesh::Error& e, const fabmesh::ErrorPlace* place) {
   const py::object type = py::module_::import("fabmesh").attr(name);
-  py::object exc = type(e.what());
+  py::object exc = type(decoded(e.what()));
   exc.attr("exit_code") = e.exit_code();
   if (place != nullptr) {
     exc.attr("key") = text_or_none(place->key);
