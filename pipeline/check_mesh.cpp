@@ -32,6 +32,13 @@ Interpenetration assembly_pairs(const std::vector<ObjectCheck>& objects) {
   return interpenetrating_pairs(solids);
 }
 
+/// The facts of each object of a file read, in the file's units.
+std::vector<MeshFacts> object_facts(const FileCheck& check) {
+  std::vector<MeshFacts> facts;
+  for (const ObjectCheck& o : check.objects) facts.push_back(mesh_facts(o.report, check.units));
+  return facts;
+}
+
 }  // namespace
 
 FileCheck check_file(const std::string& path, const CheckOptions& args) {
@@ -58,8 +65,10 @@ FileCheck check_file(const std::string& path, const CheckOptions& args) {
     }
     for (ObjectCheck& o : result.objects) o.welded = {};
     result.readable = true;
+    result.facts = check_facts(path, object_facts(result));
   } catch (const InputError&) {
     result.failure = describe_failure(std::current_exception());
+    result.facts = failed_facts(path, result.failure.exit_code, result.failure.message);
   }
   return result;
 }
@@ -129,6 +138,7 @@ FileCheck check_soup(const TriangleSoup& soup, const CheckOptions& options) {
   result.objects.push_back(check_object("", soup, options, {}));
   result.objects.front().welded = {};
   result.readable = true;
+  result.facts = check_facts("", object_facts(result));
   return result;
 }
 

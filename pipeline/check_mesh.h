@@ -13,6 +13,7 @@
 #include "geometry/mesh/soup.h"
 #include "geometry/validation/validate.h"
 #include "pipeline/failure.h"
+#include "pipeline/report.h"
 
 namespace fabmesh {
 
@@ -42,12 +43,10 @@ struct FileCheck {
   Interpenetration assembly;
   StageTimings timings_ms;  ///< several objects: read and assembly
   Failure failure;          ///< why it could not be read, when not readable
+  ItemFacts facts;          ///< its verdict: check_facts, or failed_facts when not readable
 
   bool several() const { return objects.size() > 1; }
-  bool valid() const {
-    return readable &&
-           std::all_of(objects.begin(), objects.end(), [](const ObjectCheck& o) { return o.report.valid(); });
-  }
+  bool valid() const { return facts.status == ItemStatus::Ok; }
 };
 
 /// Reads `path` and checks each of its objects, then their assembly. A file

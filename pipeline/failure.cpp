@@ -36,6 +36,56 @@ Failure describe_failure(const std::exception_ptr& error, const std::string& sub
   }
 }
 
+const char* to_string(ItemStatus status) {
+  switch (status) {
+    case ItemStatus::Ok:
+      return "ok";
+    case ItemStatus::Invalid:
+      return "invalid";
+    case ItemStatus::BadInput:
+      return "bad input";
+    case ItemStatus::Error:
+      return "error";
+    case ItemStatus::Missing:
+      return "missing";
+    case ItemStatus::Environment:
+      return "environment";
+  }
+  return "error";
+}
+
+ItemStatus status_of(int exit_code) {
+  switch (exit_code) {
+    case kExitOk:
+      return ItemStatus::Ok;
+    case kExitInvalid:
+      return ItemStatus::Invalid;
+    case kExitBadInput:
+      return ItemStatus::BadInput;
+    case kExitEnvironment:
+      return ItemStatus::Environment;
+    default:
+      return ItemStatus::Error;
+  }
+}
+
+int exit_code_of(ItemStatus status) {
+  switch (status) {
+    case ItemStatus::Ok:
+    case ItemStatus::Missing:
+      return kExitOk;
+    case ItemStatus::Invalid:
+      return kExitInvalid;
+    case ItemStatus::BadInput:
+      return kExitBadInput;
+    case ItemStatus::Environment:
+      return kExitEnvironment;
+    case ItemStatus::Error:
+      break;
+  }
+  return kExitInternal;
+}
+
 std::string printable_message(const std::string& message) {
   std::string text;
   for (std::size_t i = 0; i < message.size(); ++i) {

@@ -38,22 +38,27 @@ std::string printable_message(const std::string& message);
 /// further lines indented, other control characters escaped).
 std::string failure_line(const Failure& failure);
 
-/// The status a report or batch row shows for a job that ended with
-/// `exit_code` (describe_failure's, or 0): 0 Ok, 1 Invalid, 2 BadInput,
-/// anything else Error (a batch tells 5 apart itself: its Environment status).
-/// `Status`: an enum with those four values.
-template <class Status>
-Status status_of(int exit_code) {
-  switch (exit_code) {
-    case kExitOk:
-      return Status::Ok;
-    case kExitInvalid:
-      return Status::Invalid;
-    case kExitBadInput:
-      return Status::BadInput;
-    default:
-      return Status::Error;
-  }
-}
+/// How one item of a report ended (a design run, a batch variant, a mesh
+/// file checked): the status every report shows, in to_string's words (which
+/// a batch's summary.jsonl keeps). One per exit code, and Missing.
+enum class ItemStatus {
+  Ok,        ///< done, valid (exit code 0)
+  Invalid,   ///< a mesh is not valid (exit code 1)
+  BadInput,  ///< bad input (exit code 2)
+  Error,     ///< an internal error (exit code 3)
+  Missing,   ///< not run yet: a batch variant no shard has built (no exit code)
+  /// Writing failed for a reason of the machine (exit code 5).
+  Environment,
+};
+
+/// "ok", "invalid", "bad input", "error", "missing", "environment".
+const char* to_string(ItemStatus status);
+
+/// The status of an item that ended with `exit_code` (describe_failure's, or
+/// 0): 0 Ok, 1 Invalid, 2 BadInput, 5 Environment, anything else Error.
+ItemStatus status_of(int exit_code);
+
+/// The exit code of `status`, the inverse of status_of (Missing: 0, it ran nothing).
+int exit_code_of(ItemStatus status);
 
 }  // namespace fabmesh

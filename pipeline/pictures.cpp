@@ -12,7 +12,6 @@
 #include "io/pictures/plot_curve.h"
 #include "pipeline/build_design.h"
 #include "pipeline/design_curves.h"
-#include "pipeline/failure.h"
 
 namespace fabmesh {
 namespace {
@@ -47,8 +46,17 @@ void add_surface(const PatchNetwork& network, CurvePlot& plot) {
   }
 }
 
-std::string relative_to(const std::string& path, const std::string& base) {
-  return std::filesystem::path(path).lexically_relative(base.empty() ? "." : base).generic_string();
+// The measures of `mesh` on its row; counts, volume and area only when measured.
+void add_measures(const MeshFacts& mesh, ReportRow& row) {
+  row.kind = mesh.kind;
+  row.units = mesh.units;
+  row.max_deviation = mesh.max_deviation;
+  if (mesh.measured) {
+    row.volume = mesh.volume;
+    row.area = mesh.area;
+    row.triangles = mesh.triangles;
+  }
+  row.bbox = std::array<Vec3, 2>{mesh.bbox_min, mesh.bbox_max};
 }
 
 }  // namespace
@@ -83,33 +91,34 @@ std::string preview_png(const TriangleSoup& soup, const PreviewOptions& options)
   return encode_png(render_preview(soup, options));
 }
 
-ReportRow report_row(const JobReport& report, const std::string& base) {
-  ReportRow row;
-  row.name = report.name;
-  row.kind = report.kind;
-  row.units = report.units;
-  const bool mesh = report.purpose != MeshPurpose::Drawing;
-  row.status = !mesh || report.validation.valid() ? ReportStatus::Ok : ReportStatus::Invalid;
-  row.message = !mesh                       ? "drawing written"
-                : report.validation.valid() ? "valid for fabrication"
-                                            : "written for viewing only: not valid for fabrication";
-  row.max_deviation = report.max_deviation;
-  if (mesh) {
-    row.volume = report.validation.volume;
-    row.area = report.validation.area;
-    row.triangles = report.validation.triangles;
+ReportStatus report_status(ItemStatus status) {
+  switch (status) {
+    case ItemStatus::Ok:
+      return ReportStatus::Ok;
+    case ItemStatus::Invalid:
+      return ReportStatus::Invalid;
+    case ItemStatus::BadInput:
+      return ReportStatus::BadInput;
+    case ItemStatus::Error:
+    case ItemStatus::Missing:
+    case ItemStatus::Environment:
+      break;
   }
-  row.bbox = std::array<Vec3, 2>{report.bbox_min, report.bbox_max};
-  for (const auto& [stage, ms] : report.timings_ms) row.timings.push_back({stage, ms / 1000.0});
-  for (const std::string& path : report.outputs) row.files.push_back(relative_to(path, base));
-  return row;
+  return ReportStatus::Error;
 }
 
-ReportRow failed_row(const std::string& design_file, int exit_code, const std::string& message) {
+std::string page_link(const std::string& path, const std::string& base) {
+  return std::filesystem::path(path).lexically_relative(base.empty() ? "." : base).generic_string();
+}
+
+ReportRow report_row(const ItemFacts& item, const std::string& base) {
   ReportRow row;
-  row.name = std::filesystem::path(design_file).stem().string();
-  row.status = status_of<ReportStatus>(exit_code);
-  row.message = message;
+  row.name = item.name;
+  row.status = report_status(item.status);
+  row.message = item.message;
+  if (item.mesh) add_measures(*item.mesh, row);
+  for (const auto& [stage, ms] : item.timings_ms) row.timings.push_back({stage, ms / 1000.0});
+  for (const std::string& path : item.files) row.files.push_back(page_link(path, base));
   return row;
 }
 

@@ -9,6 +9,7 @@
 #include "io/pictures/html_report.h"
 #include "io/pictures/preview.h"
 #include "pipeline/job.h"
+#include "pipeline/report.h"
 
 namespace fabmesh {
 
@@ -35,13 +36,17 @@ TriangleSoup design_mesh(const Design& design);
 /// A shaded preview of `soup` as a PNG file's bytes (render_preview, encode_png).
 std::string preview_png(const TriangleSoup& soup, const PreviewOptions& options = {});
 
-/// The HTML report's row for a job that ran: name, kind, verdict, measures
-/// in model units, timings and files (paths relative to `base`, the folder
-/// of the page).
-ReportRow report_row(const JobReport& report, const std::string& base);
+/// The HTML report's status of an item: its own, Missing and Environment
+/// shown as Error.
+ReportStatus report_status(ItemStatus status);
 
-/// The row for a design that did not run: its file, the exit code's status
-/// (1 invalid, 2 bad input, 3 error) and the message.
-ReportRow failed_row(const std::string& design_file, int exit_code, const std::string& message);
+/// `path` as the HTML report links it: relative to `base`, the folder of
+/// the page ("" for the working folder).
+std::string page_link(const std::string& path, const std::string& base);
+
+/// The HTML report's row of an item (of a run or a batch): name, status,
+/// message, its mesh facts in model units (counts, volume and area only when
+/// measured), timings in seconds and files (page_link). No pictures.
+ReportRow report_row(const ItemFacts& item, const std::string& base);
 
 }  // namespace fabmesh

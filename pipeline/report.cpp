@@ -28,6 +28,60 @@ nlohmann::ordered_json component_shells_json(const ValidationReport& r) {
 
 }  // namespace
 
+MeshFacts mesh_facts(const ValidationReport& v, const std::string& units) {
+  MeshFacts m;
+  m.units = units;
+  m.vertices = v.vertices;
+  m.triangles = v.triangles;
+  m.volume = v.volume;
+  m.area = v.area;
+  m.valid = v.valid();
+  return m;
+}
+
+MeshFacts mesh_facts(const JobReport& r) {
+  MeshFacts m = mesh_facts(r.validation, r.units);
+  m.kind = r.kind;
+  m.measured = r.purpose != MeshPurpose::Drawing;
+  m.bbox_min = r.bbox_min;
+  m.bbox_max = r.bbox_max;
+  m.max_deviation = r.max_deviation;
+  m.tolerance = r.tolerance;
+  return m;
+}
+
+ItemFacts job_facts(const JobReport& r) {
+  ItemFacts item;
+  item.name = r.name;
+  item.mesh = mesh_facts(r);
+  const bool fit = !item.mesh->measured || item.mesh->valid;
+  item.status = fit ? ItemStatus::Ok : ItemStatus::Invalid;
+  item.message = !item.mesh->measured ? "drawing written"
+                 : fit                ? kValidForFabrication
+                                      : "written for viewing only: not valid for fabrication";
+  item.files = r.outputs;
+  item.timings_ms = r.timings_ms;
+  return item;
+}
+
+ItemFacts failed_facts(const std::string& name, int exit_code, const std::string& message) {
+  ItemFacts item;
+  item.name = name;
+  item.status = status_of(exit_code);
+  item.message = message;
+  return item;
+}
+
+ItemFacts check_facts(const std::string& file, const std::vector<MeshFacts>& objects) {
+  ItemFacts item;
+  item.name = file;
+  const bool valid = std::all_of(objects.begin(), objects.end(), [](const MeshFacts& m) { return m.valid; });
+  item.status = valid ? ItemStatus::Ok : ItemStatus::Invalid;
+  item.message = valid ? "valid" : "INVALID";
+  if (objects.size() == 1) item.mesh = objects.front();
+  return item;
+}
+
 nlohmann::ordered_json validation_json(const ValidationReport& r) {
   nlohmann::ordered_json j;
   j["vertices"] = r.vertices;
@@ -71,24 +125,27 @@ nlohmann::ordered_json timings_json(const StageTimings& timings, const std::stri
   return j;
 }
 
-nlohmann::ordered_json bounding_box_json(const Vec3& lo, const Vec3& hi, const std::string& units) {
+nlohmann::ordered_json bounding_box_json(const MeshFacts& mesh) {
+  const Vec3& lo = mesh.bbox_min;
+  const Vec3& hi = mesh.bbox_max;
   const Vec3 size = hi - lo;
   nlohmann::ordered_json j;
   j["min"] = {lo.x(), lo.y(), lo.z()};
   j["max"] = {hi.x(), hi.y(), hi.z()};
   j["size"] = {size.x(), size.y(), size.z()};
-  j["units"] = units;
+  j["units"] = mesh.units;
   return j;
 }
 
 nlohmann::ordered_json to_json(const JobReport& r) {
+  const MeshFacts mesh = mesh_facts(r);
   nlohmann::ordered_json j;
   j["name"] = r.name;
-  j["kind"] = r.kind;
-  j["units"] = r.units;
+  j["kind"] = mesh.kind;
+  j["units"] = mesh.units;
   j["export_units"] = r.export_units;
-  j["tolerance"] = r.tolerance;
-  j["max_deviation"] = r.max_deviation;
+  j["tolerance"] = mesh.tolerance;
+  j["max_deviation"] = mesh.max_deviation;
   j["tolerance_split"] = {{"build", r.build_tolerance}, {"outputs", r.tolerance - r.build_tolerance}};
   if (!r.tolerance_shares.empty()) {
     nlohmann::ordered_json stages = nlohmann::ordered_json::array();
@@ -99,7 +156,7 @@ nlohmann::ordered_json to_json(const JobReport& r) {
     }
     j["tolerance_split"]["stages"] = std::move(stages);
   }
-  j["bounding_box"] = bounding_box_json(r.bbox_min, r.bbox_max, r.units);
+  j["bounding_box"] = bounding_box_json(mesh);
   j["outputs"] = r.outputs;
   j["files"] = nlohmann::ordered_json::array();
   for (const OutputFile& f : r.files) {

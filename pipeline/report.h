@@ -1,10 +1,15 @@
 #pragma once
-// Reports shared by every command: the validation facts under one set of
-// JSON keys (`run` and `check` print the same), job reports, joint reports.
+// Reports shared by every command: the one model of an item's facts
+// (ItemFacts, MeshFacts) that every report is made from, the validation facts
+// under one set of JSON keys (`run` and `check` print the same), job
+// reports, joint reports.
 
+#include <cstddef>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <ostream>
 #include <string>
+#include <vector>
 
 #include "geometry/fairing/build_curve.h"
 #include "geometry/validation/validate.h"
@@ -13,6 +18,57 @@
 
 namespace fabmesh {
 
+/// The facts of a built mesh (or drawing) that every report of it shows:
+/// `run --json`, a batch's summary rows, the HTML reports, `check`. In model
+/// units.
+struct MeshFacts {
+  std::string kind;   ///< vessel | countertop | surface | curve; empty for a mesh file
+  std::string units;  ///< of the facts below; empty for a mesh file that states none
+  /// A mesh was validated, so the counts, volume and area are its own; false
+  /// for a drawing (a curve design). Not kept in a summary row, which is
+  /// read back as measured.
+  bool measured = true;
+  std::size_t vertices = 0, triangles = 0;
+  double volume = 0.0, area = 0.0;
+  bool valid = false;  ///< valid for fabrication (a `purpose: view` surface may be written and not be)
+  Vec3 bbox_min = Vec3::Zero(), bbox_max = Vec3::Zero();
+  double max_deviation = 0.0, tolerance = 0.0;  ///< proven bound and the design's tolerance
+};
+
+/// One item of a report: a design that ran (or failed), a batch variant, a
+/// mesh file checked. Every report's row or item is made from one.
+struct ItemFacts {
+  std::string name;  ///< the design's or variant's name, or the mesh file
+  ItemStatus status = ItemStatus::Ok;
+  std::string message;             ///< the verdict in words, or why it failed
+  std::optional<MeshFacts> mesh;   ///< when built (or read)
+  std::vector<std::string> files;  ///< written (paths as the job names them)
+  StageTimings timings_ms;
+};
+
+/// The words of an item that is valid for fabrication.
+inline constexpr const char* kValidForFabrication = "valid for fabrication";
+
+/// The facts a validation gives: counts, volume, area and validity, in `units`.
+MeshFacts mesh_facts(const ValidationReport& validation, const std::string& units);
+
+/// A job's mesh facts: the validation's (mesh_facts above), its kind, box,
+/// proven deviation and tolerance; not `measured` for a drawing.
+MeshFacts mesh_facts(const JobReport& report);
+
+/// A job that ran: Ok when its mesh is valid for fabrication (or it is a
+/// drawing), Invalid when written for viewing only, said in words; its mesh
+/// facts, the files it wrote and its stage timings.
+ItemFacts job_facts(const JobReport& report);
+
+/// An item that failed with `exit_code` (describe_failure's) and `message`;
+/// no facts beyond.
+ItemFacts failed_facts(const std::string& name, int exit_code, const std::string& message);
+
+/// A mesh file `check` read: Ok when each of its objects is valid, else
+/// Invalid; the facts of its one object (none for several).
+ItemFacts check_facts(const std::string& file, const std::vector<MeshFacts>& objects);
+
 /// The validation facts of a mesh: counts, topology, orientation, volume,
 /// area, genus, how self-intersection was settled, the defects and the verdict.
 nlohmann::ordered_json validation_json(const ValidationReport& report);
@@ -20,9 +76,9 @@ nlohmann::ordered_json validation_json(const ValidationReport& report);
 /// Stage timings as a JSON object (stage -> ms); `prefix` is put before each name.
 nlohmann::ordered_json timings_json(const StageTimings& timings, const std::string& prefix = "");
 
-/// A bounding box as every report writes it: `min`, `max`, `size` (each
-/// [x, y, z]) and `units`.
-nlohmann::ordered_json bounding_box_json(const Vec3& lo, const Vec3& hi, const std::string& units);
+/// A mesh's bounding box as every report writes it: `min`, `max`, `size`
+/// (each [x, y, z]) and `units`.
+nlohmann::ordered_json bounding_box_json(const MeshFacts& mesh);
 
 /// A job's JSON report (docs/reports.md): name, kind, units, tolerance,
 /// max_deviation, outputs, the validation facts, builder facts and timings.

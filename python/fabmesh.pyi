@@ -103,6 +103,12 @@ def check(vertices: ArrayLike, triangles: ArrayLike, *, weld_tolerance: float = 
 def check_file(path: StrPath, *, weld_tolerance: float = 0.0, max_seconds: float = 600.0) -> dict[str, Any]:
     """Validates a mesh file as `fabmesh check FILE --json`."""
 
+def read_mesh(path: StrPath) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.int64], Optional[str]]:
+    """Reads a mesh file: (vertices, triangles, units or None)."""
+
+def write_mesh(path: StrPath, vertices: ArrayLike, triangles: ArrayLike, *, units: Optional[str] = None) -> None:
+    """Writes a mesh in the format the extension names."""
+
 def tbezier(points: ArrayLike, lam: float = 0.0, mu: float = 0.0) -> Curve: ...
 def quasi_bspline(points: ArrayLike, lambdas: Optional[list[float]] = None) -> Curve: ...
 def hbezier(points: ArrayLike, alpha: float = 1.0, lam: float = 0.0, mu: float = 0.0) -> Curve: ...

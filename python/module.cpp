@@ -27,17 +27,19 @@ PyObject* new_exception(py::module_& m, const char* name, const char* doc, PyObj
   return type;
 }
 
+py::object text_or_none(const std::string& text) { return text.empty() ? py::object(py::none()) : py::object(py::str(text)); }
+
 // Raises the module's exception class `name` for `e`, with the place of bad input as attributes.
 void raise(const char* name, const fabmesh::Error& e, const fabmesh::ErrorPlace* place) {
   const py::object type = py::module_::import("fabmesh").attr(name);
   py::object exc = type(e.what());
   exc.attr("exit_code") = e.exit_code();
   if (place != nullptr) {
-    exc.attr("key") = place->key.empty() ? py::none() : py::str(place->key);
-    exc.attr("file") = place->file.empty() ? py::none() : py::str(place->file);
+    exc.attr("key") = text_or_none(place->key);
+    exc.attr("file") = text_or_none(place->file);
     exc.attr("line") = place->line > 0 ? py::object(py::int_(place->line)) : py::none();
     exc.attr("column") = place->column > 0 ? py::object(py::int_(place->column)) : py::none();
-    exc.attr("override") = place->override_text.empty() ? py::none() : py::str(place->override_text);
+    exc.attr("override") = text_or_none(place->override_text);
     exc.attr("is_default") = place->is_default;
   }
   PyErr_SetObject(type.ptr(), exc.ptr());
@@ -169,6 +171,25 @@ py::array_t<T> matrix(const std::vector<std::array<T, N>>& rows) {
   py::array_t<T> out({static_cast<py::ssize_t>(rows.size()), static_cast<py::ssize_t>(N)});
   if (!rows.empty()) std::memcpy(out.mutable_data(), rows.front().data(), rows.size() * sizeof(rows.front()));
   return out;
+}
+
+// A Mesh holding copies of the checked arrays.
+fabmesh::Mesh mesh_of(const py::handle& vertices, const py::handle& triangles) {
+  const auto v = rows_of_three<double>(vertices, "vertices");
+  const auto t = rows_of_three<std::int64_t>(triangles, "triangles");
+  fabmesh::Mesh mesh;
+  mesh.vertices.resize(static_cast<std::size_t>(v.shape(0)));
+  if (!mesh.vertices.empty()) std::memcpy(mesh.vertices.data(), v.data(), mesh.vertices.size() * sizeof(fabmesh::Point));
+  mesh.triangles.resize(static_cast<std::size_t>(t.shape(0)));
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+    for (std::size_t k = 0; k < 3; ++k) {
+      const std::int64_t i = t.data()[3 * f + k];
+      if (i < 0 || static_cast<std::size_t>(i) >= mesh.vertices.size())
+        bad_argument("triangles", "triangle " + std::to_string(f) + " names vertex " + std::to_string(i) + ", not one of the " + std::to_string(mesh.vertices.size()) + " vertices");
+      mesh.triangles[f][k] = static_cast<std::uint32_t>(i);
+    }
+  }
+  return mesh;
 }
 
 // A build's result with the design it came from (for write and outputs).
@@ -329,6 +350,38 @@ shape or dtype, or an index out of range.)");
         R"(Validates a mesh file exactly as `fabmesh check FILE --json`; returns its item as a dict.
 
 An unreadable file gives {"file": ..., "error": ..., "exit_code": 2, "valid": False}.)");
+
+  m.def(
+      "read_mesh",
+      [](const std::filesystem::path& path) {
+        fabmesh::Mesh mesh;
+        {
+          py::gil_scoped_release free;
+          mesh = fabmesh::read_mesh(path);
+        }
+        py::array_t<std::int64_t> triangles({static_cast<py::ssize_t>(mesh.triangles.size()), py::ssize_t{3}});
+        for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+          for (std::size_t k = 0; k < 3; ++k) triangles.mutable_data()[3 * f + k] = mesh.triangles[f][k];
+        }
+        return py::make_tuple(matrix<3>(mesh.vertices), triangles, text_or_none(mesh.units));
+      },
+      py::arg("path"),
+      "Reads a mesh file (STL, OBJ, PLY, OFF, 3MF, glTF/GLB, Draco) by its content, all its objects in one "
+      "mesh: returns (vertices (N, 3) float64, triangles (M, 3) int64, units or None). Raises InputError.");
+  m.def(
+      "write_mesh",
+      [](const std::filesystem::path& path, const py::handle& vertices, const py::handle& triangles,
+         const std::optional<std::string>& units) {
+        fabmesh::Mesh mesh = mesh_of(vertices, triangles);
+        fabmesh::WriteOptions options;
+        options.units = units.value_or("");
+        py::gil_scoped_release free;
+        fabmesh::write_mesh(path, mesh, options);
+      },
+      py::arg("path"), py::arg("vertices"), py::arg("triangles"), py::kw_only(), py::arg("units") = py::none(),
+      "Writes a mesh in the format the path's extension names (.stl .obj .ply .off .3mf .glb .drc), all or "
+      "nothing; units (default 'mm') is stated in 3MF and glTF. Nothing is validated. Raises InputError, "
+      "EnvironmentError.");
 
   py::class_<fabmesh::Curve>(m, "Curve",
                              "A composite plane curve of n segments, parameter t in [0, n]: segment floor(t) at "

@@ -29,5 +29,12 @@ while IFS= read -r hit; do complain "yaml-cpp outside io/design: $hit"; done \
 while IFS= read -r hit; do complain "validation's private parts used outside geometry/validation: $hit"; done \
   < <(grep -rnE '#include "geometry/validation/detail/' geometry io pipeline 2>/dev/null | grep -v '^geometry/validation/' || true)
 
-[[ $status -eq 0 ]] && echo "check-layering: pipeline -> io -> geometry holds; encoders see built data only; CGAL, yaml-cpp and validation/detail stay private"
+while IFS= read -r hit; do complain "a layer below api/ includes the public headers: $hit"; done \
+  < <(grep -rnE '#include [<"]fabmesh/' geometry io pipeline 2>/dev/null || true)
+while IFS= read -r hit; do complain "a public header includes more than the standard library: $hit"; done \
+  < <(grep -rnE '#include ' api/include 2>/dev/null | grep -vE '#include ("fabmesh/[a-z_]+\.h"|<[a-z_]+>)' || true)
+while IFS= read -r hit; do complain "the Python module reaches past the public headers: $hit"; done \
+  < <(grep -rnE '#include "' python 2>/dev/null || true)
+
+[[ $status -eq 0 ]] && echo "check-layering: python -> api -> pipeline -> io -> geometry holds; encoders see built data only; CGAL, yaml-cpp and validation/detail stay private"
 exit $status

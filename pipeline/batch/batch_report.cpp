@@ -18,22 +18,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-ReportStatus report_status(VariantStatus s) {
-  switch (s) {
-    case VariantStatus::Ok:
-      return ReportStatus::Ok;
-    case VariantStatus::Invalid:
-      return ReportStatus::Invalid;
-    case VariantStatus::BadInput:
-      return ReportStatus::BadInput;
-    case VariantStatus::Error:
-    case VariantStatus::Missing:
-    case VariantStatus::Environment:
-      return ReportStatus::Error;
-  }
-  return ReportStatus::Error;
-}
-
 std::vector<BatchRow> read_rows(const fs::path& summary) {
   const std::string text = read_file(summary.string());
   std::vector<BatchRow> rows;
@@ -54,29 +38,14 @@ const RowFile* stl_of(const BatchRow& row) {
   return nullptr;
 }
 
+// The row's page row; its files (relative to the batch folder `dir`) linked
+// relative to the page's folder `base`.
 ReportRow page_row(const BatchRow& row, const fs::path& dir, const fs::path& base) {
-  ReportRow r;
-  r.name = row.name;
-  r.status = report_status(row.status);
-  r.message = row.status == VariantStatus::Missing ? "not run yet" : row.message;
-  if (r.message.empty() && row.status == VariantStatus::Ok) r.message = "valid for fabrication";
-  if (row.mesh) {
-    const RowMesh& m = *row.mesh;
-    r.kind = m.kind;
-    r.units = m.units;
-    r.max_deviation = m.max_deviation;
-    r.volume = m.volume;
-    r.area = m.area;
-    r.triangles = m.triangles;
-    r.bbox = std::array<Vec3, 2>{Vec3(m.bbox_min[0], m.bbox_min[1], m.bbox_min[2]),
-                                 Vec3(m.bbox_max[0], m.bbox_max[1], m.bbox_max[2])};
-  }
-  for (const auto& [stage, ms] : row.timings_ms) r.timings.push_back({stage, ms / 1000.0});
-  const auto relative = [&](const fs::path& p) { return p.lexically_relative(base).generic_string(); };
-  for (const RowFile& f : row.files) r.files.push_back(relative(dir / f.path));
-  if (stl_of(row) != nullptr) {
-    r.preview_png = relative(dir / row.name / (row.name + ".thumb.png"));
-  }
+  ItemFacts item = row_facts(row);
+  for (std::string& file : item.files) file = (dir / file).string();
+  ReportRow r = report_row(item, base.string());
+  if (stl_of(row) != nullptr)
+    r.preview_png = page_link((dir / row.name / (row.name + ".thumb.png")).string(), base.string());
   return r;
 }
 

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <limits>
 #include <type_traits>
@@ -61,6 +62,12 @@ T whole_number(const nlohmann::ordered_json& v, const char* key) {
   return v.get<T>();
 }
 
+// A box corner as row_json writes it: [x, y, z].
+Vec3 point(const nlohmann::ordered_json& xyz) {
+  const auto p = xyz.get<std::array<double, 3>>();
+  return {p[0], p[1], p[2]};
+}
+
 template <class T>
 T field(const nlohmann::ordered_json& j, const char* key) {
   if (!j.contains(key)) throw InputError(fmt::format("summary row: missing field '{}'", key));
@@ -72,24 +79,6 @@ T field(const nlohmann::ordered_json& j, const char* key) {
 }
 
 }  // namespace
-
-const char* to_string(VariantStatus status) {
-  switch (status) {
-    case VariantStatus::Ok:
-      return "ok";
-    case VariantStatus::Invalid:
-      return "invalid";
-    case VariantStatus::BadInput:
-      return "bad input";
-    case VariantStatus::Error:
-      return "error";
-    case VariantStatus::Missing:
-      return "missing";
-    case VariantStatus::Environment:
-      return "environment";
-  }
-  return "error";
-}
 
 bool is_final(VariantStatus status) {
   return status == VariantStatus::Ok || status == VariantStatus::Invalid || status == VariantStatus::BadInput;
@@ -115,7 +104,7 @@ Json row_json(const BatchRow& r) {
   j["exit_code"] = r.status == VariantStatus::Missing ? Json(nullptr) : Json(r.exit_code);
   j["message"] = r.message;
   if (r.mesh) {
-    const RowMesh& m = *r.mesh;
+    const MeshFacts& m = *r.mesh;
     j["kind"] = m.kind;
     j["units"] = m.units;
     j["vertices"] = m.vertices;
@@ -123,8 +112,7 @@ Json row_json(const BatchRow& r) {
     j["volume"] = m.volume;
     j["area"] = m.area;
     j["valid"] = m.valid;
-    j["bounding_box"] = bounding_box_json(Vec3(m.bbox_min[0], m.bbox_min[1], m.bbox_min[2]),
-                                          Vec3(m.bbox_max[0], m.bbox_max[1], m.bbox_max[2]), m.units);
+    j["bounding_box"] = bounding_box_json(m);
     j["max_deviation"] = m.max_deviation;
     j["tolerance"] = m.tolerance;
   }
@@ -144,6 +132,18 @@ Json row_json(const BatchRow& r) {
   return j;
 }
 
+ItemFacts row_facts(const BatchRow& r) {
+  ItemFacts item;
+  item.name = r.name;
+  item.status = r.status;
+  item.message = r.status == VariantStatus::Missing ? "not run yet" : r.message;
+  if (item.message.empty() && r.status == VariantStatus::Ok) item.message = kValidForFabrication;
+  item.mesh = r.mesh;
+  for (const RowFile& f : r.files) item.files.push_back(f.path);
+  item.timings_ms = r.timings_ms;
+  return item;
+}
+
 BatchRow row_from_json(const nlohmann::ordered_json& j) {
   try {
     BatchRow r;
@@ -157,7 +157,7 @@ BatchRow row_from_json(const nlohmann::ordered_json& j) {
     r.exit_code = j.at("exit_code").is_null() ? 0 : field<int>(j, "exit_code");
     r.message = field<std::string>(j, "message");
     if (j.contains("kind")) {
-      RowMesh m;
+      MeshFacts m;
       m.kind = field<std::string>(j, "kind");
       m.units = field<std::string>(j, "units");
       m.vertices = field<std::size_t>(j, "vertices");
@@ -165,8 +165,8 @@ BatchRow row_from_json(const nlohmann::ordered_json& j) {
       m.volume = field<double>(j, "volume");
       m.area = field<double>(j, "area");
       m.valid = field<bool>(j, "valid");
-      m.bbox_min = j.at("bounding_box").at("min").get<std::array<double, 3>>();
-      m.bbox_max = j.at("bounding_box").at("max").get<std::array<double, 3>>();
+      m.bbox_min = point(j.at("bounding_box").at("min"));
+      m.bbox_max = point(j.at("bounding_box").at("max"));
       m.max_deviation = field<double>(j, "max_deviation");
       m.tolerance = field<double>(j, "tolerance");
       r.mesh = m;
@@ -207,11 +207,12 @@ std::string csv_line(const BatchRow& r, const std::vector<std::string>& paramete
                       r.status == VariantStatus::Missing ? "" : std::to_string(r.exit_code),
                       csv_cell(r.message), r.key);
   if (r.mesh) {
-    const RowMesh& m = *r.mesh;
+    const MeshFacts& m = *r.mesh;
     line += fmt::format(",{},{},{},{},{},{},{}", m.kind, m.units, m.vertices, m.triangles, number(m.volume),
                         number(m.area), m.valid ? "true" : "false");
-    for (const double x : m.bbox_min) line += "," + number(x);
-    for (const double x : m.bbox_max) line += "," + number(x);
+    for (const Vec3& corner : {m.bbox_min, m.bbox_max}) {
+      for (int axis = 0; axis < 3; ++axis) line += "," + number(corner[axis]);
+    }
     line += fmt::format(",{},{}", number(m.max_deviation), number(m.tolerance));
   } else {
     line += std::string(15, ',');

@@ -2,7 +2,6 @@
 // One variant's line of a batch summary (summary.csv, summary.jsonl): what it
 // is (name, base design, parameter values, content key) and what became of it.
 
-#include <array>
 #include <cstdint>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -11,41 +10,22 @@
 #include <vector>
 
 #include "geometry/core/stage_timer.h"
+#include "pipeline/failure.h"
 #include "pipeline/job.h"
+#include "pipeline/report.h"
 
 namespace fabmesh {
 
-/// What became of a variant.
-enum class VariantStatus {
-  Ok,        ///< built, valid, written (exit code 0)
-  Invalid,   ///< its mesh is not valid (exit code 1)
-  BadInput,  ///< its design, with its values, is bad input (exit code 2)
-  Error,     ///< an internal error (exit code 3); redone by the next run
-  Missing,   ///< no shard has run it yet (merge only)
-  /// Writing failed for a reason of the machine (disk full, I/O error,
-  /// permission: exit code 5); redone by the next run.
-  Environment,
-};
+/// What became of a variant: the statuses of every report, whose words the
+/// ledger keeps ("missing" after a merge: no shard has run it yet).
+using VariantStatus = ItemStatus;
 
 /// True for a status that stands on a rerun (ok, invalid, bad input): the
 /// same key gives the same outcome. Error and environment are redone.
 bool is_final(VariantStatus status);
 
-/// "ok", "invalid", "bad input", "error", "missing", "environment".
-const char* to_string(VariantStatus status);
 /// The inverse of to_string. \throw InputError for another text
 VariantStatus parse_variant_status(const std::string& text);
-
-/// The mesh facts of a variant that was written.
-struct RowMesh {
-  std::string kind;
-  std::string units;  ///< model units of the facts below
-  std::size_t vertices = 0, triangles = 0;
-  double volume = 0.0, area = 0.0;
-  bool valid = false;  ///< valid for fabrication (a `purpose: view` surface may be written and not be)
-  std::array<double, 3> bbox_min{}, bbox_max{};
-  double max_deviation = 0.0, tolerance = 0.0;
-};
 
 /// One output file of a variant, its path relative to the batch folder.
 struct RowFile {
@@ -65,8 +45,8 @@ struct BatchRow {
   std::string key;  ///< 64 hex digits: SHA-256 of the resolved design and the fabmesh version
   VariantStatus status = VariantStatus::Missing;
   int exit_code = 0;
-  std::string message;          ///< why it failed, or the warnings of skipped outputs
-  std::optional<RowMesh> mesh;  ///< when written
+  std::string message;            ///< why it failed, or the warnings of skipped outputs
+  std::optional<MeshFacts> mesh;  ///< when written (mesh_facts of its job)
   std::vector<RowFile> files;
   std::vector<SkippedOutput> skipped;
   /// Wall ms: "resolve" (overrides, canonical text, key), "job" (the job's own
@@ -76,6 +56,12 @@ struct BatchRow {
 
 /// The row as one JSON object (a summary.jsonl line); timings last.
 nlohmann::ordered_json row_json(const BatchRow& row);
+
+/// The row as the facts every report shows (ItemFacts): its name, status and
+/// message (an ok row without one: "valid for fabrication"; a missing one:
+/// "not run yet"), mesh facts, files (relative to the batch folder) and
+/// timings.
+ItemFacts row_facts(const BatchRow& row);
 
 /// The inverse of row_json. \throw InputError when a field is missing or of the wrong type
 BatchRow row_from_json(const nlohmann::ordered_json& j);

@@ -19,6 +19,7 @@
 #include "pipeline/batch/sha256.h"
 #include "pipeline/failure.h"
 #include "pipeline/job.h"
+#include "pipeline/report.h"
 
 namespace fabmesh {
 namespace {
@@ -53,22 +54,6 @@ void tidy_folder(const fs::path& folder, const std::set<std::string>& keep) {
   }
   ::closedir(dir);
   if (keep.empty()) ::rmdir(folder.c_str());  // only when empty; never a link
-}
-
-RowMesh mesh_of(const JobReport& r) {
-  RowMesh m;
-  m.kind = r.kind;
-  m.units = r.units;
-  m.vertices = r.validation.vertices;
-  m.triangles = r.validation.triangles;
-  m.volume = r.validation.volume;
-  m.area = r.validation.area;
-  m.valid = r.validation.valid();
-  m.bbox_min = {r.bbox_min.x(), r.bbox_min.y(), r.bbox_min.z()};
-  m.bbox_max = {r.bbox_max.x(), r.bbox_max.y(), r.bbox_max.z()};
-  m.max_deviation = r.max_deviation;
-  m.tolerance = r.tolerance;
-  return m;
 }
 
 // How the file at `path` differs from a ledger's record of it (`bytes`,
@@ -169,23 +154,21 @@ BatchRow run_variant(const BatchManifest& manifest, std::size_t index, const Pla
     const JobReport report = write_job(std::move(job));
     for (const auto& stage : report.timings_ms) job_ms += stage.second;
     stages = report.timings_ms;
-    row.mesh = mesh_of(report);
+    row.mesh = mesh_facts(report);
     row.skipped = report.skipped;
     for (const SkippedOutput& s : report.skipped)
       row.message += fmt::format("{}skipped {}: {}", row.message.empty() ? "" : "; ", s.format, s.reason);
     row.status = VariantStatus::Ok;
-    row.exit_code = 0;
   } catch (...) {
     const Failure failure = describe_failure(std::current_exception(), planned.design);
-    row.status = failure.exit_code == kExitEnvironment ? VariantStatus::Environment
-                                                       : status_of<VariantStatus>(failure.exit_code);
-    row.exit_code = failure.exit_code;
+    row.status = status_of(failure.exit_code);
     row.message = failure.message;
     row.files.clear();
     row.mesh.reset();
     written.clear();
     if (row.timings_ms.empty()) row.timings_ms.emplace_back("resolve", ms_since(start));
   }
+  row.exit_code = exit_code_of(row.status);
   const Clock::time_point tidy_start = Clock::now();
   if (!linked && (existed || row.status != VariantStatus::Ok)) tidy_folder(folder, written);
   record_ms += ms_since(tidy_start);
@@ -206,14 +189,24 @@ bool inside_batch_folder(const std::string& relative) {
                       [](const fs::path& part) { return part.empty() || part == ".." || part == "."; });
 }
 
+// The status a row's text names, in the ledger's words; nothing for other text.
+std::optional<VariantStatus> known_status(const std::string& text) {
+  try {
+    return parse_variant_status(text);
+  } catch (const InputError&) {
+    return std::nullopt;
+  }
+}
+
 }  // namespace
 
 bool row_stands(std::string_view row_json, const std::string& out_dir, std::string* why) {
   const nlohmann::json j = nlohmann::json::parse(row_json, nullptr, false);
   if (!j.is_object() || !has_type(j, "status", &nlohmann::json::is_string)) return false;
-  const std::string status = j.value("status", "");
-  if (status == "invalid" || status == "bad input") return true;
-  if (status != "ok" || !j.contains("files")) return false;
+  const std::optional<VariantStatus> status = known_status(j.value("status", ""));
+  if (!status) return false;
+  if (*status != VariantStatus::Ok) return is_final(*status);  // invalid and bad input stand as they are
+  if (!j.contains("files")) return false;
   if (!j.at("files").is_array() || !std::all_of(j.at("files").begin(), j.at("files").end(), is_file_entry)) {
     if (why != nullptr) *why = "its row lists its files in a form fabmesh does not write: built again";
     return false;

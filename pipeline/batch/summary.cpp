@@ -9,24 +9,6 @@
 
 namespace fabmesh {
 
-int exit_code_of(VariantStatus status) {
-  switch (status) {
-    case VariantStatus::Ok:
-      return 0;
-    case VariantStatus::Invalid:
-      return 1;
-    case VariantStatus::BadInput:
-      return 2;
-    case VariantStatus::Error:
-      return 3;
-    case VariantStatus::Missing:
-      return 0;
-    case VariantStatus::Environment:
-      return 5;
-  }
-  return 3;
-}
-
 void SummaryCounts::add(VariantStatus status, int code) {
   switch (status) {
     case VariantStatus::Ok:

@@ -53,9 +53,6 @@ struct SummaryCounts {
   void add(VariantStatus status, int code);
 };
 
-/// The exit code of a status (missing: 0).
-int exit_code_of(VariantStatus status);
-
 /// The row of variant `i` for the summary: the kept row with the plan's index,
 /// design and values, or a `missing` row. \throw InputError for a damaged row
 BatchRow summary_row(const BatchPlan& plan, const PlanRows& rows, std::size_t i);

@@ -16,9 +16,7 @@
 #include "geometry/core/errors.h"
 #include "geometry/core/stage_timer.h"
 #include "geometry/mesh/interpenetration.h"
-#include "geometry/mesh/weld.h"
 #include "geometry/validation/validate.h"
-#include "io/mesh/read_mesh.h"
 #include "pipeline/check_mesh.h"
 #include "pipeline/cli/commands.h"
 #include "pipeline/failure.h"
@@ -61,8 +59,7 @@ std::string welded_line(const FileCheck& check, const ObjectCheck& object, const
 std::string single_verdict(const FileCheck& check) {
   const ObjectCheck& only = check.objects.front();
   const ValidationReport& r = only.report;
-  std::string text =
-      fmt::format("{}: {} {}\n", check.file, r.valid() ? "valid" : "INVALID", facts(r, check.units));
+  std::string text = fmt::format("{}: {} {}\n", check.file, check.facts.message, facts(r, check.units));
   text += file_lines(check);
   text += welded_line(check, only, "  ");
   for (const std::string& note : check.notes) text += "  " + note + "\n";
@@ -94,8 +91,8 @@ std::string assembly_line(const FileCheck& check) {
 std::string several_verdict(const FileCheck& check) {
   const auto valid = std::count_if(check.objects.begin(), check.objects.end(),
                                    [](const ObjectCheck& o) { return o.report.valid(); });
-  std::string text = fmt::format("{}: {} ({} objects, {} valid)\n", check.file,
-                                 check.valid() ? "valid" : "INVALID", check.objects.size(), valid);
+  std::string text = fmt::format("{}: {} ({} objects, {} valid)\n", check.file, check.facts.message,
+                                 check.objects.size(), valid);
   text += file_lines(check);
   for (const std::string& note : check.notes) text += "  " + note + "\n";
   for (std::size_t i = 0; i < check.objects.size(); ++i) {
@@ -120,12 +117,8 @@ int run_check(const CheckArgs& args, Streams streams) {
   for (const std::string& file : args.files) {
     checks.push_back(check_file(file, args));
     const FileCheck& c = checks.back();
-    if (!c.readable) {
-      streams.err << failure_line(c.failure) << "\n";
-      code = std::max(code, c.failure.exit_code);
-    } else if (!c.valid()) {
-      code = std::max(code, kExitInvalid);
-    }
+    if (!c.readable) streams.err << failure_line(c.failure) << "\n";
+    code = std::max(code, exit_code_of(c.facts.status));
     if (!args.json) streams.out << human_verdict(c);
   }
   if (args.json) {

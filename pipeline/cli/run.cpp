@@ -143,10 +143,11 @@ void write_report(const RunArgs& args, const std::vector<Outcome>& outcomes) {
   for (std::size_t i = 0; i < outcomes.size(); ++i) {
     const Outcome& o = outcomes[i];
     if (!o.report) {
-      page.rows.push_back(failed_row(args.designs[i], o.code(), failure_line(*o.failure)));
+      const std::string name = fs::path(args.designs[i]).stem().string();
+      page.rows.push_back(report_row(failed_facts(name, o.code(), failure_line(*o.failure)), base));
       continue;
     }
-    ReportRow row = report_row(*o.report, base);
+    ReportRow row = report_row(job_facts(*o.report), base);
     for (std::size_t k = 0; k < o.report->files.size(); ++k) {
       const OutputFile& f = o.report->files[k];
       if (f.format == "png") row.preview_png = row.files[k];

@@ -2,6 +2,8 @@
 // kind, `preview` of designs and mesh files, the `png`/`plot` outputs and the
 // HTML report of `run --report`, loaded by Chromium.
 
+#include "pipeline/pictures.h"
+
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
@@ -174,4 +176,62 @@ TEST_CASE("batch --report: a page of every variant with a thumbnail of its mesh,
   const XmlElement& body = *select(dom, "body").at(0);
   CHECK(body.attr("data-images-failed") == "0");
   CHECK(body.attr("data-images-loaded") != "0");
+}
+
+TEST_CASE("report row: a page row shows an item's facts, measures only when measured", "[pipeline][report]") {
+  ItemFacts item;
+  item.name = "cup";
+  item.status = ItemStatus::Ok;
+  item.message = "valid for fabrication";
+  MeshFacts mesh;
+  mesh.kind = "vessel";
+  mesh.units = "cm";
+  mesh.triangles = 12;
+  mesh.volume = 1.5;
+  mesh.area = 7.25;
+  mesh.bbox_min = Vec3(-1, -2, 0);
+  mesh.bbox_max = Vec3(1, 2, 3);
+  mesh.max_deviation = 0.01;
+  item.mesh = mesh;
+  item.files = {"out/cup/cup.stl"};
+  item.timings_ms = {{"build", 1500.0}};
+  const ReportRow row = report_row(item, "out");
+  CHECK(row.name == "cup");
+  CHECK(row.status == ReportStatus::Ok);
+  CHECK(row.message == "valid for fabrication");
+  CHECK(row.kind == "vessel");
+  CHECK(row.units == "cm");
+  CHECK(row.triangles == std::optional<std::size_t>(12));
+  CHECK(row.volume == std::optional<double>(1.5));
+  CHECK(row.area == std::optional<double>(7.25));
+  CHECK(row.max_deviation == std::optional<double>(0.01));
+  REQUIRE(row.bbox);
+  CHECK((*row.bbox)[1] == Vec3(1, 2, 3));
+  CHECK(row.files == std::vector<std::string>{"cup/cup.stl"});
+  REQUIRE(row.timings.size() == 1);
+  CHECK(row.timings[0].seconds == 1.5);
+
+  item.mesh->measured = false;  // a drawing: no counts, volume or area
+  const ReportRow drawn = report_row(item, "");
+  CHECK_FALSE(drawn.triangles);
+  CHECK_FALSE(drawn.volume);
+  CHECK_FALSE(drawn.area);
+  CHECK(drawn.bbox);
+  CHECK(drawn.files == std::vector<std::string>{"out/cup/cup.stl"});
+}
+
+TEST_CASE("report row: a failed item has no measures, missing and environment show as errors",
+          "[pipeline][report]") {
+  const ReportRow failed = report_row(failed_facts("cup", kExitBadInput, "bad"), "");
+  CHECK(failed.status == ReportStatus::BadInput);
+  CHECK(failed.message == "bad");
+  CHECK(failed.kind.empty());
+  CHECK_FALSE(failed.bbox);
+  CHECK_FALSE(failed.max_deviation);
+  CHECK(report_status(ItemStatus::Ok) == ReportStatus::Ok);
+  CHECK(report_status(ItemStatus::Invalid) == ReportStatus::Invalid);
+  CHECK(report_status(ItemStatus::BadInput) == ReportStatus::BadInput);
+  CHECK(report_status(ItemStatus::Error) == ReportStatus::Error);
+  CHECK(report_status(ItemStatus::Missing) == ReportStatus::Error);
+  CHECK(report_status(ItemStatus::Environment) == ReportStatus::Error);
 }

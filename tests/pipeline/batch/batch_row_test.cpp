@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "geometry/core/errors.h"
 
@@ -21,7 +22,7 @@ BatchRow written_row() {
   r.key = std::string(64, 'a');
   r.status = VariantStatus::Ok;
   r.message = "";
-  RowMesh m;
+  MeshFacts m;
   m.kind = "vessel";
   m.units = "cm";
   m.vertices = 2928;
@@ -29,8 +30,8 @@ BatchRow written_row() {
   m.volume = 13.74;
   m.area = 123.4;
   m.valid = true;
-  m.bbox_min = {-2.5, -2.5, 2.0};
-  m.bbox_max = {2.5, 2.5, 6.0};
+  m.bbox_min = Vec3(-2.5, -2.5, 2.0);
+  m.bbox_max = Vec3(2.5, 2.5, 6.0);
   m.max_deviation = 0.017;
   m.tolerance = 0.02;
   r.mesh = m;
@@ -85,4 +86,36 @@ TEST_CASE("batch: a row's count beyond its type's range is bad input, not undefi
   const BatchRow r = row_from_json(ends);
   CHECK(r.exit_code == -2147483648LL);
   CHECK(r.mesh->vertices == 18446744073709551615ULL);
+}
+
+TEST_CASE("batch: a row's facts are its status, message, mesh, files and timings", "[pipeline][batch]") {
+  const BatchRow written = written_row();
+  const ItemFacts item = row_facts(written);
+  CHECK(item.name == "cup_w0.2");
+  CHECK(item.status == ItemStatus::Ok);
+  CHECK(item.message == "valid for fabrication");  // an ok row says nothing of its own
+  REQUIRE(item.mesh);
+  CHECK(item.mesh->triangles == 5852);
+  CHECK(item.mesh->bbox_max == Vec3(2.5, 2.5, 6.0));
+  CHECK(item.files == std::vector<std::string>{"cup_w0.2/cup_w0.2.stl"});
+  CHECK(item.timings_ms == written.timings_ms);
+
+  BatchRow skipped = written_row();
+  skipped.message = "skipped drc: the quantization cannot hold the tolerance";
+  CHECK(row_facts(skipped).message == skipped.message);
+
+  BatchRow missing = written_row();
+  missing.status = VariantStatus::Missing;
+  missing.mesh.reset();
+  CHECK(row_facts(missing).message == "not run yet");
+  CHECK_FALSE(row_facts(missing).mesh);
+}
+
+TEST_CASE("batch: a row read back keeps its mesh facts", "[pipeline][batch]") {
+  const BatchRow r = row_from_json(row_json(written_row()));
+  REQUIRE(r.mesh);
+  CHECK(r.mesh->measured);  // not kept in a row: read back as measured
+  CHECK(r.mesh->bbox_min == Vec3(-2.5, -2.5, 2.0));
+  CHECK(r.mesh->bbox_max == Vec3(2.5, 2.5, 6.0));
+  CHECK(r.mesh->tolerance == 0.02);
 }

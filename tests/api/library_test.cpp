@@ -1,0 +1,229 @@
+// The library through its public headers only (what a program that links
+// fabmesh::fabmesh sees): designs, builds with the command line's proofs and
+// bytes, validation of arrays, curves, errors as data, threads.
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <future>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include <fabmesh/fabmesh.h>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string example(const std::string& name) { return std::string(FABMESH_SOURCE_DIR) + "/configs/examples/" + name; }
+
+fs::path fresh_dir(const std::string& name) {
+  const fs::path dir = fs::path(FABMESH_TEST_TMP) / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::string bytes_of(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// Runs the command line; returns its exit code.
+int run_cli(const std::string& arguments) {
+  const std::string command = std::string("\"") + FABMESH_BINARY + "\" " + arguments + " > /dev/null 2>&1";
+  const int status = std::system(command.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+// A closed tetrahedron, outward.
+fabmesh::Mesh tetrahedron() {
+  fabmesh::Mesh m;
+  m.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  m.triangles = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};
+  return m;
+}
+
+double signed_volume(const fabmesh::BuildResult& r) {
+  double six_v = 0.0;
+  for (const auto& t : r.triangles) {
+    const auto& a = r.vertices[t[0]];
+    const auto& b = r.vertices[t[1]];
+    const auto& c = r.vertices[t[2]];
+    six_v += a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
+             a[2] * (b[0] * c[1] - b[1] * c[0]);
+  }
+  return six_v / 6.0;
+}
+
+}  // namespace
+
+TEST_CASE("the library reports the program's version", "[api]") {
+  CHECK(std::string(fabmesh::version()) == FABMESH_VERSION_STRING);
+  CHECK(std::string(FABMESH_VERSION_STRING) == FABMESH_EXPECTED_VERSION);
+}
+
+TEST_CASE("the golden vessel builds valid with the exact volume within its proven bound", "[api]") {
+  const fabmesh::Design design = fabmesh::read_design(example("vessel_golden_solid.yaml"));
+  CHECK(design.kind() == "vessel");
+  CHECK(design.units() == "cm");
+  const fabmesh::BuildResult r = fabmesh::build(design);
+  REQUIRE(r.valid);
+  CHECK(r.error.empty());
+  CHECK(r.validation.valid);
+  CHECK(r.validation.watertight);
+  CHECK(r.validation.genus == 0);
+  CHECK(r.triangles.size() == r.validation.triangles);
+  CHECK(r.max_deviation <= r.tolerance);
+  // A surface within d of the exact one encloses a volume within area * d of the exact 46.171424531125 cm^3.
+  const double exact = 46.171424531125;
+  CHECK(std::abs(signed_volume(r) - exact) <= r.validation.area * r.max_deviation);
+  CHECK(std::abs(r.validation.volume - signed_volume(r)) <= 1e-9 * exact);
+  REQUIRE(r.curves.size() == 1);
+  CHECK(r.curves[0].key == "profile");
+  CHECK(r.curves[0].max_deviation <= r.tolerance);
+  CHECK(r.report_json.find("\"design\":") == 1);
+}
+
+TEST_CASE("write_output and write_outputs give the command line's bytes", "[api]") {
+  const fs::path dir = fresh_dir("api_write");
+  const fabmesh::Design design = fabmesh::read_design(example("vessel_golden_solid.yaml"));
+  fabmesh::write_output(design, dir / "lib.3mf");
+  REQUIRE(run_cli("run " + example("vessel_golden_solid.yaml") + " -o " + (dir / "cli.3mf").string()) == 0);
+  CHECK(bytes_of(dir / "lib.3mf") == bytes_of(dir / "cli.3mf"));
+
+  const std::vector<fs::path> files = fabmesh::write_outputs(design, dir / "lib");
+  REQUIRE(run_cli("run " + example("vessel_golden_solid.yaml") + " -o " + (dir / "cli").string() + "/") == 0);
+  REQUIRE_FALSE(files.empty());
+  for (const fs::path& f : files) CHECK(bytes_of(f) == bytes_of(dir / "cli" / f.filename()));
+
+  const fabmesh::ValidationReport check = fabmesh::check_file(dir / "lib.3mf");
+  CHECK(check.valid);
+  CHECK(check.error.empty());
+}
+
+TEST_CASE("designs from text, overrides, and bad input as data", "[api]") {
+  const std::string text = bytes_of(example("vessel_golden_solid.yaml"));
+  const fabmesh::Design design = fabmesh::parse_design(text, {{"name", "cup"}}, "cup.yaml");
+  CHECK(design.name() == "cup");
+
+  try {
+    fabmesh::parse_design(text, {{"body.wall", "-1"}}, "cup.yaml");
+    FAIL("a negative wall was accepted");
+  } catch (const fabmesh::InputError& e) {
+    CHECK(e.exit_code() == 2);
+    CHECK(e.key() == "body.wall");
+    CHECK(e.place().override_text == "body.wall=-1");
+    CHECK(std::string(e.what()).find("-D body.wall=-1") != std::string::npos);
+  }
+  const std::string typo = "name: t\nkind: vessel\nunits: cm\ntolerance: 0.01\nprofile:\n  family: quasi_bspline\n"
+                           "  points: [[1.5, 6], [1, 5], [2, 4], [3, 3], [1.5, 2]]\n  lambdas: [0, 0, 7]\n";
+  try {
+    fabmesh::parse_design(typo, {}, "typo.yaml");
+    FAIL("lambda 7 was accepted");
+  } catch (const fabmesh::InputError& e) {
+    CHECK(e.file() == "typo.yaml");
+    CHECK(e.line() == 8);
+    CHECK(e.column() > 0);
+    CHECK(std::string(e.what()).rfind("typo.yaml:8:", 0) == 0);
+  }
+  CHECK_THROWS_AS(fabmesh::read_design(example("no-such-design.yaml")), fabmesh::InputError);
+}
+
+TEST_CASE("validate judges arrays as check judges files", "[api]") {
+  const fabmesh::ValidationReport good = fabmesh::validate(tetrahedron());
+  CHECK(good.valid);
+  CHECK(good.volume == Approx(1.0 / 6.0));
+  CHECK(good.json.find("\"valid\":true") != std::string::npos);
+
+  fabmesh::Mesh open = tetrahedron();
+  open.triangles.pop_back();
+  const fabmesh::ValidationReport bad = fabmesh::validate(open);
+  CHECK_FALSE(bad.valid);
+  CHECK(bad.boundary_edges == 3);
+  REQUIRE_FALSE(bad.defects.empty());
+  CHECK(bad.defects.front().kind == "boundary_edge");
+
+  fabmesh::Mesh wrong = tetrahedron();
+  wrong.triangles[1][2] = 9;
+  try {
+    fabmesh::validate(wrong);
+    FAIL("an index out of range was accepted");
+  } catch (const fabmesh::InputError& e) {
+    CHECK(e.key() == "triangles");
+  }
+  std::vector<std::int64_t> negative = {0, 2, 1, 0, 1, -3};
+  fabmesh::MeshView view;
+  view.vertices = tetrahedron().vertices.front().data();
+  view.vertex_count = 4;
+  view.triangles = negative.data();
+  view.triangle_count = 2;
+  CHECK_THROWS_AS(fabmesh::validate(view), fabmesh::InputError);
+}
+
+TEST_CASE("read_mesh and write_mesh round-trip every format", "[api]") {
+  const fs::path dir = fresh_dir("api_mesh_io");
+  for (const char* ext : {".stl", ".obj", ".ply", ".off", ".3mf", ".glb", ".drc"}) {
+    const fs::path path = dir / (std::string("tet") + ext);
+    fabmesh::write_mesh(path, tetrahedron());
+    const fabmesh::Mesh back = fabmesh::read_mesh(path);
+    CAPTURE(ext);
+    CHECK(fabmesh::validate(back).valid);
+    CHECK(fabmesh::check_file(path).valid);
+  }
+  CHECK_THROWS_AS(fabmesh::write_mesh(dir / "tet.xyz", tetrahedron()), fabmesh::InputError);
+  const fabmesh::ValidationReport unreadable = fabmesh::check_file(dir / "tet.xyz");
+  CHECK_FALSE(unreadable.valid);
+  CHECK_FALSE(unreadable.error.empty());
+}
+
+TEST_CASE("curves evaluate exactly and sample within the proven bound", "[api]") {
+  const std::vector<fabmesh::Point2> p = {{0, 0}, {1, 2}, {3, 2}, {4, 0}, {5, -2}, {7, -2}, {8, 0}};
+  const fabmesh::Curve c = fabmesh::tbezier(p, 0.5, -0.5);
+  REQUIRE(c.segments() == 2);
+  CHECK(c.point(0)[0] == Approx(0).margin(1e-12));
+  CHECK(c.point(2)[0] == Approx(8));
+  CHECK(c.point(1)[0] == Approx(4));
+  // The first derivative against central differences.
+  const double t = 0.37, h = 1e-5;
+  const auto d = c.derivative(t);
+  CHECK(d[0] == Approx((c.point(t + h)[0] - c.point(t - h)[0]) / (2 * h)).epsilon(1e-6));
+  CHECK(d[1] == Approx((c.point(t + h)[1] - c.point(t - h)[1]) / (2 * h)).epsilon(1e-6));
+  const fabmesh::SampledCurve s = c.sample(1e-3);
+  CHECK(s.max_deviation <= 1e-3);
+  CHECK(s.points.size() > 10);
+  CHECK_THROWS_AS(c.point(2.5), fabmesh::InputError);
+  CHECK_THROWS_AS(c.derivative(0.5, 4), fabmesh::InputError);
+  CHECK_THROWS_AS(fabmesh::tbezier(p, 1.7), fabmesh::InputError);
+  CHECK_THROWS_AS(fabmesh::tbezier({{0, 0}, {1, 1}}), fabmesh::InputError);
+
+  const fabmesh::Curve b = fabmesh::quasi_bspline({{1.5, 6}, {1, 5}, {2, 4}, {3, 3}, {1.5, 2}}, {0, 0, 0});
+  CHECK(b.sample(1e-4).max_deviation <= 1e-4);
+  const fabmesh::Curve hb = fabmesh::hbezier({{0, 0}, {1, 2}, {3, 2}, {4, 0}}, 2.0);
+  CHECK(std::isfinite(hb.curvature(0.5)));
+}
+
+TEST_CASE("optimize gives the command line's document", "[api]") {
+  const std::string json = fabmesh::optimize(fabmesh::read_design(example("example4_profile.yaml")));
+  CHECK(json.rfind("[{\"design\":", 0) == 0);
+  CHECK(json.find("\"curve\":") != std::string::npos);
+}
+
+TEST_CASE("distinct builds run in parallel threads with the serial results", "[api]") {
+  const fabmesh::Design a = fabmesh::read_design(example("vessel_golden_solid.yaml"));
+  const fabmesh::Design b = fabmesh::read_design(example("countertop_g1.yaml"));
+  const fabmesh::BuildResult serial_a = fabmesh::build(a);
+  const fabmesh::BuildResult serial_b = fabmesh::build(b);
+  auto fa = std::async(std::launch::async, [&] { return fabmesh::build(a); });
+  auto fb = std::async(std::launch::async, [&] { return fabmesh::build(b); });
+  const fabmesh::BuildResult pa = fa.get();
+  const fabmesh::BuildResult pb = fb.get();
+  CHECK(pa.vertices == serial_a.vertices);
+  CHECK(pa.triangles == serial_a.triangles);
+  CHECK(pb.vertices == serial_b.vertices);
+  CHECK(pb.triangles == serial_b.triangles);
+}
