@@ -30,9 +30,6 @@ set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS_PRIVATE_DIRS ${PROJECT_BINARY_DIR}/api)
 set(CPACK_DEBIAN_PACKAGE_GENERATE_SHLIBS ON)
 # The Python module is built for one Python version and imports numpy when
 # used; the program and the library need neither, so these are recommended.
-if(TARGET fabmesh_python)
-  find_package(Python3 COMPONENTS Interpreter QUIET)
-endif()
 if(TARGET fabmesh_python AND Python3_VERSION_MAJOR)
   math(EXPR FABMESH_PYTHON_NEXT_MINOR "${Python3_VERSION_MINOR} + 1")
   set(CPACK_DEBIAN_PACKAGE_RECOMMENDS
