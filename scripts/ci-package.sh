@@ -21,6 +21,8 @@ here="$(cd "$(dirname "$0")" && pwd)"
 root="$(dirname "$here")"
 build="$(cd "${1:-$root/build}" && pwd)"
 say() { echo "ci-package: $*" >&2; }
+# The file the loader would load for libfabmesh when starting $1, resolved.
+loaded_libfabmesh() { realpath -e "$(ldd "$1" | awk '$1 ~ /^libfabmesh\.so/ {print $3}')" 2>/dev/null; }
 die() { say "FAILED: $*"; exit 1; }
 
 version=$(sed -n 's/^CMAKE_PROJECT_VERSION:STATIC=//p' "$build/CMakeCache.txt")
@@ -83,7 +85,7 @@ found=$(sed -n 's/^fabmesh_DIR:PATH=//p' "$work/consumer/CMakeCache.txt")
 [[ $found == "$prefix/lib/cmake/fabmesh" ]] || die "examples/consumer found fabmesh at '$found', not in the prefix"
 cmake --build "$work/consumer" >>"$work/consumer.log" || { cat "$work/consumer.log"; die "building examples/consumer"; }
 "$work/consumer/fabmesh_consumer" || die "examples/consumer did not get the expected results"
-grep -qF "$prefix/lib/libfabmesh.so" <<<"$(ldd "$work/consumer/fabmesh_consumer")" ||
+[[ $(loaded_libfabmesh "$work/consumer/fabmesh_consumer") == "$prefix/lib/libfabmesh.so.$version" ]] ||
   die "examples/consumer does not load libfabmesh from the prefix"
 
 # The same program through pkg-config.
@@ -101,7 +103,7 @@ py_version=$(cd "$work" && PYTHONPATH="$site" /usr/bin/python3 -c "import fabmes
 [[ $py_version == "$version" ]] || die "fabmesh.__version__ is '$py_version', not $version"
 py_file=$(cd "$work" && PYTHONPATH="$site" /usr/bin/python3 -c "import fabmesh; print(fabmesh.__file__)")
 [[ $py_file == "$site"/* ]] || die "import fabmesh loaded $py_file, not the prefix's module"
-grep -qF "$prefix/lib/libfabmesh.so" <<<"$(ldd "$py_file")" || die "the Python module does not load libfabmesh from the prefix"
+[[ $(loaded_libfabmesh "$py_file") == "$prefix/lib/libfabmesh.so.$version" ]] || die "the Python module does not load libfabmesh from the prefix"
 say "Python: import fabmesh from the prefix, version $py_version"
 
 # --- the manual page ---
