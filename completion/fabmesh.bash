@@ -18,6 +18,23 @@ _fabmesh_options() {
   esac
 }
 
+# COMPREPLY from a word list ($1) or from files matching a pattern ($1, as
+# compgen -X takes it; empty: any file) and folders, one name a line so that
+# names with spaces stay whole.
+_fabmesh_words() {
+  local IFS=$' \t\n'
+  COMPREPLY=($(compgen -W "$1" -- "$2"))
+}
+_fabmesh_files() {
+  local IFS=$'\n'
+  compopt -o filenames 2>/dev/null
+  if [[ -n $1 ]]; then
+    COMPREPLY=($(compgen -f -X "$1" -- "$2") $(compgen -d -- "$2"))
+  else
+    COMPREPLY=($(compgen -f -- "$2"))
+  fi
+}
+
 _fabmesh() {
   local cur prev command="" i
   COMPREPLY=()
@@ -33,25 +50,24 @@ _fabmesh() {
   # The value of the option before the cursor.
   case "$prev" in
     --export-format)
-      COMPREPLY=($(compgen -W "stl drc 3mf glb glb_draco obj ply off dxf svg mould_stl mould_3mf nc toolpath_svg plot png" -- "$cur"))
+      _fabmesh_words "stl drc 3mf glb glb_draco obj ply off dxf svg mould_stl mould_3mf nc toolpath_svg plot png" "$cur"
       return ;;
     --export-units)
-      COMPREPLY=($(compgen -W "mm cm m in" -- "$cur"))
+      _fabmesh_words "mm cm m in" "$cur"
       return ;;
     --views)
-      COMPREPLY=($(compgen -W "1 2" -- "$cur"))
+      _fabmesh_words "1 2" "$cur"
       return ;;
     --report)
-      compopt -o filenames 2>/dev/null
-      COMPREPLY=($(compgen -f -X '!*.html' -- "$cur") $(compgen -d -- "$cur"))
+      _fabmesh_files '!*.@(html|HTML)' "$cur"
       return ;;
     --merge)
+      local IFS=$'\n'
       compopt -o filenames 2>/dev/null
       COMPREPLY=($(compgen -d -- "$cur"))
       return ;;
     -o | --output)
-      compopt -o filenames 2>/dev/null
-      COMPREPLY=($(compgen -f -- "$cur"))
+      _fabmesh_files "" "$cur"
       return ;;
     -D | --define | --width | --height | --jobs | --shard | --array-size | --weld-tolerance | --max-seconds | --tolerance)
       return ;;
@@ -59,27 +75,23 @@ _fabmesh() {
 
   if [[ -z "$command" ]]; then
     if [[ "$cur" == -* ]]; then
-      COMPREPLY=($(compgen -W "$_fabmesh_global_options" -- "$cur"))
+      _fabmesh_words "$_fabmesh_global_options" "$cur"
     else
-      COMPREPLY=($(compgen -W "$_fabmesh_commands" -- "$cur"))
+      _fabmesh_words "$_fabmesh_commands" "$cur"
     fi
     return
   fi
 
   if [[ "$cur" == -* ]]; then
-    COMPREPLY=($(compgen -W "$(_fabmesh_options "$command") -h --help -q --quiet -v --verbose" -- "$cur"))
+    _fabmesh_words "$(_fabmesh_options "$command") -h --help -q --quiet -v --verbose" "$cur"
     return
   fi
 
   # Positional arguments: the files the command reads.
-  compopt -o filenames 2>/dev/null
   case "$command" in
-    check)
-      COMPREPLY=($(compgen -f -X '!*.@(stl|STL|obj|OBJ|ply|PLY|off|OFF|drc|DRC|3mf|3MF|glb|GLB|gltf|GLTF)' -- "$cur") $(compgen -d -- "$cur")) ;;
-    preview)
-      COMPREPLY=($(compgen -f -X '!*.@(yaml|yml|stl|STL|obj|OBJ|ply|PLY|off|OFF|drc|DRC|3mf|3MF|glb|GLB|gltf|GLTF)' -- "$cur") $(compgen -d -- "$cur")) ;;
-    *)
-      COMPREPLY=($(compgen -f -X '!*.@(yaml|yml)' -- "$cur") $(compgen -d -- "$cur")) ;;
+    check) _fabmesh_files '!*.@(stl|STL|obj|OBJ|ply|PLY|off|OFF|drc|DRC|3mf|3MF|glb|GLB|gltf|GLTF)' "$cur" ;;
+    preview) _fabmesh_files '!*.@(yaml|yml|YAML|stl|STL|obj|OBJ|ply|PLY|off|OFF|drc|DRC|3mf|3MF|glb|GLB|gltf|GLTF)' "$cur" ;;
+    *) _fabmesh_files '!*.@(yaml|yml|YAML)' "$cur" ;;
   esac
 }
 complete -F _fabmesh fabmesh
