@@ -54,7 +54,8 @@ std::vector<OptimizedCurve> optimize_design(const Design& design) {
   return out;
 }
 
-nlohmann::ordered_json optimize_items(const std::string& design_file, const std::vector<OptimizedCurve>& curves) {
+nlohmann::ordered_json optimize_items(const std::string& design_file,
+                                      const std::vector<OptimizedCurve>& curves) {
   nlohmann::ordered_json all = nlohmann::ordered_json::array();
   for (const OptimizedCurve& c : curves) {
     nlohmann::ordered_json item = {{"design", design_file}, {"curve", c.name}};

@@ -13,9 +13,9 @@ namespace fabmesh {
 
 /// One curve of a design with its fairest parameters.
 struct OptimizedCurve {
-  std::string name;            ///< its design key: "curve", "profile", "holes[0]"
+  std::string name;             ///< its design key: "curve", "profile", "holes[0]"
   nlohmann::ordered_json json;  ///< family, the fairest parameters and energies, joints (docs/reports.md)
-  BuiltCurve built;            ///< the curve with those parameters
+  BuiltCurve built;             ///< the curve with those parameters
 };
 
 /// Optimizes every curve of `design`, in the design's order.
@@ -24,6 +24,7 @@ struct OptimizedCurve {
 std::vector<OptimizedCurve> optimize_design(const Design& design);
 
 /// The `optimize --json` document: one item per curve, {design, curve, ...}.
-nlohmann::ordered_json optimize_items(const std::string& design_file, const std::vector<OptimizedCurve>& curves);
+nlohmann::ordered_json optimize_items(const std::string& design_file,
+                                      const std::vector<OptimizedCurve>& curves);
 
 }  // namespace fabmesh

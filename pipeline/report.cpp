@@ -50,15 +50,19 @@ MeshFacts mesh_facts(const JobReport& r) {
   return m;
 }
 
+void set_written_verdict(ItemFacts& item, const MeshFacts& mesh) {
+  const bool fit = !mesh.measured || mesh.valid;
+  item.status = fit ? ItemStatus::Ok : ItemStatus::Invalid;
+  item.message = !mesh.measured ? "drawing written"
+                 : fit          ? kValidForFabrication
+                                : "written for viewing only: not valid for fabrication";
+}
+
 ItemFacts job_facts(const JobReport& r) {
   ItemFacts item;
   item.name = r.name;
   item.mesh = mesh_facts(r);
-  const bool fit = !item.mesh->measured || item.mesh->valid;
-  item.status = fit ? ItemStatus::Ok : ItemStatus::Invalid;
-  item.message = !item.mesh->measured ? "drawing written"
-                 : fit                ? kValidForFabrication
-                                      : "written for viewing only: not valid for fabrication";
+  set_written_verdict(item, *item.mesh);
   item.files = r.outputs;
   item.timings_ms = r.timings_ms;
   return item;

@@ -25,8 +25,8 @@ struct MeshFacts {
   std::string kind;   ///< vessel | countertop | surface | curve; empty for a mesh file
   std::string units;  ///< of the facts below; empty for a mesh file that states none
   /// A mesh was validated, so the counts, volume and area are its own; false
-  /// for a drawing (a curve design). Not kept in a summary row, which is
-  /// read back as measured.
+  /// for a drawing (a curve design). Not kept in a summary row: read back
+  /// from its kind (a curve's is a drawing).
   bool measured = true;
   std::size_t vertices = 0, triangles = 0;
   double volume = 0.0, area = 0.0;
@@ -55,6 +55,11 @@ MeshFacts mesh_facts(const ValidationReport& validation, const std::string& unit
 /// A job's mesh facts: the validation's (mesh_facts above), its kind, box,
 /// proven deviation and tolerance; not `measured` for a drawing.
 MeshFacts mesh_facts(const JobReport& report);
+
+/// The status and words of a job that wrote `mesh`: "valid for fabrication",
+/// "drawing written" (a curve design), or invalid and "written for viewing
+/// only" (an open `purpose: view` surface). Every report says it this way.
+void set_written_verdict(ItemFacts& item, const MeshFacts& mesh);
 
 /// A job that ran: Ok when its mesh is valid for fabrication (or it is a
 /// drawing), Invalid when written for viewing only, said in words; its mesh

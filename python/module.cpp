@@ -2,17 +2,16 @@
 // numpy arrays and dicts. The GIL is released while fabmesh works, so builds
 // of distinct designs run in parallel threads.
 
+#include <fabmesh/fabmesh.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
-#include <fabmesh/fabmesh.h>
-
 #include <cstring>
 #include <optional>
-#include <type_traits>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace py = pybind11;
@@ -27,12 +26,22 @@ PyObject* new_exception(py::module_& m, const char* name, const char* doc, PyObj
   return type;
 }
 
-py::object text_or_none(const std::string& text) { return text.empty() ? py::object(py::none()) : py::object(py::str(text)); }
+// `text` as a Python str: a byte that is not UTF-8 (a file name from the disk) kept as a surrogate
+// escape, as Python's own os.fsdecode keeps it, never a UnicodeDecodeError in place of ours.
+py::str decoded(const std::string& text) {
+  PyObject* s = PyUnicode_DecodeUTF8(text.data(), static_cast<Py_ssize_t>(text.size()), "surrogateescape");
+  if (s == nullptr) throw py::error_already_set();
+  return py::reinterpret_steal<py::str>(s);
+}
+
+py::object text_or_none(const std::string& text) {
+  return text.empty() ? py::object(py::none()) : py::object(decoded(text));
+}
 
 // Raises the module's exception class `name` for `e`, with the place of bad input as attributes.
 void raise(const char* name, const fabmesh::Error& e, const fabmesh::ErrorPlace* place) {
   const py::object type = py::module_::import("fabmesh").attr(name);
-  py::object exc = type(e.what());
+  py::object exc = type(decoded(e.what()));
   exc.attr("exit_code") = e.exit_code();
   if (place != nullptr) {
     exc.attr("key") = text_or_none(place->key);
@@ -46,27 +55,28 @@ void raise(const char* name, const fabmesh::Error& e, const fabmesh::ErrorPlace*
 }
 
 void register_errors(py::module_& m) {
-  PyObject* error = new_exception(m, "Error",
-                          "Any failure of a fabmesh call. `exit_code` is the command line's code for the same "
-                          "failure (1 invalid mesh, 2 bad input, 3 internal error, 5 the machine).",
-                          PyExc_Exception);
+  PyObject* error =
+      new_exception(m, "Error",
+                    "Any failure of a fabmesh call. `exit_code` is the command line's code for the same "
+                    "failure (1 invalid mesh, 2 bad input, 3 internal error, 5 the machine).",
+                    PyExc_Exception);
   py::tuple input_bases = py::make_tuple(py::handle(error), py::handle(PyExc_ValueError));
   new_exception(m, "InputError",
-                          "Bad input (exit code 2): a malformed design or mesh file, a value out of range, "
-                          "geometry that cannot be built as designed, arrays of the wrong shape. The message is "
-                          "the command line's. Attributes: key (the design key path or the argument), file, "
-                          "line, column (None when unknown), override (the override that gave the value), "
-                          "is_default.",
-                          input_bases.ptr());
+                "Bad input (exit code 2): a malformed design or mesh file, a value out of range, "
+                "geometry that cannot be built as designed, arrays of the wrong shape. The message is "
+                "the command line's. Attributes: key (the design key path or the argument), file, "
+                "line, column (None when unknown), override (the override that gave the value), "
+                "is_default.",
+                input_bases.ptr());
   new_exception(m, "ValidationFailed",
-                            "A mesh that is not valid for what it is asked for (exit code 1), e.g. "
-                            "Result.write of a design whose mesh is invalid.",
-                            error);
+                "A mesh that is not valid for what it is asked for (exit code 1), e.g. "
+                "Result.write of a design whose mesh is invalid.",
+                error);
   py::tuple env_bases = py::make_tuple(py::handle(error), py::handle(PyExc_OSError));
   new_exception(m, "EnvironmentError",
-                                "Writing failed for a reason of the machine (exit code 5): disk full, I/O "
-                                "error, permission denied.",
-                                env_bases.ptr());
+                "Writing failed for a reason of the machine (exit code 5): disk full, I/O "
+                "error, permission denied.",
+                env_bases.ptr());
   py::register_exception_translator([](std::exception_ptr p) {
     if (!p) return;
     try {
@@ -106,7 +116,8 @@ fabmesh::Overrides overrides_of(const std::optional<py::dict>& overrides) {
   return out;
 }
 
-fabmesh::Design load_design(const std::optional<std::filesystem::path>& path, const std::optional<std::string>& text,
+fabmesh::Design load_design(const std::optional<std::filesystem::path>& path,
+                            const std::optional<std::string>& text,
                             const std::optional<py::dict>& overrides) {
   if (path.has_value() == text.has_value()) bad_argument("path", "give exactly one of path and text");
   fabmesh::Overrides o = overrides_of(overrides);
@@ -126,9 +137,11 @@ py::array_t<T, py::array::c_style> rows_of_three(const py::handle& value, const 
   }
   const char kind = array.dtype().kind();
   if (std::is_integral_v<T> && kind != 'i' && kind != 'u' && !(kind == 'f' && array.shape(0) == 0))
-    bad_argument(argument, std::string("must hold integers, not dtype ") + py::str(array.dtype()).cast<std::string>());
+    bad_argument(argument,
+                 std::string("must hold integers, not dtype ") + py::str(array.dtype()).cast<std::string>());
   if (!std::is_integral_v<T> && kind != 'f' && kind != 'i' && kind != 'u')
-    bad_argument(argument, std::string("must hold numbers, not dtype ") + py::str(array.dtype()).cast<std::string>());
+    bad_argument(argument,
+                 std::string("must hold numbers, not dtype ") + py::str(array.dtype()).cast<std::string>());
   return py::array_t<T, py::array::c_style | py::array::forcecast>::ensure(array);
 }
 
@@ -179,13 +192,16 @@ fabmesh::Mesh mesh_of(const py::handle& vertices, const py::handle& triangles) {
   const auto t = rows_of_three<std::int64_t>(triangles, "triangles");
   fabmesh::Mesh mesh;
   mesh.vertices.resize(static_cast<std::size_t>(v.shape(0)));
-  if (!mesh.vertices.empty()) std::memcpy(mesh.vertices.data(), v.data(), mesh.vertices.size() * sizeof(fabmesh::Point));
+  if (!mesh.vertices.empty())
+    std::memcpy(mesh.vertices.data(), v.data(), mesh.vertices.size() * sizeof(fabmesh::Point));
   mesh.triangles.resize(static_cast<std::size_t>(t.shape(0)));
   for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
     for (std::size_t k = 0; k < 3; ++k) {
       const std::int64_t i = t.data()[3 * f + k];
       if (i < 0 || static_cast<std::size_t>(i) >= mesh.vertices.size())
-        bad_argument("triangles", "triangle " + std::to_string(f) + " names vertex " + std::to_string(i) + ", not one of the " + std::to_string(mesh.vertices.size()) + " vertices");
+        bad_argument("triangles", "triangle " + std::to_string(f) + " names vertex " + std::to_string(i) +
+                                      ", not one of the " + std::to_string(mesh.vertices.size()) +
+                                      " vertices");
       mesh.triangles[f][k] = static_cast<std::uint32_t>(i);
     }
   }
@@ -250,21 +266,23 @@ PYBIND11_MODULE(fabmesh, m) {
   m.attr("__version__") = fabmesh::version();
   register_errors(m);
 
-  py::class_<fabmesh::Design>(m, "Design", "A design, read and checked; immutable, safe to share between threads.")
+  py::class_<fabmesh::Design>(m, "Design",
+                              "A design, read and checked; immutable, safe to share between threads.")
       .def_property_readonly("kind", &fabmesh::Design::kind, "'vessel', 'countertop', 'surface' or 'curve'")
       .def_property_readonly("name", &fabmesh::Design::name, "The design's name (default: its file's stem)")
       .def_property_readonly("units", &fabmesh::Design::units, "The model unit: 'mm', 'cm', 'm' or 'in'")
       .def_property_readonly("tolerance", &fabmesh::Design::tolerance,
                              "The proven deviation the mesh may have, model units")
-      .def_property_readonly("path", [](const fabmesh::Design& d) { return d.path().string(); },
-                             "The file it was read from (for text: 'design.yaml')")
+      .def_property_readonly(
+          "path", [](const fabmesh::Design& d) { return d.path().string(); },
+          "The file it was read from (for text: 'design.yaml')")
       .def_property_readonly("outputs", &fabmesh::Design::outputs, "The formats `fabmesh run` writes for it")
       .def("__repr__", [](const fabmesh::Design& d) {
         return "<fabmesh.Design " + d.kind() + " '" + d.name() + "' from " + d.path().string() + ">";
       });
 
-  m.def("load_design", &load_design, py::arg("path") = py::none(), py::kw_only(), py::arg("text") = py::none(),
-        py::arg("overrides") = py::none(),
+  m.def("load_design", &load_design, py::arg("path") = py::none(), py::kw_only(),
+        py::arg("text") = py::none(), py::arg("overrides") = py::none(),
         R"(Reads a design, from a file (path) or from YAML text (text=...), with overrides applied.
 
 overrides: a dict {"body.wall": 0.25, "profile.points[1]": [1, 5]} with the
@@ -273,31 +291,40 @@ Returns a Design. Raises InputError (with key, file, line, column) for a
 malformed or out-of-range value, an unknown key or an unreadable file.)");
 
   py::class_<fabmesh::BuiltCurve>(m, "BuiltCurve", "One of a design's curves as built")
-      .def_readonly("key", &fabmesh::BuiltCurve::key, "The design key: 'curve', 'profile', 'outline', 'holes[0]'")
-      .def_property_readonly("points", [](const fabmesh::BuiltCurve& c) { return matrix<2>(c.points); },
-                             "The sampled polyline, shape (K, 2), model units")
+      .def_readonly("key", &fabmesh::BuiltCurve::key,
+                    "The design key: 'curve', 'profile', 'outline', 'holes[0]'")
+      .def_property_readonly(
+          "points", [](const fabmesh::BuiltCurve& c) { return matrix<2>(c.points); },
+          "The sampled polyline, shape (K, 2), model units")
       .def_readonly("closed", &fabmesh::BuiltCurve::closed)
       .def_readonly("max_deviation", &fabmesh::BuiltCurve::max_deviation,
                     "Proven bound of the polyline against the exact curve, model units")
       .def_readonly("curve", &fabmesh::BuiltCurve::curve, "The exact curve, to evaluate");
 
   py::class_<Result>(m, "Result", "A design built and validated as `fabmesh run` builds it")
-      .def_property_readonly("valid", [](const Result& r) { return r.built.valid; },
-                             "True when the mesh is valid for what the design is for")
-      .def_property_readonly("vertices", [](const Result& r) { return matrix<3>(r.built.vertices); },
-                             "float64 array of shape (N, 3), model units (Design.units)")
-      .def_property_readonly("triangles", &triangles_of, "int64 array of shape (M, 3): outward, counter-clockwise")
+      .def_property_readonly(
+          "valid", [](const Result& r) { return r.built.valid; },
+          "True when the mesh is valid for what the design is for")
+      .def_property_readonly(
+          "vertices", [](const Result& r) { return matrix<3>(r.built.vertices); },
+          "float64 array of shape (N, 3), model units (Design.units)")
+      .def_property_readonly("triangles", &triangles_of,
+                             "int64 array of shape (M, 3): outward, counter-clockwise")
       .def_property_readonly("units", [](const Result& r) { return r.built.units; })
       .def_property_readonly("tolerance", [](const Result& r) { return r.built.tolerance; })
-      .def_property_readonly("max_deviation", [](const Result& r) { return r.built.max_deviation; },
-                             "Proven bound of the mesh against the exact shape, model units")
-      .def_property_readonly("error", [](const Result& r) { return r.built.error; },
-                             "Why the mesh is not valid; '' when it is")
-      .def_property_readonly("curves", [](const Result& r) { return r.built.curves; }, "The design's curves")
-      .def_property_readonly("report", [](const Result& r) { return json_loads(r.built.report_json); },
-                             "The design's item of `fabmesh run --json`, as a dict")
-      .def_property_readonly("validation", [](const Result& r) { return json_loads(r.built.validation.json); },
-                             "The validation facts, as in the report")
+      .def_property_readonly(
+          "max_deviation", [](const Result& r) { return r.built.max_deviation; },
+          "Proven bound of the mesh against the exact shape, model units")
+      .def_property_readonly(
+          "error", [](const Result& r) { return r.built.error; }, "Why the mesh is not valid; '' when it is")
+      .def_property_readonly(
+          "curves", [](const Result& r) { return r.built.curves; }, "The design's curves")
+      .def_property_readonly(
+          "report", [](const Result& r) { return json_loads(r.built.report_json); },
+          "The design's item of `fabmesh run --json`, as a dict")
+      .def_property_readonly(
+          "validation", [](const Result& r) { return json_loads(r.built.validation.json); },
+          "The validation facts, as in the report")
       .def(
           "write",
           [](const Result& r, const std::filesystem::path& path) {
@@ -320,11 +347,12 @@ malformed or out-of-range value, an unknown key or an unreadable file.)");
             return out;
           },
           py::arg("folder"),
-          "Writes every output of the design into folder, as `fabmesh run DESIGN -o folder/`; returns the paths.")
+          "Writes every output of the design into folder, as `fabmesh run DESIGN -o folder/`; returns the "
+          "paths.")
       .def("__repr__", [](const Result& r) {
         return "<fabmesh.Result " + std::string(r.built.valid ? "valid" : "INVALID") + ", " +
-               std::to_string(r.built.vertices.size()) + " vertices, " + std::to_string(r.built.triangles.size()) +
-               " triangles>";
+               std::to_string(r.built.vertices.size()) + " vertices, " +
+               std::to_string(r.built.triangles.size()) + " triangles>";
       });
 
   m.def("build", &build, py::arg("design"),
@@ -335,8 +363,8 @@ Returns a Result: .vertices (N, 3) float64, .triangles (M, 3) int64, .valid,
 valid=False and .error; a design that cannot be built raises InputError.
 The GIL is released while building.)");
 
-  m.def("check", &check, py::arg("vertices"), py::arg("triangles"), py::kw_only(), py::arg("weld_tolerance") = 0.0,
-        py::arg("max_seconds") = 600.0,
+  m.def("check", &check, py::arg("vertices"), py::arg("triangles"), py::kw_only(),
+        py::arg("weld_tolerance") = 0.0, py::arg("max_seconds") = 600.0,
         R"(Validates a mesh given as arrays, as `fabmesh check` validates a file.
 
 vertices: (N, 3) numbers; triangles: (M, 3) integer indices into vertices.
@@ -359,7 +387,8 @@ An unreadable file gives {"file": ..., "error": ..., "exit_code": 2, "valid": Fa
           py::gil_scoped_release free;
           mesh = fabmesh::read_mesh(path);
         }
-        py::array_t<std::int64_t> triangles({static_cast<py::ssize_t>(mesh.triangles.size()), py::ssize_t{3}});
+        py::array_t<std::int64_t> triangles(
+            {static_cast<py::ssize_t>(mesh.triangles.size()), py::ssize_t{3}});
         for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
           for (std::size_t k = 0; k < 3; ++k) triangles.mutable_data()[3 * f + k] = mesh.triangles[f][k];
         }
@@ -378,14 +407,16 @@ An unreadable file gives {"file": ..., "error": ..., "exit_code": 2, "valid": Fa
         py::gil_scoped_release free;
         fabmesh::write_mesh(path, mesh, options);
       },
-      py::arg("path"), py::arg("vertices"), py::arg("triangles"), py::kw_only(), py::arg("units") = py::none(),
+      py::arg("path"), py::arg("vertices"), py::arg("triangles"), py::kw_only(),
+      py::arg("units") = py::none(),
       "Writes a mesh in the format the path's extension names (.stl .obj .ply .off .3mf .glb .drc), all or "
       "nothing; units (default 'mm') is stated in 3MF and glTF. Nothing is validated. Raises InputError, "
       "EnvironmentError.");
 
-  py::class_<fabmesh::Curve>(m, "Curve",
-                             "A composite plane curve of n segments, parameter t in [0, n]: segment floor(t) at "
-                             "t - floor(t)")
+  py::class_<fabmesh::Curve>(
+      m, "Curve",
+      "A composite plane curve of n segments, parameter t in [0, n]: segment floor(t) at "
+      "t - floor(t)")
       .def_property_readonly("segments", &fabmesh::Curve::segments)
       .def_property_readonly("closed", &fabmesh::Curve::closed)
       .def(
@@ -403,7 +434,8 @@ An unreadable file gives {"file": ..., "error": ..., "exit_code": 2, "valid": Fa
       .def(
           "curvature",
           [](const fabmesh::Curve& c, const py::handle& t) -> py::object {
-            if (py::isinstance<py::float_>(t) || py::isinstance<py::int_>(t)) return py::float_(c.curvature(t.cast<double>()));
+            if (py::isinstance<py::float_>(t) || py::isinstance<py::int_>(t))
+              return py::float_(c.curvature(t.cast<double>()));
             const auto ts = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(t);
             if (!ts || ts.ndim() != 1) bad_argument("t", "must be a number or a 1-D array of numbers");
             py::array_t<double> out(ts.shape(0));
@@ -424,14 +456,18 @@ An unreadable file gives {"file": ..., "error": ..., "exit_code": 2, "valid": Fa
           py::arg("tolerance"),
           "Samples the curve within tolerance: returns (points of shape (K, 2), the proven bound achieved)")
       .def("__repr__", [](const fabmesh::Curve& c) {
-        return "<fabmesh.Curve of " + std::to_string(c.segments()) + " segment" + (c.segments() == 1 ? "" : "s") + ">";
+        return "<fabmesh.Curve of " + std::to_string(c.segments()) + " segment" +
+               (c.segments() == 1 ? "" : "s") + ">";
       });
 
   m.def(
       "tbezier",
-      [](const py::handle& points, double lam, double mu) { return fabmesh::tbezier(plane_points(points), lam, mu); },
+      [](const py::handle& points, double lam, double mu) {
+        return fabmesh::tbezier(plane_points(points), lam, mu);
+      },
       py::arg("points"), py::arg("lam") = 0.0, py::arg("mu") = 0.0,
-      "Cubic T-Bezier segments through 3n + 1 control points (shape (3n + 1, 2)), shape parameters lam, mu in "
+      "Cubic T-Bezier segments through 3n + 1 control points (shape (3n + 1, 2)), shape parameters lam, mu "
+      "in "
       "[-2, 1]. Raises InputError.");
   m.def(
       "quasi_bspline",
@@ -447,7 +483,8 @@ An unreadable file gives {"file": ..., "error": ..., "exit_code": 2, "valid": Fa
         return fabmesh::hbezier(plane_points(points), alpha, lam, mu);
       },
       py::arg("points"), py::arg("alpha") = 1.0, py::arg("lam") = 0.0, py::arg("mu") = 0.0,
-      "Generalized cubic H-Bezier segments through 3n + 1 control points, alpha in (0, 10]. Raises InputError.");
+      "Generalized cubic H-Bezier segments through 3n + 1 control points, alpha in (0, 10]. Raises "
+      "InputError.");
   m.def(
       "optimize",
       [](const fabmesh::Design& design) {
@@ -459,6 +496,7 @@ An unreadable file gives {"file": ..., "error": ..., "exit_code": 2, "valid": Fa
         return json_loads(text);
       },
       py::arg("design"),
-      "The fairest shape parameters of the design's curves, as `fabmesh optimize --json`: a list, one dict per "
+      "The fairest shape parameters of the design's curves, as `fabmesh optimize --json`: a list, one dict "
+      "per "
       "curve. Raises InputError.");
 }

@@ -18,9 +18,9 @@ done
 [[ -f "$build/compile_commands.json" ]] || {
   echo "run-clang-tidy: $build/compile_commands.json not found; configure first (cmake -S . -B $build)" >&2; exit 2; }
 
-mapfile -t files < <(git ls-files 'geometry/*.cpp' 'io/*.cpp' 'pipeline/*.cpp')
+mapfile -t files < <(git ls-files 'geometry/*.cpp' 'io/*.cpp' 'pipeline/*.cpp' 'api/*.cpp')
 if [[ -n "$since" ]]; then
-  mapfile -t changed < <(git diff --name-only "$since" -- geometry io pipeline)
+  mapfile -t changed < <(git diff --name-only "$since" -- geometry io pipeline api)
   selected=()
   for f in "${files[@]}"; do
     for c in "${changed[@]}"; do

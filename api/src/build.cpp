@@ -1,17 +1,17 @@
+#include "fabmesh/build.h"
+
 #include <exception>
 #include <optional>
 
 #include "api/src/detail.h"
+#include "api/src/soup.h"
+#include "api/src/validation_report.h"
 #include "geometry/sampling/sample_curve.h"
 #include "pipeline/failure.h"
 #include "pipeline/job.h"
 #include "pipeline/optimize.h"
 #include "pipeline/outputs.h"
 #include "pipeline/report.h"
-
-#include "api/src/soup.h"
-#include "api/src/validation_report.h"
-#include "fabmesh/build.h"
 
 namespace fabmesh::api {
 namespace {
@@ -23,7 +23,10 @@ std::vector<BuiltCurve> public_curves(const fabmesh::BuiltShape& shape, double t
     fabmesh::SampleOptions options;
     options.tolerance = tolerance;
     const fabmesh::Polyline2 line = fabmesh::sample_curve(named.curve.curve, options);
-    BuiltCurve c{named.name, {}, line.closed, line.max_deviation,
+    BuiltCurve c{named.name,
+                 {},
+                 line.closed,
+                 line.max_deviation,
                  Curve(std::make_shared<const detail::CurveData>(detail::CurveData{named.curve.curve}))};
     c.points.reserve(line.points.size());
     for (const Vec2& p : line.points) c.points.push_back({p.x(), p.y()});
@@ -72,7 +75,8 @@ void write_output(const Design& design, const std::filesystem::path& file) {
   const fabmesh::Design& d = design.data().design;
   detail::translated([&] {
     const fabmesh::OutputFormat* format = fabmesh::format_of_file(file.string());
-    if (format == nullptr) detail::bad_argument("file", "'" + file.string() + "' names no format fabmesh writes");
+    if (format == nullptr)
+      detail::bad_argument("file", "'" + file.string() + "' names no format fabmesh writes");
     fabmesh::JobOptions options;
     options.export_format = std::string(format->name);
     options.output_file = file.string();

@@ -1,3 +1,5 @@
+#include "fabmesh/curves.h"
+
 #include <fmt/format.h>
 
 #include <cmath>
@@ -5,8 +7,6 @@
 #include "api/src/detail.h"
 #include "geometry/curves/curve_spec.h"
 #include "geometry/sampling/sample_curve.h"
-
-#include "fabmesh/curves.h"
 
 namespace fabmesh::api {
 namespace {
@@ -26,9 +26,10 @@ std::vector<Vec2> plane_points(const std::vector<Point2>& points) {
 // points, the last shared with the next segment).
 fabmesh::CurveSpec chain(SegmentKind kind, CurveFamily family, const std::vector<Point2>& points) {
   if (points.size() < 4 || (points.size() - 1) % 3 != 0) {
-    detail::bad_argument("points", fmt::format("{} control points; a chain of cubic segments takes 3n + 1 (4, 7, "
-                                               "10, ...)",
-                                               points.size()));
+    detail::bad_argument("points",
+                         fmt::format("{} control points; a chain of cubic segments takes 3n + 1 (4, 7, "
+                                     "10, ...)",
+                                     points.size()));
   }
   const std::vector<Vec2> p = plane_points(points);
   fabmesh::CurveSpec spec;
@@ -51,7 +52,8 @@ Curve constructed(const fabmesh::CurveSpec& spec) {
 // The segment and its own parameter at global t (the last segment takes t = n).
 std::pair<const Segment*, double> at(const fabmesh::CompositeCurve& curve, double t) {
   const double n = static_cast<double>(curve.size());
-  if (!std::isfinite(t) || t < 0.0 || t > n) detail::bad_argument("t", fmt::format("t = {} is not in [0, {}]", t, n));
+  if (!std::isfinite(t) || t < 0.0 || t > n)
+    detail::bad_argument("t", fmt::format("t = {} is not in [0, {}]", t, n));
   const std::size_t i = std::min(static_cast<std::size_t>(t), curve.size() - 1);
   return {&curve.segments()[i], t - static_cast<double>(i)};
 }

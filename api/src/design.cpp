@@ -1,11 +1,11 @@
+#include "fabmesh/design.h"
+
 #include <memory>
 
 #include "api/src/detail.h"
 #include "io/design/overrides.h"
 #include "pipeline/load_design.h"
 #include "pipeline/outputs.h"
-
-#include "fabmesh/design.h"
 
 namespace fabmesh::api {
 namespace {
@@ -41,10 +41,11 @@ Design read_design(const std::filesystem::path& path, const Overrides& overrides
       [&] { return handle(fabmesh::load_design(path.string(), command_line_overrides(overrides))); });
 }
 
-Design parse_design(std::string_view yaml_text, const Overrides& overrides, const std::filesystem::path& source) {
+Design parse_design(std::string_view yaml_text, const Overrides& overrides,
+                    const std::filesystem::path& source) {
   return detail::translated([&] {
-    return handle(
-        fabmesh::load_design_text(std::string(yaml_text), source.string(), command_line_overrides(overrides)));
+    return handle(fabmesh::load_design_text(std::string(yaml_text), source.string(),
+                                            command_line_overrides(overrides)));
   });
 }
 

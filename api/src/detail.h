@@ -6,11 +6,9 @@
 
 #include <utility>
 
+#include "fabmesh/errors.h"
 #include "geometry/curves/composite.h"
 #include "io/design/design.h"
-
-// The public headers last: they only add fabmesh::api.
-#include "fabmesh/errors.h"
 
 namespace fabmesh::api::detail {
 

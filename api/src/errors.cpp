@@ -1,12 +1,12 @@
+#include "geometry/core/errors.h"
+
 #include <exception>
 #include <new>
 
 #include "api/src/detail.h"
-#include "geometry/core/errors.h"
+#include "fabmesh/version.h"
 #include "io/file.h"
 #include "pipeline/failure.h"
-
-#include "fabmesh/version.h"
 
 namespace fabmesh::api {
 namespace {

@@ -1,9 +1,13 @@
+#include "fabmesh/mesh.h"
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <string>
 
 #include "api/src/detail.h"
+#include "api/src/soup.h"
+#include "api/src/validation_report.h"
 #include "geometry/core/units.h"
 #include "io/file.h"
 #include "io/mesh/draco.h"
@@ -15,10 +19,6 @@
 #include "io/mesh/stl.h"
 #include "io/mesh/threemf.h"
 #include "pipeline/check_mesh.h"
-
-#include "api/src/soup.h"
-#include "api/src/validation_report.h"
-#include "fabmesh/mesh.h"
 
 namespace fabmesh::api {
 namespace {
@@ -95,14 +95,16 @@ Mesh read_mesh(const std::filesystem::path& path) {
 
 void write_mesh(const std::filesystem::path& path, const Mesh& mesh, const WriteOptions& options) {
   detail::translated([&] {
-    const std::string units = !options.units.empty() ? options.units : !mesh.units.empty() ? mesh.units : "mm";
+    const std::string units = !options.units.empty() ? options.units
+                              : !mesh.units.empty()  ? mesh.units
+                                                     : "mm";
     fabmesh::metres_per_unit(units);  // an unknown unit is bad input before anything is made
     const fabmesh::TriangleSoup soup = detail::internal_soup(detail::view_of(mesh));
     const std::string ext = lower_extension(path);
     std::string bytes = encoded(ext, soup, units, options, path.stem().string());
     if (bytes.empty()) {
-      detail::bad_argument("path", "'" + path.string() +
-                                       "' ends in neither .stl, .obj, .ply, .off, .3mf, .glb nor .drc");
+      detail::bad_argument(
+          "path", "'" + path.string() + "' ends in neither .stl, .obj, .ply, .off, .3mf, .glb nor .drc");
     }
     fabmesh::write_files_atomically({fabmesh::FileWrite{path.string(), std::move(bytes)}});
   });

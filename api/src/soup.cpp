@@ -2,7 +2,6 @@
 
 #include <fmt/format.h>
 
-
 #include "api/src/detail.h"
 
 namespace fabmesh::api::detail {
@@ -16,8 +15,9 @@ void copy_triangles(const Index* indices, std::size_t count, std::size_t vertex_
     for (std::size_t k = 0; k < 3; ++k) {
       const Index i = indices[3 * f + k];
       if (i < 0 || static_cast<std::uint64_t>(i) >= vertex_count) {
-        bad_argument("triangles", fmt::format("triangle {} corner {} is vertex {}, not one of the {} vertices", f,
-                                              k, static_cast<long long>(i), vertex_count));
+        bad_argument("triangles",
+                     fmt::format("triangle {} corner {} is vertex {}, not one of the {} vertices", f, k,
+                                 static_cast<long long>(i), vertex_count));
       }
       soup.triangles[f][k] = static_cast<std::uint32_t>(i);
     }

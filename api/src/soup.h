@@ -3,9 +3,8 @@
 
 #include <string>
 
-#include "geometry/mesh/soup.h"
-
 #include "fabmesh/mesh.h"
+#include "geometry/mesh/soup.h"
 
 namespace fabmesh::api::detail {
 

@@ -20,7 +20,7 @@ ValidationReport public_report(const fabmesh::ValidationReport& report, const nl
   out.volume = report.volume;
   out.area = report.area;
   for (const fabmesh::DefectReport& d : report.defects) {
-    Defect defect{fabmesh::to_string(d.kind), d.count, {}};
+    Defect defect{fabmesh::to_key(d.kind), d.count, {}};
     for (const Vec3& p : d.examples) defect.examples.push_back({p.x(), p.y(), p.z()});
     out.defects.push_back(std::move(defect));
   }

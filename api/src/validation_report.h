@@ -3,10 +3,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "fabmesh/mesh.h"
 #include "geometry/validation/validate.h"
 #include "pipeline/check_mesh.h"
-
-#include "fabmesh/mesh.h"
 
 namespace fabmesh::api::detail {
 

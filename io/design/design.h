@@ -45,9 +45,9 @@ enum class OutputErrorPolicy {
 
 /// Where a design gives one key.
 struct KeySource {
-  std::string place;        ///< "path:line:column", or "-D path=value" for an override
-  bool holds_keys = false;  ///< its value is a map, a list or empty (what it does not give is a default)
-  std::string file;         ///< the design's file
+  std::string place;          ///< "path:line:column", or "-D path=value" for an override
+  bool holds_keys = false;    ///< its value is a map, a list or empty (what it does not give is a default)
+  std::string file;           ///< the design's file
   int line = 0, column = 0;   ///< 1-based; 0 for an override
   std::string override_text;  ///< "body.wall=2.5" when an override gave it
 };

@@ -18,7 +18,8 @@ class UnknownKeyError : public FileError {
  public:
   UnknownKeyError(std::string field, const std::string& path, int line, int column,
                   const std::string& message)
-      : FileError(path, line, column, message), field_(std::move(field)) {}
+      : FileError(path, line, column, message, ErrorLocation{field, {}, {}, {}, path, line, column}),
+        field_(std::move(field)) {}
   /// The key's path in the design: "body.wal", "bodyy", "holes[0].elipse".
   const std::string& field() const { return field_; }
 

@@ -137,8 +137,16 @@ ItemFacts row_facts(const BatchRow& r) {
   item.name = r.name;
   item.status = r.status;
   item.message = r.status == VariantStatus::Missing ? "not run yet" : r.message;
-  if (item.message.empty() && r.status == VariantStatus::Ok) item.message = kValidForFabrication;
   item.mesh = r.mesh;
+  if (r.status == VariantStatus::Ok && r.mesh) {
+    // Written: the verdict every report gives the same files (a written open surface is for viewing).
+    set_written_verdict(item, *r.mesh);
+    if (!r.message.empty()) {  // the warnings of skipped outputs say more than "valid"
+      item.message = item.status == ItemStatus::Ok ? r.message : item.message + "; " + r.message;
+    }
+  } else if (item.message.empty() && r.status == VariantStatus::Ok) {
+    item.message = kValidForFabrication;
+  }
   for (const RowFile& f : r.files) item.files.push_back(f.path);
   item.timings_ms = r.timings_ms;
   return item;
@@ -159,6 +167,7 @@ BatchRow row_from_json(const nlohmann::ordered_json& j) {
     if (j.contains("kind")) {
       MeshFacts m;
       m.kind = field<std::string>(j, "kind");
+      m.measured = m.kind != "curve";  // a curve design writes a drawing, no mesh
       m.units = field<std::string>(j, "units");
       m.vertices = field<std::size_t>(j, "vertices");
       m.triangles = field<std::size_t>(j, "triangles");

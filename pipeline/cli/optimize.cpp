@@ -1,5 +1,7 @@
 // fabmesh optimize DESIGN [--json]: fairest shape parameters of a design's curve.
 
+#include "pipeline/optimize.h"
+
 #include <fmt/format.h>
 
 #include <memory>
@@ -7,7 +9,6 @@
 
 #include "pipeline/cli/commands.h"
 #include "pipeline/load_design.h"
-#include "pipeline/optimize.h"
 #include "pipeline/report.h"
 
 namespace fabmesh::cli {

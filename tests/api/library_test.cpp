@@ -2,6 +2,8 @@
 // fabmesh::fabmesh sees): designs, builds with the command line's proofs and
 // bytes, validation of arrays, curves, errors as data, threads.
 
+#include <fabmesh/fabmesh.h>
+
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdio>
@@ -13,13 +15,13 @@
 #include <string>
 #include <vector>
 
-#include <fabmesh/fabmesh.h>
-
 namespace fs = std::filesystem;
 
 namespace {
 
-std::string example(const std::string& name) { return std::string(FABMESH_SOURCE_DIR) + "/configs/examples/" + name; }
+std::string example(const std::string& name) {
+  return std::string(FABMESH_SOURCE_DIR) + "/configs/examples/" + name;
+}
 
 fs::path fresh_dir(const std::string& name) {
   const fs::path dir = fs::path(FABMESH_TEST_TMP) / name;
@@ -120,8 +122,9 @@ TEST_CASE("designs from text, overrides, and bad input as data", "[api]") {
     CHECK(e.place().override_text == "body.wall=-1");
     CHECK(std::string(e.what()).find("-D body.wall=-1") != std::string::npos);
   }
-  const std::string typo = "name: t\nkind: vessel\nunits: cm\ntolerance: 0.01\nprofile:\n  family: quasi_bspline\n"
-                           "  points: [[1.5, 6], [1, 5], [2, 4], [3, 3], [1.5, 2]]\n  lambdas: [0, 0, 7]\n";
+  const std::string typo =
+      "name: t\nkind: vessel\nunits: cm\ntolerance: 0.01\nprofile:\n  family: quasi_bspline\n"
+      "  points: [[1.5, 6], [1, 5], [2, 4], [3, 3], [1.5, 2]]\n  lambdas: [0, 0, 7]\n";
   try {
     fabmesh::parse_design(typo, {}, "typo.yaml");
     FAIL("lambda 7 was accepted");

@@ -76,7 +76,7 @@ def test_build_write_3mf_then_check_file_round_trip(scratch):
     result.write(str(scratch / "cup.3mf"))
     item = fabmesh.check_file(str(scratch / "cup.3mf"))
     assert item["valid"] is True
-    assert item["format"] == "3mf"
+    assert item["format"] == "3MF"
     assert item["triangles"] == len(result.triangles)
 
 

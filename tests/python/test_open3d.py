@@ -77,9 +77,6 @@ DIFFERENCES = {
         "Open3D's is_watertight does not ask which way the faces point; fabmesh requires outward (inside_out)",
     ("flipped face", "valid"):
         "Open3D's is_watertight ignores orientation; fabmesh finds the inconsistent edges",
-    ("two tetrahedra sharing a vertex", "valid"):
-        "Open3D's is_watertight asks for vertex-manifold; fabmesh does too (non_manifold_vertex) and both say "
-        "invalid: listed because Open3D's is_vertex_manifold passes this bowtie when each fan is an edge-connected disk",
 }
 
 

@@ -30,14 +30,14 @@ struct BuildResult {
   /// for a `purpose: view` surface). When false, `error` says why and
   /// `validation` has the defects; nothing of it should be written.
   bool valid = false;
-  std::vector<Point> vertices;       ///< model units; empty for a curve design
-  std::vector<Triangle> triangles;   ///< outward, counter-clockwise
-  std::string units;                 ///< the design's model unit
-  double tolerance = 0.0;            ///< the design's tolerance, model units
-  double max_deviation = 0.0;        ///< proven bound of the mesh against the exact shape
-  ValidationReport validation;       ///< the verdict, with the builder's proofs
-  std::vector<BuiltCurve> curves;    ///< the design's curves, in the design's order
-  std::string error;                 ///< why it is not valid; empty when valid
+  std::vector<Point> vertices;      ///< model units; empty for a curve design
+  std::vector<Triangle> triangles;  ///< outward, counter-clockwise
+  std::string units;                ///< the design's model unit
+  double tolerance = 0.0;           ///< the design's tolerance, model units
+  double max_deviation = 0.0;       ///< proven bound of the mesh against the exact shape
+  ValidationReport validation;      ///< the verdict, with the builder's proofs
+  std::vector<BuiltCurve> curves;   ///< the design's curves, in the design's order
+  std::string error;                ///< why it is not valid; empty when valid
   /// The design's item of `fabmesh run --json` (docs/reports.md), as JSON
   /// text: outputs as they would be written under "out/", skipped outputs,
   /// tolerance split, validation facts, timings.

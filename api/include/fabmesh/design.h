@@ -4,9 +4,9 @@
 
 #include <filesystem>
 #include <memory>
-#include <utility>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace fabmesh {

@@ -107,7 +107,8 @@ void Fields::fail_key(const YAML::Node& key, const YAML::Node& value, const std:
                       const std::string& message) const {
   if (origin_of(value) != nullptr) {
     const KeySource where = source(value);
-    throw FileError(path_, 0, 0, fmt::format("{}: {}: {}", where.place, field, message), at_key(field, where));
+    throw FileError(path_, 0, 0, fmt::format("{}: {}: {}", where.place, field, message),
+                    at_key(field, where));
   }
   fail(key, field, message);
 }

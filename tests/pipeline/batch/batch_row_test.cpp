@@ -119,3 +119,21 @@ TEST_CASE("batch: a row read back keeps its mesh facts", "[pipeline][batch]") {
   CHECK(r.mesh->bbox_max == Vec3(2.5, 2.5, 6.0));
   CHECK(r.mesh->tolerance == 0.02);
 }
+
+TEST_CASE("batch: a written open surface and a curve say what run --report says", "[pipeline][batch]") {
+  BatchRow surface = written_row();
+  surface.mesh->kind = "surface";
+  surface.mesh->valid = false;  // written with `purpose: view`
+  const ItemFacts viewing = row_facts(surface);
+  CHECK(viewing.status == ItemStatus::Invalid);
+  CHECK(viewing.message == "written for viewing only: not valid for fabrication");
+
+  BatchRow curve = written_row();
+  curve.mesh->kind = "curve";
+  curve.mesh->valid = false;
+  const ItemFacts drawing = row_facts(row_from_json(row_json(curve)));
+  REQUIRE(drawing.mesh);
+  CHECK_FALSE(drawing.mesh->measured);
+  CHECK(drawing.status == ItemStatus::Ok);
+  CHECK(drawing.message == "drawing written");
+}
