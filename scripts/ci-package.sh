@@ -141,6 +141,8 @@ stl=$(compgen -G "$work/run/out/*.stl" | head -n 1) || die "/usr/bin/fabmesh wro
 (cd "$work" && /usr/bin/python3 -c "import fabmesh; assert fabmesh.__version__ == '$version', fabmesh.__version__") ||
   die "import fabmesh from the installed package"
 DEBIAN_FRONTEND=noninteractive $SUDO apt-get remove -y -qq fabmesh || die "apt-get remove fabmesh"
+# remove leaves dpkg's record of the package ("config-files"); leave none.
+$SUDO dpkg --purge fabmesh >/dev/null || die "dpkg --purge fabmesh"
 package_installed=0
 [[ ! -e /usr/bin/fabmesh ]] || die "/usr/bin/fabmesh is still there after apt-get remove"
 say "the Debian package installs, runs and removes cleanly"
