@@ -20,7 +20,7 @@ command -v dxf2gcode >/dev/null 2>&1 || die "dxf2gcode not found (Debian: apt-ge
 /usr/bin/python3 -c 'import dxf2gcode, PyQt5, configobj, ezdxf' 2>/dev/null \
   || die "Debian's python3 lacks dxf2gcode, PyQt5, configobj or ezdxf (apt-get install -y dxf2gcode python3-ezdxf)"
 command -v node >/dev/null 2>&1 || die "node not found"
-[[ -d tools/node/node_modules/gcode-toolpath ]] || die "npm package gcode-toolpath missing (scripts/install-deps.sh)"
+[[ -d tools/node/node_modules/gcode-toolpath ]] || die "npm package gcode-toolpath missing (scripts/install-deps.sh --test)"
 
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/$bench_name.XXXXXX")
 if [[ ${KEEP:-0} == 1 ]]; then echo "keeping $tmp"; else trap 'rm -rf "$tmp"' EXIT; fi

@@ -1,29 +1,56 @@
 #!/usr/bin/env bash
-# Installs every dependency fabmesh needs to build, test and benchmark:
-# Debian packages with apt-get, and the npm test tools of tools/node (the
-# Khronos glTF validator, the CNCjs G-code interpreter) with `npm ci`.
-# Idempotent: what is present is skipped, so re-running is cheap.
-# Works as root or through sudo. Usage: scripts/install-deps.sh [--bench]
+# Installs what fabmesh needs, with apt-get (Debian 12):
+#
+#   scripts/install-deps.sh           build and run fabmesh: the compiler, CMake, the
+#                                     libraries' -dev packages, pybind11 and the Python
+#                                     headers (the Python module), numpy (to use it)
+#   scripts/install-deps.sh --test    also what the test suite and CI use: Catch2, clang
+#                                     and clang-tidy, the tools outputs are checked with
+#                                     (Chromium, PrusaSlicer, OpenSCAD, Draco's tools,
+#                                     ezdxf, pytest, meshio, Open3D), a single-node
+#                                     Slurm, and the npm test tools of tools/node (the
+#                                     Khronos glTF validator, the CNCjs G-code interpreter)
+#   scripts/install-deps.sh --bench   also the peer tools and Google Benchmark of bench/
+#
+# Flags combine (--test --bench). Idempotent: what is present is skipped, so
+# re-running is cheap. Works as root or through sudo.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
+test_deps=0 bench_deps=0
+for arg in "$@"; do
+  case "$arg" in
+    --test) test_deps=1 ;;
+    --bench) bench_deps=1 ;;
+    -h | --help) sed -n '2,/^set -euo/p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
+    *) echo "install-deps: unknown argument '$arg' (use --test, --bench)" >&2; exit 2 ;;
+  esac
+done
+
+# Building and running fabmesh, its library and its Python module.
 packages=(
   build-essential cmake ninja-build ccache pkg-config
   libcgal-dev libgmp-dev libmpfr-dev libboost-dev
   libeigen3-dev libopenmesh-dev libdraco-dev libtbb-dev
   libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libfmt-dev
-  catch2 libbenchmark-dev libdxflib-dev
-  lib3mf-dev libspng-dev zlib1g-dev
-  clang clang-tidy libclang-rt-14-dev
-  python3 python3-ezdxf
-  prusa-slicer chromium draco openscad
-  slurm-wlm munge
+  libdxflib-dev lib3mf-dev libspng-dev zlib1g-dev
+  python3 python3-dev pybind11-dev python3-numpy
 )
-# Node.js and npm come with the machine (NodeSource's nodejs bundles npm and
-# conflicts with Debian's npm); install Debian's pair only where there is none.
-if ! command -v npm >/dev/null 2>&1; then packages+=(nodejs npm); fi
-if [[ "${1:-}" == "--bench" ]]; then
-  packages+=(admesh hyperfine time dxf2gcode)
+if ((test_deps)); then
+  packages+=(
+    catch2
+    clang clang-tidy libclang-rt-14-dev
+    python3-ezdxf python3-pytest python3-meshio python3-open3d
+    prusa-slicer chromium draco openscad
+    slurm-wlm munge
+    groff-base man-db
+  )
+  # Node.js and npm come with the machine (NodeSource's nodejs bundles npm and
+  # conflicts with Debian's npm); install Debian's pair only where there is none.
+  if ! command -v npm >/dev/null 2>&1; then packages+=(nodejs npm); fi
+fi
+if ((bench_deps)); then
+  packages+=(libbenchmark-dev admesh hyperfine time dxf2gcode)
 fi
 
 missing=()
@@ -43,10 +70,12 @@ else
 fi
 
 # npm test tools, pinned by tools/node/package-lock.json.
-if [[ -d tools/node/node_modules/gltf-validator && -d tools/node/node_modules/gcode-toolpath &&
-      tools/node/node_modules/.package-lock.json -nt tools/node/package-lock.json ]]; then
-  echo "install-deps: npm test tools present"
-else
-  echo "install-deps: installing the npm test tools (tools/node)"
-  (cd tools/node && npm ci --no-audit --no-fund --loglevel=error)
+if ((test_deps)); then
+  if [[ -d tools/node/node_modules/gltf-validator && -d tools/node/node_modules/gcode-toolpath &&
+        tools/node/node_modules/.package-lock.json -nt tools/node/package-lock.json ]]; then
+    echo "install-deps: npm test tools present"
+  else
+    echo "install-deps: installing the npm test tools (tools/node)"
+    (cd tools/node && npm ci --no-audit --no-fund --loglevel=error)
+  fi
 fi

@@ -2,7 +2,7 @@
 # Starts a single-node Slurm cluster on this machine (munged, slurmctld,
 # slurmd), for `fabmesh batch --slurm` and its CI step. Runs as root without
 # systemd (containers included); idempotent: what runs already is left alone.
-# Debian's slurm-wlm and munge come from scripts/install-deps.sh.
+# Debian's slurm-wlm and munge come from scripts/install-deps.sh --test.
 #
 #   scripts/slurm-single-node.sh          start (or check) the cluster, print the SLURM_CONF line
 #   scripts/slurm-single-node.sh stop     stop the daemons this script started
@@ -35,7 +35,7 @@ fi
 
 [[ $(id -u) -eq 0 ]] || die "must run as root (slurmd starts jobs as their user)"
 for tool in munged slurmctld slurmd sinfo scontrol; do
-  command -v "$tool" >/dev/null || die "$tool is missing: run scripts/install-deps.sh (slurm-wlm, munge)"
+  command -v "$tool" >/dev/null || die "$tool is missing: run scripts/install-deps.sh --test (slurm-wlm, munge)"
 done
 mkdir -p "$state"/{ctld,spool,log}
 

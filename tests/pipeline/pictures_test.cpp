@@ -111,7 +111,7 @@ TEST_CASE("preview: a design and a mesh file give a shaded PNG of the asked size
 
 TEST_CASE("run --report: one page with every design, its pictures beside the outputs, loaded by Chromium",
           "[pipeline][pictures][report][chromium]") {
-  REQUIRE(chromium_available());  // Debian package chromium (scripts/install-deps.sh)
+  REQUIRE(chromium_available());  // Debian package chromium (scripts/install-deps.sh --test)
   const fs::path dir = fresh_dir("run_report");
   const fs::path bad = dir / "bad.yaml";
   write_file_atomically(bad.string(), "name: bad\nkind: vessel\nunits: mm\n");
@@ -144,7 +144,7 @@ TEST_CASE("run --report: one page with every design, its pictures beside the out
 
 TEST_CASE("batch --report: a page of every variant with a thumbnail of its mesh, loaded by Chromium",
           "[pipeline][pictures][report][batch][chromium]") {
-  REQUIRE(chromium_available());  // Debian package chromium (scripts/install-deps.sh)
+  REQUIRE(chromium_available());  // Debian package chromium (scripts/install-deps.sh --test)
   const fs::path dir = fresh_dir("batch_report");
   const std::string page = (dir / "report.html").string();
   REQUIRE(run_cli({"batch", example("batch_vessel_sweep.yaml"), "-o", (dir / "sweep").string(), "--report",

@@ -40,7 +40,7 @@ void sliced_height(const std::string& gcode, double* top, double* layer) {
 TEST_CASE("mould slicing: PrusaSlicer slices every part of the golden box mould to its full height",
           "[mould][prusa]") {
   INFO(
-      "prusa-slicer is not installed (scripts/install-deps.sh installs it): the mould parts must be "
+      "prusa-slicer is not installed (scripts/install-deps.sh --test installs it): the mould parts must be "
       "sliced by it");
   REQUIRE(have_program("prusa-slicer"));
   const MouldExample e = read_mould_example(example_path("mould_golden_box_base.yaml"));

@@ -170,7 +170,7 @@ TEST_CASE("dxf: two encodes are byte-identical and every handle reference names 
 }
 
 TEST_CASE("dxf: ezdxf reads the file and its audit finds nothing to fix", "[io][cutting][dxf]") {
-  // ezdxf from Debian (python3-ezdxf, installed by scripts/install-deps.sh)
+  // ezdxf from Debian (python3-ezdxf, installed by scripts/install-deps.sh --test)
   // under the system interpreter. dxflib alone leaves the OBJECTS without
   // owners: 13 "invalid owner handle" fixes a file.
   const std::string path = std::string(FABMESH_TEST_TMP) + "/audit-kitchen.dxf";

@@ -50,7 +50,7 @@ inline std::string gltf_validator_command(const std::string& file) {
          quoted(file);
 }
 
-/// True when node and the validator package (scripts/install-deps.sh) are there.
+/// True when node and the validator package (scripts/install-deps.sh --test) are there.
 inline bool gltf_validator_installed() {
   return on_path("node") && run_tool("test -d " + quoted(std::string(FABMESH_SOURCE_DIR) +
                                                          "/tools/node/node_modules/gltf-validator"))
@@ -89,6 +89,6 @@ inline std::map<std::string, std::string> prusa_info(const std::string& home, co
 /// Fails the test (never skips it) when `program` is missing.
 #define REQUIRE_PROGRAM(program)                                                                   \
   do {                                                                                             \
-    INFO("this test runs " << (program) << ", which is not on PATH: run scripts/install-deps.sh"); \
+    INFO("this test runs " << (program) << ", which is not on PATH: run scripts/install-deps.sh --test"); \
     REQUIRE(fabmesh::test::on_path(program));                                                      \
   } while (false)

@@ -353,7 +353,7 @@ TEST_CASE("curve plot: bad options and inconsistent input are refused", "[io][pi
 
 TEST_CASE("curve plot: headless Chromium renders the SVG with the red curve visible",
           "[io][pictures][plot][chromium]") {
-  REQUIRE(test::chromium_available());  // Debian package chromium (scripts/install-deps.sh)
+  REQUIRE(test::chromium_available());  // Debian package chromium (scripts/install-deps.sh --test)
   // Kept under the build folder for people to look at.
   const std::filesystem::path dir = std::filesystem::path(FABMESH_TEST_TMP) / "pictures-samples";
   std::filesystem::create_directories(dir);

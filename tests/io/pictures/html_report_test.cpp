@@ -183,7 +183,7 @@ TEST_CASE("html report: absolute paths, bad timings and bad thumbnail sizes are 
 
 TEST_CASE("html report: in Chromium every image loads, no console message appears and headers sort the rows",
           "[io][pictures][report][chromium]") {
-  REQUIRE(test::chromium_available());  // Debian package chromium (scripts/install-deps.sh)
+  REQUIRE(test::chromium_available());  // Debian package chromium (scripts/install-deps.sh --test)
   // Kept under the build folder for people to look at: report.html, its files and a screenshot.
   const std::string dir = (std::filesystem::path(FABMESH_TEST_TMP) / "pictures-samples" / "report").string();
   const HtmlReport report = test::sample_report(dir);
@@ -251,7 +251,7 @@ TEST_CASE("html report: in Chromium every image loads, no console message appear
 
 TEST_CASE("html report: in Chromium a missing image is counted as failed",
           "[io][pictures][report][chromium]") {
-  REQUIRE(test::chromium_available());  // Debian package chromium (scripts/install-deps.sh)
+  REQUIRE(test::chromium_available());  // Debian package chromium (scripts/install-deps.sh --test)
   const test::TempDir dir;
   HtmlReport report;
   report.rows = {row("gone", ReportStatus::Ok, 10)};

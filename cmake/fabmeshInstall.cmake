@@ -1,0 +1,82 @@
+# What `cmake --install build --prefix P` puts under P (docs/install.md):
+#   bin/fabmesh                                the program (pipeline/CMakeLists.txt)
+#   lib/libfabmesh.so.MAJOR.MINOR, .so         the library, fabmesh::fabmesh
+#   include/fabmesh/*.h                        its public headers (version.h generated)
+#   lib/cmake/fabmesh/                         the CMake package: find_package(fabmesh 0.3 CONFIG)
+#   lib/pkgconfig/fabmesh.pc                   the pkg-config file
+#   lib/python3/dist-packages/fabmesh*.so      the Python module and its fabmesh.pyi
+#   share/fabmesh/examples/                    the example designs (pipeline/CMakeLists.txt)
+#   share/doc/fabmesh/                         README.md and docs/
+#   share/man/man1/fabmesh.1                   the manual page
+#   share/bash-completion/completions/fabmesh  bash completion of commands and options
+# Every path is relative to the prefix, so the same build installs anywhere
+# (`--prefix` at install time, /usr in the Debian package). The pipeline's
+# static libraries are linked into libfabmesh and the program; they are not
+# installed.
+include(GNUInstallDirs)
+include(CMakePackageConfigHelpers)
+
+set(FABMESH_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/fabmesh CACHE STRING
+    "Where the CMake package (fabmeshConfig.cmake) is installed, relative to the prefix")
+# Debian's layout: /usr/bin/python3 imports from /usr/lib/python3/dist-packages.
+set(FABMESH_INSTALL_PYTHONDIR lib/python3/dist-packages CACHE STRING
+    "Where the Python module is installed, relative to the prefix")
+
+# Installed programs and modules find libfabmesh relative to themselves,
+# wherever the prefix is.
+function(fabmesh_origin_rpath target from_dir)
+  file(RELATIVE_PATH rel ${CMAKE_INSTALL_PREFIX}/${from_dir} ${CMAKE_INSTALL_PREFIX}/${CMAKE_INSTALL_LIBDIR})
+  string(REGEX REPLACE "/$" "" rel "${rel}")
+  set_target_properties(${target} PROPERTIES INSTALL_RPATH "$ORIGIN/${rel}")
+endfunction()
+fabmesh_origin_rpath(fabmesh ${CMAKE_INSTALL_BINDIR})
+
+# --- the library, its headers and its CMake package ---
+# (fabmesh_lib's INSTALL_INTERFACE include folder is the installed include/.)
+install(TARGETS fabmesh_lib EXPORT fabmeshTargets
+  LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
+  ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+  RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/api/include/fabmesh/
+  DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/fabmesh
+  FILES_MATCHING PATTERN "*.h")
+install(FILES ${PROJECT_BINARY_DIR}/api/include/fabmesh/version.h
+  DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/fabmesh)
+
+install(EXPORT fabmeshTargets
+  NAMESPACE fabmesh::
+  FILE fabmeshTargets.cmake
+  DESTINATION ${FABMESH_INSTALL_CMAKEDIR})
+configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/fabmeshConfig.cmake.in
+  ${PROJECT_BINARY_DIR}/cmake/fabmeshConfig.cmake
+  INSTALL_DESTINATION ${FABMESH_INSTALL_CMAKEDIR})
+# 0.x: a minor version may change the interface, so 0.3 accepts 0.3.y only.
+write_basic_package_version_file(${PROJECT_BINARY_DIR}/cmake/fabmeshConfigVersion.cmake
+  VERSION ${PROJECT_VERSION}
+  COMPATIBILITY SameMinorVersion)
+install(FILES ${PROJECT_BINARY_DIR}/cmake/fabmeshConfig.cmake
+              ${PROJECT_BINARY_DIR}/cmake/fabmeshConfigVersion.cmake
+  DESTINATION ${FABMESH_INSTALL_CMAKEDIR})
+
+# --- pkg-config: relocatable, the prefix found from the .pc file's own folder ---
+file(RELATIVE_PATH FABMESH_PC_TO_PREFIX ${CMAKE_INSTALL_PREFIX}/${CMAKE_INSTALL_LIBDIR}/pkgconfig
+     ${CMAKE_INSTALL_PREFIX})
+string(REGEX REPLACE "/$" "" FABMESH_PC_TO_PREFIX "${FABMESH_PC_TO_PREFIX}")
+configure_file(${PROJECT_SOURCE_DIR}/cmake/fabmesh.pc.in ${PROJECT_BINARY_DIR}/cmake/fabmesh.pc @ONLY)
+install(FILES ${PROJECT_BINARY_DIR}/cmake/fabmesh.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
+
+# --- the Python module, beside its type stub ---
+if(TARGET fabmesh_python)
+  fabmesh_origin_rpath(fabmesh_python ${FABMESH_INSTALL_PYTHONDIR})
+  install(TARGETS fabmesh_python LIBRARY DESTINATION ${FABMESH_INSTALL_PYTHONDIR})
+  install(FILES ${PROJECT_BINARY_DIR}/python/fabmesh.pyi DESTINATION ${FABMESH_INSTALL_PYTHONDIR})
+endif()
+
+# --- documentation, manual page, shell completion ---
+install(FILES ${PROJECT_SOURCE_DIR}/README.md DESTINATION ${CMAKE_INSTALL_DOCDIR})
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/docs/ DESTINATION ${CMAKE_INSTALL_DOCDIR}
+  PATTERN man EXCLUDE)
+install(FILES ${PROJECT_SOURCE_DIR}/docs/man/fabmesh.1 DESTINATION ${CMAKE_INSTALL_MANDIR}/man1)
+install(FILES ${PROJECT_SOURCE_DIR}/completion/fabmesh.bash
+  DESTINATION ${CMAKE_INSTALL_DATADIR}/bash-completion/completions
+  RENAME fabmesh)

@@ -1,0 +1,97 @@
+#!/usr/bin/env bash
+# `cmake --install` into a temporary prefix gives a usable fabmesh: the
+# files of docs/install.md, nothing internal; the CMake package found by
+# version (0.3 accepted, 0.2, 0.4 and 1.0 refused) with fabmesh::fabmesh
+# pointing into the prefix; the pkg-config file; each public header compiles
+# on its own with the standard library only; the Python module's and the
+# program's run paths are relative to themselves.
+# Usage: install_test.sh BUILD_DIR VERSION CXX PYTHON_MODULE_BUILT(1|0)
+set -uo pipefail
+build=$1 version=$2 cxx=$3 python_built=$4
+failures=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+work=$(mktemp -d "${TMPDIR:-/tmp}/fabmesh-install-test.XXXXXX")
+trap 'rm -rf "$work"' EXIT
+prefix=$work/prefix
+
+cmake --install "$build" --prefix "$prefix" >"$work/install.log" 2>&1 || { cat "$work/install.log"; echo "FAIL: cmake --install"; exit 1; }
+
+for f in bin/fabmesh lib/libfabmesh.so "lib/libfabmesh.so.${version%.*}" "lib/libfabmesh.so.$version" \
+  include/fabmesh/fabmesh.h include/fabmesh/version.h \
+  lib/cmake/fabmesh/fabmeshConfig.cmake lib/cmake/fabmesh/fabmeshConfigVersion.cmake \
+  lib/cmake/fabmesh/fabmeshTargets.cmake lib/pkgconfig/fabmesh.pc \
+  share/fabmesh/examples/vessel_golden_shell.yaml share/doc/fabmesh/README.md share/doc/fabmesh/install.md \
+  share/man/man1/fabmesh.1 share/bash-completion/completions/fabmesh; do
+  [[ -e $prefix/$f ]] || fail "not installed: $f"
+done
+internal=$(cd "$prefix" && find . -name '*.a' -o -name '*.in' -o -name 'libfabmesh_*')
+[[ -z $internal ]] || fail "internal files installed: $internal"
+grep -q "FABMESH_VERSION_STRING \"$version\"" "$prefix/include/fabmesh/version.h" || fail "version.h does not say $version"
+
+# Run paths: relative to the installed file, never the build folder.
+runpath() { readelf -d "$1" | sed -n 's/.*(RUNPATH).*\[\(.*\)\]/\1/p'; }
+[[ $(runpath "$prefix/bin/fabmesh") == '$ORIGIN/../lib' ]] || fail "bin/fabmesh RUNPATH is '$(runpath "$prefix/bin/fabmesh")'"
+module=$(compgen -G "$prefix/lib/python3/dist-packages/fabmesh.cpython-*.so" | head -n 1)
+if [[ $python_built == 1 ]]; then
+  if [[ -z $module ]]; then
+    fail "the Python module was built but not installed into lib/python3/dist-packages"
+  else
+    [[ $(runpath "$module") == '$ORIGIN/../..' ]] || fail "the Python module's RUNPATH is '$(runpath "$module")'"
+    [[ -e $prefix/lib/python3/dist-packages/fabmesh.pyi ]] || fail "fabmesh.pyi is not beside the Python module"
+  fi
+else
+  echo "NOTE: this build has no Python module (FABMESH_PYTHON off, or pybind11 missing): not checked"
+  [[ -z $module ]] || fail "a Python module was installed though none was built"
+fi
+for f in "$prefix/lib/libfabmesh.so.$version" "$prefix/bin/fabmesh"; do
+  if grep -qF "$build" "$f"; then fail "$f names the build folder"; fi
+done
+
+# The CMake package, by version, from a project that compiles nothing.
+find_fabmesh() {  # VERSION -> configure exit code; writes the target's include folder
+  local dir=$work/find-$1
+  mkdir -p "$dir"
+  cat >"$dir/CMakeLists.txt" <<CMAKE
+cmake_minimum_required(VERSION 3.20)
+project(find_fabmesh LANGUAGES NONE)
+find_package(fabmesh $1 CONFIG REQUIRED)
+get_target_property(includes fabmesh::fabmesh INTERFACE_INCLUDE_DIRECTORIES)
+get_target_property(location fabmesh::fabmesh LOCATION)
+file(WRITE \${CMAKE_BINARY_DIR}/found.txt "\${fabmesh_VERSION};\${includes};\${location}")
+CMAKE
+  cmake -S "$dir" -B "$dir/build" -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF >"$dir/log" 2>&1
+}
+if find_fabmesh 0.3; then
+  IFS=';' read -r found_version found_includes found_location <"$work/find-0.3/build/found.txt"
+  [[ $found_version == "$version" ]] || fail "find_package(fabmesh 0.3) found version $found_version"
+  [[ $found_includes == "$prefix/include" ]] || fail "fabmesh::fabmesh includes '$found_includes', not $prefix/include"
+  [[ $found_location == "$prefix/lib/libfabmesh.so.$version" ]] || fail "fabmesh::fabmesh is '$found_location'"
+else
+  cat "$work/find-0.3/log"
+  fail "find_package(fabmesh 0.3 CONFIG) failed"
+fi
+for refused in 0.2 0.4 1.0; do
+  if find_fabmesh "$refused"; then fail "find_package(fabmesh $refused) accepted $version"; fi
+done
+
+# pkg-config.
+export PKG_CONFIG_PATH=$prefix/lib/pkgconfig
+[[ $(pkg-config --modversion fabmesh) == "$version" ]] || fail "pkg-config --modversion fabmesh: $(pkg-config --modversion fabmesh)"
+[[ $(cd "$(pkg-config --variable=includedir fabmesh)" && pwd) == "$prefix/include" ]] || fail "pkg-config includedir is not $prefix/include"
+[[ $(cd "$(pkg-config --variable=libdir fabmesh)" && pwd) == "$prefix/lib" ]] || fail "pkg-config libdir is not $prefix/lib"
+
+# Every public header compiles on its own, and includes only fabmesh's
+# headers and the standard library's (no CGAL, OpenMesh, yaml-cpp, ...).
+for header in "$prefix"/include/fabmesh/*.h; do
+  name=fabmesh/$(basename "$header")
+  echo "#include <$name>" | "$cxx" -std=c++17 -fsyntax-only -Wall -Wextra -Werror -I"$prefix/include" -x c++ - ||
+    fail "$name does not compile on its own"
+  others=$(grep -E '^\s*#\s*include' "$header" | grep -vE '[<"]fabmesh/[a-z_]+\.h[>"]' | grep -vE '<[a-z_]+>')
+  [[ -z $others ]] || fail "$name includes more than fabmesh and the standard library: $others"
+done
+
+if ((failures > 0)); then
+  echo "$failures failure(s)"
+  exit 1
+fi
+echo "cmake --install gives a usable fabmesh $version"
