@@ -52,10 +52,12 @@ double arc_sweep(const TraceMotion& m) {
 std::string gcode_interpreter_problem() {
   int status = 0;
   run_command("node --version > /dev/null 2>&1", &status);
-  if (status != 0) return "node (Node.js) must be on PATH to interpret G-code (scripts/install-deps.sh --test)";
+  if (status != 0)
+    return "node (Node.js) must be on PATH to interpret G-code (scripts/install-deps.sh --test)";
   const std::string package = std::string(FABMESH_SOURCE_DIR) + "/tools/node/node_modules/gcode-toolpath";
   if (!std::filesystem::exists(package)) {
-    return "the npm package gcode-toolpath must be installed in tools/node (scripts/install-deps.sh --test): " +
+    return "the npm package gcode-toolpath must be installed in tools/node (scripts/install-deps.sh "
+           "--test): " +
            package + " is missing";
   }
   return "";

@@ -87,8 +87,8 @@ inline std::map<std::string, std::string> prusa_info(const std::string& home, co
 }  // namespace fabmesh::test
 
 /// Fails the test (never skips it) when `program` is missing.
-#define REQUIRE_PROGRAM(program)                                                                   \
-  do {                                                                                             \
+#define REQUIRE_PROGRAM(program)                                                                          \
+  do {                                                                                                    \
     INFO("this test runs " << (program) << ", which is not on PATH: run scripts/install-deps.sh --test"); \
-    REQUIRE(fabmesh::test::on_path(program));                                                      \
+    REQUIRE(fabmesh::test::on_path(program));                                                             \
   } while (false)
