@@ -21,16 +21,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string example(const std::string& name) {
-  return std::string(FABMESH_SOURCE_DIR) + "/configs/examples/" + name;
-}
-
-fs::path fresh_dir(const std::string& name) {
-  const fs::path dir = fs::path(FABMESH_TEST_TMP) / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+using testing::example;
+using testing::fresh_dir;
 
 int run_cli(std::vector<std::string> args, std::string* out = nullptr) {
   args.insert(args.begin(), "fabmesh");
