@@ -19,6 +19,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// Its own small helpers, not tests/pipeline/cli_harness.h's: that harness includes the pipeline's
+// headers, and this test must compile against the public headers alone.
 std::string example(const std::string& name) {
   return std::string(FABMESH_SOURCE_DIR) + "/configs/examples/" + name;
 }
