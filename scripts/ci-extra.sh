@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Extra CI, beyond the README's test command:
-#  (a) fuzz every mesh reader, the design reader (design YAML, points CSV)
+#  (a) fuzz every mesh reader, the design reader (design YAML, points CSV,
+#      DXF templates)
 #      and the batch readers (manifests, ledgers) with libFuzzer (clang,
 #      ASan+UBSan) for a fixed time on the seeds in tests/data/fuzz-seeds/;
 #      any finding fails;
@@ -15,7 +16,7 @@ cd "$(dirname "$0")/.."
 what="${1:-all}"
 FUZZ_SECONDS="${FUZZ_SECONDS:-20}"
 JOBS="${JOBS:-2}"
-readers=(stl obj ply off draco 3mf gltf design csv manifest ledger)
+readers=(stl obj ply off draco 3mf gltf design csv dxf manifest ledger)
 dir=build-asan
 
 configure() {

@@ -59,7 +59,7 @@ TEST_CASE("countertop examples: valid slabs, genus = holes, volume = exact area 
   const fs::path dir = fresh_dir("countertop_examples");
   for (const char* name : {"countertop_g1.yaml", "countertop_g2.yaml", "countertop_g1_fair_cv.yaml",
                            "countertop_g2_fair_cv.yaml", "countertop_symmetric_ellipse.yaml",
-                           "countertop_asymmetric_line.yaml"}) {
+                           "countertop_asymmetric_line.yaml", "countertop_dxf_template.yaml"}) {
     INFO(name);
     Design design = read_design(example(name));
     design.common.outputs = {{"stl", "test", 0, 0}, {"dxf", "test", 0, 0}};
@@ -222,4 +222,76 @@ TEST_CASE(
   CHECK_THAT(out,
              Catch::Contains("countertop_g1.yaml:41:5: holes[0]: holes[0] (rounded_rect) crosses or touches "
                              "the outline"));
+}
+
+TEST_CASE("countertop from a DXF template: the DXF fabmesh writes reads back into the same countertop",
+          "[pipeline][countertop][dxf]") {
+  const fs::path dir = fresh_dir("countertop_dxf_round_trip");
+  std::string out;
+  REQUIRE(run_cli({"run", example("countertop_dxf_template.yaml"), "-o", (dir / "first").string(), "--json"},
+                  &out) == 0);
+  const auto first = only_item(out);
+  CHECK(first["genus"] == 3);
+  CHECK(first["notes"].dump().find("$INSUNITS 4 (mm)") != std::string::npos);
+  // The written outline (lines, arcs and ellipses on layers OUTLINE and HOLES) as a design of its own.
+  write_text(dir / "first" / "back.yaml",
+             "name: back\nkind: countertop\nunits: mm\ntolerance: 0.05\nthickness: 30\n"
+             "outline: {dxf: countertop_dxf_template.dxf, layer: OUTLINE}\n"
+             "holes: [{dxf: countertop_dxf_template.dxf, layer: HOLES}]\noutputs: [stl]\n");
+  out.clear();
+  REQUIRE(run_cli({"run", (dir / "first" / "back.yaml").string(), "-o", (dir / "back").string(), "--json"},
+                  &out) == 0);
+  const auto back = only_item(out);
+  const double size = 2400.0;
+  CHECK(std::abs(back["volume"].get<double>() - first["volume"].get<double>()) <=
+        1e-9 * first["volume"].get<double>());
+  CHECK(std::abs(back["build"]["region_area"].get<double>() - first["build"]["region_area"].get<double>()) <=
+        1e-9 * size * size);
+  // And the exact region of the design read back equals the template's, term by term.
+  const auto [area, perimeter] =
+      exact_region(std::get<CountertopDesign>(read_design((dir / "first" / "back.yaml").string()).body));
+  const auto [area0, perimeter0] =
+      exact_region(std::get<CountertopDesign>(read_design(example("countertop_dxf_template.yaml")).body));
+  CHECK(std::abs(area - area0) <= 1e-9 * size * size);
+  CHECK(std::abs(perimeter - perimeter0) <= 1e-9 * size);
+}
+
+TEST_CASE("countertop from a DXF template: bad drawings exit 2 at the design's key, nothing written",
+          "[pipeline][countertop][dxf][errors]") {
+  const fs::path dir = fresh_dir("countertop_dxf_bad");
+  fs::copy_file(example("kitchen_template.dxf"), dir / "kitchen_template.dxf");
+  write_text(
+      dir / "open.dxf",
+      "0\nSECTION\n2\nENTITIES\n0\nLINE\n5\n2F\n8\nOUTLINE\n10\n0\n20\n0\n30\n0\n11\n100\n21\n0\n31\n0\n"
+      "0\nLINE\n5\n30\n8\nOUTLINE\n10\n100\n20\n0\n30\n0\n11\n100\n21\n50\n31\n0\n0\nENDSEC\n0\nEOF\n");
+  write_text(dir / "empty.dxf", "");
+  const std::string head = "name: t\nkind: countertop\nunits: mm\ntolerance: 0.05\nthickness: 30\n";
+  const std::vector<std::pair<std::string, std::string>> cases{
+      {head + "outline: {dxf: open.dxf, layer: OUTLINE}\n",
+       "outline.dxf: " + (dir / "open.dxf").string() +
+           " layer OUTLINE: open chain: LINE #2F's start at (0, 0)"},
+      {head + "outline: {dxf: empty.dxf}\n", "the file is empty, not a DXF drawing"},
+      {head + "outline: {dxf: missing.dxf}\n", "missing.dxf"},
+      {head + "outline: {dxf: kitchen_template.dxf, layer: HOLES}\n",
+       "outline.dxf: 3 closed loops found on the layer; outline is one loop"},
+      {head + "outline: {dxf: kitchen_template.dxf, layer: OUTLINE, colour: red}\n", "colour"},
+      {head + "outline: {dxf: kitchen_template.dxf, layer: OUTLINE, max_gap: -1}\n",
+       "max_gap = -1 must be >= 0"},
+      {head +
+           "outline: {dxf: kitchen_template.dxf, layer: OUTLINE}\nholes: [{ellipse: {center: [1, 1], a: 1, "
+           "b: 1}, layer: HOLES}]\n",
+       "holes[0]: a hole is a map with one key: ellipse, rounded_rect or outline (or dxf with its layer)"},
+  };
+  int i = 0;
+  for (const auto& [text, expected] : cases) {
+    INFO(text);
+    const fs::path design = dir / fmt::format("bad{}.yaml", i++);
+    write_text(design, text);
+    const fs::path out_dir = dir / "out";
+    std::string out;
+    CHECK(run_cli({"run", design.string(), "-o", out_dir.string()}, &out) == 2);
+    CHECK_THAT(out, Catch::Contains(expected));
+    CHECK_THAT(out, Catch::Contains(design.string() + ":"));
+    CHECK((!fs::exists(out_dir) || fs::is_empty(out_dir)));
+  }
 }

@@ -18,7 +18,8 @@ constexpr std::size_t kMaxReadFileBytes = 64u << 20;  // as io/design/points_csv
 
 // The keys whose values name a file the reader reads: {map key, key inside it}.
 // A design key that reads a file must be listed here, or its content would not enter the key.
-constexpr std::pair<const char*, const char*> kFileKeys[] = {{"polyline", "file"}};
+constexpr std::pair<const char*, const char*> kFileKeys[] = {
+    {"polyline", "file"}, {"outline", "dxf"}, {"holes", "dxf"}};
 
 class Writer {
  public:
@@ -38,7 +39,7 @@ class Writer {
         out_ += '[';
         for (std::size_t i = 0; i < n.size(); ++i) {
           if (i > 0) out_ += ',';
-          node(n[i], nullptr);
+          node(n[i], parent_key);  // a list's entries are under its key (holes: [{dxf: ...}])
         }
         out_ += ']';
         break;

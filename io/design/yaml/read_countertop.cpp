@@ -4,25 +4,85 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 
 #include "geometry/curves/shapes.h"
+#include "io/design/dxf_loops.h"
 #include "io/design/yaml/read_curve.h"
 
 namespace fabmesh {
 namespace {
 
-CurveSpec read_closed_curve(const yaml::Fields& f, const YAML::Node& node, const std::string& field) {
+// The loops of `{dxf: FILE, layer: NAME, max_gap: G}` (a map with a `dxf` key,
+// the file relative to the design's folder), keyed at `field`.
+std::vector<CurveSpec> read_dxf_source(const yaml::Fields& f, const YAML::Node& n, const std::string& field,
+                                       const DesignCommon& common) {
+  const YAML::Node file = n["dxf"];
+  const std::filesystem::path name = f.text(file, field + ".dxf");
+  const std::filesystem::path path =
+      name.is_absolute() ? name : std::filesystem::path(f.path()).parent_path() / name;
+  DxfLoopQuery query;
+  query.layer = f.text_or(n, "layer", field + ".layer", "");
+  query.max_gap = f.number_or(n, "max_gap", field + ".max_gap", common.tolerance);
+  if (query.max_gap < 0.0)
+    f.fail(n["max_gap"], field + ".max_gap", fmt::format("max_gap = {} must be >= 0", query.max_gap));
+  query.units = common.units;
+  DxfLoops loops;
+  f.checked(file, field + ".dxf", [&] { loops = read_dxf_loops(path.string(), query); });
+  for (std::string& note : loops.notes) {
+    // A drawing read for the outline and again for the holes says its units once.
+    const auto& seen = f.notes();
+    if (std::find(seen.begin(), seen.end(), note) == seen.end()) f.note(std::move(note));
+  }
+  std::vector<CurveSpec> curves;
+  for (DxfLoop& loop : loops.loops) {
+    loop.curve.key = field;
+    for (SegmentSpec& s : loop.curve.segments) s.key = field;
+    curves.push_back(std::move(loop.curve));
+  }
+  return curves;
+}
+
+// One closed curve: a curve map, or the one loop of a DXF source.
+CurveSpec read_closed_curve(const yaml::Fields& f, const YAML::Node& node, const std::string& field,
+                            const DesignCommon& common) {
+  if (node.IsMap() && node["dxf"].IsDefined()) {
+    f.require_map(node, field, key_group("dxf_outline"));
+    std::vector<CurveSpec> loops = read_dxf_source(f, node, field, common);
+    if (loops.size() != 1) {
+      f.fail(node["dxf"], field + ".dxf",
+             fmt::format("{} closed loops found{}; {} is one loop (holes take a layer of many)", loops.size(),
+                         node["layer"].IsDefined() ? " on the layer" : "", field));
+    }
+    return std::move(loops.front());
+  }
   CurveSpec spec = read_curve(f, node, field);
   if (!spec.closed)
     f.fail(node, field + ".closed", fmt::format("{} must be a closed curve (closed: true)", field));
   return spec;
 }
 
-CountertopHole read_hole(const yaml::Fields& f, const YAML::Node& n, const std::string& field) {
-  if (!n.IsMap() || n.size() != 1) {
-    f.fail(n, field, "a hole is a map with one key: ellipse, rounded_rect or outline");
+// One entry of `holes`: one hole, or every loop of a DXF layer.
+std::vector<CountertopHole> read_hole(const yaml::Fields& f, const YAML::Node& n, const std::string& field,
+                                      const DesignCommon& common) {
+  const bool dxf = n.IsMap() && n["dxf"].IsDefined();
+  if (!n.IsMap() || (!dxf && n.size() != 1)) {
+    f.fail(n, field,
+           "a hole is a map with one key: ellipse, rounded_rect or outline (or dxf with its layer)");
   }
   f.require_map(n, field, key_group("countertop.holes[]"));
+  if (dxf) {
+    for (const char* shape : {"ellipse", "rounded_rect", "outline"}) {
+      if (n[shape].IsDefined())
+        f.fail(n[shape], field + "." + shape, fmt::format("a hole with dxf has no {}", shape));
+    }
+    std::vector<CountertopHole> holes;
+    std::vector<CurveSpec> loops = read_dxf_source(f, n, field, common);
+    for (std::size_t i = 0; i < loops.size(); ++i) {
+      holes.push_back({fmt::format("dxf loop {} of {}", i + 1, loops.size()), std::move(loops[i])});
+    }
+    return holes;
+  }
   CountertopHole hole;
   if (n["ellipse"].IsDefined()) {
     const YAML::Node e = n["ellipse"];
@@ -46,10 +106,10 @@ CountertopHole read_hole(const yaml::Fields& f, const YAML::Node& n, const std::
     f.checked(r, rf, [&] { hole.curve = rounded_rect_curve(c, size.x(), size.y(), radius, rot); });
   } else {
     hole.shape = "outline";
-    hole.curve = read_closed_curve(f, n["outline"], field + ".outline");
+    hole.curve = read_closed_curve(f, n["outline"], field + ".outline", common);
   }
   hole.curve.key = field;
-  return hole;
+  return {hole};
 }
 
 CncDesign read_cnc(const yaml::Fields& f, const YAML::Node& n, const DesignCommon& common, double thickness) {
@@ -106,12 +166,14 @@ CncDesign read_cnc(const yaml::Fields& f, const YAML::Node& n, const DesignCommo
 
 CountertopDesign read_countertop(const yaml::Fields& f, const YAML::Node& root, const DesignCommon& common) {
   CountertopDesign d;
-  d.outline = read_closed_curve(f, f.required(root, "outline", "outline"), "outline");
+  d.outline = read_closed_curve(f, f.required(root, "outline", "outline"), "outline", common);
   if (root["holes"].IsDefined()) {
     const YAML::Node holes = root["holes"];
     f.require_list(holes, "holes");
-    for (std::size_t i = 0; i < holes.size(); ++i)
-      d.holes.push_back(read_hole(f, holes[i], fmt::format("holes[{}]", i)));
+    for (std::size_t i = 0; i < holes.size(); ++i) {
+      for (CountertopHole& h : read_hole(f, holes[i], fmt::format("holes[{}]", i), common))
+        d.holes.push_back(std::move(h));
+    }
   }
   const YAML::Node thickness = f.required(root, "thickness", "thickness");
   d.thickness = f.number(thickness, "thickness");

@@ -1,0 +1,39 @@
+// libFuzzer entry for the DXF loop reader (io/design/dxf_loops.h): a shop's
+// template read into closed loops of exact segments. It may only return
+// closed loops with segments, or throw FileError; anything else (a crash,
+// another exception, a sanitizer report, a hang caught by -timeout, dxflib
+// allocating for a count the input cannot hold) is a finding. Every loop it
+// returns is then built as the countertop reader would, where a RangeError or
+// GeometryError (a degenerate span, a joint that does not close) is a
+// clean refusal.
+
+#include <cstddef>
+#include <cstdint>
+#include <cstdlib>
+#include <string>
+
+#include "geometry/core/errors.h"
+#include "geometry/curves/composite.h"
+#include "io/design/dxf_loops.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const std::string bytes(reinterpret_cast<const char*>(data), size);
+  fabmesh::DxfLoopQuery query;
+  query.max_gap = 1e-3;
+  query.units = "mm";
+  fabmesh::DxfLoops loops;
+  try {
+    loops = fabmesh::parse_dxf_loops(bytes, "fuzz-input.dxf", query);
+  } catch (const fabmesh::FileError&) {
+    return 0;  // rejected cleanly
+  }
+  for (const fabmesh::DxfLoop& loop : loops.loops) {
+    if (!loop.curve.closed || loop.curve.segments.empty()) std::abort();
+    try {
+      const fabmesh::CompositeCurve curve = fabmesh::construct_curve(loop.curve);
+      fabmesh::verify_declared_continuity(loop.curve, curve);
+    } catch (const fabmesh::InputError&) {  // RangeError, GeometryError
+    }
+  }
+  return 0;
+}

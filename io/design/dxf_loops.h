@@ -1,0 +1,58 @@
+#pragma once
+// Closed loops of a DXF drawing (shop templates, CAD): the LINE, ARC, CIRCLE,
+// ELLIPSE and LWPOLYLINE/POLYLINE entities of one layer, chained end to end
+// into closed curve specs of exact segments (lines, circle and ellipse arcs;
+// a polyline's bulges are exact arcs). docs/design-files.md, "Outlines from DXF".
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "geometry/curves/curve_spec.h"
+
+namespace fabmesh {
+
+/// Which loops to read, and how.
+struct DxfLoopQuery {
+  std::string layer;     ///< the layer's name; empty: the entities of every layer
+  double max_gap = 0.0;  ///< ends at most this far apart (design units) are joined; >= 0
+  std::string units;     ///< the design's units (mm, cm, m, in): the loops are scaled into them
+};
+
+/// One closed loop, in drawing order of its entities.
+struct DxfLoop {
+  /// Closed, joints declared G0 (verified when built); each segment's `name`
+  /// is its entity ("LINE #2F", "LWPOLYLINE #30 vertex 4"), a bridged gap's
+  /// "gap between ARC #31 and ARC #32".
+  CurveSpec curve;
+  std::string first_entity;  ///< the entity it was started from, for messages
+};
+
+/// The loops of a drawing's layer and how the drawing was read.
+struct DxfLoops {
+  std::vector<DxfLoop> loops;  ///< in the order of their first entity in the file
+  /// Facts for the report: the units ("$INSUNITS 4 (mm)" or the assumption
+  /// made without it), entities of other kinds left out, bridged gaps.
+  std::vector<std::string> notes;
+};
+
+/// At most this many entities (and polyline vertices) in one drawing.
+inline constexpr std::size_t kMaxDxfEntities = 1000000;
+
+/// Reads the DXF file at `path` (ASCII DXF, at most 64 MiB) and returns every
+/// closed loop on the query's layer, in the design's units. Ends are joined
+/// when they are at most `max_gap` apart: a line's end moves to the exact
+/// arc's end it meets (or to the other line's end); two arcs whose ends are
+/// apart are joined by a short line (noted).
+/// \throw FileError naming `path`, the layer, the entities by handle and the
+/// place: not a DXF, binary DXF, an unknown $INSUNITS, a SPLINE or INSERT on
+/// the layer, an entity off the XY plane, a layer with no entity in model
+/// space, an open chain (an end meeting no other end within max_gap), three or
+/// more ends at one point (overlapping or branching entities), a count larger
+/// than the file could hold, more than kMaxDxfEntities entities.
+DxfLoops read_dxf_loops(const std::string& path, const DxfLoopQuery& query);
+
+/// The same from the file's bytes; `path` names it in messages. \throw FileError
+DxfLoops parse_dxf_loops(const std::string& bytes, const std::string& path, const DxfLoopQuery& query);
+
+}  // namespace fabmesh

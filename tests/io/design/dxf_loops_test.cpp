@@ -1,0 +1,252 @@
+#include "io/design/dxf_loops.h"
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "geometry/core/errors.h"
+#include "geometry/curves/composite.h"
+#include "io/design/design_source.h"
+#include "io/file.h"
+
+using namespace fabmesh;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// A DXF text: a header with $INSUNITS (none when < 0) and the given entities.
+std::string drawing(const std::string& entities, int insunits = 4) {
+  std::string text = "0\nSECTION\n2\nHEADER\n";
+  if (insunits >= 0) text += "9\n$INSUNITS\n70\n" + std::to_string(insunits) + "\n";
+  text += "0\nENDSEC\n0\nSECTION\n2\nENTITIES\n" + entities + "0\nENDSEC\n0\nEOF\n";
+  return text;
+}
+
+std::string num(double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+std::string line(const char* handle, const char* layer, double x1, double y1, double x2, double y2) {
+  return std::string("0\nLINE\n5\n") + handle + "\n8\n" + layer + "\n10\n" + num(x1) + "\n20\n" + num(y1) +
+         "\n30\n0\n11\n" + num(x2) + "\n21\n" + num(y2) + "\n31\n0\n";
+}
+
+std::string arc(const char* handle, const char* layer, double cx, double cy, double r, double a1, double a2,
+                bool mirrored = false) {
+  return std::string("0\nARC\n5\n") + handle + "\n8\n" + layer + "\n10\n" + num(cx) + "\n20\n" + num(cy) +
+         "\n30\n0\n40\n" + num(r) + "\n" + (mirrored ? "210\n0\n220\n0\n230\n-1\n" : "") + "50\n" + num(a1) +
+         "\n51\n" + num(a2) + "\n";
+}
+
+// An LWPOLYLINE through (x, y, bulge) vertices.
+std::string lwpolyline(const char* handle, const char* layer, const std::vector<std::array<double, 3>>& v,
+                       bool closed) {
+  std::string text = std::string("0\nLWPOLYLINE\n5\n") + handle + "\n8\n" + layer + "\n90\n" +
+                     std::to_string(v.size()) + "\n70\n" + (closed ? "1" : "0") + "\n";
+  for (const auto& p : v) {
+    text += "10\n" + num(p[0]) + "\n20\n" + num(p[1]) + "\n";
+    if (p[2] != 0.0) text += "42\n" + num(p[2]) + "\n";
+  }
+  return text;
+}
+
+DxfLoopQuery on_layer(const std::string& layer, double max_gap = 1e-6, const std::string& units = "mm") {
+  DxfLoopQuery q;
+  q.layer = layer;
+  q.max_gap = max_gap;
+  q.units = units;
+  return q;
+}
+
+// The area a closed loop encloses (signed: counter-clockwise positive), from
+// Green's theorem with Gauss-Legendre quadrature on the exact segments; the
+// loop's declared joints are verified first.
+double loop_area(const CurveSpec& spec) {
+  const CompositeCurve curve = construct_curve(spec);
+  verify_declared_continuity(spec, curve);
+  static const double x[5] = {0.0, -0.5384693101056831, 0.5384693101056831, -0.9061798459386640,
+                              0.9061798459386640};
+  static const double w[5] = {0.5688888888888889, 0.4786286704993665, 0.4786286704993665, 0.2369268850561891,
+                              0.2369268850561891};
+  double twice = 0.0;
+  constexpr int kPieces = 64;
+  for (const Segment& s : curve.segments()) {
+    for (int k = 0; k < kPieces; ++k) {
+      for (int i = 0; i < 5; ++i) {
+        const double t = (k + 0.5 + 0.5 * x[i]) / kPieces;
+        const CurveJet j = s.jet(t);
+        twice += w[i] * 0.5 / kPieces * (j[0].x() * j[1].y() - j[0].y() * j[1].x());
+      }
+    }
+  }
+  return 0.5 * twice;
+}
+
+std::string error_of(const std::string& text, const DxfLoopQuery& q) {
+  try {
+    parse_dxf_loops(text, "t.dxf", q);
+  } catch (const FileError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST_CASE("dxf loops: lines drawn in mixed directions and a corner arc chain into one exact loop",
+          "[io][design][dxf]") {
+  // A 100 x 50 rectangle whose lower-left corner is a quarter circle of radius 10.
+  const std::string text = drawing(line("1A", "OUT", 10, 0, 100, 0) + line("1B", "OUT", 100, 50, 100, 0) +
+                                   line("1C", "OUT", 100, 50, 0, 50) + line("1D", "OUT", 0, 10, 0, 50) +
+                                   arc("1E", "OUT", 10, 10, 10, 180, 270) + line("1F", "OTHER", 0, 0, 5, 5));
+  const DxfLoops got = parse_dxf_loops(text, "t.dxf", on_layer("OUT"));
+  REQUIRE(got.loops.size() == 1);
+  const CurveSpec& loop = got.loops[0].curve;
+  CHECK(loop.closed);
+  REQUIRE(loop.segments.size() == 5);
+  CHECK(std::abs(loop_area(loop)) == Approx(100.0 * 50.0 - (100.0 - 25.0 * kPi)).epsilon(1e-13));
+  CHECK(got.loops[0].first_entity == "LINE #1A");
+  bool arc_named = false;
+  for (const SegmentSpec& s : loop.segments) arc_named = arc_named || s.name == "ARC #1E";
+  CHECK(arc_named);
+  REQUIRE_FALSE(got.notes.empty());
+  CHECK(got.notes[0] == "t.dxf: $INSUNITS 4 (mm)");
+}
+
+TEST_CASE("dxf loops: polyline bulges are exact arcs, either way round", "[io][design][dxf]") {
+  // A 20 x 10 stadium: bulge 1 is a half circle; the second polyline runs clockwise.
+  const double stadium = 20.0 * 10.0 + kPi * 25.0;
+  for (const double sign : {1.0, -1.0}) {
+    const std::vector<std::array<double, 3>> ccw{{0, 0, 0}, {20, 0, 1}, {20, 10, 0}, {0, 10, 1}};
+    std::vector<std::array<double, 3>> v = ccw;
+    if (sign < 0) v = {{0, 10, 0}, {20, 10, -1}, {20, 0, 0}, {0, 0, -1}};
+    const DxfLoops got = parse_dxf_loops(drawing(lwpolyline("2A", "H", v, true)), "t.dxf", on_layer("H"));
+    REQUIRE(got.loops.size() == 1);
+    CHECK(loop_area(got.loops[0].curve) == Approx(sign * stadium).epsilon(1e-13));
+  }
+}
+
+TEST_CASE("dxf loops: circles, ellipses and mirrored arcs", "[io][design][dxf]") {
+  const std::string circle = "0\nCIRCLE\n5\n3A\n8\nH\n10\n5\n20\n5\n30\n0\n40\n2\n";
+  const std::string ellipse = "0\nELLIPSE\n5\n3B\n8\nH\n10\n50\n20\n5\n30\n0\n11\n0\n21\n4\n31\n0\n40\n0.5\n41\n0\n42\n" +
+                              num(2 * kPi) + "\n";
+  const DxfLoops got = parse_dxf_loops(drawing(circle + ellipse), "t.dxf", on_layer("H"));
+  REQUIRE(got.loops.size() == 2);
+  CHECK(std::abs(loop_area(got.loops[0].curve)) == Approx(kPi * 4.0).epsilon(1e-13));
+  CHECK(std::abs(loop_area(got.loops[1].curve)) == Approx(kPi * 4.0 * 2.0).epsilon(1e-13));
+
+  // A half disc whose arc has the extrusion (0, 0, -1): in world coordinates
+  // its centre is at x = -10 and it runs clockwise from (0, 0) over the top to (-20, 0).
+  const std::string half = arc("4A", "M", 10, 0, 10, 0, 180, true) + line("4B", "M", -20, 0, 0, 0);
+  const DxfLoops mirrored = parse_dxf_loops(drawing(half), "t.dxf", on_layer("M"));
+  REQUIRE(mirrored.loops.size() == 1);
+  CHECK(std::abs(loop_area(mirrored.loops[0].curve)) == Approx(kPi * 50.0).epsilon(1e-13));
+}
+
+TEST_CASE("dxf loops: units are scaled into the design's, or assumed and said", "[io][design][dxf]") {
+  const std::string square = line("5A", "S", 0, 0, 1, 0) + line("5B", "S", 1, 0, 1, 1) +
+                             line("5C", "S", 1, 1, 0, 1) + line("5D", "S", 0, 1, 0, 0);
+  const DxfLoops inches = parse_dxf_loops(drawing(square, 1), "t.dxf", on_layer("S", 1e-6, "mm"));
+  CHECK(loop_area(inches.loops[0].curve) == Approx(25.4 * 25.4).epsilon(1e-14));
+  CHECK(inches.notes[0] == "t.dxf: $INSUNITS 1 (in), scaled by 25.4 into mm");
+  const DxfLoops none = parse_dxf_loops(drawing(square, -1), "t.dxf", on_layer("S", 1e-6, "cm"));
+  CHECK(loop_area(none.loops[0].curve) == Approx(1.0));
+  CHECK(none.notes[0] == "t.dxf gives no units ($INSUNITS missing): read in the design's units (cm)");
+  CHECK(error_of(drawing(square, 3), on_layer("S")) ==
+        "t.dxf: $INSUNITS 3 is not a unit fabmesh reads (1 in, 2 ft, 4 mm, 5 cm, 6 m)");
+}
+
+TEST_CASE("dxf loops: gaps within max_gap are closed, exactly", "[io][design][dxf]") {
+  // Two half circles whose ends miss by 1e-4, and a line ending 1e-4 short of an arc.
+  const std::string two_arcs = arc("6A", "G", 0, 0, 10, 0, 180) + arc("6B", "G", 0, 1e-4, 10, 180, 360);
+  const DxfLoops got = parse_dxf_loops(drawing(two_arcs), "t.dxf", on_layer("G", 1e-3));
+  REQUIRE(got.loops.size() == 1);
+  CHECK(got.loops[0].curve.segments.size() == 4);  // two arcs, two short lines between them
+  CHECK(loop_area(got.loops[0].curve) == Approx(kPi * 100.0).epsilon(1e-4));
+  CHECK(got.notes.back() == "t.dxf layer G: 2 gap(s) between arcs, up to max_gap, joined by short lines");
+
+  const std::string d = arc("7A", "D", 0, 0, 10, 0, 180) + line("7B", "D", -10, 0, 10.0001, 0);
+  const DxfLoops snapped = parse_dxf_loops(drawing(d), "t.dxf", on_layer("D", 1e-3));
+  REQUIRE(snapped.loops.size() == 1);
+  CHECK(loop_area(snapped.loops[0].curve) == Approx(kPi * 50.0).epsilon(1e-14));  // the line moved onto the arc
+
+  // Beyond max_gap: an open chain, named by entity, place and the nearest end.
+  CHECK(error_of(drawing(d), on_layer("D", 1e-5)) ==
+        "t.dxf layer D: open chain: ARC #7A's start at (10, 0) meets no other end within max_gap 1e-05 "
+        "(the nearest, LINE #7B's end, is 0.0001 away)");
+}
+
+TEST_CASE("dxf loops: bad drawings are refused naming the file, layer, entity and place", "[io][design][dxf]") {
+  const std::string tri = line("8A", "T", 0, 0, 10, 0) + line("8B", "T", 10, 0, 0, 10) + line("8C", "T", 0, 10, 0, 0);
+  // Overlap: the same edge twice makes three ends meet.
+  CHECK(error_of(drawing(tri + line("8D", "T", 0, 0, 10, 0)), on_layer("T")) ==
+        "t.dxf layer T: 3 ends meet at (0, 0): LINE #8A's start, LINE #8C's end, LINE #8D's start; entities "
+        "overlap or branch there (a loop passes a point once)");
+  CHECK(error_of(drawing(tri), on_layer("NOPE")) ==
+        "t.dxf layer NOPE: no LINE, ARC, CIRCLE, ELLIPSE or polyline in model space (layers that have them: T)");
+  const std::string paper = "0\nLINE\n5\n9A\n67\n1\n8\nP\n10\n0\n20\n0\n30\n0\n11\n1\n21\n0\n31\n0\n";
+  CHECK(error_of(drawing(paper), on_layer("P")) ==
+        "t.dxf layer P: the layer's 1 entities are all in paper space; the outline must be in model space");
+  const std::string spline = "0\nSPLINE\n5\n9B\n8\nT\n70\n8\n71\n3\n72\n0\n73\n0\n74\n0\n";
+  CHECK_THAT(error_of(drawing(tri + spline), on_layer("T")),
+             Catch::StartsWith("t.dxf layer T: SPLINE #9B: SPLINE entities are not read yet"));
+  const std::string insert = "0\nINSERT\n5\n9C\n8\nT\n2\nSINK\n10\n0\n20\n0\n30\n0\n";
+  CHECK_THAT(error_of(drawing(tri + insert), on_layer("T")),
+             Catch::StartsWith("t.dxf layer T: INSERT #9C: a block reference on the layer"));
+  const std::string tilted = "0\nCIRCLE\n5\n9D\n8\nT\n10\n0\n20\n0\n30\n0\n40\n1\n210\n1\n220\n0\n230\n0\n";
+  CHECK_THAT(error_of(drawing(tilted), on_layer("T")),
+             Catch::StartsWith("t.dxf layer T: CIRCLE #9D: its plane (extrusion (1, 0, 0))"));
+  CHECK(error_of("", on_layer("T")) == "t.dxf: the file is empty, not a DXF drawing");
+  CHECK(error_of(std::string("AutoCAD Binary DXF\r\n\x1a", 21) + std::string(40, '\0'), on_layer("T")) ==
+        "t.dxf: a binary DXF; fabmesh reads ASCII DXF (save the drawing as ASCII DXF)");
+  CHECK(error_of("solid cube\nfacet normal 0 0 1\n", on_layer("T")) ==
+        "t.dxf:1: 'solid cube' is not a DXF group code: the file is not a DXF drawing");
+  CHECK(error_of("0\nLINE\n", on_layer("T")) ==
+        "t.dxf: the file does not start with a DXF SECTION: not a DXF drawing");
+  // A count larger than the file could hold is refused before dxflib allocates for it.
+  const std::string greedy = "0\nLWPOLYLINE\n5\n9E\n8\nT\n90\n2000000000\n70\n1\n10\n0\n20\n0\n";
+  CHECK_THAT(error_of(drawing(greedy), on_layer("T")),
+             Catch::Contains("LWPOLYLINE group 90 announces 2000000000 entries; the file has"));
+}
+
+TEST_CASE("dxf loops: the example template, written with ezdxf, reads into its outline and holes",
+          "[io][design][dxf]") {
+  const std::string path = std::string(FABMESH_SOURCE_DIR) + "/configs/examples/kitchen_template.dxf";
+  const DxfLoops outline = read_dxf_loops(path, on_layer("OUTLINE", 0.05));
+  REQUIRE(outline.loops.size() == 1);
+  // 2400 x 650 less a quarter-round corner of radius 80 and a bulged one of radius 100.
+  const double corners = (80.0 * 80.0 - kPi * 1600.0) + (100.0 * 100.0 - kPi * 2500.0);
+  CHECK(std::abs(loop_area(outline.loops[0].curve)) == Approx(2400.0 * 650.0 - corners).epsilon(1e-13));
+  const DxfLoops holes = read_dxf_loops(path, on_layer("HOLES", 0.05));
+  REQUIRE(holes.loops.size() == 3);
+  const double sink = 760.0 * 440.0 - 4.0 * (3600.0 - kPi * 900.0);
+  CHECK(std::abs(loop_area(holes.loops[0].curve)) == Approx(sink).epsilon(1e-13));
+  CHECK(std::abs(loop_area(holes.loops[1].curve)) == Approx(kPi * 17.5 * 17.5).epsilon(1e-13));
+  CHECK(std::abs(loop_area(holes.loops[2].curve)) == Approx(kPi * 200.0 * 120.0).epsilon(1e-13));
+  CHECK(holes.notes.back() == path + " layer HOLES: left out 1 POINT (no outline in them)");
+}
+
+TEST_CASE("dxf loops: a batch's content key holds the drawing's bytes, not its name", "[io][design][dxf]") {
+  // A batch reuses a variant's files when its canonical text is unchanged:
+  // an edited drawing must change it, a renamed one must not.
+  const std::filesystem::path dir = std::filesystem::path(FABMESH_TEST_TMP) / "dxf_canonical";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::string square = line("5A", "S", 0, 0, 1, 0) + line("5B", "S", 1, 0, 1, 1) +
+                             line("5C", "S", 1, 1, 0, 1) + line("5D", "S", 0, 1, 0, 0);
+  auto canonical = [&](const std::string& file, const std::string& bytes) {
+    write_file_atomically((dir / file).string(), bytes);
+    const std::string text = "kind: countertop\nthickness: 1\noutline: {dxf: " + file +
+                             ", layer: S}\nholes: [{dxf: " + file + ", layer: S}]\n";
+    return DesignSource(text, (dir / "d.yaml").string()).canonical({});
+  };
+  const std::string a = canonical("a.dxf", drawing(square));
+  CHECK(a == canonical("b.dxf", drawing(square)));
+  CHECK(a != canonical("a.dxf", drawing(square, 1)));
+  CHECK(a.find("a.dxf") == std::string::npos);
+}
