@@ -114,6 +114,7 @@ BuiltMesh build(const CountertopDesign& design, const BuildContext& context) {
     context.watch.lap("toolpath");
     const Toolpath& t = *out.toolpath;
     append_shares(out.tolerance_shares, "cnc: ", t.tolerance_shares);
+    const ToolpathTotals totals = toolpath_totals(t);
     out.facts["cnc"] = {{"tool_diameter", cnc.tool_diameter},
                         {"passes", t.pass_z.size()},
                         {"moves", t.moves.size()},
@@ -121,7 +122,11 @@ BuiltMesh build(const CountertopDesign& design, const BuildContext& context) {
                         {"clearance", t.clearance},
                         {"tabs", cnc.tabs.count},
                         {"direction", to_string(cnc.direction)},
-                        {"relief", to_string(cnc.relief)}};
+                        {"relief", to_string(cnc.relief)},
+                        {"cutting_length", totals.cutting},
+                        {"plunging_length", totals.plunging},
+                        {"rapid_length", totals.rapid},
+                        {"estimated_minutes", totals.minutes}};
   }
   out.shape = std::move(shape);
   return out;

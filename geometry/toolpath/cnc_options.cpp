@@ -26,6 +26,7 @@ void validate_cnc_options(const CncOptions& o) {
   require_positive("cnc.step_down", o.step_down);
   require_positive("cnc.feed", o.feed);
   require_positive("cnc.plunge", o.plunge);
+  require_positive("cnc.rapid", o.rapid);
   require_positive("cnc.spindle", o.spindle);
   require_positive("cnc.safe_z", o.safe_z);
   require_non_negative("cnc.lead_in", o.lead_in);

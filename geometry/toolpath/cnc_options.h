@@ -47,9 +47,11 @@ struct CncOptions {
   double step_down = 10.0;      ///< largest depth of one pass, > 0
   double feed = 3000.0;         ///< cutting feed, model units per minute, > 0
   double plunge = 600.0;        ///< plunge feed (vertical moves in material), > 0
-  double spindle = 18000.0;     ///< spindle speed, revolutions per minute, > 0
-  double safe_z = 10.0;         ///< height of rapid moves above the slab's top (z = 0), > 0
-  double lead_in = 8.0;         ///< length of the arc lead onto each loop from the waste side, >= 0
+  /// The machine's rapid (G0) rate, for the time estimate only, > 0.
+  double rapid = 10000.0;
+  double spindle = 18000.0;  ///< spindle speed, revolutions per minute, > 0
+  double safe_z = 10.0;      ///< height of rapid moves above the slab's top (z = 0), > 0
+  double lead_in = 8.0;      ///< length of the arc lead onto each loop from the waste side, >= 0
   TabOptions tabs;
   CutDirection direction = CutDirection::Climb;
   CornerRelief relief = CornerRelief::None;

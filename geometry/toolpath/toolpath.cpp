@@ -157,6 +157,40 @@ void append_loop_moves(Toolpath& tp, std::size_t index) {
 
 }  // namespace
 
+ToolpathTotals toolpath_totals(const Toolpath& path) {
+  ToolpathTotals t;
+  if (path.moves.empty()) return t;
+  Vec3 at = path.moves.front().to;
+  for (const ToolMove& m : path.moves) {
+    double length = (m.to - at).norm();
+    if (m.shape == PieceKind::Arc) {
+      // A planar arc about `center` at z = to.z(): radius times the turn.
+      const double radius = (Vec2(at.x(), at.y()) - m.center).norm();
+      length = std::hypot(radius * std::abs(m.sweep), m.to.z() - at.z());
+    }
+    at = m.to;
+    switch (m.kind) {
+      case MoveKind::LeadIn:
+      case MoveKind::Cut:
+      case MoveKind::LeadOut:
+        t.cutting += length;
+        break;
+      case MoveKind::Plunge:
+      case MoveKind::TabUp:
+      case MoveKind::TabDown:
+        t.plunging += length;
+        break;
+      case MoveKind::Rapid:
+      case MoveKind::Retract:
+        t.rapid += length;
+        break;
+    }
+  }
+  const CncOptions& o = path.options;
+  t.minutes = t.cutting / o.feed + t.plunging / o.plunge + t.rapid / o.rapid;
+  return t;
+}
+
 const char* to_string(MoveKind kind) {
   switch (kind) {
     case MoveKind::Rapid:

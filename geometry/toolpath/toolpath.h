@@ -62,6 +62,18 @@ struct Toolpath {
   std::vector<ToleranceShare> tolerance_shares;
 };
 
+/// A program's moves by how the machine runs them: lengths (model units) and
+/// the time they take at their rates, without acceleration (so a lower bound).
+struct ToolpathTotals {
+  double cutting = 0.0;   ///< lead-ins, cuts and lead-outs, at the cutting feed
+  double plunging = 0.0;  ///< plunges and moves onto and off tabs, at the plunge feed
+  double rapid = 0.0;     ///< rapids and retracts, at options.rapid
+  double minutes = 0.0;   ///< cutting / feed + plunging / plunge + rapid / rapid
+};
+
+/// The totals of `path`: arcs by their exact length, from the first move's end.
+ToolpathTotals toolpath_totals(const Toolpath& path);
+
 /// Plans the cut of the region bounded by `outline` and `holes` (as
 /// build_region takes them: closed, simple, holes inside and disjoint).
 /// Order of work: options (RangeError naming the field), the region

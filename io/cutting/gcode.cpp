@@ -166,6 +166,12 @@ std::string Encoder::run(const GcodeOptions& o) {
                       c.tabs.count, w_.num(c.tabs.width), w_.num(c.tabs.height), w_.num(c.lead_in)));
   w_.line(fmt::format("(path within {} {} of the exact offset of the exact curves)",
                       w_.num(path_.deviation + w_.resolution()), u));
+  const ToolpathTotals totals = toolpath_totals(path_);
+  w_.line(
+      fmt::format("(estimated {:.1f} min without acceleration: cutting {} {}, plunging {} {}, rapids {} {} "
+                  "at {} {})",
+                  totals.minutes, w_.num(totals.cutting), u, w_.num(totals.plunging), u, w_.num(totals.rapid),
+                  u, w_.num(c.rapid), per_min));
   w_.line(std::string(u == "in" ? "G20" : "G21") + " G90 G94 G17");
   w_.line(fmt::format("G0 Z{}", w_.num(c.safe_z)));  // up before the spindle starts
   w_.line(fmt::format("M3 S{}", w_.plain(c.spindle)));

@@ -136,7 +136,8 @@ class Collector : public DL_CreationAdapter {
   void addPolyline(const DL_PolylineData& d) override {
     polyline_ = std::nullopt;
     if (!wanted() || !in_plane("LWPOLYLINE")) return;
-    if ((d.flags & (16 | 64)) != 0) return fail_at(name("POLYLINE"), "a polygon mesh or polyface, not a curve");
+    if ((d.flags & (16 | 64)) != 0)
+      return fail_at(name("POLYLINE"), "a polygon mesh or polyface, not a curve");
     Polyline pl;
     pl.entity = name("LWPOLYLINE");
     pl.closed = (d.flags & 1) != 0;
@@ -161,7 +162,8 @@ class Collector : public DL_CreationAdapter {
   }
   void addInsert(const DL_InsertData& /*data*/) override {
     if (wanted())
-      fail_at(name("INSERT"), "a block reference on the layer: explode it so its lines and arcs are in the layer");
+      fail_at(name("INSERT"),
+              "a block reference on the layer: explode it so its lines and arcs are in the layer");
   }
   // Entities that carry no outline: left out, and said so.
   void addPoint(const DL_PointData& /*data*/) override { leave_out("POINT"); }
@@ -219,8 +221,8 @@ class Collector : public DL_CreationAdapter {
   bool in_plane(const char* type) {
     const double* dir = getExtrusion()->getDirection();
     if (std::abs(dir[0]) > 1e-9 || std::abs(dir[1]) > 1e-9 || !(std::abs(dir[2]) > 0.0)) {
-      fail_at(name(type), fmt::format("its plane (extrusion ({}, {}, {})) is not the drawing's XY plane", dir[0],
-                                      dir[1], dir[2]));
+      fail_at(name(type), fmt::format("its plane (extrusion ({}, {}, {})) is not the drawing's XY plane",
+                                      dir[0], dir[1], dir[2]));
       return false;
     }
     return true;
@@ -246,7 +248,8 @@ class Collector : public DL_CreationAdapter {
     p.ellipse.a = p.ellipse.b = radius;
     p.ellipse.from_deg = from_deg;
     p.ellipse.to_deg = from_deg + sweep_deg;
-    if (!finite_arc(p) || !(radius > 0.0)) return fail_at(p.entity, fmt::format("radius {} is not > 0", radius));
+    if (!finite_arc(p) || !(radius > 0.0))
+      return fail_at(p.entity, fmt::format("radius {} is not > 0", radius));
     add(std::move(p));
   }
   void add(Piece p) {
@@ -259,7 +262,7 @@ class Collector : public DL_CreationAdapter {
   void too_many() {
     if (problem.empty())
       problem = fmt::format("more than {} entities and polyline vertices: not a template fabmesh reads",
-                           kMaxDxfEntities);
+                            kMaxDxfEntities);
   }
 
   std::string path_;
@@ -274,10 +277,12 @@ class Collector : public DL_CreationAdapter {
 // count in it (vertices, knots) announces more than the file could hold,
 // which would make dxflib allocate for it.
 void check_dxf_text(const std::string& bytes, const std::string& path) {
-  if (bytes.empty()) throw FileError(path, 0, 0, fmt::format("{}: the file is empty, not a DXF drawing", path));
+  if (bytes.empty())
+    throw FileError(path, 0, 0, fmt::format("{}: the file is empty, not a DXF drawing", path));
   if (bytes.rfind("AutoCAD Binary DXF", 0) == 0) {
-    throw FileError(path, 0, 0,
-                    fmt::format("{}: a binary DXF; fabmesh reads ASCII DXF (save the drawing as ASCII DXF)", path));
+    throw FileError(
+        path, 0, 0,
+        fmt::format("{}: a binary DXF; fabmesh reads ASCII DXF (save the drawing as ASCII DXF)", path));
   }
   std::size_t lines = static_cast<std::size_t>(std::count(bytes.begin(), bytes.end(), '\n')) + 1;
   std::size_t pos = 0, line = 0;
@@ -299,10 +304,10 @@ void check_dxf_text(const std::string& bytes, const std::string& path) {
     int code = 0;
     const auto [end, ec] = std::from_chars(code_text.data(), code_text.data() + code_text.size(), code);
     if (ec != std::errc() || end != code_text.data() + code_text.size()) {
-      throw FileError(path, static_cast<int>(code_line), 1,
-                      fmt::format("{}:{}: '{}' is not a DXF group code{}", path, code_line,
-                                  std::string(code_text.substr(0, 40)),
-                                  first ? ": the file is not a DXF drawing" : ""));
+      throw FileError(
+          path, static_cast<int>(code_line), 1,
+          fmt::format("{}:{}: '{}' is not a DXF group code{}", path, code_line,
+                      std::string(code_text.substr(0, 40)), first ? ": the file is not a DXF drawing" : ""));
     }
     const std::string_view value = next_line();
     if (first && code != 999 && !(code == 0 && value == "SECTION")) {
@@ -317,10 +322,11 @@ void check_dxf_text(const std::string& bytes, const std::string& path) {
         (entity == "SPLINE" && (code == 72 || code == 73 || code == 74))) {
       long long count = 0;
       const auto [vend, vec] = std::from_chars(value.data(), value.data() + value.size(), count);
-      if (vec == std::errc() && vend == value.data() + value.size() && count > static_cast<long long>(lines)) {
+      if (vec == std::errc() && vend == value.data() + value.size() &&
+          count > static_cast<long long>(lines)) {
         throw FileError(path, static_cast<int>(line), 1,
-                        fmt::format("{}:{}: {} group {} announces {} entries; the file has {} lines", path, line,
-                                    std::string(entity), code, count, lines));
+                        fmt::format("{}:{}: {} group {} announces {} entries; the file has {} lines", path,
+                                    line, std::string(entity), code, count, lines));
       }
     }
   }
@@ -338,8 +344,8 @@ std::string end_name(const End& e, const std::vector<Piece>& pieces) {
 }
 
 // The partner of every end (index into `ends`).
-std::vector<std::size_t> match_ends(const std::vector<End>& ends, const std::vector<Piece>& pieces, double join,
-                                    double cell, const std::string& where, double max_gap) {
+std::vector<std::size_t> match_ends(const std::vector<End>& ends, const std::vector<Piece>& pieces,
+                                    double join, double cell, const std::string& where, double max_gap) {
   auto key = [cell](const Vec2& p) {
     return std::pair<std::int64_t, std::int64_t>(static_cast<std::int64_t>(std::floor(p.x() / cell)),
                                                  static_cast<std::int64_t>(std::floor(p.y() / cell)));
@@ -372,8 +378,8 @@ std::vector<std::size_t> match_ends(const std::vector<End>& ends, const std::vec
           nearest = j;
       }
       throw InputError(fmt::format(
-          "{}: open chain: {} at {} meets no other end within max_gap {:.6g}{}", where, end_name(ends[i], pieces),
-          fmt_point(ends[i].p), max_gap,
+          "{}: open chain: {} at {} meets no other end within max_gap {:.6g}{}", where,
+          end_name(ends[i], pieces), fmt_point(ends[i].p), max_gap,
           nearest ? fmt::format(" (the nearest, {}, is {:.6g} away)", end_name(ends[*nearest], pieces),
                                 (ends[*nearest].p - ends[i].p).norm())
                   : std::string()));
@@ -427,13 +433,13 @@ CurveSpec loop_spec(const std::vector<Piece>& q, double bridge, std::size_t& bri
     const Vec2 from = joint((k + n - 1) % n);
     const Piece& p = q[k];
     if (!p.arc) {
-      spec.segments.push_back(line_to(spec.segments.empty() ? std::vector<Vec2>{from, joint(k)}
-                                                            : std::vector<Vec2>{joint(k)},
-                                      p.entity));
+      spec.segments.push_back(line_to(
+          spec.segments.empty() ? std::vector<Vec2>{from, joint(k)} : std::vector<Vec2>{joint(k)}, p.entity));
       continue;
     }
     if (k > 0 && q[k - 1].arc && (q[k - 1].end - p.start).norm() > bridge) {
-      spec.segments.push_back(line_to({p.start}, fmt::format("gap between {} and {}", q[k - 1].entity, p.entity)));
+      spec.segments.push_back(
+          line_to({p.start}, fmt::format("gap between {} and {}", q[k - 1].entity, p.entity)));
       ++bridges;
     }
     SegmentSpec s;
@@ -485,9 +491,10 @@ DxfLoops parse_dxf_loops(const std::string& bytes, const std::string& path, cons
       if (u.code == *c.insunits) unit = &u;
     }
     if (unit == nullptr) {
-      throw FileError(path, 0, 0,
-                      fmt::format("{}: $INSUNITS {} is not a unit fabmesh reads (1 in, 2 ft, 4 mm, 5 cm, 6 m)", path,
-                                  *c.insunits));
+      throw FileError(
+          path, 0, 0,
+          fmt::format("{}: $INSUNITS {} is not a unit fabmesh reads (1 in, 2 ft, 4 mm, 5 cm, 6 m)", path,
+                      *c.insunits));
     }
     scale = unit->metres / design_metres;
     out.notes.push_back(scale == 1.0 ? fmt::format("{}: $INSUNITS {} ({})", path, unit->code, unit->name)
@@ -496,7 +503,8 @@ DxfLoops parse_dxf_loops(const std::string& bytes, const std::string& path, cons
   }
   if (!c.left_out.empty()) {
     std::string kinds;
-    for (const auto& [type, count] : c.left_out) kinds += fmt::format("{}{} {}", kinds.empty() ? "" : ", ", count, type);
+    for (const auto& [type, count] : c.left_out)
+      kinds += fmt::format("{}{} {}", kinds.empty() ? "" : ", ", count, type);
     out.notes.push_back(fmt::format("{}: left out {} (no outline in them)", where, kinds));
   }
 
@@ -536,10 +544,11 @@ DxfLoops parse_dxf_loops(const std::string& bytes, const std::string& path, cons
     std::string layers;
     for (const std::string& l : c.layers) layers += (layers.empty() ? "" : ", ") + l;
     if (c.paper_space > 0) {
-      throw FileError(path, 0, 0,
-                      fmt::format("{}: the layer's {} entities are all in paper space; the outline must be in "
-                                  "model space",
-                                  where, c.paper_space));
+      throw FileError(
+          path, 0, 0,
+          fmt::format("{}: the layer's {} entities are all in paper space; the outline must be in "
+                      "model space",
+                      where, c.paper_space));
     }
     throw FileError(path, 0, 0,
                     fmt::format("{}: no LINE, ARC, CIRCLE, ELLIPSE or polyline in model space{}", where,
@@ -562,8 +571,8 @@ DxfLoops parse_dxf_loops(const std::string& bytes, const std::string& path, cons
                            p.ellipse.center.y(), p.ellipse.a, p.ellipse.b}) {
       if (!std::isfinite(v) || std::abs(v) > kMaxDesignNumber) {
         throw FileError(path, 0, 0,
-                        fmt::format("{}: {}: the value {} is beyond the design limit {:g}", where, p.entity, v,
-                                    kMaxDesignNumber));
+                        fmt::format("{}: {}: the value {} is beyond the design limit {:g}", where, p.entity,
+                                    v, kMaxDesignNumber));
       }
     }
     try {
@@ -593,7 +602,8 @@ DxfLoops parse_dxf_loops(const std::string& bytes, const std::string& path, cons
       open.push_back(i);
     }
   }
-  if (skipped > 0) out.notes.push_back(fmt::format("{}: left out {} line(s) no longer than max_gap", where, skipped));
+  if (skipped > 0)
+    out.notes.push_back(fmt::format("{}: left out {} line(s) no longer than max_gap", where, skipped));
   std::vector<End> ends;
   ends.reserve(2 * open.size());
   for (const std::size_t i : open) {
@@ -647,7 +657,8 @@ DxfLoops parse_dxf_loops(const std::string& bytes, const std::string& path, cons
     out.loops.push_back(std::move(loop));
   }
   if (bridges > 0) {
-    out.notes.push_back(fmt::format("{}: {} gap(s) between arcs, up to max_gap, joined by short lines", where, bridges));
+    out.notes.push_back(
+        fmt::format("{}: {} gap(s) between arcs, up to max_gap, joined by short lines", where, bridges));
   }
   return out;
 }

@@ -128,6 +128,7 @@ CncDesign read_cnc(const yaml::Fields& f, const YAML::Node& n, const DesignCommo
   o.step_down = length("step_down", o.step_down);
   o.feed = length("feed", o.feed);
   o.plunge = length("plunge", o.plunge);
+  o.rapid = length("rapid", o.rapid);
   o.spindle = f.number_or(n, "spindle", "cnc.spindle", o.spindle);
   o.safe_z = length("safe_z", o.safe_z);
   o.lead_in = length("lead_in", o.lead_in);

@@ -375,3 +375,36 @@ TEST_CASE(
   CHECK(untabbed.tab_stretches.empty());
   CHECK(untabbed.offset_margin >= 0.0);
 }
+
+TEST_CASE("router program: the estimated lengths and time are those of the program CNCjs interprets",
+          "[io][cutting][gcode][toolpath][countertop]") {
+  for (const char* file : {"countertop_g1.yaml", "countertop_dxf_template.yaml"}) {
+    INFO(file);
+    const ExampleRegion region = load_countertop_example(file);
+    const CncOptions o = options_for(region);
+    const Toolpath tp = plan_toolpath(region.outline, region.holes, o);
+    const std::string program = encode_gcode(tp, {});
+    const Trace trace = interpret(program, std::string(file) + ".nc");
+    const ToolpathTotals totals = toolpath_totals(tp);
+    // What the controller runs at the cutting feed and at the plunge feed, by
+    // the interpreter's own geometry (arcs by radius and turn).
+    double cutting = 0.0, plunging = 0.0;
+    for (const TraceMotion& m : trace.motions) {
+      if (m.motion == "G0") continue;
+      const double length = std::hypot(motion_length(m), m.end.z() - m.start.z());
+      if (m.feed == o.feed) cutting += length;
+      if (m.feed == o.plunge) plunging += length;
+    }
+    // Each move's ends are rounded to the program's decimals.
+    const double slack = 4e-3 * static_cast<double>(trace.motions.size());
+    CHECK(totals.cutting > 0.0);
+    CHECK(std::abs(cutting - totals.cutting) <= slack);
+    CHECK(std::abs(plunging - totals.plunging) <= slack);
+    CHECK(totals.rapid > 0.0);
+    CHECK(
+        totals.minutes ==
+        Approx(totals.cutting / o.feed + totals.plunging / o.plunge + totals.rapid / o.rapid).epsilon(1e-12));
+    CHECK(program.find(fmt::format("(estimated {:.1f} min without acceleration: cutting ", totals.minutes)) !=
+          std::string::npos);
+  }
+}

@@ -133,8 +133,9 @@ TEST_CASE("dxf loops: polyline bulges are exact arcs, either way round", "[io][d
 
 TEST_CASE("dxf loops: circles, ellipses and mirrored arcs", "[io][design][dxf]") {
   const std::string circle = "0\nCIRCLE\n5\n3A\n8\nH\n10\n5\n20\n5\n30\n0\n40\n2\n";
-  const std::string ellipse = "0\nELLIPSE\n5\n3B\n8\nH\n10\n50\n20\n5\n30\n0\n11\n0\n21\n4\n31\n0\n40\n0.5\n41\n0\n42\n" +
-                              num(2 * kPi) + "\n";
+  const std::string ellipse =
+      "0\nELLIPSE\n5\n3B\n8\nH\n10\n50\n20\n5\n30\n0\n11\n0\n21\n4\n31\n0\n40\n0.5\n41\n0\n42\n" +
+      num(2 * kPi) + "\n";
   const DxfLoops got = parse_dxf_loops(drawing(circle + ellipse), "t.dxf", on_layer("H"));
   REQUIRE(got.loops.size() == 2);
   CHECK(std::abs(loop_area(got.loops[0].curve)) == Approx(kPi * 4.0).epsilon(1e-13));
@@ -173,7 +174,8 @@ TEST_CASE("dxf loops: gaps within max_gap are closed, exactly", "[io][design][dx
   const std::string d = arc("7A", "D", 0, 0, 10, 0, 180) + line("7B", "D", -10, 0, 10.0001, 0);
   const DxfLoops snapped = parse_dxf_loops(drawing(d), "t.dxf", on_layer("D", 1e-3));
   REQUIRE(snapped.loops.size() == 1);
-  CHECK(loop_area(snapped.loops[0].curve) == Approx(kPi * 50.0).epsilon(1e-14));  // the line moved onto the arc
+  CHECK(loop_area(snapped.loops[0].curve) ==
+        Approx(kPi * 50.0).epsilon(1e-14));  // the line moved onto the arc
 
   // Beyond max_gap: an open chain, named by entity, place and the nearest end.
   CHECK(error_of(drawing(d), on_layer("D", 1e-5)) ==
@@ -181,14 +183,17 @@ TEST_CASE("dxf loops: gaps within max_gap are closed, exactly", "[io][design][dx
         "(the nearest, LINE #7B's end, is 0.0001 away)");
 }
 
-TEST_CASE("dxf loops: bad drawings are refused naming the file, layer, entity and place", "[io][design][dxf]") {
-  const std::string tri = line("8A", "T", 0, 0, 10, 0) + line("8B", "T", 10, 0, 0, 10) + line("8C", "T", 0, 10, 0, 0);
+TEST_CASE("dxf loops: bad drawings are refused naming the file, layer, entity and place",
+          "[io][design][dxf]") {
+  const std::string tri =
+      line("8A", "T", 0, 0, 10, 0) + line("8B", "T", 10, 0, 0, 10) + line("8C", "T", 0, 10, 0, 0);
   // Overlap: the same edge twice makes three ends meet.
   CHECK(error_of(drawing(tri + line("8D", "T", 0, 0, 10, 0)), on_layer("T")) ==
         "t.dxf layer T: 3 ends meet at (0, 0): LINE #8A's start, LINE #8C's end, LINE #8D's start; entities "
         "overlap or branch there (a loop passes a point once)");
   CHECK(error_of(drawing(tri), on_layer("NOPE")) ==
-        "t.dxf layer NOPE: no LINE, ARC, CIRCLE, ELLIPSE or polyline in model space (layers that have them: T)");
+        "t.dxf layer NOPE: no LINE, ARC, CIRCLE, ELLIPSE or polyline in model space (layers that have them: "
+        "T)");
   const std::string paper = "0\nLINE\n5\n9A\n67\n1\n8\nP\n10\n0\n20\n0\n30\n0\n11\n1\n21\n0\n31\n0\n";
   CHECK(error_of(drawing(paper), on_layer("P")) ==
         "t.dxf layer P: the layer's 1 entities are all in paper space; the outline must be in model space");
