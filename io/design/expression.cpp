@@ -263,7 +263,8 @@ struct Parameter {
   std::string name;
   std::string field;  // "parameters.height"
   YAML::Mark key_mark;
-  YAML::Node value, min, max, step;
+  YAML::Node value;
+  std::optional<YAML::Node> min, max, step;  // when the entry is a map that gives them
   std::string description;
   enum class State { Waiting, Resolving, Done } state = State::Waiting;
   DesignParameter resolved;
@@ -348,9 +349,10 @@ class Resolver {
       if (entry.IsMap()) {
         f_.require_map(entry, p.field, key_group("parameters.NAME"));
         p.value = f_.required(entry, "value", p.field);
-        p.min = entry["min"];
-        p.max = entry["max"];
-        p.step = entry["step"];
+        for (auto [key, bound] :
+             {std::pair{"min", &p.min}, std::pair{"max", &p.max}, std::pair{"step", &p.step}}) {
+          if (entry[key].IsDefined()) *bound = entry[key];
+        }
         if (entry["description"].IsDefined())
           p.description = f_.text(entry["description"], p.field + ".description");
       } else if (entry.IsScalar()) {
@@ -405,9 +407,9 @@ class Resolver {
     return value;
   }
 
-  std::optional<double> optional_number(const YAML::Node& node, const std::string& field) {
-    if (!node.IsDefined()) return std::nullopt;
-    return number(node, field);
+  std::optional<double> optional_number(const std::optional<YAML::Node>& node, const std::string& field) {
+    if (!node) return std::nullopt;
+    return number(*node, field);
   }
 
   void resolve(Parameter& p) {
@@ -421,10 +423,10 @@ class Resolver {
     r.min = optional_number(p.min, p.field + ".min");
     r.max = optional_number(p.max, p.field + ".max");
     r.step = optional_number(p.step, p.field + ".step");
-    if (r.step && *r.step <= 0.0)
-      f_.fail(p.step, p.field + ".step", fmt::format("step = {} must be > 0", *r.step));
-    if (r.min && r.max && *r.min > *r.max)
-      f_.fail(p.max, p.field + ".max", fmt::format("max = {} is below min = {}", *r.max, *r.min));
+    if (p.step && r.step && *r.step <= 0.0)
+      f_.fail(*p.step, p.field + ".step", fmt::format("step = {} must be > 0", *r.step));
+    if (p.max && r.min && r.max && *r.min > *r.max)
+      f_.fail(*p.max, p.field + ".max", fmt::format("max = {} is below min = {}", *r.max, *r.min));
     if (r.min && r.max && (r.value < *r.min || r.value > *r.max))
       f_.fail(p.value, p.field, fmt::format("{} is outside [{}, {}]", r.value, *r.min, *r.max));
     if (r.min && r.value < *r.min)

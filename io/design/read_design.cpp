@@ -142,7 +142,7 @@ void apply_override(YAML::Node root, const Override& o, const YAML::Node& value)
 Override parameter_path(const YAML::Node& root, const Override& o) {
   if (o.path.find_first_of(".[") != std::string::npos) return o;
   const YAML::Node parameters = root["parameters"];
-  if (!parameters.IsMap()) return o;
+  if (!parameters.IsDefined() || !parameters.IsMap()) return o;
   const YAML::Node entry = parameters[o.path];
   if (!entry.IsDefined()) return o;
   Override to_parameter = o;

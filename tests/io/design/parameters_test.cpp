@@ -334,6 +334,18 @@ TEST_CASE("parameters: -D NAME=VALUE sets a declared parameter, its range still 
       "wall, base)");
   CHECK(error_of(kParamCup, {"body.wall==wall / 0"}) ==
         "-D body.wall==wall / 0: body.wall: \"=wall / 0\": division by zero (0.3 / 0) (with wall = 0.3)");
+  // A design without parameters: -D of a plain name is a top-level key as ever.
+  const std::string plain = R"(name: cup
+kind: vessel
+units: cm
+profile:
+  family: quasi_bspline
+  points: [[1.5, 6], [1, 5], [2, 4], [3, 3], [1.5, 2]]
+body: {mode: shell, wall: 0.3, base: 0.4}
+)";
+  CHECK_THAT(error_of(plain, {"tolerance=0.01", "height=5"}),
+             Catch::StartsWith("-D height=5: height: unknown key 'height' (expected one of: ") &&
+                 Catch::EndsWith(")"));
   // A name the design does not declare is an unknown key, the parameters listed.
   try {
     read(kParamCup, {"heigth=5"});
