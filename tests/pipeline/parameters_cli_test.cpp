@@ -53,7 +53,7 @@ std::string written(const fs::path& dir, const std::string& name, const std::str
 
 }  // namespace
 
-TEST_CASE("parameters: run --json lists the values used; -D NAME=VALUE sets one", "[pipeline][parameters]") {
+TEST_CASE("parameters: run --json lists the values used, -D NAME=VALUE sets one", "[pipeline][parameters]") {
   const fs::path dir = fresh_dir("parameters_run");
   const std::string cup = written(dir, "cup.yaml", kCup);
   CliResult r = run_fabmesh({"run", cup, "-o", (dir / "a").string() + "/", "--json", "-q"});
@@ -179,7 +179,7 @@ grid:
   CHECK(file_text(dir / "out" / "cup_h4" / "cup_h4.stl") != file_text(dir / "out" / "cup_h5" / "cup_h5.stl"));
 }
 
-TEST_CASE("parameters: batch tables set parameters by name; a name the design lacks stops the batch",
+TEST_CASE("parameters: batch tables set parameters by name, a name the design lacks stops the batch",
           "[pipeline][parameters][batch]") {
   const fs::path dir = batch_folder("parameters_table", R"(design: pcup.yaml
 table: t.csv
