@@ -98,6 +98,7 @@ JobReport build_and_encode(const Design& design, const JobOptions& options, cons
   report.export_units = common.export_units;
   report.tolerance = common.tolerance;
   report.notes = common.notes;
+  report.parameters = common.parameters;
   StageTimer watch(report.timings_ms, options.on_stage);
   const std::vector<const OutputFormat*> formats = formats_of(design, options);
   report.warnings = unused_block_warnings(design, options, formats);

@@ -63,6 +63,8 @@ struct JobReport {
   std::vector<OutputFile> files;     ///< the same with their format, unit and added error
   std::vector<SkippedOutput> skipped;
   std::vector<std::string> notes;  ///< DesignCommon::notes: how the design's files were read
+  /// DesignCommon::parameters: the design's named parameters with the values used.
+  std::vector<DesignParameter> parameters;
   /// What the design asks for that deserves a look, e.g. a `mould:` block no
   /// output uses (unused_block_warnings). Shown in the report (`warnings`).
   std::vector<std::string> warnings;

@@ -148,6 +148,11 @@ nlohmann::ordered_json to_json(const JobReport& r) {
   j["kind"] = mesh.kind;
   j["units"] = mesh.units;
   j["export_units"] = r.export_units;
+  if (!r.parameters.empty()) {
+    nlohmann::ordered_json parameters = nlohmann::ordered_json::object();
+    for (const DesignParameter& p : r.parameters) parameters[p.name] = p.value;
+    j["parameters"] = std::move(parameters);
+  }
   j["tolerance"] = mesh.tolerance;
   j["max_deviation"] = mesh.max_deviation;
   j["tolerance_split"] = {{"build", r.build_tolerance}, {"outputs", r.tolerance - r.build_tolerance}};

@@ -30,6 +30,21 @@ class ValidationFailed(Error):
 class EnvironmentError(Error, OSError):
     """Writing failed for a reason of the machine (exit code 5)."""
 
+class Parameter:
+    """One of a design's named parameters (`parameters:`), with the value used."""
+    @property
+    def name(self) -> str: ...
+    @property
+    def value(self) -> float: ...
+    @property
+    def min(self) -> Optional[float]: ...
+    @property
+    def max(self) -> Optional[float]: ...
+    @property
+    def step(self) -> Optional[float]: ...
+    @property
+    def description(self) -> str: ...
+
 class Design:
     """A design, read and checked; immutable, safe to share between threads."""
     @property
@@ -44,6 +59,8 @@ class Design:
     def path(self) -> str: ...
     @property
     def outputs(self) -> list[str]: ...
+    @property
+    def parameters(self) -> list[Parameter]: ...
 
 def load_design(path: Optional[StrPath] = None, *, text: Optional[str] = None,
                 overrides: Optional[dict[str, Any]] = None) -> Design:

@@ -273,6 +273,19 @@ PYBIND11_MODULE(fabmesh, m) {
   m.attr("__version__") = fabmesh::version();
   register_errors(m);
 
+  py::class_<fabmesh::Parameter>(m, "Parameter",
+                                 "One of a design's named parameters (`parameters:`), with the value used")
+      .def_readonly("name", &fabmesh::Parameter::name)
+      .def_readonly("value", &fabmesh::Parameter::value, "The value the design was read with")
+      .def_readonly("min", &fabmesh::Parameter::min, "The declared minimum, or None")
+      .def_readonly("max", &fabmesh::Parameter::max, "The declared maximum, or None")
+      .def_readonly("step", &fabmesh::Parameter::step, "The declared step, or None")
+      .def_readonly("description", &fabmesh::Parameter::description, "'' when none")
+      .def("__repr__", [](const fabmesh::Parameter& p) {
+        return "<fabmesh.Parameter " + p.name + " = " + py::repr(py::float_(p.value)).cast<std::string>() +
+               ">";
+      });
+
   py::class_<fabmesh::Design>(m, "Design",
                               "A design, read and checked; immutable, safe to share between threads.")
       .def_property_readonly("kind", &fabmesh::Design::kind, "'vessel', 'countertop', 'surface' or 'curve'")
@@ -284,6 +297,8 @@ PYBIND11_MODULE(fabmesh, m) {
           "path", [](const fabmesh::Design& d) { return d.path().string(); },
           "The file it was read from (for text: 'design.yaml')")
       .def_property_readonly("outputs", &fabmesh::Design::outputs, "The formats `fabmesh run` writes for it")
+      .def_property_readonly("parameters", &fabmesh::Design::parameters,
+                             "The design's named parameters (a list of Parameter), in the order declared")
       .def("__repr__", [](const fabmesh::Design& d) {
         return "<fabmesh.Design " + d.kind() + " '" + d.name() + "' from " + d.path().string() + ">";
       });
@@ -293,7 +308,8 @@ PYBIND11_MODULE(fabmesh, m) {
         R"(Reads a design, from a file (path) or from YAML text (text=...), with overrides applied.
 
 overrides: a dict {"body.wall": 0.25, "profile.points[1]": [1, 5]} with the
-meaning of `fabmesh run -D key=value` (values as YAML/JSON).
+meaning of `fabmesh run -D key=value` (values as YAML/JSON); a key that names
+a parameter the design declares ({"height": 12}) sets that parameter.
 Returns a Design. Raises InputError (with key, file, line, column) for a
 malformed or out-of-range value, an unknown key or an unreadable file.)");
 

@@ -33,7 +33,7 @@ packages=(
   libcgal-dev libgmp-dev libmpfr-dev libboost-dev
   libeigen3-dev libopenmesh-dev libdraco-dev libtbb-dev
   libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libfmt-dev
-  libdxflib-dev lib3mf-dev libspng-dev zlib1g-dev
+  libdxflib-dev lib3mf-dev libspng-dev zlib1g-dev libmuparser-dev
   python3 python3-dev pybind11-dev python3-numpy
 )
 if ((test_deps)); then

@@ -36,6 +36,13 @@ std::vector<std::string> Design::outputs() const {
   return names;
 }
 
+std::vector<Parameter> Design::parameters() const {
+  std::vector<Parameter> out;
+  for (const fabmesh::DesignParameter& p : data_->design.common.parameters)
+    out.push_back({p.name, p.value, p.min, p.max, p.step, p.description});
+  return out;
+}
+
 Design read_design(const std::filesystem::path& path, const Overrides& overrides) {
   return detail::translated(
       [&] { return handle(fabmesh::load_design(path.string(), command_line_overrides(overrides))); });

@@ -52,6 +52,15 @@ struct KeySource {
   std::string override_text;  ///< "body.wall=2.5" when an override gave it
 };
 
+/// One of a design's named parameters (`parameters:`), its value resolved
+/// (an expression evaluated, a `-D NAME=VALUE` applied).
+struct DesignParameter {
+  std::string name;
+  double value = 0.0;
+  std::optional<double> min, max, step;  ///< as declared (resolved), when declared
+  std::string description;               ///< empty when none
+};
+
 /// Keys every design has.
 struct DesignCommon {
   std::string path;  ///< the file it was read from
@@ -74,6 +83,8 @@ struct DesignCommon {
   /// deserve a look, e.g. "points.csv:1: a header row (not numbers) was
   /// skipped, for ...". Shown in the report (`notes`).
   std::vector<std::string> notes;
+  /// The design's `parameters`, in the order declared, with the values used.
+  std::vector<DesignParameter> parameters;
 };
 
 /// `location` placed in the design: `place` is where the design gives its key

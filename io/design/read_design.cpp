@@ -136,6 +136,20 @@ void apply_override(YAML::Node root, const Override& o, const YAML::Node& value)
   }
 }
 
+// `o`, or for `-D NAME=VALUE` naming a parameter the design declares, the
+// override of that parameter's value (`parameters.NAME`, or
+// `parameters.NAME.value` when it is declared with a range).
+Override parameter_path(const YAML::Node& root, const Override& o) {
+  if (o.path.find_first_of(".[") != std::string::npos) return o;
+  const YAML::Node parameters = root["parameters"];
+  if (!parameters.IsDefined() || !parameters.IsMap()) return o;
+  const YAML::Node entry = parameters[o.path];
+  if (!entry.IsDefined()) return o;
+  Override to_parameter = o;
+  to_parameter.path = "parameters." + o.path + (entry.IsMap() ? ".value" : "");
+  return to_parameter;
+}
+
 // Why `name` is not a plain file name (empty when it is). Names become file
 // names in the output folder: nothing that could leave it, hide a file or
 // break a message.
@@ -370,7 +384,7 @@ std::vector<OverrideOrigin> apply_overrides(YAML::Node root, const std::string& 
                       o.text, root["kind"].IsScalar() ? " (" + root["kind"].Scalar() + ")" : std::string()));
     }
     try {
-      apply_override(root, o, value);
+      apply_override(root, parameter_path(root, o), value);
     } catch (const FileError& e) {
       throw FileError(path, 0, 0, e.what());
     }
@@ -382,10 +396,21 @@ std::vector<OverrideOrigin> apply_overrides(YAML::Node root, const std::string& 
 Design read_design_tree(const YAML::Node& root, const std::string& path,
                         std::vector<OverrideOrigin> origins) {
   const Fields f(path, std::move(origins));
+  std::vector<DesignParameter> parameters = resolve_parameters(root, f);
   const std::string kind = f.text(f.required(root, "kind", "kind"), "kind");
   Design d;
   d.common = read_common(f, root);
-  d.body = read_body(kind, f, root, d.common);
+  try {
+    d.body = read_body(kind, f, root, d.common);
+  } catch (const UnknownKeyError& e) {
+    // A top-level key that is not a key of designs may be meant as a parameter (`-D heigth=12`).
+    if (parameters.empty() || e.field().find_first_of(".[") != std::string::npos) throw;
+    std::string names;
+    for (const DesignParameter& p : parameters) names += (names.empty() ? "" : ", ") + p.name;
+    throw UnknownKeyError(e.field(), e.path(), e.line(), e.column(),
+                          fmt::format("{}, or a parameter of the design: {}", e.what(), names));
+  }
+  d.common.parameters = std::move(parameters);
   d.common.notes = f.notes();
   // Where each key is given (the design is valid by now: keys are scalars).
   record_sources(f, root, "", d.common.where);

@@ -6,8 +6,8 @@ namespace fabmesh {
 namespace {
 
 std::vector<std::string> with_common(std::vector<std::string> keys) {
-  std::vector<std::string> all{"name",    "kind",         "units",   "tolerance",
-                               "outputs", "export_units", "purpose", "on_output_error"};
+  std::vector<std::string> all{"name",         "kind",    "units",           "tolerance", "outputs",
+                               "export_units", "purpose", "on_output_error", "parameters"};
   all.insert(all.end(), keys.begin(), keys.end());
   return all;
 }
@@ -15,6 +15,7 @@ std::vector<std::string> with_common(std::vector<std::string> keys) {
 std::vector<KeyGroup> make_groups() {
   return {
       {"common", with_common({})},
+      {"parameters.NAME", {"value", "min", "max", "step", "description"}},
       // Kinds (the root map of a design file).
       {"curve", with_common({"curve"})},
       {"vessel", with_common({"profile", "body", "max_triangles", "shrinkage", "mould"})},

@@ -155,9 +155,10 @@ def test_design_errors_carry_their_place(scratch):
     with pytest.raises(fabmesh.InputError) as caught:
         fabmesh.load_design(text=text)
     error = caught.value
-    assert (error.file, error.line) == ("design.yaml", 10)
+    line = text[:text.index("lambdas: [0, 0, 7]")].count("\n") + 1  # where the example has its lambdas
+    assert (error.file, error.line) == ("design.yaml", line)
     assert error.column > 0
-    assert str(error).startswith("design.yaml:10:")
+    assert str(error).startswith(f"design.yaml:{line}:")
     with pytest.raises(fabmesh.InputError):
         fabmesh.load_design(example("vessel_golden_solid.yaml"), text="name: x")
     with pytest.raises(fabmesh.InputError):

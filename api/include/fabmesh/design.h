@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -14,10 +15,23 @@ namespace api {
 
 /// One override of a design value, as `fabmesh run -D key=value` gives it.
 struct Override {
-  std::string key;    ///< "body.wall", "profile.points[1]", "profile.segments[0].lambda"
+  /// "body.wall", "profile.points[1]", "profile.segments[0].lambda", or the
+  /// name of a parameter the design declares ("height")
+  std::string key;
   std::string value;  ///< YAML text: "2.5", "[1, 5]", "{mode: solid}"
 };
 using Overrides = std::vector<Override>;
+
+/// One of a design's named parameters (`parameters:` in the file, see
+/// docs/design-files.md "Parameters and expressions"), with the value the
+/// design was read with: after overrides, its expression evaluated.
+struct Parameter {
+  std::string name;                ///< "height"; an override by this name sets it: {"height", "12"}
+  double value = 0.0;              ///< the value used
+  std::optional<double> min, max;  ///< the range the design declares, when it does
+  std::optional<double> step;      ///< the step a slider would take, when declared
+  std::string description;         ///< empty when none
+};
 
 namespace detail {
 struct DesignData;
@@ -34,6 +48,8 @@ class Design {
   double tolerance() const;                  ///< the proven deviation the mesh may have, model units
   std::filesystem::path path() const;        ///< the file it was read from (for text: the name given)
   std::vector<std::string> outputs() const;  ///< the formats `run` writes for it: "stl", "3mf", ...
+  /// The design's named parameters, in the order declared (empty when it declares none).
+  std::vector<Parameter> parameters() const;
 
   /// For the library's own implementation.
   const detail::DesignData& data() const { return *data_; }

@@ -24,7 +24,18 @@ YAML::Node load_design_tree(const std::string& text, const std::string& path);
 std::vector<OverrideOrigin> apply_overrides(YAML::Node root, const std::string& path,
                                             const std::vector<Override>& overrides);
 
-/// Reads and validates the design of a resolved tree (see read_design).
+/// Resolves the design's `parameters` (in declaration order, each value,
+/// min, max and step a number or an expression over the others) and puts
+/// the value of every expression (a scalar starting with '=') anywhere else
+/// in the tree in its place, in place: the node keeps its mark and its
+/// override origin, so later errors at it name the expression's place.
+/// \throw FileError naming the file, line, column and field (or the override)
+///        of a bad parameter or expression
+std::vector<DesignParameter> resolve_parameters(const YAML::Node& root, const Fields& f);
+
+/// Reads and validates the design of a tree with overrides applied (see
+/// read_design): resolves its parameters and expressions (resolve_parameters),
+/// then reads it.
 /// \throw FileError naming file, line, column and field, or the override
 Design read_design_tree(const YAML::Node& root, const std::string& path, std::vector<OverrideOrigin> origins);
 
