@@ -255,3 +255,26 @@ TEST_CASE("dxf loops: a batch's content key holds the drawing's bytes, not its n
   CHECK(a != canonical("a.dxf", drawing(square, 1)));
   CHECK(a.find("a.dxf") == std::string::npos);
 }
+
+TEST_CASE("dxf loops: every fuzz seed reads into loops that build", "[io][design][dxf]") {
+  // The fuzzer starts from these: each must reach the chaining, not stop at a refusal.
+  const std::filesystem::path seeds = std::filesystem::path(FABMESH_SOURCE_DIR) / "tests/data/fuzz-seeds/dxf";
+  int read = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(seeds)) {
+    INFO(entry.path().string());
+    // As the fuzzer reads them: every layer, then the example's layers.
+    std::size_t loops = 0;
+    for (const char* layer : {"", "OUTLINE", "HOLES"}) {
+      try {
+        const DxfLoops got = read_dxf_loops(entry.path().string(), on_layer(layer, 1e-3));
+        for (const DxfLoop& loop : got.loops) CHECK(std::isfinite(loop_area(loop.curve)));
+        loops += got.loops.size();
+      } catch (const FileError&) {
+        // A layer the seed does not have, or (every layer) the template's notes.
+      }
+    }
+    CHECK(loops > 0);
+    ++read;
+  }
+  CHECK(read >= 3);
+}
