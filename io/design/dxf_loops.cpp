@@ -352,7 +352,9 @@ std::vector<std::size_t> match_ends(const std::vector<End>& ends, const std::vec
   };
   struct PairHash {
     std::size_t operator()(const std::pair<std::int64_t, std::int64_t>& k) const {
-      return std::hash<std::int64_t>()(k.first * 0x9E3779B97F4A7C15LL ^ k.second);
+      const auto a = static_cast<std::uint64_t>(k.first);
+      const auto b = static_cast<std::uint64_t>(k.second);
+      return std::hash<std::uint64_t>()(a * 0x9E3779B97F4A7C15ULL ^ b);
     }
   };
   std::unordered_map<std::pair<std::int64_t, std::int64_t>, std::vector<std::size_t>, PairHash> grid;
