@@ -226,6 +226,12 @@ void print_summary(const JobReport& r, std::ostream& out) {
   out << fmt::format("{}: {} with {} vertices, {} triangles, volume {}, area {:.6g} {}^2, genus {}\n", r.name,
                      r.kind, v.vertices, v.triangles, volume, v.area, u,
                      v.genus ? std::to_string(*v.genus) : "-");
+  if (!r.parameters.empty()) {
+    std::string values;
+    for (const DesignParameter& p : r.parameters)
+      values += fmt::format("{}{} = {:.6g}", values.empty() ? "" : ", ", p.name, p.value);
+    out << "  parameters: " << values << "\n";
+  }
   const Vec3 size = r.bbox_max - r.bbox_min;
   out << fmt::format(
       "  size {:.6g} x {:.6g} x {:.6g} {} (x {:.6g}..{:.6g}, y {:.6g}..{:.6g}, z {:.6g}..{:.6g})\n", size.x(),

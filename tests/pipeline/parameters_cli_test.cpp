@@ -71,6 +71,10 @@ TEST_CASE("parameters: run --json lists the values used, -D NAME=VALUE sets one"
   CHECK(item["bounding_box"]["size"][2].get<double>() > height + 0.5);
   // The parameters are listed in the order declared.
   CHECK(item["parameters"].begin().key() == "height");
+  // The text summary says them too.
+  r = run_fabmesh({"run", cup, "-o", (dir / "d").string() + "/", "-D", "height=5"});
+  REQUIRE(r.code == 0);
+  CHECK_THAT(r.out, Catch::Contains("\n  parameters: height = 5, wall = 0.3\n"));
   // A design without parameters has no such key.
   r = run_fabmesh(
       {"run", example("vessel_golden_shell.yaml"), "-o", (dir / "c").string() + "/", "--json", "-q"});
