@@ -363,7 +363,8 @@ TEST_CASE("mesh files: every fuzz seed parses, and fuzzer findings are clean Fil
     // theirs (manifest_test.cpp, ledger_test.cpp, batch_row_test.cpp); the
     // DXF loop reader's with it (dxf_loops_test.cpp).
     const std::string folder = entry.path().parent_path().filename().string();
-    if (folder == "design" || folder == "csv" || folder == "manifest" || folder == "ledger" || folder == "dxf")
+    if (folder == "design" || folder == "csv" || folder == "manifest" || folder == "ledger" ||
+        folder == "dxf")
       continue;
     const std::string path = entry.path().string();
     INFO(path);
