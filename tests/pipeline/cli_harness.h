@@ -64,6 +64,16 @@ inline int run_cli(std::vector<std::string> args, std::string* combined = nullpt
   return r.code;
 }
 
+/// The same for a `--json` run: standard output alone in `*json_text`, since a
+/// long run also writes progress lines on standard error (every 5 s when it
+/// is not a terminal; a sanitized build is slow enough to get them). On a
+/// failure standard error follows, for the test's message.
+inline int run_cli_json(std::vector<std::string> args, std::string* json_text) {
+  const CliResult r = run_fabmesh(std::move(args));
+  *json_text = r.code == 0 ? r.out : r.out + r.err;
+  return r.code;
+}
+
 /// The bundled example `example_name` with `find` replaced by `replace`,
 /// written to `dir/name`; its path.
 inline std::string edited_example(const std::filesystem::path& dir, const std::string& example_name,

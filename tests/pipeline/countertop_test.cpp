@@ -84,8 +84,8 @@ TEST_CASE("countertop run: default outputs are STL, Draco, DXF and SVG, and the 
           "[pipeline][countertop]") {
   const fs::path dir = fresh_dir("countertop_run");
   std::string out;
-  REQUIRE(run_cli({"run", example("countertop_symmetric_ellipse.yaml"), "-o", dir.string(), "--json"},
-                  &out) == 0);
+  REQUIRE(run_cli_json({"run", example("countertop_symmetric_ellipse.yaml"), "-o", dir.string(), "--json"},
+                       &out) == 0);
   const auto j = nlohmann::json::parse(out).at(0);
   CHECK(j["kind"] == "countertop");
   REQUIRE(j["outputs"].size() == 4);
@@ -228,8 +228,9 @@ TEST_CASE("countertop from a DXF template: the DXF fabmesh writes reads back int
           "[pipeline][countertop][dxf]") {
   const fs::path dir = fresh_dir("countertop_dxf_round_trip");
   std::string out;
-  REQUIRE(run_cli({"run", example("countertop_dxf_template.yaml"), "-o", (dir / "first").string(), "--json"},
-                  &out) == 0);
+  REQUIRE(
+      run_cli_json({"run", example("countertop_dxf_template.yaml"), "-o", (dir / "first").string(), "--json"},
+                   &out) == 0);
   const auto first = only_item(out);
   CHECK(first["genus"] == 3);
   CHECK(first["notes"].dump().find("$INSUNITS 4 (mm)") != std::string::npos);
@@ -239,8 +240,9 @@ TEST_CASE("countertop from a DXF template: the DXF fabmesh writes reads back int
              "outline: {dxf: countertop_dxf_template.dxf, layer: OUTLINE}\n"
              "holes: [{dxf: countertop_dxf_template.dxf, layer: HOLES}]\noutputs: [stl]\n");
   out.clear();
-  REQUIRE(run_cli({"run", (dir / "first" / "back.yaml").string(), "-o", (dir / "back").string(), "--json"},
-                  &out) == 0);
+  REQUIRE(
+      run_cli_json({"run", (dir / "first" / "back.yaml").string(), "-o", (dir / "back").string(), "--json"},
+                   &out) == 0);
   const auto back = only_item(out);
   const double size = 2400.0;
   CHECK(std::abs(back["volume"].get<double>() - first["volume"].get<double>()) <=

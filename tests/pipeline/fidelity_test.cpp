@@ -39,8 +39,8 @@ TEST_CASE("vessel run: a base as tall as the golden cup or taller is bad input a
   }
   // The example itself: the report's bounding box is the object written.
   std::string out;
-  REQUIRE(run_cli({"run", example("vessel_golden_shell.yaml"), "-o", (dir / "out").string(), "--json"},
-                  &out) == 0);
+  REQUIRE(run_cli_json({"run", example("vessel_golden_shell.yaml"), "-o", (dir / "out").string(), "--json"},
+                       &out) == 0);
   const nlohmann::json j = nlohmann::json::parse(out).at(0);
   CHECK(j["bounding_box"]["max"][2].get<double>() == Approx(6.134164).margin(1e-4));
   CHECK(j["bounding_box"]["min"][2].get<double>() == 2.0);
@@ -60,7 +60,8 @@ TEST_CASE("countertop run: holes closer than the tolerance are bad input located
                       Catch::Contains("closer than the 0.045 the mesh is built within"));
   CHECK((!fs::exists(dir / "out") || fs::is_empty(dir / "out")));
   // The example: its smallest clearance is reported with where it is.
-  REQUIRE(run_cli({"run", example("countertop_g2.yaml"), "-o", (dir / "out").string(), "--json"}, &out) == 0);
+  REQUIRE(run_cli_json({"run", example("countertop_g2.yaml"), "-o", (dir / "out").string(), "--json"},
+                       &out) == 0);
   const nlohmann::json j = nlohmann::json::parse(out).at(0);
   CHECK(j["build"]["min_clearance"].get<double>() > 50.0);
   CHECK_THAT(j["build"]["min_clearance_where"].get<std::string>(), Catch::Contains("holes["));

@@ -55,8 +55,9 @@ TEST_CASE("units: a design in cm is written to STL in mm unless asked otherwise,
           "[pipeline][outputs][units]") {
   const fs::path dir = fresh_dir("units_cm");
   std::string out;
-  REQUIRE(run_cli({"run", example("vessel_golden_solid.yaml"), "-o", (dir / "mm").string() + "/", "--json"},
-                  &out) == 0);
+  REQUIRE(
+      run_cli_json({"run", example("vessel_golden_solid.yaml"), "-o", (dir / "mm").string() + "/", "--json"},
+                   &out) == 0);
   const auto j = nlohmann::json::parse(out).at(0);
   CHECK(j["units"] == "cm");
   CHECK(j["export_units"] == "mm");
@@ -87,8 +88,9 @@ TEST_CASE("3mf: PrusaSlicer reads fabmesh's 3MF of a cm design at its size in mm
   REQUIRE_PROGRAM("prusa-slicer");
   const fs::path dir = fresh_dir("prusa_3mf");
   std::string out;
-  REQUIRE(run_cli({"run", example("vessel_golden_shell.yaml"), "-o", (dir / "cup.3mf").string(), "--json"},
-                  &out) == 0);
+  REQUIRE(
+      run_cli_json({"run", example("vessel_golden_shell.yaml"), "-o", (dir / "cup.3mf").string(), "--json"},
+                   &out) == 0);
   const auto j = nlohmann::json::parse(out).at(0);
   REQUIRE(fs::exists(dir / "cup.3mf"));
   test::ToolRun run;
@@ -106,7 +108,7 @@ TEST_CASE("3mf: PrusaSlicer reads fabmesh's 3MF of a cm design at its size in mm
   CHECK(slice.code == 0);
   CHECK(fs::file_size(dir / "cup.gcode") > 10000);
   // fabmesh check reads its own 3MF back, unit and all.
-  REQUIRE(run_cli({"check", (dir / "cup.3mf").string(), "--json"}, &out) == 0);
+  REQUIRE(run_cli_json({"check", (dir / "cup.3mf").string(), "--json"}, &out) == 0);
   const auto c = only_item(out);
   CHECK(c["format"] == "3MF");
   CHECK(c["units"] == "mm");
@@ -147,8 +149,8 @@ TEST_CASE("draco: long designs at fine tolerances get their Draco file, its erro
   write_file_atomically((dir / "long_top.yaml").string(), kLongCountertop);
   std::string out;
   // A 2400 mm countertop at 0.01 mm: the old a-priori bound refused it; measured, 30 bits are plenty.
-  REQUIRE(run_cli({"run", (dir / "long_top.yaml").string(), "-o", (dir / "out").string(), "--json"}, &out) ==
-          0);
+  REQUIRE(run_cli_json({"run", (dir / "long_top.yaml").string(), "-o", (dir / "out").string(), "--json"},
+                       &out) == 0);
   const auto j = nlohmann::json::parse(out).at(0);
   REQUIRE(j["files"].size() == 2);
   CHECK(j["skipped_outputs"].empty());
@@ -157,10 +159,10 @@ TEST_CASE("draco: long designs at fine tolerances get their Draco file, its erro
   CHECK(j["files"][1]["max_added_error"].get<double>() <= left);
   CHECK(validate(parse_draco(bytes_of(dir / "out" / "long_top.drc"), "drc")).valid());
   // A 520 mm vessel at 0.005 mm.
-  REQUIRE(run_cli({"run", example("vessel_golden_solid.yaml"), "-o", (dir / "out").string(), "-D", "units=mm",
-                   "-D", "tolerance=0.005", "-D",
-                   "profile.points=[[75, 520], [50, 400], [100, 300], [150, 150], [75, 0]]", "--json"},
-                  &out) == 0);
+  REQUIRE(run_cli_json({"run", example("vessel_golden_solid.yaml"), "-o", (dir / "out").string(), "-D",
+                        "units=mm", "-D", "tolerance=0.005", "-D",
+                        "profile.points=[[75, 520], [50, 400], [100, 300], [150, 150], [75, 0]]", "--json"},
+                       &out) == 0);
   CHECK(nlohmann::json::parse(out).at(0)["skipped_outputs"].empty());
 }
 

@@ -99,7 +99,8 @@ TEST_CASE("draco: the default 11 bits collapse a fine mesh but fabmesh's choice 
 TEST_CASE("run --json: one array, an object per design with the documented fields", "[pipeline][run]") {
   const fs::path dir = fresh_dir("run_json");
   std::string out;
-  REQUIRE(run_cli({"run", example("vessel_golden_solid.yaml"), "-o", dir.string(), "--json"}, &out) == 0);
+  REQUIRE(run_cli_json({"run", example("vessel_golden_solid.yaml"), "-o", dir.string(), "--json"}, &out) ==
+          0);
   const auto all = nlohmann::json::parse(out);
   REQUIRE(all.is_array());
   REQUIRE(all.size() == 1);

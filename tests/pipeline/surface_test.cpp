@@ -23,16 +23,9 @@ namespace {
 
 using testing::example;
 using testing::fresh_dir;
+using testing::run_cli;
+using testing::run_cli_json;
 
-int run_cli(std::vector<std::string> args, std::string* out = nullptr) {
-  args.insert(args.begin(), "fabmesh");
-  std::vector<const char*> argv;
-  for (const auto& a : args) argv.push_back(a.c_str());
-  std::ostringstream o, e;
-  const int code = cli::run_app(static_cast<int>(argv.size()), argv.data(), {o, e});
-  if (out) *out = o.str() + e.str();
-  return code;
-}
 
 std::string read_text(const std::string& path) {
   std::ifstream in(path);
@@ -86,7 +79,7 @@ TEST_CASE("surface run: an open surface is refused for fabrication and written o
   CHECK(fs::is_empty(dir));
   // The example says it is for viewing: exit 0, glTF written, the report says it is not valid for
   // fabrication.
-  REQUIRE(run_cli({"run", example("surface_basin_open.yaml"), "-o", dir.string(), "--json"}, &out) == 0);
+  REQUIRE(run_cli_json({"run", example("surface_basin_open.yaml"), "-o", dir.string(), "--json"}, &out) == 0);
   const nlohmann::json j = nlohmann::json::parse(out).at(0);
   CHECK(j["valid"] == false);
   CHECK(j["purpose"] == "viewing");
@@ -183,8 +176,8 @@ TEST_CASE("surface designs: thicken chooses the shell's side, and the report say
                           edited_shell("thickness: 6\n", "thickness: " + c.thickness +
                                                              "\nthicken: " + c.side + "\noutputs: [stl]\n"));
     std::string out;
-    REQUIRE(run_cli({"run", (dir / "basin.yaml").string(), "-o", (dir / "out").string(), "--json"}, &out) ==
-            0);
+    REQUIRE(run_cli_json({"run", (dir / "basin.yaml").string(), "-o", (dir / "out").string(), "--json"},
+                         &out) == 0);
     const nlohmann::json j = nlohmann::json::parse(out).at(0);
     CHECK(j["valid"] == true);
     CHECK(j["build"]["thicken"] == c.side);
