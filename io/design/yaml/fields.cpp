@@ -84,7 +84,9 @@ YAML::Node Fields::required(const YAML::Node& parent, const char* key, const std
 }
 
 KeySource Fields::source(const YAML::Node& node) const {
-  KeySource where{location(node), false, path_};
+  KeySource where;
+  where.place = location(node);
+  where.file = path_;
   if (const OverrideOrigin* o = origin_of(node)) {
     where.override_text = o->text;
     return where;
