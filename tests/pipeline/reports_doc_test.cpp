@@ -129,9 +129,8 @@ TEST_CASE("docs: every key run --json prints is documented in reports.md, for ev
   std::set<std::string> documented = table_keys("reports.md", "## `fabmesh run --json`");
   documented.merge(table_keys("reports.md", "### Validation facts"));
   std::set<std::string> seen;
-  for (const char* design :
-       {"vessel_golden_solid.yaml", "countertop_cnc.yaml", "surface_basin_shell.yaml",
-        "example4_profile.yaml", "mould_golden.yaml"}) {
+  for (const char* design : {"vessel_golden_solid.yaml", "countertop_cnc.yaml", "surface_basin_shell.yaml",
+                             "example4_profile.yaml", "mould_golden.yaml"}) {
     const nlohmann::json item = run_report({example(design)});
     for (const std::string& key : keys_of(item)) {
       INFO(design << ": " << key);

@@ -26,7 +26,6 @@ using testing::fresh_dir;
 using testing::run_cli;
 using testing::run_cli_json;
 
-
 std::string read_text(const std::string& path) {
   std::ifstream in(path);
   std::ostringstream s;
