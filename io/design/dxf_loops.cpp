@@ -72,7 +72,7 @@ void arc_ends(Piece& piece) {
 // while dxflib reads is kept and thrown once it has returned.
 class Collector : public DL_CreationAdapter {
  public:
-  Collector(std::string path, std::string layer) : path_(std::move(path)), layer_(std::move(layer)) {}
+  explicit Collector(std::string layer) : layer_(std::move(layer)) {}
 
   std::vector<Piece> pieces;
   std::vector<Polyline> polylines;
@@ -265,7 +265,6 @@ class Collector : public DL_CreationAdapter {
                             kMaxDxfEntities);
   }
 
-  std::string path_;
   std::string layer_;
   int in_block_ = 0;
   std::size_t count_ = 0;
@@ -472,7 +471,7 @@ void normalise_angles(EllipseArcParams& e) {
 DxfLoops parse_dxf_loops(const std::string& bytes, const std::string& path, const DxfLoopQuery& query) {
   check_dxf_text(bytes, path);
   const std::string where = query.layer.empty() ? path : fmt::format("{} layer {}", path, query.layer);
-  Collector c(path, query.layer);
+  Collector c(query.layer);
   {
     DL_Dxf dxf;
     std::istringstream in(bytes);

@@ -11,6 +11,7 @@
 #include "io/design/design_source.h"
 #include "io/design/expression.h"
 #include "io/design/read_design.h"
+#include "tests/io/design/cup_design.h"
 
 using namespace fabmesh;
 
@@ -168,16 +169,7 @@ TEST_CASE("parameters: a design's parameters and expressions read as the numbers
   CHECK(d.common.parameters[2].name == "base");
   CHECK(d.common.parameters[2].value == 0.3 + 0.1);
   // The same design with the literals the expressions give reads the same.
-  const Design literal = read(R"(name: cup
-kind: vessel
-units: cm
-tolerance: 0.005
-profile:
-  family: quasi_bspline
-  points: [[1.5, 6], [1, 5], [2, 4], [3, 3], [1.5, 2]]
-  lambdas: [0, 0, 0]
-body: {mode: shell, wall: 0.3, base: 0.4}
-)");
+  const Design literal = read(test::kCup);  // the golden shell cup, as the other reading tests share it
   CHECK(vessel(literal).profile.bspline_points == v.profile.bspline_points);
   CHECK(vessel(literal).base == v.base);
   CHECK(literal.common.parameters.empty());
