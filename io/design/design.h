@@ -85,6 +85,10 @@ struct DesignCommon {
   std::vector<std::string> notes;
   /// The design's `parameters`, in the order declared, with the values used.
   std::vector<DesignParameter> parameters;
+  /// The other files the design reads (DXF drawings, CSV point lists), as
+  /// opened (relative to the working folder or absolute), in reading order:
+  /// what `run --watch` watches besides the design.
+  std::vector<std::string> inputs;
 };
 
 /// `location` placed in the design: `place` is where the design gives its key

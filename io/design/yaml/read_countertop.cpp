@@ -28,6 +28,7 @@ std::vector<CurveSpec> read_dxf_source(const yaml::Fields& f, const YAML::Node& 
     f.fail(n["max_gap"], field + ".max_gap", fmt::format("max_gap = {} must be >= 0", query.max_gap));
   query.units = common.units;
   DxfLoops loops;
+  f.input(path.string());
   f.checked(file, field + ".dxf", [&] { loops = read_dxf_loops(path.string(), query); });
   for (std::string& note : loops.notes) {
     // A drawing read for the outline and again for the holes says its units once.
