@@ -78,8 +78,8 @@ Vec2 apply_trim(Pieces& a, Pieces& b, const Trim& t) {
 }
 
 // What goes between the offsets of two consecutive segments (travel order).
-Pieces joint_pieces(Pieces& before, Pieces& after, const LoopCorner* corner, std::size_t after_segment,
-                    const CutCurve& loop, double r) {
+Pieces joint_pieces(Pieces& before, Pieces& after, const LoopCorner* corner, bool shallow,
+                    std::size_t after_segment, const CutCurve& loop, double r) {
   const Vec2 end = before.back().to;
   if (!corner) {  // smooth: the offsets meet (up to the joint's tiny gap)
     if ((after.front().from - end).norm() <= 1e-6 * r) {
@@ -108,6 +108,7 @@ Pieces joint_pieces(Pieces& before, Pieces& after, const LoopCorner* corner, std
                                     "tool needs (its tool path vanishes)",
                                     loop.label, at(corner->at)));
   }
+  if (shallow) return {};                                         // cut through: the offsets meet at x
   const Vec2 d = corner->at + r * (x - corner->at).normalized();  // the disc touches the corner point
   PathPiece in = line_piece(x, d, PieceRole::Dogbone, after_segment);
   PathPiece out = line_piece(d, x, PieceRole::Dogbone, after_segment);
@@ -230,7 +231,9 @@ LoopPath build_loop_path(const CutCurve& loop, const LoopCheck& check, const Loo
     const std::size_t before = loop.reversed ? order[next] : order[k];
     const LoopCorner* corner = corner_after(check.convex_corners, before);
     if (!corner) corner = corner_after(check.concave_corners, before);
-    joints[k] = joint_pieces(offsets[k], offsets[next], corner, order[next], loop, r);
+    const LoopCorner* shallow = corner ? nullptr : corner_after(check.shallow_corners, before);
+    joints[k] = joint_pieces(offsets[k], offsets[next], corner ? corner : shallow, shallow != nullptr,
+                             order[next], loop, r);
   }
   Pieces pieces;
   for (std::size_t k = 0; k < n; ++k) {

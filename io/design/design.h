@@ -130,6 +130,9 @@ struct VesselDesign {
 struct CountertopHole {
   std::string shape;  ///< ellipse | rounded_rect | outline (for messages)
   CurveSpec curve;    ///< closed; ellipse and rounded_rect expanded into exact ellipse-arc and line segments
+  /// The hole entry's `tabs` (the router leaves them on this cut-out; width,
+  /// height and min_radius default to cnc.tabs'); count 0 when not given.
+  TabOptions tabs = no_tabs();
 };
 
 /// A CNC router cut of a countertop (key `cnc`): the cut, and how its G-code is written.
