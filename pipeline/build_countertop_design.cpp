@@ -127,6 +127,7 @@ BuiltMesh build(const CountertopDesign& design, const BuildContext& context) {
                         {"tabs", outline_tabs},
                         {"hole_tabs", hole_tabs},
                         {"entry", to_string(cnc.entry)},
+                        {"finish", cnc.finish},
                         {"direction", to_string(cnc.direction)},
                         {"relief", to_string(cnc.relief)},
                         {"cutting_length", totals.cutting},

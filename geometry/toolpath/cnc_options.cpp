@@ -60,6 +60,11 @@ void validate_cnc_options(const CncOptions& o) {
                      fmt::format("cnc.step_down = {} needs {} passes for a depth of {} (at most 10000)",
                                  o.step_down, passes, o.depth + o.breakthrough));
   }
+  if (!(o.finish >= 0.0 && o.finish < 0.5 * o.tool_diameter)) {
+    throw RangeError("cnc.finish", o.finish,
+                     fmt::format("cnc.finish = {} must be in [0, {}), below the tool radius", o.finish,
+                                 0.5 * o.tool_diameter));
+  }
   validate_tabs("cnc.tabs", o.tabs, o.depth);
   for (std::size_t i = 0; i < o.hole_tabs.size(); ++i)
     validate_tabs(fmt::format("cnc.hole_tabs[{}]", i), o.hole_tabs[i], o.depth);

@@ -79,6 +79,12 @@ struct CncOptions {
   /// A pass of step s ramps over s / tan(angle) of the path; where the loop
   /// is shorter, the ramp winds round it again (a helix on a circle).
   double ramp_angle_deg = 3.0;
+  /// Finishing: > 0 leaves this much stock on every loop in the roughing
+  /// passes (their path at tool radius + finish from the part), then cuts the
+  /// part's edge in one pass at full depth on the exact path, entering along a
+  /// tangent arc of this radius from inside the roughed slot. 0: no finishing
+  /// pass. In [0, tool radius).
+  double finish = 0.0;
   CutDirection direction = CutDirection::Climb;
   CornerRelief relief = CornerRelief::None;
   /// Largest distance between the tool-centre path and the exact offset of

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "geometry/core/errors.h"
@@ -154,7 +155,10 @@ double choose_start(const Pieces& pieces, double gentle) {
 }
 
 // The closed chain re-started at distance u.
-Pieces rotate_to(const Pieces& pieces, double u) {
+
+}  // namespace
+
+std::vector<PathPiece> rotate_path(const std::vector<PathPiece>& pieces, double u) {
   double acc = 0.0;
   for (std::size_t i = 0; i < pieces.size(); ++i) {
     const double len = piece_length(pieces[i]);
@@ -163,7 +167,7 @@ Pieces rotate_to(const Pieces& pieces, double u) {
       continue;
     }
     const double local = std::clamp(u - acc, 0.0, len);
-    Pieces out;
+    std::vector<PathPiece> out;
     const bool split = local > 1e-9 * len && local < len * (1 - 1e-9);
     const std::size_t next = split ? i + 1 : (local >= 0.5 * len ? i + 1 : i);
     if (split) out.push_back(split_piece(pieces[i], local).second);
@@ -178,7 +182,31 @@ Pieces rotate_to(const Pieces& pieces, double u) {
   return pieces;
 }
 
-}  // namespace
+double nearest_along(const std::vector<PathPiece>& pieces, const Vec2& q) {
+  double best = std::numeric_limits<double>::infinity(), best_u = 0.0, u0 = 0.0;
+  for (const PathPiece& p : pieces) {
+    const double len = piece_length(p);
+    std::vector<double> candidates{0.0, len};
+    if (p.kind == PieceKind::Line) {
+      const Vec2 d = p.to - p.from;
+      if (d.squaredNorm() > 0.0)
+        candidates.push_back(std::clamp((q - p.from).dot(d) / d.squaredNorm(), 0.0, 1.0) * len);
+    } else {
+      // The turn from the arc's start to q's direction, in the arc's own sense.
+      const double a0 = std::atan2(p.from.y() - p.center.y(), p.from.x() - p.center.x());
+      const double aq = std::atan2(q.y() - p.center.y(), q.x() - p.center.x());
+      double turn = p.sweep >= 0.0 ? aq - a0 : a0 - aq;
+      turn = std::fmod(turn + 4.0 * M_PI, 2.0 * M_PI);
+      if (turn <= std::abs(p.sweep)) candidates.push_back(turn * piece_radius(p));
+    }
+    for (const double s : candidates) {
+      const double d = (piece_point(p, s) - q).norm();
+      if (d < best) best = d, best_u = u0 + s;
+    }
+    u0 += len;
+  }
+  return best_u;
+}
 
 std::pair<Vec2, Vec2> path_point(const std::vector<PathPiece>& pieces, double u) {
   double acc = 0.0;
@@ -254,7 +282,7 @@ LoopPath build_loop_path(const CutCurve& loop, const LoopCheck& check, const Loo
     std::reverse(pieces.begin(), pieces.end());
     for (PathPiece& p : pieces) p = reversed(p);
   }
-  out.pieces = rotate_to(pieces, choose_start(pieces, o.gentle_radius));
+  out.pieces = rotate_path(pieces, choose_start(pieces, o.gentle_radius));
   out.length = path_length(out.pieces);
   return out;
 }

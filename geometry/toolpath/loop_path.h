@@ -58,6 +58,12 @@ LoopPath build_loop_path(const CutCurve& loop, const LoopCheck& check, const Loo
 /// conventional cutting, on its left for climb).
 PathPiece lead_arc(const LoopPath& path, CutDirection direction, double radius);
 
+/// The same closed chain starting at distance u from its start (a piece split there).
+std::vector<PathPiece> rotate_path(const std::vector<PathPiece>& pieces, double u);
+
+/// The distance along a chain of pieces of its point nearest to q.
+double nearest_along(const std::vector<PathPiece>& pieces, const Vec2& q);
+
 /// Point and unit tangent at distance u along a closed chain of pieces.
 std::pair<Vec2, Vec2> path_point(const std::vector<PathPiece>& pieces, double u);
 

@@ -175,14 +175,47 @@ void cut_pass(const LoopPath& lp, std::size_t loop, double z, bool tabs, double 
   if (raised) moves.push_back(move_to(MoveKind::TabDown, lp.pieces.front().from, z, loop));
 }
 
+// The roughing path's tabs: the finishing path's, carried over by their
+// nearest points and widened by the stock, so the roughing passes leave the
+// same bridges.
+std::vector<std::pair<double, double>> carried_tabs(const LoopPath& finish, const LoopPath& rough,
+                                                    double stock) {
+  std::vector<std::pair<double, double>> out;
+  for (const auto& [a, b] : finish.tabs) {
+    const double ra = nearest_along(rough.pieces, path_point(finish.pieces, a).first) - stock;
+    const double rb = nearest_along(rough.pieces, path_point(finish.pieces, b).first) + stock;
+    if (ra < rb) out.emplace_back(std::max(ra, 0.0), std::min(rb, rough.length));
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
 // Half the length of path one pass's zig-zag ramp runs over (0: plunge entry).
 double ramp_half(const CncOptions& o, const std::vector<double>& pass_z) {
   if (o.entry != EntryKind::Ramp || pass_z.empty()) return 0.0;
   return 0.5 * ramp_length(o, -pass_z.front());  // every pass drops by the same step
 }
 
-void append_loop_moves(Toolpath& tp, std::size_t index) {
+// The finishing pass of a loop: down inside the roughed slot at the short
+// lead's start, onto the edge, once round at full depth, off again.
+void append_finishing(Toolpath& tp, std::size_t index) {
   const LoopPath& lp = tp.loops[index];
+  const CncOptions& o = tp.options;
+  const std::size_t first = tp.moves.size();
+  const Vec2 start = lp.lead ? lp.lead->from : lp.pieces.front().from;
+  const double z = tp.pass_z.back();
+  const double tab_z = -(o.depth - lp.tab_height);
+  tp.moves.push_back(move_to(MoveKind::Rapid, start, o.safe_z, index));
+  tp.moves.push_back(move_to(MoveKind::Plunge, start, z, index));
+  if (lp.lead) tp.moves.push_back(move_along(*lp.lead, z, MoveKind::LeadIn, index));
+  cut_pass(lp, index, z, !lp.tabs.empty() && z < tab_z - 1e-9 * o.depth, tab_z, tp.moves);
+  if (lp.lead) tp.moves.push_back(move_along(reversed(*lp.lead), z, MoveKind::LeadOut, index));
+  tp.moves.push_back(move_to(MoveKind::Retract, start, o.safe_z, index));
+  for (std::size_t i = first; i < tp.moves.size(); ++i) tp.moves[i].finishing = true;
+}
+
+void append_loop_moves(Toolpath& tp, std::size_t index) {
+  const LoopPath& lp = tp.roughing.empty() ? tp.loops[index] : tp.roughing[index];
   const CncOptions& o = tp.options;
   const Vec2 start = lp.lead ? lp.lead->from : lp.pieces.front().from;
   tp.moves.push_back(move_to(MoveKind::Rapid, start, o.safe_z, index));
@@ -200,6 +233,7 @@ void append_loop_moves(Toolpath& tp, std::size_t index) {
     above = z;
   }
   tp.moves.push_back(move_to(MoveKind::Retract, start, o.safe_z, index));
+  if (!tp.roughing.empty()) append_finishing(tp, index);
 }
 
 }  // namespace
@@ -313,6 +347,28 @@ Toolpath plan_toolpath(const CompositeCurve& outline, const std::vector<RegionHo
     lp.tabs = std::move(placed.tabs);
     lp.tab_height = tabs.height;
     if (!placed.warning.empty()) tp.warnings.push_back(std::move(placed.warning));
+    if (o.finish > 0.0) {
+      // Roughing at the tool radius + the stock, from the point nearest the
+      // finishing path's start (so the ramps and tabs keep apart on both).
+      LoopPathOptions ro = lo;
+      ro.radius = r + o.finish;
+      LoopPath rough = build_loop_path(loops[l], tp.checks.loops[l], ro);
+      rough.pieces = rotate_path(rough.pieces, nearest_along(rough.pieces, lp.pieces.front().from));
+      require_clearance(rough, loops, index, sb, o, b, &tp.clearance);
+      if (o.lead_in > 0.0) rough.lead = choose_lead(rough, index, sb, o, b, &tp.clearance);
+      rough.tabs = carried_tabs(lp, rough, o.finish);
+      rough.tab_height = lp.tab_height;
+      tp.roughing.push_back(std::move(rough));
+      // The finishing lead starts inside the roughed slot: a tangent arc of radius `finish`.
+      lp.lead.reset();
+      const PathPiece lead = lead_arc(lp, o.direction, o.finish);
+      Clearance c;
+      const double proven = proven_clearance({lead}, index, r, sb.deviation, b, &c);
+      if (proven >= r - o.tolerance) {
+        lp.lead = lead;
+        tp.clearance = std::min(tp.clearance, proven);
+      }
+    }
     tp.deviation = std::max(tp.deviation, lp.deviation);
     tp.loops.push_back(std::move(lp));
   }

@@ -43,12 +43,17 @@ struct ToolMove {
   double sweep = 0.0;
   PieceRole role = PieceRole::Offset;  ///< Cut moves: what the piece is (offset, corner, dog-bone)
   std::size_t loop = 0;                ///< index into Toolpath::loops
+  bool finishing = false;              ///< part of the finishing pass (options.finish > 0)
 };
 
 struct Toolpath {
   CncOptions options;
   ManufacturabilityReport checks;
   std::vector<LoopPath> loops;  ///< cutting order: the holes as given, then the outline
+  /// With options.finish > 0: each loop's roughing path (tool radius +
+  /// finish from the part, its tabs over the finishing path's), same order;
+  /// `loops` are then the finishing paths. Empty without finishing.
+  std::vector<LoopPath> roughing;
   std::vector<ToolMove> moves;  ///< the first is a Rapid at safe_z; the program starts by rising to safe_z
   std::vector<double> pass_z;   ///< z of each depth pass, descending to -(depth + breakthrough)
   double tab_z = 0.0;           ///< z over the outline's tabs: -(depth - tabs.height)
@@ -92,7 +97,10 @@ ToolpathTotals toolpath_totals(const Toolpath& path);
 /// pass starts at the previous pass's depth (the slab's top for the first),
 /// ramps down along the path forward over half the ramp length and back to
 /// the start, then cuts the loop at its depth: the ramp's floor is taken down
-/// gradually, never by a plunge of the tool's tip. The lead arc has radius 2 lead_in / pi (a quarter
+/// gradually, never by a plunge of the tool's tip. With options.finish,
+/// every pass of a loop runs on its roughing path, then one finishing pass
+/// at full depth runs on `loops`, entering from the roughed slot along a
+/// tangent arc of radius finish. The lead arc has radius 2 lead_in / pi (a quarter
 /// circle of length lead_in); where it would cut into the part it is halved,
 /// twice, then left out (the plunge then lands on the path).
 /// Tolerance budget (cnc.tolerance = t): chords of chains t/2, boundary

@@ -178,6 +178,10 @@ std::string Encoder::run(const GcodeOptions& o) {
     w_.line(fmt::format("({}: tabs {}, {} high)", comment_text(loop.label), loop.tabs.size(),
                         w_.num(loop.tab_height)));
   }
+  if (c.finish > 0.0) {
+    w_.line(fmt::format("(roughing leaves {} of stock; a finishing pass at full depth cuts each edge)",
+                        w_.num(c.finish)));
+  }
   if (c.entry == EntryKind::Ramp) {
     w_.line(fmt::format("(entry: zig-zag ramp at {} degrees along the path)", w_.plain(c.ramp_angle_deg)));
   }
@@ -197,7 +201,10 @@ std::string Encoder::run(const GcodeOptions& o) {
   std::size_t pass = 0;
   for (const ToolMove& m : path_.moves) {
     if (m.loop != loop) loop = m.loop, pass = 0;
-    if (m.kind == MoveKind::Plunge && pass < path_.pass_z.size()) {
+    if (m.kind == MoveKind::Plunge && m.finishing) {
+      w_.line(fmt::format("({}: finishing pass at z {}, the last {} of stock)",
+                          comment_text(path_.loops[m.loop].label), w_.num(m.to.z()), w_.num(c.finish)));
+    } else if (m.kind == MoveKind::Plunge && pass < path_.pass_z.size()) {
       w_.line(fmt::format("({}: pass {} of {} at z {})", comment_text(path_.loops[m.loop].label), pass + 1,
                           path_.pass_z.size(), w_.num(path_.pass_z[pass])));
       ++pass;

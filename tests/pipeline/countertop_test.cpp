@@ -310,7 +310,7 @@ TEST_CASE("countertop cnc: tabs on cut-outs and a ramp entry from the design, ba
                      "tabbed.yaml");
   {
     std::string text = read_file(design);
-    text += "  entry: ramp\n  ramp_angle: 4\n";
+    text += "  entry: ramp\n  ramp_angle: 4\n  finish: 0.5\n";
     write_text(design, text);
   }
   std::string json;
@@ -319,11 +319,13 @@ TEST_CASE("countertop cnc: tabs on cut-outs and a ramp entry from the design, ba
   CHECK(item["build"]["cnc"]["hole_tabs"] == 2);
   CHECK(item["build"]["cnc"]["tabs"] == 4);
   CHECK(item["build"]["cnc"]["entry"] == "ramp");
+  CHECK(item["build"]["cnc"]["finish"] == 0.5);
   CHECK_FALSE(item.contains("warnings"));
   const std::string nc = read_file((dir / "out" / "countertop_cnc.nc").string());
   CHECK_THAT(nc, Catch::Contains("(holes[0] [rounded_rect]: tabs 2, 5 high)") &&
                      Catch::Contains("(entry: zig-zag ramp at 4 degrees along the path)") &&
-                     Catch::Contains("(ramp)"));
+                     Catch::Contains("(ramp)") &&
+                     Catch::Contains("(outline: finishing pass at z -30, the last 0.5 of stock)"));
 
   // More tabs than the cooktop's path has room for: placed where they fit, a warning, exit 0.
   const std::string crowded =
@@ -351,6 +353,7 @@ TEST_CASE("countertop cnc: tabs on cut-outs and a ramp entry from the design, ba
       {"  lead_in: 8", "  lead_in: 8\n  ramp_angle: 4", "cnc.ramp_angle"},
       {"  lead_in: 8", "  lead_in: 8\n  entry: helix", "cnc.entry"},
       {"  lead_in: 8", "  lead_in: 8\n  entry: ramp\n  ramp_angle: 60", "cnc.ramp_angle"},
+      {"  lead_in: 8", "  lead_in: 8\n  finish: 6", "cnc.finish"},
   };
   for (std::size_t i = 0; i < bad.size(); ++i) {
     INFO(bad[i].replace);

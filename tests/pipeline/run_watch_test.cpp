@@ -29,8 +29,8 @@ namespace {
 
 // Starts `fabmesh run --watch DESIGN -o OUT/` with its streams in files.
 pid_t start_watch(const fs::path& dir) {
-  const std::vector<std::string> args{FABMESH_BINARY,           "run", "--watch", (dir / "edge.yaml").string(),
-                                      "-o", (dir / "out").string() + "/"};
+  const std::vector<std::string> args{
+      FABMESH_BINARY, "run", "--watch", (dir / "edge.yaml").string(), "-o", (dir / "out").string() + "/"};
   std::vector<char*> argv;
   for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
   argv.push_back(nullptr);
@@ -91,13 +91,15 @@ TEST_CASE("run --watch: runs again on edits of the design and its files, keeps t
   const pid_t pid = start_watch(dir);
   const fs::path dxf = dir / "out" / "edge.dxf";
   const fs::path out = dir / "stdout.txt";
-  wait_until(pid, [&] { return count_of(text_of(out), "watching 2 files") == 1; }, "the first run");
+  wait_until(
+      pid, [&] { return count_of(text_of(out), "watching 2 files") == 1; }, "the first run");
   const std::string first = text_of(dxf);
   REQUIRE_FALSE(first.empty());
 
   // An edit of the file the design reads: a new drawing.
   write_text(dir / "points.csv", "0,0\n10,0\n10,5\n20,5\n");
-  wait_until(pid, [&] { return count_of(text_of(out), "watching 2 files") == 2; }, "the run after the CSV edit");
+  wait_until(
+      pid, [&] { return count_of(text_of(out), "watching 2 files") == 2; }, "the run after the CSV edit");
   CHECK(text_of(out).find("points.csv changed; running again") != std::string::npos);
   const std::string second = text_of(dxf);
   CHECK(second != first);
@@ -107,8 +109,9 @@ TEST_CASE("run --watch: runs again on edits of the design and its files, keeps t
   std::string broken = kDesign;
   broken.replace(broken.find("tolerance: 0.01"), 15, "tolerance: -1");
   write_text(dir / "edge.yaml", broken);
-  wait_until(pid, [&] { return text_of(out).find("failed, the last good files stay") != std::string::npos; },
-             "the failed run");
+  wait_until(
+      pid, [&] { return text_of(out).find("failed, the last good files stay") != std::string::npos; },
+      "the failed run");
   const std::string errors = text_of(dir / "stderr.txt");
   CHECK(errors.find("edge.yaml:4:") != std::string::npos);
   CHECK(errors.find("tolerance") != std::string::npos);
@@ -116,7 +119,8 @@ TEST_CASE("run --watch: runs again on edits of the design and its files, keeps t
 
   // Fixed again: written again.
   write_text(dir / "edge.yaml", kDesign);
-  wait_until(pid, [&] { return count_of(text_of(out), "done; watching") == 3; }, "the run after the fix");
+  wait_until(
+      pid, [&] { return count_of(text_of(out), "done; watching") == 3; }, "the run after the fix");
   CHECK(text_of(dxf) == second);
 
   ::kill(pid, SIGINT);

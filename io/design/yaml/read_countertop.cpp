@@ -160,6 +160,14 @@ CncDesign read_cnc(const yaml::Fields& f, const YAML::Node& n, const DesignCommo
              fmt::format("ramp_angle = {} must be in (0, 45] degrees", o.ramp_angle_deg));
     }
   }
+  if (n["finish"].IsDefined()) {
+    o.finish = f.number(n["finish"], "cnc.finish");
+    if (!(o.finish >= 0.0 && o.finish < 0.5 * o.tool_diameter)) {
+      f.fail(n["finish"], "cnc.finish",
+             fmt::format("finish = {} must be in [0, {}), below the tool radius", o.finish,
+                         0.5 * o.tool_diameter));
+    }
+  }
   if (n["direction"].IsDefined()) {
     o.direction = f.choice(n["direction"], "cnc.direction", {"climb", "conventional"}) == "conventional"
                       ? CutDirection::Conventional

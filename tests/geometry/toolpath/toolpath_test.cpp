@@ -359,3 +359,48 @@ TEST_CASE("toolpath: a digitised outline's slight concave turns are cut through,
       polygon({Vec2(0, 0), Vec2(900, 0), Vec2(900, 600), Vec2(450, 600), Vec2(450, 300), Vec2(0, 300)});
   CHECK_THROWS_AS(plan_toolpath(notch, {}, o), GeometryError);
 }
+
+TEST_CASE("toolpath: a finishing pass cuts the edge at full depth after roughing that leaves the stock",
+          "[geometry][toolpath][finish]") {
+  const std::vector<RegionHole> holes{{rounded_rect(200, 150, 700, 450, 30), "holes[0] (rounded_rect)"}};
+  CncOptions o = base();
+  o.finish = 0.5;
+  o.tabs.count = 4;
+  const Toolpath tp = plan_toolpath(kSlab, holes, o);
+  REQUIRE(tp.roughing.size() == tp.loops.size());
+  const double r = 0.5 * o.tool_diameter;
+  for (std::size_t l = 0; l < tp.loops.size(); ++l) {
+    INFO(tp.loops[l].label);
+    // The roughing path runs the stock further into the waste all round (its area differs by
+    // stock x perimeter, more for the outline, less for the hole).
+    const double finish_area = std::abs(signed_area2(tp.loops[l].pieces)) / 2;
+    const double rough_area = std::abs(signed_area2(tp.roughing[l].pieces)) / 2;
+    const double expected = o.finish * 0.5 * (tp.loops[l].length + tp.roughing[l].length);
+    CHECK(std::abs(rough_area - finish_area) == Approx(expected).epsilon(1e-3));
+    CHECK(tp.roughing[l].tabs.size() == tp.loops[l].tabs.size());
+    REQUIRE(tp.loops[l].lead);
+    CHECK(piece_radius(*tp.loops[l].lead) == Approx(o.finish));
+  }
+  // Each loop: every pass on the roughing path, then one finishing pass at full depth.
+  std::vector<int> finishing_plunges(tp.loops.size(), 0), rough_plunges(tp.loops.size(), 0);
+  for (const ToolMove& m : tp.moves) {
+    if (m.kind != MoveKind::Plunge) continue;
+    if (m.finishing) {
+      ++finishing_plunges[m.loop];
+      CHECK(m.to.z() == Approx(tp.pass_z.back()));
+      // Down inside the roughed slot: on the roughing path (within the stock's reach).
+      const double u = nearest_along(tp.roughing[m.loop].pieces, Vec2(m.to.x(), m.to.y()));
+      CHECK((path_point(tp.roughing[m.loop].pieces, u).first - Vec2(m.to.x(), m.to.y())).norm() <=
+            1e-6 * r + 1e-9);
+    } else {
+      ++rough_plunges[m.loop];
+    }
+  }
+  for (std::size_t l = 0; l < tp.loops.size(); ++l) {
+    CHECK(finishing_plunges[l] == 1);
+    CHECK(rough_plunges[l] == static_cast<int>(tp.pass_z.size()));
+  }
+  CHECK(toolpath_totals(tp).cutting > toolpath_totals(plan_toolpath(kSlab, holes, base())).cutting);
+  o.finish = 6;  // the tool radius: refused
+  CHECK_THROWS_AS(plan_toolpath(kSlab, holes, o), RangeError);
+}

@@ -409,8 +409,8 @@ TEST_CASE("router program: the estimated lengths and time are those of the progr
   }
 }
 
-TEST_CASE("router program: a ramp entry and tabs on cut-outs run in CNCjs as planned",
-          "[io][cutting][gcode][toolpath][countertop][ramp]") {
+TEST_CASE("router program: a ramp entry, tabs on cut-outs and a finishing pass run in CNCjs as planned",
+          "[io][cutting][gcode][toolpath][countertop][ramp][finish]") {
   const ExampleRegion region = load_countertop_example("countertop_g1.yaml");
   CncOptions o = options_for(region);
   o.entry = EntryKind::Ramp;
@@ -419,6 +419,7 @@ TEST_CASE("router program: a ramp entry and tabs on cut-outs run in CNCjs as pla
   slug.count = 2;
   slug.height = 5;
   o.hole_tabs.assign(region.holes.size(), slug);
+  o.finish = 0.5;
   const Toolpath tp = plan_toolpath(region.outline, region.holes, o);
   REQUIRE(tp.warnings.empty());
   const std::string program = encode_gcode(tp, {});
@@ -451,6 +452,14 @@ TEST_CASE("router program: a ramp entry and tabs on cut-outs run in CNCjs as pla
   CHECK(ramps > 0);
   CHECK(helices > 0);  // the sink's corner arcs on the ramp are helices
   CHECK(hole_tab_moves > 0);
+  // One finishing pass per loop, every motion of it at full depth or over a tab.
+  std::set<std::string> finished;
+  for (const TraceMotion& m : trace.motions) {
+    if (m.section.find("finishing pass") == std::string::npos || m.motion == "G0") continue;
+    finished.insert(m.section);
+    if (!vertical(m)) CHECK((std::abs(m.end.z() + o.depth) < 1e-3 || m.end.z() > -o.depth + 2.9));
+  }
+  CHECK(finished.size() == tp.loops.size());
   // The program's time estimate is the interpreted program's.
   const ToolpathTotals totals = toolpath_totals(tp);
   double cutting = 0.0;
