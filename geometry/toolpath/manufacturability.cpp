@@ -92,6 +92,31 @@ void check_concave_stretches(const CutCurve& loop, LoopCheck& check, double r) {
   }
 }
 
+// 3b. Digitised concave stretches: at a shallow corner between two lines,
+// the circle through the neighbouring points (the lines' far ends and the
+// corner) measures the stretch the points were taken from; tighter than the
+// tool, the tool cannot follow it however slight each turn is.
+void check_digitised_stretches(const CutCurve& loop, const LoopCheck& check, double r) {
+  const CompositeCurve& curve = *loop.curve;
+  for (const LoopCorner& c : check.shallow_corners) {
+    const Segment& a = curve.segments()[c.before];
+    const Segment& b = curve.segments()[c.after];
+    if (a.kind() != SegmentKind::Line || b.kind() != SegmentKind::Line) continue;
+    const Vec2 p0 = a.point(0.0), p1 = c.at, p2 = b.point(1.0);
+    const double twice_area = std::abs(cross2(p1 - p0, p2 - p0));
+    if (!(twice_area > 0.0)) continue;
+    const double radius = (p1 - p0).norm() * (p2 - p1).norm() * (p2 - p0).norm() / (2.0 * twice_area);
+    if (radius >= r * (1.0 - kRelativeSlack)) continue;
+    throw GeometryError(
+        loop.label,
+        fmt::format("{}: the concave stretch through {} and {} at {} has a radius of {:.6g} (the circle "
+                    "through the corner and its neighbouring points), below the tool radius {} (tool "
+                    "diameter {}): the points were taken along a curve tighter than the tool can cut",
+                    loop.label, segment_name(curve, c.before), segment_name(curve, c.after), at(c.at), radius,
+                    r, 2.0 * r));
+  }
+}
+
 // 4. The web between two loops.
 void check_webs(const std::vector<CutCurve>& loops, const BoundaryIndex& boundary, double deviation,
                 double web, double diameter, ManufacturabilityReport& report) {
@@ -163,6 +188,7 @@ ManufacturabilityReport check_manufacturability(const std::vector<CutCurve>& loo
     }
     check_concave_corners(loop, check, o);
     check_concave_stretches(loop, check, r);
+    check_digitised_stretches(loop, check, r);
     report.loops.push_back(std::move(check));
   }
   check_webs(loops, boundary, deviation, min_web(o), o.tool_diameter, report);

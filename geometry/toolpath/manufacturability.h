@@ -71,7 +71,9 @@ struct ManufacturabilityReport {
 ///  2. no concave G0 corner, unless options.relief is Dogbone or it is shallow
 ///     (LoopCheck::shallow_corners);
 ///  3. every concave stretch has a radius of curvature >= the tool radius
-///     (least_curvature: proven, relative slack 1e-6);
+///     (least_curvature: proven, relative slack 1e-6); at a shallow corner
+///     between two lines (a digitised outline's point), the circle through it
+///     and its neighbouring points has a radius >= the tool radius;
 ///  4. no two loops come closer than min_web(options).
 /// `boundary` holds the loops sampled within `boundary_deviation` of their
 /// curves (loop indices as in `loops`).

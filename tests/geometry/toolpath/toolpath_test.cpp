@@ -404,3 +404,26 @@ TEST_CASE("toolpath: a finishing pass cuts the edge at full depth after roughing
   o.finish = 6;  // the tool radius: refused
   CHECK_THROWS_AS(plan_toolpath(kSlab, holes, o), RangeError);
 }
+
+TEST_CASE(
+    "toolpath: digitised points along a concave curve tighter than the tool are refused with its radius",
+    "[geometry][toolpath][digitised]") {
+  // A 900 x 600 slab with a concave notch of radius 4 in its top edge, digitised every 0.5 degrees
+  // of turn 7.2 degrees: each corner alone would be shallow, the stretch is tighter than a 12 mm tool.
+  std::vector<Vec2> p{Vec2(0, 0), Vec2(900, 0), Vec2(900, 600), Vec2(454, 600)};
+  for (int i = 1; i < 25; ++i) {
+    const double a = M_PI * i / 25;  // round the notch's centre (450, 600), dipping into the part
+    p.emplace_back(450 + 4 * std::cos(a), 600 - 4 * std::sin(a));
+  }
+  p.emplace_back(446, 600);
+  p.emplace_back(0, 600);
+  CncOptions o = base();
+  o.tolerance = 0.05;
+  try {
+    plan_toolpath(polygon(p), {}, o);
+    FAIL("accepted");
+  } catch (const GeometryError& e) {
+    CHECK_THAT(std::string(e.what()),
+               Catch::Contains("has a radius of 4") && Catch::Contains("below the tool radius 6"));
+  }
+}
