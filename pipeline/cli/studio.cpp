@@ -116,10 +116,11 @@ int studio(const StudioArgs& args, Streams io) {
 
 Runner add_studio_command(CLI::App& app) {
   auto args = std::make_shared<StudioArgs>();
-  CLI::App* cmd = app.add_subcommand(
-      "studio",
-      "Shape a design in the browser: sliders for its parameters, the curve plot, the 3D mesh and the report, "
-      "rebuilt as you move them; save and export (a local web server, docs/studio.md)");
+  CLI::App* cmd =
+      app.add_subcommand("studio",
+                         "Shape a design in the browser: sliders for its parameters, the curve plot, the 3D "
+                         "mesh and the report, "
+                         "rebuilt as you move them; save and export (a local web server, docs/studio.md)");
   cmd->add_option("design", args->design, "The design file (YAML)")->required();
   cmd->add_option("--port", args->port, "The port to listen on (default 0: a free one, printed)")
       ->check(CLI::Range(0, 65535));

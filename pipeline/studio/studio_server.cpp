@@ -126,9 +126,10 @@ struct StudioServer::Impl {
       return httplib::Server::HandlerResponse::Handled;
     });
     server.Get("/", [this](const httplib::Request&, httplib::Response& res) {
-      res.set_header("Content-Security-Policy",
-                     "default-src 'self'; script-src 'self' 'unsafe-inline'; style-src 'self' 'unsafe-inline'; "
-                     "img-src 'self' data: blob:; connect-src 'self' blob: data:; frame-ancestors 'none'");
+      res.set_header(
+          "Content-Security-Policy",
+          "default-src 'self'; script-src 'self' 'unsafe-inline'; style-src 'self' 'unsafe-inline'; "
+          "img-src 'self' data: blob:; connect-src 'self' blob: data:; frame-ancestors 'none'");
       res.set_content(index_html, "text/html; charset=utf-8");
     });
     server.Get(R"(/t/[0-9a-f]+/(.+))", [this](const httplib::Request& req, httplib::Response& res) {
@@ -140,15 +141,14 @@ struct StudioServer::Impl {
       }
       res.set_content(it->second.bytes, it->second.type.c_str());
     });
-    server.Get("/api/design", [this](const httplib::Request&, httplib::Response& res) {
-      answer(res, session.design());
-    });
-    server.Get("/api/version", [this](const httplib::Request&, httplib::Response& res) {
-      answer(res, session.version());
-    });
-    server.Get(R"(/api/mesh/([A-Za-z0-9]+)\.glb)", [this](const httplib::Request& req, httplib::Response& res) {
-      answer(res, session.mesh(req.matches[1].str()));
-    });
+    server.Get("/api/design",
+               [this](const httplib::Request&, httplib::Response& res) { answer(res, session.design()); });
+    server.Get("/api/version",
+               [this](const httplib::Request&, httplib::Response& res) { answer(res, session.version()); });
+    server.Get(R"(/api/mesh/([A-Za-z0-9]+)\.glb)",
+               [this](const httplib::Request& req, httplib::Response& res) {
+                 answer(res, session.mesh(req.matches[1].str()));
+               });
     server.Post("/api/build", [this](const httplib::Request& req, httplib::Response& res) {
       answer(res, session.build(req.body));
     });
@@ -181,12 +181,14 @@ StudioServer::StudioServer(StudioSession& session, StudioServerOptions options)
   }
   s.server.set_payload_max_length(std::size_t{1} << 20);
   s.add_routes();
-  s.port = s.options.port == 0 ? s.server.bind_to_any_port(s.options.host)
-                               : (s.server.bind_to_port(s.options.host, s.options.port) ? s.options.port : -1);
+  s.port = s.options.port == 0
+               ? s.server.bind_to_any_port(s.options.host)
+               : (s.server.bind_to_port(s.options.host, s.options.port) ? s.options.port : -1);
   if (s.port <= 0) {
-    throw InputError(fmt::format("--host {} --port {}: cannot listen there (the port is taken, or the address "
-                                 "is not one of this machine's)",
-                                 s.options.host, s.options.port));
+    throw InputError(
+        fmt::format("--host {} --port {}: cannot listen there (the port is taken, or the address "
+                    "is not one of this machine's)",
+                    s.options.host, s.options.port));
   }
   const std::string p = std::to_string(s.port);
   s.hosts = {"127.0.0.1:" + p, "localhost:" + p, host_name(s.options.host) + ":" + p};

@@ -64,7 +64,8 @@ Request parse_request(const std::string& body) {
   }
   if (!j.is_object()) throw BadRequest{"", "the request body must be a JSON object"};
   for (const auto& [key, value] : j.items()) {
-    if (key != "overrides") throw BadRequest{key, fmt::format("unknown field '{}' (the request takes: overrides)", key)};
+    if (key != "overrides")
+      throw BadRequest{key, fmt::format("unknown field '{}' (the request takes: overrides)", key)};
   }
   if (!j.contains("overrides")) return request;
   const Json& overrides = j["overrides"];
@@ -74,7 +75,8 @@ Request parse_request(const std::string& body) {
     std::string text;
     if (value.is_number()) {
       const double v = value.get<double>();
-      if (!std::isfinite(v)) throw BadRequest{field, fmt::format("{}: the value is not a finite number", field)};
+      if (!std::isfinite(v))
+        throw BadRequest{field, fmt::format("{}: the value is not a finite number", field)};
       text = number_text(v);
     } else if (value.is_string()) {
       text = value.get<std::string>();
@@ -160,7 +162,8 @@ Json shape_parameters(const Design& design) {
       double lo = -2.0;
       if (s.kind == SegmentKind::HBezier) {
         lo = hbezier_lambda_min(s.alpha);
-        if (where.count(s.key + ".alpha") != 0) out.push_back(range_json(s.key + ".alpha", s.alpha, 0.01, 10.0, 0.01));
+        if (where.count(s.key + ".alpha") != 0)
+          out.push_back(range_json(s.key + ".alpha", s.alpha, 0.01, 10.0, 0.01));
       }
       for (const auto& [name, value] : {std::pair{".lambda", s.lambda}, std::pair{".mu", s.mu}}) {
         Json r = range_json(s.key + name, value, lo, 1.0, 0.01);
@@ -209,7 +212,7 @@ StudioResponse StudioSession::design() const {
     const std::string text = read_file(options_.design_path, kMaxDesignBytes, "design file");
     const Design design = load_design_text(text, options_.design_path);
     Json j = {{"path", options_.design_path}, {"name", design.common.name}, {"kind", kind_name(design)},
-              {"units", design.common.units}, {"version", version}, {"text", text}};
+              {"units", design.common.units}, {"version", version},         {"text", text}};
     j["parameters"] = parameters_json(design);
     j["shape_parameters"] = shape_parameters(design);
     j["out_dir"] = options_.out_dir;

@@ -20,8 +20,8 @@ struct StudioResponse {
 };
 
 struct StudioSessionOptions {
-  std::string design_path;      ///< the design file: read on every request, written by save
-  std::string out_dir = "out";  ///< where export writes the outputs (as `run -o`)
+  std::string design_path;       ///< the design file: read on every request, written by save
+  std::string out_dir = "out";   ///< where export writes the outputs (as `run -o`)
   std::size_t kept_meshes = 16;  ///< built meshes kept for GET /api/mesh/ID.glb, the newest
 };
 
@@ -61,7 +61,7 @@ class StudioSession {
 
  private:
   StudioSessionOptions options_;
-  mutable std::mutex mutex_;  ///< guards meshes_ and next_mesh_
+  mutable std::mutex mutex_;                                ///< guards meshes_ and next_mesh_
   std::deque<std::pair<std::string, std::string>> meshes_;  ///< id, GLB bytes
   std::uint64_t next_mesh_ = 1;
 };
