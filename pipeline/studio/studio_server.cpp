@@ -155,6 +155,9 @@ struct StudioServer::Impl {
     server.Post("/api/export", [this](const httplib::Request& req, httplib::Response& res) {
       answer(res, session.export_outputs(req.body));
     });
+    server.Post("/api/fairest", [this](const httplib::Request& req, httplib::Response& res) {
+      answer(res, session.fairest(req.body));
+    });
     server.Post("/api/save", [this](const httplib::Request& req, httplib::Response& res) {
       answer(res, session.save(req.body));
     });

@@ -14,6 +14,7 @@
 #include "geometry/core/errors.h"
 #include "geometry/core/units.h"
 #include "geometry/curves/basis.h"
+#include "geometry/fairing/build_curve.h"
 #include "io/design/edit_values.h"
 #include "io/file.h"
 #include "io/mesh/gltf.h"
@@ -49,11 +50,13 @@ StudioResponse bad_request(const BadRequest& e) {
 // The design's overrides of a request's "overrides" object, as `-D` takes them.
 struct Request {
   std::vector<Override> overrides;
+  std::string energy;  ///< fairest: "strain" or "curvature_variation"
 };
 
 std::string number_text(double value) { return fmt::format("{}", value); }
 
-Request parse_request(const std::string& body) {
+// `takes_energy`: the request may have "energy" (fairest) besides "overrides".
+Request parse_request(const std::string& body, bool takes_energy = false) {
   Request request;
   if (body.empty()) return request;
   Json j;
@@ -64,8 +67,17 @@ Request parse_request(const std::string& body) {
   }
   if (!j.is_object()) throw BadRequest{"", "the request body must be a JSON object"};
   for (const auto& [key, value] : j.items()) {
-    if (key != "overrides")
-      throw BadRequest{key, fmt::format("unknown field '{}' (the request takes: overrides)", key)};
+    if (key == "overrides" || (takes_energy && key == "energy")) continue;
+    throw BadRequest{key, fmt::format("unknown field '{}' (the request takes: overrides{})", key,
+                                      takes_energy ? ", energy" : "")};
+  }
+  if (takes_energy) {
+    const Json* energy = j.contains("energy") ? &j["energy"] : nullptr;
+    if (energy == nullptr || !energy->is_string() ||
+        (*energy != "strain" && *energy != "curvature_variation")) {
+      throw BadRequest{"energy", "energy must be \"strain\" or \"curvature_variation\""};
+    }
+    request.energy = energy->get<std::string>();
   }
   if (!j.contains("overrides")) return request;
   const Json& overrides = j["overrides"];
@@ -303,6 +315,47 @@ StudioResponse StudioSession::save(const std::string& request_body) {
     return json_response(200, {{"saved", options_.design_path},
                                {"changed", changed},
                                {"version", file_version(options_.design_path)}});
+  } catch (const BadRequest& e) {
+    return bad_request(e);
+  } catch (...) {
+    return failure_response(std::current_exception(), options_.design_path);
+  }
+}
+
+StudioResponse StudioSession::fairest(const std::string& request_body) {
+  try {
+    const Request request = parse_request(request_body, true);
+    const std::string text = read_file(options_.design_path, kMaxDesignBytes, "design file");
+    require_known_names(request, load_design_text(text, options_.design_path));
+    const Design design = load_design_text(text, options_.design_path, request.overrides);
+    const FairMode mode = request.energy == "strain" ? FairMode::Strain : FairMode::CurvatureVariation;
+    Json overrides = Json::object();
+    Json skipped = Json::array();
+    for (const NamedCurve& c : design_curves(design)) {
+      const bool bspline = c.spec.family == CurveFamily::QuasiBSpline;
+      if (!bspline && (c.spec.family != CurveFamily::TBezier || mode == FairMode::Strain)) {
+        skipped.push_back(
+            {{"curve", c.name},
+             {"reason", fmt::format("{} fairing applies to {}", to_string(mode),
+                                    mode == FairMode::Strain ? "quasi_bspline curves"
+                                                             : "tbezier and quasi_bspline curves")}});
+        continue;
+      }
+      CurveSpec spec = c.spec;
+      spec.fair = mode;
+      const BuiltCurve built = in_design(design, [&] { return build_curve(spec); });
+      if (bspline && built.bspline) {
+        for (std::size_t i = 0; i < built.bspline->lambdas.size(); ++i)
+          overrides[fmt::format("{}.lambdas[{}]", c.name, i)] = built.bspline->lambdas[i];
+      }
+      for (const SegmentFairing& f : built.segments) {
+        const std::string& key = spec.segments.at(f.index).key;
+        if (key.empty()) continue;
+        overrides[key + ".lambda"] = f.lambda;
+        overrides[key + ".mu"] = f.mu;
+      }
+    }
+    return json_response(200, {{"energy", request.energy}, {"overrides", overrides}, {"skipped", skipped}});
   } catch (const BadRequest& e) {
     return bad_request(e);
   } catch (...) {

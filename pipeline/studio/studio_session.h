@@ -55,6 +55,15 @@ class StudioSession {
   /// place of the old ones (edit_values), everything else kept.
   StudioResponse save(const std::string& request_body);
 
+  /// POST /api/fairest with {"overrides": {...}, "energy": "strain" or
+  /// "curvature_variation"}: the fairest shape parameters of the design's
+  /// curves for their control points as the overrides place them (the
+  /// papers' fairing, as `fabmesh optimize`), as overrides by key path
+  /// ({"overrides": {"profile.lambdas[0]": -0.4, ...}, "skipped": [...]}).
+  /// Strain applies to quasi-B-splines, curvature variation to them and to
+  /// T-Bézier curves; other curves are listed as skipped.
+  StudioResponse fairest(const std::string& request_body);
+
   /// GET /api/version: changes when the design file changes (its
   /// modification time and size), for the page to reload.
   StudioResponse version() const;

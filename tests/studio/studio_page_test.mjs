@@ -174,6 +174,18 @@ try {
     assert.equal(await page.$eval('#field-height .field-error', (e) => e.textContent), '');
   });
 
+  await check('"fairest (strain)" sets the shape parameters and builds', async () => {
+    const before = await state();
+    const lambdaBefore = await page.$eval('#field-profile_lambdas_0_ input[type=number]', (e) => e.value);
+    await page.click('#fair-strain');
+    await waitBuilds(before.builds + 1);
+    const after = await state();
+    assert.equal(after.error, null);
+    assert.ok(Object.keys(after.overrides).some((k) => k.startsWith('profile.lambdas[')));
+    assert.notEqual(await page.$eval('#field-profile_lambdas_0_ input[type=number]', (e) => e.value), lambdaBefore);
+    assert.notEqual(after.plotSvg, before.plotSvg);
+  });
+
   await check('save then `fabmesh run` of the saved file gives the bytes of the studio\'s export', async () => {
     await page.click('#export');
     await page.waitForFunction(() => document.querySelectorAll('#exported li').length > 0, {timeout: 120000});
@@ -181,8 +193,11 @@ try {
     await page.waitForFunction(() => /saved/.test(document.getElementById('status').textContent),
                                {timeout: 120000});
     const saved = fs.readFileSync(design, 'utf8');
+    // The height, and the three lambdas fairing chose, in place; every other byte as it was.
+    const lambdas = await page.evaluate(() => [0, 1, 2].map((i) => window.fabmeshStudio.overrides[`profile.lambdas[${i}]`]));
     const expected = ('# a comment the studio must keep\n' + original)
-                         .replace('height: {value: 4,', 'height: {value: 6.5,');
+                         .replace('height: {value: 4,', 'height: {value: 6.5,')
+                         .replace('lambdas: [0, 0, 0]', `lambdas: [${lambdas.map((x) => String(x)).join(', ')}]`);
     assert.equal(saved, expected);
     const again = path.join(workDir, 'again');
     execFileSync(fabmesh, ['run', '-q', design, '-o', again]);

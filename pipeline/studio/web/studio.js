@@ -333,6 +333,27 @@ async function exportOutputs() {
   setStatus(`exported ${json.files.length} files to ${json.out_dir}`);
 }
 
+// The papers' fairest shape parameters for the current control points: set
+// in their fields, then built.
+async function fairest(energy) {
+  const {status, json} = await api('POST', '/api/fairest', {overrides: state.overrides, energy});
+  if (status !== 200) {
+    showError(json.error);
+    return;
+  }
+  for (const [key, value] of Object.entries(json.overrides)) {
+    state.overrides[key] = value;
+    const box = document.getElementById(fieldId(key));
+    if (!box) continue;
+    for (const input of box.querySelectorAll('input')) input.value = String(Number(value.toPrecision(6)));
+  }
+  const skipped = json.skipped.map((s) => `${s.curve}: ${s.reason}`).join('; ');
+  setStatus(`fairest (${energy.replace('_', ' ')}): ${Object.keys(json.overrides).length} values` +
+            (skipped ? `; skipped ${skipped}` : ''));
+  state.lastChanged = null;
+  requestBuild();
+}
+
 async function loadDesign() {
   const {status, json} = await api('GET', '/api/design');
   if (status !== 200) {
@@ -360,6 +381,8 @@ async function watch() {
 }
 
 $('save').addEventListener('click', save);
+$('fair-strain').addEventListener('click', () => fairest('strain'));
+$('fair-cv').addEventListener('click', () => fairest('curvature_variation'));
 $('export').addEventListener('click', exportOutputs);
 await setup3d();
 if (await loadDesign()) requestBuild();

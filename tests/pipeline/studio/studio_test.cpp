@@ -2,6 +2,8 @@
 // free port of 127.0.0.1, in-process, asked with httplib's client), and the
 // text edit that saves values into a commented design (docs/studio.md).
 
+#include <fmt/format.h>
+
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -311,4 +313,41 @@ TEST_CASE("studio: a design that does not read stops the command with exit code 
   CHECK(run_cli({"studio", "--no-open", (dir / "bad.yaml").string()}, &output) == 2);
   CHECK(output.find("bad.yaml:3:") != std::string::npos);
   CHECK(run_cli({"studio", "--no-open", (dir / "missing.yaml").string()}, &output) == 2);
+}
+
+TEST_CASE("studio: fairest gives the shape parameters optimize gives, as overrides", "[studio]") {
+  const fs::path design = cup_file("studio_fairest");
+  RunningStudio studio(design.string(), (design.parent_path() / "out").string());
+  httplib::Client c = studio.client();
+  for (const std::string energy : {"strain", "curvature_variation"}) {
+    const Json f =
+        json_of(c.Post("/api/fairest", studio.token(),
+                       R"({"overrides": {"height": 5}, "energy": ")" + energy + "\"}", "application/json"));
+    CHECK(f["energy"] == energy);
+    CHECK(f["skipped"].empty());
+    REQUIRE(f["overrides"].size() == 3);
+    for (const auto& [key, value] : f["overrides"].items()) {
+      CHECK(key.rfind("profile.lambdas[", 0) == 0);
+      CHECK(value.get<double>() >= -8.0);
+      CHECK(value.get<double>() <= 1.0);
+    }
+    // The same numbers `fabmesh optimize` finds for the curve with `fair: ENERGY`.
+    std::string optimize_json;
+    const std::string faired = file_text(design);
+    const fs::path copy = design.parent_path() / (energy + ".yaml");
+    write_text(copy, std::string(faired).replace(faired.find("fair: none"), 10, "fair: " + energy));
+    REQUIRE(run_cli_json({"optimize", "--json", copy.string(), "-D", "height=5"}, &optimize_json) == 0);
+    const Json optimized = Json::parse(optimize_json);
+    for (std::size_t i = 0; i < 3; ++i) {
+      CHECK(f["overrides"][fmt::format("profile.lambdas[{}]", i)].get<double>() ==
+            Approx(optimized[0]["lambdas"][i].get<double>()).margin(1e-12));
+    }
+    // They build.
+    Json build = {{"overrides", f["overrides"]}};
+    CHECK(c.Post("/api/build", studio.token(), build.dump(), "application/json")->status == 200);
+  }
+  const auto bad = c.Post("/api/fairest", studio.token(), R"({"energy": "bending"})", "application/json");
+  REQUIRE(bad->status == 400);
+  CHECK(Json::parse(bad->body)["error"]["field"] == "energy");
+  CHECK(c.Post("/api/build", studio.token(), R"({"energy": "strain"})", "application/json")->status == 400);
 }
