@@ -137,6 +137,8 @@ StudioResponse failure_response(const std::exception_ptr& error, const std::stri
     // The override that gave the value at fault names the page's field.
     const std::string& given = at.override_text;
     e["field"] = given.empty() ? Json(nullptr) : Json(given.substr(0, given.find('=')));
+    // The same as the request names it, as 400 answers name theirs.
+    e["request_field"] = given.empty() ? Json(nullptr) : Json("overrides." + given.substr(0, given.find('=')));
     int line = at.line, column = at.column;
     if (const auto* file = dynamic_cast<const FileError*>(&input); file != nullptr && line == 0) {
       line = file->line();
@@ -147,6 +149,7 @@ StudioResponse failure_response(const std::exception_ptr& error, const std::stri
   } catch (...) {
     e["key"] = nullptr;
     e["field"] = nullptr;
+    e["request_field"] = nullptr;
   }
   const int status = failure.exit_code == kExitBadInput || failure.exit_code == kExitInvalid ? 422 : 500;
   return json_response(status, {{"error", e}});

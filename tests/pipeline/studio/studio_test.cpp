@@ -261,6 +261,7 @@ TEST_CASE("studio: a value that breaks the design is 422 with the command line's
   const Json e = Json::parse(r->body)["error"];
   CHECK(e["message"] == expected);
   CHECK(e["field"] == "height");
+  CHECK(e["request_field"] == "overrides.height");
   CHECK(e["key"] == "parameters.height");
   CHECK(e["exit_code"] == 2);
   // A value out of a shape parameter's range, at its place in the file.
