@@ -48,26 +48,50 @@ std::optional<std::size_t> offset_of(const std::string& text, int line, int colu
   return offset;
 }
 
+// Where the quoted scalar that starts at `begin` ends: after its closing
+// quote; npos when it does not end on its line.
+std::size_t quoted_end(const std::string& text, std::size_t begin) {
+  const char quote = text[begin];
+  for (std::size_t i = begin + 1; i < text.size(); ++i) {
+    if (text[i] == '\n') return std::string::npos;  // a quoted scalar over several lines
+    if (quote == '"' && text[i] == '\\') {
+      ++i;
+    } else if (text[i] == quote) {
+      if (quote == '\'' && i + 1 < text.size() && text[i + 1] == '\'') {
+        ++i;  // '' is a quote inside single quotes
+        continue;
+      }
+      return i + 1;
+    }
+  }
+  return std::string::npos;
+}
+
+// Where the flow sequence that starts at `begin` ('[') ends: after its
+// closing bracket, when it is on the same line; npos otherwise.
+std::size_t flow_sequence_end(const std::string& text, std::size_t begin) {
+  int depth = 0;
+  for (std::size_t i = begin; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '\n' || c == '#' || c == '{') return std::string::npos;
+    if (c == '"' || c == '\'') {
+      i = quoted_end(text, i);
+      if (i == std::string::npos) return i;
+      --i;
+    } else if (c == '[') {
+      ++depth;
+    } else if (c == ']' && --depth == 0) {
+      return i + 1;
+    }
+  }
+  return std::string::npos;
+}
+
 // Where a scalar that starts at `begin` ends: after its closing quote, or
 // after its plain text when the text there is `scalar`. npos when neither.
 std::size_t scalar_end(const std::string& text, std::size_t begin, const std::string& scalar) {
   if (begin >= text.size()) return std::string::npos;
-  const char quote = text[begin];
-  if (quote == '"' || quote == '\'') {
-    for (std::size_t i = begin + 1; i < text.size(); ++i) {
-      if (text[i] == '\n') return std::string::npos;  // a quoted scalar over several lines
-      if (quote == '"' && text[i] == '\\') {
-        ++i;
-      } else if (text[i] == quote) {
-        if (quote == '\'' && i + 1 < text.size() && text[i + 1] == '\'') {
-          ++i;  // '' is a quote inside single quotes
-          continue;
-        }
-        return i + 1;
-      }
-    }
-    return std::string::npos;
-  }
+  if (text[begin] == '"' || text[begin] == '\'') return quoted_end(text, begin);
   if (!scalar.empty() && text.compare(begin, scalar.size(), scalar) == 0) return begin + scalar.size();
   return std::string::npos;
 }
@@ -108,12 +132,16 @@ ValueSpan value_span(const std::string& text, const std::string& file, const std
   }
   const YAML::Mark mark = node.Mark();
   const std::string where = fmt::format("{}:{}:{}", file, mark.line + 1, mark.column + 1);
-  if (!node.IsScalar()) {
-    throw FileError(file, mark.line + 1, mark.column + 1,
-                    fmt::format("{}: {}: the value is not a single number or text", where, full));
-  }
   const std::optional<std::size_t> begin = offset_of(text, mark.line, mark.column);
-  const std::size_t end = begin ? scalar_end(text, *begin, node.Scalar()) : std::string::npos;
+  // A list written [a, b] on one line (a point) is replaced whole.
+  const bool flow_list = node.IsSequence() && begin && *begin < text.size() && text[*begin] == '[';
+  if (!node.IsScalar() && !flow_list) {
+    throw FileError(
+        file, mark.line + 1, mark.column + 1,
+        fmt::format("{}: {}: the value is not a single number, text or [list] on one line", where, full));
+  }
+  std::size_t end = std::string::npos;
+  if (begin) end = flow_list ? flow_sequence_end(text, *begin) : scalar_end(text, *begin, node.Scalar());
   if (end == std::string::npos) {
     throw FileError(
         file, mark.line + 1, mark.column + 1,

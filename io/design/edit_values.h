@@ -23,7 +23,8 @@ struct ValueSpan {
 /// the name of a declared parameter ("height": its value, under `value:`
 /// when the parameter is declared with a range), as `-D` reads it.
 /// \throw FileError when the text is not YAML, the path is not in it, or its
-///        value is not a scalar written on one line (a block scalar, a map)
+///        value is neither a scalar nor a list in brackets written on one line
+///        (a block scalar, a map, a list of `- ` items)
 ValueSpan value_span(const std::string& text, const std::string& file, const std::string& path);
 
 /// `text` with the value of each override's path (value_span) replaced by its

@@ -138,7 +138,8 @@ StudioResponse failure_response(const std::exception_ptr& error, const std::stri
     const std::string& given = at.override_text;
     e["field"] = given.empty() ? Json(nullptr) : Json(given.substr(0, given.find('=')));
     // The same as the request names it, as 400 answers name theirs.
-    e["request_field"] = given.empty() ? Json(nullptr) : Json("overrides." + given.substr(0, given.find('=')));
+    e["request_field"] =
+        given.empty() ? Json(nullptr) : Json("overrides." + given.substr(0, given.find('=')));
     int line = at.line, column = at.column;
     if (const auto* file = dynamic_cast<const FileError*>(&input); file != nullptr && line == 0) {
       line = file->line();
@@ -190,6 +191,30 @@ Json shape_parameters(const Design& design) {
   return out;
 }
 
+// The control points the page may drag on the plot: a quasi-B-spline's
+// points when the design's text writes each as a [x, y] that save can
+// replace (a -D path the plot's circles map to one to one, in order).
+Json draggable_points(const Design& design, const std::string& text) {
+  Json out = Json::array();
+  for (const NamedCurve& c : design_curves(design)) {
+    if (c.spec.family != CurveFamily::QuasiBSpline) continue;
+    Json points = Json::array();
+    for (std::size_t i = 0; i < c.spec.bspline_points.size(); ++i) {
+      const std::string key = fmt::format("{}.points[{}]", c.name, i);
+      try {
+        (void)value_span(text, design.common.path, key);
+      } catch (const FileError&) {
+        points.clear();
+        break;
+      }
+      const Vec2& p = c.spec.bspline_points[i];
+      points.push_back({{"key", key}, {"x", p.x()}, {"y", p.y()}});
+    }
+    if (!points.empty()) out.push_back({{"curve", c.name}, {"points", points}});
+  }
+  return out;
+}
+
 Json parameters_json(const Design& design) {
   Json out = Json::array();
   for (const DesignParameter& p : design.common.parameters) {
@@ -230,6 +255,7 @@ StudioResponse StudioSession::design() const {
               {"units", design.common.units}, {"version", version},         {"text", text}};
     j["parameters"] = parameters_json(design);
     j["shape_parameters"] = shape_parameters(design);
+    j["control_points"] = draggable_points(design, text);
     j["out_dir"] = options_.out_dir;
     return json_response(200, j);
   } catch (...) {

@@ -174,6 +174,27 @@ try {
     assert.equal(await page.$eval('#field-height .field-error', (e) => e.textContent), '');
   });
 
+  await check('dragging a control point on the plot moves it', async () => {
+    const before = await state();
+    const selector = '#plot g.control-polygon[data-name="profile"] circle.draggable[data-key="profile.points[2]"]';
+    const where = async () => page.$eval(selector, (c) => [Number(c.getAttribute('cx')), Number(c.getAttribute('cy'))]);
+    const [cx] = await where();
+    const box = await (await page.$(selector)).boundingBox();
+    await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
+    await page.mouse.down();
+    await page.mouse.move(box.x + box.width / 2 + 20, box.y + box.height / 2, {steps: 4});
+    await page.mouse.up();
+    await waitBuilds(before.builds + 1);
+    const after = await state();
+    assert.equal(after.error, null);
+    assert.match(after.overrides['profile.points[2]'], /^\[[-0-9.e]+, [-0-9.e]+\]$/);
+    assert.notEqual(after.plotSvg, before.plotSvg);
+    assert.notEqual(after.meshSignature, before.meshSignature);
+    // The new plot draws the point where it was dropped: further out (larger radius).
+    const [newCx] = await where();
+    assert.ok(newCx > cx, `${newCx} > ${cx}`);
+  });
+
   await check('"fairest (strain)" sets the shape parameters and builds', async () => {
     const before = await state();
     const lambdaBefore = await page.$eval('#field-profile_lambdas_0_ input[type=number]', (e) => e.value);
@@ -195,8 +216,10 @@ try {
     const saved = fs.readFileSync(design, 'utf8');
     // The height, and the three lambdas fairing chose, in place; every other byte as it was.
     const lambdas = await page.evaluate(() => [0, 1, 2].map((i) => window.fabmeshStudio.overrides[`profile.lambdas[${i}]`]));
+    const point = await page.evaluate(() => window.fabmeshStudio.overrides['profile.points[2]']);
     const expected = ('# a comment the studio must keep\n' + original)
                          .replace('height: {value: 4,', 'height: {value: 6.5,')
+                         .replace('- ["=width / 3", "=2 + height / 2"]', `- ${point}`)
                          .replace('lambdas: [0, 0, 0]', `lambdas: [${lambdas.map((x) => String(x)).join(', ')}]`);
     assert.equal(saved, expected);
     const again = path.join(workDir, 'again');

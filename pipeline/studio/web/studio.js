@@ -259,6 +259,55 @@ async function showMesh(url) {
   render();
 }
 
+// --- control points dragged on the plot ---
+
+// The plot's control-point circles of each curve whose points the design
+// writes one by one (GET /api/design's control_points), made draggable: a
+// drop sets the point's -D path ("profile.points[2]") and builds.
+function enableDragging() {
+  const svg = $('plot').querySelector('svg');
+  if (!svg || !state.design) return;
+  for (const curve of state.design.control_points) {
+    const group = svg.querySelector(`g.control-polygon[data-name="${CSS.escape(curve.curve)}"]`);
+    if (!group) continue;
+    const circles = group.querySelectorAll('circle.control-point');
+    if (circles.length !== curve.points.length) continue;
+    group.parentNode.appendChild(group);  // above the curve and its joint markers, to be grabbed
+    circles.forEach((circle, i) => {
+      circle.classList.add('draggable');
+      circle.setAttribute('r', String(Number(circle.getAttribute('r')) * 2.5));  // easier to grab
+      circle.dataset.key = curve.points[i].key;
+      circle.addEventListener('pointerdown', (event) => drag(event, circle));
+    });
+  }
+}
+
+function drag(event, circle) {
+  event.preventDefault();
+  circle.setPointerCapture(event.pointerId);
+  // Screen to the plot's model frame (the circles' cy is -y).
+  const model = (e) => {
+    const p = new DOMPoint(e.clientX, e.clientY).matrixTransform(circle.getScreenCTM().inverse());
+    return {x: p.x, y: -p.y};
+  };
+  const move = (e) => {
+    const p = model(e);
+    circle.setAttribute('cx', String(p.x));
+    circle.setAttribute('cy', String(-p.y));
+  };
+  const drop = (e) => {
+    circle.removeEventListener('pointermove', move);
+    circle.removeEventListener('pointerup', drop);
+    const p = model(e);
+    const round = (v) => Number(v.toPrecision(6));
+    state.overrides[circle.dataset.key] = `[${round(p.x)}, ${round(p.y)}]`;
+    state.lastChanged = circle.dataset.key;
+    requestBuild();
+  };
+  circle.addEventListener('pointermove', move);
+  circle.addEventListener('pointerup', drop);
+}
+
 // --- builds: one at a time, the newest values next ---
 
 let building = false;
@@ -284,6 +333,7 @@ async function build() {
       state.error = null;
       state.plotSvg = json.plot_svg;
       $('plot').innerHTML = json.plot_svg;
+      enableDragging();
       showReport(json.report, json.build_ms);
       if (json.mesh) await showMesh(json.mesh);
       state.validBuilds += 1;

@@ -110,10 +110,12 @@ TEST_CASE("studio: edit_values changes only the values, keeping comments and lay
   replace("  wall: 0.3          #", "  wall: 0.25          #");
   replace("lambdas: [0, 0, 0]", "lambdas: [0, -1.5, 0]");
   replace("\"=width / 6\"", "\"=width / 7\"");
+  replace("[\"=width / 3\", \"=2 + height / 2\"]", "[2.25, 4.5]");
   const std::string edited = edit_values(
       kCommentedCup, "cup.yaml",
       {parse_override("height=5.5"), parse_override("wall=0.25"), parse_override("profile.lambdas[1]=-1.5"),
-       parse_override("profile.points[1][0]=\"=width / 7\"")});
+       parse_override("profile.points[1][0]=\"=width / 7\""),
+       parse_override("profile.points[2]=[2.25, 4.5]")});
   CHECK(edited == expected);
   const Design design = load_design_text(edited, "cup.yaml");
   REQUIRE(design.common.parameters.size() == 3);
@@ -123,8 +125,12 @@ TEST_CASE("studio: edit_values changes only the values, keeping comments and lay
 
 TEST_CASE("studio: edit_values refuses a value the file does not write", "[studio]") {
   CHECK_THROWS_AS(edit_values(kCommentedCup, "cup.yaml", {parse_override("body.base=1")}), FileError);
-  CHECK_THROWS_WITH(edit_values(kCommentedCup, "cup.yaml", {parse_override("profile=1")}),
-                    Catch::Contains("cup.yaml:12:3: profile: the value is not a single number or text"));
+  CHECK_THROWS_WITH(
+      edit_values(kCommentedCup, "cup.yaml", {parse_override("profile=1")}),
+      Catch::Contains(
+          "cup.yaml:12:3: profile: the value is not a single number, text or [list] on one line"));
+  CHECK_THROWS_AS(edit_values(kCommentedCup, "cup.yaml", {parse_override("profile.points=[[1, 2]]")}),
+                  FileError);
 }
 
 TEST_CASE("studio: every request without the token, or with a foreign Host, is 403", "[studio]") {
@@ -195,6 +201,10 @@ TEST_CASE("studio: the design, a build, its mesh, and bad requests", "[studio]")
   CHECK(d["shape_parameters"][1] ==
         Json({{"key", "profile.lambdas[1]"}, {"value", 0.0}, {"min", -8.0}, {"max", 1.0}, {"step", 0.01}}));
   CHECK(d["text"] == kCommentedCup);
+  REQUIRE(d["control_points"].size() == 1);
+  CHECK(d["control_points"][0]["curve"] == "profile");
+  REQUIRE(d["control_points"][0]["points"].size() == 5);
+  CHECK(d["control_points"][0]["points"][2] == Json({{"key", "profile.points[2]"}, {"x", 2.0}, {"y", 4.0}}));
 
   const auto built =
       c.Post("/api/build", studio.token(), R"({"overrides": {"height": 5}})", "application/json");
