@@ -161,6 +161,12 @@ function showReport(report, buildMs) {
   if (report.volume !== undefined) add('volume', `${Number(report.volume).toPrecision(6)} ${u}³`);
   const box = report.bounding_box;
   if (box) add('size', box.size.map((x) => Number(x).toPrecision(5)).join(' × ') + ` ${box.units ?? u}`);
+  const facts = report.build ?? {};
+  if (facts.min_clearance !== undefined) {
+    add('clearance', `${Number(facts.min_clearance).toPrecision(4)} ${u}` +
+        (facts.min_clearance_where ? ` (${facts.min_clearance_where})` : ''));
+  }
+  if (facts.cnc?.clearance !== undefined) add('tool clearance', `${Number(facts.cnc.clearance).toPrecision(4)} ${u}`);
   if (report.triangles !== undefined) add('triangles', String(report.triangles));
   add('build', `${Math.round(buildMs)} ms`);
 }
