@@ -191,6 +191,7 @@ async function setup3d() {
       return;
     }
     view.renderer = new THREE.WebGLRenderer({canvas, context, antialias: true});
+    view.renderer.localClippingEnabled = true;
     $('view3d').append(canvas);
     view.scene = new THREE.Scene();
     view.scene.background = new THREE.Color(0xf4f4f4);
@@ -207,6 +208,19 @@ async function setup3d() {
     $('view3d-note').textContent =
         'The 3D view is not available: three.js is not installed with fabmesh (docs/studio.md).';
   }
+}
+
+// The section view: the mesh cut by the plane through the vessel's axis
+// (model x-z; glTF's y is the model's z), showing the wall and the base.
+function sectionPlanes() {
+  if (!$('section').checked || !view.three) return [];
+  return [new view.three.Plane(new view.three.Vector3(0, 0, -1), 0)];
+}
+
+function updateSection() {
+  if (!view.object) return;
+  view.object.traverse((node) => { if (node.isMesh) node.material.clippingPlanes = sectionPlanes(); });
+  render();
 }
 
 function resize() {
@@ -243,6 +257,7 @@ async function showMesh(url) {
   const THREE = view.three;
   const material = new THREE.MeshStandardMaterial({color: 0xc9b79c, roughness: 0.7, flatShading: true,
                                                    side: THREE.DoubleSide});
+  material.clippingPlanes = sectionPlanes();
   gltf.scene.traverse((node) => { if (node.isMesh) node.material = material; });
   const first = view.object === null;
   if (view.object) {
@@ -437,6 +452,7 @@ async function watch() {
 }
 
 $('save').addEventListener('click', save);
+$('section').addEventListener('change', updateSection);
 $('fair-strain').addEventListener('click', () => fairest('strain'));
 $('fair-cv').addEventListener('click', () => fairest('curvature_variation'));
 $('export').addEventListener('click', exportOutputs);
