@@ -243,6 +243,12 @@ try {
                                before.meshSignature);
   });
 
+  await check('the section view clips the vessel by the plane through its axis', async () => {
+    await page.click('#section');
+    assert.ok(await page.$eval('#section', (e) => e.checked));
+    assert.equal(await page.$eval('#section-toggle', (e) => getComputedStyle(e).display === 'none'), false);
+  });
+
   await check('no console error in the whole session but the browser\'s notes of the 422 answers', async () => {
     // Chromium logs every 4xx answer to fetch() as an error; the 422s of the
     // value that broke the design are expected, nothing else is.
