@@ -8,7 +8,7 @@ _fabmesh_global_options="-h --help --version -q --quiet -v --verbose"
 
 _fabmesh_options() {
   case "$1" in
-    run) echo "-o --output --export-format --export-units --json --report -D --define" ;;
+    run) echo "-o --output --export-format --export-units --json --report --watch -D --define" ;;
     plot) echo "-o --output --width --height -D --define" ;;
     preview) echo "-o --output --views --width --height -D --define" ;;
     check) echo "--json --weld-tolerance --max-seconds" ;;

@@ -115,12 +115,19 @@ BuiltMesh build(const CountertopDesign& design, const BuildContext& context) {
     const Toolpath& t = *out.toolpath;
     append_shares(out.tolerance_shares, "cnc: ", t.tolerance_shares);
     const ToolpathTotals totals = toolpath_totals(t);
+    out.warnings.insert(out.warnings.end(), t.warnings.begin(), t.warnings.end());
+    std::size_t hole_tabs = 0;
+    for (const LoopPath& loop : t.loops) hole_tabs += loop.outer ? 0 : loop.tabs.size();
+    const std::size_t outline_tabs = t.loops.empty() ? 0 : t.loops.back().tabs.size();
     out.facts["cnc"] = {{"tool_diameter", cnc.tool_diameter},
                         {"passes", t.pass_z.size()},
                         {"moves", t.moves.size()},
                         {"deviation", t.deviation},
                         {"clearance", t.clearance},
-                        {"tabs", cnc.tabs.count},
+                        {"tabs", outline_tabs},
+                        {"hole_tabs", hole_tabs},
+                        {"entry", to_string(cnc.entry)},
+                        {"finish", cnc.finish},
                         {"direction", to_string(cnc.direction)},
                         {"relief", to_string(cnc.relief)},
                         {"cutting_length", totals.cutting},

@@ -64,6 +64,9 @@ struct BuiltMesh {
   std::optional<Toolpath> toolpath;    ///< a countertop's router path (key `cnc`)
   std::optional<GcodeOptions> gcode;   ///< how its program is written (with `toolpath`)
   BuiltShape shape;                    ///< the curves and patches the mesh was built from
+  /// What the builder did other than asked and the user should know (tabs
+  /// left out for want of room), for the report's `warnings`.
+  std::vector<std::string> warnings;
 };
 
 /// What every builder gets besides its design.

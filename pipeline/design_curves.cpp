@@ -2,11 +2,14 @@
 
 #include <fmt/format.h>
 
+#include <exception>
 #include <type_traits>
 
 #include "geometry/core/errors.h"
 #include "geometry/section/simple_polygon.h"
 #include "geometry/surfaces/patch_network.h"
+#include "pipeline/failure.h"
+#include "pipeline/load_design.h"
 
 namespace fabmesh {
 
@@ -40,9 +43,43 @@ std::vector<NamedCurve> design_curves(const Design& design) {
       design.body);
 }
 
-BuiltShape build_shape(const Design& design) {
+namespace {
+
+// The curve as constructed when only its declared continuity fails: drawn
+// with the failed joints flagged, the message kept. Any other failure is thrown.
+BuiltCurve curve_as_drawn(const Design& design, const CurveSpec& spec,
+                          std::vector<std::string>* contradicted) {
+  if (contradicted == nullptr) return build_curve(spec);
+  try {
+    return build_curve(spec);
+  } catch (const GeometryError& e) {
+    const std::exception_ptr failure = std::current_exception();
+    BuiltCurve out;
+    try {
+      out.curve = construct_curve(spec);
+    } catch (const InputError&) {
+      std::rethrow_exception(failure);  // not a matter of continuity: the curve cannot be made at all
+    }
+    out.declared = declared_continuity(spec);
+    out.joints = out.curve.joints();
+    bool lost = false;
+    for (std::size_t i = 0; i < out.joints.size() && i < out.declared.size(); ++i)
+      lost = lost || static_cast<int>(out.joints[i].achieved) < static_cast<int>(out.declared[i]);
+    if (!lost) throw;  // constructed fine, yet fairing failed for another reason
+    GeometryError located = e;
+    if (located.location().place.empty() && is_design_key(design, located.location().key))
+      located.set_location(placed(design.common, located.location()));
+    contradicted->push_back(describe_failure(std::make_exception_ptr(located)).message);
+    return out;
+  }
+}
+
+}  // namespace
+
+BuiltShape build_shape(const Design& design, std::vector<std::string>* contradicted) {
   BuiltShape shape;
-  for (const NamedCurve& nc : design_curves(design)) shape.curves.push_back({nc.name, build_curve(nc.spec)});
+  for (const NamedCurve& nc : design_curves(design))
+    shape.curves.push_back({nc.name, curve_as_drawn(design, nc.spec, contradicted)});
   if (const auto* surface = std::get_if<SurfaceDesign>(&design.body))
     shape.patches = build_patch_network(surface->patches);
   return shape;

@@ -27,7 +27,11 @@ void require_simple_closed(const Polyline2& line, const std::vector<CurveParam>&
 
 /// The design's curves built (build_curve, in design_curves' order) and a
 /// surface's patch network (build_patch_network), without building a mesh:
-/// what `plot` draws. \throw as build_curve / build_patch_network
-BuiltShape build_shape(const Design& design);
+/// what `plot` draws. With `contradicted`, a curve whose joints contradict
+/// their declared continuity (or what fairing must keep) is not an error: it
+/// is taken as constructed (unfaired), its joints measured (so the plot flags
+/// the failed ones), and the error's message is appended to `contradicted`.
+/// \throw as build_curve / build_patch_network
+BuiltShape build_shape(const Design& design, std::vector<std::string>* contradicted = nullptr);
 
 }  // namespace fabmesh

@@ -122,6 +122,7 @@ JobReport build_and_encode(const Design& design, const JobOptions& options, cons
   report.max_deviation = built.max_deviation;
   report.tolerance_shares = built.tolerance_shares;
   report.build = built.facts;
+  report.warnings.insert(report.warnings.end(), built.warnings.begin(), built.warnings.end());
   report.validation = built.validation;
   report.purpose = built.purpose;
   const std::string what = fmt::format("{} '{}'", report.kind, report.name);

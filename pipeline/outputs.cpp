@@ -337,7 +337,7 @@ Files encode_plot_output(const EncodeContext& c) {
 Files encode_png_output(const EncodeContext& c) {
   PreviewOptions options;
   options.supersample = 2;
-  return {{preview_png(c.built.soup, options), c.common.units, 0.0, ""}};
+  return {{design_preview_png(c.common, c.built, options), c.common.units, 0.0, ""}};
 }
 
 std::vector<OutputFormat> make_table() {

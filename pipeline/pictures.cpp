@@ -2,12 +2,15 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <type_traits>
 
 #include "geometry/core/errors.h"
 #include "geometry/core/stage_timer.h"
 #include "geometry/curves/composite.h"
+#include "geometry/mesh/bounding_box.h"
 #include "geometry/surfaces/patch_network.h"
 #include "io/pictures/plot_curve.h"
 #include "pipeline/build_design.h"
@@ -17,6 +20,13 @@ namespace fabmesh {
 namespace {
 
 Vec2 plan(const Vec3& p) { return {p.x(), p.y()}; }
+
+// Appends `part` to `scene`, every vertex moved by `shift`.
+void append_shifted(TriangleSoup& scene, const TriangleSoup& part, const Vec3& shift) {
+  const auto base = static_cast<std::uint32_t>(scene.vertices.size());
+  for (const Vec3& v : part.vertices) scene.vertices.push_back(v + shift);
+  for (const auto& t : part.triangles) scene.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+}
 
 // A patch border seen from above, as the H-Bézier curve of its projected control points.
 PlotCurve border_curve(const HBezierPatch& patch, PatchSide side, const std::string& name) {
@@ -70,13 +80,16 @@ CurvePlot shape_plot(const DesignCommon& common, const BuiltShape& shape) {
   return plot;
 }
 
-CurvePlot design_plot(const Design& design) { return shape_plot(design.common, build_shape(design)); }
-
-std::string design_plot_svg(const Design& design, const CurvePlotOptions& options) {
-  return plot_curves_svg(design_plot(design), options);
+CurvePlot design_plot(const Design& design, std::vector<std::string>* contradicted) {
+  return shape_plot(design.common, build_shape(design, contradicted));
 }
 
-TriangleSoup design_mesh(const Design& design) {
+std::string design_plot_svg(const Design& design, const CurvePlotOptions& options,
+                            std::vector<std::string>* contradicted) {
+  return plot_curves_svg(design_plot(design, contradicted), options);
+}
+
+BuiltMesh design_built(const Design& design) {
   if (std::holds_alternative<CurveDesign>(design.body)) {
     throw InputError(
         fmt::format("{}: a curve design has no mesh to preview; try `fabmesh plot`", design.common.name));
@@ -84,11 +97,67 @@ TriangleSoup design_mesh(const Design& design) {
   StageTimings timings;
   StageTimer watch(timings);
   const BuildContext context{design.common, design.common.tolerance, false, watch, process_memory_limit()};
-  return build_design(design, context).soup;
+  return build_design(design, context);
 }
 
 std::string preview_png(const TriangleSoup& soup, const PreviewOptions& options) {
   return encode_png(render_preview(soup, options));
+}
+
+std::string size_caption(const TriangleSoup& soup, const std::string& units) {
+  if (soup.vertices.empty()) return "";
+  const BoundingBox box = bounding_box(soup.vertices);
+  const Vec3 size = box.hi - box.lo;
+  auto number = [](double x) {
+    // Four significant digits without an exponent (the caption's font has no 'e').
+    const int magnitude = x > 0.0 ? static_cast<int>(std::floor(std::log10(x))) : 0;
+    return fmt::format("{:.{}f}", x, std::clamp(3 - magnitude, 0, 9));
+  };
+  std::string text = fmt::format("{} x {} x {}", number(size.x()), number(size.y()), number(size.z()));
+  if (!units.empty()) text += " " + units;
+  return text;
+}
+
+TriangleSoup exploded_scene(const BuiltMesh& built) {
+  TriangleSoup scene = built.soup;
+  if (built.mould_parts.empty()) return scene;
+  // Every part moved away from the vessel by the mould's radius (sides, along
+  // their middle's direction from the axis) or half its height (the base).
+  const BoundingBox product = bounding_box(built.soup.vertices);
+  BoundingBox all = product;
+  for (const NamedSoup& part : built.mould_parts) {
+    const BoundingBox box = bounding_box(part.soup.vertices);
+    all.lo = all.lo.cwiseMin(box.lo);
+    all.hi = all.hi.cwiseMax(box.hi);
+  }
+  const double radius =
+      std::max({std::abs(all.lo.x()), std::abs(all.hi.x()), std::abs(all.lo.y()), std::abs(all.hi.y())});
+  const double height = all.hi.z() - all.lo.z();
+  for (const NamedSoup& named : built.mould_parts) {
+    const TriangleSoup& part = named.soup;
+    Vec3 centre = Vec3::Zero();
+    for (const Vec3& v : part.vertices) centre += v;
+    if (!part.vertices.empty()) centre /= static_cast<double>(part.vertices.size());
+    const Vec3 out(centre.x(), centre.y(), 0.0);
+    Vec3 shift(0.0, 0.0, centre.z() < 0.5 * (product.lo.z() + product.hi.z()) ? -0.5 * height : 0.5 * height);
+    if (out.norm() > 1e-9 * radius) shift = out.normalized() * radius;
+    append_shifted(scene, part, shift);
+  }
+  return scene;
+}
+
+std::string design_preview_png(const DesignCommon& common, const BuiltMesh& built, PreviewOptions options) {
+  // A vessel is the kind built from a profile turned about the z axis.
+  const bool vessel = std::any_of(built.shape.curves.begin(), built.shape.curves.end(),
+                                  [](const NamedBuiltCurve& c) { return c.name == "profile"; });
+  options.caption = size_caption(built.soup, common.units);
+  if (vessel && !built.soup.vertices.empty()) {
+    const BoundingBox product = bounding_box(built.soup.vertices);
+    const double reach = 0.08 * (product.hi.z() - product.lo.z());
+    options.guides.push_back(
+        {Vec3(0.0, 0.0, product.lo.z() - reach), Vec3(0.0, 0.0, product.hi.z() + reach)});
+  }
+  return preview_png(exploded_scene(built), options);
 }
 
 ReportStatus report_status(ItemStatus status) {

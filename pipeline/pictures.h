@@ -3,6 +3,7 @@
 // commands, the `plot` and `png` outputs and the HTML report of a run.
 
 #include <string>
+#include <vector>
 
 #include "io/design/design.h"
 #include "io/pictures/curve_plot.h"
@@ -19,22 +20,46 @@ namespace fabmesh {
 /// surface, the borders of its patches and their control net seen from above
 /// (projected on the xy plane; a projected H-Bézier border is the H-Bézier
 /// curve of the projected control points). Titled with the design's name, in
-/// its units. \throw as build_curve / build_patch_network
-CurvePlot design_plot(const Design& design);
+/// its units. With `contradicted`, a curve whose joints contradict their
+/// declared continuity is drawn as constructed with those joints flagged
+/// ("joint lost") and the error appended there (build_shape); without, it is
+/// an error. \throw as build_curve / build_patch_network
+CurvePlot design_plot(const Design& design, std::vector<std::string>* contradicted = nullptr);
 
 /// The same plot drawn from a shape already built (BuiltMesh::shape, or
 /// build_shape): constructs nothing.
 CurvePlot shape_plot(const DesignCommon& common, const BuiltShape& shape);
 
-/// The SVG of design_plot(design) (plot_curves_svg).
-std::string design_plot_svg(const Design& design, const CurvePlotOptions& options = {});
+/// The SVG of design_plot(design, contradicted) (plot_curves_svg).
+std::string design_plot_svg(const Design& design, const CurvePlotOptions& options = {},
+                            std::vector<std::string>* contradicted = nullptr);
 
-/// The design's mesh as `run` builds it (validated; nothing written), for a
+/// The design built as `run` builds it (validated; nothing written), for a
 /// preview. \throw as build_design; InputError for a curve design (no mesh)
-TriangleSoup design_mesh(const Design& design);
+BuiltMesh design_built(const Design& design);
 
 /// A shaded preview of `soup` as a PNG file's bytes (render_preview, encode_png).
 std::string preview_png(const TriangleSoup& soup, const PreviewOptions& options = {});
+
+/// The overall size of `soup` (its bounding box) as a preview caption, four
+/// significant digits, in `units` when given: "120.0 x 80.00 x 95.00 mm".
+std::string size_caption(const TriangleSoup& soup, const std::string& units);
+
+/// The built mesh and, with a mould, the mould's parts exploded apart around
+/// it: each part moved by the mould's radius away from the axis (along
+/// the direction of its vertices' mean), or, for a part centred on the axis
+/// (the base), by half the mould's height down (up when it sits above the
+/// vessel's middle).
+TriangleSoup exploded_scene(const BuiltMesh& built);
+
+/// A design's preview (the `preview` command and the `png` output): its mesh;
+/// with a mould, the mould's parts beside it, exploded apart (exploded_scene),
+/// so each can be seen; a vessel's
+/// axis (the z axis its profile turns about) as a dashed guide; the mesh's
+/// overall size in the design's units as the caption. `options` gives the
+/// picture's size and views.
+std::string design_preview_png(const DesignCommon& common, const BuiltMesh& built,
+                               PreviewOptions options = {});
 
 /// The HTML report's status of an item: its own, Missing and Environment
 /// shown as Error.

@@ -76,6 +76,13 @@ class Curve:
     def derivative(self, t: Union[float, ArrayLike], order: int = 1) -> npt.NDArray[np.float64]: ...
     def curvature(self, t: Union[float, ArrayLike]) -> Union[float, npt.NDArray[np.float64]]: ...
     def sample(self, tolerance: float) -> tuple[npt.NDArray[np.float64], float]: ...
+    @property
+    def joints(self) -> list[dict[str, Any]]:
+        """Every joint, measured: before, after, closing, gap, tangent_angle,
+        curvature_before, curvature_after, curvature_jump, declared, achieved."""
+    @property
+    def fairing(self) -> Optional[dict[str, Any]]:
+        """{'energy', 'before', 'after'} for a faired curve, else None."""
 
 class BuiltCurve:
     """One of a design's curves as built."""
@@ -129,5 +136,11 @@ def write_mesh(path: StrPath, vertices: ArrayLike, triangles: ArrayLike, *, unit
 def tbezier(points: ArrayLike, lam: float = 0.0, mu: float = 0.0) -> Curve: ...
 def quasi_bspline(points: ArrayLike, lambdas: Optional[list[float]] = None) -> Curve: ...
 def hbezier(points: ArrayLike, alpha: float = 1.0, lam: float = 0.0, mu: float = 0.0) -> Curve: ...
+def composite(segments: list[dict[str, Any]], closed: bool = False, closing: str = "G0") -> Curve:
+    """T-Bezier, H-Bezier and line segments with a design file's keys (family, points,
+    lambda, mu, alpha, join, continuity). Raises InputError naming the segment."""
+def fair(curve: Curve, energy: str = "curvature_variation", keeps: Optional[str] = None) -> Curve:
+    """The curve with the shape parameters minimising 'strain' or 'curvature_variation',
+    control points kept; keeps: the least continuity a joint may fall to."""
 def optimize(design: Design) -> list[dict[str, Any]]:
     """The fairest shape parameters of the design's curves, as `fabmesh optimize --json`."""

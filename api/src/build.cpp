@@ -1,5 +1,6 @@
 #include "fabmesh/build.h"
 
+#include <algorithm>
 #include <exception>
 #include <optional>
 
@@ -7,6 +8,7 @@
 #include "api/src/soup.h"
 #include "api/src/validation_report.h"
 #include "geometry/sampling/sample_curve.h"
+#include "pipeline/design_curves.h"
 #include "pipeline/failure.h"
 #include "pipeline/job.h"
 #include "pipeline/optimize.h"
@@ -16,18 +18,22 @@
 namespace fabmesh::api {
 namespace {
 
-// The design's curves as built, sampled within the design's tolerance.
-std::vector<BuiltCurve> public_curves(const fabmesh::BuiltShape& shape, double tolerance) {
+// The design's curves as built, sampled within the design's tolerance, each
+// with the spec it was built from (fairing it again starts there).
+std::vector<BuiltCurve> public_curves(const fabmesh::Design& design, const fabmesh::BuiltShape& shape) {
+  const std::vector<fabmesh::NamedCurve> specs = fabmesh::design_curves(design);
   std::vector<BuiltCurve> curves;
   for (const fabmesh::NamedBuiltCurve& named : shape.curves) {
     fabmesh::SampleOptions options;
-    options.tolerance = tolerance;
+    options.tolerance = design.common.tolerance;
     const fabmesh::Polyline2 line = fabmesh::sample_curve(named.curve.curve, options);
+    const auto spec = std::find_if(specs.begin(), specs.end(),
+                                   [&](const fabmesh::NamedCurve& c) { return c.name == named.name; });
     BuiltCurve c{named.name,
                  {},
                  line.closed,
                  line.max_deviation,
-                 Curve(std::make_shared<const detail::CurveData>(detail::CurveData{named.curve.curve}))};
+                 detail::curve_handle(named.curve, spec != specs.end() ? spec->spec : fabmesh::CurveSpec{})};
     c.points.reserve(line.points.size());
     for (const Vec2& p : line.points) c.points.push_back({p.x(), p.y()});
     curves.push_back(std::move(c));
@@ -36,13 +42,13 @@ std::vector<BuiltCurve> public_curves(const fabmesh::BuiltShape& shape, double t
 }
 
 // What the job's builder made, as the result's mesh, verdict and curves.
-void take_built(const fabmesh::BuiltMesh& built, const fabmesh::DesignCommon& common, BuildResult& result) {
+void take_built(const fabmesh::BuiltMesh& built, const fabmesh::Design& design, BuildResult& result) {
   Mesh mesh = detail::public_mesh(built.soup);
   result.vertices = std::move(mesh.vertices);
   result.triangles = std::move(mesh.triangles);
   result.max_deviation = built.max_deviation;
   result.validation = detail::public_report(built.validation, fabmesh::validation_json(built.validation));
-  result.curves = public_curves(built.shape, common.tolerance);
+  result.curves = public_curves(design, built.shape);
 }
 
 }  // namespace
@@ -54,7 +60,7 @@ BuildResult build(const Design& design) {
     result.units = d.common.units;
     result.tolerance = d.common.tolerance;
     fabmesh::JobOptions options;
-    options.on_built = [&](const fabmesh::BuiltMesh& built) { take_built(built, d.common, result); };
+    options.on_built = [&](const fabmesh::BuiltMesh& built) { take_built(built, d, result); };
     try {
       const fabmesh::PreparedJob job = fabmesh::prepare_job(d, options);
       result.valid = true;

@@ -4,10 +4,15 @@
 // FABMESH_BUILDING_LIBRARY, so the public names stay in fabmesh::api and
 // fabmesh::X is always the pipeline's X here.
 
+#include <optional>
 #include <utility>
+#include <vector>
 
+#include "fabmesh/curves.h"
 #include "fabmesh/errors.h"
 #include "geometry/curves/composite.h"
+#include "geometry/curves/curve_spec.h"
+#include "geometry/fairing/build_curve.h"
 #include "io/design/design.h"
 
 namespace fabmesh::api::detail {
@@ -18,7 +23,15 @@ struct DesignData {
 
 struct CurveData {
   fabmesh::CompositeCurve curve;
+  /// What it was built from (fairing builds it again with other shape parameters).
+  fabmesh::CurveSpec spec;
+  /// The continuity each joint was declared with (CompositeCurve::joints() order).
+  std::vector<fabmesh::Continuity> declared;
+  std::optional<api::Fairing> fairing;  ///< set on a curve made by fair()
 };
+
+/// The public handle of a curve as built (its fairing, if any, kept) from `spec`.
+Curve curve_handle(const fabmesh::BuiltCurve& built, fabmesh::CurveSpec spec);
 
 /// Rethrows the exception being handled as the public one of its kind, with
 /// the command line's message: InputError (with its key and place),

@@ -13,11 +13,28 @@ void require_non_negative(const std::string& field, double value) {
   require_in_range(field, value, 0.0, INFINITY);
 }
 
+void validate_tabs(const std::string& field, const TabOptions& tabs, double depth) {
+  if (tabs.count > 1000) {
+    throw RangeError(field + ".count", static_cast<double>(tabs.count),
+                     fmt::format("{}.count = {} is outside [0, 1000]", field, tabs.count));
+  }
+  if (tabs.count == 0) return;
+  require_positive(field + ".width", tabs.width);
+  require_positive(field + ".height", tabs.height);
+  if (tabs.height >= depth) {
+    throw RangeError(field + ".height", tabs.height,
+                     fmt::format("{}.height = {} must be below the depth {}", field, tabs.height, depth));
+  }
+  if (tabs.min_radius) require_positive(field + ".min_radius", *tabs.min_radius);
+}
+
 }  // namespace
 
 const char* to_string(CutDirection d) { return d == CutDirection::Climb ? "climb" : "conventional"; }
 
 const char* to_string(CornerRelief r) { return r == CornerRelief::Dogbone ? "dogbone" : "none"; }
+
+const char* to_string(EntryKind e) { return e == EntryKind::Ramp ? "ramp" : "plunge"; }
 
 void validate_cnc_options(const CncOptions& o) {
   require_positive("cnc.tool_diameter", o.tool_diameter);
@@ -43,23 +60,27 @@ void validate_cnc_options(const CncOptions& o) {
                      fmt::format("cnc.step_down = {} needs {} passes for a depth of {} (at most 10000)",
                                  o.step_down, passes, o.depth + o.breakthrough));
   }
-  if (o.tabs.count > 1000) {
-    throw RangeError("cnc.tabs.count", static_cast<double>(o.tabs.count),
-                     fmt::format("cnc.tabs.count = {} is outside [0, 1000]", o.tabs.count));
+  if (!(o.finish >= 0.0 && o.finish < 0.5 * o.tool_diameter)) {
+    throw RangeError("cnc.finish", o.finish,
+                     fmt::format("cnc.finish = {} must be in [0, {}), below the tool radius", o.finish,
+                                 0.5 * o.tool_diameter));
   }
-  if (o.tabs.count > 0) {
-    require_positive("cnc.tabs.width", o.tabs.width);
-    require_positive("cnc.tabs.height", o.tabs.height);
-    if (o.tabs.height >= o.depth) {
-      throw RangeError(
-          "cnc.tabs.height", o.tabs.height,
-          fmt::format("cnc.tabs.height = {} must be below the depth {}", o.tabs.height, o.depth));
-    }
-    if (o.tabs.min_radius) require_positive("cnc.tabs.min_radius", *o.tabs.min_radius);
+  validate_tabs("cnc.tabs", o.tabs, o.depth);
+  for (std::size_t i = 0; i < o.hole_tabs.size(); ++i)
+    validate_tabs(fmt::format("cnc.hole_tabs[{}]", i), o.hole_tabs[i], o.depth);
+  if (o.entry == EntryKind::Ramp && !(o.ramp_angle_deg > 0.0 && o.ramp_angle_deg <= 45.0)) {
+    throw RangeError("cnc.ramp_angle", o.ramp_angle_deg,
+                     fmt::format("cnc.ramp_angle = {} must be in (0, 45] degrees", o.ramp_angle_deg));
   }
 }
 
-double tab_min_radius(const CncOptions& o) { return o.tabs.min_radius.value_or(20.0 * o.tool_diameter); }
+double tab_min_radius(const TabOptions& tabs, double tool_diameter) {
+  return tabs.min_radius.value_or(20.0 * tool_diameter);
+}
+
+double ramp_length(const CncOptions& o, double drop) {
+  return drop / std::tan(o.ramp_angle_deg * M_PI / 180.0);
+}
 
 double min_web(const CncOptions& o) { return o.min_web.value_or(o.tool_diameter); }
 

@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <optional>
+#include <vector>
 
 namespace fabmesh {
 
@@ -22,8 +23,17 @@ enum class CutDirection { Climb, Conventional };
 /// circular notch of the tool radius there).
 enum class CornerRelief { None, Dogbone };
 
+/// How the tool goes down into the material at the start of each pass.
+/// Plunge: straight down at the plunge feed, at the lead's start in the
+/// waste. Ramp: down along the loop's own path at `ramp_angle_deg` from the
+/// horizontal, at the cutting feed (the bit's side does the work, not its
+/// tip), and at the end of the pass on along the ramp's stretch again at the
+/// full depth of the pass.
+enum class EntryKind { Plunge, Ramp };
+
 const char* to_string(CutDirection d);
 const char* to_string(CornerRelief r);
+const char* to_string(EntryKind e);
 
 /// Holding tabs on the outline: bridges of material left at the bottom of
 /// the cut so the part does not move when it comes free.
@@ -39,6 +49,13 @@ struct TabOptions {
   std::optional<double> min_radius;
 };
 
+/// Tab options that ask for no tabs (count 0), the rest at their defaults.
+inline TabOptions no_tabs() {
+  TabOptions t;
+  t.count = 0;
+  return t;
+}
+
 /// The cut. Defaults are a 12 mm straight router bit through a 30 mm slab.
 struct CncOptions {
   double tool_diameter = 12.0;  ///< > 0
@@ -52,7 +69,22 @@ struct CncOptions {
   double spindle = 18000.0;  ///< spindle speed, revolutions per minute, > 0
   double safe_z = 10.0;      ///< height of rapid moves above the slab's top (z = 0), > 0
   double lead_in = 8.0;      ///< length of the arc lead onto each loop from the waste side, >= 0
-  TabOptions tabs;
+  TabOptions tabs;           ///< on the outline
+  /// Tabs on each hole (cut-outs), in the order of plan_toolpath's holes, so
+  /// the slug stays put until it is cut free by hand; a hole beyond the list,
+  /// or with count 0, gets none.
+  std::vector<TabOptions> hole_tabs;
+  EntryKind entry = EntryKind::Plunge;
+  /// Ramp entry: the ramp's angle from the horizontal, degrees, in (0, 45].
+  /// A pass of step s ramps over s / tan(angle) of the path; where the loop
+  /// is shorter, the ramp winds round it again (a helix on a circle).
+  double ramp_angle_deg = 3.0;
+  /// Finishing: > 0 leaves this much stock on every loop in the roughing
+  /// passes (their path at tool radius + finish from the part), then cuts the
+  /// part's edge in one pass at full depth on the exact path, entering along a
+  /// tangent arc of this radius from inside the roughed slot. 0: no finishing
+  /// pass. In [0, tool radius).
+  double finish = 0.0;
   CutDirection direction = CutDirection::Climb;
   CornerRelief relief = CornerRelief::None;
   /// Largest distance between the tool-centre path and the exact offset of
@@ -68,8 +100,12 @@ struct CncOptions {
 /// and its value when an option is out of range (NaN and infinities included).
 void validate_cnc_options(const CncOptions& options);
 
-/// The tabs' minimum radius of curvature with its default resolved.
-double tab_min_radius(const CncOptions& options);
+/// The tabs' minimum radius of curvature with its default (20 tool
+/// diameters) resolved.
+double tab_min_radius(const TabOptions& tabs, double tool_diameter);
+
+/// The length of path one ramp descends over for a drop of `drop`.
+double ramp_length(const CncOptions& options, double drop);
 
 /// The minimum web with its default resolved.
 double min_web(const CncOptions& options);

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "geometry/core/errors.h"
@@ -78,8 +79,8 @@ Vec2 apply_trim(Pieces& a, Pieces& b, const Trim& t) {
 }
 
 // What goes between the offsets of two consecutive segments (travel order).
-Pieces joint_pieces(Pieces& before, Pieces& after, const LoopCorner* corner, std::size_t after_segment,
-                    const CutCurve& loop, double r) {
+Pieces joint_pieces(Pieces& before, Pieces& after, const LoopCorner* corner, bool shallow,
+                    std::size_t after_segment, const CutCurve& loop, double r) {
   const Vec2 end = before.back().to;
   if (!corner) {  // smooth: the offsets meet (up to the joint's tiny gap)
     if ((after.front().from - end).norm() <= 1e-6 * r) {
@@ -108,6 +109,7 @@ Pieces joint_pieces(Pieces& before, Pieces& after, const LoopCorner* corner, std
                                     "tool needs (its tool path vanishes)",
                                     loop.label, at(corner->at)));
   }
+  if (shallow) return {};                                         // cut through: the offsets meet at x
   const Vec2 d = corner->at + r * (x - corner->at).normalized();  // the disc touches the corner point
   PathPiece in = line_piece(x, d, PieceRole::Dogbone, after_segment);
   PathPiece out = line_piece(d, x, PieceRole::Dogbone, after_segment);
@@ -153,7 +155,10 @@ double choose_start(const Pieces& pieces, double gentle) {
 }
 
 // The closed chain re-started at distance u.
-Pieces rotate_to(const Pieces& pieces, double u) {
+
+}  // namespace
+
+std::vector<PathPiece> rotate_path(const std::vector<PathPiece>& pieces, double u) {
   double acc = 0.0;
   for (std::size_t i = 0; i < pieces.size(); ++i) {
     const double len = piece_length(pieces[i]);
@@ -162,7 +167,7 @@ Pieces rotate_to(const Pieces& pieces, double u) {
       continue;
     }
     const double local = std::clamp(u - acc, 0.0, len);
-    Pieces out;
+    std::vector<PathPiece> out;
     const bool split = local > 1e-9 * len && local < len * (1 - 1e-9);
     const std::size_t next = split ? i + 1 : (local >= 0.5 * len ? i + 1 : i);
     if (split) out.push_back(split_piece(pieces[i], local).second);
@@ -177,7 +182,31 @@ Pieces rotate_to(const Pieces& pieces, double u) {
   return pieces;
 }
 
-}  // namespace
+double nearest_along(const std::vector<PathPiece>& pieces, const Vec2& q) {
+  double best = std::numeric_limits<double>::infinity(), best_u = 0.0, u0 = 0.0;
+  for (const PathPiece& p : pieces) {
+    const double len = piece_length(p);
+    std::vector<double> candidates{0.0, len};
+    if (p.kind == PieceKind::Line) {
+      const Vec2 d = p.to - p.from;
+      if (d.squaredNorm() > 0.0)
+        candidates.push_back(std::clamp((q - p.from).dot(d) / d.squaredNorm(), 0.0, 1.0) * len);
+    } else {
+      // The turn from the arc's start to q's direction, in the arc's own sense.
+      const double a0 = std::atan2(p.from.y() - p.center.y(), p.from.x() - p.center.x());
+      const double aq = std::atan2(q.y() - p.center.y(), q.x() - p.center.x());
+      double turn = p.sweep >= 0.0 ? aq - a0 : a0 - aq;
+      turn = std::fmod(turn + 4.0 * M_PI, 2.0 * M_PI);
+      if (turn <= std::abs(p.sweep)) candidates.push_back(turn * piece_radius(p));
+    }
+    for (const double s : candidates) {
+      const double d = (piece_point(p, s) - q).norm();
+      if (d < best) best = d, best_u = u0 + s;
+    }
+    u0 += len;
+  }
+  return best_u;
+}
 
 std::pair<Vec2, Vec2> path_point(const std::vector<PathPiece>& pieces, double u) {
   double acc = 0.0;
@@ -230,7 +259,9 @@ LoopPath build_loop_path(const CutCurve& loop, const LoopCheck& check, const Loo
     const std::size_t before = loop.reversed ? order[next] : order[k];
     const LoopCorner* corner = corner_after(check.convex_corners, before);
     if (!corner) corner = corner_after(check.concave_corners, before);
-    joints[k] = joint_pieces(offsets[k], offsets[next], corner, order[next], loop, r);
+    const LoopCorner* shallow = corner ? nullptr : corner_after(check.shallow_corners, before);
+    joints[k] = joint_pieces(offsets[k], offsets[next], corner ? corner : shallow, shallow != nullptr,
+                             order[next], loop, r);
   }
   Pieces pieces;
   for (std::size_t k = 0; k < n; ++k) {
@@ -251,7 +282,7 @@ LoopPath build_loop_path(const CutCurve& loop, const LoopCheck& check, const Loo
     std::reverse(pieces.begin(), pieces.end());
     for (PathPiece& p : pieces) p = reversed(p);
   }
-  out.pieces = rotate_to(pieces, choose_start(pieces, o.gentle_radius));
+  out.pieces = rotate_path(pieces, choose_start(pieces, o.gentle_radius));
   out.length = path_length(out.pieces);
   return out;
 }

@@ -26,10 +26,11 @@ struct LoopPath {
   /// there (role Link); none when cnc.lead_in is 0 or no lead fits.
   std::optional<PathPiece> lead;
   /// Tabs: intervals [begin, end] of distance along `pieces` from the start
-  /// over which the tool rises (outline only), sorted.
+  /// over which the tool rises, sorted.
   std::vector<std::pair<double, double>> tabs;
-  double length = 0.0;     ///< of `pieces`
-  double deviation = 0.0;  ///< proven bound: chords vs the exact offset curve
+  double tab_height = 0.0;  ///< the tabs' height above the bottom of the slab
+  double length = 0.0;      ///< of `pieces`
+  double deviation = 0.0;   ///< proven bound: chords vs the exact offset curve
 };
 
 struct LoopPathOptions {
@@ -42,7 +43,9 @@ struct LoopPathOptions {
 
 /// The path of one loop, after check_manufacturability has accepted it
 /// (`check` is its LoopCheck: which corners are convex and concave). Concave
-/// corners get dog-bones (the caller refuses them unless relief is Dogbone):
+/// corners get dog-bones (the caller refuses them unless relief is Dogbone;
+/// shallow ones, LoopCheck::shallow_corners, are cut through, the offsets
+/// trimmed to where they cross):
 /// both neighbouring offsets are cut back to where they cross, X, and the
 /// tool runs from X towards the corner point P until its disc touches P
 /// (centre at P + r (X - P) / |X - P|) and back.
@@ -54,6 +57,12 @@ LoopPath build_loop_path(const CutCurve& loop, const LoopCheck& check, const Loo
 /// onto the start of `path` (the waste is on the right of the travel for
 /// conventional cutting, on its left for climb).
 PathPiece lead_arc(const LoopPath& path, CutDirection direction, double radius);
+
+/// The same closed chain starting at distance u from its start (a piece split there).
+std::vector<PathPiece> rotate_path(const std::vector<PathPiece>& pieces, double u);
+
+/// The distance along a chain of pieces of its point nearest to q.
+double nearest_along(const std::vector<PathPiece>& pieces, const Vec2& q);
 
 /// Point and unit tangent at distance u along a closed chain of pieces.
 std::pair<Vec2, Vec2> path_point(const std::vector<PathPiece>& pieces, double u);

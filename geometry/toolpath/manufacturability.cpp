@@ -50,10 +50,13 @@ void check_concave_corners(const CutCurve& loop, const LoopCheck& check, const C
       loop.label,
       fmt::format(
           "{}: the corner between {} and {} at {} is concave for the tool (it turns {:.4g} degrees "
-          "away from it): a tool of diameter {} leaves it rounded to radius {}; round the corner to a "
-          "radius >= {} or set relief: dogbone",
+          "away from it): a tool of diameter {} leaves it rounded to radius {}, {:.3g} from the corner "
+          "point (more than a quarter of the tolerance, {:.3g}); round the corner to a radius >= {} or set "
+          "relief: dogbone",
           loop.label, segment_name(curve, c.before), segment_name(curve, c.after), at(c.at),
-          std::abs(c.turn) * 180.0 / M_PI, o.tool_diameter, 0.5 * o.tool_diameter, 0.5 * o.tool_diameter));
+          std::abs(c.turn) * 180.0 / M_PI, o.tool_diameter, 0.5 * o.tool_diameter,
+          0.5 * o.tool_diameter * (1.0 / std::cos(0.5 * c.turn) - 1.0), shallow_corner_depth(o),
+          0.5 * o.tool_diameter));
 }
 
 // 3. Concave stretches: radius of curvature >= the tool radius, proven per segment.
@@ -134,6 +137,8 @@ std::vector<LoopCorner> loop_corners(const CutCurve& loop) {
   return out;
 }
 
+double shallow_corner_depth(const CncOptions& options) { return 0.25 * options.tolerance; }
+
 ManufacturabilityReport check_manufacturability(const std::vector<CutCurve>& loops,
                                                 const BoundaryIndex& boundary, double deviation,
                                                 const CncOptions& o) {
@@ -148,7 +153,13 @@ ManufacturabilityReport check_manufacturability(const std::vector<CutCurve>& loo
     check.label = loop.label;
     for (const LoopCorner& c : loop_corners(loop)) {
       // A turn of exactly +-pi (a cusp) has no convex side: treat it as concave.
-      (c.turn > 0.0 && c.turn < M_PI ? check.convex_corners : check.concave_corners).push_back(c);
+      if (c.turn > 0.0 && c.turn < M_PI) {
+        check.convex_corners.push_back(c);
+      } else if (r * (1.0 / std::cos(0.5 * c.turn) - 1.0) <= shallow_corner_depth(o)) {
+        check.shallow_corners.push_back(c);  // the tool's round stays within the tolerance
+      } else {
+        check.concave_corners.push_back(c);
+      }
     }
     check_concave_corners(loop, check, o);
     check_concave_stretches(loop, check, r);

@@ -44,7 +44,17 @@ struct LoopCheck {
   Vec2 min_at{0.0, 0.0};
   std::vector<LoopCorner> convex_corners;   ///< the tool turns around them on an arc of its radius
   std::vector<LoopCorner> concave_corners;  ///< relieved by dog-bones (refused without relief)
+  /// Concave corners so slight that the tool's round leaves at most
+  /// shallow_corner_depth(options) of material at the corner point,
+  /// r (1 / cos(turn / 2) - 1): cut through (the offsets trimmed to where
+  /// they meet), neither refused nor relieved. A digitised outline's points
+  /// on a smooth stretch are such corners.
+  std::vector<LoopCorner> shallow_corners;
 };
+
+/// The most material a shallow concave corner may keep at its corner point:
+/// a quarter of options.tolerance (plan_toolpath's share "shallow concave corners").
+double shallow_corner_depth(const CncOptions& options);
 
 struct ManufacturabilityReport {
   std::vector<LoopCheck> loops;  ///< in the order given
@@ -58,7 +68,8 @@ struct ManufacturabilityReport {
 /// The checks, in this order, each throwing GeometryError whose `where` is the
 /// loop's label (message: loop, segment or joint, point, the radius or gap found):
 ///  1. every hole is at least one tool diameter wide in every direction;
-///  2. no concave G0 corner, unless options.relief is Dogbone;
+///  2. no concave G0 corner, unless options.relief is Dogbone or it is shallow
+///     (LoopCheck::shallow_corners);
 ///  3. every concave stretch has a radius of curvature >= the tool radius
 ///     (least_curvature: proven, relative slack 1e-6);
 ///  4. no two loops come closer than min_web(options).

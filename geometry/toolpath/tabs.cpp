@@ -5,20 +5,21 @@
 #include <algorithm>
 #include <cmath>
 
-#include "geometry/core/errors.h"
-
 namespace fabmesh {
 namespace {
 
 using Interval = std::pair<double, double>;
 
-// Stretches [begin, end] of the path made of flat offset pieces.
-std::vector<Interval> flat_stretches(const LoopPath& path, double min_radius) {
+// Stretches [begin, end] of the path made of flat offset pieces, and of the
+// tool's arcs round convex corners that turn no more than a gentle curve of
+// min_radius turns over one tool diameter (a digitised outline's points).
+std::vector<Interval> flat_stretches(const LoopPath& path, double min_radius, double tool_diameter) {
   std::vector<Interval> out;
   double u = 0.0;
   for (const PathPiece& p : path.pieces) {
     const double len = piece_length(p);
-    if (p.role == PieceRole::Offset && p.radius_of_curvature >= min_radius) {
+    const bool gentle_corner = p.role == PieceRole::Corner && std::abs(p.sweep) * min_radius <= tool_diameter;
+    if ((p.role == PieceRole::Offset && p.radius_of_curvature >= min_radius) || gentle_corner) {
       if (!out.empty() && out.back().second == u) {
         out.back().second = u + len;
       } else {
@@ -46,20 +47,23 @@ void cut_out(std::vector<Interval>& intervals, double lo, double hi) {
 
 }  // namespace
 
-std::vector<std::pair<double, double>> place_tabs(const LoopPath& path, const CncOptions& o) {
-  std::vector<Interval> tabs;
-  if (o.tabs.count == 0) return tabs;
-  const double lifted = o.tabs.width + o.tool_diameter;
+TabPlacement place_tabs(const LoopPath& path, const TabOptions& want_tabs, const CncOptions& o,
+                        double clear_start) {
+  TabPlacement out;
+  if (want_tabs.count == 0) return out;
+  const double lifted = want_tabs.width + o.tool_diameter;
   const double gap = o.tool_diameter;
+  const double min_radius = tab_min_radius(want_tabs, o.tool_diameter);
   // Admissible tab centres: inside flat stretches by half a tab, clear of the start point.
   std::vector<Interval> centres;
-  for (const Interval& s : flat_stretches(path, tab_min_radius(o))) {
-    const double lo = std::max(s.first, gap) + 0.5 * lifted,
+  for (const Interval& s : flat_stretches(path, min_radius, o.tool_diameter)) {
+    const double lo = std::max(s.first, std::max(gap, clear_start)) + 0.5 * lifted,
                  hi = std::min(s.second, path.length - gap) - 0.5 * lifted;
     if (lo <= hi) centres.push_back({lo, hi});
   }
-  const double count = static_cast<double>(o.tabs.count);
-  for (std::size_t i = 0; i < o.tabs.count; ++i) {
+  const double count = static_cast<double>(want_tabs.count);
+  std::size_t missing = 0;
+  for (std::size_t i = 0; i < want_tabs.count; ++i) {
     const double want = (static_cast<double>(i) + 0.5) * path.length / count;
     double best = INFINITY, best_d = INFINITY;
     for (const Interval& c : centres) {
@@ -67,19 +71,23 @@ std::vector<std::pair<double, double>> place_tabs(const LoopPath& path, const Cn
       if (std::abs(x - want) < best_d) best_d = std::abs(x - want), best = x;
     }
     if (best == INFINITY) {
-      throw GeometryError(
-          path.label,
-          fmt::format("{}: no room for tab {} of {} (width {} + tool diameter {}) on a straight or "
-                      "gently curved stretch (radius of curvature >= {}) of its tool path "
-                      "(length {:.6g})",
-                      path.label, i + 1, o.tabs.count, o.tabs.width, o.tool_diameter, tab_min_radius(o),
-                      path.length));
+      ++missing;
+      continue;
     }
-    tabs.push_back({best - 0.5 * lifted, best + 0.5 * lifted});
+    out.tabs.push_back({best - 0.5 * lifted, best + 0.5 * lifted});
     cut_out(centres, best - lifted - gap, best + lifted + gap);
   }
-  std::sort(tabs.begin(), tabs.end());
-  return tabs;
+  std::sort(out.tabs.begin(), out.tabs.end());
+  if (missing > 0) {
+    out.warning = fmt::format(
+        "{}: {} of {} tabs placed; no room for {} more (each needs {:.6g} = width {:.6g} + tool diameter "
+        "{:.6g} of a straight or gently curved stretch, radius of curvature >= {:.6g}, of its tool path of "
+        "length {:.6g}, one tool diameter from the others{}): narrow the tabs, lower min_radius or ask for "
+        "fewer",
+        path.label, out.tabs.size(), want_tabs.count, missing, lifted, want_tabs.width, o.tool_diameter,
+        min_radius, path.length, clear_start > gap ? " and clear of the ramp" : "");
+  }
+  return out;
 }
 
 }  // namespace fabmesh

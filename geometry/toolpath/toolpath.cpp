@@ -95,6 +95,41 @@ std::vector<double> pass_depths(const CncOptions& o) {
   return z;
 }
 
+// The first `length` of a closed chain of pieces from its start, going round
+// again where the chain is shorter.
+std::vector<PathPiece> stretch(const std::vector<PathPiece>& pieces, double path_length, double length) {
+  std::vector<PathPiece> out;
+  if (!(path_length > 0.0)) return out;
+  double left = length;
+  for (std::size_t i = 0; left > 0.0; i = (i + 1) % pieces.size()) {
+    const double len = piece_length(pieces[i]);
+    if (len <= left) {
+      out.push_back(pieces[i]);
+      left -= len;
+    } else {
+      out.push_back(split_piece(pieces[i], left).first);
+      left = 0.0;
+    }
+  }
+  return out;
+}
+
+// A zig-zag ramp from z_from at the start point down to z_to there again:
+// forward along the path's first `half` and back, descending all the way.
+void ramp_moves(const LoopPath& lp, std::size_t loop, double half, double z_from, double z_to,
+                std::vector<ToolMove>& moves) {
+  std::vector<PathPiece> legs = stretch(lp.pieces, lp.length, half);
+  const std::size_t forward = legs.size();
+  for (std::size_t i = forward; i-- > 0;) legs.push_back(reversed(legs[i]));
+  double done = 0.0;
+  for (const PathPiece& p : legs) {
+    done += piece_length(p);
+    const double z = z_from + (z_to - z_from) * std::min(1.0, done / (2.0 * half));
+    moves.push_back(move_along(p, z, MoveKind::Ramp, loop));
+  }
+  moves.back().to.z() = z_to;  // exactly, whatever the sum's rounding
+}
+
 // One pass around a loop at depth z, rising to tab_z over the tabs when `tabs`.
 void cut_pass(const LoopPath& lp, std::size_t loop, double z, bool tabs, double tab_z,
               std::vector<ToolMove>& moves) {
@@ -140,19 +175,65 @@ void cut_pass(const LoopPath& lp, std::size_t loop, double z, bool tabs, double 
   if (raised) moves.push_back(move_to(MoveKind::TabDown, lp.pieces.front().from, z, loop));
 }
 
-void append_loop_moves(Toolpath& tp, std::size_t index) {
+// The roughing path's tabs: the finishing path's, carried over by their
+// nearest points and widened by the stock, so the roughing passes leave the
+// same bridges.
+std::vector<std::pair<double, double>> carried_tabs(const LoopPath& finish, const LoopPath& rough,
+                                                    double stock) {
+  std::vector<std::pair<double, double>> out;
+  for (const auto& [a, b] : finish.tabs) {
+    const double ra = nearest_along(rough.pieces, path_point(finish.pieces, a).first) - stock;
+    const double rb = nearest_along(rough.pieces, path_point(finish.pieces, b).first) + stock;
+    if (ra < rb) out.emplace_back(std::max(ra, 0.0), std::min(rb, rough.length));
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// Half the length of path one pass's zig-zag ramp runs over (0: plunge entry).
+double ramp_half(const CncOptions& o, const std::vector<double>& pass_z) {
+  if (o.entry != EntryKind::Ramp || pass_z.empty()) return 0.0;
+  return 0.5 * ramp_length(o, -pass_z.front());  // every pass drops by the same step
+}
+
+// The finishing pass of a loop: down inside the roughed slot at the short
+// lead's start, onto the edge, once round at full depth, off again.
+void append_finishing(Toolpath& tp, std::size_t index) {
   const LoopPath& lp = tp.loops[index];
+  const CncOptions& o = tp.options;
+  const std::size_t first = tp.moves.size();
+  const Vec2 start = lp.lead ? lp.lead->from : lp.pieces.front().from;
+  const double z = tp.pass_z.back();
+  const double tab_z = -(o.depth - lp.tab_height);
+  tp.moves.push_back(move_to(MoveKind::Rapid, start, o.safe_z, index));
+  tp.moves.push_back(move_to(MoveKind::Plunge, start, z, index));
+  if (lp.lead) tp.moves.push_back(move_along(*lp.lead, z, MoveKind::LeadIn, index));
+  cut_pass(lp, index, z, !lp.tabs.empty() && z < tab_z - 1e-9 * o.depth, tab_z, tp.moves);
+  if (lp.lead) tp.moves.push_back(move_along(reversed(*lp.lead), z, MoveKind::LeadOut, index));
+  tp.moves.push_back(move_to(MoveKind::Retract, start, o.safe_z, index));
+  for (std::size_t i = first; i < tp.moves.size(); ++i) tp.moves[i].finishing = true;
+}
+
+void append_loop_moves(Toolpath& tp, std::size_t index) {
+  const LoopPath& lp = tp.roughing.empty() ? tp.loops[index] : tp.roughing[index];
   const CncOptions& o = tp.options;
   const Vec2 start = lp.lead ? lp.lead->from : lp.pieces.front().from;
   tp.moves.push_back(move_to(MoveKind::Rapid, start, o.safe_z, index));
-  const bool has_tabs = lp.outer && !lp.tabs.empty();
+  const double tab_z = -(o.depth - lp.tab_height);
+  const double half = ramp_half(o, tp.pass_z);
+  double above = 0.0;  // the floor the previous pass left (the slab's top at first)
   for (double z : tp.pass_z) {
-    tp.moves.push_back(move_to(MoveKind::Plunge, start, z, index));
-    if (lp.lead) tp.moves.push_back(move_along(*lp.lead, z, MoveKind::LeadIn, index));
-    cut_pass(lp, index, z, has_tabs && z < tp.tab_z - 1e-9 * o.depth, tp.tab_z, tp.moves);
+    // With a ramp, the tool goes down to the previous floor only, in the waste.
+    const double enter = half > 0.0 ? above : z;
+    tp.moves.push_back(move_to(MoveKind::Plunge, start, enter, index));
+    if (lp.lead) tp.moves.push_back(move_along(*lp.lead, enter, MoveKind::LeadIn, index));
+    if (half > 0.0) ramp_moves(lp, index, half, enter, z, tp.moves);
+    cut_pass(lp, index, z, !lp.tabs.empty() && z < tab_z - 1e-9 * o.depth, tab_z, tp.moves);
     if (lp.lead) tp.moves.push_back(move_along(reversed(*lp.lead), z, MoveKind::LeadOut, index));
+    above = z;
   }
   tp.moves.push_back(move_to(MoveKind::Retract, start, o.safe_z, index));
+  if (!tp.roughing.empty()) append_finishing(tp, index);
 }
 
 }  // namespace
@@ -171,6 +252,7 @@ ToolpathTotals toolpath_totals(const Toolpath& path) {
     at = m.to;
     switch (m.kind) {
       case MoveKind::LeadIn:
+      case MoveKind::Ramp:
       case MoveKind::Cut:
       case MoveKind::LeadOut:
         t.cutting += length;
@@ -199,6 +281,8 @@ const char* to_string(MoveKind kind) {
       return "plunge";
     case MoveKind::LeadIn:
       return "lead-in";
+    case MoveKind::Ramp:
+      return "ramp";
     case MoveKind::Cut:
       return "cut";
     case MoveKind::LeadOut:
@@ -234,19 +318,57 @@ Toolpath plan_toolpath(const CompositeCurve& outline, const std::vector<RegionHo
   Toolpath tp;
   tp.options = o;
   tp.checks = check_manufacturability(loops, index, sb.deviation, o);
+  // The material a shallow concave corner keeps at its point (the tool's round there).
+  tolerance.take("shallow concave corners", 0.25);
+  double shallow = 0.0;
+  for (const LoopCheck& c : tp.checks.loops) {
+    for (const LoopCorner& k : c.shallow_corners)
+      shallow = std::max(shallow, r * (1.0 / std::cos(0.5 * k.turn) - 1.0));
+  }
+  tolerance.use("shallow concave corners", shallow);
   LoopPathOptions lo;
   lo.radius = r;
   lo.chain_tolerance = b.chain;
   lo.direction = o.direction;
-  lo.gentle_radius = tab_min_radius(o);
+  lo.gentle_radius = tab_min_radius(o.tabs, o.tool_diameter);
   lo.max_points = o.max_points;
   tp.clearance = r;
+  tp.pass_z = pass_depths(o);
+  // Tabs keep clear of the start point, and of a ramp's stretch after it.
+  const double half = ramp_half(o, tp.pass_z);
+  const double clear_start = o.tool_diameter + half;
   for (std::size_t k = 1; k <= loops.size(); ++k) {
     const std::size_t l = k % loops.size();  // holes first, the outline (0) last
     LoopPath lp = build_loop_path(loops[l], tp.checks.loops[l], lo);
     require_clearance(lp, loops, index, sb, o, b, &tp.clearance);
     if (o.lead_in > 0.0) lp.lead = choose_lead(lp, index, sb, o, b, &tp.clearance);
-    if (lp.outer) lp.tabs = place_tabs(lp, o);
+    const TabOptions tabs = l == 0 ? o.tabs : (l - 1 < o.hole_tabs.size() ? o.hole_tabs[l - 1] : no_tabs());
+    TabPlacement placed = place_tabs(lp, tabs, o, clear_start);
+    lp.tabs = std::move(placed.tabs);
+    lp.tab_height = tabs.height;
+    if (!placed.warning.empty()) tp.warnings.push_back(std::move(placed.warning));
+    if (o.finish > 0.0) {
+      // Roughing at the tool radius + the stock, from the point nearest the
+      // finishing path's start (so the ramps and tabs keep apart on both).
+      LoopPathOptions ro = lo;
+      ro.radius = r + o.finish;
+      LoopPath rough = build_loop_path(loops[l], tp.checks.loops[l], ro);
+      rough.pieces = rotate_path(rough.pieces, nearest_along(rough.pieces, lp.pieces.front().from));
+      require_clearance(rough, loops, index, sb, o, b, &tp.clearance);
+      if (o.lead_in > 0.0) rough.lead = choose_lead(rough, index, sb, o, b, &tp.clearance);
+      rough.tabs = carried_tabs(lp, rough, o.finish);
+      rough.tab_height = lp.tab_height;
+      tp.roughing.push_back(std::move(rough));
+      // The finishing lead starts inside the roughed slot: a tangent arc of radius `finish`.
+      lp.lead.reset();
+      const PathPiece lead = lead_arc(lp, o.direction, o.finish);
+      Clearance c;
+      const double proven = proven_clearance({lead}, index, r, sb.deviation, b, &c);
+      if (proven >= r - o.tolerance) {
+        lp.lead = lead;
+        tp.clearance = std::min(tp.clearance, proven);
+      }
+    }
     tp.deviation = std::max(tp.deviation, lp.deviation);
     tp.loops.push_back(std::move(lp));
   }
@@ -255,7 +377,6 @@ Toolpath plan_toolpath(const CompositeCurve& outline, const std::vector<RegionHo
   // a measured use: it stays open (reported without `used`), as G-code rounding.
   tp.rounding_allowance = tolerance.take("G-code rounding", 0.05);
   tp.tolerance_shares = tolerance.shares();
-  tp.pass_z = pass_depths(o);
   tp.tab_z = -(o.depth - o.tabs.height);
   for (std::size_t i = 0; i < tp.loops.size(); ++i) append_loop_moves(tp, i);
   return tp;

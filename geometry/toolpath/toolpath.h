@@ -20,6 +20,7 @@ enum class MoveKind {
   Rapid,    ///< G0 at safe height
   Plunge,   ///< straight down at the plunge feed (in the waste, at the lead's start)
   LeadIn,   ///< the lead arc onto the loop, at the cutting feed
+  Ramp,     ///< down along the loop's path at the ramp angle (EntryKind::Ramp), at the cutting feed
   Cut,      ///< along the loop at the cutting feed
   LeadOut,  ///< the lead arc run backwards off the loop
   TabUp,    ///< straight up onto a tab (plunge feed)
@@ -30,8 +31,10 @@ enum class MoveKind {
 const char* to_string(MoveKind kind);
 
 /// One move from the previous position to `to`. Arcs (shape Arc) turn about
-/// `center` by `sweep` radians in the plane z = to.z() (positive:
-/// counter-clockwise seen from above, G3); their start is the previous position.
+/// `center` by `sweep` radians (positive: counter-clockwise seen from above,
+/// G3); their start is the previous position. An arc's z goes from the
+/// previous position's to to.z() in proportion to the turn (a helix); only
+/// ramps change z along an arc.
 struct ToolMove {
   MoveKind kind = MoveKind::Rapid;
   PieceKind shape = PieceKind::Line;
@@ -40,15 +43,23 @@ struct ToolMove {
   double sweep = 0.0;
   PieceRole role = PieceRole::Offset;  ///< Cut moves: what the piece is (offset, corner, dog-bone)
   std::size_t loop = 0;                ///< index into Toolpath::loops
+  bool finishing = false;              ///< part of the finishing pass (options.finish > 0)
 };
 
 struct Toolpath {
   CncOptions options;
   ManufacturabilityReport checks;
   std::vector<LoopPath> loops;  ///< cutting order: the holes as given, then the outline
+  /// With options.finish > 0: each loop's roughing path (tool radius +
+  /// finish from the part, its tabs over the finishing path's), same order;
+  /// `loops` are then the finishing paths. Empty without finishing.
+  std::vector<LoopPath> roughing;
   std::vector<ToolMove> moves;  ///< the first is a Rapid at safe_z; the program starts by rising to safe_z
   std::vector<double> pass_z;   ///< z of each depth pass, descending to -(depth + breakthrough)
-  double tab_z = 0.0;           ///< z over the tabs: -(depth - tabs.height)
+  double tab_z = 0.0;           ///< z over the outline's tabs: -(depth - tabs.height)
+  /// Tabs that asked for more room than their loop has (placed where they
+  /// fit; the rest left out), one line per loop, for the report.
+  std::vector<std::string> warnings;
   /// Proven bound: the tool-centre path (chords of chains, exact lines and
   /// arcs) vs the exact offset of the exact curves, model units.
   double deviation = 0.0;
@@ -65,7 +76,7 @@ struct Toolpath {
 /// A program's moves by how the machine runs them: lengths (model units) and
 /// the time they take at their rates, without acceleration (so a lower bound).
 struct ToolpathTotals {
-  double cutting = 0.0;   ///< lead-ins, cuts and lead-outs, at the cutting feed
+  double cutting = 0.0;   ///< lead-ins, ramps, cuts and lead-outs, at the cutting feed
   double plunging = 0.0;  ///< plunges and moves onto and off tabs, at the plunge feed
   double rapid = 0.0;     ///< rapids and retracts, at options.rapid
   double minutes = 0.0;   ///< cutting / feed + plunging / plunge + rapid / rapid
@@ -80,13 +91,22 @@ ToolpathTotals toolpath_totals(const Toolpath& path);
 /// (build_region's GeometryError), check_manufacturability (GeometryError
 /// naming loop, segment, point, radius or gap), the loop paths, their
 /// clearance from the part (GeometryError where the tool cannot pass, e.g.
-/// a notch narrower than the tool), tabs on the outline (GeometryError when
-/// they find no room). The lead arc has radius 2 lead_in / pi (a quarter
+/// a notch narrower than the tool), tabs on the outline (options.tabs) and on
+/// each hole (options.hole_tabs), placed where they fit (place_tabs; those
+/// that do not are left out with a line in `warnings`). With ramp entry each
+/// pass starts at the previous pass's depth (the slab's top for the first),
+/// ramps down along the path forward over half the ramp length and back to
+/// the start, then cuts the loop at its depth: the ramp's floor is taken down
+/// gradually, never by a plunge of the tool's tip. With options.finish,
+/// every pass of a loop runs on its roughing path, then one finishing pass
+/// at full depth runs on `loops`, entering from the roughed slot along a
+/// tangent arc of radius finish. The lead arc has radius 2 lead_in / pi (a quarter
 /// circle of length lead_in); where it would cut into the part it is halved,
 /// twice, then left out (the plunge then lands on the path).
 /// Tolerance budget (cnc.tolerance = t): chords of chains t/2, boundary
 /// samples for the checks t/10, arcs as chords in the clearance check t/20,
-/// the G-code's rounding t/20 (Toolpath::rounding_allowance).
+/// the material shallow concave corners keep t/4 (shallow_corner_depth), the
+/// G-code's rounding t/20 (Toolpath::rounding_allowance).
 /// \throw RangeError, GeometryError, BudgetError
 Toolpath plan_toolpath(const CompositeCurve& outline, const std::vector<RegionHole>& holes,
                        const CncOptions& options);

@@ -69,6 +69,8 @@ const char* note(const ToolMove& m) {
       return " (lead in)";
     case MoveKind::LeadOut:
       return " (lead out)";
+    case MoveKind::Ramp:
+      return " (ramp)";
     case MoveKind::TabUp:
     case MoveKind::TabDown:
       return " (tab)";
@@ -110,17 +112,21 @@ class Encoder {
     s_.known = true;
   }
 
+  // G2/G3 (split in arcs of at most a half turn); a ramp's arc descends
+  // along its turn (a helix: Z on the same line).
   void arc(const ToolMove& m) {
     const Vec2 start(s_.at.x(), s_.at.y());
     const double radius = (start - m.center).norm();
     const int pieces = std::max(1, static_cast<int>(std::ceil(std::abs(m.sweep) / (M_PI + 1e-9))));
     const double a0 = std::atan2(start.y() - m.center.y(), start.x() - m.center.x());
+    const double z0 = s_.at.z();
     for (int i = 1; i <= pieces; ++i) {
       const double sweep = m.sweep / pieces;
       const Vec2 end = i == pieces ? Vec2(m.to.x(), m.to.y())
                                    : m.center + radius * Vec2(std::cos(a0 + m.sweep * i / pieces),
                                                               std::sin(a0 + m.sweep * i / pieces));
-      const Vec3 to(end.x(), end.y(), m.to.z());
+      const double z = i == pieces ? m.to.z() : z0 + (m.to.z() - z0) * i / pieces;
+      const Vec3 to(end.x(), end.y(), z);
       // Flatter than the resolution: a straight move is as exact.
       if (radius * (1.0 - std::cos(0.5 * sweep)) <= w_.resolution()) {
         linear(m, to);
@@ -129,10 +135,12 @@ class Encoder {
       const Vec2 from(s_.at.x(), s_.at.y());
       const Vec2 r_end(w_.rounded(end.x()), w_.rounded(end.y()));
       if (r_end == from) continue;  // would read as a full circle
-      const std::string words = fmt::format(" X{} Y{} I{} J{}", w_.num(end.x()), w_.num(end.y()),
+      const double r_z = w_.rounded(z);
+      const std::string words = fmt::format(" X{} Y{}{} I{} J{}", w_.num(end.x()), w_.num(end.y()),
+                                            r_z != s_.at.z() ? " Z" + w_.num(z) : std::string(),
                                             w_.num(m.center.x() - from.x()), w_.num(m.center.y() - from.y()));
       emit(sweep > 0.0 ? "G3" : "G2", words, feed_of(m), note(m));
-      s_.at = Vec3(r_end.x(), r_end.y(), s_.at.z());
+      s_.at = Vec3(r_end.x(), r_end.y(), r_z);
     }
   }
 
@@ -164,6 +172,19 @@ std::string Encoder::run(const GcodeOptions& o) {
                       w_.num(c.plunge), per_min, w_.plain(c.spindle)));
   w_.line(fmt::format("(cutting {}; tabs {} x {} wide, {} high; lead-in {})", to_string(c.direction),
                       c.tabs.count, w_.num(c.tabs.width), w_.num(c.tabs.height), w_.num(c.lead_in)));
+  for (std::size_t i = 0; i < path_.loops.size(); ++i) {
+    const LoopPath& loop = path_.loops[i];
+    if (loop.outer || loop.tabs.empty()) continue;
+    w_.line(fmt::format("({}: tabs {}, {} high)", comment_text(loop.label), loop.tabs.size(),
+                        w_.num(loop.tab_height)));
+  }
+  if (c.finish > 0.0) {
+    w_.line(fmt::format("(roughing leaves {} of stock; a finishing pass at full depth cuts each edge)",
+                        w_.num(c.finish)));
+  }
+  if (c.entry == EntryKind::Ramp) {
+    w_.line(fmt::format("(entry: zig-zag ramp at {} degrees along the path)", w_.plain(c.ramp_angle_deg)));
+  }
   w_.line(fmt::format("(path within {} {} of the exact offset of the exact curves)",
                       w_.num(path_.deviation + w_.resolution()), u));
   const ToolpathTotals totals = toolpath_totals(path_);
@@ -180,9 +201,13 @@ std::string Encoder::run(const GcodeOptions& o) {
   std::size_t pass = 0;
   for (const ToolMove& m : path_.moves) {
     if (m.loop != loop) loop = m.loop, pass = 0;
-    if (m.kind == MoveKind::Plunge) {
-      w_.line(fmt::format("({}: pass {} of {} at z {})", comment_text(path_.loops[m.loop].label), ++pass,
-                          path_.pass_z.size(), w_.num(m.to.z())));
+    if (m.kind == MoveKind::Plunge && m.finishing) {
+      w_.line(fmt::format("({}: finishing pass at z {}, the last {} of stock)",
+                          comment_text(path_.loops[m.loop].label), w_.num(m.to.z()), w_.num(c.finish)));
+    } else if (m.kind == MoveKind::Plunge && pass < path_.pass_z.size()) {
+      w_.line(fmt::format("({}: pass {} of {} at z {})", comment_text(path_.loops[m.loop].label), pass + 1,
+                          path_.pass_z.size(), w_.num(path_.pass_z[pass])));
+      ++pass;
     }
     if (!s_.known && m.kind == MoveKind::Rapid) {
       // The first move: at safe height already (the line above), across to the start.

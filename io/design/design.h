@@ -85,6 +85,10 @@ struct DesignCommon {
   std::vector<std::string> notes;
   /// The design's `parameters`, in the order declared, with the values used.
   std::vector<DesignParameter> parameters;
+  /// The other files the design reads (DXF drawings, CSV point lists), as
+  /// opened (relative to the working folder or absolute), in reading order:
+  /// what `run --watch` watches besides the design.
+  std::vector<std::string> inputs;
 };
 
 /// `location` placed in the design: `place` is where the design gives its key
@@ -126,6 +130,9 @@ struct VesselDesign {
 struct CountertopHole {
   std::string shape;  ///< ellipse | rounded_rect | outline (for messages)
   CurveSpec curve;    ///< closed; ellipse and rounded_rect expanded into exact ellipse-arc and line segments
+  /// The hole entry's `tabs` (the router leaves them on this cut-out; width,
+  /// height and min_radius default to cnc.tabs'); count 0 when not given.
+  TabOptions tabs = no_tabs();
 };
 
 /// A CNC router cut of a countertop (key `cnc`): the cut, and how its G-code is written.

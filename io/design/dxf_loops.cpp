@@ -39,15 +39,17 @@ constexpr DxfUnit kDxfUnits[] = {
     {1, "in", 0.0254}, {2, "ft", 0.3048}, {4, "mm", 1e-3}, {5, "cm", 1e-2}, {6, "m", 1.0},
 };
 
-// One piece of a loop: a line or an exact arc, in the drawing's direction,
-// in drawing units.
+// One piece of a loop: a line, an exact arc or an exact spline (as cubic
+// Bézier pieces), in the drawing's direction, in drawing units.
 struct Piece {
   bool arc = false;
+  bool spline = false;
   Vec2 start{0.0, 0.0}, end{0.0, 0.0};
-  EllipseArcParams ellipse;  // arcs
-  std::string entity;        // "LINE #2F", "LWPOLYLINE #30 vertex 4"
-  bool closed = false;       // a whole circle or ellipse: a loop by itself
-  std::size_t order = 0;     // its entity's place in the file
+  EllipseArcParams ellipse;                  // arcs
+  std::vector<std::array<Vec2, 4>> beziers;  // splines: cubic Bézier control points, in order
+  std::string entity;                        // "LINE #2F", "LWPOLYLINE #30 vertex 4"
+  bool closed = false;                       // a whole circle or ellipse: a loop by itself
+  std::size_t order = 0;                     // its entity's place in the file
 };
 
 // A polyline as read: vertices (x, y) with the bulge of the span after each.
@@ -59,7 +61,87 @@ struct Polyline {
   std::vector<std::array<double, 3>> vertices;
 };
 
+// A SPLINE as read: degree, knots, control points (x, y, z) and weights.
+struct SplineData {
+  std::string entity;
+  std::size_t order = 0;
+  int degree = 0;
+  bool closed = false;
+  std::vector<double> knots;
+  std::vector<std::array<double, 4>> control;  // x, y, z, w
+  std::size_t fit_points = 0;
+};
+
 std::string fmt_point(const Vec2& p) { return fmt::format("({:.10g}, {:.10g})", p.x(), p.y()); }
+
+// Boehm's insertion of knot u once into a B-spline of degree p.
+void insert_knot(std::vector<double>& knots, std::vector<Vec2>& points, int p, double u) {
+  const std::size_t k =
+      static_cast<std::size_t>(std::upper_bound(knots.begin(), knots.end(), u) - knots.begin()) - 1;
+  std::vector<Vec2> q;
+  q.reserve(points.size() + 1);
+  for (std::size_t i = 0; i <= points.size(); ++i) {
+    if (i + static_cast<std::size_t>(p) <= k) {
+      q.push_back(points[i]);
+    } else if (i > k) {
+      q.push_back(points[i - 1]);
+    } else {
+      const double den = knots[i + static_cast<std::size_t>(p)] - knots[i];
+      const double a = den > 0.0 ? (u - knots[i]) / den : 0.0;
+      q.push_back((1.0 - a) * points[i - 1] + a * points[i]);
+    }
+  }
+  knots.insert(knots.begin() + static_cast<std::ptrdiff_t>(k) + 1, u);
+  points = std::move(q);
+}
+
+// The cubic Bézier pieces of a non-rational B-spline of degree 1..3 over its
+// domain [knots[p], knots[n + 1]]: every knot there inserted until it has
+// multiplicity p (the ends included, which clamps an unclamped spline), then
+// each piece raised to degree 3 (exactly). Empty when the domain is empty.
+std::vector<std::array<Vec2, 4>> bezier_pieces(std::vector<double> knots, std::vector<Vec2> points, int p) {
+  const std::size_t n = points.size();
+  const double lo = knots[static_cast<std::size_t>(p)], hi = knots[n];
+  std::vector<double> breaks;
+  for (std::size_t i = static_cast<std::size_t>(p); i <= n; ++i) {
+    if (breaks.empty() || knots[i] > breaks.back()) breaks.push_back(knots[i]);
+  }
+  for (const double u : breaks) {
+    const auto mult = [&] { return std::count(knots.begin(), knots.end(), u); };
+    while (mult() < p) insert_knot(knots, points, p, u);
+  }
+  std::vector<std::array<Vec2, 4>> out;
+  // Each span [u_i, u_{i+1}] in the domain now has its own p + 1 control points.
+  for (std::size_t b = 0; b + 1 < breaks.size(); ++b) {
+    if (!(breaks[b] >= lo && breaks[b + 1] <= hi && breaks[b + 1] > breaks[b])) continue;
+    const std::size_t first =
+        static_cast<std::size_t>(std::lower_bound(knots.begin(), knots.end(), breaks[b]) - knots.begin());
+    // The span's control points start p places before the last copy of its first knot.
+    const std::size_t last_copy =
+        first + static_cast<std::size_t>(std::count(knots.begin(), knots.end(), breaks[b])) - 1;
+    const std::size_t c = last_copy - static_cast<std::size_t>(p);
+    if (c + static_cast<std::size_t>(p) >= points.size()) break;
+    std::array<Vec2, 4> z;
+    if (p == 3) {
+      z = {points[c], points[c + 1], points[c + 2], points[c + 3]};
+    } else if (p == 2) {
+      const Vec2 a = points[c], m = points[c + 1], e = points[c + 2];
+      z = {a, a + 2.0 / 3.0 * (m - a), e + 2.0 / 3.0 * (m - e), e};
+    } else {
+      const Vec2 a = points[c], e = points[c + 1];
+      z = {a, a + (e - a) / 3.0, a + 2.0 * (e - a) / 3.0, e};
+    }
+    out.push_back(z);
+  }
+  return out;
+}
+
+// The control points of the uniform cubic B-spline span (a quasi-cubic span
+// with both local parameters 0) that is the cubic Bézier curve z exactly.
+std::array<Vec2, 4> bspline_span_of(const std::array<Vec2, 4>& z) {
+  return {6.0 * z[0] - 7.0 * z[1] + 2.0 * z[2], 2.0 * z[1] - z[2], -z[1] + 2.0 * z[2],
+          2.0 * z[1] - 7.0 * z[2] + 6.0 * z[3]};
+}
 
 // Start and end of an exact arc, as the segment evaluates them.
 void arc_ends(Piece& piece) {
@@ -76,6 +158,7 @@ class Collector : public DL_CreationAdapter {
 
   std::vector<Piece> pieces;
   std::vector<Polyline> polylines;
+  std::vector<SplineData> splines;
   std::optional<int> insunits;
   std::map<std::string, std::size_t> left_out;  // entity type -> count, on the wanted layer
   std::set<std::string> layers;                 // layers with loop entities in model space
@@ -153,13 +236,32 @@ class Collector : public DL_CreationAdapter {
   }
   void endSequence() override { polyline_ = std::nullopt; }
 
-  // Entities a loop cannot be made of: refused on the wanted layer.
-  void addSpline(const DL_SplineData& /*data*/) override {
-    if (wanted())
-      fail_at(name("SPLINE"),
-              "SPLINE entities are not read yet: save the outline with lines, arcs and polylines "
-              "(most CAD programs can convert a spline to arcs within a tolerance)");
+  // A SPLINE: its knots and control points follow at once (addKnot, addControlPoint).
+  void addSpline(const DL_SplineData& d) override {
+    spline_ = false;
+    if (!wanted()) return;
+    SplineData sp;
+    sp.entity = name("SPLINE");
+    sp.order = index_;
+    sp.degree = static_cast<int>(d.degree);
+    sp.closed = (d.flags & 1) != 0;
+    sp.fit_points = d.nFit;
+    splines.push_back(std::move(sp));
+    spline_ = true;
   }
+  void addKnot(const DL_KnotData& d) override {
+    if (!spline_) return;
+    if (++count_ > kMaxDxfEntities) return too_many();
+    splines.back().knots.push_back(d.k);
+  }
+  void addControlPoint(const DL_ControlPointData& d) override {
+    if (!spline_) return;
+    if (++count_ > kMaxDxfEntities) return too_many();
+    splines.back().control.push_back({d.x, d.y, d.z, d.w});
+  }
+  void addFitPoint(const DL_FitPointData& /*d*/) override {}
+
+  // Entities a loop cannot be made of: refused on the wanted layer.
   void addInsert(const DL_InsertData& /*data*/) override {
     if (wanted())
       fail_at(name("INSERT"),
@@ -211,6 +313,7 @@ class Collector : public DL_CreationAdapter {
       ++left_out[type];
   }
   std::string name(const char* type) {
+    spline_ = false;
     const int handle = getAttributes().getHandle();
     ++index_;
     return handle >= 0 ? fmt::format("{} #{:X}", type, handle) : fmt::format("{} (entity {})", type, index_);
@@ -270,7 +373,58 @@ class Collector : public DL_CreationAdapter {
   std::size_t count_ = 0;
   std::size_t index_ = 0;
   std::optional<std::size_t> polyline_;
+  bool spline_ = false;  // knots and control points go to splines.back()
 };
+
+// A spline as a loop piece: exact cubic pieces of a non-rational SPLINE of
+// degree 1 to 3 in the XY plane. Sets `problem` for any other.
+std::optional<Piece> spline_piece(const SplineData& sp, std::string& problem) {
+  auto fail = [&](const std::string& why) -> std::optional<Piece> {
+    if (problem.empty()) problem = fmt::format("{}: {}", sp.entity, why);
+    return std::nullopt;
+  };
+  if (sp.control.empty()) {
+    return fail(sp.fit_points > 0 ? "a SPLINE given by fit points only; save it with its control points"
+                                  : "a SPLINE without control points");
+  }
+  if (sp.degree < 1 || sp.degree > 3)
+    return fail(fmt::format("degree {}; fabmesh reads splines of degree 1, 2 or 3", sp.degree));
+  const std::size_t n = sp.control.size(), p = static_cast<std::size_t>(sp.degree);
+  if (n < p + 1) return fail(fmt::format("{} control points for degree {}", n, p));
+  if (sp.knots.size() != n + p + 1)
+    return fail(
+        fmt::format("{} knots; {} control points of degree {} take {}", sp.knots.size(), n, p, n + p + 1));
+  for (std::size_t i = 0; i < sp.knots.size(); ++i) {
+    if (!std::isfinite(sp.knots[i]) || (i > 0 && sp.knots[i] < sp.knots[i - 1]))
+      return fail(fmt::format("knot {} ({}) is not finite and non-decreasing", i + 1, sp.knots[i]));
+  }
+  std::vector<Vec2> points;
+  const double z0 = sp.control.front()[2];
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto& c = sp.control[i];
+    if (!std::isfinite(c[0]) || !std::isfinite(c[1]) || !std::isfinite(c[2]) || !std::isfinite(c[3]))
+      return fail(fmt::format("control point {} is not finite", i + 1));
+    if (c[3] != 1.0) {
+      return fail(
+          fmt::format("control point {} has weight {}: a rational spline (NURBS); fabmesh reads "
+                      "non-rational splines (save it with arcs, or as a polynomial spline)",
+                      i + 1, c[3]));
+    }
+    if (std::abs(c[2] - z0) > 1e-9 * (1.0 + std::abs(z0)))
+      return fail(fmt::format("control point {} is at z = {}, off the drawing's XY plane", i + 1, c[2]));
+    points.emplace_back(c[0], c[1]);
+  }
+  if (!(sp.knots[n] > sp.knots[p])) return fail("its knots leave no domain to draw");
+  Piece piece;
+  piece.spline = true;
+  piece.entity = sp.entity;
+  piece.order = sp.order;
+  piece.beziers = bezier_pieces(sp.knots, points, sp.degree);
+  if (piece.beziers.empty()) return fail("its knots leave no domain to draw");
+  piece.start = piece.beziers.front()[0];
+  piece.end = piece.beziers.back()[3];
+  return piece;
+}
 
 // The text as group code / value pairs: that it is a DXF at all, and that no
 // count in it (vertices, knots) announces more than the file could hold,
@@ -403,8 +557,13 @@ Piece oriented(const Piece& p, bool forward) {
   Piece r = p;
   std::swap(r.start, r.end);
   std::swap(r.ellipse.from_deg, r.ellipse.to_deg);
+  std::reverse(r.beziers.begin(), r.beziers.end());
+  for (auto& z : r.beziers) std::reverse(z.begin(), z.end());
   return r;
 }
+
+// Arcs and splines end exactly where they end; lines follow them.
+bool exact(const Piece& p) { return p.arc || p.spline; }
 
 SegmentSpec line_to(const std::vector<Vec2>& points, const std::string& name) {
   SegmentSpec s;
@@ -423,8 +582,8 @@ CurveSpec loop_spec(const std::vector<Piece>& q, double bridge, std::size_t& bri
   auto joint = [&](std::size_t k) -> Vec2 {  // where q[k] meets q[k + 1]
     const Piece& a = q[k];
     const Piece& b = q[(k + 1) % n];
-    if (a.arc) return a.end;
-    if (b.arc) return b.start;
+    if (exact(a)) return a.end;
+    if (exact(b)) return b.start;
     return a.end;
   };
   CurveSpec spec;
@@ -433,15 +592,28 @@ CurveSpec loop_spec(const std::vector<Piece>& q, double bridge, std::size_t& bri
   for (std::size_t k = 0; k < n; ++k) {
     const Vec2 from = joint((k + n - 1) % n);
     const Piece& p = q[k];
-    if (!p.arc) {
+    if (!exact(p)) {
       spec.segments.push_back(line_to(
           spec.segments.empty() ? std::vector<Vec2>{from, joint(k)} : std::vector<Vec2>{joint(k)}, p.entity));
       continue;
     }
-    if (k > 0 && q[k - 1].arc && (q[k - 1].end - p.start).norm() > bridge) {
+    if (k > 0 && exact(q[k - 1]) && (q[k - 1].end - p.start).norm() > bridge) {
       spec.segments.push_back(
           line_to({p.start}, fmt::format("gap between {} and {}", q[k - 1].entity, p.entity)));
       ++bridges;
+    }
+    if (p.spline) {
+      // Each cubic piece as the uniform B-spline span that is the same curve.
+      for (std::size_t i = 0; i < p.beziers.size(); ++i) {
+        SegmentSpec s;
+        s.kind = SegmentKind::QuasiBSpline;
+        const std::array<Vec2, 4> b = bspline_span_of(p.beziers[i]);
+        s.points.assign(b.begin(), b.end());
+        s.declared = Continuity::G0;
+        s.name = p.beziers.size() == 1 ? p.entity : fmt::format("{} piece {}", p.entity, i + 1);
+        spec.segments.push_back(std::move(s));
+      }
+      continue;
     }
     SegmentSpec s;
     s.kind = SegmentKind::EllipseArc;
@@ -450,7 +622,8 @@ CurveSpec loop_spec(const std::vector<Piece>& q, double bridge, std::size_t& bri
     s.name = p.entity;
     spec.segments.push_back(s);
   }
-  if (n > 1 && q.back().arc && q.front().arc && (q.back().end - q.front().start).norm() > bridge) {
+  if ((n > 1 || q.front().spline) && exact(q.back()) && exact(q.front()) &&
+      (q.back().end - q.front().start).norm() > bridge) {
     spec.segments.push_back(
         line_to({q.front().start}, fmt::format("gap between {} and {}", q.back().entity, q.front().entity)));
     ++bridges;
@@ -509,8 +682,15 @@ DxfLoops parse_dxf_loops(const std::string& bytes, const std::string& path, cons
     out.notes.push_back(fmt::format("{}: left out {} (no outline in them)", where, kinds));
   }
 
-  // Polylines into pieces: straight spans and exact bulge arcs.
+  // Splines into pieces of exact cubic spans.
   std::vector<Piece>& pieces = c.pieces;
+  for (const SplineData& sp : c.splines) {
+    std::string problem;
+    std::optional<Piece> piece = spline_piece(sp, problem);
+    if (!piece) throw FileError(path, 0, 0, fmt::format("{}: {}", where, problem));
+    pieces.push_back(std::move(*piece));
+  }
+  // Polylines into pieces: straight spans and exact bulge arcs.
   for (const Polyline& pl : c.polylines) {
     const std::size_t n = pl.vertices.size();
     const std::size_t spans = pl.closed ? n : (n == 0 ? 0 : n - 1);
@@ -551,10 +731,11 @@ DxfLoops parse_dxf_loops(const std::string& bytes, const std::string& path, cons
                       "model space",
                       where, c.paper_space));
     }
-    throw FileError(path, 0, 0,
-                    fmt::format("{}: no LINE, ARC, CIRCLE, ELLIPSE or polyline in model space{}", where,
-                                layers.empty() ? std::string(" (the drawing has none on any layer)")
-                                               : fmt::format(" (layers that have them: {})", layers)));
+    throw FileError(
+        path, 0, 0,
+        fmt::format("{}: no LINE, ARC, CIRCLE, ELLIPSE, polyline or SPLINE in model space{}", where,
+                    layers.empty() ? std::string(" (the drawing has none on any layer)")
+                                   : fmt::format(" (layers that have them: {})", layers)));
   }
 
   // Into the design's units; every number within the design's limits.
@@ -567,6 +748,17 @@ DxfLoops parse_dxf_loops(const std::string& bytes, const std::string& path, cons
       p.ellipse.a *= scale;
       p.ellipse.b *= scale;
       normalise_angles(p.ellipse);
+    }
+    for (auto& z : p.beziers) {
+      for (Vec2& v : z) {
+        v *= scale;
+        if (!v.allFinite() || std::abs(v.x()) > kMaxDesignNumber || std::abs(v.y()) > kMaxDesignNumber) {
+          throw FileError(path, 0, 0,
+                          fmt::format("{}: {}: a control point {} is beyond the design limit {:g}", where,
+                                      p.entity, fmt_point(v), kMaxDesignNumber));
+        }
+        extent = std::max({extent, std::abs(v.x()), std::abs(v.y())});
+      }
     }
     for (const double v : {p.start.x(), p.start.y(), p.end.x(), p.end.y(), p.ellipse.center.x(),
                            p.ellipse.center.y(), p.ellipse.a, p.ellipse.b}) {
@@ -587,6 +779,9 @@ DxfLoops parse_dxf_loops(const std::string& bytes, const std::string& path, cons
   if (extent == 0.0) extent = 1.0;
   const double join = std::max(query.max_gap, 1e-12 * extent);
   const double bridge = 1e-10 * extent;  // below the joints' own check (1e-9 of the curve's extent)
+  for (Piece& p : pieces) {
+    if (p.spline && (p.end - p.start).norm() <= join) p.closed = true;  // a closed spline: a loop by itself
+  }
 
   // Whole circles and ellipses are loops by themselves; the rest is chained.
   std::vector<std::vector<Piece>> chains;

@@ -412,6 +412,7 @@ Design read_design_tree(const YAML::Node& root, const std::string& path,
   }
   d.common.parameters = std::move(parameters);
   d.common.notes = f.notes();
+  d.common.inputs = f.inputs();
   // Where each key is given (the design is valid by now: keys are scalars).
   record_sources(f, root, "", d.common.where);
   return d;

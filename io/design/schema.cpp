@@ -28,12 +28,13 @@ std::vector<KeyGroup> make_groups() {
         "base_height", "keys", "key_radius", "key_clearance", "key_margin", "key_positions",
         "allow_undercuts"}},
       // Countertops.
-      {"countertop.holes[]", {"ellipse", "rounded_rect", "outline", "dxf", "layer", "max_gap"}},
+      {"countertop.holes[]", {"ellipse", "rounded_rect", "outline", "dxf", "layer", "max_gap", "tabs"}},
       {"countertop.holes[].ellipse", {"center", "a", "b", "rotation_deg"}},
       {"countertop.holes[].rounded_rect", {"center", "size", "radius", "rotation_deg"}},
       {"countertop.cnc",
        {"tool_diameter", "depth", "breakthrough", "step_down", "feed", "plunge", "rapid", "spindle", "safe_z",
-        "lead_in", "tabs", "direction", "relief", "min_web", "units", "decimals"}},
+        "lead_in", "tabs", "entry", "ramp_angle", "finish", "direction", "relief", "min_web", "units",
+        "decimals"}},
       {"countertop.cnc.tabs", {"count", "width", "height", "min_radius"}},
       // Loops from a DXF drawing (an outline, or an outline hole).
       {"dxf_outline", {"dxf", "layer", "max_gap"}},

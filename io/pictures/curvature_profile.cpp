@@ -7,6 +7,18 @@
 
 namespace fabmesh {
 
+double drawn_curvature(const Segment& seg, double s) {
+  const double k = seg.curvature(s);
+  const auto& p = seg.control_points();
+  Vec2 lo = p[0], hi = p[0];
+  for (int i = 1; i < seg.control_count(); ++i) {
+    lo = lo.cwiseMin(p[static_cast<std::size_t>(i)]);
+    hi = hi.cwiseMax(p[static_cast<std::size_t>(i)]);
+  }
+  const double size = (hi - lo).norm();
+  return std::abs(k) * size < 1e-9 ? 0.0 : k;
+}
+
 CurvatureProfile curvature_profile(const CompositeCurve& curve, int samples_per_segment) {
   require_in_range("curvature samples_per_segment", samples_per_segment, 1, 100000);
   const QuadratureRule rule = gauss_legendre(8);
@@ -23,7 +35,7 @@ CurvatureProfile curvature_profile(const CompositeCurve& curve, int samples_per_
           length += rule.weights[q] / m * seg.jet(s0 + rule.nodes[q] / m)[1].norm();
         }
       }
-      const double k = seg.curvature(s);
+      const double k = drawn_curvature(seg, s);
       if (std::isfinite(k)) samples.push_back({s, length, k});
     }
     out.segments.push_back(std::move(samples));

@@ -26,7 +26,14 @@ struct CurvatureProfile {
   double length = 0.0;
 };
 
-/// Samples analytic curvature (Segment::curvature) on a uniform grid of each
+/// The curvature a picture draws at segment parameter s: Segment::curvature,
+/// or 0 where |k| times the size of the segment's control polygon is below
+/// 1e-9 (a radius a billion times the segment's size), which is what rounding
+/// leaves on a straight or flat curve (a flat H-Bézier patch's border gives
+/// curvatures near 1e-16 of alternating sign). NaN where the curve stops.
+double drawn_curvature(const Segment& seg, double s);
+
+/// Samples analytic curvature (drawn_curvature) on a uniform grid of each
 /// segment; arc length is integrated between grid points with 8-point
 /// Gauss-Legendre quadrature of |r'(s)|. \throw RangeError unless
 /// samples_per_segment is in [1, 100000].

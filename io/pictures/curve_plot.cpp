@@ -109,7 +109,7 @@ void build_combs(std::vector<Prepared>& curves, double diagonal, const CurvePlot
   for (const Prepared& c : curves) {
     for (const Segment& seg : c.in->curve.segments()) {
       for (int j = 0; j <= o.comb_teeth; ++j) {
-        const double k = seg.curvature(static_cast<double>(j) / o.comb_teeth);
+        const double k = drawn_curvature(seg, static_cast<double>(j) / o.comb_teeth);
         if (std::isfinite(k)) k_max = std::max(k_max, std::abs(k));
       }
     }
@@ -118,14 +118,18 @@ void build_combs(std::vector<Prepared>& curves, double diagonal, const CurvePlot
   for (Prepared& c : curves) {
     for (const Segment& seg : c.in->curve.segments()) {
       std::vector<std::pair<Vec2, Vec2>> teeth;
+      bool bent = false;
       for (int j = 0; j <= o.comb_teeth; ++j) {
-        const CurveJet r = seg.jet(static_cast<double>(j) / o.comb_teeth);
+        const double s = static_cast<double>(j) / o.comb_teeth;
+        const CurveJet r = seg.jet(s);
         const double speed = r[1].norm();
-        const double k = cross2(r[1], r[2]) / (speed * speed * speed);
-        if (!std::isfinite(k)) continue;
+        const double k = drawn_curvature(seg, s);
+        if (!std::isfinite(k) || !(speed > 0.0)) continue;
+        bent = bent || k != 0.0;
         const Vec2 normal(-r[1].y() / speed, r[1].x() / speed);  // left of the direction of travel
         teeth.emplace_back(r[0], r[0] - k * scale * normal);     // away from the centre of curvature
       }
+      if (!bent) teeth.clear();  // straight (to rounding): no comb to draw
       c.comb.push_back(std::move(teeth));
     }
   }

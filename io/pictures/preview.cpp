@@ -34,6 +34,59 @@ Camera camera_for(const PreviewView& view) {
   return c;
 }
 
+// A 5 x 7 pixel font for captions: the rows of each glyph, top first, bit 4 the left column.
+struct Glyph {
+  char ch;
+  std::array<std::uint8_t, 7> rows;
+};
+
+constexpr Glyph kFont[] = {
+    {'0', {0x0E, 0x11, 0x13, 0x15, 0x19, 0x11, 0x0E}}, {'1', {0x04, 0x0C, 0x04, 0x04, 0x04, 0x04, 0x0E}},
+    {'2', {0x0E, 0x11, 0x01, 0x02, 0x04, 0x08, 0x1F}}, {'3', {0x1F, 0x02, 0x04, 0x02, 0x01, 0x11, 0x0E}},
+    {'4', {0x02, 0x06, 0x0A, 0x12, 0x1F, 0x02, 0x02}}, {'5', {0x1F, 0x10, 0x1E, 0x01, 0x01, 0x11, 0x0E}},
+    {'6', {0x06, 0x08, 0x10, 0x1E, 0x11, 0x11, 0x0E}}, {'7', {0x1F, 0x01, 0x02, 0x04, 0x08, 0x08, 0x08}},
+    {'8', {0x0E, 0x11, 0x11, 0x0E, 0x11, 0x11, 0x0E}}, {'9', {0x0E, 0x11, 0x11, 0x0F, 0x01, 0x02, 0x0C}},
+    {'.', {0x00, 0x00, 0x00, 0x00, 0x00, 0x0C, 0x0C}}, {'-', {0x00, 0x00, 0x00, 0x1F, 0x00, 0x00, 0x00}},
+    {'x', {0x00, 0x00, 0x11, 0x0A, 0x04, 0x0A, 0x11}}, {' ', {0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00}},
+    {'m', {0x00, 0x00, 0x1A, 0x15, 0x15, 0x11, 0x11}}, {'c', {0x00, 0x00, 0x0E, 0x10, 0x10, 0x11, 0x0E}},
+    {'i', {0x04, 0x00, 0x0C, 0x04, 0x04, 0x04, 0x0E}}, {'n', {0x00, 0x00, 0x16, 0x19, 0x11, 0x11, 0x11}},
+};
+
+const Glyph* glyph(char ch) {
+  for (const Glyph& g : kFont) {
+    if (g.ch == ch) return &g;
+  }
+  return nullptr;
+}
+
+constexpr Rgb kInk{55, 55, 55};
+
+void put(Image& image, int x, int y, const Rgb& c, double alpha) {
+  if (x < 0 || y < 0 || x >= image.width || y >= image.height) return;
+  std::uint8_t* px = image.rgb.data() + (static_cast<std::size_t>(y) * image.width + x) * 3;
+  for (int k = 0; k < 3; ++k) px[k] = static_cast<std::uint8_t>(std::lround(px[k] + alpha * (c[k] - px[k])));
+}
+
+// The caption at the bottom left, each font pixel a square of `scale` pixels.
+void draw_caption(Image& image, const std::string& caption) {
+  if (caption.empty()) return;
+  const int scale = std::max(1, image.height / 200);
+  const int x0 = 3 * scale, y0 = image.height - 10 * scale;
+  for (std::size_t i = 0; i < caption.size(); ++i) {
+    const Glyph& g = *glyph(caption[i]);
+    for (int row = 0; row < 7; ++row) {
+      for (int col = 0; col < 5; ++col) {
+        if (((g.rows[static_cast<std::size_t>(row)] >> (4 - col)) & 1) == 0) continue;
+        for (int dy = 0; dy < scale; ++dy) {
+          for (int dx = 0; dx < scale; ++dx) {
+            put(image, x0 + (static_cast<int>(i) * 6 + col) * scale + dx, y0 + row * scale + dy, kInk, 1.0);
+          }
+        }
+      }
+    }
+  }
+}
+
 // The columns of the (supersampled) buffer that one view owns.
 struct Frame {
   int x0 = 0, width = 0;
@@ -50,6 +103,17 @@ void validate(const TriangleSoup& soup, const PreviewOptions& o) {
     require_in_range("preview azimuth_deg", v.azimuth_deg, -360.0, 360.0);
     require_in_range("preview elevation_deg", v.elevation_deg, -89.0, 89.0);
   }
+  if (o.caption.size() > 64)
+    throw InputError(fmt::format("preview: the caption has {} characters; at most 64", o.caption.size()));
+  for (const char ch : o.caption) {
+    if (glyph(ch) == nullptr)
+      throw InputError(
+          fmt::format("preview: the caption's font has no '{}' (caption \"{}\")", ch, o.caption));
+  }
+  for (const auto& g : o.guides) {
+    if (!g[0].allFinite() || !g[1].allFinite())
+      throw InputError("preview: a guide line has a non-finite end");
+  }
   require_indices_in_range(soup);
   for (std::size_t i = 0; i < soup.vertices.size(); ++i) {
     if (!soup.vertices[i].allFinite()) {
@@ -59,16 +123,35 @@ void validate(const TriangleSoup& soup, const PreviewOptions& o) {
 }
 
 // Projected extent of the vertices along the camera's right and up axes: {min, max}.
-std::pair<Eigen::Vector2d, Eigen::Vector2d> projected_bounds(const TriangleSoup& soup, const Camera& c) {
+std::pair<Eigen::Vector2d, Eigen::Vector2d> projected_bounds(const TriangleSoup& soup,
+                                                             const std::vector<std::array<Vec3, 2>>& guides,
+                                                             const Camera& c) {
   Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
   Eigen::Vector2d hi = -lo;
-  for (const Vec3& p : soup.vertices) {
+  auto add = [&](const Vec3& p) {
     const Eigen::Vector2d q(p.dot(c.right), p.dot(c.up));
     lo = lo.cwiseMin(q);
     hi = hi.cwiseMax(q);
+  };
+  for (const Vec3& p : soup.vertices) add(p);
+  for (const auto& g : guides) {
+    add(g[0]);
+    add(g[1]);
   }
   return {lo, hi};
 }
+
+// Where a view puts model points: buffer pixels (x right, y down) and depth.
+struct ViewTransform {
+  Camera camera;
+  Eigen::Vector2d mid;  ///< projected middle of the content
+  double cx = 0.0, cy = 0.0, scale = 1.0;
+  Vec3 middle;  ///< depth origin
+  Vec3 project(const Vec3& q) const {
+    return {cx + (q.dot(camera.right) - mid.x()) * scale, cy - (q.dot(camera.up) - mid.y()) * scale,
+            (q - middle).dot(camera.toward)};
+  }
+};
 
 // Vertices in buffer pixels (x right, y down) and depth (larger is nearer).
 struct Projected {
@@ -220,6 +303,37 @@ Image resolve(const TriangleSoup& soup, const DepthBuffer& buffer, const std::ve
   return image;
 }
 
+// The guide lines, dashed, over the resolved image: a sample is hidden where
+// the z-buffer holds a nearer face at its (supersampled) pixel.
+void draw_guides(Image& image, const DepthBuffer& buffer, const std::vector<ViewTransform>& views,
+                 const std::vector<Frame>& frames, const PreviewOptions& o) {
+  const int s = o.supersample;
+  const double dash = 6.0 * std::max(1, o.height / 300), period = 1.6 * dash;
+  for (std::size_t v = 0; v < views.size(); ++v) {
+    for (const auto& g : o.guides) {
+      const Vec3 a = views[v].project(g[0]), b = views[v].project(g[1]);
+      const double length = std::hypot(b.x() - a.x(), b.y() - a.y()) / s;  // output pixels
+      const int steps = std::max(1, static_cast<int>(std::ceil(2.0 * length)));
+      for (int i = 0; i <= steps; ++i) {
+        const double t = static_cast<double>(i) / steps;
+        if (std::fmod(t * length, period) > dash) continue;
+        const Vec3 q = a + t * (b - a);
+        const int bx = static_cast<int>(std::floor(q.x())), by = static_cast<int>(std::floor(q.y()));
+        if (bx < frames[v].x0 || bx >= frames[v].x0 + frames[v].width || by < 0 || by >= buffer.height)
+          continue;
+        const std::size_t at = static_cast<std::size_t>(by) * static_cast<std::size_t>(buffer.width) +
+                               static_cast<std::size_t>(bx);
+        const bool hidden =
+            buffer.face[at] != kNoFace && buffer.depth[at] > static_cast<float>(q.z()) + 1e-3f;
+        const int x = bx / s, y = by / s;
+        const double alpha = hidden ? 0.3 : 1.0;
+        put(image, x, y, kInk, alpha);
+        put(image, x + 1, y, kInk, alpha);  // two pixels wide
+      }
+    }
+  }
+}
+
 }  // namespace
 
 Image render_preview(const TriangleSoup& soup, const PreviewOptions& options) {
@@ -239,13 +353,17 @@ Image render_preview(const TriangleSoup& soup, const PreviewOptions& options) {
     const int x0 = options.width * v / options.views, x1 = options.width * (v + 1) / options.views;
     frames.push_back({x0 * s, (x1 - x0) * s});
   }
-  if (soup.vertices.empty() || soup.triangles.empty()) return resolve(soup, buffer, cameras, frames, options);
+  if (soup.vertices.empty() || soup.triangles.empty()) {
+    Image image = resolve(soup, buffer, cameras, frames, options);
+    draw_caption(image, options.caption);
+    return image;
+  }
 
   // One scale for every view: the largest that fits each projection in its frame less the margins.
   std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> bounds;
   double scale = std::numeric_limits<double>::infinity();
   for (std::size_t v = 0; v < cameras.size(); ++v) {
-    bounds.push_back(projected_bounds(soup, cameras[v]));
+    bounds.push_back(projected_bounds(soup, options.guides, cameras[v]));
     const Eigen::Vector2d size = bounds[v].second - bounds[v].first;
     const double w = frames[v].width * (1.0 - 2.0 * options.margin);
     const double h = buffer.height * (1.0 - 2.0 * options.margin);
@@ -262,22 +380,30 @@ Image render_preview(const TriangleSoup& soup, const PreviewOptions& options) {
   p.x.resize(nv);
   p.y.resize(nv);
   p.z.resize(nv);
+  std::vector<ViewTransform> views;
   for (std::size_t v = 0; v < cameras.size(); ++v) {
-    const Camera& c = cameras[v];
-    const Eigen::Vector2d mid = 0.5 * (bounds[v].first + bounds[v].second);
-    const double cx = frames[v].x0 + 0.5 * frames[v].width, cy = 0.5 * buffer.height;
+    const ViewTransform view{cameras[v],
+                             0.5 * (bounds[v].first + bounds[v].second),
+                             frames[v].x0 + 0.5 * frames[v].width,
+                             0.5 * buffer.height,
+                             scale,
+                             middle};
+    views.push_back(view);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nv, 8192),
                       [&](const tbb::blocked_range<std::size_t>& r) {
                         for (std::size_t i = r.begin(); i != r.end(); ++i) {
-                          const Vec3& q = soup.vertices[i];
-                          p.x[i] = static_cast<float>(cx + (q.dot(c.right) - mid.x()) * scale);
-                          p.y[i] = static_cast<float>(cy - (q.dot(c.up) - mid.y()) * scale);
-                          p.z[i] = static_cast<float>((q - middle).dot(c.toward));
+                          const Vec3 q = view.project(soup.vertices[i]);
+                          p.x[i] = static_cast<float>(q.x());
+                          p.y[i] = static_cast<float>(q.y());
+                          p.z[i] = static_cast<float>(q.z());
                         }
                       });
     raster_view(soup, p, frames[v], buffer);
   }
-  return resolve(soup, buffer, cameras, frames, options);
+  Image image = resolve(soup, buffer, cameras, frames, options);
+  draw_guides(image, buffer, views, frames, options);
+  draw_caption(image, options.caption);
+  return image;
 }
 
 }  // namespace fabmesh

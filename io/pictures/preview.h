@@ -3,6 +3,8 @@
 
 #include <array>
 #include <cstdint>
+#include <string>
+#include <vector>
 
 #include "geometry/mesh/soup.h"
 #include "io/pictures/png.h"
@@ -33,6 +35,14 @@ struct PreviewOptions {
   Rgb front_color{205, 150, 110};    ///< faces seen from outside (clay)
   Rgb back_color{90, 130, 200};      ///< faces seen from inside: open or inside-out meshes show blue
   double ambient = 0.2;              ///< light reaching faces turned away from the lamp, [0, 1]
+  /// One line of text drawn at the bottom left of the image (e.g. the overall
+  /// size, "120 x 80 x 95 mm"), in a built-in pixel font of digits, ". - x",
+  /// space and the letters of the unit names (c i m n); at most 64 characters.
+  std::string caption;
+  /// Straight guide lines in model space (e.g. a vessel's axis), drawn dashed
+  /// over the shading in each view: dark where nothing hides them, faint where
+  /// the mesh is in front. Their ends are fitted into the frame with the mesh.
+  std::vector<std::array<Vec3, 2>> guides;
 };
 
 /// Renders `soup` with a z-buffer: flat face normals, Lambert shading from a
@@ -45,7 +55,7 @@ struct PreviewOptions {
 /// An empty soup gives the background. Deterministic: the same input gives
 /// the same pixels whatever the thread count.
 /// \throw RangeError for a bad option, InputError for a non-finite vertex or
-/// an index out of range.
+/// guide, an index out of range, or a caption character the font lacks.
 Image render_preview(const TriangleSoup& soup, const PreviewOptions& options = {});
 
 }  // namespace fabmesh

@@ -45,12 +45,16 @@ int plot_designs(const PlotArgs& args, Streams io) {
   options.width = args.width;
   options.height = args.height;
   // Every plot is made before any is written: a bad design writes nothing.
+  // A curve whose joints contradict their declared continuity is drawn all
+  // the same, the joint flagged, since that is when the picture is needed.
   std::vector<FileWrite> files;
+  std::vector<std::string> contradicted;
   for (const std::string& path : args.designs) {
     const Design design = load_design(path, overrides);
     const std::string target =
         one_file ? args.out : (fs::path(args.out) / (design.common.name + ".plot.svg")).string();
-    files.push_back({target, in_design(design, [&] { return design_plot_svg(design, options); })});
+    files.push_back(
+        {target, in_design(design, [&] { return design_plot_svg(design, options, &contradicted); })});
   }
   for (const FileWrite& f : files) {
     const fs::path folder = fs::path(f.path).parent_path();
@@ -59,6 +63,12 @@ int plot_designs(const PlotArgs& args, Streams io) {
   write_files_atomically(files);
   if (io.verbosity > 0) {
     for (const FileWrite& f : files) io.out << fmt::format("wrote {}\n", f.path);
+  }
+  for (const std::string& message : contradicted) {
+    io.err << fmt::format(
+        "fabmesh: warning: {} (drawn all the same, the joint marked with an orange diamond; `run` "
+        "refuses the design until it is fixed)\n",
+        message);
   }
   return 0;
 }

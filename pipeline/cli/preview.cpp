@@ -37,21 +37,30 @@ int preview(const PreviewArgs& args, Streams io) {
     throw InputError(fmt::format("-o {}: the preview is a PNG file; name it *.png", args.out));
   if (!args.defines.empty() && !is_design(args.input))
     throw InputError(fmt::format("-D applies to designs; {} is a mesh file", args.input));
-  const TriangleSoup soup = is_design(args.input)
-                                ? design_mesh(load_design(args.input, parse_overrides(args.defines)))
-                                : read_mesh(args.input);
   PreviewOptions options;
   options.views = args.views;
   options.width = args.width;
   options.height = args.height;
   options.supersample = 2;
-  const std::string png = preview_png(soup, options);
+  std::string png;
+  std::size_t triangles = 0;
+  if (is_design(args.input)) {
+    const Design design = load_design(args.input, parse_overrides(args.defines));
+    const BuiltMesh built = in_design(design, [&] { return design_built(design); });
+    triangles = built.soup.triangles.size();
+    png = design_preview_png(design.common, built, options);
+  } else {
+    // A mesh file's size, in the file's unit (most formats state none).
+    const TriangleSoup soup = read_mesh(args.input);
+    triangles = soup.triangles.size();
+    options.caption = size_caption(soup, "");
+    png = preview_png(soup, options);
+  }
   const fs::path folder = fs::path(args.out).parent_path();
   if (!folder.empty()) fs::create_directories(folder);
   write_file_atomically(args.out, png);
   if (io.verbosity > 0)
-    io.out << fmt::format("wrote {} ({} x {}, {} triangles)\n", args.out, args.width, args.height,
-                          soup.triangles.size());
+    io.out << fmt::format("wrote {} ({} x {}, {} triangles)\n", args.out, args.width, args.height, triangles);
   return 0;
 }
 

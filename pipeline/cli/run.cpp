@@ -4,11 +4,14 @@
 #include <tbb/parallel_for.h>
 #include <unistd.h>
 
+#include <chrono>
+#include <csignal>
 #include <filesystem>
 #include <iostream>
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <thread>
 
 #include "geometry/core/errors.h"
 #include "geometry/core/units.h"
@@ -36,6 +39,7 @@ struct RunArgs {
   std::string export_format;
   std::string report;  ///< --report FILE.html
   bool json = false;
+  bool watch = false;  ///< --watch: run again whenever a design or a file it reads changes
 };
 
 // One design's outcome: a report, or the exit code and message of its failure.
@@ -159,7 +163,9 @@ void write_report(const RunArgs& args, const std::vector<Outcome>& outcomes) {
   write_file_atomically(args.report, render_report_html(page));
 }
 
-int run_designs(const RunArgs& args, Streams io) {
+// `watched`, when given, receives the files the run read: the designs and
+// the files they reference (for --watch).
+int run_designs(const RunArgs& args, Streams io, std::vector<std::string>* watched = nullptr) {
   JobOptions options = output_options(args);
   if (!args.report.empty()) {
     if (fs::path(args.report).extension() != ".html")
@@ -178,6 +184,13 @@ int run_designs(const RunArgs& args, Streams io) {
       fail_with(outcomes[i], args.designs[i]);
     }
   });
+  if (watched != nullptr) {
+    *watched = args.designs;
+    for (const Outcome& o : outcomes) {
+      if (o.design)
+        watched->insert(watched->end(), o.design->common.inputs.begin(), o.design->common.inputs.end());
+    }
+  }
   require_unique_names(outcomes, args);
   require_distinct_files(outcomes, options, args);
   std::optional<RunProgress> progress;
@@ -246,6 +259,97 @@ int run_designs(const RunArgs& args, Streams io) {
   return code;
 }
 
+// --watch ends on SIGINT or SIGTERM: the handler only sets this flag, which
+// the watch loop reads between runs (a run in progress completes).
+volatile std::sig_atomic_t stop_watching = 0;
+
+extern "C" void on_stop_signal(int /*signal*/) { stop_watching = 1; }
+
+// What a watched file looks like on disk: a change of any of these is an edit.
+struct FileStamp {
+  bool exists = false;
+  fs::file_time_type modified{};
+  std::uintmax_t size = 0;
+  bool operator==(const FileStamp& o) const {
+    return exists == o.exists && modified == o.modified && size == o.size;
+  }
+};
+
+std::vector<FileStamp> stamps_of(const std::vector<std::string>& files) {
+  std::vector<FileStamp> out;
+  for (const std::string& f : files) {
+    std::error_code ec;
+    FileStamp s;
+    s.modified = fs::last_write_time(f, ec);
+    s.exists = !ec;
+    if (s.exists) s.size = fs::file_size(f, ec);
+    out.push_back(s);
+  }
+  return out;
+}
+
+// The first of `files` whose stamp differs from `before`, or "".
+std::string changed_file(const std::vector<std::string>& files, const std::vector<FileStamp>& before) {
+  const std::vector<FileStamp> now = stamps_of(files);
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    if (!(now[i] == before[i])) return files[i];
+  }
+  return "";
+}
+
+// Runs the designs, then again each time one of them or a file one reads
+// changes, until SIGINT/SIGTERM. A run that fails prints its error and
+// writes nothing, so the last good files stay. Returns 0 when stopped.
+int watch_designs(const RunArgs& args, Streams io) {
+  struct sigaction action {};
+  action.sa_handler = on_stop_signal;  // no SA_RESTART: a sleep ends at once
+  sigemptyset(&action.sa_mask);
+  struct sigaction old_int {
+  }, old_term{};
+  sigaction(SIGINT, &action, &old_int);
+  sigaction(SIGTERM, &action, &old_term);
+  stop_watching = 0;
+  std::vector<std::string> watched;
+  auto run_once = [&] {
+    watched.clear();
+    int code = kExitInternal;
+    try {
+      code = run_designs(args, io, &watched);
+    } catch (...) {
+      const Failure failure = describe_failure(std::current_exception());
+      io.err << failure_line(failure) << "\n";
+      code = failure.exit_code;
+    }
+    if (watched.empty()) watched = args.designs;
+    io.out << fmt::format("fabmesh: {}; watching {} file{} (Ctrl-C ends)\n",
+                          code == kExitOk ? "done" : "failed, the last good files stay", watched.size(),
+                          watched.size() == 1 ? "" : "s");
+    io.out.flush();
+  };
+  run_once();
+  std::vector<FileStamp> seen = stamps_of(watched);
+  while (stop_watching == 0) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    std::string changed = changed_file(watched, seen);
+    if (changed.empty()) continue;
+    // An editor may write a file in several steps: wait until it holds still.
+    for (std::vector<FileStamp> now = stamps_of(watched); stop_watching == 0;) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      const std::vector<FileStamp> later = stamps_of(watched);
+      if (later == now) break;
+      now = later;
+    }
+    if (stop_watching != 0) break;
+    io.out << fmt::format("fabmesh: {} changed; running again\n", changed);
+    run_once();
+    seen = stamps_of(watched);
+  }
+  sigaction(SIGINT, &old_int, nullptr);
+  sigaction(SIGTERM, &old_term, nullptr);
+  io.out << "fabmesh: stopped watching\n";
+  return kExitOk;
+}
+
 // Where the example designs are, from the folder of the running program:
 // FABMESH_EXAMPLES_FROM_PROGRAM (relative: "../share/fabmesh/examples" for an
 // installed bin/fabmesh; the build puts a copy at the same place from
@@ -280,8 +384,15 @@ Runner add_run_command(CLI::App& app) {
   cmd->add_option("--report", args->report,
                   "Also write an HTML report (one self-contained page: summary table, each design's preview "
                   "and plot, verdict, measures and files; the pictures are written with the outputs)");
+  cmd->add_flag("--watch", args->watch,
+                "Run again whenever a design or a file it reads (DXF, CSV) changes, printing the verdict; a "
+                "design that breaks prints its error and keeps the last good files. Ctrl-C ends it");
   add_define_option(cmd, args->defines);
-  return [args](Streams io) { return run_designs(*args, io); };
+  return [args](Streams io) {
+    if (!args->watch) return run_designs(*args, io);
+    if (args->out == "-") throw InputError("--watch writes files again and again; it cannot write to -o -");
+    return watch_designs(*args, io);
+  };
 }
 
 int run_bundled_example(Streams io) {

@@ -212,6 +212,174 @@ TEST_CASE("curves evaluate exactly and sample within the proven bound", "[api]")
   CHECK(std::isfinite(hb.curvature(0.5)));
 }
 
+// The one curve of a curve design given as text.
+fabmesh::Curve design_curve(const std::string& yaml) {
+  const fabmesh::BuildResult r = fabmesh::build(fabmesh::parse_design(yaml));
+  REQUIRE(r.curves.size() == 1);
+  return r.curves[0].curve;
+}
+
+// The two curves agree at every parameter tried (the same construction gives the same numbers).
+void require_same_curve(const fabmesh::Curve& a, const fabmesh::Curve& b) {
+  REQUIRE(a.segments() == b.segments());
+  const double n = static_cast<double>(a.segments());
+  for (int i = 0; i <= 97; ++i) {
+    const double t = n * i / 97.0;
+    const fabmesh::Point2 p = a.point(t), q = b.point(t);
+    CHECK(p[0] == Approx(q[0]).margin(1e-12));
+    CHECK(p[1] == Approx(q[1]).margin(1e-12));
+  }
+}
+
+TEST_CASE("a composite mixes families with joins as a design file does", "[api]") {
+  // T-Bezier, then an H-Bezier segment joined G2 (k, m), then a line.
+  std::vector<fabmesh::Segment> segments(3);
+  segments[0].family = fabmesh::SegmentFamily::TBezier;
+  segments[0].points = {{0, 0}, {1, 2}, {3, 3}, {4, 1}};
+  segments[0].lambda = 0.5;
+  segments[1].family = fabmesh::SegmentFamily::HBezier;
+  segments[1].points = {{8, 0}};
+  segments[1].alpha = 2;
+  segments[1].mu = -1;
+  segments[1].join = fabmesh::Join{fabmesh::Continuity::G2, 1, 0, 1.5, 0.25};
+  segments[2].family = fabmesh::SegmentFamily::Line;
+  segments[2].points = {{10, -3}};
+  const fabmesh::Curve c = fabmesh::composite(segments);
+  REQUIRE(c.segments() == 3);
+  require_same_curve(c, design_curve(R"(
+name: mixed
+kind: curve
+tolerance: 0.01
+curve:
+  family: tbezier
+  segments:
+    - points: [[0, 0], [1, 2], [3, 3], [4, 1]]
+      lambda: 0.5
+    - family: hbezier
+      join: {continuity: G2, k: 1.5, m: 0.25}
+      points: [[8, 0]]
+      alpha: 2
+      mu: -1
+    - line: {to: [10, -3]}
+)"));
+  const std::vector<fabmesh::Joint> joints = c.joints();
+  REQUIRE(joints.size() == 2);
+  CHECK(joints[0].declared == fabmesh::Continuity::G2);
+  CHECK(joints[0].achieved == fabmesh::Continuity::G2);
+  CHECK(joints[0].curvature_before == Approx(joints[0].curvature_after).epsilon(1e-9));
+  CHECK(c.curvature(1.0) == Approx(joints[0].curvature_after).epsilon(1e-12));
+  CHECK(joints[1].declared == fabmesh::Continuity::G0);
+  CHECK(joints[1].gap <= 1e-12);
+  CHECK(c.curvature(2.5) == 0.0);  // the line
+  CHECK_FALSE(c.fairing().has_value());
+
+  // A closed composite: the first segment joins the last, its points solved for.
+  std::vector<fabmesh::Segment> loop(2);
+  loop[0].points = {{0, 0}, {1, 0}};
+  loop[0].join = fabmesh::Join{fabmesh::Continuity::G1, 1, 0, 1, 0};
+  loop[1].points = {{0, 0}, {2, 3}, {3, 1}};
+  loop[1].join = fabmesh::Join{fabmesh::Continuity::G0, 1, 0, 1, 0};
+  const fabmesh::Curve closed = fabmesh::composite(loop, true);
+  CHECK(closed.closed());
+  const std::vector<fabmesh::Joint> closing = closed.joints();
+  REQUIRE(closing.size() == 2);
+  CHECK(closing[1].closing);
+  CHECK(closing[1].achieved >= fabmesh::Continuity::G1);
+}
+
+TEST_CASE("a composite's bad segments are errors at their keys", "[api]") {
+  auto key_of = [](const std::vector<fabmesh::Segment>& segments, bool closed = false) {
+    try {
+      fabmesh::composite(segments, closed);
+    } catch (const fabmesh::InputError& e) {
+      return e.place().key;
+    }
+    return std::string("(no error)");
+  };
+  std::vector<fabmesh::Segment> s(2);
+  s[0].points = {{0, 0}, {1, 2}, {3, 3}, {4, 1}};
+  s[1].points = {{5, 0}, {6, 1}};  // two points need a G1 join
+  CHECK(key_of(s) == "segments[1]");
+  s[1].join = fabmesh::Join{};
+  CHECK(key_of(s) == "(no error)");
+  s[1].lambda = 1.5;  // outside [-2, 1]
+  CHECK(key_of(s).rfind("segments[1]", 0) == 0);
+  s[1].lambda = 0;
+  s[1].family = fabmesh::SegmentFamily::Line;
+  CHECK(key_of(s) == "segments[1].join");
+  // An explicit segment that declares G1 where the tangents disagree.
+  s[1] = fabmesh::Segment{};
+  s[1].points = {{4, 1}, {4, 3}, {6, 3}, {7, 0}};
+  s[1].continuity = fabmesh::Continuity::G1;
+  CHECK(key_of(s) == "segments");
+  CHECK(key_of({}) == "segments");
+  CHECK(key_of(s, true) == "segments");  // does not end where it starts
+}
+
+TEST_CASE("fair lowers the energy, keeps the control points and matches the design's fair", "[api]") {
+  const std::vector<fabmesh::Point2> p = {{1.5, 6}, {1, 5}, {2, 4}, {3, 3}, {1.5, 2}};
+  const fabmesh::Curve b = fabmesh::quasi_bspline(p, {0.5, 0.5, 0.5});
+  for (const fabmesh::Energy energy : {fabmesh::Energy::Strain, fabmesh::Energy::CurvatureVariation}) {
+    const fabmesh::Curve f = fabmesh::fair(b, energy);
+    REQUIRE(f.fairing().has_value());
+    CHECK(f.fairing()->energy == energy);
+    CHECK(f.fairing()->energy_after < f.fairing()->energy_before);
+    CHECK(f.point(0)[0] == Approx(b.point(0)[0]).margin(1e-12));
+    CHECK(f.point(4)[1] == Approx(b.point(4)[1]).margin(1e-12));
+    // Fairing the faired curve again finds nothing better.
+    const fabmesh::Curve again = fabmesh::fair(f, energy);
+    CHECK(again.fairing()->energy_after == Approx(f.fairing()->energy_after).epsilon(1e-9));
+    CHECK(again.fairing()->energy_before == Approx(f.fairing()->energy_after).epsilon(1e-9));
+  }
+  require_same_curve(fabmesh::fair(b, fabmesh::Energy::Strain), design_curve(R"(
+name: faired
+kind: curve
+tolerance: 0.005
+curve:
+  family: quasi_bspline
+  points: [[1.5, 6], [1, 5], [2, 4], [3, 3], [1.5, 2]]
+  lambdas: [0.5, 0.5, 0.5]
+  fair: strain
+)"));
+
+  // A T-Bezier composite: G1 joins survive; its points stay.
+  std::vector<fabmesh::Segment> s(2);
+  s[0].points = {{1, 0.2}, {0.2, 0.4}, {1.6, 1.4}, {1, 0.2}};
+  s[0].lambda = 1;
+  s[0].mu = 1;
+  s[1].points = {{3, 1}, {4, 0}};
+  s[1].lambda = -1;
+  s[1].join = fabmesh::Join{fabmesh::Continuity::G1, 2, 0, 1, 0};
+  const fabmesh::Curve c = fabmesh::composite(s);
+  const fabmesh::Curve f = fabmesh::fair(c);
+  CHECK(f.fairing()->energy_after < f.fairing()->energy_before);
+  CHECK(f.joints()[0].achieved >= fabmesh::Continuity::G1);
+  CHECK(f.point(1)[0] == Approx(c.point(1)[0]).margin(1e-12));
+  CHECK(fabmesh::fair(f).fairing()->energy_after == Approx(f.fairing()->energy_after).epsilon(1e-9));
+
+  auto key_of = [](auto&& call) {
+    try {
+      call();
+    } catch (const fabmesh::InputError& e) {
+      return e.place().key;
+    }
+    return std::string("(no error)");
+  };
+  CHECK(key_of([&] { fabmesh::fair(c, fabmesh::Energy::Strain); }) == "energy");
+  const fabmesh::Curve h = fabmesh::hbezier({{0, 0}, {1, 2}, {3, 2}, {4, 0}});
+  CHECK(key_of([&] { fabmesh::fair(h); }) == "energy");
+
+  // A G2 join that fairing lowers to G1 is refused unless the caller accepts G1.
+  s[1].points = {{4, 0}};
+  s[1].join = fabmesh::Join{fabmesh::Continuity::G2, 1, 0, 1, 0};
+  const fabmesh::Curve g2 = fabmesh::composite(s);
+  REQUIRE(g2.joints()[0].achieved == fabmesh::Continuity::G2);
+  CHECK(key_of([&] { fabmesh::fair(g2); }) == "keeps");
+  const fabmesh::Curve kept = fabmesh::fair(g2, fabmesh::Energy::CurvatureVariation, fabmesh::Continuity::G1);
+  CHECK(kept.joints()[0].achieved == fabmesh::Continuity::G1);
+  CHECK(kept.joints()[0].declared == fabmesh::Continuity::G2);
+}
+
 TEST_CASE("optimize gives the command line's document", "[api]") {
   const std::string json = fabmesh::optimize(fabmesh::read_design(example("example4_profile.yaml")));
   CHECK(json.rfind("[{\"design\":", 0) == 0);

@@ -297,3 +297,77 @@ TEST_CASE("countertop from a DXF template: bad drawings exit 2 at the design's k
     CHECK((!fs::exists(out_dir) || fs::is_empty(out_dir)));
   }
 }
+
+TEST_CASE("countertop cnc: tabs on cut-outs and a ramp entry from the design, bad ones located",
+          "[pipeline][countertop][cnc]") {
+  const fs::path dir = fresh_dir("countertop_hole_tabs");
+  const std::string sink =
+      "  - rounded_rect: {center: [\"=sink_x\", \"=sink_y\"], size: [560, 400], radius: 40}          # sink";
+  const std::string design =
+      edited_example(dir, "countertop_cnc.yaml", sink,
+                     "  - rounded_rect: {center: [\"=sink_x\", \"=sink_y\"], size: [560, 400], radius: 40}\n"
+                     "    tabs: {count: 2, height: 5}",
+                     "tabbed.yaml");
+  {
+    std::string text = read_file(design);
+    text += "  entry: ramp\n  ramp_angle: 4\n  finish: 0.5\n";
+    write_text(design, text);
+  }
+  std::string json;
+  REQUIRE(run_cli_json({"run", design, "-o", (dir / "out").string() + "/", "--json"}, &json) == 0);
+  const auto item = nlohmann::json::parse(json)[0];
+  CHECK(item["build"]["cnc"]["hole_tabs"] == 2);
+  CHECK(item["build"]["cnc"]["tabs"] == 4);
+  CHECK(item["build"]["cnc"]["entry"] == "ramp");
+  CHECK(item["build"]["cnc"]["finish"] == 0.5);
+  CHECK_FALSE(item.contains("warnings"));
+  const std::string nc = read_file((dir / "out" / "countertop_cnc.nc").string());
+  CHECK_THAT(nc, Catch::Contains("(holes[0] [rounded_rect]: tabs 2, 5 high)") &&
+                     Catch::Contains("(entry: zig-zag ramp at 4 degrees along the path)") &&
+                     Catch::Contains("(ramp)") &&
+                     Catch::Contains("(outline: finishing pass at z -30, the last 0.5 of stock)"));
+
+  // More tabs than the cooktop's path has room for: placed where they fit, a warning, exit 0.
+  const std::string crowded =
+      edited_example(dir, "countertop_cnc.yaml", "radius: 10}   # cooktop",
+                     "radius: 10}\n    tabs: {count: 40, width: 30, min_radius: 1000}", "crowded.yaml");
+  const CliResult r = run_fabmesh({"run", crowded, "-o", (dir / "crowded").string() + "/"});
+  CHECK(r.code == 0);
+  CHECK_THAT(r.out,
+             Catch::Contains("warning: holes[1] (rounded_rect): ") && Catch::Contains(" of 40 tabs placed"));
+
+  // Located bad input: nothing written.
+  struct Bad {
+    std::string find, replace, key;
+  };
+  const std::vector<Bad> bad{
+      {sink,
+       "  - rounded_rect: {center: [650, 340], size: [560, 400], radius: 40}\n    tabs: {count: 2, height: "
+       "30}",
+       "holes[0].tabs.height"},
+      {sink, "  - rounded_rect: {center: [650, 340], size: [560, 400], radius: 40}\n    tabs: {width: 5}",
+       "holes[0].tabs"},
+      {sink,
+       "  - rounded_rect: {center: [650, 340], size: [560, 400], radius: 40}\n    tabs: {count: 2, wide: 5}",
+       "holes[0].tabs.wide"},
+      {"  lead_in: 8", "  lead_in: 8\n  ramp_angle: 4", "cnc.ramp_angle"},
+      {"  lead_in: 8", "  lead_in: 8\n  entry: helix", "cnc.entry"},
+      {"  lead_in: 8", "  lead_in: 8\n  entry: ramp\n  ramp_angle: 60", "cnc.ramp_angle"},
+      {"  lead_in: 8", "  lead_in: 8\n  finish: 6", "cnc.finish"},
+  };
+  for (std::size_t i = 0; i < bad.size(); ++i) {
+    INFO(bad[i].replace);
+    const std::string file =
+        edited_example(dir, "countertop_cnc.yaml", bad[i].find, bad[i].replace, fmt::format("bad{}.yaml", i));
+    std::string out;
+    CHECK(run_cli({"run", file, "-o", (dir / fmt::format("bad{}", i)).string() + "/"}, &out) == 2);
+    CHECK(names_place(out, file, bad[i].key));
+    CHECK_FALSE(fs::exists(dir / fmt::format("bad{}", i)));
+  }
+  // Tabs on a hole of a design without a cnc section.
+  const std::string plain = edited_example(dir, "countertop_g1.yaml", "radius: 40}",
+                                           "radius: 40}\n    tabs: {count: 2}", "plain.yaml");
+  std::string out;
+  CHECK(run_cli({"run", plain, "-o", (dir / "plain").string() + "/"}, &out) == 2);
+  CHECK_THAT(out, Catch::Contains("has no cnc section"));
+}

@@ -9,8 +9,10 @@
 #include <fstream>
 #include <set>
 
+#include "geometry/mesh/bounding_box.h"
 #include "io/file.h"
 #include "io/mesh/stl.h"
+#include "pipeline/load_design.h"
 #include "tests/geometry/mesh/shapes.h"
 #include "tests/io/pictures/chromium.h"
 #include "tests/io/pictures/png_decode.h"
@@ -107,6 +109,91 @@ TEST_CASE("preview: a design and a mesh file give a shaded PNG of the asked size
   CHECK_FALSE(fs::exists(dir / "x.jpg"));
   CHECK_FALSE(fs::exists(dir / "c.png"));
   CHECK_FALSE(fs::exists(dir / "d.png"));
+}
+
+TEST_CASE("preview: a design's size in its units, a vessel's axis, a mould's parts exploded apart",
+          "[pipeline][pictures][preview]") {
+  CHECK(size_caption(test::box(Vec3(0, 0, 0), Vec3(3, 2, 1)), "cm") == "3.000 x 2.000 x 1.000 cm");
+  CHECK(size_caption(test::box(Vec3(0, 0, 0), Vec3(1200, 600.25, 0.03)), "") == "1200 x 600.2 x 0.03000");
+  const Design design = load_design(example("mould_golden.yaml"));
+  const BuiltMesh built = design_built(design);
+  REQUIRE(built.mould_parts.size() >= 2);
+  const TriangleSoup scene = exploded_scene(built);
+  std::size_t triangles = built.soup.triangles.size();
+  for (const NamedSoup& p : built.mould_parts) triangles += p.soup.triangles.size();
+  CHECK(scene.triangles.size() == triangles);
+  // Apart: no two parts' boxes overlap, and none overlaps the vessel's.
+  std::vector<BoundingBox> boxes{bounding_box(built.soup.vertices)};
+  std::size_t first = built.soup.vertices.size();
+  for (const NamedSoup& p : built.mould_parts) {
+    const std::vector<Vec3> moved(
+        scene.vertices.begin() + static_cast<std::ptrdiff_t>(first),
+        scene.vertices.begin() + static_cast<std::ptrdiff_t>(first + p.soup.vertices.size()));
+    boxes.push_back(bounding_box(moved));
+    first += p.soup.vertices.size();
+  }
+  auto overlap = [](const BoundingBox& a, const BoundingBox& b) {
+    return (a.lo.array() < b.hi.array()).all() && (b.lo.array() < a.hi.array()).all();
+  };
+  for (std::size_t i = 0; i < boxes.size(); ++i) {
+    for (std::size_t j = i + 1; j < boxes.size(); ++j) {
+      INFO("boxes " << i << " and " << j);
+      CHECK_FALSE(overlap(boxes[i], boxes[j]));
+    }
+  }
+  // The picture: the caption at the bottom left, the axis through the middle column.
+  const fs::path dir = fresh_dir("preview_annotated");
+  const std::string png = (dir / "cup.png").string();
+  REQUIRE(run_cli({"preview", example("vessel_golden_solid.yaml"), "-o", png, "--width", "400", "--height",
+                   "300"}) == 0);
+  const DecodedPng image = decode_png(read_file(png));
+  int ink_caption = 0, ink_axis = 0;
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < image.width; ++x) {
+      if (!(image.at(x, y) == Rgb{55, 55, 55})) continue;
+      if (y >= image.height - 10 * (image.height / 200) && x < 200) ++ink_caption;
+      if (y < image.height / 8 || y > image.height * 7 / 8) ink_axis += std::abs(x - 200) <= 2 ? 1 : 0;
+    }
+  }
+  CHECK(ink_caption > 50);
+  CHECK(ink_axis > 4);
+}
+
+TEST_CASE("plot: a declared continuity the curve does not have is drawn, flagged, with a warning",
+          "[pipeline][pictures][plot]") {
+  const fs::path dir = fresh_dir("plot_contradicted");
+  write_text(dir / "kink.yaml", R"(name: kink
+kind: curve
+tolerance: 0.01
+curve:
+  family: tbezier
+  segments:
+    - points: [[0, 0], [1, 2], [3, 2], [4, 0]]
+    - points: [[4, 0], [5, -1], [6, 1], [8, 0]]
+      continuity: G1
+)");
+  const CliResult plot =
+      run_fabmesh({"plot", (dir / "kink.yaml").string(), "-o", (dir / "kink.svg").string()});
+  CHECK(plot.code == 0);
+  CHECK_THAT(plot.err,
+             Catch::Contains("warning") && Catch::Contains("kink.yaml:") && Catch::Contains("declared G1"));
+  const auto svg = scan_xml(read_file((dir / "kink.svg").string()));
+  const auto lost = select(svg, "g", "lost");
+  REQUIRE(lost.size() == 1);
+  CHECK(lost[0]->attr("data-declared") == "G1");
+  CHECK(lost[0]->attr("data-achieved") == "G0");
+  // run still refuses it, and a curve that cannot be built at all is still an error.
+  CHECK(run_cli({"run", (dir / "kink.yaml").string(), "-o", (dir / "out").string() + "/"}) == 2);
+  write_text(dir / "short.yaml", R"(name: short
+kind: curve
+tolerance: 0.01
+curve:
+  family: tbezier
+  segments:
+    - points: [[0, 0], [1, 2], [3, 2]]
+)");
+  CHECK(run_cli({"plot", (dir / "short.yaml").string(), "-o", (dir / "short.svg").string()}) == 2);
+  CHECK_FALSE(fs::exists(dir / "short.svg"));
 }
 
 TEST_CASE("run --report: one page with every design, its pictures beside the outputs, loaded by Chromium",

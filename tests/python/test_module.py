@@ -191,6 +191,98 @@ def test_curves():
     assert fabmesh.hbezier([[0, 0], [1, 2], [3, 2], [4, 0]], alpha=2).segments == 1
 
 
+MIXED_DESIGN = """
+name: mixed
+kind: curve
+tolerance: 0.01
+curve:
+  family: tbezier
+  segments:
+    - points: [[0, 0], [1, 2], [3, 3], [4, 1]]
+      lambda: 0.5
+    - family: hbezier
+      join: {continuity: G2, k: 1.5, m: 0.25}
+      points: [[8, 0]]
+      alpha: 2
+      mu: -1
+    - line: {to: [10, -3]}
+"""
+
+
+def test_composite_is_the_design_files_curve():
+    c = fabmesh.composite([
+        {"points": [[0, 0], [1, 2], [3, 3], [4, 1]], "lambda": 0.5},
+        {"family": "hbezier", "join": {"continuity": "G2", "k": 1.5, "m": np.float64(0.25)},
+         "points": [[8, 0]], "alpha": 2, "mu": -1},
+        {"family": "line", "points": [[10, -3]]},
+    ])
+    from_design = fabmesh.build(fabmesh.load_design(text=MIXED_DESIGN)).curves[0].curve
+    ts = np.linspace(0, 3, 61)
+    assert c.segments == 3
+    assert np.allclose(c.evaluate(ts), from_design.evaluate(ts), rtol=0, atol=1e-12)
+    joints = c.joints
+    assert [(j["declared"], j["achieved"]) for j in joints] == [("G2", "G2"), ("G0", "G0")]
+    assert joints[0]["curvature_before"] == pytest.approx(joints[0]["curvature_after"], rel=1e-9)
+    assert c.fairing is None
+
+
+@pytest.mark.parametrize("segments, key", [
+    ([{"points": [[0, 0], [1, 1], [2, 1], [3, 0]]}, {"points": [[4, 1], [5, 0]]}], "segments[1]"),
+    ([{"points": [[0, 0], [1, 1], [2, 1], [3, 0]], "shape": 1}], "segments[0].shape"),
+    ([{"points": [[0, 0], [1, 1], [2, 1], [3, 0]], "family": "nurbs"}], "segments[0].family"),
+    ([{"points": [[0, 0], [1, 1], [2, 1]]}], "segments[0]"),
+    ([{"points": [[0, 0, 0], [1, 1, 1]]}], "segments[0].points"),
+    ([{"points": [[0, 0], [1, 1], [2, 1], [3, 0]]}, {"points": [[5, 0]], "join": {"continuity": "C2"}}],
+     "segments[1].join.continuity"),
+    ([{"points": [[0, 0], [1, 1], [2, 1], [3, 0]]}, {"points": [[5, 0]], "join": {"continuity": "G2", "k": "x"}}],
+     "segments[1].join.k"),
+    ([{"points": [[0, 0], [1, 1], [2, 1], [3, 0]], "lambda": 4}], "segments[0]"),
+    (["not a dict"], "segments[0]"),
+])
+def test_composite_errors_name_the_segment(segments, key):
+    with pytest.raises(fabmesh.InputError) as caught:
+        fabmesh.composite(segments)
+    assert caught.value.key.startswith(key), (caught.value.key, str(caught.value))
+    assert caught.value.exit_code == 2
+
+
+def test_fair_matches_the_designs_fairing():
+    points = [[1.5, 6], [1, 5], [2, 4], [3, 3], [1.5, 2]]
+    b = fabmesh.quasi_bspline(points, lambdas=[0.5, 0.5, 0.5])
+    f = fabmesh.fair(b, "strain")
+    assert f.fairing["energy"] == "strain" and f.fairing["after"] < f.fairing["before"]
+    design = fabmesh.load_design(text=f"""
+name: faired
+kind: curve
+tolerance: 0.005
+curve:
+  family: quasi_bspline
+  points: {points}
+  lambdas: [0.5, 0.5, 0.5]
+  fair: strain
+""")
+    built = fabmesh.build(design).curves[0].curve
+    ts = np.linspace(0, f.segments, 41)
+    assert np.allclose(f.evaluate(ts), built.evaluate(ts), rtol=0, atol=1e-12)
+    assert built.fairing["after"] == pytest.approx(f.fairing["after"], rel=1e-12)
+    # The lambdas optimize reports are the ones fair chose: fairing again changes nothing.
+    assert fabmesh.fair(built, "strain").fairing["after"] == pytest.approx(f.fairing["after"], rel=1e-9)
+    with pytest.raises(fabmesh.InputError) as caught:
+        fabmesh.fair(b, "smoothness")
+    assert caught.value.key == "energy"
+    with pytest.raises(fabmesh.InputError) as caught:
+        fabmesh.fair(fabmesh.hbezier([[0, 0], [1, 2], [3, 2], [4, 0]]))
+    assert caught.value.key == "energy"
+    g2 = fabmesh.composite([
+        {"points": [[1, 0.2], [0.2, 0.4], [1.6, 1.4], [1, 0.2]], "lambda": 1, "mu": 1},
+        {"points": [[4, 0]], "lambda": -1, "join": {"continuity": "G2"}},
+    ])
+    with pytest.raises(fabmesh.InputError) as caught:
+        fabmesh.fair(g2)
+    assert caught.value.key == "keeps"
+    assert fabmesh.fair(g2, keeps="G1").joints[0]["achieved"] == "G1"
+
+
 def test_optimize_is_the_command_lines():
     path = example("example4_profile.yaml")
     code, out = cli("optimize", path, "--json")

@@ -5,6 +5,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <initializer_list>
 #include <string>
 #include <vector>
@@ -66,6 +67,12 @@ class Fields {
   /// row skipped), for DesignCommon::notes and so the report.
   void note(std::string text) const { notes_.push_back(std::move(text)); }
   const std::vector<std::string>& notes() const { return notes_; }
+  /// Records a file the design reads besides itself (a DXF drawing, a CSV of
+  /// points), once, for DesignCommon::inputs.
+  void input(const std::string& path) const {
+    if (std::find(inputs_.begin(), inputs_.end(), path) == inputs_.end()) inputs_.push_back(path);
+  }
+  const std::vector<std::string>& inputs() const { return inputs_; }
   std::string text_or(const YAML::Node& parent, const char* key, const std::string& field,
                       const std::string& fallback) const;
   /// One of `choices`.
@@ -102,7 +109,8 @@ class Fields {
 
   std::string path_;
   std::vector<OverrideOrigin> overrides_;
-  mutable std::vector<std::string> notes_;  ///< note(): facts found while reading, not state
+  mutable std::vector<std::string> notes_;   ///< note(): facts found while reading, not state
+  mutable std::vector<std::string> inputs_;  ///< input(): the other files read
 };
 
 }  // namespace fabmesh::yaml

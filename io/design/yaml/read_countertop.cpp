@@ -28,6 +28,7 @@ std::vector<CurveSpec> read_dxf_source(const yaml::Fields& f, const YAML::Node& 
     f.fail(n["max_gap"], field + ".max_gap", fmt::format("max_gap = {} must be >= 0", query.max_gap));
   query.units = common.units;
   DxfLoops loops;
+  f.input(path.string());
   f.checked(file, field + ".dxf", [&] { loops = read_dxf_loops(path.string(), query); });
   for (std::string& note : loops.notes) {
     // A drawing read for the outline and again for the holes says its units once.
@@ -66,9 +67,11 @@ CurveSpec read_closed_curve(const yaml::Fields& f, const YAML::Node& node, const
 std::vector<CountertopHole> read_hole(const yaml::Fields& f, const YAML::Node& n, const std::string& field,
                                       const DesignCommon& common) {
   const bool dxf = n.IsMap() && n["dxf"].IsDefined();
-  if (!n.IsMap() || (!dxf && n.size() != 1)) {
+  const std::size_t shape_keys = n.IsMap() ? n.size() - (n["tabs"].IsDefined() ? 1 : 0) : 0;
+  if (!n.IsMap() || (!dxf && shape_keys != 1)) {
     f.fail(n, field,
-           "a hole is a map with one key: ellipse, rounded_rect or outline (or dxf with its layer)");
+           "a hole is a map with one key: ellipse, rounded_rect or outline (or dxf with its layer), and "
+           "optionally its tabs");
   }
   f.require_map(n, field, key_group("countertop.holes[]"));
   if (dxf) {
@@ -144,6 +147,27 @@ CncDesign read_cnc(const yaml::Fields& f, const YAML::Node& n, const DesignCommo
     o.tabs.width /= mm_per_unit;
     o.tabs.height /= mm_per_unit;
   }
+  if (n["entry"].IsDefined()) {
+    o.entry =
+        f.choice(n["entry"], "cnc.entry", {"plunge", "ramp"}) == "ramp" ? EntryKind::Ramp : EntryKind::Plunge;
+  }
+  if (n["ramp_angle"].IsDefined()) {
+    if (o.entry != EntryKind::Ramp)
+      f.fail(n["ramp_angle"], "cnc.ramp_angle", "ramp_angle applies to entry: ramp");
+    o.ramp_angle_deg = f.number(n["ramp_angle"], "cnc.ramp_angle");
+    if (!(o.ramp_angle_deg > 0.0 && o.ramp_angle_deg <= 45.0)) {
+      f.fail(n["ramp_angle"], "cnc.ramp_angle",
+             fmt::format("ramp_angle = {} must be in (0, 45] degrees", o.ramp_angle_deg));
+    }
+  }
+  if (n["finish"].IsDefined()) {
+    o.finish = f.number(n["finish"], "cnc.finish");
+    if (!(o.finish >= 0.0 && o.finish < 0.5 * o.tool_diameter)) {
+      f.fail(n["finish"], "cnc.finish",
+             fmt::format("finish = {} must be in [0, {}), below the tool radius", o.finish,
+                         0.5 * o.tool_diameter));
+    }
+  }
   if (n["direction"].IsDefined()) {
     o.direction = f.choice(n["direction"], "cnc.direction", {"climb", "conventional"}) == "conventional"
                       ? CutDirection::Conventional
@@ -163,17 +187,49 @@ CncDesign read_cnc(const yaml::Fields& f, const YAML::Node& n, const DesignCommo
   return d;
 }
 
+// A hole entry's `tabs` ({count, width, height, min_radius}); what it does
+// not give comes from the cnc section's tabs.
+TabOptions read_hole_tabs(const yaml::Fields& f, const YAML::Node& n, const std::string& field,
+                          const std::optional<CncDesign>& cnc) {
+  f.require_map(n, field, key_group("countertop.cnc.tabs"));
+  if (!cnc) {
+    f.fail(n, field,
+           fmt::format("{}: tabs hold a cut-out for the router; the design has no cnc section", field));
+  }
+  const CncOptions& o = cnc->options;
+  TabOptions t = o.tabs;
+  t.count = static_cast<std::size_t>(f.integer(f.required(n, "count", field), field + ".count", 0, 1000));
+  t.width = f.number_or(n, "width", field + ".width", o.tabs.width);
+  if (!(t.width > 0.0)) f.fail(n["width"], field + ".width", fmt::format("width = {} must be > 0", t.width));
+  t.height = f.number_or(n, "height", field + ".height", o.tabs.height);
+  if (!(t.height > 0.0 && t.height < o.depth)) {
+    f.fail(n["height"].IsDefined() ? n["height"] : n, field + ".height",
+           fmt::format("height = {} must be in (0, {}), below the depth of cut", t.height, o.depth));
+  }
+  if (n["min_radius"].IsDefined()) {
+    t.min_radius = f.number(n["min_radius"], field + ".min_radius");
+    if (!(*t.min_radius > 0.0)) {
+      f.fail(n["min_radius"], field + ".min_radius",
+             fmt::format("min_radius = {} must be > 0", *t.min_radius));
+    }
+  }
+  return t;
+}
+
 }  // namespace
 
 CountertopDesign read_countertop(const yaml::Fields& f, const YAML::Node& root, const DesignCommon& common) {
   CountertopDesign d;
   d.outline = read_closed_curve(f, f.required(root, "outline", "outline"), "outline", common);
+  std::vector<std::size_t> entry_of;  // the `holes` entry each hole comes from
   if (root["holes"].IsDefined()) {
     const YAML::Node holes = root["holes"];
     f.require_list(holes, "holes");
     for (std::size_t i = 0; i < holes.size(); ++i) {
-      for (CountertopHole& h : read_hole(f, holes[i], fmt::format("holes[{}]", i), common))
+      for (CountertopHole& h : read_hole(f, holes[i], fmt::format("holes[{}]", i), common)) {
         d.holes.push_back(std::move(h));
+        entry_of.push_back(i);
+      }
     }
   }
   const YAML::Node thickness = f.required(root, "thickness", "thickness");
@@ -187,6 +243,15 @@ CountertopDesign read_countertop(const yaml::Fields& f, const YAML::Node& root, 
   }
   d.max_triangles = f.budget_or(root, "max_triangles", d.max_triangles);
   if (root["cnc"].IsDefined()) d.cnc = read_cnc(f, root["cnc"], common, d.thickness);
+  // Tabs on cut-outs, once the cnc section's tabs give their defaults.
+  for (std::size_t k = 0; k < d.holes.size(); ++k) {
+    const YAML::Node entry = root["holes"][entry_of[k]];
+    if (!entry["tabs"].IsDefined()) continue;
+    d.holes[k].tabs = read_hole_tabs(f, entry["tabs"], fmt::format("holes[{}].tabs", entry_of[k]), d.cnc);
+  }
+  if (d.cnc) {
+    for (const CountertopHole& h : d.holes) d.cnc->options.hole_tabs.push_back(h.tabs);
+  }
   return d;
 }
 

@@ -149,6 +149,7 @@ void read_polyline(const yaml::Fields& f, const YAML::Node& n, const std::string
     const std::filesystem::path path =
         name.is_absolute() ? name : std::filesystem::path(f.path()).parent_path() / name;
     int header_line = 0;
+    f.input(path.string());
     f.checked(file, field + ".polyline.file", [&] { pts = read_points_csv(path.string(), &header_line); });
     if (header_line > 0) {
       f.note(fmt::format("{}:{}: a header row (not numbers) was skipped, for {}", path.string(), header_line,

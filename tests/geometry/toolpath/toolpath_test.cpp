@@ -3,6 +3,7 @@
 
 #include "geometry/toolpath/toolpath.h"
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 
@@ -142,14 +143,105 @@ TEST_CASE("toolpath: tabs lie on straight stretches, width + tool diameter long,
       u += len;
     }
   }
-  o.tabs.count = 200;  // 200 * 34 mm does not fit on 3 m of edges
-  try {
-    plan_toolpath(kSlab, {}, o);
-    FAIL("accepted");
-  } catch (const GeometryError& e) {
-    CHECK(e.where() == "outline");
-    CHECK_THAT(std::string(e.what()), Catch::Contains("no room for tab"));
+  CHECK(tp.warnings.empty());
+  o.tabs.count = 200;  // 200 * 34 mm does not fit on 3 m of edges: those that fit, and a warning
+  const Toolpath crowded = plan_toolpath(kSlab, {}, o);
+  const LoopPath& full = crowded.loops.back();
+  CHECK(full.tabs.size() > 30);
+  CHECK(full.tabs.size() < 200);
+  for (std::size_t i = 1; i < full.tabs.size(); ++i)
+    CHECK(full.tabs[i].first >= full.tabs[i - 1].second + o.tool_diameter - 1e-9);
+  REQUIRE(crowded.warnings.size() == 1);
+  CHECK_THAT(crowded.warnings[0], Catch::StartsWith("outline: " + std::to_string(full.tabs.size()) +
+                                                    " of 200 tabs placed; no room for " +
+                                                    std::to_string(200 - full.tabs.size()) + " more"));
+}
+
+TEST_CASE("toolpath: a hole's own tabs hold its slug, the tool rising over them in its last passes",
+          "[geometry][toolpath][tabs]") {
+  const std::vector<RegionHole> holes{{rounded_rect(200, 150, 700, 450, 30), "holes[0] (rounded_rect)"},
+                                      {ellipse({800, 520}, 40, 30, 0), "holes[1] (ellipse)"}};
+  CncOptions o = base();
+  o.tabs.count = 4;
+  TabOptions sink;
+  sink.count = 2;
+  sink.width = 8;
+  sink.height = 5;
+  sink.min_radius = 1000;
+  o.hole_tabs = {sink, no_tabs()};
+  const Toolpath tp = plan_toolpath(kSlab, holes, o);
+  REQUIRE(tp.loops.size() == 3);
+  CHECK(tp.loops[0].tabs.size() == 2);  // the sink
+  CHECK(tp.loops[0].tab_height == 5);
+  CHECK(tp.loops[1].tabs.empty());      // the small oval: none asked
+  CHECK(tp.loops[2].tabs.size() == 4);  // the outline
+  CHECK(tp.warnings.empty());
+  // The sink's tab moves rise to 5 above the bottom, in the passes below that.
+  const double sink_tab_z = -(o.depth - 5);
+  int ups = 0;
+  for (const ToolMove& m : tp.moves) {
+    if (m.loop != 0 || m.kind != MoveKind::TabUp) continue;
+    CHECK(m.to.z() == Approx(sink_tab_z));
+    ++ups;
   }
+  const std::size_t deep = static_cast<std::size_t>(
+      std::count_if(tp.pass_z.begin(), tp.pass_z.end(), [&](double z) { return z < sink_tab_z - 1e-9; }));
+  CHECK(ups == static_cast<int>(2 * deep));
+  // A hole too small for its tabs: what fits, and a warning naming it.
+  TabOptions many = sink;
+  many.count = 12;
+  many.min_radius.reset();
+  o.hole_tabs = {no_tabs(), many};
+  const Toolpath crowded = plan_toolpath(kSlab, holes, o);
+  REQUIRE(crowded.warnings.size() == 1);
+  CHECK_THAT(crowded.warnings[0], Catch::StartsWith("holes[1] (ellipse): "));
+  CHECK(crowded.loops[1].tabs.size() < 12);
+}
+
+TEST_CASE("toolpath: a ramp entry descends along the path at the ramp angle, never plunging into material",
+          "[geometry][toolpath][ramp]") {
+  const std::vector<RegionHole> holes{{ellipse({450, 300}, 60, 40, 15), "holes[0] (ellipse)"}};
+  CncOptions o = base();
+  o.entry = EntryKind::Ramp;
+  o.ramp_angle_deg = 4;
+  o.step_down = 10;
+  o.depth = 30;
+  const Toolpath tp = plan_toolpath(kSlab, holes, o);
+  const double slope = std::tan(4 * M_PI / 180);
+  Vec3 at = tp.moves.front().to;
+  double floor = 0.0;  // the deepest z reached so far on the current loop
+  std::size_t loop = tp.moves.front().loop;
+  int ramps = 0;
+  for (const ToolMove& m : tp.moves) {
+    if (m.loop != loop) loop = m.loop, floor = 0.0;
+    const double drop = at.z() - m.to.z();
+    if (m.kind == MoveKind::Plunge) {
+      // Down in the waste to the floor already cut, never below it.
+      CHECK(m.to.z() >= floor - 1e-9);
+    }
+    if (m.kind == MoveKind::Ramp) {
+      ++ramps;
+      double run = (Vec2(m.to.x(), m.to.y()) - Vec2(at.x(), at.y())).norm();
+      if (m.shape == PieceKind::Arc) run = (Vec2(at.x(), at.y()) - m.center).norm() * std::abs(m.sweep);
+      CHECK(drop >= -1e-12);
+      CHECK(drop <= slope * run * (1 + 1e-9) + 1e-12);
+    }
+    if (m.kind == MoveKind::Cut) CHECK(m.to.z() >= floor - 1e-9);  // cuts run at the depth the ramp reached
+    floor = std::min(floor, m.to.z());
+    at = m.to;
+  }
+  CHECK(ramps > 0);
+  // Each pass: a ramp that ends at the loop's start at the pass's depth.
+  for (std::size_t i = 0; i + 1 < tp.moves.size(); ++i) {
+    const ToolMove& m = tp.moves[i];
+    if (m.kind != MoveKind::Ramp || tp.moves[i + 1].kind == MoveKind::Ramp) continue;
+    const LoopPath& lp = tp.loops[m.loop];
+    CHECK((Vec2(m.to.x(), m.to.y()) - lp.pieces.front().from).norm() <= 1e-9);
+    CHECK(std::find(tp.pass_z.begin(), tp.pass_z.end(), m.to.z()) != tp.pass_z.end());
+  }
+  // Tabs keep clear of the ramp's stretch (half of step / tan(angle), plus a tool diameter).
+  const double half = 0.5 * 10 / slope;
+  for (const auto& [a, b] : tp.loops.back().tabs) CHECK(a >= half + o.tool_diameter - 1e-9);
 }
 
 TEST_CASE(
@@ -228,4 +320,87 @@ TEST_CASE("toolpath: an outline given clockwise and holes given either way cut t
   // And the rounded outline's path is its offset: corner arcs of 40 + 6.
   const Toolpath c = plan_toolpath(ccw, {}, o);
   CHECK(c.loops.back().length == Approx(2 * (820 + 520) + 2 * M_PI * 46));
+}
+
+TEST_CASE("toolpath: a digitised outline's slight concave turns are cut through, tabs find room",
+          "[geometry][toolpath][digitised]") {
+  // A 2400 x 650 worktop whose front edge is a concave arc of radius 19 m given as 301 points
+  // (rising 38 mm into the part at the middle), and whose back corners are rounded convexly
+  // (radius 100) by 41 points each: a digitised template.
+  std::vector<Vec2> p;
+  const double R = 19000;
+  for (int i = 0; i <= 300; ++i) {
+    const double x = 2400.0 * i / 300;
+    p.emplace_back(x, std::sqrt(R * R - (x - 1200) * (x - 1200)) - std::sqrt(R * R - 1200.0 * 1200.0));
+  }
+  for (int i = 0; i <= 40; ++i) {
+    const double a = M_PI / 2 * i / 40;
+    p.emplace_back(2300 + 100 * std::cos(a), 550 + 100 * std::sin(a));
+  }
+  for (int i = 0; i <= 40; ++i) {
+    const double a = M_PI / 2 + M_PI / 2 * i / 40;
+    p.emplace_back(100 + 100 * std::cos(a), 550 + 100 * std::sin(a));
+  }
+  const CompositeCurve outline = polygon(p);
+  CncOptions o;
+  o.tolerance = 0.05;
+  const Toolpath tp = plan_toolpath(outline, {}, o);
+  const LoopCheck& check = tp.checks.loops[0];
+  CHECK(check.concave_corners.empty());
+  CHECK(check.shallow_corners.size() >= 299);
+  for (const PathPiece& piece : tp.loops[0].pieces) CHECK(piece.role != PieceRole::Dogbone);
+  CHECK(tp.loops[0].tabs.size() == 4);
+  CHECK(tp.warnings.empty());
+  // The round the tool leaves at each such corner is within a quarter of the tolerance.
+  for (const LoopCorner& c : check.shallow_corners)
+    CHECK(6.0 * (1.0 / std::cos(0.5 * c.turn) - 1.0) <= 0.25 * o.tolerance);
+  // A real inside corner (90 degrees) is still refused without relief.
+  const CompositeCurve notch =
+      polygon({Vec2(0, 0), Vec2(900, 0), Vec2(900, 600), Vec2(450, 600), Vec2(450, 300), Vec2(0, 300)});
+  CHECK_THROWS_AS(plan_toolpath(notch, {}, o), GeometryError);
+}
+
+TEST_CASE("toolpath: a finishing pass cuts the edge at full depth after roughing that leaves the stock",
+          "[geometry][toolpath][finish]") {
+  const std::vector<RegionHole> holes{{rounded_rect(200, 150, 700, 450, 30), "holes[0] (rounded_rect)"}};
+  CncOptions o = base();
+  o.finish = 0.5;
+  o.tabs.count = 4;
+  const Toolpath tp = plan_toolpath(kSlab, holes, o);
+  REQUIRE(tp.roughing.size() == tp.loops.size());
+  const double r = 0.5 * o.tool_diameter;
+  for (std::size_t l = 0; l < tp.loops.size(); ++l) {
+    INFO(tp.loops[l].label);
+    // The roughing path runs the stock further into the waste all round (its area differs by
+    // stock x perimeter, more for the outline, less for the hole).
+    const double finish_area = std::abs(signed_area2(tp.loops[l].pieces)) / 2;
+    const double rough_area = std::abs(signed_area2(tp.roughing[l].pieces)) / 2;
+    const double expected = o.finish * 0.5 * (tp.loops[l].length + tp.roughing[l].length);
+    CHECK(std::abs(rough_area - finish_area) == Approx(expected).epsilon(1e-3));
+    CHECK(tp.roughing[l].tabs.size() == tp.loops[l].tabs.size());
+    REQUIRE(tp.loops[l].lead);
+    CHECK(piece_radius(*tp.loops[l].lead) == Approx(o.finish));
+  }
+  // Each loop: every pass on the roughing path, then one finishing pass at full depth.
+  std::vector<int> finishing_plunges(tp.loops.size(), 0), rough_plunges(tp.loops.size(), 0);
+  for (const ToolMove& m : tp.moves) {
+    if (m.kind != MoveKind::Plunge) continue;
+    if (m.finishing) {
+      ++finishing_plunges[m.loop];
+      CHECK(m.to.z() == Approx(tp.pass_z.back()));
+      // Down inside the roughed slot: on the roughing path (within the stock's reach).
+      const double u = nearest_along(tp.roughing[m.loop].pieces, Vec2(m.to.x(), m.to.y()));
+      CHECK((path_point(tp.roughing[m.loop].pieces, u).first - Vec2(m.to.x(), m.to.y())).norm() <=
+            1e-6 * r + 1e-9);
+    } else {
+      ++rough_plunges[m.loop];
+    }
+  }
+  for (std::size_t l = 0; l < tp.loops.size(); ++l) {
+    CHECK(finishing_plunges[l] == 1);
+    CHECK(rough_plunges[l] == static_cast<int>(tp.pass_z.size()));
+  }
+  CHECK(toolpath_totals(tp).cutting > toolpath_totals(plan_toolpath(kSlab, holes, base())).cutting);
+  o.finish = 6;  // the tool radius: refused
+  CHECK_THROWS_AS(plan_toolpath(kSlab, holes, o), RangeError);
 }

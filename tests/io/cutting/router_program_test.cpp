@@ -408,3 +408,64 @@ TEST_CASE("router program: the estimated lengths and time are those of the progr
           std::string::npos);
   }
 }
+
+TEST_CASE("router program: a ramp entry, tabs on cut-outs and a finishing pass run in CNCjs as planned",
+          "[io][cutting][gcode][toolpath][countertop][ramp][finish]") {
+  const ExampleRegion region = load_countertop_example("countertop_g1.yaml");
+  CncOptions o = options_for(region);
+  o.entry = EntryKind::Ramp;
+  o.ramp_angle_deg = 1;  // a ramp long enough to reach the sink's corner arcs
+  TabOptions slug;       // two tabs on each cut-out, 5 high
+  slug.count = 2;
+  slug.height = 5;
+  o.hole_tabs.assign(region.holes.size(), slug);
+  o.finish = 0.5;
+  const Toolpath tp = plan_toolpath(region.outline, region.holes, o);
+  REQUIRE(tp.warnings.empty());
+  const std::string program = encode_gcode(tp, {});
+  CHECK(program.find("(entry: zig-zag ramp at 1 degrees along the path)") != std::string::npos);
+  const Trace trace = interpret(program, "ramp.nc");
+  CHECK(trace.unknown.empty());
+  const double slope = std::tan(1 * M_PI / 180);
+  int ramps = 0, helices = 0, hole_tab_moves = 0;
+  const double hole_tab_z = -(o.depth - 5);
+  for (const TraceMotion& m : trace.motions) {
+    if (m.motion == "G0") continue;
+    const double drop = m.start.z() - m.end.z();
+    const double run = motion_length(m);
+    if (m.comment == "ramp") {
+      ++ramps;
+      helices += m.arc && drop > 0.0 ? 1 : 0;
+      // Down along the path no steeper than the ramp (ends rounded to the program's decimals).
+      CHECK(drop <= slope * run + 2e-3);
+      CHECK(m.feed == o.feed);
+    } else if (drop > 1e-9 && m.end.z() < 0.0) {
+      // Any other way down in material is a straight vertical move at the plunge feed into the
+      // floor already cut (from a tab, or to the previous pass's floor in the waste).
+      CHECK(vertical(m));
+      CHECK(m.feed == o.plunge);
+    }
+    if (m.section.rfind("holes", 0) == 0 && !vertical(m) && std::abs(m.start.z() - hole_tab_z) < 1e-3 &&
+        std::abs(m.end.z() - hole_tab_z) < 1e-3)
+      ++hole_tab_moves;
+  }
+  CHECK(ramps > 0);
+  CHECK(helices > 0);  // the sink's corner arcs on the ramp are helices
+  CHECK(hole_tab_moves > 0);
+  // One finishing pass per loop, every motion of it at full depth or over a tab.
+  std::set<std::string> finished;
+  for (const TraceMotion& m : trace.motions) {
+    if (m.section.find("finishing pass") == std::string::npos || m.motion == "G0") continue;
+    finished.insert(m.section);
+    if (!vertical(m)) CHECK((std::abs(m.end.z() + o.depth) < 1e-3 || m.end.z() > -o.depth + 2.9));
+  }
+  CHECK(finished.size() == tp.loops.size());
+  // The program's time estimate is the interpreted program's.
+  const ToolpathTotals totals = toolpath_totals(tp);
+  double cutting = 0.0;
+  for (const TraceMotion& m : trace.motions) {
+    if (m.motion != "G0" && m.feed == o.feed)
+      cutting += std::hypot(motion_length(m), m.end.z() - m.start.z());
+  }
+  CHECK(std::abs(cutting - totals.cutting) <= 4e-3 * static_cast<double>(trace.motions.size()));
+}

@@ -55,6 +55,38 @@ std::string lwpolyline(const char* handle, const char* layer, const std::vector<
   return text;
 }
 
+// A SPLINE of the given degree, knots and control points (x, y), with weights when given (41).
+std::string spline(const char* handle, const char* layer, int degree, const std::vector<double>& knots,
+                   const std::vector<Vec2>& points, const std::vector<double>& weights = {}) {
+  std::string text = std::string("0\nSPLINE\n5\n") + handle + "\n8\n" + layer + "\n70\n8\n71\n" +
+                     std::to_string(degree) + "\n72\n" + std::to_string(knots.size()) + "\n73\n" +
+                     std::to_string(points.size()) + "\n74\n0\n";
+  for (const double k : knots) text += "40\n" + num(k) + "\n";
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    text += "10\n" + num(points[i].x()) + "\n20\n" + num(points[i].y()) + "\n30\n0\n";
+    if (!weights.empty()) text += "41\n" + num(weights[i]) + "\n";
+  }
+  return text;
+}
+
+// A B-spline's point at u by de Boor's algorithm (the reference the reader must match).
+Vec2 de_boor(const std::vector<double>& knots, const std::vector<Vec2>& points, int p, double u) {
+  std::size_t k = static_cast<std::size_t>(p);
+  while (k + 1 < points.size() && u >= knots[k + 1]) ++k;
+  std::vector<Vec2> d(points.begin() + static_cast<std::ptrdiff_t>(k) - p,
+                      points.begin() + static_cast<std::ptrdiff_t>(k) + 1);
+  for (int r = 1; r <= p; ++r) {
+    for (int j = p; j >= r; --j) {
+      const std::size_t i = k - static_cast<std::size_t>(p) + static_cast<std::size_t>(j);
+      const double a = (u - knots[i]) /
+                       (knots[i + static_cast<std::size_t>(p) + 1 - static_cast<std::size_t>(r)] - knots[i]);
+      d[static_cast<std::size_t>(j)] =
+          (1.0 - a) * d[static_cast<std::size_t>(j) - 1] + a * d[static_cast<std::size_t>(j)];
+    }
+  }
+  return d[static_cast<std::size_t>(p)];
+}
+
 DxfLoopQuery on_layer(const std::string& layer, double max_gap = 1e-6, const std::string& units = "mm") {
   DxfLoopQuery q;
   q.layer = layer;
@@ -192,14 +224,15 @@ TEST_CASE("dxf loops: bad drawings are refused naming the file, layer, entity an
         "t.dxf layer T: 3 ends meet at (0, 0): LINE #8A's start, LINE #8C's end, LINE #8D's start; entities "
         "overlap or branch there (a loop passes a point once)");
   CHECK(error_of(drawing(tri), on_layer("NOPE")) ==
-        "t.dxf layer NOPE: no LINE, ARC, CIRCLE, ELLIPSE or polyline in model space (layers that have them: "
+        "t.dxf layer NOPE: no LINE, ARC, CIRCLE, ELLIPSE, polyline or SPLINE in model space (layers that "
+        "have them: "
         "T)");
   const std::string paper = "0\nLINE\n5\n9A\n67\n1\n8\nP\n10\n0\n20\n0\n30\n0\n11\n1\n21\n0\n31\n0\n";
   CHECK(error_of(drawing(paper), on_layer("P")) ==
         "t.dxf layer P: the layer's 1 entities are all in paper space; the outline must be in model space");
-  const std::string spline = "0\nSPLINE\n5\n9B\n8\nT\n70\n8\n71\n3\n72\n0\n73\n0\n74\n0\n";
-  CHECK_THAT(error_of(drawing(tri + spline), on_layer("T")),
-             Catch::StartsWith("t.dxf layer T: SPLINE #9B: SPLINE entities are not read yet"));
+  const std::string fit_only = "0\nSPLINE\n5\n9B\n8\nT\n70\n8\n71\n3\n72\n0\n73\n0\n74\n0\n";
+  CHECK_THAT(error_of(drawing(tri + fit_only), on_layer("T")),
+             Catch::StartsWith("t.dxf layer T: SPLINE #9B: a SPLINE without control points"));
   const std::string insert = "0\nINSERT\n5\n9C\n8\nT\n2\nSINK\n10\n0\n20\n0\n30\n0\n";
   CHECK_THAT(error_of(drawing(tri + insert), on_layer("T")),
              Catch::StartsWith("t.dxf layer T: INSERT #9C: a block reference on the layer"));
@@ -217,6 +250,68 @@ TEST_CASE("dxf loops: bad drawings are refused naming the file, layer, entity an
   const std::string greedy = "0\nLWPOLYLINE\n5\n9E\n8\nT\n90\n2000000000\n70\n1\n10\n0\n20\n0\n";
   CHECK_THAT(error_of(drawing(greedy), on_layer("T")),
              Catch::Contains("LWPOLYLINE group 90 announces 2000000000 entries; the file has"));
+}
+
+TEST_CASE("dxf loops: a SPLINE is read as the exact spline it is, in cubic spans", "[io][design][dxf]") {
+  // A cubic spline of two spans (an interior knot at 0.4) from (100, 0) over to (0, 0), closed by a line.
+  const std::vector<double> knots{0, 0, 0, 0, 0.4, 1, 1, 1, 1};
+  const std::vector<Vec2> points{{100, 0}, {110, 60}, {50, 90}, {-10, 60}, {0, 0}};
+  const DxfLoops got = parse_dxf_loops(
+      drawing(line("A0", "S", 0, 0, 100, 0) + spline("A1", "S", 3, knots, points)), "t.dxf", on_layer("S"));
+  REQUIRE(got.loops.size() == 1);
+  const CurveSpec& loop = got.loops[0].curve;
+  const CompositeCurve curve = construct_curve(loop);
+  verify_declared_continuity(loop, curve);
+  int spans = 0;
+  for (std::size_t i = 0; i < loop.segments.size(); ++i) {
+    if (loop.segments[i].name.rfind("SPLINE #A1", 0) != 0) continue;
+    const double u0 = spans == 0 ? 0.0 : 0.4, u1 = spans == 0 ? 0.4 : 1.0;
+    ++spans;
+    CHECK(loop.segments[i].kind == SegmentKind::QuasiBSpline);
+    for (int j = 0; j <= 50; ++j) {
+      const double t = j / 50.0;
+      const Vec2 want = de_boor(knots, points, 3, u0 + t * (u1 - u0));
+      CHECK((curve.segments()[i].point(t) - want).norm() <= 1e-12 * 100);
+    }
+  }
+  CHECK(spans == 2);
+  // The spans meet C2: every joint inside the spline measures G2.
+  for (const JointReport& j : curve.joints()) {
+    if (loop.segments[j.before].name.rfind("SPLINE", 0) == 0 &&
+        loop.segments[j.after].name.rfind("SPLINE", 0) == 0)
+      CHECK(j.achieved == Continuity::G2);
+  }
+  // A quadratic spline is a parabola: the area it cuts off its chord is 2/3 of the control triangle's.
+  const DxfLoops parabola =
+      parse_dxf_loops(drawing(line("B0", "Q", 100, 0, 0, 0) +
+                              spline("B1", "Q", 2, {0, 0, 0, 1, 1, 1}, {{0, 0}, {50, 80}, {100, 0}})),
+                      "t.dxf", on_layer("Q"));
+  REQUIRE(parabola.loops.size() == 1);
+  CHECK(std::abs(loop_area(parabola.loops[0].curve)) == Approx(2.0 / 3.0 * 4000.0).epsilon(1e-13));
+  // A closed spline is a loop by itself: a periodic cubic of 8 points round a circle.
+  std::vector<Vec2> ring;
+  for (int i = 0; i < 8; ++i) ring.emplace_back(50 * std::cos(i * kPi / 4), 50 * std::sin(i * kPi / 4));
+  for (int i = 0; i < 3; ++i) ring.push_back(ring[static_cast<std::size_t>(i)]);
+  std::vector<double> uniform;
+  for (int i = 0; i < 15; ++i) uniform.push_back(i);
+  const DxfLoops closed =
+      parse_dxf_loops(drawing(spline("C1", "R", 3, uniform, ring)), "t.dxf", on_layer("R"));
+  REQUIRE(closed.loops.size() == 1);
+  CHECK(closed.loops[0].curve.segments.size() == 8);
+  CHECK(std::abs(loop_area(closed.loops[0].curve)) > 0.9 * kPi * 45 * 45);
+  // What is not read, named.
+  CHECK_THAT(error_of(drawing(spline("D1", "W", 3, knots, points, {1, 2, 1, 1, 1})), on_layer("W")),
+             Catch::StartsWith(
+                 "t.dxf layer W: SPLINE #D1: control point 2 has weight 2: a rational spline (NURBS)"));
+  CHECK_THAT(error_of(drawing(spline("D2", "W", 3, {0, 0, 0, 1, 1, 1}, points)), on_layer("W")),
+             Catch::StartsWith("t.dxf layer W: SPLINE #D2: 6 knots; 5 control points of degree 3 take 9"));
+  CHECK_THAT(
+      error_of(drawing(spline("D3", "W", 5, std::vector<double>(11, 0.0),
+                              {{0, 0}, {1, 1}, {2, 0}, {3, 1}, {4, 0}})),
+               on_layer("W")),
+      Catch::StartsWith("t.dxf layer W: SPLINE #D3: degree 5; fabmesh reads splines of degree 1, 2 or 3"));
+  CHECK_THAT(error_of(drawing(spline("D4", "W", 3, {0, 0, 0, 0, 0.5, 0.4, 1, 1, 1}, points)), on_layer("W")),
+             Catch::StartsWith("t.dxf layer W: SPLINE #D4: knot 6 (0.4) is not finite and non-decreasing"));
 }
 
 TEST_CASE("dxf loops: the example template, written with ezdxf, reads into its outline and holes",

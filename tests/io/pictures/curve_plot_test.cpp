@@ -393,3 +393,38 @@ TEST_CASE("curve plot: headless Chromium renders the SVG with the red curve visi
   CHECK(red_left > 100);
   CHECK(red_right > 100);
 }
+
+TEST_CASE("curve plot: curvature below rounding draws no comb and plots as zero", "[io][pictures][plot]") {
+  // Collinear control points whose coordinates are not binary fractions: the
+  // computed curvature is rounding noise of alternating sign near 1e-16.
+  CompositeCurve flat(
+      {Segment::tbezier({Vec2(0.1, 0.3), Vec2(0.7, 2.1), Vec2(1.3, 3.9), Vec2(2.3, 6.9)}, 0.3, -0.7)}, false);
+  double noise = 0.0;
+  for (int j = 0; j <= 64; ++j) noise = std::max(noise, std::abs(flat.segments()[0].curvature(j / 64.0)));
+  INFO("largest computed curvature " << noise);
+  CHECK(noise > 0.0);  // the noise is there to be left out
+  CHECK(noise < 1e-10);
+  CHECK(drawn_curvature(flat.segments()[0], 0.3) == 0.0);
+  CurvePlot plot;
+  plot.title = "flat";
+  PlotCurve line;
+  line.name = "flat";
+  line.curve = flat;
+  plot.curves.push_back(line);
+  const auto svg = scan_xml(plot_curves_svg(plot));
+  for (std::size_t i = 0; i < svg.size(); ++i) {
+    if (svg[i].has_class("comb-teeth")) CHECK(svg[i].attr("d").empty());
+    if (svg[i].has_class("curvature-segment")) {
+      CHECK(number(svg[i], "data-k-start") == 0.0);
+      CHECK(number(svg[i], "data-k-end") == 0.0);
+    }
+  }
+  // A real bend keeps its comb beside the flat curve.
+  plot.curves.push_back(plot_curve(build_curve(g2_pair()), "G2 pair"));
+  const auto both = scan_xml(plot_curves_svg(plot));
+  int drawn = 0;
+  for (std::size_t i = 0; i < both.size(); ++i) {
+    if (both[i].has_class("comb-teeth") && !both[i].attr("d").empty()) ++drawn;
+  }
+  CHECK(drawn == 1);
+}

@@ -215,3 +215,76 @@ TEST_CASE("png: an image whose bytes do not match its size is refused", "[io][pi
   image.width = 0;
   CHECK_THROWS_AS(encode_png(image), RangeError);
 }
+
+TEST_CASE("preview: a caption is drawn at the bottom left and nowhere else", "[io][pictures][preview]") {
+  PreviewOptions o;
+  o.width = 400;
+  o.height = 300;
+  const TriangleSoup box = test::box(Vec3(0, 0, 0), Vec3(3, 2, 1));
+  const DecodedPng plain = test::decode_png(encode_png(render_preview(box, o)));
+  o.caption = "120.5 x 80 x 9 mm";
+  const DecodedPng captioned = test::decode_png(encode_png(render_preview(box, o)));
+  const int scale = o.height / 200;
+  const int right = 3 * scale + static_cast<int>(o.caption.size()) * 6 * scale, top = o.height - 10 * scale;
+  int ink = 0, elsewhere = 0;
+  for (int y = 0; y < o.height; ++y) {
+    for (int x = 0; x < o.width; ++x) {
+      if (captioned.at(x, y) == plain.at(x, y)) continue;
+      if (x < right && y >= top) {
+        ink += captioned.at(x, y) == Rgb{55, 55, 55} ? 1 : 0;
+      } else {
+        ++elsewhere;
+      }
+    }
+  }
+  CHECK(ink > 100);
+  CHECK(elsewhere == 0);
+  o.caption = "1e-3 mm";  // the font has no 'e'
+  CHECK_THROWS_AS(render_preview(box, o), InputError);
+  o.caption = std::string(65, '1');
+  CHECK_THROWS_AS(render_preview(box, o), InputError);
+}
+
+TEST_CASE("preview: a guide line is dashed, dark where seen, faint where the mesh hides it",
+          "[io][pictures][preview]") {
+  PreviewOptions o;
+  o.width = 400;
+  o.height = 400;
+  o.margin = 0.05;
+  const TriangleSoup sphere = test::sphere(1.0, 96, 48);
+  const DecodedPng alone = test::decode_png(encode_png(render_preview(sphere, o)));
+  o.guides.push_back({Vec3(0, 0, -2), Vec3(0, 0, 2)});
+  const DecodedPng guided = test::decode_png(encode_png(render_preview(sphere, o)));
+  // The guide is fitted too: the sphere is drawn smaller.
+  const Blob a = foreground(alone, 0, o.width, o.background);
+  const Blob g = foreground(guided, 0, o.width, o.background);
+  CHECK(g.count < 0.6 * a.count);
+  // The z axis projects to the frame's middle column; the sphere's disc is around the centre.
+  const double radius = std::sqrt(g.count / M_PI);
+  int seen = 0, dark_inside = 0, faint_inside = 0;
+  for (int y = 0; y < o.height; ++y) {
+    for (int x = o.width / 2 - 3; x <= o.width / 2 + 3; ++x) {
+      // Within 0.85 of the disc's radius the axis is inside the sphere (it leaves it at the poles,
+      // which project to 0.906 of the radius): the front of the sphere hides it there.
+      const bool inside = std::hypot(x + 0.5 - 200.0, y + 0.5 - 200.0) < 0.85 * radius;
+      const bool ink = guided.at(x, y) == Rgb{55, 55, 55};
+      if (!inside && ink) ++seen;
+      if (inside && ink) ++dark_inside;
+      if (inside && !ink && !(guided.at(x, y) == alone.at(x, y))) ++faint_inside;
+    }
+  }
+  CHECK(seen > 40);
+  CHECK(dark_inside == 0);
+  CHECK(faint_inside > 20);
+  // Dashed: along the visible part above the sphere, ink and gaps alternate.
+  int changes = 0;
+  bool last = false;
+  for (int y = 0; y < static_cast<int>(200.0 - radius) - 2; ++y) {
+    const bool ink = guided.at(200, y) == Rgb{55, 55, 55} || guided.at(201, y) == Rgb{55, 55, 55};
+    changes += y > 0 && ink != last ? 1 : 0;
+    last = ink;
+  }
+  CHECK(changes >= 4);
+  o.guides[0][1] = Vec3(0, 0, std::nan(""));
+  CHECK_THROWS_AS(render_preview(sphere, o), InputError);
+}
