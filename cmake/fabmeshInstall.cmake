@@ -6,6 +6,7 @@
 #   lib/pkgconfig/fabmesh.pc                   the pkg-config file
 #   lib/python3/dist-packages/fabmesh*.so      the Python module and its fabmesh.pyi
 #   share/fabmesh/examples/                    the example designs (pipeline/CMakeLists.txt)
+#   share/fabmesh/studio/                      the studio's page and three.js (pipeline/CMakeLists.txt)
 #   share/doc/fabmesh/                         README.md and docs/
 #   share/man/man1/fabmesh.1                   the manual page
 #   share/bash-completion/completions/fabmesh  bash completion of commands and options

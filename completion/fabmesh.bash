@@ -3,7 +3,7 @@
 # tests/packaging/cli_docs_test.sh checks that it offers every option of
 # `fabmesh COMMAND --help`.
 
-_fabmesh_commands="run plot preview check optimize sample batch"
+_fabmesh_commands="run plot preview check optimize sample batch studio"
 _fabmesh_global_options="-h --help --version -q --quiet -v --verbose"
 
 _fabmesh_options() {
@@ -14,6 +14,7 @@ _fabmesh_options() {
     check) echo "--json --weld-tolerance --max-seconds" ;;
     optimize) echo "-D --define --json" ;;
     sample) echo "-D --define --csv --tolerance" ;;
+    studio) echo "--port --host --no-open -o --output" ;;
     batch) echo "-o --output --jobs --shard --force --json --slurm --array-size --report --merge" ;;
   esac
 }

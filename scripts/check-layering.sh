@@ -3,7 +3,8 @@
 # -> geometry, never back), includes CGAL from a header (every includer would
 # compile it), or includes the private YAML readers (yaml-cpp is a private
 # dependency of fabmesh::io) from outside io/design, or muparser from anywhere but
-# io/design/expression.cpp, or includes the private
+# io/design/expression.cpp, or cpp-httplib from anywhere but the studio's server
+# (pipeline/studio/studio_server.cpp; its tests use its client), or includes the private
 # parts of validation (geometry/validation/detail/: only validate.h is public;
 # tests and benchmarks may check them) from outside geometry/validation.
 set -euo pipefail
@@ -29,6 +30,8 @@ while IFS= read -r hit; do complain "yaml-cpp outside io/design: $hit"; done \
   < <(grep -rnE '#include <yaml-cpp/' geometry io pipeline 2>/dev/null | grep -v '^io/design/' || true)
 while IFS= read -r hit; do complain "muparser outside io/design/expression.cpp: $hit"; done \
   < <(grep -rnE '#include <muParser' geometry io pipeline api python tests bench fuzz 2>/dev/null | grep -v '^io/design/expression\.cpp:' || true)
+while IFS= read -r hit; do complain "cpp-httplib outside pipeline/studio/studio_server.cpp: $hit"; done \
+  < <(grep -rnE '#include <httplib' geometry io pipeline api python bench fuzz 2>/dev/null | grep -v '^pipeline/studio/studio_server\.cpp:' || true)
 while IFS= read -r hit; do complain "validation's private parts used outside geometry/validation: $hit"; done \
   < <(grep -rnE '#include "geometry/validation/detail/' geometry io pipeline 2>/dev/null | grep -v '^geometry/validation/' || true)
 
@@ -39,5 +42,5 @@ while IFS= read -r hit; do complain "a public header includes more than the stan
 while IFS= read -r hit; do complain "the Python module reaches past the public headers: $hit"; done \
   < <(grep -rnE '#include "' python 2>/dev/null || true)
 
-[[ $status -eq 0 ]] && echo "check-layering: python -> api -> pipeline -> io -> geometry holds; encoders see built data only; CGAL, yaml-cpp, muparser and validation/detail stay private"
+[[ $status -eq 0 ]] && echo "check-layering: python -> api -> pipeline -> io -> geometry holds; encoders see built data only; CGAL, yaml-cpp, muparser, httplib and validation/detail stay private"
 exit $status

@@ -2,14 +2,18 @@
 # Installs what fabmesh needs, with apt-get (Debian 12):
 #
 #   scripts/install-deps.sh           build and run fabmesh: the compiler, CMake, the
-#                                     libraries' -dev packages, pybind11 and the Python
-#                                     headers (the Python module), numpy (to use it)
+#                                     libraries' -dev packages (cpp-httplib for the
+#                                     studio), pybind11 and the Python headers (the
+#                                     Python module), numpy (to use it), and the npm
+#                                     packages of tools/node (three.js: the studio's 3D view)
 #   scripts/install-deps.sh --test    also what the test suite and CI use: Catch2, clang
 #                                     and clang-tidy, the tools outputs are checked with
 #                                     (Chromium, PrusaSlicer, OpenSCAD, Draco's tools,
 #                                     ezdxf, pytest, meshio, Open3D), a single-node
-#                                     Slurm, and the npm test tools of tools/node (the
-#                                     Khronos glTF validator, the CNCjs G-code interpreter)
+#                                     Slurm, and Node.js for the npm test tools of
+#                                     tools/node (the Khronos glTF validator, the CNCjs
+#                                     G-code interpreter, puppeteer-core for the studio's
+#                                     page in Chromium)
 #   scripts/install-deps.sh --bench   also the peer tools and Google Benchmark of bench/
 #
 # Flags combine (--test --bench). Idempotent: what is present is skipped, so
@@ -33,9 +37,13 @@ packages=(
   libcgal-dev libgmp-dev libmpfr-dev libboost-dev
   libeigen3-dev libopenmesh-dev libdraco-dev libtbb-dev
   libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libfmt-dev
-  libdxflib-dev lib3mf-dev libspng-dev zlib1g-dev libmuparser-dev
+  libdxflib-dev lib3mf-dev libspng-dev zlib1g-dev libmuparser-dev libcpp-httplib-dev
   python3 python3-dev pybind11-dev python3-numpy
 )
+# Node.js and npm come with the machine (NodeSource's nodejs bundles npm and
+# conflicts with Debian's npm); install Debian's pair only where there is none.
+# npm installs three.js (the studio's 3D view), pinned in tools/node.
+if ! command -v npm >/dev/null 2>&1; then packages+=(nodejs npm); fi
 if ((test_deps)); then
   packages+=(
     catch2
@@ -45,9 +53,6 @@ if ((test_deps)); then
     slurm-wlm munge
     groff-base man-db
   )
-  # Node.js and npm come with the machine (NodeSource's nodejs bundles npm and
-  # conflicts with Debian's npm); install Debian's pair only where there is none.
-  if ! command -v npm >/dev/null 2>&1; then packages+=(nodejs npm); fi
 fi
 if ((bench_deps)); then
   packages+=(libbenchmark-dev admesh hyperfine time dxf2gcode)
@@ -69,13 +74,15 @@ else
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 
-# npm test tools, pinned by tools/node/package-lock.json.
-if ((test_deps)); then
-  if [[ -d tools/node/node_modules/gltf-validator && -d tools/node/node_modules/gcode-toolpath &&
-        tools/node/node_modules/.package-lock.json -nt tools/node/package-lock.json ]]; then
-    echo "install-deps: npm test tools present"
-  else
-    echo "install-deps: installing the npm test tools (tools/node)"
-    (cd tools/node && npm ci --no-audit --no-fund --loglevel=error)
-  fi
+# npm packages, pinned by tools/node/package-lock.json: three.js (the studio's
+# page, copied into the build) and the test tools (one lock file holds both).
+npm_present=1
+for module in three gltf-validator gcode-toolpath puppeteer-core; do
+  [[ -d tools/node/node_modules/$module ]] || npm_present=0
+done
+if ((npm_present)) && [[ tools/node/node_modules/.package-lock.json -nt tools/node/package-lock.json ]]; then
+  echo "install-deps: npm packages present"
+else
+  echo "install-deps: installing the npm packages (tools/node)"
+  (cd tools/node && npm ci --no-audit --no-fund --loglevel=error)
 fi

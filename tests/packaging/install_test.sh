@@ -21,7 +21,9 @@ for f in bin/fabmesh lib/libfabmesh.so "lib/libfabmesh.so.${version%.*}" "lib/li
   lib/cmake/fabmesh/fabmeshConfig.cmake lib/cmake/fabmesh/fabmeshConfigVersion.cmake \
   lib/cmake/fabmesh/fabmeshTargets.cmake lib/pkgconfig/fabmesh.pc \
   share/fabmesh/examples/vessel_golden_shell.yaml share/doc/fabmesh/README.md share/doc/fabmesh/install.md \
-  share/man/man1/fabmesh.1 share/bash-completion/completions/fabmesh; do
+  share/man/man1/fabmesh.1 share/bash-completion/completions/fabmesh \
+  share/fabmesh/studio/index.html share/fabmesh/studio/studio.js share/fabmesh/studio/three/build/three.module.js \
+  share/fabmesh/studio/three/examples/jsm/loaders/GLTFLoader.js; do
   [[ -e $prefix/$f ]] || fail "not installed: $f"
 done
 internal=$(cd "$prefix" && find . -name '*.a' -o -name '*.in' -o -name 'libfabmesh_*')

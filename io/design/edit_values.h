@@ -1,0 +1,37 @@
+#pragma once
+// Changing values in a design file's text without touching anything else:
+// what `fabmesh studio` saves. The comments, the order of keys, the quoting
+// and layout of every other value stay byte for byte as the user wrote them.
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "io/design/overrides.h"
+
+namespace fabmesh {
+
+/// Where the text of one value is in a design file: the bytes [begin, end)
+/// hold the scalar as written (quotes included), at 1-based `line` and `column`.
+struct ValueSpan {
+  std::size_t begin = 0, end = 0;
+  int line = 0, column = 0;
+};
+
+/// The span of the value `path` names in the YAML `text` (of file `file`,
+/// for messages). `path` is a -D path ("body.wall", "profile.lambdas[1]"), or
+/// the name of a declared parameter ("height": its value, under `value:`
+/// when the parameter is declared with a range), as `-D` reads it.
+/// \throw FileError when the text is not YAML, the path is not in it, or its
+///        value is neither a scalar nor a list in brackets written on one line
+///        (a block scalar, a map, a list of `- ` items)
+ValueSpan value_span(const std::string& text, const std::string& file, const std::string& path);
+
+/// `text` with the value of each override's path (value_span) replaced by its
+/// value text as given (Override::value: a number, or YAML such as "\"=w / 2\"").
+/// Everything else is left as it was. Two overrides of one value: the last wins.
+/// \throw FileError as value_span, or when a value text is not one line
+std::string edit_values(const std::string& text, const std::string& file,
+                        const std::vector<Override>& values);
+
+}  // namespace fabmesh

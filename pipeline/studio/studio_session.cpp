@@ -1,0 +1,399 @@
+#include "pipeline/studio/studio_session.h"
+
+#include <fmt/format.h>
+#include <sys/stat.h>
+
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <vector>
+
+#include "geometry/core/errors.h"
+#include "geometry/core/units.h"
+#include "geometry/curves/basis.h"
+#include "geometry/fairing/build_curve.h"
+#include "io/design/edit_values.h"
+#include "io/file.h"
+#include "io/mesh/gltf.h"
+#include "io/pictures/curve_plot.h"
+#include "pipeline/design_curves.h"
+#include "pipeline/failure.h"
+#include "pipeline/job.h"
+#include "pipeline/load_design.h"
+#include "pipeline/pictures.h"
+#include "pipeline/report.h"
+
+namespace fabmesh {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+constexpr std::size_t kMaxDesignBytes = std::size_t{64} << 20;  // as read_design
+
+// A request the API cannot take: HTTP 400, naming the request's field.
+struct BadRequest {
+  std::string field;
+  std::string message;
+};
+
+StudioResponse json_response(int status, const Json& body) {
+  return {status, "application/json", body.dump(-1, ' ', false, Json::error_handler_t::replace)};
+}
+
+StudioResponse bad_request(const BadRequest& e) {
+  return json_response(400, {{"error", {{"message", e.message}, {"field", e.field}}}});
+}
+
+// The design's overrides of a request's "overrides" object, as `-D` takes them.
+struct Request {
+  std::vector<Override> overrides;
+  std::string energy;  ///< fairest: "strain" or "curvature_variation"
+};
+
+std::string number_text(double value) { return fmt::format("{}", value); }
+
+// `takes_energy`: the request may have "energy" (fairest) besides "overrides".
+Request parse_request(const std::string& body, bool takes_energy = false) {
+  Request request;
+  if (body.empty()) return request;
+  Json j;
+  try {
+    j = Json::parse(body);
+  } catch (const Json::parse_error& e) {
+    throw BadRequest{"", fmt::format("the request body is not JSON: {}", e.what())};
+  }
+  if (!j.is_object()) throw BadRequest{"", "the request body must be a JSON object"};
+  for (const auto& [key, value] : j.items()) {
+    if (key == "overrides" || (takes_energy && key == "energy")) continue;
+    throw BadRequest{key, fmt::format("unknown field '{}' (the request takes: overrides{})", key,
+                                      takes_energy ? ", energy" : "")};
+  }
+  if (takes_energy) {
+    const Json* energy = j.contains("energy") ? &j["energy"] : nullptr;
+    if (energy == nullptr || !energy->is_string() ||
+        (*energy != "strain" && *energy != "curvature_variation")) {
+      throw BadRequest{"energy", "energy must be \"strain\" or \"curvature_variation\""};
+    }
+    request.energy = energy->get<std::string>();
+  }
+  if (!j.contains("overrides")) return request;
+  const Json& overrides = j["overrides"];
+  if (!overrides.is_object()) throw BadRequest{"overrides", "overrides must be an object {NAME: value}"};
+  for (const auto& [name, value] : overrides.items()) {
+    const std::string field = "overrides." + name;
+    std::string text;
+    if (value.is_number()) {
+      const double v = value.get<double>();
+      if (!std::isfinite(v))
+        throw BadRequest{field, fmt::format("{}: the value is not a finite number", field)};
+      text = number_text(v);
+    } else if (value.is_string()) {
+      text = value.get<std::string>();
+      if (text.empty() || text.find_first_of("\r\n") != std::string::npos)
+        throw BadRequest{field, fmt::format("{}: the value must be a number or a one-line text", field)};
+    } else {
+      throw BadRequest{field, fmt::format("{}: the value must be a number or a text", field)};
+    }
+    try {
+      request.overrides.push_back(parse_override(fmt::format("{}={}", name, text)));
+    } catch (const InputError& e) {
+      throw BadRequest{field, e.what()};
+    }
+  }
+  return request;
+}
+
+// Plain names must be declared parameters (a -D path has a '.' or a '[').
+void require_known_names(const Request& request, const Design& design) {
+  for (const Override& o : request.overrides) {
+    if (o.path.find_first_of(".[") != std::string::npos) continue;
+    bool known = false;
+    std::string names;
+    for (const DesignParameter& p : design.common.parameters) {
+      known = known || p.name == o.path;
+      names += (names.empty() ? "" : ", ") + p.name;
+    }
+    if (!known) {
+      throw BadRequest{"overrides." + o.path,
+                       fmt::format("overrides.{}: the design declares no parameter '{}' ({})", o.path, o.path,
+                                   names.empty() ? "it declares none" : "its parameters are: " + names)};
+    }
+  }
+}
+
+// The 422 (or 500) answer of a failure: describe_failure's message, the
+// same the command line prints, and where it is as data.
+StudioResponse failure_response(const std::exception_ptr& error, const std::string& subject) {
+  const Failure failure = describe_failure(error, subject);
+  Json e = {{"message", failure.message}, {"exit_code", failure.exit_code}};
+  try {
+    std::rethrow_exception(error);
+  } catch (const InputError& input) {
+    const ErrorLocation& at = input.location();
+    e["key"] = at.key.empty() ? Json(nullptr) : Json(at.key);
+    // The override that gave the value at fault names the page's field.
+    const std::string& given = at.override_text;
+    e["field"] = given.empty() ? Json(nullptr) : Json(given.substr(0, given.find('=')));
+    // The same as the request names it, as 400 answers name theirs.
+    e["request_field"] =
+        given.empty() ? Json(nullptr) : Json("overrides." + given.substr(0, given.find('=')));
+    int line = at.line, column = at.column;
+    if (const auto* file = dynamic_cast<const FileError*>(&input); file != nullptr && line == 0) {
+      line = file->line();
+      column = file->column();
+    }
+    e["line"] = line > 0 ? Json(line) : Json(nullptr);
+    e["column"] = column > 0 ? Json(column) : Json(nullptr);
+  } catch (...) {
+    e["key"] = nullptr;
+    e["field"] = nullptr;
+    e["request_field"] = nullptr;
+  }
+  const int status = failure.exit_code == kExitBadInput || failure.exit_code == kExitInvalid ? 422 : 500;
+  return json_response(status, {{"error", e}});
+}
+
+Json range_json(const std::string& key, double value, double min, double max, double step) {
+  return {{"key", key}, {"value", value}, {"min", min}, {"max", max}, {"step", step}};
+}
+
+// The shape parameters of the design's curves that the design writes, with
+// the ranges the schema gives them (docs/design-files.md, "Curves").
+Json shape_parameters(const Design& design) {
+  Json out = Json::array();
+  const auto& where = design.common.where;
+  for (const NamedCurve& c : design_curves(design)) {
+    if (c.spec.family == CurveFamily::QuasiBSpline) {
+      for (std::size_t i = 0; i < c.spec.bspline_lambdas.size(); ++i) {
+        const std::string key = fmt::format("{}.lambdas[{}]", c.name, i);
+        if (where.count(key) != 0) out.push_back(range_json(key, c.spec.bspline_lambdas[i], -8.0, 1.0, 0.01));
+      }
+      continue;
+    }
+    for (const SegmentSpec& s : c.spec.segments) {
+      if (s.key.empty() || (s.kind != SegmentKind::TBezier && s.kind != SegmentKind::HBezier)) continue;
+      double lo = -2.0;
+      if (s.kind == SegmentKind::HBezier) {
+        lo = hbezier_lambda_min(s.alpha);
+        if (where.count(s.key + ".alpha") != 0)
+          out.push_back(range_json(s.key + ".alpha", s.alpha, 0.01, 10.0, 0.01));
+      }
+      for (const auto& [name, value] : {std::pair{".lambda", s.lambda}, std::pair{".mu", s.mu}}) {
+        Json r = range_json(s.key + name, value, lo, 1.0, 0.01);
+        if (s.kind == SegmentKind::HBezier) r["min_exclusive"] = true;
+        out.push_back(std::move(r));
+      }
+    }
+  }
+  return out;
+}
+
+// The control points the page may drag on the plot: a quasi-B-spline's
+// points when the design's text writes each as a [x, y] that save can
+// replace (a -D path the plot's circles map to one to one, in order).
+Json draggable_points(const Design& design, const std::string& text) {
+  Json out = Json::array();
+  for (const NamedCurve& c : design_curves(design)) {
+    if (c.spec.family != CurveFamily::QuasiBSpline) continue;
+    Json points = Json::array();
+    for (std::size_t i = 0; i < c.spec.bspline_points.size(); ++i) {
+      const std::string key = fmt::format("{}.points[{}]", c.name, i);
+      try {
+        (void)value_span(text, design.common.path, key);
+      } catch (const FileError&) {
+        points.clear();
+        break;
+      }
+      const Vec2& p = c.spec.bspline_points[i];
+      points.push_back({{"key", key}, {"x", p.x()}, {"y", p.y()}});
+    }
+    if (!points.empty()) out.push_back({{"curve", c.name}, {"points", points}});
+  }
+  return out;
+}
+
+Json parameters_json(const Design& design) {
+  Json out = Json::array();
+  for (const DesignParameter& p : design.common.parameters) {
+    Json j = {{"name", p.name}, {"value", p.value}};
+    j["min"] = p.min ? Json(*p.min) : Json(nullptr);
+    j["max"] = p.max ? Json(*p.max) : Json(nullptr);
+    j["step"] = p.step ? Json(*p.step) : Json(nullptr);
+    j["description"] = p.description;
+    out.push_back(std::move(j));
+  }
+  return out;
+}
+
+std::string file_version(const std::string& path) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) return "missing";
+  return fmt::format("{}.{:09d}-{}", st.st_mtim.tv_sec, st.st_mtim.tv_nsec, st.st_size);
+}
+
+double elapsed_ms(std::chrono::steady_clock::time_point since) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - since).count();
+}
+
+}  // namespace
+
+StudioSession::StudioSession(StudioSessionOptions options) : options_(std::move(options)) {
+  (void)load_design(options_.design_path);
+}
+
+StudioSession::~StudioSession() = default;
+
+StudioResponse StudioSession::design() const {
+  try {
+    const std::string version = file_version(options_.design_path);
+    const std::string text = read_file(options_.design_path, kMaxDesignBytes, "design file");
+    const Design design = load_design_text(text, options_.design_path);
+    Json j = {{"path", options_.design_path}, {"name", design.common.name}, {"kind", kind_name(design)},
+              {"units", design.common.units}, {"version", version},         {"text", text}};
+    j["parameters"] = parameters_json(design);
+    j["shape_parameters"] = shape_parameters(design);
+    j["control_points"] = draggable_points(design, text);
+    j["out_dir"] = options_.out_dir;
+    return json_response(200, j);
+  } catch (...) {
+    return failure_response(std::current_exception(), options_.design_path);
+  }
+}
+
+StudioResponse StudioSession::build(const std::string& request_body) {
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    const Request request = parse_request(request_body);
+    const std::string text = read_file(options_.design_path, kMaxDesignBytes, "design file");
+    require_known_names(request, load_design_text(text, options_.design_path));
+    const Design design = load_design_text(text, options_.design_path, request.overrides);
+    JobOptions job;
+    job.out_dir = options_.out_dir;
+    std::optional<std::string> glb;
+    std::string plot_svg;
+    job.on_built = [&](const BuiltMesh& built) {
+      plot_svg = plot_curves_svg(shape_plot(design.common, built.shape));
+      if (!built.soup.triangles.empty()) {
+        GlbOptions glb_options;
+        glb_options.name = design.common.name;
+        glb_options.scale_to_metres = metres_per_unit(design.common.units);
+        glb = encode_glb(built.soup, glb_options);
+      }
+    };
+    const PreparedJob prepared = prepare_job(design, job);
+    Json j = {{"report", design_item(options_.design_path, prepared.report)}, {"plot_svg", plot_svg}};
+    j["mesh"] = nullptr;
+    if (glb) {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      const std::string id = fmt::format("m{}", next_mesh_++);
+      meshes_.emplace_back(id, std::move(*glb));
+      while (meshes_.size() > options_.kept_meshes) meshes_.pop_front();
+      j["mesh"] = "/api/mesh/" + id + ".glb";
+    }
+    j["build_ms"] = elapsed_ms(start);
+    return json_response(200, j);
+  } catch (const BadRequest& e) {
+    return bad_request(e);
+  } catch (...) {
+    return failure_response(std::current_exception(), options_.design_path);
+  }
+}
+
+StudioResponse StudioSession::mesh(const std::string& id) const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  for (const auto& [mesh_id, bytes] : meshes_) {
+    if (mesh_id == id) return {200, "model/gltf-binary", bytes};
+  }
+  return json_response(404, {{"error", {{"message", fmt::format("no mesh '{}' (build again)", id)}}}});
+}
+
+StudioResponse StudioSession::export_outputs(const std::string& request_body) {
+  try {
+    const Request request = parse_request(request_body);
+    const std::string text = read_file(options_.design_path, kMaxDesignBytes, "design file");
+    require_known_names(request, load_design_text(text, options_.design_path));
+    const Design design = load_design_text(text, options_.design_path, request.overrides);
+    JobOptions job;
+    job.out_dir = options_.out_dir;
+    const JobReport report = write_job(prepare_job(design, job));
+    Json j = {{"out_dir", options_.out_dir}, {"files", report.outputs}};
+    j["report"] = design_item(options_.design_path, report);
+    return json_response(200, j);
+  } catch (const BadRequest& e) {
+    return bad_request(e);
+  } catch (...) {
+    return failure_response(std::current_exception(), options_.design_path);
+  }
+}
+
+StudioResponse StudioSession::save(const std::string& request_body) {
+  try {
+    const Request request = parse_request(request_body);
+    const std::string text = read_file(options_.design_path, kMaxDesignBytes, "design file");
+    require_known_names(request, load_design_text(text, options_.design_path));
+    // The values must make a design before they replace the file's.
+    (void)load_design_text(text, options_.design_path, request.overrides);
+    const std::string edited = edit_values(text, options_.design_path, request.overrides);
+    (void)load_design_text(edited, options_.design_path);
+    write_file_atomically(options_.design_path, edited);
+    Json changed = Json::array();
+    for (const Override& o : request.overrides) changed.push_back(o.path);
+    return json_response(200, {{"saved", options_.design_path},
+                               {"changed", changed},
+                               {"version", file_version(options_.design_path)}});
+  } catch (const BadRequest& e) {
+    return bad_request(e);
+  } catch (...) {
+    return failure_response(std::current_exception(), options_.design_path);
+  }
+}
+
+StudioResponse StudioSession::fairest(const std::string& request_body) {
+  try {
+    const Request request = parse_request(request_body, true);
+    const std::string text = read_file(options_.design_path, kMaxDesignBytes, "design file");
+    require_known_names(request, load_design_text(text, options_.design_path));
+    const Design design = load_design_text(text, options_.design_path, request.overrides);
+    const FairMode mode = request.energy == "strain" ? FairMode::Strain : FairMode::CurvatureVariation;
+    Json overrides = Json::object();
+    Json skipped = Json::array();
+    for (const NamedCurve& c : design_curves(design)) {
+      const bool bspline = c.spec.family == CurveFamily::QuasiBSpline;
+      if (!bspline && (c.spec.family != CurveFamily::TBezier || mode == FairMode::Strain)) {
+        skipped.push_back(
+            {{"curve", c.name},
+             {"reason", fmt::format("{} fairing applies to {}", to_string(mode),
+                                    mode == FairMode::Strain ? "quasi_bspline curves"
+                                                             : "tbezier and quasi_bspline curves")}});
+        continue;
+      }
+      CurveSpec spec = c.spec;
+      spec.fair = mode;
+      const BuiltCurve built = in_design(design, [&] { return build_curve(spec); });
+      if (bspline && built.bspline) {
+        for (std::size_t i = 0; i < built.bspline->lambdas.size(); ++i)
+          overrides[fmt::format("{}.lambdas[{}]", c.name, i)] = built.bspline->lambdas[i];
+      }
+      for (const SegmentFairing& f : built.segments) {
+        const std::string& key = spec.segments.at(f.index).key;
+        if (key.empty()) continue;
+        overrides[key + ".lambda"] = f.lambda;
+        overrides[key + ".mu"] = f.mu;
+      }
+    }
+    return json_response(200, {{"energy", request.energy}, {"overrides", overrides}, {"skipped", skipped}});
+  } catch (const BadRequest& e) {
+    return bad_request(e);
+  } catch (...) {
+    return failure_response(std::current_exception(), options_.design_path);
+  }
+}
+
+StudioResponse StudioSession::version() const {
+  return json_response(200, {{"version", file_version(options_.design_path)}});
+}
+
+}  // namespace fabmesh

@@ -1,0 +1,461 @@
+// fabmesh studio: the page. It talks to the server's JSON API (docs/studio.md)
+// only, with the session's token in the X-Fabmesh-Token header.
+
+const token = document.querySelector('meta[name="fabmesh-token"]').content;
+const $ = (id) => document.getElementById(id);
+
+// What the page shows and what the tests read (window.fabmeshStudio).
+const state = {
+  design: null,        // GET /api/design
+  overrides: {},       // name or key path -> value, sent with every build
+  lastChanged: null,   // the field last moved: where an error without a field is pinned
+  builds: 0,           // builds answered (valid or not)
+  validBuilds: 0,
+  errors: 0,
+  mesh: null,          // the URL of the mesh shown
+  meshSignature: '',   // a digest of the shown mesh's positions
+  plotSvg: '',
+  version: null,
+  error: null,         // the last build's error object, or null
+};
+window.fabmeshStudio = state;
+
+async function api(method, path, body) {
+  const response = await fetch(path, {
+    method,
+    headers: {'X-Fabmesh-Token': token, 'Content-Type': 'application/json'},
+    body: body === undefined ? undefined : JSON.stringify(body),
+  });
+  let json = null;
+  try {
+    json = await response.json();
+  } catch (e) {
+    json = {error: {message: `HTTP ${response.status}`}};
+  }
+  return {status: response.status, json};
+}
+
+function setStatus(text) { $('status').textContent = text; }
+
+// --- controls ---
+
+function fieldId(name) { return 'field-' + name.replace(/[^A-Za-z0-9_]/g, '_'); }
+
+function addControl(parent, {name, label, value, min, max, step, description, exclusiveMin}) {
+  const box = document.createElement('div');
+  box.className = 'control';
+  box.id = fieldId(name);
+  box.dataset.name = name;
+  const title = document.createElement('label');
+  title.textContent = label;
+  box.append(title);
+  const row = document.createElement('div');
+  row.className = 'row';
+  const slider = document.createElement('input');
+  slider.type = 'range';
+  const number = document.createElement('input');
+  number.type = 'number';
+  const lo = min ?? Math.min(0, value * 2);
+  const hi = max ?? Math.max(1, value * 2);
+  const st = step ?? (hi - lo) / 100;
+  for (const input of [slider, number]) {
+    input.min = exclusiveMin ? lo + st : lo;
+    input.max = hi;
+    input.step = st;
+    input.value = value;
+    input.setAttribute('aria-label', label);
+  }
+  number.min = '';  // the number field may take any value: the design judges it
+  number.max = '';
+  const changed = (source, other) => {
+    other.value = source.value;
+    const v = Number(source.value);
+    if (source.value === '' || !Number.isFinite(v)) return;
+    state.overrides[name] = v;
+    state.lastChanged = name;
+    requestBuild();
+  };
+  slider.addEventListener('input', () => changed(slider, number));
+  number.addEventListener('change', () => changed(number, slider));
+  row.append(slider, number);
+  box.append(row);
+  if (description) {
+    const d = document.createElement('div');
+    d.className = 'description';
+    d.textContent = description;
+    box.append(d);
+  }
+  const err = document.createElement('div');
+  err.className = 'field-error';
+  box.append(err);
+  parent.append(box);
+}
+
+function showControls(design) {
+  $('design-name').textContent = design.name;
+  $('design-kind').textContent = `${design.kind}, ${design.units}`;
+  document.title = `${design.name} - fabmesh studio`;
+  const params = $('parameters');
+  params.replaceChildren();
+  if (design.parameters.length === 0) params.textContent = 'The design declares no parameters.';
+  for (const p of design.parameters) {
+    addControl(params, {name: p.name, label: p.name, value: p.value, min: p.min, max: p.max, step: p.step,
+                        description: p.description});
+  }
+  const shapes = $('shape-parameters');
+  shapes.replaceChildren();
+  $('shape-heading').hidden = design.shape_parameters.length === 0;
+  for (const s of design.shape_parameters) {
+    addControl(shapes, {name: s.key, label: s.key, value: s.value, min: s.min, max: s.max, step: s.step,
+                        exclusiveMin: s.min_exclusive});
+  }
+}
+
+// --- errors: pinned to the field that caused them ---
+
+function clearErrors() {
+  $('error').hidden = true;
+  $('error').textContent = '';
+  for (const box of document.querySelectorAll('.control.invalid')) {
+    box.classList.remove('invalid');
+    box.querySelector('.field-error').textContent = '';
+  }
+}
+
+function showError(error) {
+  clearErrors();
+  state.error = error;
+  const field = error.field ?? state.lastChanged;
+  const box = field ? document.getElementById(fieldId(field)) : null;
+  if (box) {
+    box.classList.add('invalid');
+    box.querySelector('.field-error').textContent = error.message;
+  } else {
+    $('error').hidden = false;
+    $('error').textContent = error.message;
+  }
+}
+
+// --- the report ---
+
+function showReport(report, buildMs) {
+  const list = $('report');
+  list.replaceChildren();
+  const add = (term, text, cls) => {
+    const dt = document.createElement('dt');
+    dt.textContent = term;
+    const dd = document.createElement('dd');
+    dd.textContent = text;
+    if (cls) dd.className = cls;
+    list.append(dt, dd);
+  };
+  const u = report.units;
+  if (report.purpose === 'drawing') {
+    add('verdict', 'drawing (a curve: no mesh)', 'valid');
+  } else {
+    add('verdict', report.valid ? 'valid for fabrication' : 'NOT valid', report.valid ? 'valid' : 'not-valid');
+    const proofs = [report.topology_proof, report.self_intersection_proof].filter((x) => x);
+    if (proofs.length) add('proof', proofs.join('; '));
+  }
+  add('deviation bound', `${Number(report.max_deviation).toPrecision(3)} ${u} (tolerance ${report.tolerance} ${u})`);
+  if (report.volume !== undefined) add('volume', `${Number(report.volume).toPrecision(6)} ${u}³`);
+  const box = report.bounding_box;
+  if (box) add('size', box.size.map((x) => Number(x).toPrecision(5)).join(' × ') + ` ${box.units ?? u}`);
+  const facts = report.build ?? {};
+  if (facts.min_clearance !== undefined) {
+    add('clearance', `${Number(facts.min_clearance).toPrecision(4)} ${u}` +
+        (facts.min_clearance_where ? ` (${facts.min_clearance_where})` : ''));
+  }
+  if (facts.cnc?.clearance !== undefined) add('tool clearance', `${Number(facts.cnc.clearance).toPrecision(4)} ${u}`);
+  if (report.triangles !== undefined) add('triangles', String(report.triangles));
+  add('build', `${Math.round(buildMs)} ms`);
+}
+
+// --- the 3D view (three.js, loaded on demand: the page works without it) ---
+
+const view = {three: null, renderer: null, scene: null, camera: null, controls: null, loader: null, object: null};
+
+async function setup3d() {
+  try {
+    const THREE = await import('three');
+    const {OrbitControls} = await import('three/addons/controls/OrbitControls.js');
+    const {GLTFLoader} = await import('three/addons/loaders/GLTFLoader.js');
+    view.three = THREE;
+    view.loader = new GLTFLoader();
+    view.loader.setRequestHeader({'X-Fabmesh-Token': token});
+    const canvas = document.createElement('canvas');
+    const context = canvas.getContext('webgl2');
+    if (!context) {
+      // The meshes are still loaded (and measured); only the picture is missing.
+      $('view3d-note').textContent = 'The 3D view needs WebGL 2, which this browser does not offer.';
+      return;
+    }
+    view.renderer = new THREE.WebGLRenderer({canvas, context, antialias: true});
+    view.renderer.localClippingEnabled = true;
+    $('view3d').append(canvas);
+    view.scene = new THREE.Scene();
+    view.scene.background = new THREE.Color(0xf4f4f4);
+    view.scene.add(new THREE.HemisphereLight(0xffffff, 0x888888, 2.0));
+    const sun = new THREE.DirectionalLight(0xffffff, 1.5);
+    sun.position.set(1, 2, 3);
+    view.scene.add(sun);
+    view.camera = new THREE.PerspectiveCamera(40, 1, 1e-4, 100);
+    view.controls = new OrbitControls(view.camera, canvas);
+    view.controls.addEventListener('change', render);
+    new ResizeObserver(resize).observe($('view3d'));
+    resize();
+  } catch (e) {
+    $('view3d-note').textContent =
+        'The 3D view is not available: three.js is not installed with fabmesh (docs/studio.md).';
+  }
+}
+
+// The section view: the mesh cut by the plane through the vessel's axis
+// (model x-z; glTF's y is the model's z), showing the wall and the base.
+function sectionPlanes() {
+  if (!$('section').checked || !view.three) return [];
+  return [new view.three.Plane(new view.three.Vector3(0, 0, -1), 0)];
+}
+
+function updateSection() {
+  if (!view.object) return;
+  view.object.traverse((node) => { if (node.isMesh) node.material.clippingPlanes = sectionPlanes(); });
+  render();
+}
+
+function resize() {
+  if (!view.renderer) return;
+  const box = $('view3d').getBoundingClientRect();
+  view.renderer.setSize(Math.max(1, box.width), Math.max(1, box.height), false);
+  view.camera.aspect = Math.max(1, box.width) / Math.max(1, box.height);
+  view.camera.updateProjectionMatrix();
+  render();
+}
+
+function render() {
+  if (view.renderer) view.renderer.render(view.scene, view.camera);
+}
+
+function signature(object) {
+  let sum = 0, count = 0;
+  object.traverse((node) => {
+    const pos = node.geometry?.attributes?.position;
+    if (!pos) return;
+    count += pos.count;
+    for (let i = 0; i < pos.array.length; i += 7) sum += pos.array[i] * ((i % 13) + 1);
+  });
+  return `${count}:${sum.toPrecision(12)}`;
+}
+
+async function showMesh(url) {
+  if (!view.loader) return;
+  const gltf = await view.loader.loadAsync(url);
+  state.mesh = url;
+  state.meshSignature = signature(gltf.scene);
+  state.rendered = view.renderer !== null;
+  if (!view.renderer) return;
+  const THREE = view.three;
+  const material = new THREE.MeshStandardMaterial({color: 0xc9b79c, roughness: 0.7, flatShading: true,
+                                                   side: THREE.DoubleSide});
+  material.clippingPlanes = sectionPlanes();
+  gltf.scene.traverse((node) => { if (node.isMesh) node.material = material; });
+  const first = view.object === null;
+  if (view.object) {
+    view.scene.remove(view.object);
+    view.object.traverse((node) => node.geometry?.dispose());
+  }
+  view.object = gltf.scene;
+  view.scene.add(view.object);
+  if (first) {
+    const box = new THREE.Box3().setFromObject(view.object);
+    const size = box.getSize(new THREE.Vector3()).length();
+    const centre = box.getCenter(new THREE.Vector3());
+    view.controls.target.copy(centre);
+    view.camera.position.copy(centre).add(new THREE.Vector3(0.6, 0.5, 0.9).multiplyScalar(size));
+    view.camera.near = size / 1000;
+    view.camera.far = size * 100;
+    view.camera.updateProjectionMatrix();
+    view.controls.update();
+  }
+  render();
+}
+
+// --- control points dragged on the plot ---
+
+// The plot's control-point circles of each curve whose points the design
+// writes one by one (GET /api/design's control_points), made draggable: a
+// drop sets the point's -D path ("profile.points[2]") and builds.
+function enableDragging() {
+  const svg = $('plot').querySelector('svg');
+  if (!svg || !state.design) return;
+  for (const curve of state.design.control_points) {
+    const group = svg.querySelector(`g.control-polygon[data-name="${CSS.escape(curve.curve)}"]`);
+    if (!group) continue;
+    const circles = group.querySelectorAll('circle.control-point');
+    if (circles.length !== curve.points.length) continue;
+    group.parentNode.appendChild(group);  // above the curve and its joint markers, to be grabbed
+    circles.forEach((circle, i) => {
+      circle.classList.add('draggable');
+      circle.setAttribute('r', String(Number(circle.getAttribute('r')) * 2.5));  // easier to grab
+      circle.dataset.key = curve.points[i].key;
+      circle.addEventListener('pointerdown', (event) => drag(event, circle));
+    });
+  }
+}
+
+function drag(event, circle) {
+  event.preventDefault();
+  circle.setPointerCapture(event.pointerId);
+  // Screen to the plot's model frame (the circles' cy is -y).
+  const model = (e) => {
+    const p = new DOMPoint(e.clientX, e.clientY).matrixTransform(circle.getScreenCTM().inverse());
+    return {x: p.x, y: -p.y};
+  };
+  const move = (e) => {
+    const p = model(e);
+    circle.setAttribute('cx', String(p.x));
+    circle.setAttribute('cy', String(-p.y));
+  };
+  const drop = (e) => {
+    circle.removeEventListener('pointermove', move);
+    circle.removeEventListener('pointerup', drop);
+    const p = model(e);
+    const round = (v) => Number(v.toPrecision(6));
+    state.overrides[circle.dataset.key] = `[${round(p.x)}, ${round(p.y)}]`;
+    state.lastChanged = circle.dataset.key;
+    requestBuild();
+  };
+  circle.addEventListener('pointermove', move);
+  circle.addEventListener('pointerup', drop);
+}
+
+// --- builds: one at a time, the newest values next ---
+
+let building = false;
+let pending = false;
+
+function requestBuild() {
+  if (building) {
+    pending = true;
+    return;
+  }
+  build();
+}
+
+async function build() {
+  building = true;
+  pending = false;
+  const overrides = {...state.overrides};
+  setStatus('building…');
+  try {
+    const {status, json} = await api('POST', '/api/build', {overrides});
+    if (status === 200) {
+      clearErrors();
+      state.error = null;
+      state.plotSvg = json.plot_svg;
+      $('plot').innerHTML = json.plot_svg;
+      enableDragging();
+      showReport(json.report, json.build_ms);
+      if (json.mesh) await showMesh(json.mesh);
+      state.validBuilds += 1;
+      setStatus(`built in ${Math.round(json.build_ms)} ms`);
+    } else {
+      // The last valid shape stays shown; the error goes to its field.
+      state.errors += 1;
+      showError(json.error ?? {message: `HTTP ${status}`});
+      setStatus('the design does not build with these values');
+    }
+  } catch (e) {
+    state.errors += 1;
+    showError({message: String(e)});
+  } finally {
+    state.builds += 1;
+    document.body.dataset.builds = String(state.builds);
+    building = false;
+    if (pending) build();
+  }
+}
+
+// --- save, export, and the file watched ---
+
+async function save() {
+  const {status, json} = await api('POST', '/api/save', {overrides: state.overrides});
+  if (status === 200) {
+    setStatus(`saved ${json.saved}`);
+  } else {
+    showError(json.error);
+  }
+}
+
+async function exportOutputs() {
+  setStatus('exporting…');
+  const {status, json} = await api('POST', '/api/export', {overrides: state.overrides});
+  const list = $('exported');
+  list.replaceChildren();
+  if (status !== 200) {
+    showError(json.error);
+    return;
+  }
+  for (const file of json.files) {
+    const li = document.createElement('li');
+    li.textContent = file;
+    list.append(li);
+  }
+  setStatus(`exported ${json.files.length} files to ${json.out_dir}`);
+}
+
+// The papers' fairest shape parameters for the current control points: set
+// in their fields, then built.
+async function fairest(energy) {
+  const {status, json} = await api('POST', '/api/fairest', {overrides: state.overrides, energy});
+  if (status !== 200) {
+    showError(json.error);
+    return;
+  }
+  for (const [key, value] of Object.entries(json.overrides)) {
+    state.overrides[key] = value;
+    const box = document.getElementById(fieldId(key));
+    if (!box) continue;
+    for (const input of box.querySelectorAll('input')) input.value = String(Number(value.toPrecision(6)));
+  }
+  const skipped = json.skipped.map((s) => `${s.curve}: ${s.reason}`).join('; ');
+  setStatus(`fairest (${energy.replace('_', ' ')}): ${Object.keys(json.overrides).length} values` +
+            (skipped ? `; skipped ${skipped}` : ''));
+  state.lastChanged = null;
+  requestBuild();
+}
+
+async function loadDesign() {
+  const {status, json} = await api('GET', '/api/design');
+  if (status !== 200) {
+    showError(json.error);
+    return false;
+  }
+  state.design = json;
+  state.version = json.version;
+  state.overrides = {};
+  showControls(json);
+  return true;
+}
+
+// The design file changed (saved here or in an editor): show what it says now.
+async function watch() {
+  try {
+    const {status, json} = await api('GET', '/api/version');
+    if (status === 200 && json.version !== state.version) {
+      state.version = json.version;
+      if (await loadDesign()) requestBuild();
+    }
+  } finally {
+    setTimeout(watch, 250);
+  }
+}
+
+$('save').addEventListener('click', save);
+$('section').addEventListener('change', updateSection);
+$('fair-strain').addEventListener('click', () => fairest('strain'));
+$('fair-cv').addEventListener('click', () => fairest('curvature_variation'));
+$('export').addEventListener('click', exportOutputs);
+await setup3d();
+if (await loadDesign()) requestBuild();
+setTimeout(watch, 250);

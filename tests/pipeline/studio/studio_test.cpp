@@ -1,0 +1,364 @@
+// fabmesh studio: its request handling through real HTTP (the server on a
+// free port of 127.0.0.1, in-process, asked with httplib's client), and the
+// text edit that saves values into a commented design (docs/studio.md).
+
+#include <fmt/format.h>
+
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <thread>
+
+#include "geometry/core/errors.h"
+#include "io/design/edit_values.h"
+#include "pipeline/failure.h"
+#include "pipeline/load_design.h"
+#include "pipeline/studio/studio_server.h"
+#include "pipeline/studio/studio_session.h"
+#include "tests/pipeline/batch/batch_fixture.h"
+#include "tests/pipeline/cli_harness.h"
+
+// Last: glibc's <resolv.h>, which httplib.h includes, defines `_res`, a name Eigen's headers use.
+#include <httplib.h>
+
+using namespace fabmesh;
+using namespace fabmesh::testing;
+namespace fs = std::filesystem;
+using Json = nlohmann::json;
+
+namespace {
+
+// The golden cup with its parameters, commented and laid out by hand: save
+// must leave every byte but the values it changes.
+const std::string kCommentedCup = R"(# A cup to shape in the studio.
+name: studio_cup   # the file names
+kind: vessel
+units: cm
+tolerance: 0.005
+parameters:
+  # the two numbers the sliders move
+  height: {value: 4, min: 2, max: 10, step: 0.1, description: "foot to rim"}   # keep this comment
+  width:  {value: 6,   min: 3, max: 12, step: 0.1}
+  wall: 0.3          # a bare parameter
+profile:
+  family: quasi_bspline
+  points:
+    - ["=width / 4", "=2 + height"]
+    - ["=width / 6", "=2 + height * 3 / 4"]
+    - ["=width / 3", "=2 + height / 2"]
+    - ["=width / 2", "=2 + height / 4"]
+    - ["=width / 4", 2]
+  lambdas: [0, 0, 0]   # shape parameters, in [-8, 1]
+  fair: none
+body:
+  mode: shell
+  wall: "=wall"
+outputs: [stl, glb]
+)";
+
+// A studio on a free port of 127.0.0.1, serving on its own thread while it lives.
+struct RunningStudio {
+  StudioSession session;
+  StudioServer server;
+  std::thread thread;
+
+  RunningStudio(const std::string& design, const std::string& out_dir)
+      : session(StudioSessionOptions{design, out_dir}), server(session, options()) {
+    thread = std::thread([this] { server.run(); });
+  }
+  RunningStudio(const RunningStudio&) = delete;
+  RunningStudio& operator=(const RunningStudio&) = delete;
+  ~RunningStudio() {
+    server.stop();
+    thread.join();
+  }
+  static StudioServerOptions options() {
+    StudioServerOptions o;
+    o.web_root = FABMESH_STUDIO_PAGE_DIR;
+    return o;
+  }
+  httplib::Client client() const {
+    httplib::Client c("127.0.0.1", server.port());
+    c.set_read_timeout(120, 0);
+    return c;
+  }
+  httplib::Headers token() const { return {{"X-Fabmesh-Token", server.token()}}; }
+};
+
+Json json_of(const httplib::Result& r) {
+  REQUIRE(r);
+  return Json::parse(r->body);
+}
+
+fs::path cup_file(const std::string& test) {
+  const fs::path dir = fresh_dir(test);
+  write_text(dir / "cup.yaml", kCommentedCup);
+  return dir / "cup.yaml";
+}
+
+}  // namespace
+
+TEST_CASE("studio: edit_values changes only the values, keeping comments and layout", "[studio]") {
+  std::string expected = kCommentedCup;
+  auto replace = [&](const std::string& from, const std::string& to) {
+    const std::size_t at = expected.find(from);
+    REQUIRE(at != std::string::npos);
+    expected.replace(at, from.size(), to);
+  };
+  replace("{value: 4, min: 2", "{value: 5.5, min: 2");
+  replace("  wall: 0.3          #", "  wall: 0.25          #");
+  replace("lambdas: [0, 0, 0]", "lambdas: [0, -1.5, 0]");
+  replace("\"=width / 6\"", "\"=width / 7\"");
+  replace("[\"=width / 3\", \"=2 + height / 2\"]", "[2.25, 4.5]");
+  const std::string edited = edit_values(
+      kCommentedCup, "cup.yaml",
+      {parse_override("height=5.5"), parse_override("wall=0.25"), parse_override("profile.lambdas[1]=-1.5"),
+       parse_override("profile.points[1][0]=\"=width / 7\""),
+       parse_override("profile.points[2]=[2.25, 4.5]")});
+  CHECK(edited == expected);
+  const Design design = load_design_text(edited, "cup.yaml");
+  REQUIRE(design.common.parameters.size() == 3);
+  CHECK(design.common.parameters[0].value == 5.5);
+  CHECK(design.common.parameters[2].value == 0.25);
+}
+
+TEST_CASE("studio: edit_values refuses a value the file does not write", "[studio]") {
+  CHECK_THROWS_AS(edit_values(kCommentedCup, "cup.yaml", {parse_override("body.base=1")}), FileError);
+  CHECK_THROWS_WITH(
+      edit_values(kCommentedCup, "cup.yaml", {parse_override("profile=1")}),
+      Catch::Contains(
+          "cup.yaml:12:3: profile: the value is not a single number, text or [list] on one line"));
+  CHECK_THROWS_AS(edit_values(kCommentedCup, "cup.yaml", {parse_override("profile.points=[[1, 2]]")}),
+                  FileError);
+}
+
+TEST_CASE("studio: every request without the token, or with a foreign Host, is 403", "[studio]") {
+  const fs::path design = cup_file("studio_403");
+  RunningStudio studio(design.string(), (design.parent_path() / "out").string());
+  httplib::Client c = studio.client();
+  const std::string token = studio.server.token();
+  REQUIRE(token.size() == 32);
+  CHECK(token.find_first_not_of("0123456789abcdef") == std::string::npos);
+  CHECK(studio.server.url() ==
+        "http://127.0.0.1:" + std::to_string(studio.server.port()) + "/?token=" + token);
+
+  CHECK(c.Get("/")->status == 403);
+  CHECK(c.Get("/?token=" + std::string(32, '0'))->status == 403);
+  CHECK(c.Get("/api/design")->status == 403);
+  CHECK(c.Get("/api/design", {{"X-Fabmesh-Token", token + "0"}})->status == 403);
+  CHECK(c.Post("/api/build", "{}", "application/json")->status == 403);
+  CHECK(c.Post("/api/save", "{}", "application/json")->status == 403);
+  CHECK(c.Get("/t/" + std::string(32, 'a') + "/studio.js")->status == 403);
+  CHECK(c.Get("/api/mesh/m1.glb")->status == 403);
+  // The page takes its token from the query only; API calls from the header or the query.
+  CHECK(c.Get("/", {{"X-Fabmesh-Token", token}})->status == 403);
+  const auto page = c.Get("/?token=" + token);
+  REQUIRE(page->status == 200);
+  CHECK(page->body.find("content=\"" + token + "\"") != std::string::npos);
+  CHECK(c.Get("/t/" + token + "/studio.js")->status == 200);
+  CHECK(c.Get("/t/" + token + "/three/build/three.module.js")->status == 200);
+  CHECK(c.Get("/t/" + token + "/../../etc/passwd")->status == 404);
+  CHECK(c.Get("/api/design?token=" + token)->status == 200);
+  CHECK(c.Get("/api/design", studio.token())->status == 200);
+  // DNS rebinding: a page of another name that resolves to 127.0.0.1 sends its own Host.
+  const std::string port = std::to_string(studio.server.port());
+  for (const std::string& host : std::vector<std::string>{"evil.example:" + port, "127.0.0.1", "127.0.0.1:1",
+                                                          "localhost.evil:" + port}) {
+    httplib::Headers h = studio.token();
+    h.emplace("Host", host);
+    CHECK(c.Get("/api/design", h)->status == 403);
+    CHECK(c.Get("/?token=" + token, {{"Host", host}})->status == 403);
+  }
+  CHECK(c.Get("/api/design", {{"X-Fabmesh-Token", token}, {"Host", "localhost:" + port}})->status == 200);
+  // No CORS: another origin's script may not read an answer.
+  const auto answer = c.Get("/api/design", {{"X-Fabmesh-Token", token}, {"Origin", "http://evil.example"}});
+  CHECK(answer->status == 200);
+  CHECK_FALSE(answer->has_header("Access-Control-Allow-Origin"));
+  const auto preflight = c.Options("/api/build", {{"Origin", "http://evil.example"}});
+  REQUIRE(preflight);
+  CHECK(preflight->status == 403);
+  CHECK_FALSE(preflight->has_header("Access-Control-Allow-Origin"));
+}
+
+TEST_CASE("studio: the design, a build, its mesh, and bad requests", "[studio]") {
+  const fs::path design = cup_file("studio_api");
+  RunningStudio studio(design.string(), (design.parent_path() / "out").string());
+  httplib::Client c = studio.client();
+
+  const Json d = json_of(c.Get("/api/design", studio.token()));
+  CHECK(d["name"] == "studio_cup");
+  CHECK(d["kind"] == "vessel");
+  REQUIRE(d["parameters"].size() == 3);
+  CHECK(d["parameters"][0] == Json({{"name", "height"},
+                                    {"value", 4.0},
+                                    {"min", 2.0},
+                                    {"max", 10.0},
+                                    {"step", 0.1},
+                                    {"description", "foot to rim"}}));
+  CHECK(d["parameters"][2]["min"].is_null());
+  REQUIRE(d["shape_parameters"].size() == 3);
+  CHECK(d["shape_parameters"][1] ==
+        Json({{"key", "profile.lambdas[1]"}, {"value", 0.0}, {"min", -8.0}, {"max", 1.0}, {"step", 0.01}}));
+  CHECK(d["text"] == kCommentedCup);
+  REQUIRE(d["control_points"].size() == 1);
+  CHECK(d["control_points"][0]["curve"] == "profile");
+  REQUIRE(d["control_points"][0]["points"].size() == 5);
+  CHECK(d["control_points"][0]["points"][2] == Json({{"key", "profile.points[2]"}, {"x", 2.0}, {"y", 4.0}}));
+
+  const auto built =
+      c.Post("/api/build", studio.token(), R"({"overrides": {"height": 5}})", "application/json");
+  REQUIRE(built->status == 200);
+  const Json b = Json::parse(built->body);
+  CHECK(b["report"]["design"] == design.string());
+  CHECK(b["report"]["name"] == "studio_cup");
+  CHECK(b["report"]["parameters"]["height"] == 5.0);
+  CHECK(b["report"]["valid"] == true);
+  // The profile's control points' heights follow `height`: one more unit of it, a taller cup.
+  const Json plain = json_of(c.Post("/api/build", studio.token(), "{}", "application/json"));
+  CHECK(plain["report"]["parameters"]["height"] == 4.0);
+  CHECK(b["report"]["bounding_box"]["size"][2].get<double>() >
+        plain["report"]["bounding_box"]["size"][2].get<double>() + 0.5);
+  CHECK(b["plot_svg"].get<std::string>().find("<svg") != std::string::npos);
+  CHECK(b["build_ms"].get<double>() > 0.0);
+  const std::string mesh = b["mesh"];
+  const auto glb = c.Get(mesh, studio.token());
+  REQUIRE(glb->status == 200);
+  CHECK(glb->get_header_value("Content-Type") == "model/gltf-binary");
+  CHECK(glb->body.compare(0, 4, "glTF") == 0);
+  CHECK(c.Get("/api/mesh/m999.glb", studio.token())->status == 404);
+  // A shape parameter by its key path, as -D takes it.
+  const auto shaped = c.Post("/api/build", studio.token(), R"({"overrides": {"profile.lambdas[1]": -2}})",
+                             "application/json");
+  CHECK(shaped->status == 200);
+
+  // Malformed requests: 400 naming the request's field.
+  const auto bad = [&](const std::string& body) {
+    const auto r = c.Post("/api/build", studio.token(), body, "application/json");
+    REQUIRE(r);
+    CHECK(r->status == 400);
+    return Json::parse(r->body)["error"];
+  };
+  CHECK(bad("{\"overrides\": ")["field"] == "");
+  CHECK(bad("[1]")["field"] == "");
+  CHECK(bad(R"({"overides": {}})")["field"] == "overides");
+  CHECK(bad(R"({"overrides": [1]})")["field"] == "overrides");
+  CHECK(bad(R"({"overrides": {"height": true}})")["field"] == "overrides.height");
+  CHECK(bad(R"({"overrides": {"height": "5\n"}})")["field"] == "overrides.height");
+  const Json unknown = bad(R"({"overrides": {"heigth": 5}})");
+  CHECK(unknown["field"] == "overrides.heigth");
+  CHECK(unknown["message"].get<std::string>().find("its parameters are: height, width, wall") !=
+        std::string::npos);
+  CHECK(bad(R"({"overrides": {"profile..x": 5}})")["field"] == "overrides.profile..x");
+}
+
+TEST_CASE("studio: a value that breaks the design is 422 with the command line's message", "[studio]") {
+  const fs::path design = cup_file("studio_422");
+  RunningStudio studio(design.string(), (design.parent_path() / "out").string());
+  httplib::Client c = studio.client();
+  // The message `fabmesh run -D height=15` prints, from the same exception.
+  std::string expected;
+  try {
+    (void)load_design(design.string(), {parse_override("height=15")});
+  } catch (...) {
+    expected = describe_failure(std::current_exception(), design.string()).message;
+  }
+  REQUIRE_FALSE(expected.empty());
+  CHECK(expected.find("parameters.height: 15 is outside [2, 10]") != std::string::npos);
+
+  const auto r = c.Post("/api/build", studio.token(), R"({"overrides": {"height": 15}})", "application/json");
+  REQUIRE(r->status == 422);
+  const Json e = Json::parse(r->body)["error"];
+  CHECK(e["message"] == expected);
+  CHECK(e["field"] == "height");
+  CHECK(e["request_field"] == "overrides.height");
+  CHECK(e["key"] == "parameters.height");
+  CHECK(e["exit_code"] == 2);
+  // A value out of a shape parameter's range, at its place in the file.
+  const auto lambda =
+      c.Post("/api/build", studio.token(), R"({"overrides": {"profile.lambdas[1]": 3}})", "application/json");
+  REQUIRE(lambda->status == 422);
+  const Json l = Json::parse(lambda->body)["error"];
+  CHECK(l["field"] == "profile.lambdas[1]");
+  CHECK(l["message"].get<std::string>().find("lambda_2 = 3 is outside [-8, 1]") != std::string::npos);
+  // Export and save refuse the same values, and write nothing.
+  CHECK(
+      c.Post("/api/export", studio.token(), R"({"overrides": {"height": 15}})", "application/json")->status ==
+      422);
+  CHECK(c.Post("/api/save", studio.token(), R"({"overrides": {"height": 15}})", "application/json")->status ==
+        422);
+  CHECK(file_text(design) == kCommentedCup);
+  CHECK_FALSE(fs::exists(design.parent_path() / "out"));
+}
+
+TEST_CASE("studio: save keeps the comments, and the saved file runs to the export's bytes", "[studio]") {
+  const fs::path design = cup_file("studio_save");
+  const fs::path out = design.parent_path() / "out";
+  RunningStudio studio(design.string(), out.string());
+  httplib::Client c = studio.client();
+  const std::string body = R"({"overrides": {"height": 5.5, "wall": 0.25}})";
+  const Json exported = json_of(c.Post("/api/export", studio.token(), body, "application/json"));
+  CHECK(exported["files"].size() == 2);
+  const Json saved = json_of(c.Post("/api/save", studio.token(), body, "application/json"));
+  CHECK(saved["saved"] == design.string());
+  std::string expected = kCommentedCup;
+  expected.replace(expected.find("value: 4,"), 9, "value: 5.5,");
+  expected.replace(expected.find("wall: 0.3 "), 9, "wall: 0.25");
+  CHECK(file_text(design) == expected);
+  // The file as saved gives the files the studio exported, byte for byte.
+  const fs::path again = design.parent_path() / "again";
+  REQUIRE(run_cli({"run", "-q", design.string(), "-o", again.string()}) == 0);
+  const auto studio_files = output_tree(out);
+  CHECK(studio_files.size() == 2);
+  CHECK(output_tree(again) == studio_files);
+  // The design as saved is what the API now shows.
+  const Json d = json_of(c.Get("/api/design", studio.token()));
+  CHECK(d["parameters"][0]["value"] == 5.5);
+  CHECK(d["parameters"][2]["value"] == 0.25);
+}
+
+TEST_CASE("studio: a design that does not read stops the command with exit code 2", "[studio]") {
+  const fs::path dir = fresh_dir("studio_bad_design");
+  write_text(dir / "bad.yaml", "name: bad\nkind: vessel\nprofile: 3\n");
+  std::string output;
+  CHECK(run_cli({"studio", "--no-open", (dir / "bad.yaml").string()}, &output) == 2);
+  CHECK(output.find("bad.yaml:3:") != std::string::npos);
+  CHECK(run_cli({"studio", "--no-open", (dir / "missing.yaml").string()}, &output) == 2);
+}
+
+TEST_CASE("studio: fairest gives the shape parameters optimize gives, as overrides", "[studio]") {
+  const fs::path design = cup_file("studio_fairest");
+  RunningStudio studio(design.string(), (design.parent_path() / "out").string());
+  httplib::Client c = studio.client();
+  for (const std::string energy : {"strain", "curvature_variation"}) {
+    const Json f =
+        json_of(c.Post("/api/fairest", studio.token(),
+                       R"({"overrides": {"height": 5}, "energy": ")" + energy + "\"}", "application/json"));
+    CHECK(f["energy"] == energy);
+    CHECK(f["skipped"].empty());
+    REQUIRE(f["overrides"].size() == 3);
+    for (const auto& [key, value] : f["overrides"].items()) {
+      CHECK(key.rfind("profile.lambdas[", 0) == 0);
+      CHECK(value.get<double>() >= -8.0);
+      CHECK(value.get<double>() <= 1.0);
+    }
+    // The same numbers `fabmesh optimize` finds for the curve with `fair: ENERGY`.
+    std::string optimize_json;
+    const std::string faired = file_text(design);
+    const fs::path copy = design.parent_path() / (energy + ".yaml");
+    write_text(copy, std::string(faired).replace(faired.find("fair: none"), 10, "fair: " + energy));
+    REQUIRE(run_cli_json({"optimize", "--json", copy.string(), "-D", "height=5"}, &optimize_json) == 0);
+    const Json optimized = Json::parse(optimize_json);
+    for (std::size_t i = 0; i < 3; ++i) {
+      CHECK(f["overrides"][fmt::format("profile.lambdas[{}]", i)].get<double>() ==
+            Approx(optimized[0]["lambdas"][i].get<double>()).margin(1e-12));
+    }
+    // They build.
+    Json build = {{"overrides", f["overrides"]}};
+    CHECK(c.Post("/api/build", studio.token(), build.dump(), "application/json")->status == 200);
+  }
+  const auto bad = c.Post("/api/fairest", studio.token(), R"({"energy": "bending"})", "application/json");
+  REQUIRE(bad->status == 400);
+  CHECK(Json::parse(bad->body)["error"]["field"] == "energy");
+  CHECK(c.Post("/api/build", studio.token(), R"({"energy": "strain"})", "application/json")->status == 400);
+}

@@ -1,0 +1,271 @@
+// fabmesh studio's page in headless Chromium, driven by puppeteer-core:
+//   node studio_page_test.mjs FABMESH SOURCE_DIR WORK_DIR
+// Starts `fabmesh studio --no-open` on a copy of the golden cup, then checks
+// that the page loads without a console error, that moving a slider changes
+// the plot and the mesh, that a value that breaks the design shows its error
+// at its field and keeps the last valid shape, that requests without the
+// token or with a foreign Host are 403, that an edit of the file appears in
+// the page, that save then `fabmesh run` of the saved file gives the bytes
+// of the studio's export, and that SIGTERM ends the server with exit code 0.
+// Every missing tool is a failure: nothing is skipped. No assertion is about time.
+
+import assert from 'node:assert/strict';
+import {execFileSync, spawn} from 'node:child_process';
+import fs from 'node:fs';
+import http from 'node:http';
+import {createRequire} from 'node:module';
+import path from 'node:path';
+
+const [fabmesh, sourceDir, workDir] = process.argv.slice(2);
+if (!fabmesh || !sourceDir || !workDir) {
+  console.error('usage: studio_page_test.mjs FABMESH SOURCE_DIR WORK_DIR');
+  process.exit(2);
+}
+const chromium = '/usr/bin/chromium';
+if (!fs.existsSync(chromium)) {
+  console.error(`FAIL: ${chromium} is missing (Debian's chromium: scripts/install-deps.sh --test)`);
+  process.exit(1);
+}
+const require = createRequire(path.join(sourceDir, 'tools/node/package.json'));
+let puppeteer;
+try {
+  puppeteer = require('puppeteer-core');
+} catch (e) {
+  console.error('FAIL: puppeteer-core is not installed in tools/node (scripts/install-deps.sh --test)');
+  process.exit(1);
+}
+
+fs.rmSync(workDir, {recursive: true, force: true});
+fs.mkdirSync(workDir, {recursive: true});
+const design = path.join(workDir, 'cup.yaml');
+const original = fs.readFileSync(path.join(sourceDir, 'configs/examples/vessel_golden_solid.yaml'), 'utf8');
+fs.writeFileSync(design, '# a comment the studio must keep\n' + original);
+const exportDir = path.join(workDir, 'export');
+
+// --- the server ---
+
+const server = spawn(fabmesh, ['studio', '--no-open', design, '-o', exportDir], {stdio: ['ignore', 'pipe', 'pipe']});
+let serverErr = '';
+server.stderr.on('data', (d) => { serverErr += d; });
+const exited = new Promise((resolve) => server.on('exit', (code, signal) => resolve({code, signal})));
+const url = await new Promise((resolve, reject) => {
+  let out = '';
+  server.stdout.on('data', (d) => {
+    out += d;
+    const line = out.split('\n')[0];
+    if (out.includes('\n')) resolve(line.trim());
+  });
+  server.on('exit', () => reject(new Error(`fabmesh studio ended before printing its address:\n${serverErr}`)));
+});
+const address = new URL(url);
+assert.match(url, /^http:\/\/127\.0\.0\.1:\d+\/\?token=[0-9a-f]{32}$/, 'the printed address');
+const token = address.searchParams.get('token');
+const port = address.port;
+
+function request(pathname, headers = {}, method = 'GET', body = undefined) {
+  return new Promise((resolve, reject) => {
+    const req = http.request({host: '127.0.0.1', port, path: pathname, method, headers}, (res) => {
+      let data = '';
+      res.on('data', (d) => { data += d; });
+      res.on('end', () => resolve({status: res.statusCode, headers: res.headers, body: data}));
+    });
+    req.on('error', reject);
+    if (body !== undefined) req.write(body);
+    req.end();
+  });
+}
+
+let failed = false;
+async function check(name, f) {
+  try {
+    await f();
+    console.log(`ok: ${name}`);
+  } catch (e) {
+    failed = true;
+    console.log(`FAIL: ${name}\n${e.stack ?? e}`);
+  }
+}
+
+const browser = await puppeteer.launch({
+  executablePath: chromium,
+  headless: true,
+  args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
+         '--disable-background-networking', '--disable-component-update', '--disable-sync',
+         '--use-angle=swiftshader', '--enable-unsafe-swiftshader',
+         `--user-data-dir=${path.join(workDir, 'chromium-profile')}`],
+});
+
+try {
+  await check('requests without the token, or with a foreign Host, are 403', async () => {
+    assert.equal((await request('/')).status, 403);
+    assert.equal((await request('/api/design')).status, 403);
+    assert.equal((await request('/api/design', {'X-Fabmesh-Token': 'f'.repeat(32)})).status, 403);
+    assert.equal((await request('/api/build', {}, 'POST', '{}')).status, 403);
+    assert.equal((await request(`/?token=${token}`, {Host: `evil.example:${port}`})).status, 403);
+    assert.equal((await request('/api/design', {'X-Fabmesh-Token': token, Host: `evil.example:${port}`})).status,
+                 403);
+    const ok = await request('/api/design', {'X-Fabmesh-Token': token});
+    assert.equal(ok.status, 200);
+    assert.equal(ok.headers['access-control-allow-origin'], undefined);
+    assert.equal((await request(`/?token=${token}`, {Host: `localhost:${port}`})).status, 200);
+  });
+
+  const page = await browser.newPage();
+  const consoleErrors = [];
+  page.on('console', (m) => { if (m.type() === 'error') consoleErrors.push(m.text()); });
+  page.on('pageerror', (e) => consoleErrors.push(String(e)));
+  const state = () => page.evaluate(() => ({...window.fabmeshStudio, design: undefined}));
+  const builds = async () => (await state()).builds;
+  const waitBuilds = (n) => page.waitForFunction((k) => window.fabmeshStudio.builds >= k, {timeout: 120000}, n);
+  const setField = (name, kind, value) => page.evaluate((n, k, v) => {
+    const input = document.querySelector(`#field-${n} input[type=${k}]`);
+    input.value = String(v);
+    input.dispatchEvent(new Event(k === 'range' ? 'input' : 'change'));
+  }, name, kind, value);
+
+  let shown;
+  await check('the page loads with no console error and shows the plot, the mesh and the report', async () => {
+    await page.goto(url, {waitUntil: 'load'});
+    await page.waitForFunction(() => window.fabmeshStudio && window.fabmeshStudio.validBuilds >= 1 &&
+                                      window.fabmeshStudio.mesh !== null, {timeout: 120000});
+    shown = await state();
+    assert.match(shown.plotSvg, /<svg/);
+    assert.ok(shown.meshSignature.length > 0);
+    assert.equal(await page.$eval('#plot svg', (e) => e.tagName.toLowerCase()), 'svg');
+    assert.match(await page.$eval('#report', (e) => e.textContent), /valid for fabrication/);
+    assert.equal(await page.$$eval('#parameters .control', (l) => l.length), 2);
+    assert.deepEqual(consoleErrors, []);
+    console.log(`  3D view rendered with WebGL: ${shown.rendered}`);
+  });
+
+  await check('moving a slider changes the plot and the mesh', async () => {
+    const before = await state();
+    await setField('height', 'range', 6);
+    await waitBuilds(before.builds + 1);
+    await page.waitForFunction(() => window.fabmeshStudio.validBuilds >= 2, {timeout: 120000});
+    const after = await state();
+    assert.equal(after.error, null);
+    assert.notEqual(after.plotSvg, before.plotSvg);
+    assert.notEqual(after.mesh, before.mesh);
+    assert.notEqual(after.meshSignature, before.meshSignature);
+    assert.match(await page.$eval('#report', (e) => e.textContent), /6(\.0+)? cm|× 6/);
+    shown = after;
+  });
+
+  await check('a value that breaks the design shows its error at its field and keeps the last valid shape',
+              async () => {
+    const before = await state();
+    const plotBefore = await page.$eval('#plot', (e) => e.innerHTML);
+    await setField('height', 'number', 15);
+    await waitBuilds(before.builds + 1);
+    const after = await state();
+    assert.equal(after.error.field, 'height');
+    const message = await page.$eval('#field-height .field-error', (e) => e.textContent);
+    assert.match(message, /parameters\.height: 15 is outside \[2, 10\]/);
+    assert.ok(await page.$eval('#field-height', (e) => e.classList.contains('invalid')));
+    assert.equal(after.plotSvg, before.plotSvg);
+    assert.equal(after.mesh, before.mesh);
+    assert.equal(after.meshSignature, before.meshSignature);
+    assert.equal(await page.$eval('#plot', (e) => e.innerHTML), plotBefore);
+    // A valid value again clears it.
+    await setField('height', 'range', 6.5);
+    await waitBuilds(after.builds + 1);
+    assert.equal((await state()).error, null);
+    assert.equal(await page.$eval('#field-height .field-error', (e) => e.textContent), '');
+  });
+
+  await check('dragging a control point on the plot moves it', async () => {
+    const before = await state();
+    const selector = '#plot g.control-polygon[data-name="profile"] circle.draggable[data-key="profile.points[2]"]';
+    const where = async () => page.$eval(selector, (c) => [Number(c.getAttribute('cx')), Number(c.getAttribute('cy'))]);
+    const [cx] = await where();
+    const box = await (await page.$(selector)).boundingBox();
+    await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
+    await page.mouse.down();
+    await page.mouse.move(box.x + box.width / 2 + 20, box.y + box.height / 2, {steps: 4});
+    await page.mouse.up();
+    await waitBuilds(before.builds + 1);
+    const after = await state();
+    assert.equal(after.error, null);
+    assert.match(after.overrides['profile.points[2]'], /^\[[-0-9.e]+, [-0-9.e]+\]$/);
+    assert.notEqual(after.plotSvg, before.plotSvg);
+    assert.notEqual(after.meshSignature, before.meshSignature);
+    // The new plot draws the point where it was dropped: further out (larger radius).
+    const [newCx] = await where();
+    assert.ok(newCx > cx, `${newCx} > ${cx}`);
+  });
+
+  await check('"fairest (strain)" sets the shape parameters and builds', async () => {
+    const before = await state();
+    const lambdaBefore = await page.$eval('#field-profile_lambdas_0_ input[type=number]', (e) => e.value);
+    await page.click('#fair-strain');
+    await waitBuilds(before.builds + 1);
+    const after = await state();
+    assert.equal(after.error, null);
+    assert.ok(Object.keys(after.overrides).some((k) => k.startsWith('profile.lambdas[')));
+    assert.notEqual(await page.$eval('#field-profile_lambdas_0_ input[type=number]', (e) => e.value), lambdaBefore);
+    assert.notEqual(after.plotSvg, before.plotSvg);
+  });
+
+  await check('save then `fabmesh run` of the saved file gives the bytes of the studio\'s export', async () => {
+    await page.click('#export');
+    await page.waitForFunction(() => document.querySelectorAll('#exported li').length > 0, {timeout: 120000});
+    await page.click('#save');
+    await page.waitForFunction(() => /saved/.test(document.getElementById('status').textContent),
+                               {timeout: 120000});
+    const saved = fs.readFileSync(design, 'utf8');
+    // The height, and the three lambdas fairing chose, in place; every other byte as it was.
+    const lambdas = await page.evaluate(() => [0, 1, 2].map((i) => window.fabmeshStudio.overrides[`profile.lambdas[${i}]`]));
+    const point = await page.evaluate(() => window.fabmeshStudio.overrides['profile.points[2]']);
+    const expected = ('# a comment the studio must keep\n' + original)
+                         .replace('height: {value: 4,', 'height: {value: 6.5,')
+                         .replace('- ["=width / 3", "=2 + height / 2"]', `- ${point}`)
+                         .replace('lambdas: [0, 0, 0]', `lambdas: [${lambdas.map((x) => String(x)).join(', ')}]`);
+    assert.equal(saved, expected);
+    const again = path.join(workDir, 'again');
+    execFileSync(fabmesh, ['run', '-q', design, '-o', again]);
+    const exported = fs.readdirSync(exportDir).sort();
+    assert.ok(exported.length > 0);
+    assert.deepEqual(fs.readdirSync(again).sort(), exported);
+    for (const f of exported) {
+      assert.ok(fs.readFileSync(path.join(again, f)).equals(fs.readFileSync(path.join(exportDir, f))), f);
+    }
+  });
+
+  await check('an edit of the design file in an editor appears in the page', async () => {
+    const before = await state();
+    const text = fs.readFileSync(design, 'utf8').replace('height: {value: 6.5,', 'height: {value: 7.5,');
+    fs.writeFileSync(design, text);
+    await page.waitForFunction(() => document.querySelector('#field-height input[type=number]').value === '7.5',
+                               {timeout: 120000});
+    await waitBuilds(before.builds + 1);
+    await page.waitForFunction((s) => window.fabmeshStudio.meshSignature !== s, {timeout: 120000},
+                               before.meshSignature);
+  });
+
+  await check('the section view clips the vessel by the plane through its axis', async () => {
+    await page.click('#section');
+    assert.ok(await page.$eval('#section', (e) => e.checked));
+    assert.equal(await page.$eval('#section-toggle', (e) => getComputedStyle(e).display === 'none'), false);
+  });
+
+  await check('no console error in the whole session but the browser\'s notes of the 422 answers', async () => {
+    // Chromium logs every 4xx answer to fetch() as an error; the 422s of the
+    // value that broke the design are expected, nothing else is.
+    const expected = /^Failed to load resource: the server responded with a status of 422/;
+    assert.deepEqual(consoleErrors.filter((m) => !expected.test(m)), []);
+  });
+} finally {
+  await browser.close();
+  server.kill('SIGTERM');
+}
+
+const end = await exited;
+await check('SIGTERM ends the studio with exit code 0', async () => {
+  assert.deepEqual(end, {code: 0, signal: null}, serverErr);
+});
+if (failed) {
+  console.log('fabmesh studio said:\n' + serverErr);
+  process.exit(1);
+}
+console.log('all studio page checks passed');
