@@ -74,64 +74,42 @@ struct SplineData {
 
 std::string fmt_point(const Vec2& p) { return fmt::format("({:.10g}, {:.10g})", p.x(), p.y()); }
 
-// Boehm's insertion of knot u once into a B-spline of degree p.
-void insert_knot(std::vector<double>& knots, std::vector<Vec2>& points, int p, double u) {
-  const std::size_t k =
-      static_cast<std::size_t>(std::upper_bound(knots.begin(), knots.end(), u) - knots.begin()) - 1;
-  std::vector<Vec2> q;
-  q.reserve(points.size() + 1);
-  for (std::size_t i = 0; i <= points.size(); ++i) {
-    if (i + static_cast<std::size_t>(p) <= k) {
-      q.push_back(points[i]);
-    } else if (i > k) {
-      q.push_back(points[i - 1]);
-    } else {
-      const double den = knots[i + static_cast<std::size_t>(p)] - knots[i];
+// The point at u of the B-spline of degree p on its span k (knots[k] <= u <=
+// knots[k + 1]), by de Boor's algorithm on the span's p + 1 control points.
+Vec2 de_boor(const std::vector<double>& knots, const std::vector<Vec2>& points, int p, std::size_t k,
+             double u) {
+  const std::size_t q = static_cast<std::size_t>(p);
+  std::array<Vec2, 4> d;
+  for (std::size_t j = 0; j <= q; ++j) d[j] = points[k - q + j];
+  for (std::size_t r = 1; r <= q; ++r) {
+    for (std::size_t j = q; j >= r; --j) {
+      const std::size_t i = k - q + j;
+      const double den = knots[i + q + 1 - r] - knots[i];
       const double a = den > 0.0 ? (u - knots[i]) / den : 0.0;
-      q.push_back((1.0 - a) * points[i - 1] + a * points[i]);
+      d[j] = (1.0 - a) * d[j - 1] + a * d[j];
     }
   }
-  knots.insert(knots.begin() + static_cast<std::ptrdiff_t>(k) + 1, u);
-  points = std::move(q);
+  return d[q];
 }
 
 // The cubic Bézier pieces of a non-rational B-spline of degree 1..3 over its
-// domain [knots[p], knots[n + 1]]: every knot there inserted until it has
-// multiplicity p (the ends included, which clamps an unclamped spline), then
-// each piece raised to degree 3 (exactly). Empty when the domain is empty.
-std::vector<std::array<Vec2, 4>> bezier_pieces(std::vector<double> knots, std::vector<Vec2> points, int p) {
-  const std::size_t n = points.size();
-  const double lo = knots[static_cast<std::size_t>(p)], hi = knots[n];
-  std::vector<double> breaks;
-  for (std::size_t i = static_cast<std::size_t>(p); i <= n; ++i) {
-    if (breaks.empty() || knots[i] > breaks.back()) breaks.push_back(knots[i]);
-  }
-  for (const double u : breaks) {
-    const auto mult = [&] { return std::count(knots.begin(), knots.end(), u); };
-    while (mult() < p) insert_knot(knots, points, p, u);
-  }
+// domain [knots[p], knots[n]], one per span of positive length: each span is
+// a polynomial of degree <= 3, so its cubic Bézier is fixed by its points at
+// t = 0, 1/3, 2/3, 1 (de Boor on the span's own control points: linear time
+// in the number of spans whatever their count, the degree raised exactly).
+std::vector<std::array<Vec2, 4>> bezier_pieces(const std::vector<double>& knots,
+                                               const std::vector<Vec2>& points, int p) {
   std::vector<std::array<Vec2, 4>> out;
-  // Each span [u_i, u_{i+1}] in the domain now has its own p + 1 control points.
-  for (std::size_t b = 0; b + 1 < breaks.size(); ++b) {
-    if (!(breaks[b] >= lo && breaks[b + 1] <= hi && breaks[b + 1] > breaks[b])) continue;
-    const std::size_t first =
-        static_cast<std::size_t>(std::lower_bound(knots.begin(), knots.end(), breaks[b]) - knots.begin());
-    // The span's control points start p places before the last copy of its first knot.
-    const std::size_t last_copy =
-        first + static_cast<std::size_t>(std::count(knots.begin(), knots.end(), breaks[b])) - 1;
-    const std::size_t c = last_copy - static_cast<std::size_t>(p);
-    if (c + static_cast<std::size_t>(p) >= points.size()) break;
-    std::array<Vec2, 4> z;
-    if (p == 3) {
-      z = {points[c], points[c + 1], points[c + 2], points[c + 3]};
-    } else if (p == 2) {
-      const Vec2 a = points[c], m = points[c + 1], e = points[c + 2];
-      z = {a, a + 2.0 / 3.0 * (m - a), e + 2.0 / 3.0 * (m - e), e};
-    } else {
-      const Vec2 a = points[c], e = points[c + 1];
-      z = {a, a + (e - a) / 3.0, a + 2.0 * (e - a) / 3.0, e};
-    }
-    out.push_back(z);
+  const std::size_t n = points.size();
+  for (std::size_t k = static_cast<std::size_t>(p); k < n; ++k) {
+    const double a = knots[k], b = knots[k + 1];
+    if (!(b > a)) continue;
+    const Vec2 p0 = de_boor(knots, points, p, k, a), p3 = de_boor(knots, points, p, k, b);
+    const Vec2 s1 = de_boor(knots, points, p, k, a + (b - a) / 3.0);
+    const Vec2 s2 = de_boor(knots, points, p, k, a + 2.0 * (b - a) / 3.0);
+    // B(1/3) = (8 P0 + 12 P1 + 6 P2 + P3) / 27 and B(2/3) = (P0 + 6 P1 + 12 P2 + 8 P3) / 27.
+    const Vec2 u = 27.0 * s1 - 8.0 * p0 - p3, v = 27.0 * s2 - p0 - 8.0 * p3;
+    out.push_back({p0, (2.0 * u - v) / 18.0, (2.0 * v - u) / 18.0, p3});
   }
   return out;
 }

@@ -299,6 +299,17 @@ TEST_CASE("dxf loops: a SPLINE is read as the exact spline it is, in cubic spans
   REQUIRE(closed.loops.size() == 1);
   CHECK(closed.loops[0].curve.segments.size() == 8);
   CHECK(std::abs(loop_area(closed.loops[0].curve)) > 0.9 * kPi * 45 * 45);
+  // A long digitised spline (100000 control points) is read span by span, in linear time.
+  std::vector<Vec2> wave;
+  std::vector<double> wave_knots{0, 0, 0, 0};  // clamped: 4 + 99996 interior + 4 knots
+  for (int i = 0; i < 100000; ++i) wave.emplace_back(i, std::sin(i * 1e-3));
+  for (int i = 1; i <= 99996; ++i) wave_knots.push_back(i);
+  for (int i = 0; i < 4; ++i) wave_knots.push_back(99997);
+  const DxfLoops long_spline = parse_dxf_loops(
+      drawing(spline("E1", "L", 3, wave_knots, wave) + line("E2", "L", 99999, std::sin(99.999), 0, 0)),
+      "t.dxf", on_layer("L"));
+  REQUIRE(long_spline.loops.size() == 1);
+  CHECK(long_spline.loops[0].curve.segments.size() == 99997 + 1);
   // What is not read, named.
   CHECK_THAT(error_of(drawing(spline("D1", "W", 3, knots, points, {1, 2, 1, 1, 1})), on_layer("W")),
              Catch::StartsWith(
