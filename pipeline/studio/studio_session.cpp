@@ -280,7 +280,7 @@ StudioResponse StudioSession::build(const std::string& request_body) {
         GlbOptions glb_options;
         glb_options.name = design.common.name;
         glb_options.scale_to_metres = metres_per_unit(design.common.units);
-        glb = encode_glb(built.soup, glb_options);
+        glb = encode_glb(exploded_scene(built), glb_options);  // a mould's parts apart, as in the preview
       }
     };
     const PreparedJob prepared = prepare_job(design, job);

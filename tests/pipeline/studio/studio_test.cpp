@@ -11,7 +11,10 @@
 #include <thread>
 
 #include "geometry/core/errors.h"
+#include "geometry/core/units.h"
+#include "geometry/mesh/bounding_box.h"
 #include "io/design/edit_values.h"
+#include "io/mesh/read_mesh.h"
 #include "pipeline/failure.h"
 #include "pipeline/load_design.h"
 #include "pipeline/studio/studio_server.h"
@@ -250,6 +253,29 @@ TEST_CASE("studio: the design, a build, its mesh, and bad requests", "[studio]")
   CHECK(unknown["message"].get<std::string>().find("its parameters are: height, width, wall") !=
         std::string::npos);
   CHECK(bad(R"({"overrides": {"profile..x": 5}})")["field"] == "overrides.profile..x");
+}
+
+TEST_CASE("studio: a mould's parts are in the mesh, exploded apart beside the vessel", "[studio]") {
+  const fs::path dir = fresh_dir("studio_mould");
+  RunningStudio studio(example("mould_golden.yaml"), (dir / "out").string());
+  httplib::Client c = studio.client();
+  const Json b = json_of(c.Post("/api/build", studio.token(), "{}", "application/json"));
+  REQUIRE(b["mesh"].is_string());
+  const auto glb = c.Get(b["mesh"].get<std::string>(), studio.token());
+  REQUIRE(glb->status == 200);
+  write_text(dir / "mould.glb", glb->body);
+  const TriangleSoup shown = read_mesh((dir / "mould.glb").string());
+  // The vessel's triangles and every part's, as the build's report counts them.
+  const Json& report = b["report"];
+  std::size_t triangles = report["triangles"].get<std::size_t>();
+  REQUIRE(report["build"]["mould"]["parts"].size() >= 2);
+  for (const Json& part : report["build"]["mould"]["parts"])
+    triangles += part["triangles"].get<std::size_t>();
+  CHECK(shown.triangles.size() == triangles);
+  // Apart: the scene is wider than the vessel by the parts pushed out.
+  const BoundingBox box = bounding_box(shown.vertices);
+  const double vessel_width = report["bounding_box"]["size"][0].get<double>() * metres_per_unit("cm");
+  CHECK(box.hi.x() - box.lo.x() > 2.0 * vessel_width);
 }
 
 TEST_CASE("studio: a value that breaks the design is 422 with the command line's message", "[studio]") {
