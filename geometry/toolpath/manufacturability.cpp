@@ -55,8 +55,7 @@ void check_concave_corners(const CutCurve& loop, const LoopCheck& check, const C
           "relief: dogbone",
           loop.label, segment_name(curve, c.before), segment_name(curve, c.after), at(c.at),
           std::abs(c.turn) * 180.0 / M_PI, o.tool_diameter, 0.5 * o.tool_diameter,
-          0.5 * o.tool_diameter * (1.0 / std::cos(0.5 * c.turn) - 1.0), shallow_corner_depth(o),
-          0.5 * o.tool_diameter));
+          corner_round_depth(0.5 * o.tool_diameter, c.turn), shallow_corner_depth(o), 0.5 * o.tool_diameter));
 }
 
 // 3. Concave stretches: radius of curvature >= the tool radius, proven per segment.
@@ -162,6 +161,8 @@ std::vector<LoopCorner> loop_corners(const CutCurve& loop) {
   return out;
 }
 
+double corner_round_depth(double r, double turn) { return r * (1.0 / std::cos(0.5 * turn) - 1.0); }
+
 double shallow_corner_depth(const CncOptions& options) { return 0.25 * options.tolerance; }
 
 ManufacturabilityReport check_manufacturability(const std::vector<CutCurve>& loops,
@@ -180,7 +181,7 @@ ManufacturabilityReport check_manufacturability(const std::vector<CutCurve>& loo
       // A turn of exactly +-pi (a cusp) has no convex side: treat it as concave.
       if (c.turn > 0.0 && c.turn < M_PI) {
         check.convex_corners.push_back(c);
-      } else if (r * (1.0 / std::cos(0.5 * c.turn) - 1.0) <= shallow_corner_depth(o)) {
+      } else if (corner_round_depth(r, c.turn) <= shallow_corner_depth(o)) {
         check.shallow_corners.push_back(c);  // the tool's round stays within the tolerance
       } else {
         check.concave_corners.push_back(c);

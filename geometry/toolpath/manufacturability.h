@@ -52,6 +52,10 @@ struct LoopCheck {
   std::vector<LoopCorner> shallow_corners;
 };
 
+/// The material a tool of radius r keeps at a concave corner turning by
+/// `turn` radians: its round's distance from the corner point, r (1 / cos(turn / 2) - 1).
+double corner_round_depth(double r, double turn);
+
 /// The most material a shallow concave corner may keep at its corner point:
 /// a quarter of options.tolerance (plan_toolpath's share "shallow concave corners").
 double shallow_corner_depth(const CncOptions& options);

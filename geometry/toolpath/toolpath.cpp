@@ -322,8 +322,7 @@ Toolpath plan_toolpath(const CompositeCurve& outline, const std::vector<RegionHo
   tolerance.take("shallow concave corners", 0.25);
   double shallow = 0.0;
   for (const LoopCheck& c : tp.checks.loops) {
-    for (const LoopCorner& k : c.shallow_corners)
-      shallow = std::max(shallow, r * (1.0 / std::cos(0.5 * k.turn) - 1.0));
+    for (const LoopCorner& k : c.shallow_corners) shallow = std::max(shallow, corner_round_depth(r, k.turn));
   }
   tolerance.use("shallow concave corners", shallow);
   LoopPathOptions lo;
