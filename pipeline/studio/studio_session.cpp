@@ -238,6 +238,33 @@ double elapsed_ms(std::chrono::steady_clock::time_point since) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - since).count();
 }
 
+// The design file's text, checked for the names the request uses, and the
+// design it makes with the request's overrides.
+struct Requested {
+  std::string text;
+  Design design;
+};
+
+Requested read_requested(const Request& request, const std::string& path) {
+  std::string text = read_file(path, kMaxDesignBytes, "design file");
+  require_known_names(request, load_design_text(text, path));
+  Design design = load_design_text(text, path, request.overrides);
+  return {std::move(text), std::move(design)};
+}
+
+// A request's answer: `f`'s, or 400 for a bad request, or the command line's
+// failure as JSON.
+template <class F>
+StudioResponse answered(const std::string& path, F&& f) {
+  try {
+    return f();
+  } catch (const BadRequest& e) {
+    return bad_request(e);
+  } catch (...) {
+    return failure_response(std::current_exception(), path);
+  }
+}
+
 }  // namespace
 
 StudioSession::StudioSession(StudioSessionOptions options) : options_(std::move(options)) {
@@ -265,11 +292,8 @@ StudioResponse StudioSession::design() const {
 
 StudioResponse StudioSession::build(const std::string& request_body) {
   const auto start = std::chrono::steady_clock::now();
-  try {
-    const Request request = parse_request(request_body);
-    const std::string text = read_file(options_.design_path, kMaxDesignBytes, "design file");
-    require_known_names(request, load_design_text(text, options_.design_path));
-    const Design design = load_design_text(text, options_.design_path, request.overrides);
+  return answered(options_.design_path, [&] {
+    const Design design = read_requested(parse_request(request_body), options_.design_path).design;
     JobOptions job;
     job.out_dir = options_.out_dir;
     std::optional<std::string> glb;
@@ -295,11 +319,7 @@ StudioResponse StudioSession::build(const std::string& request_body) {
     }
     j["build_ms"] = elapsed_ms(start);
     return json_response(200, j);
-  } catch (const BadRequest& e) {
-    return bad_request(e);
-  } catch (...) {
-    return failure_response(std::current_exception(), options_.design_path);
-  }
+  });
 }
 
 StudioResponse StudioSession::mesh(const std::string& id) const {
@@ -311,31 +331,22 @@ StudioResponse StudioSession::mesh(const std::string& id) const {
 }
 
 StudioResponse StudioSession::export_outputs(const std::string& request_body) {
-  try {
-    const Request request = parse_request(request_body);
-    const std::string text = read_file(options_.design_path, kMaxDesignBytes, "design file");
-    require_known_names(request, load_design_text(text, options_.design_path));
-    const Design design = load_design_text(text, options_.design_path, request.overrides);
+  return answered(options_.design_path, [&] {
+    const Design design = read_requested(parse_request(request_body), options_.design_path).design;
     JobOptions job;
     job.out_dir = options_.out_dir;
     const JobReport report = write_job(prepare_job(design, job));
     Json j = {{"out_dir", options_.out_dir}, {"files", report.outputs}};
     j["report"] = design_item(options_.design_path, report);
     return json_response(200, j);
-  } catch (const BadRequest& e) {
-    return bad_request(e);
-  } catch (...) {
-    return failure_response(std::current_exception(), options_.design_path);
-  }
+  });
 }
 
 StudioResponse StudioSession::save(const std::string& request_body) {
-  try {
+  return answered(options_.design_path, [&] {
     const Request request = parse_request(request_body);
-    const std::string text = read_file(options_.design_path, kMaxDesignBytes, "design file");
-    require_known_names(request, load_design_text(text, options_.design_path));
     // The values must make a design before they replace the file's.
-    (void)load_design_text(text, options_.design_path, request.overrides);
+    const std::string text = read_requested(request, options_.design_path).text;
     const std::string edited = edit_values(text, options_.design_path, request.overrides);
     (void)load_design_text(edited, options_.design_path);
     write_file_atomically(options_.design_path, edited);
@@ -344,19 +355,13 @@ StudioResponse StudioSession::save(const std::string& request_body) {
     return json_response(200, {{"saved", options_.design_path},
                                {"changed", changed},
                                {"version", file_version(options_.design_path)}});
-  } catch (const BadRequest& e) {
-    return bad_request(e);
-  } catch (...) {
-    return failure_response(std::current_exception(), options_.design_path);
-  }
+  });
 }
 
 StudioResponse StudioSession::fairest(const std::string& request_body) {
-  try {
+  return answered(options_.design_path, [&] {
     const Request request = parse_request(request_body, true);
-    const std::string text = read_file(options_.design_path, kMaxDesignBytes, "design file");
-    require_known_names(request, load_design_text(text, options_.design_path));
-    const Design design = load_design_text(text, options_.design_path, request.overrides);
+    const Design design = read_requested(request, options_.design_path).design;
     const FairMode mode = request.energy == "strain" ? FairMode::Strain : FairMode::CurvatureVariation;
     Json overrides = Json::object();
     Json skipped = Json::array();
@@ -385,11 +390,7 @@ StudioResponse StudioSession::fairest(const std::string& request_body) {
       }
     }
     return json_response(200, {{"energy", request.energy}, {"overrides", overrides}, {"skipped", skipped}});
-  } catch (const BadRequest& e) {
-    return bad_request(e);
-  } catch (...) {
-    return failure_response(std::current_exception(), options_.design_path);
-  }
+  });
 }
 
 StudioResponse StudioSession::version() const {
