@@ -135,6 +135,11 @@ BuiltMesh build(const CountertopDesign& design, const BuildContext& context) {
                         {"rapid_length", totals.rapid},
                         {"estimated_minutes", totals.minutes}};
   }
+  ExactSolid solid;
+  solid.form = ExactSolid::Form::Extrusion;
+  solid.height = design.thickness;
+  for (const NamedBuiltCurve& c : shape.curves) solid.loops.push_back(c.curve.curve);
+  shape.solid = std::move(solid);
   out.shape = std::move(shape);
   return out;
 }

@@ -100,6 +100,28 @@ void add_mould(const VesselDesign& design, const CompositeCurve& fired_profile, 
                         {"warnings", mould.warnings}};
 }
 
+// A solid vessel's exact section: the profile, closed along the rim and base
+// levels to the axis and along the axis, as the mesh's section closes it. None
+// when the profile runs along the axis between two parts (two bodies).
+std::optional<ExactSolid> exact_revolution(const CompositeCurve& profile) {
+  std::vector<Segment> segments = profile.segments();
+  for (const Segment& s : segments) {
+    if (s.kind() == SegmentKind::Line && s.control_points()[0].x() == 0.0 && s.control_points()[1].x() == 0.0)
+      return std::nullopt;
+  }
+  if (!profile.closed()) {
+    const Vec2 a = segments.front().point(0.0), b = segments.back().point(1.0);
+    const Vec2 a_axis(0.0, a.y()), b_axis(0.0, b.y());
+    if (b.x() != 0.0) segments.push_back(Segment::line(b, b_axis));
+    segments.push_back(Segment::line(b_axis, a_axis));
+    if (a.x() != 0.0) segments.push_back(Segment::line(a_axis, a));
+  }
+  ExactSolid solid;
+  solid.form = ExactSolid::Form::Revolution;
+  solid.loops.emplace_back(std::move(segments), true);
+  return solid;
+}
+
 }  // namespace
 
 BuiltMesh build(const VesselDesign& design, const BuildContext& context) {
@@ -164,6 +186,7 @@ BuiltMesh build(const VesselDesign& design, const BuildContext& context) {
   }
   if (design.mould) add_mould(design, profile.curve, context, out);
   out.shape.curves.push_back({"profile", profile});
+  if (design.mode == BodyMode::Solid) out.shape.solid = exact_revolution(master);
   return out;
 }
 

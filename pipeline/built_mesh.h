@@ -36,11 +36,26 @@ struct NamedBuiltCurve {
   BuiltCurve curve;
 };
 
+/// The exact solid a design's mesh approximates, from the exact curves: what
+/// outputs that carry exact geometry (step) write.
+struct ExactSolid {
+  enum class Form {
+    Extrusion,   ///< `loops` in the xy plane (the outline, then holes) extruded by `height` along z
+    Revolution,  ///< one closed loop in the (radius, height) half-plane revolved about the height axis
+  };
+  Form form = Form::Extrusion;
+  std::vector<CompositeCurve> loops;  ///< closed, as written (a vessel's scaled for shrinkage)
+  double height = 0.0;
+};
+
 /// The design's own curves and patches as built, before any mesh: what its
 /// plot draws. The curves are in the design's order (design_curves).
 struct BuiltShape {
   std::vector<NamedBuiltCurve> curves;
   std::optional<PatchNetwork> patches;  ///< a surface's patch network
+  /// The exact solid, when the design's kind has one fabmesh can write
+  /// exactly (countertops, solid vessels).
+  std::optional<ExactSolid> solid;
 };
 
 /// One design built and validated. The soup is what the writers encode

@@ -19,6 +19,7 @@
 #include "io/mesh/ply.h"
 #include "io/mesh/stl.h"
 #include "io/mesh/threemf.h"
+#include "io/step/step.h"
 #include "pipeline/pictures.h"
 
 namespace fabmesh {
@@ -340,6 +341,47 @@ Files encode_png_output(const EncodeContext& c) {
   return {{design_preview_png(c.common, c.built, options), c.common.units, 0.0, ""}};
 }
 
+// The exact solid (or, for a curve design, its curves) in the design's unit.
+// Exact segments stay exact; an H-Bézier segment becomes a cubic B-spline
+// within what the build left of the tolerance, and that bound is the file's
+// added error.
+Files encode_step_output(const EncodeContext& c) {
+  StepModel model;
+  model.name = c.common.name;
+  model.unit = c.common.units;
+  double added = 0.0;
+  const auto loop_of = [&](const CompositeCurve& curve) {
+    try {
+      StepLoopOf l = step_loop(curve, c.output_tolerance);
+      added = std::max(added, l.max_error);
+      return std::move(l.loop);
+    } catch (const InputError& e) {
+      throw OutputError("step", std::string("step: ") + e.what());
+    }
+  };
+  StepBody body;
+  body.name = c.common.name;
+  if (const auto& solid = c.built.shape.solid) {
+    body.form = solid->form == ExactSolid::Form::Extrusion ? StepForm::Extrusion : StepForm::Revolution;
+    body.height = solid->height;
+    for (const CompositeCurve& loop : solid->loops) body.loops.push_back(loop_of(loop));
+  } else if (!c.built.soup.triangles.empty()) {
+    throw OutputError("step",
+                      "step: the profile runs along the axis between two parts: the vessel is two solids "
+                      "touching at a point of the axis, which STEP cannot hold as one valid solid");
+  } else {
+    body.form = StepForm::Wireframe;
+    for (const NamedBuiltCurve& curve : c.built.shape.curves)
+      body.loops.push_back(loop_of(curve.curve.curve));
+  }
+  model.bodies.push_back(std::move(body));
+  Encoded e;
+  e.bytes = write_step(model).bytes;
+  e.units = c.common.units;
+  e.added_error = added;
+  return {std::move(e)};
+}
+
 std::vector<OutputFormat> make_table() {
   const KindSet meshes = kinds<VesselDesign, CountertopDesign, SurfaceDesign>();
   const KindSet drawn = kinds<CurveDesign, VesselDesign, CountertopDesign>();
@@ -395,6 +437,14 @@ std::vector<OutputFormat> make_table() {
        countertops, countertops, ".nc", &encode_nc_output},
       {"toolpath_svg", "drawing of the router path over the outline", toolpath, countertops, countertops,
        ".toolpath.svg", &encode_toolpath_svg_output},
+      {"step",
+       "STEP (AP214) of the exact geometry in the design's unit: a countertop's or a solid vessel's solid, "
+       "a curve's wireframe",
+       OutputContent::Exact,
+       drawn,
+       {},
+       ".step",
+       &encode_step_output},
       {"plot",
        "the design's curves with control polygons, joints, curvature combs and curvature plot (SVG)",
        OutputContent::Design,
@@ -449,6 +499,10 @@ bool has_content(const Design& design, OutputContent content) {
     }
     case OutputContent::Design:
       return true;
+    case OutputContent::Exact: {
+      const auto* v = std::get_if<VesselDesign>(&design.body);
+      return v == nullptr ? !std::holds_alternative<SurfaceDesign>(design.body) : v->mode == BodyMode::Solid;
+    }
     case OutputContent::Toolpath: {
       const auto* c = std::get_if<CountertopDesign>(&design.body);
       return c != nullptr && c->cnc.has_value();
@@ -494,10 +548,13 @@ std::vector<const OutputFormat*> resolve_outputs(const Design& design) {
                       format->description, kind_list(format->kinds), kind_name(design)));
     }
     if (!has_content(design, format->content)) {
+      const char* needs = format->content == OutputContent::MouldParts ? "a `mould:` section"
+                          : format->content == OutputContent::Toolpath
+                              ? "a `cnc:` section"
+                              : "a solid body (`body: {mode: solid}`): a shell's inner wall is the offset "
+                                "of its profile, which no STEP curve fabmesh writes is exactly";
       throw FileError(design.common.path, r.line, r.column,
-                      fmt::format("{}: {} needs {}", r.where, r.format,
-                                  format->content == OutputContent::MouldParts ? "a `mould:` section"
-                                                                               : "a `cnc:` section"));
+                      fmt::format("{}: {} needs {}", r.where, r.format, needs));
     }
     if (std::find(out.begin(), out.end(), format) != out.end()) {
       throw FileError(design.common.path, r.line, r.column,

@@ -1,0 +1,174 @@
+#include "io/step/step.h"
+
+#include <dlfcn.h>
+#include <fmt/format.h>
+
+#include <cmath>
+#include <optional>
+
+#include "geometry/core/errors.h"
+#include "geometry/curves/bezier_form.h"
+
+namespace fabmesh {
+namespace {
+
+// The module as this process found it: loaded once, on first use, and never
+// changed after (OCCT's libraries stay mapped until the process ends).
+struct LoadedModule {
+  const StepModuleApi* api = nullptr;
+  std::string status;  ///< the path loaded, or every path tried and why each failed
+};
+
+std::string folder_of_this_binary() {
+  Dl_info info{};
+  static const int anchor = 0;
+  if (dladdr(&anchor, &info) == 0 || info.dli_fname == nullptr) return ".";
+  std::string path = info.dli_fname;
+  const std::size_t slash = path.rfind('/');
+  return slash == std::string::npos ? "." : path.substr(0, slash);
+}
+
+LoadedModule load_module() {
+  const std::string here = folder_of_this_binary();
+  // The program (bin/) and the library (lib/) installed, then the build tree.
+  const std::vector<std::string> candidates = {
+      here + "/" FABMESH_STEP_MODULE_FROM_PROGRAM "/libfabmesh_step.so",
+      here + "/fabmesh/libfabmesh_step.so",
+      FABMESH_STEP_MODULE_INSTALLED,
+      FABMESH_STEP_MODULE_BUILT,
+  };
+  LoadedModule m;
+  std::string tried;
+  for (const std::string& path : candidates) {
+    void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+    if (handle == nullptr) {
+      const char* why = dlerror();
+      tried += fmt::format("; {}: {}", path, why != nullptr ? why : "not loadable");
+      continue;
+    }
+    using Entry = const StepModuleApi* (*)();
+    auto entry = reinterpret_cast<Entry>(dlsym(handle, "fabmesh_step_module"));
+    const StepModuleApi* api = entry != nullptr ? entry() : nullptr;
+    if (api == nullptr || api->abi != kStepModuleAbi) {
+      tried += fmt::format("; {}: built for another fabmesh (interface {}, this one {})", path,
+                           api != nullptr ? api->abi : 0, kStepModuleAbi);
+      dlclose(handle);
+      continue;
+    }
+    m.api = api;
+    m.status = path;
+    return m;
+  }
+  m.status = "the STEP module libfabmesh_step.so was not found (tried" + tried.substr(1) + ")";
+  return m;
+}
+
+const LoadedModule& module() {
+  static const LoadedModule m = load_module();
+  return m;
+}
+
+const StepModuleApi& api_or_throw() {
+  const LoadedModule& m = module();
+  if (m.api == nullptr) {
+    throw OutputError("step", "step: " + m.status + "; install fabmesh with its STEP module (OpenCASCADE)");
+  }
+  return *m.api;
+}
+
+StepCurve conic_of(const EllipseArcParams& e) {
+  StepCurve c;
+  c.kind = StepCurve::Kind::Conic;
+  const double rotation = e.rotation_deg * M_PI / 180.0;
+  double from = e.from_deg * M_PI / 180.0, to = e.to_deg * M_PI / 180.0;
+  c.conic.center = e.center;
+  if (e.a >= e.b) {
+    c.conic.major = e.a;
+    c.conic.minor = e.b;
+    c.conic.axis_angle = rotation;
+  } else {
+    // The major axis along the ellipse's y: its parameter is a quarter turn behind
+    // (center + b cos(t - pi/2) Y - a sin(t - pi/2) X = center + a cos t X + b sin t Y).
+    c.conic.major = e.b;
+    c.conic.minor = e.a;
+    c.conic.axis_angle = rotation + M_PI / 2.0;
+    from -= M_PI / 2.0;
+    to -= M_PI / 2.0;
+  }
+  c.conic.from = from;
+  c.conic.to = to;
+  return c;
+}
+
+StepCurve bezier_of(const BezierPiece& piece) {
+  StepCurve c;
+  c.kind = piece.poles.size() == 2 && piece.weights.empty() ? StepCurve::Kind::Line : StepCurve::Kind::Bezier;
+  c.poles = piece.poles;
+  c.weights = piece.weights;
+  return c;
+}
+
+// Cubic Bézier pieces end to end as one B-spline: every interior knot of
+// multiplicity 3, so each piece keeps its own poles (C1 by the Hermite construction).
+StepCurve bspline_of(const std::vector<BezierPiece>& pieces) {
+  StepCurve c;
+  c.kind = StepCurve::Kind::BSpline;
+  c.degree = 3;
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    const auto& p = pieces[i].poles;
+    c.poles.insert(c.poles.end(), p.begin() + (i == 0 ? 0 : 1), p.end());
+    c.knots.push_back(static_cast<double>(i));
+    c.multiplicities.push_back(i == 0 ? 4 : 3);
+  }
+  c.knots.push_back(static_cast<double>(pieces.size()));
+  c.multiplicities.push_back(4);
+  return c;
+}
+
+}  // namespace
+
+StepLoopOf step_loop(const CompositeCurve& curve, double tolerance) {
+  StepLoopOf out;
+  for (const Segment& s : curve.segments()) {
+    if (s.kind() == SegmentKind::EllipseArc) {
+      out.loop.curves.push_back(conic_of(*s.ellipse()));
+    } else if (std::optional<BezierPiece> exact = exact_bezier(s)) {
+      out.loop.curves.push_back(bezier_of(*exact));
+    } else {
+      const BezierApproximation a = hermite_approximation(s, tolerance);
+      out.max_error = std::max(out.max_error, a.bound);
+      out.loop.curves.push_back(a.pieces.size() == 1 ? bezier_of(a.pieces[0]) : bspline_of(a.pieces));
+    }
+  }
+  return out;
+}
+
+StepWritten write_step(const StepModel& model) {
+  StepWritten w = api_or_throw().write(model);
+  if (!w.error.empty()) throw OutputError("step", "step: " + w.error);
+  for (std::size_t i = 0; i < w.bodies.size() && i < model.bodies.size(); ++i) {
+    const StepShapeFacts& f = w.bodies[i];
+    const StepBody& body = model.bodies[i];
+    const bool solid = body.form != StepForm::Wireframe;
+    if (!f.valid || (solid && (f.solids != 1 || !f.closed || !(f.volume > 0.0)))) {
+      throw OutputError("step", fmt::format("step: OpenCASCADE finds the {} of '{}' {} ({} solids, {} faces, "
+                                            "volume {:.6g}{}); nothing is written",
+                                            solid ? "solid" : "wireframe", body.name,
+                                            !f.valid ? "invalid" : "not one closed solid", f.solids, f.faces,
+                                            f.volume, f.problems.empty() ? "" : "; " + f.problems));
+    }
+  }
+  return w;
+}
+
+StepRead read_step(const std::string& bytes) { return api_or_throw().read(bytes); }
+
+double max_distance_to_step(const std::string& bytes, const std::vector<Vec3>& points) {
+  const StepDistances d = api_or_throw().distances(bytes, points);
+  if (!d.error.empty()) throw OutputError("step", "step: " + d.error);
+  return d.max_distance;
+}
+
+std::string step_module_status() { return module().status; }
+
+}  // namespace fabmesh

@@ -1,0 +1,100 @@
+#pragma once
+// What the STEP module (io/step/step_occt.cpp, loaded only when a STEP file
+// is written or read) gets and gives: plain data, no OpenCASCADE type. The
+// module builds the exact curves as OpenCASCADE edges, the solids from them,
+// and writes or reads the file.
+
+#include <string>
+#include <vector>
+
+#include "geometry/core/types.h"
+
+namespace fabmesh {
+
+/// An ellipse arc (a circle when major == minor): centre, semi-axes, the
+/// major axis's angle from x and the arc's parameter range, radians. The arc
+/// runs from `from` to `to`, clockwise when to < from.
+struct StepConic {
+  Vec2 center{0.0, 0.0};
+  double major = 1.0, minor = 1.0;
+  double axis_angle = 0.0;
+  double from = 0.0, to = 0.0;
+};
+
+/// One exact piece of a planar curve, in its plane's coordinates.
+struct StepCurve {
+  enum class Kind { Line, Bezier, BSpline, Conic };
+  Kind kind = Kind::Line;
+  std::vector<Vec2> poles;      ///< Line: its two ends; Bezier and BSpline: the control points
+  std::vector<double> weights;  ///< Bezier: empty (polynomial) or one per pole
+  int degree = 3;               ///< BSpline
+  std::vector<double> knots;    ///< BSpline: distinct knots
+  std::vector<int> multiplicities;
+  StepConic conic;              ///< Conic
+};
+
+/// A chain of pieces end to end (closed when its last end is its first start).
+struct StepLoop {
+  std::vector<StepCurve> curves;
+};
+
+enum class StepForm {
+  Extrusion,   ///< loops in the xy plane (the outer one first, then holes) extruded by `height` along z
+  Revolution,  ///< one closed loop in the (radius, height) half-plane revolved about the z axis
+  Wireframe,   ///< the loops as curves in the xy plane, no solid
+};
+
+struct StepBody {
+  std::string name;  ///< the product's name in the file
+  StepForm form = StepForm::Extrusion;
+  std::vector<StepLoop> loops;
+  double height = 0.0;  ///< Extrusion: > 0
+};
+
+/// One file: its bodies in one unit of length (mm, cm, m or in), the file's own.
+struct StepModel {
+  std::string name;
+  std::string unit = "mm";
+  std::vector<StepBody> bodies;
+};
+
+/// A solid (or a wireframe) as the module found it in a file it wrote or read.
+struct StepShapeFacts {
+  bool valid = false;   ///< BRepCheck_Analyzer finds it valid
+  bool closed = false;  ///< a solid whose shells are closed (no free edge)
+  int solids = 0, faces = 0, edges = 0;
+  double volume = 0.0;  ///< BRepGProp, in the file's unit cubed
+  std::string problems;  ///< what BRepCheck_Analyzer objects to, when not valid
+};
+
+struct StepWritten {
+  std::string bytes;
+  std::string error;                  ///< empty on success
+  std::vector<StepShapeFacts> bodies; ///< per body, as built before writing
+};
+
+struct StepRead {
+  std::string error;                  ///< empty on success
+  std::string length_unit;            ///< as the file declares it ("MM", "CM", "INCH", ...)
+  std::vector<StepShapeFacts> roots;  ///< one per root shape transferred
+};
+
+/// How far points lie from the shapes of a STEP file (BRepExtrema).
+struct StepDistances {
+  std::string error;      ///< empty on success
+  double max_distance = 0.0;
+};
+
+/// The module's entry points (a C function returns this table; the program
+/// checks `abi` against its own before calling).
+struct StepModuleApi {
+  int abi = 0;
+  StepWritten (*write)(const StepModel& model) = nullptr;
+  StepRead (*read)(const std::string& bytes) = nullptr;
+  StepDistances (*distances)(const std::string& bytes, const std::vector<Vec3>& points) = nullptr;
+};
+
+/// Changes whenever StepModel, StepWritten, StepRead or StepModuleApi change.
+inline constexpr int kStepModuleAbi = 1;
+
+}  // namespace fabmesh

@@ -1,0 +1,424 @@
+// The STEP module: the only file that includes OpenCASCADE. Built as its own
+// shared object (libfabmesh_step.so) and loaded by io/step/step.cpp only when
+// a STEP file is written or read, so no other run pays for loading OCCT.
+//
+// OCCT's data exchange keeps its settings (units, messages) in process-wide
+// statics: every call here holds one lock, and sets every setting it relies on.
+
+#include <APIHeaderSection_MakeHeader.hxx>
+#include <BRepBuilderAPI_MakeEdge.hxx>
+#include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepBuilderAPI_MakeVertex.hxx>
+#include <BRepExtrema_DistShapeShape.hxx>
+#include <BRepBuilderAPI_MakeWire.hxx>
+#include <BRepCheck.hxx>
+#include <BRepCheck_Analyzer.hxx>
+#include <BRepCheck_Result.hxx>
+#include <TopAbs.hxx>
+#include <UnitsMethods.hxx>
+#include <BRepGProp.hxx>
+#include <BRepLib.hxx>
+#include <BRepPrimAPI_MakePrism.hxx>
+#include <BRepPrimAPI_MakeRevol.hxx>
+#include <BRep_Builder.hxx>
+#include <BRep_Tool.hxx>
+#include <GProp_GProps.hxx>
+#include <Geom_BSplineCurve.hxx>
+#include <Geom_BezierCurve.hxx>
+#include <Geom_Circle.hxx>
+#include <Geom_Ellipse.hxx>
+#include <Geom_TrimmedCurve.hxx>
+#include <Interface_Static.hxx>
+#include <Message.hxx>
+#include <Message_Messenger.hxx>
+#include <STEPControl_Reader.hxx>
+#include <ShapeFix_Face.hxx>
+#include <STEPControl_Writer.hxx>
+#include <Standard_Failure.hxx>
+#include <StepAP214.hxx>
+#include <StepAP214_Protocol.hxx>
+#include <StepBasic_Product.hxx>
+#include <StepData_StepModel.hxx>
+#include <StepData_StepWriter.hxx>
+#include <TColStd_Array1OfInteger.hxx>
+#include <TColStd_Array1OfReal.hxx>
+#include <TColStd_SequenceOfAsciiString.hxx>
+#include <TColgp_Array1OfPnt.hxx>
+#include <TCollection_HAsciiString.hxx>
+#include <TopExp.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopTools_IndexedDataMapOfShapeListOfShape.hxx>
+#include <TopTools_IndexedMapOfShape.hxx>
+#include <TopoDS.hxx>
+#include <TopoDS_Compound.hxx>
+#include <TopoDS_Edge.hxx>
+#include <TopoDS_Face.hxx>
+#include <TopoDS_Wire.hxx>
+#include <gp_Ax1.hxx>
+#include <gp_Ax2.hxx>
+#include <gp_Pln.hxx>
+#include <mutex>
+#include <sstream>
+#include <stdexcept>
+
+#include "io/step/step_model.h"
+
+namespace fabmesh {
+namespace {
+
+std::mutex& occt_lock() {
+  static std::mutex m;
+  return m;
+}
+
+// OCCT prints transfer statistics and warnings to stdout through its default
+// messenger: fabmesh's stdout is its own report.
+void quiet_occt() {
+  static std::once_flag once;
+  std::call_once(once, [] { Message::DefaultMessenger()->ChangePrinters().Clear(); });
+}
+
+// The file's unit as OCCT names it for "write.step.unit" and "xstep.cascade.unit".
+const char* occt_unit(const std::string& unit) {
+  if (unit == "mm") return "MM";
+  if (unit == "cm") return "CM";
+  if (unit == "m") return "M";
+  if (unit == "in") return "INCH";
+  throw std::invalid_argument("unit '" + unit + "' is not one of mm, cm, m, in");
+}
+
+// Millimetres per unit of a length unit as OCCT's settings ("CM") or a
+// file's units ("centimetre") name it; 0 for others.
+double millimetres_of(const std::string& unit) {
+  if (unit == "MM" || unit == "millimetre") return 1.0;
+  if (unit == "CM" || unit == "centimetre") return 10.0;
+  if (unit == "M" || unit == "metre") return 1000.0;
+  if (unit == "INCH" || unit == "inch") return 25.4;
+  return 0.0;
+}
+
+// Makes `reader` give shapes in the unit of its file, unscaled; that unit's name.
+std::string read_in_file_unit(STEPControl_Reader& reader) {
+  TColStd_SequenceOfAsciiString lengths, angles, solid_angles;
+  reader.FileUnits(lengths, angles, solid_angles);
+  const std::string unit = lengths.Length() > 0 ? lengths.Value(1).ToCString() : "";
+  const double millimetres = millimetres_of(unit);
+  if (millimetres > 0.0) {
+    UnitsMethods::SetCasCadeLengthUnit(millimetres);
+    reader.SetSystemLengthUnit(millimetres);
+  }
+  return unit;
+}
+
+// Where a plane point goes: the xy plane (extrusions, wireframes) or the
+// (radius, height) half-plane as x and z (revolutions).
+gp_Pnt place(const Vec2& p, StepForm form) {
+  return form == StepForm::Revolution ? gp_Pnt(p.x(), 0.0, p.y()) : gp_Pnt(p.x(), p.y(), 0.0);
+}
+
+TColgp_Array1OfPnt poles_of(const StepCurve& c, StepForm form) {
+  TColgp_Array1OfPnt poles(1, static_cast<int>(c.poles.size()));
+  for (std::size_t i = 0; i < c.poles.size(); ++i) poles.SetValue(static_cast<int>(i) + 1, place(c.poles[i], form));
+  return poles;
+}
+
+TopoDS_Edge make_edge(const StepCurve& c, StepForm form) {
+  switch (c.kind) {
+    case StepCurve::Kind::Line: {
+      BRepBuilderAPI_MakeEdge e(place(c.poles.at(0), form), place(c.poles.at(1), form));
+      if (!e.IsDone()) throw std::runtime_error("a line of zero length");
+      return e.Edge();
+    }
+    case StepCurve::Kind::Bezier: {
+      const TColgp_Array1OfPnt poles = poles_of(c, form);
+      Handle(Geom_BezierCurve) curve;
+      if (c.weights.empty()) {
+        curve = new Geom_BezierCurve(poles);
+      } else {
+        TColStd_Array1OfReal weights(1, static_cast<int>(c.weights.size()));
+        for (std::size_t i = 0; i < c.weights.size(); ++i) weights.SetValue(static_cast<int>(i) + 1, c.weights[i]);
+        curve = new Geom_BezierCurve(poles, weights);
+      }
+      return BRepBuilderAPI_MakeEdge(curve).Edge();
+    }
+    case StepCurve::Kind::BSpline: {
+      const TColgp_Array1OfPnt poles = poles_of(c, form);
+      TColStd_Array1OfReal knots(1, static_cast<int>(c.knots.size()));
+      TColStd_Array1OfInteger mults(1, static_cast<int>(c.multiplicities.size()));
+      for (std::size_t i = 0; i < c.knots.size(); ++i) knots.SetValue(static_cast<int>(i) + 1, c.knots[i]);
+      for (std::size_t i = 0; i < c.multiplicities.size(); ++i)
+        mults.SetValue(static_cast<int>(i) + 1, c.multiplicities[i]);
+      Handle(Geom_BSplineCurve) curve = new Geom_BSplineCurve(poles, knots, mults, c.degree);
+      return BRepBuilderAPI_MakeEdge(curve).Edge();
+    }
+    case StepCurve::Kind::Conic: {
+      const StepConic& k = c.conic;
+      const gp_Pnt centre = place(k.center, form);
+      const gp_Dir normal = form == StepForm::Revolution ? gp_Dir(0, -1, 0) : gp_Dir(0, 0, 1);
+      const Vec2 axis(std::cos(k.axis_angle), std::sin(k.axis_angle));
+      const gp_Pnt tip = place(k.center + axis, form);
+      const gp_Ax2 frame(centre, normal, gp_Dir(gp_Vec(centre, tip)));
+      Handle(Geom_Curve) conic;
+      if (k.major == k.minor) {
+        conic = new Geom_Circle(frame, k.major);
+      } else {
+        conic = new Geom_Ellipse(frame, k.major, k.minor);
+      }
+      const double lo = std::min(k.from, k.to), hi = std::max(k.from, k.to);
+      TopoDS_Edge edge = hi - lo >= 2.0 * M_PI ? BRepBuilderAPI_MakeEdge(conic).Edge()
+                                               : BRepBuilderAPI_MakeEdge(conic, lo, hi).Edge();
+      if (k.to < k.from) edge.Reverse();
+      return edge;
+    }
+  }
+  throw std::logic_error("unknown curve kind");
+}
+
+TopoDS_Wire make_wire(const StepLoop& loop, StepForm form, std::size_t index) {
+  BRepBuilderAPI_MakeWire wire;
+  for (const StepCurve& c : loop.curves) {
+    wire.Add(make_edge(c, form));
+    if (!wire.IsDone()) {
+      throw std::runtime_error("loop " + std::to_string(index) + ": its pieces do not join end to end");
+    }
+  }
+  return wire.Wire();
+}
+
+TopoDS_Shape make_body(const StepBody& body) {
+  if (body.loops.empty()) throw std::runtime_error("a body without loops");
+  if (body.form == StepForm::Wireframe) {
+    TopoDS_Compound compound;
+    BRep_Builder builder;
+    builder.MakeCompound(compound);
+    for (std::size_t i = 0; i < body.loops.size(); ++i) builder.Add(compound, make_wire(body.loops[i], body.form, i));
+    return compound;
+  }
+  const gp_Pln plane = body.form == StepForm::Revolution ? gp_Pln(gp::Origin(), gp_Dir(0, -1, 0))
+                                                         : gp_Pln(gp::Origin(), gp::DZ());
+  BRepBuilderAPI_MakeFace face(plane, make_wire(body.loops[0], body.form, 0), Standard_True);
+  for (std::size_t i = 1; i < body.loops.size(); ++i) face.Add(make_wire(body.loops[i], body.form, i));
+  if (!face.IsDone()) throw std::runtime_error("the loops make no face");
+  // The loops come in either direction: the outer one turned counter-clockwise
+  // about the plane's normal, the holes clockwise.
+  ShapeFix_Face fix(face.Face());
+  fix.FixOrientation();
+  const TopoDS_Face oriented = fix.Face();
+  TopoDS_Shape shape;
+  if (body.form == StepForm::Extrusion) {
+    BRepPrimAPI_MakePrism prism(oriented, gp_Vec(0.0, 0.0, body.height));
+    if (!prism.IsDone()) throw std::runtime_error("the extrusion failed");
+    shape = prism.Shape();
+  } else {
+    BRepPrimAPI_MakeRevol revol(oriented, gp_Ax1(gp::Origin(), gp::DZ()), 2.0 * M_PI);
+    if (!revol.IsDone()) throw std::runtime_error("the revolution failed");
+    shape = revol.Shape();
+  }
+  // Solids made from faces of either orientation: turned outward.
+  for (TopExp_Explorer s(shape, TopAbs_SOLID); s.More(); s.Next()) {
+    TopoDS_Solid solid = TopoDS::Solid(s.Current());
+    BRepLib::OrientClosedSolid(solid);
+  }
+  return shape;
+}
+
+
+StepShapeFacts facts_of(const TopoDS_Shape& shape) {
+  StepShapeFacts f;
+  f.valid = BRepCheck_Analyzer(shape).IsValid() == Standard_True;
+  TopTools_IndexedMapOfShape map;
+  TopExp::MapShapes(shape, TopAbs_SOLID, map);
+  f.solids = map.Extent();
+  map.Clear();
+  TopExp::MapShapes(shape, TopAbs_FACE, map);
+  f.faces = map.Extent();
+  map.Clear();
+  TopExp::MapShapes(shape, TopAbs_EDGE, map);
+  f.edges = map.Extent();
+  if (!f.valid) {
+    // What the analyzer objects to, for the message: the first few sub-shapes' statuses.
+    BRepCheck_Analyzer analyzer(shape);
+    for (const TopAbs_ShapeEnum type : {TopAbs_EDGE, TopAbs_WIRE, TopAbs_FACE, TopAbs_SHELL, TopAbs_SOLID}) {
+      int index = 0;
+      for (TopExp_Explorer e(shape, type); e.More() && f.problems.size() < 400; e.Next()) {
+        ++index;
+        const Handle(BRepCheck_Result) result = analyzer.Result(e.Current());
+        if (result.IsNull()) continue;
+        for (const BRepCheck_Status status : result->Status()) {
+          if (status == BRepCheck_NoError) continue;
+          std::ostringstream os;
+          BRepCheck::Print(status, os);
+          std::string text = os.str();
+          while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
+          f.problems += (f.problems.empty() ? "" : ", ") + std::string(TopAbs::ShapeTypeToString(type)) + " " +
+                        std::to_string(index) + ": " + text;
+        }
+      }
+    }
+  }
+  if (f.solids > 0) {
+    // Closed: every edge that is not degenerate (a revolution's pole) is used
+    // twice by the faces (a seam twice by its one face).
+    TopTools_IndexedMapOfShape edges;
+    std::vector<int> uses;
+    for (TopExp_Explorer face(shape, TopAbs_FACE); face.More(); face.Next()) {
+      for (TopExp_Explorer edge(face.Current(), TopAbs_EDGE); edge.More(); edge.Next()) {
+        const int i = edges.Add(edge.Current());
+        if (static_cast<std::size_t>(i) > uses.size()) uses.resize(static_cast<std::size_t>(i), 0);
+        ++uses[static_cast<std::size_t>(i) - 1];
+      }
+    }
+    f.closed = true;
+    for (int i = 1; i <= edges.Extent(); ++i) {
+      if (!BRep_Tool::Degenerated(TopoDS::Edge(edges.FindKey(i))) && uses[static_cast<std::size_t>(i) - 1] != 2)
+        f.closed = false;
+    }
+    GProp_GProps props;
+    BRepGProp::VolumeProperties(shape, props);
+    f.volume = props.Mass();
+  }
+  return f;
+}
+
+// Names the products after the bodies and fixes the header: the same design
+// gives the same bytes (no time stamp).
+void label(const Handle(StepData_StepModel) & model, const StepModel& m) {
+  APIHeaderSection_MakeHeader header(model);
+  header.SetName(new TCollection_HAsciiString(m.name.c_str()));
+  header.SetTimeStamp(new TCollection_HAsciiString("1970-01-01T00:00:00"));
+  header.SetAuthorValue(1, new TCollection_HAsciiString(""));
+  header.SetOrganizationValue(1, new TCollection_HAsciiString(""));
+  header.SetOriginatingSystem(new TCollection_HAsciiString("fabmesh"));
+  header.SetAuthorisation(new TCollection_HAsciiString(""));
+  std::size_t body = 0;
+  for (int i = 1; i <= model->NbEntities(); ++i) {
+    Handle(StepBasic_Product) product = Handle(StepBasic_Product)::DownCast(model->Value(i));
+    if (product.IsNull()) continue;
+    const std::string& name = body < m.bodies.size() ? m.bodies[body].name : m.name;
+    ++body;
+    product->SetId(new TCollection_HAsciiString(name.c_str()));
+    product->SetName(new TCollection_HAsciiString(name.c_str()));
+  }
+}
+
+StepWritten write_model(const StepModel& m) {
+  StepWritten out;
+  try {
+    const std::lock_guard<std::mutex> lock(occt_lock());
+    quiet_occt();
+    // The shapes are in the file's unit, and so is the file: nothing is scaled.
+    // Set before the writer exists: it takes them when it makes its model.
+    const char* unit = occt_unit(m.unit);
+    Interface_Static::SetCVal("write.step.schema", "AP214IS");
+    Interface_Static::SetCVal("write.step.unit", unit);
+    Interface_Static::SetCVal("xstep.cascade.unit", unit);
+    Interface_Static::SetCVal("write.step.product.name", m.name.c_str());
+    const double millimetres = millimetres_of(unit);
+    UnitsMethods::SetCasCadeLengthUnit(millimetres);
+    STEPControl_Writer writer;
+    writer.Model()->SetLocalLengthUnit(millimetres);
+    writer.Model()->SetWriteLengthUnit(millimetres);
+    for (const StepBody& body : m.bodies) {
+      const TopoDS_Shape shape = make_body(body);
+      out.bodies.push_back(facts_of(shape));
+      const STEPControl_StepModelType mode =
+          body.form == StepForm::Wireframe ? STEPControl_GeometricCurveSet : STEPControl_ManifoldSolidBrep;
+      if (writer.Transfer(shape, mode) != IFSelect_RetDone) {
+        out.error = "OpenCASCADE could not translate body '" + body.name + "' into STEP";
+        return out;
+      }
+    }
+    const Handle(StepData_StepModel) model = writer.Model();
+    label(model, m);
+    StepData_StepWriter sw(model);
+    sw.SendModel(StepAP214::Protocol());
+    std::ostringstream os;
+    if (!sw.Print(os)) {
+      out.error = "OpenCASCADE could not print the STEP file";
+      return out;
+    }
+    out.bytes = os.str();
+  } catch (const Standard_Failure& e) {
+    out.error = std::string("OpenCASCADE: ") + e.GetMessageString();
+  } catch (const std::exception& e) {
+    out.error = e.what();
+  }
+  return out;
+}
+
+StepRead read_bytes(const std::string& bytes) {
+  StepRead out;
+  try {
+    const std::lock_guard<std::mutex> lock(occt_lock());
+    quiet_occt();
+    STEPControl_Reader reader;
+    // Shapes in the file's own unit: read.step... the cascade unit follows the file.
+    std::istringstream in(bytes);
+    if (reader.ReadStream("fabmesh.step", in) != IFSelect_RetDone) {
+      out.error = "OpenCASCADE's STEP reader refused the file";
+      return out;
+    }
+    out.length_unit = read_in_file_unit(reader);
+    const int roots = reader.NbRootsForTransfer();
+    for (int i = 1; i <= roots; ++i) {
+      if (!reader.TransferRoot(i)) {
+        out.error = "root " + std::to_string(i) + " did not transfer";
+        return out;
+      }
+    }
+    for (int i = 1; i <= reader.NbShapes(); ++i) out.roots.push_back(facts_of(reader.Shape(i)));
+  } catch (const Standard_Failure& e) {
+    out.error = std::string("OpenCASCADE: ") + e.GetMessageString();
+  } catch (const std::exception& e) {
+    out.error = e.what();
+  }
+  return out;
+}
+
+StepDistances distances_to(const std::string& bytes, const std::vector<Vec3>& points) {
+  StepDistances out;
+  try {
+    const std::lock_guard<std::mutex> lock(occt_lock());
+    quiet_occt();
+    STEPControl_Reader reader;
+    std::istringstream in(bytes);
+    if (reader.ReadStream("fabmesh.step", in) != IFSelect_RetDone) {
+      out.error = "OpenCASCADE's STEP reader refused the file";
+      return out;
+    }
+    read_in_file_unit(reader);
+    reader.TransferRoots();
+    const TopoDS_Shape shape = reader.OneShape();
+    // Distances to the faces (or, for a wireframe, the edges).
+    TopoDS_Compound targets;
+    BRep_Builder builder;
+    builder.MakeCompound(targets);
+    const bool has_faces = TopExp_Explorer(shape, TopAbs_FACE).More();
+    for (TopExp_Explorer e(shape, has_faces ? TopAbs_FACE : TopAbs_EDGE); e.More(); e.Next())
+      builder.Add(targets, e.Current());
+    BRepExtrema_DistShapeShape extrema;
+    extrema.LoadS2(targets);
+    for (const Vec3& p : points) {
+      extrema.LoadS1(BRepBuilderAPI_MakeVertex(gp_Pnt(p.x(), p.y(), p.z())).Vertex());
+      if (!extrema.Perform() || !extrema.IsDone()) {
+        out.error = "no distance found";
+        return out;
+      }
+      out.max_distance = std::max(out.max_distance, extrema.Value());
+    }
+  } catch (const Standard_Failure& e) {
+    out.error = std::string("OpenCASCADE: ") + e.GetMessageString();
+  } catch (const std::exception& e) {
+    out.error = e.what();
+  }
+  return out;
+}
+
+}  // namespace
+}  // namespace fabmesh
+
+extern "C" __attribute__((visibility("default"))) const fabmesh::StepModuleApi* fabmesh_step_module() {
+  static const fabmesh::StepModuleApi api{fabmesh::kStepModuleAbi, &fabmesh::write_model, &fabmesh::read_bytes,
+                                              &fabmesh::distances_to};
+  return &api;
+}

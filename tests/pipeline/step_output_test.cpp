@@ -1,0 +1,192 @@
+// The `step` output read back by OpenCASCADE's own STEP reader: one valid
+// closed solid per design, in the design's unit, its volume the exact one,
+// the mesh's vertices on its faces within the mesh's proven deviation.
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "geometry/fairing/build_curve.h"
+#include "io/design/read_design.h"
+#include "io/file.h"
+#include "io/mesh/read_mesh.h"
+#include "io/step/step.h"
+#include "tests/pipeline/cli_harness.h"
+
+using namespace fabmesh;
+using namespace fabmesh::testing;
+namespace fs = std::filesystem;
+
+namespace {
+
+// The area a closed curve encloses, 1/2 of the integral of x dy - y dx over the
+// exact segments (20 panels of 5-point Gauss-Legendre each: exact to rounding
+// for these smooth segments), positive counter-clockwise.
+double enclosed_area(const CompositeCurve& curve) {
+  const double nodes[5] = {-0.9061798459386640, -0.5384693101056831, 0.0, 0.5384693101056831,
+                           0.9061798459386640};
+  const double weights[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889, 0.4786286704993665,
+                             0.2369268850561891};
+  constexpr int kPanels = 20;
+  double twice = 0.0;
+  for (const Segment& s : curve.segments()) {
+    for (int p = 0; p < kPanels; ++p) {
+      for (int k = 0; k < 5; ++k) {
+        const double t = (p + 0.5 + 0.5 * nodes[k]) / kPanels;
+        const CurveJet j = s.jet(t);
+        twice += weights[k] * 0.5 / kPanels * (j[0].x() * j[1].y() - j[0].y() * j[1].x());
+      }
+    }
+  }
+  return 0.5 * twice;
+}
+
+struct Written {
+  nlohmann::json item;
+  std::string step;
+};
+
+Written run_step(const std::string& design, const fs::path& dir, std::vector<std::string> more = {}) {
+  std::vector<std::string> args = {"run", design, "--export-format", "step", "-o", dir.string() + "/", "--json"};
+  args.insert(args.end(), more.begin(), more.end());
+  std::string out;
+  const int code = run_cli_json(args, &out);
+  INFO(out);
+  REQUIRE(code == 0);
+  Written w;
+  w.item = only_item(out);
+  REQUIRE(w.item["files"].size() == 1);
+  w.step = read_file(w.item["files"][0]["path"].get<std::string>());
+  return w;
+}
+
+}  // namespace
+
+TEST_CASE("step: a countertop is one valid closed solid whose volume is the exact area times the thickness",
+          "[pipeline][step]") {
+  const fs::path dir = fresh_dir("step_countertop");
+  const Written w = run_step(example("countertop_g2.yaml"), dir);
+  CHECK(w.item["files"][0]["units"] == "mm");
+  CHECK(w.item["files"][0]["max_added_error"] == 0.0);  // lines, T-Bézier, ellipses and arcs: all exact
+
+  const StepRead r = read_step(w.step);
+  INFO(r.error);
+  REQUIRE(r.error.empty());
+  CHECK(r.length_unit == "millimetre");
+  REQUIRE(r.roots.size() == 1);
+  const StepShapeFacts& solid = r.roots[0];
+  CHECK(solid.valid);
+  CHECK(solid.closed);
+  CHECK(solid.solids == 1);
+
+  // The exact area: the outline's less the holes', from the exact curves.
+  const Design design = read_design(example("countertop_g2.yaml"));
+  const auto& top = std::get<CountertopDesign>(design.body);
+  double area = std::abs(enclosed_area(build_curve(top.outline).curve));
+  std::size_t edges = build_curve(top.outline).curve.size();
+  std::vector<double> hole_areas;
+  for (const CountertopHole& hole : top.holes) {
+    const CompositeCurve c = build_curve(hole.curve).curve;
+    hole_areas.push_back(std::abs(enclosed_area(c)));
+    area -= hole_areas.back();
+    edges += c.size();
+  }
+  // The integration checked where the areas are known: the oval sink is pi a b,
+  // the cooktop 560 x 460 less its corners' (4 - pi) r^2.
+  REQUIRE(hole_areas.size() == 2);
+  CHECK(hole_areas[0] == Approx(M_PI * 260.0 * 190.0).epsilon(1e-13));
+  CHECK(hole_areas[1] == Approx(560.0 * 460.0 - (4.0 - M_PI) * 100.0).epsilon(1e-13));
+  CHECK(solid.volume == Approx(area * top.thickness).epsilon(1e-7));
+  // One side face per exact edge, a top and a bottom.
+  CHECK(solid.faces == static_cast<int>(edges) + 2);
+
+  // The mesh's vertices lie on the solid's faces within the mesh's deviation.
+  const fs::path mesh_dir = fresh_dir("step_countertop_mesh");
+  std::string out;
+  REQUIRE(run_cli_json({"run", example("countertop_g2.yaml"), "--export-format", "obj", "-o",
+                        mesh_dir.string() + "/", "--json"},
+                       &out) == 0);
+  const nlohmann::json mesh_item = only_item(out);
+  const TriangleSoup mesh = read_mesh(mesh_item["files"][0]["path"].get<std::string>());
+  const double deviation = mesh_item["max_deviation"].get<double>();
+  std::vector<Vec3> points;
+  for (std::size_t i = 0; i < mesh.vertices.size(); i += 7) points.push_back(mesh.vertices[i]);
+  CHECK(max_distance_to_step(w.step, points) <= deviation + 1e-9);
+}
+
+TEST_CASE("step: the golden solid is written in cm, its volume 46.171424531125 cm^3",
+          "[pipeline][step]") {
+  const fs::path dir = fresh_dir("step_vessel");
+  const Written w = run_step(example("vessel_golden_solid.yaml"), dir);
+  CHECK(w.item["files"][0]["units"] == "cm");
+  CHECK(w.item["files"][0]["max_added_error"] == 0.0);  // quartic B-spline spans and lines
+  const StepRead r = read_step(w.step);
+  INFO(r.error);
+  REQUIRE(r.error.empty());
+  CHECK(r.length_unit == "centimetre");
+  REQUIRE(r.roots.size() == 1);
+  CHECK(r.roots[0].valid);
+  CHECK(r.roots[0].closed);
+  CHECK(r.roots[0].solids == 1);
+  CHECK(r.roots[0].faces == 6);  // four profile spans, the rim's and the base's discs
+  CHECK(r.roots[0].volume == Approx(46.171424531125).epsilon(1e-7));
+
+  // The same bytes twice: no time stamp, no addresses.
+  const fs::path again = fresh_dir("step_vessel_again");
+  CHECK(run_step(example("vessel_golden_solid.yaml"), again).step == w.step);
+
+  // The mesh (STL in mm) on the solid (cm) within its deviation and float32's rounding.
+  const fs::path mesh_dir = fresh_dir("step_vessel_mesh");
+  std::string out;
+  REQUIRE(run_cli_json({"run", example("vessel_golden_solid.yaml"), "--export-format", "stl", "-o",
+                        mesh_dir.string() + "/", "--json"},
+                       &out) == 0);
+  const nlohmann::json mesh_item = only_item(out);
+  const TriangleSoup mesh = read_mesh(mesh_item["files"][0]["path"].get<std::string>());
+  std::vector<Vec3> points;
+  for (std::size_t i = 0; i < mesh.vertices.size(); i += 11) points.push_back(mesh.vertices[i] / 10.0);
+  const double allowed = mesh_item["max_deviation"].get<double>() + mesh_item["files"][0]["max_added_error"].get<double>();
+  CHECK(max_distance_to_step(w.step, points) <= allowed + 1e-9);
+}
+
+TEST_CASE("step: a curve design is a wireframe; H-Bezier segments within the reported bound",
+          "[pipeline][step]") {
+  const fs::path dir = fresh_dir("step_curve");
+  const Written w = run_step(example("hbezier_composite.yaml"), dir);
+  const double added = w.item["files"][0]["max_added_error"].get<double>();
+  CHECK(added > 0.0);
+  // Within what the curve's sampling left of the tolerance.
+  CHECK(w.item["max_deviation"].get<double>() + added <= w.item["tolerance"].get<double>());
+  const StepRead r = read_step(w.step);
+  INFO(r.error);
+  REQUIRE(r.error.empty());
+  REQUIRE(r.roots.size() == 1);
+  CHECK(r.roots[0].valid);
+  CHECK(r.roots[0].solids == 0);
+  CHECK(r.roots[0].edges == 3);  // one edge per segment
+
+  const Design design = read_design(example("hbezier_composite.yaml"));
+  const CompositeCurve curve = build_curve(std::get<CurveDesign>(design.body).curve).curve;
+  std::vector<Vec3> points;
+  for (const Segment& s : curve.segments()) {
+    for (int i = 0; i <= 200; ++i) {
+      const Vec2 p = s.point(i / 200.0);
+      points.emplace_back(p.x(), p.y(), 0.0);
+    }
+  }
+  CHECK(max_distance_to_step(w.step, points) <= added + 1e-9);
+}
+
+TEST_CASE("step: a shell vessel's step output is bad input at its outputs entry", "[pipeline][step]") {
+  const fs::path dir = fresh_dir("step_shell");
+  const std::string design =
+      edited_example(dir, "vessel_golden_shell.yaml", "kind: vessel", "kind: vessel\noutputs: [stl, step]",
+                     "shell.yaml");
+  std::string out;
+  CHECK(run_cli({"run", design, "-o", (dir / "out").string() + "/"}, &out) == 2);
+  CHECK(out.find("step needs a solid body") != std::string::npos);
+  CHECK(names_place(out, design, "outputs[1]"));
+  CHECK_FALSE(fs::exists(dir / "out"));
+}
