@@ -30,12 +30,13 @@ std::string folder_of_this_binary() {
 
 LoadedModule load_module() {
   const std::string here = folder_of_this_binary();
-  // The program (bin/) and the library (lib/) installed, then the build tree.
+  // The program installed (bin/ -> LIBDIR/fabmesh), the library installed
+  // (LIBDIR -> LIBDIR/fabmesh), and any binary of the build folder (one
+  // folder below it, the module in lib/fabmesh).
   const std::vector<std::string> candidates = {
-      here + "/" FABMESH_STEP_MODULE_FROM_PROGRAM "/libfabmesh_step.so",
-      here + "/fabmesh/libfabmesh_step.so",
-      FABMESH_STEP_MODULE_INSTALLED,
-      FABMESH_STEP_MODULE_BUILT,
+      here + "/" FABMESH_STEP_MODULE_FROM_PROGRAM "/fabmesh-step.so",
+      here + "/fabmesh/fabmesh-step.so",
+      here + "/../lib/fabmesh/fabmesh-step.so",
   };
   LoadedModule m;
   std::string tried;
@@ -59,7 +60,7 @@ LoadedModule load_module() {
     m.status = path;
     return m;
   }
-  m.status = "the STEP module libfabmesh_step.so was not found (tried" + tried.substr(1) + ")";
+  m.status = "the STEP module fabmesh-step.so was not found (tried" + tried.substr(1) + ")";
   return m;
 }
 

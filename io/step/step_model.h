@@ -30,7 +30,7 @@ struct StepCurve {
   int degree = 3;               ///< BSpline
   std::vector<double> knots;    ///< BSpline: distinct knots
   std::vector<int> multiplicities;
-  StepConic conic;              ///< Conic
+  StepConic conic;  ///< Conic
 };
 
 /// A chain of pieces end to end (closed when its last end is its first start).
@@ -63,14 +63,14 @@ struct StepShapeFacts {
   bool valid = false;   ///< BRepCheck_Analyzer finds it valid
   bool closed = false;  ///< a solid whose shells are closed (no free edge)
   int solids = 0, faces = 0, edges = 0;
-  double volume = 0.0;  ///< BRepGProp, in the file's unit cubed
+  double volume = 0.0;   ///< BRepGProp, in the file's unit cubed
   std::string problems;  ///< what BRepCheck_Analyzer objects to, when not valid
 };
 
 struct StepWritten {
   std::string bytes;
-  std::string error;                  ///< empty on success
-  std::vector<StepShapeFacts> bodies; ///< per body, as built before writing
+  std::string error;                   ///< empty on success
+  std::vector<StepShapeFacts> bodies;  ///< per body, as built before writing
 };
 
 struct StepRead {
@@ -81,7 +81,7 @@ struct StepRead {
 
 /// How far points lie from the shapes of a STEP file (BRepExtrema).
 struct StepDistances {
-  std::string error;      ///< empty on success
+  std::string error;  ///< empty on success
   double max_distance = 0.0;
 };
 

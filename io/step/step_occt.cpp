@@ -1,5 +1,5 @@
 // The STEP module: the only file that includes OpenCASCADE. Built as its own
-// shared object (libfabmesh_step.so) and loaded by io/step/step.cpp only when
+// shared object (fabmesh-step.so) and loaded by io/step/step.cpp only when
 // a STEP file is written or read, so no other run pays for loading OCCT.
 //
 // OCCT's data exchange keeps its settings (units, messages) in process-wide
@@ -9,13 +9,11 @@
 #include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepBuilderAPI_MakeVertex.hxx>
-#include <BRepExtrema_DistShapeShape.hxx>
 #include <BRepBuilderAPI_MakeWire.hxx>
 #include <BRepCheck.hxx>
 #include <BRepCheck_Analyzer.hxx>
 #include <BRepCheck_Result.hxx>
-#include <TopAbs.hxx>
-#include <UnitsMethods.hxx>
+#include <BRepExtrema_DistShapeShape.hxx>
 #include <BRepGProp.hxx>
 #include <BRepLib.hxx>
 #include <BRepPrimAPI_MakePrism.hxx>
@@ -31,9 +29,10 @@
 #include <Interface_Static.hxx>
 #include <Message.hxx>
 #include <Message_Messenger.hxx>
+#include <STEPControl_Controller.hxx>
 #include <STEPControl_Reader.hxx>
-#include <ShapeFix_Face.hxx>
 #include <STEPControl_Writer.hxx>
+#include <ShapeFix_Face.hxx>
 #include <Standard_Failure.hxx>
 #include <StepAP214.hxx>
 #include <StepAP214_Protocol.hxx>
@@ -45,6 +44,7 @@
 #include <TColStd_SequenceOfAsciiString.hxx>
 #include <TColgp_Array1OfPnt.hxx>
 #include <TCollection_HAsciiString.hxx>
+#include <TopAbs.hxx>
 #include <TopExp.hxx>
 #include <TopExp_Explorer.hxx>
 #include <TopTools_IndexedDataMapOfShapeListOfShape.hxx>
@@ -54,6 +54,7 @@
 #include <TopoDS_Edge.hxx>
 #include <TopoDS_Face.hxx>
 #include <TopoDS_Wire.hxx>
+#include <UnitsMethods.hxx>
 #include <gp_Ax1.hxx>
 #include <gp_Ax2.hxx>
 #include <gp_Pln.hxx>
@@ -118,7 +119,8 @@ gp_Pnt place(const Vec2& p, StepForm form) {
 
 TColgp_Array1OfPnt poles_of(const StepCurve& c, StepForm form) {
   TColgp_Array1OfPnt poles(1, static_cast<int>(c.poles.size()));
-  for (std::size_t i = 0; i < c.poles.size(); ++i) poles.SetValue(static_cast<int>(i) + 1, place(c.poles[i], form));
+  for (std::size_t i = 0; i < c.poles.size(); ++i)
+    poles.SetValue(static_cast<int>(i) + 1, place(c.poles[i], form));
   return poles;
 }
 
@@ -136,7 +138,8 @@ TopoDS_Edge make_edge(const StepCurve& c, StepForm form) {
         curve = new Geom_BezierCurve(poles);
       } else {
         TColStd_Array1OfReal weights(1, static_cast<int>(c.weights.size()));
-        for (std::size_t i = 0; i < c.weights.size(); ++i) weights.SetValue(static_cast<int>(i) + 1, c.weights[i]);
+        for (std::size_t i = 0; i < c.weights.size(); ++i)
+          weights.SetValue(static_cast<int>(i) + 1, c.weights[i]);
         curve = new Geom_BezierCurve(poles, weights);
       }
       return BRepBuilderAPI_MakeEdge(curve).Edge();
@@ -191,7 +194,8 @@ TopoDS_Shape make_body(const StepBody& body) {
     TopoDS_Compound compound;
     BRep_Builder builder;
     builder.MakeCompound(compound);
-    for (std::size_t i = 0; i < body.loops.size(); ++i) builder.Add(compound, make_wire(body.loops[i], body.form, i));
+    for (std::size_t i = 0; i < body.loops.size(); ++i)
+      builder.Add(compound, make_wire(body.loops[i], body.form, i));
     return compound;
   }
   const gp_Pln plane = body.form == StepForm::Revolution ? gp_Pln(gp::Origin(), gp_Dir(0, -1, 0))
@@ -222,7 +226,6 @@ TopoDS_Shape make_body(const StepBody& body) {
   return shape;
 }
 
-
 StepShapeFacts facts_of(const TopoDS_Shape& shape) {
   StepShapeFacts f;
   f.valid = BRepCheck_Analyzer(shape).IsValid() == Standard_True;
@@ -250,8 +253,8 @@ StepShapeFacts facts_of(const TopoDS_Shape& shape) {
           BRepCheck::Print(status, os);
           std::string text = os.str();
           while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
-          f.problems += (f.problems.empty() ? "" : ", ") + std::string(TopAbs::ShapeTypeToString(type)) + " " +
-                        std::to_string(index) + ": " + text;
+          f.problems += (f.problems.empty() ? "" : ", ") + std::string(TopAbs::ShapeTypeToString(type)) +
+                        " " + std::to_string(index) + ": " + text;
         }
       }
     }
@@ -270,7 +273,8 @@ StepShapeFacts facts_of(const TopoDS_Shape& shape) {
     }
     f.closed = true;
     for (int i = 1; i <= edges.Extent(); ++i) {
-      if (!BRep_Tool::Degenerated(TopoDS::Edge(edges.FindKey(i))) && uses[static_cast<std::size_t>(i) - 1] != 2)
+      if (!BRep_Tool::Degenerated(TopoDS::Edge(edges.FindKey(i))) &&
+          uses[static_cast<std::size_t>(i) - 1] != 2)
         f.closed = false;
     }
     GProp_GProps props;
@@ -307,7 +311,9 @@ StepWritten write_model(const StepModel& m) {
     const std::lock_guard<std::mutex> lock(occt_lock());
     quiet_occt();
     // The shapes are in the file's unit, and so is the file: nothing is scaled.
-    // Set before the writer exists: it takes them when it makes its model.
+    // The settings exist once the STEP controller is initialised, and are set
+    // before the writer exists: it takes them when it makes its model.
+    STEPControl_Controller::Init();
     const char* unit = occt_unit(m.unit);
     Interface_Static::SetCVal("write.step.schema", "AP214IS");
     Interface_Static::SetCVal("write.step.unit", unit);
@@ -351,8 +357,8 @@ StepRead read_bytes(const std::string& bytes) {
   try {
     const std::lock_guard<std::mutex> lock(occt_lock());
     quiet_occt();
+    STEPControl_Controller::Init();
     STEPControl_Reader reader;
-    // Shapes in the file's own unit: read.step... the cascade unit follows the file.
     std::istringstream in(bytes);
     if (reader.ReadStream("fabmesh.step", in) != IFSelect_RetDone) {
       out.error = "OpenCASCADE's STEP reader refused the file";
@@ -380,6 +386,7 @@ StepDistances distances_to(const std::string& bytes, const std::vector<Vec3>& po
   try {
     const std::lock_guard<std::mutex> lock(occt_lock());
     quiet_occt();
+    STEPControl_Controller::Init();
     STEPControl_Reader reader;
     std::istringstream in(bytes);
     if (reader.ReadStream("fabmesh.step", in) != IFSelect_RetDone) {
@@ -418,7 +425,7 @@ StepDistances distances_to(const std::string& bytes, const std::vector<Vec3>& po
 }  // namespace fabmesh
 
 extern "C" __attribute__((visibility("default"))) const fabmesh::StepModuleApi* fabmesh_step_module() {
-  static const fabmesh::StepModuleApi api{fabmesh::kStepModuleAbi, &fabmesh::write_model, &fabmesh::read_bytes,
-                                              &fabmesh::distances_to};
+  static const fabmesh::StepModuleApi api{fabmesh::kStepModuleAbi, &fabmesh::write_model,
+                                          &fabmesh::read_bytes, &fabmesh::distances_to};
   return &api;
 }

@@ -23,7 +23,7 @@ for f in bin/fabmesh lib/libfabmesh.so "lib/libfabmesh.so.${version%.*}" "lib/li
   share/fabmesh/examples/vessel_golden_shell.yaml share/doc/fabmesh/README.md share/doc/fabmesh/install.md \
   share/man/man1/fabmesh.1 share/bash-completion/completions/fabmesh \
   share/fabmesh/studio/index.html share/fabmesh/studio/studio.js share/fabmesh/studio/three/build/three.module.js \
-  share/fabmesh/studio/three/examples/jsm/loaders/GLTFLoader.js; do
+  share/fabmesh/studio/three/examples/jsm/loaders/GLTFLoader.js lib/fabmesh/fabmesh-step.so; do
   [[ -e $prefix/$f ]] || fail "not installed: $f"
 done
 internal=$(cd "$prefix" && find . -name '*.a' -o -name '*.in' -o -name 'libfabmesh_*')
@@ -48,6 +48,17 @@ fi
 for f in "$prefix/lib/libfabmesh.so.$version" "$prefix/bin/fabmesh"; do
   if grep -qF "$build" "$f"; then fail "$f names the build folder"; fi
 done
+
+# The installed program finds its STEP module (loaded only for STEP files).
+step_out=$work/step-out
+if "$prefix/bin/fabmesh" run "$prefix/share/fabmesh/examples/vessel_golden_solid.yaml" --export-format step \
+  -o "$step_out/" -q >"$work/step.log" 2>&1; then
+  grep -q "ISO-10303-21" "$step_out/vessel_golden_solid.step" || fail "the installed program's STEP file is no STEP file"
+else
+  cat "$work/step.log"
+  fail "the installed program could not write a STEP file"
+fi
+grep -qF "$build" "$prefix/lib/fabmesh/fabmesh-step.so" && fail "the STEP module names the build folder"
 
 # The CMake package, by version, from a project that compiles nothing.
 find_fabmesh() {  # VERSION -> configure exit code; writes the target's include folder

@@ -49,7 +49,8 @@ struct Written {
 };
 
 Written run_step(const std::string& design, const fs::path& dir, std::vector<std::string> more = {}) {
-  std::vector<std::string> args = {"run", design, "--export-format", "step", "-o", dir.string() + "/", "--json"};
+  std::vector<std::string> args = {"run",   design, "--export-format", "step", "-o", dir.string() + "/",
+                                   "--json"};
   args.insert(args.end(), more.begin(), more.end());
   std::string out;
   const int code = run_cli_json(args, &out);
@@ -116,8 +117,7 @@ TEST_CASE("step: a countertop is one valid closed solid whose volume is the exac
   CHECK(max_distance_to_step(w.step, points) <= deviation + 1e-9);
 }
 
-TEST_CASE("step: the golden solid is written in cm, its volume 46.171424531125 cm^3",
-          "[pipeline][step]") {
+TEST_CASE("step: the golden solid is written in cm, its volume 46.171424531125 cm^3", "[pipeline][step]") {
   const fs::path dir = fresh_dir("step_vessel");
   const Written w = run_step(example("vessel_golden_solid.yaml"), dir);
   CHECK(w.item["files"][0]["units"] == "cm");
@@ -126,6 +126,7 @@ TEST_CASE("step: the golden solid is written in cm, its volume 46.171424531125 c
   INFO(r.error);
   REQUIRE(r.error.empty());
   CHECK(r.length_unit == "centimetre");
+  CHECK(w.step.find("LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT(.CENTI.,.METRE.)") != std::string::npos);
   REQUIRE(r.roots.size() == 1);
   CHECK(r.roots[0].valid);
   CHECK(r.roots[0].closed);
@@ -147,11 +148,12 @@ TEST_CASE("step: the golden solid is written in cm, its volume 46.171424531125 c
   const TriangleSoup mesh = read_mesh(mesh_item["files"][0]["path"].get<std::string>());
   std::vector<Vec3> points;
   for (std::size_t i = 0; i < mesh.vertices.size(); i += 11) points.push_back(mesh.vertices[i] / 10.0);
-  const double allowed = mesh_item["max_deviation"].get<double>() + mesh_item["files"][0]["max_added_error"].get<double>();
+  const double allowed =
+      mesh_item["max_deviation"].get<double>() + mesh_item["files"][0]["max_added_error"].get<double>();
   CHECK(max_distance_to_step(w.step, points) <= allowed + 1e-9);
 }
 
-TEST_CASE("step: a curve design is a wireframe; H-Bezier segments within the reported bound",
+TEST_CASE("step: a curve design is a wireframe, its H-Bezier segments within the reported bound",
           "[pipeline][step]") {
   const fs::path dir = fresh_dir("step_curve");
   const Written w = run_step(example("hbezier_composite.yaml"), dir);
@@ -181,9 +183,8 @@ TEST_CASE("step: a curve design is a wireframe; H-Bezier segments within the rep
 
 TEST_CASE("step: a shell vessel's step output is bad input at its outputs entry", "[pipeline][step]") {
   const fs::path dir = fresh_dir("step_shell");
-  const std::string design =
-      edited_example(dir, "vessel_golden_shell.yaml", "kind: vessel", "kind: vessel\noutputs: [stl, step]",
-                     "shell.yaml");
+  const std::string design = edited_example(dir, "vessel_golden_shell.yaml", "kind: vessel",
+                                            "kind: vessel\noutputs: [stl, step]", "shell.yaml");
   std::string out;
   CHECK(run_cli({"run", design, "-o", (dir / "out").string() + "/"}, &out) == 2);
   CHECK(out.find("step needs a solid body") != std::string::npos);

@@ -32,7 +32,8 @@ double relative_gap(const Segment& segment, const BezierPiece& form) {
 
 TEST_CASE("bezier form: a T-Bezier segment is exactly a rational sextic in w = tan(pi t / 4)",
           "[curves][bezier_form]") {
-  const std::array<Vec2, 4> points = {Vec2(0.0, 0.0), Vec2(120.0, 310.0), Vec2(540.0, 280.0), Vec2(600.0, -40.0)};
+  const std::array<Vec2, 4> points = {Vec2(0.0, 0.0), Vec2(120.0, 310.0), Vec2(540.0, 280.0),
+                                      Vec2(600.0, -40.0)};
   for (const double lambda : {-2.0, -1.0, 0.0, 0.5, 1.0}) {
     for (const double mu : {-2.0, -0.3, 0.0, 1.0}) {
       const Segment segment = Segment::tbezier(points, lambda, mu);
