@@ -3,12 +3,14 @@
 #
 #   scripts/install-deps.sh           build and run fabmesh: the compiler, CMake, the
 #                                     libraries' -dev packages (cpp-httplib for the
-#                                     studio), pybind11 and the Python headers (the
-#                                     Python module), numpy (to use it), and the npm
+#                                     studio, OpenCASCADE for STEP files), pybind11
+#                                     and the Python headers (the Python module),
+#                                     numpy (to use it), and the npm
 #                                     packages of tools/node (three.js: the studio's 3D view)
 #   scripts/install-deps.sh --test    also what the test suite and CI use: Catch2, clang
 #                                     and clang-tidy, the tools outputs are checked with
 #                                     (Chromium, PrusaSlicer, OpenSCAD, Draco's tools,
+#                                     FreeCAD's freecadcmd for STEP files,
 #                                     ezdxf, pytest, meshio, Open3D), a single-node
 #                                     Slurm, and Node.js for the npm test tools of
 #                                     tools/node (the Khronos glTF validator, the CNCjs
@@ -38,6 +40,7 @@ packages=(
   libeigen3-dev libopenmesh-dev libdraco-dev libtbb-dev
   libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libfmt-dev
   libdxflib-dev lib3mf-dev libspng-dev zlib1g-dev libmuparser-dev libcpp-httplib-dev
+  libocct-foundation-dev libocct-modeling-data-dev libocct-modeling-algorithms-dev libocct-data-exchange-dev
   python3 python3-dev pybind11-dev python3-numpy
 )
 # Node.js and npm come with the machine (NodeSource's nodejs bundles npm and
@@ -49,7 +52,7 @@ if ((test_deps)); then
     catch2
     clang clang-tidy libclang-rt-14-dev
     python3-ezdxf python3-pytest python3-meshio python3-open3d
-    prusa-slicer chromium draco openscad
+    prusa-slicer chromium draco openscad freecad
     slurm-wlm munge
     groff-base man-db
   )

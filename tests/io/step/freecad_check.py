@@ -1,0 +1,26 @@
+# Run by FreeCAD's command line (freecadcmd): imports each STEP file named in
+# FABMESH_STEP_FILES (separated by ':') with FreeCAD's Part workbench and
+# prints one JSON line per file: valid, closed, solids, faces, edges, volume.
+# The shell test (freecad_step_test.sh) judges them.
+import json
+import os
+
+import Part
+
+for path in os.environ["FABMESH_STEP_FILES"].split(":"):
+    shape = Part.Shape()
+    try:
+        shape.read(path)
+        facts = {
+            "path": path,
+            "read": True,
+            "valid": shape.isValid(),
+            "closed": all(s.isClosed() for s in shape.Shells) if shape.Shells else False,
+            "solids": len(shape.Solids),
+            "faces": len(shape.Faces),
+            "edges": len(shape.Edges),
+            "volume": shape.Volume if shape.Solids else 0.0,
+        }
+    except Exception as e:  # FreeCAD raises its own Base.FreeCADError
+        facts = {"path": path, "read": False, "error": str(e)}
+    print("FABMESH_STEP " + json.dumps(facts), flush=True)

@@ -1,0 +1,74 @@
+#!/usr/bin/env bash
+# Every bundled example that can have a STEP file gets one, each written by
+# its own `fabmesh run` process, and FreeCAD's command line (freecadcmd, with
+# OpenCASCADE's reader inside) imports each: a valid shape; for a countertop
+# or a vessel one closed solid of positive volume; for a curve a wireframe.
+# The golden solid, designed in cm, must come in at 46.171424531125 cm^3
+# (FreeCAD works in mm): the file's unit is read as written.
+# Examples whose kind has no STEP output (surfaces, shell vessels) must be
+# refused as bad input naming why. Usage: freecad_step_test.sh FABMESH SOURCE_DIR
+set -uo pipefail
+fabmesh=$1 source=$2
+command -v freecadcmd >/dev/null || { echo "FAIL: freecadcmd is not installed (scripts/install-deps.sh --test)"; exit 1; }
+work=$(mktemp -d "${TMPDIR:-/tmp}/fabmesh-freecad.XXXXXX")
+trap 'rm -rf "$work"' EXIT
+failures=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+
+files=()
+for design in "$source"/configs/examples/*.yaml; do
+  name=$(basename "$design" .yaml)
+  [[ $name == batch_* ]] && continue  # manifests, not designs
+  if (cd "$source/configs/examples" && "$fabmesh" run "$design" --export-format step -o "$work/$name/" -q) \
+    >"$work/$name.log" 2>&1; then
+    step=$(compgen -G "$work/$name/*.step" | head -n 1)
+    [[ -n $step ]] || { fail "$name: exit 0 but no STEP file"; continue; }
+    files+=("$step")
+  elif grep -qE "step needs a solid body|step \(STEP.*\) is made for" "$work/$name.log"; then
+    echo "refused as it should be: $name: $(grep -oE 'step (needs|\(STEP).{0,60}' "$work/$name.log" | head -n 1)"
+  else
+    cat "$work/$name.log"
+    fail "$name: no STEP file"
+  fi
+done
+((${#files[@]} >= 5)) || fail "only ${#files[@]} STEP files written"
+
+list=$(IFS=:; echo "${files[*]}")
+FABMESH_STEP_FILES=$list timeout 600 freecadcmd "$source/tests/io/step/freecad_check.py" >"$work/freecad.log" 2>&1
+checked=0
+while IFS= read -r line; do
+  json=${line#FABMESH_STEP }
+  checked=$((checked + 1))
+  verdict=$(python3 - "$json" <<'PY'
+import json, os, sys
+f = json.loads(sys.argv[1])
+name = os.path.basename(f["path"])
+problems = []
+if not f.get("read"):
+    problems.append("not read: " + f.get("error", ""))
+else:
+    if not f["valid"]:
+        problems.append("not valid")
+    curve = f["solids"] == 0 and f["faces"] == 0
+    if curve:
+        if f["edges"] < 1:
+            problems.append("no edges")
+    elif f["solids"] != 1 or not f["closed"] or not f["volume"] > 0:
+        problems.append(f"not one closed solid: {f}")
+    if name == "vessel_golden_solid.step" and abs(f["volume"] / 46171.424531125 - 1) > 1e-7:
+        problems.append(f"volume {f['volume']} mm^3, not 46171.424531125 (46.171424531125 cm^3)")
+print(name + (": " + "; ".join(problems) if problems else ": ok"))
+sys.exit(1 if problems else 0)
+PY
+  ) || fail "$verdict"
+  echo "$verdict"
+done < <(grep '^FABMESH_STEP ' "$work/freecad.log")
+if ((checked != ${#files[@]})); then
+  cat "$work/freecad.log"
+  fail "FreeCAD reported on $checked of ${#files[@]} files"
+fi
+if ((failures > 0)); then
+  echo "$failures failure(s)"
+  exit 1
+fi
+echo "FreeCAD imports all ${#files[@]} STEP files: valid, each solid closed"
