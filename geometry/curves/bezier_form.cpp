@@ -37,13 +37,13 @@ std::array<T, N> to_bernstein(const std::array<T, N>& a) {
 // docs/math/curves.md 4.1: with s = 2w / (1 + w^2) and c = (1 - w^2) / (1 + w^2),
 // s^k and c^k times (1 + w^2)^3 are these sextics in w.
 constexpr std::array<std::array<double, 7>, 7> kTrigTimesDenominator = {{
-    {1, 0, 3, 0, 3, 0, 1},     // 1            (1 + w^2)^3
-    {0, 2, 0, 4, 0, 2, 0},     // s            2w (1 + w^2)^2
-    {0, 0, 4, 0, 4, 0, 0},     // s^2          4w^2 (1 + w^2)
-    {0, 0, 0, 8, 0, 0, 0},     // s^3          8w^3
-    {1, 0, 1, 0, -1, 0, -1},   // c            (1 - w^2) (1 + w^2)^2
-    {1, 0, -1, 0, -1, 0, 1},   // c^2          (1 - w^2)^2 (1 + w^2)
-    {1, 0, -3, 0, 3, 0, -1},   // c^3          (1 - w^2)^3
+    {1, 0, 3, 0, 3, 0, 1},    // 1            (1 + w^2)^3
+    {0, 2, 0, 4, 0, 2, 0},    // s            2w (1 + w^2)^2
+    {0, 0, 4, 0, 4, 0, 0},    // s^2          4w^2 (1 + w^2)
+    {0, 0, 0, 8, 0, 0, 0},    // s^3          8w^3
+    {1, 0, 1, 0, -1, 0, -1},  // c            (1 - w^2) (1 + w^2)^2
+    {1, 0, -1, 0, -1, 0, 1},  // c^2          (1 - w^2)^2 (1 + w^2)
+    {1, 0, -3, 0, 3, 0, -1},  // c^3          (1 - w^2)^3
 }};
 
 BezierPiece tbezier_form(const Segment& segment) {
@@ -52,12 +52,8 @@ BezierPiece tbezier_form(const Segment& segment) {
   // r = A0 + A1 s + A2 s^2 + A3 s^3 + B1 c + B2 c^2 + B3 c^3 (the basis of
   // docs/math/curves.md 1 expanded in powers of s and c).
   const std::array<Vec2, 7> terms = {
-      p[0] + p[3],
-      (2.0 + l) * (p[1] - p[0]),
-      (1.0 + 2.0 * l) * p[0] - (2.0 + 2.0 * l) * p[1],
-      l * (p[1] - p[0]),
-      (2.0 + m) * (p[2] - p[3]),
-      -(2.0 + 2.0 * m) * p[2] + (1.0 + 2.0 * m) * p[3],
+      p[0] + p[3],       (2.0 + l) * (p[1] - p[0]), (1.0 + 2.0 * l) * p[0] - (2.0 + 2.0 * l) * p[1],
+      l * (p[1] - p[0]), (2.0 + m) * (p[2] - p[3]), -(2.0 + 2.0 * m) * p[2] + (1.0 + 2.0 * m) * p[3],
       m * (p[2] - p[3]),
   };
   Poly<7> numerator;
@@ -124,7 +120,8 @@ double bezier_parameter(const Segment& segment, double s) {
 
 BezierApproximation hermite_approximation(const Segment& segment, double tolerance, int max_pieces) {
   if (!(tolerance > 0.0)) {
-    throw RangeError("tolerance", tolerance, fmt::format("the approximation's tolerance must be > 0, not {}", tolerance));
+    throw RangeError("tolerance", tolerance,
+                     fmt::format("the approximation's tolerance must be > 0, not {}", tolerance));
   }
   const double m4 = segment.fourth_derivative_bound();
   const auto bound_for = [m4](int n) { return std::sqrt(2.0) * m4 / (384.0 * std::pow(double(n), 4)); };
@@ -142,7 +139,8 @@ BezierApproximation hermite_approximation(const Segment& segment, double toleran
   CurveJet start = segment.jet(0.0);
   for (int i = 0; i < n; ++i) {
     const CurveJet end = segment.jet(i + 1 == n ? 1.0 : (i + 1) * h);
-    out.pieces.push_back({{start[0], start[0] + start[1] * (h / 3.0), end[0] - end[1] * (h / 3.0), end[0]}, {}});
+    out.pieces.push_back(
+        {{start[0], start[0] + start[1] * (h / 3.0), end[0] - end[1] * (h / 3.0), end[0]}, {}});
     start = end;
   }
   return out;
