@@ -4,7 +4,7 @@
 # compile it), or includes the private YAML readers (yaml-cpp is a private
 # dependency of fabmesh::io) from outside io/design, or muparser from anywhere but
 # io/design/expression.cpp, or cpp-httplib from anywhere but the studio's server
-# (pipeline/studio/studio_server.cpp; its tests use its client), or OpenCASCADE
+# (pipeline/studio/http_module.cpp, a module loaded by `fabmesh studio` only; its tests use its client), or OpenCASCADE
 # from anywhere but the STEP module (io/step/step_occt.cpp, loaded on demand), or includes the private
 # parts of validation (geometry/validation/detail/: only validate.h is public;
 # tests and benchmarks may check them) from outside geometry/validation.
@@ -31,8 +31,8 @@ while IFS= read -r hit; do complain "yaml-cpp outside io/design: $hit"; done \
   < <(grep -rnE '#include <yaml-cpp/' geometry io pipeline 2>/dev/null | grep -v '^io/design/' || true)
 while IFS= read -r hit; do complain "muparser outside io/design/expression.cpp: $hit"; done \
   < <(grep -rnE '#include <muParser' geometry io pipeline api python tests bench fuzz 2>/dev/null | grep -v '^io/design/expression\.cpp:' || true)
-while IFS= read -r hit; do complain "cpp-httplib outside pipeline/studio/studio_server.cpp: $hit"; done \
-  < <(grep -rnE '#include <httplib' geometry io pipeline api python bench fuzz 2>/dev/null | grep -v '^pipeline/studio/studio_server\.cpp:' || true)
+while IFS= read -r hit; do complain "cpp-httplib outside pipeline/studio/http_module.cpp: $hit"; done \
+  < <(grep -rnE '#include <httplib' geometry io pipeline api python bench fuzz 2>/dev/null | grep -v '^pipeline/studio/http_module\.cpp:' || true)
 while IFS= read -r hit; do complain "OpenCASCADE outside io/step/step_occt.cpp: $hit"; done \
   < <(grep -rnE '#include <[A-Za-z0-9]+_?[A-Za-z0-9_]*\.hxx>' geometry io pipeline api python tests bench fuzz 2>/dev/null | grep -v '^io/step/step_occt\.cpp:' || true)
 while IFS= read -r hit; do complain "validation's private parts used outside geometry/validation: $hit"; done \

@@ -1,6 +1,5 @@
 #include "io/step/step.h"
 
-#include <dlfcn.h>
 #include <fmt/format.h>
 
 #include <cmath>
@@ -8,73 +7,21 @@
 
 #include "geometry/core/errors.h"
 #include "geometry/curves/bezier_form.h"
+#include "io/module.h"
 
 namespace fabmesh {
 namespace {
 
-// The module as this process found it: loaded once, on first use, and never
-// changed after (OCCT's libraries stay mapped until the process ends).
-struct LoadedModule {
-  const StepModuleApi* api = nullptr;
-  std::string status;  ///< the path loaded, or every path tried and why each failed
-};
-
-std::string folder_of_this_binary() {
-  Dl_info info{};
-  static const int anchor = 0;
-  if (dladdr(&anchor, &info) == 0 || info.dli_fname == nullptr) return ".";
-  std::string path = info.dli_fname;
-  const std::size_t slash = path.rfind('/');
-  return slash == std::string::npos ? "." : path.substr(0, slash);
-}
-
-LoadedModule load_module() {
-  const std::string here = folder_of_this_binary();
-  // The program installed (bin/ -> LIBDIR/fabmesh), the library installed
-  // (LIBDIR -> LIBDIR/fabmesh), and any binary of the build folder (one
-  // folder below it, the module in lib/fabmesh).
-  const std::vector<std::string> candidates = {
-      here + "/" FABMESH_STEP_MODULE_FROM_PROGRAM "/fabmesh-step.so",
-      here + "/fabmesh/fabmesh-step.so",
-      here + "/../lib/fabmesh/fabmesh-step.so",
-  };
-  LoadedModule m;
-  std::string tried;
-  for (const std::string& path : candidates) {
-    void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
-    if (handle == nullptr) {
-      const char* why = dlerror();
-      tried += fmt::format("; {}: {}", path, why != nullptr ? why : "not loadable");
-      continue;
-    }
-    using Entry = const StepModuleApi* (*)();
-    auto entry = reinterpret_cast<Entry>(dlsym(handle, "fabmesh_step_module"));
-    const StepModuleApi* api = entry != nullptr ? entry() : nullptr;
-    if (api == nullptr || api->abi != kStepModuleAbi) {
-      tried += fmt::format("; {}: built for another fabmesh (interface {}, this one {})", path,
-                           api != nullptr ? api->abi : 0, kStepModuleAbi);
-      dlclose(handle);
-      continue;
-    }
-    m.api = api;
-    m.status = path;
-    return m;
-  }
-  m.status = "the STEP module fabmesh-step.so was not found (tried" + tried.substr(1) + ")";
-  return m;
-}
-
-const LoadedModule& module() {
-  static const LoadedModule m = load_module();
-  return m;
+const ModuleLookup& module() {
+  return module_of<StepModuleApi>("fabmesh-step.so", "fabmesh_step_module", kStepModuleAbi);
 }
 
 const StepModuleApi& api_or_throw() {
-  const LoadedModule& m = module();
-  if (m.api == nullptr) {
+  const ModuleLookup& m = module();
+  if (m.table == nullptr) {
     throw OutputError("step", "step: " + m.status + "; install fabmesh with its STEP module (OpenCASCADE)");
   }
-  return *m.api;
+  return *static_cast<const StepModuleApi*>(m.table);
 }
 
 StepCurve conic_of(const EllipseArcParams& e) {

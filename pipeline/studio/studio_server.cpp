@@ -1,11 +1,11 @@
-// The only file that includes httplib.h (a heavy header, and a library of
-// its own): nothing of it reaches a header.
+// Who may ask and what each path answers. The HTTP itself is the module of
+// pipeline/studio/http_module.cpp (cpp-httplib), loaded when a studio starts.
 #include "pipeline/studio/studio_server.h"
 
 #include <fmt/format.h>
-#include <httplib.h>
 
 #include <atomic>
+#include <cctype>
 #include <chrono>
 #include <filesystem>
 #include <map>
@@ -16,6 +16,8 @@
 
 #include "geometry/core/errors.h"
 #include "io/file.h"
+#include "io/module.h"
+#include "pipeline/studio/http_transport.h"
 
 namespace fabmesh {
 namespace {
@@ -69,7 +71,60 @@ std::string host_name(const std::string& host) {
   return host.find(':') != std::string::npos ? "[" + host + "]" : host;
 }
 
+HttpResponse json_answer(int status, std::string body) {
+  HttpResponse r;
+  r.status = status;
+  r.body = std::move(body);
+  return r;
+}
+
+HttpResponse answer(const StudioResponse& r) {
+  HttpResponse out;
+  out.status = r.status;
+  out.body = r.body;
+  out.content_type = r.content_type;
+  return out;
+}
+
+bool starts_with(const std::string& text, const std::string& prefix) {
+  return text.compare(0, prefix.size(), prefix) == 0;
+}
+
+// The NAME of /api/mesh/NAME.glb when it is letters and digits only, else empty.
+std::string mesh_name(const std::string& path) {
+  const std::string prefix = "/api/mesh/", suffix = ".glb";
+  if (!starts_with(path, prefix) || path.size() <= prefix.size() + suffix.size() ||
+      path.compare(path.size() - suffix.size(), suffix.size(), suffix) != 0)
+    return {};
+  const std::string name = path.substr(prefix.size(), path.size() - prefix.size() - suffix.size());
+  for (const char c : name) {
+    if (!std::isalnum(static_cast<unsigned char>(c))) return {};
+  }
+  return name;
+}
+
+const HttpModuleApi& http_module() {
+  const ModuleLookup& m = module_of<HttpModuleApi>("fabmesh-http.so", "fabmesh_http_module", kHttpModuleAbi);
+  if (m.table == nullptr) throw InputError("studio: " + m.status);
+  return *static_cast<const HttpModuleApi*>(m.table);
+}
+
 }  // namespace
+
+const std::string* find_value(const std::vector<std::pair<std::string, std::string>>& pairs,
+                              const std::string& name, bool any_case) {
+  for (const auto& [key, value] : pairs) {
+    if (key.size() != name.size()) continue;
+    bool same = true;
+    for (std::size_t i = 0; i < key.size() && same; ++i) {
+      same = any_case ? std::tolower(static_cast<unsigned char>(key[i])) ==
+                            std::tolower(static_cast<unsigned char>(name[i]))
+                      : key[i] == name[i];
+    }
+    if (same) return &value;
+  }
+  return nullptr;
+}
 
 std::string random_token() {
   std::random_device device;
@@ -81,86 +136,87 @@ std::string random_token() {
 struct StudioServer::Impl {
   StudioSession& session;
   StudioServerOptions options;
-  httplib::Server server;
+  const HttpModuleApi& http;
+  void* server = nullptr;
   int port = 0;
   std::string index_html;  ///< with the token in place
   std::map<std::string, PageFile> files;
   std::set<std::string> hosts;  ///< the Host headers accepted
   std::atomic<bool> started{false}, stopping{false}, done{false};
 
-  Impl(StudioSession& s, StudioServerOptions o) : session(s), options(std::move(o)) {}
+  Impl(StudioSession& s, StudioServerOptions o) : session(s), options(std::move(o)), http(http_module()) {}
+  Impl(const Impl&) = delete;
+  Impl& operator=(const Impl&) = delete;
+  ~Impl() {
+    if (server != nullptr) http.destroy(server);
+  }
 
-  bool has_token(const httplib::Request& req, bool header_allowed) const {
-    if (req.has_param("token") && same_secret(req.get_param_value("token"), options.token)) return true;
-    return header_allowed && req.has_header("X-Fabmesh-Token") &&
-           same_secret(req.get_header_value("X-Fabmesh-Token"), options.token);
+  bool has_token(const HttpRequest& req, bool header_allowed) const {
+    const std::string* param = find_value(req.params, "token");
+    if (param != nullptr && same_secret(*param, options.token)) return true;
+    const std::string* header = find_value(req.headers, "X-Fabmesh-Token", true);
+    return header_allowed && header != nullptr && same_secret(*header, options.token);
   }
 
   // Who may ask: the Host header names this server, and the request carries the token.
-  bool allowed(const httplib::Request& req) const {
-    if (hosts.count(req.get_header_value("Host")) == 0) return false;
+  bool allowed(const HttpRequest& req) const {
+    const std::string* host = find_value(req.headers, "Host", true);
+    if (host == nullptr || hosts.count(*host) == 0) return false;
     const std::string prefix = "/t/";
-    if (req.path.compare(0, prefix.size(), prefix) == 0) {
+    if (starts_with(req.path, prefix)) {
       const std::size_t end = req.path.find('/', prefix.size());
       return end != std::string::npos &&
              same_secret(req.path.substr(prefix.size(), end - prefix.size()), options.token);
     }
-    return has_token(req, req.path.compare(0, 5, "/api/") == 0);
+    return has_token(req, starts_with(req.path, "/api/"));
   }
 
-  void answer(httplib::Response& res, const StudioResponse& r) {
-    res.status = r.status;
-    res.set_content(r.body, r.content_type.c_str());
-  }
-
-  void add_routes() {
-    server.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
-      res.set_header("Cache-Control", "no-store");
-      res.set_header("X-Content-Type-Options", "nosniff");
-      res.set_header("Referrer-Policy", "no-referrer");
-      if (allowed(req)) return httplib::Server::HandlerResponse::Unhandled;
-      res.status = 403;
-      res.set_content(error_body("forbidden: this studio answers only its own page (the URL it printed, with "
-                                 "its token, at 127.0.0.1 or localhost)"),
-                      "application/json");
-      return httplib::Server::HandlerResponse::Handled;
-    });
-    server.Get("/", [this](const httplib::Request&, httplib::Response& res) {
-      res.set_header(
-          "Content-Security-Policy",
-          "default-src 'self'; script-src 'self' 'unsafe-inline'; style-src 'self' 'unsafe-inline'; "
-          "img-src 'self' data: blob:; connect-src 'self' blob: data:; frame-ancestors 'none'");
-      res.set_content(index_html, "text/html; charset=utf-8");
-    });
-    server.Get(R"(/t/[0-9a-f]+/(.+))", [this](const httplib::Request& req, httplib::Response& res) {
-      const auto it = files.find(req.matches[1].str());
-      if (it == files.end()) {
-        res.status = 404;
-        res.set_content(error_body("no such file: " + req.matches[1].str()), "application/json");
-        return;
+  // What a request that may ask gets.
+  HttpResponse route(const HttpRequest& req) {
+    const std::string& path = req.path;
+    if (req.method == "GET") {
+      if (path == "/") {
+        HttpResponse r;
+        r.headers.emplace_back(
+            "Content-Security-Policy",
+            "default-src 'self'; script-src 'self' 'unsafe-inline'; style-src 'self' 'unsafe-inline'; "
+            "img-src 'self' data: blob:; connect-src 'self' blob: data:; frame-ancestors 'none'");
+        r.body = index_html;
+        r.content_type = "text/html; charset=utf-8";
+        return r;
       }
-      res.set_content(it->second.bytes, it->second.type.c_str());
-    });
-    server.Get("/api/design",
-               [this](const httplib::Request&, httplib::Response& res) { answer(res, session.design()); });
-    server.Get("/api/version",
-               [this](const httplib::Request&, httplib::Response& res) { answer(res, session.version()); });
-    server.Get(R"(/api/mesh/([A-Za-z0-9]+)\.glb)",
-               [this](const httplib::Request& req, httplib::Response& res) {
-                 answer(res, session.mesh(req.matches[1].str()));
-               });
-    server.Post("/api/build", [this](const httplib::Request& req, httplib::Response& res) {
-      answer(res, session.build(req.body));
-    });
-    server.Post("/api/export", [this](const httplib::Request& req, httplib::Response& res) {
-      answer(res, session.export_outputs(req.body));
-    });
-    server.Post("/api/fairest", [this](const httplib::Request& req, httplib::Response& res) {
-      answer(res, session.fairest(req.body));
-    });
-    server.Post("/api/save", [this](const httplib::Request& req, httplib::Response& res) {
-      answer(res, session.save(req.body));
-    });
+      if (starts_with(path, "/t/")) {  // allowed() checked the token between the slashes
+        const std::string name = path.substr(path.find('/', 3) + 1);
+        const auto it = files.find(name);
+        if (it == files.end()) return json_answer(404, error_body("no such file: " + name));
+        HttpResponse r;
+        r.body = it->second.bytes;
+        r.content_type = it->second.type;
+        return r;
+      }
+      if (path == "/api/design") return answer(session.design());
+      if (path == "/api/version") return answer(session.version());
+      const std::string mesh = mesh_name(path);
+      if (!mesh.empty()) return answer(session.mesh(mesh));
+    } else if (req.method == "POST") {
+      if (path == "/api/build") return answer(session.build(req.body));
+      if (path == "/api/export") return answer(session.export_outputs(req.body));
+      if (path == "/api/fairest") return answer(session.fairest(req.body));
+      if (path == "/api/save") return answer(session.save(req.body));
+    }
+    return json_answer(404, error_body(fmt::format("no such request: {} {}", req.method, path)));
+  }
+
+  HttpResponse handle(const HttpRequest& req) {
+    HttpResponse r = allowed(req)
+                         ? route(req)
+                         : json_answer(403, error_body("forbidden: this studio answers only its own "
+                                                       "page (the URL it printed, with its token, at "
+                                                       "127.0.0.1 or localhost)"));
+    r.headers.emplace_back("Cache-Control", "no-store");
+    r.headers.emplace_back("X-Content-Type-Options", "nosniff");
+    r.headers.emplace_back("Referrer-Policy", "no-referrer");
+    return r;
   }
 };
 
@@ -182,12 +238,10 @@ StudioServer::StudioServer(StudioSession& session, StudioServerOptions options)
         "for it in {}. The API works (docs/studio.md).</p>",
         s.options.web_root);
   }
-  s.server.set_payload_max_length(std::size_t{1} << 20);
-  s.add_routes();
-  s.port = s.options.port == 0
-               ? s.server.bind_to_any_port(s.options.host)
-               : (s.server.bind_to_port(s.options.host, s.options.port) ? s.options.port : -1);
-  if (s.port <= 0) {
+  s.server = s.http.listen(
+      s.options.host, s.options.port, std::size_t{1} << 20,
+      [&s](const HttpRequest& req) { return s.handle(req); }, &s.port);
+  if (s.server == nullptr) {
     throw InputError(
         fmt::format("--host {} --port {}: cannot listen there (the port is taken, or the address "
                     "is not one of this machine's)",
@@ -212,7 +266,7 @@ std::string StudioServer::url() const {
 
 void StudioServer::run() {
   impl_->started = true;
-  if (!impl_->stopping) impl_->server.listen_after_bind();
+  if (!impl_->stopping) impl_->http.run(impl_->server);
   impl_->done = true;
 }
 
@@ -221,7 +275,7 @@ void StudioServer::stop() {
   if (!impl_->started) return;
   // listen_after_bind may not have started listening yet: stop until run() returns.
   while (!impl_->done) {
-    impl_->server.stop();
+    impl_->http.stop(impl_->server);
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
 }

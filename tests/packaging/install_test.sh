@@ -23,7 +23,7 @@ for f in bin/fabmesh lib/libfabmesh.so "lib/libfabmesh.so.${version%.*}" "lib/li
   share/fabmesh/examples/vessel_golden_shell.yaml share/doc/fabmesh/README.md share/doc/fabmesh/install.md \
   share/man/man1/fabmesh.1 share/bash-completion/completions/fabmesh \
   share/fabmesh/studio/index.html share/fabmesh/studio/studio.js share/fabmesh/studio/three/build/three.module.js \
-  share/fabmesh/studio/three/examples/jsm/loaders/GLTFLoader.js lib/fabmesh/fabmesh-step.so; do
+  share/fabmesh/studio/three/examples/jsm/loaders/GLTFLoader.js lib/fabmesh/fabmesh-step.so lib/fabmesh/fabmesh-http.so; do
   [[ -e $prefix/$f ]] || fail "not installed: $f"
 done
 internal=$(cd "$prefix" && find . -name '*.a' -o -name '*.in' -o -name 'libfabmesh_*')
