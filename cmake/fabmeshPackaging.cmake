@@ -28,6 +28,11 @@ set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
 # package gets the ldconfig trigger and shlibs file of a shared library.
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS_PRIVATE_DIRS ${PROJECT_BINARY_DIR}/api)
 set(CPACK_DEBIAN_PACKAGE_GENERATE_SHLIBS ON)
+# lib3mf is loaded with dlopen when a 3MF file is written or read
+# (io/mesh/threemf.cpp), so dpkg-shlibdeps cannot see it: named here. The
+# modules in LIBDIR/fabmesh (OpenCASCADE, cpp-httplib) are ELF files of the
+# package, so their libraries are found as the program's are.
+set(CPACK_DEBIAN_PACKAGE_DEPENDS "lib3mf1")
 # The Python module is built for one Python version and imports numpy when
 # used; the program and the library need neither, so these are recommended.
 if(TARGET fabmesh_python AND Python3_VERSION_MAJOR)

@@ -121,7 +121,7 @@ deb="$work/deb/fabmesh_${version}_$(dpkg --print-architecture).deb"
 [[ -f $deb ]] || die "cpack made no $(basename "$deb"): $(ls "$work/deb")"
 depends=$(dpkg-deb -f "$deb" Depends)
 say "$(basename "$deb"): Depends: $depends"
-for needed in libc6 libstdc++6; do
+for needed in libc6 libstdc++6 lib3mf1 libocct-data-exchange-7.6 libcpp-httplib0.11; do
   grep -q "\b$needed\b" <<<"$depends" || die "Depends lacks $needed"
 done
 contents=$(dpkg-deb -c "$deb")
@@ -137,6 +137,13 @@ mkdir "$work/run"
 (cd "$work/run" && /usr/bin/fabmesh) || die "/usr/bin/fabmesh (the bundled example)"
 stl=$(compgen -G "$work/run/out/*.stl" | head -n 1) || die "/usr/bin/fabmesh wrote no STL"
 /usr/bin/fabmesh check "$stl" || die "/usr/bin/fabmesh check $stl"
+# The libraries loaded on first use: lib3mf (3MF) and the STEP module (OpenCASCADE).
+(cd "$work/run" && /usr/bin/fabmesh run /usr/share/fabmesh/examples/vessel_golden_solid.yaml \
+  --export-format 3mf -o out3mf/ -q && /usr/bin/fabmesh check out3mf/vessel_golden_solid.3mf) ||
+  die "/usr/bin/fabmesh wrote or read no 3MF file"
+(cd "$work/run" && /usr/bin/fabmesh run /usr/share/fabmesh/examples/vessel_golden_solid.yaml \
+  --export-format step -o outstep/ -q && grep -q "ISO-10303-21" outstep/vessel_golden_solid.step) ||
+  die "/usr/bin/fabmesh wrote no STEP file"
 [[ $(man -w fabmesh) == /usr/share/man/man1/fabmesh.1* ]] || die "man -w fabmesh does not find the package's page"
 (cd "$work" && /usr/bin/python3 -c "import fabmesh; assert fabmesh.__version__ == '$version', fabmesh.__version__") ||
   die "import fabmesh from the installed package"

@@ -1,7 +1,9 @@
 #include "io/mesh/threemf.h"
 
-// lib3mf 1.8's plain C interface (Debian lib3mf-dev).
+// lib3mf 1.8's plain C interface (Debian lib3mf-dev): its types from the header,
+// its functions from the library, loaded when first used (lib3mf() below).
 #include <Model/COM/NMR_DLLInterfaces.h>
+#include <dlfcn.h>
 #include <fmt/format.h>
 
 #include <Eigen/Geometry>
@@ -44,12 +46,88 @@ extern "C" const char* __lsan_default_suppressions() { return "leak:libzip.so\n"
 namespace fabmesh {
 namespace {
 
+// ---------------------------------------------------------------- lib3mf, loaded on first use
+
+// lib3mf and the libzip and libcrypto it links make about half of the symbol
+// binding of a process start, though only runs that write or read 3MF use
+// them: the functions fabmesh calls are looked up in lib3MF.so.1 (its
+// soname) the first time, with dlopen, and kept for the process.
+#define FABMESH_LIB3MF_FUNCTIONS(F)            \
+  F(lib3mf_builditem_getobjectresource)        \
+  F(lib3mf_builditem_getobjecttransform)       \
+  F(lib3mf_builditem_hasobjecttransform)       \
+  F(lib3mf_builditem_setuuidutf8)              \
+  F(lib3mf_builditemiterator_getcurrent)       \
+  F(lib3mf_builditemiterator_movenext)         \
+  F(lib3mf_component_getobjectresource)        \
+  F(lib3mf_component_gettransform)             \
+  F(lib3mf_component_hastransform)             \
+  F(lib3mf_componentsobject_getcomponent)      \
+  F(lib3mf_componentsobject_getcomponentcount) \
+  F(lib3mf_createmodel)                        \
+  F(lib3mf_getlasterror)                       \
+  F(lib3mf_meshobject_gettrianglecount)        \
+  F(lib3mf_meshobject_gettriangleindices)      \
+  F(lib3mf_meshobject_getvertexcount)          \
+  F(lib3mf_meshobject_getvertices)             \
+  F(lib3mf_meshobject_setgeometry)             \
+  F(lib3mf_model_addbuilditem)                 \
+  F(lib3mf_model_addmeshobject)                \
+  F(lib3mf_model_addmetadatautf8)              \
+  F(lib3mf_model_getbuilditems)                \
+  F(lib3mf_model_getunit)                      \
+  F(lib3mf_model_queryreader)                  \
+  F(lib3mf_model_querywriter)                  \
+  F(lib3mf_model_setbuilduuidutf8)             \
+  F(lib3mf_model_setunit)                      \
+  F(lib3mf_object_getnameutf8)                 \
+  F(lib3mf_object_iscomponentsobject)          \
+  F(lib3mf_object_ismeshobject)                \
+  F(lib3mf_object_setnameutf8)                 \
+  F(lib3mf_object_setuuidutf8)                 \
+  F(lib3mf_reader_readfrombuffer)              \
+  F(lib3mf_release)                            \
+  F(lib3mf_resource_getresourceid)             \
+  F(lib3mf_writer_writetocallback)
+
+struct Lib3mf {
+#define FABMESH_LIB3MF_POINTER(name) decltype(&NMR::name) name = nullptr;
+  FABMESH_LIB3MF_FUNCTIONS(FABMESH_LIB3MF_POINTER)
+#undef FABMESH_LIB3MF_POINTER
+  std::string error;  ///< why lib3mf could not be loaded; empty when it was
+};
+
+Lib3mf load_lib3mf() {
+  Lib3mf l;
+  void* handle = dlopen(FABMESH_LIB3MF_SONAME, RTLD_NOW | RTLD_LOCAL);
+  if (handle == nullptr) {
+    const char* why = dlerror();
+    l.error = fmt::format("3MF: lib3mf ({}) could not be loaded: {}", FABMESH_LIB3MF_SONAME,
+                          why != nullptr ? why : "unknown reason");
+    return l;
+  }
+#define FABMESH_LIB3MF_LOOKUP(name)                                      \
+  l.name = reinterpret_cast<decltype(&NMR::name)>(dlsym(handle, #name)); \
+  if (l.name == nullptr && l.error.empty())                              \
+    l.error = fmt::format("3MF: {} has no function {}", FABMESH_LIB3MF_SONAME, #name);
+  FABMESH_LIB3MF_FUNCTIONS(FABMESH_LIB3MF_LOOKUP)
+#undef FABMESH_LIB3MF_LOOKUP
+  return l;
+}
+
+/// lib3mf's functions. \throw std::runtime_error when lib3mf is not installed
+const Lib3mf& lib3mf() {
+  static const Lib3mf l = load_lib3mf();
+  if (!l.error.empty()) throw std::runtime_error(l.error);
+  return l;
+}
+
 /// Owns one lib3mf object handle.
 class Handle {
  public:
   Handle() = default;
   ~Handle() {
-    if (p_ != nullptr) NMR::lib3mf_release(p_);
+    if (p_ != nullptr) lib3mf().lib3mf_release(p_);
   }
   Handle(const Handle&) = delete;
   Handle& operator=(const Handle&) = delete;
@@ -64,7 +142,7 @@ class Handle {
 std::string last_error(NMR::PLib3MFBase* instance) {
   DWORD code = 0;
   LPCSTR message = nullptr;
-  if (instance == nullptr || NMR::lib3mf_getlasterror(instance, &code, &message) != LIB3MF_OK ||
+  if (instance == nullptr || lib3mf().lib3mf_getlasterror(instance, &code, &message) != LIB3MF_OK ||
       message == nullptr) {
     return "unknown lib3mf error";
   }
@@ -199,16 +277,17 @@ void add_object(NMR::PLib3MFModel* model, const ThreeMfObject& object,
     for (int k = 0; k < 3; ++k) triangles[i].m_nIndices[k] = object.soup.triangles[i][k];
   }
   Handle mesh;
-  check(NMR::lib3mf_model_addmeshobject(model, mesh.out()), model, "add mesh object");
-  check(NMR::lib3mf_object_setnameutf8(mesh.get(), object.name.c_str()), mesh.get(), "object name");
-  check(NMR::lib3mf_object_setuuidutf8(mesh.get(), uuid(hash, "object", index).c_str()), mesh.get(),
+  check(lib3mf().lib3mf_model_addmeshobject(model, mesh.out()), model, "add mesh object");
+  check(lib3mf().lib3mf_object_setnameutf8(mesh.get(), object.name.c_str()), mesh.get(), "object name");
+  check(lib3mf().lib3mf_object_setuuidutf8(mesh.get(), uuid(hash, "object", index).c_str()), mesh.get(),
         "object UUID");
-  check(NMR::lib3mf_meshobject_setgeometry(mesh.get(), vertices.data(), static_cast<DWORD>(vertices.size()),
-                                           triangles.data(), static_cast<DWORD>(triangles.size())),
-        mesh.get(), "mesh geometry");
+  check(
+      lib3mf().lib3mf_meshobject_setgeometry(mesh.get(), vertices.data(), static_cast<DWORD>(vertices.size()),
+                                             triangles.data(), static_cast<DWORD>(triangles.size())),
+      mesh.get(), "mesh geometry");
   Handle item;
-  check(NMR::lib3mf_model_addbuilditem(model, mesh.get(), nullptr, item.out()), model, "add build item");
-  check(NMR::lib3mf_builditem_setuuidutf8(item.get(), uuid(hash, "item", index).c_str()), item.get(),
+  check(lib3mf().lib3mf_model_addbuilditem(model, mesh.get(), nullptr, item.out()), model, "add build item");
+  check(lib3mf().lib3mf_builditem_setuuidutf8(item.get(), uuid(hash, "item", index).c_str()), item.get(),
         "build item UUID");
 }
 
@@ -270,9 +349,10 @@ class ModelReader {
 
   std::string object_name(NMR::PLib3MFModelObjectResource* object) const {
     ULONG needed = 0;
-    check(NMR::lib3mf_object_getnameutf8(object, nullptr, 0, &needed), object, "object name");
+    check(lib3mf().lib3mf_object_getnameutf8(object, nullptr, 0, &needed), object, "object name");
     std::string text(needed + 1, '\0');
-    check(NMR::lib3mf_object_getnameutf8(object, text.data(), needed + 1, &needed), object, "object name");
+    check(lib3mf().lib3mf_object_getnameutf8(object, text.data(), needed + 1, &needed), object,
+          "object name");
     text.resize(std::strlen(text.c_str()));
     return text;
   }
@@ -283,26 +363,26 @@ class ModelReader {
     if (depth > kMaxComponentDepth) fail(fmt::format("components nest deeper than {}", kMaxComponentDepth));
     BOOL is_mesh = false;
     BOOL is_components = false;
-    check(NMR::lib3mf_object_ismeshobject(object, &is_mesh), object, "object type");
-    check(NMR::lib3mf_object_iscomponentsobject(object, &is_components), object, "object type");
+    check(lib3mf().lib3mf_object_ismeshobject(object, &is_mesh), object, "object type");
+    check(lib3mf().lib3mf_object_iscomponentsobject(object, &is_components), object, "object type");
     if (is_mesh) {
       append_mesh(object, transform, out);
     } else if (is_components) {
       DWORD count = 0;
-      check(NMR::lib3mf_componentsobject_getcomponentcount(object, &count), object, "components");
+      check(lib3mf().lib3mf_componentsobject_getcomponentcount(object, &count), object, "components");
       for (DWORD i = 0; i < count; ++i) {
         Handle component;
-        check(NMR::lib3mf_componentsobject_getcomponent(object, i, component.out()), object, "component");
+        check(lib3mf().lib3mf_componentsobject_getcomponent(object, i, component.out()), object, "component");
         Handle child;
-        check(NMR::lib3mf_component_getobjectresource(component.get(), child.out()), component.get(),
+        check(lib3mf().lib3mf_component_getobjectresource(component.get(), child.out()), component.get(),
               "component object");
         BOOL has_transform = false;
-        check(NMR::lib3mf_component_hastransform(component.get(), &has_transform), component.get(),
+        check(lib3mf().lib3mf_component_hastransform(component.get(), &has_transform), component.get(),
               "transform");
         Eigen::Affine3d local = Eigen::Affine3d::Identity();
         if (has_transform) {
           NMR::MODELTRANSFORM t;
-          check(NMR::lib3mf_component_gettransform(component.get(), &t), component.get(), "transform");
+          check(lib3mf().lib3mf_component_gettransform(component.get(), &t), component.get(), "transform");
           local = to_affine(t);
         }
         append(child.get(), transform * local, depth + 1, out);
@@ -314,8 +394,8 @@ class ModelReader {
   void append_mesh(NMR::PLib3MFModelMeshObject* mesh, const Eigen::Affine3d& transform, TriangleSoup& out) {
     DWORD nv = 0;
     DWORD nt = 0;
-    check(NMR::lib3mf_meshobject_getvertexcount(mesh, &nv), mesh, "vertex count");
-    check(NMR::lib3mf_meshobject_gettrianglecount(mesh, &nt), mesh, "triangle count");
+    check(lib3mf().lib3mf_meshobject_getvertexcount(mesh, &nv), mesh, "vertex count");
+    check(lib3mf().lib3mf_meshobject_gettrianglecount(mesh, &nt), mesh, "triangle count");
     triangles_ += nt;
     vertices_ += nv;
     if (triangles_ > options_.max_triangles || vertices_ > 3 * options_.max_triangles) {
@@ -327,9 +407,9 @@ class ModelReader {
     std::vector<NMR::MODELMESHVERTEX> vertices(nv);
     std::vector<NMR::MODELMESHTRIANGLE> triangles(nt);
     if (nv > 0)
-      check(NMR::lib3mf_meshobject_getvertices(mesh, vertices.data(), nv, nullptr), mesh, "vertices");
+      check(lib3mf().lib3mf_meshobject_getvertices(mesh, vertices.data(), nv, nullptr), mesh, "vertices");
     if (nt > 0) {
-      check(NMR::lib3mf_meshobject_gettriangleindices(mesh, triangles.data(), nt, nullptr), mesh,
+      check(lib3mf().lib3mf_meshobject_gettriangleindices(mesh, triangles.data(), nt, nullptr), mesh,
             "triangles");
     }
     const auto base = static_cast<std::uint32_t>(out.vertices.size());
@@ -523,23 +603,24 @@ std::string encode_3mf(const std::vector<ThreeMfObject>& objects, const ThreeMfO
   const std::array<std::uint64_t, 2> hash = content_hash(objects, options);
 
   Handle model;
-  if (NMR::lib3mf_createmodel(model.out()) != LIB3MF_OK)
+  if (lib3mf().lib3mf_createmodel(model.out()) != LIB3MF_OK)
     throw std::runtime_error("3MF writer: lib3mf_createmodel failed");
-  check(NMR::lib3mf_model_setunit(model.get(), unit.lib3mf), model.get(), "unit");
+  check(lib3mf().lib3mf_model_setunit(model.get(), unit.lib3mf), model.get(), "unit");
   if (!options.title.empty()) {
-    check(NMR::lib3mf_model_addmetadatautf8(model.get(), "Title", options.title.c_str()), model.get(),
+    check(lib3mf().lib3mf_model_addmetadatautf8(model.get(), "Title", options.title.c_str()), model.get(),
           "Title");
   }
-  check(NMR::lib3mf_model_addmetadatautf8(model.get(), "Application", "fabmesh"), model.get(), "Application");
+  check(lib3mf().lib3mf_model_addmetadatautf8(model.get(), "Application", "fabmesh"), model.get(),
+        "Application");
   for (std::size_t i = 0; i < objects.size(); ++i) add_object(model.get(), objects[i], hash, i);
-  check(NMR::lib3mf_model_setbuilduuidutf8(model.get(), uuid(hash, "build", 0).c_str()), model.get(),
+  check(lib3mf().lib3mf_model_setbuilduuidutf8(model.get(), uuid(hash, "build", 0).c_str()), model.get(),
         "build UUID");
 
   Handle writer;
-  check(NMR::lib3mf_model_querywriter(model.get(), "3mf", writer.out()), model.get(), "query writer");
+  check(lib3mf().lib3mf_model_querywriter(model.get(), "3mf", writer.out()), model.get(), "query writer");
   Sink sink;
-  check(NMR::lib3mf_writer_writetocallback(writer.get(), reinterpret_cast<void*>(&sink_write),
-                                           reinterpret_cast<void*>(&sink_seek), &sink),
+  check(lib3mf().lib3mf_writer_writetocallback(writer.get(), reinterpret_cast<void*>(&sink_write),
+                                               reinterpret_cast<void*>(&sink_seek), &sink),
         writer.get(), "write");
   return std::move(sink.bytes);
 }
@@ -581,16 +662,16 @@ ThreeMfContent parse_3mf(std::string_view bytes, const std::string& name, const 
     reader.fail("not a 3MF file (a 3MF package is a zip archive, starting with 'PK')");
   }
   Handle model;
-  if (NMR::lib3mf_createmodel(model.out()) != LIB3MF_OK)
+  if (lib3mf().lib3mf_createmodel(model.out()) != LIB3MF_OK)
     throw std::runtime_error("3MF reader: lib3mf_createmodel failed");
   ThreeMfContent content;
   const auto read = [&](std::string_view package) {
     Handle lib_reader;
-    reader.check(NMR::lib3mf_model_queryreader(model.get(), "3mf", lib_reader.out()), model.get(),
+    reader.check(lib3mf().lib3mf_model_queryreader(model.get(), "3mf", lib_reader.out()), model.get(),
                  "query reader");
     // lib3mf copies the buffer (CImportStream_Memory) and never writes to it.
     auto* data = reinterpret_cast<BYTE*>(const_cast<char*>(package.data()));
-    const LIB3MFRESULT result = NMR::lib3mf_reader_readfrombuffer(lib_reader.get(), data, package.size());
+    const LIB3MFRESULT result = lib3mf().lib3mf_reader_readfrombuffer(lib_reader.get(), data, package.size());
     return result == LIB3MF_OK ? std::string() : last_error(lib_reader.get());
   };
   // The model parts' components are bounded before lib3mf reads them (it expands them while reading).
@@ -616,34 +697,35 @@ ThreeMfContent parse_3mf(std::string_view bytes, const std::string& name, const 
   }
 
   DWORD unit = NMR::MODELUNIT_MILLIMETER;
-  reader.check(NMR::lib3mf_model_getunit(model.get(), &unit), model.get(), "unit");
+  reader.check(lib3mf().lib3mf_model_getunit(model.get(), &unit), model.get(), "unit");
   content.unit = unit_name(unit, content.metres_per_unit);
 
   Handle items;
-  reader.check(NMR::lib3mf_model_getbuilditems(model.get(), items.out()), model.get(), "build items");
+  reader.check(lib3mf().lib3mf_model_getbuilditems(model.get(), items.out()), model.get(), "build items");
   while (true) {
     BOOL has_next = false;
-    reader.check(NMR::lib3mf_builditemiterator_movenext(items.get(), &has_next), items.get(), "build items");
+    reader.check(lib3mf().lib3mf_builditemiterator_movenext(items.get(), &has_next), items.get(),
+                 "build items");
     if (!has_next) break;
     Handle item;
-    reader.check(NMR::lib3mf_builditemiterator_getcurrent(items.get(), item.out()), items.get(),
+    reader.check(lib3mf().lib3mf_builditemiterator_getcurrent(items.get(), item.out()), items.get(),
                  "build item");
     Handle object;
-    reader.check(NMR::lib3mf_builditem_getobjectresource(item.get(), object.out()), item.get(),
+    reader.check(lib3mf().lib3mf_builditem_getobjectresource(item.get(), object.out()), item.get(),
                  "build item object");
     BOOL has_transform = false;
-    reader.check(NMR::lib3mf_builditem_hasobjecttransform(item.get(), &has_transform), item.get(),
+    reader.check(lib3mf().lib3mf_builditem_hasobjecttransform(item.get(), &has_transform), item.get(),
                  "transform");
     Eigen::Affine3d transform = Eigen::Affine3d::Identity();
     if (has_transform) {
       NMR::MODELTRANSFORM t;
-      reader.check(NMR::lib3mf_builditem_getobjecttransform(item.get(), &t), item.get(), "transform");
+      reader.check(lib3mf().lib3mf_builditem_getobjecttransform(item.get(), &t), item.get(), "transform");
       transform = to_affine(t);
     }
     ThreeMfObject body;
     body.name = reader.object_name(object.get());
     DWORD id = 0;
-    reader.check(NMR::lib3mf_resource_getresourceid(object.get(), &id), object.get(), "object id");
+    reader.check(lib3mf().lib3mf_resource_getresourceid(object.get(), &id), object.get(), "object id");
     body.resource_id = id;
     reader.append(object.get(), transform, 0, body.soup);
     content.objects.push_back(std::move(body));

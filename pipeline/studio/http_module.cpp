@@ -48,8 +48,8 @@ void* listen_at(const std::string& host, int port, std::size_t max_payload, Http
   server->http.Patch(".*", serve);
   server->http.Delete(".*", serve);
   server->http.Options(".*", serve);
-  const int bound = port == 0 ? server->http.bind_to_any_port(host)
-                              : (server->http.bind_to_port(host, port) ? port : -1);
+  const int bound =
+      port == 0 ? server->http.bind_to_any_port(host) : (server->http.bind_to_port(host, port) ? port : -1);
   if (bound <= 0) return nullptr;
   *bound_port = bound;
   return server.release();
