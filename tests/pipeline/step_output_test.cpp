@@ -191,3 +191,42 @@ TEST_CASE("step: a shell vessel's step output is bad input at its outputs entry"
   CHECK(names_place(out, design, "outputs[1]"));
   CHECK_FALSE(fs::exists(dir / "out"));
 }
+
+TEST_CASE("step: a batch writes one STEP solid per variant, each its own size", "[pipeline][step][batch]") {
+  const fs::path dir = fresh_dir("step_batch");
+  write_text(dir / "base.yaml", R"(name: slab
+kind: countertop
+units: mm
+tolerance: 0.05
+thickness: 30
+outline:
+  family: tbezier
+  closed: true
+  segments:
+    - polyline: [[0, 0], [1000, 0], [1000, 600], [0, 600], [0, 0]]
+holes:
+  - ellipse: {center: [400, 300], a: 200, b: 150}
+outputs: [step]
+)");
+  write_text(dir / "batch.yaml", "design: base.yaml\ngrid:\n  thickness: [20, 40]\n");
+  std::string out;
+  REQUIRE(run_cli({"batch", (dir / "batch.yaml").string(), "-o", (dir / "out").string(), "-q"}, &out) == 0);
+  std::vector<fs::path> files;
+  for (const auto& entry : fs::recursive_directory_iterator(dir / "out")) {
+    if (entry.path().extension() == ".step") files.push_back(entry.path());
+  }
+  REQUIRE(files.size() == 2);
+  std::vector<double> volumes;
+  for (const fs::path& f : files) {
+    const StepRead r = read_step(read_file(f.string()));
+    INFO(f << ": " << r.error);
+    REQUIRE(r.roots.size() == 1);
+    CHECK(r.roots[0].valid);
+    CHECK(r.roots[0].closed);
+    volumes.push_back(r.roots[0].volume);
+  }
+  std::sort(volumes.begin(), volumes.end());
+  const double area = 1000.0 * 600.0 - M_PI * 200.0 * 150.0;
+  CHECK(volumes[0] == Approx(20.0 * area).epsilon(1e-9));
+  CHECK(volumes[1] == Approx(40.0 * area).epsilon(1e-9));
+}
