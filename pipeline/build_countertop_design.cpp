@@ -138,7 +138,7 @@ BuiltMesh build(const CountertopDesign& design, const BuildContext& context) {
   ExactSolid solid;
   solid.form = ExactSolid::Form::Extrusion;
   solid.height = design.thickness;
-  for (const NamedBuiltCurve& c : shape.curves) solid.loops.push_back(c.curve.curve);
+  for (const NamedBuiltCurve& c : shape.curves) solid.loops.push_back(exact_pieces(c.curve.curve));
   shape.solid = std::move(solid);
   out.shape = std::move(shape);
   return out;

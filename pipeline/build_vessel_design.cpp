@@ -100,25 +100,49 @@ void add_mould(const VesselDesign& design, const CompositeCurve& fired_profile, 
                         {"warnings", mould.warnings}};
 }
 
-// A solid vessel's exact section: the profile, closed along the rim and base
-// levels to the axis and along the axis, as the mesh's section closes it. None
-// when the profile runs along the axis between two parts (two bodies).
-std::optional<ExactSolid> exact_revolution(const CompositeCurve& profile) {
-  std::vector<Segment> segments = profile.segments();
+// Appends the line from `a` to `b`, unless they are one point.
+void add_line(std::vector<ExactPiece>& loop, const Vec2& a, const Vec2& b) {
+  if (a != b) loop.push_back({Segment::line(a, b), {}, 0.0, 1.0});
+}
+
+// A vessel's exact section, as its mesh's section closes it: a solid's
+// profile closed along the rim and base levels to the axis and along the
+// axis; a shell's profile, the rim, the inner wall (arcs of the profile's
+// offset and straight pieces), the base to the axis, the axis and the
+// bottom. None when the profile runs along the axis between two parts (two
+// bodies).
+std::optional<ExactSolid> exact_revolution(const CompositeCurve& profile, const VesselSection& section) {
+  const std::vector<Segment>& segments = profile.segments();
   for (const Segment& s : segments) {
     if (s.kind() == SegmentKind::Line && s.control_points()[0].x() == 0.0 && s.control_points()[1].x() == 0.0)
       return std::nullopt;
   }
-  if (!profile.closed()) {
-    const Vec2 a = segments.front().point(0.0), b = segments.back().point(1.0);
-    const Vec2 a_axis(0.0, a.y()), b_axis(0.0, b.y());
-    if (b.x() != 0.0) segments.push_back(Segment::line(b, b_axis));
-    segments.push_back(Segment::line(b_axis, a_axis));
-    if (a.x() != 0.0) segments.push_back(Segment::line(a_axis, a));
-  }
   ExactSolid solid;
   solid.form = ExactSolid::Form::Revolution;
-  solid.loops.emplace_back(std::move(segments), true);
+  if (profile.closed()) {
+    solid.loops.push_back(exact_pieces(profile));
+    return solid;
+  }
+  // From the base up to the rim.
+  const bool upward = segments.back().point(1.0).y() > segments.front().point(0.0).y();
+  std::vector<ExactPiece> loop;
+  if (upward) {
+    loop = exact_pieces(profile);
+  } else {
+    for (auto s = segments.rbegin(); s != segments.rend(); ++s) loop.push_back({*s, {}, 1.0, 0.0});
+  }
+  const Vec2 bottom = upward ? segments.front().point(0.0) : segments.back().point(1.0);
+  const Vec2 top = upward ? segments.back().point(1.0) : segments.front().point(0.0);
+  Vec2 last = top;
+  if (const auto& wall = section.inner_wall) {
+    add_line(loop, top, wall->points.front().point);
+    for (ExactPiece& piece : inner_wall_exact_pieces(*wall, profile)) loop.push_back(std::move(piece));
+    last = wall->points.back().point;
+  }
+  add_line(loop, last, Vec2(0.0, last.y()));
+  add_line(loop, Vec2(0.0, last.y()), Vec2(0.0, bottom.y()));
+  add_line(loop, Vec2(0.0, bottom.y()), bottom);
+  solid.loops.push_back(std::move(loop));
   return solid;
 }
 
@@ -186,7 +210,7 @@ BuiltMesh build(const VesselDesign& design, const BuildContext& context) {
   }
   if (design.mould) add_mould(design, profile.curve, context, out);
   out.shape.curves.push_back({"profile", profile});
-  if (design.mode == BodyMode::Solid) out.shape.solid = exact_revolution(master);
+  out.shape.solid = exact_revolution(master, vessel.section);
   return out;
 }
 

@@ -14,6 +14,7 @@
 #include "geometry/fairing/build_curve.h"
 #include "geometry/mesh/soup.h"
 #include "geometry/sampling/cut_loop.h"
+#include "geometry/sampling/offset_bezier.h"
 #include "geometry/surfaces/patch_network.h"
 #include "geometry/toolpath/toolpath.h"
 #include "geometry/validation/validate.h"
@@ -44,9 +45,18 @@ struct ExactSolid {
     Revolution,  ///< one closed loop in the (radius, height) half-plane revolved about the height axis
   };
   Form form = Form::Extrusion;
-  std::vector<CompositeCurve> loops;  ///< closed, as written (a vessel's scaled for shrinkage)
+  /// Closed, as written (a vessel's scaled for shrinkage): segments, and a
+  /// shell's inner wall as arcs of the profile's offset.
+  std::vector<std::vector<ExactPiece>> loops;
   double height = 0.0;
 };
+
+/// The pieces of a closed composite curve, each segment whole.
+inline std::vector<ExactPiece> exact_pieces(const CompositeCurve& curve) {
+  std::vector<ExactPiece> pieces;
+  for (const Segment& s : curve.segments()) pieces.push_back({s, {}, 0.0, 1.0});
+  return pieces;
+}
 
 /// The design's own curves and patches as built, before any mesh: what its
 /// plot draws. The curves are in the design's order (design_curves).

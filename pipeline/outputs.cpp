@@ -350,7 +350,7 @@ Files encode_step_output(const EncodeContext& c) {
   model.name = c.common.name;
   model.unit = c.common.units;
   double added = 0.0;
-  const auto loop_of = [&](const CompositeCurve& curve) {
+  const auto loop_of = [&](const auto& curve) {
     try {
       StepLoopOf l = step_loop(curve, c.output_tolerance);
       added = std::max(added, l.max_error);
@@ -364,7 +364,7 @@ Files encode_step_output(const EncodeContext& c) {
   if (const auto& solid = c.built.shape.solid) {
     body.form = solid->form == ExactSolid::Form::Extrusion ? StepForm::Extrusion : StepForm::Revolution;
     body.height = solid->height;
-    for (const CompositeCurve& loop : solid->loops) body.loops.push_back(loop_of(loop));
+    for (const std::vector<ExactPiece>& loop : solid->loops) body.loops.push_back(loop_of(loop));
   } else if (!c.built.soup.triangles.empty()) {
     throw OutputError("step",
                       "step: the profile runs along the axis between two parts: the vessel is two solids "
@@ -438,8 +438,8 @@ std::vector<OutputFormat> make_table() {
       {"toolpath_svg", "drawing of the router path over the outline", toolpath, countertops, countertops,
        ".toolpath.svg", &encode_toolpath_svg_output},
       {"step",
-       "STEP (AP214) of the exact geometry in the design's unit: a countertop's or a solid vessel's solid, "
-       "a curve's wireframe",
+       "STEP (AP214) of the exact geometry in the design's unit: a countertop's or a vessel's solid, a "
+       "curve's wireframe",
        OutputContent::Exact,
        drawn,
        {},
@@ -499,10 +499,8 @@ bool has_content(const Design& design, OutputContent content) {
     }
     case OutputContent::Design:
       return true;
-    case OutputContent::Exact: {
-      const auto* v = std::get_if<VesselDesign>(&design.body);
-      return v == nullptr ? !std::holds_alternative<SurfaceDesign>(design.body) : v->mode == BodyMode::Solid;
-    }
+    case OutputContent::Exact:
+      return !std::holds_alternative<SurfaceDesign>(design.body);
     case OutputContent::Toolpath: {
       const auto* c = std::get_if<CountertopDesign>(&design.body);
       return c != nullptr && c->cnc.has_value();
@@ -549,10 +547,8 @@ std::vector<const OutputFormat*> resolve_outputs(const Design& design) {
     }
     if (!has_content(design, format->content)) {
       const char* needs = format->content == OutputContent::MouldParts ? "a `mould:` section"
-                          : format->content == OutputContent::Toolpath
-                              ? "a `cnc:` section"
-                              : "a solid body (`body: {mode: solid}`): a shell's inner wall is the offset "
-                                "of its profile, which no STEP curve fabmesh writes is exactly";
+                          : format->content == OutputContent::Toolpath ? "a `cnc:` section"
+                                                                       : "a curve, a vessel or a countertop";
       throw FileError(design.common.path, r.line, r.column,
                       fmt::format("{}: {} needs {}", r.where, r.format, needs));
     }

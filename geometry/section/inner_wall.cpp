@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "geometry/core/errors.h"
 #include "geometry/sampling/offset_curve.h"
@@ -190,6 +191,29 @@ void inner_wall_pieces(const InnerWall& wall, const CompositeCurve& profile, int
     }
     pieces.push_back({offsets[arc.segment], std::min(arc.s_a, arc.s_b), std::max(arc.s_a, arc.s_b), group});
   }
+}
+
+std::vector<ExactPiece> inner_wall_exact_pieces(const InnerWall& wall, const CompositeCurve& profile) {
+  std::vector<ExactPiece> pieces;
+  std::optional<std::size_t> arc_segment;  // the segment of the last piece when it is an offset arc
+  for (std::size_t k = 0; k + 1 < wall.points.size(); ++k) {
+    const Vec2& a = wall.points[k].point;
+    const Vec2& b = wall.points[k + 1].point;
+    if (wall.straight[k]) {
+      if (a != b) pieces.push_back({Segment::line(a, b), {}, 0.0, 1.0});
+      arc_segment.reset();
+      continue;
+    }
+    const PieceArc arc = piece_arc(wall, k);
+    if (arc.s_a == arc.s_b) continue;
+    if (arc_segment == arc.segment && pieces.back().s1 == arc.s_a) {
+      pieces.back().s1 = arc.s_b;  // the same segment's offset runs on
+    } else {
+      pieces.push_back({profile.segments()[arc.segment], spec_of(wall, arc.segment), arc.s_a, arc.s_b});
+    }
+    arc_segment = arc.segment;
+  }
+  return pieces;
 }
 
 }  // namespace fabmesh

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "geometry/curves/composite.h"
+#include "geometry/sampling/offset_bezier.h"
 #include "geometry/sampling/sample_curve.h"
 #include "geometry/section/curve_clearance.h"
 
@@ -61,5 +62,14 @@ void level_inner_wall(InnerWall& wall, const CompositeCurve& profile, double z_t
 /// `arcs` keeps the curve objects the pieces point to.
 void inner_wall_pieces(const InnerWall& wall, const CompositeCurve& profile, int group,
                        std::vector<std::unique_ptr<ExactArc>>& arcs, std::vector<ArcPiece>& pieces);
+
+}  // namespace fabmesh
+
+namespace fabmesh {
+
+/// The wall's exact pieces from the rim down: its straight pieces as lines,
+/// and each run of offset arcs of one profile segment as one arc (for exact
+/// outputs: STEP). Zero-length pieces are left out.
+std::vector<ExactPiece> inner_wall_exact_pieces(const InnerWall& wall, const CompositeCurve& profile);
 
 }  // namespace fabmesh

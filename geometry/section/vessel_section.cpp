@@ -244,6 +244,7 @@ VesselSection build_vessel_section(const CompositeCurve& profile, const VesselSe
       shell = shell_loop(profile, up, upward, options);
       section.max_deviation = std::max(section.max_deviation, shell->inner.max_deviation);
       section.loops = {shell->loop};
+      section.inner_wall = shell->inner;
     }
   }
   if (section.loops.empty()) throw GeometryError("profile", "the profile encloses no area with the axis");

@@ -5,12 +5,14 @@
 
 #include <functional>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "geometry/core/limits.h"
 #include "geometry/core/types.h"
 #include "geometry/curves/composite.h"
+#include "geometry/section/inner_wall.h"
 
 namespace fabmesh {
 
@@ -68,6 +70,10 @@ struct VesselSection {
   /// bound; NaN for a solid.
   double min_clearance = std::numeric_limits<double>::quiet_NaN();
   std::string clearance_where;  ///< where min_clearance is attained (for reports)
+  /// Shell: the inner wall as cut (from the rim down), with the profile
+  /// segment and parameter of each point: the exact section is the profile,
+  /// the rim, this wall, the base or the axis and the bottom.
+  std::optional<InnerWall> inner_wall;
 };
 
 /// Builds and checks the section. The profile runs either way; its higher

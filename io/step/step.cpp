@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 
@@ -73,22 +74,54 @@ StepCurve bspline_of(const std::vector<BezierPiece>& pieces) {
   return c;
 }
 
+// The curve run the other way: poles (and weights) reversed, a conic's ends swapped.
+StepCurve reversed(StepCurve c) {
+  std::reverse(c.poles.begin(), c.poles.end());
+  std::reverse(c.weights.begin(), c.weights.end());
+  if (c.kind == StepCurve::Kind::BSpline) {
+    const double end = c.knots.back();
+    for (double& k : c.knots) k = end - k;
+    std::reverse(c.knots.begin(), c.knots.end());
+    std::reverse(c.multiplicities.begin(), c.multiplicities.end());
+  }
+  std::swap(c.conic.from, c.conic.to);
+  return c;
+}
+
 }  // namespace
 
-StepLoopOf step_loop(const CompositeCurve& curve, double tolerance) {
+StepLoopOf step_loop(const std::vector<ExactPiece>& pieces, double tolerance) {
   StepLoopOf out;
-  for (const Segment& s : curve.segments()) {
+  for (const ExactPiece& piece : pieces) {
+    const Segment& s = piece.segment;
+    StepCurve curve;
+    if (piece.offset.distance > 0.0) {
+      const BezierApproximation a = offset_approximation(piece, tolerance);
+      out.max_error = std::max(out.max_error, a.bound);
+      out.loop.curves.push_back(a.pieces.size() == 1 ? bezier_of(a.pieces[0]) : bspline_of(a.pieces));
+      continue;  // offset_approximation runs from s0 to s1 already
+    }
+    if (std::min(piece.s0, piece.s1) != 0.0 || std::max(piece.s0, piece.s1) != 1.0) {
+      throw GeometryError(to_string(s.kind()), "step: a part of a segment is written only as an offset");
+    }
     if (s.kind() == SegmentKind::EllipseArc) {
-      out.loop.curves.push_back(conic_of(*s.ellipse()));
+      curve = conic_of(*s.ellipse());
     } else if (std::optional<BezierPiece> exact = exact_bezier(s)) {
-      out.loop.curves.push_back(bezier_of(*exact));
+      curve = bezier_of(*exact);
     } else {
       const BezierApproximation a = hermite_approximation(s, tolerance);
       out.max_error = std::max(out.max_error, a.bound);
-      out.loop.curves.push_back(a.pieces.size() == 1 ? bezier_of(a.pieces[0]) : bspline_of(a.pieces));
+      curve = a.pieces.size() == 1 ? bezier_of(a.pieces[0]) : bspline_of(a.pieces);
     }
+    out.loop.curves.push_back(piece.s0 > piece.s1 ? reversed(std::move(curve)) : std::move(curve));
   }
   return out;
+}
+
+StepLoopOf step_loop(const CompositeCurve& curve, double tolerance) {
+  std::vector<ExactPiece> pieces;
+  for (const Segment& s : curve.segments()) pieces.push_back({s, {}, 0.0, 1.0});
+  return step_loop(pieces, tolerance);
 }
 
 StepWritten write_step(const StepModel& model) {

@@ -8,18 +8,22 @@
 #include <vector>
 
 #include "geometry/curves/composite.h"
+#include "geometry/sampling/offset_bezier.h"
 #include "io/step/step_model.h"
 
 namespace fabmesh {
 
-/// A closed or open composite curve as STEP pieces: lines, ellipse arcs as
-/// conics, T-Bézier and quasi-B-spline segments as their exact Bézier forms,
-/// each H-Bézier segment as one C1 cubic B-spline within `tolerance`.
+/// A chain of exact pieces as STEP curves: lines, ellipse arcs as conics,
+/// T-Bézier and quasi-B-spline segments as their exact Bézier forms, each
+/// H-Bézier segment and each arc of an offset (a shell's inner wall) as one
+/// C1 cubic B-spline within `tolerance`. Pieces may run backwards (s0 > s1).
 struct StepLoopOf {
   StepLoop loop;
   double max_error = 0.0;  ///< the largest proven bound of an approximated segment; 0 when all exact
 };
-/// \throw GeometryError when an H-Bézier segment cannot be approximated within tolerance
+/// \throw GeometryError when a piece cannot be approximated within tolerance
+StepLoopOf step_loop(const std::vector<ExactPiece>& pieces, double tolerance);
+/// The same for a composite curve, each segment whole.
 StepLoopOf step_loop(const CompositeCurve& curve, double tolerance);
 
 /// Writes `model` (OpenCASCADE builds the B-rep: each body checked valid
