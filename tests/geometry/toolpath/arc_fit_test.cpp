@@ -7,6 +7,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
+#include "geometry/toolpath/toolpath.h"
 #include "tests/geometry/section/region_shapes.h"
 
 using namespace fabmesh;
@@ -161,4 +162,58 @@ TEST_CASE("arc fit: exact arcs and real corners stay, the tool's arcs round digi
   const std::vector<PathPiece> fitted(fit.pieces.begin() + 2, fit.pieces.end());
   CHECK(std::max(one_way(stretch, fitted, 0.05), one_way(fitted, stretch, 0.05)) <= fit.deviation + 1e-9);
   CHECK(fit.deviation <= o.tolerance);
+}
+
+TEST_CASE("arc fit: a digitised worktop is cut in arcs, within the tolerance, tabs and lengths consistent",
+          "[geometry][toolpath][arcfit][digitised]") {
+  // The worktop of the digitised test in toolpath_test.cpp: a concave front of radius 19 m by 301
+  // points, convex back corners of radius 100 by 41 points each.
+  std::vector<Vec2> p;
+  const double R = 19000;
+  for (int i = 0; i <= 300; ++i) {
+    const double x = 2400.0 * i / 300;
+    p.emplace_back(x, std::sqrt(R * R - (x - 1200) * (x - 1200)) - std::sqrt(R * R - 1200.0 * 1200.0));
+  }
+  for (int i = 0; i <= 40; ++i) {
+    const double a = M_PI / 2 * i / 40;
+    p.emplace_back(2300 + 100 * std::cos(a), 550 + 100 * std::sin(a));
+  }
+  for (int i = 0; i <= 40; ++i) {
+    const double a = M_PI / 2 + M_PI / 2 * i / 40;
+    p.emplace_back(100 + 100 * std::cos(a), 550 + 100 * std::sin(a));
+  }
+  const CompositeCurve outline = polygon(p);
+  CncOptions o;
+  o.tolerance = 0.05;
+  o.arc_fit = false;
+  const Toolpath plain = plan_toolpath(outline, {}, o);
+  o.arc_fit = true;
+  const Toolpath fitted = plan_toolpath(outline, {}, o);
+  const LoopPath& a = plain.loops[0];
+  const LoopPath& b = fitted.loops[0];
+  CHECK(a.fit_replaced == 0);
+  CHECK(b.fit_replaced > 300);
+  CHECK(b.pieces.size() < a.pieces.size() / 10);
+  CHECK(b.fit_arcs == fitted.fit_arcs);
+  CHECK(fitted.fit_deviation <= 0.5 * o.tolerance);
+  CHECK(fitted.deviation <= 0.5 * o.tolerance);
+  CHECK(b.length == Approx(a.length).margin(0.05));
+  // Same tabs, same lead, the same clearance standard.
+  CHECK(b.tabs.size() == 4);
+  CHECK(fitted.warnings.empty());
+  REQUIRE(b.lead);
+  CHECK(b.lead->from.isApprox(a.lead->from, 1e-9));
+  CHECK(fitted.clearance >= 0.5 * o.tool_diameter - o.tolerance);
+  // Measured both ways against the unfitted path, every 0.05: within the proven fit.
+  const double measured = std::max(one_way(a.pieces, b.pieces, 0.05), one_way(b.pieces, a.pieces, 0.05));
+  CHECK(measured <= b.fit_deviation + 1e-9);
+  // The cutting length estimate follows the fitted path.
+  CHECK(toolpath_totals(fitted).cutting == Approx(toolpath_totals(plain).cutting).margin(0.05 * 3 * 2));
+  // The share is reported.
+  bool share = false;
+  for (const ToleranceShare& s : fitted.tolerance_shares) {
+    if (s.stage == "tool path chords and fitted arcs")
+      share = s.given == Approx(0.5 * o.tolerance) && s.used <= s.given;
+  }
+  CHECK(share);
 }
