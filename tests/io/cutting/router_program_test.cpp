@@ -646,3 +646,16 @@ TEST_CASE("router program: a helix entry with no room in the waste is refused na
   o.helix_radius = 7;  // more than the tool radius: out of range
   CHECK_THROWS_AS(plan_toolpath(slab, holes, o), RangeError);
 }
+
+TEST_CASE("router program: the digitised example (a CSV of points) is cut in fitted arcs, verified by CNCjs",
+          "[io][cutting][gcode][toolpath][countertop][arcfit][digitised]") {
+  const ExampleRegion region = load_countertop_example("countertop_digitised.yaml");
+  Toolpath tp;
+  const Findings f = run_example(region, options_for(region), {}, nullptr, &tp);
+  require_good_program(f, tp, 1.0);
+  CHECK(tp.checks.loops[0].concave_corners.empty());
+  CHECK(tp.fit_replaced > 400);
+  CHECK(tp.fit_arcs < tp.fit_replaced / 10);
+  CHECK(tp.deviation <= 0.5 * region.tolerance);
+  CHECK(count_cuts(interpret(encode_gcode(tp, {}), "countertop_digitised.nc")).lines < 60);
+}
