@@ -34,7 +34,17 @@ const char* to_string(CutDirection d) { return d == CutDirection::Climb ? "climb
 
 const char* to_string(CornerRelief r) { return r == CornerRelief::Dogbone ? "dogbone" : "none"; }
 
-const char* to_string(EntryKind e) { return e == EntryKind::Ramp ? "ramp" : "plunge"; }
+const char* to_string(EntryKind e) {
+  switch (e) {
+    case EntryKind::Ramp:
+      return "ramp";
+    case EntryKind::Helix:
+      return "helix";
+    case EntryKind::Plunge:
+      break;
+  }
+  return "plunge";
+}
 
 void validate_cnc_options(const CncOptions& o) {
   require_positive("cnc.tool_diameter", o.tool_diameter);
@@ -68,9 +78,14 @@ void validate_cnc_options(const CncOptions& o) {
   validate_tabs("cnc.tabs", o.tabs, o.depth);
   for (std::size_t i = 0; i < o.hole_tabs.size(); ++i)
     validate_tabs(fmt::format("cnc.hole_tabs[{}]", i), o.hole_tabs[i], o.depth);
-  if (o.entry == EntryKind::Ramp && !(o.ramp_angle_deg > 0.0 && o.ramp_angle_deg <= 45.0)) {
+  if (o.entry != EntryKind::Plunge && !(o.ramp_angle_deg > 0.0 && o.ramp_angle_deg <= 45.0)) {
     throw RangeError("cnc.ramp_angle", o.ramp_angle_deg,
                      fmt::format("cnc.ramp_angle = {} must be in (0, 45] degrees", o.ramp_angle_deg));
+  }
+  if (o.helix_radius && !(*o.helix_radius > 0.0 && *o.helix_radius <= 0.5 * o.tool_diameter)) {
+    throw RangeError("cnc.helix_radius", *o.helix_radius,
+                     fmt::format("cnc.helix_radius = {} must be in (0, {}], at most the tool radius",
+                                 *o.helix_radius, 0.5 * o.tool_diameter));
   }
 }
 

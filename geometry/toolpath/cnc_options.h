@@ -28,8 +28,11 @@ enum class CornerRelief { None, Dogbone };
 /// waste. Ramp: down along the loop's own path at `ramp_angle_deg` from the
 /// horizontal, at the cutting feed (the bit's side does the work, not its
 /// tip), and at the end of the pass on along the ramp's stretch again at the
-/// full depth of the pass.
-enum class EntryKind { Plunge, Ramp };
+/// full depth of the pass. Helix: down on a helix in the waste before the
+/// lead-in, round a circle of `helix_radius` that ends tangent to the lead
+/// (or to the path without one), at the ramp angle as its pitch angle, then
+/// once round flat at the pass's depth to clear the bore's floor.
+enum class EntryKind { Plunge, Ramp, Helix };
 
 const char* to_string(CutDirection d);
 const char* to_string(CornerRelief r);
@@ -79,6 +82,16 @@ struct CncOptions {
   /// A pass of step s ramps over s / tan(angle) of the path; where the loop
   /// is shorter, the ramp winds round it again (a helix on a circle).
   double ramp_angle_deg = 3.0;
+  /// Helix entry: the radius of the tool centre's circle, in (0, tool
+  /// radius] (the bore, helix radius + tool radius, then has no core). Unset:
+  /// half the tool radius, or a quarter or an eighth where only that fits in
+  /// the waste.
+  std::optional<double> helix_radius;
+  /// Replace the path's G1 stretches (a digitised outline's points, chords
+  /// of non-circular offsets) by tangent-continuous arcs: the chords then
+  /// keep within a quarter of the tolerance, the arcs within what they left
+  /// of a half (arc_fit.h proves the bound).
+  bool arc_fit = true;
   /// Finishing: > 0 leaves this much stock on every loop in the roughing
   /// passes (their path at tool radius + finish from the part), then cuts the
   /// part's edge in one pass at full depth on the exact path, entering along a

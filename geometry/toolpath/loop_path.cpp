@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "geometry/core/errors.h"
+#include "geometry/toolpath/arc_fit.h"
 #include "geometry/toolpath/offset_segment.h"
 
 namespace fabmesh {
@@ -283,6 +284,19 @@ LoopPath build_loop_path(const CutCurve& loop, const LoopCheck& check, const Loo
     for (PathPiece& p : pieces) p = reversed(p);
   }
   out.pieces = rotate_path(pieces, choose_start(pieces, o.gentle_radius));
+  out.chord_deviation = out.deviation;
+  if (o.arc_fit_tolerance > out.chord_deviation) {
+    ArcFitOptions fo;
+    fo.tolerance = o.arc_fit_tolerance - out.chord_deviation;  // what the chords left
+    fo.max_radius = 1e4 * r;
+    ArcFitResult fit = fit_arcs(out.pieces, fo);
+    out.pieces = std::move(fit.pieces);
+    out.fit_replaced = fit.replaced;
+    out.fit_arcs = fit.arcs;
+    out.fit_lines = fit.lines;
+    out.fit_deviation = fit.deviation;
+    out.deviation += fit.deviation;  // the chords' bound plus the fit's: a triangle inequality
+  }
   out.length = path_length(out.pieces);
   return out;
 }

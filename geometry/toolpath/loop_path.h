@@ -25,12 +25,23 @@ struct LoopPath {
   /// The lead-in arc from the waste side onto pieces.front().from, tangent
   /// there (role Link); none when cnc.lead_in is 0 or no lead fits.
   std::optional<PathPiece> lead;
+  /// Helix entry: the circle (a whole turn, role Link) the tool descends
+  /// round, from and back to the lead's start (the path's without a lead),
+  /// tangent to it there, in the waste.
+  std::optional<PathPiece> helix;
   /// Tabs: intervals [begin, end] of distance along `pieces` from the start
   /// over which the tool rises, sorted.
   std::vector<std::pair<double, double>> tabs;
   double tab_height = 0.0;  ///< the tabs' height above the bottom of the slab
   double length = 0.0;      ///< of `pieces`
-  double deviation = 0.0;   ///< proven bound: chords vs the exact offset curve
+  /// Proven bound: the path vs the exact offset curve (chords of chains
+  /// plus the fitted arcs' distance from what they replaced).
+  double deviation = 0.0;
+  double chord_deviation = 0.0;  ///< the chords' part of it
+  /// Arc fitting (LoopPathOptions::arc_fit_tolerance > 0): pieces of G1
+  /// stretches replaced, and the arcs and lines fitted in their place.
+  std::size_t fit_replaced = 0, fit_arcs = 0, fit_lines = 0;
+  double fit_deviation = 0.0;  ///< proven: the fitted arcs vs the pieces they replaced
 };
 
 struct LoopPathOptions {
@@ -39,6 +50,11 @@ struct LoopPathOptions {
   CutDirection direction = CutDirection::Climb;
   double gentle_radius = 240.0;      ///< the start point goes on the longest stretch at least this flat
   std::size_t max_points = 5000000;  ///< budget of chords
+  /// > 0: the path's G1 stretches (a digitised outline's points, chords of
+  /// chains) are replaced by biarcs (arc_fit.h) within what is left of this
+  /// when the chords' proven deviation is taken off (so the path stays within
+  /// this of the exact offset); 0: none.
+  double arc_fit_tolerance = 0.0;
 };
 
 /// The path of one loop, after check_manufacturability has accepted it

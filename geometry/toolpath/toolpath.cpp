@@ -14,14 +14,19 @@ namespace {
 
 std::string at(const Vec2& p) { return fmt::format("({:.6g}, {:.6g})", p.x(), p.y()); }
 
-// The tolerance's shares (header): chains t/2, boundary samples t/10, arc chords t/20.
+// The tolerance's shares (header): chains t/2 (with arc fitting, chords and
+// fitted arcs together: chords within t/4, the fit within what they left),
+// boundary samples t/10, arc chords t/20.
 struct Budget {
-  double chain, boundary, sagitta;
+  double chain, fit, boundary, sagitta;
 };
-Budget budget(ToleranceBudget& t) {
-  const double chain = t.take("tool path chords", 0.5);
+constexpr const char* kChordStage = "tool path chords";
+constexpr const char* kFitStage = "tool path chords and fitted arcs";
+Budget budget(ToleranceBudget& t, bool arc_fit) {
+  const double path = t.take(arc_fit ? kFitStage : kChordStage, 0.5);
   const double boundary = t.take("boundary samples", 0.1);
-  return {chain, boundary, t.take("arcs as chords in the clearance check", 0.05)};
+  const double sagitta = t.take("arcs as chords in the clearance check", 0.05);
+  return {arc_fit ? 0.5 * path : path, arc_fit ? path : 0.0, boundary, sagitta};
 }
 
 ToolMove move_along(const PathPiece& p, double z, MoveKind kind, std::size_t loop) {
@@ -85,6 +90,54 @@ std::optional<PathPiece> choose_lead(const LoopPath& lp, const BoundaryIndex& in
     }
   }
   return std::nullopt;
+}
+
+// The helix circle of radius `radius` for the passes of `lp`: through the
+// entry point (the lead's start, else the path's), tangent there to the
+// entry's direction, curving the way the lead does (to the waste side
+// without a lead), a whole turn ending where the entry begins.
+PathPiece helix_circle(const LoopPath& lp, CutDirection direction, double radius) {
+  const PathPiece& first = lp.pieces.front();
+  const Vec2 e = lp.lead ? lp.lead->from : first.from;
+  const Vec2 t = lp.lead ? piece_tangent(*lp.lead, 0.0) : piece_tangent(first, 0.0);
+  Vec2 side = direction == CutDirection::Conventional ? Vec2(t.y(), -t.x()) : Vec2(-t.y(), t.x());
+  if (lp.lead) side = (lp.lead->center - e).normalized();
+  const Vec2 c = e + radius * side;
+  PathPiece helix =
+      arc_piece(c, e, cross2(e - c, t) > 0.0 ? 2.0 * M_PI : -2.0 * M_PI, PieceRole::Link, first.segment);
+  helix.to = e;
+  return helix;
+}
+
+// The helix circle that keeps the tool clear of the part: the asked radius,
+// or the first of r/2, r/4, r/8. GeometryError when none does.
+PathPiece choose_helix(const LoopPath& lp, const std::vector<CutCurve>& loops, const BoundaryIndex& index,
+                       const SampledBoundary& sb, const CncOptions& o, const Budget& b, double* clearance) {
+  const double r = 0.5 * o.tool_diameter;
+  std::vector<double> radii{0.5 * r, 0.25 * r, 0.125 * r};
+  if (o.helix_radius) radii = {*o.helix_radius};
+  Clearance c;
+  for (double radius : radii) {
+    PathPiece helix = helix_circle(lp, o.direction, radius);
+    const double proven = proven_clearance({helix}, index, r, sb.deviation, b, &c);
+    if (proven >= r - o.tolerance) {
+      *clearance = std::min(*clearance, proven);
+      return helix;
+    }
+  }
+  const double radius = radii.back();
+  const PathPiece helix = helix_circle(lp, o.direction, radius);
+  proven_clearance({helix}, index, r, sb.deviation, b, &c);
+  const BoundaryEdge& e = index.edges()[c.edge];
+  const CutCurve& other = loops[e.loop];
+  throw GeometryError(
+      lp.label,
+      fmt::format("{}: no room in the waste for a helix entry at {}: a helix of radius {:.6g} about {} needs "
+                  "a clear circle of radius {:.6g} (helix radius + tool radius {:.6g}), but {} {} comes "
+                  "within {:.6g} of the circle{}; use entry: ramp, a longer lead_in or a smaller tool",
+                  lp.label, at(helix.from), radius, at(helix.center), radius + r, r, other.label,
+                  segment_name(*other.curve, e.segment), c.distance,
+                  o.helix_radius ? "" : " (the smallest tried, an eighth of the tool radius)"));
 }
 
 std::vector<double> pass_depths(const CncOptions& o) {
@@ -190,7 +243,29 @@ std::vector<std::pair<double, double>> carried_tabs(const LoopPath& finish, cons
   return out;
 }
 
+void add_fit(Toolpath& tp, const LoopPath& lp) {
+  tp.fit_replaced += lp.fit_replaced;
+  tp.fit_arcs += lp.fit_arcs;
+  tp.fit_lines += lp.fit_lines;
+  tp.fit_deviation = std::max(tp.fit_deviation, lp.fit_deviation);
+}
+
 // Half the length of path one pass's zig-zag ramp runs over (0: plunge entry).
+// The helix moves of one pass: from z_from at the entry point down to z_to
+// in whole turns round the circle, each no steeper than the ramp angle, then
+// once round at z_to (clearing the bore's floor), back at the entry point.
+void helix_moves(const PathPiece& helix, std::size_t loop, const CncOptions& o, double z_from, double z_to,
+                 std::vector<ToolMove>& moves) {
+  const double per_turn = 2.0 * M_PI * piece_radius(helix) * std::tan(o.ramp_angle_deg * M_PI / 180.0);
+  const int turns = std::max(1, static_cast<int>(std::ceil((z_from - z_to) / per_turn - 1e-9)));
+  for (int k = 1; k <= turns + 1; ++k) {
+    ToolMove m =
+        move_along(helix, k >= turns ? z_to : z_from + (z_to - z_from) * k / turns, MoveKind::Helix, loop);
+    m.to.head<2>() = helix.from;  // a whole turn ends where it started
+    moves.push_back(m);
+  }
+}
+
 double ramp_half(const CncOptions& o, const std::vector<double>& pass_z) {
   if (o.entry != EntryKind::Ramp || pass_z.empty()) return 0.0;
   return 0.5 * ramp_length(o, -pass_z.front());  // every pass drops by the same step
@@ -224,9 +299,11 @@ void append_loop_moves(Toolpath& tp, std::size_t index) {
   double above = 0.0;  // the floor the previous pass left (the slab's top at first)
   for (double z : tp.pass_z) {
     // With a ramp, the tool goes down to the previous floor only, in the waste.
-    const double enter = half > 0.0 ? above : z;
+    const double enter = half > 0.0 || lp.helix ? above : z;
     tp.moves.push_back(move_to(MoveKind::Plunge, start, enter, index));
-    if (lp.lead) tp.moves.push_back(move_along(*lp.lead, enter, MoveKind::LeadIn, index));
+    if (lp.helix) helix_moves(*lp.helix, index, o, enter, z, tp.moves);
+    const double at_lead = lp.helix ? z : enter;
+    if (lp.lead) tp.moves.push_back(move_along(*lp.lead, at_lead, MoveKind::LeadIn, index));
     if (half > 0.0) ramp_moves(lp, index, half, enter, z, tp.moves);
     cut_pass(lp, index, z, !lp.tabs.empty() && z < tab_z - 1e-9 * o.depth, tab_z, tp.moves);
     if (lp.lead) tp.moves.push_back(move_along(reversed(*lp.lead), z, MoveKind::LeadOut, index));
@@ -253,6 +330,7 @@ ToolpathTotals toolpath_totals(const Toolpath& path) {
     switch (m.kind) {
       case MoveKind::LeadIn:
       case MoveKind::Ramp:
+      case MoveKind::Helix:
       case MoveKind::Cut:
       case MoveKind::LeadOut:
         t.cutting += length;
@@ -283,6 +361,8 @@ const char* to_string(MoveKind kind) {
       return "lead-in";
     case MoveKind::Ramp:
       return "ramp";
+    case MoveKind::Helix:
+      return "helix";
     case MoveKind::Cut:
       return "cut";
     case MoveKind::LeadOut:
@@ -310,7 +390,7 @@ Toolpath plan_toolpath(const CompositeCurve& outline, const std::vector<RegionHo
   }
   const double r = 0.5 * o.tool_diameter;
   ToleranceBudget tolerance(o.tolerance);
-  const Budget b = budget(tolerance);
+  const Budget b = budget(tolerance, o.arc_fit);
   const SampledBoundary sb = sample_boundary(loops, b.boundary, o.max_points);
   tolerance.use("boundary samples", sb.deviation);
   const BoundaryIndex index(sb.edges, r);
@@ -331,8 +411,10 @@ Toolpath plan_toolpath(const CompositeCurve& outline, const std::vector<RegionHo
   lo.direction = o.direction;
   lo.gentle_radius = tab_min_radius(o.tabs, o.tool_diameter);
   lo.max_points = o.max_points;
+  lo.arc_fit_tolerance = b.fit;
   tp.clearance = r;
   tp.pass_z = pass_depths(o);
+  double chords = 0.0;
   // Tabs keep clear of the start point, and of a ramp's stretch after it.
   const double half = ramp_half(o, tp.pass_z);
   const double clear_start = o.tool_diameter + half;
@@ -341,6 +423,8 @@ Toolpath plan_toolpath(const CompositeCurve& outline, const std::vector<RegionHo
     LoopPath lp = build_loop_path(loops[l], tp.checks.loops[l], lo);
     require_clearance(lp, loops, index, sb, o, b, &tp.clearance);
     if (o.lead_in > 0.0) lp.lead = choose_lead(lp, index, sb, o, b, &tp.clearance);
+    if (o.entry == EntryKind::Helix && o.finish == 0.0)
+      lp.helix = choose_helix(lp, loops, index, sb, o, b, &tp.clearance);
     const TabOptions tabs = l == 0 ? o.tabs : (l - 1 < o.hole_tabs.size() ? o.hole_tabs[l - 1] : no_tabs());
     TabPlacement placed = place_tabs(lp, tabs, o, clear_start);
     lp.tabs = std::move(placed.tabs);
@@ -355,6 +439,9 @@ Toolpath plan_toolpath(const CompositeCurve& outline, const std::vector<RegionHo
       rough.pieces = rotate_path(rough.pieces, nearest_along(rough.pieces, lp.pieces.front().from));
       require_clearance(rough, loops, index, sb, o, b, &tp.clearance);
       if (o.lead_in > 0.0) rough.lead = choose_lead(rough, index, sb, o, b, &tp.clearance);
+      if (o.entry == EntryKind::Helix)
+        rough.helix = choose_helix(rough, loops, index, sb, o, b, &tp.clearance);
+      add_fit(tp, rough);
       rough.tabs = carried_tabs(lp, rough, o.finish);
       rough.tab_height = lp.tab_height;
       tp.roughing.push_back(std::move(rough));
@@ -369,9 +456,15 @@ Toolpath plan_toolpath(const CompositeCurve& outline, const std::vector<RegionHo
       }
     }
     tp.deviation = std::max(tp.deviation, lp.deviation);
+    chords = std::max(chords, lp.chord_deviation);
+    add_fit(tp, lp);
     tp.loops.push_back(std::move(lp));
   }
-  tolerance.use("tool path chords", tp.deviation);
+  for (const LoopPath& rough : tp.roughing) {
+    tp.deviation = std::max(tp.deviation, rough.deviation);
+    chords = std::max(chords, rough.chord_deviation);
+  }
+  tolerance.use(o.arc_fit ? kFitStage : kChordStage, o.arc_fit ? tp.deviation : chords);
   // The arcs-as-chords share is a bound the clearance check allows for, not
   // a measured use: it stays open (reported without `used`), as G-code rounding.
   tp.rounding_allowance = tolerance.take("G-code rounding", 0.05);

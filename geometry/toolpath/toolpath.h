@@ -21,6 +21,7 @@ enum class MoveKind {
   Plunge,   ///< straight down at the plunge feed (in the waste, at the lead's start)
   LeadIn,   ///< the lead arc onto the loop, at the cutting feed
   Ramp,     ///< down along the loop's path at the ramp angle (EntryKind::Ramp), at the cutting feed
+  Helix,    ///< down round the helix circle in the waste (EntryKind::Helix), at the cutting feed
   Cut,      ///< along the loop at the cutting feed
   LeadOut,  ///< the lead arc run backwards off the loop
   TabUp,    ///< straight up onto a tab (plunge feed)
@@ -34,7 +35,8 @@ const char* to_string(MoveKind kind);
 /// `center` by `sweep` radians (positive: counter-clockwise seen from above,
 /// G3); their start is the previous position. An arc's z goes from the
 /// previous position's to to.z() in proportion to the turn (a helix); only
-/// ramps change z along an arc.
+/// ramps and helix entries change z along an arc. A helix move may turn a
+/// whole circle (sweep +-2 pi, ending where it starts).
 struct ToolMove {
   MoveKind kind = MoveKind::Rapid;
   PieceKind shape = PieceKind::Line;
@@ -67,6 +69,11 @@ struct Toolpath {
   /// (dog-bones excepted) and the exact part boundary: the tool cuts into the
   /// part by at most tool radius - clearance (<= options.tolerance).
   double clearance = 0.0;
+  /// Arc fitting (options.arc_fit), over every path cut (roughing ones
+  /// too): pieces replaced, the arcs and lines fitted in their place, and the
+  /// largest proven distance between a fit and what it replaced.
+  std::size_t fit_replaced = 0, fit_arcs = 0, fit_lines = 0;
+  double fit_deviation = 0.0;
   /// The share of options.tolerance the program's number rounding may use (encode_gcode).
   double rounding_allowance = 0.0;
   /// How options.tolerance was divided (see plan_toolpath).
@@ -100,10 +107,19 @@ ToolpathTotals toolpath_totals(const Toolpath& path);
 /// gradually, never by a plunge of the tool's tip. With options.finish,
 /// every pass of a loop runs on its roughing path, then one finishing pass
 /// at full depth runs on `loops`, entering from the roughed slot along a
-/// tangent arc of radius finish. The lead arc has radius 2 lead_in / pi (a quarter
+/// tangent arc of radius finish. With helix entry each pass goes down (in
+/// the waste, at the lead's start) to the previous pass's floor, descends
+/// round LoopPath::helix at the ramp angle to its depth, turns once more
+/// there, then runs the lead-in; the helix's radius is options.helix_radius,
+/// or else the first of r/2, r/4, r/8 whose circle keeps the tool clear of
+/// the part (as the lead's: GeometryError naming the loop and the clear
+/// radius it needs when none does). The lead arc has radius 2 lead_in / pi (a quarter
 /// circle of length lead_in); where it would cut into the part it is halved,
 /// twice, then left out (the plunge then lands on the path).
-/// Tolerance budget (cnc.tolerance = t): chords of chains t/2, boundary
+/// Tolerance budget (cnc.tolerance = t): chords of chains t/2 (with
+/// arc_fit, "tool path chords and fitted arcs" t/2: chords within t/4, the
+/// arcs fitted to them and to digitised stretches within what a loop's
+/// chords left of t/2, arc_fit.h), boundary
 /// samples for the checks t/10, arcs as chords in the clearance check t/20,
 /// the material shallow concave corners keep t/4 (shallow_corner_depth), the
 /// G-code's rounding t/20 (Toolpath::rounding_allowance).

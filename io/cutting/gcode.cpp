@@ -71,6 +71,8 @@ const char* note(const ToolMove& m) {
       return " (lead out)";
     case MoveKind::Ramp:
       return " (ramp)";
+    case MoveKind::Helix:
+      return " (helix)";
     case MoveKind::TabUp:
     case MoveKind::TabDown:
       return " (tab)";
@@ -184,6 +186,22 @@ std::string Encoder::run(const GcodeOptions& o) {
   }
   if (c.entry == EntryKind::Ramp) {
     w_.line(fmt::format("(entry: zig-zag ramp at {} degrees along the path)", w_.plain(c.ramp_angle_deg)));
+  }
+  if (c.entry == EntryKind::Helix) {
+    for (const std::vector<LoopPath>* paths : {&path_.roughing, &path_.loops}) {
+      for (const LoopPath& loop : *paths) {
+        if (!loop.helix) continue;
+        w_.line(fmt::format("({}: entry: helix of radius {} about X{} Y{}, at most {} degrees)",
+                            comment_text(loop.label), w_.num(piece_radius(*loop.helix)),
+                            w_.num(loop.helix->center.x()), w_.num(loop.helix->center.y()),
+                            w_.plain(c.ramp_angle_deg)));
+      }
+    }
+  }
+  if (c.arc_fit) {
+    w_.line(
+        fmt::format("(arc fitting: {} line and corner moves fitted as {} arcs and {} lines, within {} {})",
+                    path_.fit_replaced, path_.fit_arcs, path_.fit_lines, w_.num(path_.fit_deviation), u));
   }
   w_.line(fmt::format("(path within {} {} of the exact offset of the exact curves)",
                       w_.num(path_.deviation + w_.resolution()), u));

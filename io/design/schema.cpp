@@ -32,9 +32,9 @@ std::vector<KeyGroup> make_groups() {
       {"countertop.holes[].ellipse", {"center", "a", "b", "rotation_deg"}},
       {"countertop.holes[].rounded_rect", {"center", "size", "radius", "rotation_deg"}},
       {"countertop.cnc",
-       {"tool_diameter", "depth", "breakthrough", "step_down", "feed", "plunge", "rapid", "spindle", "safe_z",
-        "lead_in", "tabs", "entry", "ramp_angle", "finish", "direction", "relief", "min_web", "units",
-        "decimals"}},
+       {"tool_diameter", "depth",  "breakthrough", "step_down", "feed",    "plunge",     "rapid",
+        "spindle",       "safe_z", "lead_in",      "tabs",      "entry",   "ramp_angle", "helix_radius",
+        "arc_fit",       "finish", "direction",    "relief",    "min_web", "units",      "decimals"}},
       {"countertop.cnc.tabs", {"count", "width", "height", "min_radius"}},
       // Loops from a DXF drawing (an outline, or an outline hole).
       {"dxf_outline", {"dxf", "layer", "max_gap"}},

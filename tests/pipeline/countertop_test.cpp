@@ -327,6 +327,22 @@ TEST_CASE("countertop cnc: tabs on cut-outs and a ramp entry from the design, ba
                      Catch::Contains("(ramp)") &&
                      Catch::Contains("(outline: finishing pass at z -30, the last 0.5 of stock)"));
 
+  // A helix entry and the fitted arcs' count in the report and the program's header.
+  {
+    const std::string helix = edited_example(dir, "countertop_cnc.yaml", "  lead_in: 8",
+                                             "  lead_in: 8\n  entry: helix\n  helix_radius: 2", "helix.yaml");
+    std::string helix_json;
+    REQUIRE(run_cli_json({"run", helix, "-o", (dir / "helix").string() + "/", "--json"}, &helix_json) == 0);
+    const auto cnc = nlohmann::json::parse(helix_json)[0]["build"]["cnc"];
+    CHECK(cnc["entry"] == "helix");
+    CHECK(cnc["arc_fit"]["enabled"] == true);
+    CHECK(cnc["arc_fit"]["replaced"].get<int>() > cnc["arc_fit"]["arcs"].get<int>());
+    CHECK(cnc["arc_fit"]["deviation"].get<double>() <= cnc["deviation"].get<double>());
+    const std::string helix_nc = read_file((dir / "helix" / "countertop_cnc.nc").string());
+    CHECK_THAT(helix_nc, Catch::Contains("(outline: entry: helix of radius 2 about ") &&
+                             Catch::Contains("(helix)") && Catch::Contains("(arc fitting: "));
+  }
+
   // More tabs than the cooktop's path has room for: placed where they fit, a warning, exit 0.
   const std::string crowded =
       edited_example(dir, "countertop_cnc.yaml", "radius: 10}   # cooktop",
@@ -351,7 +367,10 @@ TEST_CASE("countertop cnc: tabs on cut-outs and a ramp entry from the design, ba
        "  - rounded_rect: {center: [650, 340], size: [560, 400], radius: 40}\n    tabs: {count: 2, wide: 5}",
        "holes[0].tabs.wide"},
       {"  lead_in: 8", "  lead_in: 8\n  ramp_angle: 4", "cnc.ramp_angle"},
-      {"  lead_in: 8", "  lead_in: 8\n  entry: helix", "cnc.entry"},
+      {"  lead_in: 8", "  lead_in: 8\n  entry: spiral", "cnc.entry"},
+      {"  lead_in: 8", "  lead_in: 8\n  helix_radius: 2", "cnc.helix_radius"},
+      {"  lead_in: 8", "  lead_in: 8\n  entry: helix\n  helix_radius: 7", "cnc.helix_radius"},
+      {"  lead_in: 8", "  lead_in: 8\n  arc_fit: maybe", "cnc.arc_fit"},
       {"  lead_in: 8", "  lead_in: 8\n  entry: ramp\n  ramp_angle: 60", "cnc.ramp_angle"},
       {"  lead_in: 8", "  lead_in: 8\n  finish: 6", "cnc.finish"},
   };

@@ -148,18 +148,29 @@ CncDesign read_cnc(const yaml::Fields& f, const YAML::Node& n, const DesignCommo
     o.tabs.height /= mm_per_unit;
   }
   if (n["entry"].IsDefined()) {
-    o.entry =
-        f.choice(n["entry"], "cnc.entry", {"plunge", "ramp"}) == "ramp" ? EntryKind::Ramp : EntryKind::Plunge;
+    const std::string entry = f.choice(n["entry"], "cnc.entry", {"plunge", "ramp", "helix"});
+    o.entry = entry == "ramp" ? EntryKind::Ramp : entry == "helix" ? EntryKind::Helix : EntryKind::Plunge;
   }
   if (n["ramp_angle"].IsDefined()) {
-    if (o.entry != EntryKind::Ramp)
-      f.fail(n["ramp_angle"], "cnc.ramp_angle", "ramp_angle applies to entry: ramp");
+    if (o.entry == EntryKind::Plunge)
+      f.fail(n["ramp_angle"], "cnc.ramp_angle", "ramp_angle applies to entry: ramp or entry: helix");
     o.ramp_angle_deg = f.number(n["ramp_angle"], "cnc.ramp_angle");
     if (!(o.ramp_angle_deg > 0.0 && o.ramp_angle_deg <= 45.0)) {
       f.fail(n["ramp_angle"], "cnc.ramp_angle",
              fmt::format("ramp_angle = {} must be in (0, 45] degrees", o.ramp_angle_deg));
     }
   }
+  if (n["helix_radius"].IsDefined()) {
+    if (o.entry != EntryKind::Helix)
+      f.fail(n["helix_radius"], "cnc.helix_radius", "helix_radius applies to entry: helix");
+    o.helix_radius = f.number(n["helix_radius"], "cnc.helix_radius");
+    if (!(*o.helix_radius > 0.0 && *o.helix_radius <= 0.5 * o.tool_diameter)) {
+      f.fail(n["helix_radius"], "cnc.helix_radius",
+             fmt::format("helix_radius = {} must be in (0, {}], at most the tool radius", *o.helix_radius,
+                         0.5 * o.tool_diameter));
+    }
+  }
+  o.arc_fit = f.boolean_or(n, "arc_fit", "cnc.arc_fit", o.arc_fit);
   if (n["finish"].IsDefined()) {
     o.finish = f.number(n["finish"], "cnc.finish");
     if (!(o.finish >= 0.0 && o.finish < 0.5 * o.tool_diameter)) {

@@ -12,6 +12,7 @@
 #include "geometry/core/errors.h"
 #include "geometry/toolpath/toolpath.h"
 #include "io/cutting/gcode.h"
+#include "tests/geometry/section/region_shapes.h"
 #include "tests/io/cutting/interpret.h"
 
 using namespace fabmesh;
@@ -158,7 +159,7 @@ void measure_paths(const Setup& st, const Toolpath& tp, double mm, Findings& f) 
       f.dogbone_reach.push_back(reach);
       continue;
     }
-    if (m->comment != "lead in" && m->comment != "lead out") {
+    if (m->comment != "lead in" && m->comment != "lead out" && m->comment != "helix") {
       const CurveDistance& own = st.exact[l];
       f.offset_margin = std::min(
           f.offset_margin,
@@ -468,4 +469,193 @@ TEST_CASE("router program: a ramp entry, tabs on cut-outs and a finishing pass r
       cutting += std::hypot(motion_length(m), m.end.z() - m.start.z());
   }
   CHECK(std::abs(cutting - totals.cutting) <= 4e-3 * static_cast<double>(trace.motions.size()));
+}
+
+namespace {
+
+// The digitised worktop of toolpath_test.cpp: a concave front of radius 19 m by 301 points,
+// convex back corners of radius 100 by 41 points each, and a digitised round sink of radius
+// 200 by 360 points.
+ExampleRegion digitised_worktop() {
+  std::vector<Vec2> p;
+  const double R = 19000;
+  for (int i = 0; i <= 300; ++i) {
+    const double x = 2400.0 * i / 300;
+    p.emplace_back(x, std::sqrt(R * R - (x - 1200) * (x - 1200)) - std::sqrt(R * R - 1200.0 * 1200.0));
+  }
+  for (int i = 0; i <= 40; ++i) {
+    const double a = M_PI / 2 * i / 40;
+    p.emplace_back(2300 + 100 * std::cos(a), 550 + 100 * std::sin(a));
+  }
+  for (int i = 0; i <= 40; ++i) {
+    const double a = M_PI / 2 + M_PI / 2 * i / 40;
+    p.emplace_back(100 + 100 * std::cos(a), 550 + 100 * std::sin(a));
+  }
+  std::vector<Vec2> sink;
+  for (int i = 0; i < 360; ++i) {
+    const double a = 2.0 * M_PI * i / 360;
+    sink.emplace_back(900 + 200 * std::cos(a), 380 + 200 * std::sin(a));
+  }
+  ExampleRegion region;
+  region.outline = polygon(p);
+  region.holes.push_back({polygon(sink), "holes[0] (outline)"});
+  region.thickness = 30;
+  region.tolerance = 0.05;
+  region.name = "digitised_worktop";
+  return region;
+}
+
+struct MoveCounts {
+  int lines = 0, arcs = 0;
+};
+
+// G1 and G2/G3 moves along the paths in material (not vertical, not leads, ramps or helices).
+MoveCounts count_cuts(const Trace& trace) {
+  MoveCounts c;
+  for (const TraceMotion& m : trace.motions) {
+    if (m.motion == "G0" || vertical(m) || !in_material(m) || !m.comment.empty()) continue;
+    (m.arc ? c.arcs : c.lines) += 1;
+  }
+  return c;
+}
+
+}  // namespace
+
+TEST_CASE("router program: a digitised worktop cut in fitted arcs runs in CNCjs on the exact offset",
+          "[io][cutting][gcode][toolpath][countertop][arcfit][digitised]") {
+  const ExampleRegion region = digitised_worktop();
+  CncOptions o = options_for(region);
+  o.arc_fit = false;
+  Toolpath plain_tp;
+  const Findings plain = run_example(region, o, {}, nullptr, &plain_tp);
+  require_good_program(plain, plain_tp, 1.0);
+  o.arc_fit = true;
+  Toolpath tp;
+  const Findings fitted = run_example(region, o, {}, nullptr, &tp);
+  require_good_program(fitted, tp, 1.0);
+  CHECK(tp.deviation <= 0.5 * o.tolerance);
+  const Trace before = interpret(encode_gcode(plain_tp, {}), "digitised_plain.nc");
+  const std::string program = encode_gcode(tp, {});
+  const Trace after = interpret(program, "digitised_fitted.nc");
+  const MoveCounts b = count_cuts(before), a = count_cuts(after);
+  // Fewer lines: most of the G1 moves (and the tool's tiny arcs round the points) become arcs.
+  CHECK(a.lines + a.arcs < (b.lines + b.arcs) / 10);
+  CHECK(a.lines < b.lines / 10);
+  WARN("digitised worktop, moves along the path in material: "
+       << b.lines << " G1 + " << b.arcs << " G2/G3 without arc fitting, " << a.lines << " G1 + " << a.arcs
+       << " G2/G3 with (" << tp.fit_replaced << " pieces as " << tp.fit_arcs << " arcs and " << tp.fit_lines
+       << " lines, within " << tp.fit_deviation << ")");
+  CHECK_THAT(program, Catch::Contains(fmt::format("(arc fitting: {} line and corner moves fitted as {} arcs",
+                                                  tp.fit_replaced, tp.fit_arcs)));
+  // The estimate is the interpreted program's.
+  double cutting = 0.0;
+  for (const TraceMotion& m : after.motions) {
+    if (m.motion != "G0" && m.feed == o.feed)
+      cutting += std::hypot(motion_length(m), m.end.z() - m.start.z());
+  }
+  CHECK(std::abs(cutting - toolpath_totals(tp).cutting) <= 4e-3 * static_cast<double>(after.motions.size()));
+}
+
+TEST_CASE("router program: arc fitting on the examples' curved chains keeps every measured property",
+          "[io][cutting][gcode][toolpath][countertop][arcfit]") {
+  for (const char* file : {"countertop_g1.yaml", "countertop_g2.yaml", "countertop_dxf_template.yaml"}) {
+    INFO(file);
+    const ExampleRegion region = load_countertop_example(file);
+    CncOptions o = options_for(region);
+    o.arc_fit = true;
+    Toolpath tp;
+    const Findings f = run_example(region, o, {}, nullptr, &tp);
+    require_good_program(f, tp, 1.0);
+    CHECK(tp.deviation <= 0.5 * o.tolerance);
+  }
+}
+
+TEST_CASE("router program: a helix entry descends in the waste at the pitch angle to every pass's depth",
+          "[io][cutting][gcode][toolpath][countertop][helix]") {
+  for (const char* file : {"countertop_g1.yaml", "countertop_cnc.yaml"}) {
+    INFO(file);
+    const ExampleRegion region = load_countertop_example(file);
+    CncOptions o = options_for(region);
+    o.entry = EntryKind::Helix;
+    o.ramp_angle_deg = 2;
+    Toolpath tp;
+    const Findings f = run_example(region, o, {}, nullptr, &tp);
+    // Every move in material, the helices included, keeps the tool clear of the part (the
+    // clearance walk), and the loops are cut through as before.
+    require_good_program(f, tp, 1.0);
+    const std::string program = encode_gcode(tp, {});
+    const Trace trace = interpret(program, std::string("helix_") + file + ".nc");
+    const double slope = std::tan(2 * M_PI / 180);
+    std::map<std::string, std::set<double>> floors;  // per pass section: the depths the helix reached
+    int helix_moves = 0;
+    for (const TraceMotion& m : trace.motions) {
+      if (m.motion == "G0") continue;
+      const double drop = m.start.z() - m.end.z();
+      if (m.comment == "helix") {
+        ++helix_moves;
+        CHECK(m.arc);
+        CHECK(drop >= -1e-9);
+        CHECK(drop <= slope * motion_length(m) + 2e-3);
+        CHECK(m.feed == o.feed);
+        floors[m.section].insert(m.end.z());
+      } else if (drop > 1e-9 && m.end.z() < 0.0) {
+        // Any other way down in material is vertical into the floor already cut.
+        CHECK(vertical(m));
+      }
+    }
+    CHECK(helix_moves > 0);
+    // Each pass's helix reaches that pass's depth, where the pass's cut runs.
+    std::size_t passes = 0;
+    for (const auto& [section, zs] : floors) {
+      INFO(section);
+      const auto pos = section.find("at z ");
+      REQUIRE(pos != std::string::npos);
+      const double z = std::stod(section.substr(pos + 5));
+      CHECK(*zs.begin() == Approx(z).margin(1e-3));
+      ++passes;
+    }
+    CHECK(passes == tp.loops.size() * tp.pass_z.size());
+    for (const LoopPath& lp : tp.loops) {
+      REQUIRE(lp.helix);
+      CHECK(piece_radius(*lp.helix) <= 0.5 * 0.5 * o.tool_diameter + 1e-12);
+      CHECK(std::abs(lp.helix->sweep) == Approx(2 * M_PI));
+      CHECK_THAT(program, Catch::Contains(lp.outer ? "(outline: entry: helix of radius "
+                                                   : "]: entry: helix of radius "));
+    }
+  }
+}
+
+TEST_CASE("router program: a helix entry with no room in the waste is refused naming the loop and radius",
+          "[io][cutting][gcode][toolpath][countertop][helix][errors]") {
+  // A slot 13 wide for a 12 mm tool: the tool's centre runs a line; no circle fits beside it.
+  const CompositeCurve slab = polygon({Vec2(0, 0), Vec2(900, 0), Vec2(900, 600), Vec2(0, 600)});
+  const std::vector<RegionHole> holes{{rounded_rect(300, 293.5, 600, 306.5, 6.4), "holes[0] (rounded_rect)"}};
+  CncOptions o;
+  o.tabs.count = 0;
+  o.entry = EntryKind::Helix;
+  o.tolerance = 0.05;
+  o.min_web = 0;
+  try {
+    plan_toolpath(slab, holes, o);
+    FAIL("accepted");
+  } catch (const GeometryError& e) {
+    CHECK(e.where() == "holes[0] (rounded_rect)");
+    CHECK_THAT(std::string(e.what()), Catch::Contains("no room in the waste for a helix entry") &&
+                                          Catch::Contains("needs a clear circle of radius 6.75"));
+  }
+  o.helix_radius = 7;  // more than the tool radius: out of range
+  CHECK_THROWS_AS(plan_toolpath(slab, holes, o), RangeError);
+}
+
+TEST_CASE("router program: the digitised example (a CSV of points) is cut in fitted arcs, verified by CNCjs",
+          "[io][cutting][gcode][toolpath][countertop][arcfit][digitised]") {
+  const ExampleRegion region = load_countertop_example("countertop_digitised.yaml");
+  Toolpath tp;
+  const Findings f = run_example(region, options_for(region), {}, nullptr, &tp);
+  require_good_program(f, tp, 1.0);
+  CHECK(tp.checks.loops[0].concave_corners.empty());
+  CHECK(tp.fit_replaced > 400);
+  CHECK(tp.fit_arcs < tp.fit_replaced / 10);
+  CHECK(tp.deviation <= 0.5 * region.tolerance);
+  CHECK(count_cuts(interpret(encode_gcode(tp, {}), "countertop_digitised.nc")).lines < 60);
 }
