@@ -61,7 +61,8 @@ BezierApproximation offset_approximation(const ExactPiece& piece, double toleran
       const double a = lo + i * h, b = i + 1 == n ? hi : lo + (i + 1) * h;
       const OffsetJet end = offset_jet(piece.segment, piece.offset, b);
       out.pieces.push_back(hermite(start, end, b - a));
-      out.bound = std::max(out.bound, piece_bound(piece.segment, piece.offset, chord, out.pieces.back(), a, b));
+      out.bound =
+          std::max(out.bound, piece_bound(piece.segment, piece.offset, chord, out.pieces.back(), a, b));
       start = end;
     }
     if (out.bound > tolerance) continue;

@@ -23,7 +23,8 @@ double measured_gap(const ExactPiece& piece, const BezierApproximation& a) {
     const double s = piece.s0 + u * (piece.s1 - piece.s0);
     const std::size_t k = std::min(a.pieces.size() - 1, static_cast<std::size_t>(u * n));
     const double local = u * n - static_cast<double>(k);
-    gap = std::max(gap, (offset_jet(piece.segment, piece.offset, s).point - evaluate(a.pieces[k], local)).norm());
+    gap = std::max(gap,
+                   (offset_jet(piece.segment, piece.offset, s).point - evaluate(a.pieces[k], local)).norm());
   }
   return gap;
 }
@@ -33,8 +34,8 @@ double measured_gap(const ExactPiece& piece, const BezierApproximation& a) {
 TEST_CASE("offset bezier: the pieces stay within their proven bound, either way round",
           "[sampling][offset_bezier]") {
   // The golden profile's second span, and a T-Bézier arc, offset by a wall inward.
-  const Segment span = Segment::quasi_bspline_span(
-      {Vec2(1.5, 6.0), Vec2(1.0, 5.0), Vec2(2.0, 4.0), Vec2(3.0, 3.0)}, 0.0, 0.0);
+  const Segment span =
+      Segment::quasi_bspline_span({Vec2(1.5, 6.0), Vec2(1.0, 5.0), Vec2(2.0, 4.0), Vec2(3.0, 3.0)}, 0.0, 0.0);
   const Segment arc =
       Segment::tbezier({Vec2(3.0, 0.0), Vec2(3.0, 1.5), Vec2(1.5, 3.0), Vec2(0.0, 3.0)}, 0.5, -0.5);
   for (const Segment& segment : {span, arc}) {
@@ -46,9 +47,9 @@ TEST_CASE("offset bezier: the pieces stay within their proven bound, either way 
         const ExactPiece piece{segment, offset, range.first, range.second};
         for (const double tolerance : {1e-3, 1e-6}) {
           const BezierApproximation a = offset_approximation(piece, tolerance);
-          INFO(to_string(segment.kind()) << " side " << side << " from " << range.first << " to "
-                                         << range.second << ", tolerance " << tolerance << ", "
-                                         << a.pieces.size() << " pieces, bound " << a.bound);
+          INFO(to_string(segment.kind())
+               << " side " << side << " from " << range.first << " to " << range.second << ", tolerance "
+               << tolerance << ", " << a.pieces.size() << " pieces, bound " << a.bound);
           CHECK(a.bound <= tolerance);
           CHECK(measured_gap(piece, a) <= a.bound);
           // The ends are the offset's, in the piece's direction; the pieces join with one tangent.
@@ -68,7 +69,8 @@ TEST_CASE("offset bezier: the pieces stay within their proven bound, either way 
   }
 }
 
-TEST_CASE("offset bezier: an offset that folds is a GeometryError, not a bound", "[sampling][offset_bezier]") {
+TEST_CASE("offset bezier: an offset that folds is a GeometryError, not a bound",
+          "[sampling][offset_bezier]") {
   // A quarter circle of radius 3 offset 4 toward its centre folds.
   const Segment arc = Segment::ellipse_arc({Vec2(0.0, 0.0), 3.0, 3.0, 0.0, 0.0, 90.0});
   OffsetSpec offset;

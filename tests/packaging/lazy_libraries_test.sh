@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# The libraries only some runs use are loaded only by those runs: neither the
+# program nor the library links lib3mf (3MF), OpenCASCADE (STEP), cpp-httplib
+# or OpenSSL (the studio), which cost every process start their loading and
+# symbol binding; they are loaded with dlopen when a run needs them
+# (io/module.h, io/mesh/threemf.cpp). A run that does not need them does not
+# map them either. Usage: lazy_libraries_test.sh FABMESH LIBFABMESH
+set -uo pipefail
+program=$1 library=$2
+failures=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+optional='lib3MF|libzip|libcrypto|libssl|libcpp-httplib|libTK'
+for binary in "$program" "$library"; do
+  linked=$(ldd "$binary" | grep -E "$optional")
+  [[ -z $linked ]] || fail "$(basename "$binary") links what it should load on demand: $linked"
+done
+# What `fabmesh --version` maps (the dynamic loader's own list).
+mapped=$(LD_DEBUG=libs "$program" --version 2>&1 >/dev/null | grep -oE "calling init: [^ ]+" | grep -E "$optional")
+[[ -z $mapped ]] || fail "fabmesh --version loads: $mapped"
+# And a run that writes 3MF and STEP loads both.
+work=$(mktemp -d "${TMPDIR:-/tmp}/fabmesh-lazy.XXXXXX")
+trap 'rm -rf "$work"' EXIT
+source_dir=$(cd "$(dirname "$0")/../.." && pwd)
+LD_DEBUG=libs "$program" run "$source_dir/configs/examples/vessel_golden_solid.yaml" --export-format 3mf \
+  -o "$work/3mf/" -q 2>"$work/3mf.log" >/dev/null || fail "the 3MF run failed: $(tail -n 3 "$work/3mf.log")"
+grep -q "calling init: .*lib3MF" "$work/3mf.log" || fail "a 3MF run did not load lib3mf"
+LD_DEBUG=libs "$program" run "$source_dir/configs/examples/vessel_golden_solid.yaml" --export-format step \
+  -o "$work/step/" -q 2>"$work/step.log" >/dev/null || fail "the STEP run failed: $(tail -n 3 "$work/step.log")"
+grep -q "calling init: .*fabmesh-step.so" "$work/step.log" || fail "a STEP run did not load the STEP module"
+if ((failures > 0)); then
+  echo "$failures failure(s)"
+  exit 1
+fi
+echo "lib3mf, OpenCASCADE and cpp-httplib are loaded only by the runs that use them"
