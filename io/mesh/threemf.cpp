@@ -91,6 +91,7 @@ namespace {
   F(lib3mf_writer_writetocallback)
 
 struct Lib3mf {
+// NOLINTNEXTLINE(bugprone-macro-parentheses): a declaration, not an expression
 #define FABMESH_LIB3MF_POINTER(name) decltype(&NMR::name) name = nullptr;
   FABMESH_LIB3MF_FUNCTIONS(FABMESH_LIB3MF_POINTER)
 #undef FABMESH_LIB3MF_POINTER

@@ -102,7 +102,7 @@ double millimetres_of(const std::string& unit) {
 std::string read_in_file_unit(STEPControl_Reader& reader) {
   TColStd_SequenceOfAsciiString lengths, angles, solid_angles;
   reader.FileUnits(lengths, angles, solid_angles);
-  const std::string unit = lengths.Length() > 0 ? lengths.Value(1).ToCString() : "";
+  std::string unit = lengths.Length() > 0 ? lengths.Value(1).ToCString() : "";
   const double millimetres = millimetres_of(unit);
   if (millimetres > 0.0) {
     UnitsMethods::SetCasCadeLengthUnit(millimetres);
@@ -245,7 +245,7 @@ StepShapeFacts facts_of(const TopoDS_Shape& shape) {
       int index = 0;
       for (TopExp_Explorer e(shape, type); e.More() && f.problems.size() < 400; e.Next()) {
         ++index;
-        const Handle(BRepCheck_Result) result = analyzer.Result(e.Current());
+        const Handle(BRepCheck_Result)& result = analyzer.Result(e.Current());
         if (result.IsNull()) continue;
         for (const BRepCheck_Status status : result->Status()) {
           if (status == BRepCheck_NoError) continue;

@@ -96,7 +96,7 @@ std::string mesh_name(const std::string& path) {
   if (!starts_with(path, prefix) || path.size() <= prefix.size() + suffix.size() ||
       path.compare(path.size() - suffix.size(), suffix.size(), suffix) != 0)
     return {};
-  const std::string name = path.substr(prefix.size(), path.size() - prefix.size() - suffix.size());
+  std::string name = path.substr(prefix.size(), path.size() - prefix.size() - suffix.size());
   for (const char c : name) {
     if (!std::isalnum(static_cast<unsigned char>(c))) return {};
   }
