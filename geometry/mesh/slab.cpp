@@ -10,6 +10,8 @@
 
 #include "geometry/core/budget.h"
 #include "geometry/core/errors.h"
+#include "geometry/mesh/soup.h"
+#include "geometry/section/simple_polygon.h"
 
 namespace fabmesh {
 
@@ -118,13 +120,35 @@ SlabMesh build_slab(const Region2& region, const SlabOptions& options) {
   require_within_budget(
       triangles, options.max_triangles, [&] { return fmt::format("the slab needs {} triangles", triangles); },
       "raise max_triangles, the tolerance or max_edge");
-  EmbeddingProof proof{
-      region.proof +
-      fmt::format("; top and bottom are a CGAL constrained Delaunay triangulation of that region "
-                  "({} faces, each counter-clockwise by the exact orientation predicate) at z = {} "
-                  "and z = 0, walls vertical over its {} boundary cycle(s), which meet only at shared "
-                  "vertices: an extruded planar embedding",
-                  triangulation.triangles.size(), options.thickness, triangulation.boundary.size())};
+  EmbeddingProof proof;
+  proof.statement =
+      region.proof + fmt::format(
+                         "; top and bottom are a CGAL constrained Delaunay triangulation of that region "
+                         "({} faces, each counter-clockwise by the exact orientation predicate) at z = {} "
+                         "and z = 0, walls vertical over its {} boundary cycle(s), which meet only at shared "
+                         "vertices: an extruded planar embedding",
+                         triangulation.triangles.size(), options.thickness, triangulation.boundary.size());
+  // A moved copy (rounded to float32, scaled) is again an extrusion when the
+  // top and bottom stay level and every wall vertical; then it is embedded
+  // when its planar triangulation is (is_planar_embedding, exact).
+  proof.recheck = [n = triangulation.vertices.size(), triangles = triangulation.triangles,
+                   cycles = triangulation.boundary](const TriangleSoup& moved) {
+    if (moved.vertices.size() != 2 * n || n == 0) return false;
+    const double bottom = moved.vertices[0].z(), top = moved.vertices[n].z();
+    if (!(top > bottom)) return false;
+    std::vector<Vec2> plane(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const Vec3& b = moved.vertices[i];
+      const Vec3& t = moved.vertices[n + i];
+      if (b.z() != bottom || t.z() != top || b.x() != t.x() || b.y() != t.y()) return false;
+      plane[i] = Vec2(b.x(), b.y());
+    }
+    return is_planar_embedding(plane, triangles, cycles);
+  };
+  proof.recheck_statement =
+      "it is still the extrusion of a planar triangulation (top and bottom level, walls vertical) whose "
+      "triangles are counter-clockwise and whose boundary cycles are simple, disjoint and nested as "
+      "built (exact predicates)";
   // Braced initialisers run in order: the mesh is extruded (in place) before the triangulation moves.
   return SlabMesh{extrude(triangulation, options.thickness), std::move(triangulation), std::move(proof)};
 }

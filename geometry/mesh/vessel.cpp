@@ -88,8 +88,9 @@ VesselMesh build_vessel(const CompositeCurve& profile, const VesselOptions& opti
   const double sagitta = chord_sagitta(section.max_radius, angular_step(segments));
   budget.use("revolution", sagitta);
   const double max_deviation = section.max_deviation + sagitta;
-  EmbeddingProof proof{section.proof + fmt::format("; revolved in {} uniform angular steps", segments),
-                       revolution_margin(section.loops, segments)};
+  EmbeddingProof proof;
+  proof.statement = section.proof + fmt::format("; revolved in {} uniform angular steps", segments);
+  proof.margin = revolution_margin(section.loops, segments);
   RevolvedSoup revolved = revolve(section.loops, ro);
   return VesselMesh{std::move(revolved.soup),
                     std::move(revolved.topology),

@@ -144,7 +144,8 @@ Mould build_mould(const CompositeCurve& profile, const MouldOptions& o) {
     MouldPart part =
         build_side_part(s, m.keys, o, m.splits[k], m.splits[(k + 1) % o.parts], m.max_angular_step, budget);
     part.name = fmt::format("side {} of {}", k + 1, o.parts);
-    part.proof = EmbeddingProof{side_proof(m, part, o)};
+    part.proof = EmbeddingProof();
+    part.proof.statement = side_proof(m, part, o);
     budget -= std::min(budget, part.soup.triangles.size());
     m.parts.push_back(std::move(part));
   }

@@ -1,6 +1,7 @@
 #include "geometry/section/simple_polygon.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_2_algorithms.h>
 #include <CGAL/box_intersection_d.h>
 #include <CGAL/intersections.h>
 
@@ -156,6 +157,57 @@ std::optional<EdgeCrossing> find_crossing(const std::vector<std::vector<Vec2>>& 
   chains.reserve(loops.size());
   for (const auto& l : loops) chains.push_back({&l, true});
   return find_crossing_in(chains);
+}
+
+bool is_planar_embedding(const std::vector<Vec2>& points,
+                         const std::vector<std::array<std::uint32_t, 3>>& triangles,
+                         const std::vector<std::vector<std::uint32_t>>& cycles, std::string* why) {
+  const auto fail = [why](std::string reason) {
+    if (why != nullptr) *why = std::move(reason);
+    return false;
+  };
+  const auto at = [&points](std::uint32_t i) { return Point(points[i].x(), points[i].y()); };
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    const auto& f = triangles[t];
+    if (CGAL::orientation(at(f[0]), at(f[1]), at(f[2])) != CGAL::LEFT_TURN)
+      return fail("triangle " + std::to_string(t) + " is not counter-clockwise");
+  }
+  std::vector<std::vector<Vec2>> loops;
+  std::vector<std::vector<Point>> polygons;
+  for (const auto& cycle : cycles) {
+    loops.emplace_back();
+    polygons.emplace_back();
+    for (const std::uint32_t i : cycle) {
+      loops.back().push_back(points[i]);
+      polygons.back().push_back(at(i));
+    }
+  }
+  if (find_crossing(loops)) return fail("boundary cycles cross or touch");
+  // A simple polygon's orientation, exactly: the turn at its lowest-leftmost vertex.
+  const auto counter_clockwise = [](const std::vector<Point>& p) {
+    return CGAL::orientation_2(p.begin(), p.end(), Kernel()) == CGAL::COUNTERCLOCKWISE;
+  };
+  std::size_t outer = polygons.size();
+  for (std::size_t c = 0; c < polygons.size(); ++c) {
+    if (!counter_clockwise(polygons[c])) continue;
+    if (outer != polygons.size()) return fail("more than one counter-clockwise (outer) cycle");
+    outer = c;
+  }
+  if (outer == polygons.size()) return fail("no counter-clockwise (outer) cycle");
+  for (std::size_t c = 0; c < polygons.size(); ++c) {
+    if (c == outer) continue;
+    const Point& first = polygons[c].front();
+    if (CGAL::bounded_side_2(polygons[outer].begin(), polygons[outer].end(), first, Kernel()) !=
+        CGAL::ON_BOUNDED_SIDE)
+      return fail("hole cycle " + std::to_string(c) + " is not inside the outer cycle");
+    for (std::size_t d = 0; d < polygons.size(); ++d) {
+      if (d == outer || d == c) continue;
+      if (CGAL::bounded_side_2(polygons[d].begin(), polygons[d].end(), first, Kernel()) !=
+          CGAL::ON_UNBOUNDED_SIDE)
+        return fail("hole cycle " + std::to_string(c) + " is inside hole cycle " + std::to_string(d));
+    }
+  }
+  return true;
 }
 
 }  // namespace fabmesh

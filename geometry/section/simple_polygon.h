@@ -1,8 +1,11 @@
 #pragma once
 // Simplicity of 2D polylines and polygons, decided with exact predicates.
 
+#include <array>
 #include <cstddef>
+#include <cstdint>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "geometry/core/types.h"
@@ -27,6 +30,18 @@ std::optional<EdgeCrossing> find_crossing(const std::vector<Vec2>& points, bool 
 /// The same for several closed loops at once: an edge may not meet any edge
 /// of another loop either. Edge indices count through the loops in order.
 std::optional<EdgeCrossing> find_crossing(const std::vector<std::vector<Vec2>>& loops);
+
+/// Whether a planar triangulation with vertices `points` is embedded: every
+/// triangle counter-clockwise, and its boundary `cycles` (vertex indices;
+/// the outer one counter-clockwise, the holes clockwise, in any order)
+/// simple and pairwise disjoint, with every hole strictly inside the outer
+/// cycle and outside the other holes. Exact predicates (CGAL Epick). Then
+/// each point of the plane is covered by as many triangles as the cycles wind
+/// round it, 0 or 1: the triangles meet only at shared edges and vertices.
+/// `why`, when given, receives the first condition that fails.
+bool is_planar_embedding(const std::vector<Vec2>& points,
+                         const std::vector<std::array<std::uint32_t, 3>>& triangles,
+                         const std::vector<std::vector<std::uint32_t>>& cycles, std::string* why = nullptr);
 
 /// Where a closed polygon comes near itself across a neck: two points, on
 /// edges `first` and `second`, `distance` apart.

@@ -187,10 +187,13 @@ ValidationReport validate_moved(const TriangleSoup& moved, const MovedFrom& from
     moved_by = std::max(moved_by, (moved.vertices[v] - original.vertices[v]).norm());
   }
   moved_by *= 1.0 + 1e-12;  // the norm's rounding, upward
-  const bool within_margin = original_report.self_intersection == IntersectionCheck::ProvenByConstruction &&
-                             moved_by < original_report.embedding_margin;
+  const bool constructed = original_report.self_intersection == IntersectionCheck::ProvenByConstruction;
+  const bool within_margin = constructed && moved_by < original_report.embedding_margin;
+  // Beyond the margin, the builder's own exact argument may still hold for the copy.
+  const bool rechecked = constructed && !within_margin && original_report.embedding_recheck &&
+                         original_report.embedding_recheck(moved);
   ValidationOptions checks = options;
-  if (within_margin) checks.check_self_intersections = false;
+  if (within_margin || rechecked) checks.check_self_intersections = false;
   ValidationReport report =
       validate_with(moved, inherited_topology(original_report), ValidationReport{}, checks);
   report.topology_proof = original_report.topology_proof;
@@ -200,6 +203,11 @@ ValidationReport validate_moved(const TriangleSoup& moved, const MovedFrom& from
         fmt::format("{}; every vertex moved by at most {:.3g}, less than its margin {:.3g}",
                     original_report.embedding_proof, moved_by, original_report.embedding_margin);
     report.embedding_margin = original_report.embedding_margin - moved_by;
+  } else if (rechecked && report.non_finite_vertices == 0) {
+    report.self_intersection = IntersectionCheck::ProvenByConstruction;
+    report.embedding_proof =
+        fmt::format("{}; every vertex moved by at most {:.3g}, and as moved {}",
+                    original_report.embedding_proof, moved_by, original_report.embedding_recheck_statement);
   }
   return report;
 }
@@ -210,6 +218,8 @@ ValidationReport with_embedding(ValidationReport report, const EmbeddingProof& p
     report.self_intersection = IntersectionCheck::ProvenByConstruction;
     report.embedding_proof = proof.statement;
     report.embedding_margin = proof.margin;
+    report.embedding_recheck = proof.recheck;
+    report.embedding_recheck_statement = proof.recheck_statement;
     report.self_intersecting = false;
   }
   return report;

@@ -8,6 +8,7 @@
 // filters, self-intersection test) are in geometry/validation/detail/.
 
 #include <cstddef>
+#include <functional>
 #include <optional>
 #include <string>
 #include <utility>
@@ -95,6 +96,10 @@ struct ValidationReport {
   /// With ProvenByConstruction: moving every vertex by less than this keeps
   /// the mesh embedded (EmbeddingProof::margin; 0: not proven).
   double embedding_margin = 0.0;
+  /// With ProvenByConstruction: the builder's exact re-proof for a moved
+  /// copy (EmbeddingProof::recheck), and what it proves; null when none.
+  std::function<bool(const TriangleSoup& moved)> embedding_recheck;
+  std::string embedding_recheck_statement;
   /// The builder's statement when its construction proved the connectivity
   /// (closed, manifold, oriented, components, Euler characteristics; see
   /// TopologyProof); empty when the connectivity was analysed.

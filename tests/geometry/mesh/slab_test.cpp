@@ -158,3 +158,51 @@ TEST_CASE(
   open.boundary.pop_back();
   CHECK_THROWS_AS(extrude(open, 0.5), std::logic_error);
 }
+
+TEST_CASE("slab: a rounded copy is re-proven embedded exactly, a broken one is not",
+          "[mesh][slab][countertop]") {
+  const Kitchen k = kitchen(33.0);
+  RegionOptions ro;
+  ro.tolerance = 0.2;
+  const Region2 region = build_region(k.outline, k.holes, ro);
+  SlabOptions so;
+  so.thickness = 30.0;
+  const SlabMesh slab = build_slab(region, so);
+  REQUIRE(slab.proof.has_value());
+  const EmbeddingProof& proof = *slab.proof;
+  REQUIRE(proof.recheck);
+  const TriangleSoup soup = to_soup(slab.mesh);
+  const std::size_t n = slab.triangulation.vertices.size();
+
+  // Rounded to float32, as STL stores it: still an extrusion, still embedded.
+  TriangleSoup rounded = soup;
+  for (Vec3& p : rounded.vertices) p = p.cast<float>().cast<double>();
+  CHECK(proof.recheck(rounded));
+  ValidationOptions vo;
+  vo.embedding = proof;
+  const ValidationReport built = validate(soup, vo);
+  ValidationOptions moved;
+  moved.moved_from = MovedFrom{&soup, &built};
+  const ValidationReport stored = validate(rounded, moved);
+  CHECK(stored.valid());
+  CHECK(stored.self_intersection == IntersectionCheck::ProvenByConstruction);
+  CHECK_THAT(stored.embedding_proof, Catch::Contains("still the extrusion of a planar triangulation"));
+
+  // A top vertex lifted: no longer level, so no re-proof (the 3D test decides).
+  TriangleSoup lifted = soup;
+  lifted.vertices[n].z() += 1e-3;
+  CHECK_FALSE(proof.recheck(lifted));
+  // A vertex pulled across the triangulation, top and bottom alike: a triangle turns
+  // over, the re-proof fails, and the full test finds the faces that cross.
+  TriangleSoup folded = soup;
+  const auto& t = slab.triangulation.triangles[slab.triangulation.triangles.size() / 2];
+  const Vec2 across = slab.triangulation.vertices[t[1]] +
+                      2.0 * (slab.triangulation.vertices[t[2]] - slab.triangulation.vertices[t[1]]);
+  for (const std::size_t v : {std::size_t{t[2]}, n + t[2]}) {
+    folded.vertices[v].x() = across.x();
+    folded.vertices[v].y() = across.y();
+  }
+  CHECK_FALSE(proof.recheck(folded));
+  const ValidationReport broken = validate(folded, moved);
+  CHECK_FALSE(broken.valid());
+}

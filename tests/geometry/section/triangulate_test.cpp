@@ -94,3 +94,25 @@ TEST_CASE("triangulate: a max_edge too small for the budget is a BudgetError",
   o.max_edge = -1.0;
   CHECK_THROWS_AS(triangulate(r, o), RangeError);
 }
+
+TEST_CASE("planar embedding: counter-clockwise triangles inside simple nested cycles, decided exactly",
+          "[section][triangulate]") {
+  const std::vector<Vec2> square = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  const std::vector<std::array<std::uint32_t, 3>> two = {{0, 1, 2}, {0, 2, 3}};
+  std::string why;
+  CHECK(is_planar_embedding(square, two, {{0, 1, 2, 3}}, &why));
+  CHECK_FALSE(is_planar_embedding(square, {{0, 2, 1}, {0, 2, 3}}, {{0, 1, 2, 3}}, &why));
+  CHECK_THAT(why, Catch::Contains("triangle 0 is not counter-clockwise"));
+  CHECK_FALSE(is_planar_embedding(square, two, {{3, 2, 1, 0}}, &why));
+  CHECK_THAT(why, Catch::Contains("no counter-clockwise"));
+  // A hole cycle (clockwise) must lie inside the outer one and outside the other holes.
+  std::vector<Vec2> points = square;
+  for (const Vec2& p : std::vector<Vec2>{{0.2, 0.2}, {0.2, 0.4}, {0.4, 0.4}, {0.4, 0.2}}) points.push_back(p);
+  for (const Vec2& p : std::vector<Vec2>{{2.2, 0.2}, {2.2, 0.4}, {2.4, 0.4}, {2.4, 0.2}}) points.push_back(p);
+  CHECK(is_planar_embedding(points, {}, {{0, 1, 2, 3}, {4, 5, 6, 7}}, &why));
+  CHECK_FALSE(is_planar_embedding(points, {}, {{0, 1, 2, 3}, {8, 9, 10, 11}}, &why));
+  CHECK_THAT(why, Catch::Contains("not inside the outer cycle"));
+  // A cycle that crosses itself.
+  CHECK_FALSE(is_planar_embedding(square, {}, {{0, 2, 1, 3}}, &why));
+  CHECK_THAT(why, Catch::Contains("cross"));
+}
