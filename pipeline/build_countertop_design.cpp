@@ -88,7 +88,8 @@ BuiltMesh build(const CountertopDesign& design, const BuildContext& context) {
   for (const auto& loop : slab.triangulation.boundary) boundary_points += loop.size();
   BuiltMesh out;
   out.soup = to_soup(slab.mesh);
-  out.checks.embedding = slab.proof;  // the region is simple and the slab a prism over it
+  out.checks.embedding = slab.proof;    // the region is simple and the slab a prism over it
+  out.checks.topology = slab.topology;  // extrude's pairing of every face's sides
   validate_built(out, context);
   out.max_deviation = region.max_deviation;
   out.cutting = std::move(cutting);

@@ -149,8 +149,23 @@ SlabMesh build_slab(const Region2& region, const SlabOptions& options) {
       "it is still the extrusion of a planar triangulation (top and bottom level, walls vertical) whose "
       "triangles are counter-clockwise and whose boundary cycles are simple, disjoint and nested as "
       "built (exact predicates)";
+  // extrude pairs every side of every face with the opposite side of exactly
+  // one other face, or refuses: closed, edge-manifold, consistently oriented.
+  // The region's boundary cycles are simple and disjoint, so each boundary
+  // vertex has one fan of top, wall and bottom faces (vertex-manifold), and
+  // a region of one outline and its holes is connected: one component, a
+  // closed surface of genus = holes.
+  TopologyProof topology;
+  const long holes = static_cast<long>(triangulation.boundary.size()) - 1;
+  topology.components = 1;
+  topology.euler_characteristics = {2 - 2 * holes};
+  topology.statement = fmt::format(
+      "closed, manifold and consistently oriented by construction: the extrusion of a triangulated region "
+      "with {} hole(s), every side of every face paired with the opposite side of exactly one other face",
+      holes);
   // Braced initialisers run in order: the mesh is extruded (in place) before the triangulation moves.
-  return SlabMesh{extrude(triangulation, options.thickness), std::move(triangulation), std::move(proof)};
+  return SlabMesh{extrude(triangulation, options.thickness), std::move(triangulation), std::move(proof),
+                  std::move(topology)};
 }
 
 }  // namespace fabmesh

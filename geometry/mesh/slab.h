@@ -26,6 +26,9 @@ struct SlabMesh {
   /// Why the mesh is free of self-intersections without a 3D test (always
   /// given: a simple region extrudes into an embedded slab).
   std::optional<EmbeddingProof> proof;
+  /// The connectivity extrude proves: closed, manifold, oriented, one
+  /// component of Euler characteristic 2 - 2 x holes.
+  std::optional<TopologyProof> topology;
 };
 
 /// Triangle count of the slab over `t`: top and bottom, plus two per boundary edge.

@@ -206,3 +206,30 @@ TEST_CASE("slab: a rounded copy is re-proven embedded exactly, a broken one is n
   const ValidationReport broken = validate(folded, moved);
   CHECK_FALSE(broken.valid());
 }
+
+TEST_CASE("slab: the connectivity extrude proves is what the analysis finds", "[mesh][slab][countertop]") {
+  for (const double degrees : {0.0, 33.0}) {
+    const Kitchen k = kitchen(degrees);
+    RegionOptions ro;
+    ro.tolerance = 0.2;
+    const Region2 region = build_region(k.outline, k.holes, ro);
+    SlabOptions so;
+    so.thickness = 25.0;
+    so.max_edge = degrees > 0.0 ? 80.0 : 0.0;
+    const SlabMesh slab = build_slab(region, so);
+    REQUIRE(slab.topology.has_value());
+    const TriangleSoup soup = to_soup(slab.mesh);
+    const ValidationReport analysed = validate(soup);
+    CHECK(analysed.valid());
+    CHECK(analysed.components == slab.topology->components);
+    CHECK(analysed.euler_characteristics == slab.topology->euler_characteristics);
+    ValidationOptions vo;
+    vo.topology = slab.topology;
+    vo.embedding = slab.proof;
+    const ValidationReport proven = validate(soup, vo);
+    CHECK(proven.valid());
+    CHECK(proven.genus == analysed.genus);
+    CHECK(proven.genus == std::optional<long>(2));  // the sink and the cooktop
+    CHECK(proven.topology_proof == slab.topology->statement);
+  }
+}
