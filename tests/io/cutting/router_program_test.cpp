@@ -13,6 +13,7 @@
 #include "geometry/toolpath/toolpath.h"
 #include "io/cutting/gcode.h"
 #include "tests/geometry/section/region_shapes.h"
+#include "tests/geometry/toolpath/digitised_worktop.h"
 #include "tests/io/cutting/interpret.h"
 
 using namespace fabmesh;
@@ -477,20 +478,7 @@ namespace {
 // convex back corners of radius 100 by 41 points each, and a digitised round sink of radius
 // 200 by 360 points.
 ExampleRegion digitised_worktop() {
-  std::vector<Vec2> p;
-  const double R = 19000;
-  for (int i = 0; i <= 300; ++i) {
-    const double x = 2400.0 * i / 300;
-    p.emplace_back(x, std::sqrt(R * R - (x - 1200) * (x - 1200)) - std::sqrt(R * R - 1200.0 * 1200.0));
-  }
-  for (int i = 0; i <= 40; ++i) {
-    const double a = M_PI / 2 * i / 40;
-    p.emplace_back(2300 + 100 * std::cos(a), 550 + 100 * std::sin(a));
-  }
-  for (int i = 0; i <= 40; ++i) {
-    const double a = M_PI / 2 + M_PI / 2 * i / 40;
-    p.emplace_back(100 + 100 * std::cos(a), 550 + 100 * std::sin(a));
-  }
+  const std::vector<Vec2> p = digitised_worktop_points();
   std::vector<Vec2> sink;
   for (int i = 0; i < 360; ++i) {
     const double a = 2.0 * M_PI * i / 360;
