@@ -305,15 +305,42 @@ void label(const Handle(StepData_StepModel) & model, const StepModel& m) {
   }
 }
 
-StepWritten write_model(const StepModel& m) {
-  StepWritten out;
+// Runs `body` on a fresh Out holding the lock, with OCCT quiet and its STEP
+// controller initialised; an exception (OCCT's or ours) becomes out.error.
+template <class Out, class Body>
+Out with_occt(Body body) {
+  Out out;
   try {
     const std::lock_guard<std::mutex> lock(occt_lock());
     quiet_occt();
+    STEPControl_Controller::Init();
+    body(out);
+  } catch (const Standard_Failure& e) {
+    out.error = std::string("OpenCASCADE: ") + e.GetMessageString();
+  } catch (const std::exception& e) {
+    out.error = e.what();
+  }
+  return out;
+}
+
+// Reads `bytes` into `reader`, set to give shapes in the file's own unit
+// (named in *unit when given); false with `error` set when refused.
+bool read_into(STEPControl_Reader& reader, const std::string& bytes, std::string& error, std::string* unit) {
+  std::istringstream in(bytes);
+  if (reader.ReadStream("fabmesh.step", in) != IFSelect_RetDone) {
+    error = "OpenCASCADE's STEP reader refused the file";
+    return false;
+  }
+  const std::string file_unit = read_in_file_unit(reader);
+  if (unit != nullptr) *unit = file_unit;
+  return true;
+}
+
+StepWritten write_model(const StepModel& m) {
+  return with_occt<StepWritten>([&m](StepWritten& out) {
     // The shapes are in the file's unit, and so is the file: nothing is scaled.
     // The settings exist once the STEP controller is initialised, and are set
     // before the writer exists: it takes them when it makes its model.
-    STEPControl_Controller::Init();
     const char* unit = occt_unit(m.unit);
     Interface_Static::SetCVal("write.step.schema", "AP214IS");
     Interface_Static::SetCVal("write.step.unit", unit);
@@ -331,7 +358,7 @@ StepWritten write_model(const StepModel& m) {
           body.form == StepForm::Wireframe ? STEPControl_GeometricCurveSet : STEPControl_ManifoldSolidBrep;
       if (writer.Transfer(shape, mode) != IFSelect_RetDone) {
         out.error = "OpenCASCADE could not translate body '" + body.name + "' into STEP";
-        return out;
+        return;
       }
     }
     const Handle(StepData_StepModel) model = writer.Model();
@@ -341,59 +368,31 @@ StepWritten write_model(const StepModel& m) {
     std::ostringstream os;
     if (!sw.Print(os)) {
       out.error = "OpenCASCADE could not print the STEP file";
-      return out;
+      return;
     }
     out.bytes = os.str();
-  } catch (const Standard_Failure& e) {
-    out.error = std::string("OpenCASCADE: ") + e.GetMessageString();
-  } catch (const std::exception& e) {
-    out.error = e.what();
-  }
-  return out;
+  });
 }
 
 StepRead read_bytes(const std::string& bytes) {
-  StepRead out;
-  try {
-    const std::lock_guard<std::mutex> lock(occt_lock());
-    quiet_occt();
-    STEPControl_Controller::Init();
+  return with_occt<StepRead>([&bytes](StepRead& out) {
     STEPControl_Reader reader;
-    std::istringstream in(bytes);
-    if (reader.ReadStream("fabmesh.step", in) != IFSelect_RetDone) {
-      out.error = "OpenCASCADE's STEP reader refused the file";
-      return out;
-    }
-    out.length_unit = read_in_file_unit(reader);
+    if (!read_into(reader, bytes, out.error, &out.length_unit)) return;
     const int roots = reader.NbRootsForTransfer();
     for (int i = 1; i <= roots; ++i) {
       if (!reader.TransferRoot(i)) {
         out.error = "root " + std::to_string(i) + " did not transfer";
-        return out;
+        return;
       }
     }
     for (int i = 1; i <= reader.NbShapes(); ++i) out.roots.push_back(facts_of(reader.Shape(i)));
-  } catch (const Standard_Failure& e) {
-    out.error = std::string("OpenCASCADE: ") + e.GetMessageString();
-  } catch (const std::exception& e) {
-    out.error = e.what();
-  }
-  return out;
+  });
 }
 
 StepDistances distances_to(const std::string& bytes, const std::vector<Vec3>& points) {
-  StepDistances out;
-  try {
-    const std::lock_guard<std::mutex> lock(occt_lock());
-    quiet_occt();
-    STEPControl_Controller::Init();
+  return with_occt<StepDistances>([&bytes, &points](StepDistances& out) {
     STEPControl_Reader reader;
-    std::istringstream in(bytes);
-    if (reader.ReadStream("fabmesh.step", in) != IFSelect_RetDone) {
-      out.error = "OpenCASCADE's STEP reader refused the file";
-      return out;
-    }
-    read_in_file_unit(reader);
+    if (!read_into(reader, bytes, out.error, nullptr)) return;
     reader.TransferRoots();
     const TopoDS_Shape shape = reader.OneShape();
     // Distances to the faces (or, for a wireframe, the edges).
@@ -409,16 +408,11 @@ StepDistances distances_to(const std::string& bytes, const std::vector<Vec3>& po
       extrema.LoadS1(BRepBuilderAPI_MakeVertex(gp_Pnt(p.x(), p.y(), p.z())).Vertex());
       if (!extrema.Perform() || !extrema.IsDone()) {
         out.error = "no distance found";
-        return out;
+        return;
       }
       out.max_distance = std::max(out.max_distance, extrema.Value());
     }
-  } catch (const Standard_Failure& e) {
-    out.error = std::string("OpenCASCADE: ") + e.GetMessageString();
-  } catch (const std::exception& e) {
-    out.error = e.what();
-  }
-  return out;
+  });
 }
 
 }  // namespace
