@@ -51,13 +51,6 @@ struct ExactSolid {
   double height = 0.0;
 };
 
-/// The pieces of a closed composite curve, each segment whole.
-inline std::vector<ExactPiece> exact_pieces(const CompositeCurve& curve) {
-  std::vector<ExactPiece> pieces;
-  for (const Segment& s : curve.segments()) pieces.push_back({s, {}, 0.0, 1.0});
-  return pieces;
-}
-
 /// The design's own curves and patches as built, before any mesh: what its
 /// plot draws. The curves are in the design's order (design_curves).
 struct BuiltShape {

@@ -114,6 +114,10 @@ std::optional<BezierPiece> exact_bezier(const Segment& segment) {
   return std::nullopt;
 }
 
+BezierPiece hermite_cubic(const Vec2& a, const Vec2& da, const Vec2& b, const Vec2& db, double h) {
+  return {{a, a + da * (h / 3.0), b - db * (h / 3.0), b}, {}};
+}
+
 double bezier_parameter(const Segment& segment, double s) {
   return segment.kind() == SegmentKind::TBezier ? std::tan(M_PI * s / 4.0) : s;
 }
@@ -139,8 +143,7 @@ BezierApproximation hermite_approximation(const Segment& segment, double toleran
   CurveJet start = segment.jet(0.0);
   for (int i = 0; i < n; ++i) {
     const CurveJet end = segment.jet(i + 1 == n ? 1.0 : (i + 1) * h);
-    out.pieces.push_back(
-        {{start[0], start[0] + start[1] * (h / 3.0), end[0] - end[1] * (h / 3.0), end[0]}, {}});
+    out.pieces.push_back(hermite_cubic(start[0], start[1], end[0], end[1], h));
     start = end;
   }
   return out;

@@ -33,6 +33,10 @@ std::optional<BezierPiece> exact_bezier(const Segment& segment);
 /// tan(pi s / 4) for a T-Bézier segment, s for the polynomial families.
 double bezier_parameter(const Segment& segment, double s);
 
+/// The cubic over a parameter step h from point a with derivative da to
+/// point b with derivative db (derivatives per unit of that parameter).
+BezierPiece hermite_cubic(const Vec2& a, const Vec2& da, const Vec2& b, const Vec2& db, double h);
+
 /// Cubic pieces that interpolate a segment's points and first derivatives at
 /// equal steps h of s, and a proven bound of their distance from it.
 struct BezierApproximation {

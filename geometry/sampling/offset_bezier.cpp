@@ -12,11 +12,6 @@ namespace {
 
 constexpr int kCells = 16;  // cells per piece for the proof
 
-// The cubic through o(a), o(b) with tangents o'(a), o'(b), over [a, b] (a < b).
-BezierPiece hermite(const OffsetJet& a, const OffsetJet& b, double h) {
-  return {{a.point, a.point + a.d1 * (h / 3.0), b.point - b.d1 * (h / 3.0), b.point}, {}};
-}
-
 // sup |p''| over the piece, in s: 6 max |second difference| / h^2.
 double second_derivative_bound(const BezierPiece& p, double h) {
   const double d0 = (p.poles[2] - 2.0 * p.poles[1] + p.poles[0]).norm();
@@ -46,6 +41,12 @@ double piece_bound(const Segment& segment, const OffsetSpec& offset, const Offse
 
 }  // namespace
 
+std::vector<ExactPiece> exact_pieces(const CompositeCurve& curve) {
+  std::vector<ExactPiece> pieces;
+  for (const Segment& s : curve.segments()) pieces.push_back({s, {}, 0.0, 1.0});
+  return pieces;
+}
+
 BezierApproximation offset_approximation(const ExactPiece& piece, double tolerance, int max_pieces) {
   if (!(tolerance > 0.0)) {
     throw RangeError("tolerance", tolerance,
@@ -60,7 +61,7 @@ BezierApproximation offset_approximation(const ExactPiece& piece, double toleran
     for (int i = 0; i < n && out.bound <= tolerance; ++i) {
       const double a = lo + i * h, b = i + 1 == n ? hi : lo + (i + 1) * h;
       const OffsetJet end = offset_jet(piece.segment, piece.offset, b);
-      out.pieces.push_back(hermite(start, end, b - a));
+      out.pieces.push_back(hermite_cubic(start.point, start.d1, end.point, end.d1, b - a));
       out.bound =
           std::max(out.bound, piece_bound(piece.segment, piece.offset, chord, out.pieces.back(), a, b));
       start = end;

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "geometry/curves/bezier_form.h"
+#include "geometry/curves/composite.h"
 #include "geometry/curves/segment.h"
 #include "geometry/sampling/offset_curve.h"
 
@@ -19,6 +20,9 @@ struct ExactPiece {
   OffsetSpec offset;  ///< distance 0: the segment itself
   double s0 = 0.0, s1 = 1.0;
 };
+
+/// The pieces of a composite curve, each segment whole.
+std::vector<ExactPiece> exact_pieces(const CompositeCurve& curve);
 
 /// Cubic Hermite pieces through the offset's points and tangents at equal
 /// steps of s from s0 to s1, the fewest (doubling, at most max_pieces) whose

@@ -119,9 +119,7 @@ StepLoopOf step_loop(const std::vector<ExactPiece>& pieces, double tolerance) {
 }
 
 StepLoopOf step_loop(const CompositeCurve& curve, double tolerance) {
-  std::vector<ExactPiece> pieces;
-  for (const Segment& s : curve.segments()) pieces.push_back({s, {}, 0.0, 1.0});
-  return step_loop(pieces, tolerance);
+  return step_loop(exact_pieces(curve), tolerance);
 }
 
 StepWritten write_step(const StepModel& model) {
