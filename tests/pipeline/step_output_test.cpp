@@ -63,6 +63,26 @@ Written run_step(const std::string& design, const fs::path& dir, std::vector<std
   return w;
 }
 
+// The design's mesh as `format` writes it (run as a user would), with the
+// report's item, and every `step`-th vertex divided by `units` (the file's
+// units per unit of the STEP file).
+struct MeshRun {
+  nlohmann::json item;
+  std::vector<Vec3> points;
+};
+
+MeshRun mesh_run(const std::string& design, const std::string& format, const fs::path& dir, std::size_t step,
+                 double units) {
+  std::string out;
+  REQUIRE(run_cli_json({"run", design, "--export-format", format, "-o", dir.string() + "/", "--json"},
+                       &out) == 0);
+  MeshRun r;
+  r.item = only_item(out);
+  const TriangleSoup mesh = read_mesh(r.item["files"][0]["path"].get<std::string>());
+  for (std::size_t i = 0; i < mesh.vertices.size(); i += step) r.points.push_back(mesh.vertices[i] / units);
+  return r;
+}
+
 }  // namespace
 
 TEST_CASE("step: a countertop is one valid closed solid whose volume is the exact area times the thickness",
@@ -104,17 +124,9 @@ TEST_CASE("step: a countertop is one valid closed solid whose volume is the exac
   CHECK(solid.faces == static_cast<int>(edges) + 2);
 
   // The mesh's vertices lie on the solid's faces within the mesh's deviation.
-  const fs::path mesh_dir = fresh_dir("step_countertop_mesh");
-  std::string out;
-  REQUIRE(run_cli_json({"run", example("countertop_g2.yaml"), "--export-format", "obj", "-o",
-                        mesh_dir.string() + "/", "--json"},
-                       &out) == 0);
-  const nlohmann::json mesh_item = only_item(out);
-  const TriangleSoup mesh = read_mesh(mesh_item["files"][0]["path"].get<std::string>());
-  const double deviation = mesh_item["max_deviation"].get<double>();
-  std::vector<Vec3> points;
-  for (std::size_t i = 0; i < mesh.vertices.size(); i += 7) points.push_back(mesh.vertices[i]);
-  CHECK(max_distance_to_step(w.step, points) <= deviation + 1e-9);
+  const MeshRun mesh =
+      mesh_run(example("countertop_g2.yaml"), "obj", fresh_dir("step_countertop_mesh"), 7, 1.0);
+  CHECK(max_distance_to_step(w.step, mesh.points) <= mesh.item["max_deviation"].get<double>() + 1e-9);
 }
 
 TEST_CASE("step: the golden solid is written in cm, its volume 46.171424531125 cm^3", "[pipeline][step]") {
@@ -139,18 +151,11 @@ TEST_CASE("step: the golden solid is written in cm, its volume 46.171424531125 c
   CHECK(run_step(example("vessel_golden_solid.yaml"), again).step == w.step);
 
   // The mesh (STL in mm) on the solid (cm) within its deviation and float32's rounding.
-  const fs::path mesh_dir = fresh_dir("step_vessel_mesh");
-  std::string out;
-  REQUIRE(run_cli_json({"run", example("vessel_golden_solid.yaml"), "--export-format", "stl", "-o",
-                        mesh_dir.string() + "/", "--json"},
-                       &out) == 0);
-  const nlohmann::json mesh_item = only_item(out);
-  const TriangleSoup mesh = read_mesh(mesh_item["files"][0]["path"].get<std::string>());
-  std::vector<Vec3> points;
-  for (std::size_t i = 0; i < mesh.vertices.size(); i += 11) points.push_back(mesh.vertices[i] / 10.0);
+  const MeshRun mesh =
+      mesh_run(example("vessel_golden_solid.yaml"), "stl", fresh_dir("step_vessel_mesh"), 11, 10.0);
   const double allowed =
-      mesh_item["max_deviation"].get<double>() + mesh_item["files"][0]["max_added_error"].get<double>();
-  CHECK(max_distance_to_step(w.step, points) <= allowed + 1e-9);
+      mesh.item["max_deviation"].get<double>() + mesh.item["files"][0]["max_added_error"].get<double>();
+  CHECK(max_distance_to_step(w.step, mesh.points) <= allowed + 1e-9);
 }
 
 TEST_CASE("step: a curve design is a wireframe, its H-Bezier segments within the reported bound",
@@ -200,20 +205,13 @@ TEST_CASE("step: a shell vessel's inner wall is within the reported bound of the
 
   // The mesh and the solid bound the same shell: their volumes differ by at
   // most the area times the distance between their surfaces.
-  const fs::path mesh_dir = fresh_dir("step_shell_mesh");
-  std::string out;
-  REQUIRE(run_cli_json({"run", example("vessel_golden_shell.yaml"), "--export-format", "stl", "-o",
-                        mesh_dir.string() + "/", "--json"},
-                       &out) == 0);
-  const nlohmann::json mesh_item = only_item(out);
-  const double apart = mesh_item["max_deviation"].get<double>() + added;
-  CHECK(std::abs(solid.volume - mesh_item["volume"].get<double>()) <=
-        mesh_item["area"].get<double>() * apart);
-  const TriangleSoup mesh = read_mesh(mesh_item["files"][0]["path"].get<std::string>());
-  std::vector<Vec3> points;
-  for (std::size_t i = 0; i < mesh.vertices.size(); i += 13) points.push_back(mesh.vertices[i] / 10.0);
-  CHECK(max_distance_to_step(w.step, points) <=
-        apart + mesh_item["files"][0]["max_added_error"].get<double>() + 1e-9);
+  const MeshRun mesh =
+      mesh_run(example("vessel_golden_shell.yaml"), "stl", fresh_dir("step_shell_mesh"), 13, 10.0);
+  const double apart = mesh.item["max_deviation"].get<double>() + added;
+  CHECK(std::abs(solid.volume - mesh.item["volume"].get<double>()) <=
+        mesh.item["area"].get<double>() * apart);
+  CHECK(max_distance_to_step(w.step, mesh.points) <=
+        apart + mesh.item["files"][0]["max_added_error"].get<double>() + 1e-9);
 }
 
 TEST_CASE("step: a batch writes one STEP solid per variant, each its own size", "[pipeline][step][batch]") {

@@ -48,6 +48,17 @@ Kitchen kitchen(double degrees) {
   return k;
 }
 
+// The kitchen's slab: its region within `tolerance`, extruded `thickness` high.
+SlabMesh kitchen_slab(double degrees, double tolerance, double thickness, double max_edge = 0.0) {
+  const Kitchen k = kitchen(degrees);
+  RegionOptions ro;
+  ro.tolerance = tolerance;
+  SlabOptions so;
+  so.thickness = thickness;
+  so.max_edge = max_edge;
+  return build_slab(build_region(k.outline, k.holes, ro), so);
+}
+
 }  // namespace
 
 TEST_CASE("slab: valid with the 3D self-intersection test, genus = holes, volume = exact area x thickness",
@@ -161,13 +172,7 @@ TEST_CASE(
 
 TEST_CASE("slab: a rounded copy is re-proven embedded exactly, a broken one is not",
           "[mesh][slab][countertop]") {
-  const Kitchen k = kitchen(33.0);
-  RegionOptions ro;
-  ro.tolerance = 0.2;
-  const Region2 region = build_region(k.outline, k.holes, ro);
-  SlabOptions so;
-  so.thickness = 30.0;
-  const SlabMesh slab = build_slab(region, so);
+  const SlabMesh slab = kitchen_slab(33.0, 0.2, 30.0);
   REQUIRE(slab.proof.has_value());
   const EmbeddingProof& proof = *slab.proof;
   REQUIRE(proof.recheck);
@@ -209,14 +214,7 @@ TEST_CASE("slab: a rounded copy is re-proven embedded exactly, a broken one is n
 
 TEST_CASE("slab: the connectivity extrude proves is what the analysis finds", "[mesh][slab][countertop]") {
   for (const double degrees : {0.0, 33.0}) {
-    const Kitchen k = kitchen(degrees);
-    RegionOptions ro;
-    ro.tolerance = 0.2;
-    const Region2 region = build_region(k.outline, k.holes, ro);
-    SlabOptions so;
-    so.thickness = 25.0;
-    so.max_edge = degrees > 0.0 ? 80.0 : 0.0;
-    const SlabMesh slab = build_slab(region, so);
+    const SlabMesh slab = kitchen_slab(degrees, 0.2, 25.0, degrees > 0.0 ? 80.0 : 0.0);
     REQUIRE(slab.topology.has_value());
     const TriangleSoup soup = to_soup(slab.mesh);
     const ValidationReport analysed = validate(soup);
