@@ -60,13 +60,56 @@ nlohmann::json size_json(const Vec3& lo, const Vec3& hi) {
   return {s.x(), s.y(), s.z()};
 }
 
+void add_line(std::vector<ExactPiece>& loop, const Vec2& a, const Vec2& b);
+
+// The mould as exact solids, from the mould's blocks and keys and the exact
+// master profile (the mesh's cavity is that profile sampled).
+ExactMould exact_mould(const Mould& mould, const CompositeCurve& master, const MouldOptions& options) {
+  const MouldSection& s = mould.section;
+  ExactMould exact;
+  exact.box = options.block == BlockShape::Box;
+  exact.block_radius = s.block_radius;
+  exact.volume = mould.block_volume - mould.cavity_volume + mould.key_volume;
+  // Down the profile from the rim, to the axis, up it past the block's top,
+  // and back down the reservoir's wall (continued upward) to the rim.
+  const std::vector<Segment>& segments = master.segments();
+  const bool upward = segments.back().point(1.0).y() > segments.front().point(0.0).y();
+  std::vector<ExactPiece>& loop = exact.cavity;
+  if (upward) {
+    for (auto g = segments.rbegin(); g != segments.rend(); ++g) loop.push_back({*g, {}, 1.0, 0.0});
+  } else {
+    loop = exact_pieces(master);
+  }
+  const Vec2 rim = upward ? segments.back().point(1.0) : segments.front().point(0.0);
+  const Vec2 base = upward ? segments.front().point(0.0) : segments.back().point(1.0);
+  const double z_above = s.z_top + options.spare;
+  const double r_above =
+      rim.x() + (s.opening_radius - s.rim_radius) * (z_above - rim.y()) / (s.z_top - rim.y());
+  add_line(loop, base, Vec2(0.0, base.y()));
+  add_line(loop, Vec2(0.0, base.y()), Vec2(0.0, z_above));
+  add_line(loop, Vec2(0.0, z_above), Vec2(r_above, z_above));
+  add_line(loop, Vec2(r_above, z_above), rim);
+  for (const MouldPart& p : mould.parts) {
+    ExactMould::Part part;
+    const bool side = p.kind == MouldPartKind::Side;
+    part.z_low = side && s.has_cut ? s.z_cut : s.z_bottom;
+    part.z_high = side ? s.z_top : s.z_cut;
+    part.from_angle = p.from_angle;
+    part.to_angle = p.to_angle;
+    for (const KeyFeature& k : p.keys) part.keys.push_back({k.centre, k.axis, k.radius, k.bump});
+    exact.parts.push_back(std::move(part));
+  }
+  return exact;
+}
+
 // The mould's parts, each validated with its proof of embedding and required
-// valid, and what a workshop needs to know.
-void add_mould(const VesselDesign& design, const CompositeCurve& fired_profile, const BuildContext& context,
-               BuiltMesh& out) {
+// valid, and what a workshop needs to know; and the mould as exact solids.
+void add_mould(const VesselDesign& design, const CompositeCurve& fired_profile, const CompositeCurve& master,
+               const BuildContext& context, BuiltMesh& out) {
   MouldOptions options = *design.mould;
   options.tolerance = context.tolerance;
   Mould mould = keyed_in("vessel.mould", "mould.", [&] { return build_mould(fired_profile, options); });
+  out.shape.mould = exact_mould(mould, master, options);
   for (MouldPart& p : mould.parts) {
     std::string name = p.name;  // "side 1 of 2", "base"
     if (p.kind == MouldPartKind::Side) name = fmt::format("side-{}", out.mould_parts.size() + 1);
@@ -74,6 +117,7 @@ void add_mould(const VesselDesign& design, const CompositeCurve& fired_profile, 
     checks.embedding = p.proof;
     ValidationReport validation = validate_built(p.soup, checks);
     require_fit(validation, MeshPurpose::Fabrication, "mould part '" + p.name + "'");
+    out.shape.mould->parts[out.mould_parts.size()].name = name;
     out.mould_parts.push_back({name, std::move(p.soup), std::move(validation)});
   }
   context.watch.lap("mould");
@@ -105,44 +149,59 @@ void add_line(std::vector<ExactPiece>& loop, const Vec2& a, const Vec2& b) {
   if (a != b) loop.push_back({Segment::line(a, b), {}, 0.0, 1.0});
 }
 
+// True for a line along the axis.
+bool on_axis(const Segment& s) {
+  return s.kind() == SegmentKind::Line && s.control_points()[0].x() == 0.0 &&
+         s.control_points()[1].x() == 0.0;
+}
+
 // A vessel's exact section, as its mesh's section closes it: a solid's
 // profile closed along the rim and base levels to the axis and along the
-// axis; a shell's profile, the rim, the inner wall (arcs of the profile's
-// offset and straight pieces), the base to the axis, the axis and the
-// bottom. None when the profile runs along the axis between two parts (two
-// bodies).
+// axis (one loop per part when it runs along the axis between parts, each
+// part its own body); a shell's profile, the rim, the inner wall (arcs of the
+// profile's offset and straight pieces), the base to the axis, the axis and
+// the bottom. None for a shell that runs along the axis.
 std::optional<ExactSolid> exact_revolution(const CompositeCurve& profile, const VesselSection& section) {
   const std::vector<Segment>& segments = profile.segments();
-  for (const Segment& s : segments) {
-    if (s.kind() == SegmentKind::Line && s.control_points()[0].x() == 0.0 && s.control_points()[1].x() == 0.0)
-      return std::nullopt;
-  }
+  const bool axis_runs = std::any_of(segments.begin(), segments.end(), on_axis);
+  if (axis_runs && section.inner_wall) return std::nullopt;
   ExactSolid solid;
   solid.form = ExactSolid::Form::Revolution;
   if (profile.closed()) {
     solid.loops.push_back(exact_pieces(profile));
     return solid;
   }
-  // From the base up to the rim.
+  // From the base up to the rim, in runs off the axis.
   const bool upward = segments.back().point(1.0).y() > segments.front().point(0.0).y();
-  std::vector<ExactPiece> loop;
+  std::vector<std::vector<ExactPiece>> runs(1);
+  const auto add = [&](const ExactPiece& piece) {
+    if (!on_axis(piece.segment)) {
+      runs.back().push_back(piece);
+    } else if (!runs.back().empty()) {
+      runs.emplace_back();
+    }
+  };
   if (upward) {
-    loop = exact_pieces(profile);
+    for (const Segment& s : segments) add({s, {}, 0.0, 1.0});
   } else {
-    for (auto s = segments.rbegin(); s != segments.rend(); ++s) loop.push_back({*s, {}, 1.0, 0.0});
+    for (auto s = segments.rbegin(); s != segments.rend(); ++s) add({*s, {}, 1.0, 0.0});
   }
-  const Vec2 bottom = upward ? segments.front().point(0.0) : segments.back().point(1.0);
-  const Vec2 top = upward ? segments.back().point(1.0) : segments.front().point(0.0);
-  Vec2 last = top;
-  if (const auto& wall = section.inner_wall) {
-    add_line(loop, top, wall->points.front().point);
-    for (ExactPiece& piece : inner_wall_exact_pieces(*wall, profile)) loop.push_back(std::move(piece));
-    last = wall->points.back().point;
+  if (runs.back().empty()) runs.pop_back();
+  for (std::vector<ExactPiece>& loop : runs) {
+    const auto end_of = [](const ExactPiece& p) { return p.segment.point(p.s1); };
+    const Vec2 bottom = loop.front().segment.point(loop.front().s0);
+    const Vec2 top = end_of(loop.back());
+    Vec2 last = top;
+    if (const auto& wall = section.inner_wall) {
+      add_line(loop, top, wall->points.front().point);
+      for (ExactPiece& piece : inner_wall_exact_pieces(*wall, profile)) loop.push_back(std::move(piece));
+      last = wall->points.back().point;
+    }
+    add_line(loop, last, Vec2(0.0, last.y()));
+    add_line(loop, Vec2(0.0, last.y()), Vec2(0.0, bottom.y()));
+    add_line(loop, Vec2(0.0, bottom.y()), bottom);
+    solid.loops.push_back(std::move(loop));
   }
-  add_line(loop, last, Vec2(0.0, last.y()));
-  add_line(loop, Vec2(0.0, last.y()), Vec2(0.0, bottom.y()));
-  add_line(loop, Vec2(0.0, bottom.y()), bottom);
-  solid.loops.push_back(std::move(loop));
   return solid;
 }
 
@@ -208,7 +267,7 @@ BuiltMesh build(const VesselDesign& design, const BuildContext& context) {
     out.cutting.push_back(profile_template(master, context.tolerance));
     context.watch.lap("template");
   }
-  if (design.mould) add_mould(design, profile.curve, context, out);
+  if (design.mould) add_mould(design, profile.curve, master, context, out);
   out.shape.curves.push_back({"profile", profile});
   out.shape.solid = exact_revolution(master, vessel.section);
   return out;

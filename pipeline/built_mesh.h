@@ -41,14 +41,45 @@ struct NamedBuiltCurve {
 /// outputs that carry exact geometry (step) write.
 struct ExactSolid {
   enum class Form {
-    Extrusion,   ///< `loops` in the xy plane (the outline, then holes) extruded by `height` along z
-    Revolution,  ///< one closed loop in the (radius, height) half-plane revolved about the height axis
+    Extrusion,  ///< `loops` in the xy plane (the outline, then holes) extruded by `height` along z
+    /// each loop in the (radius, height) half-plane revolved about the height
+    /// axis into a solid of its own (one per part of a profile that runs along the axis)
+    Revolution,
   };
   Form form = Form::Extrusion;
   /// Closed, as written (a vessel's scaled for shrinkage): segments, and a
   /// shell's inner wall as arcs of the profile's offset.
   std::vector<std::vector<ExactPiece>> loops;
   double height = 0.0;
+};
+
+/// A vessel's slip-casting mould as exact solids (what `mould_step` writes):
+/// each part is the block (a cylinder, or a square box, about the z axis)
+/// between two heights and, for a side part, two split half-planes, minus
+/// the cavity revolved, with its keys' hemispheres added (bumps) or taken
+/// away (sockets). Master size, model units.
+struct ExactMould {
+  struct Key {
+    Vec3 centre{0.0, 0.0, 0.0};
+    Vec3 axis{0.0, 0.0, 1.0};  ///< unit normal of the split plane toward the apex
+    double radius = 0.0;
+    bool bump = true;
+  };
+  struct Part {
+    std::string name;  ///< as in the mesh outputs' file names: "side-1", "base"
+    double z_low = 0.0, z_high = 0.0;
+    double from_angle = 0.0, to_angle = 0.0;  ///< radians; the base part goes all the way round
+    std::vector<Key> keys;
+  };
+  bool box = false;
+  double block_radius = 0.0;  ///< the cylinder's radius or half the box's side
+  /// The cavity's section, closed: the exact profile from the rim down to its
+  /// base end, to the axis, up the axis above the block's top, and back down
+  /// along the reservoir's wall to the rim (the reservoir opens at the top).
+  std::vector<ExactPiece> cavity;
+  std::vector<Part> parts;
+  /// The parts' exact total volume: block - cavity + bumps - sockets.
+  double volume = 0.0;
 };
 
 /// The design's own curves and patches as built, before any mesh: what its
@@ -59,6 +90,7 @@ struct BuiltShape {
   /// The exact solid, when the design's kind has one fabmesh can write
   /// exactly (countertops, solid vessels).
   std::optional<ExactSolid> solid;
+  std::optional<ExactMould> mould;  ///< a vessel's mould, when it has one
 };
 
 /// One design built and validated. The soup is what the writers encode

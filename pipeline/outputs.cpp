@@ -341,6 +341,36 @@ Files encode_png_output(const EncodeContext& c) {
   return {{design_preview_png(c.common, c.built, options), c.common.units, 0.0, ""}};
 }
 
+// Exact curves as STEP loops, keeping the largest proven bound of an
+// approximated piece (0 while every piece is exact).
+class StepLoops {
+ public:
+  explicit StepLoops(double tolerance) : tolerance_(tolerance) {}
+  template <class Curve>
+  StepLoop operator()(const Curve& curve) {
+    try {
+      StepLoopOf l = step_loop(curve, tolerance_);
+      added_ = std::max(added_, l.max_error);
+      return std::move(l.loop);
+    } catch (const InputError& e) {
+      throw OutputError("step", std::string("step: ") + e.what());
+    }
+  }
+  double added() const { return added_; }
+
+ private:
+  double tolerance_;
+  double added_ = 0.0;
+};
+
+Files step_file(const EncodeContext& c, const StepModel& model, double added) {
+  Encoded e;
+  e.bytes = write_step(model).bytes;
+  e.units = c.common.units;
+  e.added_error = added;
+  return {std::move(e)};
+}
+
 // The exact solid (or, for a curve design, its curves) in the design's unit.
 // Exact segments stay exact; an H-Bézier segment becomes a cubic B-spline
 // within what the build left of the tolerance, and that bound is the file's
@@ -349,36 +379,72 @@ Files encode_step_output(const EncodeContext& c) {
   StepModel model;
   model.name = c.common.name;
   model.unit = c.common.units;
-  double added = 0.0;
-  const auto loop_of = [&](const auto& curve) {
-    try {
-      StepLoopOf l = step_loop(curve, c.output_tolerance);
-      added = std::max(added, l.max_error);
-      return std::move(l.loop);
-    } catch (const InputError& e) {
-      throw OutputError("step", std::string("step: ") + e.what());
-    }
-  };
+  StepLoops loop_of(c.output_tolerance);
   StepBody body;
   body.name = c.common.name;
   if (const auto& solid = c.built.shape.solid) {
-    body.form = solid->form == ExactSolid::Form::Extrusion ? StepForm::Extrusion : StepForm::Revolution;
     body.height = solid->height;
-    for (const std::vector<ExactPiece>& loop : solid->loops) body.loops.push_back(loop_of(loop));
+    if (solid->form == ExactSolid::Form::Extrusion) {
+      body.form = StepForm::Extrusion;
+      for (const std::vector<ExactPiece>& loop : solid->loops) body.loops.push_back(loop_of(loop));
+    } else {
+      // A solid per loop: a profile that runs along the axis between parts makes one per part.
+      body.form = StepForm::Revolution;
+      for (std::size_t i = 0; i < solid->loops.size(); ++i) {
+        StepBody part = body;
+        if (solid->loops.size() > 1) part.name += fmt::format(" part {}", i + 1);
+        part.loops.push_back(loop_of(solid->loops[i]));
+        model.bodies.push_back(std::move(part));
+      }
+      return step_file(c, model, loop_of.added());
+    }
   } else if (!c.built.soup.triangles.empty()) {
-    throw OutputError("step",
-                      "step: the profile runs along the axis between two parts: the vessel is two solids "
-                      "touching at a point of the axis, which STEP cannot hold as one valid solid");
+    throw OutputError("step", "step: a shell whose profile runs along the axis is not written as STEP yet");
   } else {
     body.form = StepForm::Wireframe;
     for (const NamedBuiltCurve& curve : c.built.shape.curves)
       body.loops.push_back(loop_of(curve.curve.curve));
   }
   model.bodies.push_back(std::move(body));
+  return step_file(c, model, loop_of.added());
+}
+
+// The mould's parts as exact solids, one product each, in the design's unit:
+// OpenCASCADE takes the revolved cavity and the sockets from each block and
+// adds the bumps. When the cavity is exact, the parts' volumes together must
+// be the exact plaster volume (block - cavity + bumps - sockets) within
+// OpenCASCADE's integration: a boolean operation that lost the cavity or a
+// key (a key is about 1e-4 of a mould) would show there.
+Files encode_mould_step_output(const EncodeContext& c) {
+  const ExactMould& mould = *c.built.shape.mould;
+  StepModel model;
+  model.name = c.common.name + " mould";
+  model.unit = c.common.units;
+  StepLoops loop_of(c.output_tolerance);
+  const StepLoop cavity = loop_of(mould.cavity);
+  for (const ExactMould::Part& part : mould.parts) {
+    StepBody body;
+    body.name = c.common.name + " mould " + part.name;
+    body.form = StepForm::Carved;
+    body.loops = {cavity};
+    body.block = {mould.box, mould.block_radius, part.z_low, part.z_high, part.from_angle, part.to_angle};
+    for (const ExactMould::Key& k : part.keys)
+      body.hemispheres.push_back({k.centre, k.axis, k.radius, k.bump});
+    model.bodies.push_back(std::move(body));
+  }
+  const StepWritten written = write_step(model);
+  double volume = 0.0;
+  for (const StepShapeFacts& f : written.bodies) volume += f.volume;
+  if (loop_of.added() == 0.0 && !(std::abs(volume - mould.volume) <= 1e-6 * std::abs(mould.volume))) {
+    throw OutputError("step",
+                      fmt::format("step: the mould's parts as OpenCASCADE built them hold {:.9g} {}^3 "
+                                  "of plaster, not the exact {:.9g}; nothing is written",
+                                  volume, c.common.units, mould.volume));
+  }
   Encoded e;
-  e.bytes = write_step(model).bytes;
+  e.bytes = written.bytes;
   e.units = c.common.units;
-  e.added_error = added;
+  e.added_error = loop_of.added();
   return {std::move(e)};
 }
 
@@ -433,6 +499,13 @@ std::vector<OutputFormat> make_table() {
        vessels, ".mould-PART.stl", &encode_mould_stl_output},
       {"mould_3mf", "the mould's parts as separate objects of one 3MF", mould, vessels, vessels, ".mould.3mf",
        &encode_mould_3mf_output},
+      {"mould_step",
+       "STEP (AP214) of the mould's parts as exact solids with their keys, in the design's unit",
+       mould,
+       vessels,
+       {},
+       ".mould.step",
+       &encode_mould_step_output},
       {"nc", "RS-274 G-code of the countertop's router path (key cnc), G21/G20 as asked", toolpath,
        countertops, countertops, ".nc", &encode_nc_output},
       {"toolpath_svg", "drawing of the router path over the outline", toolpath, countertops, countertops,

@@ -25,7 +25,7 @@ std::vector<PlannedFile> planned_files(const Design& design, const JobOptions& o
 
 /// Warnings about the design's own `outputs` list: a `mould:` or `cnc:`
 /// block for which it asks for no output, so that block is not built
-/// ("cup.yaml:12:1: mould: ... add mould_stl or mould_3mf to `outputs`").
+/// ("cup.yaml:12:1: mould: ... add mould_stl, mould_3mf or mould_step to `outputs`").
 /// None when the formats come from the command line (`--export-format`,
 /// `-o FILE.ext`) or are the kind's defaults.
 std::vector<std::string> unused_block_warnings(const Design& design, const JobOptions& options,

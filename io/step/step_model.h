@@ -42,13 +42,36 @@ enum class StepForm {
   Extrusion,   ///< loops in the xy plane (the outer one first, then holes) extruded by `height` along z
   Revolution,  ///< one closed loop in the (radius, height) half-plane revolved about the z axis
   Wireframe,   ///< the loops as curves in the xy plane, no solid
+  Carved,  ///< `block` minus loops[0] (a closed (radius, height) loop) revolved about z, with `hemispheres`
+};
+
+/// A block about the z axis between two heights: a cylinder of `radius`, or a
+/// square box of half-side `radius` with sides parallel to x and y; all of
+/// it, or its part between the half-planes through the axis at `from_angle`
+/// and `to_angle` (radians, to_angle - from_angle in (0, 2 pi]).
+struct StepBlock {
+  bool box = false;
+  double radius = 0.0;
+  double z_low = 0.0, z_high = 0.0;
+  double from_angle = 0.0, to_angle = 0.0;
+};
+
+/// A solid hemisphere: the half-ball of `radius` about `centre` on the side
+/// `axis` (a unit vector) points to; added to the body or taken from it.
+struct StepHemisphere {
+  Vec3 centre{0.0, 0.0, 0.0};
+  Vec3 axis{0.0, 0.0, 1.0};
+  double radius = 0.0;
+  bool added = true;
 };
 
 struct StepBody {
   std::string name;  ///< the product's name in the file
   StepForm form = StepForm::Extrusion;
   std::vector<StepLoop> loops;
-  double height = 0.0;  ///< Extrusion: > 0
+  double height = 0.0;                      ///< Extrusion: > 0
+  StepBlock block;                          ///< Carved
+  std::vector<StepHemisphere> hemispheres;  ///< Carved
 };
 
 /// One file: its bodies in one unit of length (mm, cm, m or in), the file's own.
@@ -95,6 +118,6 @@ struct StepModuleApi {
 };
 
 /// Changes whenever StepModel, StepWritten, StepRead or StepModuleApi change.
-inline constexpr int kStepModuleAbi = 1;
+inline constexpr int kStepModuleAbi = 2;
 
 }  // namespace fabmesh

@@ -6,8 +6,11 @@
 // statics: every call here holds one lock, and sets every setting it relies on.
 
 #include <APIHeaderSection_MakeHeader.hxx>
+#include <BRepAlgoAPI_Cut.hxx>
+#include <BRepAlgoAPI_Fuse.hxx>
 #include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepBuilderAPI_MakePolygon.hxx>
 #include <BRepBuilderAPI_MakeVertex.hxx>
 #include <BRepBuilderAPI_MakeWire.hxx>
 #include <BRepCheck.hxx>
@@ -16,8 +19,10 @@
 #include <BRepExtrema_DistShapeShape.hxx>
 #include <BRepGProp.hxx>
 #include <BRepLib.hxx>
+#include <BRepPrimAPI_MakeCylinder.hxx>
 #include <BRepPrimAPI_MakePrism.hxx>
 #include <BRepPrimAPI_MakeRevol.hxx>
+#include <BRepPrimAPI_MakeSphere.hxx>
 #include <BRep_Builder.hxx>
 #include <BRep_Tool.hxx>
 #include <GProp_GProps.hxx>
@@ -49,6 +54,7 @@
 #include <TopExp_Explorer.hxx>
 #include <TopTools_IndexedDataMapOfShapeListOfShape.hxx>
 #include <TopTools_IndexedMapOfShape.hxx>
+#include <TopTools_ListOfShape.hxx>
 #include <TopoDS.hxx>
 #include <TopoDS_Compound.hxx>
 #include <TopoDS_Edge.hxx>
@@ -111,10 +117,13 @@ std::string read_in_file_unit(STEPControl_Reader& reader) {
   return unit;
 }
 
+// True for the forms whose loops lie in the (radius, height) half-plane.
+bool revolved(StepForm form) { return form == StepForm::Revolution || form == StepForm::Carved; }
+
 // Where a plane point goes: the xy plane (extrusions, wireframes) or the
-// (radius, height) half-plane as x and z (revolutions).
+// (radius, height) half-plane as x and z (revolutions, carved bodies).
 gp_Pnt place(const Vec2& p, StepForm form) {
-  return form == StepForm::Revolution ? gp_Pnt(p.x(), 0.0, p.y()) : gp_Pnt(p.x(), p.y(), 0.0);
+  return revolved(form) ? gp_Pnt(p.x(), 0.0, p.y()) : gp_Pnt(p.x(), p.y(), 0.0);
 }
 
 TColgp_Array1OfPnt poles_of(const StepCurve& c, StepForm form) {
@@ -157,7 +166,7 @@ TopoDS_Edge make_edge(const StepCurve& c, StepForm form) {
     case StepCurve::Kind::Conic: {
       const StepConic& k = c.conic;
       const gp_Pnt centre = place(k.center, form);
-      const gp_Dir normal = form == StepForm::Revolution ? gp_Dir(0, -1, 0) : gp_Dir(0, 0, 1);
+      const gp_Dir normal = revolved(form) ? gp_Dir(0, -1, 0) : gp_Dir(0, 0, 1);
       const Vec2 axis(std::cos(k.axis_angle), std::sin(k.axis_angle));
       const gp_Pnt tip = place(k.center + axis, form);
       const gp_Ax2 frame(centre, normal, gp_Dir(gp_Vec(centre, tip)));
@@ -188,6 +197,108 @@ TopoDS_Wire make_wire(const StepLoop& loop, StepForm form, std::size_t index) {
   return wire.Wire();
 }
 
+// The face the body's loops bound in its plane, turned so that its normal is
+// the plane's: the outer loop counter-clockwise about it, the holes clockwise
+// (the loops may come in either direction).
+TopoDS_Face plane_face(const StepBody& body) {
+  const gp_Pln plane =
+      revolved(body.form) ? gp_Pln(gp::Origin(), gp_Dir(0, -1, 0)) : gp_Pln(gp::Origin(), gp::DZ());
+  BRepBuilderAPI_MakeFace face(plane, make_wire(body.loops[0], body.form, 0), Standard_True);
+  for (std::size_t i = 1; i < body.loops.size(); ++i) face.Add(make_wire(body.loops[i], body.form, i));
+  if (!face.IsDone()) throw std::runtime_error("the loops make no face");
+  ShapeFix_Face fix(face.Face());
+  fix.FixOrientation();
+  return fix.Face();
+}
+
+// The plane face revolved all the way about the z axis.
+TopoDS_Shape revolution_of(const TopoDS_Face& face) {
+  BRepPrimAPI_MakeRevol revol(face, gp_Ax1(gp::Origin(), gp::DZ()), 2.0 * M_PI);
+  if (!revol.IsDone()) throw std::runtime_error("the revolution failed");
+  return revol.Shape();
+}
+
+// Where the ray from the axis at `angle` leaves the square |x|, |y| <= r.
+gp_Pnt on_square(double r, double angle, double z) {
+  const double c = std::cos(angle), s = std::sin(angle);
+  const double t = r / std::max(std::abs(c), std::abs(s));
+  return gp_Pnt(t * c, t * s, z);
+}
+
+// A carved body's block: a cylinder or its sector, or a box or its part
+// between the two half-planes (the polygon of the square's corners between
+// them, extruded), so that no boolean operation is needed for it.
+TopoDS_Shape make_block(const StepBlock& b) {
+  const double height = b.z_high - b.z_low, sweep = b.to_angle - b.from_angle;
+  if (!(height > 0.0) || !(b.radius > 0.0) || !(sweep > 0.0) || sweep > 2.0 * M_PI + 1e-12)
+    throw std::runtime_error("a block without room (height, radius or angle not positive)");
+  const bool whole = sweep >= 2.0 * M_PI - 1e-12;
+  if (!b.box) {
+    const gp_Ax2 frame(gp_Pnt(0.0, 0.0, b.z_low), gp::DZ(),
+                       gp_Dir(std::cos(b.from_angle), std::sin(b.from_angle), 0.0));
+    return whole ? BRepPrimAPI_MakeCylinder(frame, b.radius, height).Shape()
+                 : BRepPrimAPI_MakeCylinder(frame, b.radius, height, sweep).Shape();
+  }
+  BRepBuilderAPI_MakePolygon polygon;
+  if (whole) {
+    for (const double angle : {-0.75 * M_PI, -0.25 * M_PI, 0.25 * M_PI, 0.75 * M_PI})
+      polygon.Add(on_square(b.radius, angle, b.z_low));
+  } else {
+    polygon.Add(gp_Pnt(0.0, 0.0, b.z_low));
+    polygon.Add(on_square(b.radius, b.from_angle, b.z_low));
+    const double margin = 1e-12;
+    for (int k = -8; k <= 16; ++k) {
+      const double corner = 0.25 * M_PI + 0.5 * M_PI * k;
+      if (corner > b.from_angle + margin && corner < b.to_angle - margin)
+        polygon.Add(on_square(b.radius, corner, b.z_low));
+    }
+    polygon.Add(on_square(b.radius, b.to_angle, b.z_low));
+  }
+  polygon.Close();
+  if (!polygon.IsDone()) throw std::runtime_error("the box's outline makes no polygon");
+  BRepBuilderAPI_MakeFace face(polygon.Wire(), Standard_True);
+  if (!face.IsDone()) throw std::runtime_error("the box's outline makes no face");
+  BRepPrimAPI_MakePrism prism(face.Face(), gp_Vec(0.0, 0.0, height));
+  if (!prism.IsDone()) throw std::runtime_error("the box's extrusion failed");
+  return prism.Shape();
+}
+
+TopoDS_Shape make_hemisphere(const StepHemisphere& h) {
+  if (!(h.radius > 0.0)) throw std::runtime_error("a hemisphere without radius");
+  const gp_Ax2 frame(gp_Pnt(h.centre.x(), h.centre.y(), h.centre.z()),
+                     gp_Dir(h.axis.x(), h.axis.y(), h.axis.z()));
+  return BRepPrimAPI_MakeSphere(frame, h.radius, 0.0, 0.5 * M_PI).Shape();
+}
+
+// `object` with `tools` taken away (Cut) or added (Fuse), by OpenCASCADE's
+// general fuse; refused when it reports an error.
+template <class Operation>
+TopoDS_Shape boolean(const TopoDS_Shape& object, const TopTools_ListOfShape& tools, const char* what) {
+  Operation operation;
+  TopTools_ListOfShape objects;
+  objects.Append(object);
+  operation.SetArguments(objects);
+  operation.SetTools(tools);
+  operation.SetRunParallel(Standard_False);
+  operation.Build();
+  if (!operation.IsDone() || operation.HasErrors())
+    throw std::runtime_error(std::string("OpenCASCADE's boolean operation failed ") + what);
+  return operation.Shape();
+}
+
+// The block minus the revolved section (the mould's cavity) and the
+// hemispheres taken away, plus those added: one solid when all went well.
+TopoDS_Shape make_carved(const StepBody& body) {
+  TopTools_ListOfShape removed, added;
+  removed.Append(revolution_of(plane_face(body)));
+  for (const StepHemisphere& h : body.hemispheres) (h.added ? added : removed).Append(make_hemisphere(h));
+  TopoDS_Shape shape = boolean<BRepAlgoAPI_Cut>(make_block(body.block), removed, "taking the cavity away");
+  if (!added.IsEmpty()) shape = boolean<BRepAlgoAPI_Fuse>(shape, added, "adding the keys");
+  TopTools_IndexedMapOfShape solids;
+  TopExp::MapShapes(shape, TopAbs_SOLID, solids);
+  return solids.Extent() == 1 ? solids(1) : shape;  // else facts_of counts the solids
+}
+
 TopoDS_Shape make_body(const StepBody& body) {
   if (body.loops.empty()) throw std::runtime_error("a body without loops");
   if (body.form == StepForm::Wireframe) {
@@ -198,25 +309,14 @@ TopoDS_Shape make_body(const StepBody& body) {
       builder.Add(compound, make_wire(body.loops[i], body.form, i));
     return compound;
   }
-  const gp_Pln plane = body.form == StepForm::Revolution ? gp_Pln(gp::Origin(), gp_Dir(0, -1, 0))
-                                                         : gp_Pln(gp::Origin(), gp::DZ());
-  BRepBuilderAPI_MakeFace face(plane, make_wire(body.loops[0], body.form, 0), Standard_True);
-  for (std::size_t i = 1; i < body.loops.size(); ++i) face.Add(make_wire(body.loops[i], body.form, i));
-  if (!face.IsDone()) throw std::runtime_error("the loops make no face");
-  // The loops come in either direction: the outer one turned counter-clockwise
-  // about the plane's normal, the holes clockwise.
-  ShapeFix_Face fix(face.Face());
-  fix.FixOrientation();
-  const TopoDS_Face oriented = fix.Face();
+  if (body.form == StepForm::Carved) return make_carved(body);
   TopoDS_Shape shape;
   if (body.form == StepForm::Extrusion) {
-    BRepPrimAPI_MakePrism prism(oriented, gp_Vec(0.0, 0.0, body.height));
+    BRepPrimAPI_MakePrism prism(plane_face(body), gp_Vec(0.0, 0.0, body.height));
     if (!prism.IsDone()) throw std::runtime_error("the extrusion failed");
     shape = prism.Shape();
   } else {
-    BRepPrimAPI_MakeRevol revol(oriented, gp_Ax1(gp::Origin(), gp::DZ()), 2.0 * M_PI);
-    if (!revol.IsDone()) throw std::runtime_error("the revolution failed");
-    shape = revol.Shape();
+    shape = revolution_of(plane_face(body));
   }
   // Solids made from faces of either orientation: turned outward.
   for (TopExp_Explorer s(shape, TopAbs_SOLID); s.More(); s.Next()) {

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "geometry/fairing/build_curve.h"
+#include "geometry/mould/mould_options.h"
 #include "io/design/read_design.h"
 #include "io/file.h"
 #include "io/mesh/read_mesh.h"
@@ -48,10 +49,9 @@ struct Written {
   std::string step;
 };
 
-Written run_step(const std::string& design, const fs::path& dir, std::vector<std::string> more = {}) {
-  std::vector<std::string> args = {"run",   design, "--export-format", "step", "-o", dir.string() + "/",
-                                   "--json"};
-  args.insert(args.end(), more.begin(), more.end());
+Written run_step(const std::string& design, const fs::path& dir, const std::string& format = "step") {
+  const std::vector<std::string> args = {"run",   design, "--export-format", format, "-o", dir.string() + "/",
+                                         "--json"};
   std::string out;
   const int code = run_cli_json(args, &out);
   INFO(out);
@@ -251,4 +251,119 @@ outputs: [step]
   const double area = 1000.0 * 600.0 - M_PI * 200.0 * 150.0;
   CHECK(volumes[0] == Approx(20.0 * area).epsilon(1e-9));
   CHECK(volumes[1] == Approx(40.0 * area).epsilon(1e-9));
+}
+
+namespace {
+
+// The solids of a STEP file as OpenCASCADE's reader gives them, each checked valid and closed.
+std::vector<StepShapeFacts> solids_of(const std::string& step) {
+  const StepRead r = read_step(step);
+  INFO(r.error);
+  REQUIRE(r.error.empty());
+  std::vector<StepShapeFacts> solids;
+  for (const StepShapeFacts& root : r.roots) {
+    CHECK(root.valid);
+    CHECK(root.closed);
+    CHECK(root.solids == 1);
+    solids.push_back(root);
+  }
+  return solids;
+}
+
+// Net volume of the keys on one split plane: bumps of radius r, sockets r + clearance.
+double keys_volume(int keys, double radius, double clearance) {
+  const double socket = radius + clearance;
+  return keys * 2.0 / 3.0 * M_PI * (radius * radius * radius - socket * socket * socket);
+}
+
+}  // namespace
+
+TEST_CASE("step: a mould's parts are exact solids with their keys, holding the exact plaster volume",
+          "[pipeline][step][mould]") {
+  const fs::path dir = fresh_dir("step_mould");
+  const Written w = run_step(example("mould_golden.yaml"), dir, "mould_step");
+  CHECK(w.item["files"][0]["path"].get<std::string>().find("mould_golden.mould.step") != std::string::npos);
+  CHECK(w.item["files"][0]["units"] == "cm");
+  CHECK(w.item["files"][0]["max_added_error"] == 0.0);  // quartic spans, lines, circles, spheres
+  const std::vector<StepShapeFacts> parts = solids_of(w.step);
+  REQUIRE(parts.size() == 2);
+
+  // Each half: half the block less half the cavity (the cavity's revolution is
+  // exact), its four sockets out and four bumps on: exact to OCCT's integration.
+  const nlohmann::json& mould = w.item["build"]["mould"];
+  const double block = mould["block_volume"].get<double>(), slip = mould["slip_volume"].get<double>();
+  const double keys = keys_volume(4, 0.6, 0.02);
+  for (const StepShapeFacts& part : parts)
+    CHECK(part.volume == Approx((block - slip) / 2.0 + keys).epsilon(1e-7));
+  // Each part has the block's faces, the cavity's (one per profile span and the
+  // reservoir's wall), and a hemisphere per key: at least that many faces.
+  for (const StepShapeFacts& part : parts) CHECK(part.faces >= 4 + 4 + 8);
+
+  // The mesh's parts (STL in mm) lie on the solids (cm) within the mould's
+  // proven deviation and float32's rounding.
+  std::string out;
+  const fs::path mesh_dir = fresh_dir("step_mould_mesh");
+  REQUIRE(run_cli_json({"run", example("mould_golden.yaml"), "--export-format", "mould_stl", "-o",
+                        mesh_dir.string() + "/", "--json"},
+                       &out) == 0);
+  const nlohmann::json item = only_item(out);
+  REQUIRE(item["files"].size() == 2);
+  std::vector<Vec3> points;
+  double rounding = 0.0;
+  for (const nlohmann::json& file : item["files"]) {
+    const TriangleSoup mesh = read_mesh(file["path"].get<std::string>());
+    for (std::size_t i = 0; i < mesh.vertices.size(); i += 17) points.push_back(mesh.vertices[i] / 10.0);
+    rounding = std::max(rounding, file["max_added_error"].get<double>());
+  }
+  CHECK(max_distance_to_step(w.step, points) <=
+        item["build"]["mould"]["max_deviation"].get<double>() + rounding + 1e-9);
+}
+
+TEST_CASE("step: a box mould with a base part, and a three-part mould, hold the exact plaster volume",
+          "[pipeline][step][mould]") {
+  struct Case {
+    const char* design;
+    std::size_t parts;
+    int planes, keys;
+  };
+  // The box: two side parts and a base, two keys on each of the two split
+  // planes; three parts: three planes of three keys.
+  for (const Case& c : {Case{"mould_golden_box_base.yaml", 3, 2, 2}, Case{"mould_p1_moved.yaml", 3, 3, 3}}) {
+    INFO(c.design);
+    const Design design = read_design(example(c.design));
+    const MouldOptions& options = *std::get<VesselDesign>(design.body).mould;
+    const Written w = run_step(example(c.design), fresh_dir("step_mould_more"), "mould_step");
+    const std::vector<StepShapeFacts> parts = solids_of(w.step);
+    REQUIRE(parts.size() == c.parts);
+    double volume = 0.0;
+    for (const StepShapeFacts& part : parts) volume += part.volume;
+    const nlohmann::json& mould = w.item["build"]["mould"];
+    const double expected = mould["block_volume"].get<double>() - mould["slip_volume"].get<double>() +
+                            c.planes * keys_volume(c.keys, options.key_radius, options.key_clearance);
+    CHECK(volume == Approx(expected).epsilon(1e-7));
+  }
+}
+
+TEST_CASE("step: a profile running along the axis between two parts gives one solid per part",
+          "[pipeline][step]") {
+  const fs::path dir = fresh_dir("step_two_parts");
+  // Two double cones of radius 10 and height 20 on the axis, 10 apart.
+  write_text(dir / "beads.yaml", R"(name: beads
+kind: vessel
+units: mm
+tolerance: 0.05
+profile:
+  family: tbezier
+  segments:
+    - polyline: [[0, 0], [10, 10], [0, 20], [0, 30], [10, 40], [0, 50]]
+body:
+  mode: solid
+)");
+  const Written w = run_step((dir / "beads.yaml").string(), dir / "out");
+  CHECK(w.item["files"][0]["max_added_error"] == 0.0);
+  const std::vector<StepShapeFacts> parts = solids_of(w.step);
+  REQUIRE(parts.size() == 2);
+  for (const StepShapeFacts& part : parts)
+    CHECK(part.volume == Approx(2.0 / 3.0 * M_PI * 1000.0).epsilon(1e-9));
+  CHECK(w.step.find("'beads part 2'") != std::string::npos);
 }

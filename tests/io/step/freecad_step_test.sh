@@ -2,7 +2,9 @@
 # Every bundled example that can have a STEP file gets one, each written by
 # its own `fabmesh run` process, and FreeCAD's command line (freecadcmd, with
 # OpenCASCADE's reader inside) imports each: a valid shape; for a countertop
-# or a vessel one closed solid of positive volume; for a curve a wireframe.
+# or a vessel one closed solid of positive volume; for a curve a wireframe;
+# for a mould (`mould_step`, every example with a `mould:`) one closed solid
+# per part, as many as the mould's STL parts.
 # The golden solid, designed in cm, must come in at 46.171424531125 cm^3
 # (FreeCAD works in mm): the file's unit is read as written.
 # Surfaces, which have no STEP output yet, must be refused as bad input
@@ -16,6 +18,7 @@ failures=0
 fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
 
 files=()
+declare -A mould_parts  # a mould's STEP file name -> its number of parts
 for design in "$source"/configs/examples/*.yaml; do
   name=$(basename "$design" .yaml)
   [[ $name == batch_* ]] && continue  # manifests, not designs
@@ -30,6 +33,18 @@ for design in "$source"/configs/examples/*.yaml; do
     cat "$work/$name.log"
     fail "$name: no STEP file"
   fi
+  grep -q '^mould:' "$design" || continue
+  if (cd "$source/configs/examples" && "$fabmesh" run "$design" --export-format mould_step -o "$work/$name-mould/" -q \
+      && "$fabmesh" run "$design" --export-format mould_stl -o "$work/$name-mould-stl/" -q) >"$work/$name-mould.log" 2>&1; then
+    parts=$(compgen -G "$work/$name-mould-stl/*.stl" | wc -l)
+    step=$(compgen -G "$work/$name-mould/*.mould.step" | head -n 1)
+    [[ -n $step ]] || { fail "$name: exit 0 but no mould STEP file"; continue; }
+    files+=("$step")
+    mould_parts[$(basename "$step")]=$parts
+  else
+    cat "$work/$name-mould.log"
+    fail "$name: no mould STEP file"
+  fi
 done
 ((${#files[@]} >= 5)) || fail "only ${#files[@]} STEP files written"
 
@@ -39,9 +54,11 @@ checked=0
 while IFS= read -r line; do
   json=${line#FABMESH_STEP }
   checked=$((checked + 1))
-  verdict=$(python3 - "$json" <<'PY'
+  step_name=$(python3 -c 'import json, os, sys; print(os.path.basename(json.loads(sys.argv[1])["path"]))' "$json")
+  verdict=$(python3 - "$json" "${mould_parts[$step_name]:-1}" <<'PY'
 import json, os, sys
 f = json.loads(sys.argv[1])
+solids = int(sys.argv[2])
 name = os.path.basename(f["path"])
 problems = []
 if not f.get("read"):
@@ -53,8 +70,8 @@ else:
     if curve:
         if f["edges"] < 1:
             problems.append("no edges")
-    elif f["solids"] != 1 or not f["closed"] or not f["volume"] > 0:
-        problems.append(f"not one closed solid: {f}")
+    elif f["solids"] != solids or not f["closed"] or not f["volume"] > 0:
+        problems.append(f"not {solids} closed solid(s): {f}")
     if name == "vessel_golden_solid.step" and abs(f["volume"] / 46171.424531125 - 1) > 1e-7:
         problems.append(f"volume {f['volume']} mm^3, not 46171.424531125 (46.171424531125 cm^3)")
 print(name + (": " + "; ".join(problems) if problems else ": ok"))
