@@ -295,9 +295,9 @@ TEST_CASE("step: a mould's parts are exact solids with their keys, holding the e
   const double keys = keys_volume(4, 0.6, 0.02);
   for (const StepShapeFacts& part : parts)
     CHECK(part.volume == Approx((block - slip) / 2.0 + keys).epsilon(1e-7));
-  // Each part has the block's faces, the cavity's (one per profile span and the
-  // reservoir's wall), and a hemisphere per key: at least that many faces.
-  for (const StepShapeFacts& part : parts) CHECK(part.faces >= 4 + 4 + 8);
+  // Each half: the block's sector (outside, top, bottom, two split faces), the
+  // cavity's four profile spans, floor and reservoir wall, and a sphere per key.
+  for (const StepShapeFacts& part : parts) CHECK(part.faces == 5 + 6 + 8);
 
   // The mesh's parts (STL in mm) lie on the solids (cm) within the mould's
   // proven deviation and float32's rounding.
