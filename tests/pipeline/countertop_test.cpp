@@ -21,6 +21,7 @@
 #include "pipeline/job.h"
 #include "pipeline/outputs.h"
 #include "tests/geometry/section/region_shapes.h"
+#include "tests/io/design/nurbs_dxf.h"
 #include "tests/pipeline/cli_harness.h"
 
 using namespace fabmesh;
@@ -51,29 +52,6 @@ const char* kSmall =
     "holes:\n"
     "  - ellipse: {center: [200, 200], a: 120, b: 80, rotation_deg: 20}\n"
     "  - rounded_rect: {center: [550, 200], size: [300, 200], radius: 30}\n";
-
-// A DXF drawing (millimetres) of the given entities.
-std::string dxf_drawing(const std::string& entities) {
-  return "0\nSECTION\n2\nHEADER\n9\n$INSUNITS\n70\n4\n0\nENDSEC\n0\nSECTION\n2\nENTITIES\n" + entities +
-         "0\nENDSEC\n0\nEOF\n";
-}
-
-// A circle of radius r about c as CAD programs save one: a rational quadratic
-// SPLINE of 9 control points round the square, corner weights sqrt(2)/2
-// (`corner_weight` in their place when given).
-std::string nurbs_circle(const char* handle, const char* layer, Vec2 c, double r,
-                         double corner_weight = std::sqrt(0.5)) {
-  std::string text =
-      fmt::format("0\nSPLINE\n5\n{}\n8\n{}\n70\n8\n71\n2\n72\n12\n73\n9\n74\n0\n", handle, layer);
-  for (const double k : {0.0, 0.0, 0.0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1.0, 1.0, 1.0})
-    text += fmt::format("40\n{}\n", k);
-  for (int i = 0; i <= 8; ++i) {
-    const double a = (i % 8) * M_PI / 4, reach = i % 2 == 0 ? r : r * std::sqrt(2.0);
-    text += fmt::format("10\n{:.17g}\n20\n{:.17g}\n30\n0\n41\n{:.17g}\n", c.x() + reach * std::cos(a),
-                        c.y() + reach * std::sin(a), i % 2 == 0 ? 1.0 : corner_weight);
-  }
-  return text;
-}
 
 }  // namespace
 
@@ -289,7 +267,7 @@ TEST_CASE("countertop from a DXF template: a circle saved as a NURBS is the exac
   const fs::path dir = fresh_dir("countertop_dxf_nurbs");
   const double r = 250.0;
   const Vec2 c(400, 300);
-  write_text(dir / "round.dxf", dxf_drawing(nurbs_circle("2A", "OUTLINE", c, r)));
+  write_text(dir / "round.dxf", test::dxf_drawing(test::dxf_nurbs_ellipse("2A", "OUTLINE", c, r, r)));
   write_text(dir / "round.yaml",
              "name: round\nkind: countertop\nunits: mm\ntolerance: 0.05\nthickness: 30\n"
              "outline: {dxf: round.dxf, layer: OUTLINE}\noutputs: [stl]\n");
@@ -325,7 +303,8 @@ TEST_CASE("countertop from a DXF template: bad drawings exit 2 at the design's k
       "0\nSECTION\n2\nENTITIES\n0\nLINE\n5\n2F\n8\nOUTLINE\n10\n0\n20\n0\n30\n0\n11\n100\n21\n0\n31\n0\n"
       "0\nLINE\n5\n30\n8\nOUTLINE\n10\n100\n20\n0\n30\n0\n11\n100\n21\n50\n31\n0\n0\nENDSEC\n0\nEOF\n");
   write_text(dir / "empty.dxf", "");
-  write_text(dir / "weightless.dxf", dxf_drawing(nurbs_circle("3A", "OUTLINE", Vec2(0, 0), 100.0, 0.0)));
+  write_text(dir / "weightless.dxf",
+             test::dxf_drawing(test::dxf_nurbs_ellipse("3A", "OUTLINE", Vec2(0, 0), 100.0, 100.0, 0.0)));
   const std::string head = "name: t\nkind: countertop\nunits: mm\ntolerance: 0.05\nthickness: 30\n";
   const std::vector<std::pair<std::string, std::string>> cases{
       {head + "outline: {dxf: open.dxf, layer: OUTLINE}\n",

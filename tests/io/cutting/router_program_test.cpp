@@ -17,6 +17,7 @@
 #include "tests/geometry/section/region_shapes.h"
 #include "tests/geometry/toolpath/digitised_worktop.h"
 #include "tests/io/cutting/interpret.h"
+#include "tests/io/design/nurbs_dxf.h"
 
 using namespace fabmesh;
 using namespace fabmesh::test;
@@ -513,50 +514,20 @@ MoveCounts count_cuts(const Trace& trace) {
 
 namespace {
 
-// A rational quadratic SPLINE (NURBS) through the given control points and
-// weights, one span per pair after the first point (knots doubled between).
-std::string nurbs(const char* handle, const char* layer, const std::vector<Vec2>& points,
-                  const std::vector<double>& weights) {
-  const std::size_t spans = (points.size() - 1) / 2;
-  std::vector<double> knots{0, 0, 0};
-  for (std::size_t i = 1; i < spans; ++i) knots.insert(knots.end(), {double(i), double(i)});
-  knots.insert(knots.end(), {double(spans), double(spans), double(spans)});
-  std::string text = fmt::format("0\nSPLINE\n5\n{}\n8\n{}\n70\n8\n71\n2\n72\n{}\n73\n{}\n74\n0\n", handle,
-                                 layer, knots.size(), points.size());
-  for (const double k : knots) text += fmt::format("40\n{}\n", k);
-  for (std::size_t i = 0; i < points.size(); ++i)
-    text += fmt::format("10\n{:.17g}\n20\n{:.17g}\n30\n0\n41\n{:.17g}\n", points[i].x(), points[i].y(),
-                        weights[i]);
-  return text;
-}
-
-std::string dxf_line(const char* handle, Vec2 a, Vec2 b) {
-  return fmt::format("0\nLINE\n5\n{}\n8\nOUTLINE\n10\n{}\n20\n{}\n30\n0\n11\n{}\n21\n{}\n31\n0\n", handle,
-                     a.x(), a.y(), b.x(), b.y());
-}
-
 // A 1200 x 600 worktop whose 80 mm corners are NURBS quarter circles (one
 // drawn backwards) and an oval sink saved as a NURBS ellipse (the circle's
 // control points stretched: 200 x 120).
 ExampleRegion nurbs_worktop() {
   const double k = std::sqrt(0.5);
-  std::string entities = dxf_line("A1", {80, 0}, {1120, 0}) + dxf_line("A2", {1200, 80}, {1200, 520}) +
-                         dxf_line("A3", {1120, 600}, {80, 600}) + dxf_line("A4", {0, 520}, {0, 80});
-  entities += nurbs("B1", "OUTLINE", {{1120, 0}, {1200, 0}, {1200, 80}}, {1, k, 1});
-  entities += nurbs("B2", "OUTLINE", {{1200, 520}, {1200, 600}, {1120, 600}}, {1, k, 1});
-  entities += nurbs("B3", "OUTLINE", {{0, 520}, {0, 600}, {80, 600}}, {1, k, 1});  // backwards
-  entities += nurbs("B4", "OUTLINE", {{0, 80}, {0, 0}, {80, 0}}, {1, k, 1});
-  std::vector<Vec2> oval;
-  std::vector<double> weights;
-  for (int i = 0; i <= 8; ++i) {
-    const double a = (i % 8) * M_PI / 4, reach = i % 2 == 0 ? 1.0 : std::sqrt(2.0);
-    oval.emplace_back(600 + 200 * reach * std::cos(a), 300 + 120 * reach * std::sin(a));
-    weights.push_back(i % 2 == 0 ? 1.0 : k);
-  }
-  entities += nurbs("C1", "HOLES", oval, weights);
-  const std::string text =
-      "0\nSECTION\n2\nHEADER\n9\n$INSUNITS\n70\n4\n0\nENDSEC\n0\nSECTION\n2\nENTITIES\n" + entities +
-      "0\nENDSEC\n0\nEOF\n";
+  std::string entities =
+      dxf_line("A1", "OUTLINE", {80, 0}, {1120, 0}) + dxf_line("A2", "OUTLINE", {1200, 80}, {1200, 520}) +
+      dxf_line("A3", "OUTLINE", {1120, 600}, {80, 600}) + dxf_line("A4", "OUTLINE", {0, 520}, {0, 80});
+  entities += dxf_nurbs("B1", "OUTLINE", {{1120, 0}, {1200, 0}, {1200, 80}}, {1, k, 1});
+  entities += dxf_nurbs("B2", "OUTLINE", {{1200, 520}, {1200, 600}, {1120, 600}}, {1, k, 1});
+  entities += dxf_nurbs("B3", "OUTLINE", {{0, 520}, {0, 600}, {80, 600}}, {1, k, 1});  // backwards
+  entities += dxf_nurbs("B4", "OUTLINE", {{0, 80}, {0, 0}, {80, 0}}, {1, k, 1});
+  entities += dxf_nurbs_ellipse("C1", "HOLES", {600, 300}, 200, 120);
+  const std::string text = dxf_drawing(entities);
   DxfLoopQuery q;
   q.units = "mm";
   q.layer = "OUTLINE";
