@@ -431,6 +431,34 @@ TEST_CASE("dxf loops: a rational SPLINE (NURBS) is read exactly, as rational cub
         CHECK(j.achieved == Continuity::G2);
     }
   }
+  // Weights far apart (a factor 1e20) and a rational polyline of degree 1: still the NURBS's own points.
+  for (const int degree : {1, 2}) {
+    const std::vector<double> open =
+        degree == 2 ? std::vector<double>{0, 0, 0, 1, 1, 1} : std::vector<double>{0, 0, 1, 1};
+    const std::vector<Vec2> arch{{0, 0}, {50, 80}, {100, 0}};
+    const std::vector<double> far{1e-10, 1, 1e10};
+    const std::vector<Vec2> used(arch.begin(), arch.begin() + degree + 1);
+    const std::vector<double> used_weights(far.begin(), far.begin() + degree + 1);
+    const DxfLoops got = parse_dxf_loops(drawing(spline("7A", "F", degree, open, used, used_weights) +
+                                                 line("7B", "F", used.back().x(), used.back().y(), -40, -40) +
+                                                 line("7C", "F", -40, -40, 0, 0)),
+                                         "t.dxf", on_layer("F"));
+    REQUIRE(got.loops.size() == 1);
+    const CurveSpec& spec = got.loops[0].curve;
+    const CompositeCurve built = construct_curve(spec);
+    std::size_t found = 0;
+    for (std::size_t i = 0; i < spec.segments.size(); ++i) {
+      if (spec.segments[i].name != "SPLINE #7A") continue;
+      ++found;
+      CHECK(spec.segments[i].kind == SegmentKind::RationalBezier);
+      for (int j = 0; j <= 50; ++j) {
+        const double t = j / 50.0;
+        const Vec2 want = rational_de_boor(open, used, used_weights, degree, t);
+        CHECK((built.segments()[i].point(t) - want).norm() <= 1e-12 * 100);
+      }
+    }
+    CHECK(found == 1);
+  }
   // Weights that are not finite and > 0: bad input naming the entity and the control point.
   CHECK_THAT(error_of(drawing(spline("5C", "W", 2, kCircleKnots, circle_points(c, r),
                                      {1, std::sqrt(0.5), 1, -0.5, 1, std::sqrt(0.5), 1, std::sqrt(0.5), 1})),
