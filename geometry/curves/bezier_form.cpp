@@ -107,6 +107,12 @@ std::optional<BezierPiece> exact_bezier(const Segment& segment) {
       return quasi_bspline_form(segment);
     case SegmentKind::TBezier:
       return tbezier_form(segment);
+    case SegmentKind::RationalBezier: {
+      // Already a rational cubic Bézier curve in s: its own poles and weights.
+      const auto& p = segment.control_points();
+      const auto& w = segment.rational_weights();
+      return BezierPiece{{p.begin(), p.end()}, {w.begin(), w.end()}};
+    }
     case SegmentKind::EllipseArc:
     case SegmentKind::HBezier:
       break;

@@ -23,14 +23,15 @@ struct BezierPiece {
 Vec2 evaluate(const BezierPiece& piece, double w);
 
 /// The exact Bézier form of a segment, where its family has one: a line
-/// (degree 1), a quasi-cubic B-spline span (a quartic polynomial: degree 4)
-/// and a T-Bézier segment (rational of degree 6 in w = tan(pi t / 4)).
+/// (degree 1), a quasi-cubic B-spline span (a quartic polynomial: degree 4),
+/// a rational cubic Bézier segment (itself: degree 3 with its weights) and a
+/// T-Bézier segment (rational of degree 6 in w = tan(pi t / 4)).
 /// nullopt for ellipse arcs (conics: files write them as such) and H-Bézier
 /// segments (not rational: hermite_approximation).
 std::optional<BezierPiece> exact_bezier(const Segment& segment);
 
 /// The parameter w of exact_bezier(segment) at the segment's parameter s:
-/// tan(pi s / 4) for a T-Bézier segment, s for the polynomial families.
+/// tan(pi s / 4) for a T-Bézier segment, s for the polynomial and rational Bézier families.
 double bezier_parameter(const Segment& segment, double s);
 
 /// The cubic over a parameter step h from point a with derivative da to

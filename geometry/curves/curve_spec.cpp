@@ -46,6 +46,8 @@ Segment basis_segment(const SegmentSpec& s) {
       return Segment::ellipse_arc(s.ellipse);
     case SegmentKind::QuasiBSpline:
       return Segment::quasi_bspline_span(probe, s.lambda, s.mu);
+    case SegmentKind::RationalBezier:
+      return Segment::rational_bezier(probe, s.weights);
   }
   throw GeometryError("segment", "unknown segment kind");
 }

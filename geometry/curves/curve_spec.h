@@ -2,6 +2,7 @@
 // The plain description of a curve as a designer gives it (control points,
 // shape parameters, joins), and its construction into a CompositeCurve.
 
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -40,6 +41,8 @@ struct SegmentSpec {
   /// Continuity an explicit segment declares with its predecessor: verified, not constructed.
   Continuity declared = Continuity::G0;
   EllipseArcParams ellipse;  ///< when kind == EllipseArc
+  /// The points' weights when kind == RationalBezier (each finite and > 0).
+  std::array<double, 4> weights{1.0, 1.0, 1.0, 1.0};
   /// Its design key path ("profile.segments[2]"), where errors about it are;
   /// empty: messages name it "segment i".
   std::string key;

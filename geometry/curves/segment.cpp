@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "geometry/core/errors.h"
@@ -27,6 +28,119 @@ void require_quasi_parameter(const char* name, double value) {
   require_in_range(name, value, -8.0, 1.0);
 }
 
+// The cubic Bernstein polynomials B_j(s) and their derivatives, orders 0..3.
+BasisJet bernstein_jet(double s) {
+  const double u = 1.0 - s;
+  BasisJet b{};
+  b[0] = {u * u * u, 3.0 * s * u * u, 3.0 * s * s * u, s * s * s};
+  b[1] = {-3.0 * u * u, 3.0 * u * u - 6.0 * s * u, 6.0 * s * u - 3.0 * s * s, 3.0 * s * s};
+  b[2] = {6.0 * u, 6.0 * s - 12.0 * u, 6.0 * u - 12.0 * s, 6.0 * s};
+  b[3] = {-6.0, 18.0, -18.0, 6.0};
+  return b;
+}
+
+constexpr double kBinomial[5][5] = {
+    {1, 0, 0, 0, 0}, {1, 1, 0, 0, 0}, {1, 2, 1, 0, 0}, {1, 3, 3, 1, 0}, {1, 4, 6, 4, 1}};
+
+// docs/math/curves.md 5: R_j = N_j / W with N_j = w_j B_j and W = sum_j N_j;
+// Leibniz on N_j = R_j W gives R_j^(k) = (N_j^(k) - sum_{i<k} C(k, i) R_j^(i) W^(k-i)) / W.
+BasisJet rational_bezier_basis(double s, const std::array<double, 4>& w) {
+  const BasisJet b = bernstein_jet(s);
+  BasisJet n{};
+  std::array<double, 4> den{};
+  for (int k = 0; k < 4; ++k) {
+    for (int j = 0; j < 4; ++j) {
+      n[k][j] = w[j] * b[k][j];
+      den[k] += n[k][j];
+    }
+  }
+  BasisJet r{};
+  for (int k = 0; k < 4; ++k) {
+    for (int j = 0; j < 4; ++j) {
+      double v = n[k][j];
+      for (int i = 0; i < k; ++i) v -= kBinomial[k][i] * r[i][j] * den[k - i];
+      r[k][j] = v / den[0];
+    }
+  }
+  return r;
+}
+
+using Homogeneous = std::array<Eigen::Vector3d, 4>;  // (w x, w y, w) of each control point
+
+// The blossom f(u1, u2, u3) of a cubic Bézier curve: de Casteljau with one
+// parameter per level. f(a, a, a), f(a, a, b), f(a, b, b), f(b, b, b) are the
+// control points of its piece over [a, b].
+Eigen::Vector3d blossom(const Homogeneous& h, double u1, double u2, double u3) {
+  Homogeneous d = h;
+  const std::array<double, 3> u{u1, u2, u3};
+  for (int level = 0; level < 3; ++level) {
+    for (int i = 0; i + level < 3; ++i) d[i] = (1.0 - u[level]) * d[i] + u[level] * d[i + 1];
+  }
+  return d[0];
+}
+
+// docs/math/curves.md 5.1: a bound of the fourth derivative over [0, 1] of a
+// rational cubic Bézier curve with positive weights: the largest of the
+// bounds proven on kRationalPieces equal pieces.
+constexpr int kRationalPieces = 16;
+
+double rational_fourth_bound(const std::array<Vec2, 4>& p, const std::array<double, 4>& w) {
+  if (std::all_of(w.begin(), w.end(), [&](double x) { return x == w[0]; })) {
+    return 0.0;  // equal weights: a cubic polynomial
+  }
+  Homogeneous h;
+  for (int j = 0; j < 4; ++j) h[j] = Eigen::Vector3d(w[j] * p[j].x(), w[j] * p[j].y(), w[j]);
+  double bound = 0.0;
+  for (int piece = 0; piece < kRationalPieces; ++piece) {
+    const double a = static_cast<double>(piece) / kRationalPieces;
+    const double b = static_cast<double>(piece + 1) / kRationalPieces;
+    const Homogeneous q{blossom(h, a, a, a), blossom(h, a, a, b), blossom(h, a, b, b), blossom(h, b, b, b)};
+    // In the piece's own parameter t = (s - a) / (b - a), about its first
+    // point c: u = r - c = N / W, N = sum W_i (Q_i - c) B_i, W = sum W_i B_i.
+    std::array<double, 4> weight{};
+    std::array<Vec2, 4> numerator{};
+    double lowest = INFINITY, reach = 0.0;
+    const Vec2 c = q[0].head<2>() / q[0].z();
+    for (std::size_t i = 0; i < 4; ++i) {
+      weight[i] = q[i].z();
+      lowest = std::min(lowest, weight[i]);
+      const Vec2 rel = q[i].head<2>() / weight[i] - c;
+      numerator[i] = weight[i] * rel;
+      reach = std::max(reach, rel.norm());  // |u| <= max |Q_i - c|: u lies in their convex hull
+    }
+    // |N^(k)|, |W^(k)| <= 3! / (3 - k)! max |k-th differences of the control points|.
+    std::array<double, 5> nu{}, om{};
+    double factor = 1.0;
+    for (int k = 1; k <= 3; ++k) {
+      factor *= 4 - k;
+      double dn = 0.0, dw = 0.0;
+      for (int i = 0; i + k <= 3; ++i) {
+        Vec2 v = Vec2::Zero();
+        double x = 0.0;
+        for (int l = 0; l <= k; ++l) {
+          const double sign = (k - l) % 2 == 0 ? 1.0 : -1.0;
+          v += sign * kBinomial[k][l] * numerator[i + l];
+          x += sign * kBinomial[k][l] * weight[i + l];
+        }
+        dn = std::max(dn, v.norm());
+        dw = std::max(dw, std::abs(x));
+      }
+      nu[k] = factor * dn;
+      om[k] = factor * dw;
+    }
+    // u^(k) = (N^(k) - sum_{i<k} C(k, i) u^(i) W^(k-i)) / W with W >= min W_i > 0
+    // (N and W are cubics: their fourth derivatives vanish).
+    std::array<double, 5> rho{reach, 0.0, 0.0, 0.0, 0.0};
+    for (int k = 1; k <= 4; ++k) {
+      double sum = nu[k];
+      for (int i = 0; i < k; ++i) sum += kBinomial[k][i] * rho[i] * om[k - i];
+      rho[k] = sum / lowest;
+    }
+    bound = std::max(bound, rho[4] * std::pow(static_cast<double>(kRationalPieces), 4));
+  }
+  return bound;
+}
+
 }  // namespace
 
 const char* to_string(SegmentKind kind) {
@@ -41,6 +155,8 @@ const char* to_string(SegmentKind kind) {
       return "hbezier";
     case SegmentKind::QuasiBSpline:
       return "quasi_bspline";
+    case SegmentKind::RationalBezier:
+      return "rational_bezier";
   }
   return "unknown";
 }
@@ -130,6 +246,22 @@ Segment Segment::quasi_bspline_span(const std::array<Vec2, 4>& points, double l,
   return seg;
 }
 
+Segment Segment::rational_bezier(const std::array<Vec2, 4>& points, const std::array<double, 4>& weights) {
+  require_finite_points(points, 4);
+  for (std::size_t j = 0; j < 4; ++j) {
+    if (!(std::isfinite(weights[j]) && weights[j] > 0.0)) {
+      throw RangeError(
+          fmt::format("w{}", j), weights[j],
+          fmt::format("weight w{} = {} of a rational Bézier segment is not finite and > 0", j, weights[j]));
+    }
+  }
+  Segment seg;
+  seg.kind_ = SegmentKind::RationalBezier;
+  seg.points_ = points;
+  seg.rational_ = weights;
+  return seg;
+}
+
 Segment Segment::with_shape(double lambda, double mu) const {
   switch (kind_) {
     case SegmentKind::TBezier:
@@ -140,6 +272,7 @@ Segment Segment::with_shape(double lambda, double mu) const {
       return quasi_bspline_span(points_, lambda, mu);
     case SegmentKind::EllipseArc:
     case SegmentKind::Line:
+    case SegmentKind::RationalBezier:
       break;
   }
   throw GeometryError(to_string(kind_),
@@ -156,6 +289,8 @@ Segment Segment::with_points(const std::array<Vec2, 4>& points) const {
       return quasi_bspline_span(points, lambda_, mu_);
     case SegmentKind::Line:
       return line(points[0], points[1]);
+    case SegmentKind::RationalBezier:
+      return rational_bezier(points, rational_);
     case SegmentKind::EllipseArc:
       break;
   }
@@ -189,6 +324,8 @@ BasisJet Segment::weights(double s) const {
     case SegmentKind::QuasiBSpline:
       w = quasi_bspline_basis(s, lambda_, mu_);
       break;
+    case SegmentKind::RationalBezier:
+      return rational_bezier_basis(s, rational_);
     case SegmentKind::Line:
       w[0] = {1.0 - s, s, 0.0, 0.0};
       w[1] = {-1.0, 1.0, 0.0, 0.0};
@@ -246,6 +383,8 @@ double Segment::fourth_derivative_bound() const {
       break;
     case SegmentKind::Line:
       return 0.0;
+    case SegmentKind::RationalBezier:
+      return rational_fourth_bound(points_, rational_);
   }
   // The weights' fourth derivatives sum to zero, so r'''' = sum_j w_j'''' (P_j - P_0).
   double bound = 0.0;

@@ -2,6 +2,7 @@
 // One piece of a composite curve: a basis of one family and its control
 // points. Every segment is parameterised by s in [0, 1]; its native parameter
 // (T-Bézier t, H-Bézier u, ellipse angle-parameter t) is an affine function of s.
+// A rational cubic Bézier segment also carries one positive weight per point.
 
 #include <array>
 #include <optional>
@@ -11,7 +12,7 @@
 
 namespace fabmesh {
 
-enum class SegmentKind { TBezier, EllipseArc, Line, HBezier, QuasiBSpline };
+enum class SegmentKind { TBezier, EllipseArc, Line, HBezier, QuasiBSpline, RationalBezier };
 
 /// Name of a kind as used in design files ("tbezier", "ellipse_arc", ...).
 const char* to_string(SegmentKind kind);
@@ -44,6 +45,10 @@ class Segment {
   /// One span of a quasi-cubic B-spline: points p(i-1)..p(i+2), l = lambda_i,
   /// m = lambda_{i+1}, each in [-8, 1] or exactly 4 at the curve's ends. \throw RangeError
   static Segment quasi_bspline_span(const std::array<Vec2, 4>& points, double l, double m);
+  /// Rational cubic Bézier (a span of a NURBS curve, docs/math/curves.md 5):
+  /// r(s) = sum w_j P_j B_j(s) / sum w_j B_j(s), B_j the cubic Bernstein
+  /// polynomials, every weight finite and > 0. \throw RangeError
+  static Segment rational_bezier(const std::array<Vec2, 4>& points, const std::array<double, 4>& weights);
 
   SegmentKind kind() const { return kind_; }
   /// Number of control points used (2 for a line, else 4).
@@ -52,6 +57,8 @@ class Segment {
   double lambda() const { return lambda_; }
   double mu() const { return mu_; }
   double alpha() const { return alpha_; }
+  /// The points' weights when kind() == RationalBezier; all 1 for the other kinds.
+  const std::array<double, 4>& rational_weights() const { return rational_; }
   /// The ellipse parameters when kind() == EllipseArc.
   const std::optional<EllipseArcParams>& ellipse() const { return ellipse_; }
 
@@ -60,7 +67,9 @@ class Segment {
   /// The same basis with other control points.
   Segment with_points(const std::array<Vec2, 4>& points) const;
 
-  /// Control-point weights at s for derivative orders 0..3 (d/ds).
+  /// Control-point weights at s for derivative orders 0..3 (d/ds). For a
+  /// rational segment these are the rational basis R_j = w_j B_j / sum w_i B_i
+  /// and its derivatives: the curve stays linear in its control points.
   BasisJet weights(double s) const;
   /// Point and derivatives at s in [0, 1].
   CurveJet jet(double s) const;
@@ -80,6 +89,7 @@ class Segment {
   Vec2 origin_{0.0, 0.0};       // ellipse arcs: points_ are in the arc's frame
   double cos_ = 1.0, sin_ = 0.0;
   std::optional<EllipseArcParams> ellipse_;
+  std::array<double, 4> rational_{1.0, 1.0, 1.0, 1.0};  // rational Bézier: the points' weights
   HBezierConstants hbezier_{};  ///< hbezier_constants(alpha_) for H-Bézier segments, computed once
 };
 

@@ -39,17 +39,25 @@ constexpr DxfUnit kDxfUnits[] = {
     {1, "in", 0.0254}, {2, "ft", 0.3048}, {4, "mm", 1e-3}, {5, "cm", 1e-2}, {6, "m", 1.0},
 };
 
+// One span of a spline as a cubic Bézier curve: polynomial, or rational with
+// the points' (positive) weights.
+struct BezierSpan {
+  std::array<Vec2, 4> points{};
+  std::array<double, 4> weights{1.0, 1.0, 1.0, 1.0};
+  bool rational = false;
+};
+
 // One piece of a loop: a line, an exact arc or an exact spline (as cubic
 // Bézier pieces), in the drawing's direction, in drawing units.
 struct Piece {
   bool arc = false;
   bool spline = false;
   Vec2 start{0.0, 0.0}, end{0.0, 0.0};
-  EllipseArcParams ellipse;                  // arcs
-  std::vector<std::array<Vec2, 4>> beziers;  // splines: cubic Bézier control points, in order
-  std::string entity;                        // "LINE #2F", "LWPOLYLINE #30 vertex 4"
-  bool closed = false;                       // a whole circle or ellipse: a loop by itself
-  std::size_t order = 0;                     // its entity's place in the file
+  EllipseArcParams ellipse;         // arcs
+  std::vector<BezierSpan> beziers;  // splines: cubic Bézier spans, in order
+  std::string entity;               // "LINE #2F", "LWPOLYLINE #30 vertex 4"
+  bool closed = false;              // a whole circle or ellipse: a loop by itself
+  std::size_t order = 0;            // its entity's place in the file
 };
 
 // A polyline as read: vertices (x, y) with the bulge of the span after each.
@@ -92,24 +100,102 @@ Vec2 de_boor(const std::vector<double>& knots, const std::vector<Vec2>& points, 
   return d[q];
 }
 
-// The cubic Bézier pieces of a non-rational B-spline of degree 1..3 over its
-// domain [knots[p], knots[n]], one per span of positive length: each span is
-// a polynomial of degree <= 3, so its cubic Bézier is fixed by its points at
-// t = 0, 1/3, 2/3, 1 (de Boor on the span's own control points: linear time
-// in the number of spans whatever their count, the degree raised exactly).
-std::vector<std::array<Vec2, 4>> bezier_pieces(const std::vector<double>& knots,
-                                               const std::vector<Vec2>& points, int p) {
-  std::vector<std::array<Vec2, 4>> out;
-  const std::size_t n = points.size();
-  for (std::size_t k = static_cast<std::size_t>(p); k < n; ++k) {
-    const double a = knots[k], b = knots[k + 1];
-    if (!(b > a)) continue;
-    const Vec2 p0 = de_boor(knots, points, p, k, a), p3 = de_boor(knots, points, p, k, b);
-    const Vec2 s1 = de_boor(knots, points, p, k, a + (b - a) / 3.0);
-    const Vec2 s2 = de_boor(knots, points, p, k, a + 2.0 * (b - a) / 3.0);
-    // B(1/3) = (8 P0 + 12 P1 + 6 P2 + P3) / 27 and B(2/3) = (P0 + 6 P1 + 12 P2 + 8 P3) / 27.
-    const Vec2 u = 27.0 * s1 - 8.0 * p0 - p3, v = 27.0 * s2 - p0 - 8.0 * p3;
-    out.push_back({p0, (2.0 * u - v) / 18.0, (2.0 * v - u) / 18.0, p3});
+// The cubic Bézier control points of span k of a non-rational B-spline of
+// degree 1..3: the span is a polynomial of degree <= 3, so its cubic Bézier
+// is fixed by its points at t = 0, 1/3, 2/3, 1 (de Boor on the span's own
+// control points: the degree raised exactly).
+std::array<Vec2, 4> span_bezier(const std::vector<double>& knots, const std::vector<Vec2>& points, int p,
+                                std::size_t k) {
+  const double a = knots[k], b = knots[k + 1];
+  const Vec2 p0 = de_boor(knots, points, p, k, a), p3 = de_boor(knots, points, p, k, b);
+  const Vec2 s1 = de_boor(knots, points, p, k, a + (b - a) / 3.0);
+  const Vec2 s2 = de_boor(knots, points, p, k, a + 2.0 * (b - a) / 3.0);
+  // B(1/3) = (8 P0 + 12 P1 + 6 P2 + P3) / 27 and B(2/3) = (P0 + 6 P1 + 12 P2 + 8 P3) / 27.
+  const Vec2 u = 27.0 * s1 - 8.0 * p0 - p3, v = 27.0 * s2 - p0 - 8.0 * p3;
+  return {p0, (2.0 * u - v) / 18.0, (2.0 * v - u) / 18.0, p3};
+}
+
+// The blossom f(u_1, ..., u_p) of span k of a B-spline of degree p: de Boor's
+// algorithm with u_r at level r. With every u_r in the span each step is a
+// convex combination, so the weights of homogeneous points stay positive
+// and keep their relative precision however far apart they are.
+Eigen::Vector3d blossom(const std::vector<double>& knots, const std::vector<Eigen::Vector3d>& points, int p,
+                        std::size_t k, const std::array<double, 3>& u) {
+  const std::size_t q = static_cast<std::size_t>(p);
+  std::array<Eigen::Vector3d, 4> d;
+  for (std::size_t j = 0; j <= q; ++j) d[j] = points[k - q + j];
+  for (std::size_t r = 1; r <= q; ++r) {
+    for (std::size_t j = q; j >= r; --j) {
+      const std::size_t i = k - q + j;
+      const double den = knots[i + q + 1 - r] - knots[i];
+      const double a = den > 0.0 ? (u[r - 1] - knots[i]) / den : 0.0;
+      d[j] = (1.0 - a) * d[j - 1] + a * d[j];
+    }
+  }
+  return d[q];
+}
+
+// The cubic Bézier control points (homogeneous) of span k = [a, b] of a NURBS
+// of degree 1..3: F(a, a, a), F(a, a, b), F(a, b, b), F(b, b, b) of the cubic
+// blossom F(x, y, z), the mean of f over the p-element subsets of (x, y, z)
+// (the degree raised exactly), each a convex combination of control points.
+std::array<Eigen::Vector3d, 4> rational_span_bezier(const std::vector<double>& knots,
+                                                    const std::vector<Eigen::Vector3d>& points, int p,
+                                                    std::size_t k) {
+  const double a = knots[k], b = knots[k + 1];
+  std::array<Eigen::Vector3d, 4> out;
+  for (std::size_t i = 0; i < 4; ++i) {
+    const std::array<double, 3> args{i > 2 ? b : a, i > 1 ? b : a, i > 0 ? b : a};  // 3 - i a's, i b's
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    int count = 0;
+    for (unsigned mask = 0; mask < 8; ++mask) {
+      std::array<double, 3> u{};
+      int size = 0;
+      for (std::size_t m = 0; m < 3; ++m) {
+        if ((mask >> m) & 1u) u[static_cast<std::size_t>(size++)] = args[m];
+      }
+      if (size != p) continue;
+      sum += blossom(knots, points, p, k, u);
+      ++count;
+    }
+    out[i] = sum / count;
+  }
+  return out;
+}
+
+// The cubic Bézier spans of a B-spline of degree 1..3 over its domain
+// [knots[p], knots[n]], one per span of positive length (linear time in the
+// number of spans whatever their count). A span whose p + 1 control points
+// weigh the same is a polynomial: its Bézier comes from the plane points. A
+// rational span's comes from the homogeneous points (w x, w y, w), exactly,
+// by blossoming: its poles are the homogeneous Bézier points divided by their
+// w, its weights the w.
+std::vector<BezierSpan> bezier_pieces(const std::vector<double>& knots, const std::vector<Vec2>& points,
+                                      const std::vector<double>& weights, int p) {
+  std::vector<BezierSpan> out;
+  const std::size_t n = points.size(), q = static_cast<std::size_t>(p);
+  std::vector<Eigen::Vector3d> homogeneous;
+  for (std::size_t k = q; k < n; ++k) {
+    if (!(knots[k + 1] > knots[k])) continue;
+    BezierSpan span;
+    const auto first = weights.begin() + static_cast<std::ptrdiff_t>(k - q);
+    const auto last = weights.begin() + static_cast<std::ptrdiff_t>(k + 1);
+    if (std::all_of(first, last, [&](double w) { return w == *first; })) {
+      span.points = span_bezier(knots, points, p, k);
+      out.push_back(span);
+      continue;
+    }
+    if (homogeneous.empty()) {
+      for (std::size_t i = 0; i < n; ++i)
+        homogeneous.emplace_back(weights[i] * points[i].x(), weights[i] * points[i].y(), weights[i]);
+    }
+    const std::array<Eigen::Vector3d, 4> h = rational_span_bezier(knots, homogeneous, p, k);
+    span.rational = true;
+    for (std::size_t i = 0; i < 4; ++i) {
+      span.weights[i] = h[i].z();
+      span.points[i] = h[i].head<2>() / h[i].z();
+    }
+    out.push_back(span);
   }
   return out;
 }
@@ -354,8 +440,9 @@ class Collector : public DL_CreationAdapter {
   bool spline_ = false;  // knots and control points go to splines.back()
 };
 
-// A spline as a loop piece: exact cubic pieces of a non-rational SPLINE of
-// degree 1 to 3 in the XY plane. Sets `problem` for any other.
+// A spline as a loop piece: exact cubic pieces (rational where the SPLINE
+// is a NURBS) of a SPLINE of degree 1 to 3 in the XY plane with positive
+// weights. Sets `problem` for any other.
 std::optional<Piece> spline_piece(const SplineData& sp, std::string& problem) {
   auto fail = [&](const std::string& why) -> std::optional<Piece> {
     if (problem.empty()) problem = fmt::format("{}: {}", sp.entity, why);
@@ -377,30 +464,30 @@ std::optional<Piece> spline_piece(const SplineData& sp, std::string& problem) {
       return fail(fmt::format("knot {} ({}) is not finite and non-decreasing", i + 1, sp.knots[i]));
   }
   std::vector<Vec2> points;
+  std::vector<double> weights;
   const double z0 = sp.control.front()[2];
   for (std::size_t i = 0; i < n; ++i) {
     const auto& c = sp.control[i];
-    if (!std::isfinite(c[0]) || !std::isfinite(c[1]) || !std::isfinite(c[2]) || !std::isfinite(c[3]))
+    if (!std::isfinite(c[0]) || !std::isfinite(c[1]) || !std::isfinite(c[2]))
       return fail(fmt::format("control point {} is not finite", i + 1));
-    if (c[3] != 1.0) {
+    if (!(std::isfinite(c[3]) && c[3] > 0.0)) {
       return fail(
-          fmt::format("control point {} has weight {}: a rational spline (NURBS); fabmesh reads "
-                      "non-rational splines (save it with arcs, or as a polynomial spline)",
-                      i + 1, c[3]));
+          fmt::format("control point {} has weight {}: a NURBS weight must be finite and > 0", i + 1, c[3]));
     }
     if (std::abs(c[2] - z0) > 1e-9 * (1.0 + std::abs(z0)))
       return fail(fmt::format("control point {} is at z = {}, off the drawing's XY plane", i + 1, c[2]));
     points.emplace_back(c[0], c[1]);
+    weights.push_back(c[3]);
   }
   if (!(sp.knots[n] > sp.knots[p])) return fail("its knots leave no domain to draw");
   Piece piece;
   piece.spline = true;
   piece.entity = sp.entity;
   piece.order = sp.order;
-  piece.beziers = bezier_pieces(sp.knots, points, sp.degree);
+  piece.beziers = bezier_pieces(sp.knots, points, weights, sp.degree);
   if (piece.beziers.empty()) return fail("its knots leave no domain to draw");
-  piece.start = piece.beziers.front()[0];
-  piece.end = piece.beziers.back()[3];
+  piece.start = piece.beziers.front().points[0];
+  piece.end = piece.beziers.back().points[3];
   return piece;
 }
 
@@ -536,7 +623,10 @@ Piece oriented(const Piece& p, bool forward) {
   std::swap(r.start, r.end);
   std::swap(r.ellipse.from_deg, r.ellipse.to_deg);
   std::reverse(r.beziers.begin(), r.beziers.end());
-  for (auto& z : r.beziers) std::reverse(z.begin(), z.end());
+  for (BezierSpan& z : r.beziers) {
+    std::reverse(z.points.begin(), z.points.end());
+    std::reverse(z.weights.begin(), z.weights.end());
+  }
   return r;
 }
 
@@ -581,12 +671,20 @@ CurveSpec loop_spec(const std::vector<Piece>& q, double bridge, std::size_t& bri
       ++bridges;
     }
     if (p.spline) {
-      // Each cubic piece as the uniform B-spline span that is the same curve.
+      // Each polynomial cubic piece as the uniform B-spline span that is the
+      // same curve; each rational one as the rational cubic Bézier it is.
       for (std::size_t i = 0; i < p.beziers.size(); ++i) {
+        const BezierSpan& z = p.beziers[i];
         SegmentSpec s;
-        s.kind = SegmentKind::QuasiBSpline;
-        const std::array<Vec2, 4> b = bspline_span_of(p.beziers[i]);
-        s.points.assign(b.begin(), b.end());
+        if (z.rational) {
+          s.kind = SegmentKind::RationalBezier;
+          s.points.assign(z.points.begin(), z.points.end());
+          s.weights = z.weights;
+        } else {
+          s.kind = SegmentKind::QuasiBSpline;
+          const std::array<Vec2, 4> b = bspline_span_of(z.points);
+          s.points.assign(b.begin(), b.end());
+        }
         s.declared = Continuity::G0;
         s.name = p.beziers.size() == 1 ? p.entity : fmt::format("{} piece {}", p.entity, i + 1);
         spec.segments.push_back(std::move(s));
@@ -727,8 +825,8 @@ DxfLoops parse_dxf_loops(const std::string& bytes, const std::string& path, cons
       p.ellipse.b *= scale;
       normalise_angles(p.ellipse);
     }
-    for (auto& z : p.beziers) {
-      for (Vec2& v : z) {
+    for (BezierSpan& z : p.beziers) {
+      for (Vec2& v : z.points) {
         v *= scale;
         if (!v.allFinite() || std::abs(v.x()) > kMaxDesignNumber || std::abs(v.y()) > kMaxDesignNumber) {
           throw FileError(path, 0, 0,

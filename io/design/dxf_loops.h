@@ -45,8 +45,9 @@ inline constexpr std::size_t kMaxDxfEntities = 1000000;
 /// arc's end it meets (or to the other line's end); two arcs whose ends are
 /// apart are joined by a short line (noted).
 /// \throw FileError naming `path`, the layer, the entities by handle and the
-/// place: not a DXF, binary DXF, an unknown $INSUNITS, a SPLINE or INSERT on
-/// the layer, an entity off the XY plane, a layer with no entity in model
+/// place: not a DXF, binary DXF, an unknown $INSUNITS, a SPLINE it cannot
+/// read (degree above 3, a weight not finite and > 0, fit points only) or an
+/// INSERT on the layer, an entity off the XY plane, a layer with no entity in model
 /// space, an open chain (an end meeting no other end within max_gap), three or
 /// more ends at one point (overlapping or branching entities), a count larger
 /// than the file could hold, more than kMaxDxfEntities entities.

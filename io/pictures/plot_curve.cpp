@@ -10,6 +10,7 @@ std::vector<std::vector<Vec2>> control_polygons(const CompositeCurve& curve) {
     switch (seg.kind()) {
       case SegmentKind::TBezier:
       case SegmentKind::HBezier:
+      case SegmentKind::RationalBezier:
         out.push_back({p[0], p[1], p[2], p[3]});
         break;
       case SegmentKind::QuasiBSpline:

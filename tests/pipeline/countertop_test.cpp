@@ -21,6 +21,7 @@
 #include "pipeline/job.h"
 #include "pipeline/outputs.h"
 #include "tests/geometry/section/region_shapes.h"
+#include "tests/io/design/nurbs_dxf.h"
 #include "tests/pipeline/cli_harness.h"
 
 using namespace fabmesh;
@@ -261,6 +262,38 @@ TEST_CASE("countertop from a DXF template: the DXF fabmesh writes reads back int
   CHECK(std::abs(perimeter - perimeter0) <= 1e-9 * size);
 }
 
+TEST_CASE("countertop from a DXF template: a circle saved as a NURBS is the exact circle",
+          "[pipeline][countertop][dxf][rational]") {
+  const fs::path dir = fresh_dir("countertop_dxf_nurbs");
+  const double r = 250.0;
+  const Vec2 c(400, 300);
+  write_text(dir / "round.dxf", test::dxf_drawing(test::dxf_nurbs_ellipse("2A", "OUTLINE", c, r, r)));
+  write_text(dir / "round.yaml",
+             "name: round\nkind: countertop\nunits: mm\ntolerance: 0.05\nthickness: 30\n"
+             "outline: {dxf: round.dxf, layer: OUTLINE}\noutputs: [stl]\n");
+  Design design = read_design((dir / "round.yaml").string());
+  design.common.outputs = {{"stl", "test", 0, 0}};
+  const auto& top = std::get<CountertopDesign>(design.body);
+  const CompositeCurve outline = build_curve(top.outline).curve;
+  REQUIRE(outline.size() == 4);
+  double worst = 0.0;
+  for (const Segment& seg : outline.segments()) {
+    CHECK(seg.kind() == SegmentKind::RationalBezier);
+    for (int i = 0; i <= 1000; ++i) worst = std::max(worst, std::abs((seg.point(i / 1000.0) - c).norm() - r));
+  }
+  INFO("largest radius error " << worst);
+  CHECK(worst <= 1e-9 * r);
+  const auto [area, perimeter] = exact_region(top);
+  CHECK(area == Approx(M_PI * r * r).epsilon(1e-9));
+  CHECK(perimeter == Approx(2 * M_PI * r).epsilon(1e-9));
+  // The slab: valid, its volume the exact area times the thickness within the sampling's deviation.
+  const JobReport rep = run_job(design, into(dir));
+  CHECK(rep.validation.valid());
+  CHECK(rep.max_deviation <= design.common.tolerance);
+  CHECK(std::abs(rep.validation.volume - area * top.thickness) <=
+        rep.max_deviation * perimeter * top.thickness);
+}
+
 TEST_CASE("countertop from a DXF template: bad drawings exit 2 at the design's key, nothing written",
           "[pipeline][countertop][dxf][errors]") {
   const fs::path dir = fresh_dir("countertop_dxf_bad");
@@ -270,12 +303,17 @@ TEST_CASE("countertop from a DXF template: bad drawings exit 2 at the design's k
       "0\nSECTION\n2\nENTITIES\n0\nLINE\n5\n2F\n8\nOUTLINE\n10\n0\n20\n0\n30\n0\n11\n100\n21\n0\n31\n0\n"
       "0\nLINE\n5\n30\n8\nOUTLINE\n10\n100\n20\n0\n30\n0\n11\n100\n21\n50\n31\n0\n0\nENDSEC\n0\nEOF\n");
   write_text(dir / "empty.dxf", "");
+  write_text(dir / "weightless.dxf",
+             test::dxf_drawing(test::dxf_nurbs_ellipse("3A", "OUTLINE", Vec2(0, 0), 100.0, 100.0, 0.0)));
   const std::string head = "name: t\nkind: countertop\nunits: mm\ntolerance: 0.05\nthickness: 30\n";
   const std::vector<std::pair<std::string, std::string>> cases{
       {head + "outline: {dxf: open.dxf, layer: OUTLINE}\n",
        "outline.dxf: " + (dir / "open.dxf").string() +
            " layer OUTLINE: open chain: LINE #2F's start at (0, 0)"},
       {head + "outline: {dxf: empty.dxf}\n", "the file is empty, not a DXF drawing"},
+      {head + "outline: {dxf: weightless.dxf, layer: OUTLINE}\n",
+       "outline.dxf: " + (dir / "weightless.dxf").string() +
+           " layer OUTLINE: SPLINE #3A: control point 2 has weight 0: a NURBS weight must be finite and > 0"},
       {head + "outline: {dxf: missing.dxf}\n", "missing.dxf"},
       {head + "outline: {dxf: kitchen_template.dxf, layer: HOLES}\n",
        "outline.dxf: 3 closed loops found on the layer; outline is one loop"},

@@ -14,6 +14,7 @@
 #include "io/file.h"
 #include "io/mesh/read_mesh.h"
 #include "io/step/step.h"
+#include "tests/io/design/nurbs_dxf.h"
 #include "tests/pipeline/cli_harness.h"
 
 using namespace fabmesh;
@@ -127,6 +128,30 @@ TEST_CASE("step: a countertop is one valid closed solid whose volume is the exac
   const MeshRun mesh =
       mesh_run(example("countertop_g2.yaml"), "obj", fresh_dir("step_countertop_mesh"), 7, 1.0);
   CHECK(max_distance_to_step(w.step, mesh.points) <= mesh.item["max_deviation"].get<double>() + 1e-9);
+}
+
+TEST_CASE("step: a countertop from DXF NURBS is exact, its spans rational B-splines of degree 3",
+          "[pipeline][step][dxf][rational]") {
+  const fs::path dir = fresh_dir("step_nurbs");
+  // A round table of radius 250 with an oval cut-out of 120 x 70, both saved as NURBS.
+  write_text(dir / "round.dxf",
+             test::dxf_drawing(test::dxf_nurbs_ellipse("2A", "OUTLINE", {0, 0}, 250, 250) +
+                               test::dxf_nurbs_ellipse("2B", "HOLES", {40, -30}, 120, 70)));
+  write_text(dir / "round.yaml",
+             "name: round\nkind: countertop\nunits: mm\ntolerance: 0.05\nthickness: 30\n"
+             "outline: {dxf: round.dxf, layer: OUTLINE}\nholes: [{dxf: round.dxf, layer: HOLES}]\n");
+  const Written w = run_step((dir / "round.yaml").string(), dir / "out");
+  CHECK(w.item["files"][0]["max_added_error"] == 0.0);
+  const StepRead r = read_step(w.step);
+  INFO(r.error);
+  REQUIRE(r.error.empty());
+  REQUIRE(r.roots.size() == 1);
+  const StepShapeFacts& solid = r.roots[0];
+  CHECK(solid.valid);
+  CHECK(solid.closed);
+  CHECK(solid.solids == 1);
+  CHECK(solid.faces == 4 + 4 + 2);  // one side face per span, a top and a bottom
+  CHECK(solid.volume == Approx(M_PI * (250.0 * 250.0 - 120.0 * 70.0) * 30.0).epsilon(1e-7));
 }
 
 TEST_CASE("step: the golden solid is written in cm, its volume 46.171424531125 cm^3", "[pipeline][step]") {

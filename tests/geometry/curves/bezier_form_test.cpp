@@ -74,6 +74,27 @@ TEST_CASE("bezier form: a quasi-B-spline span is exactly a quartic Bezier, a lin
   CHECK_FALSE(exact_bezier(Segment::hbezier(points, 2.0, 0.0, 0.0)).has_value());
 }
 
+TEST_CASE("bezier form: a rational cubic Bezier segment is itself, poles and weights, error 0",
+          "[curves][bezier_form][rational]") {
+  const std::array<Vec2, 4> points = {Vec2(-320.0, 45.0), Vec2(120.0, 310.0), Vec2(540.0, -280.0),
+                                      Vec2(600.0, 40.0)};
+  for (const std::array<double, 4>& weights :
+       {std::array<double, 4>{1.0, std::sqrt(0.5), std::sqrt(0.5), 1.0},
+        std::array<double, 4>{0.2, 3.0, 0.7, 1.5}, std::array<double, 4>{5.0, 0.1, 0.1, 5.0}}) {
+    const Segment segment = Segment::rational_bezier(points, weights);
+    const auto form = exact_bezier(segment);
+    REQUIRE(form.has_value());
+    REQUIRE(form->poles.size() == 4);
+    REQUIRE(form->weights.size() == 4);
+    for (std::size_t i = 0; i < 4; ++i) {
+      CHECK(form->poles[i] == points[i]);
+      CHECK(form->weights[i] == weights[i]);
+    }
+    CHECK(bezier_parameter(segment, 0.37) == 0.37);
+    CHECK(relative_gap(segment, *form) <= 1e-12);
+  }
+}
+
 TEST_CASE("bezier form: H-Bezier segments are within the proven bound of their Hermite pieces",
           "[curves][bezier_form]") {
   const std::array<Vec2, 4> points = {Vec2(0.0, 0.0), Vec2(2.0, 6.0), Vec2(9.0, 5.0), Vec2(12.0, -1.0)};

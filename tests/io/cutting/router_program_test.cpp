@@ -10,11 +10,14 @@
 #include <set>
 
 #include "geometry/core/errors.h"
+#include "geometry/fairing/build_curve.h"
 #include "geometry/toolpath/toolpath.h"
 #include "io/cutting/gcode.h"
+#include "io/design/dxf_loops.h"
 #include "tests/geometry/section/region_shapes.h"
 #include "tests/geometry/toolpath/digitised_worktop.h"
 #include "tests/io/cutting/interpret.h"
+#include "tests/io/design/nurbs_dxf.h"
 
 using namespace fabmesh;
 using namespace fabmesh::test;
@@ -508,6 +511,57 @@ MoveCounts count_cuts(const Trace& trace) {
 }
 
 }  // namespace
+
+namespace {
+
+// A 1200 x 600 worktop whose 80 mm corners are NURBS quarter circles (one
+// drawn backwards) and an oval sink saved as a NURBS ellipse (the circle's
+// control points stretched: 200 x 120).
+ExampleRegion nurbs_worktop() {
+  const double k = std::sqrt(0.5);
+  std::string entities =
+      dxf_line("A1", "OUTLINE", {80, 0}, {1120, 0}) + dxf_line("A2", "OUTLINE", {1200, 80}, {1200, 520}) +
+      dxf_line("A3", "OUTLINE", {1120, 600}, {80, 600}) + dxf_line("A4", "OUTLINE", {0, 520}, {0, 80});
+  entities += dxf_nurbs("B1", "OUTLINE", {{1120, 0}, {1200, 0}, {1200, 80}}, {1, k, 1});
+  entities += dxf_nurbs("B2", "OUTLINE", {{1200, 520}, {1200, 600}, {1120, 600}}, {1, k, 1});
+  entities += dxf_nurbs("B3", "OUTLINE", {{0, 520}, {0, 600}, {80, 600}}, {1, k, 1});  // backwards
+  entities += dxf_nurbs("B4", "OUTLINE", {{0, 80}, {0, 0}, {80, 0}}, {1, k, 1});
+  entities += dxf_nurbs_ellipse("C1", "HOLES", {600, 300}, 200, 120);
+  const std::string text = dxf_drawing(entities);
+  DxfLoopQuery q;
+  q.units = "mm";
+  q.layer = "OUTLINE";
+  ExampleRegion region;
+  const DxfLoops outline = parse_dxf_loops(text, "nurbs_worktop.dxf", q);
+  REQUIRE(outline.loops.size() == 1);
+  region.outline = build_curve(outline.loops[0].curve).curve;
+  q.layer = "HOLES";
+  const DxfLoops holes = parse_dxf_loops(text, "nurbs_worktop.dxf", q);
+  REQUIRE(holes.loops.size() == 1);
+  region.holes.push_back({build_curve(holes.loops[0].curve).curve, "holes[0] (dxf)"});
+  region.thickness = 30;
+  region.tolerance = 0.05;
+  region.name = "nurbs_worktop";
+  return region;
+}
+
+}  // namespace
+
+TEST_CASE("router program: NURBS corners and a NURBS oval sink are cut on their exact offsets",
+          "[io][cutting][gcode][toolpath][countertop][rational]") {
+  const ExampleRegion region = nurbs_worktop();
+  std::size_t rational = 0;
+  for (const Segment& s : region.outline.segments()) rational += s.kind() == SegmentKind::RationalBezier;
+  for (const Segment& s : region.holes[0].curve.segments())
+    rational += s.kind() == SegmentKind::RationalBezier;
+  CHECK(rational == 8);
+  CHECK(std::abs(exact_area(region.outline)) ==
+        Approx(1200.0 * 600.0 - (4.0 - M_PI) * 6400.0).epsilon(1e-12));
+  CHECK(std::abs(exact_area(region.holes[0].curve)) == Approx(M_PI * 200.0 * 120.0).epsilon(1e-12));
+  Toolpath tp;
+  const Findings f = run_example(region, options_for(region), {}, nullptr, &tp);
+  require_good_program(f, tp, 1.0);
+}
 
 TEST_CASE("router program: a digitised worktop cut in fitted arcs runs in CNCjs on the exact offset",
           "[io][cutting][gcode][toolpath][countertop][arcfit][digitised]") {

@@ -1,5 +1,7 @@
 #include "io/design/dxf_loops.h"
 
+#include <fmt/format.h>
+
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
@@ -86,6 +88,34 @@ Vec2 de_boor(const std::vector<double>& knots, const std::vector<Vec2>& points, 
   }
   return d[static_cast<std::size_t>(p)];
 }
+
+// A NURBS curve's point at u: de Boor on the homogeneous points (w x, w y)
+// and on the weights (w, 0), divided.
+Vec2 rational_de_boor(const std::vector<double>& knots, const std::vector<Vec2>& points,
+                      const std::vector<double>& weights, int p, double u) {
+  std::vector<Vec2> numerator, denominator;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    numerator.push_back(weights[i] * points[i]);
+    denominator.emplace_back(weights[i], 0.0);
+  }
+  return de_boor(knots, numerator, p, u) / de_boor(knots, denominator, p, u).x();
+}
+
+// A circle of radius r about c as the rational quadratic NURBS CAD programs
+// save: 9 control points on the square round it, corner weights sqrt(2)/2.
+std::vector<Vec2> circle_points(const Vec2& c, double r) {
+  std::vector<Vec2> out;
+  for (int i = 0; i <= 8; ++i) {
+    const double a = i * kPi / 4;
+    const double reach = i % 2 == 0 ? r : r * std::sqrt(2.0);
+    out.push_back(c + reach * Vec2(std::cos(a), std::sin(a)));
+  }
+  out.back() = out.front();
+  return out;
+}
+const std::vector<double> kCircleWeights{1, std::sqrt(0.5), 1, std::sqrt(0.5), 1, std::sqrt(0.5),
+                                         1, std::sqrt(0.5), 1};
+const std::vector<double> kCircleKnots{0, 0, 0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1, 1, 1};
 
 DxfLoopQuery on_layer(const std::string& layer, double max_gap = 1e-6, const std::string& units = "mm") {
   DxfLoopQuery q;
@@ -311,9 +341,9 @@ TEST_CASE("dxf loops: a SPLINE is read as the exact spline it is, in cubic spans
   REQUIRE(long_spline.loops.size() == 1);
   CHECK(long_spline.loops[0].curve.segments.size() == 99997 + 1);
   // What is not read, named.
-  CHECK_THAT(error_of(drawing(spline("D1", "W", 3, knots, points, {1, 2, 1, 1, 1})), on_layer("W")),
-             Catch::StartsWith(
-                 "t.dxf layer W: SPLINE #D1: control point 2 has weight 2: a rational spline (NURBS)"));
+  CHECK_THAT(error_of(drawing(spline("D1", "W", 3, knots, points, {1, 0, 1, 1, 1})), on_layer("W")),
+             Catch::StartsWith("t.dxf layer W: SPLINE #D1: control point 2 has weight 0: a NURBS weight must "
+                               "be finite and > 0"));
   CHECK_THAT(error_of(drawing(spline("D2", "W", 3, {0, 0, 0, 1, 1, 1}, points)), on_layer("W")),
              Catch::StartsWith("t.dxf layer W: SPLINE #D2: 6 knots; 5 control points of degree 3 take 9"));
   CHECK_THAT(
@@ -323,6 +353,119 @@ TEST_CASE("dxf loops: a SPLINE is read as the exact spline it is, in cubic spans
       Catch::StartsWith("t.dxf layer W: SPLINE #D3: degree 5; fabmesh reads splines of degree 1, 2 or 3"));
   CHECK_THAT(error_of(drawing(spline("D4", "W", 3, {0, 0, 0, 0, 0.5, 0.4, 1, 1, 1}, points)), on_layer("W")),
              Catch::StartsWith("t.dxf layer W: SPLINE #D4: knot 6 (0.4) is not finite and non-decreasing"));
+}
+
+TEST_CASE("dxf loops: a rational SPLINE (NURBS) is read exactly, as rational cubic spans",
+          "[io][design][dxf][rational]") {
+  // A full circle of radius 250 saved as a rational quadratic NURBS: a loop of four exact spans.
+  const Vec2 c(1200, 300);
+  const double r = 250.0;
+  const DxfLoops circle =
+      parse_dxf_loops(drawing(spline("5A", "C", 2, kCircleKnots, circle_points(c, r), kCircleWeights)),
+                      "t.dxf", on_layer("C"));
+  REQUIRE(circle.loops.size() == 1);
+  const CurveSpec& loop = circle.loops[0].curve;
+  REQUIRE(loop.segments.size() == 4);
+  const CompositeCurve curve = construct_curve(loop);
+  double worst = 0.0;
+  for (std::size_t i = 0; i < 4; ++i) {
+    CHECK(loop.segments[i].kind == SegmentKind::RationalBezier);
+    CHECK(loop.segments[i].name == fmt::format("SPLINE #5A piece {}", i + 1));
+    for (int j = 0; j <= 100; ++j) {
+      const double t = j / 100.0;
+      worst = std::max(worst, std::abs((curve.segments()[i].point(t) - c).norm() - r));
+      const Vec2 want = rational_de_boor(kCircleKnots, circle_points(c, r), kCircleWeights, 2,
+                                         (static_cast<double>(i) + t) / 4.0);
+      CHECK((curve.segments()[i].point(t) - want).norm() <= 1e-12 * 1500);
+    }
+  }
+  WARN("NURBS circle of radius 250: largest radius error " << worst);
+  CHECK(worst <= 1e-9 * r);
+  // Exactly round: every joint G2, the area that of the circle.
+  for (const JointReport& j : curve.joints()) CHECK(j.achieved == Continuity::G2);
+  CHECK(loop_area(loop) == Approx(kPi * r * r).epsilon(1e-9));
+  // The same circle in the four-quadrant knot form, in inches: the weights are not scaled.
+  std::vector<double> quadrants{0, 0, 0, 1, 1, 2, 2, 3, 3, 4, 4, 4};
+  const DxfLoops inches = parse_dxf_loops(
+      drawing(spline("5B", "C", 2, quadrants, circle_points(Vec2(1, 2), 10), kCircleWeights), 1), "t.dxf",
+      on_layer("C"));
+  REQUIRE(inches.loops.size() == 1);
+  CHECK(loop_area(inches.loops[0].curve) == Approx(kPi * 254.0 * 254.0).epsilon(1e-9));
+  // A half circle drawn against the loop's direction: its spans and weights are reversed.
+  const std::vector<Vec2> round = circle_points(Vec2(0, 0), r);
+  const std::vector<Vec2> half(round.begin(), round.begin() + 5);
+  const DxfLoops d = parse_dxf_loops(
+      drawing(line("6A", "D", r, 0, -r, 0) + spline("6B", "D", 2, {0, 0, 0, 0.5, 0.5, 1, 1, 1}, half,
+                                                    {1, std::sqrt(0.5), 1, std::sqrt(0.5), 1})),
+      "t.dxf", on_layer("D"));
+  REQUIRE(d.loops.size() == 1);
+  CHECK(loop_area(d.loops[0].curve) == Approx(-kPi * r * r / 2).epsilon(1e-10));
+  // A cubic NURBS: the spans whose points weigh alike stay polynomial, the others are rational.
+  const std::vector<double> knots{0, 0, 0, 0, 0.4, 1, 1, 1, 1};
+  const std::vector<Vec2> points{{100, 0}, {110, 60}, {50, 90}, {-10, 60}, {0, 0}};
+  for (const std::vector<double>& weights : {std::vector<double>{1, 2, 1, 1, 1}, {1, 1, 1, 1, 3.5}}) {
+    const DxfLoops got =
+        parse_dxf_loops(drawing(line("A0", "S", 0, 0, 100, 0) + spline("A1", "S", 3, knots, points, weights)),
+                        "t.dxf", on_layer("S"));
+    REQUIRE(got.loops.size() == 1);
+    const CurveSpec& spec = got.loops[0].curve;
+    const CompositeCurve built = construct_curve(spec);
+    verify_declared_continuity(spec, built);
+    std::vector<SegmentKind> kinds;
+    for (std::size_t i = 0; i < spec.segments.size(); ++i) {
+      if (spec.segments[i].name.rfind("SPLINE #A1", 0) != 0) continue;
+      const double u0 = kinds.empty() ? 0.0 : 0.4, u1 = kinds.empty() ? 0.4 : 1.0;
+      kinds.push_back(spec.segments[i].kind);
+      for (int j = 0; j <= 50; ++j) {
+        const double t = j / 50.0;
+        const Vec2 want = rational_de_boor(knots, points, weights, 3, u0 + t * (u1 - u0));
+        CHECK((built.segments()[i].point(t) - want).norm() <= 1e-12 * 100);
+      }
+    }
+    // Weight 2 on point 2 reaches both spans; weight 3.5 on the last point only the second.
+    const SegmentKind first = weights[1] == 2 ? SegmentKind::RationalBezier : SegmentKind::QuasiBSpline;
+    CHECK(kinds == std::vector<SegmentKind>{first, SegmentKind::RationalBezier});
+    for (const JointReport& j : built.joints()) {
+      if (spec.segments[j.before].name.rfind("SPLINE", 0) == 0 &&
+          spec.segments[j.after].name.rfind("SPLINE", 0) == 0)
+        CHECK(j.achieved == Continuity::G2);
+    }
+  }
+  // Weights far apart (a factor 1e20) and a rational polyline of degree 1: still the NURBS's own points.
+  for (const int degree : {1, 2}) {
+    const std::vector<double> open =
+        degree == 2 ? std::vector<double>{0, 0, 0, 1, 1, 1} : std::vector<double>{0, 0, 1, 1};
+    const std::vector<Vec2> arch{{0, 0}, {50, 80}, {100, 0}};
+    const std::vector<double> far{1e-10, 1, 1e10};
+    const std::vector<Vec2> used(arch.begin(), arch.begin() + degree + 1);
+    const std::vector<double> used_weights(far.begin(), far.begin() + degree + 1);
+    const DxfLoops got = parse_dxf_loops(drawing(spline("7A", "F", degree, open, used, used_weights) +
+                                                 line("7B", "F", used.back().x(), used.back().y(), -40, -40) +
+                                                 line("7C", "F", -40, -40, 0, 0)),
+                                         "t.dxf", on_layer("F"));
+    REQUIRE(got.loops.size() == 1);
+    const CurveSpec& spec = got.loops[0].curve;
+    const CompositeCurve built = construct_curve(spec);
+    std::size_t found = 0;
+    for (std::size_t i = 0; i < spec.segments.size(); ++i) {
+      if (spec.segments[i].name != "SPLINE #7A") continue;
+      ++found;
+      CHECK(spec.segments[i].kind == SegmentKind::RationalBezier);
+      for (int j = 0; j <= 50; ++j) {
+        const double t = j / 50.0;
+        const Vec2 want = rational_de_boor(open, used, used_weights, degree, t);
+        CHECK((built.segments()[i].point(t) - want).norm() <= 1e-12 * 100);
+      }
+    }
+    CHECK(found == 1);
+  }
+  // Weights that are not finite and > 0: bad input naming the entity and the control point.
+  CHECK_THAT(error_of(drawing(spline("5C", "W", 2, kCircleKnots, circle_points(c, r),
+                                     {1, std::sqrt(0.5), 1, -0.5, 1, std::sqrt(0.5), 1, std::sqrt(0.5), 1})),
+                      on_layer("W")),
+             Catch::Equals(
+                 "t.dxf layer W: SPLINE #5C: control point 4 has weight -0.5: a NURBS weight must be finite "
+                 "and > 0"));
 }
 
 TEST_CASE("dxf loops: the example template, written with ezdxf, reads into its outline and holes",
