@@ -210,9 +210,15 @@ try {
   await check('save then `fabmesh run` of the saved file gives the bytes of the studio\'s export', async () => {
     await page.click('#export');
     await page.waitForFunction(() => document.querySelectorAll('#exported li').length > 0, {timeout: 120000});
+    // Every status the page shows from now: the file watch reloads the saved file and builds,
+    // which may replace "saved" before a poll of the status would see it.
+    await page.evaluate(() => {
+      window.statuses = [];
+      new MutationObserver(() => window.statuses.push(document.getElementById('status').textContent))
+          .observe(document.getElementById('status'), {childList: true, characterData: true, subtree: true});
+    });
     await page.click('#save');
-    await page.waitForFunction(() => /saved/.test(document.getElementById('status').textContent),
-                               {timeout: 120000});
+    await page.waitForFunction(() => window.statuses.some((t) => /saved/.test(t)), {timeout: 120000});
     const saved = fs.readFileSync(design, 'utf8');
     // The height, and the three lambdas fairing chose, in place; every other byte as it was.
     const lambdas = await page.evaluate(() => [0, 1, 2].map((i) => window.fabmeshStudio.overrides[`profile.lambdas[${i}]`]));

@@ -395,9 +395,9 @@ function drag(event, circle) {
 // and labelled as a draft, with no verdict; the proven build, asked for as
 // soon as the draft answers (both at once made the draft a third slower on
 // two cores, and the proven one no faster), replaces it with its mesh and its
-// verdict. A draft never
-// replaces what is shown for newer values, and its errors are not shown (the
-// proven build's are).
+// verdict. A draft never replaces what is shown for newer values, nor comes
+// after its own values' proven answer; its errors are not shown (the proven
+// build's are).
 
 const kDraftTriangles = 40000;
 const lanes = {proven: {busy: false, pending: false}, draft: {busy: false, pending: false}};
@@ -409,8 +409,7 @@ state.drafts = 0;      // drafts shown
 let useDrafts = false;
 let settled = 0;       // the newest change whose proven build answered (valid or not): no draft of it any more
 let proven = null;     // the last proven build's answer, shown again when a draft's values fail
-
-let provenAfterDraft = false;  // the proven build waits for the draft's answer (the cores are the draft's first)
+let provenAfterDraft = false;  // a proven build waits for the draft's answer (the cores are the draft's first)
 
 function requestBuild() {
   state.change += 1;
