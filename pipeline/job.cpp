@@ -151,6 +151,7 @@ JobReport build_and_encode(const Design& design, const JobOptions& options, cons
     report.bbox_min = Vec3(lo.x(), lo.y(), 0.0);
     report.bbox_max = Vec3(hi.x(), hi.y(), 0.0);
   }
+  if (!options.encode) return report;
   // The encoders get the tolerance the build left unused, and the mesh in the
   // export unit (the built mesh itself when the units agree: no copy).
   const std::optional<TriangleSoup> rescaled =

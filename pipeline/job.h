@@ -36,6 +36,10 @@ struct JobOptions {
   /// and validated, before the job judges them or encodes anything (the
   /// library hands them to its caller, valid or not).
   std::function<void(const BuiltMesh&)> on_built;
+  /// False: build and validate only, as for any output (the same mesh), and
+  /// encode none of them: the report then has no outputs, files or skipped
+  /// outputs (the studio's interactive build: its export encodes them).
+  bool encode = true;
 };
 
 /// One file a job wrote.

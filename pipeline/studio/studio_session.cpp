@@ -23,6 +23,7 @@
 #include "pipeline/failure.h"
 #include "pipeline/job.h"
 #include "pipeline/load_design.h"
+#include "pipeline/outputs.h"
 #include "pipeline/pictures.h"
 #include "pipeline/report.h"
 
@@ -47,16 +48,48 @@ StudioResponse bad_request(const BadRequest& e) {
   return json_response(400, {{"error", {{"message", e.message}, {"field", e.field}}}});
 }
 
+// A draft's tolerance, in the design's: coarse enough to build and draw at
+// once (the wash basin's shell: 10 000 triangles of 175 000, a twentieth of
+// the build's time), fine enough to show the shape. A builder that refuses
+// its coarse mesh (a shell whose sheets meet at that tolerance: one value in
+// twelve of the basin's) is asked again at half the tolerance, down to
+// kLeastDraftTolerance.
+constexpr double kDraftTolerance = 32.0;
+constexpr double kLeastDraftTolerance = 4.0;
+
+// The draft of `design`: built at the coarsest tolerance its builder accepts
+// (the design's tolerance is then that one).
+BuiltMesh draft_built(Design& design) {
+  const double tolerance = design.common.tolerance;
+  for (double factor = kDraftTolerance;; factor /= 2.0) {
+    design.common.tolerance = tolerance * factor;
+    try {
+      return design_built(design);
+    } catch (const ValidationFailed&) {
+      if (factor / 2.0 < kLeastDraftTolerance) throw;
+    }
+  }
+}
+
 // The design's overrides of a request's "overrides" object, as `-D` takes them.
 struct Request {
   std::vector<Override> overrides;
   std::string energy;  ///< fairest: "strain" or "curvature_variation"
+  bool draft = false;  ///< build: a draft (docs/studio.md)
+};
+
+// What a request may have besides "overrides".
+enum class RequestFields {
+  Overrides,  ///< export, save
+  Build,      ///< "draft"
+  Fairest,    ///< "energy"
 };
 
 std::string number_text(double value) { return fmt::format("{}", value); }
 
-// `takes_energy`: the request may have "energy" (fairest) besides "overrides".
-Request parse_request(const std::string& body, bool takes_energy = false) {
+Request parse_request(const std::string& body, RequestFields fields = RequestFields::Overrides) {
+  const bool takes_energy = fields == RequestFields::Fairest;
+  const bool takes_draft = fields == RequestFields::Build;
   Request request;
   if (body.empty()) return request;
   Json j;
@@ -67,9 +100,15 @@ Request parse_request(const std::string& body, bool takes_energy = false) {
   }
   if (!j.is_object()) throw BadRequest{"", "the request body must be a JSON object"};
   for (const auto& [key, value] : j.items()) {
-    if (key == "overrides" || (takes_energy && key == "energy")) continue;
+    if (key == "overrides" || (takes_energy && key == "energy") || (takes_draft && key == "draft")) continue;
     throw BadRequest{key, fmt::format("unknown field '{}' (the request takes: overrides{})", key,
-                                      takes_energy ? ", energy" : "")};
+                                      takes_energy  ? ", energy"
+                                      : takes_draft ? ", draft"
+                                                    : "")};
+  }
+  if (takes_draft && j.contains("draft")) {
+    if (!j["draft"].is_boolean()) throw BadRequest{"draft", "draft must be true or false"};
+    request.draft = j["draft"].get<bool>();
   }
   if (takes_energy) {
     const Json* energy = j.contains("energy") ? &j["energy"] : nullptr;
@@ -107,14 +146,14 @@ Request parse_request(const std::string& body, bool takes_energy = false) {
 }
 
 // Plain names must be declared parameters (a -D path has a '.' or a '[').
-void require_known_names(const Request& request, const Design& design) {
+void require_known_names(const Request& request, const std::vector<std::string>& declared) {
   for (const Override& o : request.overrides) {
     if (o.path.find_first_of(".[") != std::string::npos) continue;
     bool known = false;
     std::string names;
-    for (const DesignParameter& p : design.common.parameters) {
-      known = known || p.name == o.path;
-      names += (names.empty() ? "" : ", ") + p.name;
+    for (const std::string& name : declared) {
+      known = known || name == o.path;
+      names += (names.empty() ? "" : ", ") + name;
     }
     if (!known) {
       throw BadRequest{"overrides." + o.path,
@@ -245,11 +284,23 @@ struct Requested {
   Design design;
 };
 
-Requested read_requested(const Request& request, const std::string& path) {
+Requested read_requested(const Request& request, const std::string& path, const DeclaredNames& names) {
   std::string text = read_file(path, kMaxDesignBytes, "design file");
-  require_known_names(request, load_design_text(text, path));
+  require_known_names(request, names.of(text, path));
   Design design = load_design_text(text, path, request.overrides);
   return {std::move(text), std::move(design)};
+}
+
+// A build's report, `run --json`'s item of a job that encoded nothing: the
+// facts only encoding gives (the files, their added errors, the outputs
+// skipped) are left out, and "pending" says so, with the formats export encodes.
+Json pending_outputs(Json item, const std::vector<const OutputFormat*>& formats) {
+  Json names = Json::array();
+  for (const OutputFormat* f : formats) names.push_back(std::string(f->name));
+  for (const char* key : {"outputs", "files", "skipped_outputs"}) item.erase(key);
+  item["pending"] = {
+      {"formats", names}, {"facts", {"outputs", "files", "skipped_outputs"}}, {"until", "export"}};
+  return item;
 }
 
 // A request's answer: `f`'s, or 400 for a bad request, or the command line's
@@ -266,6 +317,20 @@ StudioResponse answered(const std::string& path, F&& f) {
 }
 
 }  // namespace
+
+std::vector<std::string> DeclaredNames::of(const std::string& text, const std::string& path) const {
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (read_ && text_ == text) return names_;
+  }
+  std::vector<std::string> names;
+  for (const DesignParameter& p : load_design_text(text, path).common.parameters) names.push_back(p.name);
+  const std::lock_guard<std::mutex> lock(mutex_);
+  read_ = true;
+  text_ = text;
+  names_ = names;
+  return names;
+}
 
 StudioSession::StudioSession(StudioSessionOptions options) : options_(std::move(options)) {
   (void)load_design(options_.design_path);
@@ -293,22 +358,50 @@ StudioResponse StudioSession::design() const {
 StudioResponse StudioSession::build(const std::string& request_body) {
   const auto start = std::chrono::steady_clock::now();
   return answered(options_.design_path, [&] {
-    const Design design = read_requested(parse_request(request_body), options_.design_path).design;
-    JobOptions job;
-    job.out_dir = options_.out_dir;
+    const Request request = parse_request(request_body, RequestFields::Build);
+    Design design = read_requested(request, options_.design_path, names_).design;
+    Json stages = Json::object();  // the studio's own times, ms (the job's are the report's timings_ms)
+    stages["design"] = elapsed_ms(start);
     std::optional<std::string> glb;
     std::string plot_svg;
-    job.on_built = [&](const BuiltMesh& built) {
+    std::size_t triangles = 0;
+    const auto show = [&](const BuiltMesh& built) {
+      auto lap = std::chrono::steady_clock::now();
       plot_svg = plot_curves_svg(shape_plot(design.common, built.shape));
+      stages["plot"] = elapsed_ms(lap);
       if (!built.soup.triangles.empty()) {
+        lap = std::chrono::steady_clock::now();
         GlbOptions glb_options;
         glb_options.name = design.common.name;
         glb_options.scale_to_metres = metres_per_unit(design.common.units);
-        glb = encode_glb(exploded_scene(built), glb_options);  // a mould's parts apart, as in the preview
+        const TriangleSoup scene = exploded_scene(built);  // a mould's parts apart, as in the preview
+        triangles = scene.triangles.size();
+        glb = encode_glb(scene, glb_options);
+        stages["mesh"] = elapsed_ms(lap);
       }
     };
-    const PreparedJob prepared = prepare_job(design, job);
-    Json j = {{"report", design_item(options_.design_path, prepared.report)}, {"plot_svg", plot_svg}};
+    Json j;
+    if (request.draft) {
+      // A coarser mesh of the same shape to show at once; no verdict: the
+      // proven build's answer gives that.
+      auto lap = std::chrono::steady_clock::now();
+      const BuiltMesh built = draft_built(design);
+      stages["build"] = elapsed_ms(lap);
+      show(built);
+      j = {{"draft", {{"tolerance", design.common.tolerance}, {"triangles", triangles}}},
+           {"plot_svg", plot_svg}};
+    } else {
+      JobOptions job;
+      job.out_dir = options_.out_dir;
+      job.encode = false;  // export encodes the outputs; the report says which facts wait for it
+      job.on_built = show;
+      auto lap = std::chrono::steady_clock::now();
+      const PreparedJob prepared = prepare_job(design, job);
+      stages["job"] = elapsed_ms(lap);
+      j = {{"report",
+            pending_outputs(design_item(options_.design_path, prepared.report), job_formats(design, job))},
+           {"plot_svg", plot_svg}};
+    }
     j["mesh"] = nullptr;
     if (glb) {
       const std::lock_guard<std::mutex> lock(mutex_);
@@ -318,6 +411,7 @@ StudioResponse StudioSession::build(const std::string& request_body) {
       j["mesh"] = "/api/mesh/" + id + ".glb";
     }
     j["build_ms"] = elapsed_ms(start);
+    j["stages_ms"] = stages;
     return json_response(200, j);
   });
 }
@@ -332,7 +426,7 @@ StudioResponse StudioSession::mesh(const std::string& id) const {
 
 StudioResponse StudioSession::export_outputs(const std::string& request_body) {
   return answered(options_.design_path, [&] {
-    const Design design = read_requested(parse_request(request_body), options_.design_path).design;
+    const Design design = read_requested(parse_request(request_body), options_.design_path, names_).design;
     JobOptions job;
     job.out_dir = options_.out_dir;
     const JobReport report = write_job(prepare_job(design, job));
@@ -346,7 +440,7 @@ StudioResponse StudioSession::save(const std::string& request_body) {
   return answered(options_.design_path, [&] {
     const Request request = parse_request(request_body);
     // The values must make a design before they replace the file's.
-    const std::string text = read_requested(request, options_.design_path).text;
+    const std::string text = read_requested(request, options_.design_path, names_).text;
     const std::string edited = edit_values(text, options_.design_path, request.overrides);
     (void)load_design_text(edited, options_.design_path);
     write_file_atomically(options_.design_path, edited);
@@ -360,8 +454,8 @@ StudioResponse StudioSession::save(const std::string& request_body) {
 
 StudioResponse StudioSession::fairest(const std::string& request_body) {
   return answered(options_.design_path, [&] {
-    const Request request = parse_request(request_body, true);
-    const Design design = read_requested(request, options_.design_path).design;
+    const Request request = parse_request(request_body, RequestFields::Fairest);
+    const Design design = read_requested(request, options_.design_path, names_).design;
     const FairMode mode = request.energy == "strain" ? FairMode::Strain : FairMode::CurvatureVariation;
     Json overrides = Json::object();
     Json skipped = Json::array();

@@ -9,6 +9,7 @@
 #include <mutex>
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace fabmesh {
 
@@ -23,6 +24,20 @@ struct StudioSessionOptions {
   std::string design_path;       ///< the design file: read on every request, written by save
   std::string out_dir = "out";   ///< where export writes the outputs (as `run -o`)
   std::size_t kept_meshes = 16;  ///< built meshes kept for GET /api/mesh/ID.glb, the newest
+};
+
+/// The parameters a design's text declares, read again only when the text
+/// changes (a slider's builds all read the same text). Thread-safe.
+class DeclaredNames {
+ public:
+  /// \throw as load_design_text, when the text does not read
+  std::vector<std::string> of(const std::string& text, const std::string& path) const;
+
+ private:
+  mutable std::mutex mutex_;
+  mutable bool read_ = false;  ///< text_ and names_ are set
+  mutable std::string text_;
+  mutable std::vector<std::string> names_;
 };
 
 /// One design open in the studio. Every method may be called from several
@@ -73,6 +88,7 @@ class StudioSession {
   mutable std::mutex mutex_;                                ///< guards meshes_ and next_mesh_
   std::deque<std::pair<std::string, std::string>> meshes_;  ///< id, GLB bytes
   std::uint64_t next_mesh_ = 1;
+  DeclaredNames names_;  ///< of the design file's text, checked against every request's plain names
 };
 
 }  // namespace fabmesh

@@ -210,9 +210,15 @@ try {
   await check('save then `fabmesh run` of the saved file gives the bytes of the studio\'s export', async () => {
     await page.click('#export');
     await page.waitForFunction(() => document.querySelectorAll('#exported li').length > 0, {timeout: 120000});
+    // Every status the page shows from now: the file watch reloads the saved file and builds,
+    // which may replace "saved" before a poll of the status would see it.
+    await page.evaluate(() => {
+      window.statuses = [];
+      new MutationObserver(() => window.statuses.push(document.getElementById('status').textContent))
+          .observe(document.getElementById('status'), {childList: true, characterData: true, subtree: true});
+    });
     await page.click('#save');
-    await page.waitForFunction(() => /saved/.test(document.getElementById('status').textContent),
-                               {timeout: 120000});
+    await page.waitForFunction(() => window.statuses.some((t) => /saved/.test(t)), {timeout: 120000});
     const saved = fs.readFileSync(design, 'utf8');
     // The height, and the three lambdas fairing chose, in place; every other byte as it was.
     const lambdas = await page.evaluate(() => [0, 1, 2].map((i) => window.fabmeshStudio.overrides[`profile.lambdas[${i}]`]));
@@ -247,6 +253,88 @@ try {
     await page.click('#section');
     assert.ok(await page.$eval('#section', (e) => e.checked));
     assert.equal(await page.$eval('#section-toggle', (e) => getComputedStyle(e).display === 'none'), false);
+  });
+
+  await check('a large mesh: a draft, labelled and not judged, then the proven mesh and its verdict',
+              async () => {
+    // The wash basin's shell (175 000 triangles), its thickness and its triangle budget parameters.
+    const basin = path.join(workDir, 'basin.yaml');
+    fs.writeFileSync(basin, fs.readFileSync(path.join(sourceDir, 'configs/examples/surface_basin_shell.yaml'), 'utf8')
+                                .replace('thickness: 6', 'thickness: "=shell"')
+                                .replace('kind: surface\n', 'kind: surface\nmax_triangles: "=budget"\nparameters:\n' +
+                                         '  shell: {value: 6, min: 3, max: 12}\n' +
+                                         '  budget: {value: 2000000, min: 1000, max: 5000000}\n'));
+    const second = spawn(fabmesh, ['studio', '--no-open', basin, '-o', path.join(workDir, 'basin-out')],
+                         {stdio: ['ignore', 'pipe', 'pipe']});
+    const secondExit = new Promise((resolve) => second.on('exit', (code) => resolve(code)));
+    try {
+      const basinUrl = await new Promise((resolve) => {
+        let out = '';
+        second.stdout.on('data', (d) => { out += d; if (out.includes('\n')) resolve(out.split('\n')[0].trim()); });
+      });
+      const page2 = await browser.newPage();
+      const errors2 = [];
+      page2.on('console', (m) => { if (m.type() === 'error') errors2.push(m.text()); });
+      page2.on('pageerror', (e) => errors2.push(String(e)));
+      const draftRequests = [];
+      page2.on('request', (r) => {
+        if (r.url().endsWith('/api/build') && /"draft":true/.test(r.postData() ?? '')) draftRequests.push(r.postData());
+      });
+      await page2.goto(basinUrl, {waitUntil: 'load'});
+      await page2.waitForFunction(() => window.fabmeshStudio?.validBuilds >= 1, {timeout: 300000});
+      assert.equal(draftRequests.length, 0, 'the first build has no draft (the mesh size is not known yet)');
+      // Whenever the draft note shows, the verdict says pending (never a verdict the draft has not earned).
+      await page2.evaluate(() => {
+        window.draftSeen = [];
+        new MutationObserver(() => {
+          if (!document.getElementById('draft-note').hidden)
+            window.draftSeen.push(document.getElementById('report').textContent);
+        }).observe(document.getElementById('draft-note'), {attributes: true});
+      });
+      await page2.evaluate(() => {
+        const input = document.querySelector('#field-shell input[type=range]');
+        input.value = '8';
+        input.dispatchEvent(new Event('input'));
+      });
+      await page2.waitForFunction(() => window.fabmeshStudio.provenChange === window.fabmeshStudio.change,
+                                  {timeout: 300000});
+      assert.equal(draftRequests.length, 1);
+      const s = await page2.evaluate(() => ({...window.fabmeshStudio, design: undefined, seen: window.draftSeen}));
+      for (const report of s.seen) {
+        assert.match(report, /pending: a draft is shown/);
+        assert.doesNotMatch(report, /valid for fabrication/);
+      }
+      console.log(`  drafts shown before the proven mesh: ${s.drafts}`);
+      assert.equal(s.error, null);
+      assert.equal(s.draft, false);
+      assert.ok(await page2.$eval('#draft-note', (e) => e.hidden));
+      assert.match(await page2.$eval('#report', (e) => e.textContent), /valid for fabrication/);
+      assert.match(await page2.$eval('#report', (e) => e.textContent), /encoded by export/);
+      // Values whose draft builds but whose proven build fails (over a triangle budget only
+      // the fine mesh exceeds): the error, and the last proven shape again, never the draft.
+      const plotBefore = await page2.$eval('#plot', (e) => e.innerHTML);
+      await page2.evaluate(() => {
+        const input = document.querySelector('#field-budget input[type=number]');
+        input.value = '100000';
+        input.dispatchEvent(new Event('change'));
+      });
+      await page2.waitForFunction(() => window.fabmeshStudio.error !== null, {timeout: 300000});
+      const failed = await page2.evaluate(() => ({...window.fabmeshStudio, design: undefined}));
+      console.log(`  drafts shown before the failing proven build: ${failed.drafts - s.drafts}`);
+      assert.match(failed.error.message, /max_triangles/);
+      assert.equal(failed.draft, false);
+      assert.equal(failed.meshSignature, s.meshSignature);
+      assert.equal(failed.plotSvg, s.plotSvg);
+      assert.equal(await page2.$eval('#plot', (e) => e.innerHTML), plotBefore);
+      assert.ok(await page2.$eval('#draft-note', (e) => e.hidden));
+      assert.match(await page2.$eval('#report', (e) => e.textContent), /valid for fabrication/);
+      const expected = /^Failed to load resource: the server responded with a status of 422/;
+      assert.deepEqual(errors2.filter((m) => !expected.test(m)), []);
+      await page2.close();
+    } finally {
+      second.kill('SIGTERM');
+      assert.equal(await secondExit, 0);
+    }
   });
 
   await check('no console error in the whole session but the browser\'s notes of the 422 answers', async () => {

@@ -17,6 +17,10 @@ const state = {
   plotSvg: '',
   version: null,
   error: null,         // the last build's error object, or null
+  // The last valid build's times in the page, ms from the request (the bench
+  // reads them, bench/studio_latency.mjs): answer (the JSON in), plot, report,
+  // mesh (fetched and parsed), shown (in the scene, drawn).
+  timings: null,
 };
 window.fabmeshStudio = state;
 
@@ -168,12 +172,38 @@ function showReport(report, buildMs) {
   }
   if (facts.cnc?.clearance !== undefined) add('tool clearance', `${Number(facts.cnc.clearance).toPrecision(4)} ${u}`);
   if (report.triangles !== undefined) add('triangles', String(report.triangles));
-  add('build', `${Math.round(buildMs)} ms`);
+  if (report.pending) {
+    add('outputs', `${report.pending.formats.join(', ')}: encoded by export (their files and facts then)`);
+  } else if (report.files) {
+    add('outputs', report.files.map((f) => f.path).join(', '));
+  }
+  if (buildMs !== undefined) add('build', `${Math.round(buildMs)} ms`);
+}
+
+// A draft's answer: what it is, and no verdict.
+function showDraftReport(answer) {
+  const list = $('report');
+  list.replaceChildren();
+  const add = (term, text, cls) => {
+    const dt = document.createElement('dt');
+    dt.textContent = term;
+    const dd = document.createElement('dd');
+    dd.textContent = text;
+    if (cls) dd.className = cls;
+    list.append(dt, dd);
+  };
+  add('verdict', 'pending: a draft is shown; the proven mesh and its verdict follow', 'draft');
+  add('draft', `${answer.draft.triangles} triangles, tolerance ${answer.draft.tolerance} ` +
+      `(coarser than the design's), not validated`);
+  add('build', `${Math.round(answer.build_ms)} ms (draft)`);
 }
 
 // --- the 3D view (three.js, loaded on demand: the page works without it) ---
 
-const view = {three: null, renderer: null, scene: null, camera: null, controls: null, loader: null, object: null};
+// object: the mesh shown; proven: the last proven build's (kept while a draft is shown); closed:
+// the last proven mesh is valid for fabrication (closed, outward), as its draft is taken to be.
+const view = {three: null, renderer: null, scene: null, camera: null, controls: null, loader: null, object: null,
+              proven: null, material: null, closed: false};
 
 async function setup3d() {
   try {
@@ -199,6 +229,10 @@ async function setup3d() {
     const sun = new THREE.DirectionalLight(0xffffff, 1.5);
     sun.position.set(1, 2, 3);
     view.scene.add(sun);
+    // Matte and flat: a CPU's WebGL (SwiftShader, where there is no GPU) draws it in a third of the
+    // time of a two-sided MeshStandardMaterial; updateMaterial draws both sides only where needed.
+    view.material = new THREE.MeshLambertMaterial({color: 0xc9b79c, flatShading: true, side: THREE.DoubleSide});
+    view.material.clippingPlanes = [];
     view.camera = new THREE.PerspectiveCamera(40, 1, 1e-4, 100);
     view.controls = new OrbitControls(view.camera, canvas);
     view.controls.addEventListener('change', render);
@@ -217,9 +251,21 @@ function sectionPlanes() {
   return [new view.three.Plane(new view.three.Vector3(0, 0, -1), 0)];
 }
 
+// Back faces are drawn only where they can show: in a section's cut, and on
+// a mesh not proven closed and outward (an open surface, an invalid mesh).
+// Culling them halves the CPU renderer's work on a closed mesh.
+function updateMaterial() {
+  if (!view.material) return;
+  const planes = sectionPlanes();
+  const side = planes.length > 0 || !view.closed ? view.three.DoubleSide : view.three.FrontSide;
+  if (side === view.material.side && planes.length === view.material.clippingPlanes.length) return;
+  view.material.clippingPlanes = planes;
+  view.material.side = side;
+  view.material.needsUpdate = true;
+}
+
 function updateSection() {
-  if (!view.object) return;
-  view.object.traverse((node) => { if (node.isMesh) node.material.clippingPlanes = sectionPlanes(); });
+  updateMaterial();
   render();
 }
 
@@ -247,27 +293,39 @@ function signature(object) {
   return `${count}:${sum.toPrecision(12)}`;
 }
 
-async function showMesh(url) {
-  if (!view.loader) return;
+// A build's mesh as a three.js object, not yet shown.
+async function loadMesh(url) {
+  if (!view.loader) return null;
   const gltf = await view.loader.loadAsync(url);
+  return gltf.scene;
+}
+
+function disposeObject(object) {
+  object?.traverse((node) => node.geometry?.dispose());
+}
+
+// Shows `object` (the mesh at `url`) in place of the one shown. The last
+// proven mesh is kept while a draft is shown, to be shown again when the
+// draft's values do not build.
+function placeMesh(object, url, draft) {
+  if (!object) return;
   state.mesh = url;
-  state.meshSignature = signature(gltf.scene);
+  state.meshSignature = signature(object);
   state.rendered = view.renderer !== null;
+  state.draft = draft;
+  $('draft-note').hidden = !draft;
+  const first = view.proven === null && view.object === null;
+  const old = [view.object, view.proven];
+  if (view.object && view.object !== object) view.scene?.remove(view.object);
+  if (!draft) view.proven = object;
+  view.object = object;
+  for (const o of old) if (o && o !== view.object && o !== view.proven) disposeObject(o);
   if (!view.renderer) return;
-  const THREE = view.three;
-  const material = new THREE.MeshStandardMaterial({color: 0xc9b79c, roughness: 0.7, flatShading: true,
-                                                   side: THREE.DoubleSide});
-  material.clippingPlanes = sectionPlanes();
-  gltf.scene.traverse((node) => { if (node.isMesh) node.material = material; });
-  const first = view.object === null;
-  if (view.object) {
-    view.scene.remove(view.object);
-    view.object.traverse((node) => node.geometry?.dispose());
-  }
-  view.object = gltf.scene;
-  view.scene.add(view.object);
+  object.traverse((node) => { if (node.isMesh) node.material = view.material; });
+  view.scene.add(object);
   if (first) {
-    const box = new THREE.Box3().setFromObject(view.object);
+    const THREE = view.three;
+    const box = new THREE.Box3().setFromObject(object);
     const size = box.getSize(new THREE.Vector3()).length();
     const centre = box.getCenter(new THREE.Vector3());
     view.controls.target.copy(centre);
@@ -329,41 +387,138 @@ function drag(event, circle) {
   circle.addEventListener('pointerup', drop);
 }
 
-// --- builds: one at a time, the newest values next ---
+// --- builds: one at a time per kind, the newest values next ---
+//
+// A design whose proven mesh is large (more than kDraftTriangles triangles,
+// the last proven build's count) gets a draft first: the same values built
+// at a coarser tolerance (POST /api/build with "draft": true), shown at once
+// and labelled as a draft, with no verdict; the proven build, asked for as
+// soon as the draft answers (both at once made the draft a third slower on
+// two cores, and the proven one no faster), replaces it with its mesh and its
+// verdict. A draft never replaces what is shown for newer values, nor comes
+// after its own values' proven answer; its errors are not shown (the proven
+// build's are).
 
-let building = false;
-let pending = false;
+const kDraftTriangles = 40000;
+const lanes = {proven: {busy: false, pending: false}, draft: {busy: false, pending: false}};
+state.change = 0;      // bumped by every change of the values
+state.shownChange = 0; // the change whose plot and mesh are shown
+state.provenChange = 0;// the change whose proven build is shown (its verdict in the report)
+state.draft = false;   // the shown mesh is a draft
+state.drafts = 0;      // drafts shown
+let useDrafts = false;
+let settled = 0;       // the newest change whose proven build answered (valid or not): no draft of it any more
+let proven = null;     // the last proven build's answer, shown again when a draft's values fail
+let provenAfterDraft = false;  // a proven build waits for the draft's answer (the cores are the draft's first)
 
 function requestBuild() {
-  if (building) {
-    pending = true;
+  state.change += 1;
+  if (!useDrafts) {
+    runLane('proven');
+  } else {
+    provenAfterDraft = true;
+    runLane('draft');
+  }
+}
+
+function runLane(kind) {
+  const lane = lanes[kind];
+  if (lane.busy) {
+    lane.pending = true;
     return;
   }
-  build();
+  kind === 'draft' ? draftBuild() : build();
+}
+
+function finishLane(kind) {
+  const lane = lanes[kind];
+  lane.busy = false;
+  if (lane.pending) runLane(kind);
+}
+
+function showPlot(svg) {
+  state.plotSvg = svg;
+  $('plot').innerHTML = svg;
+  enableDragging();
+}
+
+async function draftBuild() {
+  lanes.draft.busy = true;
+  lanes.draft.pending = false;
+  const change = state.change;
+  const overrides = {...state.overrides};
+  try {
+    const {status, json} = await api('POST', '/api/build', {overrides, draft: true});
+    // Shown only while nothing newer is, and before its proven build answers (even with an error).
+    const late = () => change <= Math.max(state.shownChange, settled);
+    if (status !== 200 || late() || !json.mesh) return;
+    const object = await loadMesh(json.mesh);
+    if (late()) {
+      disposeObject(object);
+      return;
+    }
+    clearErrors();
+    showPlot(json.plot_svg);
+    showDraftReport(json);
+    placeMesh(object, json.mesh, true);
+    state.shownChange = change;
+    state.drafts += 1;
+    setStatus(`draft in ${Math.round(json.build_ms)} ms; proving…`);
+  } catch (e) {
+    // The proven build says what is wrong.
+  } finally {
+    finishLane('draft');
+    if (provenAfterDraft) {
+      provenAfterDraft = false;
+      runLane('proven');
+    }
+  }
 }
 
 async function build() {
-  building = true;
-  pending = false;
+  lanes.proven.busy = true;
+  lanes.proven.pending = false;
+  const change = state.change;
   const overrides = {...state.overrides};
-  setStatus('building…');
+  if (!useDrafts) setStatus('building…');
+  const start = performance.now();
+  const since = () => performance.now() - start;
   try {
     const {status, json} = await api('POST', '/api/build', {overrides});
+    settled = Math.max(settled, change);
     if (status === 200) {
-      clearErrors();
-      state.error = null;
-      state.plotSvg = json.plot_svg;
-      $('plot').innerHTML = json.plot_svg;
-      enableDragging();
-      showReport(json.report, json.build_ms);
-      if (json.mesh) await showMesh(json.mesh);
+      const timings = {answer: since()};
+      const object = json.mesh ? await loadMesh(json.mesh) : null;
+      timings.mesh = since();
+      if (change >= state.shownChange) {  // a draft of newer values may have come while the mesh loaded
+        clearErrors();
+        state.error = null;
+        showPlot(json.plot_svg);
+        timings.plot = since();
+        showReport(json.report, json.build_ms);
+        timings.report = since();
+        view.closed = json.report.purpose === 'fabrication' && json.report.valid === true;
+        updateMaterial();
+        if (object) placeMesh(object, json.mesh, false);
+        state.shownChange = change;
+        state.provenChange = change;
+        timings.shown = since();
+        state.timings = timings;
+        setStatus(`built in ${Math.round(json.build_ms)} ms`);
+        proven = json;
+      } else if (object) {
+        disposeObject(object);
+      }
+      useDrafts = (json.report.triangles ?? 0) > kDraftTriangles;
       state.validBuilds += 1;
-      setStatus(`built in ${Math.round(json.build_ms)} ms`);
-    } else {
-      // The last valid shape stays shown; the error goes to its field.
+    } else if (change >= state.shownChange) {  // else a draft of newer values is shown
+      // The last valid shape stays shown (again, when a draft of these values was); the error goes to its field.
       state.errors += 1;
+      if (state.draft) restoreProven();
       showError(json.error ?? {message: `HTTP ${status}`});
       setStatus('the design does not build with these values');
+    } else {
+      state.errors += 1;
     }
   } catch (e) {
     state.errors += 1;
@@ -371,9 +526,17 @@ async function build() {
   } finally {
     state.builds += 1;
     document.body.dataset.builds = String(state.builds);
-    building = false;
-    if (pending) build();
+    finishLane('proven');
   }
+}
+
+// A draft of values that do not build: the last proven build's plot, report and mesh again.
+function restoreProven() {
+  if (!proven) return;
+  showPlot(proven.plot_svg);
+  showReport(proven.report, proven.build_ms);
+  if (view.proven) placeMesh(view.proven, proven.mesh, false);
+  state.shownChange = state.provenChange;
 }
 
 // --- save, export, and the file watched ---
@@ -401,6 +564,8 @@ async function exportOutputs() {
     li.textContent = file;
     list.append(li);
   }
+  // The export's report is complete: the outputs' facts too.
+  if (state.provenChange === state.change) showReport(json.report);
   setStatus(`exported ${json.files.length} files to ${json.out_dir}`);
 }
 

@@ -253,6 +253,22 @@ TEST_CASE("studio: the design, a build, its mesh, and bad requests", "[studio]")
   CHECK(unknown["message"].get<std::string>().find("its parameters are: height, width, wall") !=
         std::string::npos);
   CHECK(bad(R"({"overrides": {"profile..x": 5}})")["field"] == "overrides.profile..x");
+  CHECK(bad(R"({"draft": 1})")["field"] == "draft");
+
+  // A build encodes no output: the report leaves out the facts only encoding
+  // gives and names the formats export encodes.
+  CHECK(b["report"]["pending"]["formats"] == Json::array({"stl", "glb"}));
+  CHECK(b["report"]["pending"]["until"] == "export");
+  for (const char* key : {"outputs", "files", "skipped_outputs"}) CHECK_FALSE(b["report"].contains(key));
+  CHECK(b["stages_ms"]["job"].get<double>() > 0.0);
+  // A draft: the same values at a coarser tolerance, with a mesh and a plot but no report (no verdict).
+  const Json draft = json_of(c.Post("/api/build", studio.token(),
+                                    R"({"overrides": {"height": 5}, "draft": true})", "application/json"));
+  CHECK_FALSE(draft.contains("report"));
+  CHECK(draft["draft"]["tolerance"].get<double>() > b["report"]["tolerance"].get<double>());
+  CHECK(draft["draft"]["triangles"].get<std::size_t>() < b["report"]["triangles"].get<std::size_t>());
+  CHECK(draft["plot_svg"].get<std::string>().find("<svg") != std::string::npos);
+  CHECK(c.Get(draft["mesh"].get<std::string>(), studio.token())->status == 200);
 }
 
 TEST_CASE("studio: a mould's parts are in the mesh, exploded apart beside the vessel", "[studio]") {
@@ -325,6 +341,8 @@ TEST_CASE("studio: save keeps the comments, and the saved file runs to the expor
   const std::string body = R"({"overrides": {"height": 5.5, "wall": 0.25}})";
   const Json exported = json_of(c.Post("/api/export", studio.token(), body, "application/json"));
   CHECK(exported["files"].size() == 2);
+  CHECK(exported["report"]["files"].size() == 2);  // export's report is complete
+  CHECK_FALSE(exported["report"].contains("pending"));
   const Json saved = json_of(c.Post("/api/save", studio.token(), body, "application/json"));
   CHECK(saved["saved"] == design.string());
   std::string expected = kCommentedCup;
