@@ -3,10 +3,8 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <chrono>
 #include <filesystem>
 #include <functional>
-#include <future>
 #include <optional>
 
 #include "geometry/core/errors.h"
@@ -85,12 +83,6 @@ std::string path_of(const Design& design, const OutputFormat& format, const JobO
   return path_with_suffix(design, std::string(format.file_suffix), options);
 }
 
-// The files of an output encoded on another thread, and how long that took.
-struct Alongside {
-  std::vector<Encoded> files;
-  double ms = 0.0;
-};
-
 // A job's outputs as they are encoded: the file each goes to and its encoding.
 using TakeOutput = std::function<void(const std::string& file, Encoded& encoded)>;
 
@@ -158,35 +150,10 @@ JobReport build_and_encode(const Design& design, const JobOptions& options, cons
       export_scale == 1.0 ? std::nullopt : std::optional<TriangleSoup>(scaled(built.soup, export_scale));
   const TriangleSoup& exported = rescaled ? *rescaled : built.soup;
   const double output_tolerance = common.tolerance - built.max_deviation;
-  // An output that encodes alongside (Draco's encode, decode and proof)
-  // starts on the second core at once when others are asked for too; the
-  // files are still taken one by one in the design's order, the same bytes.
-  std::vector<std::future<Alongside>> alongside(formats.size());
-  for (std::size_t i = 0; i < formats.size() && formats.size() > 1; ++i) {
-    const OutputFormat* format = formats[i];
-    if (!format->alongside) continue;
-    alongside[i] = std::async(std::launch::async, [&, format] {
-      const auto start = std::chrono::steady_clock::now();
-      Alongside a;
-      a.files = format->encode(
-          {common, built, exported, export_scale, output_tolerance, path_of(design, *format, options)});
-      a.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-      return a;
-    });
-  }
-  for (std::size_t i = 0; i < formats.size(); ++i) {
-    const OutputFormat* format = formats[i];
+  for (const OutputFormat* format : formats) {
     const std::string path = path_of(design, *format, options);
     try {
-      std::vector<Encoded> files;
-      if (alongside[i].valid()) {
-        Alongside a = alongside[i].get();
-        files = std::move(a.files);
-        report.timings_ms.emplace_back("encode_" + std::string(format->name) + "_alongside", a.ms);
-      } else {
-        files = format->encode({common, built, exported, export_scale, output_tolerance, path});
-      }
-      for (Encoded& e : files) {
+      for (Encoded& e : format->encode({common, built, exported, export_scale, output_tolerance, path})) {
         const std::string file = e.suffix.empty() ? path : path_with_suffix(design, e.suffix, options);
         report.files.push_back({file, std::string(format->name), e.units, e.added_error, e.valid_as_written});
         report.outputs.push_back(file);

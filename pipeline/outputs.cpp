@@ -448,19 +448,7 @@ Files encode_mould_step_output(const EncodeContext& c) {
   return {std::move(e)};
 }
 
-std::vector<OutputFormat> make_formats();
-
 std::vector<OutputFormat> make_table() {
-  std::vector<OutputFormat> table = make_formats();
-  // Draco's encode, decode and proof, and OpenCASCADE's solids, take about
-  // as long as every other output together: they run alongside them.
-  for (OutputFormat& f : table) {
-    f.alongside = f.name == "drc" || f.name == "glb_draco" || f.name == "step" || f.name == "mould_step";
-  }
-  return table;
-}
-
-std::vector<OutputFormat> make_formats() {
   const KindSet meshes = kinds<VesselDesign, CountertopDesign, SurfaceDesign>();
   const KindSet drawn = kinds<CurveDesign, VesselDesign, CountertopDesign>();
   const KindSet vessels = kinds<VesselDesign>(), countertops = kinds<CountertopDesign>();

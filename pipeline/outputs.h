@@ -105,9 +105,6 @@ struct OutputFormat {
   /// One file, or several (each with its own suffix).
   /// \throw OutputError when the output cannot be made within the tolerance left
   std::vector<Encoded> (*encode)(const EncodeContext& context);
-  /// Encodes on another thread while the job's other outputs are encoded and
-  /// written (Draco: its encode, decode and proof take as long as the rest).
-  bool alongside = false;
 };
 
 /// Every output format, in the order defaults are listed.
