@@ -230,26 +230,47 @@ Json shape_parameters(const Design& design) {
   return out;
 }
 
-// The control points the page may drag on the plot: a quasi-B-spline's
-// points when the design's text writes each as a [x, y] that save can
-// replace (a -D path the plot's circles map to one to one, in order).
+// The control points the page may drag on the plot, each with the -D path
+// save replaces: a quasi-B-spline's points (the plot's circles of its curve,
+// one to one, in order), and the points a T- or H-Bézier segment gives (the
+// free ones after a join), found on the plot by position ("by": "position";
+// a point two segments share is one circle per segment). A point is offered
+// only where the text writes it, as a value save can replace (a point given
+// as an expression becomes the numbers it is dragged to).
 Json draggable_points(const Design& design, const std::string& text) {
   Json out = Json::array();
-  for (const NamedCurve& c : design_curves(design)) {
-    if (c.spec.family != CurveFamily::QuasiBSpline) continue;
-    Json points = Json::array();
-    for (std::size_t i = 0; i < c.spec.bspline_points.size(); ++i) {
-      const std::string key = fmt::format("{}.points[{}]", c.name, i);
-      try {
-        (void)value_span(text, design.common.path, key);
-      } catch (const FileError&) {
-        points.clear();
-        break;
-      }
-      const Vec2& p = c.spec.bspline_points[i];
-      points.push_back({{"key", key}, {"x", p.x()}, {"y", p.y()}});
+  const auto written = [&](const std::string& key) {
+    try {
+      (void)value_span(text, design.common.path, key);
+      return true;
+    } catch (const FileError&) {
+      return false;
     }
-    if (!points.empty()) out.push_back({{"curve", c.name}, {"points", points}});
+  };
+  for (const NamedCurve& c : design_curves(design)) {
+    Json points = Json::array();
+    if (c.spec.family == CurveFamily::QuasiBSpline) {
+      for (std::size_t i = 0; i < c.spec.bspline_points.size(); ++i) {
+        const std::string key = fmt::format("{}.points[{}]", c.name, i);
+        const Vec2& p = c.spec.bspline_points[i];
+        if (!written(key)) {
+          points.clear();
+          break;
+        }
+        points.push_back({{"key", key}, {"x", p.x()}, {"y", p.y()}});
+      }
+      if (!points.empty()) out.push_back({{"curve", c.name}, {"points", points}});
+      continue;
+    }
+    for (const SegmentSpec& s : c.spec.segments) {
+      if ((s.kind != SegmentKind::TBezier && s.kind != SegmentKind::HBezier) || s.key.empty()) continue;
+      for (std::size_t j = 0; j < s.points.size(); ++j) {
+        const std::string key = fmt::format("{}.points[{}]", s.key, j);
+        const Vec2& p = s.points[j];
+        if (written(key)) points.push_back({{"key", key}, {"x", p.x()}, {"y", p.y()}});
+      }
+    }
+    if (!points.empty()) out.push_back({{"curve", c.name}, {"by", "position"}, {"points", points}});
   }
   return out;
 }
@@ -359,7 +380,8 @@ StudioResponse StudioSession::build(const std::string& request_body) {
   const auto start = std::chrono::steady_clock::now();
   return answered(options_.design_path, [&] {
     const Request request = parse_request(request_body, RequestFields::Build);
-    Design design = read_requested(request, options_.design_path, names_).design;
+    Requested requested = read_requested(request, options_.design_path, names_);
+    Design& design = requested.design;
     Json stages = Json::object();  // the studio's own times, ms (the job's are the report's timings_ms)
     stages["design"] = elapsed_ms(start);
     std::optional<std::string> glb;
@@ -402,6 +424,9 @@ StudioResponse StudioSession::build(const std::string& request_body) {
             pending_outputs(design_item(options_.design_path, prepared.report), job_formats(design, job))},
            {"plot_svg", plot_svg}};
     }
+    // Where the draggable points are with these values (a dragged or
+    // parameter-driven point has moved from where the file puts it).
+    j["control_points"] = draggable_points(design, requested.text);
     j["mesh"] = nullptr;
     if (glb) {
       const std::lock_guard<std::mutex> lock(mutex_);

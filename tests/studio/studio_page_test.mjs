@@ -337,6 +337,52 @@ try {
     }
   });
 
+  await check('dragging a T-Bezier segment\'s given point on the plot moves it', async () => {
+    // A closed T-Bezier outline whose segments each give their end point (G2 joins all round).
+    const outline = path.join(workDir, 'outline.yaml');
+    fs.copyFileSync(path.join(sourceDir, 'configs/examples/tbezier_outline_g2.yaml'), outline);
+    const third = spawn(fabmesh, ['studio', '--no-open', outline, '-o', path.join(workDir, 'outline-out')],
+                        {stdio: ['ignore', 'pipe', 'pipe']});
+    const thirdExit = new Promise((resolve) => third.on('exit', (code) => resolve(code)));
+    try {
+      const outlineUrl = await new Promise((resolve) => {
+        let out = '';
+        third.stdout.on('data', (d) => { out += d; if (out.includes('\n')) resolve(out.split('\n')[0].trim()); });
+      });
+      const page3 = await browser.newPage();
+      const errors3 = [];
+      page3.on('console', (m) => { if (m.type() === 'error') errors3.push(m.text()); });
+      page3.on('pageerror', (e) => errors3.push(String(e)));
+      await page3.goto(outlineUrl, {waitUntil: 'load'});
+      await page3.waitForFunction(() => window.fabmeshStudio?.validBuilds >= 1, {timeout: 120000});
+      const key = 'curve.segments[1].points[0]';
+      const selector = `#plot g.control-polygon[data-name="curve"] circle.draggable[data-key="${key}"]`;
+      // The point (100, 60) ends segment 1 and starts segment 2: a circle of each, both draggable.
+      assert.equal((await page3.$$(selector)).length, 2);
+      const before = await page3.evaluate(() => ({...window.fabmeshStudio, design: undefined}));
+      const where = async () => page3.$eval(selector, (c) => [Number(c.getAttribute('cx')), Number(c.getAttribute('cy'))]);
+      const [, cy] = await where();
+      const box = await (await page3.$(selector)).boundingBox();
+      await page3.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
+      await page3.mouse.down();
+      await page3.mouse.move(box.x + box.width / 2, box.y + box.height / 2 - 20, {steps: 4});
+      await page3.mouse.up();
+      await page3.waitForFunction((n) => window.fabmeshStudio.validBuilds > n, {timeout: 120000}, before.validBuilds);
+      const after = await page3.evaluate(() => ({...window.fabmeshStudio, design: undefined}));
+      assert.equal(after.error, null);
+      assert.match(after.overrides[key], /^\[[-0-9.e]+, [-0-9.e]+\]$/);
+      assert.notEqual(after.plotSvg, before.plotSvg);
+      // The new plot draws the point where it was dropped: higher (the plot's y is -cy).
+      const [, newCy] = await where();
+      assert.ok(newCy < cy, `${newCy} < ${cy}`);
+      assert.deepEqual(errors3, []);
+      await page3.close();
+    } finally {
+      third.kill('SIGTERM');
+      assert.equal(await thirdExit, 0);
+    }
+  });
+
   await check('no console error in the whole session but the browser\'s notes of the 422 answers', async () => {
     // Chromium logs every 4xx answer to fetch() as an error; the 422s of the
     // value that broke the design are expected, nothing else is.

@@ -342,22 +342,40 @@ function placeMesh(object, url, draft) {
 
 // The plot's control-point circles of each curve whose points the design
 // writes one by one (GET /api/design's control_points), made draggable: a
-// drop sets the point's -D path ("profile.points[2]") and builds.
-function enableDragging() {
+// drop sets the point's -D path ("profile.points[2]",
+// "outline.segments[1].points[0]") and builds.
+function enableDragging(controlPoints) {
   const svg = $('plot').querySelector('svg');
   if (!svg || !state.design) return;
-  for (const curve of state.design.control_points) {
+  for (const curve of controlPoints ?? state.design.control_points) {
     const group = svg.querySelector(`g.control-polygon[data-name="${CSS.escape(curve.curve)}"]`);
     if (!group) continue;
-    const circles = group.querySelectorAll('circle.control-point');
-    if (circles.length !== curve.points.length) continue;
+    const circles = [...group.querySelectorAll('circle.control-point')];
+    // Each circle with the point it draws: one to one in order, or (a
+    // segment curve's given points) every circle drawn where the point is.
+    const pairs = [];
+    if (curve.by === 'position') {
+      // The plot writes coordinates to a fixed number of decimals: a tenth of a
+      // circle's radius (a quarter pixel) tells the point it draws.
+      for (const point of curve.points) {
+        for (const circle of circles) {
+          const within = Number(circle.getAttribute('r')) / 10;
+          if (Math.abs(Number(circle.getAttribute('cx')) - point.x) <= within &&
+              Math.abs(-Number(circle.getAttribute('cy')) - point.y) <= within)
+            pairs.push([circle, point]);
+        }
+      }
+    } else if (circles.length === curve.points.length) {
+      circles.forEach((circle, i) => pairs.push([circle, curve.points[i]]));
+    }
+    if (pairs.length === 0) continue;
     group.parentNode.appendChild(group);  // above the curve and its joint markers, to be grabbed
-    circles.forEach((circle, i) => {
+    for (const [circle, point] of pairs) {
       circle.classList.add('draggable');
       circle.setAttribute('r', String(Number(circle.getAttribute('r')) * 2.5));  // easier to grab
-      circle.dataset.key = curve.points[i].key;
+      circle.dataset.key = point.key;
       circle.addEventListener('pointerdown', (event) => drag(event, circle));
-    });
+    }
   }
 }
 
@@ -436,10 +454,11 @@ function finishLane(kind) {
   if (lane.pending) runLane(kind);
 }
 
-function showPlot(svg) {
+// The plot of an answer, with its draggable points where that answer's values put them.
+function showPlot(svg, controlPoints) {
   state.plotSvg = svg;
   $('plot').innerHTML = svg;
-  enableDragging();
+  enableDragging(controlPoints);
 }
 
 async function draftBuild() {
@@ -458,7 +477,7 @@ async function draftBuild() {
       return;
     }
     clearErrors();
-    showPlot(json.plot_svg);
+    showPlot(json.plot_svg, json.control_points);
     showDraftReport(json);
     placeMesh(object, json.mesh, true);
     state.shownChange = change;
@@ -493,7 +512,7 @@ async function build() {
       if (change >= state.shownChange) {  // a draft of newer values may have come while the mesh loaded
         clearErrors();
         state.error = null;
-        showPlot(json.plot_svg);
+        showPlot(json.plot_svg, json.control_points);
         timings.plot = since();
         showReport(json.report, json.build_ms);
         timings.report = since();
@@ -533,7 +552,7 @@ async function build() {
 // A draft of values that do not build: the last proven build's plot, report and mesh again.
 function restoreProven() {
   if (!proven) return;
-  showPlot(proven.plot_svg);
+  showPlot(proven.plot_svg, proven.control_points);
   showReport(proven.report, proven.build_ms);
   if (view.proven) placeMesh(view.proven, proven.mesh, false);
   state.shownChange = state.provenChange;

@@ -406,3 +406,26 @@ TEST_CASE("studio: fairest gives the shape parameters optimize gives, as overrid
   CHECK(Json::parse(bad->body)["error"]["field"] == "energy");
   CHECK(c.Post("/api/build", studio.token(), R"({"energy": "strain"})", "application/json")->status == 400);
 }
+
+TEST_CASE("studio: a T-Bezier curve's given points are draggable, found on the plot by position",
+          "[studio]") {
+  const fs::path dir = fresh_dir("studio_tbezier");
+  RunningStudio studio(example("tbezier_outline_g2.yaml"), (dir / "out").string());
+  httplib::Client c = studio.client();
+  const Json d = json_of(c.Get("/api/design", studio.token()));
+  REQUIRE(d["control_points"].size() == 1);
+  const Json& curve = d["control_points"][0];
+  CHECK(curve["curve"] == "curve");
+  CHECK(curve["by"] == "position");
+  // Each segment gives its end point only (G2 joins all round): four points, each where the text writes it.
+  REQUIRE(curve["points"].size() == 4);
+  CHECK(curve["points"][1] == Json({{"key", "curve.segments[1].points[0]"}, {"x", 100.0}, {"y", 60.0}}));
+  // Moved up by its -D path, the curve is built again through it: a new plot, a higher top.
+  const Json before = json_of(c.Post("/api/build", studio.token(), "{}", "application/json"));
+  const Json after =
+      json_of(c.Post("/api/build", studio.token(),
+                     R"({"overrides": {"curve.segments[1].points[0]": "[100, 70]"}})", "application/json"));
+  CHECK(after["plot_svg"] != before["plot_svg"]);
+  CHECK(after["report"]["bounding_box"]["max"][1].get<double>() >
+        before["report"]["bounding_box"]["max"][1].get<double>());
+}
