@@ -95,6 +95,27 @@ const browser = await puppeteer.launch({
          `--user-data-dir=${path.join(workDir, 'chromium-profile')}`],
 });
 
+// Another `fabmesh studio --no-open` on `file`: the process, its exit code
+// to come, and the URL it prints.
+function startStudio(file, outDir) {
+  const child = spawn(fabmesh, ['studio', '--no-open', file, '-o', outDir], {stdio: ['ignore', 'pipe', 'pipe']});
+  const exit = new Promise((resolve) => child.on('exit', (code) => resolve(code)));
+  const url = new Promise((resolve) => {
+    let out = '';
+    child.stdout.on('data', (d) => { out += d; if (out.includes('\n')) resolve(out.split('\n')[0].trim()); });
+  });
+  return {child, exit, url};
+}
+
+// A new page of the browser, collecting its console errors.
+async function newPage() {
+  const page = await browser.newPage();
+  const errors = [];
+  page.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
+  page.on('pageerror', (e) => errors.push(String(e)));
+  return {page, errors};
+}
+
 try {
   await check('requests without the token, or with a foreign Host, are 403', async () => {
     assert.equal((await request('/')).status, 403);
@@ -264,18 +285,10 @@ try {
                                 .replace('kind: surface\n', 'kind: surface\nmax_triangles: "=budget"\nparameters:\n' +
                                          '  shell: {value: 6, min: 3, max: 12}\n' +
                                          '  budget: {value: 2000000, min: 1000, max: 5000000}\n'));
-    const second = spawn(fabmesh, ['studio', '--no-open', basin, '-o', path.join(workDir, 'basin-out')],
-                         {stdio: ['ignore', 'pipe', 'pipe']});
-    const secondExit = new Promise((resolve) => second.on('exit', (code) => resolve(code)));
+    const second = startStudio(basin, path.join(workDir, 'basin-out'));
     try {
-      const basinUrl = await new Promise((resolve) => {
-        let out = '';
-        second.stdout.on('data', (d) => { out += d; if (out.includes('\n')) resolve(out.split('\n')[0].trim()); });
-      });
-      const page2 = await browser.newPage();
-      const errors2 = [];
-      page2.on('console', (m) => { if (m.type() === 'error') errors2.push(m.text()); });
-      page2.on('pageerror', (e) => errors2.push(String(e)));
+      const basinUrl = await second.url;
+      const {page: page2, errors: errors2} = await newPage();
       const draftRequests = [];
       page2.on('request', (r) => {
         if (r.url().endsWith('/api/build') && /"draft":true/.test(r.postData() ?? '')) draftRequests.push(r.postData());
@@ -332,8 +345,8 @@ try {
       assert.deepEqual(errors2.filter((m) => !expected.test(m)), []);
       await page2.close();
     } finally {
-      second.kill('SIGTERM');
-      assert.equal(await secondExit, 0);
+      second.child.kill('SIGTERM');
+      assert.equal(await second.exit, 0);
     }
   });
 
@@ -341,18 +354,10 @@ try {
     // A closed T-Bezier outline whose segments each give their end point (G2 joins all round).
     const outline = path.join(workDir, 'outline.yaml');
     fs.copyFileSync(path.join(sourceDir, 'configs/examples/tbezier_outline_g2.yaml'), outline);
-    const third = spawn(fabmesh, ['studio', '--no-open', outline, '-o', path.join(workDir, 'outline-out')],
-                        {stdio: ['ignore', 'pipe', 'pipe']});
-    const thirdExit = new Promise((resolve) => third.on('exit', (code) => resolve(code)));
+    const third = startStudio(outline, path.join(workDir, 'outline-out'));
     try {
-      const outlineUrl = await new Promise((resolve) => {
-        let out = '';
-        third.stdout.on('data', (d) => { out += d; if (out.includes('\n')) resolve(out.split('\n')[0].trim()); });
-      });
-      const page3 = await browser.newPage();
-      const errors3 = [];
-      page3.on('console', (m) => { if (m.type() === 'error') errors3.push(m.text()); });
-      page3.on('pageerror', (e) => errors3.push(String(e)));
+      const outlineUrl = await third.url;
+      const {page: page3, errors: errors3} = await newPage();
       await page3.goto(outlineUrl, {waitUntil: 'load'});
       await page3.waitForFunction(() => window.fabmeshStudio?.validBuilds >= 1, {timeout: 120000});
       const key = 'curve.segments[1].points[0]';
@@ -378,8 +383,8 @@ try {
       assert.deepEqual(errors3, []);
       await page3.close();
     } finally {
-      third.kill('SIGTERM');
-      assert.equal(await thirdExit, 0);
+      third.child.kill('SIGTERM');
+      assert.equal(await third.exit, 0);
     }
   });
 

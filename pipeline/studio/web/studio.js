@@ -142,10 +142,11 @@ function showError(error) {
 
 // --- the report ---
 
-function showReport(report, buildMs) {
+// Empties the report and gives the function that appends a term and its text.
+function reportList() {
   const list = $('report');
   list.replaceChildren();
-  const add = (term, text, cls) => {
+  return (term, text, cls) => {
     const dt = document.createElement('dt');
     dt.textContent = term;
     const dd = document.createElement('dd');
@@ -153,6 +154,10 @@ function showReport(report, buildMs) {
     if (cls) dd.className = cls;
     list.append(dt, dd);
   };
+}
+
+function showReport(report, buildMs) {
+  const add = reportList();
   const u = report.units;
   if (report.purpose === 'drawing') {
     add('verdict', 'drawing (a curve: no mesh)', 'valid');
@@ -182,16 +187,7 @@ function showReport(report, buildMs) {
 
 // A draft's answer: what it is, and no verdict.
 function showDraftReport(answer) {
-  const list = $('report');
-  list.replaceChildren();
-  const add = (term, text, cls) => {
-    const dt = document.createElement('dt');
-    dt.textContent = term;
-    const dd = document.createElement('dd');
-    dd.textContent = text;
-    if (cls) dd.className = cls;
-    list.append(dt, dd);
-  };
+  const add = reportList();
   add('verdict', 'pending: a draft is shown; the proven mesh and its verdict follow', 'draft');
   add('draft', `${answer.draft.triangles} triangles, tolerance ${answer.draft.tolerance} ` +
       `(coarser than the design's), not validated`);
