@@ -238,12 +238,14 @@ try {
       new MutationObserver(() => window.statuses.push(document.getElementById('status').textContent))
           .observe(document.getElementById('status'), {childList: true, characterData: true, subtree: true});
     });
+    // The values save writes, read before it: once the file watch reloads the
+    // saved file, they are the file's and the page's overrides are cleared.
+    const lambdas = await page.evaluate(() => [0, 1, 2].map((i) => window.fabmeshStudio.overrides[`profile.lambdas[${i}]`]));
+    const point = await page.evaluate(() => window.fabmeshStudio.overrides['profile.points[2]']);
     await page.click('#save');
     await page.waitForFunction(() => window.statuses.some((t) => /saved/.test(t)), {timeout: 120000});
     const saved = fs.readFileSync(design, 'utf8');
     // The height, and the three lambdas fairing chose, in place; every other byte as it was.
-    const lambdas = await page.evaluate(() => [0, 1, 2].map((i) => window.fabmeshStudio.overrides[`profile.lambdas[${i}]`]));
-    const point = await page.evaluate(() => window.fabmeshStudio.overrides['profile.points[2]']);
     const expected = ('# a comment the studio must keep\n' + original)
                          .replace('height: {value: 4,', 'height: {value: 6.5,')
                          .replace('- ["=width / 3", "=2 + height / 2"]', `- ${point}`)
