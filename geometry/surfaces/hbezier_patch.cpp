@@ -57,9 +57,13 @@ HBezierPatch::HBezierPatch(const ControlNet& points, const HBezierParams& u, con
   }
 }
 
-PatchJet HBezierPatch::jet(double s, double t) const {
-  const auto a = unit_hbezier_weights(s, u_, ku_);
-  const auto b = unit_hbezier_weights(t, v_, kv_);
+HBezierPatch::Weights HBezierPatch::u_weights(double s) const { return unit_hbezier_weights(s, u_, ku_); }
+
+HBezierPatch::Weights HBezierPatch::v_weights(double t) const { return unit_hbezier_weights(t, v_, kv_); }
+
+PatchJet HBezierPatch::jet(double s, double t) const { return jet(u_weights(s), v_weights(t)); }
+
+PatchJet HBezierPatch::jet(const Weights& a, const Weights& b) const {
   PatchJet out{Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};
   for (std::size_t i = 0; i < 4; ++i) {
     // Row sums against the v weights, then the u weights.
@@ -81,8 +85,9 @@ PatchJet HBezierPatch::jet(double s, double t) const {
 
 Vec3 HBezierPatch::point(double s, double t) const { return jet(s, t).point; }
 
-Vec3 HBezierPatch::normal(double s, double t) const {
-  const PatchJet j = jet(s, t);
+Vec3 HBezierPatch::normal(double s, double t) const { return normal(jet(s, t), s, t); }
+
+Vec3 HBezierPatch::normal(const PatchJet& j, double s, double t) const {
   const Vec3 n = j.ds.cross(j.dt);
   const double scale = j.ds.squaredNorm() + j.dt.squaredNorm();
   if (n.norm() > 1e-12 * scale && scale > 0.0) return n.normalized();

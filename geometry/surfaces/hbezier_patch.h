@@ -56,6 +56,16 @@ class HBezierPatch {
   /// patch; a patch degenerate everywhere near (s, t) gives the zero vector.
   Vec3 normal(double s, double t) const;
 
+  /// On a grid, each direction's weights computed once per grid line:
+  /// w[k][i] = d^k h_i / dx^k at s (u_weights) or t (v_weights), and the jet
+  /// and normal from them, the same numbers as jet(s, t) and normal(s, t).
+  using Weights = std::array<std::array<double, 4>, 3>;
+  Weights u_weights(double s) const;
+  Weights v_weights(double t) const;
+  PatchJet jet(const Weights& at_s, const Weights& at_t) const;
+  /// normal(s, t) given the jet there (jet(s, t)).
+  Vec3 normal(const PatchJet& at, double s, double t) const;
+
  private:
   ControlNet points_;
   HBezierParams u_, v_;

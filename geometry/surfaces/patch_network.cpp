@@ -111,9 +111,9 @@ double network_size(const std::vector<HBezierPatch>& patches) {
   return box.isEmpty() ? 0.0 : box.diagonal().norm();
 }
 
-// Curvature of the cross-border curve at a border point: along s for u sides, t for v sides.
-double cross_curvature(const HBezierPatch& p, PatchSide side, double s, double t) {
-  const PatchJet j = p.jet(s, t);
+// Curvature of the cross-border curve at a border point (j the jet there):
+// along s for u sides, t for v sides.
+double cross_curvature(const PatchJet& j, PatchSide side) {
   const Vec3 d1 = is_u_side(side) ? j.ds : j.dt;
   const Vec3 d2 = is_u_side(side) ? j.dss : j.dtt;
   const double n = d1.norm();
@@ -127,11 +127,12 @@ void measure(const PatchNetwork& net, SharedBorder& b, const NetworkOptions& o) 
     const double x = static_cast<double>(k) / (o.samples - 1);
     const auto ua = border_uv(b.side_a, x);
     const auto ub = border_uv(b.side_b, b.reversed ? 1.0 - x : x);
-    b.gap = std::max(b.gap, (pa.point(ua[0], ua[1]) - pb.point(ub[0], ub[1])).norm());
-    const Vec3 na = pa.normal(ua[0], ua[1]), nb = pb.normal(ub[0], ub[1]);
+    const PatchJet ja = pa.jet(ua[0], ua[1]), jb = pb.jet(ub[0], ub[1]);
+    b.gap = std::max(b.gap, (ja.point - jb.point).norm());
+    const Vec3 na = pa.normal(ja, ua[0], ua[1]), nb = pb.normal(jb, ub[0], ub[1]);
     b.normal_angle = std::max(b.normal_angle, std::atan2(na.cross(nb).norm(), na.dot(nb)));
-    const double ka = cross_curvature(pa, b.side_a, ua[0], ua[1]);
-    const double kb = cross_curvature(pb, b.side_b, ub[0], ub[1]);
+    const double ka = cross_curvature(ja, b.side_a);
+    const double kb = cross_curvature(jb, b.side_b);
     b.curvature_jump = std::max(b.curvature_jump, std::abs(ka - kb) / std::max({ka, kb, 1.0 / net.size}));
   }
   b.achieved = Continuity::None;

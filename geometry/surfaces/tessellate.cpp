@@ -293,13 +293,29 @@ struct Pass {
   double thickness;
 };
 
+// The bounds of the cells of one patch that a pass accepted, kept for the
+// next: a cell neither of whose intervals was split is the same cell, with
+// the same bound (a cell's bound depends on its intervals alone), so only the
+// cells a split made are bounded again.
+struct AcceptedCells {
+  std::size_t nt = 0;         ///< t intervals of the grid the bounds belong to
+  std::vector<double> bound;  ///< per cell a * nt + b; NaN where not accepted
+};
+
+// Where each interval of a refined grid was in the grid before: its index
+// there, or -1 for the two halves of a split one.
+using IntervalOrigin = std::vector<std::ptrdiff_t>;
+
 // One pass over the cells of patch p on its grid (sb, tb): the worst bound,
-// and the cells to split marked in split_s / split_t (grid order). True when
-// any cell is over the tolerance.
+// and the cells to split marked in split_s / split_t (grid order). Cells
+// accepted by the previous pass (`before`, its intervals found by s_from and
+// t_from) keep their bound; the cells this pass accepts are put in `now`.
+// True when any cell is over the tolerance.
 bool mark_patch(const PatchNetwork& network, std::size_t p, const NetDifferences& diff,
                 const std::array<bool, 4>& outer, const std::vector<double>& sb,
-                const std::vector<double>& tb, const Pass& pass, double& achieved, std::vector<bool>& split_s,
-                std::vector<bool>& split_t) {
+                const std::vector<double>& tb, const Pass& pass, const IntervalOrigin& s_from,
+                const IntervalOrigin& t_from, const AcceptedCells& before, AcceptedCells& now,
+                double& achieved, std::vector<bool>& split_s, std::vector<bool>& split_t) {
   const HBezierPatch& patch = network.patches[p];
   const DirectionSamples su = sample_direction(sb, patch.u()), sv = sample_direction(tb, patch.v());
   // Side walls: twists along the outer sides (u sides run along t, v sides along s).
@@ -314,8 +330,21 @@ bool mark_patch(const PatchNetwork& network, std::size_t p, const NetDifferences
     return v.empty() ? 0.0 : v[k];
   };
   bool any = false;
+  const std::size_t nt = tb.size() - 1;
+  now.nt = nt;
+  now.bound.assign((sb.size() - 1) * nt, std::numeric_limits<double>::quiet_NaN());
   for (std::size_t a = 0; a + 1 < sb.size(); ++a) {
-    for (std::size_t b = 0; b + 1 < tb.size(); ++b) {
+    for (std::size_t b = 0; b < nt; ++b) {
+      if (s_from[a] >= 0 && t_from[b] >= 0) {
+        const double kept =
+            before
+                .bound[static_cast<std::size_t>(s_from[a]) * before.nt + static_cast<std::size_t>(t_from[b])];
+        if (!std::isnan(kept)) {
+          achieved = std::max(achieved, kept);
+          now.bound[a * nt + b] = kept;
+          continue;
+        }
+      }
       const double ds = sb[a + 1] - sb[a], dt = tb[b + 1] - tb[b];
       const CellDerivatives d =
           cell_derivatives(patch.points(), diff, su.cells[a], sv.cells[b], su.mids[a], sv.mids[b], ds, dt);
@@ -327,7 +356,10 @@ bool mark_patch(const PatchNetwork& network, std::size_t p, const NetDifferences
       const auto cone = [&]() { return corner_cone(patch, sb, tb, a, b, d); };
       const CellError e = cell_error(d, ds, dt, pass.options, pass.normal_term, cone, twist_s, twist_t);
       achieved = std::max(achieved, e.bound);
-      if (e.bound <= pass.options.tolerance) continue;
+      if (e.bound <= pass.options.tolerance) {
+        now.bound[a * nt + b] = e.bound;
+        continue;
+      }
       if (e.degenerate && ds < 1e-4 && dt < 1e-4) {
         throw GeometryError(
             network.names[p],
@@ -344,10 +376,12 @@ bool mark_patch(const PatchNetwork& network, std::size_t p, const NetDifferences
   return any;
 }
 
-// Halves the marked intervals (and their mirror images in a symmetric class).
+// Halves the marked intervals (and their mirror images in a symmetric class);
+// `from` receives the origin of each interval of the result.
 std::vector<double> refine(const std::vector<double>& breaks, const std::vector<bool>& split, bool symmetric,
-                           double tolerance) {
+                           double tolerance, IntervalOrigin& from) {
   std::vector<double> refined{breaks[0]};
+  from.clear();
   for (std::size_t k = 0; k + 1 < breaks.size(); ++k) {
     const bool mirror = symmetric && split[breaks.size() - 2 - k];
     if (split[k] || mirror) {
@@ -357,10 +391,25 @@ std::vector<double> refine(const std::vector<double>& breaks, const std::vector<
             0.0, 0.0, fmt::format("the surface cannot be refined to {:.3g} in double precision", tolerance));
       }
       refined.push_back(mid);
+      from.push_back(-1);
+      from.push_back(-1);
+    } else {
+      from.push_back(static_cast<std::ptrdiff_t>(k));
     }
     refined.push_back(breaks[k + 1]);
   }
   return refined;
+}
+
+// A class's interval origins seen from a patch direction of the given parity.
+IntervalOrigin oriented_origin(const IntervalOrigin& from, int parity, std::size_t before) {
+  if (parity == 0) return from;
+  IntervalOrigin out(from.size());
+  for (std::size_t i = 0; i < from.size(); ++i) {
+    const std::ptrdiff_t k = from[from.size() - 1 - i];
+    out[i] = k < 0 ? -1 : static_cast<std::ptrdiff_t>(before) - 1 - k;
+  }
+  return out;
 }
 
 }  // namespace
@@ -479,6 +528,12 @@ RefinedGrid refine_grid(const PatchNetwork& network, const TessellateOptions& op
   for (const HBezierPatch& patch : network.patches) diffs.push_back(net_differences(patch.points()));
   const Pass pass{options, normal_term, shell, thickness};
   double achieved = 0.0;
+  // Per class: each interval's origin in the previous pass's grid, and how
+  // many intervals that grid had.
+  std::vector<IntervalOrigin> origin(2 * np);
+  std::vector<std::size_t> before(2 * np);
+  for (std::size_t c = 0; c < 2 * np; ++c) origin[c].assign(breaks[c].size() - 1, -1);
+  std::vector<AcceptedCells> accepted(np);
   for (;;) {
     std::vector<std::vector<bool>> split(2 * np);
     for (std::size_t c = 0; c < 2 * np; ++c) split[c].assign(breaks[c].size() - 1, false);
@@ -489,7 +544,12 @@ RefinedGrid refine_grid(const PatchNetwork& network, const TessellateOptions& op
       const auto [rt, pt] = classes.find(slot(p, true));
       const auto sb = slot_breaks(slot(p, false)), tb = slot_breaks(slot(p, true));
       std::vector<bool> split_s(sb.size() - 1, false), split_t(tb.size() - 1, false);
-      if (!mark_patch(network, p, diffs[p], outer[p], sb, tb, pass, achieved, split_s, split_t)) continue;
+      AcceptedCells now;
+      const bool over = mark_patch(
+          network, p, diffs[p], outer[p], sb, tb, pass, oriented_origin(origin[rs], ps, before[rs]),
+          oriented_origin(origin[rt], pt, before[rt]), accepted[p], now, achieved, split_s, split_t);
+      accepted[p] = std::move(now);
+      if (!over) continue;
       any = true;
       for (std::size_t a = 0; a < split_s.size(); ++a) {
         if (split_s[a]) split[rs][ps ? split_s.size() - 1 - a : a] = true;
@@ -499,8 +559,10 @@ RefinedGrid refine_grid(const PatchNetwork& network, const TessellateOptions& op
       }
     }
     if (!any) break;
-    for (std::size_t c = 0; c < 2 * np; ++c)
-      breaks[c] = refine(breaks[c], split[c], classes.symmetric(c), options.tolerance);
+    for (std::size_t c = 0; c < 2 * np; ++c) {
+      before[c] = breaks[c].size() - 1;
+      breaks[c] = refine(breaks[c], split[c], classes.symmetric(c), options.tolerance, origin[c]);
+    }
     const std::size_t count = triangles();
     require_within_budget(
         count, options.max_triangles,
@@ -557,16 +619,22 @@ std::vector<int> place_vertices(const PatchNetwork& network, const GridSizes& si
   std::vector<Vec3> normal_sum;
   for (std::size_t p = 0; p < sizes.size(); ++p) {
     const auto [ns, nt] = sizes[p];
+    const HBezierPatch& patch = network.patches[p];
+    std::vector<HBezierPatch::Weights> at_t;  // the weights of each grid line, computed once
+    at_t.reserve(nt + 1);
+    for (double t : out.t_breaks[p]) at_t.push_back(patch.v_weights(t));
     for (std::size_t a = 0; a <= ns; ++a) {
+      const double s = out.s_breaks[p][a];
+      const HBezierPatch::Weights at_s = patch.u_weights(s);
       for (std::size_t b = 0; b <= nt; ++b) {
         const std::size_t r = ids.root(ids.id(p, a, b));
-        const double s = out.s_breaks[p][a], t = out.t_breaks[p][b];
+        const PatchJet jet = patch.jet(at_s, at_t[b]);
         if (handle[r] < 0) {
-          const Vec3 q = network.patches[p].point(s, t);
+          const Vec3& q = jet.point;
           handle[r] = out.mesh.add_vertex(Mesh::Point(q.x(), q.y(), q.z())).idx();
           normal_sum.push_back(Vec3::Zero());
         }
-        normal_sum[static_cast<std::size_t>(handle[r])] += network.patches[p].normal(s, t);
+        normal_sum[static_cast<std::size_t>(handle[r])] += patch.normal(jet, s, out.t_breaks[p][b]);
       }
     }
   }

@@ -103,3 +103,28 @@ TEST_CASE("hbezier patch: parameters out of range are rejected naming the value"
   CHECK_THROWS_WITH(HBezierPatch(net, {1, 0, 0}, {1, -3.3, 0}), Catch::Contains("v.lambda = -3.3"));
   CHECK_NOTHROW(HBezierPatch(net, {1, -3.2, 1}, {1, 0, 0}));  // lambda*(1) = -3.2053
 }
+
+TEST_CASE("hbezier patch: jets and normals from grid-line weights are the pointwise ones, bit for bit",
+          "[surfaces][patch]") {
+  // A collapsed side too (row 0 one point), where the normal is taken inside.
+  ControlNet net = wavy_net();
+  for (std::size_t j = 0; j < 4; ++j) net[0][j] = Vec3(0, 0, 0);
+  const HBezierPatch patch(net, {1.3, 0.2, -0.4}, {0.7, -0.5, 0.3});
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<std::pair<double, double>> at{{0.0, 0.0}, {0.0, 0.6}, {1.0, 1.0}, {0.25, 0.0}};
+  for (int k = 0; k < 200; ++k) at.emplace_back(unit(rng), unit(rng));
+  for (const auto& [s, t] : at) {
+    const PatchJet direct = patch.jet(s, t);
+    const PatchJet gridded = patch.jet(patch.u_weights(s), patch.v_weights(t));
+    CHECK(gridded.point == direct.point);
+    CHECK(gridded.ds == direct.ds);
+    CHECK(gridded.dt == direct.dt);
+    CHECK(gridded.dss == direct.dss);
+    CHECK(gridded.dst == direct.dst);
+    CHECK(gridded.dtt == direct.dtt);
+    CHECK(patch.normal(gridded, s, t) == patch.normal(s, t));
+  }
+  // On the collapsed side the normal is still a unit vector.
+  CHECK(patch.normal(patch.jet(0.0, 0.6), 0.0, 0.6).norm() == Approx(1.0));
+}
