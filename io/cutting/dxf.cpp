@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -115,6 +116,26 @@ void write_arc(DL_Dxf& dxf, DL_WriterA& dw, const EllipseArcParams& a, const DL_
       dw, DL_EllipseData(a.center.x(), a.center.y(), 0.0, major.x(), major.y(), 0.0, ratio, p1, p2), attr);
 }
 
+// A rational cubic Bézier span as a SPLINE: degree 3, knots 0 0 0 0 1 1 1 1,
+// its 4 control points and, when they differ, their weights (group 41, one
+// per control point, after the knots and before the points, in the order of
+// the DXF reference). Flags: planar (8), and rational (4) with weights. Equal
+// weights are the polynomial cubic, written without weights (they read as 1).
+void write_spline(DL_Dxf& dxf, DL_WriterA& dw, const CutEntity& e, const DL_Attributes& attr) {
+  const std::array<double, 4>& w = e.weights;
+  const bool rational = !(w[1] == w[0] && w[2] == w[0] && w[3] == w[0]);
+  dxf.writeSpline(dw, DL_SplineData(3, 8, 4, 0, rational ? 8 | 4 : 8), attr);
+  for (const double k : {0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0}) dxf.writeKnot(dw, DL_KnotData(k));
+  // dxflib's writeControlPoint leaves the weight out; each is written as the
+  // shortest decimal that reads back as the same double (dxfReal's 16
+  // decimals would lose a small weight's digits).
+  if (rational) {
+    for (const double wj : w) dw.dxfString(41, fmt::format("{}", wj));
+  }
+  for (std::size_t j = 0; j < 4; ++j)
+    dxf.writeControlPoint(dw, DL_ControlPointData(e.points[j].x(), e.points[j].y(), 0.0, w[j]));
+}
+
 void write_entity(DL_Dxf& dxf, DL_WriterA& dw, const CutEntity& e, bool whole_loop,
                   const DL_Attributes& attr) {
   switch (e.kind) {
@@ -135,6 +156,9 @@ void write_entity(DL_Dxf& dxf, DL_WriterA& dw, const CutEntity& e, bool whole_lo
       dxf.writePolylineEnd(dw);
       return;
     }
+    case CutKind::Spline:
+      write_spline(dxf, dw, e, attr);
+      return;
   }
 }
 

@@ -41,10 +41,28 @@ class Collector : public DL_CreationAdapter {
   void addVertex(const DL_VertexData& d) override {
     if (!entities.empty()) entities.back().points.emplace_back(d.x, d.y);
   }
+  void addSpline(const DL_SplineData& d) override {
+    add("SPLINE", {}, (d.flags & 1) != 0);
+    entities.back().degree = static_cast<int>(d.degree);
+    entities.back().flags = d.flags;
+  }
+  void addKnot(const DL_KnotData& d) override {
+    if (!entities.empty()) entities.back().knots.push_back(d.k);
+  }
+  void addControlPoint(const DL_ControlPointData& d) override {
+    if (entities.empty()) return;
+    entities.back().points.emplace_back(d.x, d.y);
+    entities.back().weights.push_back(d.w);
+  }
 
  private:
   void add(const char* type, std::vector<Vec2> points, bool closed = false) {
-    entities.push_back({type, getAttributes().getLayer(), std::move(points), closed});
+    DxfEntity e;
+    e.type = type;
+    e.layer = getAttributes().getLayer();
+    e.points = std::move(points);
+    e.closed = closed;
+    entities.push_back(std::move(e));
   }
 };
 

@@ -1,6 +1,7 @@
 #pragma once
 // SVG cutting outlines: one <path> per loop, A arc commands for exact arcs,
-// L for lines and polylines, coordinates in model units (mm).
+// C for polynomial cubic splines, L for lines, polylines and rational
+// splines (sampled within the loop's tolerance), coordinates in model units (mm).
 
 #include <string>
 #include <vector>

@@ -3,7 +3,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <vector>
 
 namespace fabmesh {
 
@@ -28,6 +30,14 @@ void append_svg_loop(std::string& d, const CutLoop& loop) {
     if (&e == &loop.entities.front()) d += (d.empty() ? "M " : " M ") + svg_point(e.points.front());
     if (e.kind == CutKind::Arc) {
       append_svg_arc(d, e.arc);
+    } else if (e.kind == CutKind::Spline) {
+      const std::array<double, 4>& w = e.weights;
+      if (w[1] == w[0] && w[2] == w[0] && w[3] == w[0]) {  // a polynomial cubic: exact
+        d += " C " + svg_point(e.points[1]) + " " + svg_point(e.points[2]) + " " + svg_point(e.points[3]);
+      } else {  // SVG has no rational curves
+        const std::vector<Vec2> pts = spline_polyline(e, loop.tolerance);
+        for (std::size_t i = 1; i < pts.size(); ++i) d += " L " + svg_point(pts[i]);
+      }
     } else {
       for (std::size_t i = 1; i < e.points.size(); ++i) d += " L " + svg_point(e.points[i]);
     }

@@ -23,7 +23,9 @@ std::string svg_point(const Vec2& p);
 void append_svg_arc(std::string& d, const EllipseArcParams& a);
 
 /// Appends the chain of `loop` to path data `d`: M at its first point (" M"
-/// when `d` is not empty), then L for lines and polylines and A for arcs; no Z.
+/// when `d` is not empty), then L for lines and polylines, A for arcs, C for
+/// a Spline whose weights are equal (a polynomial cubic, exactly) and L for
+/// the points of a rational one sampled within `loop.tolerance`; no Z.
 void append_svg_loop(std::string& d, const CutLoop& loop);
 
 /// The XML declaration and the <svg> start tag of a drawing of the model box

@@ -294,6 +294,63 @@ TEST_CASE("countertop from a DXF template: a circle saved as a NURBS is the exac
         rep.max_deviation * perimeter * top.thickness);
 }
 
+TEST_CASE(
+    "countertop from a DXF template with NURBS: the DXF fabmesh writes reads back into the same countertop",
+    "[pipeline][countertop][dxf][rational]") {
+  const fs::path dir = fresh_dir("countertop_dxf_nurbs_round_trip");
+  // An elliptic outline and a round hole saved as NURBS, and an egg-shaped
+  // hole: a closed rational quadratic SPLINE with weights 2.5 and 0.4, no conic.
+  const std::vector<Vec2> egg{{450, 400}, {650, 200}, {850, 400}, {650, 650}, {450, 400}};
+  write_text(dir / "nurbs.dxf",
+             test::dxf_drawing(test::dxf_nurbs_ellipse("2A", "OUTLINE", Vec2(700, 400), 650, 380) +
+                               test::dxf_nurbs("3A", "HOLES", egg, {1.0, 2.5, 1.0, 0.4, 1.0}) +
+                               test::dxf_nurbs_ellipse("4A", "HOLES", Vec2(1100, 400), 60, 60)));
+  write_text(dir / "nurbs.yaml",
+             "name: nurbs\nkind: countertop\nunits: mm\ntolerance: 0.05\nthickness: 30\n"
+             "outline: {dxf: nurbs.dxf, layer: OUTLINE}\n"
+             "holes: [{dxf: nurbs.dxf, layer: HOLES}]\noutputs: [stl, dxf]\n");
+  std::string out;
+  REQUIRE(run_cli_json({"run", (dir / "nurbs.yaml").string(), "-o", (dir / "first").string(), "--json"},
+                       &out) == 0);
+  const auto first = only_item(out);
+  CHECK(first["genus"] == 2);
+  // Every span written as the SPLINE it is: nothing sampled.
+  const std::string written = read_file((dir / "first" / "nurbs.dxf").string());
+  CHECK(written.find("LWPOLYLINE") == std::string::npos);
+  std::map<std::string, int> types;
+  for (const auto& e : parse_dxf(written, "nurbs.dxf")) ++types[e.type + "@" + e.layer];
+  CHECK(types["SPLINE@OUTLINE"] == 4);
+  CHECK(types["SPLINE@HOLES"] == 2 + 4);
+  CHECK(types.size() == 2);
+  // The written drawing as a design of its own.
+  write_text(dir / "first" / "back.yaml",
+             "name: back\nkind: countertop\nunits: mm\ntolerance: 0.05\nthickness: 30\n"
+             "outline: {dxf: nurbs.dxf, layer: OUTLINE}\n"
+             "holes: [{dxf: nurbs.dxf, layer: HOLES}]\noutputs: [stl]\n");
+  out.clear();
+  REQUIRE(
+      run_cli_json({"run", (dir / "first" / "back.yaml").string(), "-o", (dir / "back").string(), "--json"},
+                   &out) == 0);
+  const auto back = only_item(out);
+  const double size = 1300.0;
+  CHECK(back["genus"] == 2);
+  CHECK(std::abs(back["volume"].get<double>() - first["volume"].get<double>()) <=
+        1e-9 * first["volume"].get<double>());
+  CHECK(std::abs(back["build"]["region_area"].get<double>() - first["build"]["region_area"].get<double>()) <=
+        1e-9 * size * size);
+  // The design read back is made of the same rational spans, and its exact region is the template's.
+  const Design read_back = read_design((dir / "first" / "back.yaml").string());
+  const auto& top = std::get<CountertopDesign>(read_back.body);
+  const CompositeCurve outline = build_curve(top.outline).curve;
+  for (const Segment& seg : outline.segments()) CHECK(seg.kind() == SegmentKind::RationalBezier);
+  const auto [area, perimeter] = exact_region(top);
+  const auto [area0, perimeter0] =
+      exact_region(std::get<CountertopDesign>(read_design((dir / "nurbs.yaml").string()).body));
+  CHECK(std::abs(area - area0) <= 1e-9 * size * size);
+  CHECK(std::abs(perimeter - perimeter0) <= 1e-9 * size);
+  CHECK(area0 > 0.5 * M_PI * 650 * 380);  // the holes are small beside the outline
+}
+
 TEST_CASE("countertop from a DXF template: bad drawings exit 2 at the design's key, nothing written",
           "[pipeline][countertop][dxf][errors]") {
   const fs::path dir = fresh_dir("countertop_dxf_bad");

@@ -1,3 +1,5 @@
+#include <fmt/format.h>
+
 #include <catch2/catch.hpp>
 #include <fstream>
 #include <map>
@@ -40,6 +42,51 @@ std::vector<CutLoop> kitchen_loops(double tolerance) {
   loops.push_back(cut_loop(ellipse({300, 150}, 120, 60, 30), "holes[0] (ellipse)", false, o));
   loops.push_back(cut_loop(rounded_rect(700, 50, 1100, 250, 20), "holes[1] (rounded_rect)", false, o));
   return loops;
+}
+
+// The quarter (k = 0..3) of the circle about c of radius r, counter-clockwise
+// from angle 90 k degrees, as the rational cubic Bézier a quadratic NURBS
+// quarter raises to (docs/math/curves.md 5).
+Segment circle_quarter(const Vec2& c, double r, int k) {
+  const double s = std::sqrt(0.5), inner = 2 * s / (1 + 2 * s), w = (1 + 2 * s) / 3;
+  const Eigen::Rotation2Dd turn(k * M_PI / 2);
+  const auto at = [&](double x, double y) -> Vec2 { return c + turn * Vec2(r * x, r * y); };
+  return Segment::rational_bezier({at(1, 0), at(1, inner), at(inner, 1), at(0, 1)}, {1, w, w, 1});
+}
+
+// An outline of two lines, a rational span with unequal weights, a span with
+// equal weights (a polynomial cubic) and a T-Bézier; a hole: a circle of four
+// rational quarters, reversed.
+std::vector<CutLoop> spline_loops() {
+  const CompositeCurve outline(
+      {Segment::line({0, 0}, {600, 0}),
+       Segment::rational_bezier({Vec2(600, 0), Vec2(750, 40), Vec2(720, 260), Vec2(600, 300)},
+                                {1, 2, 0.5, 1.5}),
+       Segment::line({600, 300}, {300, 300}),
+       Segment::rational_bezier({Vec2(300, 300), Vec2(200, 380), Vec2(100, 220), Vec2(0, 300)}, {2, 2, 2, 2}),
+       Segment::tbezier({Vec2(0, 300), Vec2(-100, 300), Vec2(-100, 0), Vec2(0, 0)}, 0.5, 0.5)},
+      true);
+  std::vector<Segment> quarters;
+  for (int k = 0; k < 4; ++k) quarters.push_back(circle_quarter({300, 150}, 80, k));
+  CutLoopOptions o;
+  std::vector<CutLoop> loops{cut_loop(outline, "outline", true, o)};
+  o.reverse = true;
+  loops.push_back(cut_loop(CompositeCurve(quarters, true), "holes[0] (circle)", false, o));
+  return loops;
+}
+
+// The group code / value pairs of a DXF text, trimmed.
+std::vector<std::pair<std::string, std::string>> dxf_pairs(const std::string& text) {
+  std::istringstream in(text);
+  std::vector<std::pair<std::string, std::string>> pairs;
+  std::string code, value;
+  auto trim = [](std::string s) {
+    s.erase(0, s.find_first_not_of(" \r"));
+    s.erase(s.find_last_not_of(" \r") + 1);
+    return s;
+  };
+  while (std::getline(in, code) && std::getline(in, value)) pairs.emplace_back(trim(code), trim(value));
+  return pairs;
 }
 
 // End points of the DXF entities on one layer chain into closed loops: every
@@ -250,4 +297,197 @@ TEST_CASE("svg: one path per loop, A commands for arcs, L for lines and polyline
   CHECK(y0 == Approx(-380 - 5).margin(1e-9));
   CHECK(w == Approx(hi - lo + 10).margin(0.02));
   CHECK(h == Approx(380 + 10).margin(1e-9));
+}
+
+TEST_CASE("dxf: rational Bezier spans are SPLINE entities of degree 3 with their points, knots and weights",
+          "[io][cutting][dxf][rational]") {
+  const auto loops = spline_loops();
+  std::vector<const CutEntity*> splines;
+  for (const CutLoop& l : loops) {
+    for (const CutEntity& e : l.entities) {
+      if (e.kind == CutKind::Spline) splines.push_back(&e);
+    }
+  }
+  REQUIRE(splines.size() == 6);
+  const std::string bytes = encode_dxf(loops);
+  // The groups of each SPLINE, as written.
+  std::vector<std::map<std::string, std::vector<std::string>>> groups;
+  bool in_spline = false;
+  for (const auto& [code, value] : dxf_pairs(bytes)) {
+    if (code == "0") {
+      in_spline = value == "SPLINE";
+      if (in_spline) groups.emplace_back();
+      continue;
+    }
+    if (in_spline) groups.back()[code].push_back(value);
+  }
+  REQUIRE(groups.size() == 6);
+  for (std::size_t i = 0; i < groups.size(); ++i) {
+    auto& g = groups[i];
+    const CutEntity& e = *splines[i];
+    const bool rational =
+        !(e.weights[1] == e.weights[0] && e.weights[2] == e.weights[0] && e.weights[3] == e.weights[0]);
+    INFO("SPLINE " << i);
+    CHECK(g["100"] == std::vector<std::string>{"AcDbEntity", "AcDbSpline"});
+    CHECK(g["8"] == std::vector<std::string>{i < 2 ? "OUTLINE" : "HOLES"});
+    CHECK(g["70"] == std::vector<std::string>{rational ? "12" : "8"});  // planar, and rational with weights
+    CHECK(g["71"] == std::vector<std::string>{"3"});
+    CHECK(g["72"] == std::vector<std::string>{"8"});
+    CHECK(g["73"] == std::vector<std::string>{"4"});
+    CHECK(g["74"] == std::vector<std::string>{"0"});
+    REQUIRE(g["40"].size() == 8);
+    for (std::size_t k = 0; k < 8; ++k) CHECK(std::stod(g["40"][k]) == (k < 4 ? 0.0 : 1.0));
+    REQUIRE(g["10"].size() == 4);
+    REQUIRE(g["20"].size() == 4);
+    REQUIRE(g["30"].size() == 4);
+    for (std::size_t j = 0; j < 4; ++j) {
+      CHECK(std::stod(g["10"][j]) == Approx(e.points[j].x()).margin(1e-12));
+      CHECK(std::stod(g["20"][j]) == Approx(e.points[j].y()).margin(1e-12));
+      CHECK(std::stod(g["30"][j]) == 0.0);
+    }
+    if (rational) {
+      REQUIRE(g["41"].size() == 4);
+      for (std::size_t j = 0; j < 4; ++j) CHECK(std::stod(g["41"][j]) == e.weights[j]);  // exactly
+    } else {
+      CHECK(g["41"].empty());
+    }
+  }
+  // The outline's second span has equal weights: a polynomial cubic, no weights written.
+  CHECK(groups[1]["70"] == std::vector<std::string>{"8"});
+  // dxflib reads them back with their points and weights; the chains close.
+  const std::vector<DxfEntity> entities = parse_dxf(bytes, "splines.dxf");
+  std::map<std::string, int> types;
+  for (const DxfEntity& e : entities) ++types[e.type + "@" + e.layer];
+  CHECK(types["LINE@OUTLINE"] == 2);
+  CHECK(types["SPLINE@OUTLINE"] == 2);
+  CHECK(types["POLYLINE@OUTLINE"] == 1);
+  CHECK(types["SPLINE@HOLES"] == 4);
+  std::size_t i = 0;
+  for (const DxfEntity& d : entities) {
+    if (d.type != "SPLINE") continue;
+    REQUIRE(i < splines.size());
+    const CutEntity& e = *splines[i++];
+    CHECK(d.degree == 3);
+    CHECK(d.knots == std::vector<double>{0, 0, 0, 0, 1, 1, 1, 1});
+    REQUIRE(d.points.size() == 4);
+    REQUIRE(d.weights.size() == 4);
+    for (std::size_t j = 0; j < 4; ++j) {
+      CHECK((d.points[j] - e.points[j]).norm() <= 1e-12);
+      // Equal weights are written as none: they read as 1, the same curve.
+      CHECK(d.weights[j] == (d.flags & 4 ? e.weights[j] : 1.0));
+    }
+  }
+  CHECK(closed_chains(entities, "OUTLINE", 1e-9) == 1);
+  CHECK(closed_chains(entities, "HOLES", 1e-9) == 1);
+}
+
+TEST_CASE("dxf: ezdxf reads the SPLINEs back with their control points, knots and weights, nothing to fix",
+          "[io][cutting][dxf][rational]") {
+  const auto loops = spline_loops();
+  const std::string path = std::string(FABMESH_TEST_TMP) + "/audit-splines.dxf";
+  const std::string script_path = std::string(FABMESH_TEST_TMP) + "/audit-splines.py";
+  { std::ofstream(path, std::ios::binary) << encode_dxf(loops); }
+  {
+    std::ofstream(script_path, std::ios::binary)
+        << "import sys, ezdxf\n"
+           "doc = ezdxf.readfile(sys.argv[1])\n"
+           "a = doc.audit()\n"
+           "print(len(a.errors), len(a.fixes))\n"
+           "for e in list(a.errors) + list(a.fixes): print('#', e.message)\n"
+           "for s in doc.modelspace().query('SPLINE'):\n"
+           "    w = list(s.weights)\n"
+           "    print(s.dxf.layer, s.dxf.degree, s.dxf.flags, len(s.knots), *s.knots)\n"
+           "    print(len(s.control_points), *[repr(c) for p in s.control_points for c in p])\n"
+           "    print(len(w), *[repr(x) for x in w])\n";
+  }
+  const test::ToolRun run = test::run_tool("/usr/bin/python3 " + script_path + " " + path);
+  REQUIRE(run.code == 0);
+  INFO(run.output);
+  std::istringstream out(run.output);
+  int errors = -1, fixes = -1;
+  out >> errors >> fixes;
+  CHECK(errors == 0);
+  CHECK(fixes == 0);
+  std::size_t read = 0;
+  for (const CutLoop& l : loops) {
+    for (const CutEntity& e : l.entities) {
+      if (e.kind != CutKind::Spline) continue;
+      const bool rational =
+          !(e.weights[1] == e.weights[0] && e.weights[2] == e.weights[0] && e.weights[3] == e.weights[0]);
+      std::string layer;
+      int degree = 0, flags = 0;
+      std::size_t knots = 0, points = 0, weights = 0;
+      REQUIRE(static_cast<bool>(out >> layer >> degree >> flags >> knots));
+      CHECK(layer == (l.outer ? "OUTLINE" : "HOLES"));
+      CHECK(degree == 3);
+      CHECK(flags == (rational ? 12 : 8));
+      REQUIRE(knots == 8);
+      for (std::size_t k = 0; k < 8; ++k) {
+        double v = -1;
+        out >> v;
+        CHECK(v == (k < 4 ? 0.0 : 1.0));
+      }
+      REQUIRE(static_cast<bool>(out >> points));
+      REQUIRE(points == 4);
+      for (std::size_t j = 0; j < 4; ++j) {
+        double x = 0, y = 0, z = 1;
+        out >> x >> y >> z;
+        CHECK(x == Approx(e.points[j].x()).margin(1e-12));
+        CHECK(y == Approx(e.points[j].y()).margin(1e-12));
+        CHECK(z == 0.0);
+      }
+      REQUIRE(static_cast<bool>(out >> weights));
+      if (rational) {
+        REQUIRE(weights == 4);
+        for (std::size_t j = 0; j < 4; ++j) {
+          double w = 0;
+          out >> w;
+          CHECK(w == e.weights[j]);  // exactly: written as the shortest decimal of the double
+        }
+      } else {
+        CHECK(weights == 0);  // ezdxf: no weights, a polynomial
+      }
+      ++read;
+    }
+  }
+  CHECK(read == 6);
+}
+
+TEST_CASE("svg: a Spline with equal weights is an exact C command, a rational one L within the tolerance",
+          "[io][cutting][svg][rational]") {
+  const auto loops = spline_loops();
+  const std::string svg = encode_svg(loops);
+  const std::size_t outline = svg.find("<path id=\"outline\" d=\"");
+  REQUIRE(outline != std::string::npos);
+  const std::string d = svg.substr(outline, svg.find('"', outline + 24) - outline);
+  CHECK(std::count(d.begin(), d.end(), 'C') == 1);  // the polynomial span, exactly
+  // It is the span's control points 1..3, y negated.
+  const CutEntity& poly = loops[0].entities[3];
+  REQUIRE(poly.kind == CutKind::Spline);
+  CHECK(d.find("C " + fmt::format("{} {}", poly.points[1].x(), -poly.points[1].y())) != std::string::npos);
+  CHECK(d.find(fmt::format(" {} {} {} {}", poly.points[2].x(), -poly.points[2].y(), poly.points[3].x(),
+                           -poly.points[3].y())) != std::string::npos);
+  // The hole: four rational quarters, sampled: L commands only, each point on the circle within the
+  // tolerance.
+  const std::size_t hole = svg.find("<path id=\"hole0\" d=\"");
+  REQUIRE(hole != std::string::npos);
+  const std::string h = svg.substr(hole + 20, svg.find('"', hole + 20) - hole - 20);
+  CHECK(std::count(h.begin(), h.end(), 'C') == 0);
+  CHECK(std::count(h.begin(), h.end(), 'L') > 16);
+  std::istringstream in(h);
+  std::string command;
+  int points = 0;
+  while (in >> command) {
+    if (command == "Z") break;
+    double x = 0, y = 0;
+    REQUIRE(static_cast<bool>(in >> x >> y));
+    CHECK(std::abs((Vec2(x, -y) - Vec2(300, 150)).norm() - 80) <= 1e-9);
+    ++points;
+  }
+  CHECK(points > 16);
+  // The viewBox spans the outline's exact bounds (the rational span's interior extreme in x) plus 5.
+  const auto [lo, hi] = cut_bounds(loops);
+  CHECK(svg.find(fmt::format("viewBox=\"{} {} {} {}\"", lo.x() - 5, -(hi.y() + 5), hi.x() - lo.x() + 10,
+                             hi.y() - lo.y() + 10)) != std::string::npos);
+  CHECK(hi.x() > 650);
 }
