@@ -143,6 +143,19 @@ void arc_extremes(const EllipseArcParams& a, std::vector<Vec2>& out) {
   }
 }
 
+// A quasi-cubic span with both local parameters 0 is the uniform cubic
+// B-spline span, a polynomial cubic (a DXF template's polynomial SPLINE is
+// read as such spans): a Spline with equal weights, exactly.
+bool is_cubic_bspline_span(const Segment& seg) {
+  return seg.kind() == SegmentKind::QuasiBSpline && seg.lambda() == 0.0 && seg.mu() == 0.0;
+}
+
+// The Bézier points of the uniform cubic B-spline span with control points b.
+std::array<Vec2, 4> bezier_of_bspline_span(const std::array<Vec2, 4>& b) {
+  return {(b[0] + 4.0 * b[1] + b[2]) / 6.0, (2.0 * b[1] + b[2]) / 3.0, (b[1] + 2.0 * b[2]) / 3.0,
+          (b[1] + 4.0 * b[2] + b[3]) / 6.0};
+}
+
 }  // namespace
 
 Vec2 spline_point(const CutEntity& e, double s) {
@@ -194,6 +207,9 @@ CutLoop cut_loop(const CompositeCurve& curve, const std::string& label, bool out
     } else if (seg.kind() == SegmentKind::RationalBezier) {
       const std::array<Vec2, 4>& p = seg.control_points();
       loop.entities.push_back({CutKind::Spline, {p[0], p[1], p[2], p[3]}, {}, seg.rational_weights()});
+    } else if (is_cubic_bspline_span(seg)) {
+      const std::array<Vec2, 4> z = bezier_of_bspline_span(seg.control_points());
+      loop.entities.push_back({CutKind::Spline, {z[0], z[1], z[2], z[3]}, {}, {1.0, 1.0, 1.0, 1.0}});
     } else {
       if (loop.entities.empty() || loop.entities.back().kind != CutKind::Polyline) {
         loop.entities.push_back({CutKind::Polyline, {seg.point(0.0)}, {}});

@@ -51,8 +51,10 @@ struct CutLoopOptions {
 
 /// The chain of a curve: a Line per line segment, an Arc per exact ellipse
 /// arc, a Spline per rational cubic Bézier segment (its control points and
-/// weights, exactly), one Polyline per run of consecutive other segments
-/// (T-Bézier, H-Bézier, quasi-cubic B-spline spans), sampled with the proven
+/// weights, exactly) and per quasi-cubic span with both local parameters 0
+/// (the uniform cubic B-spline span: a polynomial cubic, its Bézier points
+/// with equal weights), one Polyline per run of consecutive other segments
+/// (T-Bézier, H-Bézier, other quasi-cubic B-spline spans), sampled with the proven
 /// bound of sample_curve. A closed curve gives a closed loop, an open one an
 /// open chain; `options.reverse` reverses the entities, their points and
 /// (Spline) their weights.

@@ -298,13 +298,16 @@ TEST_CASE(
     "countertop from a DXF template with NURBS: the DXF fabmesh writes reads back into the same countertop",
     "[pipeline][countertop][dxf][rational]") {
   const fs::path dir = fresh_dir("countertop_dxf_nurbs_round_trip");
-  // An elliptic outline and a round hole saved as NURBS, and an egg-shaped
+  // An elliptic outline and a round hole saved as NURBS, a polynomial drop, and an egg-shaped
   // hole: a closed rational quadratic SPLINE with weights 2.5 and 0.4, no conic.
   const std::vector<Vec2> egg{{450, 400}, {650, 200}, {850, 400}, {650, 650}, {450, 400}};
+  const std::vector<Vec2> drop{{200, 400}, {260, 320}, {330, 400}, {260, 480}, {200, 400}};
   write_text(dir / "nurbs.dxf",
              test::dxf_drawing(test::dxf_nurbs_ellipse("2A", "OUTLINE", Vec2(700, 400), 650, 380) +
                                test::dxf_nurbs("3A", "HOLES", egg, {1.0, 2.5, 1.0, 0.4, 1.0}) +
-                               test::dxf_nurbs_ellipse("4A", "HOLES", Vec2(1100, 400), 60, 60)));
+                               test::dxf_nurbs_ellipse("4A", "HOLES", Vec2(1100, 400), 60, 60) +
+                               // a polynomial spline (equal weights), as CAD's fit-point splines are
+                               test::dxf_nurbs("5A", "HOLES", drop, {1.0, 1.0, 1.0, 1.0, 1.0})));
   write_text(dir / "nurbs.yaml",
              "name: nurbs\nkind: countertop\nunits: mm\ntolerance: 0.05\nthickness: 30\n"
              "outline: {dxf: nurbs.dxf, layer: OUTLINE}\n"
@@ -313,14 +316,14 @@ TEST_CASE(
   REQUIRE(run_cli_json({"run", (dir / "nurbs.yaml").string(), "-o", (dir / "first").string(), "--json"},
                        &out) == 0);
   const auto first = only_item(out);
-  CHECK(first["genus"] == 2);
+  CHECK(first["genus"] == 3);
   // Every span written as the SPLINE it is: nothing sampled.
   const std::string written = read_file((dir / "first" / "nurbs.dxf").string());
   CHECK(written.find("LWPOLYLINE") == std::string::npos);
   std::map<std::string, int> types;
   for (const auto& e : parse_dxf(written, "nurbs.dxf")) ++types[e.type + "@" + e.layer];
   CHECK(types["SPLINE@OUTLINE"] == 4);
-  CHECK(types["SPLINE@HOLES"] == 2 + 4);
+  CHECK(types["SPLINE@HOLES"] == 2 + 4 + 2);
   CHECK(types.size() == 2);
   // The written drawing as a design of its own.
   write_text(dir / "first" / "back.yaml",
@@ -333,7 +336,7 @@ TEST_CASE(
                    &out) == 0);
   const auto back = only_item(out);
   const double size = 1300.0;
-  CHECK(back["genus"] == 2);
+  CHECK(back["genus"] == 3);
   CHECK(std::abs(back["volume"].get<double>() - first["volume"].get<double>()) <=
         1e-9 * first["volume"].get<double>());
   CHECK(std::abs(back["build"]["region_area"].get<double>() - first["build"]["region_area"].get<double>()) <=

@@ -221,3 +221,26 @@ TEST_CASE("spline_polyline: the points run from P0 to P3 on the curve, each chor
   CHECK(spline_polyline(e, 0.01).size() > spline_polyline(e, 1.0).size());
   CHECK_THROWS_AS(spline_polyline(e, 0.0), RangeError);
 }
+
+TEST_CASE("cut_loop: a uniform cubic B-spline span is a polynomial Spline, other quasi-cubic spans polylines",
+          "[geometry][sampling][cut_loop]") {
+  const std::array<Vec2, 4> b{Vec2(0, 0), Vec2(100, 40), Vec2(200, -30), Vec2(260, 90)};
+  const Segment cubic = Segment::quasi_bspline_span(b, 0.0, 0.0);
+  const Segment shaped = Segment::quasi_bspline_span(b, -2.0, 0.5);  // a quartic: not a cubic Bézier
+  const CompositeCurve curve({cubic, shaped.with_points({b[1], b[2], b[3], Vec2(300, 0)})}, false);
+  CutLoopOptions o;
+  o.tolerance = 0.01;
+  const CutLoop loop = cut_loop(curve, "curve", false, o);
+  REQUIRE(loop.entities.size() == 2);
+  const CutEntity& spline = loop.entities[0];
+  REQUIRE(spline.kind == CutKind::Spline);
+  CHECK(spline.weights == std::array<double, 4>{1.0, 1.0, 1.0, 1.0});
+  double worst = 0.0;
+  for (int i = 0; i <= 1000; ++i) {
+    const double s = i / 1000.0;
+    worst = std::max(worst, (spline_point(spline, s) - cubic.point(s)).norm());
+  }
+  INFO("largest distance " << worst);
+  CHECK(worst <= 1e-12 * 300);
+  CHECK(loop.entities[1].kind == CutKind::Polyline);
+}
