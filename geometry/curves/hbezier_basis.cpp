@@ -25,15 +25,32 @@ double even_odd_series(double x, int k0, int parity) {
   return sum;
 }
 
+// The hyperbolic functions the basis takes of one argument x, each computed
+// once (the same functions, so the same numbers, as called one by one).
+struct Hyperbolic {
+  double sinh, cosh, sinh_minus_x, cosh_minus_1, cosh_minus_1_minus_half_x2;
+};
+
+Hyperbolic hyperbolic(double x) {
+  Hyperbolic h{std::sinh(x), std::cosh(x), 0.0, cosh_minus_1(x), 0.0};
+  const bool series = std::abs(x) < kSeriesLimit;
+  h.sinh_minus_x = series ? even_odd_series(x, 1, 1) : h.sinh - x;
+  h.cosh_minus_1_minus_half_x2 = series ? even_odd_series(x, 2, 0) : h.cosh - 1.0 - 0.5 * x * x;
+  return h;
+}
+
 // The numerator N(u) of H2 and its first three u-derivatives:
 // N = sinh(a-u) - (a-u) + sinh(u) - u - (sinh a - a) + u (cosh a - 1) - a (cosh u - 1),
 // which equals the spec's a - u + sinh(a-u) + sinh u - sinh a + u cosh a - a cosh u.
-std::array<double, 4> h2_numerator(double u, double a) {
+// For a >= kSeriesLimit from the hyperbolic functions of u and of v = a - u
+// (hu, hv) and the constants S = sinh a - a, C = cosh a - 1.
+std::array<double, 4> h2_numerator(double u, double a, const Hyperbolic& hu, const Hyperbolic& hv,
+                                   const HBezierConstants& constants) {
   if (a >= kSeriesLimit) {
-    const double v = a - u;
-    return {sinh_minus_x(v) + sinh_minus_x(u) - sinh_minus_x(a) + u * cosh_minus_1(a) - a * cosh_minus_1(u),
-            -cosh_minus_1(v) + cosh_minus_1(u) + cosh_minus_1(a) - a * std::sinh(u),
-            std::sinh(v) + std::sinh(u) - a * std::cosh(u), -std::cosh(v) + std::cosh(u) - a * std::sinh(u)};
+    const double s = constants.s, c = constants.c;
+    return {hv.sinh_minus_x + hu.sinh_minus_x - s + u * c - a * hu.cosh_minus_1,
+            -hv.cosh_minus_1 + hu.cosh_minus_1 + c - a * hu.sinh, hv.sinh + hu.sinh - a * hu.cosh,
+            -hv.cosh + hu.cosh - a * hu.sinh};
   }
   // Small alpha: N = sum_{k>=2} a^(2k+1) f_k(t), t = u/a, where
   // f_k(t) = ((1-t)^(2k+1) + t^(2k+1) - 1)/(2k+1)! + (t - t^(2k))/(2k)!  (the k = 1 term is 0).
@@ -103,18 +120,20 @@ BasisJet hbezier_basis(double u, double alpha, double lambda, double mu, const H
   const double a = alpha;
   const auto [s, c, d, e] = constants;
   const double v = a - u;
+  const Hyperbolic hu = hyperbolic(u), hv = hyperbolic(v);
   // Classical basis and quartic end functions with u-derivatives 0..3.
-  const std::array<double, 4> h0{sinh_minus_x(v) / s, -cosh_minus_1(v) / s, std::sinh(v) / s,
-                                 -std::cosh(v) / s};
-  const std::array<double, 4> h3{sinh_minus_x(u) / s, cosh_minus_1(u) / s, std::sinh(u) / s,
-                                 std::cosh(u) / s};
-  const std::array<double, 4> k0{cosh_minus_1_minus_half_x2(v) / d, -sinh_minus_x(v) / d, cosh_minus_1(v) / d,
-                                 -std::sinh(v) / d};
-  const std::array<double, 4> k3{cosh_minus_1_minus_half_x2(u) / d, sinh_minus_x(u) / d, cosh_minus_1(u) / d,
-                                 std::sinh(u) / d};
+  const std::array<double, 4> h0{hv.sinh_minus_x / s, -hv.cosh_minus_1 / s, hv.sinh / s, -hv.cosh / s};
+  const std::array<double, 4> h3{hu.sinh_minus_x / s, hu.cosh_minus_1 / s, hu.sinh / s, hu.cosh / s};
+  const std::array<double, 4> k0{hv.cosh_minus_1_minus_half_x2 / d, -hv.sinh_minus_x / d, hv.cosh_minus_1 / d,
+                                 -hv.sinh / d};
+  const std::array<double, 4> k3{hu.cosh_minus_1_minus_half_x2 / d, hu.sinh_minus_x / d, hu.cosh_minus_1 / d,
+                                 hu.sinh / d};
   const double scale = std::sinh(a) / (s * e);
-  const auto n2 = h2_numerator(u, a);
-  const auto n1 = h2_numerator(v, a);  // H1(u) = H2(a - u): derivatives alternate in sign
+  const auto n2 = h2_numerator(u, a, hu, hv, constants);
+  // H1(u) = H2(a - u): derivatives alternate in sign. Its own v is a - v,
+  // which rounding may set apart from u.
+  const double w = a - v;
+  const auto n1 = h2_numerator(v, a, hv, w == u ? hu : hyperbolic(w), constants);
   BasisJet jet{};
   for (int k = 0; k < 4; ++k) {
     const double h2k = scale * n2[k];
