@@ -406,9 +406,9 @@ function drag(event, circle) {
 // A design whose proven mesh is large (more than kDraftTriangles triangles,
 // the last proven build's count) gets a draft first: the same values built
 // at a coarser tolerance (POST /api/build with "draft": true), shown at once
-// and labelled as a draft, with no verdict; the proven build, asked for as
-// soon as the draft answers (both at once made the draft a third slower on
-// two cores, and the proven one no faster), replaces it with its mesh and its
+// and labelled as a draft, with no verdict; the proven build, asked for once
+// the draft is drawn (both at once made the draft a third slower on two
+// cores, and the proven one no faster), replaces it with its mesh and its
 // verdict. A draft never replaces what is shown for newer values, nor comes
 // after its own values' proven answer; its errors are not shown (the proven
 // build's are).
@@ -485,7 +485,10 @@ async function draftBuild() {
     finishLane('draft');
     if (provenAfterDraft) {
       provenAfterDraft = false;
-      runLane('proven');
+      // Once the frame with the draft is drawn: the proven build takes both
+      // cores of a small machine, and the CPU renderer's draw of the draft
+      // waited for them.
+      requestAnimationFrame(() => requestAnimationFrame(() => runLane('proven')));
     }
   }
 }
