@@ -155,21 +155,38 @@ OffsetSecond offset_second(const CellDerivatives& d, double offset) {
   }
   const double a = std::abs(offset), nu2 = nu * nu;
   const auto& n = d.n;
-  // Direct: the unit normal's second partials from N's, over the whole cell.
-  const OffsetSecond direct{d.ss + a * (n[2][0] / nu + 3.0 * n[1][0] * n[1][0] / nu2),
-                            d.st + a * (n[1][1] / nu + 3.0 * n[1][0] * n[0][1] / nu2),
-                            d.tt + a * (n[0][2] / nu + 3.0 * n[0][1] * n[0][1] / nu2)};
-  // Mean value: the exact second partials of S + offset u (u = N / |N|) at the centre ...
   auto cross = [&](int p, int q) {
     return leibniz<Vec3>(
         p, q, [&](int i, int j, int k, int l) { return Vec3(d.centre[i][j].cross(d.centre[k][l])); },
         Vec3(Vec3::Zero()));
   };
-  const Vec3 big_n = cross(0, 0);
+  const double hs = 0.5 * d.ds, ht = 0.5 * d.dt;
+  // Direct: the unit normal's second partials from N's, over the whole cell:
+  // u_xy = P N_xy / |N| - (P N_y (u . N_x) + u (P N_y . P N_x) + P N_x (u . N_y)) / |N|^2
+  // with P = I - u u^T, so |u_xy| <= |N_xy| / nu + (p_y |N_x| + p_y p_x + p_x |N_y|) / nu^2,
+  // p_x >= sup |P N_x| = sup |N_x x N| / |N|. Near a singular corner N_x turns
+  // with N, so p_x is much smaller than |N_x|: bound sup |N_x x N| by its
+  // value at the centre plus the half-widths times its partials' bounds,
+  // (N_s x N)_s = N_ss x N, (N_s x N)_t = N_st x N + N_s x N_t (and alike
+  // for t), sup |N_s x N_t| again by its centre value and its partials.
+  const Vec3 c00 = cross(0, 0), c10 = cross(1, 0), c01 = cross(0, 1);
+  const double n0 = n[0][0];
+  const double twist = c10.cross(c01).norm() + hs * (n[2][0] * n[0][1] + n[1][0] * n[1][1]) +
+                       ht * (n[1][1] * n[0][1] + n[1][0] * n[0][2]);
+  const double ps =
+      std::min(n[1][0], (c10.cross(c00).norm() + hs * n[2][0] * n0 + ht * (n[1][1] * n0 + twist)) / nu);
+  const double pt =
+      std::min(n[0][1], (c01.cross(c00).norm() + ht * n[0][2] * n0 + hs * (n[1][1] * n0 + twist)) / nu);
+  const OffsetSecond direct{d.ss + a * (n[2][0] / nu + (2.0 * ps * n[1][0] + ps * ps) / nu2),
+                            d.st + a * (n[1][1] / nu + (pt * n[1][0] + pt * ps + ps * n[0][1]) / nu2),
+                            d.tt + a * (n[0][2] / nu + (2.0 * pt * n[0][1] + pt * pt) / nu2)};
+  // Mean value: the exact second partials of S + offset u (u = N / |N|) at the centre ...
+  const Vec3& big_n = c00;
   const double length = big_n.norm();
   if (!(length > 0.0)) return direct;
   const Vec3 unit = big_n / length;
-  const Vec3 ns = cross(1, 0), nt = cross(0, 1);
+  const Vec3& ns = c10;
+  const Vec3& nt = c01;
   const Vec3 us = (ns - unit.dot(ns) * unit) / length, ut = (nt - unit.dot(nt) * unit) / length;
   // u_xy = (N_xy - (u_y . N_x + u . N_xy) u - (u . N_x) u_y) / |N| - (u . N_y) / |N| u_x
   auto second = [&](const Vec3& nx, const Vec3& ux, const Vec3& ny, const Vec3& uy, const Vec3& nxy) {
@@ -182,7 +199,6 @@ OffsetSecond offset_second(const CellDerivatives& d, double offset) {
   const double n1 = std::max(n[1][0], n[0][1]), n2 = std::max({n[2][0], n[1][1], n[0][2]}),
                n3 = std::max({n[3][0], n[2][1], n[1][2], n[0][3]});
   const double third = a * (n3 / nu + 9.0 * n2 * n1 / nu2 + 21.0 * n1 * n1 * n1 / (nu2 * nu));
-  const double hs = 0.5 * d.ds, ht = 0.5 * d.dt;
   const OffsetSecond mean{
       (d.centre[2][0] + offset * uss).norm() + hs * (d.sss + third) + ht * (d.sst + third),
       (d.centre[1][1] + offset * ust).norm() + hs * (d.sst + third) + ht * (d.stt + third),

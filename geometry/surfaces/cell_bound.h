@@ -73,8 +73,11 @@ CellDerivatives cell_derivatives(const ControlNet& net, const NetDifferences& di
 double surface_cell_error(const CellDerivatives& d, double ds, double dt);
 
 /// Second partial bounds of the offset surface S + a n over the cell, each
-/// the smaller of a direct bound |S_xy| + |a| (|N_xy| / nu + 3 |N_x| |N_y| / nu^2)
-/// and a mean-value one: the exact value at the centre plus the half-widths
+/// the smaller of a direct bound |S_xy| + |a| (|N_xy| / nu + (p_y |N_x| +
+/// p_y p_x + p_x |N_y|) / nu^2), p_x >= sup |N_x x N| / |N| (the part of N_x
+/// across N, small near a singular corner where N_x turns with N: bounded
+/// by its centre value and its partials' bounds, at most |N_x|), and a
+/// mean-value one: the exact value at the centre plus the half-widths
 /// times |S_xyz| + |a| (N3 / nu + 9 N2 N1 / nu^2 + 21 N1^3 / nu^3), N = S_s x S_t,
 /// Nk >= its k-th partials, nu its lower bound; +infinity when nu is not > 0.
 struct OffsetSecond {
