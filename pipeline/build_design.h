@@ -32,6 +32,14 @@ BuiltMesh build(const VesselDesign& design, const BuildContext& context);
 BuiltMesh build(const CountertopDesign& design, const BuildContext& context);
 BuiltMesh build(const SurfaceDesign& design, const BuildContext& context);
 
+/// A draft of a surface design to show at once (the studio's): the sheet
+/// refined within `tolerance` for the surface alone (not for the shell's
+/// offset sheets, whose bound crowds the grid toward singular corners) and
+/// thickened as `build` does; neither proven nor validated. Its
+/// max_deviation is the sheet's; its shape the patch network.
+/// 	hrow InputError (patches), GeometryError, BudgetError
+BuiltMesh surface_draft(const SurfaceDesign& design, double tolerance);
+
 /// Builds and validates `design` with the builder of its kind.
 /// \throw InputError (bad design), anything the builder throws
 BuiltMesh build_design(const Design& design, const BuildContext& context);

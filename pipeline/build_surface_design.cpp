@@ -116,6 +116,29 @@ FoldHint fold_hint(const PatchNetwork& network, const SurfaceTessellation& sheet
 
 }  // namespace
 
+BuiltMesh surface_draft(const SurfaceDesign& design, double tolerance) {
+  BuiltMesh out;
+  const PatchNetwork network = build_patch_network(design.patches);
+  TessellateOptions to;
+  to.tolerance = tolerance;
+  to.max_triangles = design.thickness > 0.0 ? design.max_triangles / 2 : design.max_triangles;
+  const SurfaceTessellation sheet = tessellate(network, to);
+  out.max_deviation = sheet.max_deviation;
+  if (design.thickness > 0.0) {
+    const std::array<double, 2> span = span_of(design, network);
+    ThickenOptions th;
+    th.thickness = design.thickness;
+    th.offset = span[0];
+    th.max_triangles = design.max_triangles;
+    out.soup = to_soup(thicken(sheet.mesh, sheet.normals, th));
+  } else {
+    out.soup = to_soup(sheet.mesh);
+    out.purpose = MeshPurpose::Viewing;
+  }
+  out.shape.patches = network;
+  return out;
+}
+
 BuiltMesh build(const SurfaceDesign& design, const BuildContext& context) {
   const PatchNetwork network = build_patch_network(design.patches);
   context.watch.lap("patches");

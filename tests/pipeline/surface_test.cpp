@@ -11,6 +11,7 @@
 #include "io/file.h"
 #include "io/mesh/draco.h"
 #include "io/mesh/stl.h"
+#include "pipeline/build_design.h"
 #include "pipeline/cli/commands.h"
 #include "pipeline/job.h"
 #include "tests/pipeline/cli_harness.h"
@@ -219,4 +220,29 @@ patches:
   CHECK(run.err.find("line.yaml:7:5: patches[0] ('flat'): its 16 control points lie on one line") !=
         std::string::npos);
   CHECK_FALSE(fs::exists(dir / "out"));
+}
+
+TEST_CASE("surface draft: the studio's quick mesh is the same closed shell, coarser and unproven",
+          "[pipeline][surface][studio]") {
+  const fs::path dir = fresh_dir("surface_draft");
+  const Design design = read_design(example("surface_basin_shell.yaml"));
+  const auto& surface = std::get<SurfaceDesign>(design.body);
+  const JobReport proven = run_job(design, testing::into(dir));
+  REQUIRE(proven.validation.valid());
+  const BuiltMesh draft = surface_draft(surface, 2.0 * design.common.tolerance);
+  CHECK(draft.validation.self_intersection == IntersectionCheck::NotRun);  // not validated: no verdict
+  CHECK(draft.shape.patches.has_value());
+  CHECK(draft.soup.triangles.size() * 5 < proven.validation.triangles);
+  // Closed and outward like the proven shell, and holding nearly its volume.
+  const ValidationReport checked = validate(draft.soup);
+  CHECK(checked.boundary_edges == 0);
+  CHECK(checked.oriented_outward);
+  CHECK(checked.valid());  // this one happens to be valid too, though nothing proved it
+  CHECK(checked.volume == Approx(proven.validation.volume).epsilon(0.02));
+  // An open surface's draft is its sheet, for viewing.
+  SurfaceDesign open = surface;
+  open.thickness = 0.0;
+  const BuiltMesh sheet = surface_draft(open, 2.0 * design.common.tolerance);
+  CHECK(sheet.purpose == MeshPurpose::Viewing);
+  CHECK(validate(sheet.soup).boundary_edges > 0);
 }

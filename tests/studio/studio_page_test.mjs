@@ -280,7 +280,7 @@ try {
 
   await check('a large mesh: a draft, labelled and not judged, then the proven mesh and its verdict',
               async () => {
-    // The wash basin's shell (175 000 triangles), its thickness and its triangle budget parameters.
+    // The wash basin's shell (110 000 triangles), its thickness and its triangle budget parameters.
     const basin = path.join(workDir, 'basin.yaml');
     fs.writeFileSync(basin, fs.readFileSync(path.join(sourceDir, 'configs/examples/surface_basin_shell.yaml'), 'utf8')
                                 .replace('thickness: 6', 'thickness: "=shell"')
@@ -330,7 +330,7 @@ try {
       const plotBefore = await page2.$eval('#plot', (e) => e.innerHTML);
       await page2.evaluate(() => {
         const input = document.querySelector('#field-budget input[type=number]');
-        input.value = '100000';
+        input.value = '60000';
         input.dispatchEvent(new Event('change'));
       });
       await page2.waitForFunction(() => window.fabmeshStudio.error !== null, {timeout: 300000});
