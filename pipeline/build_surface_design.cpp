@@ -114,23 +114,34 @@ FoldHint fold_hint(const PatchNetwork& network, const SurfaceTessellation& sheet
   throw ValidationFailed(message);
 }
 
+// The sheet's tessellation options: two sheets and the rim of a shell, so
+// the sheet may use a little under half the budget.
+TessellateOptions sheet_options(const SurfaceDesign& design, double tolerance) {
+  TessellateOptions to;
+  to.tolerance = tolerance;
+  to.max_triangles = design.thickness > 0.0 ? design.max_triangles / 2 : design.max_triangles;
+  return to;
+}
+
+// The shell of `sheet` for the design's thickness, from the span's near side.
+Mesh thickened(const SurfaceDesign& design, const SurfaceTessellation& sheet,
+               const std::array<double, 2>& span) {
+  ThickenOptions th;
+  th.thickness = design.thickness;
+  th.offset = span[0];
+  th.max_triangles = design.max_triangles;
+  return thicken(sheet.mesh, sheet.normals, th);
+}
+
 }  // namespace
 
 BuiltMesh surface_draft(const SurfaceDesign& design, double tolerance) {
   BuiltMesh out;
   const PatchNetwork network = build_patch_network(design.patches);
-  TessellateOptions to;
-  to.tolerance = tolerance;
-  to.max_triangles = design.thickness > 0.0 ? design.max_triangles / 2 : design.max_triangles;
-  const SurfaceTessellation sheet = tessellate(network, to);
+  const SurfaceTessellation sheet = tessellate(network, sheet_options(design, tolerance));
   out.max_deviation = sheet.max_deviation;
   if (design.thickness > 0.0) {
-    const std::array<double, 2> span = span_of(design, network);
-    ThickenOptions th;
-    th.thickness = design.thickness;
-    th.offset = span[0];
-    th.max_triangles = design.max_triangles;
-    out.soup = to_soup(thicken(sheet.mesh, sheet.normals, th));
+    out.soup = to_soup(thickened(design, sheet, span_of(design, network)));
   } else {
     out.soup = to_soup(sheet.mesh);
     out.purpose = MeshPurpose::Viewing;
@@ -144,12 +155,9 @@ BuiltMesh build(const SurfaceDesign& design, const BuildContext& context) {
   context.watch.lap("patches");
   const bool thick = design.thickness > 0.0;
   const std::array<double, 2> span = thick ? span_of(design, network) : std::array<double, 2>{0.0, 0.0};
-  TessellateOptions to;
-  to.tolerance = context.tolerance;
+  TessellateOptions to = sheet_options(design, context.tolerance);
   to.shell_from = span[0];  // both sheets and the side walls are kept within the tolerance
   to.shell_to = span[1];
-  // Two sheets and the rim: the sheet may use a little under half the budget.
-  to.max_triangles = thick ? design.max_triangles / 2 : design.max_triangles;
   const SurfaceTessellation sheet =
       thick ? within_share(to.max_triangles, design.max_triangles, "a sheet of the shell",
                            "the shell is two sheets and a rim", [&] { return tessellate(network, to); })
@@ -172,11 +180,7 @@ BuiltMesh build(const SurfaceDesign& design, const BuildContext& context) {
     out.shape.patches = network;
     return out;
   }
-  ThickenOptions th;
-  th.thickness = design.thickness;
-  th.offset = span[0];
-  th.max_triangles = design.max_triangles;
-  const Mesh solid = thicken(sheet.mesh, sheet.normals, th);
+  const Mesh solid = thickened(design, sheet, span);
   context.watch.lap("build");
   BuiltMesh out;
   out.soup = to_soup(solid);  // no proof: the 3D self-intersection test catches a folding shell
