@@ -352,11 +352,15 @@ TopoDS_Shape make_sheet(const StepBody& body) {
     builder.Add(shell, sewn);
     return shell;
   }
-  TopTools_IndexedMapOfShape shells;
+  // The pieces: the shells, and the faces sewn to none.
+  TopTools_IndexedMapOfShape shells, faces, in_shells;
   TopExp::MapShapes(sewn, TopAbs_SHELL, shells);
-  if (shells.Extent() != 1) {
-    throw std::runtime_error("the patches' faces, sewn, make " + std::to_string(shells.Extent()) +
-                             " shells, not one: some patches do not meet along whole borders");
+  TopExp::MapShapes(sewn, TopAbs_FACE, faces);
+  for (int i = 1; i <= shells.Extent(); ++i) TopExp::MapShapes(shells(i), TopAbs_FACE, in_shells);
+  const int pieces = shells.Extent() + faces.Extent() - in_shells.Extent();
+  if (pieces != 1 || shells.Extent() != 1) {
+    throw std::runtime_error("the patches' faces, sewn, make " + std::to_string(pieces) +
+                             " pieces, not one shell: some patches do not meet along whole borders");
   }
   return shells(1);
 }

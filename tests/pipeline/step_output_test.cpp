@@ -480,3 +480,34 @@ patches:
   CHECK(r.roots[0].edges == 4);       // the pole a degenerate edge
   CHECK(r.roots[0].free_edges == 3);  // the others the border
 }
+
+TEST_CASE("step: patches that do not make one shell are an output error, nothing written",
+          "[pipeline][step][surface]") {
+  // Two patches apart: each a face, but no border joins them.
+  const fs::path dir = fresh_dir("step_surface_apart");
+  const std::string apart = R"(kind: surface
+name: apart
+tolerance: 0.01
+purpose: view
+patches:
+  - name: left
+    points:
+      - [[0, 0, 0], [0, 1, 0], [0, 2, 0], [0, 3, 0]]
+      - [[1, 0, 0], [1, 1, 1], [1, 2, 1], [1, 3, 0]]
+      - [[2, 0, 0], [2, 1, 1], [2, 2, 1], [2, 3, 0]]
+      - [[3, 0, 0], [3, 1, 0], [3, 2, 0], [3, 3, 0]]
+  - name: right
+    points:
+      - [[5, 0, 0], [5, 1, 0], [5, 2, 0], [5, 3, 0]]
+      - [[6, 0, 0], [6, 1, 1], [6, 2, 1], [6, 3, 0]]
+      - [[7, 0, 0], [7, 1, 1], [7, 2, 1], [7, 3, 0]]
+      - [[8, 0, 0], [8, 1, 0], [8, 2, 0], [8, 3, 0]]
+)";
+  write_text(dir / "apart.yaml", apart);
+  std::string out;
+  CHECK(run_cli({"run", (dir / "apart.yaml").string(), "--export-format", "step", "-o",
+                 (dir / "out").string() + "/"},
+                &out) != 0);
+  CHECK_THAT(out, Catch::Contains("make 2 pieces, not one shell"));
+  CHECK_FALSE(fs::exists(dir / "out" / "apart.step"));
+}
