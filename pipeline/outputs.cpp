@@ -7,6 +7,7 @@
 
 #include "geometry/core/errors.h"
 #include "geometry/core/float32.h"
+#include "geometry/surfaces/bspline_patch.h"
 #include "geometry/validation/validate.h"
 #include "io/cutting/dxf.h"
 #include "io/cutting/gcode.h"
@@ -371,14 +372,51 @@ Files step_file(const EncodeContext& c, const StepModel& model, double added) {
   return {std::move(e)};
 }
 
-// The exact solid (or, for a curve design, its curves) in the design's unit.
-// Exact segments stay exact; an H-Bézier segment becomes a cubic B-spline
-// within what the build left of the tolerance, and that bound is the file's
+// An open surface as one shell of B-spline faces, one per patch, sewn along
+// the shared borders: each patch within what the build left of the
+// tolerance (geometry/surfaces/bspline_patch.h), the largest bound the file's
 // added error.
+Files step_sheet(const EncodeContext& c, const PatchNetwork& network, StepModel model) {
+  BSplineNetwork sheet;
+  try {
+    sheet = bspline_network(network, c.output_tolerance);
+  } catch (const InputError& e) {
+    throw OutputError("step", std::string("step: ") + e.what());
+  }
+  StepBody body;
+  body.name = c.common.name;
+  body.form = StepForm::Sheet;
+  // Border curves agree to the poles' rounding (about 1e-13 of the size).
+  body.sewing_tolerance = 1e-7 * network.size;
+  for (std::size_t p = 0; p < sheet.patches.size(); ++p) {
+    BSplinePatch& b = sheet.patches[p];
+    StepSurface s;
+    s.name = network.names[p];
+    s.u_knots = b.u.knots;
+    s.v_knots = b.v.knots;
+    s.u_multiplicities = b.u.multiplicities;
+    s.v_multiplicities = b.v.multiplicities;
+    s.u_poles = b.u_poles;
+    s.v_poles = b.v_poles;
+    s.poles = std::move(b.poles);
+    body.surfaces.push_back(std::move(s));
+  }
+  model.bodies.push_back(std::move(body));
+  return step_file(c, model, sheet.max_bound);
+}
+
+// The exact solid (or, for a curve design, its curves; for an open surface
+// its patches) in the design's unit. Exact segments stay exact; an H-Bézier
+// segment becomes a cubic B-spline within what the build left of the
+// tolerance, and that bound is the file's added error.
 Files encode_step_output(const EncodeContext& c) {
   StepModel model;
   model.name = c.common.name;
   model.unit = c.common.units;
+  if (const auto& network = c.built.shape.patches) {
+    // Only open surfaces get here: resolve_outputs refuses step for shells (has_content).
+    return step_sheet(c, *network, std::move(model));
+  }
   StepLoops loop_of(c.output_tolerance);
   StepBody body;
   body.name = c.common.name;
@@ -512,9 +550,9 @@ std::vector<OutputFormat> make_table() {
        ".toolpath.svg", &encode_toolpath_svg_output},
       {"step",
        "STEP (AP214) of the exact geometry in the design's unit: a countertop's or a vessel's solid, a "
-       "curve's wireframe",
+       "curve's wireframe, an open surface's patches as B-spline faces sewn into one shell",
        OutputContent::Exact,
-       drawn,
+       every,
        {},
        ".step",
        &encode_step_output},
@@ -572,8 +610,10 @@ bool has_content(const Design& design, OutputContent content) {
     }
     case OutputContent::Design:
       return true;
-    case OutputContent::Exact:
-      return !std::holds_alternative<SurfaceDesign>(design.body);
+    case OutputContent::Exact: {
+      const auto* surface = std::get_if<SurfaceDesign>(&design.body);
+      return surface == nullptr || !(surface->thickness > 0.0);
+    }
     case OutputContent::Toolpath: {
       const auto* c = std::get_if<CountertopDesign>(&design.body);
       return c != nullptr && c->cnc.has_value();
@@ -621,7 +661,10 @@ std::vector<const OutputFormat*> resolve_outputs(const Design& design) {
     if (!has_content(design, format->content)) {
       const char* needs = format->content == OutputContent::MouldParts ? "a `mould:` section"
                           : format->content == OutputContent::Toolpath ? "a `cnc:` section"
-                                                                       : "a curve, a vessel or a countertop";
+                          : format->content == OutputContent::Exact
+                              ? "an open surface (no `thickness`): only open surfaces are written as STEP "
+                                "yet, not thickened shells"
+                              : "a curve, a vessel or a countertop";
       throw FileError(design.common.path, r.line, r.column,
                       fmt::format("{}: {} needs {}", r.where, r.format, needs));
     }

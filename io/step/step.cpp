@@ -128,6 +128,16 @@ StepWritten write_step(const StepModel& model) {
   for (std::size_t i = 0; i < w.bodies.size() && i < model.bodies.size(); ++i) {
     const StepShapeFacts& f = w.bodies[i];
     const StepBody& body = model.bodies[i];
+    if (body.form == StepForm::Sheet) {
+      if (!f.valid || f.shells != 1 || f.solids != 0 || f.faces != static_cast<int>(body.surfaces.size())) {
+        throw OutputError("step",
+                          fmt::format("step: OpenCASCADE finds the sheet of '{}' {} ({} shells, {} faces "
+                                      "of {}){}; nothing is written",
+                                      body.name, !f.valid ? "invalid" : "not one shell", f.shells, f.faces,
+                                      body.surfaces.size(), f.problems.empty() ? "" : "; " + f.problems));
+      }
+      continue;
+    }
     const bool solid = body.form != StepForm::Wireframe;
     if (!f.valid || (solid && (f.solids != 1 || !f.closed || !(f.volume > 0.0)))) {
       throw OutputError("step", fmt::format("step: OpenCASCADE finds the {} of '{}' {} ({} solids, {} faces, "

@@ -4,6 +4,7 @@
 // module builds the exact curves as OpenCASCADE edges, the solids from them,
 // and writes or reads the file.
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -43,6 +44,19 @@ enum class StepForm {
   Revolution,  ///< one closed loop in the (radius, height) half-plane revolved about the z axis
   Wireframe,   ///< the loops as curves in the xy plane, no solid
   Carved,  ///< `block` minus loops[0] (a closed (radius, height) loop) revolved about z, with `hemispheres`
+  Sheet,   ///< `surfaces` as faces sewn along their shared borders into one open shell, no solid
+};
+
+/// A polynomial B-spline surface (a face of a Sheet): poles[k * v_poles + l],
+/// k along u, l along v; distinct knots with their multiplicities, clamped
+/// (the end multiplicities degree + 1).
+struct StepSurface {
+  std::string name;  ///< for messages (the patch's name)
+  int u_degree = 3, v_degree = 3;
+  std::vector<double> u_knots, v_knots;
+  std::vector<int> u_multiplicities, v_multiplicities;
+  std::size_t u_poles = 0, v_poles = 0;
+  std::vector<Vec3> poles;
 };
 
 /// A block about the z axis between two heights: a cylinder of `radius`, or a
@@ -72,6 +86,9 @@ struct StepBody {
   double height = 0.0;                      ///< Extrusion: > 0
   StepBlock block;                          ///< Carved
   std::vector<StepHemisphere> hemispheres;  ///< Carved
+  std::vector<StepSurface> surfaces;        ///< Sheet
+  /// Sheet: faces whose borders are closer than this are sewn (model units; > 0).
+  double sewing_tolerance = 0.0;
 };
 
 /// One file: its bodies in one unit of length (mm, cm, m or in), the file's own.
@@ -81,12 +98,14 @@ struct StepModel {
   std::vector<StepBody> bodies;
 };
 
-/// A solid (or a wireframe) as the module found it in a file it wrote or read.
+/// A solid (a sheet, a wireframe) as the module found it in a file it wrote or read.
 struct StepShapeFacts {
   bool valid = false;   ///< BRepCheck_Analyzer finds it valid
   bool closed = false;  ///< a solid whose shells are closed (no free edge)
-  int solids = 0, faces = 0, edges = 0;
-  double volume = 0.0;   ///< BRepGProp, in the file's unit cubed
+  int solids = 0, shells = 0, faces = 0, edges = 0;
+  int free_edges = 0;    ///< edges (not degenerate) that one face uses once: an open shell's border
+  double volume = 0.0;   ///< BRepGProp, in the file's unit cubed (solids; 0 for a sheet)
+  double area = 0.0;     ///< BRepGProp, the faces' area in the file's unit squared
   std::string problems;  ///< what BRepCheck_Analyzer objects to, when not valid
 };
 
@@ -118,6 +137,6 @@ struct StepModuleApi {
 };
 
 /// Changes whenever StepModel, StepWritten, StepRead or StepModuleApi change.
-inline constexpr int kStepModuleAbi = 2;
+inline constexpr int kStepModuleAbi = 3;
 
 }  // namespace fabmesh

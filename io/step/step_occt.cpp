@@ -13,6 +13,7 @@
 #include <BRepBuilderAPI_MakePolygon.hxx>
 #include <BRepBuilderAPI_MakeVertex.hxx>
 #include <BRepBuilderAPI_MakeWire.hxx>
+#include <BRepBuilderAPI_Sewing.hxx>
 #include <BRepCheck.hxx>
 #include <BRepCheck_Analyzer.hxx>
 #include <BRepCheck_Result.hxx>
@@ -27,6 +28,7 @@
 #include <BRep_Tool.hxx>
 #include <GProp_GProps.hxx>
 #include <Geom_BSplineCurve.hxx>
+#include <Geom_BSplineSurface.hxx>
 #include <Geom_BezierCurve.hxx>
 #include <Geom_Circle.hxx>
 #include <Geom_Ellipse.hxx>
@@ -48,6 +50,7 @@
 #include <TColStd_Array1OfReal.hxx>
 #include <TColStd_SequenceOfAsciiString.hxx>
 #include <TColgp_Array1OfPnt.hxx>
+#include <TColgp_Array2OfPnt.hxx>
 #include <TCollection_HAsciiString.hxx>
 #include <TopAbs.hxx>
 #include <TopExp.hxx>
@@ -59,6 +62,7 @@
 #include <TopoDS_Compound.hxx>
 #include <TopoDS_Edge.hxx>
 #include <TopoDS_Face.hxx>
+#include <TopoDS_Shell.hxx>
 #include <TopoDS_Wire.hxx>
 #include <UnitsMethods.hxx>
 #include <gp_Ax1.hxx>
@@ -299,7 +303,70 @@ TopoDS_Shape make_carved(const StepBody& body) {
   return solids.Extent() == 1 ? solids(1) : shape;  // else facts_of counts the solids
 }
 
+TColStd_Array1OfReal reals(const std::vector<double>& v) {
+  TColStd_Array1OfReal a(1, static_cast<int>(v.size()));
+  for (std::size_t i = 0; i < v.size(); ++i) a.SetValue(static_cast<int>(i) + 1, v[i]);
+  return a;
+}
+
+TColStd_Array1OfInteger integers(const std::vector<int>& v) {
+  TColStd_Array1OfInteger a(1, static_cast<int>(v.size()));
+  for (std::size_t i = 0; i < v.size(); ++i) a.SetValue(static_cast<int>(i) + 1, v[i]);
+  return a;
+}
+
+// One face of a sheet: the whole B-spline surface, its sides the face's
+// edges (a side that is one point within `tolerance` a degenerate edge).
+TopoDS_Face sheet_face(const StepSurface& s, double tolerance) {
+  if (s.poles.size() != s.u_poles * s.v_poles || s.u_poles < 2 || s.v_poles < 2)
+    throw std::runtime_error("patch '" + s.name + "': its poles are not a grid");
+  TColgp_Array2OfPnt poles(1, static_cast<int>(s.u_poles), 1, static_cast<int>(s.v_poles));
+  for (std::size_t k = 0; k < s.u_poles; ++k) {
+    for (std::size_t l = 0; l < s.v_poles; ++l) {
+      const Vec3& p = s.poles[k * s.v_poles + l];
+      poles.SetValue(static_cast<int>(k) + 1, static_cast<int>(l) + 1, gp_Pnt(p.x(), p.y(), p.z()));
+    }
+  }
+  Handle(Geom_BSplineSurface) surface =
+      new Geom_BSplineSurface(poles, reals(s.u_knots), reals(s.v_knots), integers(s.u_multiplicities),
+                              integers(s.v_multiplicities), s.u_degree, s.v_degree);
+  BRepBuilderAPI_MakeFace face(surface, tolerance);
+  if (!face.IsDone()) throw std::runtime_error("patch '" + s.name + "': OpenCASCADE makes no face of it");
+  if (BRepCheck_Analyzer(face.Face()).IsValid() != Standard_True)
+    throw std::runtime_error("patch '" + s.name + "': OpenCASCADE finds its face not valid");
+  return face.Face();
+}
+
+// The faces sewn along their common borders: one shell, or refused.
+TopoDS_Shape make_sheet(const StepBody& body) {
+  if (body.surfaces.empty()) throw std::runtime_error("a sheet without faces");
+  if (!(body.sewing_tolerance > 0.0)) throw std::runtime_error("a sheet without a sewing tolerance");
+  BRepBuilderAPI_Sewing sewing(body.sewing_tolerance);
+  for (const StepSurface& s : body.surfaces) sewing.Add(sheet_face(s, body.sewing_tolerance));
+  sewing.Perform();
+  const TopoDS_Shape sewn = sewing.SewedShape();
+  if (sewn.ShapeType() == TopAbs_FACE) {
+    TopoDS_Shell shell;
+    BRep_Builder builder;
+    builder.MakeShell(shell);
+    builder.Add(shell, sewn);
+    return shell;
+  }
+  // The pieces: the shells, and the faces sewn to none.
+  TopTools_IndexedMapOfShape shells, faces, in_shells;
+  TopExp::MapShapes(sewn, TopAbs_SHELL, shells);
+  TopExp::MapShapes(sewn, TopAbs_FACE, faces);
+  for (int i = 1; i <= shells.Extent(); ++i) TopExp::MapShapes(shells(i), TopAbs_FACE, in_shells);
+  const int pieces = shells.Extent() + faces.Extent() - in_shells.Extent();
+  if (pieces != 1 || shells.Extent() != 1) {
+    throw std::runtime_error("the patches' faces, sewn, make " + std::to_string(pieces) +
+                             " pieces, not one shell: some patches do not meet along whole borders");
+  }
+  return shells(1);
+}
+
 TopoDS_Shape make_body(const StepBody& body) {
+  if (body.form == StepForm::Sheet) return make_sheet(body);
   if (body.loops.empty()) throw std::runtime_error("a body without loops");
   if (body.form == StepForm::Wireframe) {
     TopoDS_Compound compound;
@@ -359,9 +426,12 @@ StepShapeFacts facts_of(const TopoDS_Shape& shape) {
       }
     }
   }
-  if (f.solids > 0) {
-    // Closed: every edge that is not degenerate (a revolution's pole) is used
-    // twice by the faces (a seam twice by its one face).
+  map.Clear();
+  TopExp::MapShapes(shape, TopAbs_SHELL, map);
+  f.shells = map.Extent();
+  if (f.faces > 0) {
+    // Every edge that is not degenerate (a revolution's pole) used twice by
+    // the faces (a seam twice by its one face), but for an open shell's border.
     TopTools_IndexedMapOfShape edges;
     std::vector<int> uses;
     for (TopExp_Explorer face(shape, TopAbs_FACE); face.More(); face.Next()) {
@@ -371,12 +441,19 @@ StepShapeFacts facts_of(const TopoDS_Shape& shape) {
         ++uses[static_cast<std::size_t>(i) - 1];
       }
     }
-    f.closed = true;
+    bool all_twice = true;
     for (int i = 1; i <= edges.Extent(); ++i) {
-      if (!BRep_Tool::Degenerated(TopoDS::Edge(edges.FindKey(i))) &&
-          uses[static_cast<std::size_t>(i) - 1] != 2)
-        f.closed = false;
+      if (BRep_Tool::Degenerated(TopoDS::Edge(edges.FindKey(i)))) continue;
+      const int n = uses[static_cast<std::size_t>(i) - 1];
+      if (n != 2) all_twice = false;
+      if (n == 1) ++f.free_edges;
     }
+    f.closed = f.solids > 0 && all_twice;
+    GProp_GProps surface;
+    BRepGProp::SurfaceProperties(shape, surface);
+    f.area = surface.Mass();
+  }
+  if (f.solids > 0) {
     GProp_GProps props;
     BRepGProp::VolumeProperties(shape, props);
     f.volume = props.Mass();
@@ -454,8 +531,10 @@ StepWritten write_model(const StepModel& m) {
     for (const StepBody& body : m.bodies) {
       const TopoDS_Shape shape = make_body(body);
       out.bodies.push_back(facts_of(shape));
-      const STEPControl_StepModelType mode =
-          body.form == StepForm::Wireframe ? STEPControl_GeometricCurveSet : STEPControl_ManifoldSolidBrep;
+      const STEPControl_StepModelType mode = body.form == StepForm::Wireframe ? STEPControl_GeometricCurveSet
+                                             : body.form == StepForm::Sheet
+                                                 ? STEPControl_ShellBasedSurfaceModel
+                                                 : STEPControl_ManifoldSolidBrep;
       if (writer.Transfer(shape, mode) != IFSelect_RetDone) {
         out.error = "OpenCASCADE could not translate body '" + body.name + "' into STEP";
         return;

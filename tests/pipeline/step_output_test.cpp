@@ -1,6 +1,7 @@
 // The `step` output read back by OpenCASCADE's own STEP reader: one valid
 // closed solid per design, in the design's unit, its volume the exact one,
 // the mesh's vertices on its faces within the mesh's proven deviation.
+// An open surface: one shell of B-spline faces within the reported bound.
 
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -10,6 +11,7 @@
 
 #include "geometry/fairing/build_curve.h"
 #include "geometry/mould/mould_options.h"
+#include "geometry/surfaces/patch_network.h"
 #include "io/design/read_design.h"
 #include "io/file.h"
 #include "io/mesh/read_mesh.h"
@@ -391,4 +393,121 @@ body:
   for (const StepShapeFacts& part : parts)
     CHECK(part.volume == Approx(2.0 / 3.0 * M_PI * 1000.0).epsilon(1e-9));
   CHECK(w.step.find("'beads part 2'") != std::string::npos);
+}
+
+TEST_CASE("step: an open surface is one shell of B-spline faces, sewn along its shared borders",
+          "[pipeline][step][surface]") {
+  const fs::path dir = fresh_dir("step_surface");
+  const Written w = run_step(example("surface_basin_open.yaml"), dir);
+  CHECK(w.item["files"][0]["units"] == "mm");
+  const double added = w.item["files"][0]["max_added_error"].get<double>();
+  CHECK(added > 0.0);  // H-Bézier patches are not B-splines: approximated, proven
+  CHECK(w.item["max_deviation"].get<double>() + added <= w.item["tolerance"].get<double>());
+
+  const StepRead r = read_step(w.step);
+  INFO(r.error);
+  REQUIRE(r.error.empty());
+  CHECK(r.length_unit == "millimetre");
+  REQUIRE(r.roots.size() == 1);
+  const StepShapeFacts& sheet = r.roots[0];
+  INFO(sheet.problems);
+  CHECK(sheet.valid);
+  CHECK(sheet.solids == 0);
+  CHECK(sheet.shells == 1);
+  CHECK(sheet.faces == 4);  // one per patch
+  CHECK_FALSE(sheet.closed);
+  // Sewn: the 4 shared borders are one edge each, used by both faces; only
+  // the rim's 8 sides (two per patch) are free.
+  CHECK(sheet.edges == 12);
+  CHECK(sheet.free_edges == 8);
+
+  // The exact surface lies within the reported bound of the faces.
+  const Design design = read_design(example("surface_basin_open.yaml"));
+  const PatchNetwork network = build_patch_network(std::get<SurfaceDesign>(design.body).patches);
+  std::vector<Vec3> points;
+  for (const HBezierPatch& patch : network.patches) {
+    for (int i = 0; i <= 16; ++i)
+      for (int j = 0; j <= 16; ++j) points.push_back(patch.point(i / 16.0, j / 16.0));
+  }
+  CHECK(max_distance_to_step(w.step, points) <= added + 1e-9);
+
+  // The viewing mesh lies on the faces within its deviation and the file's bound; the areas agree.
+  const MeshRun mesh =
+      mesh_run(example("surface_basin_open.yaml"), "stl", fresh_dir("step_surface_mesh"), 7, 1.0);
+  CHECK(sheet.area == Approx(mesh.item["area"].get<double>()).epsilon(1e-3));
+  CHECK(max_distance_to_step(w.step, mesh.points) <=
+        mesh.item["max_deviation"].get<double>() + added +
+            mesh.item["files"][0]["max_added_error"].get<double>() + 1e-9);
+}
+
+TEST_CASE("step: a thickened surface is still refused at its outputs entry", "[pipeline][step][surface]") {
+  const fs::path dir = fresh_dir("step_surface_shell");
+  std::string out;
+  CHECK(
+      run_cli({"run", example("surface_basin_shell.yaml"), "-o", dir.string() + "/", "-D", "outputs=[step]"},
+              &out) != 0);
+  CHECK_THAT(out, Catch::Contains("outputs[0]: step needs an open surface (no `thickness`)") &&
+                      Catch::Contains("only open surfaces are written as STEP yet"));
+  CHECK(fs::is_empty(dir));
+}
+
+TEST_CASE("step: a patch with a side collapsed to a point is a face with a degenerate edge",
+          "[pipeline][step][surface]") {
+  const fs::path dir = fresh_dir("step_surface_pole");
+  const std::string dome = R"(kind: surface
+name: dome
+tolerance: 0.01
+purpose: view
+patches:
+  - name: quarter
+    points:
+      - [[0, 0, 10], [0, 0, 10], [0, 0, 10], [0, 0, 10]]
+      - [[5, 0, 10], [5, 2.8, 10], [2.8, 5, 10], [0, 5, 10]]
+      - [[10, 0, 5], [10, 5.5, 5], [5.5, 10, 5], [0, 10, 5]]
+      - [[10, 0, 0], [10, 5.5, 0], [5.5, 10, 0], [0, 10, 0]]
+)";
+  write_text(dir / "dome.yaml", dome);
+  const Written w = run_step((dir / "dome.yaml").string(), dir / "out");
+  const double added = w.item["files"][0]["max_added_error"].get<double>();
+  CHECK(added <= 0.01);
+  const StepRead r = read_step(w.step);
+  INFO(r.error);
+  REQUIRE(r.roots.size() == 1);
+  INFO(r.roots[0].problems);
+  CHECK(r.roots[0].valid);
+  CHECK(r.roots[0].shells == 1);
+  CHECK(r.roots[0].faces == 1);
+  CHECK(r.roots[0].edges == 4);       // the pole a degenerate edge
+  CHECK(r.roots[0].free_edges == 3);  // the others the border
+}
+
+TEST_CASE("step: patches that do not make one shell are an output error, nothing written",
+          "[pipeline][step][surface]") {
+  // Two patches apart: each a face, but no border joins them.
+  const fs::path dir = fresh_dir("step_surface_apart");
+  const std::string apart = R"(kind: surface
+name: apart
+tolerance: 0.01
+purpose: view
+patches:
+  - name: left
+    points:
+      - [[0, 0, 0], [0, 1, 0], [0, 2, 0], [0, 3, 0]]
+      - [[1, 0, 0], [1, 1, 1], [1, 2, 1], [1, 3, 0]]
+      - [[2, 0, 0], [2, 1, 1], [2, 2, 1], [2, 3, 0]]
+      - [[3, 0, 0], [3, 1, 0], [3, 2, 0], [3, 3, 0]]
+  - name: right
+    points:
+      - [[5, 0, 0], [5, 1, 0], [5, 2, 0], [5, 3, 0]]
+      - [[6, 0, 0], [6, 1, 1], [6, 2, 1], [6, 3, 0]]
+      - [[7, 0, 0], [7, 1, 1], [7, 2, 1], [7, 3, 0]]
+      - [[8, 0, 0], [8, 1, 0], [8, 2, 0], [8, 3, 0]]
+)";
+  write_text(dir / "apart.yaml", apart);
+  std::string out;
+  CHECK(run_cli({"run", (dir / "apart.yaml").string(), "--export-format", "step", "-o",
+                 (dir / "out").string() + "/"},
+                &out) != 0);
+  CHECK_THAT(out, Catch::Contains("make 2 pieces, not one shell"));
+  CHECK_FALSE(fs::exists(dir / "out" / "apart.step"));
 }

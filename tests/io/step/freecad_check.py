@@ -1,6 +1,7 @@
 # Run by FreeCAD's command line (freecadcmd): imports each STEP file named in
 # FABMESH_STEP_FILES (separated by ':') with FreeCAD's Part workbench and
-# prints one JSON line per file: valid, closed, solids, faces, edges, volume.
+# prints one JSON line per file: valid, closed, solids, shells, faces, edges,
+# volume, area.
 # The shell test (freecad_step_test.sh) judges them.
 import json
 import os
@@ -17,9 +18,11 @@ for path in os.environ["FABMESH_STEP_FILES"].split(":"):
             "valid": shape.isValid(),
             "closed": all(s.isClosed() for s in shape.Shells) if shape.Shells else False,
             "solids": len(shape.Solids),
+            "shells": len(shape.Shells),
             "faces": len(shape.Faces),
             "edges": len(shape.Edges),
             "volume": shape.Volume if shape.Solids else 0.0,
+            "area": shape.Area,
         }
     except Exception as e:  # FreeCAD raises its own Base.FreeCADError
         facts = {"path": path, "read": False, "error": str(e)}

@@ -4,11 +4,12 @@
 # OpenCASCADE's reader inside) imports each: a valid shape; for a countertop
 # or a vessel one closed solid of positive volume; for a curve a wireframe;
 # for a mould (`mould_step`, every example with a `mould:`) one closed solid
-# per part, as many as the mould's STL parts.
+# per part, as many as the mould's STL parts; for an open surface one open
+# shell of B-spline faces, one per patch, of positive area.
 # The golden solid, designed in cm, must come in at 46.171424531125 cm^3
 # (FreeCAD works in mm): the file's unit is read as written.
-# Surfaces, which have no STEP output yet, must be refused as bad input
-# naming why. Usage: freecad_step_test.sh FABMESH SOURCE_DIR
+# Thickened surfaces, which have no STEP output yet, must be refused as bad
+# input naming why. Usage: freecad_step_test.sh FABMESH SOURCE_DIR
 set -uo pipefail
 fabmesh=$1 source=$2
 command -v freecadcmd >/dev/null || { echo "FAIL: freecadcmd is not installed (scripts/install-deps.sh --test)"; exit 1; }
@@ -27,8 +28,8 @@ for design in "$source"/configs/examples/*.yaml; do
     step=$(compgen -G "$work/$name/*.step" | head -n 1)
     [[ -n $step ]] || { fail "$name: exit 0 but no STEP file"; continue; }
     files+=("$step")
-  elif [[ $name == surface_* ]] && grep -qE "step \(STEP.*\) is made for" "$work/$name.log"; then
-    echo "refused as it should be: $name: $(grep -oE 'is made for .{0,60}' "$work/$name.log" | head -n 1)"
+  elif [[ $name == surface_* ]] && grep -qE "step needs an open surface" "$work/$name.log"; then
+    echo "refused as it should be: $name: $(grep -oE 'step needs .{0,60}' "$work/$name.log" | head -n 1)"
   else
     cat "$work/$name.log"
     fail "$name: no STEP file"
@@ -67,11 +68,17 @@ else:
     if not f["valid"]:
         problems.append("not valid")
     curve = f["solids"] == 0 and f["faces"] == 0
+    sheet = f["solids"] == 0 and f["faces"] > 0
     if curve:
         if f["edges"] < 1:
             problems.append("no edges")
+    elif sheet:
+        if f["shells"] != 1 or f["closed"] or not f["area"] > 0:
+            problems.append(f"not one open shell of positive area: {f}")
     elif f["solids"] != solids or not f["closed"] or not f["volume"] > 0:
         problems.append(f"not {solids} closed solid(s): {f}")
+    if name == "surface_basin_open.step" and (not sheet or f["faces"] != 4):
+        problems.append(f"not a shell of 4 faces (one per patch): {f}")
     if name == "vessel_golden_solid.step" and abs(f["volume"] / 46171.424531125 - 1) > 1e-7:
         problems.append(f"volume {f['volume']} mm^3, not 46171.424531125 (46.171424531125 cm^3)")
 print(name + (": " + "; ".join(problems) if problems else ": ok"))
@@ -88,4 +95,4 @@ if ((failures > 0)); then
   echo "$failures failure(s)"
   exit 1
 fi
-echo "FreeCAD imports all ${#files[@]} STEP files: valid, each solid closed"
+echo "FreeCAD imports all ${#files[@]} STEP files: valid, each solid closed, each sheet one shell"
