@@ -53,6 +53,31 @@ const char* kSmall =
     "  - ellipse: {center: [200, 200], a: 120, b: 80, rotation_deg: 20}\n"
     "  - rounded_rect: {center: [550, 200], size: [300, 200], radius: 30}\n";
 
+// The drawing a run wrote as DIR/first/DXF, read back as a countertop of its
+// own (outline on layer OUTLINE, cut-outs on HOLES) and run: its report item,
+// checked to hold the first run's volume and region area within 1e-9 (of the
+// volume, of size^2).
+nlohmann::json run_written_drawing(const fs::path& dir, const std::string& dxf, const nlohmann::json& first,
+                                   double size) {
+  write_text(dir / "first" / "back.yaml",
+             "name: back\nkind: countertop\nunits: mm\ntolerance: 0.05\nthickness: 30\n"
+             "outline: {dxf: " +
+                 dxf +
+                 ", layer: OUTLINE}\n"
+                 "holes: [{dxf: " +
+                 dxf + ", layer: HOLES}]\noutputs: [stl]\n");
+  std::string out;
+  REQUIRE(
+      run_cli_json({"run", (dir / "first" / "back.yaml").string(), "-o", (dir / "back").string(), "--json"},
+                   &out) == 0);
+  const auto back = only_item(out);
+  CHECK(std::abs(back["volume"].get<double>() - first["volume"].get<double>()) <=
+        1e-9 * first["volume"].get<double>());
+  CHECK(std::abs(back["build"]["region_area"].get<double>() - first["build"]["region_area"].get<double>()) <=
+        1e-9 * size * size);
+  return back;
+}
+
 }  // namespace
 
 TEST_CASE("countertop examples: valid slabs, genus = holes, volume = exact area x thickness",
@@ -239,20 +264,8 @@ TEST_CASE("countertop from a DXF template: the DXF fabmesh writes reads back int
   CHECK(first["genus"] == 3);
   CHECK(first["notes"].dump().find("$INSUNITS 4 (mm)") != std::string::npos);
   // The written outline (lines, arcs and ellipses on layers OUTLINE and HOLES) as a design of its own.
-  write_text(dir / "first" / "back.yaml",
-             "name: back\nkind: countertop\nunits: mm\ntolerance: 0.05\nthickness: 30\n"
-             "outline: {dxf: countertop_dxf_template.dxf, layer: OUTLINE}\n"
-             "holes: [{dxf: countertop_dxf_template.dxf, layer: HOLES}]\noutputs: [stl]\n");
-  out.clear();
-  REQUIRE(
-      run_cli_json({"run", (dir / "first" / "back.yaml").string(), "-o", (dir / "back").string(), "--json"},
-                   &out) == 0);
-  const auto back = only_item(out);
   const double size = 2400.0;
-  CHECK(std::abs(back["volume"].get<double>() - first["volume"].get<double>()) <=
-        1e-9 * first["volume"].get<double>());
-  CHECK(std::abs(back["build"]["region_area"].get<double>() - first["build"]["region_area"].get<double>()) <=
-        1e-9 * size * size);
+  run_written_drawing(dir, "countertop_dxf_template.dxf", first, size);
   // And the exact region of the design read back equals the template's, term by term.
   const auto [area, perimeter] =
       exact_region(std::get<CountertopDesign>(read_design((dir / "first" / "back.yaml").string()).body));
@@ -326,21 +339,8 @@ TEST_CASE(
   CHECK(types["SPLINE@HOLES"] == 2 + 4 + 2);
   CHECK(types.size() == 2);
   // The written drawing as a design of its own.
-  write_text(dir / "first" / "back.yaml",
-             "name: back\nkind: countertop\nunits: mm\ntolerance: 0.05\nthickness: 30\n"
-             "outline: {dxf: nurbs.dxf, layer: OUTLINE}\n"
-             "holes: [{dxf: nurbs.dxf, layer: HOLES}]\noutputs: [stl]\n");
-  out.clear();
-  REQUIRE(
-      run_cli_json({"run", (dir / "first" / "back.yaml").string(), "-o", (dir / "back").string(), "--json"},
-                   &out) == 0);
-  const auto back = only_item(out);
   const double size = 1300.0;
-  CHECK(back["genus"] == 3);
-  CHECK(std::abs(back["volume"].get<double>() - first["volume"].get<double>()) <=
-        1e-9 * first["volume"].get<double>());
-  CHECK(std::abs(back["build"]["region_area"].get<double>() - first["build"]["region_area"].get<double>()) <=
-        1e-9 * size * size);
+  CHECK(run_written_drawing(dir, "nurbs.dxf", first, size)["genus"] == 3);
   // The design read back is made of the same rational spans, and its exact region is the template's.
   const Design read_back = read_design((dir / "first" / "back.yaml").string());
   const auto& top = std::get<CountertopDesign>(read_back.body);

@@ -49,6 +49,15 @@ double sampled_extreme(const Segment& seg, int axis, double sign, int samples = 
   return sign * std::max({f(a), f(b), f(static_cast<double>(best) / samples)});
 }
 
+// Each entity of `loop` starts where the previous one ends (the last where the first starts).
+void check_chained(const CutLoop& loop) {
+  for (std::size_t i = 0; i < loop.entities.size(); ++i) {
+    const Vec2 end = loop.entities[i].points.back();
+    const Vec2 next = loop.entities[(i + 1) % loop.entities.size()].points.front();
+    CHECK((end - next).norm() < 1e-9);
+  }
+}
+
 }  // namespace
 
 TEST_CASE("cut_loop: a rational Bezier segment is one Spline entity with its exact points and weights",
@@ -74,11 +83,7 @@ TEST_CASE("cut_loop: a rational Bezier segment is one Spline entity with its exa
   for (int i = 0; i <= 100; ++i)
     CHECK((spline_point(spline, i / 100.0) - span.point(i / 100.0)).norm() < 1e-12);
   // The chain closes: each entity starts where the previous one ends.
-  for (std::size_t i = 0; i < loop.entities.size(); ++i) {
-    const Vec2 end = loop.entities[i].points.back();
-    const Vec2 next = loop.entities[(i + 1) % loop.entities.size()].points.front();
-    CHECK((end - next).norm() < 1e-9);
-  }
+  check_chained(loop);
 }
 
 TEST_CASE("cut_loop: a reversed loop reverses a Spline's points and weights",
@@ -100,11 +105,7 @@ TEST_CASE("cut_loop: a reversed loop reverses a Spline's points and weights",
   // The reversed entity runs the same points backwards.
   for (int i = 0; i <= 100; ++i)
     CHECK((spline_point(spline, i / 100.0) - span.point(1.0 - i / 100.0)).norm() < 1e-12);
-  for (std::size_t i = 0; i < loop.entities.size(); ++i) {
-    const Vec2 end = loop.entities[i].points.back();
-    const Vec2 next = loop.entities[(i + 1) % loop.entities.size()].points.front();
-    CHECK((end - next).norm() < 1e-9);
-  }
+  check_chained(loop);
 }
 
 TEST_CASE("cut_loop: a Spline breaks a polyline run, and the runs across a closed loop's start join",

@@ -193,15 +193,7 @@ TEST_CASE("dxf: two encodes are byte-identical and every handle reference names 
   // Group codes 330/340/350/360 point at handles (group 5 or 105): a pointer to
   // no handle is uninitialised memory (as DIMSTYLE's 340 was under a style not
   // named "Standard").
-  std::istringstream in(first);
-  std::vector<std::pair<std::string, std::string>> pairs;
-  std::string code, value;
-  auto trim = [](std::string s) {
-    s.erase(0, s.find_first_not_of(" \r"));
-    s.erase(s.find_last_not_of(" \r") + 1);
-    return s;
-  };
-  while (std::getline(in, code) && std::getline(in, value)) pairs.emplace_back(trim(code), trim(value));
+  const auto pairs = dxf_pairs(first);
   std::set<std::string> handles;
   for (const auto& [c, v] : pairs) {
     if (c == "5" || c == "105") handles.insert(v);
