@@ -5,31 +5,18 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numeric>
 
+#include "geometry/core/disjoint_sets.h"
 #include "geometry/core/errors.h"
 #include "geometry/surfaces/cell_bound.h"
 
 namespace fabmesh {
 namespace {
 
-// Directions of patches (slot 2 p + 0: along s, + 1: along t) tied by shared
-// borders, so that they get one number of intervals. On a uniform grid a
-// reversed border has the same breaks: no orientation is kept.
-class TiedDirections {
- public:
-  explicit TiedDirections(std::size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
-  std::size_t find(std::size_t x) const {
-    while (parent_[x] != x) x = parent_[x];
-    return x;
-  }
-  void unite(std::size_t a, std::size_t b) { parent_[find(b)] = find(a); }
-
- private:
-  std::vector<std::size_t> parent_;
-};
-
-// A u side (row i = 0 or 3) runs along t.
+// The slot of a patch's direction a side runs along (2 p + 0: along s, + 1:
+// along t; a u side, row i = 0 or 3, runs along t). Directions tied by shared
+// borders get one number of intervals; on a uniform grid a reversed border
+// has the same breaks, so no orientation is kept.
 std::size_t slot_along(std::size_t patch, PatchSide side) {
   return 2 * patch + (side == PatchSide::UMin || side == PatchSide::UMax ? 1 : 0);
 }
@@ -159,7 +146,7 @@ BSplineNetwork bspline_network(const PatchNetwork& network, double tolerance, in
     count[2 * p + 1] = nv;
   }
   // More intervals never raise a bound (e_i and sup |h_i| + e_i only shrink): take each tied class's largest.
-  TiedDirections tied(2 * np);
+  DisjointSets<std::size_t> tied(2 * np);
   for (const SharedBorder& b : network.borders)
     tied.unite(slot_along(b.a, b.side_a), slot_along(b.b, b.side_b));
   std::vector<int> largest(2 * np, 1);

@@ -130,6 +130,19 @@ gp_Pnt place(const Vec2& p, StepForm form) {
   return revolved(form) ? gp_Pnt(p.x(), 0.0, p.y()) : gp_Pnt(p.x(), p.y(), 0.0);
 }
 
+// OCCT's 1-based arrays of a vector's values.
+TColStd_Array1OfReal reals(const std::vector<double>& v) {
+  TColStd_Array1OfReal a(1, static_cast<int>(v.size()));
+  for (std::size_t i = 0; i < v.size(); ++i) a.SetValue(static_cast<int>(i) + 1, v[i]);
+  return a;
+}
+
+TColStd_Array1OfInteger integers(const std::vector<int>& v) {
+  TColStd_Array1OfInteger a(1, static_cast<int>(v.size()));
+  for (std::size_t i = 0; i < v.size(); ++i) a.SetValue(static_cast<int>(i) + 1, v[i]);
+  return a;
+}
+
 TColgp_Array1OfPnt poles_of(const StepCurve& c, StepForm form) {
   TColgp_Array1OfPnt poles(1, static_cast<int>(c.poles.size()));
   for (std::size_t i = 0; i < c.poles.size(); ++i)
@@ -150,21 +163,14 @@ TopoDS_Edge make_edge(const StepCurve& c, StepForm form) {
       if (c.weights.empty()) {
         curve = new Geom_BezierCurve(poles);
       } else {
-        TColStd_Array1OfReal weights(1, static_cast<int>(c.weights.size()));
-        for (std::size_t i = 0; i < c.weights.size(); ++i)
-          weights.SetValue(static_cast<int>(i) + 1, c.weights[i]);
-        curve = new Geom_BezierCurve(poles, weights);
+        curve = new Geom_BezierCurve(poles, reals(c.weights));
       }
       return BRepBuilderAPI_MakeEdge(curve).Edge();
     }
     case StepCurve::Kind::BSpline: {
       const TColgp_Array1OfPnt poles = poles_of(c, form);
-      TColStd_Array1OfReal knots(1, static_cast<int>(c.knots.size()));
-      TColStd_Array1OfInteger mults(1, static_cast<int>(c.multiplicities.size()));
-      for (std::size_t i = 0; i < c.knots.size(); ++i) knots.SetValue(static_cast<int>(i) + 1, c.knots[i]);
-      for (std::size_t i = 0; i < c.multiplicities.size(); ++i)
-        mults.SetValue(static_cast<int>(i) + 1, c.multiplicities[i]);
-      Handle(Geom_BSplineCurve) curve = new Geom_BSplineCurve(poles, knots, mults, c.degree);
+      Handle(Geom_BSplineCurve) curve =
+          new Geom_BSplineCurve(poles, reals(c.knots), integers(c.multiplicities), c.degree);
       return BRepBuilderAPI_MakeEdge(curve).Edge();
     }
     case StepCurve::Kind::Conic: {
@@ -301,18 +307,6 @@ TopoDS_Shape make_carved(const StepBody& body) {
   TopTools_IndexedMapOfShape solids;
   TopExp::MapShapes(shape, TopAbs_SOLID, solids);
   return solids.Extent() == 1 ? solids(1) : shape;  // else facts_of counts the solids
-}
-
-TColStd_Array1OfReal reals(const std::vector<double>& v) {
-  TColStd_Array1OfReal a(1, static_cast<int>(v.size()));
-  for (std::size_t i = 0; i < v.size(); ++i) a.SetValue(static_cast<int>(i) + 1, v[i]);
-  return a;
-}
-
-TColStd_Array1OfInteger integers(const std::vector<int>& v) {
-  TColStd_Array1OfInteger a(1, static_cast<int>(v.size()));
-  for (std::size_t i = 0; i < v.size(); ++i) a.SetValue(static_cast<int>(i) + 1, v[i]);
-  return a;
 }
 
 // One face of a sheet: the whole B-spline surface, its sides the face's
