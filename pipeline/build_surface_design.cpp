@@ -193,6 +193,7 @@ BuiltMesh build(const SurfaceDesign& design, const BuildContext& context) {
   facts["shell_span"] = {span[0], span[1]};
   out.facts = std::move(facts);
   out.shape.patches = network;
+  if (context.wants_exact) out.shape.shell = shell_grid(sheet, span[0], span[1]);
   return out;
 }
 

@@ -15,6 +15,7 @@
 #include "geometry/mesh/soup.h"
 #include "geometry/sampling/cut_loop.h"
 #include "geometry/sampling/offset_bezier.h"
+#include "geometry/surfaces/bspline_shell.h"
 #include "geometry/surfaces/patch_network.h"
 #include "geometry/toolpath/toolpath.h"
 #include "geometry/validation/validate.h"
@@ -87,6 +88,9 @@ struct ExactMould {
 struct BuiltShape {
   std::vector<NamedBuiltCurve> curves;
   std::optional<PatchNetwork> patches;  ///< a surface's patch network
+  /// A thickened surface's sheets as proven by its tessellation, when an
+  /// output needs the exact shape (BuildContext::wants_exact).
+  std::optional<ShellGrid> shell;
   /// The exact solid, when the design's kind has one fabmesh can write
   /// exactly (countertops, solid vessels).
   std::optional<ExactSolid> solid;
@@ -128,6 +132,7 @@ struct BuildContext {
   /// Memory this process can use, bytes (process_memory_limit()); builders
   /// that know their arrays' size in advance refuse larger meshes with it.
   std::size_t memory_limit = std::numeric_limits<std::size_t>::max();
+  bool wants_exact = false;  ///< an output writes the exact shape (step)
 };
 
 /// The smaller of this machine's physical memory and the process's address

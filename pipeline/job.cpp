@@ -116,6 +116,8 @@ JobReport build_and_encode(const Design& design, const JobOptions& options, cons
   const double export_scale = metres_per_unit(common.units) / metres_per_unit(common.export_units);
   BuildContext context{common, (1.0 - kOutputShare) * common.tolerance, wants_cutting, watch,
                        process_memory_limit()};
+  context.wants_exact = std::any_of(formats.begin(), formats.end(),
+                                    [](const OutputFormat* f) { return f->content == OutputContent::Exact; });
   const BuiltMesh built = build_within_budget(design, context, formats, export_scale);
   if (options.on_built) options.on_built(built);
   report.build_tolerance = context.tolerance;

@@ -8,6 +8,7 @@
 #include "geometry/core/errors.h"
 #include "geometry/core/float32.h"
 #include "geometry/surfaces/bspline_patch.h"
+#include "geometry/surfaces/bspline_shell.h"
 #include "geometry/validation/validate.h"
 #include "io/cutting/dxf.h"
 #include "io/cutting/gcode.h"
@@ -372,37 +373,66 @@ Files step_file(const EncodeContext& c, const StepModel& model, double added) {
   return {std::move(e)};
 }
 
+StepSurface step_surface(BSplineFace f) {
+  StepSurface s;
+  s.name = std::move(f.name);
+  s.u_degree = f.u_degree;
+  s.v_degree = f.v_degree;
+  s.u_knots = std::move(f.u_knots);
+  s.v_knots = std::move(f.v_knots);
+  s.u_multiplicities = std::move(f.u_multiplicities);
+  s.v_multiplicities = std::move(f.v_multiplicities);
+  s.u_poles = f.u_poles;
+  s.v_poles = f.v_poles;
+  s.poles = std::move(f.poles);
+  return s;
+}
+
+// A surface's B-spline faces as one body: sewn into an open shell (Sheet) or
+// a closed one (Closed). Border curves agree to the poles' rounding (about
+// 1e-13 of the size).
+Files step_faces(const EncodeContext& c, const PatchNetwork& network, std::vector<BSplineFace> faces,
+                 StepForm form, double bound, StepModel model) {
+  StepBody body;
+  body.name = c.common.name;
+  body.form = form;
+  body.sewing_tolerance = 1e-7 * network.size;
+  for (BSplineFace& f : faces) body.surfaces.push_back(step_surface(std::move(f)));
+  model.bodies.push_back(std::move(body));
+  return step_file(c, model, bound);
+}
+
 // An open surface as one shell of B-spline faces, one per patch, sewn along
 // the shared borders: each patch within what the build left of the
 // tolerance (geometry/surfaces/bspline_patch.h), the largest bound the file's
-// added error.
-Files step_sheet(const EncodeContext& c, const PatchNetwork& network, StepModel model) {
-  BSplineNetwork sheet;
+// added error. A thickened one as the closed shell of its sheets and walls
+// (geometry/surfaces/bspline_shell.h): the sheet on the surface so, an
+// offset sheet through the proven mesh's grid, within the mesh's bound.
+Files step_surface_body(const EncodeContext& c, const PatchNetwork& network, StepModel model) {
+  const std::optional<ShellGrid>& grid = c.built.shape.shell;
+  if (!grid && c.built.purpose == MeshPurpose::Fabrication) {
+    throw OutputError("step",
+                      "step: the shell's grid was not kept by its build (it did not know a step "
+                      "output was asked for)");
+  }
+  std::vector<BSplineFace> faces;
+  double bound = 0.0;
   try {
-    sheet = bspline_network(network, c.output_tolerance);
+    if (grid) {
+      BSplineShell shell = bspline_shell(network, *grid, c.output_tolerance);
+      faces = std::move(shell.faces);
+      bound = shell.bound;
+    } else {
+      BSplineNetwork sheet = bspline_network(network, c.output_tolerance);
+      for (std::size_t p = 0; p < sheet.patches.size(); ++p)
+        faces.push_back(bspline_face(sheet.patches[p], network.names[p]));
+      bound = sheet.max_bound;
+    }
   } catch (const InputError& e) {
     throw OutputError("step", std::string("step: ") + e.what());
   }
-  StepBody body;
-  body.name = c.common.name;
-  body.form = StepForm::Sheet;
-  // Border curves agree to the poles' rounding (about 1e-13 of the size).
-  body.sewing_tolerance = 1e-7 * network.size;
-  for (std::size_t p = 0; p < sheet.patches.size(); ++p) {
-    BSplinePatch& b = sheet.patches[p];
-    StepSurface s;
-    s.name = network.names[p];
-    s.u_knots = b.u.knots;
-    s.v_knots = b.v.knots;
-    s.u_multiplicities = b.u.multiplicities;
-    s.v_multiplicities = b.v.multiplicities;
-    s.u_poles = b.u_poles;
-    s.v_poles = b.v_poles;
-    s.poles = std::move(b.poles);
-    body.surfaces.push_back(std::move(s));
-  }
-  model.bodies.push_back(std::move(body));
-  return step_file(c, model, sheet.max_bound);
+  return step_faces(c, network, std::move(faces), grid ? StepForm::Closed : StepForm::Sheet, bound,
+                    std::move(model));
 }
 
 // The exact solid (or, for a curve design, its curves; for an open surface
@@ -413,10 +443,7 @@ Files encode_step_output(const EncodeContext& c) {
   StepModel model;
   model.name = c.common.name;
   model.unit = c.common.units;
-  if (const auto& network = c.built.shape.patches) {
-    // Only open surfaces get here: resolve_outputs refuses step for shells (has_content).
-    return step_sheet(c, *network, std::move(model));
-  }
+  if (const auto& network = c.built.shape.patches) return step_surface_body(c, *network, std::move(model));
   StepLoops loop_of(c.output_tolerance);
   StepBody body;
   body.name = c.common.name;
@@ -550,7 +577,8 @@ std::vector<OutputFormat> make_table() {
        ".toolpath.svg", &encode_toolpath_svg_output},
       {"step",
        "STEP (AP214) of the exact geometry in the design's unit: a countertop's or a vessel's solid, a "
-       "curve's wireframe, an open surface's patches as B-spline faces sewn into one shell",
+       "curve's wireframe, a surface's patches as B-spline faces sewn into one shell (closed: a thickened "
+       "surface's solid)",
        OutputContent::Exact,
        every,
        {},
@@ -610,10 +638,8 @@ bool has_content(const Design& design, OutputContent content) {
     }
     case OutputContent::Design:
       return true;
-    case OutputContent::Exact: {
-      const auto* surface = std::get_if<SurfaceDesign>(&design.body);
-      return surface == nullptr || !(surface->thickness > 0.0);
-    }
+    case OutputContent::Exact:
+      return true;
     case OutputContent::Toolpath: {
       const auto* c = std::get_if<CountertopDesign>(&design.body);
       return c != nullptr && c->cnc.has_value();
@@ -661,10 +687,7 @@ std::vector<const OutputFormat*> resolve_outputs(const Design& design) {
     if (!has_content(design, format->content)) {
       const char* needs = format->content == OutputContent::MouldParts ? "a `mould:` section"
                           : format->content == OutputContent::Toolpath ? "a `cnc:` section"
-                          : format->content == OutputContent::Exact
-                              ? "an open surface (no `thickness`): only open surfaces are written as STEP "
-                                "yet, not thickened shells"
-                              : "a curve, a vessel or a countertop";
+                                                                       : "a curve, a vessel or a countertop";
       throw FileError(design.common.path, r.line, r.column,
                       fmt::format("{}: {} needs {}", r.where, r.format, needs));
     }

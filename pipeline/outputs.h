@@ -88,7 +88,7 @@ enum class OutputContent {
   MouldParts,  ///< the parts of a vessel's slip-casting mould (key `mould`)
   Toolpath,    ///< a countertop's router path (key `cnc`)
   Design,      ///< the design itself: its curves (a plot), whatever its kind
-  Exact,       ///< the exact solid (countertop, solid vessel), curves (curve) or open surface: step
+  Exact,       ///< the exact solid (countertop, vessel, thickened surface), curves, or open surface: step
 };
 
 /// True when `design` has what `content` is made from (a mould for MouldParts, ...).

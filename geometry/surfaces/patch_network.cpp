@@ -150,10 +150,8 @@ void find_shared_borders(PatchNetwork& net, const std::vector<PatchSpec>& specs,
   for (std::size_t q = 0; q < net.patches.size(); ++q) {
     for (std::size_t p = 0; p < q; ++p) {
       for (PatchSide sp : sides) {
+        if (collapsed_side(net.patches[p], sp, eps)) continue;  // a point, not a border
         const auto bp = border_points(net.patches[p], sp);
-        if ((bp[0] - bp[1]).norm() <= eps && (bp[0] - bp[2]).norm() <= eps && (bp[0] - bp[3]).norm() <= eps) {
-          continue;  // a collapsed side is a point, not a border
-        }
         for (PatchSide sq : sides) {
           const auto bq = border_points(net.patches[q], sq);
           bool same = true, rev = true;
@@ -235,6 +233,26 @@ std::array<double, 2> border_uv(PatchSide side, double x) {
       return {x, 1.0};
   }
   return {x, x};
+}
+
+bool collapsed_side(const HBezierPatch& patch, PatchSide side, double eps) {
+  const auto b = border_points(patch, side);
+  return (b[1] - b[0]).norm() <= eps && (b[2] - b[0]).norm() <= eps && (b[3] - b[0]).norm() <= eps;
+}
+
+std::vector<std::array<bool, 4>> outer_sides(const PatchNetwork& network) {
+  std::vector<std::array<bool, 4>> outer(network.patches.size(), {true, true, true, true});
+  for (const SharedBorder& b : network.borders) {
+    outer[b.a][static_cast<std::size_t>(b.side_a)] = false;
+    outer[b.b][static_cast<std::size_t>(b.side_b)] = false;
+  }
+  const double eps = 1e-12 * network.size;
+  for (std::size_t p = 0; p < network.patches.size(); ++p) {
+    for (PatchSide side : {PatchSide::UMin, PatchSide::UMax, PatchSide::VMin, PatchSide::VMax}) {
+      if (collapsed_side(network.patches[p], side, eps)) outer[p][static_cast<std::size_t>(side)] = false;
+    }
+  }
+  return outer;
 }
 
 std::array<Vec3, 3> join_curve_points(const std::array<Vec3, 4>& p, const HBezierParams& p_params,

@@ -85,6 +85,14 @@ const HBezierParams& border_params(const HBezierPatch& patch, PatchSide side);
 /// (s, t) of the point at parameter x in [0, 1] along a side.
 std::array<double, 2> border_uv(PatchSide side, double x);
 
+/// Whether a side's four control points are one point within `eps` (a pole).
+bool collapsed_side(const HBezierPatch& patch, PatchSide side, double eps);
+
+/// Which sides of each patch (indexed by PatchSide) are on the network's
+/// outer border: shared with no other patch and not collapsed to a point
+/// (within 1e-12 of the network's size).
+std::vector<std::array<bool, 4>> outer_sides(const PatchNetwork& network);
+
 /// Control points Q_1 (G1) and Q_2 (G2) of a curve joined at the end of
 /// P_0..P_3 (docs/math/h-bezier.md "Joining curves"), Q_0 = P_3. For G1 the `gamma` of
 /// `join` is rho; for G2 rho = k a1(p) / a0(q) and Q_2 follows. Returns

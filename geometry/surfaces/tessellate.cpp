@@ -228,31 +228,6 @@ std::pair<std::size_t, std::size_t> side_vertex(PatchSide side, std::size_t k, s
   return {0, 0};
 }
 
-bool collapsed(const HBezierPatch& p, PatchSide side, double eps) {
-  const auto b = border_points(p, side);
-  return (b[1] - b[0]).norm() <= eps && (b[2] - b[0]).norm() <= eps && (b[3] - b[0]).norm() <= eps;
-}
-
-}  // namespace
-
-namespace {
-
-// Which sides of each patch are on the network's outer border (not shared, not collapsed).
-std::vector<std::array<bool, 4>> outer_sides(const PatchNetwork& network) {
-  std::vector<std::array<bool, 4>> outer(network.patches.size(), {true, true, true, true});
-  for (const SharedBorder& b : network.borders) {
-    outer[b.a][static_cast<std::size_t>(b.side_a)] = false;
-    outer[b.b][static_cast<std::size_t>(b.side_b)] = false;
-  }
-  const double eps = 1e-12 * network.size;
-  for (std::size_t p = 0; p < network.patches.size(); ++p) {
-    for (PatchSide side : {PatchSide::UMin, PatchSide::UMax, PatchSide::VMin, PatchSide::VMax}) {
-      if (collapsed(network.patches[p], side, eps)) outer[p][static_cast<std::size_t>(side)] = false;
-    }
-  }
-  return outer;
-}
-
 // Twist of each side-wall quad along an outer side: thickness |n(k+1) - n(k)| / 4 per grid edge.
 std::vector<double> side_twists(const HBezierPatch& patch, PatchSide side, const std::vector<double>& breaks,
                                 double thickness) {
@@ -437,7 +412,7 @@ double min_triangle_count(const PatchNetwork& network, double tolerance) {
                  nt = count[classes.find(slot(p, true)).first];
     double cells = 2.0 * ns * nt;
     for (PatchSide side : {PatchSide::UMin, PatchSide::UMax, PatchSide::VMin, PatchSide::VMax}) {
-      if (collapsed(network.patches[p], side, eps))
+      if (collapsed_side(network.patches[p], side, eps))
         cells -= is_u_side(side) ? nt : ns;  // one triangle per cell there
     }
     triangles += std::max(cells, 0.0);
@@ -598,7 +573,7 @@ VertexIds shared_vertices(const PatchNetwork& network, const GridSizes& sizes) {
   for (std::size_t p = 0; p < sizes.size(); ++p) {
     const auto [ns, nt] = sizes[p];
     for (PatchSide side : {PatchSide::UMin, PatchSide::UMax, PatchSide::VMin, PatchSide::VMax}) {
-      if (!collapsed(network.patches[p], side, eps)) continue;
+      if (!collapsed_side(network.patches[p], side, eps)) continue;
       const std::size_t n = is_u_side(side) ? nt : ns;
       const auto [a0, b0] = side_vertex(side, 0, ns, nt);
       for (std::size_t k = 1; k <= n; ++k) {
@@ -691,6 +666,13 @@ SurfaceTessellation tessellate(const PatchNetwork& network, const TessellateOpti
     sizes.emplace_back(out.s_breaks[p].size() - 1, out.t_breaks[p].size() - 1);
   VertexIds ids = shared_vertices(network, sizes);
   const std::vector<int> handle = place_vertices(network, sizes, ids, out);
+  for (std::size_t p = 0; p < sizes.size(); ++p) {
+    const auto [ns, nt] = sizes[p];
+    std::vector<int>& ids_of = out.grid_vertices.emplace_back((ns + 1) * (nt + 1));
+    for (std::size_t a = 0; a <= ns; ++a) {
+      for (std::size_t b = 0; b <= nt; ++b) ids_of[a * (nt + 1) + b] = handle[ids.root(ids.id(p, a, b))];
+    }
+  }
   const std::size_t refused = connect_cells(sizes, ids, handle, out);
   if (refused > 0) {
     throw GeometryError("surface",

@@ -44,6 +44,9 @@ struct SurfaceTessellation {
   double max_deviation = 0.0;
   /// Grid breakpoints in s and t of each patch (shared borders share them).
   std::vector<std::vector<double>> s_breaks, t_breaks;
+  /// The mesh vertex at each grid point of each patch: grid_vertices[p][a *
+  /// (t_breaks[p].size()) + b] is at (s_breaks[p][a], t_breaks[p][b]).
+  std::vector<std::vector<int>> grid_vertices;
 };
 
 /// Tessellates `network` adaptively: the grid lines of each parameter

@@ -45,9 +45,10 @@ enum class StepForm {
   Wireframe,   ///< the loops as curves in the xy plane, no solid
   Carved,  ///< `block` minus loops[0] (a closed (radius, height) loop) revolved about z, with `hemispheres`
   Sheet,   ///< `surfaces` as faces sewn along their shared borders into one open shell, no solid
+  Closed,  ///< `surfaces` as faces sewn into one closed shell: the solid it bounds
 };
 
-/// A polynomial B-spline surface (a face of a Sheet): poles[k * v_poles + l],
+/// A polynomial B-spline surface (a face of a Sheet or a Closed body): poles[k * v_poles + l],
 /// k along u, l along v; distinct knots with their multiplicities, clamped
 /// (the end multiplicities degree + 1).
 struct StepSurface {
@@ -86,8 +87,8 @@ struct StepBody {
   double height = 0.0;                      ///< Extrusion: > 0
   StepBlock block;                          ///< Carved
   std::vector<StepHemisphere> hemispheres;  ///< Carved
-  std::vector<StepSurface> surfaces;        ///< Sheet
-  /// Sheet: faces whose borders are closer than this are sewn (model units; > 0).
+  std::vector<StepSurface> surfaces;        ///< Sheet, Closed
+  /// Sheet, Closed: faces whose borders are closer than this are sewn (model units; > 0).
   double sewing_tolerance = 0.0;
 };
 
@@ -137,6 +138,6 @@ struct StepModuleApi {
 };
 
 /// Changes whenever StepModel, StepWritten, StepRead or StepModuleApi change.
-inline constexpr int kStepModuleAbi = 3;
+inline constexpr int kStepModuleAbi = 4;
 
 }  // namespace fabmesh

@@ -11,6 +11,7 @@
 #include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepBuilderAPI_MakePolygon.hxx>
+#include <BRepBuilderAPI_MakeSolid.hxx>
 #include <BRepBuilderAPI_MakeVertex.hxx>
 #include <BRepBuilderAPI_MakeWire.hxx>
 #include <BRepBuilderAPI_Sewing.hxx>
@@ -313,7 +314,7 @@ TopoDS_Shape make_carved(const StepBody& body) {
 // edges (a side that is one point within `tolerance` a degenerate edge).
 TopoDS_Face sheet_face(const StepSurface& s, double tolerance) {
   if (s.poles.size() != s.u_poles * s.v_poles || s.u_poles < 2 || s.v_poles < 2)
-    throw std::runtime_error("patch '" + s.name + "': its poles are not a grid");
+    throw std::runtime_error("face '" + s.name + "': its poles are not a grid");
   TColgp_Array2OfPnt poles(1, static_cast<int>(s.u_poles), 1, static_cast<int>(s.v_poles));
   for (std::size_t k = 0; k < s.u_poles; ++k) {
     for (std::size_t l = 0; l < s.v_poles; ++l) {
@@ -325,9 +326,9 @@ TopoDS_Face sheet_face(const StepSurface& s, double tolerance) {
       new Geom_BSplineSurface(poles, reals(s.u_knots), reals(s.v_knots), integers(s.u_multiplicities),
                               integers(s.v_multiplicities), s.u_degree, s.v_degree);
   BRepBuilderAPI_MakeFace face(surface, tolerance);
-  if (!face.IsDone()) throw std::runtime_error("patch '" + s.name + "': OpenCASCADE makes no face of it");
+  if (!face.IsDone()) throw std::runtime_error("face '" + s.name + "': OpenCASCADE makes no face of it");
   if (BRepCheck_Analyzer(face.Face()).IsValid() != Standard_True)
-    throw std::runtime_error("patch '" + s.name + "': OpenCASCADE finds its face not valid");
+    throw std::runtime_error("face '" + s.name + "': OpenCASCADE finds it not valid");
   return face.Face();
 }
 
@@ -359,8 +360,51 @@ TopoDS_Shape make_sheet(const StepBody& body) {
   return shells(1);
 }
 
+// How the faces use the edges: every edge that is not degenerate (a
+// revolution's pole) used twice by the faces (a seam twice by its one face),
+// but for an open shell's border, whose edges one face uses once (free).
+struct EdgeUses {
+  bool all_twice = true;
+  int free = 0;
+};
+EdgeUses edge_uses(const TopoDS_Shape& shape) {
+  TopTools_IndexedMapOfShape edges;
+  std::vector<int> uses;
+  for (TopExp_Explorer face(shape, TopAbs_FACE); face.More(); face.Next()) {
+    for (TopExp_Explorer edge(face.Current(), TopAbs_EDGE); edge.More(); edge.Next()) {
+      const int i = edges.Add(edge.Current());
+      if (static_cast<std::size_t>(i) > uses.size()) uses.resize(static_cast<std::size_t>(i), 0);
+      ++uses[static_cast<std::size_t>(i) - 1];
+    }
+  }
+  EdgeUses out;
+  for (int i = 1; i <= edges.Extent(); ++i) {
+    if (BRep_Tool::Degenerated(TopoDS::Edge(edges.FindKey(i)))) continue;
+    const int n = uses[static_cast<std::size_t>(i) - 1];
+    if (n != 2) out.all_twice = false;
+    if (n == 1) ++out.free;
+  }
+  return out;
+}
+
+// The faces sewn into one closed shell, and the solid it bounds, turned outward.
+TopoDS_Shape make_closed(const StepBody& body) {
+  const TopoDS_Shell shell = TopoDS::Shell(make_sheet(body));
+  const EdgeUses uses = edge_uses(shell);
+  if (!uses.all_twice) {
+    throw std::runtime_error("the faces, sewn, leave " + std::to_string(uses.free) +
+                             " edges free: they do not close into a solid");
+  }
+  BRepBuilderAPI_MakeSolid solid(shell);
+  if (!solid.IsDone()) throw std::runtime_error("OpenCASCADE makes no solid of the closed shell");
+  TopoDS_Solid out = solid.Solid();
+  BRepLib::OrientClosedSolid(out);
+  return out;
+}
+
 TopoDS_Shape make_body(const StepBody& body) {
   if (body.form == StepForm::Sheet) return make_sheet(body);
+  if (body.form == StepForm::Closed) return make_closed(body);
   if (body.loops.empty()) throw std::runtime_error("a body without loops");
   if (body.form == StepForm::Wireframe) {
     TopoDS_Compound compound;
@@ -424,25 +468,9 @@ StepShapeFacts facts_of(const TopoDS_Shape& shape) {
   TopExp::MapShapes(shape, TopAbs_SHELL, map);
   f.shells = map.Extent();
   if (f.faces > 0) {
-    // Every edge that is not degenerate (a revolution's pole) used twice by
-    // the faces (a seam twice by its one face), but for an open shell's border.
-    TopTools_IndexedMapOfShape edges;
-    std::vector<int> uses;
-    for (TopExp_Explorer face(shape, TopAbs_FACE); face.More(); face.Next()) {
-      for (TopExp_Explorer edge(face.Current(), TopAbs_EDGE); edge.More(); edge.Next()) {
-        const int i = edges.Add(edge.Current());
-        if (static_cast<std::size_t>(i) > uses.size()) uses.resize(static_cast<std::size_t>(i), 0);
-        ++uses[static_cast<std::size_t>(i) - 1];
-      }
-    }
-    bool all_twice = true;
-    for (int i = 1; i <= edges.Extent(); ++i) {
-      if (BRep_Tool::Degenerated(TopoDS::Edge(edges.FindKey(i)))) continue;
-      const int n = uses[static_cast<std::size_t>(i) - 1];
-      if (n != 2) all_twice = false;
-      if (n == 1) ++f.free_edges;
-    }
-    f.closed = f.solids > 0 && all_twice;
+    const EdgeUses uses = edge_uses(shape);
+    f.free_edges = uses.free;
+    f.closed = f.solids > 0 && uses.all_twice;
     GProp_GProps surface;
     BRepGProp::SurfaceProperties(shape, surface);
     f.area = surface.Mass();

@@ -1,7 +1,8 @@
 // The `step` output read back by OpenCASCADE's own STEP reader: one valid
 // closed solid per design, in the design's unit, its volume the exact one,
 // the mesh's vertices on its faces within the mesh's proven deviation.
-// An open surface: one shell of B-spline faces within the reported bound.
+// An open surface: one shell of B-spline faces within the reported bound; a
+// thickened one: one closed solid of its sheets and rim walls.
 
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -440,15 +441,87 @@ TEST_CASE("step: an open surface is one shell of B-spline faces, sewn along its 
             mesh.item["files"][0]["max_added_error"].get<double>() + 1e-9);
 }
 
-TEST_CASE("step: a thickened surface is still refused at its outputs entry", "[pipeline][step][surface]") {
+TEST_CASE("step: a thickened surface is one closed solid of B-spline faces within the reported bound",
+          "[pipeline][step][surface]") {
   const fs::path dir = fresh_dir("step_surface_shell");
-  std::string out;
-  CHECK(
-      run_cli({"run", example("surface_basin_shell.yaml"), "-o", dir.string() + "/", "-D", "outputs=[step]"},
-              &out) != 0);
-  CHECK_THAT(out, Catch::Contains("outputs[0]: step needs an open surface (no `thickness`)") &&
-                      Catch::Contains("only open surfaces are written as STEP yet"));
-  CHECK(fs::is_empty(dir));
+  const Written w = run_step(example("surface_basin_shell.yaml"), dir);
+  const double added = w.item["files"][0]["max_added_error"].get<double>();
+  const double deviation = w.item["max_deviation"].get<double>();
+  // The offset sheet runs through the proven mesh's grid: its bound is the mesh's.
+  CHECK(added >= deviation);
+  CHECK(added <= w.item["tolerance"].get<double>());
+
+  const StepRead r = read_step(w.step);
+  INFO(r.error);
+  REQUIRE(r.error.empty());
+  CHECK(r.length_unit == "millimetre");
+  REQUIRE(r.roots.size() == 1);
+  const StepShapeFacts& solid = r.roots[0];
+  INFO(solid.problems);
+  CHECK(solid.valid);
+  CHECK(solid.solids == 1);
+  CHECK(solid.closed);
+  CHECK(solid.free_edges == 0);
+  CHECK(solid.faces == 16);  // 4 patches on each sheet, 8 walls along the rim's sides
+
+  // The exact sheets (the surface and its offset along the exact unit
+  // normal, as the report's span says) lie within the reported bound of the faces.
+  const Design design = read_design(example("surface_basin_shell.yaml"));
+  const PatchNetwork network = build_patch_network(std::get<SurfaceDesign>(design.body).patches);
+  const double from = w.item["build"]["shell_span"][0].get<double>(),
+               to = w.item["build"]["shell_span"][1].get<double>();
+  std::vector<Vec3> points;
+  for (const HBezierPatch& patch : network.patches) {
+    for (int i = 0; i < 12; ++i) {
+      for (int j = 0; j < 12; ++j) {
+        const double s = (i + 0.5) / 12.0, t = (j + 0.5) / 12.0;
+        for (const double offset : {from, to})
+          points.push_back(patch.point(s, t) + offset * patch.normal(s, t));
+      }
+    }
+  }
+  CHECK(max_distance_to_step(w.step, points) <= added + 1e-9);
+
+  // The mesh lies on the faces within its deviation and the file's bound;
+  // the volumes differ by at most the area times both.
+  const MeshRun mesh =
+      mesh_run(example("surface_basin_shell.yaml"), "stl", fresh_dir("step_surface_shell_mesh"), 13, 1.0);
+  const double both = deviation + added + mesh.item["files"][0]["max_added_error"].get<double>();
+  CHECK(max_distance_to_step(w.step, mesh.points) <= both + 1e-9);
+  const double volume = mesh.item["volume"].get<double>();
+  INFO("STEP volume " << solid.volume << ", mesh volume " << volume);
+  CHECK(std::abs(solid.volume - volume) <= mesh.item["area"].get<double>() * both);
+  CHECK(solid.area == Approx(mesh.item["area"].get<double>()).epsilon(1e-2));
+}
+
+TEST_CASE("step: a centred shell has two offset sheets, each through the proven grid",
+          "[pipeline][step][surface]") {
+  const fs::path dir = fresh_dir("step_surface_centred");
+  write_text(dir / "centred.yaml", R"(kind: surface
+name: tray
+units: mm
+tolerance: 0.05
+patches:
+  - name: tray
+    points:
+      - [[0, 0, 0], [0, 30, 0], [0, 60, 0], [0, 90, 0]]
+      - [[30, 0, 0], [30, 30, 12], [30, 60, 12], [30, 90, 0]]
+      - [[60, 0, 0], [60, 30, 12], [60, 60, 12], [60, 90, 0]]
+      - [[90, 0, 0], [90, 30, 0], [90, 60, 0], [90, 90, 0]]
+thickness: 2
+thicken: centered
+)");
+  const Written w = run_step((dir / "centred.yaml").string(), dir / "out");
+  CHECK(w.item["build"]["shell_span"][0].get<double>() == -1.0);
+  // Neither sheet is the surface: the file's bound is the mesh's own.
+  CHECK(w.item["files"][0]["max_added_error"].get<double>() == w.item["max_deviation"].get<double>());
+  const StepRead r = read_step(w.step);
+  REQUIRE(r.roots.size() == 1);
+  INFO(r.roots[0].problems);
+  CHECK(r.roots[0].valid);
+  CHECK(r.roots[0].closed);
+  CHECK(r.roots[0].faces == 6);  // one patch: two sheets, four walls
+  CHECK(r.roots[0].volume == Approx(w.item["volume"].get<double>()).epsilon(1e-3));
 }
 
 TEST_CASE("step: a patch with a side collapsed to a point is a face with a degenerate edge",

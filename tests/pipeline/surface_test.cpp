@@ -44,12 +44,13 @@ std::string edited_shell(const std::string& find, const std::string& replace) {
 
 }  // namespace
 
-TEST_CASE("surface run: the thickened basin is a valid closed solid written as STL and Draco",
+TEST_CASE("surface run: the thickened basin is a valid closed solid written as STL, Draco and STEP",
           "[pipeline][surface]") {
   const fs::path dir = fresh_dir("surface_shell");
   const Design design = read_design(example("surface_basin_shell.yaml"));
   const JobReport r = run_job(design, testing::into(dir));
-  REQUIRE(r.outputs.size() == 2);
+  REQUIRE(r.outputs.size() == 3);
+  CHECK(fs::exists(dir / "surface_basin_shell.step"));  // its solid: tests/pipeline/step_output_test.cpp
   CHECK(r.validation.valid());
   CHECK(r.validation.self_intersection == IntersectionCheck::Tested);  // the 3D test, not a proof
   REQUIRE(r.validation.genus);
@@ -172,9 +173,10 @@ TEST_CASE("surface designs: thicken chooses the shell's side, and the report say
   for (const Case& c :
        {Case{"outward", "6", -126.0}, Case{"inward", "0.5", -120.0}, Case{"centered", "1", -120.5}}) {
     INFO(c.side);
-    write_file_atomically((dir / "basin.yaml").string(),
-                          edited_shell("thickness: 6\n", "thickness: " + c.thickness +
-                                                             "\nthicken: " + c.side + "\noutputs: [stl]\n"));
+    write_file_atomically(
+        (dir / "basin.yaml").string(),
+        edited_shell("thickness: 6\noutputs: [stl, drc, step]\n",
+                     "thickness: " + c.thickness + "\nthicken: " + c.side + "\noutputs: [stl]\n"));
     std::string out;
     REQUIRE(run_cli_json({"run", (dir / "basin.yaml").string(), "-o", (dir / "out").string(), "--json"},
                          &out) == 0);
