@@ -41,7 +41,8 @@ Vec3 de_boor(const std::vector<double>& U, int p, const Vec3* poles, std::size_t
       const std::size_t i = span - static_cast<std::size_t>(p) + static_cast<std::size_t>(j);
       const double lo = U[i], hi = U[i + static_cast<std::size_t>(p + 1 - r)];
       const double a = hi > lo ? (x - lo) / (hi - lo) : 0.0;
-      d[static_cast<std::size_t>(j)] = (1.0 - a) * d[static_cast<std::size_t>(j) - 1] + a * d[static_cast<std::size_t>(j)];
+      d[static_cast<std::size_t>(j)] =
+          (1.0 - a) * d[static_cast<std::size_t>(j) - 1] + a * d[static_cast<std::size_t>(j)];
     }
   }
   return d[static_cast<std::size_t>(p)];
@@ -148,7 +149,6 @@ BSplineFace grid_face(const ShellGrid& grid, std::size_t p, double offset, const
   return f;
 }
 
-
 // The poles of a face's side, in the direction of the side's parameter
 // (PatchSide's rows and columns: u_min is k = 0, v_min is l = 0).
 std::vector<Vec3> side_poles(const BSplineFace& f, PatchSide side) {
@@ -193,9 +193,9 @@ BSplineFace ruled_face(const BezierChain& near, const BezierChain& far, const st
 
 void require_grid(const PatchNetwork& network, const ShellGrid& grid) {
   if (!(grid.to > grid.from)) {
-    throw RangeError("to", grid.to,
-                     fmt::format("a shell spans from {} to {} along the normals: it needs to > from",
-                                 grid.from, grid.to));
+    throw RangeError(
+        "to", grid.to,
+        fmt::format("a shell spans from {} to {} along the normals: it needs to > from", grid.from, grid.to));
   }
   const std::size_t np = network.patches.size();
   bool ok = grid.s_breaks.size() == np && grid.t_breaks.size() == np && grid.vertices.size() == np &&

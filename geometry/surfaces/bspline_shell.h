@@ -24,8 +24,8 @@ struct ShellGrid {
   double from = 0.0, to = 0.0;
   double bound = 0.0;  ///< the tessellation's proven bound (SurfaceTessellation::max_deviation)
   std::vector<std::vector<double>> s_breaks, t_breaks;  ///< per patch
-  std::vector<std::vector<int>> vertices;  ///< per patch, as SurfaceTessellation::grid_vertices
-  std::vector<Vec3> points, normals;       ///< per sheet vertex
+  std::vector<std::vector<int>> vertices;               ///< per patch, as SurfaceTessellation::grid_vertices
+  std::vector<Vec3> points, normals;                    ///< per sheet vertex
 };
 
 /// The grid of `sheet` for the shell between offsets from < to.

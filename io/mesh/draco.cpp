@@ -12,10 +12,9 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <map>
 #include <memory>
 #include <optional>
-#include <unordered_map>
-#include <unordered_set>
 
 #include "geometry/core/errors.h"
 #include "geometry/core/float32.h"
@@ -381,6 +380,83 @@ FloatKey key_of(const float xyz[3]) {
   return k;
 }
 
+/// Positions (bit patterns) to indices for up to `n` entries: open
+/// addressing with linear probing, at least twice as many slots as entries
+/// (one allocation, where a node-based map makes one per entry).
+class PositionTable {
+ public:
+  static constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+  explicit PositionTable(std::size_t n) {
+    std::size_t slots = 16;
+    while (slots < 2 * n) slots *= 2;
+    mask_ = slots - 1;
+    slots_.assign(slots, Slot{{}, kNone});
+  }
+  /// Adds `key` -> `value`; false (and nothing changed) when `key` is there.
+  bool insert(const FloatKey& key, std::uint32_t value) {
+    for (std::size_t i = FloatKeyHash{}(key)&mask_;; i = (i + 1) & mask_) {
+      if (slots_[i].value == kNone) {
+        slots_[i] = {key, value};
+        return true;
+      }
+      if (slots_[i].key == key) return false;
+    }
+  }
+  /// The value of `key`, or kNone.
+  std::uint32_t find(const FloatKey& key) const {
+    for (std::size_t i = FloatKeyHash{}(key)&mask_;; i = (i + 1) & mask_) {
+      if (slots_[i].value == kNone || slots_[i].key == key) return slots_[i].value;
+    }
+  }
+
+ private:
+  struct Slot {
+    FloatKey key;
+    std::uint32_t value;
+  };
+  std::size_t mask_ = 0;
+  std::vector<Slot> slots_;
+};
+
+/// Draco's predicted positions (predicted_positions) for the bit count a
+/// fit looked at last, computed once, whether each bit count puts two
+/// vertices that faces use at one position, and which vertices faces use.
+class Predictions {
+ public:
+  explicit Predictions(const TriangleSoup& soup) : soup_(soup), referenced_(soup.vertices.size(), 0) {
+    for (const auto& t : soup.triangles) referenced_[t[0]] = referenced_[t[1]] = referenced_[t[2]] = 1;
+  }
+  /// Empty when Draco's dequantizer refuses the grid.
+  const std::vector<std::array<float, 3>>& positions(int bits) {
+    if (bits != bits_) {
+      positions_ = predicted_positions(soup_, bits);
+      bits_ = bits;
+    }
+    return positions_;
+  }
+  bool collide(int bits) {
+    const auto known = collide_.find(bits);
+    if (known != collide_.end()) return known->second;
+    const std::vector<std::array<float, 3>>& predicted = positions(bits);
+    bool found = false;
+    if (predicted.size() == soup_.vertices.size()) {
+      PositionTable seen(soup_.vertices.size());
+      for (std::size_t i = 0; i < soup_.vertices.size() && !found; ++i)
+        found = referenced_[i] && !seen.insert(key_of(predicted[i].data()), static_cast<std::uint32_t>(i));
+    }
+    collide_.emplace(bits, found);
+    return found;
+  }
+  const std::vector<char>& referenced() const { return referenced_; }
+
+ private:
+  const TriangleSoup& soup_;
+  std::vector<char> referenced_;
+  int bits_ = -1;
+  std::vector<std::array<float, 3>> positions_;
+  std::map<int, bool> collide_;
+};
+
 /// The mesh that `bytes` (an encoding of `soup` without ids, `bits` of
 /// quantization) decode to, in the soup's vertex order and with the soup's
 /// triangles; nullopt when the correspondence cannot be established this way
@@ -395,46 +471,30 @@ FloatKey key_of(const float xyz[3]) {
 /// orientation (the same cyclic order). Then relabelling by sigma turns the
 /// decoded mesh into the returned one: the same faces over the same
 /// positions. The prediction is only a guess; the checks make it a proof.
-/// Whether Draco's quantizer with `bits` puts two vertices that faces use
-/// at one position (predicted_positions).
-bool positions_collide(const TriangleSoup& soup, int bits) {
-  const std::vector<std::array<float, 3>> predicted = predicted_positions(soup, bits);
-  if (predicted.size() != soup.vertices.size()) return false;
-  std::vector<char> referenced(soup.vertices.size(), 0);
-  for (const auto& t : soup.triangles) referenced[t[0]] = referenced[t[1]] = referenced[t[2]] = 1;
-  std::unordered_set<FloatKey, FloatKeyHash> seen;
-  seen.reserve(2 * soup.vertices.size());
-  for (std::size_t i = 0; i < soup.vertices.size(); ++i) {
-    if (referenced[i] && !seen.insert(key_of(predicted[i].data())).second) return true;
-  }
-  return false;
-}
-
-std::optional<TriangleSoup> decode_matched(const std::string& bytes, const TriangleSoup& soup, int bits) {
+std::optional<TriangleSoup> decode_matched(const std::string& bytes, const TriangleSoup& soup, int bits,
+                                           Predictions& predictions) {
   const std::unique_ptr<draco::Mesh> mesh = decode(bytes);
   const draco::PointAttribute* position = mesh->GetNamedAttribute(draco::GeometryAttribute::POSITION);
   if (position == nullptr) throw std::logic_error("Draco lost the positions of its own output");
   const std::size_t np = mesh->num_points();
   if (mesh->num_faces() != soup.triangles.size()) return std::nullopt;
   std::vector<std::array<float, 3>> decoded(np);
-  std::unordered_map<FloatKey, std::uint32_t, FloatKeyHash> point_at;
-  point_at.reserve(2 * np);
+  PositionTable point_at(np);
   for (draco::PointIndex::ValueType j = 0; j < np; ++j) {
     position->ConvertValue<float, 3>(position->mapped_index(draco::PointIndex(j)), decoded[j].data());
-    if (!point_at.emplace(key_of(decoded[j].data()), j).second) return std::nullopt;  // a repeated position
+    if (!point_at.insert(key_of(decoded[j].data()), j)) return std::nullopt;  // a repeated position
   }
-  std::vector<char> referenced(soup.vertices.size(), 0);
-  for (const auto& t : soup.triangles) referenced[t[0]] = referenced[t[1]] = referenced[t[2]] = 1;
-  const std::vector<std::array<float, 3>> predicted = predicted_positions(soup, bits);
+  const std::vector<char>& referenced = predictions.referenced();
+  const std::vector<std::array<float, 3>>& predicted = predictions.positions(bits);
   if (predicted.size() != soup.vertices.size()) return std::nullopt;
   constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
   std::vector<std::uint32_t> sigma(np, kNone);  // decoded point -> input vertex
   std::size_t matched = 0;
   for (std::uint32_t i = 0; i < soup.vertices.size(); ++i) {
     if (!referenced[i]) continue;
-    const auto it = point_at.find(key_of(predicted[i].data()));
-    if (it == point_at.end() || sigma[it->second] != kNone) return std::nullopt;
-    sigma[it->second] = i;
+    const std::uint32_t j = point_at.find(key_of(predicted[i].data()));
+    if (j == PositionTable::kNone || sigma[j] != kNone) return std::nullopt;
+    sigma[j] = i;
     ++matched;
   }
   if (matched != np) return std::nullopt;
@@ -565,6 +625,7 @@ DracoFit fit_draco(const TriangleSoup& soup, double tolerance, const DracoAccept
   const int last = std::min(affordable, std::max(first, useful_bits(box, first)));
   const std::unique_ptr<draco::Mesh> plain = draco_mesh(soup, false);
   std::unique_ptr<draco::Mesh> tagged;  // only when the position match fails
+  Predictions predictions(soup);
   double best = std::numeric_limits<double>::infinity();
   bool folded = false;
   // One try: encode as written, decode, match to the input; the fit when it
@@ -572,12 +633,12 @@ DracoFit fit_draco(const TriangleSoup& soup, double tolerance, const DracoAccept
   auto attempt = [&](int bits) -> std::optional<DracoFit> {
     // Two vertices at one position: not acceptable, and no need to encode to see it. (Should
     // the prediction be wrong, a quantization that might fit is passed over, nothing worse.)
-    if (accept.distinct_positions && positions_collide(soup, bits)) {
+    if (accept.distinct_positions && predictions.collide(bits)) {
       folded = true;
       return std::nullopt;
     }
     std::string bytes = encode(*plain, bits, options);
-    std::optional<TriangleSoup> decoded = decode_matched(bytes, soup, bits);
+    std::optional<TriangleSoup> decoded = decode_matched(bytes, soup, bits, predictions);
     if (!decoded) {
       // The slow exact way: ids give the correspondence, then the id-free
       // file is checked to decode to the same faces and positions.
@@ -602,12 +663,12 @@ DracoFit fit_draco(const TriangleSoup& soup, double tolerance, const DracoAccept
   // and that success: at most about seven tries, never a scan of every bit
   // count.
   int start = first;
-  if (accept.distinct_positions && first < last && positions_collide(soup, first)) {
+  if (accept.distinct_positions && first < last && predictions.collide(first)) {
     int collide = first;  // bits known to collide; `last` is tried anyway
     int apart = last;
     while (apart - collide > 1) {
       const int middle = collide + (apart - collide) / 2;
-      (positions_collide(soup, middle) ? collide : apart) = middle;
+      (predictions.collide(middle) ? collide : apart) = middle;
     }
     start = apart;
     folded = true;  // the fewer bits collapse vertices

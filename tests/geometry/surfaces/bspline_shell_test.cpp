@@ -68,9 +68,9 @@ TEST_CASE("bspline shell: every face within the proven bound, the walls' borders
           "[surfaces][bspline][shell]") {
   const PatchNetwork net = build_patch_network(test::basin_specs());
   const double tolerance = 0.01, thickness = 0.2;
-  for (const std::array<double, 2> span : {std::array<double, 2>{0.0, thickness},
-                                           std::array<double, 2>{-thickness, 0.0},
-                                           std::array<double, 2>{-thickness / 2, thickness / 2}}) {
+  for (const std::array<double, 2> span :
+       {std::array<double, 2>{0.0, thickness}, std::array<double, 2>{-thickness, 0.0},
+        std::array<double, 2>{-thickness / 2, thickness / 2}}) {
     INFO("span " << span[0] << " .. " << span[1]);
     TessellateOptions o;
     o.tolerance = tolerance;
@@ -115,5 +115,6 @@ TEST_CASE("bspline shell: a grid that does not match its network is refused", "[
   std::swap(reversed.from, reversed.to);
   CHECK_THROWS_AS(bspline_shell(net, reversed, 0.01), RangeError);
   grid.vertices.pop_back();
-  CHECK_THROWS_WITH(bspline_shell(net, grid, 0.01), Catch::Contains("does not match the network of 4 patches"));
+  CHECK_THROWS_WITH(bspline_shell(net, grid, 0.01),
+                    Catch::Contains("does not match the network of 4 patches"));
 }
