@@ -2,6 +2,7 @@
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <fmt/format.h>
+#include <tbb/parallel_invoke.h>
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -144,9 +145,19 @@ const DefectReport* ValidationReport::find(Defect kind) const {
 
 namespace {
 
-// The stages after the connectivity analysis, shared by every path of validate.
-ValidationReport validate_with(const TriangleSoup& soup, const Topology& topo, ValidationReport report,
-                               const ValidationOptions& options);
+// What the positions alone decide: finite coordinates, the faces' measures
+// and degeneracy, orientation and the self-intersection test (stages
+// "geometry" and "self_intersection"). Independent of the connectivity
+// analysis, so validate runs it beside analyse_topology.
+struct PositionFacts {
+  ValidationReport report;  ///< the fields the positions decide, and the stages' timings
+  DefectCount non_finite, degenerate, intersections;
+};
+PositionFacts position_facts(const TriangleSoup& soup, const ValidationOptions& options);
+
+// The report of `facts` completed with the connectivity facts and every
+// defect, shared by every path of validate.
+ValidationReport validate_with(const TriangleSoup& soup, const Topology& topo, PositionFacts facts);
 
 // The connectivity facts a moved copy shares with its original: functions of
 // the triangles alone, taken from the original's report.
@@ -195,7 +206,7 @@ ValidationReport validate_moved(const TriangleSoup& moved, const MovedFrom& from
   ValidationOptions checks = options;
   if (within_margin || rechecked) checks.check_self_intersections = false;
   ValidationReport report =
-      validate_with(moved, inherited_topology(original_report), ValidationReport{}, checks);
+      validate_with(moved, inherited_topology(original_report), position_facts(moved, checks));
   report.topology_proof = original_report.topology_proof;
   if (within_margin && report.non_finite_vertices == 0) {
     report.self_intersection = IntersectionCheck::ProvenByConstruction;
@@ -345,15 +356,30 @@ ValidationReport validate(const TriangleSoup& soup, const ValidationOptions& opt
     Topology known;
     known.components = options.topology->components;
     known.euler_characteristics = options.topology->euler_characteristics;
-    report = validate_with(soup, known, std::move(report), checks);
+    report = validate_with(soup, known, position_facts(soup, checks));
     report.topology_proof = options.topology->statement;
   } else {
-    StageTimer timer(report.timings_ms);
-    const Topology topo =
-        analyse_topology(soup, options.max_examples,
-                         options.examples_in_face_order ? ExampleOrder::ByFace : ExampleOrder::ByVertex);
-    timer.lap("topology");
-    report = validate_with(soup, topo, std::move(report), checks);
+    // The connectivity analysis is sequential: the positions' stages (the
+    // self-intersection test, itself parallel) run beside it.
+    Topology topo;
+    StageTimings topology_time;
+    const auto analyse = [&] {
+      StageTimer timer(topology_time);
+      topo = analyse_topology(soup, options.max_examples,
+                              options.examples_in_face_order ? ExampleOrder::ByFace : ExampleOrder::ByVertex);
+      timer.lap("topology");
+    };
+    PositionFacts facts;
+    const auto positions = [&] { facts = position_facts(soup, checks); };
+    if (options.parallel) {
+      tbb::parallel_invoke(analyse, positions);
+    } else {
+      analyse();
+      positions();
+    }
+    facts.report.timings_ms.insert(facts.report.timings_ms.begin(), topology_time.begin(),
+                                   topology_time.end());
+    report = validate_with(soup, topo, std::move(facts));
   }
   if (options.embedding) report = with_embedding(std::move(report), *options.embedding);
   return with_shells(soup, std::move(report), options.max_examples);
@@ -372,36 +398,25 @@ bool valid_when_moved(const ValidationReport& report, double moved_by) {
 
 namespace {
 
-ValidationReport validate_with(const TriangleSoup& soup, const Topology& topo, ValidationReport report,
-                               const ValidationOptions& options) {
+PositionFacts position_facts(const TriangleSoup& soup, const ValidationOptions& options) {
+  PositionFacts out;
+  ValidationReport& report = out.report;
   StageTimer timer(report.timings_ms);
   report.vertices = soup.vertices.size();
   report.triangles = soup.triangles.size();
   const std::size_t max_examples = options.max_examples;
-  DefectCount non_finite;
   for (const Vec3& p : soup.vertices) {
-    if (!finite(p)) non_finite.add(p, max_examples);
+    if (!finite(p)) out.non_finite.add(p, max_examples);
   }
-  report.non_finite_vertices = non_finite.count;
+  report.non_finite_vertices = out.non_finite.count;
 
-  report.components = topo.components;
-  report.boundary_edges = topo.boundary_edges.count;
-  report.non_manifold_edges = topo.non_manifold_edges.count;
-  report.non_manifold_vertices = topo.non_manifold_vertices.count;
-  report.inconsistent_edges = topo.inconsistent_edges.count;
-  report.duplicate_faces = topo.duplicate_faces.count;
-  report.consistently_oriented = topo.inconsistent_edges.count == 0;
-  set_genus(report, topo);
-
-  DefectCount degenerate_found;
   std::vector<char> degenerate(soup.triangles.size(), 0);
-  if (non_finite.count == 0) measure(soup, max_examples, report, degenerate_found, degenerate);
-  report.degenerate_faces = degenerate_found.count;
-  report.oriented_outward = non_finite.count == 0 && total_volume_sign(soup) > 0;
+  if (out.non_finite.count == 0) measure(soup, max_examples, report, out.degenerate, degenerate);
+  report.degenerate_faces = out.degenerate.count;
+  report.oriented_outward = out.non_finite.count == 0 && total_volume_sign(soup) > 0;
   timer.lap("geometry");
 
-  DefectCount intersections;
-  if (options.check_self_intersections && non_finite.count == 0) {
+  if (options.check_self_intersections && out.non_finite.count == 0) {
     SelfIntersectOptions si;
     si.parallel = options.parallel;
     si.max_pairs = max_examples;
@@ -412,15 +427,31 @@ ValidationReport validate_with(const TriangleSoup& soup, const Topology& topo, V
     report.self_intersection_pairs_tested = found.candidates_tested;
     report.intersecting_pairs = found.count;
     report.self_intersecting = found.count > 0;
-    intersections.count = found.count;
+    out.intersections.count = found.count;
     for (const auto& [f, g] : found.pairs) {
       Vec3 mid = Vec3::Zero();
       for (const std::uint32_t v : soup.triangles[f]) mid += soup.vertices[v];
       for (const std::uint32_t v : soup.triangles[g]) mid += soup.vertices[v];
-      intersections.examples.push_back(mid / 6.0);  // between the two centroids
+      out.intersections.examples.push_back(mid / 6.0);  // between the two centroids
     }
   }
   timer.lap("self_intersection");
+  return out;
+}
+
+ValidationReport validate_with(const TriangleSoup& soup, const Topology& topo, PositionFacts facts) {
+  ValidationReport report = std::move(facts.report);
+  report.components = topo.components;
+  report.boundary_edges = topo.boundary_edges.count;
+  report.non_manifold_edges = topo.non_manifold_edges.count;
+  report.non_manifold_vertices = topo.non_manifold_vertices.count;
+  report.inconsistent_edges = topo.inconsistent_edges.count;
+  report.duplicate_faces = topo.duplicate_faces.count;
+  report.consistently_oriented = topo.inconsistent_edges.count == 0;
+  set_genus(report, topo);
+  const DefectCount& non_finite = facts.non_finite;
+  const DefectCount& degenerate_found = facts.degenerate;
+  const DefectCount& intersections = facts.intersections;
 
   if (soup.triangles.empty()) report.defects.push_back({Defect::Empty, 1, {}});
   add_defect(report, Defect::NonFiniteVertex, non_finite);

@@ -7,6 +7,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -110,22 +111,32 @@ TriangleSoup parse_binary(std::string_view bytes, const std::string& name) {
   if (3 * n > std::numeric_limits<std::uint32_t>::max()) {
     throw FileError(name, 0, 0, fmt::format("{}: {} triangles are more than fabmesh can index", name, n));
   }
+  // Records in parallel blocks; the first triangle with a non-finite
+  // coordinate (the lowest index, whichever block finds it) is the error.
   TriangleSoup soup;
-  soup.vertices.reserve(3 * n);
-  soup.triangles.reserve(n);
-  for (std::uint64_t t = 0; t < n; ++t) {
-    const char* record = bytes.data() + kHeader + kRecord * t + 12;  // skip the normal
-    for (int c = 0; c < 3; ++c) {
-      Vec3 p;
-      for (std::ptrdiff_t a = 0; a < 3; ++a) p[a] = read_f32(record + 12 * std::ptrdiff_t{c} + 4 * a);
-      if (!std::isfinite(p.x()) || !std::isfinite(p.y()) || !std::isfinite(p.z())) {
-        throw FileError(name, 0, 0, fmt::format("{}: triangle {} has a non-finite coordinate", name, t));
-      }
-      soup.vertices.push_back(p);
-    }
-    const auto v = static_cast<std::uint32_t>(3 * t);
-    soup.triangles.push_back({v, v + 1, v + 2});
-  }
+  soup.vertices.resize(3 * n);
+  soup.triangles.resize(n);
+  std::atomic<std::uint64_t> bad{n};
+  tbb::parallel_for(tbb::blocked_range<std::uint64_t>(0, n, 16384),
+                    [&](const tbb::blocked_range<std::uint64_t>& r) {
+                      for (std::uint64_t t = r.begin(); t != r.end(); ++t) {
+                        const char* record = bytes.data() + kHeader + kRecord * t + 12;  // skip the normal
+                        for (std::uint64_t c = 0; c < 3; ++c) {
+                          Vec3& p = soup.vertices[3 * t + c];
+                          for (std::ptrdiff_t a = 0; a < 3; ++a)
+                            p[a] = read_f32(record + 12 * static_cast<std::ptrdiff_t>(c) + 4 * a);
+                          if (!std::isfinite(p.x()) || !std::isfinite(p.y()) || !std::isfinite(p.z())) {
+                            std::uint64_t seen = bad.load();
+                            while (t < seen && !bad.compare_exchange_weak(seen, t)) {
+                            }
+                          }
+                        }
+                        const auto v = static_cast<std::uint32_t>(3 * t);
+                        soup.triangles[t] = {v, v + 1, v + 2};
+                      }
+                    });
+  if (bad.load() < n)
+    throw FileError(name, 0, 0, fmt::format("{}: triangle {} has a non-finite coordinate", name, bad.load()));
   return soup;
 }
 

@@ -1,7 +1,5 @@
 #include "geometry/validation/detail/topology.h"
 
-#include <tbb/parallel_sort.h>
-
 #include <algorithm>
 #include <cstdint>
 #include <numeric>
@@ -29,21 +27,55 @@ struct Side {
   std::uint32_t corner;
 };
 
+/// Sorts each bucket [start[b], start[b + 1]) of `items` by `less`, stably:
+/// insertion sort for the usual few, std::stable_sort for a large bucket.
+template <class T, class Less>
+void sort_buckets(std::vector<T>& items, const std::vector<std::size_t>& start, Less less) {
+  constexpr std::size_t kInsertion = 32;
+  for (std::size_t b = 0; b + 1 < start.size(); ++b) {
+    const auto first = items.begin() + static_cast<std::ptrdiff_t>(start[b]);
+    const auto last = items.begin() + static_cast<std::ptrdiff_t>(start[b + 1]);
+    if (last - first > static_cast<std::ptrdiff_t>(kInsertion)) {
+      std::stable_sort(first, last, less);
+      continue;
+    }
+    for (auto i = first + (first == last ? 0 : 1); i < last; ++i) {
+      T x = *i;
+      auto j = i;
+      for (; j > first && less(x, *(j - 1)); --j) *j = *(j - 1);
+      *j = x;
+    }
+  }
+}
+
+/// The offsets of the buckets 0 .. n - 1 from the count of each (counts[b + 1]).
+void prefix_sums(std::vector<std::size_t>& counts) {
+  for (std::size_t b = 1; b < counts.size(); ++b) counts[b] += counts[b - 1];
+}
+
+/// The sides sorted by (key, face, corner): a counting sort by the edge's
+/// smaller vertex, faces and corners visited in order (so each bucket is in
+/// (face, corner) order), then each bucket stably by key. Linear but for
+/// the buckets of vertices of very high degree.
 std::vector<Side> collect_sides(const TriangleSoup& soup) {
-  std::vector<Side> sides;
-  sides.reserve(3 * soup.triangles.size());
+  std::vector<std::size_t> start(soup.vertices.size() + 1, 0);
+  for (const Triangle& t : soup.triangles) {
+    if (index_degenerate(t)) continue;
+    for (std::uint32_t k = 0; k < 3; ++k) ++start[std::min(t[k], t[(k + 1) % 3]) + std::size_t{1}];
+  }
+  prefix_sums(start);
+  std::vector<Side> sides(start.back());
+  std::vector<std::size_t> fill(start.begin(), start.end() - 1);
   for (std::uint32_t f = 0; f < soup.triangles.size(); ++f) {
     const Triangle& t = soup.triangles[f];
     if (index_degenerate(t)) continue;
     for (std::uint32_t k = 0; k < 3; ++k) {
       const std::uint64_t a = t[k];
       const std::uint64_t b = t[(k + 1) % 3];
-      sides.push_back({std::min(a, b) << 32 | std::max(a, b), f, k});
+      sides[fill[std::min(a, b)]++] = {std::min(a, b) << 32 | std::max(a, b), f, k};
     }
   }
-  tbb::parallel_sort(sides.begin(), sides.end(), [](const Side& x, const Side& y) {
-    return x.key != y.key ? x.key < y.key : x.face != y.face ? x.face < y.face : x.corner < y.corner;
-  });
+  sort_buckets(sides, start, [](const Side& x, const Side& y) { return x.key < y.key; });
   return sides;
 }
 
@@ -107,16 +139,26 @@ void classify_edges(const TriangleSoup& soup, const std::vector<Side>& sides, st
   for (const Side* s : first_in_faces) topo.boundary_edges.examples.push_back(midpoint(s->key));
 }
 
+// The faces' sorted vertex triples with their faces, sorted (as pairs): a
+// counting sort by the smallest vertex, then each bucket stably by the rest.
 void count_duplicates(const TriangleSoup& soup, std::size_t max_examples, Topology& topo) {
-  std::vector<std::pair<Triangle, std::uint32_t>> sorted;
-  sorted.reserve(soup.triangles.size());
-  for (std::uint32_t f = 0; f < soup.triangles.size(); ++f) {
-    Triangle t = soup.triangles[f];
-    if (index_degenerate(t)) continue;
+  const auto ordered = [](Triangle t) {
     std::sort(t.begin(), t.end());
-    sorted.emplace_back(t, f);
+    return t;
+  };
+  std::vector<std::size_t> start(soup.vertices.size() + 1, 0);
+  for (const Triangle& t : soup.triangles) {
+    if (!index_degenerate(t)) ++start[std::min({t[0], t[1], t[2]}) + std::size_t{1}];
   }
-  tbb::parallel_sort(sorted.begin(), sorted.end());
+  prefix_sums(start);
+  std::vector<std::pair<Triangle, std::uint32_t>> sorted(start.back());
+  std::vector<std::size_t> fill(start.begin(), start.end() - 1);
+  for (std::uint32_t f = 0; f < soup.triangles.size(); ++f) {
+    if (index_degenerate(soup.triangles[f])) continue;
+    const Triangle t = ordered(soup.triangles[f]);
+    sorted[fill[t[0]]++] = {t, f};
+  }
+  sort_buckets(sorted, start, [](const auto& x, const auto& y) { return x.first < y.first; });
   for (std::size_t k = 1; k < sorted.size(); ++k) {
     if (sorted[k].first != sorted[k - 1].first) continue;
     const Triangle& t = sorted[k].first;
