@@ -373,21 +373,6 @@ Files step_file(const EncodeContext& c, const StepModel& model, double added) {
   return {std::move(e)};
 }
 
-StepSurface step_surface(BSplineFace f) {
-  StepSurface s;
-  s.name = std::move(f.name);
-  s.u_degree = f.u_degree;
-  s.v_degree = f.v_degree;
-  s.u_knots = std::move(f.u_knots);
-  s.v_knots = std::move(f.v_knots);
-  s.u_multiplicities = std::move(f.u_multiplicities);
-  s.v_multiplicities = std::move(f.v_multiplicities);
-  s.u_poles = f.u_poles;
-  s.v_poles = f.v_poles;
-  s.poles = std::move(f.poles);
-  return s;
-}
-
 // A surface's B-spline faces as one body: sewn into an open shell (Sheet) or
 // a closed one (Closed). Border curves agree to the poles' rounding (about
 // 1e-13 of the size).
@@ -397,7 +382,7 @@ Files step_faces(const EncodeContext& c, const PatchNetwork& network, std::vecto
   body.name = c.common.name;
   body.form = form;
   body.sewing_tolerance = 1e-7 * network.size;
-  for (BSplineFace& f : faces) body.surfaces.push_back(step_surface(std::move(f)));
+  body.surfaces = std::move(faces);
   model.bodies.push_back(std::move(body));
   return step_file(c, model, bound);
 }
@@ -406,7 +391,7 @@ Files step_faces(const EncodeContext& c, const PatchNetwork& network, std::vecto
 // the shared borders: each patch within what the build left of the
 // tolerance (geometry/surfaces/bspline_patch.h), the largest bound the file's
 // added error. A thickened one as the closed shell of its sheets and walls
-// (geometry/surfaces/bspline_shell.h): the sheet on the surface so, an
+// (geometry/surfaces/bspline_shell.h): a sheet on the surface as above, an
 // offset sheet through the proven mesh's grid, within the mesh's bound.
 Files step_surface_body(const EncodeContext& c, const PatchNetwork& network, StepModel model) {
   const std::optional<ShellGrid>& grid = c.built.shape.shell;
@@ -637,7 +622,6 @@ bool has_content(const Design& design, OutputContent content) {
       return v != nullptr && v->mould.has_value();
     }
     case OutputContent::Design:
-      return true;
     case OutputContent::Exact:
       return true;
     case OutputContent::Toolpath: {

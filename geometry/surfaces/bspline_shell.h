@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "geometry/core/types.h"
+#include "geometry/surfaces/bspline_face.h"
 #include "geometry/surfaces/patch_network.h"
 
 namespace fabmesh {
@@ -31,25 +32,10 @@ struct ShellGrid {
 /// The grid of `sheet` for the shell between offsets from < to.
 ShellGrid shell_grid(const SurfaceTessellation& sheet, double from, double to);
 
-/// A polynomial B-spline surface: poles[k * v_poles + l], k along u, l along
-/// v; distinct knots with their multiplicities, clamped (end multiplicities
-/// degree + 1).
-struct BSplineFace {
-  std::string name;  ///< for messages: "front_left", "front_left offset", "front_left u_min wall"
-  int u_degree = 3, v_degree = 3;
-  std::vector<double> u_knots, v_knots;
-  std::vector<int> u_multiplicities, v_multiplicities;
-  std::size_t u_poles = 0, v_poles = 0;
-  std::vector<Vec3> poles;
-};
-
 struct BSplinePatch;
 
 /// A patch's bicubic B-spline surface (bspline_patch.h) as a face.
 BSplineFace bspline_face(const BSplinePatch& patch, const std::string& name);
-
-/// The point at (u, v) (de Boor's algorithm in each direction).
-Vec3 face_point(const BSplineFace& face, double u, double v);
 
 struct BSplineShell {
   /// The sheet at `from` (one face per patch), the sheet at `to`, then one

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "geometry/core/types.h"
+#include "geometry/surfaces/bspline_face.h"
 
 namespace fabmesh {
 
@@ -48,17 +49,8 @@ enum class StepForm {
   Closed,  ///< `surfaces` as faces sewn into one closed shell: the solid it bounds
 };
 
-/// A polynomial B-spline surface (a face of a Sheet or a Closed body): poles[k * v_poles + l],
-/// k along u, l along v; distinct knots with their multiplicities, clamped
-/// (the end multiplicities degree + 1).
-struct StepSurface {
-  std::string name;  ///< for messages (the patch's name)
-  int u_degree = 3, v_degree = 3;
-  std::vector<double> u_knots, v_knots;
-  std::vector<int> u_multiplicities, v_multiplicities;
-  std::size_t u_poles = 0, v_poles = 0;
-  std::vector<Vec3> poles;
-};
+/// A face of a Sheet or a Closed body: a polynomial B-spline surface.
+using StepSurface = BSplineFace;
 
 /// A block about the z axis between two heights: a cylinder of `radius`, or a
 /// square box of half-side `radius` with sides parallel to x and y; all of
