@@ -11,15 +11,15 @@ std::vector<double> full_knots(const std::vector<double>& knots, const std::vect
 
 namespace {
 
-// The curve of `poles` (degree p, full clamped knots U) at x: de Boor.
-Vec3 de_boor(const std::vector<double>& U, int p, const Vec3* poles, std::size_t count, double x) {
+// The curve of `poles` (degree p, full clamped knots) at x: de Boor.
+Vec3 de_boor(const std::vector<double>& knots, int p, const Vec3* poles, std::size_t count, double x) {
   std::size_t span = static_cast<std::size_t>(p);
-  while (span + 1 < count && U[span + 1] <= x) ++span;
+  while (span + 1 < count && knots[span + 1] <= x) ++span;
   std::vector<Vec3> d(poles + (span - static_cast<std::size_t>(p)), poles + span + 1);
   for (int r = 1; r <= p; ++r) {
     for (int j = p; j >= r; --j) {
       const std::size_t i = span - static_cast<std::size_t>(p) + static_cast<std::size_t>(j);
-      const double lo = U[i], hi = U[i + static_cast<std::size_t>(p + 1 - r)];
+      const double lo = knots[i], hi = knots[i + static_cast<std::size_t>(p + 1 - r)];
       const double a = hi > lo ? (x - lo) / (hi - lo) : 0.0;
       d[static_cast<std::size_t>(j)] =
           (1.0 - a) * d[static_cast<std::size_t>(j) - 1] + a * d[static_cast<std::size_t>(j)];

@@ -35,11 +35,11 @@ struct BezierChain {
 // f(a, a, a), f(a, a, b), f(a, b, b), f(b, b, b) of its four poles.
 BezierChain cubic_chain(const std::vector<double>& knots, const std::vector<int>& multiplicities,
                         const std::vector<Vec3>& poles) {
-  const std::vector<double> U = full_knots(knots, multiplicities);
+  const std::vector<double> full = full_knots(knots, multiplicities);
   BezierChain out;
   out.breaks = knots;
-  for (std::size_t span = 3; span + 1 < U.size() - 3; ++span) {
-    const double a = U[span], b = U[span + 1];
+  for (std::size_t span = 3; span + 1 < full.size() - 3; ++span) {
+    const double a = full[span], b = full[span + 1];
     if (!(b > a)) continue;
     const std::size_t first = out.points.empty() ? 0 : 1;
     const std::array<std::array<double, 3>, 4> args{{{a, a, a}, {a, a, b}, {a, b, b}, {b, b, b}}};
@@ -48,7 +48,7 @@ BezierChain cubic_chain(const std::vector<double>& knots, const std::vector<int>
       for (std::size_t r = 1; r <= 3; ++r) {
         for (std::size_t j = 3; j >= r; --j) {
           const std::size_t i = span - 3 + j;
-          const double alpha = (args[q][r - 1] - U[i]) / (U[i + 4 - r] - U[i]);
+          const double alpha = (args[q][r - 1] - full[i]) / (full[i + 4 - r] - full[i]);
           d[j] = (1.0 - alpha) * d[j - 1] + alpha * d[j];
         }
       }
