@@ -25,9 +25,6 @@ const char* to_string(Continuity c) {
 CompositeCurve::CompositeCurve(std::vector<Segment> segments, bool closed)
     : segments_(std::move(segments)), closed_(closed) {
   if (segments_.empty()) throw GeometryError("curve", "a curve needs at least one segment");
-}
-
-double CompositeCurve::extent() const {
   constexpr double kInf = std::numeric_limits<double>::infinity();
   Vec2 lo = Vec2::Constant(kInf), hi = Vec2::Constant(-kInf);
   for (const Segment& seg : segments_) {
@@ -38,7 +35,7 @@ double CompositeCurve::extent() const {
       hi = hi.cwiseMax(p);
     }
   }
-  return (hi - lo).norm();
+  extent_ = (hi - lo).norm();
 }
 
 Vec2 CompositeCurve::point(double g) const {

@@ -2,6 +2,7 @@
 // A piecewise curve of segments of any family, open or closed, with a report
 // of the measured continuity at every joint.
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -42,8 +43,9 @@ class CompositeCurve {
   const std::vector<Segment>& segments() const { return segments_; }
   std::size_t size() const { return segments_.size(); }
   bool closed() const { return closed_; }
-  /// Diagonal of the control points' bounding box (the scale for relative tolerances).
-  double extent() const;
+  /// Diagonal of the bounding box of 9 points on each segment (the scale for
+  /// relative tolerances), computed once when the curve is made.
+  double extent() const { return extent_; }
 
   /// Point at global parameter g in [0, size()]: segment floor(g) at s = g - floor(g).
   Vec2 point(double g) const;
@@ -55,6 +57,7 @@ class CompositeCurve {
  private:
   std::vector<Segment> segments_;
   bool closed_ = false;
+  double extent_ = std::numeric_limits<double>::infinity();  ///< of no segments: as if measured
 };
 
 /// Measures one joint between two segments.

@@ -267,6 +267,7 @@ CompositeCurve construct_curve(const CurveSpec& spec) {
   const JoinSystem sys = join_system(spec);
   const Eigen::MatrixX2d x = solve_join_system(spec, sys);
   std::vector<Segment> segments;
+  segments.reserve(n);
   for (std::size_t i = 0; i < n; ++i) {
     if (spec.segments[i].kind == SegmentKind::EllipseArc) {
       segments.push_back(sys.bases[i]);

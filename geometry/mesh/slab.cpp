@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "geometry/core/bucket_sort.h"
 #include "geometry/core/budget.h"
 #include "geometry/core/errors.h"
 #include "geometry/mesh/soup.h"
@@ -59,21 +60,30 @@ Mesh extrude(const PlanarTriangulation& t, double thickness) {
   require_positive("thickness", thickness);
   const std::size_t n = t.vertices.size();
   const std::vector<Corners> faces = slab_faces(t);
-  // Side 3 f + k runs from corner k to corner k + 1 of face f; sorted by undirected edge.
+  // Side 3 f + k runs from corner k to corner k + 1 of face f; sorted by
+  // (undirected edge, side): counted into buckets by the edge's smaller
+  // vertex in side order, then each bucket by edge.
   struct Side {
     std::uint64_t key;
     std::uint32_t side;
   };
+  std::vector<std::size_t> start(2 * n + 1, 0);
+  for (const Corners& face : faces) {
+    for (std::uint32_t k = 0; k < 3; ++k) {
+      if (face[k] == face[(k + 1) % 3]) refuse(face);
+      ++start[std::min(face[k], face[(k + 1) % 3]) + std::size_t{1}];
+    }
+  }
+  bucket_offsets(start);
   std::vector<Side> sides(3 * faces.size());
+  std::vector<std::size_t> fill(start.begin(), start.end() - 1);
   for (std::uint32_t f = 0; f < faces.size(); ++f) {
     for (std::uint32_t k = 0; k < 3; ++k) {
       const std::uint64_t a = faces[f][k], b = faces[f][(k + 1) % 3];
-      if (a == b) refuse(faces[f]);
-      sides[3 * f + k] = {std::min(a, b) << 32 | std::max(a, b), 3 * f + k};
+      sides[fill[std::min(a, b)]++] = {std::min(a, b) << 32 | std::max(a, b), 3 * f + k};
     }
   }
-  std::sort(sides.begin(), sides.end(),
-            [](const Side& x, const Side& y) { return x.key != y.key ? x.key < y.key : x.side < y.side; });
+  sort_buckets(sides, start, [](const Side& x, const Side& y) { return x.key < y.key; });
   Mesh mesh;
   mesh.resize(2 * n, sides.size() / 2, faces.size());
   for (std::size_t i = 0; i < n; ++i) {

@@ -433,9 +433,9 @@ Toolpath plan_toolpath(const CompositeCurve& outline, const std::vector<RegionHo
     if (o.finish > 0.0) {
       // Roughing at the tool radius + the stock, from the point nearest the
       // finishing path's start (so the ramps and tabs keep apart on both).
-      LoopPathOptions ro = lo;
-      ro.radius = r + o.finish;
-      LoopPath rough = build_loop_path(loops[l], tp.checks.loops[l], ro);
+      LoopPathOptions rough_options = lo;
+      rough_options.radius = r + o.finish;
+      LoopPath rough = build_loop_path(loops[l], tp.checks.loops[l], rough_options);
       rough.pieces = rotate_path(rough.pieces, nearest_along(rough.pieces, lp.pieces.front().from));
       require_clearance(rough, loops, index, sb, o, b, &tp.clearance);
       if (o.lead_in > 0.0) rough.lead = choose_lead(rough, index, sb, o, b, &tp.clearance);

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <numeric>
 
+#include "geometry/core/bucket_sort.h"
 #include "geometry/core/disjoint_sets.h"
 
 namespace fabmesh {
@@ -27,32 +28,6 @@ struct Side {
   std::uint32_t corner;
 };
 
-/// Sorts each bucket [start[b], start[b + 1]) of `items` by `less`, stably:
-/// insertion sort for the usual few, std::stable_sort for a large bucket.
-template <class T, class Less>
-void sort_buckets(std::vector<T>& items, const std::vector<std::size_t>& start, Less less) {
-  constexpr std::size_t kInsertion = 32;
-  for (std::size_t b = 0; b + 1 < start.size(); ++b) {
-    const auto first = items.begin() + static_cast<std::ptrdiff_t>(start[b]);
-    const auto last = items.begin() + static_cast<std::ptrdiff_t>(start[b + 1]);
-    if (last - first > static_cast<std::ptrdiff_t>(kInsertion)) {
-      std::stable_sort(first, last, less);
-      continue;
-    }
-    for (auto i = first + (first == last ? 0 : 1); i < last; ++i) {
-      T x = *i;
-      auto j = i;
-      for (; j > first && less(x, *(j - 1)); --j) *j = *(j - 1);
-      *j = x;
-    }
-  }
-}
-
-/// The offsets of the buckets 0 .. n - 1 from the count of each (counts[b + 1]).
-void prefix_sums(std::vector<std::size_t>& counts) {
-  for (std::size_t b = 1; b < counts.size(); ++b) counts[b] += counts[b - 1];
-}
-
 /// The sides sorted by (key, face, corner): a counting sort by the edge's
 /// smaller vertex, faces and corners visited in order (so each bucket is in
 /// (face, corner) order), then each bucket stably by key. Linear but for
@@ -63,7 +38,7 @@ std::vector<Side> collect_sides(const TriangleSoup& soup) {
     if (index_degenerate(t)) continue;
     for (std::uint32_t k = 0; k < 3; ++k) ++start[std::min(t[k], t[(k + 1) % 3]) + std::size_t{1}];
   }
-  prefix_sums(start);
+  bucket_offsets(start);
   std::vector<Side> sides(start.back());
   std::vector<std::size_t> fill(start.begin(), start.end() - 1);
   for (std::uint32_t f = 0; f < soup.triangles.size(); ++f) {
@@ -150,7 +125,7 @@ void count_duplicates(const TriangleSoup& soup, std::size_t max_examples, Topolo
   for (const Triangle& t : soup.triangles) {
     if (!index_degenerate(t)) ++start[std::min({t[0], t[1], t[2]}) + std::size_t{1}];
   }
-  prefix_sums(start);
+  bucket_offsets(start);
   std::vector<std::pair<Triangle, std::uint32_t>> sorted(start.back());
   std::vector<std::size_t> fill(start.begin(), start.end() - 1);
   for (std::uint32_t f = 0; f < soup.triangles.size(); ++f) {
