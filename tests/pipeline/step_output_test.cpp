@@ -67,6 +67,17 @@ Written run_step(const std::string& design, const fs::path& dir, const std::stri
   return w;
 }
 
+// The one shape OCCT's own reader takes back from `step`, read without an
+// error; in `unit` when one is given.
+StepShapeFacts only_shape(const std::string& step, const std::string& unit = "") {
+  const StepRead r = read_step(step);
+  INFO(r.error);
+  REQUIRE(r.error.empty());
+  if (!unit.empty()) CHECK(r.length_unit == unit);
+  REQUIRE(r.roots.size() == 1);
+  return r.roots[0];
+}
+
 // The design's mesh as `format` writes it (run as a user would), with the
 // report's item, and every `step`-th vertex divided by `units` (the file's
 // units per unit of the STEP file).
@@ -96,12 +107,7 @@ TEST_CASE("step: a countertop is one valid closed solid whose volume is the exac
   CHECK(w.item["files"][0]["units"] == "mm");
   CHECK(w.item["files"][0]["max_added_error"] == 0.0);  // lines, T-Bézier, ellipses and arcs: all exact
 
-  const StepRead r = read_step(w.step);
-  INFO(r.error);
-  REQUIRE(r.error.empty());
-  CHECK(r.length_unit == "millimetre");
-  REQUIRE(r.roots.size() == 1);
-  const StepShapeFacts& solid = r.roots[0];
+  const StepShapeFacts solid = only_shape(w.step, "millimetre");
   CHECK(solid.valid);
   CHECK(solid.closed);
   CHECK(solid.solids == 1);
@@ -145,11 +151,7 @@ TEST_CASE("step: a countertop from DXF NURBS is exact, its spans rational B-spli
              "outline: {dxf: round.dxf, layer: OUTLINE}\nholes: [{dxf: round.dxf, layer: HOLES}]\n");
   const Written w = run_step((dir / "round.yaml").string(), dir / "out");
   CHECK(w.item["files"][0]["max_added_error"] == 0.0);
-  const StepRead r = read_step(w.step);
-  INFO(r.error);
-  REQUIRE(r.error.empty());
-  REQUIRE(r.roots.size() == 1);
-  const StepShapeFacts& solid = r.roots[0];
+  const StepShapeFacts solid = only_shape(w.step);
   CHECK(solid.valid);
   CHECK(solid.closed);
   CHECK(solid.solids == 1);
@@ -162,17 +164,13 @@ TEST_CASE("step: the golden solid is written in cm, its volume 46.171424531125 c
   const Written w = run_step(example("vessel_golden_solid.yaml"), dir);
   CHECK(w.item["files"][0]["units"] == "cm");
   CHECK(w.item["files"][0]["max_added_error"] == 0.0);  // quartic B-spline spans and lines
-  const StepRead r = read_step(w.step);
-  INFO(r.error);
-  REQUIRE(r.error.empty());
-  CHECK(r.length_unit == "centimetre");
+  const StepShapeFacts solid = only_shape(w.step, "centimetre");
   CHECK(w.step.find("LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT(.CENTI.,.METRE.)") != std::string::npos);
-  REQUIRE(r.roots.size() == 1);
-  CHECK(r.roots[0].valid);
-  CHECK(r.roots[0].closed);
-  CHECK(r.roots[0].solids == 1);
-  CHECK(r.roots[0].faces == 6);  // four profile spans, the rim's and the base's discs
-  CHECK(r.roots[0].volume == Approx(46.171424531125).epsilon(1e-7));
+  CHECK(solid.valid);
+  CHECK(solid.closed);
+  CHECK(solid.solids == 1);
+  CHECK(solid.faces == 6);  // four profile spans, the rim's and the base's discs
+  CHECK(solid.volume == Approx(46.171424531125).epsilon(1e-7));
 
   // The same bytes twice: no time stamp, no addresses.
   const fs::path again = fresh_dir("step_vessel_again");
@@ -194,13 +192,10 @@ TEST_CASE("step: a curve design is a wireframe, its H-Bezier segments within the
   CHECK(added > 0.0);
   // Within what the curve's sampling left of the tolerance.
   CHECK(w.item["max_deviation"].get<double>() + added <= w.item["tolerance"].get<double>());
-  const StepRead r = read_step(w.step);
-  INFO(r.error);
-  REQUIRE(r.error.empty());
-  REQUIRE(r.roots.size() == 1);
-  CHECK(r.roots[0].valid);
-  CHECK(r.roots[0].solids == 0);
-  CHECK(r.roots[0].edges == 3);  // one edge per segment
+  const StepShapeFacts wires = only_shape(w.step);
+  CHECK(wires.valid);
+  CHECK(wires.solids == 0);
+  CHECK(wires.edges == 3);  // one edge per segment
 
   const Design design = read_design(example("hbezier_composite.yaml"));
   const CompositeCurve curve = build_curve(std::get<CurveDesign>(design.body).curve).curve;
@@ -405,12 +400,7 @@ TEST_CASE("step: an open surface is one shell of B-spline faces, sewn along its 
   CHECK(added > 0.0);  // H-Bézier patches are not B-splines: approximated, proven
   CHECK(w.item["max_deviation"].get<double>() + added <= w.item["tolerance"].get<double>());
 
-  const StepRead r = read_step(w.step);
-  INFO(r.error);
-  REQUIRE(r.error.empty());
-  CHECK(r.length_unit == "millimetre");
-  REQUIRE(r.roots.size() == 1);
-  const StepShapeFacts& sheet = r.roots[0];
+  const StepShapeFacts sheet = only_shape(w.step, "millimetre");
   INFO(sheet.problems);
   CHECK(sheet.valid);
   CHECK(sheet.solids == 0);
@@ -451,12 +441,7 @@ TEST_CASE("step: a thickened surface is one closed solid of B-spline faces withi
   CHECK(added >= deviation);
   CHECK(added <= w.item["tolerance"].get<double>());
 
-  const StepRead r = read_step(w.step);
-  INFO(r.error);
-  REQUIRE(r.error.empty());
-  CHECK(r.length_unit == "millimetre");
-  REQUIRE(r.roots.size() == 1);
-  const StepShapeFacts& solid = r.roots[0];
+  const StepShapeFacts solid = only_shape(w.step, "millimetre");
   INFO(solid.problems);
   CHECK(solid.valid);
   CHECK(solid.solids == 1);
