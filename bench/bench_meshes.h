@@ -9,7 +9,6 @@
 
 #include "geometry/mesh/halfedge_mesh.h"
 #include "geometry/mesh/revolve.h"
-#include "geometry/mesh/soup.h"
 #include "io/mesh/stl.h"
 
 namespace fabmesh::bench {

@@ -6,6 +6,7 @@
 #include <map>
 
 #include "bench/bench_meshes.h"
+#include "geometry/mesh/halfedge_mesh.h"
 #include "geometry/validation/detail/self_intersect.h"
 #include "geometry/validation/detail/self_intersect_reference.h"
 #include "geometry/validation/detail/topology.h"

@@ -25,7 +25,9 @@ namespace fs = std::filesystem;
 constexpr std::size_t kBlockBytes = std::size_t{1} << 20;
 
 [[noreturn]] void fail(const std::string& path, const std::string& what, int error) {
-  throw FileError(path, 0, 0, fmt::format("{}: {}: {}", path, what, std::strerror(error)));
+  const std::string message = fmt::format("{}: {}: {}", path, what, std::strerror(error));
+  if (error == ENOENT) throw MissingFileError(path, 0, 0, message);
+  throw FileError(path, 0, 0, message);
 }
 
 // Closes a descriptor on every path out of a scope.
@@ -145,7 +147,7 @@ bool is_environment_errno(int error) {
 
 void throw_write_failure(const std::string& path, const std::string& what, int error) {
   const std::string message = fmt::format("{}: {}: {}", path, what, std::strerror(error));
-  if (is_environment_errno(error)) throw EnvironmentError(path, error, message);
+  if (is_environment_errno(error)) throw MachineError(path, error, message);
   throw FileError(path, 0, 0, message);
 }
 

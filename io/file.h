@@ -10,6 +10,8 @@
 #include <utility>
 #include <vector>
 
+#include "geometry/core/errors.h"
+
 namespace fabmesh {
 
 /// The whole content of the regular file at `path`. FIFOs, devices, sockets
@@ -29,27 +31,15 @@ std::string read_file(const std::string& path);
 /// "a socket", or "not a regular file".
 const char* file_kind(mode_t mode);
 
-/// Writing a file failed for a reason of the machine, not of the input: the
+/// True for the errno values a MachineError (geometry/core/errors.h) stands
+/// for: writing failed for a reason of the machine, not of the input: the
 /// disk or quota is full (ENOSPC, EDQUOT), a file size limit was reached
 /// (EFBIG), an I/O error (EIO), or permission is denied (EACCES, EPERM, a
 /// read-only filesystem). The same input may succeed once that is fixed: a
-/// batch runs such a variant again (exit code 5, pipeline/failure.h).
-class EnvironmentError : public std::runtime_error {
- public:
-  EnvironmentError(std::string path, int error, const std::string& message)
-      : std::runtime_error(message), path_(std::move(path)), error_(error) {}
-  const std::string& path() const { return path_; }
-  int error_number() const { return error_; }  ///< the errno
-
- private:
-  std::string path_;
-  int error_;
-};
-
-/// True for the errno values EnvironmentError stands for.
+/// batch runs such a variant again (exit code 5).
 bool is_environment_errno(int error);
 
-/// Throws EnvironmentError when `error` (an errno) is one of the machine's
+/// Throws MachineError when `error` (an errno) is one of the machine's
 /// (is_environment_errno), else FileError; the message is "path: what: the
 /// system's words".
 [[noreturn]] void throw_write_failure(const std::string& path, const std::string& what, int error);

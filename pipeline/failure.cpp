@@ -2,7 +2,7 @@
 
 #include <fmt/format.h>
 
-#include "geometry/core/errors.h"
+#include "geometry/core/error_checks.h"
 #include "io/file.h"
 
 namespace fabmesh {
@@ -23,7 +23,7 @@ Failure describe_failure(const std::exception_ptr& error, const std::string& sub
     if (!at.key.empty() && !at.place.empty())
       return {kExitBadInput, "error", location_text(at) + ": " + e.what()};
     return {kExitBadInput, "error", about_subject(e.what())};
-  } catch (const EnvironmentError& e) {
+  } catch (const MachineError& e) {
     return {
         kExitEnvironment, "environment error",
         fmt::format("{} (a failure of the machine, not of the input: run again once it is fixed)", e.what())};

@@ -4,16 +4,11 @@
 #include <exception>
 #include <string>
 
+#include "geometry/core/errors.h"
+
 namespace fabmesh {
 
-/// Exit codes, the same for every command.
-constexpr int kExitOk = 0;        ///< done, every mesh valid
-constexpr int kExitInvalid = 1;   ///< a mesh is not valid (ValidationFailed)
-constexpr int kExitBadInput = 2;  ///< bad input (InputError)
-constexpr int kExitInternal = 3;  ///< an internal error
-/// Writing failed for a reason of the machine, not of the input (EnvironmentError:
-/// disk full, I/O error, permission): the same command may succeed once that is fixed.
-constexpr int kExitEnvironment = 5;
+// The exit codes (kExitOk ... kExitEnvironment) are the error tree's: geometry/core/errors.h.
 
 /// How a failure is reported.
 struct Failure {
@@ -23,7 +18,7 @@ struct Failure {
 };
 
 /// Classifies `error`: InputError (and its kinds) -> 2, ValidationFailed -> 1,
-/// EnvironmentError -> 5, anything else -> 3. An InputError whose location io has placed is reported
+/// MachineError -> 5, anything else -> 3. An InputError whose location io has placed is reported
 /// there ("path:line:column: key: message", "-D path=value: key: message",
 /// "path: key (default): message"); FileError messages name their file;
 /// `subject` (the design or mesh file at hand) prefixes any other message.

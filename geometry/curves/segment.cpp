@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "geometry/core/errors.h"
+#include "geometry/core/error_checks.h"
 
 namespace fabmesh {
 namespace {

@@ -8,9 +8,9 @@
 #include <cstdint>
 #include <vector>
 
+#include "geometry/core/proofs.h"
+#include "geometry/core/soup.h"
 #include "geometry/core/types.h"
-#include "geometry/mesh/soup.h"
-#include "geometry/validation/proofs.h"
 
 namespace fabmesh {
 

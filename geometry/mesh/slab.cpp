@@ -10,8 +10,8 @@
 
 #include "geometry/core/bucket_sort.h"
 #include "geometry/core/budget.h"
-#include "geometry/core/errors.h"
-#include "geometry/mesh/soup.h"
+#include "geometry/core/error_checks.h"
+#include "geometry/core/soup.h"
 #include "geometry/section/simple_polygon.h"
 
 namespace fabmesh {

@@ -6,10 +6,10 @@
 #include <optional>
 
 #include "geometry/core/limits.h"
+#include "geometry/core/proofs.h"
 #include "geometry/mesh/halfedge_mesh.h"
 #include "geometry/section/region.h"
 #include "geometry/section/triangulate.h"
-#include "geometry/validation/proofs.h"
 
 namespace fabmesh {
 

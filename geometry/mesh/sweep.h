@@ -9,8 +9,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "geometry/core/soup.h"
 #include "geometry/core/types.h"
-#include "geometry/mesh/soup.h"
 
 namespace fabmesh {
 

@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "geometry/core/budget.h"
-#include "geometry/core/errors.h"
+#include "geometry/core/error_checks.h"
 #include "geometry/mesh/revolution_margin.h"
 #include "geometry/mesh/revolve.h"
 #include "geometry/sampling/sample_curve.h"

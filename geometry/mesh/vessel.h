@@ -7,11 +7,11 @@
 #include <vector>
 
 #include "geometry/core/limits.h"
+#include "geometry/core/proofs.h"
+#include "geometry/core/soup.h"
 #include "geometry/core/tolerance_budget.h"
 #include "geometry/curves/composite.h"
-#include "geometry/mesh/soup.h"
 #include "geometry/section/vessel_section.h"
-#include "geometry/validation/proofs.h"
 
 namespace fabmesh {
 

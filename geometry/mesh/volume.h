@@ -1,8 +1,8 @@
 #pragma once
 // The signed volume a triangle soup encloses (validation, a mould's plaster).
 
+#include "geometry/core/soup.h"
 #include "geometry/mesh/bounding_box.h"
-#include "geometry/mesh/soup.h"
 
 namespace fabmesh {
 

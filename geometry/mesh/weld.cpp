@@ -13,7 +13,7 @@
 #include <cstring>
 #include <memory>
 
-#include "geometry/core/errors.h"
+#include "geometry/core/error_checks.h"
 #include "geometry/mesh/hash_mix.h"
 #include "geometry/mesh/weld_grid.h"
 

@@ -4,7 +4,7 @@
 
 #include <cstddef>
 
-#include "geometry/mesh/soup.h"
+#include "geometry/core/soup.h"
 
 namespace fabmesh {
 

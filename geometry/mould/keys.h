@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "geometry/mesh/soup.h"
+#include "geometry/core/soup.h"
 #include "geometry/mould/mould_options.h"
 #include "geometry/mould/mould_section.h"
 

@@ -7,6 +7,7 @@
 
 #include "geometry/core/budget.h"
 #include "geometry/core/errors.h"
+#include "geometry/mesh/halfedge_mesh.h"
 #include "geometry/mesh/sweep.h"
 #include "geometry/section/simple_polygon.h"
 #include "geometry/section/triangulate.h"

@@ -10,11 +10,11 @@
 #include <string>
 #include <vector>
 
-#include "geometry/mesh/soup.h"
+#include "geometry/core/proofs.h"
+#include "geometry/core/soup.h"
 #include "geometry/mould/keys.h"
 #include "geometry/mould/mould_section.h"
 #include "geometry/mould/release.h"
-#include "geometry/validation/proofs.h"
 
 namespace fabmesh {
 

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <limits>
 
-#include "geometry/core/errors.h"
+#include "geometry/core/error_checks.h"
 
 namespace fabmesh {
 namespace {

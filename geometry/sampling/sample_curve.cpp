@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "geometry/core/budget.h"
-#include "geometry/core/errors.h"
+#include "geometry/core/error_checks.h"
 
 namespace fabmesh {
 namespace {

@@ -8,7 +8,7 @@
 #include <memory>
 #include <optional>
 
-#include "geometry/core/errors.h"
+#include "geometry/core/error_checks.h"
 #include "geometry/sampling/sample_curve.h"
 #include "geometry/section/curve_clearance.h"
 #include "geometry/section/simple_polygon.h"

@@ -10,7 +10,7 @@
 
 #include "geometry/core/budget.h"
 #include "geometry/core/disjoint_sets.h"
-#include "geometry/core/errors.h"
+#include "geometry/core/error_checks.h"
 #include "geometry/surfaces/cell_bound.h"
 
 namespace fabmesh {

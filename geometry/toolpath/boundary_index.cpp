@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "geometry/core/errors.h"
+#include "geometry/core/error_checks.h"
 
 namespace fabmesh {
 namespace {

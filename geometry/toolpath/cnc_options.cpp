@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "geometry/core/errors.h"
+#include "geometry/core/error_checks.h"
 
 namespace fabmesh {
 namespace {

@@ -3,7 +3,7 @@
 // oriented, free of self-intersections, degenerate and duplicate faces.
 // The one public entry of geometry/validation: validate(soup, options), the
 // options carrying what a builder already proved. Every mesh fabmesh writes
-// passes through it and require_valid (pipeline/validate_built.h). Its
+// passes through it and require_valid (pipeline/validate_parts.h). Its
 // private parts (connectivity analysis, bounding-volume hierarchy, face-pair
 // filters, self-intersection test) are in geometry/validation/detail/.
 
@@ -14,10 +14,10 @@
 #include <utility>
 #include <vector>
 
+#include "geometry/core/proofs.h"
+#include "geometry/core/soup.h"
 #include "geometry/core/stage_timer.h"
 #include "geometry/core/types.h"
-#include "geometry/mesh/soup.h"
-#include "geometry/validation/proofs.h"
 
 namespace fabmesh {
 

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <limits>
 
-#include "geometry/core/errors.h"
+#include "geometry/core/error_checks.h"
 #include "io/cutting/svg_writing.h"
 #include "io/file.h"
 

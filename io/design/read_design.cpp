@@ -7,6 +7,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "geometry/core/error_checks.h"
 #include "geometry/core/units.h"
 #include "io/design/number_limits.h"
 #include "io/design/utf8.h"

@@ -16,9 +16,10 @@
 #include <memory>
 #include <optional>
 
-#include "geometry/core/errors.h"
+#include "geometry/core/error_checks.h"
 #include "geometry/core/float32.h"
 #include "geometry/mesh/bounding_box.h"
+#include "geometry/mesh/halfedge_mesh.h"
 #include "io/file.h"
 
 namespace fabmesh {

@@ -12,7 +12,7 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
-#include "geometry/core/errors.h"
+#include "geometry/core/error_checks.h"
 
 namespace fabmesh {
 namespace {

@@ -14,6 +14,7 @@
 
 #include "geometry/core/disjoint_sets.h"
 #include "geometry/core/errors.h"
+#include "geometry/mesh/halfedge_mesh.h"
 #include "io/file.h"
 #include "io/mesh/text_scanner.h"
 

@@ -6,9 +6,9 @@
 #include <string_view>
 #include <vector>
 
+#include "geometry/core/soup.h"
 #include "geometry/core/types.h"
 #include "geometry/mesh/halfedge_mesh.h"
-#include "geometry/mesh/soup.h"
 
 namespace fabmesh {
 

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "geometry/core/errors.h"
+#include "geometry/mesh/halfedge_mesh.h"
 #include "io/file.h"
 #include "io/mesh/text_scanner.h"
 

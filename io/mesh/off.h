@@ -4,9 +4,9 @@
 #include <string>
 #include <string_view>
 
+#include "geometry/core/soup.h"
 #include "geometry/core/types.h"
 #include "geometry/mesh/halfedge_mesh.h"
-#include "geometry/mesh/soup.h"
 
 namespace fabmesh {
 

@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "geometry/core/errors.h"
+#include "geometry/mesh/halfedge_mesh.h"
 #include "io/file.h"
 #include "io/mesh/text_scanner.h"
 

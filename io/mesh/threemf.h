@@ -8,7 +8,7 @@
 #include <string_view>
 #include <vector>
 
-#include "geometry/mesh/soup.h"
+#include "geometry/core/soup.h"
 
 namespace fabmesh {
 

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "geometry/core/errors.h"
+#include "geometry/core/error_checks.h"
 #include "geometry/fairing/gauss_legendre.h"
 
 namespace fabmesh {

@@ -8,7 +8,7 @@
 #include <iterator>
 #include <limits>
 
-#include "geometry/core/errors.h"
+#include "geometry/core/error_checks.h"
 #include "geometry/sampling/sample_curve.h"
 #include "io/pictures/curvature_profile.h"
 #include "io/pictures/markup.h"

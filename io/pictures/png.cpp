@@ -6,7 +6,7 @@
 #include <cstdlib>
 #include <memory>
 
-#include "geometry/core/errors.h"
+#include "geometry/core/error_checks.h"
 
 namespace fabmesh {
 namespace {

@@ -9,7 +9,7 @@
 #include <limits>
 #include <vector>
 
-#include "geometry/core/errors.h"
+#include "geometry/core/error_checks.h"
 #include "geometry/mesh/bounding_box.h"
 
 namespace fabmesh {

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "geometry/mesh/soup.h"
+#include "geometry/core/soup.h"
 #include "io/pictures/png.h"
 
 namespace fabmesh {

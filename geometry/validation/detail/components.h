@@ -14,7 +14,7 @@
 #include <optional>
 #include <vector>
 
-#include "geometry/mesh/soup.h"
+#include "geometry/core/soup.h"
 
 namespace fabmesh {
 

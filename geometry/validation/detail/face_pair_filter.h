@@ -33,7 +33,7 @@
 #include <cstdint>
 #include <limits>
 
-#include "geometry/mesh/soup.h"
+#include "geometry/core/soup.h"
 
 namespace fabmesh::detail {
 

@@ -12,7 +12,7 @@
 #include <utility>
 #include <vector>
 
-#include "geometry/mesh/soup.h"
+#include "geometry/core/soup.h"
 
 namespace fabmesh {
 

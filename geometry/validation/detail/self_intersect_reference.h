@@ -10,7 +10,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "geometry/mesh/soup.h"
+#include "geometry/core/soup.h"
 #include "geometry/validation/detail/self_intersect.h"
 
 namespace fabmesh {

@@ -9,7 +9,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "geometry/mesh/soup.h"
+#include "geometry/core/soup.h"
 
 namespace fabmesh {
 

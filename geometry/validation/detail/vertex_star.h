@@ -34,7 +34,7 @@
 #include <functional>
 #include <vector>
 
-#include "geometry/mesh/soup.h"
+#include "geometry/core/soup.h"
 
 namespace fabmesh::detail {
 

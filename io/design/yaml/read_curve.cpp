@@ -4,6 +4,7 @@
 
 #include <filesystem>
 
+#include "geometry/core/error_checks.h"
 #include "io/design/points_csv.h"
 
 namespace fabmesh {

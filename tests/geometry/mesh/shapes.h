@@ -10,7 +10,7 @@
 #include <tuple>
 #include <vector>
 
-#include "geometry/mesh/soup.h"
+#include "geometry/core/soup.h"
 
 namespace fabmesh::test {
 

@@ -3,7 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include "geometry/core/errors.h"
-#include "geometry/mesh/soup.h"
+#include "geometry/mesh/halfedge_mesh.h"
 #include "geometry/validation/validate.h"
 #include "tests/geometry/section/region_shapes.h"
 

@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include "geometry/core/errors.h"
+#include "geometry/mesh/halfedge_mesh.h"
 #include "geometry/surfaces/tessellate.h"
 #include "geometry/validation/validate.h"
 #include "tests/geometry/surfaces/test_networks.h"

@@ -5,10 +5,10 @@
 #include <random>
 
 #include "geometry/core/errors.h"
+#include "geometry/core/soup.h"
 #include "geometry/curves/curve_spec.h"
 #include "geometry/fairing/gauss_legendre.h"
 #include "geometry/mesh/revolve.h"
-#include "geometry/mesh/soup.h"
 #include "geometry/validation/validate.h"
 #include "tests/geometry/mesh/point_triangle.h"
 

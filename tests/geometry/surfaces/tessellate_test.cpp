@@ -4,6 +4,7 @@
 #include <random>
 
 #include "geometry/core/errors.h"
+#include "geometry/mesh/halfedge_mesh.h"
 #include "geometry/validation/validate.h"
 #include "tests/geometry/mesh/point_triangle.h"
 #include "tests/geometry/surfaces/test_networks.h"

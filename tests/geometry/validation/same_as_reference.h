@@ -6,7 +6,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "geometry/mesh/soup.h"
+#include "geometry/core/soup.h"
 #include "geometry/validation/detail/self_intersect.h"
 #include "geometry/validation/detail/self_intersect_reference.h"
 

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "geometry/core/errors.h"
+#include "geometry/mesh/halfedge_mesh.h"
 #include "geometry/mesh/revolve.h"
 #include "geometry/mesh/slab.h"
 #include "geometry/section/region.h"

@@ -6,7 +6,7 @@
 #include <catch2/catch.hpp>
 
 #include "geometry/curves/curve_spec.h"
-#include "geometry/mesh/soup.h"
+#include "geometry/mesh/halfedge_mesh.h"
 #include "geometry/mesh/vessel.h"
 
 using namespace fabmesh;

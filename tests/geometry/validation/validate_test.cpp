@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "geometry/core/errors.h"
+#include "geometry/mesh/halfedge_mesh.h"
 #include "geometry/mesh/volume.h"
 #include "geometry/mesh/weld.h"
 #include "geometry/validation/detail/self_intersect.h"

@@ -2,8 +2,8 @@
 // The golden vessel (configs/examples/vessel_golden_shell.yaml, in cm) built
 // through the geometry API: a closed, outward shell mesh for the format tests.
 
+#include "geometry/core/soup.h"
 #include "geometry/curves/curve_spec.h"
-#include "geometry/mesh/soup.h"
 #include "geometry/mesh/vessel.h"
 
 namespace fabmesh::test {

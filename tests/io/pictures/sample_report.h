@@ -12,8 +12,8 @@
 
 #include "geometry/curves/curve_spec.h"
 #include "geometry/fairing/build_curve.h"
+#include "geometry/mesh/halfedge_mesh.h"
 #include "geometry/mesh/slab.h"
-#include "geometry/mesh/soup.h"
 #include "geometry/mesh/vessel.h"
 #include "io/design/read_design.h"
 #include "io/mesh/stl.h"

@@ -1,8 +1,6 @@
-#include "geometry/mesh/soup.h"
+#include "geometry/mesh/halfedge_mesh.h"
 
-#include <fmt/format.h>
-
-#include "geometry/core/errors.h"
+#include <vector>
 
 namespace fabmesh {
 
@@ -25,18 +23,6 @@ TriangleSoup to_soup(const Mesh& mesh) {
     }
   }
   return soup;
-}
-
-void require_indices_in_range(const TriangleSoup& soup) {
-  const std::size_t n = soup.vertices.size();
-  for (std::size_t f = 0; f < soup.triangles.size(); ++f) {
-    for (const std::uint32_t i : soup.triangles[f]) {
-      if (i >= n) {
-        throw InputError(
-            fmt::format("triangle {} refers to vertex {} but the soup has {} vertices", f, i, n));
-      }
-    }
-  }
 }
 
 SoupToMesh to_mesh(const TriangleSoup& soup) {

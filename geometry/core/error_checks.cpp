@@ -1,4 +1,4 @@
-#include "geometry/core/errors.h"
+#include "geometry/core/error_checks.h"
 
 #include <fmt/format.h>
 
