@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include "geometry/fairing/build_curve.h"
+#include "geometry/mesh/halfedge_mesh.h"
 #include "geometry/mesh/slab.h"
 #include "geometry/toolpath/toolpath.h"
 #include "pipeline/build_design.h"
@@ -47,16 +48,16 @@ auto at_loop_keys(const CountertopDesign& design, const std::vector<RegionHole>&
 
 }  // namespace
 
-BuiltMesh build(const CountertopDesign& design, const BuildContext& context) {
-  BuiltShape shape;
-  shape.curves.push_back({"outline", build_curve(design.outline)});
+Result build(const CountertopDesign& design, const BuildContext& context) {
+  Result out;
+  out.curves.push_back({"outline", build_curve(design.outline)});
   std::vector<RegionHole> holes;
   for (std::size_t i = 0; i < design.holes.size(); ++i) {
-    shape.curves.push_back({fmt::format("holes[{}]", i), build_curve(design.holes[i].curve)});
-    holes.push_back({shape.curves.back().curve.curve, fmt::format("holes[{}] ({})", i, design.holes[i].shape),
+    out.curves.push_back({fmt::format("holes[{}]", i), build_curve(design.holes[i].curve)});
+    holes.push_back({out.curves.back().curve.curve, fmt::format("holes[{}] ({})", i, design.holes[i].shape),
                      design.holes[i].curve.key});
   }
-  const BuiltCurve& outline = shape.curves.front().curve;
+  const BuiltCurve& outline = out.curves.front().curve;
   context.watch.lap("curve");
   RegionOptions ro;
   ro.tolerance = context.tolerance;
@@ -72,82 +73,82 @@ BuiltMesh build(const CountertopDesign& design, const BuildContext& context) {
   so.max_triangles = design.max_triangles;
   const SlabMesh slab = build_slab(region, so);
   context.watch.lap("build");
-  std::vector<CutLoop> cutting;
+  CountertopProducts products;
   if (context.wants_cutting) {
     CutLoopOptions co;
     co.tolerance = context.tolerance;
     co.reverse = region.reversed[0];
-    cutting.push_back(cut_loop(outline.curve, "outline", true, co));
+    products.cutting.push_back(cut_loop(outline.curve, "outline", true, co));
     for (std::size_t i = 0; i < holes.size(); ++i) {
       co.reverse = region.reversed[i + 1];
-      cutting.push_back(cut_loop(holes[i].curve, holes[i].label, false, co));
+      products.cutting.push_back(cut_loop(holes[i].curve, holes[i].label, false, co));
     }
     context.watch.lap("cutting_outline");
   }
   std::size_t boundary_points = 0;
   for (const auto& loop : slab.triangulation.boundary) boundary_points += loop.size();
-  BuiltMesh out;
-  out.soup = to_soup(slab.mesh);
-  out.checks.embedding = slab.proof;    // the region is simple and the slab a prism over it
-  out.checks.topology = slab.topology;  // extrude's pairing of every face's sides
-  validate_built(out, context);
+  Part product;
+  product.name = context.common.name;
+  product.mesh = to_soup(slab.mesh);
+  product.proofs.embedding = slab.proof;    // the region is simple and the slab a prism over it
+  product.proofs.topology = slab.topology;  // extrude's pairing of every face's sides
+  out.parts.push_back(std::move(product));
   out.max_deviation = region.max_deviation;
-  out.cutting = std::move(cutting);
-  out.facts = {{"holes", holes.size()},
-               {"outline_points", region.outer.size()},
-               {"boundary_points", boundary_points},
-               {"planar_triangles", slab.triangulation.triangles.size()},
-               {"steiner_points", slab.triangulation.steiner_points},
-               {"region_area", region.area},
-               {"thickness", design.thickness}};
-  if (design.max_edge > 0.0) out.facts["max_edge"] = design.max_edge;
+  out.facts.set("holes", holes.size())
+      .set("outline_points", region.outer.size())
+      .set("boundary_points", boundary_points)
+      .set("planar_triangles", slab.triangulation.triangles.size())
+      .set("steiner_points", slab.triangulation.steiner_points)
+      .set("region_area", region.area)
+      .set("thickness", design.thickness);
+  if (design.max_edge > 0.0) out.facts.set("max_edge", design.max_edge);
   if (!holes.empty()) {
     // Between the exact curves (a proven lower bound), not their polylines.
-    out.facts["min_clearance"] = region.min_clearance;
-    out.facts["min_clearance_where"] = region.clearance_where;
+    out.facts.set("min_clearance", region.min_clearance).set("min_clearance_where", region.clearance_where);
   }
   if (design.cnc) {
     CncOptions cnc = design.cnc->options;
     cnc.tolerance = context.tolerance;
-    out.toolpath = at_loop_keys(design, holes, [&] { return plan_toolpath(outline.curve, holes, cnc); });
-    out.gcode = GcodeOptions{context.common.name, context.common.units, design.cnc->program_units,
-                             design.cnc->decimals};
+    products.toolpath = at_loop_keys(design, holes, [&] { return plan_toolpath(outline.curve, holes, cnc); });
+    products.gcode = GcodeOptions{context.common.name, context.common.units, design.cnc->program_units,
+                                  design.cnc->decimals};
     context.watch.lap("toolpath");
-    const Toolpath& t = *out.toolpath;
+    const Toolpath& t = *products.toolpath;
     append_shares(out.tolerance_shares, "cnc: ", t.tolerance_shares);
     const ToolpathTotals totals = toolpath_totals(t);
     out.warnings.insert(out.warnings.end(), t.warnings.begin(), t.warnings.end());
     std::size_t hole_tabs = 0;
     for (const LoopPath& loop : t.loops) hole_tabs += loop.outer ? 0 : loop.tabs.size();
     const std::size_t outline_tabs = t.loops.empty() ? 0 : t.loops.back().tabs.size();
-    out.facts["cnc"] = {{"tool_diameter", cnc.tool_diameter},
-                        {"passes", t.pass_z.size()},
-                        {"moves", t.moves.size()},
-                        {"deviation", t.deviation},
-                        {"clearance", t.clearance},
-                        {"tabs", outline_tabs},
-                        {"hole_tabs", hole_tabs},
-                        {"entry", to_string(cnc.entry)},
-                        {"arc_fit",
-                         {{"enabled", cnc.arc_fit},
-                          {"replaced", t.fit_replaced},
-                          {"arcs", t.fit_arcs},
-                          {"lines", t.fit_lines},
-                          {"deviation", t.fit_deviation}}},
-                        {"finish", cnc.finish},
-                        {"direction", to_string(cnc.direction)},
-                        {"relief", to_string(cnc.relief)},
-                        {"cutting_length", totals.cutting},
-                        {"plunging_length", totals.plunging},
-                        {"rapid_length", totals.rapid},
-                        {"estimated_minutes", totals.minutes}};
+    Facts arc_fit;
+    arc_fit.set("enabled", cnc.arc_fit)
+        .set("replaced", t.fit_replaced)
+        .set("arcs", t.fit_arcs)
+        .set("lines", t.fit_lines)
+        .set("deviation", t.fit_deviation);
+    Facts facts;
+    facts.set("tool_diameter", cnc.tool_diameter)
+        .set("passes", t.pass_z.size())
+        .set("moves", t.moves.size())
+        .set("deviation", t.deviation)
+        .set("clearance", t.clearance)
+        .set("tabs", outline_tabs)
+        .set("hole_tabs", hole_tabs)
+        .set("entry", to_string(cnc.entry))
+        .set("arc_fit", std::move(arc_fit))
+        .set("finish", cnc.finish)
+        .set("direction", to_string(cnc.direction))
+        .set("relief", to_string(cnc.relief))
+        .set("cutting_length", totals.cutting)
+        .set("plunging_length", totals.plunging)
+        .set("rapid_length", totals.rapid)
+        .set("estimated_minutes", totals.minutes);
+    out.facts.set("cnc", std::move(facts));
   }
-  ExactSolid solid;
-  solid.form = ExactSolid::Form::Extrusion;
-  solid.height = design.thickness;
-  for (const NamedBuiltCurve& c : shape.curves) solid.loops.push_back(exact_pieces(c.curve.curve));
-  shape.solid = std::move(solid);
-  out.shape = std::move(shape);
+  products.solid.form = ExactSolid::Form::Extrusion;
+  products.solid.height = design.thickness;
+  for (const NamedBuiltCurve& c : out.curves) products.solid.loops.push_back(exact_pieces(c.curve.curve));
+  out.products = std::move(products);
   return out;
 }
 

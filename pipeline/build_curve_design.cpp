@@ -7,14 +7,15 @@
 
 namespace fabmesh {
 
-BuiltMesh build(const CurveDesign& design, const BuildContext& context) {
+Result build(const CurveDesign& design, const BuildContext& context) {
   const BuiltCurve curve = build_curve(design.curve);
   context.watch.lap("curve");
-  BuiltMesh out;
+  Result out;
   out.purpose = MeshPurpose::Drawing;  // no mesh to validate
   CutLoopOptions options;
   options.tolerance = context.tolerance;
-  out.cutting.push_back(cut_loop(curve.curve, "curve", true, options));
+  CurveProducts products;
+  products.drawing.push_back(cut_loop(curve.curve, "curve", true, options));
   // Lines and exact arcs are drawn exactly; the rest as polylines sampled within the tolerance.
   SampleOptions so;
   so.tolerance = context.tolerance;
@@ -22,9 +23,10 @@ BuiltMesh build(const CurveDesign& design, const BuildContext& context) {
   const Polyline2 line = sample_curve(curve.curve, so, &params);
   require_simple_closed(line, params, design.curve.key.empty() ? "curve" : design.curve.key);  // as `sample`
   out.max_deviation = line.max_deviation;
-  out.facts = {{"segments", curve.curve.size()}, {"closed", curve.curve.closed()}};
+  out.facts.set("segments", curve.curve.size()).set("closed", curve.curve.closed());
   context.watch.lap("drawing");
-  out.shape.curves.push_back({"curve", curve});
+  out.curves.push_back({"curve", curve});
+  out.products = std::move(products);
   return out;
 }
 

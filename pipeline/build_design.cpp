@@ -27,7 +27,7 @@ std::size_t process_memory_limit() {
   return limit;
 }
 
-BuiltMesh build_design(const Design& design, const BuildContext& context) {
+Result build_design(const Design& design, const BuildContext& context) {
   const DesignCommon& common = design.common;
   return in_design(design, [&] {
     try {

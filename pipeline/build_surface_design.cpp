@@ -12,23 +12,27 @@
 #include <limits>
 
 #include "geometry/core/errors.h"
+#include "geometry/mesh/halfedge_mesh.h"
 #include "geometry/mesh/thicken.h"
 #include "geometry/surfaces/tessellate.h"
 #include "pipeline/build_design.h"
+#include "pipeline/validate_parts.h"
 
 namespace fabmesh {
 namespace {
 
-nlohmann::json joints_json(const PatchNetwork& network) {
-  nlohmann::json joints = nlohmann::json::array();
+std::vector<Facts> joint_facts(const PatchNetwork& network) {
+  std::vector<Facts> joints;
   for (const SharedBorder& b : network.borders) {
-    joints.push_back({{"patches", {network.names[b.a], network.names[b.b]}},
-                      {"sides", {to_string(b.side_a), to_string(b.side_b)}},
-                      {"declared", to_string(b.declared)},
-                      {"achieved", to_string(b.achieved)},
-                      {"gap", b.gap},
-                      {"normal_angle", b.normal_angle},
-                      {"curvature_jump", b.curvature_jump}});
+    Facts joint;
+    joint.set("patches", std::vector<std::string>{network.names[b.a], network.names[b.b]})
+        .set("sides", std::vector<std::string>{to_string(b.side_a), to_string(b.side_b)})
+        .set("declared", to_string(b.declared))
+        .set("achieved", to_string(b.achieved))
+        .set("gap", b.gap)
+        .set("normal_angle", b.normal_angle)
+        .set("curvature_jump", b.curvature_jump);
+    joints.push_back(std::move(joint));
   }
   return joints;
 }
@@ -89,11 +93,11 @@ FoldHint fold_hint(const PatchNetwork& network, const SurfaceTessellation& sheet
   return hint;
 }
 
-[[noreturn]] void too_thick(const SurfaceDesign& design, const BuildContext& context, const BuiltMesh& built,
+[[noreturn]] void too_thick(const SurfaceDesign& design, const BuildContext& context, const Part& shell,
                             const FoldHint& hint) {
   std::string message =
       fmt::format("surface '{}': the mesh is not valid for fabrication", context.common.name);
-  for (const std::string& line : describe_defects(built.validation)) message += "; " + line;
+  for (const std::string& line : describe_defects(shell.validation)) message += "; " + line;
   const std::string side = to_string(design.thicken);
   if (design.thickness >= hint.thickness_limit) {
     message += fmt::format(
@@ -133,24 +137,32 @@ Mesh thickened(const SurfaceDesign& design, const SurfaceTessellation& sheet,
   return thicken(sheet.mesh, sheet.normals, th);
 }
 
+// The design's mesh, named as the design.
+Part product_part(const std::string& name, TriangleSoup mesh) {
+  Part part;
+  part.name = name;
+  part.mesh = std::move(mesh);
+  return part;
+}
+
 }  // namespace
 
-BuiltMesh surface_draft(const SurfaceDesign& design, double tolerance) {
-  BuiltMesh out;
+Result surface_draft(const SurfaceDesign& design, double tolerance) {
+  Result out;
   const PatchNetwork network = build_patch_network(design.patches);
   const SurfaceTessellation sheet = tessellate(network, sheet_options(design, tolerance));
   out.max_deviation = sheet.max_deviation;
   if (design.thickness > 0.0) {
-    out.soup = to_soup(thickened(design, sheet, span_of(design, network)));
+    out.parts.push_back(product_part("", to_soup(thickened(design, sheet, span_of(design, network)))));
   } else {
-    out.soup = to_soup(sheet.mesh);
+    out.parts.push_back(product_part("", to_soup(sheet.mesh)));
     out.purpose = MeshPurpose::Viewing;
   }
-  out.shape.patches = network;
+  out.products = SurfaceProducts{network, std::nullopt};
   return out;
 }
 
-BuiltMesh build(const SurfaceDesign& design, const BuildContext& context) {
+Result build(const SurfaceDesign& design, const BuildContext& context) {
   const PatchNetwork network = build_patch_network(design.patches);
   context.watch.lap("patches");
   const bool thick = design.thickness > 0.0;
@@ -164,36 +176,36 @@ BuiltMesh build(const SurfaceDesign& design, const BuildContext& context) {
             : tessellate(network, to);
   std::size_t rim_edges = 0;
   for (const auto h : sheet.mesh.halfedges()) rim_edges += sheet.mesh.is_boundary(h) ? 1 : 0;
-  nlohmann::json facts = {{"patches", network.patches.size()},
-                          {"joints", joints_json(network)},
-                          {"sheet_triangles", sheet.mesh.n_faces()},
-                          {"rim_edges", rim_edges}};
+  Result out;
+  out.facts.set("patches", network.patches.size())
+      .set("joints", joint_facts(network))
+      .set("sheet_triangles", sheet.mesh.n_faces())
+      .set("rim_edges", rim_edges);
+  out.max_deviation = sheet.max_deviation;
+  SurfaceProducts products{network, std::nullopt};
   if (!thick) {
     context.watch.lap("build");
-    BuiltMesh out;
-    out.soup = to_soup(sheet.mesh);
-    validate_built(out, context);
+    out.parts.push_back(product_part(context.common.name, to_soup(sheet.mesh)));
     out.purpose = MeshPurpose::Viewing;
-    out.max_deviation = sheet.max_deviation;
-    facts["fabrication"] = "not valid: open surface (no thickness)";
-    out.facts = std::move(facts);
-    out.shape.patches = network;
+    out.facts.set("fabrication", "not valid: open surface (no thickness)");
+    out.products = std::move(products);
     return out;
   }
   const Mesh solid = thickened(design, sheet, span);
   context.watch.lap("build");
-  BuiltMesh out;
-  out.soup = to_soup(solid);  // no proof: the 3D self-intersection test catches a folding shell
-  validate_built(out, context);
-  if (out.validation.self_intersecting)
-    too_thick(design, context, out, fold_hint(network, sheet, span[0], span[1]));
-  out.max_deviation = sheet.max_deviation;
-  facts["thickness"] = design.thickness;
-  facts["thicken"] = to_string(design.thicken);
-  facts["shell_span"] = {span[0], span[1]};
-  out.facts = std::move(facts);
-  out.shape.patches = network;
-  if (context.wants_exact) out.shape.shell = shell_grid(sheet, span[0], span[1]);
+  // No proof: the 3D self-intersection test catches a folding shell, and
+  // its verdict is needed here to say which thickness would pass.
+  Part shell = product_part(context.common.name, to_soup(solid));
+  validate_part(shell);
+  context.watch.lap("validate");
+  if (shell.validation.self_intersecting)
+    too_thick(design, context, shell, fold_hint(network, sheet, span[0], span[1]));
+  out.parts.push_back(std::move(shell));
+  out.facts.set("thickness", design.thickness)
+      .set("thicken", to_string(design.thicken))
+      .set("shell_span", std::vector<double>{span[0], span[1]});
+  if (context.wants_exact) products.shell = shell_grid(sheet, span[0], span[1]);
+  out.products = std::move(products);
   return out;
 }
 

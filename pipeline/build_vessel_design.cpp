@@ -16,6 +16,7 @@
 #include "geometry/section/vessel_section.h"
 #include "io/design/schema.h"
 #include "pipeline/build_design.h"
+#include "pipeline/validate_parts.h"
 
 namespace fabmesh {
 namespace {
@@ -55,7 +56,7 @@ CutLoop profile_template(const CompositeCurve& profile, double tolerance) {
   return cut_loop(CompositeCurve(std::move(segments), true), "profile template", true, options);
 }
 
-nlohmann::json size_json(const Vec3& lo, const Vec3& hi) {
+std::vector<double> size_of(const Vec3& lo, const Vec3& hi) {
   const Vec3 s = hi - lo;
   return {s.x(), s.y(), s.z()};
 }
@@ -102,46 +103,51 @@ ExactMould exact_mould(const Mould& mould, const CompositeCurve& master, const M
   return exact;
 }
 
-// The mould's parts, each validated with its proof of embedding and required
-// valid, and what a workshop needs to know; and the mould as exact solids.
+// The mould's parts, each with its proof of embedding, what a workshop
+// needs to know, and the mould as exact solids.
 void add_mould(const VesselDesign& design, const CompositeCurve& fired_profile, const CompositeCurve& master,
-               const BuildContext& context, BuiltMesh& out) {
+               const BuildContext& context, Result& out, VesselProducts& products) {
   MouldOptions options = *design.mould;
   options.tolerance = context.tolerance;
   Mould mould = keyed_in("vessel.mould", "mould.", [&] { return build_mould(fired_profile, options); });
-  out.shape.mould = exact_mould(mould, master, options);
-  for (MouldPart& p : mould.parts) {
-    std::string name = p.name;  // "side 1 of 2", "base"
-    if (p.kind == MouldPartKind::Side) name = fmt::format("side-{}", out.mould_parts.size() + 1);
-    ValidationOptions checks;
-    checks.embedding = p.proof;
-    ValidationReport validation = validate_built(p.soup, checks);
-    require_fit(validation, MeshPurpose::Fabrication, "mould part '" + p.name + "'");
-    out.shape.mould->parts[out.mould_parts.size()].name = name;
-    out.mould_parts.push_back({name, std::move(p.soup), std::move(validation)});
+  products.mould = exact_mould(mould, master, options);
+  std::size_t sides = 0;
+  std::vector<Facts> parts;
+  for (std::size_t i = 0; i < mould.parts.size(); ++i) {
+    MouldPart& p = mould.parts[i];
+    const bool side = p.kind == MouldPartKind::Side;
+    Part part;
+    part.name = side ? fmt::format("side-{}", ++sides) : p.name;  // "side 1 of 2" -> "side-1"; "base"
+    part.role = side ? PartRole::MouldSide : PartRole::MouldBase;
+    part.mesh = std::move(p.soup);
+    part.proofs.embedding = p.proof;
+    validate_part(part);  // its verdict is one of the mould's facts
+    const ValidationReport& v = part.validation;
+    Facts facts;
+    facts.set("genus", v.genus ? Facts::Value(std::int64_t{*v.genus}) : Facts::Value(nullptr))
+        .set("name", part.name)
+        .set("self_intersection", to_string(v.self_intersection))
+        .set("triangles", part.mesh.triangles.size())
+        .set("volume", v.volume);
+    parts.push_back(std::move(facts));
+    products.mould->parts[i].name = part.name;
+    out.parts.push_back(std::move(part));
   }
   context.watch.lap("mould");
-  nlohmann::json parts = nlohmann::json::array();
-  for (const NamedSoup& p : out.mould_parts) {
-    const ValidationReport& v = p.validation;
-    parts.push_back({{"name", p.name},
-                     {"triangles", p.soup.triangles.size()},
-                     {"volume", v.volume},
-                     {"genus", v.genus ? nlohmann::json(*v.genus) : nlohmann::json(nullptr)},
-                     {"self_intersection", to_string(v.self_intersection)}});
-  }
   out.max_deviation = std::max(out.max_deviation, mould.max_deviation);
   append_shares(out.tolerance_shares, "mould: ", mould.tolerance_shares);
-  out.facts["mould"] = {{"parts", parts},
-                        {"slip_volume", mould.cavity_volume},
-                        {"plaster_volume", mould.plaster_volume},
-                        {"block_volume", mould.block_volume},
-                        {"spare_volume", mould.spare_volume},
-                        {"vessel_volume", mould.vessel_volume},
-                        {"volume_identity_error_bound", mould.volume_error_bound},
-                        {"max_deviation", mould.max_deviation},
-                        {"release", mould.release_proof},
-                        {"warnings", mould.warnings}};
+  Facts facts;
+  facts.set("parts", std::move(parts))
+      .set("slip_volume", mould.cavity_volume)
+      .set("plaster_volume", mould.plaster_volume)
+      .set("block_volume", mould.block_volume)
+      .set("spare_volume", mould.spare_volume)
+      .set("vessel_volume", mould.vessel_volume)
+      .set("volume_identity_error_bound", mould.volume_error_bound)
+      .set("max_deviation", mould.max_deviation)
+      .set("release", mould.release_proof)
+      .set("warnings", mould.warnings);
+  out.facts.set("mould", std::move(facts));
 }
 
 // Appends the line from `a` to `b`, unless they are one point.
@@ -207,7 +213,7 @@ std::optional<ExactSolid> exact_revolution(const CompositeCurve& profile, const 
 
 }  // namespace
 
-BuiltMesh build(const VesselDesign& design, const BuildContext& context) {
+Result build(const VesselDesign& design, const BuildContext& context) {
   const BuiltCurve profile = build_curve(design.profile);
   // What is written is the master: the fired design scaled up for the clay's shrinkage.
   const double factor = shrinkage_factor(design.shrinkage);
@@ -240,36 +246,42 @@ BuiltMesh build(const VesselDesign& design, const BuildContext& context) {
   context.watch.lap("build");
   std::size_t section_points = 0;
   for (const auto& loop : vessel.section.loops) section_points += loop.size();
-  BuiltMesh out;
-  out.soup = std::move(vessel.soup);
-  out.checks.topology = std::move(vessel.topology);  // the revolution grid's connectivity
-  out.checks.embedding = std::move(vessel.proof);    // the simple section's revolution
-  validate_built(out, context);
+  Result out;
+  Part product;
+  product.name = context.common.name;
+  product.mesh = std::move(vessel.soup);
+  product.proofs.topology = std::move(vessel.topology);  // the revolution grid's connectivity
+  product.proofs.embedding = std::move(vessel.proof);    // the simple section's revolution
   out.max_deviation = vessel.max_deviation;
   append_shares(out.tolerance_shares, "", vessel.tolerance_shares);
-  out.facts = {{"angular_segments", vessel.segments},
-               {"section_loops", vessel.section.loops.size()},
-               {"section_points", section_points},
-               {"max_radius", vessel.section.max_radius}};
+  out.facts.set("angular_segments", vessel.segments)
+      .set("section_loops", vessel.section.loops.size())
+      .set("section_points", section_points)
+      .set("max_radius", vessel.section.max_radius);
   if (!std::isnan(vessel.section.min_clearance)) {
     // The thinnest place of the shell, between the exact outer and inner surfaces.
-    out.facts["min_clearance"] = vessel.section.min_clearance;
-    out.facts["min_clearance_where"] = vessel.section.clearance_where;
+    out.facts.set("min_clearance", vessel.section.min_clearance)
+        .set("min_clearance_where", vessel.section.clearance_where);
   }
   if (design.shrinkage > 0.0) {
-    const BoundingBox box = bounding_box(out.soup.vertices);
-    out.facts["shrinkage"] = {{"shrinkage", design.shrinkage},
-                              {"factor", factor},
-                              {"master_size", size_json(box.lo, box.hi)},
-                              {"fired_size", size_json(box.lo / factor, box.hi / factor)}};
+    const BoundingBox box = bounding_box(product.mesh.vertices);
+    Facts shrinkage;
+    shrinkage.set("shrinkage", design.shrinkage)
+        .set("factor", factor)
+        .set("master_size", size_of(box.lo, box.hi))
+        .set("fired_size", size_of(box.lo / factor, box.hi / factor));
+    out.facts.set("shrinkage", std::move(shrinkage));
   }
+  out.parts.push_back(std::move(product));
+  VesselProducts products;
   if (context.wants_cutting) {
-    out.cutting.push_back(profile_template(master, context.tolerance));
+    products.profile_template.push_back(profile_template(master, context.tolerance));
     context.watch.lap("template");
   }
-  if (design.mould) add_mould(design, profile.curve, master, context, out);
-  out.shape.curves.push_back({"profile", profile});
-  out.shape.solid = exact_revolution(master, vessel.section);
+  if (design.mould) add_mould(design, profile.curve, master, context, out, products);
+  out.curves.push_back({"profile", profile});
+  products.solid = exact_revolution(master, vessel.section);
+  out.products = std::move(products);
   return out;
 }
 

@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
+#include "geometry/core/soup.h"
 #include "geometry/core/stage_timer.h"
 #include "geometry/mesh/interpenetration.h"
-#include "geometry/mesh/soup.h"
 #include "geometry/validation/validate.h"
 #include "pipeline/failure.h"
 #include "pipeline/report.h"

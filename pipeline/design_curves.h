@@ -2,12 +2,13 @@
 // The curves of a design, by name, for the commands that work on curves, and
 // the design's shape (curves and patches) built without a mesh.
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "geometry/sampling/sample_curve.h"
 #include "io/design/design.h"
-#include "pipeline/built_mesh.h"
+#include "pipeline/result.h"
 
 namespace fabmesh {
 
@@ -24,6 +25,12 @@ std::vector<NamedCurve> design_curves(const Design& design);
 /// (segments i and j)". `sample` and `run` judge a closed curve by this one rule.
 void require_simple_closed(const Polyline2& line, const std::vector<CurveParam>& params,
                            const std::string& key);
+
+/// A design's curves as built and a surface's patch network: what its plot draws.
+struct BuiltShape {
+  std::vector<NamedBuiltCurve> curves;  ///< in design_curves' order
+  std::optional<PatchNetwork> patches;  ///< a surface's
+};
 
 /// The design's curves built (build_curve, in design_curves' order) and a
 /// surface's patch network (build_patch_network), without building a mesh:

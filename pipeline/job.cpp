@@ -4,15 +4,13 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <functional>
-#include <optional>
+#include <utility>
 
 #include "geometry/core/errors.h"
+#include "geometry/core/units.h"
 #include "geometry/mesh/bounding_box.h"
 #include "pipeline/build_design.h"
-#include "pipeline/outputs.h"
-#include "pipeline/planned_outputs.h"
-#include "pipeline/validate_built.h"
+#include "pipeline/validate_parts.h"
 
 namespace fabmesh {
 namespace {
@@ -21,12 +19,19 @@ namespace {
 // unless the outputs' number formats need more (build_within_budget).
 constexpr double kOutputShare = 0.1;
 
-TriangleSoup scaled(const TriangleSoup& soup, double factor) {
-  if (factor == 1.0) return soup;
-  TriangleSoup out = soup;
-  for (Vec3& p : out.vertices) p *= factor;
-  return out;
-}
+// A draft's tolerance, in the design's: coarse enough to build and draw at
+// once, fine enough to show the shape. A builder that refuses its coarse
+// mesh (a vessel shell whose walls meet at that tolerance) is asked again at
+// half the tolerance, down to kLeastDraftTolerance.
+constexpr double kDraftTolerance = 32.0;
+constexpr double kLeastDraftTolerance = 4.0;
+
+// A surface's draft: its sheet refined for the surface alone at this many
+// times the design's tolerance, then thickened (surface_draft): the wash
+// basin's shell in 7 700 triangles and about 10 ms, where its builder's
+// coarsest proven mesh took 10 000 and 25 ms, most of them the offset
+// sheets' grid crowding toward the rim's singular corners.
+constexpr double kSurfaceDraftTolerance = 2.0;
 
 std::vector<const OutputFormat*> formats_of(const Design& design, const JobOptions& options) {
   std::vector<const OutputFormat*> formats;
@@ -40,17 +45,71 @@ std::vector<const OutputFormat*> formats_of(const Design& design, const JobOptio
   // Pictures asked for by the command (a report's): those the design has content for, once.
   for (const std::string& name : options.also_formats) {
     const OutputFormat* f = find_output_format(name);
-    if (f == nullptr || !has_content(design, f->content) || !f->kinds.test(design.body.index())) continue;
+    if (f == nullptr || !applies_to(*f, design)) continue;
     if (std::find(formats.begin(), formats.end(), f) == formats.end()) formats.push_back(f);
   }
   return formats;
 }
 
-double largest_coordinate(const BuiltMesh& built) {
+// "a or b", "a, b or c".
+std::string either(const std::vector<std::string>& names) {
+  std::string text;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    if (i > 0) text += i + 1 == names.size() ? " or " : ", ";
+    text += names[i];
+  }
+  return text;
+}
+
+// Warnings about the design's own `outputs` list: a `mould:` or `cnc:` block
+// for which it asks for no output, so that block is not built ("cup.yaml:12:1:
+// mould: ... add mould_stl, mould_3mf or mould_step to `outputs`"). None when
+// the formats come from the command line or are the kind's defaults.
+std::vector<std::string> unused_block_warnings(const Design& design, const JobOptions& options,
+                                               const std::vector<const OutputFormat*>& formats) {
+  std::vector<std::string> warnings;
+  if (options.export_format || design.common.outputs.empty()) return warnings;
+  struct Block {
+    DesignBlock block;
+    const char* key;
+    const char* what;
+  };
+  for (const Block& block : {Block{DesignBlock::Mould, "mould", "the mould is not built"},
+                             Block{DesignBlock::Cnc, "cnc", "the router path is not planned"}}) {
+    if (!has_block(design, block.block)) continue;
+    const bool used = std::any_of(formats.begin(), formats.end(),
+                                  [&](const OutputFormat* f) { return f->block == block.block; });
+    if (used) continue;
+    std::vector<std::string> users;
+    for (const OutputFormat& f : output_formats()) {
+      if (f.block == block.block && f.kinds.test(design.body.index())) users.emplace_back(f.name);
+    }
+    warnings.push_back(
+        fmt::format("{}: `outputs` asks for no output made from it, so {}: add {} to `outputs` "
+                    "(or remove `{}`)",
+                    key_label(design.common, block.key), block.what, either(users), block.key));
+  }
+  return warnings;
+}
+
+std::string path_in(const std::string& out_dir, const DesignCommon& common, const std::string& suffix) {
+  return (std::filesystem::path(out_dir) / (common.name + suffix)).string();
+}
+
+// The files of mould_stl: one per part, named as build_vessel names the parts.
+std::vector<std::string> mould_part_suffixes(const Design& design) {
+  std::vector<std::string> suffixes;
+  const auto* vessel = std::get_if<VesselDesign>(&design.body);
+  if (vessel == nullptr || !vessel->mould) return suffixes;
+  for (int k = 1; k <= vessel->mould->parts; ++k) suffixes.push_back(fmt::format(".mould-side-{}.stl", k));
+  if (vessel->mould->base_part) suffixes.emplace_back(".mould-base.stl");
+  return suffixes;
+}
+
+double largest_coordinate(const Result& result) {
   double largest = 0.0;
-  for (const Vec3& p : built.soup.vertices) largest = std::max(largest, p.cwiseAbs().maxCoeff());
-  for (const NamedSoup& part : built.mould_parts) {
-    for (const Vec3& p : part.soup.vertices) largest = std::max(largest, p.cwiseAbs().maxCoeff());
+  for (const Part& part : result.parts) {
+    for (const Vec3& p : part.mesh.vertices) largest = std::max(largest, p.cwiseAbs().maxCoeff());
   }
   return largest;
 }
@@ -61,131 +120,124 @@ double largest_coordinate(const BuiltMesh& built) {
 // left, it builds again keeping exactly what they need: a mesh built within a
 // smaller tolerance lies within twice the tolerance of the first one's
 // coordinates, so that need, taken at coordinates 2 x tolerance larger, holds.
-BuiltMesh build_within_budget(const Design& design, BuildContext& context,
-                              const std::vector<const OutputFormat*>& formats, double export_scale) {
-  BuiltMesh built = build_design(design, context);
+Result build_within_budget(const Design& design, const JobPlan& plan, BuildContext& context) {
+  Result built = build_design(design, context);
   const double tolerance = context.common.tolerance;
   const double largest = largest_coordinate(built) + 2.0 * tolerance;
   double need = 0.0;
-  for (const OutputFormat* f : formats)
-    need = std::max(need, writing_error_bound(f->name, largest, export_scale));
+  for (const OutputFormat* f : plan.formats) {
+    if (f->writing_error != nullptr) need = std::max(need, f->writing_error(largest, plan.export_scale));
+  }
   if (need <= tolerance - built.max_deviation || need >= tolerance) return built;
   context.tolerance = tolerance - need;
   return build_design(design, context);
 }
 
-std::string path_with_suffix(const Design& design, const std::string& suffix, const JobOptions& options) {
-  return (std::filesystem::path(options.out_dir) / (design.common.name + suffix)).string();
+// The identity of `design`'s result: what it is, before anything is built.
+void set_identity(Result& result, const DesignCommon& common) {
+  result.name = common.name;
+  result.design_file = common.path;
+  result.units = common.units;
+  result.export_units = common.export_units;
+  result.parameters = common.parameters;
+  result.tolerance = common.tolerance;
+  result.notes = common.notes;
 }
 
-std::string path_of(const Design& design, const OutputFormat& format, const JobOptions& options) {
-  if (options.output_file) return *options.output_file;
-  return path_with_suffix(design, std::string(format.file_suffix), options);
+// The box of the product, or of the drawing of a design without a mesh.
+void set_bounds(Result& result) {
+  if (const Part* part = product(result); part != nullptr && !part->mesh.vertices.empty()) {
+    const BoundingBox box = bounding_box(part->mesh.vertices);
+    result.bbox_min = box.lo;
+    result.bbox_max = box.hi;
+  } else if (const auto* curve = std::get_if<CurveProducts>(&result.products);
+             curve && !curve->drawing.empty()) {
+    const auto [lo, hi] = cut_bounds(curve->drawing);
+    result.bbox_min = Vec3(lo.x(), lo.y(), 0.0);
+    result.bbox_max = Vec3(hi.x(), hi.y(), 0.0);
+  }
 }
 
-// A job's outputs as they are encoded: the file each goes to and its encoding.
-using TakeOutput = std::function<void(const std::string& file, Encoded& encoded)>;
+TriangleSoup scaled(const TriangleSoup& soup, double factor) {
+  TriangleSoup out = soup;
+  for (Vec3& p : out.vertices) p *= factor;
+  return out;
+}
 
-// Builds and validates `design`, then encodes its outputs one by one, each
-// handed to `take` while the mesh it may refer to (Encoded::stream) lives.
-JobReport build_and_encode(const Design& design, const JobOptions& options, const TakeOutput& take) {
-  JobReport report;
-  DesignCommon common = design.common;
-  if (options.export_units) common.export_units = *options.export_units;
-  report.name = common.name;
-  report.kind = kind_name(design);
-  report.units = common.units;
-  report.export_units = common.export_units;
-  report.tolerance = common.tolerance;
-  report.notes = common.notes;
-  report.parameters = common.parameters;
-  StageTimer watch(report.timings_ms, options.on_stage);
-  const std::vector<const OutputFormat*> formats = formats_of(design, options);
-  report.warnings = unused_block_warnings(design, options, formats);
-  if (options.output_file && formats.size() != 1) {
-    std::string names;
-    for (const OutputFormat* f : formats) names += (names.empty() ? "" : ", ") + std::string(f->name);
-    throw InputError(
-        fmt::format("the design asks for {} outputs ({}); -o {} takes one: choose it with "
-                    "--export-format",
-                    formats.size(), names, *options.output_file));
-  }
-  const bool wants_cutting = std::any_of(formats.begin(), formats.end(), [](const OutputFormat* f) {
-    return f->content == OutputContent::Drawing || f->content == OutputContent::Toolpath;
-  });
-  const double export_scale = metres_per_unit(common.units) / metres_per_unit(common.export_units);
-  BuildContext context{common, (1.0 - kOutputShare) * common.tolerance, wants_cutting, watch,
-                       process_memory_limit()};
-  context.wants_exact = std::any_of(formats.begin(), formats.end(),
-                                    [](const OutputFormat* f) { return f->content == OutputContent::Exact; });
-  const BuiltMesh built = build_within_budget(design, context, formats, export_scale);
-  if (options.on_built) options.on_built(built);
-  report.build_tolerance = context.tolerance;
-  report.max_deviation = built.max_deviation;
-  report.tolerance_shares = built.tolerance_shares;
-  report.build = built.facts;
-  report.warnings.insert(report.warnings.end(), built.warnings.begin(), built.warnings.end());
-  report.validation = built.validation;
-  report.purpose = built.purpose;
-  const std::string what = fmt::format("{} '{}'", report.kind, report.name);
-  require_fit(report.validation, built.purpose, what);  // the builder validated it (validate_built)
-  if (built.purpose == MeshPurpose::Viewing && common.purpose != Purpose::View) {
-    throw ValidationFailed(fmt::format(
-        "{}: the mesh is open ({} boundary edges): not fit for fabrication, so nothing is written; give the "
-        "surface a `thickness` for a solid shell, or set `purpose: view` to write it for viewing",
-        what, report.validation.boundary_edges));
-  }
-  if (!built.soup.vertices.empty()) {
-    // The mesh's box, in model units (the report's bounding_box).
-    const BoundingBox box = bounding_box(built.soup.vertices);
-    report.bbox_min = box.lo;
-    report.bbox_max = box.hi;
-  } else if (!built.cutting.empty()) {
-    const auto [lo, hi] = cut_bounds(built.cutting);
-    report.bbox_min = Vec3(lo.x(), lo.y(), 0.0);
-    report.bbox_max = Vec3(hi.x(), hi.y(), 0.0);
-  }
-  if (!options.encode) return report;
-  // The encoders get the tolerance the build left unused, and the mesh in the
-  // export unit (the built mesh itself when the units agree: no copy).
-  const std::optional<TriangleSoup> rescaled =
-      export_scale == 1.0 ? std::nullopt : std::optional<TriangleSoup>(scaled(built.soup, export_scale));
-  const TriangleSoup& exported = rescaled ? *rescaled : built.soup;
-  const double output_tolerance = common.tolerance - built.max_deviation;
-  for (const OutputFormat* format : formats) {
-    const std::string path = path_of(design, *format, options);
+// The place of the `outputs:` entry that asked for `format` (or the list,
+// for a kind's default outputs).
+ErrorLocation output_entry(const DesignCommon& common, std::string_view format) {
+  const auto asked = std::find_if(common.outputs.begin(), common.outputs.end(),
+                                  [&](const OutputRequest& r) { return r.format == format; });
+  const std::string key =
+      asked != common.outputs.end()
+          ? fmt::format("outputs[{}]", static_cast<std::size_t>(asked - common.outputs.begin()))
+          : "outputs";
+  return placed(common, ErrorLocation{key});
+}
+
+// `skip` writes the others; with none left, the job would make nothing it was asked for.
+void require_something(const std::vector<SkippedOutput>& skipped, std::size_t files,
+                       const DesignCommon& common) {
+  if (files != 0 || skipped.empty()) return;
+  std::string reasons;
+  for (const SkippedOutput& s : skipped) reasons += (reasons.empty() ? "" : "; ") + s.reason;
+  throw OutputError(skipped.front().format,
+                    fmt::format("every output was skipped, so nothing is written: {}", reasons),
+                    placed(common, ErrorLocation{"outputs"}));
+}
+
+// The job's outputs, encoded one at a time: each one's files are handed to
+// the caller before the next is encoded, so a streamed output is written
+// while the result it refers to lives and an output's bytes can be freed.
+class Encoder {
+ public:
+  Encoder(const Result& result, const JobPlan& plan, StageTimings& timings)
+      : result_(result),
+        plan_(plan),
+        watch_(timings, plan.on_stage),
+        rescaled_(plan.export_scale == 1.0 || product(result) == nullptr
+                      ? std::nullopt
+                      : std::optional<TriangleSoup>(scaled(product(result)->mesh, plan.export_scale))) {}
+
+  /// Encodes output `i`; its files, or none when it was skipped (skipped()).
+  std::vector<EncodedFile> encode(std::size_t i) {
+    const OutputFormat& format = *plan_.formats[i];
+    const DesignCommon& common = plan_.common;
+    const TriangleSoup empty;
+    const Part* own = product(result_);
+    const TriangleSoup& exported = rescaled_ ? *rescaled_ : own != nullptr ? own->mesh : empty;
+    // The encoders get the tolerance the build left unused, and the mesh in the export unit.
+    const EncodeContext context{
+        common,        result_, exported, plan_.export_scale, common.tolerance - result_.max_deviation,
+        plan_.paths[i]};
+    std::vector<EncodedFile> files;
     try {
-      for (Encoded& e : format->encode({common, built, exported, export_scale, output_tolerance, path})) {
-        const std::string file = e.suffix.empty() ? path : path_with_suffix(design, e.suffix, options);
-        report.files.push_back({file, std::string(format->name), e.units, e.added_error, e.valid_as_written});
-        report.outputs.push_back(file);
-        take(file, e);
+      for (Encoded& e : format.encode(context)) {
+        const std::string path = e.suffix.empty() ? plan_.paths[i] : path_in(plan_.out_dir, common, e.suffix);
+        OutputFile file{path, std::string(format.name), e.units, e.added_error, e.valid_as_written, e.parts};
+        files.push_back({std::move(file), std::move(e)});
       }
     } catch (const OutputError& e) {
-      if (common.on_output_error == OutputErrorPolicy::Fail) {
-        // At the `outputs:` entry that asked for it (or the list, for a kind's default outputs).
-        const auto asked = std::find_if(common.outputs.begin(), common.outputs.end(),
-                                        [&](const OutputRequest& r) { return r.format == format->name; });
-        const std::string key =
-            asked != common.outputs.end()
-                ? fmt::format("outputs[{}]", static_cast<std::size_t>(asked - common.outputs.begin()))
-                : "outputs";
-        throw OutputError(e.format(), e.what(), placed(common, ErrorLocation{key}));
-      }
-      report.skipped.push_back({std::string(format->name), e.what()});
+      if (common.on_output_error == OutputErrorPolicy::Fail)
+        throw OutputError(e.format(), e.what(), output_entry(common, format.name));
+      skipped_.push_back({std::string(format.name), e.what()});
     }
-    watch.lap("encode_" + std::string(format->name));
+    return files;
   }
-  if (report.files.empty() && !report.skipped.empty()) {
-    // `skip` writes the others; with none left, the job would make nothing it was asked for.
-    std::string reasons;
-    for (const SkippedOutput& s : report.skipped) reasons += (reasons.empty() ? "" : "; ") + s.reason;
-    throw OutputError(report.skipped.front().format,
-                      fmt::format("every output was skipped, so nothing is written: {}", reasons),
-                      placed(common, ErrorLocation{"outputs"}));
-  }
-  return report;
-}
+
+  /// Ends output `i`'s stage ("encode_FORMAT"): encoding, and writing its temporary when it was written.
+  void lap(std::size_t i) { watch_.lap("encode_" + std::string(plan_.formats[i]->name)); }
+
+  const std::vector<SkippedOutput>& skipped() const { return skipped_; }
+
+ private:
+  const Result& result_;
+  const JobPlan& plan_;
+  StageTimer watch_;
+  std::optional<TriangleSoup> rescaled_;
+  std::vector<SkippedOutput> skipped_;
+};
 
 void create_folders(const std::vector<std::string>& paths) {
   for (const std::string& path : paths) {
@@ -197,54 +249,199 @@ void create_folders(const std::vector<std::string>& paths) {
   }
 }
 
-}  // namespace
-
-std::vector<const OutputFormat*> job_formats(const Design& design, const JobOptions& options) {
-  return formats_of(design, options);
+// The result of `design` built and required fit, as every job starts.
+Result fit_result(const Design& design, const JobPlan& plan) {
+  Result result = build_job(design, plan);
+  require_fit(result, design.common.purpose);
+  return result;
 }
 
-PreparedJob prepare_job(const Design& design, const JobOptions& options) {
-  PreparedJob job;
-  job.on_stage = options.on_stage;
-  job.report = build_and_encode(design, options, [&](const std::string& file, Encoded& e) {
-    if (e.stream) e.stream([&](std::string_view piece) { e.bytes.append(piece); });
-    job.files.push_back({file, std::move(e.bytes)});
-  });
+}  // namespace
+
+JobPlan plan_job(const Design& design, const JobOptions& options) {
+  JobPlan plan;
+  plan.common = design.common;
+  if (options.export_units) plan.common.export_units = *options.export_units;
+  plan.formats = formats_of(design, options);
+  plan.warnings = unused_block_warnings(design, options, plan.formats);
+  if (options.output_file && plan.formats.size() != 1) {
+    std::string names;
+    for (const OutputFormat* f : plan.formats) names += (names.empty() ? "" : ", ") + std::string(f->name);
+    throw InputError(
+        fmt::format("the design asks for {} outputs ({}); -o {} takes one: choose it with "
+                    "--export-format",
+                    plan.formats.size(), names, *options.output_file));
+  }
+  plan.out_dir = options.out_dir;
+  for (const OutputFormat* f : plan.formats) {
+    plan.paths.push_back(options.output_file
+                             ? *options.output_file
+                             : path_in(options.out_dir, plan.common, std::string(f->file_suffix)));
+    plan.wants_drawing =
+        plan.wants_drawing || f->source == OutputSource::Drawing || f->source == OutputSource::Program;
+    plan.wants_exact = plan.wants_exact || f->source == OutputSource::Exact;
+  }
+  plan.export_scale = metres_per_unit(plan.common.units) / metres_per_unit(plan.common.export_units);
+  plan.on_stage = options.on_stage;
+  return plan;
+}
+
+std::vector<PlannedFile> planned_files(const Design& design, const JobPlan& plan) {
+  std::vector<PlannedFile> files;
+  for (std::size_t i = 0; i < plan.formats.size(); ++i) {
+    const OutputFormat& format = *plan.formats[i];
+    const std::string name(format.name);
+    if (format.file_suffix.find("PART") != std::string_view::npos && plan.paths[i] != "-" &&
+        plan.paths[i].find("PART") != std::string::npos) {
+      for (const std::string& suffix : mould_part_suffixes(design))
+        files.push_back({path_in(plan.out_dir, plan.common, suffix), name});
+    } else {
+      files.push_back({plan.paths[i], name});
+    }
+  }
+  return files;
+}
+
+Result build_job(const Design& design, const JobPlan& plan) {
+  Result result;
+  StageTimings timings;
+  StageTimer watch(timings, plan.on_stage);
+  BuildContext context{plan.common, (1.0 - kOutputShare) * plan.common.tolerance, plan.wants_drawing, watch,
+                       process_memory_limit()};
+  context.wants_exact = plan.wants_exact;
+  result = build_within_budget(design, plan, context);
+  validate_parts(result, watch);
+  set_identity(result, plan.common);
+  result.kind = kind_name(design);
+  result.build_tolerance = context.tolerance;
+  std::vector<std::string> warnings = plan.warnings;
+  warnings.insert(warnings.end(), result.warnings.begin(), result.warnings.end());
+  result.warnings = std::move(warnings);
+  result.timings_ms = std::move(timings);
+  set_bounds(result);
+  return result;
+}
+
+Result build_at(const Design& design, double tolerance) {
+  Result result;
+  StageTimings timings;
+  StageTimer watch(timings);
+  const BuildContext context{design.common, tolerance, false, watch, process_memory_limit()};
+  result = build_design(design, context);
+  validate_parts(result, watch);
+  set_identity(result, design.common);
+  result.kind = kind_name(design);
+  result.build_tolerance = tolerance;
+  result.timings_ms = std::move(timings);
+  set_bounds(result);
+  return result;
+}
+
+Result build_preview(const Design& design) {
+  if (std::holds_alternative<CurveDesign>(design.body)) {
+    throw InputError(
+        fmt::format("{}: a curve design has no mesh to preview; try `fabmesh plot`", design.common.name));
+  }
+  return build_at(design, design.common.tolerance);
+}
+
+Result build_draft(const Design& design) {
+  if (const auto* surface = std::get_if<SurfaceDesign>(&design.body)) {
+    const double tolerance = design.common.tolerance * kSurfaceDraftTolerance;
+    Result result = surface_draft(*surface, tolerance);
+    set_identity(result, design.common);
+    result.kind = kind_name(design);
+    result.tolerance = tolerance;
+    result.build_tolerance = tolerance;
+    set_bounds(result);
+    return result;
+  }
+  for (double factor = kDraftTolerance;; factor /= 2.0) {
+    try {
+      Result result = build_at(design, design.common.tolerance * factor);
+      result.tolerance = result.build_tolerance;
+      require_parts_fit(result);  // the product is shown whatever its verdict
+      return result;
+    } catch (const ValidationFailed&) {
+      if (factor / 2.0 < kLeastDraftTolerance) throw;
+    }
+  }
+}
+
+EncodedJob encode_job(const Result& result, const JobPlan& plan) {
+  EncodedJob job;
+  Encoder encoder(result, plan, job.timings_ms);
+  for (std::size_t i = 0; i < plan.formats.size(); ++i) {
+    for (EncodedFile& f : encoder.encode(i)) {
+      if (f.encoded.stream) {
+        f.encoded.stream([&](std::string_view piece) { f.encoded.bytes.append(piece); });
+        f.encoded.stream = nullptr;
+      }
+      job.files.push_back(std::move(f));
+    }
+    encoder.lap(i);
+  }
+  job.skipped = encoder.skipped();
+  require_something(job.skipped, job.files.size(), plan.common);
   return job;
 }
 
-JobReport write_job(PreparedJob job) {
-  StageTimer watch(job.report.timings_ms, job.on_stage);
+std::vector<OutputFile> write_job(EncodedJob& encoded) {
   std::vector<std::string> paths;
-  for (const FileWrite& f : job.files) paths.push_back(f.path);
+  std::vector<FileWrite> writes;
+  std::vector<OutputFile> files;
+  for (EncodedFile& f : encoded.files) {
+    paths.push_back(f.file.path);
+    writes.push_back({f.file.path, std::move(f.encoded.bytes)});
+    files.push_back(f.file);
+  }
   create_folders(paths);
-  write_files_atomically(job.files);
-  watch.lap("write");
-  return std::move(job.report);
+  write_files_atomically(writes);
+  return files;
 }
 
-JobReport run_job(const Design& design, const JobOptions& options) {
+std::pair<Result, EncodedJob> prepare_job(const Design& design, const JobOptions& options) {
+  const JobPlan plan = plan_job(design, options);
+  Result result = fit_result(design, plan);
+  EncodedJob encoded = encode_job(result, plan);
+  for (const EncodedFile& f : encoded.files) result.files.push_back(f.file);
+  result.skipped = encoded.skipped;
+  result.timings_ms.insert(result.timings_ms.end(), encoded.timings_ms.begin(), encoded.timings_ms.end());
+  return {std::move(result), std::move(encoded)};
+}
+
+Result run_job(const Design& design, const JobOptions& options) {
+  const JobPlan plan = plan_job(design, options);
+  Result result = fit_result(design, plan);
   // Each output goes to its temporary file as soon as it is encoded (a
   // streamed one piece by piece, never whole in memory); the temporaries are
   // renamed into place together once every output is made, and removed when
   // anything fails: all or nothing, as write_job.
   std::vector<PendingFile> pending;
-  JobReport report = build_and_encode(design, options, [&](const std::string& file, Encoded& e) {
-    create_folders({file});
-    pending.emplace_back(file);
-    PendingFile& out = pending.back();
-    if (e.stream) {
-      e.stream([&](std::string_view piece) { out.write(piece); });
-    } else {
-      out.write(e.bytes);
-      e.bytes = std::string();  // written: its memory is free for the next output
+  {
+    Encoder encoder(result, plan, result.timings_ms);
+    for (std::size_t i = 0; i < plan.formats.size(); ++i) {
+      for (EncodedFile& f : encoder.encode(i)) {
+        create_folders({f.file.path});
+        pending.emplace_back(f.file.path);
+        PendingFile& out = pending.back();
+        if (f.encoded.stream) {
+          f.encoded.stream([&](std::string_view piece) { out.write(piece); });
+        } else {
+          out.write(f.encoded.bytes);
+        }
+        result.files.push_back(std::move(f.file));
+      }
+      encoder.lap(i);
     }
-  });
-  StageTimer watch(report.timings_ms, options.on_stage);
+    result.skipped = encoder.skipped();
+  }
+  require_something(result.skipped, result.files.size(), plan.common);
+  StageTimer watch(result.timings_ms, options.on_stage);
   for (PendingFile& f : pending) f.finish();
   commit_files(pending);
   watch.lap("write");
-  return report;
+  return result;
 }
 
 }  // namespace fabmesh

@@ -1,22 +1,27 @@
 #pragma once
-// One design through the stages: build and validate (no I/O), encode every
-// output, then write them all or none.
+// One design through the stages, each a function of its inputs:
+//
+//   plan_job    design, options        -> JobPlan   (formats, files, warnings)
+//   build_job   design, plan           -> Result    (parts built and validated)
+//   require_fit result                 -> throws ValidationFailed unless fit to write
+//   encode_job  result, plan           -> EncodedJob (every output's bytes, or why skipped)
+//   write_job   encoded                -> the files, all or nothing
+//
+// `run` composes them (run_job: each output written to its temporary file as
+// soon as it is encoded), as do `batch`, the studio (build_job alone, or
+// build_draft) and the library.
 
-#include <functional>
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "geometry/core/stage_timer.h"
-#include "geometry/validation/validate.h"
 #include "io/design/design.h"
 #include "io/file.h"
-#include "pipeline/built_mesh.h"
+#include "pipeline/output_table.h"
+#include "pipeline/result.h"
 
 namespace fabmesh {
-
-struct OutputFormat;
 
 struct JobOptions {
   std::string out_dir = "out";  ///< created when missing
@@ -32,91 +37,101 @@ struct JobOptions {
   /// Told after each stage of the job ("curve", "build", "validate", "encode_stl",
   /// "write", ...), from the thread that runs it: progress of a long run.
   StageObserver on_stage;
-  /// Told the design's mesh, curves and validation as soon as they are built
-  /// and validated, before the job judges them or encodes anything (the
-  /// library hands them to its caller, valid or not).
-  std::function<void(const BuiltMesh&)> on_built;
-  /// False: build and validate only, as for any output (the same mesh), and
-  /// encode none of them: the report then has no outputs, files or skipped
-  /// outputs (the studio's interactive build: its export encodes them).
-  bool encode = true;
 };
 
-/// One file a job wrote.
-struct OutputFile {
+/// One file a job will write.
+struct PlannedFile {
   std::string path;
   std::string format;
-  std::string units;         ///< the unit of its coordinates
-  double added_error = 0.0;  ///< how far writing moved any vertex at most, model units
-  std::optional<bool> valid_as_written = std::nullopt;  ///< mesh outputs: Encoded::valid_as_written
 };
 
-/// An output the job could not make (and skipped, by the design's policy).
-struct SkippedOutput {
-  std::string format;
-  std::string reason;
-};
-
-/// What one job did.
-struct JobReport {
-  std::string name;
-  std::string kind;
-  std::string units;
-  std::string export_units;
-  std::vector<std::string> outputs;  ///< paths written (or to be written, for a prepared job)
-  std::vector<OutputFile> files;     ///< the same with their format, unit and added error
-  std::vector<SkippedOutput> skipped;
-  std::vector<std::string> notes;  ///< DesignCommon::notes: how the design's files were read
-  /// DesignCommon::parameters: the design's named parameters with the values used.
-  std::vector<DesignParameter> parameters;
-  /// What the design asks for that deserves a look, e.g. a `mould:` block no
-  /// output uses (unused_block_warnings). Shown in the report (`warnings`).
+/// What a job will do, known before it builds.
+struct JobPlan {
+  DesignCommon common;  ///< the design's, with the export unit the options ask for
+  std::vector<const OutputFormat*> formats;
+  /// Where each format's file goes (mould_stl's files are named per part
+  /// there: one path ending in ".mould-PART.stl" stands for them).
+  std::vector<std::string> paths;
+  std::string out_dir;
+  /// Warnings about the design's own `outputs` list: a `mould:` or `cnc:`
+  /// block for which it asks for no output, so that block is not built.
   std::vector<std::string> warnings;
-  ValidationReport validation;
-  MeshPurpose purpose = MeshPurpose::Fabrication;
-  double max_deviation = 0.0;  ///< proven bound of the mesh against the exact shape, model units
-  double tolerance = 0.0;
-  /// The share of the tolerance the build was given (the rest is kept for
-  /// writing the outputs: a tenth, or what their number formats need when
-  /// that is more), model units.
-  double build_tolerance = 0.0;
-  std::vector<ToleranceShare> tolerance_shares;  ///< how the builders divided build_tolerance (BuiltMesh)
-  Vec3 bbox_min = Vec3::Zero(), bbox_max = Vec3::Zero();  ///< of the mesh, model units
-  nlohmann::json build;  ///< builder facts, e.g. {"angular_segments": 128, "section_points": 90}
-  StageTimings timings_ms;
+  double export_scale = 1.0;   ///< export units per model unit
+  bool wants_drawing = false;  ///< an output draws the design (the builders make the drawing)
+  bool wants_exact = false;    ///< an output writes the exact shape (step)
+  StageObserver on_stage;
 };
 
-/// A job built, validated and encoded, with nothing written yet.
-struct PreparedJob {
-  JobReport report;
-  std::vector<FileWrite> files;  ///< every output's path and bytes
-  StageObserver on_stage;        ///< JobOptions::on_stage, for write_job's stage
+/// The job of `design` under `options`: its formats (the design's outputs,
+/// or --export-format's one, and the pictures options.also_formats adds),
+/// their files and the warnings its outputs list deserves.
+/// \throw FileError at a bad `outputs` entry; InputError when `-o FILE` would take several
+JobPlan plan_job(const Design& design, const JobOptions& options);
+
+/// The files the plan writes, one per output (one per mould part for
+/// mould_stl), as write_job names them, before anything is built.
+std::vector<PlannedFile> planned_files(const Design& design, const JobPlan& plan);
+
+/// Builds `design` within its tolerance less what the plan's outputs need
+/// for writing, and validates every part (validate_parts). Does no I/O; an
+/// invalid mesh is a Result that is not fit() (see require_fit).
+/// \throw InputError (a bad design, geometry that cannot be built)
+Result build_job(const Design& design, const JobPlan& plan);
+
+/// Builds `design` at `tolerance` (all of it for the meshes: nothing is kept
+/// for writing) and validates every part: what a preview shows.
+/// \throw as build_job
+Result build_at(const Design& design, double tolerance);
+
+/// The design built for a preview (`fabmesh preview`): build_at its own
+/// tolerance. \throw as build_job; InputError for a curve design (no mesh)
+Result build_preview(const Design& design);
+
+/// A draft of `design` to show at once (the studio's): built at the coarsest
+/// tolerance its builder accepts, 32 down to 4 times the design's (the
+/// result's tolerance is the one used); a surface's sheet alone at twice its
+/// tolerance, thickened (surface_draft). Nothing proven: no verdict.
+/// \throw as build_job
+Result build_draft(const Design& design);
+
+/// One output of a result, encoded: its files' bytes and facts.
+struct EncodedFile {
+  OutputFile file;  ///< path, format, units, added error, valid as written, parts
+  Encoded encoded;  ///< the bytes (or a stream over the result's meshes)
 };
 
-/// The formats a job of `design` writes under `options`: the design's outputs
-/// (or --export-format's one), and the pictures options.also_formats adds.
-/// \throw FileError at a bad `outputs` entry
-std::vector<const OutputFormat*> job_formats(const Design& design, const JobOptions& options);
+/// A result's outputs, encoded and not written.
+struct EncodedJob {
+  std::vector<EncodedFile> files;
+  std::vector<SkippedOutput> skipped;
+  StageTimings timings_ms;  ///< "encode_FORMAT" each
+};
 
-/// Builds, validates and encodes `design` into its outputs' bytes. Does no
-/// I/O. A mesh that is not valid for fabrication stops the job here; an open
-/// surface is written only when the design's purpose is `view`. An output
-/// that cannot be made within the tolerance is skipped (reported) or fails
-/// the job, as the design's `on_output_error` says.
-/// \throw InputError (bad design, OutputError), ValidationFailed (an invalid mesh)
-PreparedJob prepare_job(const Design& design, const JobOptions& options);
+/// Encodes every output of `plan` from `result` (which must be fit: see
+/// require_fit). An output that cannot be made within the tolerance is
+/// skipped (EncodedJob::skipped) or fails the job, as the design's
+/// `on_output_error` says. A streamed output (a large STL) refers to
+/// `result`'s meshes. Does no I/O.
+/// \throw OutputError (fail policy, or every output skipped)
+EncodedJob encode_job(const Result& result, const JobPlan& plan);
 
-/// Writes a prepared job's files, all or nothing (write_files_atomically),
-/// creating their folder when missing. \throw FileError
-JobReport write_job(PreparedJob job);
+/// Writes the encoded files, all or nothing (write_files_atomically),
+/// creating their folders when missing; returns the files written.
+/// \throw FileError / MachineError
+std::vector<OutputFile> write_job(EncodedJob& encoded);
 
-/// prepare_job then write_job, with the same guarantees (nothing written
-/// unless valid, all outputs or none, umask, fsync) but without holding the
-/// outputs in memory: each goes to its temporary file as it is encoded (a
-/// large STL in pieces, Encoded::stream), and the temporaries are renamed
-/// into place together at the end, or removed when anything fails. Stage
-/// "encode_FORMAT" then includes writing to the temporary; "write" is the
-/// flush and the renames. \throw as prepare_job and write_job
-JobReport run_job(const Design& design, const JobOptions& options);
+/// plan, build, require_fit, encode and write, with the same guarantees
+/// (nothing written unless valid, all outputs or none, umask, fsync) but
+/// without holding the outputs in memory: each goes to its temporary file as
+/// it is encoded (a large STL in pieces, Encoded::stream), and the
+/// temporaries are renamed into place together at the end, or removed when
+/// anything fails. The result's files and timings say what was written.
+/// \throw InputError (bad design, OutputError), ValidationFailed (an invalid mesh), FileError
+Result run_job(const Design& design, const JobOptions& options);
+
+/// The same, encoded in memory and not written (what `-o -` prints, what the
+/// library's build reports): the result with the files it would write.
+/// \throw as run_job
+std::pair<Result, EncodedJob> prepare_job(const Design& design, const JobOptions& options);
 
 }  // namespace fabmesh

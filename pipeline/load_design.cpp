@@ -1,7 +1,7 @@
 #include "pipeline/load_design.h"
 
 #include "io/design/read_design.h"
-#include "pipeline/outputs.h"
+#include "pipeline/output_table.h"
 
 namespace fabmesh {
 

@@ -13,7 +13,6 @@
 #include "geometry/mesh/bounding_box.h"
 #include "geometry/surfaces/patch_network.h"
 #include "io/pictures/plot_curve.h"
-#include "pipeline/build_design.h"
 #include "pipeline/design_curves.h"
 
 namespace fabmesh {
@@ -71,13 +70,23 @@ void add_measures(const MeshFacts& mesh, ReportRow& row) {
 
 }  // namespace
 
-CurvePlot shape_plot(const DesignCommon& common, const BuiltShape& shape) {
+CurvePlot shape_plot(const DesignCommon& common, const std::vector<NamedBuiltCurve>& curves,
+                     const PatchNetwork* patches) {
   CurvePlot plot;
   plot.title = common.name;
   plot.units = common.units;
-  for (const NamedBuiltCurve& c : shape.curves) plot.curves.push_back(plot_curve(c.curve, c.name));
-  if (shape.patches) add_surface(*shape.patches, plot);
+  for (const NamedBuiltCurve& c : curves) plot.curves.push_back(plot_curve(c.curve, c.name));
+  if (patches != nullptr) add_surface(*patches, plot);
   return plot;
+}
+
+CurvePlot shape_plot(const DesignCommon& common, const BuiltShape& shape) {
+  return shape_plot(common, shape.curves, shape.patches ? &*shape.patches : nullptr);
+}
+
+CurvePlot shape_plot(const DesignCommon& common, const Result& result) {
+  const auto* surface = std::get_if<SurfaceProducts>(&result.products);
+  return shape_plot(common, result.curves, surface != nullptr ? &surface->patches : nullptr);
 }
 
 CurvePlot design_plot(const Design& design, std::vector<std::string>* contradicted) {
@@ -87,17 +96,6 @@ CurvePlot design_plot(const Design& design, std::vector<std::string>* contradict
 std::string design_plot_svg(const Design& design, const CurvePlotOptions& options,
                             std::vector<std::string>* contradicted) {
   return plot_curves_svg(design_plot(design, contradicted), options);
-}
-
-BuiltMesh design_built(const Design& design) {
-  if (std::holds_alternative<CurveDesign>(design.body)) {
-    throw InputError(
-        fmt::format("{}: a curve design has no mesh to preview; try `fabmesh plot`", design.common.name));
-  }
-  StageTimings timings;
-  StageTimer watch(timings);
-  const BuildContext context{design.common, design.common.tolerance, false, watch, process_memory_limit()};
-  return build_design(design, context);
 }
 
 std::string preview_png(const TriangleSoup& soup, const PreviewOptions& options) {
@@ -118,23 +116,28 @@ std::string size_caption(const TriangleSoup& soup, const std::string& units) {
   return text;
 }
 
-TriangleSoup exploded_scene(const BuiltMesh& built) {
-  TriangleSoup scene = built.soup;
-  if (built.mould_parts.empty()) return scene;
+TriangleSoup exploded_scene(const Result& result) {
+  const Part* own = product(result);
+  TriangleSoup scene = own != nullptr ? own->mesh : TriangleSoup{};
+  std::vector<const Part*> mould;  // in the order built
+  for (const Part& p : result.parts) {
+    if (p.role == PartRole::MouldSide || p.role == PartRole::MouldBase) mould.push_back(&p);
+  }
+  if (mould.empty() || own == nullptr) return scene;
   // Every part moved away from the vessel by the mould's radius (sides, along
   // their middle's direction from the axis) or half its height (the base).
-  const BoundingBox product = bounding_box(built.soup.vertices);
+  const BoundingBox product = bounding_box(own->mesh.vertices);
   BoundingBox all = product;
-  for (const NamedSoup& part : built.mould_parts) {
-    const BoundingBox box = bounding_box(part.soup.vertices);
+  for (const Part* part : mould) {
+    const BoundingBox box = bounding_box(part->mesh.vertices);
     all.lo = all.lo.cwiseMin(box.lo);
     all.hi = all.hi.cwiseMax(box.hi);
   }
   const double radius =
       std::max({std::abs(all.lo.x()), std::abs(all.hi.x()), std::abs(all.lo.y()), std::abs(all.hi.y())});
   const double height = all.hi.z() - all.lo.z();
-  for (const NamedSoup& named : built.mould_parts) {
-    const TriangleSoup& part = named.soup;
+  for (const Part* named : mould) {
+    const TriangleSoup& part = named->mesh;
     Vec3 centre = Vec3::Zero();
     for (const Vec3& v : part.vertices) centre += v;
     if (!part.vertices.empty()) centre /= static_cast<double>(part.vertices.size());
@@ -146,18 +149,20 @@ TriangleSoup exploded_scene(const BuiltMesh& built) {
   return scene;
 }
 
-std::string design_preview_png(const DesignCommon& common, const BuiltMesh& built, PreviewOptions options) {
+std::string design_preview_png(const DesignCommon& common, const Result& result, PreviewOptions options) {
   // A vessel is the kind built from a profile turned about the z axis.
-  const bool vessel = std::any_of(built.shape.curves.begin(), built.shape.curves.end(),
-                                  [](const NamedBuiltCurve& c) { return c.name == "profile"; });
-  options.caption = size_caption(built.soup, common.units);
-  if (vessel && !built.soup.vertices.empty()) {
-    const BoundingBox product = bounding_box(built.soup.vertices);
+  const bool vessel = std::holds_alternative<VesselProducts>(result.products);
+  const Part* own = product(result);
+  const TriangleSoup empty;
+  const TriangleSoup& mesh = own != nullptr ? own->mesh : empty;
+  options.caption = size_caption(mesh, common.units);
+  if (vessel && !mesh.vertices.empty()) {
+    const BoundingBox product = bounding_box(mesh.vertices);
     const double reach = 0.08 * (product.hi.z() - product.lo.z());
     options.guides.push_back(
         {Vec3(0.0, 0.0, product.lo.z() - reach), Vec3(0.0, 0.0, product.hi.z() + reach)});
   }
-  return preview_png(exploded_scene(built), options);
+  return preview_png(exploded_scene(result), options);
 }
 
 ReportStatus report_status(ItemStatus status) {

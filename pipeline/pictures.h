@@ -9,8 +9,9 @@
 #include "io/pictures/curve_plot.h"
 #include "io/pictures/html_report.h"
 #include "io/pictures/preview.h"
-#include "pipeline/job.h"
+#include "pipeline/design_curves.h"
 #include "pipeline/report.h"
+#include "pipeline/result.h"
 
 namespace fabmesh {
 
@@ -26,17 +27,18 @@ namespace fabmesh {
 /// an error. \throw as build_curve / build_patch_network
 CurvePlot design_plot(const Design& design, std::vector<std::string>* contradicted = nullptr);
 
-/// The same plot drawn from a shape already built (BuiltMesh::shape, or
-/// build_shape): constructs nothing.
+/// The same plot drawn from curves and patches already built (build_shape,
+/// or a job's Result): constructs nothing.
+CurvePlot shape_plot(const DesignCommon& common, const std::vector<NamedBuiltCurve>& curves,
+                     const PatchNetwork* patches);
+/// The plot of a shape build_shape made.
 CurvePlot shape_plot(const DesignCommon& common, const BuiltShape& shape);
+/// The plot of a job's result: its curves and a surface's patches.
+CurvePlot shape_plot(const DesignCommon& common, const Result& result);
 
 /// The SVG of design_plot(design, contradicted) (plot_curves_svg).
 std::string design_plot_svg(const Design& design, const CurvePlotOptions& options = {},
                             std::vector<std::string>* contradicted = nullptr);
-
-/// The design built as `run` builds it (validated; nothing written), for a
-/// preview. \throw as build_design; InputError for a curve design (no mesh)
-BuiltMesh design_built(const Design& design);
 
 /// A shaded preview of `soup` as a PNG file's bytes (render_preview, encode_png).
 std::string preview_png(const TriangleSoup& soup, const PreviewOptions& options = {});
@@ -45,12 +47,12 @@ std::string preview_png(const TriangleSoup& soup, const PreviewOptions& options 
 /// significant digits, in `units` when given: "120.0 x 80.00 x 95.00 mm".
 std::string size_caption(const TriangleSoup& soup, const std::string& units);
 
-/// The built mesh and, with a mould, the mould's parts exploded apart around
+/// The design's mesh and, with a mould, the mould's parts exploded apart around
 /// it: each part moved by the mould's radius away from the axis (along
 /// the direction of its vertices' mean), or, for a part centred on the axis
 /// (the base), by half the mould's height down (up when it sits above the
 /// vessel's middle).
-TriangleSoup exploded_scene(const BuiltMesh& built);
+TriangleSoup exploded_scene(const Result& result);
 
 /// A design's preview (the `preview` command and the `png` output): its mesh;
 /// with a mould, the mould's parts beside it, exploded apart (exploded_scene),
@@ -58,8 +60,7 @@ TriangleSoup exploded_scene(const BuiltMesh& built);
 /// axis (the z axis its profile turns about) as a dashed guide; the mesh's
 /// overall size in the design's units as the caption. `options` gives the
 /// picture's size and views.
-std::string design_preview_png(const DesignCommon& common, const BuiltMesh& built,
-                               PreviewOptions options = {});
+std::string design_preview_png(const DesignCommon& common, const Result& result, PreviewOptions options = {});
 
 /// The HTML report's status of an item: its own, Missing and Environment
 /// shown as Error.

@@ -3,7 +3,12 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <stdexcept>
+#include <type_traits>
+#include <variant>
+
+#include "geometry/core/errors.h"
 
 namespace fabmesh {
 
@@ -39,8 +44,9 @@ MeshFacts mesh_facts(const ValidationReport& v, const std::string& units) {
   return m;
 }
 
-MeshFacts mesh_facts(const JobReport& r) {
-  MeshFacts m = mesh_facts(r.validation, r.units);
+MeshFacts mesh_facts(const Result& r) {
+  const Part* part = product(r);
+  MeshFacts m = mesh_facts(part != nullptr ? part->validation : ValidationReport{}, r.units);
   m.kind = r.kind;
   m.measured = r.purpose != MeshPurpose::Drawing;
   m.bbox_min = r.bbox_min;
@@ -58,12 +64,12 @@ void set_written_verdict(ItemFacts& item, const MeshFacts& mesh) {
                                 : "written for viewing only: not valid for fabrication";
 }
 
-ItemFacts job_facts(const JobReport& r) {
+ItemFacts item_facts(const Result& r) {
   ItemFacts item;
   item.name = r.name;
   item.mesh = mesh_facts(r);
   set_written_verdict(item, *item.mesh);
-  item.files = r.outputs;
+  item.files = written_paths(r);
   item.timings_ms = r.timings_ms;
   return item;
 }
@@ -141,7 +147,92 @@ nlohmann::ordered_json bounding_box_json(const MeshFacts& mesh) {
   return j;
 }
 
-nlohmann::ordered_json to_json(const JobReport& r) {
+namespace {
+
+// One fact's value as JSON; groups keep their keys in order of name.
+nlohmann::json fact_json(const Facts::Value& value);
+
+nlohmann::json group_json(const Facts& facts) {
+  nlohmann::json j = nlohmann::json::object();
+  for (const Facts::Entry& e : facts.entries()) j[e.name] = fact_json(e.value);
+  return j;
+}
+
+nlohmann::json fact_json(const Facts::Value& value) {
+  return std::visit(
+      [](const auto& v) -> nlohmann::json {
+        using V = std::decay_t<decltype(v)>;
+        if constexpr (std::is_same_v<V, Facts>) {
+          return group_json(v);
+        } else if constexpr (std::is_same_v<V, std::vector<Facts>>) {
+          nlohmann::json list = nlohmann::json::array();
+          for (const Facts& f : v) list.push_back(group_json(f));
+          return list;
+        } else {
+          return nlohmann::json(v);
+        }
+      },
+      value);
+}
+
+Facts::Value fact_from_json(const nlohmann::ordered_json& j, const std::string& name) {
+  if (j.is_null()) return nullptr;
+  if (j.is_boolean()) return j.get<bool>();
+  if (j.is_number_integer()) return j.get<std::int64_t>();
+  if (j.is_number()) return j.get<double>();
+  if (j.is_string()) return j.get<std::string>();
+  if (j.is_object()) return facts_from_json(j);
+  if (!j.is_array()) throw InputError(fmt::format("build fact '{}': {} is not a fact", name, j.dump()));
+  if (j.empty() || j.front().is_number()) {
+    std::vector<double> numbers;
+    for (const auto& x : j) {
+      if (!x.is_number())
+        throw InputError(fmt::format("build fact '{}': a list of numbers holds {}", name, x.dump()));
+      numbers.push_back(x.get<double>());
+    }
+    return numbers;
+  }
+  if (j.front().is_string()) {
+    std::vector<std::string> texts;
+    for (const auto& x : j) {
+      if (!x.is_string())
+        throw InputError(fmt::format("build fact '{}': a list of texts holds {}", name, x.dump()));
+      texts.push_back(x.get<std::string>());
+    }
+    return texts;
+  }
+  std::vector<Facts> groups;
+  for (const auto& x : j) groups.push_back(facts_from_json(x));
+  return groups;
+}
+
+}  // namespace
+
+nlohmann::ordered_json facts_json(const Facts& facts) { return group_json(facts); }
+
+Facts facts_from_json(const nlohmann::ordered_json& j) {
+  if (!j.is_object()) throw InputError(fmt::format("build facts: {} is not an object", j.dump()));
+  Facts facts;
+  for (const auto& [name, value] : j.items()) facts.set(name, fact_from_json(value, name));
+  return facts;
+}
+
+nlohmann::ordered_json part_json(const Part& part) {
+  const ValidationReport& v = part.validation;
+  nlohmann::ordered_json j;
+  j["name"] = part.name;
+  j["role"] = to_string(part.role);
+  j["vertices"] = v.vertices;
+  j["triangles"] = v.triangles;
+  j["volume"] = v.volume;
+  j["area"] = v.area;
+  j["genus"] = v.genus ? nlohmann::ordered_json(*v.genus) : nlohmann::ordered_json(nullptr);
+  j["self_intersection"] = to_string(v.self_intersection);
+  j["valid"] = v.valid();
+  return j;
+}
+
+nlohmann::ordered_json to_json(const Result& r) {
   const MeshFacts mesh = mesh_facts(r);
   nlohmann::ordered_json j;
   j["name"] = r.name;
@@ -166,12 +257,13 @@ nlohmann::ordered_json to_json(const JobReport& r) {
     j["tolerance_split"]["stages"] = std::move(stages);
   }
   j["bounding_box"] = bounding_box_json(mesh);
-  j["outputs"] = r.outputs;
+  j["outputs"] = written_paths(r);
   j["files"] = nlohmann::ordered_json::array();
   for (const OutputFile& f : r.files) {
     nlohmann::ordered_json file = {
         {"path", f.path}, {"format", f.format}, {"units", f.units}, {"max_added_error", f.added_error}};
     if (f.valid_as_written) file["valid_as_written"] = *f.valid_as_written;
+    if (!f.parts.empty()) file["parts"] = f.parts;
     j["files"].push_back(std::move(file));
   }
   j["skipped_outputs"] = nlohmann::ordered_json::array();
@@ -182,18 +274,21 @@ nlohmann::ordered_json to_json(const JobReport& r) {
   j["purpose"] = r.purpose == MeshPurpose::Fabrication ? "fabrication"
                  : r.purpose == MeshPurpose::Viewing   ? "viewing"
                                                        : "drawing";
-  if (r.purpose != MeshPurpose::Drawing) j.update(validation_json(r.validation));
-  if (r.build.is_object() && r.build.contains("fabrication")) j["fabrication"] = r.build["fabrication"];
-  if (!r.build.is_null()) j["build"] = r.build;
+  if (const Part* part = product(r); part != nullptr && r.purpose != MeshPurpose::Drawing)
+    j.update(validation_json(part->validation));
+  j["parts"] = nlohmann::ordered_json::array();
+  for (const Part& part : r.parts) j["parts"].push_back(part_json(part));
+  if (const auto* fabrication = r.facts.find("fabrication")) j["fabrication"] = fact_json(*fabrication);
+  if (!r.facts.empty()) j["build"] = facts_json(r.facts);
   nlohmann::ordered_json timings = timings_json(r.timings_ms);
-  timings.update(timings_json(r.validation.timings_ms, "validate."));
+  if (const Part* part = product(r)) timings.update(timings_json(part->validation.timings_ms, "validate."));
   j["timings_ms"] = timings;
   return j;
 }
 
-nlohmann::ordered_json design_item(const std::string& design_file, const JobReport& report) {
+nlohmann::ordered_json design_item(const std::string& design_file, const Result& result) {
   nlohmann::ordered_json item = {{"design", design_file}};
-  item.update(to_json(report));
+  item.update(to_json(result));
   return item;
 }
 
@@ -206,76 +301,6 @@ void print_json_items(const nlohmann::ordered_json& items, std::ostream& out) {
                                                       [](const auto& item) { return item.is_object(); });
   if (!shaped) throw std::logic_error("a --json document must be an array of objects");
   out << items.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) << "\n";
-}
-
-void print_summary(const JobReport& r, std::ostream& out) {
-  const ValidationReport& v = r.validation;
-  double total = 0.0;
-  for (const auto& t : r.timings_ms) total += t.second;
-  const std::string& u = r.units;
-  if (r.purpose == MeshPurpose::Drawing) {
-    out << fmt::format("{}: {} drawn at true size, within {:.3g} {} of the exact curve (tolerance {} {})\n",
-                       r.name, r.kind, r.max_deviation, u, r.tolerance, u);
-    for (const OutputFile& f : r.files) out << fmt::format("  wrote {} (in {})\n", f.path, f.units);
-    out << fmt::format("  {:.1f} ms\n", total);
-    return;
-  }
-  // An enclosed volume only exists for a closed mesh.
-  const std::string volume =
-      v.boundary_edges == 0 ? fmt::format("{:.6g} {}^3", v.volume, u) : std::string("- (open)");
-  out << fmt::format("{}: {} with {} vertices, {} triangles, volume {}, area {:.6g} {}^2, genus {}\n", r.name,
-                     r.kind, v.vertices, v.triangles, volume, v.area, u,
-                     v.genus ? std::to_string(*v.genus) : "-");
-  if (!r.parameters.empty()) {
-    std::string values;
-    for (const DesignParameter& p : r.parameters)
-      values += fmt::format("{}{} = {:.6g}", values.empty() ? "" : ", ", p.name, p.value);
-    out << "  parameters: " << values << "\n";
-  }
-  const Vec3 size = r.bbox_max - r.bbox_min;
-  out << fmt::format(
-      "  size {:.6g} x {:.6g} x {:.6g} {} (x {:.6g}..{:.6g}, y {:.6g}..{:.6g}, z {:.6g}..{:.6g})\n", size.x(),
-      size.y(), size.z(), u, r.bbox_min.x(), r.bbox_max.x(), r.bbox_min.y(), r.bbox_max.y(), r.bbox_min.z(),
-      r.bbox_max.z());
-  if (v.valid()) {
-    out << fmt::format(
-        "  valid: closed, manifold ({}), outward, no self-intersections ({}); within {:.3g} {} of the exact "
-        "surface (tolerance {} {})\n",
-        v.topology_proof.empty() ? "checked" : "by construction",
-        v.self_intersection == IntersectionCheck::ProvenByConstruction ? "by construction" : "checked",
-        r.max_deviation, u, r.tolerance, u);
-  } else {
-    const std::vector<std::string> defects = describe_defects(v);
-    out << fmt::format("  for viewing only, not valid for fabrication ({}; {})\n",
-                       r.build.is_object() ? r.build.value("fabrication", "invalid") : "invalid",
-                       defects.empty() ? "" : defects.front());
-  }
-  if (r.build.is_object() && r.build.contains("shrinkage")) {
-    const auto& s = r.build["shrinkage"];
-    const auto fired = s["fired_size"];
-    out << fmt::format(
-        "  shrinkage {}: written {:.6g} times the fired size ({:.6g} x {:.6g} x {:.6g} {} when fired)\n",
-        s["shrinkage"].get<double>(), s["factor"].get<double>(), fired[0].get<double>(),
-        fired[1].get<double>(), fired[2].get<double>(), u);
-  }
-  if (r.build.is_object() && r.build.contains("mould")) {
-    const auto& m = r.build["mould"];
-    out << fmt::format(
-        "  mould: {} parts, each closed and embedded by construction; slip {:.6g} {}^3, plaster "
-        "{:.6g} {}^3\n",
-        m["parts"].size(), m["slip_volume"].get<double>(), u, m["plaster_volume"].get<double>(), u);
-  }
-  if (r.build.is_object() && r.build.contains("cnc")) {
-    const auto& c = r.build["cnc"];
-    out << fmt::format("  router path: {} passes, within {:.3g} {} of the exact offset\n",
-                       c["passes"].get<int>(), c["deviation"].get<double>(), u);
-  }
-  for (const OutputFile& f : r.files) out << fmt::format("  wrote {} (in {})\n", f.path, f.units);
-  for (const SkippedOutput& s : r.skipped)
-    out << fmt::format("  warning: skipped {}: {}\n", s.format, s.reason);
-  for (const std::string& warning : r.warnings) out << fmt::format("  warning: {}\n", warning);
-  for (const std::string& note : r.notes) out << fmt::format("  note: {}\n", note);
-  out << fmt::format("  {:.1f} ms\n", total);
 }
 
 nlohmann::ordered_json joints_json(const BuiltCurve& built) {

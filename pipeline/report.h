@@ -1,8 +1,10 @@
 #pragma once
-// Reports shared by every command: the one model of an item's facts
-// (ItemFacts, MeshFacts) that every report is made from, the validation facts
-// under one set of JSON keys (`run` and `check` print the same), job
-// reports, joint reports.
+// Reports shared by every command: the one serializer of a job's Result
+// (to_json: `run --json`, the studio, the library and Python print what it
+// makes), the validation facts under one set of JSON keys (`run` and `check`
+// print the same), and the one model of an item's facts (ItemFacts,
+// MeshFacts) that every table of items is made from (batch rows, the HTML
+// report).
 
 #include <cstddef>
 #include <nlohmann/json.hpp>
@@ -13,8 +15,9 @@
 
 #include "geometry/fairing/build_curve.h"
 #include "geometry/validation/validate.h"
+#include "pipeline/facts.h"
 #include "pipeline/failure.h"
-#include "pipeline/job.h"
+#include "pipeline/result.h"
 
 namespace fabmesh {
 
@@ -52,9 +55,9 @@ inline constexpr const char* kValidForFabrication = "valid for fabrication";
 /// The facts a validation gives: counts, volume, area and validity, in `units`.
 MeshFacts mesh_facts(const ValidationReport& validation, const std::string& units);
 
-/// A job's mesh facts: the validation's (mesh_facts above), its kind, box,
-/// proven deviation and tolerance; not `measured` for a drawing.
-MeshFacts mesh_facts(const JobReport& report);
+/// A result's mesh facts: its product's validation (mesh_facts above), its
+/// kind, box, proven deviation and tolerance; not `measured` for a drawing.
+MeshFacts mesh_facts(const Result& result);
 
 /// The status and words of a job that wrote `mesh`: "valid for fabrication",
 /// "drawing written" (a curve design), or invalid and "written for viewing
@@ -64,7 +67,7 @@ void set_written_verdict(ItemFacts& item, const MeshFacts& mesh);
 /// A job that ran: Ok when its mesh is valid for fabrication (or it is a
 /// drawing), Invalid when written for viewing only, said in words; its mesh
 /// facts, the files it wrote and its stage timings.
-ItemFacts job_facts(const JobReport& report);
+ItemFacts item_facts(const Result& result);
 
 /// An item that failed with `exit_code` (describe_failure's) and `message`;
 /// no facts beyond.
@@ -85,12 +88,24 @@ nlohmann::ordered_json timings_json(const StageTimings& timings, const std::stri
 /// (each [x, y, z]) and `units`.
 nlohmann::ordered_json bounding_box_json(const MeshFacts& mesh);
 
-/// A job's JSON report (docs/reports.md): name, kind, units, tolerance,
-/// max_deviation, outputs, the validation facts, builder facts and timings.
-nlohmann::ordered_json to_json(const JobReport& report);
+/// A builder's facts as JSON (the report's `build`): each group an object
+/// with its keys in order of name, as the report has always printed them.
+nlohmann::ordered_json facts_json(const Facts& facts);
 
-/// A design's `run --json` item: the design file it was read from, then its report (to_json).
-nlohmann::ordered_json design_item(const std::string& design_file, const JobReport& report);
+/// The facts of facts_json's JSON, read back (a batch's summary row keeps
+/// them). \throw InputError for a value no fact has (not an object at the top)
+Facts facts_from_json(const nlohmann::ordered_json& json);
+
+/// A part as the report lists it: name, role, counts, volume, area, genus, validity.
+nlohmann::ordered_json part_json(const Part& part);
+
+/// A job's result as JSON (docs/reports.md): name, kind, units, tolerance,
+/// max_deviation, outputs, the product's validation facts, the parts,
+/// builder facts and timings. The one serializer of a Result.
+nlohmann::ordered_json to_json(const Result& result);
+
+/// A design's `run --json` item: the design file it was read from, then its result (to_json).
+nlohmann::ordered_json design_item(const std::string& design_file, const Result& result);
 
 /// The item of a `--json` array for an input that failed (docs/reports.md,
 /// "JSON"): {KEY: input, "error": the message, "exit_code": its code}.
@@ -102,9 +117,6 @@ nlohmann::ordered_json error_item(const std::string& key, const std::string& inp
 /// U+FFFD in place of each bad byte. \throw std::logic_error when `items` is
 /// not an array of objects (a bug)
 void print_json_items(const nlohmann::ordered_json& items, std::ostream& out);
-
-/// A job's human summary (a few lines).
-void print_summary(const JobReport& report, std::ostream& out);
 
 /// One JSON object per joint of a built curve: segments, declared and
 /// achieved continuity, whether fairing lost it, gap, angle and curvature jump.

@@ -92,6 +92,14 @@ VariantStatus parse_variant_status(const std::string& text) {
   throw InputError(fmt::format("summary row: unknown status '{}'", text));
 }
 
+void record_result(BatchRow& row, const Result& result) {
+  row.mesh = mesh_facts(result);
+  row.build = result.facts;
+  row.skipped = result.skipped;
+  for (const SkippedOutput& s : result.skipped)
+    row.message += fmt::format("{}skipped {}: {}", row.message.empty() ? "" : "; ", s.format, s.reason);
+}
+
 Json row_json(const BatchRow& r) {
   Json j;
   j["index"] = r.index;
@@ -116,6 +124,7 @@ Json row_json(const BatchRow& r) {
     j["max_deviation"] = m.max_deviation;
     j["tolerance"] = m.tolerance;
   }
+  if (!r.build.empty()) j["build"] = facts_json(r.build);
   j["files"] = Json::array();
   for (const RowFile& f : r.files) {
     j["files"].push_back({{"path", f.path},
@@ -180,6 +189,7 @@ BatchRow row_from_json(const nlohmann::ordered_json& j) {
       m.tolerance = field<double>(j, "tolerance");
       r.mesh = m;
     }
+    if (j.contains("build")) r.build = facts_from_json(j.at("build"));
     for (const auto& f : j.at("files")) {
       r.files.push_back({field<std::string>(f, "path"), field<std::string>(f, "format"),
                          field<std::string>(f, "units"), field<std::uint64_t>(f, "bytes"),

@@ -10,9 +10,10 @@
 #include <vector>
 
 #include "geometry/core/stage_timer.h"
+#include "pipeline/facts.h"
 #include "pipeline/failure.h"
-#include "pipeline/job.h"
 #include "pipeline/report.h"
+#include "pipeline/result.h"
 
 namespace fabmesh {
 
@@ -47,12 +48,17 @@ struct BatchRow {
   int exit_code = 0;
   std::string message;            ///< why it failed, or the warnings of skipped outputs
   std::optional<MeshFacts> mesh;  ///< when written (mesh_facts of its job)
+  Facts build;                    ///< the builder's facts of its result (the report's `build`)
   std::vector<RowFile> files;
   std::vector<SkippedOutput> skipped;
   /// Wall ms: "resolve" (overrides, canonical text, key), "job" (the job's own
   /// stages, in the job's report too), "record" (digests, ledger), then the job's stages.
   StageTimings timings_ms;
 };
+
+/// Records what a variant's job made in its row: the mesh facts of its
+/// result, its builder's facts, the outputs skipped (and why, in the message).
+void record_result(BatchRow& row, const Result& result);
 
 /// The row as one JSON object (a summary.jsonl line); timings last.
 nlohmann::ordered_json row_json(const BatchRow& row);

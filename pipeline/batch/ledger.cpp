@@ -27,7 +27,7 @@ namespace fs = std::filesystem;
 constexpr std::size_t kCheckDigits = 16;
 
 // The ledger is the batch's own file: a failure to use it is the machine's
-// (disk full, permission: EnvironmentError) or, rarely, the folder's (FileError).
+// (disk full, permission: MachineError) or, rarely, the folder's (FileError).
 [[noreturn]] void fail(const std::string& path, const std::string& what, int error) {
   throw_write_failure(path, what, error);
 }

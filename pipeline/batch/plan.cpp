@@ -159,6 +159,8 @@ BatchPlan read_plan(const std::string& path) {
     return plan;
   } catch (const nlohmann::json::exception& e) {
     throw FileError(path, 0, 0, fmt::format("{}: not a batch plan: {}", path, e.what()));
+  } catch (const InputError& e) {
+    throw FileError(path, 0, 0, fmt::format("{}: not a batch plan: {}", path, e.what()));
   } catch (const std::invalid_argument& e) {
     throw FileError(path, 0, 0, fmt::format("{}: not a batch plan: {}", path, e.what()));
   }

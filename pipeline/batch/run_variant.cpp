@@ -141,23 +141,24 @@ BatchRow run_variant(const BatchManifest& manifest, std::size_t index, const Pla
     row.timings_ms.emplace_back("resolve", ms_since(start));
     JobOptions options;
     options.out_dir = folder.string();
-    PreparedJob job = prepare_job(design, options);
+    auto [report, job] = prepare_job(design, options);
     const Clock::time_point digest_start = Clock::now();
-    for (std::size_t k = 0; k < job.files.size(); ++k) {
-      const OutputFile& f = job.report.files[k];
+    for (const EncodedFile& e : job.files) {
+      const OutputFile& f = e.file;
       const std::string file_name = fs::path(f.path).filename().string();
-      row.files.push_back({v.name + "/" + file_name, f.format, f.units, job.files[k].bytes.size(),
-                           sha256_hex(job.files[k].bytes)});
+      row.files.push_back(
+          {v.name + "/" + file_name, f.format, f.units, e.encoded.bytes.size(), sha256_hex(e.encoded.bytes)});
       written.insert(file_name);
     }
     record_ms += ms_since(digest_start);
-    const JobReport report = write_job(std::move(job));
+    {
+      StageTimer watch(report.timings_ms);
+      write_job(job);
+      watch.lap("write");
+    }
     for (const auto& stage : report.timings_ms) job_ms += stage.second;
     stages = report.timings_ms;
-    row.mesh = mesh_facts(report);
-    row.skipped = report.skipped;
-    for (const SkippedOutput& s : report.skipped)
-      row.message += fmt::format("{}skipped {}: {}", row.message.empty() ? "" : "; ", s.format, s.reason);
+    record_result(row, report);
     row.status = VariantStatus::Ok;
   } catch (...) {
     const Failure failure = describe_failure(std::current_exception(), planned.design);

@@ -13,7 +13,7 @@
 #include <utility>
 #include <vector>
 
-#include "geometry/core/errors.h"
+#include "geometry/core/error_checks.h"
 #include "geometry/core/stage_timer.h"
 #include "geometry/mesh/interpenetration.h"
 #include "geometry/validation/validate.h"

@@ -10,6 +10,7 @@
 #include "io/file.h"
 #include "io/mesh/read_mesh.h"
 #include "pipeline/cli/commands.h"
+#include "pipeline/job.h"
 #include "pipeline/load_design.h"
 #include "pipeline/pictures.h"
 
@@ -46,8 +47,8 @@ int preview(const PreviewArgs& args, Streams io) {
   std::size_t triangles = 0;
   if (is_design(args.input)) {
     const Design design = load_design(args.input, parse_overrides(args.defines));
-    const BuiltMesh built = in_design(design, [&] { return design_built(design); });
-    triangles = built.soup.triangles.size();
+    const Result built = in_design(design, [&] { return build_preview(design); });
+    triangles = product(built) != nullptr ? product(built)->mesh.triangles.size() : 0;
     png = design_preview_png(design.common, built, options);
   } else {
     // A mesh file's size, in the file's unit (most formats state none).

@@ -21,10 +21,10 @@
 #include "pipeline/failure.h"
 #include "pipeline/job.h"
 #include "pipeline/load_design.h"
-#include "pipeline/outputs.h"
+#include "pipeline/output_table.h"
 #include "pipeline/pictures.h"
-#include "pipeline/planned_outputs.h"
 #include "pipeline/report.h"
+#include "pipeline/summary.h"
 
 namespace fabmesh::cli {
 namespace {
@@ -42,11 +42,11 @@ struct RunArgs {
   bool watch = false;  ///< --watch: run again whenever a design or a file it reads changes
 };
 
-// One design's outcome: a report, or the exit code and message of its failure.
+// One design's outcome: a result, or the exit code and message of its failure.
 struct Outcome {
   std::optional<Design> design;
-  std::optional<JobReport> report;
-  std::optional<PreparedJob> streamed;  ///< `-o -`: the job's bytes go to standard output
+  std::optional<Result> report;
+  std::optional<EncodedJob> streamed;  ///< `-o -`: the job's bytes go to standard output
   std::optional<Failure> failure;
   int code() const { return failure ? failure->exit_code : kExitOk; }
 };
@@ -122,7 +122,7 @@ void require_distinct_files(const std::vector<Outcome>& outcomes, const JobOptio
     if (!outcomes[i].design) continue;
     std::vector<PlannedFile> files;
     try {
-      files = planned_files(*outcomes[i].design, options);
+      files = planned_files(*outcomes[i].design, plan_job(*outcomes[i].design, options));
     } catch (const InputError&) {
       continue;  // a bad `outputs` entry: that design's job reports it
     }
@@ -151,7 +151,7 @@ void write_report(const RunArgs& args, const std::vector<Outcome>& outcomes) {
       page.rows.push_back(report_row(failed_facts(name, o.code(), failure_line(*o.failure)), base));
       continue;
     }
-    ReportRow row = report_row(job_facts(*o.report), base);
+    ReportRow row = report_row(item_facts(*o.report), base);
     for (std::size_t k = 0; k < o.report->files.size(); ++k) {
       const OutputFile& f = o.report->files[k];
       if (f.format == "png") row.preview_png = row.files[k];
@@ -210,8 +210,9 @@ int run_designs(const RunArgs& args, Streams io, std::vector<std::string>* watch
     }
     try {
       if (to_stdout) {
-        o.streamed = prepare_job(*o.design, job);
-        o.report = o.streamed->report;
+        auto [result, encoded] = prepare_job(*o.design, job);
+        o.report = std::move(result);
+        o.streamed = std::move(encoded);
       } else {
         o.report = run_job(*o.design, job);
       }
@@ -230,8 +231,8 @@ int run_designs(const RunArgs& args, Streams io, std::vector<std::string>* watch
     code = std::max(code, o.code());
     if (o.failure) io.err << failure_line(*o.failure) << "\n";
     if (o.streamed) {
-      for (const FileWrite& f : o.streamed->files)
-        io.out.write(f.bytes.data(), static_cast<std::streamsize>(f.bytes.size()));
+      for (const EncodedFile& f : o.streamed->files)
+        io.out.write(f.encoded.bytes.data(), static_cast<std::streamsize>(f.encoded.bytes.size()));
     }
     if (args.json) {
       all.push_back(o.report ? design_item(args.designs[i], *o.report)
@@ -243,12 +244,8 @@ int run_designs(const RunArgs& args, Streams io, std::vector<std::string>* watch
           report_out << fmt::format("    {} {:.2f} ms\n", stage, ms);
       }
     }
-    if (o.report && args.json) {
-      for (const SkippedOutput& s : o.report->skipped)
-        io.err << fmt::format("fabmesh: warning: {}: skipped {}: {}\n", args.designs[i], s.format, s.reason);
-      for (const std::string& warning : o.report->warnings)
-        io.err << fmt::format("fabmesh: warning: {}\n", warning);
-    }
+    // Warnings go to the error stream, whatever the report's form.
+    if (o.report && (args.json || io.verbosity > 0)) print_warnings(*o.report, args.designs[i], io.err);
   }
   // `run --json` prints an array always: one entry per design, whatever their number.
   if (args.json) print_json_items(all, report_out);

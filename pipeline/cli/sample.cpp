@@ -4,7 +4,7 @@
 
 #include <memory>
 
-#include "geometry/core/errors.h"
+#include "geometry/core/error_checks.h"
 #include "geometry/fairing/build_curve.h"
 #include "geometry/sampling/sample_curve.h"
 #include "pipeline/cli/commands.h"

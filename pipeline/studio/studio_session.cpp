@@ -19,14 +19,14 @@
 #include "io/file.h"
 #include "io/mesh/gltf.h"
 #include "io/pictures/curve_plot.h"
-#include "pipeline/build_design.h"
 #include "pipeline/design_curves.h"
 #include "pipeline/failure.h"
 #include "pipeline/job.h"
 #include "pipeline/load_design.h"
-#include "pipeline/outputs.h"
+#include "pipeline/output_table.h"
 #include "pipeline/pictures.h"
 #include "pipeline/report.h"
+#include "pipeline/validate_parts.h"
 
 namespace fabmesh {
 namespace {
@@ -47,38 +47,6 @@ StudioResponse json_response(int status, const Json& body) {
 
 StudioResponse bad_request(const BadRequest& e) {
   return json_response(400, {{"error", {{"message", e.message}, {"field", e.field}}}});
-}
-
-// A draft's tolerance, in the design's: coarse enough to build and draw at
-// once, fine enough to show the shape. A builder that refuses its coarse
-// mesh (a vessel shell whose walls meet at that tolerance) is asked again at
-// half the tolerance, down to kLeastDraftTolerance.
-constexpr double kDraftTolerance = 32.0;
-constexpr double kLeastDraftTolerance = 4.0;
-
-// A surface's draft: its sheet refined for the surface alone at this many
-// times the design's tolerance, then thickened (surface_draft): the wash
-// basin's shell in 7 700 triangles and about 10 ms, where its builder's
-// coarsest proven mesh took 10 000 and 25 ms, most of them the offset
-// sheets' grid crowding toward the rim's singular corners.
-constexpr double kSurfaceDraftTolerance = 2.0;
-
-// The draft of `design`: built at the coarsest tolerance its builder accepts
-// (the design's tolerance is then that one); a surface's by surface_draft.
-BuiltMesh draft_built(Design& design) {
-  const double tolerance = design.common.tolerance;
-  if (const auto* surface = std::get_if<SurfaceDesign>(&design.body)) {
-    design.common.tolerance = tolerance * kSurfaceDraftTolerance;
-    return surface_draft(*surface, design.common.tolerance);
-  }
-  for (double factor = kDraftTolerance;; factor /= 2.0) {
-    design.common.tolerance = tolerance * factor;
-    try {
-      return design_built(design);
-    } catch (const ValidationFailed&) {
-      if (factor / 2.0 < kLeastDraftTolerance) throw;
-    }
-  }
 }
 
 // The design's overrides of a request's "overrides" object, as `-D` takes them.
@@ -322,7 +290,7 @@ Requested read_requested(const Request& request, const std::string& path, const 
   return {std::move(text), std::move(design)};
 }
 
-// A build's report, `run --json`'s item of a job that encoded nothing: the
+// A build's report, `run --json`'s item of a result that encoded nothing: the
 // facts only encoding gives (the files, their added errors, the outputs
 // skipped) are left out, and "pending" says so, with the formats export encodes.
 Json pending_outputs(Json item, const std::vector<const OutputFormat*>& formats) {
@@ -348,6 +316,11 @@ StudioResponse answered(const std::string& path, F&& f) {
 }
 
 }  // namespace
+
+std::string studio_build_report(const std::string& design_path, const Result& result,
+                                const std::vector<const OutputFormat*>& formats) {
+  return pending_outputs(design_item(design_path, result), formats).dump();
+}
 
 std::vector<std::string> DeclaredNames::of(const std::string& text, const std::string& path) const {
   {
@@ -397,11 +370,11 @@ StudioResponse StudioSession::build(const std::string& request_body) {
     std::optional<std::string> glb;
     std::string plot_svg;
     std::size_t triangles = 0;
-    const auto show = [&](const BuiltMesh& built) {
+    const auto show = [&](const Result& built) {
       auto lap = std::chrono::steady_clock::now();
-      plot_svg = plot_curves_svg(shape_plot(design.common, built.shape));
+      plot_svg = plot_curves_svg(shape_plot(design.common, built));
       stages["plot"] = elapsed_ms(lap);
-      if (!built.soup.triangles.empty()) {
+      if (product(built) != nullptr) {
         lap = std::chrono::steady_clock::now();
         GlbOptions glb_options;
         glb_options.name = design.common.name;
@@ -417,21 +390,22 @@ StudioResponse StudioSession::build(const std::string& request_body) {
       // A coarser mesh of the same shape to show at once; no verdict: the
       // proven build's answer gives that.
       auto lap = std::chrono::steady_clock::now();
-      const BuiltMesh built = draft_built(design);
+      const Result built = build_draft(design);
       stages["build"] = elapsed_ms(lap);
       show(built);
-      j = {{"draft", {{"tolerance", design.common.tolerance}, {"triangles", triangles}}},
-           {"plot_svg", plot_svg}};
+      j = {{"draft", {{"tolerance", built.tolerance}, {"triangles", triangles}}}, {"plot_svg", plot_svg}};
     } else {
-      JobOptions job;
-      job.out_dir = options_.out_dir;
-      job.encode = false;  // export encodes the outputs; the report says which facts wait for it
-      job.on_built = show;
+      // The proven build, shown valid or not; export encodes the outputs, so
+      // the report says which facts wait for it.
+      JobOptions options;
+      options.out_dir = options_.out_dir;
       auto lap = std::chrono::steady_clock::now();
-      const PreparedJob prepared = prepare_job(design, job);
+      const JobPlan plan = plan_job(design, options);
+      const Result built = build_job(design, plan);
+      show(built);
+      require_fit(built, design.common.purpose);
       stages["job"] = elapsed_ms(lap);
-      j = {{"report",
-            pending_outputs(design_item(options_.design_path, prepared.report), job_formats(design, job))},
+      j = {{"report", Json::parse(studio_build_report(options_.design_path, built, plan.formats))},
            {"plot_svg", plot_svg}};
     }
     // Where the draggable points are with these values (a dragged or
@@ -464,8 +438,11 @@ StudioResponse StudioSession::export_outputs(const std::string& request_body) {
     const Design design = read_requested(parse_request(request_body), options_.design_path, names_).design;
     JobOptions job;
     job.out_dir = options_.out_dir;
-    const JobReport report = write_job(prepare_job(design, job));
-    Json j = {{"out_dir", options_.out_dir}, {"files", report.outputs}};
+    auto [report, encoded] = prepare_job(design, job);
+    StageTimer watch(report.timings_ms);
+    write_job(encoded);
+    watch.lap("write");
+    Json j = {{"out_dir", options_.out_dir}, {"files", written_paths(report)}};
     j["report"] = design_item(options_.design_path, report);
     return json_response(200, j);
   });

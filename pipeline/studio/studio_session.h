@@ -13,6 +13,16 @@
 
 namespace fabmesh {
 
+struct Result;
+struct OutputFormat;
+
+/// The report of POST /api/build: `run --json`'s item of `result` (read
+/// from `design_path`), less the facts only encoding gives (outputs, files,
+/// skipped outputs), with "pending" naming them and the `formats` export
+/// encodes. JSON text.
+std::string studio_build_report(const std::string& design_path, const Result& result,
+                                const std::vector<const OutputFormat*>& formats);
+
 /// An answer of the studio's API.
 struct StudioResponse {
   int status = 200;  ///< HTTP status: 200, 400 (a malformed request), 404, 422 (the design fails), 500

@@ -10,7 +10,7 @@
 
 #include "io/design/read_design.h"
 #include "pipeline/job.h"
-#include "pipeline/outputs.h"
+#include "pipeline/output_table.h"
 
 using namespace fabmesh;
 namespace fs = std::filesystem;
@@ -56,8 +56,9 @@ TEST_CASE("docs: every YAML example of the reference is a design that reads and 
     const Design design = parse_design(b.text, b.file);
     CHECK_NOTHROW(resolve_outputs(design));
     if (std::holds_alternative<CurveDesign>(design.body)) continue;
-    const PreparedJob job = prepare_job(design, {});
-    CHECK(job.report.validation.valid());
-    CHECK(job.report.max_deviation <= design.common.tolerance);
+    const Result result = prepare_job(design, {}).first;
+    REQUIRE(product(result) != nullptr);
+    CHECK(product(result)->validation.valid());
+    CHECK(result.max_deviation <= design.common.tolerance);
   }
 }

@@ -41,6 +41,13 @@ inline JobOptions into(const std::filesystem::path& dir) {
   return options;
 }
 
+/// The verdict on a result's own mesh (its product part).
+inline const ValidationReport& verdict(const Result& result) {
+  const Part* part = product(result);
+  REQUIRE(part != nullptr);
+  return part->validation;
+}
+
 /// What one run of the command line did.
 struct CliResult {
   int code = 0;

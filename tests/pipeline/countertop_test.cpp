@@ -8,8 +8,8 @@
 #include <sstream>
 
 #include "geometry/core/errors.h"
+#include "geometry/core/soup.h"
 #include "geometry/fairing/build_curve.h"
-#include "geometry/mesh/soup.h"
 #include "geometry/mesh/weld.h"
 #include "geometry/validation/validate.h"
 #include "io/cutting/read_dxf.h"
@@ -19,7 +19,7 @@
 #include "io/mesh/stl.h"
 #include "pipeline/cli/commands.h"
 #include "pipeline/job.h"
-#include "pipeline/outputs.h"
+#include "pipeline/output_table.h"
 #include "tests/geometry/section/region_shapes.h"
 #include "tests/io/design/nurbs_dxf.h"
 #include "tests/pipeline/cli_harness.h"
@@ -90,19 +90,19 @@ TEST_CASE("countertop examples: valid slabs, genus = holes, volume = exact area 
     Design design = read_design(example(name));
     design.common.outputs = {{"stl", "test", 0, 0}, {"dxf", "test", 0, 0}};
     const auto& c = std::get<CountertopDesign>(design.body);
-    const JobReport r = run_job(design, into(dir));
-    CHECK(r.validation.valid());
-    REQUIRE(r.validation.genus);
-    CHECK(*r.validation.genus == static_cast<long>(c.holes.size()));
+    const Result r = run_job(design, into(dir));
+    CHECK(verdict(r).valid());
+    REQUIRE(verdict(r).genus);
+    CHECK(*verdict(r).genus == static_cast<long>(c.holes.size()));
     CHECK(r.max_deviation <= design.common.tolerance);
     const auto [area, perimeter] = exact_region(c);
-    CHECK(std::abs(r.validation.volume - area * c.thickness) <= r.max_deviation * perimeter * c.thickness);
+    CHECK(std::abs(verdict(r).volume - area * c.thickness) <= r.max_deviation * perimeter * c.thickness);
     // The STL read back passes the full validation, 3D self-intersection test included.
-    const ValidationReport full = validate(weld(parse_stl(read_file(r.outputs[0]), "stl")).soup);
+    const ValidationReport full = validate(weld(parse_stl(read_file(written_paths(r)[0]), "stl")).soup);
     CHECK(full.valid());
     CHECK(full.self_intersection == IntersectionCheck::Tested);
-    CHECK(full.genus == r.validation.genus);
-    CHECK(full.triangles == r.validation.triangles);
+    CHECK(full.genus == verdict(r).genus);
+    CHECK(full.triangles == verdict(r).triangles);
   }
 }
 
@@ -152,10 +152,10 @@ TEST_CASE("countertop: max_edge is honoured on top and bottom, the slab stays va
           "[pipeline][countertop]") {
   const fs::path dir = fresh_dir("countertop_max_edge");
   Design design = parse_design(std::string(kSmall) + "max_edge: 40\noutputs: [stl]\n", "small.yaml");
-  const JobReport r = run_job(design, into(dir));
-  REQUIRE(r.validation.valid());
-  CHECK(r.build["steiner_points"].get<std::size_t>() > 0);
-  const TriangleSoup soup = weld(parse_stl(read_file(r.outputs[0]), "stl")).soup;
+  const Result r = run_job(design, into(dir));
+  REQUIRE(verdict(r).valid());
+  CHECK(r.facts.number("steiner_points") > 0);
+  const TriangleSoup soup = weld(parse_stl(read_file(written_paths(r)[0]), "stl")).soup;
   CHECK(validate(soup).valid());
   double longest = 0.0;
   for (const auto& t : soup.triangles) {
@@ -300,10 +300,10 @@ TEST_CASE("countertop from a DXF template: a circle saved as a NURBS is the exac
   CHECK(area == Approx(M_PI * r * r).epsilon(1e-9));
   CHECK(perimeter == Approx(2 * M_PI * r).epsilon(1e-9));
   // The slab: valid, its volume the exact area times the thickness within the sampling's deviation.
-  const JobReport rep = run_job(design, into(dir));
-  CHECK(rep.validation.valid());
+  const Result rep = run_job(design, into(dir));
+  CHECK(verdict(rep).valid());
   CHECK(rep.max_deviation <= design.common.tolerance);
-  CHECK(std::abs(rep.validation.volume - area * top.thickness) <=
+  CHECK(std::abs(verdict(rep).volume - area * top.thickness) <=
         rep.max_deviation * perimeter * top.thickness);
 }
 
@@ -450,7 +450,7 @@ TEST_CASE("countertop cnc: tabs on cut-outs and a ramp entry from the design, ba
                      "radius: 10}\n    tabs: {count: 40, width: 30, min_radius: 1000}", "crowded.yaml");
   const CliResult r = run_fabmesh({"run", crowded, "-o", (dir / "crowded").string() + "/"});
   CHECK(r.code == 0);
-  CHECK_THAT(r.out,
+  CHECK_THAT(r.err,
              Catch::Contains("warning: holes[1] (rounded_rect): ") && Catch::Contains(" of 40 tabs placed"));
 
   // Located bad input: nothing written.

@@ -18,7 +18,7 @@
 #include "io/design/read_design.h"
 #include "io/file.h"
 #include "io/mesh/read_mesh.h"
-#include "pipeline/outputs.h"
+#include "pipeline/output_table.h"
 #include "tests/pipeline/cli_harness.h"
 #include "tests/pipeline/limited_run.h"
 #include "tests/pipeline/pmp_verdict.h"
@@ -114,7 +114,7 @@ TEST_CASE("run: two runs write byte-identical files for every format of every ex
     kinds_seen.insert(kind_name(design));
     std::string formats;
     for (const OutputFormat& f : output_formats()) {
-      if (!f.kinds.test(design.body.index()) || !has_content(design, f.content)) continue;
+      if (!applies_to(f, design)) continue;
       formats += (formats.empty() ? "" : ",") + std::string(f.name);
     }
     by_formats[formats].push_back(path);

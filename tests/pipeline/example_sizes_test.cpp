@@ -57,7 +57,7 @@ std::vector<double> measured_size(const Design& design) {
   StageTimings timings;
   StageTimer watch(timings);
   const BuildContext context{design.common, 0.9 * design.common.tolerance, false, watch};
-  box = bounding_box(build_design(design, context).soup.vertices);
+  box = bounding_box(product(build_design(design, context))->mesh.vertices);
   return {box.size().x(), box.size().y(), box.size().z()};
 }
 

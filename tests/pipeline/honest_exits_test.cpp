@@ -115,7 +115,9 @@ mould: {parts: 2, wall: 3, spare: 2.5, key_radius: 0.6, key_clearance: 0.02}
     const LimitedRun text = run_limited({"run", design, "-o", (dir / "out").string()}, kSeconds, kMemory);
     INFO(text.describe());
     CHECK(text.code == 0);
-    CHECK_THAT(text.out, Catch::Contains("  warning: " + key) && Catch::Contains(users));
+    // Warnings go to standard error, in text as in JSON, never onto the summary's lines.
+    CHECK_THAT(text.err, Catch::Contains("fabmesh: warning: " + key) && Catch::Contains(users));
+    CHECK_THAT(text.out, !Catch::Contains("warning"));
     const LimitedRun json =
         run_limited({"run", design, "--json", "-o", (dir / "out").string()}, kSeconds, kMemory);
     INFO(json.describe());

@@ -2,8 +2,6 @@
 // PrusaSlicer, GLB accepted by the Khronos validator, Draco at real sizes, and
 // the peers' conventions for -o, --export-format, --version, -q.
 
-#include "pipeline/outputs.h"
-
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -17,6 +15,7 @@
 #include "io/mesh/gltf.h"
 #include "io/mesh/read_mesh.h"
 #include "io/mesh/stl.h"
+#include "pipeline/output_table.h"
 #include "tests/io/mesh/external_tool.h"
 #include "tests/pipeline/cli_harness.h"
 
@@ -179,7 +178,8 @@ TEST_CASE(
   write_file_atomically((dir / "far.yaml").string(), far);
   std::string out;
   REQUIRE(run_cli({"run", (dir / "far.yaml").string(), "-o", (dir / "out").string()}, &out) == 0);
-  CHECK_THAT(out, Catch::Contains("warning: skipped drc") && Catch::Contains("raise the tolerance"));
+  CHECK_THAT(out, Catch::Contains("fabmesh: warning: " + (dir / "far.yaml").string() + ": skipped drc") &&
+                      Catch::Contains("raise the tolerance"));
   CHECK(fs::exists(dir / "out" / "far.obj"));
   CHECK_FALSE(fs::exists(dir / "out" / "far.drc"));
   fs::remove_all(dir / "out");

@@ -116,21 +116,23 @@ TEST_CASE("preview: a design's size in its units, a vessel's axis, a mould's par
   CHECK(size_caption(test::box(Vec3(0, 0, 0), Vec3(3, 2, 1)), "cm") == "3.000 x 2.000 x 1.000 cm");
   CHECK(size_caption(test::box(Vec3(0, 0, 0), Vec3(1200, 600.25, 0.03)), "") == "1200 x 600.2 x 0.03000");
   const Design design = load_design(example("mould_golden.yaml"));
-  const BuiltMesh built = design_built(design);
-  REQUIRE(built.mould_parts.size() >= 2);
+  const Result built = build_preview(design);
+  REQUIRE(built.parts.size() >= 3);  // the vessel and at least two mould parts
+  const TriangleSoup& vessel = product(built)->mesh;
   const TriangleSoup scene = exploded_scene(built);
-  std::size_t triangles = built.soup.triangles.size();
-  for (const NamedSoup& p : built.mould_parts) triangles += p.soup.triangles.size();
+  std::size_t triangles = 0;
+  for (const Part& p : built.parts) triangles += p.mesh.triangles.size();
   CHECK(scene.triangles.size() == triangles);
   // Apart: no two parts' boxes overlap, and none overlaps the vessel's.
-  std::vector<BoundingBox> boxes{bounding_box(built.soup.vertices)};
-  std::size_t first = built.soup.vertices.size();
-  for (const NamedSoup& p : built.mould_parts) {
+  std::vector<BoundingBox> boxes{bounding_box(vessel.vertices)};
+  std::size_t first = vessel.vertices.size();
+  for (const Part& p : built.parts) {
+    if (p.role == PartRole::Product) continue;
     const std::vector<Vec3> moved(
         scene.vertices.begin() + static_cast<std::ptrdiff_t>(first),
-        scene.vertices.begin() + static_cast<std::ptrdiff_t>(first + p.soup.vertices.size()));
+        scene.vertices.begin() + static_cast<std::ptrdiff_t>(first + p.mesh.vertices.size()));
     boxes.push_back(bounding_box(moved));
-    first += p.soup.vertices.size();
+    first += p.mesh.vertices.size();
   }
   auto overlap = [](const BoundingBox& a, const BoundingBox& b) {
     return (a.lo.array() < b.hi.array()).all() && (b.lo.array() < a.hi.array()).all();

@@ -5,7 +5,7 @@
 
 #include <optional>
 
-#include "geometry/mesh/soup.h"
+#include "geometry/core/soup.h"
 
 namespace fabmesh::testing {
 

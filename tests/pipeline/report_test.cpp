@@ -23,18 +23,22 @@ ValidationReport valid_validation() {
 }
 
 // A job of a closed mesh, valid for fabrication.
-JobReport valid_job() {
-  JobReport r;
+Result valid_job() {
+  Result r;
   r.name = "cup";
   r.kind = "vessel";
   r.units = "cm";
-  r.validation = valid_validation();
+  Part cup;
+  cup.name = "cup";
+  cup.validation = valid_validation();
+  cup.validated = true;
+  r.parts.push_back(cup);
   r.purpose = MeshPurpose::Fabrication;
   r.max_deviation = 0.017;
   r.tolerance = 0.02;
   r.bbox_min = Vec3(-2.5, -2.5, 0.0);
   r.bbox_max = Vec3(2.5, 2.5, 6.0);
-  r.outputs = {"out/cup.stl", "out/cup.drc"};
+  r.files = {{"out/cup.stl", "stl", "mm", 0.0, true, {}}, {"out/cup.drc", "drc", "mm", 0.0, true, {}}};
   r.timings_ms = {{"build", 12.0}, {"write", 1.0}};
   return r;
 }
@@ -60,25 +64,25 @@ TEST_CASE("report: a job's mesh facts are its validation's, box, deviation and t
 
 TEST_CASE("report: a valid job is ok, a surface for viewing invalid, a drawing ok and not measured",
           "[pipeline][report]") {
-  const ItemFacts ok = job_facts(valid_job());
+  const ItemFacts ok = item_facts(valid_job());
   CHECK(ok.name == "cup");
   CHECK(ok.status == ItemStatus::Ok);
   CHECK(ok.message == "valid for fabrication");
   CHECK(ok.files == std::vector<std::string>{"out/cup.stl", "out/cup.drc"});
   CHECK(ok.timings_ms == valid_job().timings_ms);
 
-  JobReport viewing = valid_job();
+  Result viewing = valid_job();
   viewing.purpose = MeshPurpose::Viewing;
-  viewing.validation.defects.push_back({Defect::BoundaryEdge, 4, {}});
-  const ItemFacts view = job_facts(viewing);
+  viewing.parts[0].validation.defects.push_back({Defect::BoundaryEdge, 4, {}});
+  const ItemFacts view = item_facts(viewing);
   CHECK(view.status == ItemStatus::Invalid);
   CHECK(view.message == "written for viewing only: not valid for fabrication");
   CHECK_FALSE(view.mesh->valid);
 
-  JobReport drawing = valid_job();
+  Result drawing = valid_job();
   drawing.purpose = MeshPurpose::Drawing;
-  drawing.validation = {};
-  const ItemFacts drawn = job_facts(drawing);
+  drawing.parts.clear();
+  const ItemFacts drawn = item_facts(drawing);
   CHECK(drawn.status == ItemStatus::Ok);
   CHECK(drawn.message == "drawing written");
   CHECK_FALSE(drawn.mesh->measured);
@@ -117,7 +121,7 @@ TEST_CASE("report: a checked file is valid when every object is, with the facts 
 }
 
 TEST_CASE("report: run --json and summary rows write the box of the mesh facts", "[pipeline][report]") {
-  const JobReport job = valid_job();
+  const Result job = valid_job();
   const nlohmann::ordered_json box = bounding_box_json(mesh_facts(job));
   CHECK(box.dump() == R"({"min":[-2.5,-2.5,0.0],"max":[2.5,2.5,6.0],"size":[5.0,5.0,6.0],"units":"cm"})");
   const nlohmann::ordered_json j = to_json(job);

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "pipeline/outputs.h"
+#include "pipeline/output_table.h"
 #include "tests/pipeline/cli_harness.h"
 
 using namespace fabmesh;

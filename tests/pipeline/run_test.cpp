@@ -8,7 +8,7 @@
 #include <sstream>
 
 #include "geometry/core/errors.h"
-#include "geometry/mesh/soup.h"
+#include "geometry/core/soup.h"
 #include "geometry/mesh/weld.h"
 #include "geometry/validation/validate.h"
 #include "io/design/read_design.h"
@@ -28,9 +28,9 @@ TEST_CASE("run: a shell vessel is written as STL and Draco in millimetres that b
   const fs::path dir = fresh_dir("run_shell");
   const Design design = read_design(example("vessel_golden_shell.yaml"));
   REQUIRE(design.common.units == "cm");
-  const JobReport r = run_job(design, into(dir));
-  REQUIRE(r.outputs.size() == 4);  // the mesh (STL, Draco) and the profile template (DXF, SVG)
-  CHECK(r.validation.valid());
+  const Result r = run_job(design, into(dir));
+  REQUIRE(written_paths(r).size() == 4);  // the mesh (STL, Draco) and the profile template (DXF, SVG)
+  CHECK(verdict(r).valid());
   CHECK(r.max_deviation <= design.common.tolerance);
   CHECK(r.export_units == "mm");
   for (const OutputFile& f : r.files) {
@@ -42,25 +42,25 @@ TEST_CASE("run: a shell vessel is written as STL and Draco in millimetres that b
       CHECK_FALSE(f.valid_as_written.has_value());
     }
   }
-  CHECK(r.validation.embedding_margin > 0.0);
+  CHECK(verdict(r).embedding_margin > 0.0);
 
   // The design is in cm, the files in mm: 10 times the lengths, 1000 times the volume.
   const TriangleSoup stl = weld(parse_stl(read_file((dir / "vessel_golden_shell.stl").string()), "stl")).soup;
   const ValidationReport from_stl = validate(stl);
   CHECK(from_stl.valid());
-  CHECK(from_stl.triangles == r.validation.triangles);
-  CHECK(from_stl.volume == Approx(1000.0 * r.validation.volume).epsilon(1e-6));
+  CHECK(from_stl.triangles == verdict(r).triangles);
+  CHECK(from_stl.volume == Approx(1000.0 * verdict(r).volume).epsilon(1e-6));
   // The job proved the connectivity by construction; the file's analysis finds the same.
-  CHECK_FALSE(r.validation.topology_proof.empty());
+  CHECK_FALSE(verdict(r).topology_proof.empty());
   CHECK(from_stl.topology_proof.empty());
-  CHECK(from_stl.components == r.validation.components);
-  CHECK(from_stl.euler_characteristics == r.validation.euler_characteristics);
-  CHECK(from_stl.genus == r.validation.genus);
+  CHECK(from_stl.components == verdict(r).components);
+  CHECK(from_stl.euler_characteristics == verdict(r).euler_characteristics);
+  CHECK(from_stl.genus == verdict(r).genus);
 
   const TriangleSoup drc = parse_draco(read_file((dir / "vessel_golden_shell.drc").string()), "drc");
   const ValidationReport from_drc = validate(drc);
   CHECK(from_drc.valid());
-  CHECK(from_drc.triangles == r.validation.triangles);
+  CHECK(from_drc.triangles == verdict(r).triangles);
   // Every decoded vertex lies within the tolerance the build left unused of a built vertex.
   const TriangleSoup built = stl;
   double worst = 0.0;
@@ -82,8 +82,8 @@ TEST_CASE("draco: the default 11 bits collapse a fine mesh but fabmesh's choice 
       "to_deg: 90}}]}\n"
       "body: {mode: solid}\n",
       "ball.yaml");
-  const JobReport r = run_job(design, into(dir));
-  REQUIRE(r.validation.valid());
+  const Result r = run_job(design, into(dir));
+  REQUIRE(verdict(r).valid());
   const TriangleSoup soup = weld(parse_stl(read_file((dir / "ball.stl").string()), "stl")).soup;
   Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
   for (const Vec3& v : soup.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
@@ -195,14 +195,14 @@ TEST_CASE("run: a job written straight to its files has the bytes of the same jo
   const fs::path dir = fresh_dir("run_streamed");
   Design design = read_design(example("vessel_golden_shell.yaml"));
   design.common.outputs = {{"stl", "outputs", 0, 0}, {"obj", "outputs", 0, 0}, {"dxf", "outputs", 0, 0}};
-  const PreparedJob prepared = prepare_job(design, into(dir / "prepared"));
-  const JobReport written = run_job(design, into(dir / "written"));
+  const EncodedJob prepared = prepare_job(design, into(dir / "prepared")).second;
+  const Result written = run_job(design, into(dir / "written"));
   REQUIRE(prepared.files.size() == 3);
-  REQUIRE(written.outputs.size() == 3);
+  REQUIRE(written_paths(written).size() == 3);
   for (std::size_t k = 0; k < prepared.files.size(); ++k) {
-    const fs::path name = fs::path(prepared.files[k].path).filename();
-    CHECK(fs::path(written.outputs[k]).filename() == name);
-    CHECK(read_file(written.outputs[k]) == prepared.files[k].bytes);
+    const fs::path name = fs::path(prepared.files[k].file.path).filename();
+    CHECK(fs::path(written_paths(written)[k]).filename() == name);
+    CHECK(read_file(written_paths(written)[k]) == prepared.files[k].encoded.bytes);
   }
   // Only the outputs: no temporary is left beside them.
   std::size_t entries = 0;
@@ -212,8 +212,8 @@ TEST_CASE("run: a job written straight to its files has the bytes of the same jo
   JobOptions same_unit = into(dir / "cm");
   same_unit.export_units = "cm";
   design.common.outputs = {{"stl", "outputs", 0, 0}};
-  const PreparedJob prepared_cm = prepare_job(design, same_unit);
-  const JobReport written_cm = run_job(design, same_unit);
-  CHECK(read_file(written_cm.outputs.at(0)) == prepared_cm.files.at(0).bytes);
-  CHECK(prepared_cm.files.at(0).bytes != prepared.files.at(0).bytes);  // cm, not mm
+  const EncodedJob prepared_cm = prepare_job(design, same_unit).second;
+  const Result written_cm = run_job(design, same_unit);
+  CHECK(read_file(written_paths(written_cm).at(0)) == prepared_cm.files.at(0).encoded.bytes);
+  CHECK(prepared_cm.files.at(0).encoded.bytes != prepared.files.at(0).encoded.bytes);  // cm, not mm
 }

@@ -18,6 +18,7 @@
 #include "tests/pipeline/limited_run.h"
 
 using namespace fabmesh;
+using fabmesh::testing::verdict;
 namespace fs = std::filesystem;
 
 namespace {
@@ -48,23 +49,24 @@ TEST_CASE("surface run: the thickened basin is a valid closed solid written as S
           "[pipeline][surface]") {
   const fs::path dir = fresh_dir("surface_shell");
   const Design design = read_design(example("surface_basin_shell.yaml"));
-  const JobReport r = run_job(design, testing::into(dir));
-  REQUIRE(r.outputs.size() == 3);
+  const Result r = run_job(design, testing::into(dir));
+  REQUIRE(written_paths(r).size() == 3);
   CHECK(fs::exists(dir / "surface_basin_shell.step"));  // its solid: tests/pipeline/step_output_test.cpp
-  CHECK(r.validation.valid());
-  CHECK(r.validation.self_intersection == IntersectionCheck::Tested);  // the 3D test, not a proof
-  REQUIRE(r.validation.genus);
-  CHECK(*r.validation.genus == 0);
-  CHECK(r.validation.volume > 0.0);
+  CHECK(verdict(r).valid());
+  CHECK(verdict(r).self_intersection == IntersectionCheck::Tested);  // the 3D test, not a proof
+  REQUIRE(verdict(r).genus);
+  CHECK(*verdict(r).genus == 0);
+  CHECK(verdict(r).volume > 0.0);
   CHECK(r.max_deviation <= design.common.tolerance);
-  REQUIRE(r.build.contains("joints"));
-  CHECK(r.build["joints"].size() == 4);
-  for (const auto& j : r.build["joints"]) CHECK(j["normal_angle"].get<double>() < 1e-6);
+  REQUIRE(r.facts.contains("joints"));
+  const auto& joints = std::get<std::vector<Facts>>(*r.facts.find("joints"));
+  CHECK(joints.size() == 4);
+  for (const Facts& j : joints) CHECK(j.number("normal_angle") < 1e-6);
 
   const TriangleSoup stl = weld(parse_stl(read_file((dir / "surface_basin_shell.stl").string()), "stl")).soup;
   const ValidationReport from_stl = validate(stl);
   CHECK(from_stl.valid());
-  CHECK(from_stl.volume == Approx(r.validation.volume).epsilon(1e-5));
+  CHECK(from_stl.volume == Approx(verdict(r).volume).epsilon(1e-5));
   CHECK(validate(parse_draco(read_file((dir / "surface_basin_shell.drc").string()), "drc")).valid());
 }
 
@@ -229,22 +231,24 @@ TEST_CASE("surface draft: the studio's quick mesh is the same closed shell, coar
   const fs::path dir = fresh_dir("surface_draft");
   const Design design = read_design(example("surface_basin_shell.yaml"));
   const auto& surface = std::get<SurfaceDesign>(design.body);
-  const JobReport proven = run_job(design, testing::into(dir));
-  REQUIRE(proven.validation.valid());
-  const BuiltMesh draft = surface_draft(surface, 2.0 * design.common.tolerance);
-  CHECK(draft.validation.self_intersection == IntersectionCheck::NotRun);  // not validated: no verdict
-  CHECK(draft.shape.patches.has_value());
-  CHECK(draft.soup.triangles.size() * 5 < proven.validation.triangles);
+  const Result proven = run_job(design, testing::into(dir));
+  REQUIRE(verdict(proven).valid());
+  const Result draft = surface_draft(surface, 2.0 * design.common.tolerance);
+  REQUIRE(product(draft) != nullptr);
+  CHECK_FALSE(product(draft)->validated);  // not validated: no verdict
+  CHECK(std::holds_alternative<SurfaceProducts>(draft.products));
+  CHECK(product(draft)->mesh.triangles.size() * 5 < verdict(proven).triangles);
   // Closed and outward like the proven shell, and holding nearly its volume.
-  const ValidationReport checked = validate(draft.soup);
+  const ValidationReport checked = validate(product(draft)->mesh);
   CHECK(checked.boundary_edges == 0);
   CHECK(checked.oriented_outward);
   CHECK(checked.valid());  // this one happens to be valid too, though nothing proved it
-  CHECK(checked.volume == Approx(proven.validation.volume).epsilon(0.02));
+  CHECK(checked.volume == Approx(verdict(proven).volume).epsilon(0.02));
   // An open surface's draft is its sheet, for viewing.
   SurfaceDesign open = surface;
   open.thickness = 0.0;
-  const BuiltMesh sheet = surface_draft(open, 2.0 * design.common.tolerance);
+  const Result sheet = surface_draft(open, 2.0 * design.common.tolerance);
   CHECK(sheet.purpose == MeshPurpose::Viewing);
-  CHECK(validate(sheet.soup).boundary_edges > 0);
+  REQUIRE(product(sheet) != nullptr);
+  CHECK(validate(product(sheet)->mesh).boundary_edges > 0);
 }

@@ -1,0 +1,195 @@
+// STEP files of the exact geometry (io/step: written by the OpenCASCADE
+// module): each kind's exact shape, and a vessel's mould as exact solids.
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "geometry/core/errors.h"
+#include "geometry/surfaces/bspline_patch.h"
+#include "geometry/surfaces/bspline_shell.h"
+#include "io/step/step.h"
+#include "pipeline/encoders/encoding.h"
+
+namespace fabmesh {
+namespace {
+
+// Exact curves as STEP loops, keeping the largest proven bound of an
+// approximated piece (0 while every piece is exact).
+class StepLoops {
+ public:
+  explicit StepLoops(double tolerance) : tolerance_(tolerance) {}
+  template <class Curve>
+  StepLoop operator()(const Curve& curve) {
+    try {
+      StepLoopOf l = step_loop(curve, tolerance_);
+      added_ = std::max(added_, l.max_error);
+      return std::move(l.loop);
+    } catch (const InputError& e) {
+      throw OutputError("step", std::string("step: ") + e.what());
+    }
+  }
+  double added() const { return added_; }
+
+ private:
+  double tolerance_;
+  double added_ = 0.0;
+};
+
+Encoded step_file(const EncodeContext& c, const StepModel& model, double added) {
+  Encoded e;
+  e.bytes = write_step(model).bytes;
+  e.units = c.common.units;
+  e.added_error = added;
+  return e;
+}
+
+// A surface's B-spline faces as one body: sewn into an open shell (Sheet) or
+// a closed one (Closed). Border curves agree to the poles' rounding (about
+// 1e-13 of the size).
+Encoded step_faces(const EncodeContext& c, const PatchNetwork& network, std::vector<BSplineFace> faces,
+                   StepForm form, double bound, StepModel model) {
+  StepBody body;
+  body.name = c.common.name;
+  body.form = form;
+  body.sewing_tolerance = 1e-7 * network.size;
+  body.surfaces = std::move(faces);
+  model.bodies.push_back(std::move(body));
+  return step_file(c, model, bound);
+}
+
+// An open surface as one shell of B-spline faces, one per patch, sewn along
+// the shared borders: each patch within what the build left of the
+// tolerance (geometry/surfaces/bspline_patch.h), the largest bound the file's
+// added error. A thickened one as the closed shell of its sheets and walls
+// (geometry/surfaces/bspline_shell.h): a sheet on the surface as above, an
+// offset sheet through the proven mesh's grid, within the mesh's bound.
+Encoded surface_step(const EncodeContext& c, const SurfaceProducts& surface, StepModel model) {
+  const PatchNetwork& network = surface.patches;
+  const std::optional<ShellGrid>& grid = surface.shell;
+  if (!grid && c.result.purpose == MeshPurpose::Fabrication) {
+    throw OutputError("step",
+                      "step: the shell's grid was not kept by its build (it did not know a step "
+                      "output was asked for)");
+  }
+  std::vector<BSplineFace> faces;
+  double bound = 0.0;
+  try {
+    if (grid) {
+      BSplineShell shell = bspline_shell(network, *grid, c.output_tolerance);
+      faces = std::move(shell.faces);
+      bound = shell.bound;
+    } else {
+      BSplineNetwork sheet = bspline_network(network, c.output_tolerance);
+      for (std::size_t p = 0; p < sheet.patches.size(); ++p)
+        faces.push_back(bspline_face(sheet.patches[p], network.names[p]));
+      bound = sheet.max_bound;
+    }
+  } catch (const InputError& e) {
+    throw OutputError("step", std::string("step: ") + e.what());
+  }
+  return step_faces(c, network, std::move(faces), grid ? StepForm::Closed : StepForm::Sheet, bound,
+                    std::move(model));
+}
+
+// A countertop's extrusion, or a vessel's revolution (a solid per loop: a
+// profile that runs along the axis between parts makes one per part).
+Encoded solid_step(const EncodeContext& c, const ExactSolid& solid, StepModel model) {
+  StepLoops loop_of(c.output_tolerance);
+  StepBody body;
+  body.name = c.common.name;
+  body.height = solid.height;
+  if (solid.form == ExactSolid::Form::Extrusion) {
+    body.form = StepForm::Extrusion;
+    for (const std::vector<ExactPiece>& loop : solid.loops) body.loops.push_back(loop_of(loop));
+    model.bodies.push_back(std::move(body));
+    return step_file(c, model, loop_of.added());
+  }
+  body.form = StepForm::Revolution;
+  for (std::size_t i = 0; i < solid.loops.size(); ++i) {
+    StepBody part = body;
+    if (solid.loops.size() > 1) part.name += fmt::format(" part {}", i + 1);
+    part.loops.push_back(loop_of(solid.loops[i]));
+    model.bodies.push_back(std::move(part));
+  }
+  return step_file(c, model, loop_of.added());
+}
+
+// A curve design's curves as a wireframe.
+Encoded wireframe_step(const EncodeContext& c, StepModel model) {
+  StepLoops loop_of(c.output_tolerance);
+  StepBody body;
+  body.name = c.common.name;
+  body.form = StepForm::Wireframe;
+  for (const NamedBuiltCurve& curve : c.result.curves) body.loops.push_back(loop_of(curve.curve.curve));
+  model.bodies.push_back(std::move(body));
+  return step_file(c, model, loop_of.added());
+}
+
+}  // namespace
+
+// The exact shape of the design's kind in the design's unit. Exact segments
+// stay exact; an H-Bézier segment becomes a cubic B-spline within what the
+// build left of the tolerance, and that bound is the file's added error.
+EncodedFiles encode_step_output(const EncodeContext& c) {
+  StepModel model;
+  model.name = c.common.name;
+  model.unit = c.common.units;
+  struct Visitor {
+    const EncodeContext& c;
+    StepModel& model;
+    Encoded operator()(const CurveProducts&) const { return wireframe_step(c, std::move(model)); }
+    Encoded operator()(const CountertopProducts& p) const { return solid_step(c, p.solid, std::move(model)); }
+    Encoded operator()(const SurfaceProducts& p) const { return surface_step(c, p, std::move(model)); }
+    Encoded operator()(const VesselProducts& p) const {
+      if (!p.solid)
+        throw OutputError("step",
+                          "step: a shell whose profile runs along the axis is not written as STEP yet");
+      return solid_step(c, *p.solid, std::move(model));
+    }
+  };
+  return {std::visit(Visitor{c, model}, c.result.products)};
+}
+
+// The mould's parts as exact solids, one product each, in the design's unit:
+// OpenCASCADE takes the revolved cavity and the sockets from each block and
+// adds the bumps. When the cavity is exact, the parts' volumes together must
+// be the exact plaster volume (block - cavity + bumps - sockets) within
+// OpenCASCADE's integration: a boolean operation that lost the cavity or a
+// key (a key is about 1e-4 of a mould) would show there.
+EncodedFiles encode_mould_step_output(const EncodeContext& c) {
+  const ExactMould& mould = *std::get<VesselProducts>(c.result.products).mould;
+  StepModel model;
+  model.name = c.common.name + " mould";
+  model.unit = c.common.units;
+  StepLoops loop_of(c.output_tolerance);
+  const StepLoop cavity = loop_of(mould.cavity);
+  Encoded e;
+  for (const ExactMould::Part& part : mould.parts) {
+    StepBody body;
+    body.name = c.common.name + " mould " + part.name;
+    body.form = StepForm::Carved;
+    body.loops = {cavity};
+    body.block = {mould.box, mould.block_radius, part.z_low, part.z_high, part.from_angle, part.to_angle};
+    for (const ExactMould::Key& k : part.keys)
+      body.hemispheres.push_back({k.centre, k.axis, k.radius, k.bump});
+    model.bodies.push_back(std::move(body));
+    e.parts.push_back(part.name);
+  }
+  const StepWritten written = write_step(model);
+  double volume = 0.0;
+  for (const StepShapeFacts& f : written.bodies) volume += f.volume;
+  if (loop_of.added() == 0.0 && !(std::abs(volume - mould.volume) <= 1e-6 * std::abs(mould.volume))) {
+    throw OutputError("step",
+                      fmt::format("step: the mould's parts as OpenCASCADE built them hold {:.9g} {}^3 "
+                                  "of plaster, not the exact {:.9g}; nothing is written",
+                                  volume, c.common.units, mould.volume));
+  }
+  e.bytes = written.bytes;
+  e.units = c.common.units;
+  e.added_error = loop_of.added();
+  return {std::move(e)};
+}
+
+}  // namespace fabmesh

@@ -1,0 +1,213 @@
+#pragma once
+// A job's one result: what a design made (its parts, each a mesh with the
+// proofs of its construction and its validation; the exact geometry,
+// drawings and programs of its kind; the facts its builder reports), what
+// the design is (name, kind, units, parameters, the tolerance and how it was
+// divided), and the files written from it. Every command, the studio, the
+// library and Python read this one object; one serializer writes its JSON
+// (pipeline/result_json.h).
+//
+// Parts are made by the builders (pipeline/build_*.cpp): the design's own
+// mesh first (role Product), then a vessel's mould parts; a job of many
+// parts (a kitchen's pieces, a ceramic set's cases) adds roles here.
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "geometry/core/proofs.h"
+#include "geometry/core/soup.h"
+#include "geometry/core/stage_timer.h"
+#include "geometry/core/tolerance_budget.h"
+#include "geometry/fairing/build_curve.h"
+#include "geometry/sampling/cut_loop.h"
+#include "geometry/sampling/offset_bezier.h"
+#include "geometry/surfaces/bspline_shell.h"
+#include "geometry/surfaces/patch_network.h"
+#include "geometry/toolpath/toolpath.h"
+#include "geometry/validation/validate.h"
+#include "io/cutting/gcode.h"
+#include "io/design/design.h"
+#include "pipeline/facts.h"
+
+namespace fabmesh {
+
+/// What a part of a job's result is.
+enum class PartRole {
+  Product,    ///< the design's own mesh: the vessel, the countertop, the surface
+  MouldSide,  ///< a side part of a vessel's slip-casting mould
+  MouldBase,  ///< the base part of a vessel's mould
+};
+
+/// "product", "mould_side", "mould_base": the role as reports write it.
+const char* to_string(PartRole role);
+
+/// One mesh of a result, with what its construction proves and its verdict.
+struct Part {
+  std::string name;  ///< the design's name for its product; "side-1", "base" for mould parts
+  PartRole role = PartRole::Product;
+  TriangleSoup mesh;  ///< model units (a vessel's master size)
+  /// What the builder proved about `mesh` (topology, embedding), used by
+  /// validation in place of the analyses they replace; empty: none.
+  ValidationOptions proofs;
+  ValidationReport validation;  ///< validate_parts' verdict, with those proofs
+  bool validated = false;       ///< `validation` is set (a builder that needs it early sets it)
+};
+
+/// A design's curve as built (build_curve), under its design key: "curve",
+/// "profile", "outline", "holes[0]", ...
+struct NamedBuiltCurve {
+  std::string name;
+  BuiltCurve curve;
+};
+
+/// The exact solid a design's mesh approximates, from the exact curves: what
+/// outputs that carry exact geometry (step) write.
+struct ExactSolid {
+  enum class Form {
+    Extrusion,  ///< `loops` in the xy plane (the outline, then holes) extruded by `height` along z
+    /// each loop in the (radius, height) half-plane revolved about the height
+    /// axis into a solid of its own (one per part of a profile that runs along the axis)
+    Revolution,
+  };
+  Form form = Form::Extrusion;
+  /// Closed, as written (a vessel's scaled for shrinkage): segments, and a
+  /// shell's inner wall as arcs of the profile's offset.
+  std::vector<std::vector<ExactPiece>> loops;
+  double height = 0.0;
+};
+
+/// A vessel's slip-casting mould as exact solids (what `mould_step` writes):
+/// each part is the block (a cylinder, or a square box, about the z axis)
+/// between two heights and, for a side part, two split half-planes, minus
+/// the cavity revolved, with its keys' hemispheres added (bumps) or taken
+/// away (sockets). Master size, model units.
+struct ExactMould {
+  struct Key {
+    Vec3 centre{0.0, 0.0, 0.0};
+    Vec3 axis{0.0, 0.0, 1.0};  ///< unit normal of the split plane toward the apex
+    double radius = 0.0;
+    bool bump = true;
+  };
+  struct Part {
+    std::string name;  ///< the mesh part's name: "side-1", "base"
+    double z_low = 0.0, z_high = 0.0;
+    double from_angle = 0.0, to_angle = 0.0;  ///< radians; the base part goes all the way round
+    std::vector<Key> keys;
+  };
+  bool box = false;
+  double block_radius = 0.0;  ///< the cylinder's radius or half the box's side
+  /// The cavity's section, closed: the exact profile from the rim down to its
+  /// base end, to the axis, up the axis above the block's top, and back down
+  /// along the reservoir's wall to the rim (the reservoir opens at the top).
+  std::vector<ExactPiece> cavity;
+  std::vector<Part> parts;
+  /// The parts' exact total volume: block - cavity + bumps - sockets.
+  double volume = 0.0;
+};
+
+/// What a curve design makes besides its curve: the curve at true size.
+struct CurveProducts {
+  std::vector<CutLoop> drawing;  ///< when an output draws it
+};
+
+/// What a vessel makes besides its mesh and mould parts.
+struct VesselProducts {
+  /// The exact solid; none for a shell whose profile runs along the axis.
+  std::optional<ExactSolid> solid;
+  std::vector<CutLoop> profile_template;  ///< the profile closed along the axis, when an output draws it
+  std::optional<ExactMould> mould;        ///< when the design has a mould
+};
+
+/// What a countertop makes besides its mesh.
+struct CountertopProducts {
+  ExactSolid solid;
+  std::vector<CutLoop> cutting;       ///< the outline, then the holes, when an output draws them
+  std::optional<Toolpath> toolpath;   ///< the router path (key `cnc`)
+  std::optional<GcodeOptions> gcode;  ///< how its program is written (with `toolpath`)
+};
+
+/// What a surface makes besides its mesh.
+struct SurfaceProducts {
+  PatchNetwork patches;
+  /// A thickened surface's sheets as its tessellation proved them, when an
+  /// output writes the exact shape (step).
+  std::optional<ShellGrid> shell;
+};
+
+/// The exact data, drawings and programs of a design's kind, one
+/// alternative per DesignBody alternative (in the same order): an output
+/// visits the alternative it is made from.
+using KindProducts = std::variant<CurveProducts, VesselProducts, CountertopProducts, SurfaceProducts>;
+static_assert(std::variant_size_v<KindProducts> == std::variant_size_v<DesignBody>,
+              "one KindProducts alternative per kind of design");
+
+/// One file a job wrote.
+struct OutputFile {
+  std::string path;
+  std::string format;
+  std::string units;         ///< the unit of its coordinates
+  double added_error = 0.0;  ///< how far writing moved any vertex at most, model units
+  std::optional<bool> valid_as_written = std::nullopt;  ///< mesh outputs: proven valid as stored
+  std::vector<std::string> parts;                       ///< the parts it holds (empty: the design as a whole)
+};
+
+/// An output the job could not make (and skipped, by the design's policy).
+struct SkippedOutput {
+  std::string format;
+  std::string reason;
+};
+
+/// A job's result (see the top of this file).
+struct Result {
+  // --- the design ---
+  std::string name;
+  std::string kind;         ///< "vessel", "countertop", "surface", "curve"
+  std::string design_file;  ///< the file it was read from
+  std::string units;        ///< model units of every length below
+  std::string export_units;
+  std::vector<DesignParameter> parameters;  ///< the named parameters with the values used
+  double tolerance = 0.0;
+  /// The share of the tolerance the build was given (the rest is kept for
+  /// writing the outputs), model units.
+  double build_tolerance = 0.0;
+  // --- what the build made ---
+  MeshPurpose purpose = MeshPurpose::Fabrication;
+  double max_deviation = 0.0;  ///< proven bound of the meshes (or curves) against the exact shape
+  /// How the builders divided build_tolerance, each stage named by what it
+  /// builds ("section", "mould: revolution", "cnc: G-code rounding").
+  std::vector<ToleranceShare> tolerance_shares;
+  std::vector<Part> parts;              ///< the product first; none for a curve design
+  std::vector<NamedBuiltCurve> curves;  ///< the design's curves as built, in the design's order
+  KindProducts products;                ///< the kind's exact geometry, drawings and programs
+  Facts facts;                          ///< what the builder reports (the report's `build`)
+  Vec3 bbox_min = Vec3::Zero(), bbox_max = Vec3::Zero();  ///< of the product (or the drawing)
+  /// What deserves a look: what the builder did other than asked (tabs left
+  /// out), a block no output uses.
+  std::vector<std::string> warnings;
+  std::vector<std::string> notes;  ///< how the design's files were read
+  // --- what was written ---
+  std::vector<OutputFile> files;
+  std::vector<SkippedOutput> skipped;
+  StageTimings timings_ms;
+};
+
+/// The design's own mesh (role Product), or nullptr (a curve design).
+const Part* product(const Result& result);
+
+/// The parts of `role`, in order.
+std::vector<const Part*> parts_of(const Result& result, PartRole role);
+
+/// True when every part is valid for what the design is for (a drawing has none).
+bool fit(const Result& result);
+
+/// The paths of the files written, in order.
+std::vector<std::string> written_paths(const Result& result);
+
+/// Appends `shares` to `to`, each stage named after `prefix` ("mould: section").
+void append_shares(std::vector<ToleranceShare>& to, const std::string& prefix,
+                   const std::vector<ToleranceShare>& shares);
+
+}  // namespace fabmesh

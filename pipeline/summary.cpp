@@ -1,0 +1,120 @@
+#include "pipeline/summary.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace fabmesh {
+namespace {
+
+// The headline facts of the builder: shrinkage, the mould, the router path.
+void print_build_facts(const Facts& facts, const std::string& u, std::ostream& out) {
+  if (facts.contains("shrinkage")) {
+    const Facts& s = facts.group("shrinkage");
+    const auto& fired = std::get<std::vector<double>>(*s.find("fired_size"));
+    out << fmt::format(
+        "  shrinkage {}: written {:.6g} times the fired size ({:.6g} x {:.6g} x {:.6g} {} when fired)\n",
+        s.number("shrinkage"), s.number("factor"), fired[0], fired[1], fired[2], u);
+  }
+  if (facts.contains("mould")) {
+    const Facts& m = facts.group("mould");
+    out << fmt::format(
+        "  mould: {} parts, each closed and embedded by construction; slip {:.6g} {}^3, plaster "
+        "{:.6g} {}^3\n",
+        std::get<std::vector<Facts>>(*m.find("parts")).size(), m.number("slip_volume"), u,
+        m.number("plaster_volume"), u);
+  }
+  if (facts.contains("cnc")) {
+    const Facts& c = facts.group("cnc");
+    out << fmt::format("  router path: {} passes, within {:.3g} {} of the exact offset\n",
+                       static_cast<int>(c.number("passes")), c.number("deviation"), u);
+  }
+}
+
+void print_files(const Result& r, std::ostream& out) {
+  for (const OutputFile& f : r.files) out << fmt::format("  wrote {} (in {})\n", f.path, f.units);
+}
+
+void print_notes(const Result& r, std::ostream& out) {
+  for (const std::string& note : r.notes) out << fmt::format("  note: {}\n", note);
+}
+
+double total_ms(const Result& r) {
+  double total = 0.0;
+  for (const auto& t : r.timings_ms) total += t.second;
+  return total;
+}
+
+}  // namespace
+
+double summary_number(double x, double extent) { return std::abs(x) < 1e-12 * extent ? 0.0 : x; }
+
+void print_warnings(const Result& r, const std::string& subject, std::ostream& err) {
+  for (const SkippedOutput& s : r.skipped)
+    err << fmt::format("fabmesh: warning: {}: skipped {}: {}\n", subject, s.format, s.reason);
+  for (const std::string& warning : r.warnings) err << fmt::format("fabmesh: warning: {}\n", warning);
+}
+
+void print_summary(const Result& r, std::ostream& out) {
+  const std::string& u = r.units;
+  if (r.purpose == MeshPurpose::Drawing) {
+    out << fmt::format("{}: {} drawn at true size, within {:.3g} {} of the exact curve (tolerance {} {})\n",
+                       r.name, r.kind, r.max_deviation, u, r.tolerance, u);
+    print_files(r, out);
+    print_notes(r, out);
+    out << fmt::format("  {:.1f} ms\n", total_ms(r));
+    return;
+  }
+  const Part* part = product(r);
+  const ValidationReport v = part != nullptr ? part->validation : ValidationReport{};
+  // An enclosed volume only exists for a closed mesh.
+  const std::string volume =
+      v.boundary_edges == 0 ? fmt::format("{:.6g} {}^3", v.volume, u) : std::string("- (open)");
+  out << fmt::format("{}: {} with {} vertices, {} triangles, volume {}, area {:.6g} {}^2, genus {}\n", r.name,
+                     r.kind, v.vertices, v.triangles, volume, v.area, u,
+                     v.genus ? std::to_string(*v.genus) : "-");
+  if (!r.parameters.empty()) {
+    std::string values;
+    for (const DesignParameter& p : r.parameters)
+      values += fmt::format("{}{} = {:.6g}", values.empty() ? "" : ", ", p.name, p.value);
+    out << "  parameters: " << values << "\n";
+  }
+  const Vec3 size = r.bbox_max - r.bbox_min;
+  const double extent =
+      std::max({size.maxCoeff(), r.bbox_min.cwiseAbs().maxCoeff(), r.bbox_max.cwiseAbs().maxCoeff()});
+  const auto n = [extent](double x) { return summary_number(x, extent); };
+  out << fmt::format(
+      "  size {:.6g} x {:.6g} x {:.6g} {} (x {:.6g}..{:.6g}, y {:.6g}..{:.6g}, z {:.6g}..{:.6g})\n",
+      n(size.x()), n(size.y()), n(size.z()), u, n(r.bbox_min.x()), n(r.bbox_max.x()), n(r.bbox_min.y()),
+      n(r.bbox_max.y()), n(r.bbox_min.z()), n(r.bbox_max.z()));
+  if (v.valid()) {
+    out << fmt::format(
+        "  valid: closed, manifold ({}), outward, no self-intersections ({}); within {:.3g} {} of the exact "
+        "surface (tolerance {} {})\n",
+        v.topology_proof.empty() ? "checked" : "by construction",
+        v.self_intersection == IntersectionCheck::ProvenByConstruction ? "by construction" : "checked",
+        r.max_deviation, u, r.tolerance, u);
+  } else {
+    const std::vector<std::string> defects = describe_defects(v);
+    out << fmt::format("  for viewing only, not valid for fabrication ({}; {})\n",
+                       r.facts.contains("fabrication") ? r.facts.text("fabrication") : "invalid",
+                       defects.empty() ? "" : defects.front());
+  }
+  if (r.parts.size() > 1) {
+    for (const Part& p : r.parts) {
+      if (p.role == PartRole::Product) continue;
+      out << fmt::format("  part {} ({}): {} triangles, volume {:.6g} {}^3, {}\n", p.name, to_string(p.role),
+                         p.validation.triangles, p.validation.volume, u,
+                         p.validation.valid() ? "valid" : "INVALID");
+    }
+  }
+  print_build_facts(r.facts, u, out);
+  print_files(r, out);
+  print_notes(r, out);
+  out << fmt::format("  {:.1f} ms\n", total_ms(r));
+}
+
+}  // namespace fabmesh
