@@ -1,7 +1,10 @@
-"""Type stub of the fabmesh module (docs/python.md)."""
+"""Type stub of the fabmesh module (docs/python.md). tests/python/test_stub.py
+holds it to the module: every name, class member and parameter here is the
+module's, and the module has no public name that is not here."""
 
+import enum
 from os import PathLike
-from typing import Any, Optional, Union
+from typing import Any, Iterator, Optional, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -23,12 +26,44 @@ class InputError(Error, ValueError):
     column: Optional[int]
     override: Optional[str]
     is_default: bool
+    point: Optional[tuple[float, ...]]
+
+class MissingFileError(InputError, FileNotFoundError):
+    """A file that does not exist."""
 
 class ValidationFailed(Error):
     """A mesh that is not valid for what it is asked for (exit code 1)."""
 
-class EnvironmentError(Error, OSError):
-    """Writing failed for a reason of the machine (exit code 5)."""
+class MachineError(Error, OSError):
+    """A fault of the machine, not of the input (exit code 5)."""
+
+class Unit(str, enum.Enum):
+    """A unit of length; each member is its text too (Unit.mm == "mm")."""
+    mm = "mm"
+    cm = "cm"
+    m = "m"
+    inch = "in"
+
+class DefectKind(str, enum.Enum):
+    """A kind of defect a mesh can have, named as the JSON reports name it."""
+    empty = "empty"
+    non_finite_vertex = "non_finite_vertex"
+    boundary_edge = "boundary_edge"
+    non_manifold_edge = "non_manifold_edge"
+    non_manifold_vertex = "non_manifold_vertex"
+    inconsistent_orientation = "inconsistent_orientation"
+    inside_out = "inside_out"
+    inverted_component = "inverted_component"
+    nested_same_orientation = "nested_same_orientation"
+    degenerate_face = "degenerate_face"
+    duplicate_face = "duplicate_face"
+    self_intersection = "self_intersection"
+
+class PartRole(str, enum.Enum):
+    """What a part of a Result is."""
+    product = "product"
+    mould_side = "mould_side"
+    mould_base = "mould_base"
 
 class Parameter:
     """One of a design's named parameters (`parameters:`), with the value used."""
@@ -52,7 +87,7 @@ class Design:
     @property
     def name(self) -> str: ...
     @property
-    def units(self) -> str: ...
+    def units(self) -> Unit: ...
     @property
     def tolerance(self) -> float: ...
     @property
@@ -62,9 +97,90 @@ class Design:
     @property
     def parameters(self) -> list[Parameter]: ...
 
+def read_design(path: StrPath, overrides: Optional[dict[str, Any]] = None) -> Design:
+    """Reads a design file with -D style overrides (numbers, texts, lists; numpy values too)."""
+
+def parse_design(design: Union[str, dict[str, Any]], overrides: Optional[dict[str, Any]] = None,
+                 source: StrPath = "design.yaml") -> Design:
+    """Reads a design from YAML text or a dict of its keys, with overrides."""
+
 def load_design(path: Optional[StrPath] = None, *, text: Optional[str] = None,
                 overrides: Optional[dict[str, Any]] = None) -> Design:
-    """Reads a design from a file or from YAML text, with -D style overrides."""
+    """Deprecated since 0.4: read_design(path) or parse_design(text)."""
+
+class Defect:
+    """One kind of defect found: its kind, how many, and a few places."""
+    @property
+    def kind(self) -> DefectKind: ...
+    @property
+    def count(self) -> int: ...
+    @property
+    def examples(self) -> npt.NDArray[np.float64]: ...
+
+class ValidationReport:
+    """The verdict on one mesh, as `fabmesh check` gives it."""
+    @property
+    def valid(self) -> bool: ...
+    @property
+    def watertight(self) -> bool: ...
+    @property
+    def manifold(self) -> bool: ...
+    @property
+    def oriented_outward(self) -> bool: ...
+    @property
+    def self_intersecting(self) -> bool: ...
+    @property
+    def vertices(self) -> int: ...
+    @property
+    def triangles(self) -> int: ...
+    @property
+    def components(self) -> int: ...
+    @property
+    def boundary_edges(self) -> int: ...
+    @property
+    def non_manifold_edges(self) -> int: ...
+    @property
+    def non_manifold_vertices(self) -> int: ...
+    @property
+    def degenerate_faces(self) -> int: ...
+    @property
+    def genus(self) -> Optional[int]: ...
+    @property
+    def volume(self) -> float: ...
+    @property
+    def area(self) -> float: ...
+    @property
+    def defects(self) -> list[Defect]: ...
+    @property
+    def error(self) -> Optional[str]: ...
+    def to_json(self) -> str: ...
+    def to_dict(self) -> dict[str, Any]: ...
+    def __getitem__(self, key: str) -> Any:
+        """Deprecated since 0.4: report.to_dict()[key]."""
+
+class Mesh:
+    """An indexed triangle mesh; unpacks as (vertices, triangles, units)."""
+    @property
+    def vertices(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def triangles(self) -> npt.NDArray[np.int64]: ...
+    @property
+    def units(self) -> Optional[Unit]: ...
+    def __len__(self) -> int: ...
+    def __iter__(self) -> Iterator[Any]: ...
+
+def check(vertices: ArrayLike, triangles: ArrayLike, *, weld_tolerance: float = 0.0,
+          max_seconds: float = 600.0) -> ValidationReport:
+    """Validates a mesh given as arrays, as `fabmesh check` validates a file."""
+
+def check_file(path: StrPath, *, weld_tolerance: float = 0.0, max_seconds: float = 600.0) -> ValidationReport:
+    """Validates a mesh file as `fabmesh check FILE --json`."""
+
+def read_mesh(path: StrPath) -> Mesh:
+    """Reads a mesh file: its vertices, triangles and units (None when it states none)."""
+
+def write_mesh(path: StrPath, vertices: ArrayLike, triangles: ArrayLike, *, units: Optional[str] = None) -> None:
+    """Writes a mesh in the format the extension names."""
 
 class Curve:
     """A composite plane curve of n segments, parameter t in [0, n]."""
@@ -84,55 +200,6 @@ class Curve:
     def fairing(self) -> Optional[dict[str, Any]]:
         """{'energy', 'before', 'after'} for a faired curve, else None."""
 
-class BuiltCurve:
-    """One of a design's curves as built."""
-    key: str
-    points: npt.NDArray[np.float64]
-    closed: bool
-    max_deviation: float
-    curve: Curve
-
-class Result:
-    """A design built and validated as `fabmesh run` builds it."""
-    @property
-    def valid(self) -> bool: ...
-    @property
-    def vertices(self) -> npt.NDArray[np.float64]: ...
-    @property
-    def triangles(self) -> npt.NDArray[np.int64]: ...
-    @property
-    def units(self) -> str: ...
-    @property
-    def tolerance(self) -> float: ...
-    @property
-    def max_deviation(self) -> float: ...
-    @property
-    def error(self) -> str: ...
-    @property
-    def curves(self) -> list[BuiltCurve]: ...
-    @property
-    def report(self) -> dict[str, Any]: ...
-    @property
-    def validation(self) -> dict[str, Any]: ...
-    def write(self, path: StrPath) -> None: ...
-    def outputs(self, folder: StrPath) -> list[str]: ...
-
-def build(design: Design) -> Result:
-    """Builds and validates a design as `fabmesh run` does."""
-
-def check(vertices: ArrayLike, triangles: ArrayLike, *, weld_tolerance: float = 0.0,
-          max_seconds: float = 600.0) -> dict[str, Any]:
-    """Validates a mesh given as arrays; returns one `check --json` item."""
-
-def check_file(path: StrPath, *, weld_tolerance: float = 0.0, max_seconds: float = 600.0) -> dict[str, Any]:
-    """Validates a mesh file as `fabmesh check FILE --json`."""
-
-def read_mesh(path: StrPath) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.int64], Optional[str]]:
-    """Reads a mesh file: (vertices, triangles, units or None)."""
-
-def write_mesh(path: StrPath, vertices: ArrayLike, triangles: ArrayLike, *, units: Optional[str] = None) -> None:
-    """Writes a mesh in the format the extension names."""
-
 def tbezier(points: ArrayLike, lam: float = 0.0, mu: float = 0.0) -> Curve: ...
 def quasi_bspline(points: ArrayLike, lambdas: Optional[list[float]] = None) -> Curve: ...
 def hbezier(points: ArrayLike, alpha: float = 1.0, lam: float = 0.0, mu: float = 0.0) -> Curve: ...
@@ -142,5 +209,95 @@ def composite(segments: list[dict[str, Any]], closed: bool = False, closing: str
 def fair(curve: Curve, energy: str = "curvature_variation", keeps: Optional[str] = None) -> Curve:
     """The curve with the shape parameters minimising 'strain' or 'curvature_variation',
     control points kept; keeps: the least continuity a joint may fall to."""
+
+class BuiltCurve:
+    """One of a design's curves as built."""
+    @property
+    def key(self) -> str: ...
+    @property
+    def points(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def closed(self) -> bool: ...
+    @property
+    def max_deviation(self) -> float: ...
+    @property
+    def curve(self) -> Curve: ...
+
+class Part:
+    """One mesh of a Result: the design's own (its product) or a mould part."""
+    @property
+    def name(self) -> str: ...
+    @property
+    def role(self) -> PartRole: ...
+    @property
+    def vertices(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def triangles(self) -> npt.NDArray[np.int64]: ...
+    @property
+    def validation(self) -> ValidationReport: ...
+    @property
+    def valid(self) -> bool: ...
+
+class OutputFile:
+    """One file `fabmesh run` writes for the design."""
+    @property
+    def path(self) -> str: ...
+    @property
+    def format(self) -> str: ...
+    @property
+    def units(self) -> Unit: ...
+    @property
+    def max_added_error(self) -> float: ...
+    @property
+    def valid_as_written(self) -> Optional[bool]: ...
+    @property
+    def parts(self) -> list[str]: ...
+
+class Result:
+    """A design built and validated as `fabmesh run` builds it."""
+    @property
+    def valid(self) -> bool: ...
+    @property
+    def error(self) -> str: ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def kind(self) -> str: ...
+    @property
+    def units(self) -> Unit: ...
+    @property
+    def tolerance(self) -> float: ...
+    @property
+    def max_deviation(self) -> float: ...
+    @property
+    def parts(self) -> list[Part]: ...
+    @property
+    def curves(self) -> list[BuiltCurve]: ...
+    @property
+    def files(self) -> list[OutputFile]: ...
+    @property
+    def skipped(self) -> list[str]: ...
+    @property
+    def warnings(self) -> list[str]: ...
+    @property
+    def vertices(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def triangles(self) -> npt.NDArray[np.int64]: ...
+    @property
+    def validation(self) -> ValidationReport: ...
+    def to_json(self) -> str: ...
+    def to_dict(self) -> dict[str, Any]: ...
+    @property
+    def report(self) -> dict[str, Any]:
+        """Deprecated since 0.4: Result.to_dict()."""
+    def write(self, path: StrPath) -> None: ...
+    def outputs(self, folder: StrPath) -> list[str]: ...
+
+def build(design: Design) -> Result:
+    """Builds and validates a design as `fabmesh run` does."""
+
 def optimize(design: Design) -> list[dict[str, Any]]:
     """The fairest shape parameters of the design's curves, as `fabmesh optimize --json`."""
+
+def __getattr__(name: str) -> Any:
+    """EnvironmentError, deprecated since 0.4: MachineError."""

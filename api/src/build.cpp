@@ -12,18 +12,19 @@
 #include "pipeline/failure.h"
 #include "pipeline/job.h"
 #include "pipeline/optimize.h"
-#include "pipeline/outputs.h"
+#include "pipeline/output_table.h"
 #include "pipeline/report.h"
+#include "pipeline/validate_parts.h"
 
 namespace fabmesh::api {
 namespace {
 
 // The design's curves as built, sampled within the design's tolerance, each
 // with the spec it was built from (fairing it again starts there).
-std::vector<BuiltCurve> public_curves(const fabmesh::Design& design, const fabmesh::BuiltShape& shape) {
+std::vector<BuiltCurve> public_curves(const fabmesh::Design& design, const fabmesh::Result& built) {
   const std::vector<fabmesh::NamedCurve> specs = fabmesh::design_curves(design);
   std::vector<BuiltCurve> curves;
-  for (const fabmesh::NamedBuiltCurve& named : shape.curves) {
+  for (const fabmesh::NamedBuiltCurve& named : built.curves) {
     fabmesh::SampleOptions options;
     options.tolerance = design.common.tolerance;
     const fabmesh::Polyline2 line = fabmesh::sample_curve(named.curve.curve, options);
@@ -41,37 +42,92 @@ std::vector<BuiltCurve> public_curves(const fabmesh::Design& design, const fabme
   return curves;
 }
 
-// What the job's builder made, as the result's mesh, verdict and curves.
-void take_built(const fabmesh::BuiltMesh& built, const fabmesh::Design& design, BuildResult& result) {
-  Mesh mesh = detail::public_mesh(built.soup);
-  result.vertices = std::move(mesh.vertices);
-  result.triangles = std::move(mesh.triangles);
+// The public part of a result's part.
+Part public_part(const fabmesh::Part& part) {
+  Part out;
+  out.name = part.name;
+  switch (part.role) {
+    case fabmesh::PartRole::Product:
+      out.role = PartRole::Product;
+      break;
+    case fabmesh::PartRole::MouldSide:
+      out.role = PartRole::MouldSide;
+      break;
+    case fabmesh::PartRole::MouldBase:
+      out.role = PartRole::MouldBase;
+      break;
+  }
+  out.mesh = detail::public_mesh(part.mesh);
+  out.validation = detail::public_report(part.validation, fabmesh::validation_json(part.validation));
+  return out;
+}
+
+// What the job's builder made: the result's parts, curves and the product's mesh and verdict.
+void take_built(const fabmesh::Result& built, const fabmesh::Design& design, Result& result) {
+  result.name = built.name;
+  result.kind = built.kind;
   result.max_deviation = built.max_deviation;
-  result.validation = detail::public_report(built.validation, fabmesh::validation_json(built.validation));
-  result.curves = public_curves(design, built.shape);
+  result.warnings = built.warnings;
+  for (const fabmesh::Part& part : built.parts) {
+    result.parts.push_back(public_part(part));
+    result.parts.back().mesh.units = unit_named(built.units);
+  }
+  if (!result.parts.empty() && result.parts.front().role == PartRole::Product) {
+    result.vertices = result.parts.front().mesh.vertices;
+    result.triangles = result.parts.front().mesh.triangles;
+    result.validation = result.parts.front().validation;
+  }
+  result.curves = public_curves(design, built);
+}
+
+// The files a valid result's outputs write, and the ones skipped.
+void take_files(const fabmesh::Result& built, Result& result) {
+  for (const fabmesh::OutputFile& f : built.files) {
+    result.files.push_back(
+        {f.path, f.format, unit_named(f.units), f.added_error, f.valid_as_written, f.parts});
+  }
+  for (const fabmesh::SkippedOutput& s : built.skipped) result.skipped.push_back(s.format + ": " + s.reason);
 }
 
 }  // namespace
 
-BuildResult build(const Design& design) {
+const char* to_string(PartRole role) {
+  switch (role) {
+    case PartRole::Product:
+      return "product";
+    case PartRole::MouldSide:
+      return "mould_side";
+    case PartRole::MouldBase:
+      return "mould_base";
+  }
+  return "product";
+}
+
+Result build(const Design& design) {
   const fabmesh::Design& d = design.data().design;
   return detail::translated([&] {
-    BuildResult result;
-    result.units = d.common.units;
+    Result result;
+    result.units = unit_named(d.common.units);
     result.tolerance = d.common.tolerance;
-    fabmesh::JobOptions options;
-    options.on_built = [&](const fabmesh::BuiltMesh& built) { take_built(built, d, result); };
+    const fabmesh::JobPlan plan = fabmesh::plan_job(d, {});
+    fabmesh::Result built = fabmesh::build_job(d, plan);
+    take_built(built, d, result);
     try {
-      const fabmesh::PreparedJob job = fabmesh::prepare_job(d, options);
+      fabmesh::require_fit(built, d.common.purpose);
+      const fabmesh::EncodedJob encoded = fabmesh::encode_job(built, plan);
+      for (const fabmesh::EncodedFile& f : encoded.files) built.files.push_back(f.file);
+      built.skipped = encoded.skipped;
+      built.timings_ms.insert(built.timings_ms.end(), encoded.timings_ms.begin(), encoded.timings_ms.end());
+      take_files(built, result);
       result.valid = true;
-      result.report_json = fabmesh::design_item(d.common.path, job.report).dump();
+      result.set_json(fabmesh::design_item(d.common.path, built).dump());
     } catch (const fabmesh::ValidationFailed&) {
       // Not fit for what the design is for: the mesh and its defects are the answer.
       const fabmesh::Failure failure = fabmesh::describe_failure(std::current_exception());
       result.error = failure.message;
       nlohmann::ordered_json item = fabmesh::error_item("design", d.common.path, failure);
       item["valid"] = false;
-      result.report_json = item.dump();
+      result.set_json(item.dump());
     }
     return result;
   });
@@ -96,8 +152,8 @@ std::vector<std::filesystem::path> write_outputs(const Design& design, const std
   return detail::translated([&] {
     fabmesh::JobOptions options;
     options.out_dir = folder.string();
-    const fabmesh::JobReport report = fabmesh::run_job(d, options);
-    return std::vector<std::filesystem::path>(report.outputs.begin(), report.outputs.end());
+    const std::vector<std::string> paths = fabmesh::written_paths(fabmesh::run_job(d, options));
+    return std::vector<std::filesystem::path>(paths.begin(), paths.end());
   });
 }
 

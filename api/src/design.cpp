@@ -5,7 +5,7 @@
 #include "api/src/detail.h"
 #include "io/design/overrides.h"
 #include "pipeline/load_design.h"
-#include "pipeline/outputs.h"
+#include "pipeline/output_table.h"
 
 namespace fabmesh::api {
 namespace {
@@ -26,7 +26,7 @@ std::vector<fabmesh::Override> command_line_overrides(const Overrides& overrides
 
 std::string Design::kind() const { return kind_name(data_->design); }
 std::string Design::name() const { return data_->design.common.name; }
-std::string Design::units() const { return data_->design.common.units; }
+Unit Design::units() const { return unit_named(data_->design.common.units); }
 double Design::tolerance() const { return data_->design.common.tolerance; }
 std::filesystem::path Design::path() const { return data_->design.common.path; }
 

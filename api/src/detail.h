@@ -33,9 +33,20 @@ struct CurveData {
 /// The public handle of a curve as built (its fairing, if any, kept) from `spec`.
 Curve curve_handle(const fabmesh::BuiltCurve& built, fabmesh::CurveSpec spec);
 
-/// Rethrows the exception being handled as the public one of its kind, with
-/// the command line's message: InputError (with its key and place),
-/// ValidationFailed, EnvironmentError, or Error with exit code 3.
+/// What the library throws: an error of fabmesh's one tree (E: InputError,
+/// MissingFileError, ValidationFailed, MachineError, Error), marked as
+/// already made public, so that rethrow_public leaves it as it is.
+struct Published {};
+template <class E>
+class Public : public E, public Published {
+ public:
+  using E::E;
+};
+
+/// Rethrows the exception being handled as the public one of its kind (the
+/// same class of geometry/core/errors.h), with the command line's whole
+/// message: InputError (with its location), MissingFileError,
+/// ValidationFailed, MachineError, or Error with exit code 3.
 [[noreturn]] void rethrow_public();
 
 /// Runs `f`, with every exception it throws made public (rethrow_public).

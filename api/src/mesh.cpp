@@ -65,6 +65,29 @@ fabmesh::CheckOptions check_options(const ValidationOptions& options) {
 
 }  // namespace
 
+const char* to_string(Unit unit) {
+  switch (unit) {
+    case Unit::mm:
+      return "mm";
+    case Unit::cm:
+      return "cm";
+    case Unit::m:
+      return "m";
+    case Unit::inch:
+      return "in";
+  }
+  return "mm";
+}
+
+Unit unit_named(std::string_view name) {
+  for (const Unit u : {Unit::mm, Unit::cm, Unit::m, Unit::inch}) {
+    if (name == to_string(u)) return u;
+  }
+  detail::bad_argument("units", "'" + std::string(name) + "' is not one of mm, cm, m, in");
+}
+
+const char* to_string(DefectKind kind) { return fabmesh::to_key(detail::internal_kind(kind)); }
+
 ValidationReport validate(const MeshView& mesh, const ValidationOptions& options) {
   return detail::translated([&] {
     const fabmesh::CheckOptions o = check_options(options);
@@ -88,18 +111,20 @@ Mesh read_mesh(const std::filesystem::path& path) {
   return detail::translated([&] {
     fabmesh::MeshFile file = fabmesh::read_mesh_file(path.string());
     Mesh mesh = detail::public_mesh(file.soup);
-    mesh.units = file.units;
+    if (!file.units.empty()) mesh.units = unit_named(file.units);
     return mesh;
   });
 }
 
 void write_mesh(const std::filesystem::path& path, const Mesh& mesh, const WriteOptions& options) {
   detail::translated([&] {
-    const std::string units = !options.units.empty() ? options.units
-                              : !mesh.units.empty()  ? mesh.units
-                                                     : "mm";
-    fabmesh::metres_per_unit(units);  // an unknown unit is bad input before anything is made
+    const std::string units = to_string(options.units.value_or(mesh.units.value_or(Unit::mm)));
     const fabmesh::TriangleSoup soup = detail::internal_soup(detail::view_of(mesh));
+    for (std::size_t i = 0; i < soup.vertices.size(); ++i) {
+      if (!soup.vertices[i].allFinite())
+        detail::bad_argument("vertices",
+                             "vertex " + std::to_string(i) + " has a coordinate that is not finite");
+    }
     const std::string ext = lower_extension(path);
     std::string bytes = encoded(ext, soup, units, options, path.stem().string());
     if (bytes.empty()) {

@@ -4,7 +4,7 @@
 #include <string>
 
 #include "fabmesh/mesh.h"
-#include "geometry/mesh/soup.h"
+#include "geometry/core/soup.h"
 
 namespace fabmesh::api::detail {
 

@@ -2,6 +2,66 @@
 
 namespace fabmesh::api::detail {
 
+DefectKind public_kind(fabmesh::Defect kind) {
+  switch (kind) {
+    case fabmesh::Defect::Empty:
+      return DefectKind::Empty;
+    case fabmesh::Defect::NonFiniteVertex:
+      return DefectKind::NonFiniteVertex;
+    case fabmesh::Defect::BoundaryEdge:
+      return DefectKind::BoundaryEdge;
+    case fabmesh::Defect::NonManifoldEdge:
+      return DefectKind::NonManifoldEdge;
+    case fabmesh::Defect::NonManifoldVertex:
+      return DefectKind::NonManifoldVertex;
+    case fabmesh::Defect::InconsistentOrientation:
+      return DefectKind::InconsistentOrientation;
+    case fabmesh::Defect::InsideOut:
+      return DefectKind::InsideOut;
+    case fabmesh::Defect::InvertedComponent:
+      return DefectKind::InvertedComponent;
+    case fabmesh::Defect::NestedSameOrientation:
+      return DefectKind::NestedSameOrientation;
+    case fabmesh::Defect::DegenerateFace:
+      return DefectKind::DegenerateFace;
+    case fabmesh::Defect::DuplicateFace:
+      return DefectKind::DuplicateFace;
+    case fabmesh::Defect::SelfIntersection:
+      return DefectKind::SelfIntersection;
+  }
+  return DefectKind::Empty;
+}
+
+fabmesh::Defect internal_kind(DefectKind kind) {
+  switch (kind) {
+    case DefectKind::Empty:
+      return fabmesh::Defect::Empty;
+    case DefectKind::NonFiniteVertex:
+      return fabmesh::Defect::NonFiniteVertex;
+    case DefectKind::BoundaryEdge:
+      return fabmesh::Defect::BoundaryEdge;
+    case DefectKind::NonManifoldEdge:
+      return fabmesh::Defect::NonManifoldEdge;
+    case DefectKind::NonManifoldVertex:
+      return fabmesh::Defect::NonManifoldVertex;
+    case DefectKind::InconsistentOrientation:
+      return fabmesh::Defect::InconsistentOrientation;
+    case DefectKind::InsideOut:
+      return fabmesh::Defect::InsideOut;
+    case DefectKind::InvertedComponent:
+      return fabmesh::Defect::InvertedComponent;
+    case DefectKind::NestedSameOrientation:
+      return fabmesh::Defect::NestedSameOrientation;
+    case DefectKind::DegenerateFace:
+      return fabmesh::Defect::DegenerateFace;
+    case DefectKind::DuplicateFace:
+      return fabmesh::Defect::DuplicateFace;
+    case DefectKind::SelfIntersection:
+      return fabmesh::Defect::SelfIntersection;
+  }
+  return fabmesh::Defect::Empty;
+}
+
 ValidationReport public_report(const fabmesh::ValidationReport& report, const nlohmann::ordered_json& json) {
   ValidationReport out;
   out.valid = report.valid();
@@ -20,11 +80,11 @@ ValidationReport public_report(const fabmesh::ValidationReport& report, const nl
   out.volume = report.volume;
   out.area = report.area;
   for (const fabmesh::DefectReport& d : report.defects) {
-    Defect defect{fabmesh::to_key(d.kind), d.count, {}};
+    Defect defect{public_kind(d.kind), d.count, {}};
     for (const Vec3& p : d.examples) defect.examples.push_back({p.x(), p.y(), p.z()});
     out.defects.push_back(std::move(defect));
   }
-  out.json = json.dump();
+  out.set_json(json.dump());
   return out;
 }
 
@@ -32,7 +92,7 @@ ValidationReport file_report(const fabmesh::FileCheck& check, const nlohmann::or
   if (!check.readable) {
     ValidationReport out;
     out.error = check.failure.message;
-    out.json = json.dump();
+    out.set_json(json.dump());
     return out;
   }
   if (!check.several()) return public_report(check.objects.front().report, json);

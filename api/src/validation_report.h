@@ -9,6 +9,10 @@
 
 namespace fabmesh::api::detail {
 
+/// The public kind of a defect, and back.
+DefectKind public_kind(fabmesh::Defect kind);
+fabmesh::Defect internal_kind(DefectKind kind);
+
 /// The public verdict of `report`, with `json` (the command line's facts) as its text.
 ValidationReport public_report(const fabmesh::ValidationReport& report, const nlohmann::ordered_json& json);
 

@@ -31,9 +31,10 @@ int main() {
     bool ok = true;
 
     const fabmesh::Design design = fabmesh::parse_design(kCup);
-    const fabmesh::BuildResult cup = fabmesh::build(design);
+    const fabmesh::Result cup = fabmesh::build(design);
     std::cout << design.kind() << " '" << design.name() << "': " << cup.triangles.size() << " triangles, "
-              << verdict(cup.valid) << ", within " << cup.max_deviation << " " << cup.units << "\n";
+              << verdict(cup.valid) << ", within " << cup.max_deviation << " "
+              << fabmesh::to_string(cup.units) << "\n";
     ok = ok && cup.valid && !cup.triangles.empty();
 
     // A tetrahedron, its faces counter-clockwise seen from outside.

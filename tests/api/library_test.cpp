@@ -52,7 +52,7 @@ fabmesh::Mesh tetrahedron() {
   return m;
 }
 
-double signed_volume(const fabmesh::BuildResult& r) {
+double signed_volume(const fabmesh::Result& r) {
   double six_v = 0.0;
   for (const auto& t : r.triangles) {
     const auto& a = r.vertices[t[0]];
@@ -74,8 +74,8 @@ TEST_CASE("the library reports the program's version", "[api]") {
 TEST_CASE("the golden vessel builds valid with the exact volume within its proven bound", "[api]") {
   const fabmesh::Design design = fabmesh::read_design(example("vessel_golden_solid.yaml"));
   CHECK(design.kind() == "vessel");
-  CHECK(design.units() == "cm");
-  const fabmesh::BuildResult r = fabmesh::build(design);
+  CHECK(design.units() == fabmesh::Unit::cm);
+  const fabmesh::Result r = fabmesh::build(design);
   REQUIRE(r.valid);
   CHECK(r.error.empty());
   CHECK(r.validation.valid);
@@ -90,7 +90,7 @@ TEST_CASE("the golden vessel builds valid with the exact volume within its prove
   REQUIRE(r.curves.size() == 1);
   CHECK(r.curves[0].key == "profile");
   CHECK(r.curves[0].max_deviation <= r.tolerance);
-  CHECK(r.report_json.find("\"design\":") == 1);
+  CHECK(r.to_json().find("\"design\":") == 1);
 }
 
 TEST_CASE("write_output and write_outputs give the command line's bytes", "[api]") {
@@ -121,7 +121,7 @@ TEST_CASE("designs from text, overrides, and bad input as data", "[api]") {
   } catch (const fabmesh::InputError& e) {
     CHECK(e.exit_code() == 2);
     CHECK(e.key() == "body.wall");
-    CHECK(e.place().override_text == "body.wall=-1");
+    CHECK(e.location().override_text == "body.wall=-1");
     CHECK(std::string(e.what()).find("-D body.wall=-1") != std::string::npos);
   }
   const std::string typo =
@@ -137,13 +137,14 @@ TEST_CASE("designs from text, overrides, and bad input as data", "[api]") {
     CHECK(std::string(e.what()).rfind("typo.yaml:8:", 0) == 0);
   }
   CHECK_THROWS_AS(fabmesh::read_design(example("no-such-design.yaml")), fabmesh::InputError);
+  CHECK_THROWS_AS(fabmesh::read_design(example("no-such-design.yaml")), fabmesh::MissingFileError);
 }
 
 TEST_CASE("validate judges arrays as check judges files", "[api]") {
   const fabmesh::ValidationReport good = fabmesh::validate(tetrahedron());
   CHECK(good.valid);
   CHECK(good.volume == Approx(1.0 / 6.0));
-  CHECK(good.json.find("\"valid\":true") != std::string::npos);
+  CHECK(good.to_json().find("\"valid\":true") != std::string::npos);
 
   fabmesh::Mesh open = tetrahedron();
   open.triangles.pop_back();
@@ -151,7 +152,8 @@ TEST_CASE("validate judges arrays as check judges files", "[api]") {
   CHECK_FALSE(bad.valid);
   CHECK(bad.boundary_edges == 3);
   REQUIRE_FALSE(bad.defects.empty());
-  CHECK(bad.defects.front().kind == "boundary_edge");
+  CHECK(bad.defects.front().kind == fabmesh::DefectKind::BoundaryEdge);
+  CHECK(std::string(fabmesh::to_string(bad.defects.front().kind)) == "boundary_edge");
 
   fabmesh::Mesh wrong = tetrahedron();
   wrong.triangles[1][2] = 9;
@@ -214,7 +216,7 @@ TEST_CASE("curves evaluate exactly and sample within the proven bound", "[api]")
 
 // The one curve of a curve design given as text.
 fabmesh::Curve design_curve(const std::string& yaml) {
-  const fabmesh::BuildResult r = fabmesh::build(fabmesh::parse_design(yaml));
+  const fabmesh::Result r = fabmesh::build(fabmesh::parse_design(yaml));
   REQUIRE(r.curves.size() == 1);
   return r.curves[0].curve;
 }
@@ -292,7 +294,7 @@ TEST_CASE("a composite's bad segments are errors at their keys", "[api]") {
     try {
       fabmesh::composite(segments, closed);
     } catch (const fabmesh::InputError& e) {
-      return e.place().key;
+      return e.location().key;
     }
     return std::string("(no error)");
   };
@@ -361,7 +363,7 @@ curve:
     try {
       call();
     } catch (const fabmesh::InputError& e) {
-      return e.place().key;
+      return e.location().key;
     }
     return std::string("(no error)");
   };
@@ -389,12 +391,12 @@ TEST_CASE("optimize gives the command line's document", "[api]") {
 TEST_CASE("distinct builds run in parallel threads with the serial results", "[api]") {
   const fabmesh::Design a = fabmesh::read_design(example("vessel_golden_solid.yaml"));
   const fabmesh::Design b = fabmesh::read_design(example("countertop_g1.yaml"));
-  const fabmesh::BuildResult serial_a = fabmesh::build(a);
-  const fabmesh::BuildResult serial_b = fabmesh::build(b);
+  const fabmesh::Result serial_a = fabmesh::build(a);
+  const fabmesh::Result serial_b = fabmesh::build(b);
   auto fa = std::async(std::launch::async, [&] { return fabmesh::build(a); });
   auto fb = std::async(std::launch::async, [&] { return fabmesh::build(b); });
-  const fabmesh::BuildResult pa = fa.get();
-  const fabmesh::BuildResult pb = fb.get();
+  const fabmesh::Result pa = fa.get();
+  const fabmesh::Result pb = fb.get();
   CHECK(pa.vertices == serial_a.vertices);
   CHECK(pa.triangles == serial_a.triangles);
   CHECK(pb.vertices == serial_b.vertices);

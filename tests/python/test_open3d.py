@@ -81,7 +81,7 @@ DIFFERENCES = {
 
 
 def fabmesh_facts(vertices, triangles):
-    item = fabmesh.check(vertices, triangles)
+    item = fabmesh.check(vertices, triangles).to_dict()
     return {
         "watertight": item["watertight"],
         "manifold": item["manifold"],

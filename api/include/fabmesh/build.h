@@ -4,7 +4,9 @@
 
 #include <array>
 #include <filesystem>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "fabmesh/curves.h"
@@ -23,38 +25,82 @@ struct BuiltCurve {
   Curve curve;                                ///< the exact curve, to evaluate
 };
 
+/// What a part of a result is.
+enum class PartRole {
+  Product,    ///< the design's own mesh: the vessel, the countertop, the surface
+  MouldSide,  ///< a side part of a vessel's slip-casting mould
+  MouldBase,  ///< the base part of a vessel's mould
+};
+
+/// The role as the JSON reports name it: "product", "mould_side", "mould_base".
+const char* to_string(PartRole role);
+
+/// One mesh of a result: the design's own (its product) or a mould part.
+struct Part {
+  std::string name;  ///< the design's name for its product; "side-1", "base" for mould parts
+  PartRole role = PartRole::Product;
+  Mesh mesh;                    ///< model units (Result::units), outward, counter-clockwise
+  ValidationReport validation;  ///< the verdict, with the builder's proofs
+};
+
+/// One file `fabmesh run` writes for the design (under "out/").
+struct OutputFile {
+  std::filesystem::path path;
+  std::string format;                    ///< "stl", "3mf", "step", ...
+  Unit units = Unit::mm;                 ///< the unit of its coordinates
+  double max_added_error = 0.0;          ///< how far writing moves any vertex at most, model units
+  std::optional<bool> valid_as_written;  ///< mesh outputs: the mesh as stored is proven valid
+  std::vector<std::string> parts;        ///< the parts it holds (empty: the design as a whole)
+};
+
 /// A design built as `fabmesh run` builds it, validated, and its outputs
 /// encoded in memory (so an output that cannot hold the tolerance is known).
-struct BuildResult {
-  /// The mesh is valid for what the design is for (fabrication, or viewing
-  /// for a `purpose: view` surface). When false, `error` says why and
-  /// `validation` has the defects; nothing of it should be written.
+struct Result {
+  /// Every part is valid for what the design is for (fabrication, or
+  /// viewing for a `purpose: view` surface). When false, `error` says why
+  /// and the parts' validations have the defects; nothing should be written.
   bool valid = false;
-  std::vector<Point> vertices;      ///< model units; empty for a curve design
-  std::vector<Triangle> triangles;  ///< outward, counter-clockwise
-  std::string units;                ///< the design's model unit
-  double tolerance = 0.0;           ///< the design's tolerance, model units
-  double max_deviation = 0.0;       ///< proven bound of the mesh against the exact shape
-  ValidationReport validation;      ///< the verdict, with the builder's proofs
-  std::vector<BuiltCurve> curves;   ///< the design's curves, in the design's order
-  std::string error;                ///< why it is not valid; empty when valid
+  std::string error;                  ///< why it is not valid; empty when valid
+  std::string name;                   ///< the design's name
+  std::string kind;                   ///< "vessel", "countertop", "surface" or "curve"
+  Unit units = Unit::mm;              ///< the design's model unit
+  double tolerance = 0.0;             ///< the design's tolerance, model units
+  double max_deviation = 0.0;         ///< proven bound of the meshes against the exact shape
+  std::vector<Part> parts;            ///< the product first; none for a curve design
+  std::vector<BuiltCurve> curves;     ///< the design's curves, in the design's order
+  std::vector<OutputFile> files;      ///< what `run` writes (valid results only)
+  std::vector<std::string> skipped;   ///< outputs that cannot be made, each with why
+  std::vector<std::string> warnings;  ///< what deserves a look (a block no output uses, ...)
+  /// The product's mesh and verdict (parts[0]), as 0.3 had them.
+  std::vector<Point> vertices;
+  std::vector<Triangle> triangles;
+  ValidationReport validation;
   /// The design's item of `fabmesh run --json` (docs/reports.md), as JSON
-  /// text: outputs as they would be written under "out/", skipped outputs,
-  /// tolerance split, validation facts, timings.
-  std::string report_json;
+  /// text: the one serializer of every report, so each fact of the report
+  /// is here. An invalid result's item is the failure's.
+  std::string to_json() const { return json_; }
+
+  /// For the library's own implementation: the JSON to_json returns.
+  void set_json(std::string json) { json_ = std::move(json); }
+
+ private:
+  std::string json_;
 };
+
+/// Result under its name before 0.4.
+using BuildResult = Result;
 
 /// Builds and validates `design` as `fabmesh run` does (the same tolerance
 /// budget, the same proofs), encoding its outputs without writing them.
 /// Distinct calls may run in parallel threads.
 /// \throw InputError when the design cannot be built as designed (at its key)
-BuildResult build(const Design& design);
+Result build(const Design& design);
 
 /// Writes the one output `file` names by its extension, as
 /// `fabmesh run DESIGN -o FILE`: the same bytes, all or nothing.
 /// \throw InputError (an extension the design's kind has no output for, a
 ///        design that cannot be built), ValidationFailed (an invalid mesh),
-///        EnvironmentError (the file cannot be written)
+///        MachineError (the file cannot be written)
 void write_output(const Design& design, const std::filesystem::path& file);
 
 /// Writes every output of `design` into `folder` (created when missing), as

@@ -10,6 +10,8 @@
 #include <utility>
 #include <vector>
 
+#include "fabmesh/units.h"
+
 namespace fabmesh {
 namespace api {
 
@@ -44,7 +46,7 @@ class Design {
  public:
   std::string kind() const;                  ///< "vessel", "countertop", "surface" or "curve"
   std::string name() const;                  ///< the design's name (default: its file's stem)
-  std::string units() const;                 ///< the design's model unit: "mm", "cm", "m", "in", ...
+  Unit units() const;                        ///< the design's model unit
   double tolerance() const;                  ///< the proven deviation the mesh may have, model units
   std::filesystem::path path() const;        ///< the file it was read from (for text: the name given)
   std::vector<std::string> outputs() const;  ///< the formats `run` writes for it: "stl", "3mf", ...

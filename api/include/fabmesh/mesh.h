@@ -8,7 +8,11 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
+
+#include "fabmesh/units.h"
 
 namespace fabmesh {
 namespace api {
@@ -20,9 +24,9 @@ using Triangle = std::array<std::uint32_t, 3>;  ///< vertex indices, counter-clo
 struct Mesh {
   std::vector<Point> vertices;
   std::vector<Triangle> triangles;
-  /// The unit of the coordinates: as the file states it ("mm"), or empty for
-  /// formats that carry none (STL, OBJ, PLY, OFF).
-  std::string units;
+  /// The unit of the coordinates: as the file states it (3MF, glTF), or
+  /// none for formats that carry none (STL, OBJ, PLY, OFF, Draco).
+  std::optional<Unit> units;
 };
 
 /// A mesh given by pointers into the caller's arrays (numpy's, say): `vertex_count` x 3
@@ -47,11 +51,29 @@ struct ValidationOptions {
   double max_seconds = 600.0;
 };
 
-/// One kind of defect found: its name as in the JSON report
-/// ("boundary_edge", "self_intersection", "inverted_component", ...), how many,
-/// and a few places (edge midpoints, vertices or face centroids).
+/// The kinds of defect a mesh can have (docs/validity.md).
+enum class DefectKind {
+  Empty,                    ///< no faces at all
+  NonFiniteVertex,          ///< a coordinate is NaN or infinite
+  BoundaryEdge,             ///< an edge with one face (the mesh is not closed)
+  NonManifoldEdge,          ///< an edge with three or more faces
+  NonManifoldVertex,        ///< a vertex whose faces form more than one fan
+  InconsistentOrientation,  ///< two faces traverse their shared edge the same way
+  InsideOut,                ///< closed, but the signed volume is not positive
+  InvertedComponent,        ///< of several components, one inside no other faces inward
+  NestedSameOrientation,    ///< a component faces the way of the innermost one containing it
+  DegenerateFace,           ///< zero area
+  DuplicateFace,            ///< another face has the same three vertices
+  SelfIntersection,         ///< two faces meet away from their shared vertices and edges
+};
+
+/// The kind as the JSON reports name it: "boundary_edge", "inverted_component", ...
+const char* to_string(DefectKind kind);
+
+/// One kind of defect found: its kind, how many, and a few places (edge
+/// midpoints, vertices or face centroids).
 struct Defect {
-  std::string kind;
+  DefectKind kind = DefectKind::Empty;
   std::size_t count = 0;
   std::vector<Point> examples;
 };
@@ -75,7 +97,13 @@ struct ValidationReport {
   std::string error;
   /// The same facts as one item of `fabmesh check --json` (docs/reports.md),
   /// timings included, as JSON text.
-  std::string json;
+  std::string to_json() const { return json_; }
+
+  /// For the library's own implementation: the JSON to_json returns.
+  void set_json(std::string json) { json_ = std::move(json); }
+
+ private:
+  std::string json_;
 };
 
 /// Validates `mesh` after welding as `options` say: topology, orientation,
@@ -102,8 +130,8 @@ ValidationReport check_file(const std::filesystem::path& path, const ValidationO
 /// How write_mesh writes.
 struct WriteOptions {
   /// The unit of the mesh's coordinates, stated in files that carry one
-  /// (3MF, glTF: converted to metres); empty: Mesh::units, or "mm".
-  std::string units;
+  /// (3MF, glTF: converted to metres); none: Mesh::units, or mm.
+  std::optional<Unit> units;
   /// .drc only: no vertex moves by more than this through quantization,
   /// the mesh's units; > 0.
   double draco_tolerance = 1e-3;
@@ -112,8 +140,8 @@ struct WriteOptions {
 /// Writes `mesh` to `path` in the format its extension names (.stl, .obj,
 /// .ply, .off, .3mf, .glb, .drc; any case), all or nothing (a temporary file
 /// renamed into place). Nothing is validated: write what `validate` passed.
-/// \throw InputError for an unknown extension or a bad index,
-///        EnvironmentError when the file cannot be written
+/// \throw InputError for an unknown extension, a bad index or a coordinate
+///        that is not finite ("vertices"), MachineError when the file cannot be written
 void write_mesh(const std::filesystem::path& path, const Mesh& mesh, const WriteOptions& options = {});
 
 }  // namespace api
