@@ -17,14 +17,19 @@ constexpr std::size_t kMaxDesignBytes = 64u << 20;  // as read_design reads
 struct DesignSource::Impl {
   std::string path;
   std::string folder;
+  /// The text, parsed again for each resolution: a copy of a parsed tree
+  /// (YAML::Clone) loses every node's line and column, which messages about
+  /// a variant's values must name.
+  std::string text;
   YAML::Node root;
   // yaml-cpp nodes are not safe to read from several threads at once (iterating
-  // a map updates internal state): copies of the tree are made one at a time.
+  // a map updates internal state): `root` is read one thread at a time.
   std::mutex copying;
 };
 
 DesignSource::DesignSource(const std::string& text, std::string path) : impl_(std::make_unique<Impl>()) {
   impl_->root = yaml::load_design_tree(text, path);
+  impl_->text = text;
   impl_->folder = std::filesystem::path(path).parent_path().string();
   impl_->path = std::move(path);
 }
@@ -48,22 +53,14 @@ std::string DesignSource::name() const {
 }
 
 std::string DesignSource::canonical(const std::vector<Override>& overrides) const {
-  YAML::Node root;
-  {
-    std::lock_guard<std::mutex> lock(impl_->copying);
-    root = YAML::Clone(impl_->root);
-  }
+  YAML::Node root = yaml::load_design_tree(impl_->text, impl_->path);
   yaml::apply_overrides(root, impl_->path, overrides);
   return yaml::canonical_tree(root, impl_->path, impl_->folder);
 }
 
 Design DesignSource::resolve(const std::vector<Override>& overrides, std::string* canonical) const {
   if (canonical != nullptr) canonical->clear();
-  YAML::Node root;
-  {
-    std::lock_guard<std::mutex> lock(impl_->copying);
-    root = YAML::Clone(impl_->root);
-  }
+  YAML::Node root = yaml::load_design_tree(impl_->text, impl_->path);
   std::vector<yaml::OverrideOrigin> origins = yaml::apply_overrides(root, impl_->path, overrides);
   if (canonical != nullptr) *canonical = yaml::canonical_tree(root, impl_->path, impl_->folder);
   return yaml::read_design_tree(root, impl_->path, std::move(origins));

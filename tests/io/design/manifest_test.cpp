@@ -223,3 +223,20 @@ TEST_CASE("manifest: the canonical text ignores layout, comments, key order and 
   // A quoted "0.3" is a string, not the number: it reads differently, so it is another design.
   CHECK(a.canonical({parse_override("body.wall='0.3'")}) != a.canonical({}));
 }
+
+TEST_CASE("manifest: a variant's design keeps the lines and columns of its base design's keys",
+          "[io][design][manifest][batch]") {
+  const fs::path dir = folder("variant_places", {{"cup.yaml",
+                                                  "# a cup\nname: cup\nkind: vessel\nunits: cm\n"
+                                                  "tolerance: 0.005\nbody: {mode: solid}\n"
+                                                  "profile:\n  family: quasi_bspline\n"
+                                                  "  points: [[1.5, 6], [1, 5], [2, 4], [3, 3]]\n"}});
+  const DesignSource source = DesignSource::read((dir / "cup.yaml").string());
+  for (int round = 0; round < 2; ++round) {  // each resolution, not only the first
+    const Design design = source.resolve({parse_override("tolerance=0.01")});
+    REQUIRE(design.common.where.count("profile") == 1);
+    CHECK(design.common.where.at("profile").line == 8);  // where its value starts, not 1:1
+    CHECK(design.common.where.at("profile.points").line == 9);
+    CHECK(design.common.where.at("tolerance").override_text == "tolerance=0.01");
+  }
+}
