@@ -6,7 +6,7 @@
 #include <cctype>
 #include <cmath>
 
-#include "geometry/core/errors.h"
+#include "geometry/core/error_checks.h"
 #include "io/pictures/markup.h"
 
 namespace fabmesh {
@@ -18,8 +18,8 @@ h1{font-size:20px;margin:0 0 4px}
 .meta{color:#666;margin-bottom:8px}
 .counts span{display:inline-block;margin-right:12px}
 #filter{margin:8px 0;padding:4px 6px;width:280px}
-table{border-collapse:collapse;background:#fff}
-th,td{border:1px solid #ddd;padding:4px 6px;vertical-align:top;text-align:left}
+table{border-collapse:collapse;background:#fff;max-width:100%}
+th,td{border:1px solid #ddd;padding:4px 6px;vertical-align:top;text-align:left;overflow-wrap:anywhere}
 th{background:#eee;position:sticky;top:0;z-index:1}
 th[data-type]{cursor:pointer;user-select:none}
 th[aria-sort=ascending]::after{content:" \25b2"}
@@ -32,7 +32,7 @@ td.thumb img{display:block;object-fit:contain;background:#f0f0f0}
 .status-invalid{color:#8a5a00;background:#fff0cc}
 .status-bad-input{color:#8a1f11;background:#fde2dd}
 .status-error{color:#fff;background:#a01818}
-.files a{display:block;white-space:nowrap}
+.files a{display:block}
 footer{color:#666;margin-top:12px}
 )";
 

@@ -249,6 +249,44 @@ TEST_CASE("html report: in Chromium every image loads, no console message appear
   CHECK(colours.size() > 50);  // thumbnails rendered, not a blank page
 }
 
+TEST_CASE("html report: in Chromium a report of long messages and paths fits a 1500 pixel window",
+          "[io][pictures][report][chromium]") {
+  REQUIRE(test::chromium_available());  // Debian package chromium (scripts/install-deps.sh --test)
+  const std::string dir = (std::filesystem::path(FABMESH_TEST_TMP) / "pictures-samples" / "wide").string();
+  std::filesystem::create_directories(dir);
+  HtmlReport report = test::sample_report(dir);
+  // What a real run's rows hold: a batch variant's long name, a message of several
+  // sentences, and files under a deep output folder.
+  ReportRow long_row = report.rows.front();
+  long_row.name = "countertop_kitchen_island_with_two_sinks_and_a_hob_variant_0042";
+  long_row.status = ReportStatus::BadInput;
+  long_row.message =
+      "countertops/kitchen_island_with_two_sinks_and_a_hob.yaml:41:7: holes[2] (rounded_rect): the cut-out "
+      "comes 3.2 mm from holes[1] (ellipse) near (1204.5, 388.25), closer than the router's 12 mm tool can "
+      "cut between them; move them apart, or use a smaller tool, or join them into one cut-out";
+  long_row.files = {
+      "out/batches/kitchens/countertop_kitchen_island_with_two_sinks_and_a_hob_variant_0042/"
+      "countertop_kitchen_island_with_two_sinks_and_a_hob_variant_0042.draco.glb",
+      "out/batches/kitchens/countertop_kitchen_island_with_two_sinks_and_a_hob_variant_0042/"
+      "countertop_kitchen_island_with_two_sinks_and_a_hob_variant_0042.toolpath.svg"};
+  report.rows.push_back(long_row);
+  std::string html = render_report_html(report);
+  html.replace(
+      html.rfind("</body>"), 7,
+      "<script>document.body.setAttribute('data-overflow', String(document.documentElement.scrollWidth"
+      " - window.innerWidth));</script>\n</body>");
+  const std::string page = dir + "/report.html";
+  std::ofstream(page, std::ios::binary) << html;
+  const test::ChromiumRun run = test::run_chromium(
+      "--window-size=1500,700 --virtual-time-budget=10000 --dump-dom", test::file_url(page));
+  INFO(run.err);
+  REQUIRE(run.code == 0);
+  const auto dom = scan_xml(run.out, true);
+  const XmlElement& body = *select(dom, "body").at(0);
+  REQUIRE_FALSE(body.attr("data-overflow").empty());
+  CHECK(std::stoi(body.attr("data-overflow")) <= 0);  // no horizontal scrolling
+}
+
 TEST_CASE("html report: in Chromium a missing image is counted as failed",
           "[io][pictures][report][chromium]") {
   REQUIRE(test::chromium_available());  // Debian package chromium (scripts/install-deps.sh --test)
