@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "geometry/core/errors.h"
+#include "geometry/core/error_checks.h"
 #include "geometry/sampling/sample_curve.h"
 #include "geometry/section/simple_polygon.h"
 
@@ -89,7 +89,7 @@ void cut_sections(MouldSection& s, const MouldOptions& options) {
                             fmt::format("the base cut at z = {:.6g} (base_height {}) crosses the cavity "
                                         "more than once (at {} and again near {}): choose a base_height "
                                         "where the profile crosses the cut once",
-                                        zc, options.base_height, at(q[a]), at(q[i])));
+                                        zc, options.base_height, at(q[a]), at(q[b])));
       }
     }
     x_side = q[a];

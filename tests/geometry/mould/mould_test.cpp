@@ -400,6 +400,29 @@ TEST_CASE("mould: a hemispherical bowl whose bottom is on the axis, with and wit
   }
 }
 
+TEST_CASE("mould: a base cut the profile crosses twice names both crossings", "[mould]") {
+  MouldOptions o = small_options();
+  o.base_part = true;
+  o.base_height = 1.0;  // the cut at z = 1: the profile goes below it, back above, and below again
+  const CompositeCurve zigzag = polyline_profile({{2, 0}, {3, 2}, {3.5, 0.5}, {4, 4}});
+  try {
+    build_mould(zigzag, o);
+    FAIL("a cut crossing the cavity twice was accepted");
+  } catch (const GeometryError& e) {
+    CHECK(e.where() == "base_height");
+    const std::string message = e.what();
+    INFO(message);
+    const std::size_t first = message.find("(at ");
+    const std::size_t again = message.find(" and again near ");
+    REQUIRE(first != std::string::npos);
+    REQUIRE(again != std::string::npos);
+    const std::string one = message.substr(first + 4, again - first - 4);
+    const std::string other = message.substr(again + 16, message.find(')', again + 16) - again - 15);
+    CHECK(one != other);  // two places, not one named twice
+    CHECK(one == "(r 3.5, z 0.5)");
+  }
+}
+
 TEST_CASE("mould: profiles that cannot make a cavity are GeometryErrors naming what is wrong", "[mould]") {
   MouldOptions o = small_options();
   auto where_of = [&](const CompositeCurve& c) {
