@@ -58,6 +58,15 @@ void check_concave_corners(const CutCurve& loop, const LoopCheck& check, const C
           corner_round_depth(0.5 * o.tool_diameter, c.turn), shallow_corner_depth(o), 0.5 * o.tool_diameter));
 }
 
+// The ways out of a concave stretch of `radius` the tool of radius `r` cannot follow.
+std::string tighter_than_the_tool(double radius, double r) {
+  return fmt::format(
+      "; the tool cannot follow it: cut it with a tool of diameter at most {:.6g} (cnc.tool_diameter), "
+      "give the curve a radius of at least {:.6g} (the tool radius), or make the corner sharp and set "
+      "cnc.relief: dogbone",
+      2.0 * radius, r);
+}
+
 // 3. Concave stretches: radius of curvature >= the tool radius, proven per segment.
 void check_concave_stretches(const CutCurve& loop, LoopCheck& check, double r) {
   const CompositeCurve& curve = *loop.curve;
@@ -77,11 +86,11 @@ void check_concave_stretches(const CutCurve& loop, LoopCheck& check, double r) {
     if (radius >= r * (1.0 - kRelativeSlack)) continue;
     const Vec2 p = seg.point(b.s);
     if (b.attained < 0.0 && -1.0 / b.attained < r * (1.0 - kRelativeSlack)) {
-      throw GeometryError(
-          loop.label,
-          fmt::format("{} {}: a concave stretch has a radius of curvature of {:.6g} at {} "
-                      "(s = {:.6g}), below the tool radius {} (tool diameter {})",
-                      loop.label, segment_name(curve, i), -1.0 / b.attained, at(p), b.s, r, 2.0 * r));
+      throw GeometryError(loop.label,
+                          fmt::format("{} {}: a concave stretch has a radius of curvature of {:.6g} at {} "
+                                      "(s = {:.6g}), below the tool radius {} (tool diameter {}){}",
+                                      loop.label, segment_name(curve, i), -1.0 / b.attained, at(p), b.s, r,
+                                      2.0 * r, tighter_than_the_tool(-1.0 / b.attained, r)));
     }
     throw GeometryError(loop.label,
                         fmt::format("{} {}: its concave radius of curvature could not be proven >= the tool "
@@ -110,9 +119,9 @@ void check_digitised_stretches(const CutCurve& loop, const LoopCheck& check, dou
         loop.label,
         fmt::format("{}: the concave stretch through {} and {} at {} has a radius of {:.6g} (the circle "
                     "through the corner and its neighbouring points), below the tool radius {} (tool "
-                    "diameter {}): the points were taken along a curve tighter than the tool can cut",
+                    "diameter {}): the points were taken along a curve tighter than the tool can cut{}",
                     loop.label, segment_name(curve, c.before), segment_name(curve, c.after), at(c.at), radius,
-                    r, 2.0 * r));
+                    r, 2.0 * r, tighter_than_the_tool(radius, r)));
   }
 }
 

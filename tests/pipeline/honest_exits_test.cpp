@@ -370,6 +370,9 @@ curve:
   CHECK(cnc.code == 2);
   CHECK(names_place(cnc.err, (dir / "sink.yaml").string(), "holes[0] (rounded_rect)"));
   CHECK_THAT(cnc.err, Catch::Contains("below the tool radius 6"));
+  // The ways out: a smaller tool, a larger radius, or a sharp corner with relief.
+  CHECK_THAT(cnc.err, Catch::Contains("tool of diameter at most 10") &&
+                          Catch::Contains("radius of at least 6") && Catch::Contains("relief: dogbone"));
   CHECK_FALSE(fs::exists(dir / "out"));
 }
 
