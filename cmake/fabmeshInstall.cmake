@@ -1,8 +1,8 @@
 # What `cmake --install build --prefix P` puts under P (docs/install.md):
 #   bin/fabmesh                                the program (pipeline/CMakeLists.txt)
 #   lib/libfabmesh.so.MAJOR.MINOR, .so         the library, fabmesh::fabmesh
-#   include/fabmesh/*.h                        its public headers (version.h generated)
-#   lib/cmake/fabmesh/                         the CMake package: find_package(fabmesh 0.3 CONFIG)
+#   include/fabmesh/*.h                        its public headers (version.h generated, errors.h geometry/core's)
+#   lib/cmake/fabmesh/                         the CMake package: find_package(fabmesh 0.4 CONFIG)
 #   lib/pkgconfig/fabmesh.pc                   the pkg-config file
 #   lib/python3/dist-packages/fabmesh*.so      the Python module and its fabmesh.pyi
 #   share/fabmesh/examples/                    the example designs (pipeline/CMakeLists.txt)
@@ -41,7 +41,7 @@ install(TARGETS fabmesh_lib EXPORT fabmeshTargets
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/api/include/fabmesh/
   DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/fabmesh
   FILES_MATCHING PATTERN "*.h")
-install(FILES ${PROJECT_BINARY_DIR}/api/include/fabmesh/version.h
+install(FILES ${PROJECT_BINARY_DIR}/api/include/fabmesh/version.h ${PROJECT_BINARY_DIR}/api/include/fabmesh/errors.h
   DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/fabmesh)
 
 install(EXPORT fabmeshTargets
@@ -51,7 +51,7 @@ install(EXPORT fabmeshTargets
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/fabmeshConfig.cmake.in
   ${PROJECT_BINARY_DIR}/cmake/fabmeshConfig.cmake
   INSTALL_DESTINATION ${FABMESH_INSTALL_CMAKEDIR})
-# 0.x: a minor version may change the interface, so 0.3 accepts 0.3.y only.
+# 0.x: a minor version may change the interface, so 0.4 accepts 0.4.y only.
 write_basic_package_version_file(${PROJECT_BINARY_DIR}/cmake/fabmeshConfigVersion.cmake
   VERSION ${PROJECT_VERSION}
   COMPATIBILITY SameMinorVersion)

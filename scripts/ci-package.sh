@@ -5,7 +5,7 @@
 #     be, the program runs its bundled example from there, no path of the
 #     checkout is compiled in;
 #   - examples/consumer configured, built and run against that prefix only
-#     (find_package(fabmesh 0.3 CONFIG)), and its main.cpp built through pkg-config;
+#     (find_package(fabmesh 0.4 CONFIG)), and its main.cpp built through pkg-config;
 #   - the Python module imported from the prefix's site-packages;
 #   - the manual page formatted by man without warnings;
 #   - `cpack -G DEB`: its Depends, `apt-get install ./fabmesh_*.deb`, /usr/bin/fabmesh

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # `cmake --install` into a temporary prefix gives a usable fabmesh: the
 # files of docs/install.md, nothing internal; the CMake package found by
-# version (0.3 accepted, 0.2, 0.4 and 1.0 refused) with fabmesh::fabmesh
+# version (its own MAJOR.MINOR accepted, the minors beside it and 1.0 refused) with fabmesh::fabmesh
 # pointing into the prefix; the pkg-config file; each public header compiles
 # on its own with the standard library only; the Python module's and the
 # program's run paths are relative to themselves.
@@ -74,16 +74,18 @@ file(WRITE \${CMAKE_BINARY_DIR}/found.txt "\${fabmesh_VERSION};\${includes};\${l
 CMAKE
   cmake -S "$dir" -B "$dir/build" -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF >"$dir/log" 2>&1
 }
-if find_fabmesh 0.3; then
-  IFS=';' read -r found_version found_includes found_location <"$work/find-0.3/build/found.txt"
-  [[ $found_version == "$version" ]] || fail "find_package(fabmesh 0.3) found version $found_version"
+minor=${version%.*}  # 0.4 of 0.4.0
+previous=0.$((${minor#0.} - 1)) next=0.$((${minor#0.} + 1))
+if find_fabmesh "$minor"; then
+  IFS=';' read -r found_version found_includes found_location <"$work/find-$minor/build/found.txt"
+  [[ $found_version == "$version" ]] || fail "find_package(fabmesh $minor) found version $found_version"
   [[ $found_includes == "$prefix/include" ]] || fail "fabmesh::fabmesh includes '$found_includes', not $prefix/include"
   [[ $found_location == "$prefix/lib/libfabmesh.so.$version" ]] || fail "fabmesh::fabmesh is '$found_location'"
 else
-  cat "$work/find-0.3/log"
-  fail "find_package(fabmesh 0.3 CONFIG) failed"
+  cat "$work/find-$minor/log"
+  fail "find_package(fabmesh $minor CONFIG) failed"
 fi
-for refused in 0.2 0.4 1.0; do
+for refused in "$previous" "$next" 1.0; do
   if find_fabmesh "$refused"; then fail "find_package(fabmesh $refused) accepted $version"; fi
 done
 
