@@ -65,6 +65,15 @@ grep -qF "$build" "$prefix/lib/fabmesh/fabmesh-step.so" && fail "the STEP module
 here=$(cd "$(dirname "$0")" && pwd)
 "$here/module_lookup_test.sh" "$prefix/bin/fabmesh" "$prefix/share/fabmesh/examples/vessel_golden_solid.yaml" ||
   fail "the installed program, run from PATH or through a link, does not find its modules"
+if [[ $python_built == 1 && -n $module ]]; then
+  # The Python module finds the STEP module from libfabmesh's own file, from any folder.
+  mkdir -p "$work/python-run"
+  (cd "$work/python-run" && PYTHONPATH="$prefix/lib/python3/dist-packages" /usr/bin/python3 -c "
+import fabmesh
+fabmesh.build(fabmesh.load_design('$prefix/share/fabmesh/examples/vessel_golden_solid.yaml')).write('cup.step')
+assert open('cup.step').read(13) == 'ISO-10303-21;'") >"$work/python-run.log" 2>&1 ||
+    fail "the installed Python module wrote no STEP file: $(tail -n 3 "$work/python-run.log")"
+fi
 "$here/doc_links_test.sh" "$prefix/share/doc/fabmesh" || fail "the installed documentation has broken links"
 # The project's README, not docs/README.md installed over it (as docs/ once was, into the same folder).
 cmp -s "$prefix/share/doc/fabmesh/README.md" "$here/../../README.md" || fail "share/doc/fabmesh/README.md is not the README"
