@@ -7,7 +7,7 @@
 #   lib/python3/dist-packages/fabmesh*.so      the Python module and its fabmesh.pyi
 #   share/fabmesh/examples/                    the example designs (pipeline/CMakeLists.txt)
 #   share/fabmesh/studio/                      the studio's page and three.js (pipeline/CMakeLists.txt)
-#   share/doc/fabmesh/                         README.md and docs/
+#   share/doc/fabmesh/                         README.md, docs/, examples/consumer/, configs/examples (a link)
 #   share/man/man1/fabmesh.1                   the manual page
 #   share/bash-completion/completions/fabmesh  bash completion of commands and options
 # Every path is relative to the prefix, so the same build installs anywhere
@@ -74,9 +74,22 @@ if(TARGET fabmesh_python)
 endif()
 
 # --- documentation, manual page, shell completion ---
+# The README and docs/ keep the repository's layout under DOCDIR, so that
+# their links resolve where they are installed: README.md, docs/*.md,
+# examples/consumer/ (a complete program), and configs/examples, a link to
+# the installed example designs (DATADIR/fabmesh/examples).
 install(FILES ${PROJECT_SOURCE_DIR}/README.md DESTINATION ${CMAKE_INSTALL_DOCDIR})
-install(DIRECTORY ${PROJECT_SOURCE_DIR}/docs/ DESTINATION ${CMAKE_INSTALL_DOCDIR}
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/docs/ DESTINATION ${CMAKE_INSTALL_DOCDIR}/docs
   PATTERN man EXCLUDE)
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/examples/consumer/ DESTINATION ${CMAKE_INSTALL_DOCDIR}/examples/consumer)
+file(RELATIVE_PATH FABMESH_DOC_TO_EXAMPLES ${CMAKE_INSTALL_PREFIX}/${CMAKE_INSTALL_DOCDIR}/configs
+     ${CMAKE_INSTALL_PREFIX}/${CMAKE_INSTALL_DATADIR}/fabmesh/examples)
+install(CODE "
+  set(configs \"\$ENV{DESTDIR}\${CMAKE_INSTALL_PREFIX}/${CMAKE_INSTALL_DOCDIR}/configs\")
+  file(MAKE_DIRECTORY \"\${configs}\")
+  file(REMOVE \"\${configs}/examples\")
+  file(CREATE_LINK \"${FABMESH_DOC_TO_EXAMPLES}\" \"\${configs}/examples\" SYMBOLIC)
+  message(STATUS \"Installing: \${configs}/examples -> ${FABMESH_DOC_TO_EXAMPLES}\")")
 install(FILES ${PROJECT_SOURCE_DIR}/docs/man/fabmesh.1 DESTINATION ${CMAKE_INSTALL_MANDIR}/man1)
 install(FILES ${PROJECT_SOURCE_DIR}/completion/fabmesh.bash
   DESTINATION ${CMAKE_INSTALL_DATADIR}/bash-completion/completions

@@ -1,8 +1,11 @@
-// libFuzzer entry for the DXF loop reader (io/design/dxf_loops.h): a shop's
-// template read into closed loops of exact segments. It may only return
-// closed loops with segments, or throw FileError; anything else (a crash,
-// another exception, a sanitizer report, a hang caught by -timeout, dxflib
-// allocating for a count the input cannot hold) is a finding. Every loop it
+// libFuzzer entry for the DXF loop reader (io/design/dxf_loops.h, over the
+// group-code reader io/dxf/dxf_reader.h): a shop's template read into closed
+// loops of exact segments. It may only return closed loops with segments, or
+// throw FileError; anything else (a crash, another exception, a sanitizer
+// report, a hang caught by -timeout, memory for a count the input cannot
+// hold) is a finding. The seeds (tests/data/fuzz-seeds/dxf) hold lines longer
+// than 1024 characters, polylines without their counts, and (refused-*.dxf)
+// files cut short, counts that disagree, values that are no number. Every loop it
 // returns is then built as the countertop reader would, where a RangeError or
 // GeometryError (a degenerate span, a joint that does not close) is a
 // clean refusal.

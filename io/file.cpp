@@ -85,8 +85,54 @@ std::string host_tag() {
   return tag.empty() ? "host" : tag;
 }
 
+// The token naming this process in its temporaries, with its PID: its start
+// time ("s" and clock ticks after boot, as /proc/PID/stat gives it), which
+// no later process of the same PID shares; "r" and random digits where /proc
+// cannot tell.
+std::string start_token(pid_t pid) {
+  std::string stat;
+  try {
+    stat = read_bounded(fmt::format("/proc/{}/stat", pid), 4096, "process status");
+  } catch (const FileError&) {
+    return "";
+  }
+  // Fields after the command's closing parenthesis: 3 (state) ... 22 (starttime).
+  const std::size_t close = stat.rfind(')');
+  if (close == std::string::npos) return "";
+  std::size_t at = close + 1;
+  for (int field = 3; field < 22 && at != std::string::npos; ++field) at = stat.find(' ', at + 1);
+  if (at == std::string::npos) return "";
+  const std::size_t end = stat.find(' ', at + 1);
+  const std::string ticks = stat.substr(at + 1, end == std::string::npos ? std::string::npos : end - at - 1);
+  if (ticks.empty() || ticks.find_first_not_of("0123456789") != std::string::npos) return "";
+  return "s" + ticks;
+}
+
+const std::string& own_token() {
+  static const std::string token = [] {
+    const std::string start = start_token(::getpid());
+    return start.empty() ? fmt::format("r{:08x}", std::random_device()()) : start;
+  }();
+  return token;
+}
+
+// Whether a temporary named for process `pid` and `token` ("" in names
+// without one, of fabmesh before 0.3) may be written still. A live writer is
+// never stale: this process's own temporaries (another thread's, or a
+// pending file's) carry its token. A process that no longer runs, or whose
+// PID now names a later process (another start time), left its file behind.
+bool writer_alive(long pid, const std::string& token) {
+  if (pid == ::getpid()) return token == own_token();
+  const bool running = ::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM;
+  if (!running) return false;
+  if (token.empty() || token[0] != 's') return true;
+  const std::string now = start_token(static_cast<pid_t>(pid));
+  return now.empty() || now == token;
+}
+
 // Removes temporaries of `path` left behind by fabmesh processes of this
-// host that no longer run (killed mid-write). Others' files are never touched.
+// host that no longer run (killed mid-write). Others' files, and those of
+// writers still running (this process's other threads included), are never touched.
 void remove_stale_temporaries(const std::string& path) {
   const fs::path target(path);
   const fs::path folder = target.has_parent_path() ? target.parent_path() : ".";
@@ -95,16 +141,18 @@ void remove_stale_temporaries(const std::string& path) {
   for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
     const std::string name = it->path().filename().string();
     if (name.compare(0, prefix.size(), prefix) != 0) continue;
+    // PID-TOKEN-RANDOM, or PID-RANDOM (no token).
     const std::size_t dash = name.find('-', prefix.size());
     if (dash == std::string::npos) continue;
     const std::string pid_text = name.substr(prefix.size(), dash - prefix.size());
     if (pid_text.empty() || pid_text.size() > 9 ||
         pid_text.find_first_not_of("0123456789") != std::string::npos)
       continue;
-    const long pid = std::stol(pid_text);
-    // Our own pid: no other thread writes this target, so the file is an earlier process's.
-    const bool alive = pid != ::getpid() && (::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM);
-    if (!alive) fs::remove(it->path(), ec);
+    const std::size_t next = name.find('-', dash + 1);
+    std::string token =
+        name.substr(dash + 1, next == std::string::npos ? std::string::npos : next - dash - 1);
+    if (token.empty() || (token[0] != 's' && token[0] != 'r')) token.clear();
+    if (!writer_alive(std::stol(pid_text), token)) fs::remove(it->path(), ec);
   }
 }
 
@@ -112,12 +160,24 @@ void remove_stale_temporaries(const std::string& path) {
 std::pair<std::string, int> create_temporary(const std::string& path) {
   std::random_device entropy;
   for (int attempt = 0; attempt < 64; ++attempt) {
-    const std::string temp = fmt::format("{}{}-{:08x}", temporary_prefix(path), ::getpid(), entropy());
+    const std::string temp =
+        fmt::format("{}{}-{}-{:08x}", temporary_prefix(path), ::getpid(), own_token(), entropy());
     const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
     if (fd >= 0) return {temp, fd};
     if (errno != EEXIST) throw_write_failure(path, "cannot create a temporary file", errno);
   }
   fail(path, "cannot create a temporary file", EEXIST);
+}
+
+// A temporary that cannot be renamed into place: the machine's fault (the
+// temporary gone, the folder changed, an I/O error), never the input's,
+// unless the output's name is taken by a folder: the names asked for clash.
+[[noreturn]] void rename_failed(const std::string& path, bool several, int error) {
+  const std::string message =
+      fmt::format("{}: cannot rename the temporary file into place{}: {}", path,
+                  several ? " (no output of this job was kept)" : "", std::strerror(error));
+  if (error == EISDIR) throw FileError(path, 0, 0, message + " (a folder has the output's name)");
+  throw MachineError(path, error, message);
 }
 
 // Makes the renames in a folder durable.
@@ -272,11 +332,7 @@ void commit_files(std::vector<PendingFile>& files) {
     }
     remove_backups();
     for (PendingFile& f : files) f.discard();  // the temporaries not renamed
-    throw_write_failure(files[i].path_,
-                        files.size() > 1
-                            ? "cannot rename the temporary file into place (no output of this job was kept)"
-                            : "cannot rename the temporary file into place",
-                        error);
+    rename_failed(files[i].path_, files.size() > 1, error);
   }
   remove_backups();
   for (const PendingFile& f : files) sync_folder(f.path_);

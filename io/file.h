@@ -54,7 +54,10 @@ struct FileWrite {
 /// (created with the process's umask applied to 0666), flushed to disk, then
 /// renamed over `path`. On failure the temporary file is removed and `path`
 /// is untouched. Stale temporaries of `path` left by killed runs of fabmesh
-/// on this host are removed first. \throw FileError
+/// on this host are removed first; those of writers still running (other
+/// threads of this process included) are never touched, so threads may write
+/// one path at once (the last rename wins). \throw FileError, MachineError
+/// (the machine's failures, a rename that fails included: see commit_files)
 void write_file_atomically(const std::string& path, std::string_view bytes);
 
 /// Writes several files all or nothing, as far as the filesystem allows:
@@ -62,7 +65,8 @@ void write_file_atomically(const std::string& path, std::string_view bytes);
 /// into place; when a rename fails, the files already renamed are rolled back
 /// (the previous version restored, or the new file removed) before the error
 /// is thrown. Only a crash between two renames can leave a mixed set, and no
-/// file is ever truncated. \throw FileError naming the file that failed
+/// file is ever truncated. \throw FileError or MachineError naming the
+/// file that failed (as commit_files)
 void write_files_atomically(const std::vector<FileWrite>& files);
 
 /// A file being written atomically, piece by piece: its bytes go to a
@@ -108,8 +112,10 @@ class PendingFile {
 
 /// Renames finished pending files into place all or nothing, as
 /// write_files_atomically does (previous versions restored when a rename
-/// fails), and makes the renames durable. \throw FileError naming the file
-/// that failed, or a file not finished
+/// fails), and makes the renames durable. A rename that fails is the
+/// machine's fault (MachineError, exit code 5), except onto a folder of
+/// the output's name (FileError: the names asked for clash).
+/// \throw MachineError, FileError naming the file that failed, or a file not finished
 void commit_files(std::vector<PendingFile>& files);
 
 /// Finishes `file` and renames it into place: commit_files of one file.
@@ -117,7 +123,9 @@ void commit_files(std::vector<PendingFile>& files);
 void commit_file(PendingFile&& file);
 
 /// The name pattern of the temporary files write_file_atomically uses for
-/// `path` (".NAME.tmp-HOST-PID-RANDOM" in the same folder), for tests.
+/// `path` (".NAME.tmp-HOST-PID-TOKEN-RANDOM" in the same folder; TOKEN is the
+/// process's start time, "s" and its clock ticks after boot, so a later process of
+/// the same PID cannot pass for it), for tests: the prefix up to the PID.
 std::string temporary_prefix(const std::string& path);
 
 }  // namespace fabmesh

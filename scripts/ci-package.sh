@@ -3,14 +3,18 @@
 # build folder (no rebuild):
 #   - `cmake --install` into a temporary prefix: the files are where they should
 #     be, the program runs its bundled example from there, no path of the
-#     checkout is compiled in;
+#     checkout is compiled in; run as a user runs it (from PATH in an unrelated
+#     folder, through a symbolic link) it finds its modules, and without them
+#     a design asking for STEP exits 5 (tests/packaging/module_lookup_test.sh);
+#     the installed README's links resolve (tests/packaging/doc_links_test.sh);
 #   - examples/consumer configured, built and run against that prefix only
 #     (find_package(fabmesh 0.4 CONFIG)), and its main.cpp built through pkg-config;
 #   - the Python module imported from the prefix's site-packages;
 #   - the manual page formatted by man without warnings;
 #   - `cpack -G DEB`: its Depends, `apt-get install ./fabmesh_*.deb`, /usr/bin/fabmesh
-#     (the bundled example, then `check` of an STL it wrote), the Python module from
-#     /usr, then `apt-get remove fabmesh`.
+#     (the bundled example, then `check` of an STL it wrote; from PATH and through a
+#     link as above; its documentation's links), the Python module from /usr, then
+#     `apt-get remove fabmesh`.
 #
 #   scripts/ci-package.sh [BUILD_DIR]      (default: build)
 #
@@ -54,7 +58,7 @@ expected=(
   lib/cmake/fabmesh/fabmeshTargets.cmake
   lib/pkgconfig/fabmesh.pc
   share/fabmesh/examples/vessel_golden_shell.yaml
-  share/doc/fabmesh/README.md share/doc/fabmesh/commands.md
+  share/doc/fabmesh/README.md share/doc/fabmesh/docs/commands.md share/doc/fabmesh/examples/consumer/main.cpp
   share/man/man1/fabmesh.1
   share/bash-completion/completions/fabmesh
   lib/python3/dist-packages/fabmesh.pyi
@@ -76,6 +80,10 @@ say "installed $(cd "$prefix" && find . -type f | wc -l) files into a temporary 
 compgen -G "$work/out/*.stl" >/dev/null || die "the installed fabmesh wrote no STL into out/"
 "$prefix/bin/fabmesh" -q check "$work"/out/*.stl || die "the installed fabmesh check"
 rm -rf "$work/out"
+# As a user runs it: by its name on PATH, through a link, from another folder.
+"$root/tests/packaging/module_lookup_test.sh" "$prefix/bin/fabmesh" \
+  "$prefix/share/fabmesh/examples/vessel_golden_solid.yaml" || die "the installed program does not find its modules"
+"$root/tests/packaging/doc_links_test.sh" "$prefix/share/doc/fabmesh" || die "the installed documentation's links"
 
 # --- examples/consumer against the prefix, not the build tree ---
 cmake -S "$root/examples/consumer" -B "$work/consumer" -G Ninja -DCMAKE_BUILD_TYPE=Release \
@@ -144,6 +152,11 @@ stl=$(compgen -G "$work/run/out/*.stl" | head -n 1) || die "/usr/bin/fabmesh wro
 (cd "$work/run" && /usr/bin/fabmesh run /usr/share/fabmesh/examples/vessel_golden_solid.yaml \
   --export-format step -o outstep/ -q && grep -q "ISO-10303-21" outstep/vessel_golden_solid.step) ||
   die "/usr/bin/fabmesh wrote no STEP file"
+# The package's program as a user runs it: `fabmesh` on PATH, a link to it, any folder.
+[[ $(cd "$work/run" && command -v fabmesh) == /usr/bin/fabmesh ]] || die "fabmesh on PATH is not /usr/bin/fabmesh"
+"$root/tests/packaging/module_lookup_test.sh" /usr/bin/fabmesh /usr/share/fabmesh/examples/vessel_golden_solid.yaml ||
+  die "/usr/bin/fabmesh does not find its modules from PATH or through a link"
+"$root/tests/packaging/doc_links_test.sh" /usr/share/doc/fabmesh || die "the package's documentation's links"
 [[ $(man -w fabmesh) == /usr/share/man/man1/fabmesh.1* ]] || die "man -w fabmesh does not find the package's page"
 (cd "$work" && /usr/bin/python3 -c "import fabmesh; assert fabmesh.__version__ == '$version', fabmesh.__version__") ||
   die "import fabmesh from the installed package"

@@ -176,11 +176,15 @@ std::vector<Chunk> make_chunks(const std::vector<ArcPiece>& pieces, const std::v
 }
 
 // A hierarchy of boxes over the chunks: each run of one group's consecutive
-// chunks (near each other along a curve) merged two by two up to a root; a
-// group may have several runs. Nodes [0, chunks) are the chunks themselves.
+// chunks (near each other along a curve) merged two by two up to the run's
+// root; a group may have several runs. The runs' roots are then merged into
+// one top by halving them at the median of their centres along the wider
+// axis (near roots under one node), so that a search starts from one pair
+// whatever the number of loops. Nodes [0, chunks) are the chunks themselves.
 class ChunkTree {
  public:
   static constexpr std::size_t kLeaf = std::numeric_limits<std::size_t>::max();
+  static constexpr int kMixed = -1;  ///< the group of a node over runs of several groups
   struct Node {
     Vec2 lo, hi;
     std::size_t left = kLeaf, right = kLeaf;  ///< children, or kLeaf for a chunk
@@ -189,59 +193,84 @@ class ChunkTree {
 
   explicit ChunkTree(const std::vector<Chunk>& chunks) {
     for (const Chunk& c : chunks) nodes_.push_back({c.lo, c.hi, kLeaf, kLeaf, c.group});
+    std::vector<std::size_t> roots;
     for (std::size_t first = 0; first < chunks.size();) {
       std::size_t last = first;
       while (last < chunks.size() && chunks[last].group == chunks[first].group) ++last;
-      roots_.push_back(merge_run(first, last));
+      roots.push_back(merge_run(first, last));
       first = last;
     }
+    if (!roots.empty()) top_ = merge_near(roots.begin(), roots.end());
   }
   const Node& operator[](std::size_t i) const { return nodes_[i]; }
-  const std::vector<std::size_t>& roots() const { return roots_; }
+  /// The node over every chunk (kLeaf when there are none).
+  std::size_t top() const { return top_; }
   bool leaf(std::size_t i) const { return nodes_[i].left == kLeaf; }
+  /// Whether every chunk under a and b is of one group (no pair of them is measured).
+  bool one_group(std::size_t a, std::size_t b) const {
+    return nodes_[a].group != kMixed && nodes_[a].group == nodes_[b].group;
+  }
   double distance(std::size_t a, std::size_t b) const {
     return box_distance(nodes_[a].lo, nodes_[a].hi, nodes_[b].lo, nodes_[b].hi);
   }
   double extent(std::size_t i) const { return (nodes_[i].hi - nodes_[i].lo).squaredNorm(); }
 
  private:
+  std::size_t join(std::size_t a, std::size_t b) {
+    const Node& l = nodes_[a];
+    const Node& r = nodes_[b];
+    nodes_.push_back({l.lo.cwiseMin(r.lo), l.hi.cwiseMax(r.hi), a, b, l.group == r.group ? l.group : kMixed});
+    return nodes_.size() - 1;
+  }
   // The root over the chunks [first, last), merging neighbours level by level.
   std::size_t merge_run(std::size_t first, std::size_t last) {
     std::vector<std::size_t> level(last - first);
     for (std::size_t i = 0; i < level.size(); ++i) level[i] = first + i;
     while (level.size() > 1) {
       std::vector<std::size_t> up;
-      for (std::size_t i = 0; i + 1 < level.size(); i += 2) {
-        const Node& l = nodes_[level[i]];
-        const Node& r = nodes_[level[i + 1]];
-        const Node parent{l.lo.cwiseMin(r.lo), l.hi.cwiseMax(r.hi), level[i], level[i + 1], l.group};
-        nodes_.push_back(parent);
-        up.push_back(nodes_.size() - 1);
-      }
+      for (std::size_t i = 0; i + 1 < level.size(); i += 2) up.push_back(join(level[i], level[i + 1]));
       if (level.size() % 2 == 1) up.push_back(level.back());
       level = std::move(up);
     }
     return level.front();
   }
+  // The node over the roots [first, last): halved at the median centre along
+  // the wider axis of their centres (ties by node number: deterministic).
+  std::size_t merge_near(std::vector<std::size_t>::iterator first, std::vector<std::size_t>::iterator last) {
+    if (last - first == 1) return *first;
+    Vec2 lo = Vec2::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+    for (auto it = first; it != last; ++it) {
+      lo = lo.cwiseMin(centre(*it));
+      hi = hi.cwiseMax(centre(*it));
+    }
+    const int axis = hi.x() - lo.x() >= hi.y() - lo.y() ? 0 : 1;
+    const auto middle = first + (last - first) / 2;
+    std::nth_element(first, middle, last, [&](std::size_t a, std::size_t b) {
+      const double ca = centre(a)[axis], cb = centre(b)[axis];
+      return ca != cb ? ca < cb : a < b;
+    });
+    const std::size_t left = merge_near(first, middle);
+    const std::size_t right = merge_near(middle, last);
+    return join(left, right);
+  }
+  Vec2 centre(std::size_t i) const { return 0.5 * (nodes_[i].lo + nodes_[i].hi); }
 
   std::vector<Node> nodes_;
-  std::vector<std::size_t> roots_;
+  std::size_t top_ = kLeaf;
 };
 
 // Pairs of chunks of different groups, nearest boxes first. A pair of nodes
 // is opened only when it comes first, and its children are never nearer
 // than it, so the chunk pairs come in order of box distance (ties by node
 // numbers: deterministic) while memory holds only the open frontier, not
-// every pair: a design's thousands of chunks no longer list millions.
+// every pair: a design's thousands of chunks, or of loops, no longer list
+// millions. The search starts from the top node paired with itself; a node
+// paired with itself opens into its children's pairs.
 class NearestChunkPairs {
  public:
   explicit NearestChunkPairs(const ChunkTree& tree) : tree_(tree) {
-    const std::vector<std::size_t>& roots = tree.roots();
-    for (std::size_t i = 0; i < roots.size(); ++i) {
-      for (std::size_t j = i + 1; j < roots.size(); ++j) {
-        if (tree[roots[i]].group != tree[roots[j]].group) push(roots[i], roots[j]);
-      }
-    }
+    const std::size_t top = tree.top();
+    if (top != ChunkTree::kLeaf && !tree.one_group(top, top)) push(top, top);
   }
 
   /// The next pair of chunks whose boxes are nearer than `bound`, or false
@@ -250,6 +279,13 @@ class NearestChunkPairs {
     while (!queue_.empty() && queue_.top().distance < bound) {
       const NodePair p = queue_.top();
       queue_.pop();
+      if (p.a == p.b) {  // a node with itself: its children with themselves and each other
+        const std::size_t l = tree_[p.a].left, r = tree_[p.a].right;
+        for (const auto& [x, y] : {std::pair{l, l}, std::pair{r, r}, std::pair{l, r}}) {
+          if (!tree_.one_group(x, y) && tree_.distance(x, y) < bound) push(x, y);
+        }
+        continue;
+      }
       const bool leaf_a = tree_.leaf(p.a), leaf_b = tree_.leaf(p.b);
       if (leaf_a && leaf_b) {
         a = p.a;
@@ -260,7 +296,7 @@ class NearestChunkPairs {
       const bool open_a = !leaf_a && (leaf_b || tree_.extent(p.a) >= tree_.extent(p.b));
       const std::size_t open = open_a ? p.a : p.b, other = open_a ? p.b : p.a;
       for (const std::size_t child : {tree_[open].left, tree_[open].right}) {
-        if (tree_.distance(child, other) < bound) push(child, other);
+        if (!tree_.one_group(child, other) && tree_.distance(child, other) < bound) push(child, other);
       }
     }
     return false;
@@ -269,7 +305,7 @@ class NearestChunkPairs {
  private:
   struct NodePair {
     double distance;
-    std::size_t a, b;  // a < b
+    std::size_t a, b;  // a <= b
   };
   struct FartherLast {
     bool operator()(const NodePair& x, const NodePair& y) const {

@@ -36,21 +36,26 @@ struct DxfLoops {
   std::vector<std::string> notes;
 };
 
-/// At most this many entities (and polyline vertices) in one drawing.
-inline constexpr std::size_t kMaxDxfEntities = 1000000;
+/// A drawing is flat to this fraction of its size (its largest coordinate):
+/// an entity whose z is larger is off the XY plane (bad input), and a
+/// polyline span whose bulge lifts its arc at most this far off its chord
+/// (the sagitta, bulge x chord / 2: CAD's rounding noise of a straight span,
+/// 1e-12 ... 1e-300) is read as the straight line it is within that distance.
+inline constexpr double kDxfFlatness = 1e-9;
 
-/// Reads the DXF file at `path` (ASCII DXF, at most 64 MiB) and returns every
-/// closed loop on the query's layer, in the design's units. Ends are joined
-/// when they are at most `max_gap` apart: a line's end moves to the exact
-/// arc's end it meets (or to the other line's end); two arcs whose ends are
-/// apart are joined by a short line (noted).
-/// \throw FileError naming `path`, the layer, the entities by handle and the
-/// place: not a DXF, binary DXF, an unknown $INSUNITS, a SPLINE it cannot
+/// Reads the DXF file at `path` (ASCII DXF, at most 64 MiB, read by
+/// io/dxf/dxf_reader.h) and returns every closed loop on the query's layer,
+/// in the design's units. Ends are joined when they are at most `max_gap`
+/// apart: a line's end moves to the exact arc's end it meets (or to the other
+/// line's end); two arcs whose ends are apart are joined by a short line (noted).
+/// \throw FileError naming `path`, the line, the layer, the entities by handle and the
+/// place: whatever read_dxf refuses (not a DXF, a binary DXF, a file cut
+/// short, a value that is not a number, a count that disagrees with its
+/// entries, more than kMaxDxfItems items), an unknown $INSUNITS, a SPLINE it cannot
 /// read (degree above 3, a weight not finite and > 0, fit points only) or an
-/// INSERT on the layer, an entity off the XY plane, a layer with no entity in model
+/// INSERT on the layer, an entity off the XY plane (kDxfFlatness), a layer with no entity in model
 /// space, an open chain (an end meeting no other end within max_gap), three or
-/// more ends at one point (overlapping or branching entities), a count larger
-/// than the file could hold, more than kMaxDxfEntities entities.
+/// more ends at one point (overlapping or branching entities).
 DxfLoops read_dxf_loops(const std::string& path, const DxfLoopQuery& query);
 
 /// The same from the file's bytes; `path` names it in messages. \throw FileError

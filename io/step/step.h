@@ -28,17 +28,17 @@ StepLoopOf step_loop(const CompositeCurve& curve, double tolerance);
 
 /// Writes `model` (OpenCASCADE builds the B-rep: each body checked valid
 /// and, for solids, closed, with its volume).
-/// \throw OutputError("step", ...) when the module is missing or OpenCASCADE
-///        refuses the geometry; never an OpenCASCADE exception
+/// \throw OutputError("step", ...) when OpenCASCADE refuses the geometry;
+///        MachineError when the module is missing; never an OpenCASCADE exception
 StepWritten write_step(const StepModel& model);
 
 /// Reads a STEP file with OpenCASCADE's reader and describes each root shape
-/// (for tests and checks). \throw OutputError("step", ...) when the module is missing
+/// (for tests and checks). \throw MachineError when the module is missing
 StepRead read_step(const std::string& bytes);
 
 /// The largest distance from `points` (in the file's unit) to the faces of
 /// a STEP file's shapes (to its edges, for a wireframe), by OpenCASCADE.
-/// \throw OutputError("step", ...) when the module is missing or the file unreadable
+/// \throw OutputError("step", ...) when the file is unreadable; MachineError when the module is missing
 double max_distance_to_step(const std::string& bytes, const std::vector<Vec3>& points);
 
 /// Where the STEP module was found, or why it was not (for `fabmesh --version`-like diagnostics).

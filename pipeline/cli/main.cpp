@@ -1,5 +1,6 @@
 #include <malloc.h>
 
+#include <csignal>
 #include <iostream>
 
 #include "pipeline/cli/commands.h"
@@ -19,9 +20,16 @@ void keep_freed_blocks_for_reuse() {
   mallopt(M_TRIM_THRESHOLD, 256 << 20);
 }
 
+// A write past the file size limit (`ulimit -f`, RLIMIT_FSIZE) raises
+// SIGXFSZ, whose default ends the process with a core and no message. Ignored,
+// the write fails with EFBIG instead: the job reports it and exits 5 (an
+// environment failure, nothing half-written left under the file's name).
+void fail_writes_past_the_size_limit() { std::signal(SIGXFSZ, SIG_IGN); }
+
 }  // namespace
 
 int main(int argc, char** argv) {
   keep_freed_blocks_for_reuse();
+  fail_writes_past_the_size_limit();
   return fabmesh::cli::run_app(argc, argv, {std::cout, std::cerr});
 }

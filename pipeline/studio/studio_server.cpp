@@ -104,9 +104,8 @@ std::string mesh_name(const std::string& path) {
 }
 
 const HttpModuleApi& http_module() {
-  const ModuleLookup& m = module_of<HttpModuleApi>("fabmesh-http.so", "fabmesh_http_module", kHttpModuleAbi);
-  if (m.table == nullptr) throw InputError("studio: " + m.status);
-  return *static_cast<const HttpModuleApi*>(m.table);
+  return required_module<HttpModuleApi>("fabmesh-http.so", "fabmesh_http_module", kHttpModuleAbi, "studio",
+                                        "install fabmesh with its studio module (cpp-httplib)");
 }
 
 }  // namespace

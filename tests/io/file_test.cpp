@@ -8,8 +8,13 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <catch2/catch.hpp>
+#include <cerrno>
 #include <filesystem>
+#include <string>
+#include <thread>
+#include <vector>
 
 #include "geometry/core/errors.h"
 #include "tests/io/mesh/temp_dir.h"
@@ -89,6 +94,90 @@ TEST_CASE("write_file_atomically: stale temporaries of dead processes go, a live
   CHECK_FALSE(fs::exists(stale));
   CHECK(fs::exists(live));
   CHECK(fs::exists(other));
+}
+
+TEST_CASE("write_file_atomically: a temporary of this PID left by an earlier process is stale",
+          "[io][file]") {
+  // The same PID with another start time (or none: fabmesh before 0.3), and a
+  // running process whose PID was reused since (its start time differs).
+  const TempDir dir;
+  const std::string path = dir.file("cup.stl");
+  const std::string earlier = temporary_prefix(path) + std::to_string(::getpid()) + "-s1-0badf00d";
+  const std::string untokened = temporary_prefix(path) + std::to_string(::getpid()) + "-0badf00d";
+  const std::string reused = temporary_prefix(path) + std::to_string(::getppid()) + "-s1-0badf00d";
+  for (const std::string& p : {earlier, untokened, reused})
+    dir.write(fs::path(p).filename().string(), "partial");
+  write_file_atomically(path, "whole");
+  CHECK(dir.listing() == std::vector<std::string>{"cup.stl"});
+}
+
+TEST_CASE("PendingFile: another writer of the same path in this process keeps its temporary", "[io][file]") {
+  // Issue 43: a second writer took the first one's temporary for a killed
+  // run's (same PID) and removed it; the first then could not be renamed.
+  const TempDir dir;
+  const std::string path = dir.file("cup.stl");
+  PendingFile first(path);
+  first.write("first");
+  write_file_atomically(path, "second");
+  CHECK(read_file(path) == "second");
+  commit_file(std::move(first));
+  CHECK(read_file(path) == "first");
+  CHECK(dir.listing() == std::vector<std::string>{"cup.stl"});
+}
+
+TEST_CASE("write_file_atomically: twelve threads writing one path all succeed, one whole version stays",
+          "[io][file][threads]") {
+  const TempDir dir;
+  const std::string path = dir.file("export.glb");
+  constexpr int kThreads = 12, kWrites = 25;
+  std::atomic<int> failures{0};
+  std::vector<std::string> messages(kThreads);
+  std::vector<std::thread> threads;
+  for (int t = 0; t < kThreads; ++t) {
+    threads.emplace_back([&, t] {
+      for (int i = 0; i < kWrites; ++i) {
+        try {
+          // Single files and sets of two, as exports and jobs write them.
+          const std::string bytes = std::string(4096 * (t + 1), static_cast<char>('a' + t));
+          if (i % 2 == 0) {
+            write_file_atomically(path, bytes);
+          } else {
+            write_files_atomically({{path, bytes}, {path + ".json", bytes}});
+          }
+        } catch (const std::exception& e) {
+          ++failures;
+          messages[static_cast<std::size_t>(t)] = e.what();
+        }
+      }
+    });
+  }
+  for (std::thread& t : threads) t.join();
+  for (const std::string& m : messages) CHECK(m.empty());
+  CHECK(failures == 0);
+  const std::string last = read_file(path);
+  REQUIRE_FALSE(last.empty());
+  CHECK(last == std::string(last.size(), last[0]));  // one writer's whole bytes
+  CHECK(last.size() == 4096 * static_cast<std::size_t>(last[0] - 'a' + 1));
+  std::vector<std::string> names = dir.listing();
+  std::sort(names.begin(), names.end());
+  CHECK(names == std::vector<std::string>{"export.glb", "export.glb.json"});
+}
+
+TEST_CASE("commit_files: a rename that fails is the machine's failure, not bad input", "[io][file][errors]") {
+  // The temporary removed under the writer (by another program): ENOENT.
+  const TempDir dir;
+  const std::string path = dir.file("cup.stl");
+  PendingFile file(path);
+  file.write("bytes");
+  for (const std::string& name : dir.listing()) fs::remove(dir.file(name));
+  try {
+    commit_file(std::move(file));
+    FAIL("the commit did not fail");
+  } catch (const MachineError& e) {
+    CHECK(e.error_number() == ENOENT);
+    CHECK_THAT(e.what(), Catch::Contains("cup.stl: cannot rename the temporary file into place"));
+  }
+  CHECK(dir.listing().empty());
 }
 
 TEST_CASE("write_file_atomically: the file gets the process's umask", "[io][file]") {

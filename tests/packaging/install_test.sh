@@ -4,7 +4,9 @@
 # version (its own MAJOR.MINOR accepted, the minors beside it and 1.0 refused) with fabmesh::fabmesh
 # pointing into the prefix; the pkg-config file; each public header compiles
 # on its own with the standard library only; the Python module's and the
-# program's run paths are relative to themselves.
+# program's run paths are relative to themselves; the program run as a user
+# runs it (from PATH, through a link, from another folder) finds its modules
+# (module_lookup_test.sh); the installed README's links resolve (doc_links_test.sh).
 # Usage: install_test.sh BUILD_DIR VERSION CXX PYTHON_MODULE_BUILT(1|0)
 set -uo pipefail
 build=$1 version=$2 cxx=$3 python_built=$4
@@ -20,7 +22,8 @@ for f in bin/fabmesh lib/libfabmesh.so "lib/libfabmesh.so.${version%.*}" "lib/li
   include/fabmesh/fabmesh.h include/fabmesh/version.h \
   lib/cmake/fabmesh/fabmeshConfig.cmake lib/cmake/fabmesh/fabmeshConfigVersion.cmake \
   lib/cmake/fabmesh/fabmeshTargets.cmake lib/pkgconfig/fabmesh.pc \
-  share/fabmesh/examples/vessel_golden_shell.yaml share/doc/fabmesh/README.md share/doc/fabmesh/install.md \
+  share/fabmesh/examples/vessel_golden_shell.yaml share/doc/fabmesh/README.md share/doc/fabmesh/docs/install.md \
+  share/doc/fabmesh/examples/consumer/CMakeLists.txt share/doc/fabmesh/configs/examples/vessel_golden_solid.yaml \
   share/man/man1/fabmesh.1 share/bash-completion/completions/fabmesh \
   share/fabmesh/studio/index.html share/fabmesh/studio/studio.js share/fabmesh/studio/three/build/three.module.js \
   share/fabmesh/studio/three/examples/jsm/loaders/GLTFLoader.js lib/fabmesh/fabmesh-step.so lib/fabmesh/fabmesh-http.so; do
@@ -59,6 +62,22 @@ else
   fail "the installed program could not write a STEP file"
 fi
 grep -qF "$build" "$prefix/lib/fabmesh/fabmesh-step.so" && fail "the STEP module names the build folder"
+here=$(cd "$(dirname "$0")" && pwd)
+"$here/module_lookup_test.sh" "$prefix/bin/fabmesh" "$prefix/share/fabmesh/examples/vessel_golden_solid.yaml" ||
+  fail "the installed program, run from PATH or through a link, does not find its modules"
+if [[ $python_built == 1 && -n $module ]]; then
+  # The Python module finds the STEP module from libfabmesh's own file, from any folder.
+  mkdir -p "$work/python-run"
+  (cd "$work/python-run" && PYTHONPATH="$prefix/lib/python3/dist-packages" /usr/bin/python3 -c "
+import fabmesh
+fabmesh.build(fabmesh.read_design('$prefix/share/fabmesh/examples/vessel_golden_solid.yaml')).write('cup.step')
+assert open('cup.step').read(13) == 'ISO-10303-21;'") >"$work/python-run.log" 2>&1 ||
+    fail "the installed Python module wrote no STEP file: $(tail -n 3 "$work/python-run.log")"
+fi
+"$here/doc_links_test.sh" "$prefix/share/doc/fabmesh" || fail "the installed documentation has broken links"
+# The project's README, not docs/README.md installed over it (as docs/ once was, into the same folder).
+cmp -s "$prefix/share/doc/fabmesh/README.md" "$here/../../README.md" || fail "share/doc/fabmesh/README.md is not the README"
+cmp -s "$prefix/share/doc/fabmesh/docs/README.md" "$here/../../docs/README.md" || fail "docs/README.md is not installed"
 
 # The CMake package, by version, from a project that compiles nothing.
 find_fabmesh() {  # VERSION -> configure exit code; writes the target's include folder

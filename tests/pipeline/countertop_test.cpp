@@ -12,7 +12,6 @@
 #include "geometry/fairing/build_curve.h"
 #include "geometry/mesh/weld.h"
 #include "geometry/validation/validate.h"
-#include "io/cutting/read_dxf.h"
 #include "io/design/read_design.h"
 #include "io/file.h"
 #include "io/mesh/draco.h"
@@ -21,6 +20,7 @@
 #include "pipeline/job.h"
 #include "pipeline/output_table.h"
 #include "tests/geometry/section/region_shapes.h"
+#include "tests/io/cutting/dxf_read_back.h"
 #include "tests/io/design/nurbs_dxf.h"
 #include "tests/pipeline/cli_harness.h"
 

@@ -9,9 +9,9 @@
 #include "geometry/fairing/build_curve.h"
 #include "geometry/sampling/cut_loop.h"
 #include "io/cutting/dxf.h"
-#include "io/cutting/read_dxf.h"
 #include "io/cutting/svg.h"
 #include "tests/geometry/section/region_shapes.h"
+#include "tests/io/cutting/dxf_read_back.h"
 #include "tests/io/mesh/external_tool.h"
 
 using namespace fabmesh;
@@ -91,10 +91,10 @@ std::vector<std::pair<std::string, std::string>> dxf_pairs(const std::string& te
 
 // End points of the DXF entities on one layer chain into closed loops: every
 // end point meets exactly one other entity's end point (within `eps`).
-int closed_chains(const std::vector<DxfEntity>& entities, const std::string& layer, double eps) {
+int closed_chains(const std::vector<DrawnEntity>& entities, const std::string& layer, double eps) {
   std::vector<std::pair<Vec2, Vec2>> ends;
   int whole = 0;
-  for (const DxfEntity& e : entities) {
+  for (const DrawnEntity& e : entities) {
     if (e.layer != layer) continue;
     if (e.closed) {
       ++whole;
@@ -157,9 +157,9 @@ TEST_CASE("dxf: lines, arcs, ellipses and polylines read back with dxflib as clo
   const std::string bytes = encode_dxf(loops);
   CHECK(bytes.find("LWPOLYLINE") != std::string::npos);
   CHECK(bytes.find("$INSUNITS") != std::string::npos);
-  const std::vector<DxfEntity> entities = parse_dxf(bytes, "kitchen.dxf");
+  const std::vector<DrawnEntity> entities = parse_dxf(bytes, "kitchen.dxf");
   std::map<std::string, int> types;
-  for (const DxfEntity& e : entities) ++types[e.type + "@" + e.layer];
+  for (const DrawnEntity& e : entities) ++types[e.type + "@" + e.layer];
   CHECK(types["LINE@OUTLINE"] == 3);
   CHECK(types["ELLIPSE@OUTLINE"] == 1);
   CHECK(types["POLYLINE@OUTLINE"] == 2);
@@ -169,7 +169,7 @@ TEST_CASE("dxf: lines, arcs, ellipses and polylines read back with dxflib as clo
   CHECK(closed_chains(entities, "OUTLINE", 1e-6) == 1);
   CHECK(closed_chains(entities, "HOLES", 1e-6) == 2);
   // The whole ellipse spans 2 pi and its points lie on the exact ellipse.
-  for (const DxfEntity& e : entities) {
+  for (const DrawnEntity& e : entities) {
     if (e.type == "ELLIPSE" && e.layer == "HOLES") CHECK(e.closed);
     if (e.type != "POLYLINE") continue;
     CHECK(e.points.size() >= 3);
@@ -347,15 +347,15 @@ TEST_CASE("dxf: rational Bezier spans are SPLINE entities of degree 3 with their
   // The outline's second span has equal weights: a polynomial cubic, no weights written.
   CHECK(groups[1]["70"] == std::vector<std::string>{"8"});
   // dxflib reads them back with their points and weights; the chains close.
-  const std::vector<DxfEntity> entities = parse_dxf(bytes, "splines.dxf");
+  const std::vector<DrawnEntity> entities = parse_dxf(bytes, "splines.dxf");
   std::map<std::string, int> types;
-  for (const DxfEntity& e : entities) ++types[e.type + "@" + e.layer];
+  for (const DrawnEntity& e : entities) ++types[e.type + "@" + e.layer];
   CHECK(types["LINE@OUTLINE"] == 2);
   CHECK(types["SPLINE@OUTLINE"] == 2);
   CHECK(types["POLYLINE@OUTLINE"] == 1);
   CHECK(types["SPLINE@HOLES"] == 4);
   std::size_t i = 0;
-  for (const DxfEntity& d : entities) {
+  for (const DrawnEntity& d : entities) {
     if (d.type != "SPLINE") continue;
     REQUIRE(i < splines.size());
     const CutEntity& e = *splines[i++];

@@ -510,6 +510,7 @@ TEST_CASE("dxf loops: every fuzz seed reads into loops that build", "[io][design
   const std::filesystem::path seeds = std::filesystem::path(FABMESH_SOURCE_DIR) / "tests/data/fuzz-seeds/dxf";
   int read = 0;
   for (const auto& entry : std::filesystem::directory_iterator(seeds)) {
+    if (entry.path().filename().string().rfind("refused-", 0) == 0) continue;  // must be refused (below)
     INFO(entry.path().string());
     // As the fuzzer reads them: every layer, then the example's layers.
     std::size_t loops = 0;
@@ -526,4 +527,102 @@ TEST_CASE("dxf loops: every fuzz seed reads into loops that build", "[io][design
     ++read;
   }
   CHECK(read >= 3);
+}
+
+TEST_CASE("dxf loops: an LWPOLYLINE without group 90 is its own vertices, not the one before it",
+          "[io][design][dxf]") {
+  // Issue 43: a 1000 x 600 outline after a 2100 x 1100 one built 2100 x 1100.
+  std::string first = lwpolyline("10", "BIG", {{0, 0, 0}, {2100, 0, 0}, {2100, 1100, 0}, {0, 1100, 0}}, true);
+  std::string second =
+      lwpolyline("11", "OUTLINE", {{0, 0, 0}, {1000, 0, 0}, {1000, 600, 0}, {0, 600, 0}}, true);
+  second.erase(second.find("90\n4\n"), 5);  // no vertex count
+  const DxfLoops got = parse_dxf_loops(drawing(first + second), "t.dxf", on_layer("OUTLINE"));
+  REQUIRE(got.loops.size() == 1);
+  CHECK(loop_area(got.loops[0].curve) == Approx(1000.0 * 600.0).epsilon(1e-14));
+  CHECK(got.loops[0].curve.segments.size() == 4);
+}
+
+TEST_CASE("dxf loops: a bulge of rounding noise is a straight span, a real one stays an exact arc",
+          "[io][design][dxf]") {
+  // CAD writes 1e-12 ... 1e-300 for straight spans: they were refused as arcs of radius 2.5e18.
+  for (const double noise : {1e-12, -1e-15, 1e-100, 1e-300}) {
+    INFO(noise);
+    const DxfLoops got = parse_dxf_loops(
+        drawing(lwpolyline("20", "R", {{0, 0, noise}, {1000, 0, noise}, {1000, 600, -noise}, {0, 600, noise}},
+                           true)),
+        "t.dxf", on_layer("R"));
+    REQUIRE(got.loops.size() == 1);
+    for (const SegmentSpec& s : got.loops[0].curve.segments) CHECK(s.kind == SegmentKind::Line);
+    CHECK(loop_area(got.loops[0].curve) == Approx(600000.0).epsilon(1e-14));
+    CHECK(got.notes.back() ==
+          "t.dxf layer R: 4 polyline span(s) with a bulge of at most 1e-09 of the drawing's size read as "
+          "straight");
+  }
+  // A sagitta above 1e-9 of the drawing's size is an arc: 1e-6 on a 1000 mm side lifts it 0.5 um
+  // (outward: a positive bulge on a counter-clockwise loop), adding 2/3 of chord x sagitta.
+  const DxfLoops arc = parse_dxf_loops(
+      drawing(lwpolyline("21", "R", {{0, 0, 1e-6}, {1000, 0, 0}, {1000, 600, 0}, {0, 600, 0}}, true)),
+      "t.dxf", on_layer("R"));
+  REQUIRE(arc.loops.size() == 1);
+  CHECK(arc.loops[0].curve.segments[0].kind == SegmentKind::EllipseArc);
+  CHECK(loop_area(arc.loops[0].curve) == Approx(600000.0 + 2.0 / 3.0 * 1000.0 * 0.5e-3).epsilon(1e-9));
+}
+
+TEST_CASE("dxf loops: an entity off the XY plane is bad input, naming it and its height",
+          "[io][design][dxf]") {
+  const std::string square =
+      line("5A", "S", 0, 0, 100, 0) + line("5B", "S", 100, 0, 100, 100) + line("5C", "S", 100, 100, 0, 100);
+  std::string high = line("5D", "S", 0, 100, 0, 0);
+  high.replace(high.find("30\n0\n"), 5, "30\n50\n");
+  high.replace(high.find("31\n0\n"), 5, "31\n50\n");
+  CHECK_THAT(error_of(drawing(square + high), on_layer("S")),
+             Catch::Equals("t.dxf layer S: LINE #5D: at z = 50, off the drawing's XY plane (z = 0)"));
+  std::string raised_arc = arc("6A", "S", 50, 0, 50, 180, 360);
+  raised_arc.replace(raised_arc.find("30\n0\n"), 5, "30\n50\n");
+  CHECK_THAT(error_of(drawing(raised_arc + line("6B", "S", 100, 0, 0, 0)), on_layer("S")),
+             Catch::EndsWith("ARC #6A: at z = 50, off the drawing's XY plane (z = 0)"));
+  std::string lifted = lwpolyline("6C", "S", {{0, 0, 0}, {10, 0, 0}, {10, 10, 0}}, true);
+  lifted.insert(lifted.find("70\n"), "38\n50\n");
+  CHECK_THAT(error_of(drawing(lifted), on_layer("S")),
+             Catch::EndsWith("LWPOLYLINE #6C: at z = 50, off the drawing's XY plane (z = 0)"));
+  // Rounding noise in z is the plane.
+  std::string noise = line("5D", "S", 0, 100, 0, 0);
+  noise.replace(noise.find("30\n0\n"), 5, "30\n1e-12\n");
+  CHECK(parse_dxf_loops(drawing(square + noise), "t.dxf", on_layer("S")).loops.size() == 1);
+}
+
+TEST_CASE("dxf loops: a template cut short is refused, never read without its last entities",
+          "[io][design][dxf]") {
+  // Issue 43: three holes drawn, the file cut before ENDSEC/EOF: one hole was cut.
+  const std::string holes =
+      "0\nCIRCLE\n5\nA1\n8\nHOLES\n10\n100\n20\n100\n30\n0\n40\n20\n"
+      "0\nCIRCLE\n5\nA2\n8\nHOLES\n10\n200\n20\n100\n30\n0\n40\n20\n"
+      "0\nCIRCLE\n5\nA3\n8\nHOLES\n10\n300\n20\n100\n30\n0\n40\n20\n";
+  const std::string whole = drawing(holes);
+  REQUIRE(parse_dxf_loops(whole, "t.dxf", on_layer("HOLES")).loops.size() == 3);
+  for (const std::string& cut :
+       {whole.substr(0, whole.find("0\nENDSEC", whole.find("A3"))), whole.substr(0, whole.rfind("0\nEOF")),
+        whole.substr(0, whole.find("40\n20\n", whole.find("A3")) + 4)}) {
+    CHECK_THAT(error_of(cut, on_layer("HOLES")), Catch::Matches("t\\.dxf:[0-9]+: .*(cut short|no value).*"));
+  }
+}
+
+TEST_CASE("dxf loops: every refused fuzz seed is refused naming the file and the line", "[io][design][dxf]") {
+  // refused-*.dxf: cut short, a count that disagrees, a value that is no number, off the plane.
+  const std::filesystem::path seeds = std::filesystem::path(FABMESH_SOURCE_DIR) / "tests/data/fuzz-seeds/dxf";
+  int refused = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(seeds)) {
+    if (entry.path().filename().string().rfind("refused-", 0) != 0) continue;
+    const std::string path = entry.path().string();
+    INFO(path);
+    try {
+      read_dxf_loops(path, on_layer("", 1e-3));
+      FAIL("read without a refusal");
+    } catch (const FileError& e) {
+      CHECK(e.line() > 0);
+      CHECK_THAT(e.what(), Catch::StartsWith(path));
+    }
+    ++refused;
+  }
+  CHECK(refused >= 6);
 }
