@@ -1,0 +1,180 @@
+// fabmesh studio against hostile requests (issue 43's audit): overrides that
+// name files outside the design, numbers beyond a double, a port already
+// taken, slow clients, repeated Host headers, designs and bodies over the
+// limits, NULs in values, values that need quoting when saved, and two
+// signals at once. Through real HTTP, and raw sockets for what httplib's
+// client will not send.
+
+#include <arpa/inet.h>
+#include <fcntl.h>
+#include <netinet/in.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/socket.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <catch2/catch.hpp>
+#include <chrono>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "geometry/core/errors.h"
+#include "io/design/read_design.h"
+#include "io/file.h"
+#include "pipeline/failure.h"
+#include "pipeline/load_design.h"
+#include "tests/pipeline/studio/studio_fixture.h"  // last: it includes httplib.h
+
+using namespace fabmesh;
+using namespace fabmesh::testing;
+namespace fs = std::filesystem;
+using Json = nlohmann::json;
+
+namespace {
+
+// A TCP connection to 127.0.0.1:port, for requests httplib's client will not
+// send (two Host headers, a header sent a byte at a time). Reads wait at most
+// a minute, so that a server that never answers fails the test, not hangs it.
+class RawConnection {
+ public:
+  explicit RawConnection(int port) : fd_(::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0)) {
+    REQUIRE(fd_ >= 0);
+    sockaddr_in a{};
+    a.sin_family = AF_INET;
+    a.sin_port = htons(static_cast<std::uint16_t>(port));
+    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    REQUIRE(::connect(fd_, reinterpret_cast<const sockaddr*>(&a), sizeof a) == 0);
+    const timeval minute{60, 0};
+    ::setsockopt(fd_, SOL_SOCKET, SO_RCVTIMEO, &minute, sizeof minute);
+  }
+  RawConnection(RawConnection&& other) noexcept : fd_(other.fd_) { other.fd_ = -1; }
+  RawConnection& operator=(RawConnection&&) = delete;
+  RawConnection(const RawConnection&) = delete;
+  RawConnection& operator=(const RawConnection&) = delete;
+  ~RawConnection() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+
+  bool send(const std::string& bytes) const {
+    return ::send(fd_, bytes.data(), bytes.size(), MSG_NOSIGNAL) == static_cast<ssize_t>(bytes.size());
+  }
+  /// What the server sends until it closes the connection.
+  std::string receive_all() const {
+    std::string got;
+    char buffer[4096];
+    for (ssize_t n; (n = ::recv(fd_, buffer, sizeof buffer, 0)) > 0;)
+      got.append(buffer, static_cast<std::size_t>(n));
+    return got;
+  }
+
+ private:
+  int fd_;
+};
+
+std::string status_line(const std::string& answer) { return answer.substr(0, answer.find("\r\n")); }
+
+// A copy of a bundled example and the files it reads, in a folder of its own.
+fs::path example_copy(const std::string& test, const std::string& name,
+                      const std::vector<std::string>& files) {
+  const fs::path dir = fresh_dir(test);
+  for (const std::string& f : files) fs::copy_file(fs::path(example(f)), dir / f);
+  fs::copy_file(fs::path(example(name)), dir / name);
+  return dir / name;
+}
+
+// The body of a request overriding `key` with the JSON value `value`.
+std::string overriding(const std::string& key, const Json& value) {
+  return Json{{"overrides", {{key, value}}}}.dump();
+}
+
+}  // namespace
+
+TEST_CASE("studio: a port another studio listens on is refused, with exit code 5", "[studio]") {
+  const fs::path design = cup_file("studio_port_taken");
+  RunningStudio first(design.string(), (design.parent_path() / "out").string());
+  StudioServerOptions options = RunningStudio::options({});
+  options.port = first.server.port();
+  REQUIRE_THROWS_AS(StudioServer(first.session, options), EnvironmentError);
+  try {
+    StudioServer second(first.session, options);
+  } catch (...) {
+    const Failure f = describe_failure(std::current_exception());
+    CHECK(f.exit_code == kExitEnvironment);
+    CHECK(f.message.find("the port is taken") != std::string::npos);
+  }
+  std::string output;
+  CHECK(run_cli({"studio", "--no-open", "--port", std::to_string(first.server.port()), design.string()},
+                &output) == kExitEnvironment);
+  CHECK(output.find("--port " + std::to_string(first.server.port()) + ": the port is taken") !=
+        std::string::npos);
+  // An address that is not this machine's (TEST-NET-1, RFC 5737) is bad input.
+  options.port = 0;
+  options.host = "192.0.2.1";
+  CHECK_THROWS_AS(StudioServer(first.session, options), InputError);
+  // Every request still goes to the first studio, and it answers each.
+  httplib::Client c = first.client();
+  for (int i = 0; i < 32; ++i) CHECK(c.Get("/api/version", first.token())->status == 200);
+}
+
+TEST_CASE("studio: clients that send slowly hold no worker; a request begun and not finished gets 408",
+          "[studio][security]") {
+  const fs::path design = cup_file("studio_slow");
+  HttpLimits patient;
+  patient.request_seconds = 3600;  // the slow ones stay for the whole test
+  RunningStudio studio(design.string(), (design.parent_path() / "out").string(), patient);
+  const std::string port = std::to_string(studio.server.port());
+  // Far more slow connections than workers, each sending its header a byte at a time.
+  std::vector<RawConnection> slow;
+  for (int i = 0; i < 48; ++i) {
+    slow.emplace_back(studio.server.port());
+    REQUIRE(slow.back().send("GET /api/version HTTP/1.1\r\nHost: 127.0.0.1:" + port + "\r\nX-Slow: "));
+  }
+  std::atomic<bool> done{false};
+  std::thread trickle([&] {
+    while (!done) {
+      for (const RawConnection& s : slow) (void)s.send("a");
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    }
+  });
+  httplib::Client c = studio.client();
+  c.set_read_timeout(60, 0);
+  const auto answered = c.Get("/api/version", studio.token());
+  done = true;
+  trickle.join();
+  REQUIRE(answered);
+  CHECK(answered->status == 200);
+
+  HttpLimits brief;
+  brief.request_seconds = 1;
+  RunningStudio strict(design.string(), (design.parent_path() / "out").string(), brief);
+  const RawConnection half(strict.server.port());
+  REQUIRE(half.send("GET /api/version HTTP/1.1\r\nHost: 127.0.0.1:"));
+  const std::string answer = half.receive_all();
+  CHECK(status_line(answer) == "HTTP/1.1 408 Request Timeout");
+  CHECK(answer.find("did not arrive whole within 1 s") != std::string::npos);
+}
+
+TEST_CASE("studio: a request with two Host headers is 400, whichever comes first", "[studio][security]") {
+  const fs::path design = cup_file("studio_two_hosts");
+  RunningStudio studio(design.string(), (design.parent_path() / "out").string());
+  const std::string own = "Host: 127.0.0.1:" + std::to_string(studio.server.port()) + "\r\n";
+  const std::string other = "Host: evil.example\r\n";
+  const std::string token = "X-Fabmesh-Token: " + studio.server.token() + "\r\n";
+  for (const std::string& hosts : {own + other, other + own, own + own}) {
+    const RawConnection r(studio.server.port());
+    REQUIRE(r.send("GET /api/design HTTP/1.1\r\n" + hosts + token + "Connection: close\r\n\r\n"));
+    const std::string answer = r.receive_all();
+    INFO(hosts);
+    CHECK(status_line(answer) == "HTTP/1.1 400 Bad Request");
+    CHECK(answer.find("more than one Host header") != std::string::npos);
+  }
+  const RawConnection one(studio.server.port());
+  REQUIRE(one.send("GET /api/version HTTP/1.1\r\n" + own + token + "Connection: close\r\n\r\n"));
+  CHECK(status_line(one.receive_all()) == "HTTP/1.1 200 OK");
+}
+
