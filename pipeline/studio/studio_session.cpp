@@ -147,7 +147,7 @@ Request parse_request(const std::string& body, RequestFields fields = RequestFie
       throw BadRequest{field, fmt::format("{}: the value must be a number or a text", field)};
     }
     try {
-      request.overrides.push_back(parse_override(fmt::format("{}={}", name, text)));
+      request.overrides.push_back(make_override(name, text));
     } catch (const InputError& e) {
       throw BadRequest{field, e.what()};
     }

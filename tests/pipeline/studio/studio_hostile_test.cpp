@@ -178,3 +178,21 @@ TEST_CASE("studio: a request with two Host headers is 400, whichever comes first
   CHECK(status_line(one.receive_all()) == "HTTP/1.1 200 OK");
 }
 
+TEST_CASE("studio: a NUL in an override is shown escaped, and the message whole", "[studio]") {
+  const fs::path design = cup_file("studio_nul");
+  RunningStudio studio(design.string(), (design.parent_path() / "out").string());
+  httplib::Client c = studio.client();
+  for (const std::string key : {"height", "body.wall", "profile.points[0]"}) {
+    const auto r = c.Post("/api/build", studio.token(), overriding(key, std::string("5\0 and the rest", 15)),
+                          "application/json");
+    REQUIRE(r);
+    INFO(r->body);
+    CHECK(r->status == 422);
+    const std::string message = Json::parse(r->body)["error"]["message"];
+    CHECK(message.find('\0') == std::string::npos);
+    CHECK(message == "-D " + key +
+                         "=5\\x00 and the rest: the value holds a control character (\\x00, byte 2), "
+                         "which YAML does not allow");
+  }
+}
+
