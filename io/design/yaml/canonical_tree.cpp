@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "geometry/core/errors.h"
+#include "io/design/yaml/file_keys.h"
 #include "io/file.h"
 
 namespace fabmesh::yaml {
@@ -15,11 +16,6 @@ namespace {
 
 constexpr std::size_t kMaxCanonicalBytes = 256u << 20;
 constexpr std::size_t kMaxReadFileBytes = 64u << 20;  // as io/design/points_csv.cpp reads
-
-// The keys whose values name a file the reader reads: {map key, key inside it}.
-// A design key that reads a file must be listed here, or its content would not enter the key.
-constexpr std::pair<const char*, const char*> kFileKeys[] = {
-    {"polyline", "file"}, {"outline", "dxf"}, {"holes", "dxf"}};
 
 class Writer {
  public:
@@ -122,10 +118,8 @@ class Writer {
   static bool is_file_reference(const char* parent_key, const std::string& canonical_key,
                                 const YAML::Node& value) {
     if (parent_key == nullptr || !value.IsScalar()) return false;
-    const std::string key = key_text(canonical_key);
-    return std::any_of(std::begin(kFileKeys), std::end(kFileKeys), [&](const auto& fk) {
-      return key == fk.second && std::string(parent_key) == fk.first;
-    });
+    // A file key (file_keys.h) must be here, or its file's content would not enter the key.
+    return is_file_key(parent_key, key_text(canonical_key));
   }
 
   // The bytes of the file, not its name: a moved or renamed file keeps its key.

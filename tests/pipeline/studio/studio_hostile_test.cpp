@@ -94,6 +94,100 @@ std::string overriding(const std::string& key, const Json& value) {
 
 }  // namespace
 
+TEST_CASE("studio: an override names only files the design names; no other file is read or quoted",
+          "[studio][security]") {
+  const fs::path design =
+      example_copy("studio_files", "countertop_dxf_template.yaml", {"kitchen_template.dxf"});
+  const std::string text = file_text(design);
+  RunningStudio studio(design.string(), (design.parent_path() / "out").string());
+  httplib::Client c = studio.client();
+  // What the files say, none of which an answer may hold.
+  const std::string passwd = file_text("/etc/passwd");
+  const std::string passwd_line = passwd.substr(0, passwd.find('\n'));
+  REQUIRE(passwd_line.size() > 5);
+  const struct {
+    std::string key;
+    Json value;
+    std::string field;
+  } cases[] = {
+      {"outline.dxf", "/etc/passwd", "overrides.outline.dxf"},
+      {"outline.dxf", "../../../../../../../etc/shadow", "overrides.outline.dxf"},
+      {"outline.dxf", "/proc/self/environ", "overrides.outline.dxf"},
+      {"holes[0].dxf", "/etc/passwd", "overrides.holes[0].dxf"},
+      {"outline.dxf", "kitchen_template.dxf/../../../../../../etc/passwd", "overrides.outline.dxf"},
+      {"holes[0]", "{dxf: /etc/passwd}", "overrides.holes[0]"},
+      {"holes[0]", "{dxf: ../kitchen_template.dxf, layer: HOLES}", "overrides.holes[0]"},
+  };
+  for (const auto& bad : cases) {
+    for (const char* route : {"/api/build", "/api/export", "/api/save", "/api/fairest"}) {
+      Json body = {{"overrides", {{bad.key, bad.value}}}};
+      if (std::string(route) == "/api/fairest") body["energy"] = "curvature_variation";
+      const auto r = c.Post(route, studio.token(), body.dump(), "application/json");
+      REQUIRE(r);
+      INFO(route << " " << bad.key << " = " << bad.value << ": " << r->body);
+      CHECK(r->status == 400);
+      CHECK(Json::parse(r->body)["error"]["field"] == bad.field);
+      CHECK(r->body.find(passwd_line.substr(0, passwd_line.find(':') + 1) + "x:") == std::string::npos);
+      CHECK(r->body.find("PATH=") == std::string::npos);
+    }
+  }
+  CHECK(file_text(design) == text);
+  CHECK_FALSE(fs::exists(design.parent_path() / "out"));
+  // The design's own file, however it is spelled, may be named; or none at all.
+  for (const auto& [key, value] : std::vector<std::pair<std::string, Json>>{
+           {"holes[0].dxf", "./kitchen_template.dxf"},
+           {"outline.dxf", (design.parent_path() / "kitchen_template.dxf").string()},
+           {"holes[0]", "{rounded_rect: {center: [1700, 300], size: [500, 300], radius: 20}}"}}) {
+    const auto r = c.Post("/api/build", studio.token(), overriding(key, value), "application/json");
+    REQUIRE(r);
+    INFO(key << " = " << value << ": " << r->body.substr(0, 300));
+    CHECK(r->status == 200);
+  }
+}
+
+TEST_CASE("studio: a points file an override names must be the design's own", "[studio][security]") {
+  const fs::path design =
+      example_copy("studio_points_file", "countertop_digitised.yaml", {"countertop_digitised.csv"});
+  RunningStudio studio(design.string(), (design.parent_path() / "out").string());
+  httplib::Client c = studio.client();
+  const auto r = c.Post("/api/build", studio.token(),
+                        overriding("outline.segments[0].polyline.file", "/etc/passwd"), "application/json");
+  REQUIRE(r);
+  CHECK(r->status == 400);
+  CHECK(Json::parse(r->body)["error"]["field"] == "overrides.outline.segments[0].polyline.file");
+  CHECK(r->body.find("root:") == std::string::npos);
+  const auto whole =
+      c.Post("/api/build", studio.token(),
+             overriding("outline.segments[0]", "{polyline: {file: /etc/passwd}}"), "application/json");
+  REQUIRE(whole);
+  CHECK(whole->status == 400);
+  CHECK(Json::parse(whole->body)["error"]["field"] == "overrides.outline.segments[0]");
+  const auto same = c.Post("/api/build", studio.token(),
+                           overriding("outline.segments[0].polyline", "{file: countertop_digitised.csv}"),
+                           "application/json");
+  REQUIRE(same);
+  CHECK(same->status == 200);
+}
+
+TEST_CASE("studio: a number beyond a double's range is 400 naming its field", "[studio]") {
+  const fs::path design = cup_file("studio_overflow");
+  RunningStudio studio(design.string(), (design.parent_path() / "out").string());
+  httplib::Client c = studio.client();
+  for (const auto& [body, field] : std::vector<std::pair<std::string, std::string>>{
+           {R"({"overrides": {"height": 1e999}})", "overrides.height"},
+           {R"({"overrides": {"width": 3, "height": -1e400}})", "overrides.height"},
+           {R"({"overrides": {"profile.lambdas[1]": 2e308}})", "overrides.profile.lambdas[1]"},
+           {R"({"draft": 1e999})", "draft"}}) {
+    const auto r = c.Post("/api/build", studio.token(), body, "application/json");
+    REQUIRE(r);
+    INFO(body << ": " << r->body);
+    CHECK(r->status == 400);
+    const Json e = Json::parse(r->body)["error"];
+    CHECK(e["field"] == field);
+    CHECK(e["message"].get<std::string>().find(field) != std::string::npos);
+  }
+}
+
 TEST_CASE("studio: a port another studio listens on is refused, with exit code 5", "[studio]") {
   const fs::path design = cup_file("studio_port_taken");
   RunningStudio first(design.string(), (design.parent_path() / "out").string());
