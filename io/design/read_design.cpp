@@ -24,8 +24,7 @@ namespace {
 
 // Reading a design stays within a stated memory bound (docs/design-files.md):
 // yaml-cpp spends about 470 bytes per node, so the node count is what bounds
-// the tree; the byte limit bounds the text and long scalars.
-constexpr std::size_t kMaxDesignBytes = 16u << 20;
+// the tree; the byte limit (kMaxDesignFileBytes) bounds the text and long scalars.
 constexpr std::size_t kMaxDesignNodes = 1u << 18;
 constexpr std::size_t kMaxNameBytes = 120;
 
@@ -445,8 +444,12 @@ Design parse_design(const std::string& text, const std::string& path,
   return yaml::read_design_tree(root, path, std::move(origins));
 }
 
+std::string read_design_text(const std::string& path) {
+  return read_file(path, kMaxDesignFileBytes, "design file");
+}
+
 Design read_design(const std::string& path, const std::vector<Override>& overrides) {
-  return parse_design(read_file(path, kMaxDesignBytes, "design file"), path, overrides);
+  return parse_design(read_design_text(path), path, overrides);
 }
 
 }  // namespace fabmesh

@@ -18,6 +18,7 @@
 #include "geometry/fairing/build_curve.h"
 #include "io/design/edit_values.h"
 #include "io/design/file_references.h"
+#include "io/design/read_design.h"
 #include "io/file.h"
 #include "io/mesh/gltf.h"
 #include "io/pictures/curve_plot.h"
@@ -34,8 +35,6 @@ namespace fabmesh {
 namespace {
 
 using Json = nlohmann::ordered_json;
-
-constexpr std::size_t kMaxDesignBytes = std::size_t{64} << 20;  // as read_design
 
 // A request the API cannot take: HTTP 400, naming the request's field.
 struct BadRequest {
@@ -400,7 +399,7 @@ void require_referenced_files(const Request& request, const std::string& text, c
 }
 
 Requested read_requested(const Request& request, const std::string& path, const DeclaredNames& names) {
-  std::string text = read_file(path, kMaxDesignBytes, "design file");
+  std::string text = read_design_text(path);
   require_known_names(request, names.of(text, path));
   require_referenced_files(request, text, path);
   Design design = load_design_text(text, path, request.overrides);
@@ -457,7 +456,7 @@ StudioSession::~StudioSession() = default;
 StudioResponse StudioSession::design() const {
   try {
     const std::string version = file_version(options_.design_path);
-    const std::string text = read_file(options_.design_path, kMaxDesignBytes, "design file");
+    const std::string text = read_design_text(options_.design_path);
     const Design design = load_design_text(text, options_.design_path);
     Json j = {{"path", options_.design_path}, {"name", design.common.name}, {"kind", kind_name(design)},
               {"units", design.common.units}, {"version", version},         {"text", text}};

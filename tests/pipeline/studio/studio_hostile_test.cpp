@@ -272,6 +272,33 @@ TEST_CASE("studio: a request with two Host headers is 400, whichever comes first
   CHECK(status_line(one.receive_all()) == "HTTP/1.1 200 OK");
 }
 
+TEST_CASE("studio: a design over the size every command reads is refused; request bodies are bounded",
+          "[studio]") {
+  const fs::path design = cup_file("studio_big");
+  RunningStudio studio(design.string(), (design.parent_path() / "out").string());
+  httplib::Client c = studio.client();
+  // The file grows past 16 MiB while the studio runs (a comment: still a valid design).
+  write_text(design, kCommentedCup + "# " + std::string(kMaxDesignFileBytes, 'x') + "\n");
+  std::string output;
+  CHECK(run_cli({"run", "-q", design.string(), "-o", (design.parent_path() / "run").string()}, &output) ==
+        kExitBadInput);
+  const auto shown = c.Get("/api/design", studio.token());
+  REQUIRE(shown);
+  CHECK(shown->status == 422);
+  CHECK(shown->body.find("is larger than 16777216 bytes") != std::string::npos);
+  const auto built = c.Post("/api/build", studio.token(), "{}", "application/json");
+  REQUIRE(built);
+  CHECK(built->status == 422);
+  // A request body over the documented 1 MiB is 413, before the studio reads it.
+  write_text(design, kCommentedCup);
+  const std::string huge =
+      R"({"overrides": {"height": ")" + std::string(HttpLimits{}.max_body_bytes, '1') + "\"}}";
+  const auto big = c.Post("/api/build", studio.token(), huge, "application/json");
+  REQUIRE(big);
+  CHECK(big->status == 413);
+  CHECK(c.Post("/api/build", studio.token(), "{}", "application/json")->status == 200);
+}
+
 TEST_CASE("studio: a NUL in an override is shown escaped, and the message whole", "[studio]") {
   const fs::path design = cup_file("studio_nul");
   RunningStudio studio(design.string(), (design.parent_path() / "out").string());
