@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "geometry/core/errors.h"
+#include "io/design/yaml/double_quoted.h"
 #include "io/design/yaml/file_keys.h"
 #include "io/file.h"
 
@@ -60,21 +61,7 @@ class Writer {
     quoted(n.Scalar());
   }
 
-  void quoted(const std::string& text) {
-    out_ += '"';
-    for (const char c : text) {
-      const auto u = static_cast<unsigned char>(c);
-      if (c == '"' || c == '\\') {
-        out_ += '\\';
-        out_ += c;
-      } else if (u < 0x20 || u == 0x7f) {
-        out_ += fmt::format("\\x{:02x}", u);
-      } else {
-        out_ += c;
-      }
-    }
-    out_ += '"';
-  }
+  void quoted(const std::string& text) { out_ += double_quoted(text); }
 
   void map(const YAML::Node& n, const char* parent_key) {
     // Sorted through indices: assigning a YAML::Node (as sorting nodes would)

@@ -317,3 +317,48 @@ TEST_CASE("studio: a NUL in an override is shown escaped, and the message whole"
   }
 }
 
+TEST_CASE("studio: save writes values that need quoting as valid YAML, which reads back to every value",
+          "[studio]") {
+  const fs::path design = cup_file("studio_save_quoted");
+  RunningStudio studio(design.string(), (design.parent_path() / "out").string());
+  httplib::Client c = studio.client();
+  const Json overrides = {
+      {"height", "=max(width, 5)"},              // into a flow map: its comma would end the value
+      {"width", "=min(8, 3 + 4)"},               // the same, and parentheses
+      {"wall", "=min(width, 5) / 20"},           // a block value with a comment after it
+      {"profile.lambdas[1]", "=max(-1, -0.5)"},  // into a flow list
+      {"profile.points[4][0]", "=width / 4"},    // a list in a block list
+      {"body.wall", "\"=wall\""},                // already quoted: written as given
+  };
+  const auto saved =
+      c.Post("/api/save", studio.token(), Json{{"overrides", overrides}}.dump(), "application/json");
+  REQUIRE(saved);
+  INFO(saved->body);
+  REQUIRE(saved->status == 200);
+  const std::string text = file_text(design);
+  INFO(text);
+  // Everything else as it was.
+  for (const char* kept : {"# keep this comment", "# a bare parameter", "# shape parameters, in [-8, 1]",
+                           "step: 0.1, description: \"foot to rim\"}", "body:\n  mode: shell\n"})
+    CHECK(text.find(kept) != std::string::npos);
+  // The design reader reads the saved file to the values the overrides give.
+  std::vector<Override> given;
+  for (const auto& [key, value] : overrides.items())
+    given.push_back(make_override(key, value.get<std::string>()));
+  write_text(design.parent_path() / "original.yaml", kCommentedCup);
+  const Design expected = load_design((design.parent_path() / "original.yaml").string(), given);
+  const Design read = load_design(design.string());
+  REQUIRE(read.common.parameters.size() == expected.common.parameters.size());
+  for (std::size_t i = 0; i < read.common.parameters.size(); ++i) {
+    CHECK(read.common.parameters[i].name == expected.common.parameters[i].name);
+    CHECK(read.common.parameters[i].value == expected.common.parameters[i].value);
+  }
+  const auto& vessel = std::get<VesselDesign>(read.body);
+  const auto& wanted = std::get<VesselDesign>(expected.body);
+  CHECK(vessel.profile.bspline_lambdas == wanted.profile.bspline_lambdas);
+  CHECK(vessel.profile.bspline_points == wanted.profile.bspline_points);
+  CHECK(vessel.wall == wanted.wall);
+  CHECK(vessel.profile.bspline_lambdas[1] == -0.5);
+  CHECK(read.common.parameters[0].value == 7.0);  // height = max(width, 5), width = min(8, 7)
+}
+
