@@ -362,3 +362,58 @@ TEST_CASE("studio: save writes values that need quoting as valid YAML, which rea
   CHECK(read.common.parameters[0].value == 7.0);  // height = max(width, 5), width = min(8, 7)
 }
 
+TEST_CASE("studio: a second SIGTERM while the studio stops still ends it with exit code 0", "[studio]") {
+  // A cup at a tolerance fine enough that its build takes seconds (3.8 million triangles).
+  const fs::path design = cup_file("studio_two_signals");
+  std::string slow = kCommentedCup;
+  slow.replace(slow.find("tolerance: 0.005"), 16, "tolerance: 0.00002");
+  write_text(design, slow);
+  for (int round = 0; round < 3; ++round) {
+    // The studio as a program of its own, its first line (the address) read from a pipe.
+    int out[2];
+    REQUIRE(::pipe2(out, O_CLOEXEC) == 0);
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_adddup2(&actions, out[1], STDOUT_FILENO);
+    std::string program = FABMESH_BINARY, command = "studio", no_open = "--no-open", file = design.string(),
+                o = "-o", out_dir = (design.parent_path() / "out").string();
+    char* argv[] = {program.data(), command.data(), no_open.data(), file.data(),
+                    o.data(),       out_dir.data(), nullptr};
+    pid_t pid = -1;
+    REQUIRE(posix_spawn(&pid, program.c_str(), &actions, nullptr, argv, environ) == 0);
+    posix_spawn_file_actions_destroy(&actions);
+    ::close(out[1]);
+    std::string line;
+    for (char ch; line.find('\n') == std::string::npos && ::read(out[0], &ch, 1) == 1;) line += ch;
+    ::close(out[0]);
+    const std::size_t colon = line.find(':', 7), slash = line.find('/', colon);
+    REQUIRE(slash != std::string::npos);
+    const int port = std::stoi(line.substr(colon + 1, slash - colon - 1));
+    const std::string token = line.substr(line.find("token=") + 6, 32);
+    // A build in progress makes the stop wait for it: the second signal comes while it stops.
+    std::thread build([&] {
+      httplib::Client c("127.0.0.1", port);
+      c.set_read_timeout(300, 0);
+      (void)c.Post("/api/build", {{"X-Fabmesh-Token", token}}, "{}", "application/json");
+    });
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    REQUIRE(::kill(pid, SIGTERM) == 0);
+    // Stopping: the studio no longer accepts connections.
+    for (bool listening = true; listening;) {
+      const int probe = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+      sockaddr_in a{};
+      a.sin_family = AF_INET;
+      a.sin_port = htons(static_cast<std::uint16_t>(port));
+      a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+      listening = ::connect(probe, reinterpret_cast<const sockaddr*>(&a), sizeof a) == 0;
+      ::close(probe);
+    }
+    (void)::kill(pid, SIGTERM);
+    int status = 0;
+    REQUIRE(::waitpid(pid, &status, 0) == pid);
+    build.join();
+    INFO("round " << round);
+    CHECK(WIFEXITED(status));
+    CHECK((WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status)) == 0);
+  }
+}
