@@ -205,6 +205,14 @@ std::optional<ExactSolid> exact_revolution(const CompositeCurve& profile, const 
   return solid;
 }
 
+// The section's loops at the fired size (the plot draws the design as fired).
+std::vector<std::vector<Vec2>> fired_loops(std::vector<std::vector<Vec2>> loops, double factor) {
+  for (auto& loop : loops) {
+    for (Vec2& p : loop) p /= factor;
+  }
+  return loops;
+}
+
 }  // namespace
 
 BuiltMesh build(const VesselDesign& design, const BuildContext& context) {
@@ -269,6 +277,8 @@ BuiltMesh build(const VesselDesign& design, const BuildContext& context) {
   }
   if (design.mould) add_mould(design, profile.curve, master, context, out);
   out.shape.curves.push_back({"profile", profile});
+  out.shape.revolved = true;
+  out.shape.section = fired_loops(vessel.section.loops, factor);
   out.shape.solid = exact_revolution(master, vessel.section);
   return out;
 }

@@ -95,6 +95,12 @@ struct BuiltShape {
   /// exactly (countertops, solid vessels).
   std::optional<ExactSolid> solid;
   std::optional<ExactMould> mould;  ///< a vessel's mould, when it has one
+  /// A vessel: the curves are profiles in the (radius, height) half-plane, revolved about x = 0.
+  bool revolved = false;
+  /// A vessel's section as its builder made it: closed loops (the profile,
+  /// the rim, a shell's inner wall and base, the axis) in the design's units,
+  /// at the fired size (before shrinkage's scaling). Empty when not built.
+  std::vector<std::vector<Vec2>> section;
 };
 
 /// One design built and validated. The soup is what the writers encode

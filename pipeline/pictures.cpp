@@ -77,6 +77,11 @@ CurvePlot shape_plot(const DesignCommon& common, const BuiltShape& shape) {
   plot.units = common.units;
   for (const NamedBuiltCurve& c : shape.curves) plot.curves.push_back(plot_curve(c.curve, c.name));
   if (shape.patches) add_surface(*shape.patches, plot);
+  if (shape.revolved) {
+    plot.revolution_axis = true;
+    plot.axis_names = {"r", "z"};
+    for (const auto& loop : shape.section) plot.outlines.push_back({"section", loop});
+  }
   return plot;
 }
 

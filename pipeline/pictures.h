@@ -19,7 +19,9 @@ namespace fabmesh {
 /// polygons, measured joints and, when faired, the curve before fairing; for a
 /// surface, the borders of its patches and their control net seen from above
 /// (projected on the xy plane; a projected H-Bézier border is the H-Bézier
-/// curve of the projected control points). Titled with the design's name, in
+/// curve of the projected control points); for a vessel, its axis of
+/// revolution and its section (a shell's inner wall, rim and base; none when
+/// the profile makes no section), in (r, z). Titled with the design's name, in
 /// its units. With `contradicted`, a curve whose joints contradict their
 /// declared continuity is drawn as constructed with those joints flagged
 /// ("joint lost") and the error appended there (build_shape); without, it is
