@@ -215,7 +215,7 @@ TEST_CASE("curve plot: the model panel is true to scale with y up", "[io][pictur
   CHECK_THAT(only(named(select(svg, "path", "curve"), "slot")).attr("d"), Catch::Contains(" A1,1 "));
 }
 
-TEST_CASE("curve plot: the grid's coordinates on both axes, named with the units; a vessel's axis in view",
+TEST_CASE("curve plot: the grid's coordinates on both axes, named with the units, a vessel's axis in view",
           "[io][pictures][plot]") {
   // A vessel's profile (r, z) in mm with a control point at negative radius,
   // and its section (a shell's wall) as an outline.

@@ -94,7 +94,7 @@ std::string overriding(const std::string& key, const Json& value) {
 
 }  // namespace
 
-TEST_CASE("studio: an override names only files the design names; no other file is read or quoted",
+TEST_CASE("studio: an override names only files the design names, and no other file is read or quoted",
           "[studio][security]") {
   const fs::path design =
       example_copy("studio_files", "countertop_dxf_template.yaml", {"kitchen_template.dxf"});
@@ -215,7 +215,7 @@ TEST_CASE("studio: a port another studio listens on is refused, with exit code 5
   for (int i = 0; i < 32; ++i) CHECK(c.Get("/api/version", first.token())->status == 200);
 }
 
-TEST_CASE("studio: clients that send slowly hold no worker; a request begun and not finished gets 408",
+TEST_CASE("studio: clients that send slowly hold no worker, and a request begun and not finished gets 408",
           "[studio][security]") {
   const fs::path design = cup_file("studio_slow");
   HttpLimits patient;
@@ -272,7 +272,7 @@ TEST_CASE("studio: a request with two Host headers is 400, whichever comes first
   CHECK(status_line(one.receive_all()) == "HTTP/1.1 200 OK");
 }
 
-TEST_CASE("studio: a design over the size every command reads is refused; request bodies are bounded",
+TEST_CASE("studio: a design over the size every command reads is refused, and request bodies are bounded",
           "[studio]") {
   const fs::path design = cup_file("studio_big");
   RunningStudio studio(design.string(), (design.parent_path() / "out").string());
