@@ -31,6 +31,9 @@ Clock::duration seconds(double s) {
 // it is closed, so that the client reads the answer instead of a reset.
 constexpr double kLingerSeconds = 2.0;
 
+// The longest line that gives a chunk's size (and its extensions).
+constexpr std::size_t kMaxChunkLine = 1024;
+
 std::string seconds_text(double s) {
   char text[32];
   std::snprintf(text, sizeof text, "%g s", s);
@@ -73,12 +76,12 @@ const char* status_text(int status) {
       return "Bad Request";
     case 408:
       return "Request Timeout";
-    case 411:
-      return "Length Required";
     case 413:
       return "Payload Too Large";
     case 431:
       return "Request Header Fields Too Large";
+    case 501:
+      return "Not Implemented";
     default:
       return "Error";
   }
@@ -116,6 +119,92 @@ void refuse(Connection& c, int status, const std::string& reason) {
   c.deadline = Clock::now() + seconds(kLingerSeconds);
 }
 
+// What a request's header says of its body.
+struct BodyHeaders {
+  std::size_t length = 0;  ///< Content-Length
+  bool has_length = false;
+  bool chunked = false;  ///< Transfer-Encoding: chunked
+  RequestExtent extent;  ///< the Expect: 100-continue line, if any
+  int status = 0;        ///< a header the reception refuses: its answer's status,
+  std::string problem;   ///< and why
+};
+
+BodyHeaders body_headers(std::string_view head) {
+  BodyHeaders h;
+  std::size_t line = head.find('\n') + 1;  // after the request line
+  while (line < head.size() && h.problem.empty()) {
+    const std::size_t next = head.find('\n', line) + 1;
+    const std::string_view header = head.substr(line, next - line);
+    const std::size_t colon = header.find(':');
+    const std::string_view name = trimmed(header.substr(0, colon));
+    const std::string_view value = colon == std::string_view::npos ? "" : trimmed(header.substr(colon + 1));
+    if (same_name(name, "Transfer-Encoding")) {
+      h.chunked = same_name(value, "chunked");
+      if (!h.chunked) h = {0, false, false, {}, 501, "a Transfer-Encoding other than chunked"};
+    } else if (same_name(name, "Content-Length")) {
+      if (value.empty() || value.size() > 18 || value.find_first_not_of("0123456789") != std::string::npos)
+        return {0, false, false, {}, 400, "the Content-Length is not a number"};
+      const std::size_t n = std::stoull(std::string(value));
+      if (h.has_length && n != h.length)
+        return {0, false, false, {}, 400, "two Content-Length headers that differ"};
+      h.length = n;
+      h.has_length = true;
+    } else if (same_name(name, "Expect") && same_name(value, "100-continue")) {
+      h.extent.continue_begin = line;
+      h.extent.continue_end = next;
+    }
+    line = next;
+  }
+  if (h.chunked && h.has_length)  // which one ends the body would be the reader's guess
+    return {0, false, false, {}, 400, "both a Content-Length and a Transfer-Encoding"};
+  return h;
+}
+
+RequestExtent too_large(const HttpLimits& limits) {
+  return refused(413, "the request body is larger than " + std::to_string(limits.max_body_bytes) + " bytes");
+}
+
+// Where a chunked body that starts at `at` ends (its last chunk, size 0, and
+// the trailer's blank line), as the request's extent.
+RequestExtent chunked_extent(std::string_view bytes, std::size_t at, const BodyHeaders& h,
+                             const HttpLimits& limits) {
+  RequestExtent e = h.extent;
+  std::size_t total = 0;
+  for (;;) {
+    const std::size_t line_end = bytes.find('\n', at);
+    if (line_end == std::string_view::npos) {
+      if (bytes.size() - at > kMaxChunkLine) return refused(400, "a chunk's size line is too long");
+      return e;
+    }
+    std::string_view size_text = trimmed(bytes.substr(at, line_end - at));
+    size_text = trimmed(size_text.substr(0, size_text.find(';')));
+    if (size_text.empty() || size_text.size() > 15 ||
+        size_text.find_first_not_of("0123456789abcdefABCDEF") != std::string_view::npos)
+      return refused(400, "a chunk's size is not a hexadecimal number");
+    const std::size_t size = std::stoull(std::string(size_text), nullptr, 16);
+    at = line_end + 1;
+    if (size == 0) break;
+    total += size;
+    if (total > limits.max_body_bytes) return too_large(limits);
+    if (bytes.size() < at + size + 1) return e;
+    at += size;
+    if (bytes[at] == '\r') ++at;
+    if (at >= bytes.size()) return e;
+    if (bytes[at] != '\n') return refused(400, "a chunk does not end with a line end");
+    ++at;
+  }
+  // Trailer lines, then a blank one.
+  const std::size_t trailer_end = head_end(bytes.substr(at - 1));  // from the size line's end
+  if (trailer_end == std::string_view::npos) {
+    if (bytes.size() - at > limits.max_head_bytes)
+      return refused(431, "the chunked body's trailer is too large");
+    return e;
+  }
+  e.state = RequestExtent::State::Complete;
+  e.size = at - 1 + trailer_end;
+  return e;
+}
+
 }  // namespace
 
 RequestExtent request_extent(std::string_view bytes, const HttpLimits& limits) {
@@ -126,42 +215,14 @@ RequestExtent request_extent(std::string_view bytes, const HttpLimits& limits) {
                    "the request's header is larger than " + std::to_string(limits.max_head_bytes) + " bytes");
   }
   if (end == std::string_view::npos) return {};
-  RequestExtent e;
-  std::size_t length = 0;
-  bool has_length = false;
-  std::size_t line = bytes.find('\n') + 1;  // after the request line
-  while (line < end) {
-    const std::size_t next = bytes.find('\n', line) + 1;
-    const std::string_view header = bytes.substr(line, next - line);
-    const std::size_t colon = header.find(':');
-    if (colon != std::string_view::npos) {
-      const std::string_view name = trimmed(header.substr(0, colon));
-      const std::string_view value = trimmed(header.substr(colon + 1));
-      if (same_name(name, "Transfer-Encoding")) {
-        return refused(411, "send the request body with a Content-Length, not a Transfer-Encoding");
-      }
-      if (same_name(name, "Content-Length")) {
-        if (value.empty() || value.size() > 18 || value.find_first_not_of("0123456789") != std::string::npos)
-          return refused(400, "the Content-Length is not a number");
-        const std::size_t n = std::stoull(std::string(value));
-        if (has_length && n != length) return refused(400, "two Content-Length headers that differ");
-        length = n;
-        has_length = true;
-      }
-      if (same_name(name, "Expect") && same_name(value, "100-continue")) {
-        e.continue_begin = line;
-        e.continue_end = next;
-      }
-    }
-    line = next;
-  }
-  if (length > limits.max_body_bytes) {
-    return refused(413,
-                   "the request body is larger than " + std::to_string(limits.max_body_bytes) + " bytes");
-  }
-  if (bytes.size() - end < length) return e;
+  const BodyHeaders h = body_headers(bytes.substr(0, end));
+  if (!h.problem.empty()) return refused(h.status, h.problem);
+  if (h.chunked) return chunked_extent(bytes, end, h, limits);
+  if (h.length > limits.max_body_bytes) return too_large(limits);
+  RequestExtent e = h.extent;
+  if (bytes.size() - end < h.length) return e;
   e.state = RequestExtent::State::Complete;
-  e.size = end + length;
+  e.size = end + h.length;
   return e;
 }
 

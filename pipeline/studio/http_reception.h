@@ -26,17 +26,18 @@ struct RequestExtent {
   };
   State state = State::Incomplete;
   std::size_t size = 0;  ///< Complete: the request's bytes, header and body
-  int status = 0;        ///< Refused: 400, 411, 413 or 431
+  int status = 0;        ///< Refused: 400, 413, 431 or 501
   std::string reason;    ///< Refused: for the answer's message
   /// The header asks for "100 Continue" before its body: the line
   /// [continue_begin, continue_end) is that header (0, 0: none).
   std::size_t continue_begin = 0, continue_end = 0;
 };
 
-/// Where the first request in `bytes` ends, by its header's Content-Length
-/// (a header over limits.max_head_bytes: 431; a body over
-/// limits.max_body_bytes: 413; Transfer-Encoding, which the studio's clients
-/// never send: 411; a Content-Length that is not one number: 400).
+/// Where the first request in `bytes` ends, by its header's Content-Length or
+/// its chunked body's last chunk (a header over limits.max_head_bytes: 431;
+/// a body over limits.max_body_bytes: 413; a Transfer-Encoding other than
+/// chunked: 501; a Content-Length that is not one number, or beside a
+/// Transfer-Encoding, or a malformed chunk: 400).
 RequestExtent request_extent(std::string_view bytes, const HttpLimits& limits);
 
 /// Answers one whole request read from connection `fd` (`request`: its

@@ -37,11 +37,31 @@ TEST_CASE("reception: what it refuses itself, and a 100-continue it answers", "[
   };
   CHECK(refused("POST / HTTP/1.1\r\nContent-Length: 11\r\n\r\n") == 413);
   CHECK(refused("GET / HTTP/1.1\r\nX: " + std::string(100, 'a')) == 431);
-  CHECK(refused("POST / HTTP/1.1\r\nTransfer-Encoding: chunked\r\n\r\n") == 411);
+  CHECK(refused("POST / HTTP/1.1\r\nTransfer-Encoding: gzip\r\n\r\n") == 501);
+  CHECK(refused("POST / HTTP/1.1\r\nTransfer-Encoding: chunked\r\nContent-Length: 2\r\n\r\n") == 400);
+  CHECK(refused("POST / HTTP/1.1\r\nTransfer-Encoding: chunked\r\n\r\nzz\r\n") == 400);
+  CHECK(refused("POST / HTTP/1.1\r\nTransfer-Encoding: chunked\r\n\r\n6\r\nabcdef\r\n6\r\nabcdef\r\n") ==
+        413);
   CHECK(refused("POST / HTTP/1.1\r\nContent-Length: -1\r\n\r\n") == 400);
   CHECK(refused("POST / HTTP/1.1\r\nContent-Length: 1\r\nContent-Length: 2\r\n\r\n") == 400);
   const std::string expect = "POST / HTTP/1.1\r\nExpect: 100-continue\r\nContent-Length: 2\r\n\r\n";
   const RequestExtent e = request_extent(expect, limits);
   CHECK(e.state == State::Incomplete);
   CHECK(expect.substr(e.continue_begin, e.continue_end - e.continue_begin) == "Expect: 100-continue\r\n");
+}
+
+TEST_CASE("reception: a chunked body ends at its last chunk and the blank line after its trailer",
+          "[studio][reception]") {
+  const HttpLimits limits;
+  const std::string head = "POST /api/build HTTP/1.1\r\nHost: a\r\nTransfer-Encoding: chunked\r\n\r\n";
+  const std::string body = "2\r\n{}\r\n3;ext=1\r\nabc\r\n0\r\n";
+  for (std::size_t cut = 0; cut < body.size() + 2; ++cut)
+    CHECK(request_extent(head + (body + "\r\n").substr(0, cut), limits).state == State::Incomplete);
+  const RequestExtent whole = request_extent(head + body + "\r\nGET / HTTP/1.1\r\n", limits);
+  REQUIRE(whole.state == State::Complete);
+  CHECK(whole.size == head.size() + body.size() + 2);
+  const std::string trailer = "X-Sum: 1\r\n\r\n";
+  const RequestExtent with_trailer = request_extent(head + body + trailer, limits);
+  REQUIRE(with_trailer.state == State::Complete);
+  CHECK(with_trailer.size == head.size() + body.size() + trailer.size());
 }

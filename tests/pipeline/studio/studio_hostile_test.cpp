@@ -297,6 +297,15 @@ TEST_CASE("studio: a design over the size every command reads is refused, and re
   REQUIRE(big);
   CHECK(big->status == 413);
   CHECK(c.Post("/api/build", studio.token(), "{}", "application/json")->status == 200);
+  // A body sent in chunks (as Node's http client sends one) is read whole too.
+  const RawConnection chunked(studio.server.port());
+  REQUIRE(chunked.send("POST /api/build HTTP/1.1\r\nHost: 127.0.0.1:" + std::to_string(studio.server.port()) +
+                       "\r\nX-Fabmesh-Token: " + studio.server.token() +
+                       "\r\nTransfer-Encoding: chunked\r\nConnection: close\r\n\r\n"
+                       "e\r\n{\"overrides\": \r\n10\r\n{\"height\": 5.5}}\r\n0\r\n\r\n"));
+  const std::string answer = chunked.receive_all();
+  CHECK(status_line(answer) == "HTTP/1.1 200 OK");
+  CHECK(answer.find("\"height\":5.5") != std::string::npos);
 }
 
 TEST_CASE("studio: a NUL in an override is shown escaped, and the message whole", "[studio]") {
