@@ -211,6 +211,14 @@ std::optional<ExactSolid> exact_revolution(const CompositeCurve& profile, const 
   return solid;
 }
 
+// The section's loops at the fired size (the plot draws the design as fired).
+std::vector<std::vector<Vec2>> fired_loops(std::vector<std::vector<Vec2>> loops, double factor) {
+  for (auto& loop : loops) {
+    for (Vec2& p : loop) p /= factor;
+  }
+  return loops;
+}
+
 }  // namespace
 
 Result build(const VesselDesign& design, const BuildContext& context) {
@@ -280,6 +288,7 @@ Result build(const VesselDesign& design, const BuildContext& context) {
   }
   if (design.mould) add_mould(design, profile.curve, master, context, out, products);
   out.curves.push_back({"profile", profile});
+  products.section = fired_loops(vessel.section.loops, factor);
   products.solid = exact_revolution(master, vessel.section);
   out.products = std::move(products);
   return out;

@@ -7,6 +7,7 @@
 
 #include "geometry/core/errors.h"
 #include "geometry/section/simple_polygon.h"
+#include "geometry/section/vessel_section.h"
 #include "geometry/surfaces/patch_network.h"
 #include "pipeline/failure.h"
 #include "pipeline/load_design.h"
@@ -74,6 +75,25 @@ BuiltCurve curve_as_drawn(const Design& design, const CurveSpec& spec,
   }
 }
 
+// A vessel's section as its builder makes it (the shell's inner wall, rim
+// and base), at the design's tolerance; none when the profile does not make
+// one (a profile across the axis, a wall too thick): the plot shows the
+// profile still, and `run` says what is wrong.
+std::vector<std::vector<Vec2>> section_as_drawn(const VesselDesign& vessel, const CompositeCurve& profile,
+                                                double tolerance) {
+  VesselSectionOptions options;
+  options.mode = vessel.mode;
+  options.wall = vessel.wall;
+  options.base = vessel.base;
+  options.rim = vessel.rim;
+  options.tolerance = 0.5 * tolerance;
+  try {
+    return build_vessel_section(profile, options).loops;
+  } catch (const InputError&) {
+    return {};
+  }
+}
+
 }  // namespace
 
 BuiltShape build_shape(const Design& design, std::vector<std::string>* contradicted) {
@@ -82,6 +102,10 @@ BuiltShape build_shape(const Design& design, std::vector<std::string>* contradic
     shape.curves.push_back({nc.name, curve_as_drawn(design, nc.spec, contradicted)});
   if (const auto* surface = std::get_if<SurfaceDesign>(&design.body))
     shape.patches = build_patch_network(surface->patches);
+  if (const auto* vessel = std::get_if<VesselDesign>(&design.body)) {
+    shape.revolved = true;
+    shape.section = section_as_drawn(*vessel, shape.curves.front().curve.curve, design.common.tolerance);
+  }
   return shape;
 }
 

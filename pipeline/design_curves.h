@@ -30,6 +30,12 @@ void require_simple_closed(const Polyline2& line, const std::vector<CurveParam>&
 struct BuiltShape {
   std::vector<NamedBuiltCurve> curves;  ///< in design_curves' order
   std::optional<PatchNetwork> patches;  ///< a surface's
+  /// A vessel: the curves are profiles in the (radius, height) half-plane, revolved about x = 0.
+  bool revolved = false;
+  /// A vessel's section as its builder makes it: closed loops (the profile,
+  /// the rim, a shell's inner wall and base, the axis) in the design's units,
+  /// at the fired size (before shrinkage's scaling). Empty when not built.
+  std::vector<std::vector<Vec2>> section;
 };
 
 /// The design's curves built (build_curve, in design_curves' order) and a

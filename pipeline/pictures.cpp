@@ -71,22 +71,30 @@ void add_measures(const MeshFacts& mesh, ReportRow& row) {
 }  // namespace
 
 CurvePlot shape_plot(const DesignCommon& common, const std::vector<NamedBuiltCurve>& curves,
-                     const PatchNetwork* patches) {
+                     const PatchNetwork* patches, const std::vector<std::vector<Vec2>>* section) {
   CurvePlot plot;
   plot.title = common.name;
   plot.units = common.units;
   for (const NamedBuiltCurve& c : curves) plot.curves.push_back(plot_curve(c.curve, c.name));
   if (patches != nullptr) add_surface(*patches, plot);
+  if (section != nullptr) {
+    plot.revolution_axis = true;
+    plot.axis_names = {"r", "z"};
+    for (const auto& loop : *section) plot.outlines.push_back({"section", loop});
+  }
   return plot;
 }
 
 CurvePlot shape_plot(const DesignCommon& common, const BuiltShape& shape) {
-  return shape_plot(common, shape.curves, shape.patches ? &*shape.patches : nullptr);
+  return shape_plot(common, shape.curves, shape.patches ? &*shape.patches : nullptr,
+                    shape.revolved ? &shape.section : nullptr);
 }
 
 CurvePlot shape_plot(const DesignCommon& common, const Result& result) {
   const auto* surface = std::get_if<SurfaceProducts>(&result.products);
-  return shape_plot(common, result.curves, surface != nullptr ? &surface->patches : nullptr);
+  const auto* vessel = std::get_if<VesselProducts>(&result.products);
+  return shape_plot(common, result.curves, surface != nullptr ? &surface->patches : nullptr,
+                    vessel != nullptr ? &vessel->section : nullptr);
 }
 
 CurvePlot design_plot(const Design& design, std::vector<std::string>* contradicted) {

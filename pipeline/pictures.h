@@ -20,17 +20,20 @@ namespace fabmesh {
 /// polygons, measured joints and, when faired, the curve before fairing; for a
 /// surface, the borders of its patches and their control net seen from above
 /// (projected on the xy plane; a projected H-Bézier border is the H-Bézier
-/// curve of the projected control points). Titled with the design's name, in
+/// curve of the projected control points); for a vessel, its axis of
+/// revolution and its section (a shell's inner wall, rim and base; none when
+/// the profile makes no section), in (r, z). Titled with the design's name, in
 /// its units. With `contradicted`, a curve whose joints contradict their
 /// declared continuity is drawn as constructed with those joints flagged
 /// ("joint lost") and the error appended there (build_shape); without, it is
 /// an error. \throw as build_curve / build_patch_network
 CurvePlot design_plot(const Design& design, std::vector<std::string>* contradicted = nullptr);
 
-/// The same plot drawn from curves and patches already built (build_shape,
-/// or a job's Result): constructs nothing.
+/// The same plot drawn from curves, patches and a vessel's section already
+/// built (build_shape, or a job's Result): constructs nothing. `section`
+/// null: not a vessel (no axis of revolution).
 CurvePlot shape_plot(const DesignCommon& common, const std::vector<NamedBuiltCurve>& curves,
-                     const PatchNetwork* patches);
+                     const PatchNetwork* patches, const std::vector<std::vector<Vec2>>* section);
 /// The plot of a shape build_shape made.
 CurvePlot shape_plot(const DesignCommon& common, const BuiltShape& shape);
 /// The plot of a job's result: its curves and a surface's patches.

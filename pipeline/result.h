@@ -119,6 +119,10 @@ struct VesselProducts {
   std::optional<ExactSolid> solid;
   std::vector<CutLoop> profile_template;  ///< the profile closed along the axis, when an output draws it
   std::optional<ExactMould> mould;        ///< when the design has a mould
+  /// The section as the builder made it: closed loops (the profile, the rim,
+  /// a shell's inner wall and base, the axis) at the fired size (before
+  /// shrinkage's scaling), for the plot.
+  std::vector<std::vector<Vec2>> section;
 };
 
 /// What a countertop makes besides its mesh.

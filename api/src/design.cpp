@@ -18,7 +18,7 @@ Design handle(fabmesh::Design design) {
 std::vector<fabmesh::Override> command_line_overrides(const Overrides& overrides) {
   std::vector<fabmesh::Override> out;
   out.reserve(overrides.size());
-  for (const Override& o : overrides) out.push_back(fabmesh::parse_override(o.key + "=" + o.value));
+  for (const Override& o : overrides) out.push_back(fabmesh::make_override(o.key, o.value));
   return out;
 }
 

@@ -4,15 +4,12 @@
 #include <mutex>
 #include <utility>
 
+#include "io/design/read_design.h"
 #include "io/design/yaml/canonical_tree.h"
 #include "io/design/yaml/design_tree.h"
 #include "io/file.h"
 
 namespace fabmesh {
-
-namespace {
-constexpr std::size_t kMaxDesignBytes = 64u << 20;  // as read_design reads
-}  // namespace
 
 struct DesignSource::Impl {
   std::string path;
@@ -35,7 +32,7 @@ DesignSource::DesignSource(const std::string& text, std::string path) : impl_(st
 }
 
 DesignSource DesignSource::read(const std::string& path) {
-  return DesignSource(read_file(path, kMaxDesignBytes, "design file"), path);
+  return DesignSource(read_design_text(path), path);
 }
 
 DesignSource::DesignSource(DesignSource&&) noexcept = default;

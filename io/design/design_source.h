@@ -20,7 +20,7 @@ class DesignSource {
   /// in messages, gives the default name, and is the folder of the files the
   /// design reads). \throw FileError for YAML errors or a root that is not a map
   DesignSource(const std::string& text, std::string path);
-  /// Reads the design file at `path` (at most 64 MiB) and parses it. \throw FileError
+  /// Reads the design file at `path` (read_design_text: at most 16 MiB) and parses it. \throw FileError
   static DesignSource read(const std::string& path);
   DesignSource(DesignSource&&) noexcept;
   DesignSource& operator=(DesignSource&&) noexcept;

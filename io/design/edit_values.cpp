@@ -3,11 +3,12 @@
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
-#include <map>
+#include <cstdlib>
 #include <optional>
 #include <variant>
 
 #include "geometry/core/errors.h"
+#include "io/design/yaml/double_quoted.h"
 
 namespace fabmesh {
 namespace {
@@ -106,17 +107,8 @@ std::string value_path(const YAML::Node& root, const std::string& path) {
   return "parameters." + path + (entry.IsMap() ? ".value" : "");
 }
 
-}  // namespace
-
-ValueSpan value_span(const std::string& text, const std::string& file, const std::string& path) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(text);
-  } catch (const YAML::Exception& e) {
-    throw FileError(file, e.mark.line + 1, e.mark.column + 1,
-                    fmt::format("{}:{}:{}: {}", file, e.mark.line + 1, e.mark.column + 1, e.msg));
-  }
-  const std::string full = value_path(root, path);
+// The node at `full` (a value_path) below `root`; an undefined node when the tree has none there.
+YAML::Node node_at(const YAML::Node& root, const std::string& full) {
   YAML::Node node = root;
   for (const Step& step : path_steps(full)) {
     YAML::Node next;
@@ -125,10 +117,111 @@ ValueSpan value_span(const std::string& text, const std::string& file, const std
     } else if (node.IsSequence() && std::get<std::size_t>(step) < node.size()) {
       next = node[std::get<std::size_t>(step)];
     }
-    if (!next.IsDefined()) {
-      throw FileError(file, 0, 0, fmt::format("{}: {}: the design does not write this value", file, full));
-    }
+    if (!next.IsDefined()) return next;
     node.reset(next);
+  }
+  return node;
+}
+
+YAML::Node load_text(const std::string& text, const std::string& file) {
+  try {
+    return YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    throw FileError(file, e.mark.line + 1, e.mark.column + 1,
+                    fmt::format("{}:{}:{}: {}", file, e.mark.line + 1, e.mark.column + 1, e.msg));
+  }
+}
+
+// True when `a` and `b` are the same YAML values: the same kinds, scalars of
+// the same text (quoted or plain: the reader takes either), lists and maps
+// of the same entries in the same order.
+bool same_value(const YAML::Node& a, const YAML::Node& b) {
+  if (a.Type() != b.Type()) return false;
+  if (a.IsScalar()) return a.Scalar() == b.Scalar();
+  if (a.IsSequence()) {
+    if (a.size() != b.size()) return false;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      if (!same_value(a[i], b[i])) return false;
+    }
+    return true;
+  }
+  if (!a.IsMap()) return true;  // both null
+  if (a.size() != b.size()) return false;
+  auto i = a.begin();
+  for (auto j = b.begin(); j != b.end(); ++i, ++j) {
+    if (!same_value(i->first, j->first) || !same_value(i->second, j->second)) return false;
+  }
+  return true;
+}
+
+bool is_number(const std::string& text) {
+  if (text.empty() || text.find_first_not_of("0123456789+-.eE") != std::string::npos) return false;
+  char* end = nullptr;
+  (void)std::strtod(text.c_str(), &end);
+  return end == text.c_str() + text.size();
+}
+
+// `value` as YAML on one line that reads back the same wherever it is put,
+// in a block or inside a flow list or map: numbers plain, other scalars in
+// double quotes, lists and maps in flow style.
+std::string flow_text(const YAML::Node& value) {
+  std::string out;
+  if (value.IsScalar())
+    return value.Tag() == "?" && is_number(value.Scalar()) ? value.Scalar()
+                                                           : yaml::double_quoted(value.Scalar());
+  if (value.IsSequence()) {
+    for (std::size_t i = 0; i < value.size(); ++i) out += (i == 0 ? "" : ", ") + flow_text(value[i]);
+    return "[" + out + "]";
+  }
+  if (value.IsMap()) {
+    for (const auto& kv : value) {
+      out += (out.empty() ? "" : ", ") + flow_text(kv.first) + ": " + flow_text(kv.second);
+    }
+    return "{" + out + "}";
+  }
+  return "null";
+}
+
+// `text` with the value at `o.path` replaced by `o.value`: as the user wrote
+// it when the file then reads back as the old tree with that value at the
+// path, else in flow_text's form (an expression "=max(w, 5)" goes into a flow
+// map `{value: 4}` quoted, or its comma would end the value).
+std::string edit_value(const std::string& text, const std::string& file, const Override& o) {
+  if (o.value.find_first_of("\r\n") != std::string::npos) {
+    throw FileError(file, 0, 0, fmt::format("{}: {}: the new value is not one line", file, o.path));
+  }
+  const ValueSpan span = value_span(text, file, o.path);
+  YAML::Node wanted;
+  try {
+    wanted = YAML::Load(o.value);
+  } catch (const YAML::Exception& e) {
+    throw FileError(file, 0, 0, fmt::format("-D {}: the value is not valid YAML: {}", o.text, e.msg));
+  }
+  // The tree the edited text must read as.
+  const YAML::Node expected = YAML::Clone(load_text(text, file));
+  YAML::Node at = node_at(expected, value_path(expected, o.path));
+  at = wanted;
+  for (const std::string& written : {o.value, flow_text(wanted)}) {
+    std::string edited = text.substr(0, span.begin) + written + text.substr(span.end);
+    try {
+      if (same_value(YAML::Load(edited), expected)) return edited;
+    } catch (const YAML::Exception&) {
+      // as written it breaks the file: try the next form
+    }
+  }
+  throw FileError(file, span.line, span.column,
+                  fmt::format("{}:{}:{}: {}: the value cannot be written there; edit it in the file", file,
+                              span.line, span.column, o.path));
+}
+
+}  // namespace
+
+ValueSpan value_span(const std::string& text, const std::string& file, const std::string& path) {
+  const YAML::Node root = load_text(text, file);
+  const std::string full = value_path(root, path);
+  const YAML::Node node = node_at(root, full);
+  if (!node.IsDefined()) {
+    throw FileError(file, 0, 0, fmt::format("{}: {}: the design does not write this value", file, full));
   }
   const YAML::Mark mark = node.Mark();
   const std::string where = fmt::format("{}:{}:{}", file, mark.line + 1, mark.column + 1);
@@ -152,24 +245,9 @@ ValueSpan value_span(const std::string& text, const std::string& file, const std
 
 std::string edit_values(const std::string& text, const std::string& file,
                         const std::vector<Override>& values) {
-  std::map<std::size_t, std::pair<ValueSpan, std::string>> edits;  // by where they start
-  for (const Override& o : values) {
-    if (o.value.find_first_of("\r\n") != std::string::npos) {
-      throw FileError(file, 0, 0, fmt::format("{}: {}: the new value is not one line", file, o.path));
-    }
-    const ValueSpan span = value_span(text, file, o.path);
-    edits[span.begin] = {span, o.value};
-  }
-  std::string out;
-  out.reserve(text.size());
-  std::size_t at = 0;
-  for (const auto& [begin, edit] : edits) {
-    out.append(text, at, begin - at);
-    out += edit.second;
-    at = edit.first.end;
-  }
-  out.append(text, at, std::string::npos);
-  return out;
+  std::string edited = text;
+  for (const Override& o : values) edited = edit_value(edited, file, o);
+  return edited;
 }
 
 }  // namespace fabmesh

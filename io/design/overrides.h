@@ -10,8 +10,9 @@ namespace fabmesh {
 struct Override {
   std::string path;   ///< e.g. "body.wall", "profile.points[1]", "profile.segments[0].lambda"
   std::string value;  ///< YAML, e.g. "2.5", "[1, 5]", "{mode: solid}"
-  /// How the user wrote it ("body.wall=2.5"); errors at an overridden value
-  /// name it as "-D body.wall=2.5" instead of a file position.
+  /// How the user wrote it ("body.wall=2.5"), control characters escaped
+  /// ("\x00"); errors at an overridden value name it as "-D body.wall=2.5"
+  /// instead of a file position.
   std::string text;
 };
 
@@ -19,5 +20,11 @@ struct Override {
 /// each optionally followed by [index] subscripts.
 /// \throw InputError naming the text when there is no '=' or the path is malformed
 Override parse_override(const std::string& text);
+
+/// The override of `path` by the YAML text `value`, for callers that hold the
+/// two apart (the studio's requests): the path is checked as parse_override
+/// checks it and may not hold '=' (the value may); `text` is "path=value".
+/// \throw InputError naming the override when the path is malformed
+Override make_override(const std::string& path, const std::string& value);
 
 }  // namespace fabmesh

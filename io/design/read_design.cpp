@@ -25,8 +25,7 @@ namespace {
 
 // Reading a design stays within a stated memory bound (docs/design-files.md):
 // yaml-cpp spends about 470 bytes per node, so the node count is what bounds
-// the tree; the byte limit bounds the text and long scalars.
-constexpr std::size_t kMaxDesignBytes = 16u << 20;
+// the tree; the byte limit (kMaxDesignFileBytes) bounds the text and long scalars.
 constexpr std::size_t kMaxDesignNodes = 1u << 18;
 constexpr std::size_t kMaxNameBytes = 120;
 
@@ -249,6 +248,23 @@ void require_utf8(const std::string& text, const std::string& path, const std::s
       fmt::format("{}:{}:{}: the design is not UTF-8 text (byte {} here)", path, line, column, byte));
 }
 
+// Throws FileError when an override's value holds a control character YAML
+// does not allow (below 0x20 but tab, line feed and carriage return; DEL):
+// yaml-cpp misreads it (a NUL after the first byte makes it read the value
+// as UTF-16), and a message quoting it would end at a NUL. The message
+// shows it escaped (Override::text).
+void require_printable(const Override& o, const std::string& path) {
+  const auto bad = std::find_if(o.value.begin(), o.value.end(), [](char c) {
+    const auto u = static_cast<unsigned char>(c);
+    return (u < 0x20 && c != '\t' && c != '\n' && c != '\r') || u == 0x7f;
+  });
+  if (bad == o.value.end()) return;
+  throw FileError(path, 0, 0,
+                  fmt::format("-D {}: the value holds a control character (\\x{:02x}, byte {}), which YAML "
+                              "does not allow",
+                              o.text, static_cast<unsigned char>(*bad), bad - o.value.begin() + 1));
+}
+
 }  // namespace
 
 namespace {
@@ -367,6 +383,7 @@ std::vector<OverrideOrigin> apply_overrides(YAML::Node root, const std::string& 
   std::vector<OverrideOrigin> origins;
   for (const Override& o : overrides) {
     require_utf8(o.text, path, o.text);
+    require_printable(o, path);
     YAML::Node value;
     try {
       yaml::require_node_budget(o.value, path, kMaxDesignNodes, o.text);
@@ -428,8 +445,12 @@ Design parse_design(const std::string& text, const std::string& path,
   return yaml::read_design_tree(root, path, std::move(origins));
 }
 
+std::string read_design_text(const std::string& path) {
+  return read_file(path, kMaxDesignFileBytes, "design file");
+}
+
 Design read_design(const std::string& path, const std::vector<Override>& overrides) {
-  return parse_design(read_file(path, kMaxDesignBytes, "design file"), path, overrides);
+  return parse_design(read_design_text(path), path, overrides);
 }
 
 }  // namespace fabmesh

@@ -1,6 +1,7 @@
 #pragma once
 // Reads YAML design files into Design structs.
 
+#include <cstddef>
 #include <string>
 #include <utility>
 #include <vector>
@@ -27,8 +28,17 @@ class UnknownKeyError : public FileError {
   std::string field_;
 };
 
-/// Reads and validates a design file (a regular file of at most 64 MiB, one
-/// YAML document). Every error is a FileError whose message starts with
+/// The largest design file fabmesh reads (read_design_text): every command
+/// and the studio alike (docs/design-files.md, "Limits").
+inline constexpr std::size_t kMaxDesignFileBytes = std::size_t{16} << 20;
+
+/// The text of the design file at `path`: a regular file of at most
+/// kMaxDesignFileBytes (io/file.h's bounded read_file).
+/// \throw FileError naming the path: missing, unreadable, not a regular file, too large
+std::string read_design_text(const std::string& path);
+
+/// Reads and validates a design file (read_design_text: a regular file of at
+/// most 16 MiB; one YAML document). Every error is a FileError whose message starts with
 /// "path:line:column: field:" and names the value. The `outputs` are kept as
 /// given: the pipeline's output table checks them.
 /// Ranges checked here: tolerance > 0, shape parameters of each family,

@@ -22,7 +22,9 @@ constexpr const char* kPalette[] = {"#d62728", "#2ca02c", "#8e44ad", "#8c564b",
 constexpr const char* kPolygonBlue = "#1f4fd0";
 constexpr double kTitleBand = 34.0;  // pixels above the panels
 constexpr double kLegendLine = 18.0;
-constexpr double kScaleBand = 34.0;  // pixels under the model, for the scale bar
+constexpr double kScaleBand = 48.0;   // pixels under the model: the x coordinates, the scale bar
+constexpr double kTickGutter = 48.0;  // pixels left of the model: the y coordinates
+constexpr double kTickFont = 10.0;    // pixels
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 constexpr int kJointLabelRows = 3;  // rows of joint labels above the curvature plot
 
@@ -49,6 +51,7 @@ struct ModelFrame {
   double px = 0, py = 0, pw = 0, ph = 0;
   double vx = 0, vy = 0, vw = 0, vh = 0;
   double unit = 1.0;  // model units per pixel
+  double grid = 1.0;  // the grid's step, model units
   int decimals = 3;
   std::string num(double v) const { return fixed_number(v, decimals); }
   std::string pt(const Vec2& p) const { return num(p.x()) + "," + num(-p.y()); }
@@ -89,6 +92,12 @@ void validate(const CurvePlot& plot, const CurvePlotOptions& o) {
         if (!p.allFinite())
           throw InputError(fmt::format("curve plot: curve '{}' has a non-finite control point", c.name));
       }
+    }
+  }
+  for (const PlotOutline& outline : plot.outlines) {
+    for (const Vec2& p : outline.points) {
+      if (!p.allFinite())
+        throw InputError(fmt::format("curve plot: outline '{}' is not finite", outline.name));
     }
   }
   for (const auto& line : plot.net_lines) {
@@ -136,7 +145,8 @@ void build_combs(std::vector<Prepared>& curves, double diagonal, const CurvePlot
 }
 
 // The model panel's viewBox: the content box plus a margin, widened to the
-// panel's aspect, with a band under it for the scale bar.
+// panel's aspect, with a band under it for the x coordinates and the scale
+// bar, and one left of it for the y coordinates.
 ModelFrame model_frame(const Box& content, double px0, double py0, double pw, double ph) {
   ModelFrame f;
   f.px = px0;
@@ -146,18 +156,31 @@ ModelFrame model_frame(const Box& content, double px0, double py0, double pw, do
   Vec2 size = content.hi - content.lo;
   const double margin = 0.04 * std::max(size.norm(), 1e-9);
   size += Vec2::Constant(2.0 * margin);
-  const double scale = std::min(pw / size.x(), (ph - kScaleBand) / size.y());  // pixels per unit
+  const double scale =
+      std::min((pw - kTickGutter) / size.x(), (ph - kScaleBand) / size.y());  // pixels per unit
   f.unit = 1.0 / scale;
   f.vw = pw * f.unit;
   f.vh = ph * f.unit;
   const Vec2 mid = 0.5 * (content.lo + content.hi);
-  f.vx = mid.x() - 0.5 * f.vw;
-  // Centre the content in the area above the scale band (SVG y = -model y).
+  // Centre the content right of the gutter and above the band (SVG y = -model y).
+  f.vx = mid.x() - (kTickGutter + 0.5 * (pw - kTickGutter)) * f.unit;
   f.vy = -mid.y() - 0.5 * (ph - kScaleBand) * f.unit;
+  f.grid = nice_step(0.25 * f.vw);
   // Coordinates to 1e-4 of a pixel at this scale, at least.
   f.decimals = std::clamp(static_cast<int>(std::ceil(-std::log10(f.unit * 1e-4))), 0, 12);
   return f;
 }
+
+// The multiples of `step` in [lo, hi], as whole numbers of steps (so that
+// each is exactly k * step, not a sum that drifts).
+std::vector<double> grid_values(double lo, double hi, double step) {
+  std::vector<double> values;
+  for (double k = std::ceil(lo / step); k * step <= hi; k += 1.0) values.push_back(k * step);
+  return values;
+}
+
+// A coordinate as its tick label writes it: -0 and rounding noise are 0.
+std::string tick_text(double v, double step) { return short_number(std::abs(v) < 1e-9 * step ? 0.0 : v, 6); }
 
 // The SVG path of a curve: exact arcs as A commands (pieces below 180
 // degrees), lines as L, other segments as polylines within `tolerance`.
@@ -188,12 +211,12 @@ std::string curve_path(const CompositeCurve& curve, double tolerance, const Mode
 }
 
 void write_grid_and_scale_bar(std::string& out, const ModelFrame& f, const std::string& units) {
-  const double step = nice_step(0.25 * f.vw);
+  const double step = f.grid;
   std::string d;
-  for (double x = std::ceil(f.vx / step) * step; x <= f.vx + f.vw; x += step) {
+  for (const double x : grid_values(f.vx, f.vx + f.vw, step)) {
     d += fmt::format("M{},{} V{} ", f.num(x), f.num(f.vy), f.num(f.vy + f.vh));
   }
-  for (double y = std::ceil(f.vy / step) * step; y <= f.vy + f.vh; y += step) {
+  for (const double y : grid_values(f.vy, f.vy + f.vh, step)) {
     d += fmt::format("M{},{} H{} ", f.num(f.vx), f.num(y), f.num(f.vx + f.vw));
   }
   out += fmt::format("<path class=\"grid\" d=\"{}\" stroke=\"#e4e4e4\" stroke-width=\"{}\" fill=\"none\"/>\n",
@@ -210,6 +233,57 @@ void write_grid_and_scale_bar(std::string& out, const ModelFrame& f, const std::
   out +=
       fmt::format("<text x=\"{}\" y=\"{}\" font-size=\"{}\">{}</text>\n</g>\n", f.num(x0 + step + 6 * f.unit),
                   f.num(y + 4 * f.unit), f.px_len(12.0), escape_markup(label));
+}
+
+// The grid's coordinates: x under the model (above the scale bar), y in the
+// gutter left of it, each axis named with the units at its end.
+void write_ticks(std::string& out, const ModelFrame& f, const CurvePlot& plot) {
+  const std::string units = escape_markup(plot.units);
+  out += fmt::format("<g class=\"ticks\" font-size=\"{}\" fill=\"#555\">\n", f.px_len(kTickFont));
+  const double x_row = f.vy + f.vh - (kScaleBand - 16.0) * f.unit;  // the x labels' baseline
+  const double x_name_left = f.vx + f.vw - 58.0 * f.unit;           // the x axis's name, right of the labels
+  for (const double x : grid_values(f.vx + kTickGutter * f.unit, x_name_left - 12.0 * f.unit, f.grid)) {
+    out += fmt::format(
+        "<text class=\"tick\" data-axis=\"x\" data-value=\"{}\" x=\"{}\" y=\"{}\" "
+        "text-anchor=\"middle\">{}</text>\n",
+        short_number(x, 15), f.num(x), f.num(x_row), tick_text(x, f.grid));
+  }
+  const double y_top = f.vy + 28.0 * f.unit, y_bottom = f.vy + f.vh - kScaleBand * f.unit;
+  for (const double y : grid_values(y_top, y_bottom, f.grid)) {  // SVG y: the model's -y
+    out += fmt::format(
+        "<text class=\"tick\" data-axis=\"y\" data-value=\"{}\" x=\"{}\" y=\"{}\" "
+        "text-anchor=\"end\">{}</text>\n",
+        short_number(-y, 15), f.num(f.vx + (kTickGutter - 6.0) * f.unit),
+        f.num(y + 0.35 * kTickFont * f.unit), tick_text(-y, f.grid));
+  }
+  out += fmt::format(
+      "<text class=\"axis-name\" data-axis=\"x\" x=\"{}\" y=\"{}\" text-anchor=\"end\">{} ({})</text>\n"
+      "<text class=\"axis-name\" data-axis=\"y\" x=\"{}\" y=\"{}\">{} ({})</text>\n</g>\n",
+      f.num(f.vx + f.vw - 6.0 * f.unit), f.num(x_row), escape_markup(plot.axis_names[0]), units,
+      f.num(f.vx + 6.0 * f.unit), f.num(f.vy + 14.0 * f.unit), escape_markup(plot.axis_names[1]), units);
+}
+
+// A vessel's axis of revolution, x = 0, dash-dotted over the whole panel.
+void write_axis(std::string& out, const ModelFrame& f) {
+  out += fmt::format(
+      "<g class=\"axis\"><line x1=\"0\" y1=\"{}\" x2=\"0\" y2=\"{}\" stroke=\"#333\" stroke-width=\"{}\" "
+      "stroke-dasharray=\"{} {} {} {}\"/><text x=\"{}\" y=\"{}\" font-size=\"{}\" "
+      "fill=\"#333\">axis</text></g>\n",
+      f.num(f.vy), f.num(f.vy + f.vh), f.px_len(1.0), f.px_len(10.0), f.px_len(3.0), f.px_len(2.0),
+      f.px_len(3.0), f.num(4.0 * f.unit), f.num(f.vy + 28.0 * f.unit), f.px_len(kTickFont));
+}
+
+void write_outlines(std::string& out, const CurvePlot& plot, const ModelFrame& f) {
+  for (const PlotOutline& outline : plot.outlines) {
+    std::string d;
+    for (std::size_t i = 0; i < outline.points.size(); ++i)
+      d += (i == 0 ? "M" : " L") + f.pt(outline.points[i]);
+    if (!d.empty()) d += " Z";
+    out += fmt::format(
+        "<path class=\"outline\" data-name=\"{}\" d=\"{}\" fill=\"none\" stroke=\"#666\" "
+        "stroke-width=\"{}\" stroke-linejoin=\"round\"/>\n",
+        escape_markup(outline.name), d, f.px_len(1.2));
+  }
 }
 
 void write_comb(std::string& out, const Prepared& c, const ModelFrame& f, const std::string& name) {
@@ -295,6 +369,9 @@ void write_model_panel(std::string& out, const std::vector<Prepared>& curves, co
       px(f.px), px(f.py), px(f.pw), px(f.ph), px(f.px), px(f.py), px(f.pw), px(f.ph), f.num(f.vx),
       f.num(f.vy), f.num(f.vw), f.num(f.vh), escape_markup(plot.units), short_number(f.unit, 9));
   write_grid_and_scale_bar(out, f, plot.units);
+  write_ticks(out, f, plot);
+  if (plot.revolution_axis) write_axis(out, f);
+  write_outlines(out, plot, f);
   if (!plot.net_lines.empty()) {
     std::string d;
     for (const auto& line : plot.net_lines) d += "M" + f.pt(line[0]) + " L" + f.pt(line[1]) + " ";
@@ -458,9 +535,25 @@ void write_curvature_panel(std::string& out, const std::vector<Prepared>& curves
   out += "</g>\n";
 }
 
-void write_legend(std::string& out, const std::vector<Prepared>& curves, double y0) {
+// The outlines' names, each once, in order: the legend's lines for them.
+std::vector<std::string> outline_names(const CurvePlot& plot) {
+  std::vector<std::string> names;
+  for (const PlotOutline& outline : plot.outlines) {
+    if (std::find(names.begin(), names.end(), outline.name) == names.end()) names.push_back(outline.name);
+  }
+  return names;
+}
+
+void write_legend(std::string& out, const std::vector<Prepared>& curves, const CurvePlot& plot, double y0) {
   double y = y0 + kLegendLine;
   out += "<g class=\"legend\" font-family=\"sans-serif\" font-size=\"12\">\n";
+  for (const std::string& name : outline_names(plot)) {
+    out += fmt::format(
+        "<g class=\"legend-entry\" data-name=\"{}\"><line x1=\"12\" y1=\"{}\" x2=\"36\" y2=\"{}\" "
+        "stroke=\"#666\" stroke-width=\"1.2\"/><text x=\"42\" y=\"{}\">{}</text></g>\n",
+        escape_markup(name), px(y - 4), px(y - 4), px(y), escape_markup(name));
+    y += kLegendLine;
+  }
   for (const Prepared& c : curves) {
     std::string text = escape_markup(c.in->name);
     if (c.in->energy_before && c.in->energy_after) {
@@ -479,8 +572,8 @@ void write_legend(std::string& out, const std::vector<Prepared>& curves, double 
   out += fmt::format(
       "<text x=\"12\" y=\"{}\" fill=\"#555\">dotted blue: control polygon; light strokes: curvature comb "
       "(teeth \u2212k n, away from the centre of curvature); \u25cb joint with its measured continuity; "
-      "\u25c6 declared continuity lost</text>\n</g>\n",
-      px(y));
+      "\u25c6 declared continuity lost{}</text>\n</g>\n",
+      px(y), plot.revolution_axis ? "; dash-dotted: the axis of revolution" : "");
 }
 
 }  // namespace
@@ -507,6 +600,9 @@ std::string plot_curves_svg(const CurvePlot& plot, const CurvePlotOptions& optio
     box.add(line[0]);
     box.add(line[1]);
   }
+  for (const PlotOutline& outline : plot.outlines) {
+    for (const Vec2& p : outline.points) box.add(p);
+  }
   const double diagonal = std::max((box.hi - box.lo).norm(), 1e-9);
   build_combs(curves, diagonal, options);
   for (const Prepared& c : curves) {
@@ -514,9 +610,14 @@ std::string plot_curves_svg(const CurvePlot& plot, const CurvePlotOptions& optio
       for (const auto& tooth : seg) box.add(tooth.second);
     }
   }
+  if (plot.revolution_axis && !box.empty()) {  // the axis in view, beside the profile or across it
+    box.add(Vec2(0.0, box.lo.y()));
+    box.add(Vec2(0.0, box.hi.y()));
+  }
 
   const double w = options.width, h = options.height;
-  const double legend = kLegendLine * static_cast<double>(curves.size() + 1) + 10.0;
+  const double legend =
+      kLegendLine * static_cast<double>(curves.size() + outline_names(plot).size() + 1) + 10.0;
   const double panel_h = std::max(60.0, h - kTitleBand - legend);
   const ModelFrame frame = model_frame(box, 8.0, kTitleBand, 0.5 * w - 12.0, panel_h);
   std::string out = fmt::format(
@@ -530,7 +631,7 @@ std::string plot_curves_svg(const CurvePlot& plot, const CurvePlotOptions& optio
       options.height, escape_markup(plot.title));
   write_model_panel(out, curves, plot, frame, options.sample_fraction * diagonal);
   write_curvature_panel(out, curves, plot, 0.5 * w + 4.0, kTitleBand, 0.5 * w - 12.0, panel_h);
-  write_legend(out, curves, kTitleBand + panel_h);
+  write_legend(out, curves, plot, kTitleBand + panel_h);
   out += "</svg>\n";
   return out;
 }

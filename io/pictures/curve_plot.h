@@ -11,6 +11,14 @@
 
 namespace fabmesh {
 
+/// A closed outline drawn thin and grey under the curves, e.g. a vessel's
+/// section as its builder made it (the profile, the rim, a shell's inner wall
+/// and base, the axis), model units.
+struct PlotOutline {
+  std::string name;          ///< data-name, and the legend's words ("section")
+  std::vector<Vec2> points;  ///< a closed polyline (the last point joins the first)
+};
+
 /// What one plot shows.
 struct CurvePlot {
   std::string title;
@@ -18,6 +26,12 @@ struct CurvePlot {
   std::vector<PlotCurve> curves;
   /// Extra straight lines drawn dotted, e.g. a surface's control net in plan (model units).
   std::vector<std::array<Vec2, 2>> net_lines;
+  std::vector<PlotOutline> outlines;  ///< drawn under the curves (class "outline")
+  /// The model panel's coordinates, named on its axes with the units ("r (mm)").
+  std::array<std::string, 2> axis_names = {"x", "y"};
+  /// A vessel's axis of revolution, the line x = 0: drawn dash-dotted (class
+  /// "axis") and always in view, so that a point at negative radius shows.
+  bool revolution_axis = false;
 };
 
 struct CurvePlotOptions {
@@ -37,7 +51,11 @@ struct CurvePlotOptions {
 ///
 /// Left, the model panel (a nested <svg class="model-panel"> whose viewBox is
 /// in model units, y negated so that y points up): a faint grid and a scale
-/// bar (class "scale-bar", data-length in model units) of the same step; per
+/// bar (class "scale-bar", data-length in model units) of the same step, the
+/// grid's coordinates written along the bottom and the left (class "tick",
+/// data-axis "x" or "y", data-value) with the axes' names and units (class
+/// "axis-name": "x (mm)"), the axis of revolution when asked (class "axis"),
+/// the outlines grey (class "outline", data-name); per
 /// curve a solid path (class "curve"; the first curve red, others in
 /// distinct colours), its control polygon dotted blue with marked points
 /// (class "control-polygon", one group per curve even when empty), its

@@ -40,22 +40,31 @@ fs::path page_folder() {
   return (program.parent_path() / FABMESH_STUDIO_FROM_PROGRAM).lexically_normal();
 }
 
-// Starts `xdg-open url` without waiting for it; its pid, or -1 when it could not start.
-pid_t open_in_browser(const std::string& url) {
+// Starts `xdg-open url` without waiting for it, with the signal mask `mask`
+// (not the studio's, which blocks SIGINT and SIGTERM); its pid, or -1 when it could not start.
+pid_t open_in_browser(const std::string& url, const sigset_t& mask) {
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
   posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, "/dev/null", O_WRONLY, 0);
+  posix_spawnattr_t attributes;
+  posix_spawnattr_init(&attributes);
+  posix_spawnattr_setsigmask(&attributes, &mask);
+  posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGMASK);
   std::string program = "xdg-open";
   std::string argument = url;
   char* argv[] = {program.data(), argument.data(), nullptr};
   pid_t pid = -1;
-  const int error = posix_spawnp(&pid, program.c_str(), &actions, nullptr, argv, environ);
+  const int error = posix_spawnp(&pid, program.c_str(), &actions, &attributes, argv, environ);
+  posix_spawnattr_destroy(&attributes);
   posix_spawn_file_actions_destroy(&actions);
   return error == 0 ? pid : -1;
 }
 
-// Blocks SIGINT and SIGTERM in this thread (and the threads it starts) while it lives.
+// Blocks SIGINT and SIGTERM in this thread (and the threads it starts) while
+// it lives. Once one has come (wait), the studio is ending: any further one
+// is ignored until it has ended, so that a second Ctrl-C or SIGTERM during
+// the shutdown cannot kill it (exit 143) instead of its clean exit 0.
 class BlockedSignals {
  public:
   BlockedSignals() {
@@ -66,22 +75,40 @@ class BlockedSignals {
   }
   BlockedSignals(const BlockedSignals&) = delete;
   BlockedSignals& operator=(const BlockedSignals&) = delete;
-  ~BlockedSignals() { pthread_sigmask(SIG_SETMASK, &previous_, nullptr); }
-  /// Waits for one of them.
-  void wait() const {
+  ~BlockedSignals() {
+    pthread_sigmask(SIG_SETMASK, &previous_, nullptr);
+    if (ignoring_) {
+      sigaction(SIGINT, &previous_int_, nullptr);
+      sigaction(SIGTERM, &previous_term_, nullptr);
+    }
+  }
+  /// Waits for one of them, then ignores them: a pending one is dropped, so
+  /// that unblocking them later delivers nothing.
+  void wait() {
     int signal = 0;
     sigwait(&signals_, &signal);
+    struct sigaction ignore {};
+    ignore.sa_handler = SIG_IGN;
+    sigemptyset(&ignore.sa_mask);
+    sigaction(SIGINT, &ignore, &previous_int_);
+    sigaction(SIGTERM, &ignore, &previous_term_);
+    ignoring_ = true;
   }
+  /// The mask the program had before: what a child it starts gets.
+  const sigset_t& previous() const { return previous_; }
 
  private:
   sigset_t signals_{};
   sigset_t previous_{};
+  struct sigaction previous_int_ {};
+  struct sigaction previous_term_ {};
+  bool ignoring_ = false;  ///< set by wait(), read once the waiting thread has been joined
 };
 
 int studio(const StudioArgs& args, Streams io) {
   // SIGINT and SIGTERM are taken by one thread that stops the server: block
   // them here, before any other thread starts, so that every thread inherits it.
-  const BlockedSignals signals;
+  BlockedSignals signals;
   StudioSessionOptions session_options;
   session_options.design_path = args.design;
   session_options.out_dir = args.out;
@@ -97,7 +124,7 @@ int studio(const StudioArgs& args, Streams io) {
   }
   pid_t browser = -1;
   if (!args.no_open) {
-    browser = open_in_browser(server.url());
+    browser = open_in_browser(server.url(), signals.previous());
     if (browser < 0) io.err << "fabmesh studio: could not start xdg-open; open the address above yourself\n";
   }
   std::thread waiter([&server, &signals] {

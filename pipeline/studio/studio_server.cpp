@@ -4,8 +4,10 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cctype>
+#include <cerrno>
 #include <chrono>
 #include <filesystem>
 #include <map>
@@ -108,19 +110,53 @@ const HttpModuleApi& http_module() {
                                         "install fabmesh with its studio module (cpp-httplib)");
 }
 
+// Why the studio cannot listen at host:port: a host that is not an address
+// of this machine is bad input (exit code 2); a port another program listens
+// on, or one this user may not take, is the machine's state (exit code 5:
+// the same command works once the port is free, or with another port).
+[[noreturn]] void throw_listen_failure(const std::string& host, int port, const HttpListenError& error) {
+  const std::string at = fmt::format("{}:{}", host_name(host), port);
+  if (error.error_number == 0) {
+    throw InputError(fmt::format("--host {}: not an address: {}", host, error.message));
+  }
+  if (error.error_number == EADDRNOTAVAIL) {
+    throw InputError(fmt::format("--host {}: not an address of this machine ({})", host, error.message));
+  }
+  if (error.error_number == EADDRINUSE) {
+    throw EnvironmentError(
+        at, error.error_number,
+        fmt::format("--port {}: the port is taken: another program (another studio?) listens on {}; "
+                    "end it, or choose another port (--port 0: a free one)",
+                    port, at));
+  }
+  if (error.error_number == EACCES) {
+    throw EnvironmentError(at, error.error_number,
+                           fmt::format("--port {}: permission denied to listen on {} (ports below 1024 "
+                                       "need privileges; --port 0 chooses a free one)",
+                                       port, at));
+  }
+  throw EnvironmentError(at, error.error_number, fmt::format("cannot listen on {}: {}", at, error.message));
+}
+
+bool same_name(const std::string& a, const std::string& b, bool any_case) {
+  if (!any_case) return a == b;
+  return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
+           return std::tolower(static_cast<unsigned char>(x)) == std::tolower(static_cast<unsigned char>(y));
+         });
+}
+
+// How many headers named `name` (without case) the request has.
+std::size_t header_count(const HttpRequest& req, const std::string& name) {
+  return static_cast<std::size_t>(std::count_if(
+      req.headers.begin(), req.headers.end(), [&](const auto& h) { return same_name(h.first, name, true); }));
+}
+
 }  // namespace
 
 const std::string* find_value(const std::vector<std::pair<std::string, std::string>>& pairs,
                               const std::string& name, bool any_case) {
   for (const auto& [key, value] : pairs) {
-    if (key.size() != name.size()) continue;
-    bool same = true;
-    for (std::size_t i = 0; i < key.size() && same; ++i) {
-      same = any_case ? std::tolower(static_cast<unsigned char>(key[i])) ==
-                            std::tolower(static_cast<unsigned char>(name[i]))
-                      : key[i] == name[i];
-    }
-    if (same) return &value;
+    if (same_name(key, name, any_case)) return &value;
   }
   return nullptr;
 }
@@ -207,7 +243,11 @@ struct StudioServer::Impl {
   }
 
   HttpResponse handle(const HttpRequest& req) {
-    HttpResponse r = allowed(req)
+    // Two Host headers could name this server in one and another in the
+    // other: which one a proxy or browser believes is not ours to guess.
+    HttpResponse r = header_count(req, "Host") > 1
+                         ? json_answer(400, error_body("the request has more than one Host header"))
+                     : allowed(req)
                          ? route(req)
                          : json_answer(403, error_body("forbidden: this studio answers only its own "
                                                        "page (the URL it printed, with its token, at "
@@ -237,15 +277,11 @@ StudioServer::StudioServer(StudioSession& session, StudioServerOptions options)
         "for it in {}. The API works (docs/studio.md).</p>",
         s.options.web_root);
   }
+  HttpListenError error;
   s.server = s.http.listen(
-      s.options.host, s.options.port, std::size_t{1} << 20,
-      [&s](const HttpRequest& req) { return s.handle(req); }, &s.port);
-  if (s.server == nullptr) {
-    throw InputError(
-        fmt::format("--host {} --port {}: cannot listen there (the port is taken, or the address "
-                    "is not one of this machine's)",
-                    s.options.host, s.options.port));
-  }
+      s.options.host, s.options.port, s.options.limits,
+      [&s](const HttpRequest& req) { return s.handle(req); }, &s.port, &error);
+  if (s.server == nullptr) throw_listen_failure(s.options.host, s.options.port, error);
   const std::string p = std::to_string(s.port);
   s.hosts = {"127.0.0.1:" + p, "localhost:" + p, host_name(s.options.host) + ":" + p};
 }

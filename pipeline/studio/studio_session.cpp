@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <set>
 #include <vector>
 
 #include "geometry/core/errors.h"
@@ -16,6 +17,8 @@
 #include "geometry/curves/basis.h"
 #include "geometry/fairing/build_curve.h"
 #include "io/design/edit_values.h"
+#include "io/design/file_references.h"
+#include "io/design/read_design.h"
 #include "io/file.h"
 #include "io/mesh/gltf.h"
 #include "io/pictures/curve_plot.h"
@@ -32,8 +35,6 @@ namespace fabmesh {
 namespace {
 
 using Json = nlohmann::ordered_json;
-
-constexpr std::size_t kMaxDesignBytes = std::size_t{64} << 20;  // as read_design
 
 // A request the API cannot take: HTTP 400, naming the request's field.
 struct BadRequest {
@@ -65,17 +66,70 @@ enum class RequestFields {
 
 std::string number_text(double value) { return fmt::format("{}", value); }
 
+// The field of a request body that a JSON error is in ("overrides.height"),
+// from the keys read up to it: a SAX reader that keeps the open keys.
+class ErrorField : public nlohmann::json_sax<Json> {
+ public:
+  std::string field;  ///< once parse_error came: the keys open there, joined by '.'
+  std::string token;  ///< the text at fault ("1e999")
+
+  bool null() override { return true; }
+  bool boolean(bool) override { return true; }
+  bool number_integer(number_integer_t) override { return true; }
+  bool number_unsigned(number_unsigned_t) override { return true; }
+  bool number_float(number_float_t, const string_t&) override { return true; }
+  bool string(string_t&) override { return true; }
+  bool binary(binary_t&) override { return true; }
+  bool start_object(std::size_t) override { return open(); }
+  bool key(string_t& name) override {
+    keys_.back() = name;
+    return true;
+  }
+  bool end_object() override { return close(); }
+  bool start_array(std::size_t) override { return open(); }
+  bool end_array() override { return close(); }
+  bool parse_error(std::size_t, const std::string& last_token, const Json::exception&) override {
+    for (const std::string& k : keys_) {
+      if (!k.empty()) field += (field.empty() ? "" : ".") + k;
+    }
+    token = last_token;
+    return false;
+  }
+
+ private:
+  bool open() {
+    keys_.emplace_back();
+    return true;
+  }
+  bool close() {
+    keys_.pop_back();
+    return true;
+  }
+  std::vector<std::string> keys_;  ///< the key of each open object, "" for a list
+};
+
+// The request body as JSON. A number beyond a double's range (1e999) is a
+// request's error at its field, as any other value the API cannot take.
+Json parse_body(const std::string& body) {
+  try {
+    return Json::parse(body);
+  } catch (const Json::out_of_range&) {
+    ErrorField at;
+    (void)Json::sax_parse(body, &at);
+    throw BadRequest{at.field, fmt::format("{}: {} is not a number fabmesh can take (beyond a double's "
+                                           "range, about 1.8e308)",
+                                           at.field.empty() ? "the request" : at.field, at.token)};
+  } catch (const Json::exception& e) {
+    throw BadRequest{"", fmt::format("the request body is not JSON: {}", e.what())};
+  }
+}
+
 Request parse_request(const std::string& body, RequestFields fields = RequestFields::Overrides) {
   const bool takes_energy = fields == RequestFields::Fairest;
   const bool takes_draft = fields == RequestFields::Build;
   Request request;
   if (body.empty()) return request;
-  Json j;
-  try {
-    j = Json::parse(body);
-  } catch (const Json::parse_error& e) {
-    throw BadRequest{"", fmt::format("the request body is not JSON: {}", e.what())};
-  }
+  const Json j = parse_body(body);
   if (!j.is_object()) throw BadRequest{"", "the request body must be a JSON object"};
   for (const auto& [key, value] : j.items()) {
     if (key == "overrides" || (takes_energy && key == "energy") || (takes_draft && key == "draft")) continue;
@@ -115,7 +169,7 @@ Request parse_request(const std::string& body, RequestFields fields = RequestFie
       throw BadRequest{field, fmt::format("{}: the value must be a number or a text", field)};
     }
     try {
-      request.overrides.push_back(parse_override(fmt::format("{}={}", name, text)));
+      request.overrides.push_back(make_override(name, text));
     } catch (const InputError& e) {
       throw BadRequest{field, e.what()};
     }
@@ -283,9 +337,39 @@ struct Requested {
   Design design;
 };
 
+// The request field of the override that put `key` in the design: the last
+// one whose path is `key` or holds it ("outline" holds "outline.dxf").
+std::string request_field(const Request& request, const std::string& key) {
+  for (auto o = request.overrides.rbegin(); o != request.overrides.rend(); ++o) {
+    const std::string& p = o->path;
+    if (key.compare(0, p.size(), p) == 0 &&
+        (key.size() == p.size() || key[p.size()] == '.' || key[p.size()] == '['))
+      return "overrides." + p;
+  }
+  return "overrides";
+}
+
+// Overrides may name only the files the design names itself (or none): a
+// request must not make the studio read, and quote in a message, a file the
+// design does not use (/etc/passwd as outline.dxf). Checked in the tree,
+// before anything but the design's text is read.
+void require_referenced_files(const Request& request, const std::string& text, const std::string& path) {
+  if (request.overrides.empty()) return;
+  std::set<std::string> named;
+  for (const FileReference& r : file_references(text, path)) named.insert(r.file);
+  for (const FileReference& r : file_references(text, path, request.overrides)) {
+    if (named.count(r.file) != 0) continue;
+    const std::string field = request_field(request, r.key);
+    throw BadRequest{field, fmt::format("{}: {} may only name a file the design names itself (the "
+                                        "studio reads no other file); change the file in the design",
+                                        field, r.key)};
+  }
+}
+
 Requested read_requested(const Request& request, const std::string& path, const DeclaredNames& names) {
-  std::string text = read_file(path, kMaxDesignBytes, "design file");
+  std::string text = read_design_text(path);
   require_known_names(request, names.of(text, path));
+  require_referenced_files(request, text, path);
   Design design = load_design_text(text, path, request.overrides);
   return {std::move(text), std::move(design)};
 }
@@ -345,7 +429,7 @@ StudioSession::~StudioSession() = default;
 StudioResponse StudioSession::design() const {
   try {
     const std::string version = file_version(options_.design_path);
-    const std::string text = read_file(options_.design_path, kMaxDesignBytes, "design file");
+    const std::string text = read_design_text(options_.design_path);
     const Design design = load_design_text(text, options_.design_path);
     Json j = {{"path", options_.design_path}, {"name", design.common.name}, {"kind", kind_name(design)},
               {"units", design.common.units}, {"version", version},         {"text", text}};

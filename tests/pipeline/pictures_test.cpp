@@ -7,6 +7,7 @@
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <set>
 
 #include "geometry/mesh/bounding_box.h"
@@ -64,6 +65,56 @@ TEST_CASE("plot: every kind draws its curves, a surface its patch borders and co
   CHECK(select(scan_xml(surface), "path", "net").size() == 1);  // the control net in plan, dotted
   CHECK(curve_names(read_file((dir / "golden_profile.plot.svg").string())) ==
         std::multiset<std::string>{"curve"});
+}
+
+// The area a closed polyline encloses (shoelace), positive either way round.
+double enclosed_area(const std::vector<Vec2>& loop) {
+  double twice = 0.0;
+  for (std::size_t i = 0; i < loop.size(); ++i) {
+    const Vec2& a = loop[i];
+    const Vec2& b = loop[(i + 1) % loop.size()];
+    twice += a.x() * b.y() - b.x() * a.y();
+  }
+  return std::abs(0.5 * twice);
+}
+
+TEST_CASE("plot: a vessel's axis, coordinates and section as built, a shell's inner wall in it",
+          "[pipeline][pictures][plot]") {
+  const fs::path dir = fresh_dir("plot_vessel_section");
+  REQUIRE(run_cli({"plot", example("vessel_golden_shell.yaml"), "-o", dir.string()}) == 0);
+  const auto svg = scan_xml(read_file((dir / "vessel_golden_shell.plot.svg").string()));
+  CHECK(select(svg, "g", "axis").size() == 1);
+  CHECK(select(svg, "text", "tick").size() >= 4);
+  std::vector<std::string> names;
+  for (const XmlElement* t : select(svg, "text", "axis-name")) names.push_back(t->text);
+  CHECK(names == std::vector<std::string>{"r (cm)", "z (cm)"});
+  CHECK(select(svg, "path", "outline").size() == 1);
+  // The section the plot draws is the builder's: from `plot` (no mesh) and
+  // from a build (the studio's, `run`'s plot output), a shell's encloses
+  // less than the solid's of the same profile, by its cavity.
+  const Design shell = load_design(example("vessel_golden_shell.yaml"));
+  const Design solid = load_design(example("vessel_golden_solid.yaml"));
+  for (const CurvePlot& plot : {design_plot(shell), shape_plot(shell.common, build_preview(shell))}) {
+    CHECK(plot.revolution_axis);
+    REQUIRE(plot.outlines.size() == 1);
+    const double shell_area = enclosed_area(plot.outlines.front().points);
+    const double solid_area = enclosed_area(design_plot(solid).outlines.at(0).points);
+    CHECK(shell_area > 0.0);
+    CHECK(shell_area < 0.5 * solid_area);
+    // On the axis, the section runs from the bottom up to the cavity's floor: the base (0.4 cm) apart.
+    double low = std::numeric_limits<double>::infinity(), high = -low;
+    for (const Vec2& p : plot.outlines.front().points) {
+      if (p.x() != 0.0) continue;
+      low = std::min(low, p.y());
+      high = std::max(high, p.y());
+    }
+    CHECK(high - low == Approx(0.4).epsilon(1e-9));
+  }
+  // A countertop has no axis; its coordinates are x and y.
+  REQUIRE(run_cli({"plot", example("countertop_g1.yaml"), "-o", dir.string()}) == 0);
+  const auto top = scan_xml(read_file((dir / "countertop_g1.plot.svg").string()));
+  CHECK(select(top, "g", "axis").empty());
+  CHECK(select(top, "text", "tick").size() >= 4);
 }
 
 TEST_CASE("plot: one file for one design, overrides apply, a bad design writes nothing",

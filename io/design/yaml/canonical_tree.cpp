@@ -8,6 +8,8 @@
 #include <vector>
 
 #include "geometry/core/errors.h"
+#include "io/design/yaml/double_quoted.h"
+#include "io/design/yaml/file_keys.h"
 #include "io/file.h"
 
 namespace fabmesh::yaml {
@@ -15,11 +17,6 @@ namespace {
 
 constexpr std::size_t kMaxCanonicalBytes = 256u << 20;
 constexpr std::size_t kMaxReadFileBytes = 64u << 20;  // as io/design/points_csv.cpp reads
-
-// The keys whose values name a file the reader reads: {map key, key inside it}.
-// A design key that reads a file must be listed here, or its content would not enter the key.
-constexpr std::pair<const char*, const char*> kFileKeys[] = {
-    {"polyline", "file"}, {"outline", "dxf"}, {"holes", "dxf"}};
 
 class Writer {
  public:
@@ -64,21 +61,7 @@ class Writer {
     quoted(n.Scalar());
   }
 
-  void quoted(const std::string& text) {
-    out_ += '"';
-    for (const char c : text) {
-      const auto u = static_cast<unsigned char>(c);
-      if (c == '"' || c == '\\') {
-        out_ += '\\';
-        out_ += c;
-      } else if (u < 0x20 || u == 0x7f) {
-        out_ += fmt::format("\\x{:02x}", u);
-      } else {
-        out_ += c;
-      }
-    }
-    out_ += '"';
-  }
+  void quoted(const std::string& text) { out_ += double_quoted(text); }
 
   void map(const YAML::Node& n, const char* parent_key) {
     // Sorted through indices: assigning a YAML::Node (as sorting nodes would)
@@ -122,10 +105,8 @@ class Writer {
   static bool is_file_reference(const char* parent_key, const std::string& canonical_key,
                                 const YAML::Node& value) {
     if (parent_key == nullptr || !value.IsScalar()) return false;
-    const std::string key = key_text(canonical_key);
-    return std::any_of(std::begin(kFileKeys), std::end(kFileKeys), [&](const auto& fk) {
-      return key == fk.second && std::string(parent_key) == fk.first;
-    });
+    // A file key (file_keys.h) must be here, or its file's content would not enter the key.
+    return is_file_key(parent_key, key_text(canonical_key));
   }
 
   // The bytes of the file, not its name: a moved or renamed file keeps its key.

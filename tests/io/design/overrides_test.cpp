@@ -101,3 +101,25 @@ TEST_CASE("design files: duplicate keys and a second YAML document are bad input
   CHECK_THAT(error_of(kCup + "---\nname: other\n", {}), Catch::Contains("a second one starts here"));
   CHECK_THAT(error_of("? [x]\n: 1\n" + kCup, {}), Catch::Contains("a key must be a plain name"));
 }
+
+TEST_CASE("overrides: a control character in a value is refused, shown escaped in a whole message",
+          "[io][design][overrides][errors]") {
+  // A NUL would end the message (an exception's text is a C string) and make
+  // yaml-cpp read the rest as UTF-16.
+  const std::string nul("body.wall=0\0.2 and more", 23);
+  CHECK(
+      error_of(kCup, {nul}) ==
+      "-D body.wall=0\\x00.2 and more: the value holds a control character (\\x00, byte 2), which YAML does "
+      "not allow");
+  CHECK_THAT(error_of(kCup, {"body.wall=0.2\x1b"}),
+             Catch::StartsWith("-D body.wall=0.2\\x1b: the value holds"));
+  // Tabs and line ends are YAML's own.
+  CHECK(std::get<VesselDesign>(with(kCup, {"body.wall=\t0.25\r\n"}).body).wall == 0.25);
+  // A path and a value held apart, as the studio's requests hold them: the value may hold '=', the path not.
+  const Override o = make_override("body.wall", "=0.1 + 0.1");
+  CHECK(o.path == "body.wall");
+  CHECK(o.value == "=0.1 + 0.1");
+  CHECK(o.text == "body.wall==0.1 + 0.1");
+  CHECK_THROWS_AS(make_override("a=b", "1"), InputError);
+  CHECK_THROWS_AS(make_override("", "1"), InputError);
+}

@@ -215,6 +215,70 @@ TEST_CASE("curve plot: the model panel is true to scale with y up", "[io][pictur
   CHECK_THAT(only(named(select(svg, "path", "curve"), "slot")).attr("d"), Catch::Contains(" A1,1 "));
 }
 
+TEST_CASE("curve plot: the grid's coordinates on both axes, named with the units, a vessel's axis in view",
+          "[io][pictures][plot]") {
+  // A vessel's profile (r, z) in mm with a control point at negative radius,
+  // and its section (a shell's wall) as an outline.
+  CurvePlot plot;
+  plot.units = "mm";
+  plot.axis_names = {"r", "z"};
+  plot.revolution_axis = true;
+  plot.curves.push_back(plot_curve(build_curve(g2_pair()), "profile"));
+  plot.curves.front().control_polygons.push_back({{5, 1}, {-1.5, 1.5}, {5, 2}});
+  plot.outlines.push_back({"section", {{3, 0}, {7, 3}, {6.5, 3}, {2.6, 0.3}}});
+  const auto svg = scan_xml(plot_curves_svg(plot));
+  const std::vector<double> box = numbers(only(select(svg, "svg", "model-panel")).attr("viewBox"));
+  REQUIRE(box.size() == 4);
+  // The axis, r = 0, over the whole panel, and the control point left of it in view.
+  const auto axis = select(svg, "g", "axis");
+  REQUIRE(axis.size() == 1);
+  const XmlElement* axis_line = nullptr;
+  for (const XmlElement& e : svg) {
+    if (e.name == "line" && e.parent >= 0 && svg[e.parent].has_class("axis")) axis_line = &e;
+  }
+  REQUIRE(axis_line != nullptr);
+  CHECK(number(*axis_line, "x1") == 0.0);
+  CHECK(number(*axis_line, "x2") == 0.0);
+  CHECK(number(*axis_line, "y1") == Approx(box[1]));
+  CHECK(number(*axis_line, "y2") == Approx(box[1] + box[3]));
+  CHECK(box[0] < -1.5);
+  // Tick labels on both axes: each at its grid line, written as its value, a multiple of the grid's step.
+  const double step = number(only(select(svg, "g", "scale-bar")), "data-length");
+  int x_ticks = 0, y_ticks = 0;
+  for (const XmlElement* t : select(svg, "text", "tick")) {
+    const double v = number(*t, "data-value");
+    INFO(t->attr("data-axis") << " " << t->text);
+    CHECK(std::stod(t->text) == Approx(v).margin(1e-9 * step));
+    CHECK(std::abs(v / step - std::round(v / step)) < 1e-9);
+    if (t->attr("data-axis") == "x") {
+      ++x_ticks;
+      CHECK(number(*t, "x") == Approx(v).margin(1e-6));
+      CHECK(v >= box[0]);
+      CHECK(v <= box[0] + box[2]);
+    } else {
+      ++y_ticks;
+      CHECK(-v >= box[1]);
+      CHECK(-v <= box[1] + box[3]);
+    }
+  }
+  CHECK(x_ticks >= 2);
+  CHECK(y_ticks >= 2);
+  std::vector<std::string> names;
+  for (const XmlElement* t : select(svg, "text", "axis-name")) names.push_back(t->text);
+  CHECK(names == std::vector<std::string>{"r (mm)", "z (mm)"});
+  // The outline, closed, through its points.
+  const std::vector<Vec2> outline = path_points(only(select(svg, "path", "outline")).attr("d"));
+  REQUIRE(outline.size() == 4);
+  CHECK(outline[1].x() == Approx(7.0));
+  CHECK(outline[1].y() == Approx(-3.0));
+  // Without a vessel: x and y, no axis.
+  const auto plain = scan_xml(plot_curves_svg(three_curves()));
+  CHECK(select(plain, "g", "axis").empty());
+  names.clear();
+  for (const XmlElement* t : select(plain, "text", "axis-name")) names.push_back(t->text);
+  CHECK(names == std::vector<std::string>{"x (cm)", "y (cm)"});
+}
+
 TEST_CASE("curve plot: the plotted curvature is continuous at a G2 joint and jumps at a G1 joint",
           "[io][pictures][plot]") {
   const CurvePlot plot = three_curves();
