@@ -127,6 +127,16 @@ def check(vertices: ArrayLike, triangles: ArrayLike, *, weld_tolerance: float = 
 def check_file(path: StrPath, *, weld_tolerance: float = 0.0, max_seconds: float = 600.0) -> dict[str, Any]:
     """Validates a mesh file as `fabmesh check FILE --json`."""
 
+def repair(vertices: ArrayLike, triangles: ArrayLike, *, max_deviation: float = 0.0, wrap: bool = False,
+           weld_distance: Optional[float] = None, fill_holes: bool = True,
+           max_seconds: float = 600.0) -> dict[str, Any]:
+    """Repairs a mesh given as arrays (docs/repair.md): the report, with the result's "vertices" and "triangles"."""
+
+def repair_file(path: StrPath, output: StrPath, *, max_deviation: float = 0.0, wrap: bool = False,
+                weld_distance: Optional[float] = None, fill_holes: bool = True,
+                max_seconds: float = 600.0) -> dict[str, Any]:
+    """Repairs a mesh file into `output` as `fabmesh repair PATH -o OUTPUT --json`."""
+
 def read_mesh(path: StrPath) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.int64], Optional[str]]:
     """Reads a mesh file: (vertices, triangles, units or None)."""
 

@@ -18,6 +18,8 @@
 
 namespace py = pybind11;
 
+void register_repair(py::module_& m);  // repair_bindings.cpp
+
 namespace {
 
 PyObject* new_exception(py::module_& m, const char* name, const char* doc, PyObject* bases) {
@@ -403,6 +405,7 @@ PYBIND11_MODULE(fabmesh, m) {
       "fabrication files, and validity checks of any mesh (docs/python.md).";
   m.attr("__version__") = fabmesh::version();
   register_errors(m);
+  register_repair(m);
 
   py::class_<fabmesh::Parameter>(m, "Parameter",
                                  "One of a design's named parameters (`parameters:`), with the value used")

@@ -49,10 +49,14 @@ struct Work {
   TrackedSoup mesh;
   RepairLog log;
   std::vector<bool> unmeasured;  ///< per face read: not measured from the input side
+  std::vector<bool> united;      ///< per face read: part of a shell united or autorefined
   std::vector<std::uint32_t> input_component;  ///< per face read: its component in the input
   std::set<std::uint32_t> dropped_components;  ///< input components dropped with a reason already
   std::vector<std::string> unresolved;
   std::vector<DroppedComponent> dropped;
+  /// Holes no patch closed: a vertex of each border and what to say, unless
+  /// its component is then dropped as a sheet.
+  std::vector<std::pair<std::uint32_t, std::string>> open_holes;
 };
 
 void mark_unmeasured(Work& w, const std::vector<std::uint32_t>& origins) {
@@ -76,8 +80,9 @@ void fill(Work& w, RepairResult& r) {
   w.mesh.vertex_origin.resize(w.mesh.soup.vertices.size(), kNoIndex);
   for (const FilledHole& hole : filled.holes) {
     if (!hole.filled) {
-      w.unresolved.push_back(fmt::format("a hole of {} border edges at {} (vertex {}): every patch tried crosses the surface",
-                                         hole.border_edges, at(hole.centre), w.mesh.vertex_origin[hole.border_vertex]));
+      w.open_holes.emplace_back(
+          hole.border_vertex, fmt::format("a hole of {} border edges at {} (vertex {}): every patch tried crosses the surface",
+                                          hole.border_edges, at(hole.centre), w.mesh.vertex_origin[hole.border_vertex]));
       continue;
     }
     w.log.add(RepairStep::HoleFill,
@@ -127,6 +132,15 @@ void drop_flat(Work& w) {
                         std::abs(volume6[c] / 6.0), area[c]);
     w.log.add(RepairStep::DropComponent, RepairPlace{d.first_face, kNoIndex, 0.5 * (d.lo + d.hi), d.why});
     w.dropped.push_back(d);
+  }
+  // A hole left open in a component dropped is gone with it.
+  std::vector<bool> kept_vertex(w.mesh.soup.vertices.size(), false);
+  for (std::size_t f = 0; f < remove.size(); ++f) {
+    if (remove[f]) continue;
+    for (const std::uint32_t v : w.mesh.soup.triangles[f]) kept_vertex[v] = true;
+  }
+  for (const auto& [vertex, line] : w.open_holes) {
+    if (kept_vertex[vertex]) w.unresolved.push_back(line);
   }
   remove_faces(w.mesh, remove);
   compact_vertices(w.mesh);
@@ -211,14 +225,14 @@ RepairMeasure measure(const TriangleSoup& input, const TriangleSoup& output, con
 }
 
 /// Input components with no face left that no step has named: say so.
-void account_components(Work& w, bool wrapped) {
+void account_components(Work& w, const TriangleSoup& input, bool wrapped) {
   if (wrapped) return;
   std::set<std::uint32_t> alive;
   for (const std::uint32_t origin : w.mesh.face_origin) {
     if (origin != kNoIndex) alive.insert(w.input_component[origin]);
   }
-  for (std::uint32_t f = 0; f < w.unmeasured.size(); ++f) {
-    if (w.unmeasured[f]) alive.insert(w.input_component[f]);  // united, autorefined or cancelled walls
+  for (std::uint32_t f = 0; f < w.united.size(); ++f) {
+    if (w.united[f]) alive.insert(w.input_component[f]);
   }
   std::map<std::uint32_t, std::vector<std::uint32_t>> lost;
   for (std::uint32_t f = 0; f < w.input_component.size(); ++f) {
@@ -229,7 +243,18 @@ void account_components(Work& w, bool wrapped) {
     DroppedComponent d;
     d.faces = faces.size();
     d.first_face = faces.front();
-    d.why = "every face of it was degenerate (no area)";
+    d.lo = Vec3::Constant(INFINITY);
+    d.hi = Vec3::Constant(-INFINITY);
+    for (const std::uint32_t f : faces) {
+      const auto& t = input.triangles[f];
+      const auto& p = input.vertices;
+      d.area += 0.5 * (p[t[1]] - p[t[0]]).cross(p[t[2]] - p[t[0]]).norm();
+      for (const std::uint32_t v : t) {
+        d.lo = d.lo.cwiseMin(p[v]);
+        d.hi = d.hi.cwiseMax(p[v]);
+      }
+    }
+    d.why = "every face of it was removed: degenerate (no area), or copies facing opposite ways that cancel";
     w.dropped.push_back(d);
   }
 }
@@ -239,7 +264,7 @@ void account_components(Work& w, bool wrapped) {
 RepairResult repair(const TriangleSoup& input, const RepairOptions& options) {
   check_input(input, options);
   RepairResult result;
-  Work w{track(input), RepairLog(options.max_places), {}, {}, {}, {}, {}};
+  Work w{track(input), RepairLog(options.max_places), {}, {}, {}, {}, {}, {}};
   result.exact_welded = weld_exact(w.mesh);
   const TriangleSoup welded_input = w.mesh.soup;
   result.before = validate(welded_input, options.validation);
@@ -252,6 +277,7 @@ RepairResult repair(const TriangleSoup& input, const RepairOptions& options) {
   }
   result.changed = true;
   w.unmeasured.assign(input.triangles.size(), false);
+  w.united.assign(input.triangles.size(), false);
   w.input_component = face_components(welded_input).of_face;
   if (options.wrap) {
     wrap(w, options);
@@ -261,11 +287,12 @@ RepairResult repair(const TriangleSoup& input, const RepairOptions& options) {
       const OverlapOutcome overlaps = resolve_intersections(w.mesh, w.log);
       w.unresolved.insert(w.unresolved.end(), overlaps.unresolved.begin(), overlaps.unresolved.end());
       mark_unmeasured(w, overlaps.united_faces);
+      for (const std::uint32_t f : overlaps.united_faces) w.united[f] = true;
     }
     if (w.unresolved.empty()) orient_outward(w, options);
   }
   compact_vertices(w.mesh);
-  account_components(w, options.wrap);
+  account_components(w, welded_input, options.wrap);
   result.soup = w.mesh.soup;
   result.after = validate(result.soup, options.validation);
   result.actions = w.log.actions();

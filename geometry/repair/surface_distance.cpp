@@ -97,10 +97,10 @@ class TriangleTree {
         continue;
       }
       const Node& l = nodes_[n.first];
-      const Node& r = nodes_[n.first + 1];
+      const Node& r = nodes_[n.second];
       const bool left_first = box_distance2(p, l.lo, l.hi) <= box_distance2(p, r.lo, r.hi);
-      stack.push_back(left_first ? n.first + 1 : n.first);
-      stack.push_back(left_first ? n.first : n.first + 1);
+      stack.push_back(left_first ? n.second : n.first);
+      stack.push_back(left_first ? n.first : n.second);
     }
     return {best, std::sqrt(best2)};
   }
@@ -112,8 +112,9 @@ class TriangleTree {
  private:
   struct Node {
     Vec3 lo, hi;
-    std::uint32_t first = 0;  ///< leaf: first index into order_; inner: left child (right = first + 1)
-    std::uint32_t count = 0;  ///< leaf: triangles; 0 for an inner node
+    std::uint32_t first = 0;   ///< leaf: first index into order_; inner: the left child
+    std::uint32_t second = 0;  ///< inner: the right child
+    std::uint32_t count = 0;   ///< leaf: triangles; 0 for an inner node
   };
 
   double distance2(const Vec3& p, std::uint32_t f) const {
@@ -155,8 +156,9 @@ class TriangleTree {
                        return ka != kb ? ka < kb : x < y;
                      });
     const std::uint32_t left = build(begin, mid);
-    build(mid, end);
+    const std::uint32_t right = build(mid, end);
     nodes_[index].first = left;
+    nodes_[index].second = right;
     return index;
   }
 

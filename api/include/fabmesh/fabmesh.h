@@ -8,4 +8,5 @@
 #include "fabmesh/design.h"
 #include "fabmesh/errors.h"
 #include "fabmesh/mesh.h"
+#include "fabmesh/repair.h"
 #include "fabmesh/version.h"
