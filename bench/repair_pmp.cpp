@@ -72,7 +72,8 @@ int main(int argc, char** argv) {
   }
   const bool closed = CGAL::is_closed(mesh);
   if (closed && !PMP::does_self_intersect(mesh)) PMP::orient_to_bound_a_volume(mesh);
-  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  const double ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   fabmesh::TriangleSoup out;
   std::vector<std::uint32_t> index(mesh.number_of_vertices() + mesh.number_of_removed_vertices());
   for (const auto v : mesh.vertices()) {

@@ -147,7 +147,8 @@ std::string settled_bytes(std::vector<NamedSolid> solids, FileRepair& r) {
 }
 
 /// Validates the file as written, object by object; true when every one is valid.
-bool valid_as_written(const std::string& bytes, FileRepair& r, const RepairOptions& options, std::string* why) {
+bool valid_as_written(const std::string& bytes, FileRepair& r, const RepairOptions& options,
+                      std::string* why) {
   for (const NamedSolid& o : read_back(bytes, r.output)) {
     const ValidationReport report = validate(o.soup, options.validation);
     if (report.valid()) continue;
@@ -186,7 +187,8 @@ void repair_objects(MeshFile& file, const RepairFileOptions& options, FileRepair
 void require_not_input(const std::string& input, const std::string& output) {
   std::error_code ec;
   if (output == input || fs::equivalent(input, output, ec))
-    throw FileError(output, 0, 0, fmt::format("{}: repair would write over its input: give -o another file", output));
+    throw FileError(output, 0, 0,
+                    fmt::format("{}: repair would write over its input: give -o another file", output));
 }
 
 void finish(const std::string& path, const RepairFileOptions& options, FileRepair& r, StageTimer& timer) {
@@ -205,9 +207,10 @@ void finish(const std::string& path, const RepairFileOptions& options, FileRepai
   }
   const double limit = options.repair.max_deviation;
   if (limit > 0.0 && r.distance > limit) {
-    r.failure = failure_of(kExitInvalid, fmt::format("the file written would be up to {:.4g} from the input "
-                                                     "(repair {:.4g}, writing {:.3g}), more than --max-deviation {:.4g}",
-                                                     r.distance, distance, r.writing_error, limit));
+    r.failure = failure_of(kExitInvalid,
+                           fmt::format("the file written would be up to {:.4g} from the input "
+                                       "(repair {:.4g}, writing {:.3g}), more than --max-deviation {:.4g}",
+                                       r.distance, distance, r.writing_error, limit));
     return;
   }
   if (options.write) {
@@ -264,6 +267,8 @@ FileRepair repair_file(const std::string& path, const RepairFileOptions& options
   return r;
 }
 
-RepairResult repair_soup(const TriangleSoup& soup, const RepairOptions& options) { return repair(soup, options); }
+RepairResult repair_soup(const TriangleSoup& soup, const RepairOptions& options) {
+  return repair(soup, options);
+}
 
 }  // namespace fabmesh

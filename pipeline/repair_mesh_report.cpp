@@ -69,11 +69,13 @@ std::string place_text(const RepairPlace& p) {
 
 std::string result_text(const RepairResult& r, const std::string& indent, int verbosity) {
   std::string text;
-  if (r.exact_welded > 0) text += fmt::format("{}welded {} coincident vertices first\n", indent, r.exact_welded);
+  if (r.exact_welded > 0)
+    text += fmt::format("{}welded {} coincident vertices first\n", indent, r.exact_welded);
   if (!r.changed) return text + indent + "valid as it is: nothing to repair\n";
   const std::size_t shown = verbosity >= 2 ? 20 : 3;
   for (const RepairAction& a : r.actions) {
-    text += fmt::format("{}- {}: {}{}\n", indent, to_string(a.step), a.count, a.detail.empty() ? "" : " (" + a.detail + ")");
+    text += fmt::format("{}- {}: {}{}\n", indent, to_string(a.step), a.count,
+                        a.detail.empty() ? "" : " (" + a.detail + ")");
     for (std::size_t i = 0; i < std::min(shown, a.places.size()); ++i)
       text += fmt::format("{}    at {}\n", indent, place_text(a.places[i]));
     if (a.count > std::min(shown, a.places.size()))
@@ -81,13 +83,15 @@ std::string result_text(const RepairResult& r, const std::string& indent, int ve
                           a.count - std::min(shown, a.places.size()), a.places.size());
   }
   for (const DroppedComponent& d : r.dropped)
-    text += fmt::format("{}- component of {} faces (first face {}, area {:.4g}) removed: {}\n", indent, d.faces,
-                        d.first_face == kNoIndex ? std::string("-") : std::to_string(d.first_face), d.area, d.why);
+    text += fmt::format("{}- component of {} faces (first face {}, area {:.4g}) removed: {}\n", indent,
+                        d.faces, d.first_face == kNoIndex ? std::string("-") : std::to_string(d.first_face),
+                        d.area, d.why);
   text += fmt::format("{}components {} -> {}, volume {:.6g} -> {:.6g}, area {:.6g} -> {:.6g}\n", indent,
                       r.components_before, r.after.components, r.before.volume, r.after.volume, r.before.area,
                       r.after.area);
-  text += fmt::format("{}distance to the input at most {:.4g} (input to output {:.4g}, output to input {:.4g})\n",
-                      indent, r.measure.distance, r.measure.input_to_output.upper, r.measure.output_to_input.upper);
+  text += fmt::format(
+      "{}distance to the input at most {:.4g} (input to output {:.4g}, output to input {:.4g})\n", indent,
+      r.measure.distance, r.measure.input_to_output.upper, r.measure.output_to_input.upper);
   for (const std::string& line : r.unresolved) text += fmt::format("{}! {}\n", indent, line);
   return text;
 }
@@ -106,7 +110,8 @@ Json repair_result_json(const RepairResult& r) {
   Json dropped = Json::array();
   for (const DroppedComponent& d : r.dropped) dropped.push_back(dropped_json(d));
   j["dropped_components"] = std::move(dropped);
-  j["components"] = {{"before", r.components_before}, {"after", r.after.components}, {"dropped", r.dropped.size()}};
+  j["components"] = {
+      {"before", r.components_before}, {"after", r.after.components}, {"dropped", r.dropped.size()}};
   j["volume"] = {{"before", r.before.volume}, {"after", r.after.volume}};
   j["area"] = {{"before", r.before.area}, {"after", r.after.area}};
   j["distance"] = measure_json(r.measure);
@@ -151,18 +156,20 @@ Json repair_json(const FileRepair& r) {
 
 std::string repair_text(const FileRepair& r, int verbosity) {
   if (!r.readable) return fmt::format("{}: UNREADABLE: {}\n", r.file, r.failure.message);
-  std::string verdict = r.exit_code() == 0 ? (r.written ? "written to " + r.output : "verified, not written")
-                                           : "NOT REPAIRED";
-  std::string text = fmt::format("{}: {} ({} file{}) -> {}\n", r.file, r.failure.exit_code == 0 ? r.failure.message : "invalid",
-                                 r.format, r.units.empty() ? "" : ", unit " + r.units, verdict);
+  std::string verdict =
+      r.exit_code() == 0 ? (r.written ? "written to " + r.output : "verified, not written") : "NOT REPAIRED";
+  std::string text = fmt::format("{}: {} ({} file{}) -> {}\n", r.file,
+                                 r.failure.exit_code == 0 ? r.failure.message : "invalid", r.format,
+                                 r.units.empty() ? "" : ", unit " + r.units, verdict);
   for (const std::string& note : r.notes) text += "  " + note + "\n";
   for (const RepairedObject& o : r.objects) {
     if (r.objects.size() > 1) text += fmt::format("  object '{}':\n", o.name);
     text += result_text(o.result, r.objects.size() > 1 ? "    " : "  ", verbosity);
   }
   if (r.exit_code() == 0)
-    text += fmt::format("  {} solid{} as {}, valid as written; distance to the input at most {:.4g} (writing adds {:.3g})\n",
-                        r.solids, r.solids == 1 ? "" : "s", r.output_format, r.distance, r.writing_error);
+    text += fmt::format(
+        "  {} solid{} as {}, valid as written; distance to the input at most {:.4g} (writing adds {:.3g})\n",
+        r.solids, r.solids == 1 ? "" : "s", r.output_format, r.distance, r.writing_error);
   else if (r.readable && r.failure.message.rfind("could not be made valid", 0) != 0)
     text += "  " + r.failure.message + "\n";
   return text;

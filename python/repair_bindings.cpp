@@ -25,7 +25,8 @@ namespace {
 template <class T>
 py::array_t<T, py::array::c_style> three_columns(const py::handle& value, const char* argument) {
   const py::array array = py::array::ensure(value);
-  if (!array || array.ndim() != 2 || array.shape(1) != 3) bad_array(argument, "must be an array of shape (N, 3)");
+  if (!array || array.ndim() != 2 || array.shape(1) != 3)
+    bad_array(argument, "must be an array of shape (N, 3)");
   return py::array_t<T, py::array::c_style | py::array::forcecast>::ensure(array);
 }
 
@@ -49,7 +50,8 @@ py::dict repair(const py::handle& vertices, const py::handle& triangles, double 
   view.vertex_count = static_cast<std::size_t>(v.shape(0));
   view.triangles = t.data();
   view.triangle_count = static_cast<std::size_t>(t.shape(0));
-  const fabmesh::RepairOptions options = repair_options(max_deviation, wrap, weld_distance, fill_holes, max_seconds);
+  const fabmesh::RepairOptions options =
+      repair_options(max_deviation, wrap, weld_distance, fill_holes, max_seconds);
   fabmesh::RepairReport report;
   {
     py::gil_scoped_release free;
@@ -60,7 +62,8 @@ py::dict repair(const py::handle& vertices, const py::handle& triangles, double 
   if (!report.mesh.vertices.empty())
     std::memcpy(out_vertices.mutable_data(), report.mesh.vertices.data(),
                 report.mesh.vertices.size() * sizeof(fabmesh::Point));
-  py::array_t<std::int64_t> out_triangles({static_cast<py::ssize_t>(report.mesh.triangles.size()), py::ssize_t{3}});
+  py::array_t<std::int64_t> out_triangles(
+      {static_cast<py::ssize_t>(report.mesh.triangles.size()), py::ssize_t{3}});
   for (std::size_t f = 0; f < report.mesh.triangles.size(); ++f) {
     for (std::size_t k = 0; k < 3; ++k) out_triangles.mutable_data()[3 * f + k] = report.mesh.triangles[f][k];
   }
@@ -69,9 +72,11 @@ py::dict repair(const py::handle& vertices, const py::handle& triangles, double 
   return result;
 }
 
-py::dict repair_file(const std::filesystem::path& path, const std::filesystem::path& output, double max_deviation,
-                     bool wrap, std::optional<double> weld_distance, bool fill_holes, double max_seconds) {
-  const fabmesh::RepairOptions options = repair_options(max_deviation, wrap, weld_distance, fill_holes, max_seconds);
+py::dict repair_file(const std::filesystem::path& path, const std::filesystem::path& output,
+                     double max_deviation, bool wrap, std::optional<double> weld_distance, bool fill_holes,
+                     double max_seconds) {
+  const fabmesh::RepairOptions options =
+      repair_options(max_deviation, wrap, weld_distance, fill_holes, max_seconds);
   std::string json;
   {
     py::gil_scoped_release free;
@@ -84,9 +89,9 @@ py::dict repair_file(const std::filesystem::path& path, const std::filesystem::p
 
 /// Adds fabmesh.repair and fabmesh.repair_file to `m`.
 void register_repair(py::module_& m) {
-  m.def("repair", &repair, py::arg("vertices"), py::arg("triangles"), py::kw_only(), py::arg("max_deviation") = 0.0,
-        py::arg("wrap") = false, py::arg("weld_distance") = py::none(), py::arg("fill_holes") = true,
-        py::arg("max_seconds") = 600.0,
+  m.def("repair", &repair, py::arg("vertices"), py::arg("triangles"), py::kw_only(),
+        py::arg("max_deviation") = 0.0, py::arg("wrap") = false, py::arg("weld_distance") = py::none(),
+        py::arg("fill_holes") = true, py::arg("max_seconds") = 600.0,
         R"(Repairs a mesh given as arrays, as `fabmesh repair` does (docs/repair.md).
 
 vertices: (N, 3) numbers; triangles: (M, 3) integer indices. Returns a dict:

@@ -7,9 +7,9 @@
 #include "api/src/soup.h"
 #include "api/src/validation_report.h"
 #include "geometry/repair/repair.h"
-#include "pipeline/report.h"
 #include "pipeline/repair_mesh.h"
 #include "pipeline/repair_mesh_report.h"
+#include "pipeline/report.h"
 
 namespace fabmesh::api {
 namespace {
@@ -37,7 +37,8 @@ std::optional<std::size_t> index(std::uint32_t i) {
 
 RepairStep public_step(const fabmesh::RepairAction& a) {
   RepairStep step{fabmesh::to_key(a.step), a.count, a.detail, {}};
-  for (const fabmesh::RepairPlace& p : a.places) step.places.push_back({index(p.face), index(p.vertex), point(p.point), p.detail});
+  for (const fabmesh::RepairPlace& p : a.places)
+    step.places.push_back({index(p.face), index(p.vertex), point(p.point), p.detail});
   return step;
 }
 

@@ -14,8 +14,10 @@ namespace fabmesh {
 TriangleSoup alpha_wrap(const TriangleSoup& input, const WrapOptions& options) {
   using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
   using Point = Kernel::Point_3;
-  if (!(options.alpha > 0.0) || !std::isfinite(options.alpha)) throw RangeError("wrap alpha", options.alpha, "the wrap's alpha must be a positive number");
-  if (!(options.offset > 0.0) || !std::isfinite(options.offset)) throw RangeError("wrap offset", options.offset, "the wrap's offset must be a positive number");
+  if (!(options.alpha > 0.0) || !std::isfinite(options.alpha))
+    throw RangeError("wrap alpha", options.alpha, "the wrap's alpha must be a positive number");
+  if (!(options.offset > 0.0) || !std::isfinite(options.offset))
+    throw RangeError("wrap offset", options.offset, "the wrap's offset must be a positive number");
   std::vector<Point> points;
   points.reserve(input.vertices.size());
   for (const Vec3& v : input.vertices) points.emplace_back(v.x(), v.y(), v.z());
@@ -34,7 +36,8 @@ TriangleSoup alpha_wrap(const TriangleSoup& input, const WrapOptions& options) {
   for (const auto f : wrap.faces()) {
     std::array<std::uint32_t, 3> t{};
     int k = 0;
-    for (const auto v : CGAL::vertices_around_face(wrap.halfedge(f), wrap)) t[k++] = static_cast<std::uint32_t>(v.idx());
+    for (const auto v : CGAL::vertices_around_face(wrap.halfedge(f), wrap))
+      t[k++] = static_cast<std::uint32_t>(v.idx());
     soup.triangles.push_back(t);
   }
   return soup;

@@ -7,7 +7,9 @@
 namespace fabmesh {
 namespace {
 
-bool repeated_corner(const std::array<std::uint32_t, 3>& t) { return t[0] == t[1] || t[1] == t[2] || t[0] == t[2]; }
+bool repeated_corner(const std::array<std::uint32_t, 3>& t) {
+  return t[0] == t[1] || t[1] == t[2] || t[0] == t[2];
+}
 
 std::pair<std::uint32_t, std::uint32_t> key(const FaceSide& s) {
   return {std::min(s.from, s.to), std::max(s.from, s.to)};

@@ -40,7 +40,8 @@ std::vector<std::uint32_t> remove_duplicate_faces(TrackedSoup& mesh, RepairLog& 
     const std::size_t k = static_cast<std::size_t>(std::min_element(t.begin(), t.end()) - t.begin());
     return t[(k + 1) % 3] < t[(k + 2) % 3];
   };
-  std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return sorted(a) < sorted(b); });
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::uint32_t a, std::uint32_t b) { return sorted(a) < sorted(b); });
   std::vector<bool> remove(tris.size(), false);
   for (std::size_t i = 0; i < order.size();) {
     std::size_t j = i;
@@ -53,7 +54,9 @@ std::vector<std::uint32_t> remove_duplicate_faces(TrackedSoup& mesh, RepairLog& 
       // Copies facing one way: one kept. Both ways: they cancel in pairs (a
       // face counts +1 one way, -1 the other); one of the majority is kept.
       const bool cancel = !up.empty() && !down.empty();
-      const std::vector<std::uint32_t>* keep = up.size() > down.size() ? &up : down.size() > up.size() ? &down : nullptr;
+      const std::vector<std::uint32_t>* keep = up.size() > down.size()   ? &up
+                                               : down.size() > up.size() ? &down
+                                                                         : nullptr;
       for (const auto* group : {&up, &down}) {
         for (std::size_t k = 0; k < group->size(); ++k) remove[(*group)[k]] = !(group == keep && k == 0);
       }

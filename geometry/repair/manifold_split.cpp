@@ -51,7 +51,8 @@ std::vector<Radial> radial_order(const TriangleSoup& soup, const EdgeTable& edge
 void pair_radially(const std::vector<Radial>& order, Partners& partner) {
   const std::size_t n = order.size();
   bool alternating = n % 2 == 0;
-  for (std::size_t i = 0; i < n && alternating; ++i) alternating = order[i].forward != order[(i + 1) % n].forward;
+  for (std::size_t i = 0; i < n && alternating; ++i)
+    alternating = order[i].forward != order[(i + 1) % n].forward;
   // A face running lo -> hi has its solid clockwise about the axis lo -> hi
   // (toward smaller angles); one running hi -> lo counterclockwise. So a
   // backward face pairs with the next face counterclockwise.

@@ -77,7 +77,8 @@ bool orient_consistently(TrackedSoup& mesh, RepairLog& log, RepairPlace* where) 
         }
       }
     }
-    const auto flipped = static_cast<std::size_t>(std::count_if(part.begin(), part.end(), [&](std::uint32_t f) { return flip[f] == 1; }));
+    const auto flipped = static_cast<std::size_t>(
+        std::count_if(part.begin(), part.end(), [&](std::uint32_t f) { return flip[f] == 1; }));
     if (2 * flipped > part.size()) {
       for (const std::uint32_t f : part) flip[f] ^= 1;
     }

@@ -18,7 +18,8 @@ namespace {
 using FacePairs = std::vector<std::pair<std::uint32_t, std::uint32_t>>;
 
 /// The faces of components in `chosen` as a soup of their own.
-TriangleSoup extract(const TrackedSoup& mesh, const FaceComponents& comps, const std::set<std::uint32_t>& chosen) {
+TriangleSoup extract(const TrackedSoup& mesh, const FaceComponents& comps,
+                     const std::set<std::uint32_t>& chosen) {
   TriangleSoup part;
   std::map<std::uint32_t, std::uint32_t> index;
   for (std::size_t f = 0; f < mesh.soup.triangles.size(); ++f) {
@@ -78,9 +79,9 @@ bool resolve_own(TrackedSoup& mesh, const FacePairs& pairs, RepairLog& log, Over
   const auto result = resolve_self_intersections(extract(mesh, comps, {component}), &why);
   const RepairPlace place = pair_place(mesh, witness, fmt::format("{} intersecting face pairs", count));
   if (!result) {
-    outcome.unresolved.push_back(fmt::format("a shell intersects itself ({}) at ({:.6g}, {:.6g}, {:.6g}), face {}: {}",
-                                             place.detail, place.point.x(), place.point.y(), place.point.z(),
-                                             place.face, why));
+    outcome.unresolved.push_back(
+        fmt::format("a shell intersects itself ({}) at ({:.6g}, {:.6g}, {:.6g}), face {}: {}", place.detail,
+                    place.point.x(), place.point.y(), place.point.z(), place.face, why));
     return false;
   }
   log.add(RepairStep::SelfIntersection, place);
@@ -118,8 +119,9 @@ void unite_clusters(TrackedSoup& mesh, const FacePairs& pairs, RepairLog& log, O
     const std::uint32_t at = witness.at(*members.begin());
     if (!united) {
       const RepairPlace p = face_place(mesh, at);
-      outcome.unresolved.push_back(fmt::format("{} overlapping shells at ({:.6g}, {:.6g}, {:.6g}), face {}: {}",
-                                               members.size(), p.point.x(), p.point.y(), p.point.z(), p.face, why));
+      outcome.unresolved.push_back(
+          fmt::format("{} overlapping shells at ({:.6g}, {:.6g}, {:.6g}), face {}: {}", members.size(),
+                      p.point.x(), p.point.y(), p.point.z(), p.face, why));
       continue;
     }
     log.add(RepairStep::Union, pair_place(mesh, at,
@@ -127,7 +129,8 @@ void unite_clusters(TrackedSoup& mesh, const FacePairs& pairs, RepairLog& log, O
                                                       united->triangles.size())));
     const auto base = static_cast<std::uint32_t>(united_all.vertices.size());
     united_all.vertices.insert(united_all.vertices.end(), united->vertices.begin(), united->vertices.end());
-    for (const auto& t : united->triangles) united_all.triangles.push_back({base + t[0], base + t[1], base + t[2]});
+    for (const auto& t : united->triangles)
+      united_all.triangles.push_back({base + t[0], base + t[1], base + t[2]});
     all.insert(members.begin(), members.end());
   }
   if (!all.empty()) replace(mesh, comps, all, united_all, &outcome.united_faces);

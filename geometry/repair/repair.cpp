@@ -48,8 +48,8 @@ double diagonal(const TriangleSoup& soup) { return bounding_box(soup.vertices).s
 struct Work {
   TrackedSoup mesh;
   RepairLog log;
-  std::vector<bool> unmeasured;  ///< per face read: not measured from the input side
-  std::vector<bool> united;      ///< per face read: part of a shell united or autorefined
+  std::vector<bool> unmeasured;                ///< per face read: not measured from the input side
+  std::vector<bool> united;                    ///< per face read: part of a shell united or autorefined
   std::vector<std::uint32_t> input_component;  ///< per face read: its component in the input
   std::set<std::uint32_t> dropped_components;  ///< input components dropped with a reason already
   std::vector<std::string> unresolved;
@@ -81,15 +81,18 @@ void fill(Work& w, RepairResult& r) {
   for (const FilledHole& hole : filled.holes) {
     if (!hole.filled) {
       w.open_holes.emplace_back(
-          hole.border_vertex, fmt::format("a hole of {} border edges at {} (vertex {}): every patch tried crosses the surface",
-                                          hole.border_edges, at(hole.centre), w.mesh.vertex_origin[hole.border_vertex]));
+          hole.border_vertex,
+          fmt::format("a hole of {} border edges at {} (vertex {}): every patch tried crosses the surface",
+                      hole.border_edges, at(hole.centre), w.mesh.vertex_origin[hole.border_vertex]));
       continue;
     }
     w.log.add(RepairStep::HoleFill,
               RepairPlace{kNoIndex, w.mesh.vertex_origin[hole.border_vertex], hole.centre,
                           fmt::format("{} border edges, {} faces and {} vertices added{}", hole.border_edges,
                                       hole.faces_added, hole.vertices_added,
-                                      hole.faired ? ", faired" : hole.vertices_added > 0 ? ", refined" : ", flat")});
+                                      hole.faired               ? ", faired"
+                                      : hole.vertices_added > 0 ? ", refined"
+                                                                : ", flat")});
   }
   (void)r;
 }
@@ -106,7 +109,8 @@ void drop_flat(Work& w) {
     area[c] += 0.5 * (p[t[1]] - p[t[0]]).cross(p[t[2]] - p[t[0]]).norm();
   }
   std::vector<bool> drop(comps.count, false);
-  for (std::size_t c = 0; c < comps.count; ++c) drop[c] = std::abs(volume6[c] / 6.0) <= 1e-9 * std::pow(area[c], 1.5);
+  for (std::size_t c = 0; c < comps.count; ++c)
+    drop[c] = std::abs(volume6[c] / 6.0) <= 1e-9 * std::pow(area[c], 1.5);
   std::vector<bool> remove(w.mesh.soup.triangles.size(), false);
   for (std::size_t c = 0; c < comps.count; ++c) {
     if (!drop[c]) continue;
@@ -128,8 +132,9 @@ void drop_flat(Work& w) {
       w.unmeasured[origin] = true;
       w.dropped_components.insert(w.input_component[origin]);
     }
-    d.why = fmt::format("encloses no volume (|volume| {:.3g} for area {:.3g}): a flat sheet or a fold, not a solid",
-                        std::abs(volume6[c] / 6.0), area[c]);
+    d.why = fmt::format(
+        "encloses no volume (|volume| {:.3g} for area {:.3g}): a flat sheet or a fold, not a solid",
+        std::abs(volume6[c] / 6.0), area[c]);
     w.log.add(RepairStep::DropComponent, RepairPlace{d.first_face, kNoIndex, 0.5 * (d.lo + d.hi), d.why});
     w.dropped.push_back(d);
   }
@@ -167,8 +172,9 @@ void local_repairs(Work& w, const RepairOptions& o, RepairResult& r) {
   split_non_manifold(w.mesh, separation, w.log);
   RepairPlace where;
   if (!orient_consistently(w.mesh, w.log, &where)) {
-    w.unresolved.push_back(fmt::format("a surface that cannot be oriented (one-sided, like a Moebius strip) at {}, face {}",
-                                       at(where.point), where.face));
+    w.unresolved.push_back(
+        fmt::format("a surface that cannot be oriented (one-sided, like a Moebius strip) at {}, face {}",
+                    at(where.point), where.face));
     return;
   }
   if (o.fill_holes && has_border(w.mesh.soup)) fill(w, r);
@@ -179,7 +185,8 @@ void local_repairs(Work& w, const RepairOptions& o, RepairResult& r) {
 void orient_outward(Work& w, const RepairOptions& o) {
   const ValidationReport report = validate(w.mesh.soup, o.validation);
   const auto& shells = report.component_shells;
-  if (shells.empty() || std::any_of(shells.begin(), shells.end(), [](const ComponentShell& s) { return !s.depth; }))
+  if (shells.empty() ||
+      std::any_of(shells.begin(), shells.end(), [](const ComponentShell& s) { return !s.depth; }))
     return;
   const FaceComponents comps = face_components(w.mesh.soup);
   if (comps.count != shells.size()) return;
@@ -203,15 +210,16 @@ void wrap(Work& w, const RepairOptions& o) {
   w.mesh.soup = alpha_wrap(w.mesh.soup, options);
   w.mesh.face_origin.assign(w.mesh.soup.triangles.size(), kNoIndex);
   w.mesh.vertex_origin.assign(w.mesh.soup.vertices.size(), kNoIndex);
-  w.log.add(RepairStep::Wrap, RepairPlace{kNoIndex, kNoIndex, Vec3::Zero(),
-                                          fmt::format("alpha {:.3g}, offset {:.3g}", options.alpha, options.offset)});
-  w.log.describe(RepairStep::Wrap, fmt::format("alpha {:.3g}, offset {:.3g} (from a deviation of {:.3g}{})",
-                                               options.alpha, options.offset, deviation,
-                                               o.max_deviation > 0.0 ? "" : ": 1% of the size"));
+  w.log.add(RepairStep::Wrap,
+            RepairPlace{kNoIndex, kNoIndex, Vec3::Zero(),
+                        fmt::format("alpha {:.3g}, offset {:.3g}", options.alpha, options.offset)});
+  w.log.describe(RepairStep::Wrap,
+                 fmt::format("alpha {:.3g}, offset {:.3g} (from a deviation of {:.3g}{})", options.alpha,
+                             options.offset, deviation, o.max_deviation > 0.0 ? "" : ": 1% of the size"));
 }
 
-RepairMeasure measure(const TriangleSoup& input, const TriangleSoup& output, const std::vector<bool>& unmeasured,
-                      const DistanceOptions& options) {
+RepairMeasure measure(const TriangleSoup& input, const TriangleSoup& output,
+                      const std::vector<bool>& unmeasured, const DistanceOptions& options) {
   RepairMeasure m;
   std::vector<bool> measured(unmeasured.size());
   for (std::size_t f = 0; f < unmeasured.size(); ++f) {
@@ -301,16 +309,20 @@ RepairResult repair(const TriangleSoup& input, const RepairOptions& options) {
   if (!result.soup.triangles.empty())
     result.measure = measure(welded_input, result.soup, w.unmeasured, options.distance);
   if (!result.after.valid() && result.unresolved.empty()) {
-    for (const std::string& line : describe_defects(result.after)) result.unresolved.push_back("left: " + line);
+    for (const std::string& line : describe_defects(result.after))
+      result.unresolved.push_back("left: " + line);
   }
   if (options.max_deviation > 0.0 && result.measure.distance > options.max_deviation) {
-    result.unresolved.push_back(fmt::format(
-        "the surface moved by up to {:.4g} (a proven bound; a point {:.4g} away at {}), more than the maximum "
-        "deviation {:.4g}",
-        result.measure.distance, std::max(result.measure.input_to_output.lower, result.measure.output_to_input.lower),
-        at(result.measure.input_to_output.lower >= result.measure.output_to_input.lower ? result.measure.input_to_output.at
-                                                                                        : result.measure.output_to_input.at),
-        options.max_deviation));
+    result.unresolved.push_back(
+        fmt::format("the surface moved by up to {:.4g} (a proven bound; a point {:.4g} away at {}), more "
+                    "than the maximum "
+                    "deviation {:.4g}",
+                    result.measure.distance,
+                    std::max(result.measure.input_to_output.lower, result.measure.output_to_input.lower),
+                    at(result.measure.input_to_output.lower >= result.measure.output_to_input.lower
+                           ? result.measure.input_to_output.at
+                           : result.measure.output_to_input.at),
+                    options.max_deviation));
   }
   return result;
 }

@@ -33,7 +33,7 @@ struct RepairOptions {
   /// the wrap's alpha (this) and offset (a third of it); 0 then means 1% of
   /// the bounding box diagonal.
   double max_deviation = 0.0;
-  std::size_t max_places = 20;  ///< places kept per step kind
+  std::size_t max_places = 20;   ///< places kept per step kind
   ValidationOptions validation;  ///< of the input and of the result
   DistanceOptions distance;
 };

@@ -57,9 +57,9 @@ struct RepairAction {
 
 /// A component the repair removed: which, how large, and why.
 struct DroppedComponent {
-  std::size_t faces = 0;      ///< its faces in the mesh as read
-  double area = 0.0;          ///< model units^2
-  Vec3 lo = Vec3::Zero();     ///< its bounding box, model units
+  std::size_t faces = 0;   ///< its faces in the mesh as read
+  double area = 0.0;       ///< model units^2
+  Vec3 lo = Vec3::Zero();  ///< its bounding box, model units
   Vec3 hi = Vec3::Zero();
   std::uint32_t first_face = kNoIndex;  ///< its lowest face index in the mesh as read
   std::string why;

@@ -10,8 +10,9 @@ namespace fabmesh {
 std::vector<TriangleSoup> solids_of(const TriangleSoup& soup, const ValidationReport& report) {
   const auto& shells = report.component_shells;
   const FaceComponents comps = face_components(soup);
-  const bool nested = !shells.empty() && shells.size() == comps.count &&
-                      std::all_of(shells.begin(), shells.end(), [](const ComponentShell& s) { return s.depth.has_value(); });
+  const bool nested =
+      !shells.empty() && shells.size() == comps.count &&
+      std::all_of(shells.begin(), shells.end(), [](const ComponentShell& s) { return s.depth.has_value(); });
   if (!nested) return {soup};
   // The solid of each component: itself at even depth, else the one containing it.
   std::vector<std::uint32_t> solid_of(comps.count, kNoIndex);

@@ -41,7 +41,8 @@ class VertexGrid {
 
  private:
   std::array<long long, 3> key(const Vec3& p) const {
-    return {static_cast<long long>(std::floor(p.x() / cell_)), static_cast<long long>(std::floor(p.y() / cell_)),
+    return {static_cast<long long>(std::floor(p.x() / cell_)),
+            static_cast<long long>(std::floor(p.y() / cell_)),
             static_cast<long long>(std::floor(p.z() / cell_))};
   }
   double cell_;

@@ -148,7 +148,8 @@ class TriangleTree {
     (chi - clo).maxCoeff(&axis);
     const std::size_t mid = (begin + end) / 2;
     std::nth_element(order_.begin() + static_cast<std::ptrdiff_t>(begin),
-                     order_.begin() + static_cast<std::ptrdiff_t>(mid), order_.begin() + static_cast<std::ptrdiff_t>(end),
+                     order_.begin() + static_cast<std::ptrdiff_t>(mid),
+                     order_.begin() + static_cast<std::ptrdiff_t>(end),
                      [&](std::uint32_t x, std::uint32_t y) {
                        const Corners a = corners_of(soup_, x), b = corners_of(soup_, y);
                        const double ka = a[0][axis] + a[1][axis] + a[2][axis];
@@ -191,7 +192,8 @@ FaceKey face_key(const TriangleSoup& soup, std::size_t f) {
   });
   FaceKey key{};
   for (int i = 0; i < 3; ++i)
-    for (int k = 0; k < 3; ++k) key.c[static_cast<std::size_t>(3 * i + k)] = c[static_cast<std::size_t>(i)][k] + 0.0;
+    for (int k = 0; k < 3; ++k)
+      key.c[static_cast<std::size_t>(3 * i + k)] = c[static_cast<std::size_t>(i)][k] + 0.0;
   return key;
 }
 
@@ -243,10 +245,12 @@ class FaceMeasure {
     mid[1] = tree_.nearest(m12, near[1].first);
     mid[2] = tree_.nearest(m20, near[2].first);
     used_ += 3;
-    const std::array<Corners, 4> parts{Corners{c[0], m01, m20}, Corners{m01, c[1], m12}, Corners{m20, m12, c[2]},
-                                       Corners{m01, m12, m20}};
-    const std::array<std::array<std::pair<std::uint32_t, double>, 3>, 4> nears{
-        {{near[0], mid[0], mid[2]}, {mid[0], near[1], mid[1]}, {mid[2], mid[1], near[2]}, {mid[0], mid[1], mid[2]}}};
+    const std::array<Corners, 4> parts{Corners{c[0], m01, m20}, Corners{m01, c[1], m12},
+                                       Corners{m20, m12, c[2]}, Corners{m01, m12, m20}};
+    const std::array<std::array<std::pair<std::uint32_t, double>, 3>, 4> nears{{{near[0], mid[0], mid[2]},
+                                                                                {mid[0], near[1], mid[1]},
+                                                                                {mid[2], mid[1], near[2]},
+                                                                                {mid[0], mid[1], mid[2]}}};
     FaceBound all;
     for (std::size_t k = 0; k < 4; ++k) {
       const FaceBound part = refine(parts[k], nears[k], depth + 1);
@@ -276,8 +280,8 @@ double magnitude(const TriangleSoup& a, const TriangleSoup& b) {
 
 }  // namespace
 
-DistanceBound one_sided_distance(const TriangleSoup& from, const std::vector<bool>& measure, const TriangleSoup& to,
-                                 const DistanceOptions& options) {
+DistanceBound one_sided_distance(const TriangleSoup& from, const std::vector<bool>& measure,
+                                 const TriangleSoup& to, const DistanceOptions& options) {
   std::unordered_set<FaceKey, FaceKeyHash> shared;
   for (std::size_t f = 0; f < to.triangles.size(); ++f) shared.insert(face_key(to, f));
   std::vector<std::uint32_t> faces;
@@ -312,7 +316,8 @@ DistanceBound one_sided_distance(const TriangleSoup& from, const std::vector<boo
   return result;
 }
 
-DistanceBound hausdorff_distance(const TriangleSoup& a, const TriangleSoup& b, const DistanceOptions& options) {
+DistanceBound hausdorff_distance(const TriangleSoup& a, const TriangleSoup& b,
+                                 const DistanceOptions& options) {
   const DistanceBound ab = one_sided_distance(a, {}, b, options);
   const DistanceBound ba = one_sided_distance(b, {}, a, options);
   DistanceBound both = ab.lower >= ba.lower ? ab : ba;

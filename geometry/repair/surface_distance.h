@@ -31,20 +31,21 @@ struct DistanceOptions {
 
 /// A one- or two-sided distance: proven upper bound, attained lower bound.
 struct DistanceBound {
-  double upper = 0.0;        ///< no point is farther than this (model units)
-  double lower = 0.0;        ///< a point this far was found (its corner distance)
-  Vec3 at = Vec3::Zero();    ///< that point
-  std::size_t faces = 0;     ///< faces measured (faces present in both surfaces are at distance 0)
+  double upper = 0.0;      ///< no point is farther than this (model units)
+  double lower = 0.0;      ///< a point this far was found (its corner distance)
+  Vec3 at = Vec3::Zero();  ///< that point
+  std::size_t faces = 0;   ///< faces measured (faces present in both surfaces are at distance 0)
 };
 
 /// sup over the points of `from`'s faces (those with measure[f] set, or all
 /// when `measure` is empty) of the distance to the surface of `to`. A face
 /// whose three corners are exactly those of a face of `to` is at distance
 /// 0 and not measured. `to` must have a face unless nothing is measured.
-DistanceBound one_sided_distance(const TriangleSoup& from, const std::vector<bool>& measure, const TriangleSoup& to,
-                                 const DistanceOptions& options = {});
+DistanceBound one_sided_distance(const TriangleSoup& from, const std::vector<bool>& measure,
+                                 const TriangleSoup& to, const DistanceOptions& options = {});
 
 /// The two-sided (Hausdorff) bound: the larger of both one-sided ones.
-DistanceBound hausdorff_distance(const TriangleSoup& a, const TriangleSoup& b, const DistanceOptions& options = {});
+DistanceBound hausdorff_distance(const TriangleSoup& a, const TriangleSoup& b,
+                                 const DistanceOptions& options = {});
 
 }  // namespace fabmesh

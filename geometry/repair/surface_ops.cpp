@@ -70,7 +70,8 @@ TriangleSoup soup_of(const SurfaceMesh& mesh) {
   for (const Face f : mesh.faces()) {
     std::array<std::uint32_t, 3> t{};
     int k = 0;
-    for (const Vertex v : CGAL::vertices_around_face(mesh.halfedge(f), mesh)) t[k++] = static_cast<std::uint32_t>(v.idx());
+    for (const Vertex v : CGAL::vertices_around_face(mesh.halfedge(f), mesh))
+      t[k++] = static_cast<std::uint32_t>(v.idx());
     soup.triangles.push_back(t);
   }
   return soup;
@@ -89,8 +90,9 @@ FilledHole describe_hole(const SurfaceMesh& mesh, Halfedge h) {
 }
 
 /// Fills every hole, the holes in `plain` without refining or fairing.
-HoleFilling fill_once(const TriangleSoup& soup, const std::set<std::size_t>& plain, const std::set<std::size_t>& skip,
-                      const HoleFillOptions& options, std::vector<std::vector<Face>>& patches) {
+HoleFilling fill_once(const TriangleSoup& soup, const std::set<std::size_t>& plain,
+                      const std::set<std::size_t>& skip, const HoleFillOptions& options,
+                      std::vector<std::vector<Face>>& patches) {
   SurfaceMesh mesh = surface_mesh(soup);
   std::vector<Halfedge> borders;
   PMP::extract_boundary_cycles(mesh, std::back_inserter(borders));
@@ -119,7 +121,8 @@ HoleFilling fill_once(const TriangleSoup& soup, const std::set<std::size_t>& pla
 constexpr std::uint32_t kNoHole = static_cast<std::uint32_t>(-1);
 
 /// The holes whose patch meets another face other than at shared vertices and edges.
-std::set<std::size_t> crossing_patches(const HoleFilling& filled, const std::vector<std::vector<Face>>& patches) {
+std::set<std::size_t> crossing_patches(const HoleFilling& filled,
+                                       const std::vector<std::vector<Face>>& patches) {
   std::vector<std::uint32_t> hole_of(filled.soup.triangles.size(), kNoHole);
   for (std::size_t i = 0; i < patches.size(); ++i) {
     for (const Face f : patches[i]) hole_of[f.idx()] = static_cast<std::uint32_t>(i);

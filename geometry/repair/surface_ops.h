@@ -23,7 +23,7 @@ struct HoleFillOptions {
 /// One hole filled, or not.
 struct FilledHole {
   std::size_t border_edges = 0;
-  Vec3 centre = Vec3::Zero();      ///< the mean of its border vertices
+  Vec3 centre = Vec3::Zero();       ///< the mean of its border vertices
   std::uint32_t border_vertex = 0;  ///< a vertex of its border (an index into the soup given)
   std::size_t faces_added = 0;
   std::size_t vertices_added = 0;

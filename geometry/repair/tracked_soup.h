@@ -13,8 +13,9 @@ namespace fabmesh {
 /// A soup and, per face and vertex, its origin in the mesh as read.
 struct TrackedSoup {
   TriangleSoup soup;
-  std::vector<std::uint32_t> face_origin;    ///< per triangle: the face read it lies in, or kNoIndex (made)
-  std::vector<std::uint32_t> vertex_origin;  ///< per vertex: a vertex read at (or welded into) it, or kNoIndex
+  std::vector<std::uint32_t> face_origin;  ///< per triangle: the face read it lies in, or kNoIndex (made)
+  std::vector<std::uint32_t>
+      vertex_origin;  ///< per vertex: a vertex read at (or welded into) it, or kNoIndex
 };
 
 /// `soup` as read: every face and vertex its own origin.

@@ -31,7 +31,8 @@ double median_edge_length(const TriangleSoup& mesh) {
 }
 
 /// Per vertex, the sorted vertices sharing a face with it (border vertices only).
-std::vector<std::vector<std::uint32_t>> face_neighbours(const TriangleSoup& mesh, const std::vector<bool>& border) {
+std::vector<std::vector<std::uint32_t>> face_neighbours(const TriangleSoup& mesh,
+                                                        const std::vector<bool>& border) {
   std::vector<std::vector<std::uint32_t>> near(mesh.vertices.size());
   for (const auto& t : mesh.triangles) {
     for (int k = 0; k < 3; ++k) {
@@ -62,7 +63,8 @@ std::vector<double> border_gaps(const TriangleSoup& mesh, const std::vector<bool
   const auto near = face_neighbours(mesh, border);
   std::unordered_map<CellKey, std::vector<std::uint32_t>, CellHash> grid;
   auto cell = [&](const Vec3& p) {
-    return CellKey{static_cast<long long>(std::floor(p.x() / cap)), static_cast<long long>(std::floor(p.y() / cap)),
+    return CellKey{static_cast<long long>(std::floor(p.x() / cap)),
+                   static_cast<long long>(std::floor(p.y() / cap)),
                    static_cast<long long>(std::floor(p.z() / cap))};
   };
   for (std::uint32_t v = 0; v < mesh.vertices.size(); ++v) {
@@ -127,7 +129,8 @@ WeldChoice choose_weld_distance(const TriangleSoup& mesh, double requested) {
   }
   choice.distance = gaps[last] * (1.0 + 1e-9);
   choice.why = fmt::format(
-      "the largest of {} border vertex gaps below the first ten-fold jump (gaps {:g} to {:g}; considered up to "
+      "the largest of {} border vertex gaps below the first ten-fold jump (gaps {:g} to {:g}; considered up "
+      "to "
       "{:g}: 1e-3 of the size or half the median edge)",
       last + 1, gaps.front(), gaps[last], choice.cap);
   return choice;

@@ -13,10 +13,10 @@ namespace fabmesh {
 
 /// The border weld's distance, and how it was chosen.
 struct WeldChoice {
-  double distance = 0.0;        ///< border vertices this close merge (0: none)
-  double cap = 0.0;             ///< the largest distance considered (see choose_weld_distance)
-  std::size_t gaps = 0;         ///< border vertices with another border vertex within the cap
-  std::string why;              ///< one sentence for the report
+  double distance = 0.0;  ///< border vertices this close merge (0: none)
+  double cap = 0.0;       ///< the largest distance considered (see choose_weld_distance)
+  std::size_t gaps = 0;   ///< border vertices with another border vertex within the cap
+  std::string why;        ///< one sentence for the report
 };
 
 /// Chooses the border weld distance of `mesh` (exactly welded): each border

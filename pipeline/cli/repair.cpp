@@ -48,7 +48,8 @@ RepairFileOptions file_options(const RepairArgs& args) {
 
 int run_repair(const RepairArgs& args, Streams streams) {
   if (args.files.size() > 1 && !args.output.empty() && names_a_file(args.output) && args.output.back() != '/')
-    throw InputError(fmt::format("-o {}: several meshes need -o FOLDER (each written as FOLDER/STEM.3mf)", args.output));
+    throw InputError(
+        fmt::format("-o {}: several meshes need -o FOLDER (each written as FOLDER/STEM.3mf)", args.output));
   const RepairFileOptions options = file_options(args);
   int code = kExitOk;
   nlohmann::ordered_json items = nlohmann::ordered_json::array();
@@ -74,18 +75,22 @@ Runner add_repair_command(CLI::App& app) {
       "repair", "Make mesh files valid for fabrication, recording every change and the distance moved");
   cmd->add_option("MESH", args->files, "Mesh files to repair (STL, OBJ, PLY, OFF, Draco, 3MF, GLB, glTF)")
       ->required();
-  cmd->add_option("-o,--output", args->output,
-                  "Where to write: FILE.3mf (default format; also .stl .obj .ply .off) or FOLDER/ (FOLDER/STEM.3mf); "
-                  "default: STEM.repaired.3mf beside the input");
-  cmd->add_option("--max-deviation", args->max_deviation,
-                  "Refuse (exit 1) when the output would be farther than this from the input (model units); with "
-                  "--wrap also the wrap's detail; default: no limit")
+  cmd->add_option(
+      "-o,--output", args->output,
+      "Where to write: FILE.3mf (default format; also .stl .obj .ply .off) or FOLDER/ (FOLDER/STEM.3mf); "
+      "default: STEM.repaired.3mf beside the input");
+  cmd->add_option(
+         "--max-deviation", args->max_deviation,
+         "Refuse (exit 1) when the output would be farther than this from the input (model units); with "
+         "--wrap also the wrap's detail; default: no limit")
       ->check(non_negative_number());
-  cmd->add_flag("--wrap", args->wrap,
-                "Replace the mesh by a closed surface wrapped around it (CGAL alpha wrapping): always valid, lossy "
-                "by design, its distance measured; alpha = --max-deviation / 2 (default 1% of the size)");
-  cmd->add_option("--weld-distance", args->weld_distance,
-                  "Merge border vertices closer than this (model units); default: chosen from the data and reported")
+  cmd->add_flag(
+      "--wrap", args->wrap,
+      "Replace the mesh by a closed surface wrapped around it (CGAL alpha wrapping): always valid, lossy "
+      "by design, its distance measured; alpha = --max-deviation / 2 (default 1% of the size)");
+  cmd->add_option(
+         "--weld-distance", args->weld_distance,
+         "Merge border vertices closer than this (model units); default: chosen from the data and reported")
       ->check(non_negative_number());
   cmd->add_flag("--no-fill", args->no_fill, "Leave holes open (the mesh is then refused when it has any)");
   cmd->add_option("--max-seconds", args->max_seconds,

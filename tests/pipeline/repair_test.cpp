@@ -93,7 +93,8 @@ TEST_CASE("repair: every corpus mesh becomes a valid 3MF that check, CGAL and a 
   }
 }
 
-TEST_CASE("repair: the JSON item says where each step acted, as indices and coordinates", "[pipeline][repair]") {
+TEST_CASE("repair: the JSON item says where each step acted, as indices and coordinates",
+          "[pipeline][repair]") {
   const fs::path dir = fresh_dir("repair_places");
   const auto [code, item] = repair_json(corpus("duplicate-faces.obj"), (dir / "d.3mf").string());
   REQUIRE(code == 0);
@@ -163,7 +164,8 @@ TEST_CASE("repair: what cannot be mended exits 1, writes nothing and says where"
   CHECK_FALSE(fs::exists(out));
 }
 
-TEST_CASE("repair: --wrap makes a closed solid of anything, within the deviation asked", "[pipeline][repair][wrap]") {
+TEST_CASE("repair: --wrap makes a closed solid of anything, within the deviation asked",
+          "[pipeline][repair][wrap]") {
   const fs::path dir = fresh_dir("repair_wrap");
   const std::string out = (dir / "wrap.3mf").string();
   const auto [code, item] = repair_json(corpus("stray-sheet.obj"), out, {"--wrap", "--max-deviation", "1"});
@@ -190,9 +192,9 @@ TEST_CASE("repair: PrusaSlicer reads every repaired 3MF as manifold and slices i
     CHECK(info["manifold"] == "yes");
   }
   const std::string out = (dir / "overlapping-parts.3mf").string();
-  const test::ToolRun slice = test::prusa_slicer(
-      (dir / "home").string(),
-      "--export-gcode " + test::quoted(out) + " --output " + test::quoted((dir / "parts.gcode").string()));
+  const test::ToolRun slice =
+      test::prusa_slicer((dir / "home").string(), "--export-gcode " + test::quoted(out) + " --output " +
+                                                      test::quoted((dir / "parts.gcode").string()));
   INFO(slice.output);
   CHECK(slice.code == 0);
 }

@@ -26,7 +26,7 @@ struct RepairOptions {
   /// Merge border vertices closer than this (the mesh's units); < 0: chosen
   /// from the data and reported (RepairReport::weld_distance); 0: none.
   double weld_distance = -1.0;
-  bool fill_holes = true;     ///< fill holes (else a mesh with holes is refused)
+  bool fill_holes = true;      ///< fill holes (else a mesh with holes is refused)
   double max_seconds = 600.0;  ///< time budget of each self-intersection test (0: none)
 };
 
