@@ -170,8 +170,10 @@ std::string repair_text(const FileRepair& r, int verbosity) {
     text += fmt::format(
         "  {} solid{} as {}, valid as written; distance to the input at most {:.4g} (writing adds {:.3g})\n",
         r.solids, r.solids == 1 ? "" : "s", r.output_format, r.distance, r.writing_error);
-  else if (r.readable && r.failure.message.rfind("could not be made valid", 0) != 0)
+  else if (r.failure.message.rfind("could not be made valid", 0) != 0)
     text += "  " + r.failure.message + "\n";
+  else
+    text += "  try --wrap: a closed surface wrapped around it, lossy by design, its distance measured\n";
   return text;
 }
 

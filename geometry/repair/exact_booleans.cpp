@@ -7,6 +7,7 @@
 #include <CGAL/Polygon_mesh_processing/orientation.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
+#include <CGAL/Side_of_triangle_mesh.h>
 #include <CGAL/Surface_mesh.h>
 
 #include <array>
@@ -53,6 +54,19 @@ TriangleSoup rounded(const SurfaceMesh& mesh) {
   return soup;
 }
 
+/// Whether every vertex of `shells` is on `solid` or inside it (exact): a
+/// union or an autorefinement keeps every point of its input's surface
+/// there; one that lost a part of it is refused.
+bool keeps_all(const SurfaceMesh& solid, const std::vector<TriangleSoup>& shells) {
+  const CGAL::Side_of_triangle_mesh<SurfaceMesh, Kernel> side(solid);
+  for (const TriangleSoup& shell : shells) {
+    for (const Vec3& v : shell.vertices) {
+      if (side(Point(v.x(), v.y(), v.z())) == CGAL::ON_UNBOUNDED_SIDE) return false;
+    }
+  }
+  return true;
+}
+
 void say(std::string* why, const std::string& text) {
   if (why != nullptr) *why = text;
 }
@@ -76,6 +90,10 @@ std::optional<TriangleSoup> unite_shells(const std::vector<TriangleSoup>& shells
       }
       result = std::move(united);
     }
+    if (!keeps_all(result, shells)) {
+      say(why, "CGAL's union left a vertex of a shell outside it");
+      return std::nullopt;
+    }
     return rounded(result);
   } catch (const std::exception& e) {
     say(why, std::string("CGAL's corefinement failed: ") + e.what());
@@ -90,8 +108,12 @@ std::optional<TriangleSoup> resolve_self_intersections(const TriangleSoup& shell
       say(why, "CGAL's autorefinement could not remove every self-intersection");
       return std::nullopt;
     }
-    if (PMP::does_self_intersect(mesh)) {
-      say(why, "still self-intersecting after CGAL's autorefinement");
+    if (PMP::does_self_intersect(mesh) || !CGAL::is_closed(mesh)) {
+      say(why, "still self-intersecting or open after CGAL's autorefinement");
+      return std::nullopt;
+    }
+    if (!keeps_all(mesh, {shell})) {
+      say(why, "CGAL's autorefinement removed a part of the shell (a vertex of it is now outside)");
       return std::nullopt;
     }
     return rounded(mesh);

@@ -218,16 +218,35 @@ void wrap(Work& w, const RepairOptions& o) {
                              options.offset, deviation, o.max_deviation > 0.0 ? "" : ": 1% of the size"));
 }
 
+/// The faces of each side made from one face of the other by moving corners:
+/// an output face from its origin, an input face from its only output face.
+std::pair<std::vector<std::uint32_t>, std::vector<std::uint32_t>> partners(
+    const std::vector<std::uint32_t>& origin, std::size_t input_faces) {
+  std::vector<std::uint32_t> out(origin.size(), kNoPartner), in(input_faces, kNoPartner);
+  std::vector<std::uint32_t> pieces(input_faces, 0);
+  for (const std::uint32_t o : origin) {
+    if (o != kNoIndex) ++pieces[o];
+  }
+  for (std::uint32_t f = 0; f < origin.size(); ++f) {
+    if (origin[f] == kNoIndex) continue;
+    out[f] = origin[f];
+    if (pieces[origin[f]] == 1) in[origin[f]] = f;
+  }
+  return {out, in};
+}
+
 RepairMeasure measure(const TriangleSoup& input, const TriangleSoup& output,
-                      const std::vector<bool>& unmeasured, const DistanceOptions& options) {
+                      const std::vector<std::uint32_t>& origin, const std::vector<bool>& unmeasured,
+                      const DistanceOptions& options) {
   RepairMeasure m;
   std::vector<bool> measured(unmeasured.size());
   for (std::size_t f = 0; f < unmeasured.size(); ++f) {
     measured[f] = !unmeasured[f];
     m.unmeasured_faces += unmeasured[f] ? 1 : 0;
   }
-  m.input_to_output = one_sided_distance(input, measured, output, options);
-  m.output_to_input = one_sided_distance(output, {}, input, options);
+  const auto [out_partners, in_partners] = partners(origin, input.triangles.size());
+  m.input_to_output = one_sided_distance(input, measured, output, options, in_partners);
+  m.output_to_input = one_sided_distance(output, {}, input, options, out_partners);
   m.distance = std::max(m.input_to_output.upper, m.output_to_input.upper);
   return m;
 }
@@ -272,7 +291,7 @@ void account_components(Work& w, const TriangleSoup& input, bool wrapped) {
 RepairResult repair(const TriangleSoup& input, const RepairOptions& options) {
   check_input(input, options);
   RepairResult result;
-  Work w{track(input), RepairLog(options.max_places), {}, {}, {}, {}, {}, {}};
+  Work w{track(input), RepairLog(options.max_places), {}, {}, {}, {}, {}, {}, {}};
   result.exact_welded = weld_exact(w.mesh);
   const TriangleSoup welded_input = w.mesh.soup;
   result.before = validate(welded_input, options.validation);
@@ -307,7 +326,7 @@ RepairResult repair(const TriangleSoup& input, const RepairOptions& options) {
   result.dropped = w.dropped;
   result.unresolved = w.unresolved;
   if (!result.soup.triangles.empty())
-    result.measure = measure(welded_input, result.soup, w.unmeasured, options.distance);
+    result.measure = measure(welded_input, result.soup, w.mesh.face_origin, w.unmeasured, options.distance);
   if (!result.after.valid() && result.unresolved.empty()) {
     for (const std::string& line : describe_defects(result.after))
       result.unresolved.push_back("left: " + line);

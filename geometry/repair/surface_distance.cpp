@@ -197,6 +197,20 @@ FaceKey face_key(const TriangleSoup& soup, std::size_t f) {
   return key;
 }
 
+/// The most a corner of `c` moved from `partner`'s under the best matching
+/// of corners: the affine map between two triangles moves no point farther
+/// than its corners (the displacement is affine, its norm convex).
+double moved_by(const Corners& c, const Corners& partner) {
+  std::array<std::size_t, 3> perm{0, 1, 2};
+  double best = std::numeric_limits<double>::infinity();
+  do {
+    double worst = 0.0;
+    for (std::size_t k = 0; k < 3; ++k) worst = std::max(worst, (c[k] - partner[perm[k]]).norm());
+    best = std::min(best, worst);
+  } while (std::next_permutation(perm.begin(), perm.end()));
+  return best;
+}
+
 /// The bound of one face, refined as DistanceOptions say.
 struct FaceBound {
   double upper = 0.0, lower = 0.0;
@@ -208,14 +222,28 @@ class FaceMeasure {
   FaceMeasure(const TriangleTree& tree, double resolution, double pad_scale, std::size_t budget)
       : tree_(tree), resolution_(resolution), pad_scale_(pad_scale), budget_(budget) {}
 
-  FaceBound measure(const Corners& c) {
+  /// The bound of the triangle `c`; `partner`, when given, is a triangle of
+  /// the other surface it was made from by moving corners (see one_sided_distance).
+  FaceBound measure(const Corners& c, const Corners* partner) {
     std::array<std::pair<std::uint32_t, double>, 3> near{};
     std::uint32_t hint = TriangleTree::kNone;
     for (int i = 0; i < 3; ++i) {
       near[static_cast<std::size_t>(i)] = tree_.nearest(c[static_cast<std::size_t>(i)], hint);
       hint = near[static_cast<std::size_t>(i)].first;
     }
-    return refine(c, near, 0);
+    if (partner == nullptr) return refine(c, near, 0);
+    FaceBound b;
+    for (std::size_t i = 0; i < 3; ++i) {
+      if (near[i].second >= b.lower) {
+        b.lower = near[i].second;
+        b.at = c[i];
+      }
+    }
+    b.upper = pad(moved_by(c, *partner));
+    if (b.upper - b.lower <= resolution_) return b;
+    FaceBound refined = refine(c, near, 0);
+    refined.upper = std::min(refined.upper, b.upper);
+    return refined;
   }
 
  private:
@@ -231,9 +259,14 @@ class FaceMeasure {
     }
     const double longest = std::max({(c[0] - c[1]).norm(), (c[1] - c[2]).norm(), (c[2] - c[0]).norm()});
     double upper = b.lower + 2.0 * longest / 3.0;
-    for (const auto& n : near) {
+    // Candidates of the convexity bound: the triangles nearest to the corners
+    // and to the centroid (a piece of one face, whose corners lie on its
+    // edges, is nearest to that face in its middle).
+    const std::uint32_t centre = tree_.nearest((c[0] + c[1] + c[2]) / 3.0, near[0].first).first;
+    ++used_;
+    for (const std::uint32_t t : {near[0].first, near[1].first, near[2].first, centre}) {
       double worst = 0.0;
-      for (const Vec3& p : c) worst = std::max(worst, tree_.distance(p, n.first));
+      for (const Vec3& p : c) worst = std::max(worst, tree_.distance(p, t));
       upper = std::min(upper, worst);
     }
     b.upper = pad(upper);
@@ -281,7 +314,8 @@ double magnitude(const TriangleSoup& a, const TriangleSoup& b) {
 }  // namespace
 
 DistanceBound one_sided_distance(const TriangleSoup& from, const std::vector<bool>& measure,
-                                 const TriangleSoup& to, const DistanceOptions& options) {
+                                 const TriangleSoup& to, const DistanceOptions& options,
+                                 const std::vector<std::uint32_t>& partners) {
   std::unordered_set<FaceKey, FaceKeyHash> shared;
   for (std::size_t f = 0; f < to.triangles.size(); ++f) shared.insert(face_key(to, f));
   std::vector<std::uint32_t> faces;
@@ -304,7 +338,9 @@ DistanceBound one_sided_distance(const TriangleSoup& from, const std::vector<boo
   std::vector<FaceBound> bounds(faces.size());
   tbb::parallel_for(std::size_t{0}, faces.size(), [&](std::size_t i) {
     FaceMeasure m(tree, resolution, scale, budget);
-    bounds[i] = m.measure(corners_of(from, faces[i]));
+    const std::uint32_t partner = partners.empty() ? kNoPartner : partners[faces[i]];
+    const Corners other = partner == kNoPartner ? Corners{} : corners_of(to, partner);
+    bounds[i] = m.measure(corners_of(from, faces[i]), partner == kNoPartner ? nullptr : &other);
   });
   for (const FaceBound& b : bounds) {
     result.upper = std::max(result.upper, b.upper);

@@ -17,6 +17,7 @@
 // construction, which is added (1e-13 x (coordinate magnitude + distance)).
 
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "geometry/mesh/soup.h"
@@ -37,12 +38,22 @@ struct DistanceBound {
   std::size_t faces = 0;   ///< faces measured (faces present in both surfaces are at distance 0)
 };
 
+/// No partner face (see one_sided_distance).
+inline constexpr std::uint32_t kNoPartner = static_cast<std::uint32_t>(-1);
+
 /// sup over the points of `from`'s faces (those with measure[f] set, or all
 /// when `measure` is empty) of the distance to the surface of `to`. A face
 /// whose three corners are exactly those of a face of `to` is at distance
 /// 0 and not measured. `to` must have a face unless nothing is measured.
+/// `partners` (empty, or one per face of `from`: a face of `to`, or
+/// kNoPartner) names the face of `to` each face of `from` was made from by
+/// moving its corners (a weld, a split vertex moved apart): then the most a
+/// corner moved, under the best matching of corners, bounds the face too
+/// (the affine map between the two triangles moves no point farther), and
+/// the smaller bound is kept.
 DistanceBound one_sided_distance(const TriangleSoup& from, const std::vector<bool>& measure,
-                                 const TriangleSoup& to, const DistanceOptions& options = {});
+                                 const TriangleSoup& to, const DistanceOptions& options = {},
+                                 const std::vector<std::uint32_t>& partners = {});
 
 /// The two-sided (Hausdorff) bound: the larger of both one-sided ones.
 DistanceBound hausdorff_distance(const TriangleSoup& a, const TriangleSoup& b,

@@ -120,18 +120,28 @@ WeldChoice choose_weld_distance(const TriangleSoup& mesh, double requested) {
     return choice;
   }
   std::sort(gaps.begin(), gaps.end());
+  // The jitter is most of the gaps: look for the jump from the median up.
   std::size_t last = gaps.size() - 1;
-  for (std::size_t i = 0; i + 1 < gaps.size(); ++i) {
+  for (std::size_t i = gaps.size() / 2; i + 1 < gaps.size(); ++i) {
     if (gaps[i + 1] > 10.0 * gaps[i] && gaps[i] > 0.0) {
       last = i;
       break;
     }
   }
-  choice.distance = gaps[last] * (1.0 + 1e-9);
+  // Never below a few thousand rounding steps of the coordinates (the grid
+  // weld's resolution): gaps that small are rounding, not shape.
+  double magnitude = 0.0;
+  for (const Vec3& p : mesh.vertices) magnitude = std::max(magnitude, p.cwiseAbs().maxCoeff());
+  // Three times the largest jitter gap (copies of one corner chain beyond
+  // their nearest neighbours), a third of the way to the first feature gap.
+  double distance = 3.0 * gaps[last];
+  if (last + 1 < gaps.size()) distance = std::min(distance, gaps[last + 1] / 3.0);
+  choice.distance = std::max(std::min(distance, choice.cap), 1e-12 * magnitude);
   choice.why = fmt::format(
-      "the largest of {} border vertex gaps below the first ten-fold jump (gaps {:g} to {:g}; considered up "
-      "to "
-      "{:g}: 1e-3 of the size or half the median edge)",
+      "the largest of {} border vertex gaps below the first ten-fold jump above their median (gaps {:g} to "
+      "{:g}; "
+      "considered up to {:g}: 1e-3 of the size or half the median edge; at least 1e-12 of the largest "
+      "coordinate)",
       last + 1, gaps.front(), gaps[last], choice.cap);
   return choice;
 }

@@ -22,9 +22,12 @@ struct WeldChoice {
 /// Chooses the border weld distance of `mesh` (exactly welded): each border
 /// vertex's gap to its nearest other border vertex that shares no face with
 /// it, among gaps at most the cap = min(1e-3 x the bounding box diagonal,
-/// half the median edge length). The distance is the largest gap before the
-/// first ten-fold jump in the sorted gaps (jitter sits below it, features
-/// above), times 1 + 1e-9; 0 when no border vertex has such a gap.
+/// half the median edge length). The distance is 3 times the largest gap
+/// before the first ten-fold jump above their median (jitter, most of the
+/// gaps, sits below it, features above; copies of one corner chain beyond
+/// their nearest neighbours), at most a third of the first gap above the
+/// jump and the cap, at least 1e-12 of the largest coordinate; 0 when no
+/// border vertex has such a gap.
 /// `requested` >= 0 overrides the choice (0: no border weld).
 WeldChoice choose_weld_distance(const TriangleSoup& mesh, double requested = -1.0);
 
