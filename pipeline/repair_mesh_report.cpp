@@ -142,6 +142,9 @@ Json repair_json(const FileRepair& r) {
     j["distance"] = r.distance;
     j["distance_repair"] = measure_json(r.objects.front().result.measure);
   } else {
+    j["changed"] = std::any_of(r.objects.begin(), r.objects.end(),
+                               [](const RepairedObject& o) { return o.result.changed; });
+    j["valid"] = r.exit_code() == 0;
     Json objects = Json::array();
     for (const RepairedObject& o : r.objects) {
       Json item{{"name", o.name}};

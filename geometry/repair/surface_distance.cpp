@@ -270,7 +270,7 @@ class FaceMeasure {
       upper = std::min(upper, worst);
     }
     b.upper = pad(upper);
-    if (b.upper - b.lower <= resolution_ || depth >= 12 || used_ + 3 > budget_) return b;
+    if (b.upper - b.lower <= resolution_ || depth >= 40 || used_ + 3 > budget_) return b;
     // Split in four at the edge midpoints.
     const Vec3 m01 = 0.5 * (c[0] + c[1]), m12 = 0.5 * (c[1] + c[2]), m20 = 0.5 * (c[2] + c[0]);
     std::array<std::pair<std::uint32_t, double>, 3> mid{};

@@ -102,7 +102,7 @@ def cases():
     yield ("inside-out.stl", write_stl, flipped(s, set(range(len(s[1])))), {},
            "the sphere with every face reversed", ["outward"], 1)
     yield ("cavity-outward.obj", write_obj, join(box((0, 0, 0), (40, 40, 40)), box((10, 10, 10), (20, 20, 20))), {},
-           "a 40 mm cube with a 20 mm cavity whose faces point into the cavity's air (outward)", ["outward"], 2)
+           "a 40 mm cube with a 20 mm cavity whose faces point into the cavity's air (outward)", ["outward"], 1)
     yield ("duplicate-faces.obj", write_obj, (s[0], s[1] + [s[1][i] for i in (10, 11, 12)]), {},
            "the sphere with three faces written twice", ["duplicate_face"], 1)
     c = box((0, 0, 0), (10, 10, 10))
@@ -137,7 +137,7 @@ def main():
     folder = Path(sys.argv[1] if len(sys.argv) > 1 else Path(__file__).parent)
     manifest = {"about": "Broken meshes and what `fabmesh repair` must do with each; written by make_corpus.py "
                          "(made in code, no outside source). steps: repair steps (JSON keys) that must act; "
-                         "components: solids after the repair.", "cases": []}
+                         "components: solids after the repair (an outer shell with its cavities is one).", "cases": []}
     for name, writer, mesh, extra, about, steps, components in cases():
         writer(folder / name, mesh, **extra)
         manifest["cases"].append({"file": name, "about": about, "steps": steps, "components": components})
