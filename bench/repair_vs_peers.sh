@@ -32,6 +32,13 @@ if [[ -z ${FILES:-} ]]; then
 fi
 
 ms_now() { date +%s%N | cut -b1-13; }
+# components FILE: the connected components `fabmesh check` counts (summed over a file's objects).
+components() {
+  { "$fabmesh" check --json "$1" 2>/dev/null || true; } | python3 -c '
+import json, sys
+j = json.load(sys.stdin)[0]
+print(j["components"] if "components" in j else sum(o["components"] for o in j.get("objects", [])))' 2>/dev/null || echo 0
+}
 rows=$tmp/rows.tsv
 : > "$rows"
 for file in $FILES; do
@@ -57,7 +64,7 @@ with open(sys.argv[2], "wb") as out:
             out.write(b"\0\0")
 PY
   fi
-  components_in=$("$fabmesh" check --json "$file" 2>/dev/null | python3 -c 'import json,sys; j=json.load(sys.stdin)[0]; print(j.get("components", sum(o["components"] for o in j.get("objects", []))))' || echo 0)
+  components_in=$(components "$file")
   for tool in fabmesh admesh pmp; do
     case $tool in
       fabmesh) out=$tmp/$stem.fm.3mf; start=$(ms_now); "$fabmesh" repair "$file" -o "$out" >/dev/null 2>&1 || true ;;
@@ -69,7 +76,7 @@ PY
     valid=0 components=0 rel=nan
     if [[ -s $out ]]; then
       "$fabmesh" check "$out" >/dev/null 2>&1 && valid=1
-      components=$("$fabmesh" check --json "$out" 2>/dev/null | python3 -c 'import json,sys; j=json.load(sys.stdin)[0]; print(j.get("components", sum(o["components"] for o in j.get("objects", []))))' || echo 0)
+      components=$(components "$out")
       rel=$("$distance" "$file" "$out" 2>/dev/null | python3 -c 'import json,sys; j=json.load(sys.stdin); print(j["bound"] / j["diagonal"])' || echo nan)
     fi
     printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$stem" "$tool" "$valid" "$components_in" "$components" "$rel" "$ms" >> "$rows"

@@ -72,7 +72,18 @@ void fill(Work& w, RepairResult& r) {
   try {
     filled = fill_holes(w.mesh.soup);
   } catch (const InputError&) {
-    w.unresolved.push_back("holes left open: the surface is not manifold where they are");
+    const EdgeTable edges = edge_table(w.mesh.soup);
+    Vec3 where = Vec3::Zero();
+    for (std::size_t e = 0; e < edges.edges(); ++e) {
+      if (edges.faces_of(e) == 1) {
+        where =
+            0.5 * (w.mesh.soup.vertices[edges.side(e, 0).from] + w.mesh.soup.vertices[edges.side(e, 0).to]);
+        break;
+      }
+    }
+    w.unresolved.push_back(fmt::format(
+        "holes left open at {} and elsewhere: the surface is not manifold (an edge of three faces or more)",
+        at(where)));
     return;
   }
   w.mesh.soup = std::move(filled.soup);
