@@ -73,6 +73,7 @@ std::pair<std::string, double> encode(const std::vector<NamedSolid>& solids, con
   const double float32 = std::sqrt(3.0) * std::ldexp(m, -24);
   if (format == "3MF") {
     std::vector<ThreeMfObject> objects;
+    objects.reserve(solids.size());
     for (const NamedSolid& s : solids) objects.push_back(ThreeMfObject{s.name, s.soup, 0});
     ThreeMfOptions options;
     options.units = units;

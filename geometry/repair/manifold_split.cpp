@@ -108,7 +108,7 @@ void split_non_manifold(TrackedSoup& mesh, double separation, RepairLog& log) {
   for (std::uint32_t f = 0; f < faces; ++f) {
     for (int k = 0; k < 3; ++k) {
       const std::uint32_t v = mesh.soup.triangles[f][k];
-      const std::size_t root = corners.find(3 * f + static_cast<std::size_t>(k));
+      const std::size_t root = corners.find(3 * static_cast<std::size_t>(f) + static_cast<std::size_t>(k));
       auto [it, fresh] = copy.try_emplace({v, root}, v);
       if (fresh) {
         if (fans[v]++ > 0) it->second = add_vertex(mesh, mesh.soup.vertices[v], v);

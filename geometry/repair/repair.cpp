@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <set>
 
@@ -127,8 +128,8 @@ void drop_flat(Work& w) {
     if (!drop[c]) continue;
     DroppedComponent d;
     d.area = area[c];
-    d.lo = Vec3::Constant(INFINITY);
-    d.hi = Vec3::Constant(-INFINITY);
+    d.lo = Vec3::Constant(std::numeric_limits<double>::infinity());
+    d.hi = Vec3::Constant(-std::numeric_limits<double>::infinity());
     for (std::size_t f = 0; f < remove.size(); ++f) {
       if (comps.of_face[f] != c) continue;
       remove[f] = true;
@@ -281,8 +282,8 @@ void account_components(Work& w, const TriangleSoup& input, bool wrapped) {
     DroppedComponent d;
     d.faces = faces.size();
     d.first_face = faces.front();
-    d.lo = Vec3::Constant(INFINITY);
-    d.hi = Vec3::Constant(-INFINITY);
+    d.lo = Vec3::Constant(std::numeric_limits<double>::infinity());
+    d.hi = Vec3::Constant(-std::numeric_limits<double>::infinity());
     for (const std::uint32_t f : faces) {
       const auto& t = input.triangles[f];
       const auto& p = input.vertices;

@@ -191,9 +191,8 @@ FaceKey face_key(const TriangleSoup& soup, std::size_t f) {
     return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
   });
   FaceKey key{};
-  for (int i = 0; i < 3; ++i)
-    for (int k = 0; k < 3; ++k)
-      key.c[static_cast<std::size_t>(3 * i + k)] = c[static_cast<std::size_t>(i)][k] + 0.0;
+  for (std::size_t i = 0; i < 3; ++i)
+    for (std::size_t k = 0; k < 3; ++k) key.c[3 * i + k] = c[i][static_cast<Eigen::Index>(k)] + 0.0;
   return key;
 }
 
