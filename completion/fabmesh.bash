@@ -3,7 +3,7 @@
 # tests/packaging/cli_docs_test.sh checks that it offers every option of
 # `fabmesh COMMAND --help`.
 
-_fabmesh_commands="run plot preview check optimize sample batch studio"
+_fabmesh_commands="run plot preview check repair optimize sample batch studio"
 _fabmesh_global_options="-h --help --version -q --quiet -v --verbose"
 
 _fabmesh_options() {
@@ -12,6 +12,7 @@ _fabmesh_options() {
     plot) echo "-o --output --width --height -D --define" ;;
     preview) echo "-o --output --views --width --height -D --define" ;;
     check) echo "--json --weld-tolerance --max-seconds" ;;
+    repair) echo "-o --output --max-deviation --wrap --weld-distance --no-fill --max-seconds --dry-run --json" ;;
     optimize) echo "-D --define --json" ;;
     sample) echo "-D --define --csv --tolerance" ;;
     studio) echo "--port --host --no-open -o --output" ;;
@@ -90,7 +91,7 @@ _fabmesh() {
 
   # Positional arguments: the files the command reads.
   case "$command" in
-    check) _fabmesh_files '!*.@(stl|STL|obj|OBJ|ply|PLY|off|OFF|drc|DRC|3mf|3MF|glb|GLB|gltf|GLTF)' "$cur" ;;
+    check | repair) _fabmesh_files '!*.@(stl|STL|obj|OBJ|ply|PLY|off|OFF|drc|DRC|3mf|3MF|glb|GLB|gltf|GLTF)' "$cur" ;;
     preview) _fabmesh_files '!*.@(yaml|yml|YAML|stl|STL|obj|OBJ|ply|PLY|off|OFF|drc|DRC|3mf|3MF|glb|GLB|gltf|GLTF)' "$cur" ;;
     *) _fabmesh_files '!*.@(yaml|yml|YAML)' "$cur" ;;
   esac

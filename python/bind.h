@@ -89,5 +89,6 @@ void bind_designs(py::module_& m);  // designs.cpp: Design, Parameter, read_desi
 void bind_meshes(py::module_& m);   // meshes.cpp: Mesh, ValidationReport, Defect, check, read/write
 void bind_curves(py::module_& m);   // curves.cpp: Curve, tbezier, quasi_bspline, ..., fair
 void bind_results(py::module_& m);  // results.cpp: Result, Part, OutputFile, build, optimize
+void bind_repair(py::module_& m);   // repair.cpp: RepairReport, repair, repair_file
 
 }  // namespace fabmesh_python

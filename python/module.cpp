@@ -41,6 +41,7 @@ PYBIND11_MODULE(fabmesh, m) {
   fabmesh_python::bind_meshes(m);
   fabmesh_python::bind_curves(m);
   fabmesh_python::bind_results(m);
+  fabmesh_python::bind_repair(m);
   m.def(
       "__getattr__", [m](const std::string& name) { return deprecated_name(m, name); }, py::arg("name"));
 }

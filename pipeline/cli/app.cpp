@@ -61,6 +61,7 @@ int run_app(int argc, const char* const* argv, Streams streams) {
   add(&add_preview_command);
   add(&add_batch_command);
   add(&add_studio_command);
+  add(&add_repair_command);
 
   try {
     app.parse(argc, argv);

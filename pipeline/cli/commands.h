@@ -83,6 +83,7 @@ Runner add_plot_command(CLI::App& app);     ///< `fabmesh plot DESIGN... [-o FIL
 Runner add_preview_command(CLI::App& app);  ///< `fabmesh preview MESH|DESIGN -o FILE.png`
 Runner add_batch_command(CLI::App& app);    ///< `fabmesh batch MANIFEST ...`, `fabmesh batch --merge DIR`
 Runner add_studio_command(CLI::App& app);   ///< `fabmesh studio DESIGN [--port N] [--host ADDR] [--no-open]`
+Runner add_repair_command(CLI::App& app);  ///< `fabmesh repair MESH... [-o OUT] [--max-deviation D] [--wrap]`
 
 /// `fabmesh` without arguments: runs the bundled vessel example into ./out,
 /// found at ../share/fabmesh/examples from the program's own folder (2, with

@@ -8,5 +8,6 @@
 #include "fabmesh/design.h"
 #include "fabmesh/errors.h"
 #include "fabmesh/mesh.h"
+#include "fabmesh/repair.h"
 #include "fabmesh/units.h"
 #include "fabmesh/version.h"
