@@ -69,7 +69,7 @@ TEST_CASE("report: a valid job is ok, a surface for viewing invalid, a drawing o
 
   JobReport viewing = valid_job();
   viewing.purpose = MeshPurpose::Viewing;
-  viewing.validation.defects.push_back({Defect::BoundaryEdge, 4, {}});
+  viewing.validation.defects.push_back({Defect::BoundaryEdge, 4, {}, {}});
   const ItemFacts view = job_facts(viewing);
   CHECK(view.status == ItemStatus::Invalid);
   CHECK(view.message == "written for viewing only: not valid for fabrication");
