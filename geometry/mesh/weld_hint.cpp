@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -49,12 +50,16 @@ double mean_edge_length(const TriangleSoup& soup) {
   return soup.triangles.empty() ? 0.0 : sum / (3.0 * static_cast<double>(soup.triangles.size()));
 }
 
-/// x rounded up to two significant digits (1.23e-5 -> 1.3e-5), never below x.
+/// x rounded up to two significant digits (1.23e-5 -> 1.3e-5): the double
+/// nearest that decimal (which prints as it), never below x.
 double round_up_two_digits(double x) {
-  const double unit = std::pow(10.0, std::floor(std::log10(x)) - 1.0);
-  double r = std::ceil(x / unit) * unit;
-  while (r < x) r = std::nextafter(r, std::numeric_limits<double>::infinity());
-  return r;
+  const int exponent = static_cast<int>(std::floor(std::log10(x))) - 1;  // of the second digit
+  long digits = std::lround(std::floor(x / std::pow(10.0, exponent)));
+  double value = 0.0;
+  for (;; ++digits) {
+    value = std::stod(std::to_string(digits) + "e" + std::to_string(exponent));
+    if (value >= x) return value;
+  }
 }
 
 using Cell = std::array<std::int64_t, 3>;

@@ -85,7 +85,7 @@ std::string hint_line(const ObjectCheck& object, const char* indent) {
   const WeldHint& h = *object.weld_hint;
   return fmt::format(
       "{}hint: --weld-tolerance {:g} closes every boundary edge and makes the mesh {} (welding {} more "
-      "vertices; every boundary vertex has a partner within {:.3g}, the mean edge is {:.3g})\n",
+      "vertices; each boundary edge has another within {:.3g} at both ends, the mean edge is {:.3g})\n",
       indent, h.tolerance, h.valid_after ? "valid" : "closed, though not yet valid", h.merged_vertices,
       h.closing_distance, h.mean_edge);
 }
