@@ -127,13 +127,27 @@ bool off_plane_by(const Point& p, const std::array<Point, 3>& t, double contact)
   return CGAL::squared_distance(p, Kernel::Plane_3(t[0], t[1], t[2])) > contact * contact;
 }
 
+/// Whether segment pq, whose ends lie on either side of the plane of t,
+/// meets that plane farther than `contact` from t's edges (computed distances).
+bool inside_by(const Point& p, const Point& q, const std::array<Point, 3>& t, double contact) {
+  if (contact <= 0.0) return true;
+  const Kernel::Plane_3 plane(t[0], t[1], t[2]);
+  const double dp = std::sqrt(CGAL::squared_distance(p, plane));
+  const double dq = std::sqrt(CGAL::squared_distance(q, plane));
+  const Point x = p + (q - p) * (dp / (dp + dq));
+  for (int i = 0; i < 3; ++i) {
+    if (CGAL::squared_distance(x, Kernel::Segment_3(t[i], t[(i + 1) % 3])) <= contact * contact) return false;
+  }
+  return true;
+}
+
 /// Segment pq crosses triangle t through its interior, p and q strictly on
 /// either side of its plane (and farther than `contact` from it).
 bool crosses(const Point& p, const Point& q, const std::array<Point, 3>& t, double contact) {
   const CGAL::Orientation op = CGAL::orientation(t[0], t[1], t[2], p);
   const CGAL::Orientation oq = CGAL::orientation(t[0], t[1], t[2], q);
   if (op == CGAL::COPLANAR || oq == CGAL::COPLANAR || op == oq) return false;
-  if (!off_plane_by(p, t, contact) || !off_plane_by(q, t, contact)) return false;
+  if (!off_plane_by(p, t, contact) || !off_plane_by(q, t, contact) || !inside_by(p, q, t, contact)) return false;
   const CGAL::Orientation a = CGAL::orientation(p, q, t[0], t[1]);
   const CGAL::Orientation b = CGAL::orientation(p, q, t[1], t[2]);
   const CGAL::Orientation c = CGAL::orientation(p, q, t[2], t[0]);

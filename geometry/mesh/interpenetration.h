@@ -53,7 +53,10 @@ std::size_t interpenetration_work_bound(std::size_t triangles);
 /// plane holds no float points); their exact solids do not overlap. With it,
 /// criterion 1 needs the vertex farther than `contact` from the other's
 /// surface, criterion 2 both ends of the edge farther than `contact` from the
-/// face's plane (distances computed in floating point; the predicates stay exact).
+/// face's plane and the crossing point farther than `contact` from the
+/// face's edges (a cap's edge passing over a socket's rim, rounded, crosses
+/// the socket's wall next to the rim; distances computed in floating point;
+/// the predicates stay exact).
 Interpenetration interpenetrating_pairs(const std::vector<const TriangleSoup*>& solids,
                                         std::size_t max_work = 0, double contact = 0.0);
 

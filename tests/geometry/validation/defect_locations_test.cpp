@@ -74,7 +74,8 @@ TEST_CASE("defect locations: intersecting, duplicate and degenerate faces, inver
 
   TriangleSoup doubled = box();
   doubled.triangles.push_back(doubled.triangles[4]);
-  const DefectReport* dup = located(doubled, 10).find(Defect::DuplicateFace);
+  const ValidationReport doubled_report = located(doubled, 10);
+  const DefectReport* dup = doubled_report.find(Defect::DuplicateFace);
   REQUIRE(dup != nullptr);
   REQUIRE(dup->locations.size() == 1);
   CHECK(dup->locations[0].faces == std::vector<std::uint32_t>{4, 12});
@@ -85,7 +86,8 @@ TEST_CASE("defect locations: intersecting, duplicate and degenerate faces, inver
   flat.vertices.push_back(Vec3(2, 0, 0));
   const auto n = static_cast<std::uint32_t>(flat.vertices.size());
   flat.triangles.push_back({n - 3, n - 2, n - 1});
-  const DefectReport* degenerate = located(flat, 10).find(Defect::DegenerateFace);
+  const ValidationReport flat_report = located(flat, 10);
+  const DefectReport* degenerate = flat_report.find(Defect::DegenerateFace);
   REQUIRE(degenerate != nullptr);
   REQUIRE(degenerate->locations.size() == 1);
   CHECK(degenerate->locations[0].faces == std::vector<std::uint32_t>{12});
@@ -95,7 +97,8 @@ TEST_CASE("defect locations: intersecting, duplicate and degenerate faces, inver
   TriangleSoup inverted = box(Vec3(3, 0, 0), Vec3(4, 1, 1));
   for (auto& t : inverted.triangles) std::swap(t[1], t[2]);
   append(apart, inverted);
-  const DefectReport* inv = located(apart, 10).find(Defect::InvertedComponent);
+  const ValidationReport apart_report = located(apart, 10);
+  const DefectReport* inv = apart_report.find(Defect::InvertedComponent);
   REQUIRE(inv != nullptr);
   REQUIRE(inv->locations.size() == 1);
   REQUIRE(inv->locations[0].faces.size() == 12);
