@@ -147,7 +147,8 @@ bool crosses(const Point& p, const Point& q, const std::array<Point, 3>& t, doub
   const CGAL::Orientation op = CGAL::orientation(t[0], t[1], t[2], p);
   const CGAL::Orientation oq = CGAL::orientation(t[0], t[1], t[2], q);
   if (op == CGAL::COPLANAR || oq == CGAL::COPLANAR || op == oq) return false;
-  if (!off_plane_by(p, t, contact) || !off_plane_by(q, t, contact) || !inside_by(p, q, t, contact)) return false;
+  if (!off_plane_by(p, t, contact) || !off_plane_by(q, t, contact) || !inside_by(p, q, t, contact))
+    return false;
   const CGAL::Orientation a = CGAL::orientation(p, q, t[0], t[1]);
   const CGAL::Orientation b = CGAL::orientation(p, q, t[1], t[2]);
   const CGAL::Orientation c = CGAL::orientation(p, q, t[2], t[0]);

@@ -132,8 +132,10 @@ std::optional<WeldCandidate> weld_candidate(const TriangleSoup& soup) {
   const auto distance = [&](std::uint32_t v, std::uint32_t w) {
     return v == w ? 0.0 : (soup.vertices[v] - soup.vertices[w]).norm();
   };
-  for (const auto& [a, b] : edges) {
+  for (const auto& edge : edges) {
     // The other boundary edge (c, d) with c near a and d near b that needs the least tolerance.
+    const std::uint32_t a = edge.first;
+    const std::uint32_t b = edge.second;
     double best = std::numeric_limits<double>::infinity();
     const Vec3& p = soup.vertices[a];
     const Cell cell = index.cell_of(p);
