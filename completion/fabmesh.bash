@@ -11,7 +11,7 @@ _fabmesh_options() {
     run) echo "-o --output --export-format --export-units --json --report --watch -D --define" ;;
     plot) echo "-o --output --width --height -D --define" ;;
     preview) echo "-o --output --views --width --height -D --define" ;;
-    check) echo "--json --weld-tolerance --max-seconds" ;;
+    check) echo "--json --weld-tolerance --max-seconds --max-locations --mark" ;;
     repair) echo "-o --output --max-deviation --wrap --weld-distance --no-fill --max-seconds --dry-run --json" ;;
     optimize) echo "-D --define --json" ;;
     sample) echo "-D --define --csv --tolerance" ;;
@@ -63,6 +63,9 @@ _fabmesh() {
     --report)
       _fabmesh_files '!*.@(html|HTML)' "$cur"
       return ;;
+    --mark)
+      _fabmesh_files '!*.@(glb|ply|GLB|PLY)' "$cur"
+      return ;;
     --merge)
       local IFS=$'\n'
       compopt -o filenames 2>/dev/null
@@ -71,7 +74,7 @@ _fabmesh() {
     -o | --output)
       _fabmesh_files "" "$cur"
       return ;;
-    -D | --define | --width | --height | --jobs | --shard | --array-size | --weld-tolerance | --max-seconds | --tolerance)
+    -D | --define | --width | --height | --jobs | --shard | --array-size | --weld-tolerance | --max-seconds | --max-locations | --tolerance)
       return ;;
   esac
 

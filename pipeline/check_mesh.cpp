@@ -1,14 +1,83 @@
 #include "pipeline/check_mesh.h"
 
+#include <fmt/format.h>
+
+#include <cmath>
+#include <iostream>
+#include <limits>
 #include <utility>
 
 #include "geometry/core/errors.h"
 #include "geometry/mesh/weld.h"
+#include "geometry/mesh/weld_hint.h"
 #include "io/mesh/read_mesh.h"
 #include "pipeline/report.h"
 
 namespace fabmesh {
 namespace {
+
+ValidationOptions validation_options(const CheckOptions& args) {
+  ValidationOptions options;
+  options.max_self_intersection_seconds = args.max_seconds;
+  options.max_locations =
+      args.keep_for_marking ? std::numeric_limits<std::size_t>::max() : args.max_locations;
+  return options;
+}
+
+/// The weld hint of an object with boundary edges: a tolerance from the
+/// data, larger than the one used, that closes every boundary edge when tried.
+std::optional<WeldHint> weld_hint(const TriangleSoup& soup, const ObjectCheck& object,
+                                  const CheckOptions& args) {
+  if (object.report.boundary_edges == 0) return std::nullopt;
+  const std::optional<WeldCandidate> candidate = weld_candidate(object.welded);
+  if (!candidate || candidate->tolerance <= args.weld_tolerance) return std::nullopt;
+  WeldResult welded;
+  try {
+    welded = weld(soup, WeldOptions{candidate->tolerance});
+  } catch (const RangeError&) {
+    return std::nullopt;  // too small for the coordinates' magnitude
+  }
+  CheckOptions quick = args;  // only the verdict is wanted: no locations
+  quick.max_locations = 0;
+  quick.keep_for_marking = false;
+  const ValidationReport after = validate(welded.soup, validation_options(quick));
+  if (after.boundary_edges != 0) return std::nullopt;
+  return WeldHint{candidate->tolerance, candidate->closing_distance, candidate->mean_edge,
+                  welded.merged_vertices - object.welded_vertices, after.valid()};
+}
+
+/// One occurrence: its faces, its vertices by the file's numbering, and their coordinates.
+nlohmann::ordered_json location_json(const DefectLocation& at, const WeldResult& welded) {
+  nlohmann::ordered_json j;
+  j["faces"] = at.faces;
+  nlohmann::ordered_json vertices = nlohmann::ordered_json::array();
+  nlohmann::ordered_json points = nlohmann::ordered_json::array();
+  for (const std::uint32_t v : at.vertices) {
+    vertices.push_back(welded.representatives[v]);
+    const Vec3& p = welded.soup.vertices[v];
+    points.push_back({p.x(), p.y(), p.z()});
+  }
+  j["vertices"] = std::move(vertices);
+  j["points"] = std::move(points);
+  return j;
+}
+
+/// `defect_locations`: per defect kind found, {count, listed, locations}.
+nlohmann::ordered_json locations_json(const ValidationReport& report, const WeldResult& welded,
+                                      std::size_t max_locations) {
+  nlohmann::ordered_json j = nlohmann::ordered_json::object();
+  for (const DefectReport& d : report.defects) {
+    nlohmann::ordered_json kind;
+    kind["count"] = d.count;
+    const std::size_t listed = std::min(d.locations.size(), max_locations);
+    kind["listed"] = listed;
+    kind["locations"] = nlohmann::ordered_json::array();
+    for (std::size_t i = 0; i < listed; ++i)
+      kind["locations"].push_back(location_json(d.locations[i], welded));
+    j[to_key(d.kind)] = std::move(kind);
+  }
+  return j;
+}
 
 ObjectCheck check_object(std::string name, const TriangleSoup& soup, const CheckOptions& args,
                          const StageTimings& before) {
@@ -16,12 +85,29 @@ ObjectCheck check_object(std::string name, const TriangleSoup& soup, const Check
   StageTimer timer(timings);
   WeldResult welded = weld(soup, WeldOptions{args.weld_tolerance});
   timer.lap("weld");
-  ValidationOptions options;
-  options.max_self_intersection_seconds = args.max_seconds;
-  ObjectCheck result{std::move(name), validate(welded.soup, options), welded.merged_vertices, {}};
+  ObjectCheck result{
+      std::move(name), validate(welded.soup, validation_options(args)), welded.merged_vertices, {}, {},
+      std::nullopt};
   result.report.timings_ms.insert(result.report.timings_ms.begin(), timings.begin(), timings.end());
+  result.defect_locations = locations_json(result.report, welded, args.max_locations);
   result.welded = std::move(welded.soup);
+  if (result.report.boundary_edges > 0) {
+    StageTimer hint_timer(result.report.timings_ms);
+    result.weld_hint = weld_hint(soup, result, args);
+    hint_timer.lap("weld_hint");
+  }
   return result;
+}
+
+nlohmann::ordered_json weld_hint_json(const std::optional<WeldHint>& hint) {
+  if (!hint) return nullptr;
+  nlohmann::ordered_json j;
+  j["tolerance"] = hint->tolerance;
+  j["closing_distance"] = hint->closing_distance;
+  j["mean_edge"] = hint->mean_edge;
+  j["merged_vertices"] = hint->merged_vertices;
+  j["valid_after"] = hint->valid_after;
+  return j;
 }
 
 /// The interpenetrating pairs of `objects`, the invalid ones not judged.
@@ -29,7 +115,9 @@ Interpenetration assembly_pairs(const std::vector<ObjectCheck>& objects) {
   std::vector<const TriangleSoup*> solids;
   solids.reserve(objects.size());
   for (const ObjectCheck& o : objects) solids.push_back(o.report.valid() ? &o.welded : nullptr);
-  return interpenetrating_pairs(solids);
+  // Coordinates stored as float32 are within their rounding of where they were
+  // made: surfaces that touched may cross by that much.
+  return interpenetrating_pairs(solids, 0, float32_contact(solids));
 }
 
 /// The facts of each object of a file read, in the file's units.
@@ -39,7 +127,72 @@ std::vector<MeshFacts> object_facts(const FileCheck& check) {
   return facts;
 }
 
+/// The item facts of a file read: check_facts, its message UNDETERMINED
+/// when no defect was found but a check did not finish.
+ItemFacts read_facts(const FileCheck& check) {
+  ItemFacts facts = check_facts(check.file, object_facts(check));
+  if (verdict_of(check) == CheckVerdict::Undetermined) facts.message = "UNDETERMINED";
+  return facts;
+}
+
+/// An object with no defect found that is still not valid: a check did not finish.
+bool undetermined(const ValidationReport& report) { return report.defects.empty() && !report.valid(); }
+
 }  // namespace
+
+const char* to_string(CheckVerdict verdict) {
+  switch (verdict) {
+    case CheckVerdict::Valid:
+      return "valid";
+    case CheckVerdict::Invalid:
+      return "invalid";
+    case CheckVerdict::Unreadable:
+      return "unreadable";
+    case CheckVerdict::Undetermined:
+      return "undetermined";
+  }
+  return "unknown";
+}
+
+CheckVerdict verdict_of(const FileCheck& check) {
+  if (!check.readable) return CheckVerdict::Unreadable;
+  bool unfinished = false;
+  for (const ObjectCheck& o : check.objects) {
+    if (!o.report.defects.empty()) return CheckVerdict::Invalid;
+    unfinished = unfinished || undetermined(o.report);
+  }
+  return unfinished ? CheckVerdict::Undetermined : CheckVerdict::Valid;
+}
+
+int exit_code_of(const FileCheck& check) {
+  switch (verdict_of(check)) {
+    case CheckVerdict::Valid:
+      return kExitOk;
+    case CheckVerdict::Invalid:
+      return kExitInvalid;
+    case CheckVerdict::Undetermined:
+      return kExitUndetermined;
+    case CheckVerdict::Unreadable:
+      break;
+  }
+  return check.failure.exit_code;
+}
+
+int worst_check_code(int a, int b) {
+  const auto rank = [](int code) {
+    switch (code) {
+      case kExitOk:
+        return 0;
+      case kExitUndetermined:
+        return 1;
+      case kExitInvalid:
+        return 2;
+      default:
+        return 3 + code;  // bad input, internal, environment: by code
+    }
+  };
+  return rank(a) >= rank(b) ? a : b;
+}
 
 FileCheck check_file(const std::string& path, const CheckOptions& args) {
   FileCheck result;
@@ -47,7 +200,7 @@ FileCheck check_file(const std::string& path, const CheckOptions& args) {
   try {
     StageTimings timings;
     StageTimer timer(timings);
-    MeshFile file = read_mesh_file(path);
+    MeshFile file = path == "-" ? read_mesh_stream(std::cin, kStandardInputName) : read_mesh_file(path);
     result.format = to_string(file.format);
     result.units = file.units;
     result.notes = std::move(file.notes);
@@ -63,9 +216,11 @@ FileCheck check_file(const std::string& path, const CheckOptions& args) {
       result.assembly = assembly_pairs(result.objects);
       assembly.lap("assembly");
     }
-    for (ObjectCheck& o : result.objects) o.welded = {};
+    if (!args.keep_for_marking) {
+      for (ObjectCheck& o : result.objects) o.welded = {};
+    }
     result.readable = true;
-    result.facts = check_facts(path, object_facts(result));
+    result.facts = read_facts(result);
   } catch (const InputError&) {
     result.failure = describe_failure(std::current_exception());
     result.facts = failed_facts(path, result.failure.exit_code, result.failure.message);
@@ -80,6 +235,8 @@ nlohmann::ordered_json object_json(const ObjectCheck& object) {
   j["welded_vertices"] = object.welded_vertices;
   j.update(validation_json(object.report));
   j["timings_ms"] = timings_json(object.report.timings_ms);
+  j["defect_locations"] = object.defect_locations;
+  j["weld_hint"] = weld_hint_json(object.weld_hint);
   return j;
 }
 
@@ -104,6 +261,7 @@ nlohmann::ordered_json check_json(const FileCheck& check) {
   if (!check.readable) {
     nlohmann::ordered_json j = error_item("file", check.file, check.failure);
     j["valid"] = false;  // every item of `check --json` says whether its file is valid
+    j["verdict"] = to_string(CheckVerdict::Unreadable);
     return j;
   }
   nlohmann::ordered_json j;
@@ -116,6 +274,9 @@ nlohmann::ordered_json check_json(const FileCheck& check) {
     j["notes"] = check.notes;
     j.update(validation_json(only.report));
     j["timings_ms"] = timings_json(only.report.timings_ms);
+    j["defect_locations"] = only.defect_locations;
+    j["weld_hint"] = weld_hint_json(only.weld_hint);
+    j["verdict"] = to_string(verdict_of(check));
     return j;
   }
   j["notes"] = check.notes;
@@ -130,15 +291,26 @@ nlohmann::ordered_json check_json(const FileCheck& check) {
   j["assembly"] = assembly_json(check);
   j["valid"] = check.valid();
   j["timings_ms"] = timings_json(check.timings_ms);
+  j["verdict"] = to_string(verdict_of(check));
   return j;
 }
 
 FileCheck check_soup(const TriangleSoup& soup, const CheckOptions& options) {
+  // As a file's reader refuses a non-finite coordinate (bad input, exit 2),
+  // so does a mesh given in memory: the same contract by either way in.
+  for (std::size_t v = 0; v < soup.vertices.size(); ++v) {
+    const Vec3& p = soup.vertices[v];
+    if (!std::isfinite(p.x()) || !std::isfinite(p.y()) || !std::isfinite(p.z())) {
+      throw InputError(fmt::format("vertices: vertex {} is ({}, {}, {}): coordinates must be finite", v,
+                                   p.x(), p.y(), p.z()),
+                       ErrorLocation{"vertices"});
+    }
+  }
   FileCheck result;
   result.objects.push_back(check_object("", soup, options, {}));
-  result.objects.front().welded = {};
+  if (!options.keep_for_marking) result.objects.front().welded = {};
   result.readable = true;
-  result.facts = check_facts("", object_facts(result));
+  result.facts = read_facts(result);
   return result;
 }
 

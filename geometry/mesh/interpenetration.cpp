@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <iterator>
 #include <memory>
 #include <utility>
@@ -56,8 +57,17 @@ class Solid {
   const std::vector<Point>& corners() const { return used_; }
   const std::vector<std::array<Point, 3>>& triangles() const { return triangles_; }
 
-  /// True when `p` is strictly inside (exact predicates).
-  bool strictly_inside(const Point& p) const { return (*side_)(p) == CGAL::ON_BOUNDED_SIDE; }
+  /// True when `p` is strictly inside (exact predicates) and, with contact > 0,
+  /// farther than `contact` from the surface.
+  bool strictly_inside(const Point& p, double contact) const {
+    if ((*side_)(p) != CGAL::ON_BOUNDED_SIDE) return false;
+    if (contact <= 0.0) return true;
+    if (!distances_ready_) {
+      tree_->accelerate_distance_queries();
+      distances_ready_ = true;
+    }
+    return tree_->squared_distance(p) > contact * contact;
+  }
 
   /// The faces whose triangles meet `query` (a segment or a triangle).
   template <class Query>
@@ -95,6 +105,7 @@ class Solid {
   std::vector<Point> used_;
   std::unique_ptr<Tree> tree_;
   std::unique_ptr<Side> side_;
+  mutable bool distances_ready_ = false;
 };
 
 /// The open boxes overlap (the boxes share more than a face, edge or corner).
@@ -110,12 +121,34 @@ bool inside_box(const BoundingBox& box, const Point& p) {
          box.lo.z() < p.z() && p.z() < box.hi.z();
 }
 
+/// Whether p is farther than `contact` from the plane of triangle t (computed distance).
+bool off_plane_by(const Point& p, const std::array<Point, 3>& t, double contact) {
+  if (contact <= 0.0) return true;
+  return CGAL::squared_distance(p, Kernel::Plane_3(t[0], t[1], t[2])) > contact * contact;
+}
+
+/// Whether segment pq, whose ends lie on either side of the plane of t,
+/// meets that plane farther than `contact` from t's edges (computed distances).
+bool inside_by(const Point& p, const Point& q, const std::array<Point, 3>& t, double contact) {
+  if (contact <= 0.0) return true;
+  const Kernel::Plane_3 plane(t[0], t[1], t[2]);
+  const double dp = std::sqrt(CGAL::squared_distance(p, plane));
+  const double dq = std::sqrt(CGAL::squared_distance(q, plane));
+  const Point x = p + (q - p) * (dp / (dp + dq));
+  for (int i = 0; i < 3; ++i) {
+    if (CGAL::squared_distance(x, Kernel::Segment_3(t[i], t[(i + 1) % 3])) <= contact * contact) return false;
+  }
+  return true;
+}
+
 /// Segment pq crosses triangle t through its interior, p and q strictly on
-/// either side of its plane.
-bool crosses(const Point& p, const Point& q, const std::array<Point, 3>& t) {
+/// either side of its plane (and farther than `contact` from it).
+bool crosses(const Point& p, const Point& q, const std::array<Point, 3>& t, double contact) {
   const CGAL::Orientation op = CGAL::orientation(t[0], t[1], t[2], p);
   const CGAL::Orientation oq = CGAL::orientation(t[0], t[1], t[2], q);
   if (op == CGAL::COPLANAR || oq == CGAL::COPLANAR || op == oq) return false;
+  if (!off_plane_by(p, t, contact) || !off_plane_by(q, t, contact) || !inside_by(p, q, t, contact))
+    return false;
   const CGAL::Orientation a = CGAL::orientation(p, q, t[0], t[1]);
   const CGAL::Orientation b = CGAL::orientation(p, q, t[1], t[2]);
   const CGAL::Orientation c = CGAL::orientation(p, q, t[2], t[0]);
@@ -160,9 +193,9 @@ bool overlap_facing_alike(const std::array<Point, 3>& a, const std::array<Point,
 
 /// Some vertex, edge or face of `a` shows that it reaches into `b`'s inside
 /// (criteria 1 to 3 of interpenetrating_pairs, from a's side).
-bool reaches_into(const Solid& a, const Solid& b) {
+bool reaches_into(const Solid& a, const Solid& b, double contact) {
   for (const Point& p : a.corners()) {
-    if (inside_box(b.box(), p) && b.strictly_inside(p)) return true;
+    if (inside_box(b.box(), p) && b.strictly_inside(p, contact)) return true;
   }
   const Surface& s = a.surface();
   for (const auto e : s.edges()) {
@@ -170,7 +203,7 @@ bool reaches_into(const Solid& a, const Solid& b) {
     const Point& q = s.point(s.vertex(e, 1));
     const Kernel::Segment_3 segment(p, q);
     for (const auto& t : b.meeting(segment)) {
-      if (crosses(p, q, t)) return true;
+      if (crosses(p, q, t, contact)) return true;
     }
   }
   for (const auto& t : a.triangles()) {
@@ -186,8 +219,22 @@ bool reaches_into(const Solid& a, const Solid& b) {
 
 std::size_t interpenetration_work_bound(std::size_t triangles) { return 16 * triangles + 100000; }
 
-Interpenetration interpenetrating_pairs(const std::vector<const TriangleSoup*>& solids,
-                                        std::size_t max_work) {
+double float32_contact(const std::vector<const TriangleSoup*>& solids) {
+  double largest = 0.0;
+  for (const TriangleSoup* soup : solids) {
+    if (soup == nullptr) continue;
+    for (const Vec3& p : soup->vertices) {
+      for (int k = 0; k < 3; ++k) {
+        if (static_cast<double>(static_cast<float>(p[k])) != p[k]) return 0.0;
+        largest = std::max(largest, std::abs(p[k]));
+      }
+    }
+  }
+  return 4.0 * std::ldexp(largest, -23);  // 4 units in the last place of a float at `largest`
+}
+
+Interpenetration interpenetrating_pairs(const std::vector<const TriangleSoup*>& solids, std::size_t max_work,
+                                        double contact) {
   std::vector<std::size_t> judged;
   std::vector<BoundingBox> boxes(solids.size());
   std::size_t triangles = 0;
@@ -222,7 +269,7 @@ Interpenetration interpenetrating_pairs(const std::vector<const TriangleSoup*>& 
       }
       work += cost;
       if (cost == 1 || !boxes_overlap(solid(i).box(), solid(j).box())) continue;
-      if (reaches_into(solid(i), solid(j)) || reaches_into(solid(j), solid(i)))
+      if (reaches_into(solid(i), solid(j), contact) || reaches_into(solid(j), solid(i), contact))
         found.pairs.emplace_back(i, j);
     }
   }

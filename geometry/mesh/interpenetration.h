@@ -45,7 +45,26 @@ std::size_t interpenetration_work_bound(std::size_t triangles);
 /// Stops when the next pair would exceed `max_work` (see
 /// interpenetration_work_bound; 0: that bound for all the solids' triangles),
 /// so that many bodies piled together cost a bounded time.
+///
+/// `contact` (model units, default 0: exact) is how far surfaces may cross and
+/// still count as touching: the precision of the coordinates as stored. Two
+/// mould parts touching on a split plane at 120 degrees, written as float32
+/// (3MF, STL), cross by a fraction of a float's unit in the last place (the
+/// plane holds no float points); their exact solids do not overlap. With it,
+/// criterion 1 needs the vertex farther than `contact` from the other's
+/// surface, criterion 2 both ends of the edge farther than `contact` from the
+/// face's plane and the crossing point farther than `contact` from the
+/// face's edges (a cap's edge passing over a socket's rim, rounded, crosses
+/// the socket's wall next to the rim; distances computed in floating point;
+/// the predicates stay exact).
 Interpenetration interpenetrating_pairs(const std::vector<const TriangleSoup*>& solids,
-                                        std::size_t max_work = 0);
+                                        std::size_t max_work = 0, double contact = 0.0);
+
+/// The contact distance of solids whose coordinates are all float32 values
+/// (as 3MF, STL, GLB and float PLY store them): 4 float32 units in the last
+/// place at their largest coordinate (each vertex was moved by at most
+/// sqrt(3) / 2 of one by rounding, two surfaces by twice that); 0 when some
+/// coordinate is not a float32 value (the file's numbers are taken as exact).
+double float32_contact(const std::vector<const TriangleSoup*>& solids);
 
 }  // namespace fabmesh

@@ -149,12 +149,14 @@ WeldResult weld(const TriangleSoup& soup, const WeldOptions& options) {
   });
   for (std::size_t b = 0; b < blocks; ++b) first[b + 1] += first[b];
   result.soup.vertices.resize(first[blocks]);
+  result.representatives.resize(first[blocks]);
   std::vector<std::uint32_t> new_index(n);
   parallel_blocks(blocks, [&](std::size_t b) {
     std::size_t next = first[b];
     for (std::size_t i = b * kBlock; i < std::min(n, (b + 1) * kBlock); ++i) {
       if (rep[i] != i) continue;
       new_index[i] = static_cast<std::uint32_t>(next);
+      result.representatives[next] = static_cast<std::uint32_t>(i);
       result.soup.vertices[next++] = soup.vertices[i];
     }
   });

@@ -3,6 +3,8 @@
 // every vertex once per triangle).
 
 #include <cstddef>
+#include <cstdint>
+#include <vector>
 
 #include "geometry/core/soup.h"
 
@@ -20,6 +22,10 @@ struct WeldOptions {
 struct WeldResult {
   TriangleSoup soup;                ///< same triangles, indices into the merged vertices
   std::size_t merged_vertices = 0;  ///< input vertex count minus output vertex count
+  /// For each output vertex, the input vertex whose position it keeps (the
+  /// lowest index of those merged into it): how a report names a welded
+  /// vertex by the file's numbering.
+  std::vector<std::uint32_t> representatives;
 };
 
 /// Merges coincident vertices of `soup`. Each merged vertex keeps the

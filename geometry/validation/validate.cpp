@@ -14,6 +14,7 @@
 #include "geometry/validation/detail/components.h"
 #include "geometry/validation/detail/self_intersect.h"
 #include "geometry/validation/detail/topology.h"
+#include "geometry/validation/detail/vertex_star.h"
 
 namespace fabmesh {
 namespace {
@@ -23,29 +24,90 @@ using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 bool finite(const Vec3& p) { return std::isfinite(p.x()) && std::isfinite(p.y()) && std::isfinite(p.z()); }
 
 void add_defect(ValidationReport& report, Defect kind, const DefectCount& found) {
-  if (found.count > 0) report.defects.push_back({kind, found.count, found.examples});
+  if (found.count > 0) report.defects.push_back({kind, found.count, found.examples, found.locations});
+}
+
+/// The total area of `soup`'s faces, model units^2.
+double total_area(const TriangleSoup& soup) {
+  double area = 0.0;
+  for (const auto& t : soup.triangles) {
+    const Vec3& a = soup.vertices[t[0]];
+    area += 0.5 * (soup.vertices[t[1]] - a).cross(soup.vertices[t[2]] - a).norm();
+  }
+  return area;
+}
+
+/// `soup` scaled by 2^-k, k the binary exponent of its largest coordinate
+/// magnitude (exact but for underflow): its measures cannot overflow.
+TriangleSoup unit_scaled(const TriangleSoup& soup, int& k) {
+  double largest = 0.0;
+  for (const Vec3& p : soup.vertices) largest = std::max(largest, p.cwiseAbs().maxCoeff());
+  std::frexp(largest, &k);
+  TriangleSoup scaled = soup;
+  for (Vec3& p : scaled.vertices)
+    p = Vec3(std::ldexp(p.x(), -k), std::ldexp(p.y(), -k), std::ldexp(p.z(), -k));
+  return scaled;
+}
+
+/// Area and signed volume. Where products of coordinates overflow (a mesh of
+/// coordinates near 1e300) or underflow, they are computed on the mesh
+/// scaled by a power of two and scaled back: a measure beyond the range of
+/// doubles is then +-infinity, never NaN.
+void measure_size(const TriangleSoup& soup, ValidationReport& report) {
+  report.area = total_area(soup);
+  report.volume = signed_volume(soup);
+  if (std::isfinite(report.area) && std::isfinite(report.volume) &&
+      (report.area > 1e-200 || report.area == 0.0))
+    return;
+  int k = 0;
+  const TriangleSoup scaled = unit_scaled(soup, k);
+  report.area = std::ldexp(total_area(scaled), 2 * k);
+  report.volume = std::ldexp(signed_volume(scaled), 3 * k);
+}
+
+/// Marks in `skip` the extra copies of each face (the same three vertices,
+/// in any order) at a vertex of kStarMinDegree faces or more: a face
+/// repeated a million times (an STL of a few faces written over and over)
+/// would make the 3D test quadratic there, and duplicates are a defect of
+/// their own. Linear for a mesh without such vertices.
+void skip_piled_copies(const TriangleSoup& soup, std::vector<char>& skip) {
+  std::vector<std::uint32_t> degree(soup.vertices.size(), 0);
+  for (const auto& t : soup.triangles) {
+    for (const std::uint32_t v : t) ++degree[v];
+  }
+  using Key = std::array<std::uint32_t, 3>;
+  std::vector<std::pair<Key, std::uint32_t>> piled;
+  for (std::uint32_t f = 0; f < soup.triangles.size(); ++f) {
+    Key t = soup.triangles[f];
+    if (skip[f] || std::max({degree[t[0]], degree[t[1]], degree[t[2]]}) < detail::kStarMinDegree) continue;
+    std::sort(t.begin(), t.end());
+    piled.emplace_back(t, f);
+  }
+  std::sort(piled.begin(), piled.end());
+  for (std::size_t i = 1; i < piled.size(); ++i) {
+    if (piled[i].first == piled[i - 1].first) skip[piled[i].second] = 1;
+  }
 }
 
 /// Area, signed volume and exact degeneracy; marks degenerate faces in `degenerate`.
-void measure(const TriangleSoup& soup, std::size_t max_examples, ValidationReport& report,
-             DefectCount& degenerate_found, std::vector<char>& degenerate) {
-  double area = 0.0;
+void measure(const TriangleSoup& soup, std::size_t max_examples, std::size_t max_locations,
+             ValidationReport& report, DefectCount& degenerate_found, std::vector<char>& degenerate) {
   for (std::size_t f = 0; f < soup.triangles.size(); ++f) {
     const auto& t = soup.triangles[f];
     const Vec3& a = soup.vertices[t[0]];
     const Vec3& b = soup.vertices[t[1]];
     const Vec3& c = soup.vertices[t[2]];
-    area += 0.5 * (b - a).cross(c - a).norm();
     const bool repeated = t[0] == t[1] || t[1] == t[2] || t[2] == t[0];
     if (repeated ||
         CGAL::collinear(Kernel::Point_3(a.x(), a.y(), a.z()), Kernel::Point_3(b.x(), b.y(), b.z()),
                         Kernel::Point_3(c.x(), c.y(), c.z()))) {
       degenerate[f] = 1;
-      degenerate_found.add((a + b + c) / 3.0, max_examples);
+      degenerate_found.add((a + b + c) / 3.0, max_examples, max_locations, [&] {
+        return DefectLocation{{static_cast<std::uint32_t>(f)}, {t[0], t[1], t[2]}};
+      });
     }
   }
-  report.area = area;
-  report.volume = signed_volume(soup);
+  measure_size(soup, report);
 }
 
 void set_genus(ValidationReport& report, const Topology& topo) {
@@ -167,6 +229,7 @@ Topology inherited_topology(const ValidationReport& original_report) {
     if (const DefectReport* d = original_report.find(kind)) {
       out.count = d->count;
       out.examples = d->examples;
+      out.locations = d->locations;
     }
     return out;
   };
@@ -241,7 +304,7 @@ void insert_defect(ValidationReport& report, Defect kind, const DefectCount& fou
   if (found.count == 0) return;
   const auto at = std::find_if(report.defects.begin(), report.defects.end(),
                                [&](const DefectReport& d) { return d.kind > kind; });
-  report.defects.insert(at, {kind, found.count, found.examples});
+  report.defects.insert(at, {kind, found.count, found.examples, found.locations});
 }
 
 /// The exact sign of the signed volume of all of `soup`'s faces (but those
@@ -291,9 +354,15 @@ bool nesting_determined(const ValidationReport& report) {
 
 /// The shells of a mesh with several components: labels, volumes and, when
 /// determined, the nesting with the components that contradict it.
-void add_shells(const TriangleSoup& soup, ValidationReport& report, std::size_t max_examples) {
+void add_shells(const TriangleSoup& soup, ValidationReport& report, std::size_t max_examples,
+                std::size_t max_locations) {
   const ComponentLabels labels = label_components(soup);
-  const std::vector<double> volumes = component_volumes(soup, labels);
+  std::vector<double> volumes = component_volumes(soup, labels);
+  if (!std::all_of(volumes.begin(), volumes.end(), [](double v) { return std::isfinite(v); })) {
+    int k = 0;  // overflow: as measure_size does
+    volumes = component_volumes(unit_scaled(soup, k), labels);
+    for (double& v : volumes) v = std::ldexp(v, 3 * k);
+  }
   const std::vector<int> signs = component_volume_signs(soup, labels);
   auto& shells = report.component_shells;
   shells.resize(labels.count);
@@ -314,10 +383,19 @@ void add_shells(const TriangleSoup& soup, ValidationReport& report, std::size_t 
     }
     shells[c].depth = nesting.depth[c];
     shells[c].inside = nesting.inside[c];
-    if (!nesting.inside[c] && !shells[c].outward) inverted.add(shells[c].location, max_examples);
+    // The component as a location: its lowest vertex and all its faces.
+    const auto component = [&] {
+      DefectLocation at{{}, {labels.lowest_vertex[c]}};
+      for (std::uint32_t f = 0; f < labels.face_component.size(); ++f) {
+        if (labels.face_component[f] == c) at.faces.push_back(f);
+      }
+      return at;
+    };
+    if (!nesting.inside[c] && !shells[c].outward)
+      inverted.add(shells[c].location, max_examples, max_locations, component);
     if (nesting.inside[c] && nesting.determined[*nesting.inside[c]] &&
         shells[c].outward == shells[*nesting.inside[c]].outward) {
-      nested.add(shells[c].location, max_examples);
+      nested.add(shells[c].location, max_examples, max_locations, component);
     }
   }
   insert_defect(report, Defect::InvertedComponent, inverted);
@@ -326,14 +404,15 @@ void add_shells(const TriangleSoup& soup, ValidationReport& report, std::size_t 
 
 /// The report with its component shells: from the totals for one component
 /// (nothing more to compute), by labelling and ray casting for several.
-ValidationReport with_shells(const TriangleSoup& soup, ValidationReport report, std::size_t max_examples) {
+ValidationReport with_shells(const TriangleSoup& soup, ValidationReport report,
+                             const ValidationOptions& options) {
   if (soup.triangles.empty() || report.non_finite_vertices > 0 || report.components == 0) return report;
   if (report.components == 1) {
     report.component_shells.push_back(single_shell(soup, report));
     return report;
   }
   StageTimer timer(report.timings_ms);
-  add_shells(soup, report, max_examples);
+  add_shells(soup, report, options.max_examples, options.max_locations);
   timer.lap("components");
   return report;
 }
@@ -347,7 +426,7 @@ ValidationReport validate(const TriangleSoup& soup, const ValidationOptions& opt
       throw InputError(
           "validate: a moved copy takes its proofs from the original's report, not from options");
     }
-    return with_shells(soup, validate_moved(soup, *options.moved_from, options), options.max_examples);
+    return with_shells(soup, validate_moved(soup, *options.moved_from, options), options);
   }
   ValidationOptions checks = options;
   if (options.embedding) checks.check_self_intersections = false;  // the proof replaces the 3D test
@@ -366,7 +445,8 @@ ValidationReport validate(const TriangleSoup& soup, const ValidationOptions& opt
     const auto analyse = [&] {
       StageTimer timer(topology_time);
       topo = analyse_topology(soup, options.max_examples,
-                              options.examples_in_face_order ? ExampleOrder::ByFace : ExampleOrder::ByVertex);
+                              options.examples_in_face_order ? ExampleOrder::ByFace : ExampleOrder::ByVertex,
+                              options.max_locations);
       timer.lap("topology");
     };
     PositionFacts facts;
@@ -382,7 +462,7 @@ ValidationReport validate(const TriangleSoup& soup, const ValidationOptions& opt
     report = validate_with(soup, topo, std::move(facts));
   }
   if (options.embedding) report = with_embedding(std::move(report), *options.embedding);
-  return with_shells(soup, std::move(report), options.max_examples);
+  return with_shells(soup, std::move(report), options);
 }
 
 bool fit_for(const ValidationReport& report, MeshPurpose purpose) {
@@ -405,13 +485,19 @@ PositionFacts position_facts(const TriangleSoup& soup, const ValidationOptions& 
   report.vertices = soup.vertices.size();
   report.triangles = soup.triangles.size();
   const std::size_t max_examples = options.max_examples;
-  for (const Vec3& p : soup.vertices) {
-    if (!finite(p)) out.non_finite.add(p, max_examples);
+  const std::size_t max_locations = options.max_locations;
+  for (std::size_t v = 0; v < soup.vertices.size(); ++v) {
+    if (!finite(soup.vertices[v])) {
+      out.non_finite.add(soup.vertices[v], max_examples, max_locations, [&] {
+        return DefectLocation{{}, {static_cast<std::uint32_t>(v)}};
+      });
+    }
   }
   report.non_finite_vertices = out.non_finite.count;
 
   std::vector<char> degenerate(soup.triangles.size(), 0);
-  if (out.non_finite.count == 0) measure(soup, max_examples, report, out.degenerate, degenerate);
+  if (out.non_finite.count == 0)
+    measure(soup, max_examples, max_locations, report, out.degenerate, degenerate);
   report.degenerate_faces = out.degenerate.count;
   report.oriented_outward = out.non_finite.count == 0 && total_volume_sign(soup) > 0;
   timer.lap("geometry");
@@ -419,9 +505,11 @@ PositionFacts position_facts(const TriangleSoup& soup, const ValidationOptions& 
   if (options.check_self_intersections && out.non_finite.count == 0) {
     SelfIntersectOptions si;
     si.parallel = options.parallel;
-    si.max_pairs = max_examples;
+    si.max_pairs = std::max(max_examples, max_locations);
     si.deadline = deadline_after(options.max_self_intersection_seconds);
-    const SelfIntersections found = find_self_intersections(soup, degenerate, si);
+    std::vector<char> skip = degenerate;
+    skip_piled_copies(soup, skip);
+    const SelfIntersections found = find_self_intersections(soup, skip, si);
     report.self_intersection = found.incomplete ? IntersectionCheck::NotRun : IntersectionCheck::Tested;
     report.self_intersection_timed_out = found.incomplete;
     report.self_intersection_pairs_tested = found.candidates_tested;
@@ -429,9 +517,14 @@ PositionFacts position_facts(const TriangleSoup& soup, const ValidationOptions& 
     report.self_intersecting = found.count > 0;
     out.intersections.count = found.count;
     for (const auto& [f, g] : found.pairs) {
+      const auto& a = soup.triangles[f];
+      const auto& b = soup.triangles[g];
+      if (out.intersections.locations.size() < max_locations)
+        out.intersections.locations.push_back({{f, g}, {a[0], a[1], a[2], b[0], b[1], b[2]}});
+      if (out.intersections.examples.size() == max_examples) continue;
       Vec3 mid = Vec3::Zero();
-      for (const std::uint32_t v : soup.triangles[f]) mid += soup.vertices[v];
-      for (const std::uint32_t v : soup.triangles[g]) mid += soup.vertices[v];
+      for (const std::uint32_t v : a) mid += soup.vertices[v];
+      for (const std::uint32_t v : b) mid += soup.vertices[v];
       out.intersections.examples.push_back(mid / 6.0);  // between the two centroids
     }
   }
@@ -453,14 +546,14 @@ ValidationReport validate_with(const TriangleSoup& soup, const Topology& topo, P
   const DefectCount& degenerate_found = facts.degenerate;
   const DefectCount& intersections = facts.intersections;
 
-  if (soup.triangles.empty()) report.defects.push_back({Defect::Empty, 1, {}});
+  if (soup.triangles.empty()) report.defects.push_back({Defect::Empty, 1, {}, {}});
   add_defect(report, Defect::NonFiniteVertex, non_finite);
   add_defect(report, Defect::BoundaryEdge, topo.boundary_edges);
   add_defect(report, Defect::NonManifoldEdge, topo.non_manifold_edges);
   add_defect(report, Defect::NonManifoldVertex, topo.non_manifold_vertices);
   add_defect(report, Defect::InconsistentOrientation, topo.inconsistent_edges);
   const bool closed = !soup.triangles.empty() && report.boundary_edges == 0 && non_finite.count == 0;
-  if (closed && !report.oriented_outward) report.defects.push_back({Defect::InsideOut, 1, {}});
+  if (closed && !report.oriented_outward) report.defects.push_back({Defect::InsideOut, 1, {}, {}});
   add_defect(report, Defect::DegenerateFace, degenerate_found);
   add_defect(report, Defect::DuplicateFace, topo.duplicate_faces);
   add_defect(report, Defect::SelfIntersection, intersections);

@@ -18,6 +18,7 @@
 #include "geometry/core/soup.h"
 #include "geometry/core/stage_timer.h"
 #include "geometry/core/types.h"
+#include "geometry/validation/defect_location.h"
 
 namespace fabmesh {
 
@@ -58,6 +59,10 @@ struct DefectReport {
   Defect kind;
   std::size_t count = 0;
   std::vector<Vec3> examples;  ///< edge midpoints, vertices or face centroids
+  /// The first ValidationOptions::max_locations occurrences as faces and
+  /// vertices (defect_location.h says what each kind lists; none for Empty
+  /// and InsideOut), in a fixed order; count says how many there are in all.
+  std::vector<DefectLocation> locations;
 };
 
 /// One connected component as a shell: its orientation, and where it lies
@@ -155,6 +160,9 @@ struct ValidationOptions {
   bool check_self_intersections = true;  ///< the slowest stage; off only for diagnostics
   bool parallel = true;                  ///< use all cores for the self-intersection test
   std::size_t max_examples = 5;          ///< example locations kept per defect kind
+  /// Occurrences kept per defect kind as faces and vertices
+  /// (DefectReport::locations); 0 (default): none.
+  std::size_t max_locations = 0;
   /// Which boundary edges are kept as examples: the first in face order
   /// (true: the order a builder made its faces, as the reports of built
   /// meshes list them) or the first by vertex index (false: as `check`

@@ -104,20 +104,96 @@ Json document(const GlbOptions& options, Json primitive) {
   return doc;
 }
 
+void put_indices(std::string& bin, const std::array<std::uint32_t, 3>& t, int itype) {
+  for (const std::uint32_t i : t) {
+    if (itype == kUnsignedShort) {
+      bin.push_back(static_cast<char>(i & 0xffu));
+      bin.push_back(static_cast<char>(i >> 8));
+    } else {
+      put_u32(bin, i);
+    }
+  }
+}
+
+/// One primitive per material with faces, each its own index accessor and
+/// view (in material order), all on POSITION accessor `positions`; the
+/// indices appended to `bin`.
+void add_material_primitives(const TriangleSoup& soup, const GlbOptions& options, std::size_t positions,
+                             std::string& bin, Json& doc) {
+  const int itype = index_type(soup.vertices.size());
+  for (std::size_t m = 0; m < options.materials.size(); ++m) {
+    const std::size_t start = bin.size();
+    std::size_t faces = 0;
+    for (std::size_t f = 0; f < soup.triangles.size(); ++f) {
+      if (options.face_materials[f] != m) continue;
+      put_indices(bin, soup.triangles[f], itype);
+      ++faces;
+    }
+    const GlbMaterial& material = options.materials[m];
+    doc["materials"].push_back(
+        {{"name", material.name},
+         {"pbrMetallicRoughness",
+          {{"baseColorFactor", material.rgba}, {"metallicFactor", 0.0}, {"roughnessFactor", 1.0}}},
+         {"doubleSided", true}});
+    if (faces == 0) continue;
+    doc["bufferViews"].push_back({{"buffer", 0},
+                                  {"byteOffset", start},
+                                  {"byteLength", bin.size() - start},
+                                  {"target", kElementArrayBuffer}});
+    doc["accessors"].push_back({{"bufferView", doc["bufferViews"].size() - 1},
+                                {"componentType", itype},
+                                {"count", 3 * faces},
+                                {"type", "SCALAR"}});
+    doc["meshes"][0]["primitives"].push_back({{"attributes", {{"POSITION", positions}}},
+                                              {"indices", doc["accessors"].size() - 1},
+                                              {"material", m},
+                                              {"mode", kTriangles}});
+    pad(bin, '\0');
+  }
+}
+
+void check_materials(const TriangleSoup& soup, const GlbOptions& options) {
+  if (options.materials.empty()) return;
+  if (options.draco) throw RangeError("GLB materials", 1.0, "GLB: face materials cannot be Draco-compressed");
+  if (options.face_materials.size() != soup.triangles.size()) {
+    throw RangeError("GLB face_materials", static_cast<double>(options.face_materials.size()),
+                     fmt::format("GLB: {} face materials for {} faces", options.face_materials.size(),
+                                 soup.triangles.size()));
+  }
+  for (const std::uint32_t m : options.face_materials) {
+    if (m >= options.materials.size())
+      throw RangeError("GLB face_materials", m, fmt::format("GLB: face material {} names no material", m));
+  }
+}
+
+/// The GLB of `soup` drawn by material (options.materials not empty).
+std::string encode_by_material(const TriangleSoup& soup, const GlbOptions& options) {
+  const std::vector<float> xyz = gltf_positions(soup, options.scale_to_metres);
+  std::string bin;
+  for (const float f : xyz) {
+    std::uint32_t bits;
+    std::memcpy(&bits, &f, 4);
+    put_u32(bin, bits);
+  }
+  Json positions = {
+      {"bufferView", 0}, {"componentType", kFloat}, {"count", soup.vertices.size()}, {"type", "VEC3"}};
+  add_bounds(positions, xyz);
+  Json doc = document(options, Json());
+  doc["meshes"][0]["primitives"] = Json::array();
+  doc["materials"] = Json::array();
+  doc["accessors"] = Json::array({std::move(positions)});
+  doc["bufferViews"] = Json::array({{{"buffer", 0}, {"byteLength", bin.size()}, {"target", kArrayBuffer}}});
+  add_material_primitives(soup, options, 0, bin, doc);
+  doc["buffers"] = Json::array({{{"byteLength", bin.size()}}});
+  return glb_container(doc.dump(), std::move(bin));
+}
+
 std::string encode_plain(const TriangleSoup& soup, const GlbOptions& options) {
+  if (!options.materials.empty()) return encode_by_material(soup, options);
   const std::vector<float> xyz = gltf_positions(soup, options.scale_to_metres);
   const int itype = index_type(soup.vertices.size());
   std::string bin;
-  for (const auto& t : soup.triangles) {
-    for (const std::uint32_t i : t) {
-      if (itype == kUnsignedShort) {
-        bin.push_back(static_cast<char>(i & 0xffu));
-        bin.push_back(static_cast<char>(i >> 8));
-      } else {
-        put_u32(bin, i);
-      }
-    }
-  }
+  for (const auto& t : soup.triangles) put_indices(bin, t, itype);
   const std::size_t index_bytes = bin.size();
   pad(bin, '\0');
   const std::size_t position_offset = bin.size();
@@ -243,6 +319,7 @@ std::string encode_glb(const TriangleSoup& soup, const GlbOptions& options) {
   if (soup.vertices.size() >= std::numeric_limits<std::uint32_t>::max())
     throw InputError("GLB: too many vertices");
   require_indices_in_range(soup);
+  check_materials(soup, options);
   return options.draco ? encode_draco_glb(soup, options) : encode_plain(soup, options);
 }
 

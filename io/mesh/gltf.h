@@ -3,7 +3,9 @@
 // self-contained .gltf in. glTF's unit is the metre and its up axis is +Y;
 // fabmesh's models are Z-up in model units.
 
+#include <array>
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -21,6 +23,12 @@ TriangleSoup to_gltf_frame(const TriangleSoup& soup, double scale_to_metres);
 /// units_per_metre (e.g. 1000 for mm).
 TriangleSoup from_gltf_frame(const TriangleSoup& soup, double units_per_metre);
 
+/// A material of the GLB writer: faces drawn in one colour.
+struct GlbMaterial {
+  std::string name;
+  std::array<double, 4> rgba{0.8, 0.8, 0.8, 1.0};  ///< baseColorFactor, linear, each in [0, 1]
+};
+
 /// Options of the GLB writer.
 struct GlbOptions {
   std::string name = "mesh";      ///< the node's and the mesh's name
@@ -32,6 +40,12 @@ struct GlbOptions {
   int draco_position_bits = 14;  ///< in [1, 30]
   int draco_encoding_speed = 5;  ///< 0 (smallest) .. 10 (fastest)
   int draco_decoding_speed = 5;  ///< 0 .. 10
+  /// Empty (default): one primitive without a material. Else the faces are
+  /// drawn by material (`check --mark`): face f with materials[face_materials[f]],
+  /// one primitive per material that has faces, in material order, all
+  /// sharing the one POSITION accessor. Not with draco.
+  std::vector<GlbMaterial> materials;
+  std::vector<std::uint32_t> face_materials;  ///< one per face when materials is not empty
 };
 
 /// GLB bytes of `soup`: one scene, one node, one mesh with one triangle
@@ -47,8 +61,9 @@ struct GlbOptions {
 /// Draco data, accessors with count, min and max but no bufferView.
 /// \throw InputError when the soup has no triangle, an index is out of range,
 /// a coordinate is not finite or overflows float32 in metres, or the Draco
-/// encoder refuses the mesh; RangeError for scale_to_metres <= 0 or the
-/// Draco options out of range.
+/// encoder refuses the mesh; RangeError for scale_to_metres <= 0, the
+/// Draco options out of range, or materials with draco, face_materials not
+/// one per face or naming no material.
 std::string encode_glb(const TriangleSoup& soup, const GlbOptions& options);
 
 /// One mesh instance of a glTF scene: a node with a mesh that gave triangles.

@@ -297,11 +297,17 @@ std::string encode_ply(const TriangleSoup& soup, const PlyOptions& options) {
   require_indices_in_range(soup);
   const bool dbl = options.double_precision;
   const char* type = dbl ? "double" : "float";
+  const bool colours = !options.face_colours.empty();
+  if (colours && options.face_colours.size() != soup.triangles.size()) {
+    throw InputError(
+        fmt::format("PLY: {} face colours for {} faces", options.face_colours.size(), soup.triangles.size()));
+  }
   std::string out = fmt::format(
       "ply\nformat binary_little_endian 1.0\ncomment written by fabmesh\nelement vertex {}\n"
       "property {} x\nproperty {} y\nproperty {} z\nelement face {}\n"
-      "property list uchar uint vertex_indices\nend_header\n",
-      soup.vertices.size(), type, type, type, soup.triangles.size());
+      "property list uchar uint vertex_indices\n{}end_header\n",
+      soup.vertices.size(), type, type, type, soup.triangles.size(),
+      colours ? "property uchar red\nproperty uchar green\nproperty uchar blue\n" : "");
   out.reserve(out.size() + (dbl ? 24 : 12) * soup.vertices.size() + 13 * soup.triangles.size());
   for (std::size_t i = 0; i < soup.vertices.size(); ++i) {
     const Vec3& p = soup.vertices[i];
@@ -322,9 +328,12 @@ std::string encode_ply(const TriangleSoup& soup, const PlyOptions& options) {
       }
     }
   }
-  for (const auto& t : soup.triangles) {
+  for (std::size_t f = 0; f < soup.triangles.size(); ++f) {
     out.push_back(3);
-    for (const std::uint32_t i : t) put_le(out, i, 4);
+    for (const std::uint32_t i : soup.triangles[f]) put_le(out, i, 4);
+    if (colours) {
+      for (const std::uint8_t c : options.face_colours[f]) out.push_back(static_cast<char>(c));
+    }
   }
   return out;
 }

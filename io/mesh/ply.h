@@ -2,8 +2,11 @@
 // PLY (Stanford polygon format): ascii, binary_little_endian and
 // binary_big_endian; the vertex and face elements.
 
+#include <array>
+#include <cstdint>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "geometry/core/soup.h"
 #include "geometry/core/types.h"
@@ -25,12 +28,17 @@ struct PlyOptions {
   /// takes (draco_encoder, among others, refuses double); true: `double`,
   /// exact.
   bool double_precision = false;
+  /// Empty (default), or one colour per face (red, green, blue): written as
+  /// the face properties `uchar red`, `uchar green`, `uchar blue` after the
+  /// indices (`check --mark`).
+  std::vector<std::array<std::uint8_t, 3>> face_colours;
 };
 
 /// binary_little_endian PLY bytes of `soup`: vertex x, y, z (float32 unless
-/// options.double_precision) and faces as `list uchar uint vertex_indices`.
-/// \throw InputError when an index is out of range or a coordinate is not
-/// finite in the chosen precision.
+/// options.double_precision) and faces as `list uchar uint vertex_indices`
+/// (with options.face_colours, then red, green, blue).
+/// \throw InputError when an index is out of range, a coordinate is not
+/// finite in the chosen precision, or face_colours is neither empty nor one per face.
 std::string encode_ply(const TriangleSoup& soup, const PlyOptions& options = {});
 
 /// Writes `soup` (or `mesh`) as binary PLY to `path`, atomically.

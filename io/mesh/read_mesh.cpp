@@ -233,6 +233,21 @@ MeshFile read_mesh_file(const std::string& path) {
   return parse_mesh_file(read_file(path, kMaxMeshFileBytes, "mesh file"), path);
 }
 
+MeshFile read_mesh_stream(std::istream& in, const std::string& name) {
+  std::string bytes;
+  char buffer[1 << 16];
+  while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
+    bytes.append(buffer, static_cast<std::size_t>(in.gcount()));
+    if (bytes.size() > kMaxMeshFileBytes) {
+      throw FileError(name, 0, 0,
+                      fmt::format("{}: more than {} bytes: larger than a mesh file fabmesh reads", name,
+                                  kMaxMeshFileBytes));
+    }
+  }
+  if (in.bad()) throw FileError(name, 0, 0, fmt::format("{}: cannot be read", name));
+  return parse_mesh_file(bytes, name);
+}
+
 TriangleSoup read_mesh(const std::string& path) { return read_mesh_file(path).soup; }
 
 }  // namespace fabmesh

@@ -2,6 +2,7 @@
 // Any supported mesh file in: the format is told by content.
 
 #include <cstddef>
+#include <istream>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -69,6 +70,16 @@ MeshFile parse_mesh_file(std::string_view bytes, const std::string& path);
 /// Reads the regular file at `path` (at most kMaxMeshFileBytes) and parses it.
 /// \throw FileError when it cannot be read, is not a regular file, or is malformed.
 MeshFile read_mesh_file(const std::string& path);
+
+/// The name a mesh read from standard input goes by in messages and reports.
+inline constexpr const char* kStandardInputName = "(standard input)";
+
+/// Reads `in` to its end (at most kMaxMeshFileBytes: a larger stream is
+/// refused once that many bytes have come, without reading the rest) and
+/// parses it, the format told by content as for a file: `check -`.
+/// \param name for messages (kStandardInputName for standard input)
+/// \throw FileError when the stream fails, is too large, or is malformed.
+MeshFile read_mesh_stream(std::istream& in, const std::string& name);
 
 /// Reads and parses the mesh file at `path` (read_mesh_file's soup).
 /// \throw FileError when it cannot be read or is malformed.

@@ -123,19 +123,19 @@ const HttpModuleApi& http_module() {
     throw InputError(fmt::format("--host {}: not an address of this machine ({})", host, error.message));
   }
   if (error.error_number == EADDRINUSE) {
-    throw EnvironmentError(
+    throw MachineError(
         at, error.error_number,
         fmt::format("--port {}: the port is taken: another program (another studio?) listens on {}; "
                     "end it, or choose another port (--port 0: a free one)",
                     port, at));
   }
   if (error.error_number == EACCES) {
-    throw EnvironmentError(at, error.error_number,
+    throw MachineError(at, error.error_number,
                            fmt::format("--port {}: permission denied to listen on {} (ports below 1024 "
                                        "need privileges; --port 0 chooses a free one)",
                                        port, at));
   }
-  throw EnvironmentError(at, error.error_number, fmt::format("cannot listen on {}: {}", at, error.message));
+  throw MachineError(at, error.error_number, fmt::format("cannot listen on {}: {}", at, error.message));
 }
 
 bool same_name(const std::string& a, const std::string& b, bool any_case) {

@@ -34,7 +34,7 @@ class StudioServer {
  public:
   /// Listens (binds) at once, on a port no other socket listens on.
   /// \throw InputError when HOST is not an address of this machine;
-  ///        EnvironmentError (exit code 5) when the port is taken or may not be
+  ///        MachineError (exit code 5) when the port is taken or may not be
   ///        used (a port below 1024 without privileges)
   StudioServer(StudioSession& session, StudioServerOptions options);
   StudioServer(const StudioServer&) = delete;

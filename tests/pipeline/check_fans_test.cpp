@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 #include "tests/pipeline/limited_run.h"
@@ -78,14 +79,39 @@ TEST_CASE(
   REQUIRE(r.out.find(": valid") != std::string::npos);
 }
 
-TEST_CASE("check: --max-seconds reports an unfinished self-intersection test, never valid",
+TEST_CASE("check: --max-seconds reports an unfinished self-intersection test as undetermined, exit 6",
           "[mesh][check][cli][time-bounded]") {
   const fs::path obj = fan_cylinder(20000);
   const LimitedRun r = run_limited({"check", obj.string(), "--max-seconds", "1e-9", "--json"}, 30.0, kMemory);
   INFO(r.describe());
   REQUIRE_FALSE(r.timed_out);
-  REQUIRE(r.code == 1);
+  REQUIRE(r.code == 6);  // neither valid (0) nor invalid (1): a CI gate can tell "unknown" from "bad"
   REQUIRE(r.out.find("self-intersection test unfinished") != std::string::npos);
   REQUIRE(r.out.find("\"valid\": false") != std::string::npos);
   REQUIRE(r.out.find("\"self_intersection\": \"not run\"") != std::string::npos);
+  REQUIRE(r.out.find("\"verdict\": \"undetermined\"") != std::string::npos);
+
+  const LimitedRun text = run_limited({"check", obj.string(), "--max-seconds", "1e-9"}, 30.0, kMemory);
+  INFO(text.describe());
+  REQUIRE(text.code == 6);
+  REQUIRE(text.out.find(": UNDETERMINED (") != std::string::npos);
+}
+
+TEST_CASE("check: a defect found before the time budget ran out is invalid (exit 1), not undetermined",
+          "[mesh][check][cli][time-bounded]") {
+  const fs::path obj = fan_cylinder(20000);
+  {  // one face less: boundary edges, found by the connectivity analysis whatever the clock says
+    std::ifstream in(obj);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    text.erase(text.rfind("f "));
+    std::ofstream(fs::path(FABMESH_TEST_TMP) / "fan-cylinder-open.obj") << text;
+  }
+  const fs::path open = fs::path(FABMESH_TEST_TMP) / "fan-cylinder-open.obj";
+  const LimitedRun r =
+      run_limited({"check", open.string(), "--max-seconds", "1e-9", obj.string()}, 30.0, kMemory);
+  INFO(r.describe());
+  REQUIRE_FALSE(r.timed_out);
+  REQUIRE(r.code == 1);  // invalid outranks undetermined
+  REQUIRE(r.out.find(": INVALID (") != std::string::npos);
+  REQUIRE(r.out.find(": UNDETERMINED (") != std::string::npos);
 }

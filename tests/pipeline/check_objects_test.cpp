@@ -106,6 +106,25 @@ TEST_CASE("check objects: fabmesh's own mould 3MF is valid object by object", "[
   CHECK(j["timings_ms"].contains("assembly"));
 }
 
+TEST_CASE(
+    "check objects: a 3-part mould with keys touches on its 120-degree split planes, none interpenetrating",
+    "[mesh][check][cli][objects]") {
+  // The parts touch on planes that hold no float32 point: as written (3MF,
+  // float32) a socket's rim crosses the neighbouring part by a fraction of a
+  // float's unit in the last place. That is contact, not overlap.
+  const TempDir dir;
+  const std::string design = std::string(FABMESH_SOURCE_DIR) + "/configs/examples/mould_golden.yaml";
+  REQUIRE(run_in_shell("run " + quoted(design) +
+                       " -D mould.parts=3 -D mould.key_clearance=0.1 --export-format mould_3mf -q -o " +
+                       quoted(dir.file("")))
+              .code == 0);
+  const ShellRun human = run_in_shell("check " + quoted(dir.file("mould_golden.mould.3mf")));
+  INFO(human.out);
+  CHECK(human.code == 0);
+  CHECK(human.out.find("(3 objects, 3 valid)") != std::string::npos);
+  CHECK(human.out.find("  assembly: 3 objects, none interpenetrating\n") != std::string::npos);
+}
+
 TEST_CASE("check objects: a 3MF of two cubes touching on a face is valid, none interpenetrating",
           "[mesh][check][cli][objects]") {
   require_as_expected("touching-cubes.3mf");

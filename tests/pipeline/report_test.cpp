@@ -73,7 +73,7 @@ TEST_CASE("report: a valid job is ok, a surface for viewing invalid, a drawing o
 
   Result viewing = valid_job();
   viewing.purpose = MeshPurpose::Viewing;
-  viewing.parts[0].validation.defects.push_back({Defect::BoundaryEdge, 4, {}});
+  viewing.parts[0].validation.defects.push_back({Defect::BoundaryEdge, 4, {}, {}});
   const ItemFacts view = item_facts(viewing);
   CHECK(view.status == ItemStatus::Invalid);
   CHECK(view.message == "written for viewing only: not valid for fabrication");

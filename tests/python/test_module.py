@@ -142,10 +142,24 @@ def test_odd_but_valid_arrays_are_accepted():
     wide[:, ::2] = v
     assert fabmesh.check(wide[:, ::2], t).valid is True  # not contiguous
     assert fabmesh.check(v.tolist(), t.tolist()).valid is True
+
+
+def test_a_non_finite_vertex_is_bad_input_as_in_a_file(scratch):
+    # `fabmesh check` refuses a file with a NaN coordinate (exit 2); arrays get the same InputError.
+    v, t = tetrahedron()
     nan = v.astype(np.float32)
     nan[1, 1] = np.nan
-    item = fabmesh.check(nan, t).to_dict()
-    assert item["valid"] is False and item["non_finite_vertices"] == 1
+    with pytest.raises(fabmesh.InputError) as caught:
+        fabmesh.check(nan, t)
+    assert caught.value.key == "vertices"
+    assert caught.value.exit_code == 2
+    assert "vertex 1" in str(caught.value)
+    path = scratch / "nan.obj"  # the same mesh as a file: the item of `check --json`, exit code 2
+    path.write_text("v 0 0 0\nv 1 nan 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n")
+    item = fabmesh.check_file(str(path)).to_dict()
+    assert item["valid"] is False and item["exit_code"] == 2 and "error" in item
+    code, _ = cli("check", str(path))
+    assert code == 2
 
 
 def test_design_errors_carry_their_place(scratch):

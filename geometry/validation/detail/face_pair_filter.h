@@ -171,8 +171,69 @@ class FacePairFilter {
       ib.add(sub(b[i], o), m);
     }
     if (ia.lo > ib.hi || ib.lo > ia.hi) return true;
+    // Both in one plane x, y or z = c (the top of a slab): the planes of 2.
+    // cannot separate them, and 3. is a test in that plane.
+    const int axis = common_axis_plane(a, b);
+    if (axis >= 0) return beyond_an_edge_in_plane(a, b, axis) || beyond_an_edge_in_plane(b, a, axis);
     // 2. The plane of each face (exact orientation signs).
-    return all_one_side(a, b) || all_one_side(b, a);
+    if (all_one_side(a, b) || all_one_side(b, a)) return true;
+    // 3. A plane through an edge of one face, across it (for faces in one
+    //    plane, an edge's line in that plane): the separating axes of coplanar
+    //    triangles, which the planes of 2. cannot give.
+    return beyond_an_edge(a, b) || beyond_an_edge(b, a);
+  }
+
+  /// The axis k when every corner of a and b has the same coordinate k
+  /// (exactly), else -1.
+  static int common_axis_plane(const Corners& a, const Corners& b) {
+    for (int k = 0; k < 3; ++k) {
+      const double c = a[0][k];
+      if (a[1][k] == c && a[2][k] == c && b[0][k] == c && b[1][k] == c && b[2][k] == c) return k;
+    }
+    return -1;
+  }
+
+  /// beyond_an_edge for faces in the plane normal to `axis`: there
+  /// (e x x) . (e x f) is the product of the 2D cross products e x x and
+  /// e x f, each certified as a 2 x 2 minor.
+  static bool beyond_an_edge_in_plane(const Corners& s, const Corners& t, int axis) {
+    const int u = (axis + 1) % 3;
+    const int v = (axis + 2) % 3;
+    const auto side = [&](const Vec3& o, const Vec3& e_end, const Vec3& x) {
+      const double ex = e_end[u] - o[u], ey = e_end[v] - o[v];
+      const double xx = x[u] - o[u], xy = x[v] - o[v];
+      return certified_sign(ex * xy - ey * xx, std::abs(ex * xy) + std::abs(ey * xx), kCrossBound);
+    };
+    for (int i = 0; i < 3; ++i) {
+      const Vec3& o = s[i];
+      const Vec3& e = s[(i + 1) % 3];
+      const int inside = side(o, e, s[(i + 2) % 3]);
+      if (inside == 0) continue;
+      if (side(o, e, t[0]) == -inside && side(o, e, t[1]) == -inside && side(o, e, t[2]) == -inside)
+        return true;
+    }
+    return false;
+  }
+
+  /// Sign of (e x x) . (e x f), certified (0: unknown): which side of the
+  /// plane through the line of e, across the face spanned by e and f, the
+  /// point at x lies on (the face's side is positive).
+  static int across(const D3& e, const D3& x, const D3& f) {
+    return certified_sign(dot(cross(e, x), cross(e, f)), dot_abs(cross_abs(e, x), cross_abs(e, f)),
+                          kNormalsBound);
+  }
+
+  /// Whether the corners of `t` lie strictly beyond one edge of `s`: on the
+  /// side of the plane through that edge, across s, away from s's third corner.
+  static bool beyond_an_edge(const Corners& s, const Corners& t) {
+    for (int i = 0; i < 3; ++i) {
+      const Vec3& o = s[i];
+      const D3 e = sub(s[(i + 1) % 3], o);
+      const D3 f = sub(s[(i + 2) % 3], o);
+      if (across(e, sub(t[0], o), f) < 0 && across(e, sub(t[1], o), f) < 0 && across(e, sub(t[2], o), f) < 0)
+        return true;
+    }
+    return false;
   }
 
   /// Whether the three corners of `t` lie strictly on one side of the plane of `s`.
@@ -187,8 +248,12 @@ class FacePairFilter {
   /// Two faces sharing vertex p (a[ia] == b[ib]). The exact test asks whether
   /// the edge opposite p in one face touches the other; for non-degenerate
   /// faces that is the same as "they meet beyond p". Proved false by a plane
-  /// through p with one face strictly on each side (apart from p), or by the
-  /// far edge of one face lying strictly on one side of the other's plane.
+  /// through p with one face strictly on each side (apart from p), by the
+  /// far edge of one face lying strictly on one side of the other's plane,
+  /// or by the far corners of one face lying strictly beyond the plane
+  /// through p and an edge of the other, across it (that face lies on the
+  /// other side, touching the plane only along its edge: for a1 and a2 from
+  /// p, (a1 x a2) . (a1 x a2) > 0 and (a1 x a1) = 0).
   static bool touch_at_vertex_only(const Corners& a, const Corners& b, int ia, int ib) {
     const Vec3& p = a[ia];
     const D3 a1 = sub(a[(ia + 1) % 3], p);
@@ -210,7 +275,13 @@ class FacePairFilter {
     if (s1 != 0 && pa.side(b2) == s1) return true;
     const Plane pb = plane(b1, b2);
     const int s2 = pb.side(a1);
-    return s2 != 0 && pb.side(a2) == s2;
+    if (s2 != 0 && pb.side(a2) == s2) return true;
+    // 3. The plane through p and one edge of one face, across that face,
+    //    with the other face's far corners strictly beyond it (coplanar fans).
+    return (across(a1, b1, a2) < 0 && across(a1, b2, a2) < 0) ||
+           (across(a2, b1, a1) < 0 && across(a2, b2, a1) < 0) ||
+           (across(b1, a1, b2) < 0 && across(b1, a2, b2) < 0) ||
+           (across(b2, a1, b1) < 0 && across(b2, a2, b1) < 0);
   }
 
   /// Two faces sharing edge pq, with third vertices r (in a) and s (in b).

@@ -33,7 +33,9 @@
 
 #include "geometry/core/errors.h"
 #include "geometry/validation/detail/face_pair_filter.h"
+#include "geometry/validation/detail/planar_patch.h"
 #include "geometry/validation/detail/self_intersect_reference.h"
+#include "geometry/validation/detail/sliver_pieces.h"
 #include "geometry/validation/detail/triangle_bvh.h"
 #include "geometry/validation/detail/vertex_star.h"
 
@@ -45,6 +47,25 @@ using Pair = std::pair<std::uint32_t, std::uint32_t>;
 constexpr std::size_t kLeavesPerTask = 64;         ///< the unit of parallel work: 256 triangles
 constexpr std::size_t kTasksPerBatch = 4096;       ///< tasks in flight (memory bound on piles of faces)
 constexpr std::size_t kPairsPerClockCheck = 4096;  ///< candidate pairs between two looks at the deadline
+constexpr std::size_t kFacesPerUnit = 256;         ///< faces per unit of the patches' search
+
+/// A certified plane group (planar_patch.h) out of the box search: its
+/// faces (in no star) as pieces (sliver_pieces.h) in a hierarchy of their own.
+struct Patch {
+  std::vector<std::uint32_t> faces;  ///< ascending
+  std::vector<std::size_t> offsets;  ///< face i has pieces offsets[i] .. offsets[i + 1] of boxes
+  std::vector<BoxF> boxes;
+  BoxF box;                        ///< of all its pieces
+  std::optional<TriangleBvh> bvh;  ///< over the pieces
+};
+
+/// A unit of the patches' search: the faces [first, last) of the main
+/// hierarchy (patch == none) against every patch, or of patch `patch`
+/// against the patches after it.
+struct PatchUnit {
+  std::size_t patch, first, last;
+};
+constexpr std::size_t kMainFaces = static_cast<std::size_t>(-1);
 
 /// The smallest `keep` pairs of those added.
 class SmallestPairs {
@@ -107,9 +128,15 @@ bool boxes_overlap(const TriangleSoup& soup, std::uint32_t f, std::uint32_t g) {
 class Search {
  public:
   Search(const TriangleSoup& soup, const TriangleBvh& bvh, const TriangleBvh* star_bvh,
-         const detail::VertexStars& stars, const detail::FacePairFilter& filter,
-         const SelfIntersectOptions& options)
-      : soup_(soup), bvh_(bvh), star_bvh_(star_bvh), stars_(stars), filter_(filter), options_(options) {
+         const detail::VertexStars& stars, const std::vector<Patch>& patches,
+         const detail::FacePairFilter& filter, const SelfIntersectOptions& options)
+      : soup_(soup),
+        bvh_(bvh),
+        star_bvh_(star_bvh),
+        stars_(stars),
+        patches_(patches),
+        filter_(filter),
+        options_(options) {
     // The filter's data in the hierarchy's order: neighbours in space are neighbours in memory.
     face_.resize(bvh.size());
     auto body = [&](std::size_t i) { face_[i] = detail::face_data(soup, bvh.face(i)); };
@@ -146,6 +173,58 @@ class Search {
       ++r.count;
       r.smallest.add({f, g});
     });
+    if (total && r.count > 0) total->fetch_add(r.count);
+    r.complete = !r.timed_out;
+    return r;
+  }
+
+  /// Searches the pairs of one unit of the patches' search (PatchUnit):
+  /// faces of the main hierarchy with the patches' faces whose pieces' boxes
+  /// overlap theirs, or a patch's faces with the later patches' faces.
+  /// (Pairs within a patch need no test: the patch is certified.) Counts
+  /// and gives up as run does.
+  TaskResult run_patches(const PatchUnit& unit, std::size_t limit, std::atomic<std::size_t>* total) const {
+    TaskResult r{0, SmallestPairs(options_.max_pairs), false};
+    if (total && total->load(std::memory_order_relaxed) >= options_.count_limit) return r;
+    std::vector<std::uint32_t> found;
+    for (std::size_t i = unit.first; i < unit.last && r.count < limit && !r.timed_out; ++i) {
+      if (past_deadline(options_)) {
+        r.timed_out = true;
+        break;
+      }
+      found.clear();
+      std::uint32_t f = 0;
+      if (unit.patch == kMainFaces) {
+        f = bvh_.face(i);
+        const BoxF box = triangle_box(soup_, f);
+        for (const Patch& q : patches_) {
+          if (overlap(q.box, box))
+            q.bvh->for_each_overlapping(box, [&](std::uint32_t g) { found.push_back(g); });
+        }
+      } else {
+        const Patch& p = patches_[unit.patch];
+        f = p.faces[i];
+        for (std::size_t k = p.offsets[i]; k < p.offsets[i + 1]; ++k) {
+          for (std::size_t q = unit.patch + 1; q < patches_.size(); ++q) {
+            if (!overlap(patches_[q].box, p.boxes[k])) continue;
+            patches_[q].bvh->for_each_overlapping(p.boxes[k], [&](std::uint32_t g) { found.push_back(g); });
+          }
+        }
+      }
+      std::sort(found.begin(), found.end());
+      found.erase(std::unique(found.begin(), found.end()), found.end());
+      const detail::FaceData a = detail::face_data(soup_, f);
+      for (const std::uint32_t g : found) {
+        if (r.count >= limit) break;
+        ++r.tested;
+        if (filter_.disjoint(a, detail::face_data(soup_, g))) continue;
+        const std::uint32_t lo = std::min(f, g);
+        const std::uint32_t hi = std::max(f, g);
+        if (!boxes_overlap(soup_, lo, hi) || !faces_intersect_exact(soup_, lo, hi)) continue;
+        ++r.count;
+        r.smallest.add({lo, hi});
+      }
+    }
     if (total && r.count > 0) total->fetch_add(r.count);
     r.complete = !r.timed_out;
     return r;
@@ -198,7 +277,11 @@ class Search {
     };
     bvh_.for_each_overlapping(box, keep);
     if (star_bvh_) star_bvh_->for_each_overlapping(box, keep);
+    for (const Patch& p : patches_) {
+      if (overlap(p.box, box)) p.bvh->for_each_overlapping(box, keep);  // a face once per piece
+    }
     std::sort(found.begin(), found.end());
+    found.erase(std::unique(found.begin(), found.end()), found.end());
     return found;
   }
 
@@ -206,6 +289,7 @@ class Search {
   const TriangleBvh& bvh_;
   const TriangleBvh* star_bvh_;  ///< the stars' faces (null when there are none)
   const detail::VertexStars& stars_;
+  const std::vector<Patch>& patches_;
   const detail::FacePairFilter& filter_;
   const SelfIntersectOptions& options_;
   std::vector<detail::FaceData> face_;
@@ -222,6 +306,84 @@ void check_input(const TriangleSoup& soup) {
   }
 }
 
+/// Runs a batch of units of the search in parallel, then combines their
+/// results in unit order into `counted`, `smallest` and `result`: once the
+/// count reaches count_limit, units not yet started give up (those before
+/// the capping point are redone), so the first count_limit pairs in search
+/// order count, whatever the threads did.
+template <class Unit, class Run>
+void run_batch(const std::vector<Unit>& batch, const Run& run, const SelfIntersectOptions& options,
+               std::size_t& counted, SmallestPairs& smallest, SelfIntersections& result) {
+  const std::size_t limit = options.count_limit;
+  std::vector<TaskResult> done(batch.size(), TaskResult{0, SmallestPairs(0), false});
+  std::atomic<std::size_t> total{counted};
+  auto body = [&](std::size_t c) { done[c] = run(batch[c], limit, &total); };
+  if (options.parallel) {
+    tbb::parallel_for(std::size_t{0}, batch.size(), body);
+  } else {
+    for (std::size_t c = 0; c < batch.size(); ++c) body(c);
+  }
+  for (std::size_t c = 0; c < batch.size() && !result.capped && !result.incomplete; ++c) {
+    const std::size_t quota = limit - counted;
+    TaskResult& r = done[c];
+    if (!r.timed_out && (!r.complete || r.count > quota)) r = run(batch[c], quota, nullptr);
+    counted += r.count;
+    result.candidates_tested += r.tested;
+    smallest.add(r.smallest);
+    result.capped = counted >= limit;
+    result.incomplete = r.timed_out;
+  }
+}
+
+/// The certified plane groups of the faces with outside[f] == 0 (the
+/// others are skipped), their faces taken out of the box search (outside[f]
+/// set) into a hierarchy of pieces per group.
+std::vector<Patch> patch_hierarchies(const TriangleSoup& soup, std::vector<char>& outside, bool parallel) {
+  const detail::PlanarPatches certified = detail::certify_planar_patches(soup, outside);
+  std::vector<Patch> patches(certified.axis.size());
+  if (patches.empty()) return patches;
+  for (Patch& p : patches) p.offsets.push_back(0);
+  std::vector<std::vector<std::uint32_t>> owners(patches.size());
+  for (std::uint32_t f = 0; f < soup.triangles.size(); ++f) {
+    const std::uint32_t id = certified.patch[f];
+    if (id == detail::kNoPatch || outside[f]) continue;
+    Patch& p = patches[id];
+    outside[f] = 1;
+    p.faces.push_back(f);
+    owners[id].resize(owners[id].size() + detail::append_pieces(soup, f, p.boxes), f);
+    p.offsets.push_back(p.boxes.size());
+  }
+  std::vector<Patch> kept;
+  for (std::size_t id = 0; id < patches.size(); ++id) {
+    Patch& p = patches[id];
+    if (p.faces.empty()) continue;
+    p.box = p.boxes.front();
+    for (const BoxF& b : p.boxes) {
+      for (int k = 0; k < 3; ++k) {
+        p.box.lo[k] = std::min(p.box.lo[k], b.lo[k]);
+        p.box.hi[k] = std::max(p.box.hi[k], b.hi[k]);
+      }
+    }
+    p.bvh.emplace(p.boxes, owners[id], parallel);
+    kept.push_back(std::move(p));
+  }
+  return kept;
+}
+
+/// The units of the patches' search: the main hierarchy's faces against the
+/// patches, then each patch's faces against the later patches.
+std::vector<PatchUnit> patch_units(std::size_t main_faces, const std::vector<Patch>& patches) {
+  std::vector<PatchUnit> units;
+  if (patches.empty()) return units;
+  for (std::size_t i = 0; i < main_faces; i += kFacesPerUnit)
+    units.push_back({kMainFaces, i, std::min(main_faces, i + kFacesPerUnit)});
+  for (std::size_t p = 0; p + 1 < patches.size(); ++p) {
+    for (std::size_t i = 0; i < patches[p].faces.size(); i += kFacesPerUnit)
+      units.push_back({p, i, std::min(patches[p].faces.size(), i + kFacesPerUnit)});
+  }
+  return units;
+}
+
 }  // namespace
 
 SelfIntersections find_self_intersections(const TriangleSoup& soup, const std::vector<char>& skip,
@@ -234,14 +396,17 @@ SelfIntersections find_self_intersections(const TriangleSoup& soup, const std::v
   SelfIntersections result;
   if (options.count_limit == 0) return result;
   const detail::FacePairFilter filter;
-  const detail::VertexStars stars = detail::find_vertex_stars(soup, skip);
-  // The hierarchy of the faces in no star; when there are stars, another of theirs.
+  // Certified plane groups first: their faces need no star (their pairs are
+  // settled) and are searched as pieces; then the stars of the other faces.
   std::vector<char> outside(skip);
-  std::vector<char> inside;
+  outside.resize(soup.triangles.size(), 0);
+  const std::vector<Patch> patches = patch_hierarchies(soup, outside, options.parallel);
+  const detail::VertexStars stars = detail::find_vertex_stars(soup, outside);
+  // The hierarchy of the faces in no star and no patch; when there are
+  // stars, another of theirs.
   std::optional<TriangleBvh> star_bvh;
   if (!stars.centres.empty()) {
-    outside.resize(soup.triangles.size(), 0);
-    inside.assign(soup.triangles.size(), 1);
+    std::vector<char> inside(soup.triangles.size(), 1);
     for (std::size_t f = 0; f < soup.triangles.size(); ++f) {
       const bool member = stars.group[f] != detail::kNoStar;
       outside[f] = static_cast<char>(outside[f] || member);
@@ -250,38 +415,27 @@ SelfIntersections find_self_intersections(const TriangleSoup& soup, const std::v
     star_bvh.emplace(soup, inside, options.parallel);
   }
   const TriangleBvh bvh(soup, outside, options.parallel);
-  const Search search(soup, bvh, star_bvh ? &*star_bvh : nullptr, stars, filter, options);
-  const std::size_t limit = options.count_limit;
-
-  // Tasks in batches, each batch in parallel; once the count reaches the
-  // limit, tasks not yet started give up (those before the capping point
-  // are redone), then results are combined in task order: the first
-  // `limit` pairs in search order count.
-  TriangleBvh::TaskCursor cursor(bvh, kLeavesPerTask);
-  std::vector<TriangleBvh::Task> batch;
-  std::vector<TaskResult> done;
+  const Search search(soup, bvh, star_bvh ? &*star_bvh : nullptr, stars, patches, filter, options);
   SmallestPairs smallest(options.max_pairs);
   std::size_t counted = 0;
-  std::atomic<std::size_t> total{0};
-  while (!result.capped && !result.incomplete && cursor.next(kTasksPerBatch, batch)) {
-    done.assign(batch.size(), TaskResult{0, SmallestPairs(0), false});
-    total = counted;
-    auto body = [&](std::size_t c) { done[c] = search.run(batch[c], limit, &total); };
-    if (options.parallel) {
-      tbb::parallel_for(std::size_t{0}, batch.size(), body);
-    } else {
-      for (std::size_t c = 0; c < batch.size(); ++c) body(c);
-    }
-    for (std::size_t c = 0; c < batch.size() && !result.capped && !result.incomplete; ++c) {
-      const std::size_t quota = limit - counted;
-      TaskResult& r = done[c];
-      if (!r.timed_out && (!r.complete || r.count > quota)) r = search.run(batch[c], quota, nullptr);
-      counted += r.count;
-      result.candidates_tested += r.tested;
-      smallest.add(r.smallest);
-      result.capped = counted >= limit;
-      result.incomplete = r.timed_out;
-    }
+  // The box search's tasks, then the patches' units, then the stars.
+  TriangleBvh::TaskCursor cursor(bvh, kLeavesPerTask);
+  std::vector<TriangleBvh::Task> batch;
+  const auto run_task = [&](const TriangleBvh::Task& t, std::size_t limit, std::atomic<std::size_t>* total) {
+    return search.run(t, limit, total);
+  };
+  while (!result.capped && !result.incomplete && cursor.next(kTasksPerBatch, batch))
+    run_batch(batch, run_task, options, counted, smallest, result);
+  const std::vector<PatchUnit> units = patch_units(bvh.size(), patches);
+  const auto run_unit = [&](const PatchUnit& u, std::size_t limit, std::atomic<std::size_t>* total) {
+    return search.run_patches(u, limit, total);
+  };
+  for (std::size_t first = 0; first < units.size() && !result.capped && !result.incomplete;
+       first += kTasksPerBatch) {
+    const std::vector<PatchUnit> unit_batch(
+        units.begin() + static_cast<std::ptrdiff_t>(first),
+        units.begin() + static_cast<std::ptrdiff_t>(std::min(units.size(), first + kTasksPerBatch)));
+    run_batch(unit_batch, run_unit, options, counted, smallest, result);
   }
   if (!result.capped && !result.incomplete) search.run_stars(counted, smallest, result);
   result.count = counted;

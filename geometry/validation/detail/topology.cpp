@@ -58,12 +58,23 @@ std::vector<Side> collect_sides(const TriangleSoup& soup) {
 /// inconsistent edges, and joins the corners of the two faces of each
 /// manifold edge into fans.
 void classify_edges(const TriangleSoup& soup, const std::vector<Side>& sides, std::size_t max_examples,
-                    ExampleOrder order, Topology& topo, DisjointSets<std::uint32_t>& fans,
-                    std::vector<char>& on_complex_edge) {
+                    std::size_t max_locations, ExampleOrder order, Topology& topo,
+                    DisjointSets<std::uint32_t>& fans, std::vector<char>& on_complex_edge) {
   const auto& tri = soup.triangles;
   auto midpoint = [&](std::uint64_t key) {
     return 0.5 * (soup.vertices[key >> 32] + soup.vertices[key & 0xffffffffu]);
   };
+  // The edge of sides [i, j) as a location: its vertices and faces, ascending.
+  auto edge_location = [&](std::size_t i, std::size_t j) {
+    DefectLocation at{{},
+                      {static_cast<std::uint32_t>(sides[i].key >> 32),
+                       static_cast<std::uint32_t>(sides[i].key & 0xffffffffu)}};
+    for (std::size_t k = i; k < j; ++k) at.faces.push_back(sides[k].face);
+    std::sort(at.faces.begin(), at.faces.end());
+    at.faces.erase(std::unique(at.faces.begin(), at.faces.end()), at.faces.end());
+    return at;
+  };
+  const std::size_t kept_by_face = std::max(max_examples, max_locations);
   // By face: the first max_examples boundary sides in (face, corner) order, kept sorted.
   const bool by_face = order == ExampleOrder::ByFace;
   std::vector<const Side*> first_in_faces;
@@ -78,16 +89,18 @@ void classify_edges(const TriangleSoup& soup, const std::vector<Side>& sides, st
     if (n == 1 && by_face) {
       ++topo.boundary_edges.count;
       const Side* s = &sides[i];
-      if (first_in_faces.size() < max_examples ||
+      if (first_in_faces.size() < kept_by_face ||
           (!first_in_faces.empty() && face_order(s, first_in_faces.back()))) {
         first_in_faces.insert(std::upper_bound(first_in_faces.begin(), first_in_faces.end(), s, face_order),
                               s);
-        if (first_in_faces.size() > max_examples) first_in_faces.pop_back();
+        if (first_in_faces.size() > kept_by_face) first_in_faces.pop_back();
       }
     } else if (n == 1) {
-      topo.boundary_edges.add(midpoint(sides[i].key), max_examples);
+      topo.boundary_edges.add(midpoint(sides[i].key), max_examples, max_locations,
+                              [&] { return edge_location(i, j); });
     } else if (n > 2) {
-      topo.non_manifold_edges.add(midpoint(sides[i].key), max_examples);
+      topo.non_manifold_edges.add(midpoint(sides[i].key), max_examples, max_locations,
+                                  [&] { return edge_location(i, j); });
       on_complex_edge[sides[i].key >> 32] = 1;
       on_complex_edge[sides[i].key & 0xffffffffu] = 1;
     } else {
@@ -95,7 +108,10 @@ void classify_edges(const TriangleSoup& soup, const std::vector<Side>& sides, st
       const Side& u = sides[i + 1];
       const std::uint32_t sa = tri[s.face][s.corner];
       const std::uint32_t ua = tri[u.face][u.corner];
-      if (sa == ua) topo.inconsistent_edges.add(midpoint(s.key), max_examples);
+      if (sa == ua) {
+        topo.inconsistent_edges.add(midpoint(s.key), max_examples, max_locations,
+                                    [&] { return edge_location(i, j); });
+      }
       // Corner ids are 3 * face + k; join the corners that hold the same vertex.
       const std::uint32_t s0 = 3 * s.face + s.corner;
       const std::uint32_t s1 = 3 * s.face + (s.corner + 1) % 3;
@@ -111,12 +127,21 @@ void classify_edges(const TriangleSoup& soup, const std::vector<Side>& sides, st
     }
     i = j;
   }
-  for (const Side* s : first_in_faces) topo.boundary_edges.examples.push_back(midpoint(s->key));
+  for (const Side* s : first_in_faces) {
+    if (topo.boundary_edges.examples.size() < max_examples)
+      topo.boundary_edges.examples.push_back(midpoint(s->key));
+    if (topo.boundary_edges.locations.size() < max_locations) {
+      topo.boundary_edges.locations.push_back(
+          {{s->face},
+           {static_cast<std::uint32_t>(s->key >> 32), static_cast<std::uint32_t>(s->key & 0xffffffffu)}});
+    }
+  }
 }
 
 // The faces' sorted vertex triples with their faces, sorted (as pairs): a
 // counting sort by the smallest vertex, then each bucket stably by the rest.
-void count_duplicates(const TriangleSoup& soup, std::size_t max_examples, Topology& topo) {
+void count_duplicates(const TriangleSoup& soup, std::size_t max_examples, std::size_t max_locations,
+                      Topology& topo) {
   const auto ordered = [](Triangle t) {
     std::sort(t.begin(), t.end());
     return t;
@@ -138,7 +163,11 @@ void count_duplicates(const TriangleSoup& soup, std::size_t max_examples, Topolo
     if (sorted[k].first != sorted[k - 1].first) continue;
     const Triangle& t = sorted[k].first;
     const Vec3 centroid = (soup.vertices[t[0]] + soup.vertices[t[1]] + soup.vertices[t[2]]) / 3.0;
-    topo.duplicate_faces.add(centroid, max_examples);
+    topo.duplicate_faces.add(centroid, max_examples, max_locations, [&] {
+      return DefectLocation{{std::min(sorted[k - 1].second, sorted[k].second),
+                             std::max(sorted[k - 1].second, sorted[k].second)},
+                            {t[0], t[1], t[2]}};
+    });
   }
 }
 
@@ -174,15 +203,30 @@ void count_components(const TriangleSoup& soup, const std::vector<Side>& sides, 
   }
 }
 
+/// Adds to each non-manifold vertex's location every face around it.
+void add_vertex_faces(const TriangleSoup& soup, std::vector<DefectLocation>& locations) {
+  if (locations.empty()) return;
+  std::vector<std::uint32_t> slot(soup.vertices.size(), UINT32_MAX);
+  for (std::uint32_t i = 0; i < locations.size(); ++i) slot[locations[i].vertices.front()] = i;
+  for (std::uint32_t f = 0; f < soup.triangles.size(); ++f) {
+    const Triangle& t = soup.triangles[f];
+    if (index_degenerate(t)) continue;
+    for (const std::uint32_t v : t) {
+      if (slot[v] != UINT32_MAX) locations[slot[v]].faces.push_back(f);
+    }
+  }
+}
+
 }  // namespace
 
-Topology analyse_topology(const TriangleSoup& soup, std::size_t max_examples, ExampleOrder order) {
+Topology analyse_topology(const TriangleSoup& soup, std::size_t max_examples, ExampleOrder order,
+                          std::size_t max_locations) {
   require_indices_in_range(soup);
   Topology topo;
   const std::vector<Side> sides = collect_sides(soup);
   DisjointSets<std::uint32_t> fans(3 * soup.triangles.size());
   std::vector<char> on_complex_edge(soup.vertices.size(), 0);
-  classify_edges(soup, sides, max_examples, order, topo, fans, on_complex_edge);
+  classify_edges(soup, sides, max_examples, max_locations, order, topo, fans, on_complex_edge);
 
   // Each fan root is a corner; a vertex with more than one root has several fans.
   std::vector<std::uint32_t> fan_count(soup.vertices.size(), 0);
@@ -193,10 +237,14 @@ Topology analyse_topology(const TriangleSoup& soup, std::size_t max_examples, Ex
     }
   }
   for (std::size_t v = 0; v < soup.vertices.size(); ++v) {
-    if (fan_count[v] > 1 || on_complex_edge[v])
-      topo.non_manifold_vertices.add(soup.vertices[v], max_examples);
+    if (fan_count[v] > 1 || on_complex_edge[v]) {
+      topo.non_manifold_vertices.add(soup.vertices[v], max_examples, max_locations, [&] {
+        return DefectLocation{{}, {static_cast<std::uint32_t>(v)}};
+      });
+    }
   }
-  count_duplicates(soup, max_examples, topo);
+  add_vertex_faces(soup, topo.non_manifold_vertices.locations);
+  count_duplicates(soup, max_examples, max_locations, topo);
   count_components(soup, sides, topo);
   return topo;
 }

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "geometry/core/soup.h"
+#include "geometry/validation/defect_location.h"
 
 namespace fabmesh {
 
@@ -17,10 +18,21 @@ namespace fabmesh {
 struct DefectCount {
   std::size_t count = 0;
   std::vector<Vec3> examples;  ///< up to the requested number of locations, model units
+  /// The first occurrences as indices, up to the requested number
+  /// (ValidationOptions::max_locations), in the order of `examples`.
+  std::vector<DefectLocation> locations;
 
   /// Counts one occurrence at `where`, keeping it as an example while fewer
   /// than `max_examples` are kept.
   void add(const Vec3& where, std::size_t max_examples);
+
+  /// add(where, max_examples), and keeps the location locate() gives while
+  /// fewer than `max_locations` are kept (locate is called only then).
+  template <class Locate>
+  void add(const Vec3& where, std::size_t max_examples, std::size_t max_locations, Locate&& locate) {
+    if (locations.size() < max_locations) locations.push_back(locate());
+    add(where, max_examples);
+  }
 };
 
 /// The combinatorial facts of a soup. Index-degenerate triangles (a repeated
@@ -52,8 +64,9 @@ enum class ExampleOrder { ByVertex, ByFace };
 /// Analyses the connectivity of `soup` in O(n log n).
 /// \param max_examples  how many example locations to keep per defect kind
 /// \param order  which boundary edges are the examples (counts do not depend on it)
+/// \param max_locations  how many occurrences to keep per kind as indices (DefectLocation)
 /// \throw InputError when an index is out of range.
 Topology analyse_topology(const TriangleSoup& soup, std::size_t max_examples = 5,
-                          ExampleOrder order = ExampleOrder::ByVertex);
+                          ExampleOrder order = ExampleOrder::ByVertex, std::size_t max_locations = 0);
 
 }  // namespace fabmesh

@@ -73,15 +73,32 @@ BoxF triangle_box(const TriangleSoup& soup, std::uint32_t f) {
   return b;
 }
 
+BoxF rounded_box(const Vec3& lo, const Vec3& hi) {
+  BoxF b;
+  for (int k = 0; k < 3; ++k) {
+    b.lo[k] = round_down(lo[k]);
+    b.hi[k] = round_up(hi[k]);
+  }
+  return b;
+}
+
 TriangleBvh::TriangleBvh(const TriangleSoup& soup, const std::vector<char>& skip, bool parallel) {
   std::vector<std::uint32_t> active;
   active.reserve(soup.triangles.size());
   for (std::uint32_t f = 0; f < soup.triangles.size(); ++f) {
     if (skip.empty() || !skip[f]) active.push_back(f);
   }
+  std::vector<BoxF> box(active.size());
+  for_range(active.size(), parallel, [&](std::size_t i) { box[i] = triangle_box(soup, active[i]); });
+  build(std::move(box), active, parallel);
+}
+
+TriangleBvh::TriangleBvh(std::vector<BoxF> boxes, const std::vector<std::uint32_t>& ids, bool parallel) {
+  build(std::move(boxes), ids, parallel);
+}
+
+void TriangleBvh::build(std::vector<BoxF> box, const std::vector<std::uint32_t>& active, bool parallel) {
   const std::size_t n = active.size();
-  std::vector<BoxF> box(n);
-  for_range(n, parallel, [&](std::size_t i) { box[i] = triangle_box(soup, active[i]); });
   // Morton keys of the box centres on a 1024^3 grid over their bounding box.
   float lo[3] = {INFINITY, INFINITY, INFINITY};
   float hi[3] = {-INFINITY, -INFINITY, -INFINITY};

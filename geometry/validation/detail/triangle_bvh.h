@@ -40,6 +40,9 @@ inline bool overlap(const BoxF& a, const BoxF& b) {
 /// \pre indices in range.
 BoxF triangle_box(const TriangleSoup& soup, std::uint32_t f);
 
+/// The box from lo to hi (doubles), its coordinates rounded outwards to floats.
+BoxF rounded_box(const Vec3& lo, const Vec3& hi);
+
 class TriangleBvh {
  public:
   static constexpr std::size_t kLeafSize = 4;  ///< triangles per leaf: one lane each
@@ -49,6 +52,12 @@ class TriangleBvh {
   /// The result does not depend on the number of threads.
   /// \pre indices in range, coordinates finite.
   TriangleBvh(const TriangleSoup& soup, const std::vector<char>& skip, bool parallel);
+
+  /// Builds the hierarchy over given boxes, box i standing for face ids[i]
+  /// (ids may repeat: pieces of one face), using all cores when `parallel`.
+  /// The result does not depend on the number of threads.
+  /// \pre boxes.size() == ids.size(), every box finite and not empty.
+  TriangleBvh(std::vector<BoxF> boxes, const std::vector<std::uint32_t>& ids, bool parallel);
 
   /// Number of triangles in the hierarchy.
   std::size_t size() const { return faces_.size(); }
@@ -164,6 +173,9 @@ class TriangleBvh {
       for (; bits != 0; bits &= bits - 1) visit(i, b0 + static_cast<std::size_t>(__builtin_ctz(bits)));
     }
   }
+
+  /// Sorts `box` (box i of face ids[i]) along the Morton curve and builds the tree.
+  void build(std::vector<BoxF> box, const std::vector<std::uint32_t>& ids, bool parallel);
 
   std::vector<std::uint32_t> faces_;   ///< face index at each sorted position
   std::vector<BoxF> boxes_;            ///< box of each sorted position

@@ -61,7 +61,10 @@ TEST_CASE("mesh files: OBJ, double PLY and OFF round-trip vertices and faces exa
   using Writer = std::function<void(const TriangleSoup&, const std::string&)>;
   const std::vector<std::pair<std::string, Writer>> writers = {
       {"t.obj", [](const TriangleSoup& s, const std::string& p) { write_obj(s, p); }},
-      {"t.ply", [](const TriangleSoup& s, const std::string& p) { write_ply(s, p, PlyOptions{true}); }},
+      {"t.ply",
+       [](const TriangleSoup& s, const std::string& p) {
+         write_ply(s, p, PlyOptions{true, {}});
+       }},
       {"t.off", [](const TriangleSoup& s, const std::string& p) { write_off(s, p); }}};
   for (const auto& [name, write] : writers) {
     INFO(name);
@@ -83,13 +86,13 @@ TEST_CASE("mesh files: PLY is float32 by default, round-trips float32 exactly an
   CHECK(back.vertices == as_float(torus).vertices);
   CHECK(back.triangles == torus.triangles);
   require_valid_torus(back, torus.triangles.size());
-  CHECK(encode_ply(torus, PlyOptions{true}).find("property double x") != std::string::npos);
+  CHECK(encode_ply(torus, PlyOptions{true, {}}).find("property double x") != std::string::npos);
 
   // draco_encoder refuses double coordinates ("x, y, and z properties must be
   // of type float32 or int32") and takes fabmesh's default PLY.
   REQUIRE_PROGRAM("draco_encoder");
   write_ply(torus, dir.file("float.ply"));
-  write_ply(torus, dir.file("double.ply"), PlyOptions{true});
+  write_ply(torus, dir.file("double.ply"), PlyOptions{true, {}});
   const auto encode = [&](const std::string& ply) {
     return test::run_tool("draco_encoder -qp 20 -i " + test::quoted(dir.file(ply)) + " -o " +
                           test::quoted(dir.file(ply + ".drc")));
@@ -104,7 +107,7 @@ TEST_CASE("mesh files: PLY is float32 by default, round-trips float32 exactly an
   TriangleSoup overflow = test::box();
   overflow.vertices[0].x() = 1e300;
   CHECK_THROWS_AS(encode_ply(overflow), InputError);
-  CHECK(encode_ply(overflow, PlyOptions{true}).size() > 0);
+  CHECK(encode_ply(overflow, PlyOptions{true, {}}).size() > 0);
 }
 
 TEST_CASE("mesh files: binary STL round-trips float32 coordinates and welds back to the mesh", "[mesh][io]") {

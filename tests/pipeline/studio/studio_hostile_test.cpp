@@ -193,7 +193,7 @@ TEST_CASE("studio: a port another studio listens on is refused, with exit code 5
   RunningStudio first(design.string(), (design.parent_path() / "out").string());
   StudioServerOptions options = RunningStudio::options({});
   options.port = first.server.port();
-  REQUIRE_THROWS_AS(StudioServer(first.session, options), EnvironmentError);
+  REQUIRE_THROWS_AS(StudioServer(first.session, options), MachineError);
   try {
     StudioServer second(first.session, options);
   } catch (...) {
