@@ -48,7 +48,8 @@ struct TabOptions {
   double width = 10.0;
   double height = 3.0;  ///< the bridge's height above the bottom of the slab; in (0, depth)
   /// Tabs sit where the tool-centre path's radius of curvature is at least
-  /// this (straight or gently curved stretches), > 0; unset: 20 tool diameters.
+  /// this (straight or gently curved stretches), > 0; unset: 20 tool
+  /// diameters, or a loop's largest where it has no stretch that flat.
   std::optional<double> min_radius;
 };
 

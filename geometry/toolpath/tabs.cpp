@@ -45,6 +45,20 @@ void cut_out(std::vector<Interval>& intervals, double lo, double hi) {
   intervals = std::move(out);
 }
 
+// The radius of curvature tabs need on this loop: the one asked for, else
+// 20 tool diameters, or the loop's flattest offset stretch where it has none
+// that flat (a round cut-out is curved all along: its tabs go anywhere on it,
+// rather than nowhere).
+double loop_tab_radius(const LoopPath& path, const TabOptions& tabs, double tool_diameter) {
+  const double wanted = tab_min_radius(tabs, tool_diameter);
+  if (tabs.min_radius) return wanted;
+  double flattest = 0.0;
+  for (const PathPiece& p : path.pieces) {
+    if (p.role == PieceRole::Offset) flattest = std::max(flattest, p.radius_of_curvature);
+  }
+  return flattest > 0.0 ? std::min(wanted, flattest) : wanted;
+}
+
 }  // namespace
 
 TabPlacement place_tabs(const LoopPath& path, const TabOptions& want_tabs, const CncOptions& o,
@@ -53,7 +67,7 @@ TabPlacement place_tabs(const LoopPath& path, const TabOptions& want_tabs, const
   if (want_tabs.count == 0) return out;
   const double lifted = want_tabs.width + o.tool_diameter;
   const double gap = o.tool_diameter;
-  const double min_radius = tab_min_radius(want_tabs, o.tool_diameter);
+  const double min_radius = loop_tab_radius(path, want_tabs, o.tool_diameter);
   // Admissible tab centres: inside flat stretches by half a tab, clear of the start point.
   std::vector<Interval> centres;
   for (const Interval& s : flat_stretches(path, min_radius, o.tool_diameter)) {

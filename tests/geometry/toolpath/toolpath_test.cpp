@@ -415,3 +415,25 @@ TEST_CASE(
                Catch::Contains("has a radius of 4") && Catch::Contains("below the tool radius 6"));
   }
 }
+
+TEST_CASE("toolpath: a round sink's tabs go on its curve when min_radius is left to its default",
+          "[geometry][toolpath][tabs]") {
+  // A round sink of radius 100: its tool path (radius 94) is nowhere as flat
+  // as 20 tool diameters (240), so the default takes the loop's own curvature.
+  const std::vector<RegionHole> holes{{ellipse({600, 300}, 100, 100, 0), "holes[0] (ellipse)"}};
+  CncOptions o = base();
+  TabOptions sink;
+  sink.count = 2;
+  o.hole_tabs = {sink};
+  const Toolpath tp = plan_toolpath(kSlab, holes, o);
+  REQUIRE(tp.loops.size() == 2);
+  CHECK(tp.loops[0].tabs.size() == 2);
+  CHECK(tp.warnings.empty());
+  // Asked for explicitly, the bound stays: a radius of 240 leaves the sink unheld, with a warning.
+  sink.min_radius = 240;
+  o.hole_tabs = {sink};
+  const Toolpath strict = plan_toolpath(kSlab, holes, o);
+  CHECK(strict.loops[0].tabs.empty());
+  REQUIRE(strict.warnings.size() == 1);
+  CHECK_THAT(strict.warnings[0], Catch::StartsWith("holes[0] (ellipse): 0 of 2 tabs placed"));
+}
