@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "geometry/core/stage_timer.h"
 #include "geometry/core/soup.h"
+#include "geometry/core/stage_timer.h"
 #include "geometry/repair/repair.h"
 #include "pipeline/failure.h"
 

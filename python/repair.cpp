@@ -70,7 +70,8 @@ void bind_repair(py::module_& m) {
           "The result's triangles, int64 (L, 3)")
       .def_readonly("distance", &fabmesh::RepairReport::distance,
                     "Proven bound of the two-sided distance between input and result")
-      .def_readonly("weld_distance", &fabmesh::RepairReport::weld_distance, "The border weld's distance (0: none)")
+      .def_readonly("weld_distance", &fabmesh::RepairReport::weld_distance,
+                    "The border weld's distance (0: none)")
       .def_readonly("components_before", &fabmesh::RepairReport::components_before)
       .def_readonly("components_after", &fabmesh::RepairReport::components_after)
       .def_readonly("volume_before", &fabmesh::RepairReport::volume_before)

@@ -131,9 +131,9 @@ const HttpModuleApi& http_module() {
   }
   if (error.error_number == EACCES) {
     throw MachineError(at, error.error_number,
-                           fmt::format("--port {}: permission denied to listen on {} (ports below 1024 "
-                                       "need privileges; --port 0 chooses a free one)",
-                                       port, at));
+                       fmt::format("--port {}: permission denied to listen on {} (ports below 1024 "
+                                   "need privileges; --port 0 chooses a free one)",
+                                   port, at));
   }
   throw MachineError(at, error.error_number, fmt::format("cannot listen on {}: {}", at, error.message));
 }

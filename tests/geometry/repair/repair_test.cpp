@@ -86,7 +86,7 @@ TEST_CASE("repair: degenerate faces are removed, a collinear needle stitched", "
   CHECK(r.measure.distance < 1e-5);  // 0 but for the bound's resolution (1e-6 of the size)
 }
 
-TEST_CASE("repair: duplicate faces go; opposite copies of a shared wall cancel", "[repair]") {
+TEST_CASE("repair: duplicate faces go and opposite copies of a shared wall cancel", "[repair]") {
   SECTION("a repeated face") {
     TriangleSoup s = cube(Vec3::Zero(), 1.0);
     s.triangles.push_back(s.triangles[3]);
@@ -107,7 +107,7 @@ TEST_CASE("repair: duplicate faces go; opposite copies of a shared wall cancel",
   }
 }
 
-TEST_CASE("repair: faces that disagree are flipped; an inside-out solid turned", "[repair]") {
+TEST_CASE("repair: faces that disagree are flipped and an inside-out solid turned", "[repair]") {
   SECTION("a few faces flipped") {
     TriangleSoup s = sphere(Vec3::Zero(), 1.0, 2);
     for (std::size_t f : {3, 17, 40}) std::swap(s.triangles[f][1], s.triangles[f][2]);
