@@ -9,7 +9,9 @@
 #
 #   bench/repair_vs_peers.sh [FABMESH] [REPAIR_PMP] [REPAIR_DISTANCE]
 #       defaults: build-bench/pipeline/fabmesh, build-bench/bench/repair_pmp, build-bench/bench/repair_distance
-#   environment: FILES (inputs, default the corpus and OCCT's STLs), KEEP=1
+#   environment: FILES (inputs, default the corpus and OCCT's STLs), KEEP=1,
+#                TOOL_SECONDS (each tool's time on one file, default 120: a tool
+#                stopped there wrote nothing valid and is listed as timed out)
 #
 # Build in Release first:
 #   cmake -S . -B build-bench -G Ninja -DCMAKE_BUILD_TYPE=Release -DFABMESH_BUILD_TESTS=OFF -DFABMESH_BUILD_BENCH=ON
@@ -21,6 +23,7 @@ fabmesh=${1:-$here/../build-bench/pipeline/fabmesh}
 pmp=${2:-$here/../build-bench/bench/repair_pmp}
 distance=${3:-$here/../build-bench/bench/repair_distance}
 runs=1
+limit=${TOOL_SECONDS:-120}
 peer_tools=admesh
 # shellcheck source=bench/lib.sh
 source "$here/lib.sh"
@@ -66,15 +69,20 @@ PY
   fi
   components_in=$(components "$file")
   for tool in fabmesh admesh pmp; do
+    status=0
     case $tool in
-      fabmesh) out=$tmp/$stem.fm.3mf; start=$(ms_now); "$fabmesh" repair "$file" -o "$out" >/dev/null 2>&1 || true ;;
+      fabmesh) out=$tmp/$stem.fm.3mf; start=$(ms_now)
+        timeout "$limit" "$fabmesh" repair "$file" -o "$out" >/dev/null 2>&1 || status=$? ;;
       admesh) out=$tmp/$stem.ad.stl; start=$(ms_now)
-        admesh --exact --nearby --remove-unconnected --fill-holes --normal-directions "$stl" -b "$out" >/dev/null 2>&1 || true ;;
-      pmp) out=$tmp/$stem.pmp.off; start=$(ms_now); "$pmp" "$file" "$out" >/dev/null 2>&1 || true ;;
+        timeout "$limit" admesh --exact --nearby --remove-unconnected --fill-holes --normal-directions "$stl" \
+          -b "$out" >/dev/null 2>&1 || status=$? ;;
+      pmp) out=$tmp/$stem.pmp.off; start=$(ms_now); timeout "$limit" "$pmp" "$file" "$out" >/dev/null 2>&1 || status=$? ;;
     esac
     ms=$(( $(ms_now) - start ))
     valid=0 components=0 rel=nan
-    if [[ -s $out ]]; then
+    if [[ $status -eq 124 ]]; then
+      ms="timeout"  # stopped at the limit: whatever it left is not its answer
+    elif [[ -s $out ]]; then
       "$fabmesh" check "$out" >/dev/null 2>&1 && valid=1
       components=$(components "$out")
       rel=$("$distance" "$file" "$out" 2>/dev/null | python3 -c 'import json,sys; j=json.load(sys.stdin); print(j["bound"] / j["diagonal"])' || echo nan)
@@ -103,5 +111,8 @@ for tool in ("fabmesh", "admesh", "pmp"):
     total_in = sum(int(r[3]) for r in mine)
     print("%-8s %-12s %-12s %-12s %-16s %-10d" % (tool, "%d/%d" % (len(valid), len(mine)),
           "%.2e" % statistics.median(rel) if rel else "-", "%.2e" % max(rel) if rel else "-",
-          "%d/%d" % (kept, total_in), sum(int(r[6]) for r in mine)))
+          "%d/%d" % (kept, total_in), sum(int(r[6]) for r in mine if r[6] != "timeout")))
+    stopped = [r[0] for r in mine if r[6] == "timeout"]
+    if stopped:
+        print("%-8s stopped at the time limit on: %s" % (tool, ", ".join(stopped)))
 PY
