@@ -6,7 +6,8 @@
 #      ASan+UBSan) for a fixed time on the seeds in tests/data/fuzz-seeds/;
 #      any finding fails;
 #  (b) build everything with FABMESH_SANITIZE=ON (ASan+UBSan) and run ctest.
-# Usage: scripts/ci-extra.sh [fuzz|sanitize|all]   (default all)
+# Usage: scripts/ci-extra.sh [fuzz|sanitize|all]   (default all); CI runs the
+# halves of each apart (fuzz-build, fuzz-run, sanitize-build, sanitize-test).
 # Environment: FUZZ_SECONDS (per reader, default 20), JOBS (default 2).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -16,7 +17,7 @@ FUZZ_SECONDS="${FUZZ_SECONDS:-20}"
 JOBS="${JOBS:-2}"
 readers=(stl obj ply off draco 3mf gltf design csv dxf manifest ledger)
 
-fuzz() {
+fuzz_build() {
   local dir=build-fuzz
   # Line tables are all a sanitizer report needs; full debug information of
   # the CGAL translation units costs minutes on two cores.
@@ -26,6 +27,10 @@ fuzz() {
     -DCMAKE_CXX_FLAGS="-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer" \
     -DFABMESH_BUILD_FUZZERS=ON -DFABMESH_BUILD_TESTS=OFF -DFABMESH_PYTHON=OFF
   cmake --build "$dir" -j"$JOBS" --target "${readers[@]/#/fuzz_}"
+}
+
+fuzz_run() {
+  local dir=build-fuzz
   for r in "${readers[@]}"; do
     # New inputs go to a scratch corpus; the committed seeds are only read.
     local corpus
@@ -50,7 +55,7 @@ fuzz() {
   done
 }
 
-sanitize() {
+sanitize_build() {
   local dir=build-sanitize
   # -g1 (line tables and function names) is all ASan's and UBSan's stacks
   # need, and builds markedly faster than full debug information. The
@@ -68,14 +73,23 @@ sanitize() {
   cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFABMESH_SANITIZE=ON -DFABMESH_PYTHON=OFF \
     -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG"
   cmake --build "$dir" -j"$JOBS" --target fabmesh fabmesh_tests fabmesh_studio_tests fabmesh_cnc_bench
+}
+
+sanitize_test() {
+  local dir=build-sanitize
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     ctest --test-dir "$dir" --output-on-failure -j"$JOBS" \
     -E '^fabmesh_api_tests_NOT_BUILT|^studio_page$|^docs\.library_example_|^python$|^install_prefix$|^lazy_libraries$|^router program: '
 }
 
 case "$what" in
-  fuzz) fuzz ;;
-  sanitize) sanitize ;;
-  all) fuzz && sanitize ;;
-  *) echo "usage: $0 [fuzz|sanitize|all]" >&2; exit 2 ;;
+  fuzz) fuzz_build; fuzz_run ;;
+  sanitize) sanitize_build; sanitize_test ;;
+  all) fuzz_build; fuzz_run; sanitize_build; sanitize_test ;;
+  # The halves, for CI to overlap a build with single-threaded work.
+  fuzz-build) fuzz_build ;;
+  fuzz-run) fuzz_run ;;
+  sanitize-build) sanitize_build ;;
+  sanitize-test) sanitize_test ;;
+  *) echo "usage: $0 [fuzz|sanitize|all|fuzz-build|fuzz-run|sanitize-build|sanitize-test]" >&2; exit 2 ;;
 esac
