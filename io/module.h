@@ -3,8 +3,9 @@
 // runs use (OpenCASCADE for STEP, lib3mf for 3MF, the HTTP server of the
 // studio), loaded with dlopen the first time they are needed, so that every
 // other run starts without loading those libraries. Each module exports one C
-// function returning a table of entry points whose first member is its
-// interface version (`int abi`).
+// function, `extern "C" const void* NAME()` (defined with exactly that type:
+// it is called through it), returning a table of entry points whose first
+// member is its interface version (`int abi`).
 
 #include <string>
 

@@ -619,7 +619,9 @@ StepDistances distances_to(const std::string& bytes, const std::vector<Vec3>& po
 }  // namespace
 }  // namespace fabmesh
 
-extern "C" __attribute__((visibility("default"))) const fabmesh::StepModuleApi* fabmesh_step_module() {
+// The loader calls this through `const void* (*)()` (io/module.h): the type it
+// is defined with, so the call is well defined; the table is a StepModuleApi.
+extern "C" __attribute__((visibility("default"))) const void* fabmesh_step_module() {
   static const fabmesh::StepModuleApi api{fabmesh::kStepModuleAbi, &fabmesh::write_model,
                                           &fabmesh::read_bytes, &fabmesh::distances_to};
   return &api;

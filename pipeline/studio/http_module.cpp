@@ -244,7 +244,9 @@ void destroy(void* server) { delete static_cast<Server*>(server); }
 }  // namespace
 }  // namespace fabmesh
 
-extern "C" __attribute__((visibility("default"))) const fabmesh::HttpModuleApi* fabmesh_http_module() {
+// The loader calls this through `const void* (*)()` (io/module.h): the type it
+// is defined with, so the call is well defined; the table is a HttpModuleApi.
+extern "C" __attribute__((visibility("default"))) const void* fabmesh_http_module() {
   static const fabmesh::HttpModuleApi api{fabmesh::kHttpModuleAbi, &fabmesh::listen_at, &fabmesh::run,
                                           &fabmesh::stop, &fabmesh::destroy};
   return &api;
