@@ -5,7 +5,7 @@
 #      and the batch readers (manifests, ledgers) with libFuzzer (clang,
 #      ASan+UBSan) for a fixed time on the seeds in tests/data/fuzz-seeds/;
 #      any finding fails;
-#  (b) build the program and the test suite in the same tree and run ctest.
+#  (b) build everything with FABMESH_SANITIZE=ON (ASan+UBSan) and run ctest.
 # Usage: scripts/ci-extra.sh [fuzz|sanitize|all]   (default all); CI runs the
 # halves of each apart (fuzz-build, fuzz-run, sanitize-build, sanitize-test).
 # Environment: FUZZ_SECONDS (per reader, default 20), JOBS (default 2).
@@ -17,28 +17,20 @@ FUZZ_SECONDS="${FUZZ_SECONDS:-20}"
 JOBS="${JOBS:-2}"
 readers=(stl obj ply off draco 3mf gltf design csv dxf manifest ledger)
 
-# One sanitized tree serves both halves: clang with ASan and UBSan, and
-# libFuzzer's coverage (fuzzer-no-link) on every object, so the fuzz targets
-# and the test suite link the same library objects, compiled once. Line
-# tables are all a sanitizer report needs; full debug information of the
-# CGAL translation units costs minutes on two cores.
-dir=build-sanitize
-configure() {
-  mkdir -p "$dir"
+fuzz_build() {
+  local dir=build-fuzz
+  # Line tables are all a sanitizer report needs; full debug information of
+  # the CGAL translation units costs minutes on two cores.
   cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only -DNDEBUG" \
     -DCMAKE_CXX_COMPILER=clang++ \
     -DCMAKE_CXX_FLAGS="-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer" \
-    -DFABMESH_BUILD_FUZZERS=ON -DFABMESH_BUILD_TESTS=ON -DFABMESH_PYTHON=OFF >"$dir/configure.log" ||
-    { cat "$dir/configure.log"; return 1; }
-}
-
-fuzz_build() {
-  configure
+    -DFABMESH_BUILD_FUZZERS=ON -DFABMESH_BUILD_TESTS=OFF -DFABMESH_PYTHON=OFF
   cmake --build "$dir" -j"$JOBS" --target "${readers[@]/#/fuzz_}"
 }
 
 fuzz_run() {
+  local dir=build-fuzz
   for r in "${readers[@]}"; do
     # New inputs go to a scratch corpus; the committed seeds are only read.
     local corpus
@@ -64,9 +56,12 @@ fuzz_run() {
 }
 
 sanitize_build() {
-  # The program and its test suite only: the shared library and the Python
-  # module are the same pipeline code behind a thin layer (an interpreter not
-  # built with ASan cannot load an ASan module anyway), and CI's time has no
+  local dir=build-sanitize
+  # -g1 (line tables and function names) is all ASan's and UBSan's stacks
+  # need, and builds markedly faster than full debug information. The
+  # program and its test suite only: the shared library and the Python module
+  # are the same pipeline code behind a thin layer (an interpreter not built
+  # with ASan cannot load an ASan module anyway), and CI's 90 minutes have no
   # room for a second sanitized build of them. The "router program" tests are
   # left to the main suite: their time goes to the CNCjs interpreter and to
   # the test's own exact-distance measurements, while the planning they
@@ -75,11 +70,13 @@ sanitize_build() {
   # sanitizers through its own test program; its page test, which drives
   # Chromium and node, is left to the main suite. The lazy-libraries check
   # reads the shared library, which this build leaves out.
-  configure
+  cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFABMESH_SANITIZE=ON -DFABMESH_PYTHON=OFF \
+    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG"
   cmake --build "$dir" -j"$JOBS" --target fabmesh fabmesh_tests fabmesh_studio_tests fabmesh_cnc_bench
 }
 
 sanitize_test() {
+  local dir=build-sanitize
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     ctest --test-dir "$dir" --output-on-failure -j"$JOBS" \
     -E '^fabmesh_api_tests_NOT_BUILT|^studio_page$|^docs\.library_example_|^python$|^install_prefix$|^lazy_libraries$|^router program: '
