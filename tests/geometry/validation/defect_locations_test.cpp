@@ -38,7 +38,7 @@ TEST_CASE("defect locations: a cube less one face lists each boundary edge's ver
   REQUIRE(d != nullptr);
   REQUIRE(d->count == 3);
   REQUIRE(d->locations.size() == 3);
-  const auto& removed = box().triangles.back();
+  const auto removed = box().triangles.back();  // a copy: box() is a temporary
   for (const DefectLocation& at : d->locations) {
     REQUIRE(at.faces.size() == 1);
     REQUIRE(at.vertices.size() == 2);
