@@ -19,6 +19,12 @@
 namespace fabmesh::api {
 namespace {
 
+// The public roles are the pipeline's, enumerator for enumerator: a part's
+// role converts by value, and its name is the pipeline's name.
+static_assert(static_cast<int>(PartRole::Product) == static_cast<int>(fabmesh::PartRole::Product) &&
+              static_cast<int>(PartRole::MouldSide) == static_cast<int>(fabmesh::PartRole::MouldSide) &&
+              static_cast<int>(PartRole::MouldBase) == static_cast<int>(fabmesh::PartRole::MouldBase));
+
 // The design's curves as built, sampled within the design's tolerance, each
 // with the spec it was built from (fairing it again starts there).
 std::vector<BuiltCurve> public_curves(const fabmesh::Design& design, const fabmesh::Result& built) {
@@ -46,17 +52,7 @@ std::vector<BuiltCurve> public_curves(const fabmesh::Design& design, const fabme
 Part public_part(const fabmesh::Part& part) {
   Part out;
   out.name = part.name;
-  switch (part.role) {
-    case fabmesh::PartRole::Product:
-      out.role = PartRole::Product;
-      break;
-    case fabmesh::PartRole::MouldSide:
-      out.role = PartRole::MouldSide;
-      break;
-    case fabmesh::PartRole::MouldBase:
-      out.role = PartRole::MouldBase;
-      break;
-  }
+  out.role = static_cast<PartRole>(part.role);
   out.mesh = detail::public_mesh(part.mesh);
   out.validation = detail::public_report(part.validation, fabmesh::validation_json(part.validation));
   return out;
@@ -91,17 +87,7 @@ void take_files(const fabmesh::Result& built, Result& result) {
 
 }  // namespace
 
-const char* to_string(PartRole role) {
-  switch (role) {
-    case PartRole::Product:
-      return "product";
-    case PartRole::MouldSide:
-      return "mould_side";
-    case PartRole::MouldBase:
-      return "mould_base";
-  }
-  return "product";
-}
+const char* to_string(PartRole role) { return fabmesh::to_string(static_cast<fabmesh::PartRole>(role)); }
 
 Result build(const Design& design) {
   const fabmesh::Design& d = design.data().design;
