@@ -10,17 +10,9 @@ import numpy as np
 import pytest
 
 import fabmesh
-from conftest import BINARY, cli, corpus, example
+from conftest import BINARY, cli, corpus, example, without_timings
 
 GOLDEN_VOLUME_CM3 = 46.171424531125  # the golden solid's exact volume (quasi-cubic B-spline profile)
-
-
-def without_timings(value):
-    if isinstance(value, dict):
-        return {k: without_timings(v) for k, v in value.items() if not k.startswith("timings")}
-    if isinstance(value, list):
-        return [without_timings(v) for v in value]
-    return value
 
 
 def tetrahedron():

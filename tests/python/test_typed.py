@@ -9,15 +9,7 @@ import numpy as np
 import pytest
 
 import fabmesh
-from conftest import BINARY, example
-
-
-def without_timings(value):
-    if isinstance(value, dict):
-        return {k: without_timings(v) for k, v in value.items() if not k.startswith("timings")}
-    if isinstance(value, list):
-        return [without_timings(v) for v in value]
-    return value
+from conftest import BINARY, example, without_timings
 
 
 def test_enums_are_typed_and_their_texts():

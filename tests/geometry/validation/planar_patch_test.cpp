@@ -13,21 +13,13 @@
 #include "tests/geometry/mesh/shapes.h"
 #include "tests/geometry/section/region_shapes.h"
 #include "tests/geometry/validation/same_as_reference.h"
+#include "tests/geometry/validation/sliver_shapes.h"
 
 using namespace fabmesh;
 using fabmesh::detail::certify_planar_patches;
 using fabmesh::detail::kNoPatch;
 
 namespace {
-
-/// A countertop slab: long slivers across a rounded rectangle with a sink.
-TriangleSoup countertop() {
-  RegionOptions ro;
-  ro.tolerance = 0.5;
-  const Region2 region = build_region(test::rounded_rect(0, 0, 1200, 600, 60),
-                                      {{test::ellipse({350, 300}, 200, 150, 10), "sink"}}, ro);
-  return to_soup(build_slab(region, SlabOptions{}).mesh);
-}
 
 /// The faces of `s` with every corner at height z.
 std::set<std::uint32_t> faces_at(const TriangleSoup& s, double z) {
@@ -43,7 +35,7 @@ std::set<std::uint32_t> faces_at(const TriangleSoup& s, double z) {
 
 TEST_CASE("planar patches: a countertop's top and bottom are certified, every face of them",
           "[mesh][validate][patches]") {
-  const TriangleSoup s = countertop();
+  const TriangleSoup s = test::countertop_slab();
   const auto patches = certify_planar_patches(s, {});
   REQUIRE(patches.axis.size() >= 2);
   double top = 0.0;
@@ -62,7 +54,7 @@ TEST_CASE("planar patches: a countertop's top and bottom are certified, every fa
 
 TEST_CASE("planar patches: a fold in the plane, or a second patch on top, is never certified",
           "[mesh][validate][patches]") {
-  const TriangleSoup s = countertop();
+  const TriangleSoup s = test::countertop_slab();
   double top = 0.0;
   for (const Vec3& p : s.vertices) top = std::max(top, p.z());
   {  // a vertex of the top moved across its neighbours, in the plane: faces fold over each other

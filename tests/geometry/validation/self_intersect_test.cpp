@@ -22,6 +22,7 @@
 #include "tests/geometry/mesh/shapes.h"
 #include "tests/geometry/section/region_shapes.h"
 #include "tests/geometry/validation/same_as_reference.h"
+#include "tests/geometry/validation/sliver_shapes.h"
 
 using namespace fabmesh;
 using fabmesh::test::append;
@@ -127,16 +128,6 @@ TriangleSoup revolved(int segments) {
   return revolve(loops, RevolveOptions{segments}).soup;
 }
 
-/// A countertop slab (what the countertop builder makes): a constrained
-/// Delaunay triangulation with long slivers and many coplanar neighbours.
-TriangleSoup countertop() {
-  RegionOptions ro;
-  ro.tolerance = 0.5;
-  const Region2 region = build_region(test::rounded_rect(0, 0, 1200, 600, 60),
-                                      {{test::ellipse({350, 300}, 200, 150, 10), "sink"}}, ro);
-  return to_soup(build_slab(region, SlabOptions{}).mesh);
-}
-
 /// A torus with one coordinate of 1e-35: the faces around it are outside
 /// the filter's range and go to the exact test, the others do not.
 TriangleSoup torus_with_tiny_coordinate() {
@@ -212,7 +203,7 @@ TEST_CASE("self-intersection: the fast test equals the reference on closed meshe
           "[mesh][self_intersect]") {
   for (const TriangleSoup& s : {test::torus(3, 1, 40, 20), test::sphere(2, 32, 16), test::slab_with_holes(3),
                                 revolved(48), test::rotated(test::torus(3, 1.2, 30, 17), Vec3(1, 2, 3), 0.7),
-                                countertop(), torus_with_tiny_coordinate()}) {
+                                test::countertop_slab(), torus_with_tiny_coordinate()}) {
     const SelfIntersections r = find_self_intersections(s);
     CHECK(r.count == 0);
     require_same(s, {});
