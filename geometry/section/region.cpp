@@ -231,6 +231,9 @@ Region2 build_region(const CompositeCurve& outline, const std::vector<RegionHole
     if (region.reversed.back()) std::reverse(pts.begin(), pts.end());
     region.area += (i == 0 ? 0.5 : -0.5) * std::abs(a2);
     if (i == 0) {
+      for (const CurveParam& p : loops[i].params)
+        region.outer_along.push_back(static_cast<double>(p.segment) + p.s);
+      if (region.reversed.back()) std::reverse(region.outer_along.begin(), region.outer_along.end());
       region.outer = std::move(pts);
     } else {
       region.holes.push_back(std::move(pts));

@@ -40,6 +40,9 @@ struct Region2 {
   /// Per loop (outer first, then the holes): true when the loop runs against
   /// its curve's direction (the curve was given the other way round).
   std::vector<bool> reversed;
+  /// Where each point of `outer` lies on the outline: segment + s (the
+  /// outline's global parameter, CompositeCurve::point), in `outer`'s order.
+  std::vector<double> outer_along;
   std::string proof;  ///< why the region is simple (for reports)
   /// The smallest distance between two different exact curves (outline and
   /// holes, holes among themselves), a proven lower bound; infinity with no hole.

@@ -15,6 +15,8 @@ using Point = Kernel::Point_2;
 using Segment2 = Kernel::Segment_2;
 using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 2, std::size_t>;
 
+Point point_of(const Vec2& p) { return {p.x(), p.y()}; }
+
 struct Edge {
   std::size_t chain;  // which polyline
   std::size_t local;  // edge index within it
@@ -208,6 +210,31 @@ bool is_planar_embedding(const std::vector<Vec2>& points,
     }
   }
   return true;
+}
+
+int side_of_line(const Vec2& a, const Vec2& b, const Vec2& p) {
+  switch (CGAL::orientation(point_of(a), point_of(b), point_of(p))) {
+    case CGAL::LEFT_TURN:
+      return 1;
+    case CGAL::RIGHT_TURN:
+      return -1;
+    default:
+      return 0;
+  }
+}
+
+int point_in_polygon(const std::vector<Vec2>& polygon, const Vec2& p) {
+  std::vector<Point> points;
+  points.reserve(polygon.size());
+  for (const Vec2& q : polygon) points.push_back(point_of(q));
+  switch (CGAL::bounded_side_2(points.begin(), points.end(), point_of(p), Kernel())) {
+    case CGAL::ON_BOUNDED_SIDE:
+      return 1;
+    case CGAL::ON_BOUNDARY:
+      return 0;
+    default:
+      return -1;
+  }
 }
 
 }  // namespace fabmesh

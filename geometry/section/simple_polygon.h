@@ -63,6 +63,14 @@ struct PolygonNeck {
 /// boxes come within `width`.
 std::optional<PolygonNeck> find_neck(const std::vector<Vec2>& points, double width, double detour = 2.0);
 
+/// The side of the line through `a` and `b` that `p` lies on, exactly:
+/// 1 left, -1 right, 0 on it (CGAL's exact orientation predicate).
+int side_of_line(const Vec2& a, const Vec2& b, const Vec2& p);
+
+/// Whether `p` lies strictly inside, on the boundary of (0) or outside a
+/// simple closed polygon: 1, 0, -1, decided exactly.
+int point_in_polygon(const std::vector<Vec2>& polygon, const Vec2& p);
+
 /// Twice the signed area of a closed polygon (positive: counter-clockwise).
 double signed_area2(const std::vector<Vec2>& points);
 
