@@ -13,6 +13,8 @@
 #include "geometry/core/limits.h"
 #include "geometry/core/units.h"
 #include "geometry/curves/curve_spec.h"
+#include "geometry/kitchen/nest.h"
+#include "geometry/kitchen/pieces.h"
 #include "geometry/mesh/thicken.h"
 #include "geometry/mould/mould_options.h"
 #include "geometry/section/vessel_section.h"
@@ -142,6 +144,15 @@ struct CncDesign {
   int decimals = 0;                  ///< digits in the program; 0: from the tolerance
 };
 
+/// A kitchen: the top cut from stone slabs (keys `slab`, `seams`,
+/// `seam_clearance`), model units.
+struct KitchenDesign {
+  SlabStock slab;
+  bool auto_seams = false;      ///< `seams: auto`
+  std::vector<SeamSpec> seams;  ///< the seams given (none with auto)
+  double seam_clearance = 0.0;  ///< least distance from a seam to a cut-out (default 100 mm)
+};
+
 /// kind: countertop. Outline and holes in the plane; the slab spans z in [0, thickness].
 struct CountertopDesign {
   static constexpr const char* kKind = "countertop";
@@ -151,6 +162,7 @@ struct CountertopDesign {
   double max_edge = 0.0;                             ///< > 0 refines the triangulation; 0: not given
   std::size_t max_triangles = kDefaultMaxTriangles;  ///< budget (key `max_triangles`)
   std::optional<CncDesign> cnc;
+  std::optional<KitchenDesign> kitchen;  ///< with a `slab`: the top is cut into pieces and nested
 };
 
 /// kind: surface. Patches of a G0/G1/G2-joined network of generalized

@@ -19,7 +19,8 @@ std::vector<KeyGroup> make_groups() {
       // Kinds (the root map of a design file).
       {"curve", with_common({"curve"})},
       {"vessel", with_common({"profile", "body", "max_triangles", "shrinkage", "mould"})},
-      {"countertop", with_common({"outline", "holes", "thickness", "max_edge", "max_triangles", "cnc"})},
+      {"countertop", with_common({"outline", "holes", "thickness", "max_edge", "max_triangles", "cnc", "slab",
+                                  "seams", "seam_clearance"})},
       {"surface", with_common({"patches", "thickness", "thicken", "max_triangles"})},
       // Vessels.
       {"vessel.body", {"mode", "wall", "base", "rim"}},
@@ -36,6 +37,10 @@ std::vector<KeyGroup> make_groups() {
         "spindle",       "safe_z", "lead_in",      "tabs",      "entry",   "ramp_angle", "helix_radius",
         "arc_fit",       "finish", "direction",    "relief",    "min_web", "units",      "decimals"}},
       {"countertop.cnc.tabs", {"count", "width", "height", "min_radius"}},
+      {"countertop.slab", {"length", "width", "margin", "spacing", "grain", "defects"}},
+      {"countertop.slab.defects[]", {"circle", "polygon"}},
+      {"countertop.slab.defects[].circle", {"center", "radius"}},
+      {"countertop.seams[]", {"at", "direction"}},
       // Loops from a DXF drawing (an outline, or an outline hole).
       {"dxf_outline", {"dxf", "layer", "max_gap"}},
       // Surfaces.

@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "geometry/curves/shapes.h"
+#include "geometry/section/simple_polygon.h"
 #include "io/design/dxf_loops.h"
 #include "io/design/yaml/read_curve.h"
 
@@ -227,6 +228,96 @@ TabOptions read_hole_tabs(const yaml::Fields& f, const YAML::Node& n, const std:
   return t;
 }
 
+// `slab: {length, width, margin, spacing, grain, defects}`, `seams`, `seam_clearance`.
+KitchenDesign read_kitchen(const yaml::Fields& f, const YAML::Node& root, const DesignCommon& common,
+                           const std::optional<CncDesign>& cnc) {
+  const double mm_per_unit = millimetres_per_unit(common.units);
+  const YAML::Node n = root["slab"];
+  f.require_map(n, "slab", key_group("countertop.slab"));
+  KitchenDesign k;
+  SlabStock& s = k.slab;
+  auto positive = [&](const char* key) {
+    const std::string field = std::string("slab.") + key;
+    const YAML::Node v = f.required(n, key, "slab");
+    const double x = f.number(v, field);
+    if (!(x > 0.0)) f.fail(v, field, fmt::format("{} = {} must be > 0", key, x));
+    return x;
+  };
+  s.length = positive("length");
+  s.width = positive("width");
+  s.margin = f.number_or(n, "margin", "slab.margin", 0.0);
+  if (!(s.margin >= 0.0))
+    f.fail(n["margin"], "slab.margin", fmt::format("margin = {} must be >= 0", s.margin));
+  if (!(2.0 * s.margin < std::min(s.length, s.width))) {
+    f.fail(n["margin"], "slab.margin",
+           fmt::format("margin = {} leaves no usable area on a {} x {} slab", s.margin, s.length, s.width));
+  }
+  const double tool = cnc ? cnc->options.tool_diameter : 0.0;
+  s.spacing = f.number_or(n, "spacing", "slab.spacing", std::max(tool, 10.0 / mm_per_unit));
+  if (!(s.spacing >= tool && s.spacing >= 0.0)) {
+    f.fail(n["spacing"], "slab.spacing",
+           fmt::format("spacing = {} must be at least the router bit's diameter ({}): the bit cuts between "
+                       "the pieces",
+                       s.spacing, tool));
+  }
+  if (n["grain"].IsDefined()) s.grain_along = f.choice(n["grain"], "slab.grain", {"along", "any"}) == "along";
+  if (n["defects"].IsDefined()) {
+    const YAML::Node list = n["defects"];
+    f.require_list(list, "slab.defects");
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      const std::string field = fmt::format("slab.defects[{}]", i);
+      const YAML::Node d = list[i];
+      f.require_map(d, field, key_group("countertop.slab.defects[]"));
+      if (d.size() != 1)
+        f.fail(d, field, "a defect is {circle: {center, radius}} or {polygon: [[x, y], ...]}");
+      SlabDefect defect;
+      if (d["circle"].IsDefined()) {
+        const YAML::Node c = d["circle"];
+        f.require_map(c, field + ".circle", key_group("countertop.slab.defects[].circle"));
+        defect.center = f.point2(f.required(c, "center", field + ".circle"), field + ".circle.center");
+        defect.radius = f.number(f.required(c, "radius", field + ".circle"), field + ".circle.radius");
+        if (!(defect.radius > 0.0)) {
+          f.fail(c["radius"], field + ".circle.radius",
+                 fmt::format("radius = {} must be > 0", defect.radius));
+        }
+      } else {
+        defect.polygon = f.points2(d["polygon"], field + ".polygon", 3);
+        if (find_crossing(defect.polygon, true)) {
+          f.fail(d["polygon"], field + ".polygon", "the defect's polygon crosses itself");
+        }
+        if (signed_area2(defect.polygon) < 0.0) std::reverse(defect.polygon.begin(), defect.polygon.end());
+      }
+      s.defects.push_back(std::move(defect));
+    }
+  }
+  k.seam_clearance = f.number_or(root, "seam_clearance", "seam_clearance", 100.0 / mm_per_unit);
+  if (!(k.seam_clearance >= 0.0)) {
+    f.fail(root["seam_clearance"], "seam_clearance",
+           fmt::format("seam_clearance = {} must be >= 0", k.seam_clearance));
+  }
+  if (root["seams"].IsDefined()) {
+    const YAML::Node seams = root["seams"];
+    if (seams.IsScalar()) {
+      if (f.choice(seams, "seams", {"auto"}) == "auto") k.auto_seams = true;
+    } else {
+      f.require_list(seams, "seams");
+      for (std::size_t i = 0; i < seams.size(); ++i) {
+        const std::string field = fmt::format("seams[{}]", i);
+        f.require_map(seams[i], field, key_group("countertop.seams[]"));
+        SeamSpec seam;
+        seam.at = f.point2(f.required(seams[i], "at", field), field + ".at");
+        const YAML::Node dir = f.required(seams[i], "direction", field);
+        seam.direction = f.point2(dir, field + ".direction");
+        if (!(seam.direction.norm() > 0.0))
+          f.fail(dir, field + ".direction", "direction must be a non-zero vector [dx, dy]");
+        seam.key = field;
+        k.seams.push_back(std::move(seam));
+      }
+    }
+  }
+  return k;
+}
+
 }  // namespace
 
 CountertopDesign read_countertop(const yaml::Fields& f, const YAML::Node& root, const DesignCommon& common) {
@@ -262,6 +353,17 @@ CountertopDesign read_countertop(const yaml::Fields& f, const YAML::Node& root, 
   }
   if (d.cnc) {
     for (const CountertopHole& h : d.holes) d.cnc->options.hole_tabs.push_back(h.tabs);
+  }
+  if (root["slab"].IsDefined()) {
+    d.kitchen = read_kitchen(f, root, common, d.cnc);
+  } else {
+    for (const char* key : {"seams", "seam_clearance"}) {
+      if (root[key].IsDefined()) {
+        f.fail(root[key], key,
+               fmt::format("{} cuts the top to fit a stone slab: the design needs a slab ({{length, width}})",
+                           key));
+      }
+    }
   }
   return d;
 }

@@ -1,0 +1,156 @@
+#include "io/cutting/layout.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+
+#include "io/cutting/svg_writing.h"
+
+namespace fabmesh {
+namespace {
+
+// The gap between two slabs drawn one above the other, model units.
+double slab_gap(const SlabStock& stock) { return 0.1 * stock.width; }
+
+// Path data of a closed loop moved by `shift`.
+std::string loop_path(const std::vector<Vec2>& loop, const Vec2& shift) {
+  std::string d;
+  for (std::size_t k = 0; k < loop.size(); ++k) d += (k == 0 ? "M " : " L ") + svg_point(loop[k] + shift);
+  return d + " Z";
+}
+
+std::array<Vec2, 2> box_of(const std::vector<Vec2>& loop) {
+  Vec2 lo = loop.front(), hi = loop.front();
+  for (const Vec2& p : loop) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  return {lo, hi};
+}
+
+std::string number(double v) { return svg_number(v); }
+
+// A dimension as a shop reads it: at most three decimals, no trailing zeros.
+std::string shop_number(double v) {
+  std::string s = fmt::format("{:.3f}", v);
+  while (s.back() == '0') s.pop_back();
+  if (s.back() == '.') s.pop_back();
+  return s == "-0" ? "0" : s;
+}
+
+}  // namespace
+
+std::array<double, 3> edge_lengths(const KitchenPiece& piece) {
+  std::array<double, 3> out{0.0, 0.0, 0.0};
+  for (std::size_t e = 0; e < piece.outer.size(); ++e) {
+    const double len = (piece.outer[(e + 1) % piece.outer.size()] - piece.outer[e]).norm();
+    out[static_cast<std::size_t>(piece.edges[e])] += len;
+  }
+  return out;
+}
+
+std::string encode_layout_svg(const std::vector<KitchenPiece>& pieces, const SlabStock& stock,
+                              const SlabNesting& nesting, const LayoutOptions& options) {
+  const double gap = slab_gap(stock);
+  const double step = stock.width + gap;
+  const double n = static_cast<double>(std::max<std::size_t>(nesting.slabs, 1));
+  // Slab s (0-based) lies at y from (n - 1 - s) * step: slab 1 at the top.
+  const Vec2 lo(0.0, 0.0), hi(stock.length, n * step - gap);
+  const double text = std::max(stock.width / 40.0, 1e-9);
+  std::string svg = svg_start(lo, hi, 2.0 * text, options.units);
+  svg += fmt::format("<title>{} slab layout</title>\n", options.title);
+  const double usable = (stock.length - 2.0 * stock.margin) * (stock.width - 2.0 * stock.margin);
+  for (std::size_t s = 0; s < nesting.slabs; ++s) {
+    const Vec2 shift(0.0, static_cast<double>(nesting.slabs - 1 - s) * step);
+    double used = 0.0;
+    for (const Placement& p : nesting.placements) used += p.slab == s ? pieces[p.piece].area : 0.0;
+    svg += fmt::format("<g id=\"slab-{}\">\n", s + 1);
+    const std::vector<Vec2> rect{
+        {0.0, 0.0}, {stock.length, 0.0}, {stock.length, stock.width}, {0.0, stock.width}};
+    svg +=
+        fmt::format("<path class=\"free\" d=\"{}\" fill=\"#e8e4dc\" stroke=\"black\" stroke-width=\"{}\"/>\n",
+                    loop_path(rect, shift), number(text / 8.0));
+    const std::vector<Vec2> inner{{stock.margin, stock.margin},
+                                  {stock.length - stock.margin, stock.margin},
+                                  {stock.length - stock.margin, stock.width - stock.margin},
+                                  {stock.margin, stock.width - stock.margin}};
+    svg += fmt::format(
+        "<path class=\"margin\" d=\"{}\" fill=\"none\" stroke=\"#777\" stroke-width=\"{}\" "
+        "stroke-dasharray=\"{} {}\"/>\n",
+        loop_path(inner, shift), number(text / 12.0), number(text / 2.0), number(text / 3.0));
+    for (const SlabDefect& d : stock.defects) {
+      if (d.radius > 0.0) {
+        const Vec2 c = d.center + shift;
+        svg += fmt::format(
+            "<circle class=\"defect\" cx=\"{}\" cy=\"{}\" r=\"{}\" fill=\"#d33\" fill-opacity=\"0.5\" "
+            "stroke=\"#d33\"/>\n",
+            number(c.x()), number(-c.y()), number(d.radius));
+      } else {
+        svg += fmt::format(
+            "<path class=\"defect\" d=\"{}\" fill=\"#d33\" fill-opacity=\"0.5\" stroke=\"#d33\"/>\n",
+            loop_path(d.polygon, shift));
+      }
+    }
+    for (const Placement& p : nesting.placements) {
+      if (p.slab != s) continue;
+      const KitchenPiece& piece = pieces[p.piece];
+      std::string d = loop_path(p.outer, shift);
+      for (const auto& hole : piece.holes) {
+        std::vector<Vec2> placed;
+        for (const Vec2& q : hole) placed.push_back(place_point(q, p.rotation_deg, p.offset));
+        d += " " + loop_path(placed, shift);
+      }
+      svg += fmt::format(
+          "<path class=\"piece\" id=\"{}\" d=\"{}\" fill=\"white\" fill-rule=\"evenodd\" stroke=\"black\" "
+          "stroke-width=\"{}\"/>\n",
+          piece.name, d, number(text / 8.0));
+      // Seam edges heavier: where the pieces join.
+      for (std::size_t e = 0; e < p.outer.size(); ++e) {
+        if (piece.edges[e] != EdgeKind::Seam) continue;
+        const Vec2 a = p.outer[e] + shift, b = p.outer[(e + 1) % p.outer.size()] + shift;
+        svg += fmt::format("<path class=\"seam\" d=\"M {} L {}\" stroke=\"#06c\" stroke-width=\"{}\"/>\n",
+                           svg_point(a), svg_point(b), number(text / 3.0));
+      }
+      const auto box = box_of(p.outer);
+      const Vec2 mid = 0.5 * (box[0] + box[1]) + shift;
+      svg += fmt::format(
+          "<text x=\"{}\" y=\"{}\" font-size=\"{}\" text-anchor=\"middle\" font-family=\"sans-serif\">{} "
+          "({} x {} {}, turned {})</text>\n",
+          number(mid.x()), number(-mid.y()), number(text), piece.name, shop_number(box[1].x() - box[0].x()),
+          shop_number(box[1].y() - box[0].y()), options.units, p.rotation_deg);
+    }
+    const double free_area = usable - used;
+    svg += fmt::format(
+        "<text x=\"{}\" y=\"{}\" font-size=\"{}\" font-family=\"sans-serif\">slab {} of {}: {} x {} {}, "
+        "{:.1f}% of the usable area used, {:.4g} {}^2 free</text>\n",
+        number(0.0), number(-(shift.y() + stock.width + 0.4 * text)), number(text), s + 1, nesting.slabs,
+        number(stock.length), number(stock.width), options.units,
+        100.0 * (s < nesting.utilisation.size() ? nesting.utilisation[s] : 0.0), free_area, options.units);
+    svg += "</g>\n";
+  }
+  return svg + "</svg>\n";
+}
+
+std::string encode_cutlist(const std::vector<KitchenPiece>& pieces, const SlabNesting& nesting,
+                           const LayoutOptions& options) {
+  std::string csv = fmt::format(
+      "piece,slab,x_{0},y_{0},rotation_deg,length_{0},width_{0},area_{0}2,exposed_length_{0},wall_length_{0},"
+      "seam_length_{0},cutouts\n",
+      options.units);
+  for (const Placement& p : nesting.placements) {
+    const KitchenPiece& piece = pieces[p.piece];
+    const auto box = box_of(p.outer);
+    const auto lengths = edge_lengths(piece);
+    std::string holes;
+    for (const std::size_t h : piece.hole_index) holes += (holes.empty() ? "" : " ") + std::to_string(h);
+    csv +=
+        fmt::format("{},{},{},{},{},{},{},{},{},{},{},{}\n", piece.name, p.slab + 1, shop_number(box[0].x()),
+                    shop_number(box[0].y()), p.rotation_deg, shop_number(box[1].x() - box[0].x()),
+                    shop_number(box[1].y() - box[0].y()), shop_number(piece.area), shop_number(lengths[0]),
+                    shop_number(lengths[1]), shop_number(lengths[2]), holes);
+  }
+  return csv;
+}
+
+}  // namespace fabmesh
