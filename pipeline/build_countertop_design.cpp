@@ -8,6 +8,7 @@
 #include "geometry/mesh/slab.h"
 #include "geometry/toolpath/toolpath.h"
 #include "pipeline/build_design.h"
+#include "pipeline/build_kitchen.h"
 
 namespace fabmesh {
 namespace {
@@ -106,7 +107,15 @@ Result build(const CountertopDesign& design, const BuildContext& context) {
     // Between the exact curves (a proven lower bound), not their polylines.
     out.facts.set("min_clearance", region.min_clearance).set("min_clearance_where", region.clearance_where);
   }
-  if (design.cnc) {
+  if (design.kitchen) {
+    // The pieces, each cut on its slab: the whole top is not one program.
+    products.kitchen = at_loop_keys(
+        design, holes, [&] { return build_kitchen(design, region, outline.curve, holes, context, out); });
+    if (design.cnc) {
+      products.gcode = GcodeOptions{context.common.name, context.common.units, design.cnc->program_units,
+                                    design.cnc->decimals};
+    }
+  } else if (design.cnc) {
     CncOptions cnc = design.cnc->options;
     cnc.tolerance = context.tolerance;
     products.toolpath = at_loop_keys(design, holes, [&] { return plan_toolpath(outline.curve, holes, cnc); });

@@ -201,6 +201,8 @@ class Encoder {
                       : std::optional<TriangleSoup>(scaled(product(result)->mesh, plan.export_scale))) {}
 
   /// Encodes output `i`; its files, or none when it was skipped (skipped()).
+  /// A kitchen's mesh outputs write each piece to a file of its own
+  /// (NAME.piece-1.stl), not the whole top.
   std::vector<EncodedFile> encode(std::size_t i) {
     const OutputFormat& format = *plan_.formats[i];
     const DesignCommon& common = plan_.common;
@@ -208,15 +210,35 @@ class Encoder {
     const Part* own = product(result_);
     const TriangleSoup& exported = rescaled_ ? *rescaled_ : own != nullptr ? own->mesh : empty;
     // The encoders get the tolerance the build left unused, and the mesh in the export unit.
-    const EncodeContext context{
-        common,        result_, exported, plan_.export_scale, common.tolerance - result_.max_deviation,
-        plan_.paths[i]};
+    const double left = common.tolerance - result_.max_deviation;
+    const EncodeContext context{common, result_, exported, plan_.export_scale, left, plan_.paths[i]};
     std::vector<EncodedFile> files;
+    auto keep = [&](Encoded& e) {
+      const std::string path = e.suffix.empty() ? plan_.paths[i] : path_in(plan_.out_dir, common, e.suffix);
+      OutputFile file{path, std::string(format.name), e.units, e.added_error, e.valid_as_written, e.parts};
+      files.push_back({std::move(file), std::move(e)});
+    };
+    const std::vector<const Part*> pieces = parts_of(result_, PartRole::Piece);
+    const bool per_piece = format.source == OutputSource::Meshes && format.block == DesignBlock::None &&
+                           format.writing_error != nullptr && !pieces.empty();
     try {
-      for (Encoded& e : format.encode(context)) {
-        const std::string path = e.suffix.empty() ? plan_.paths[i] : path_in(plan_.out_dir, common, e.suffix);
-        OutputFile file{path, std::string(format.name), e.units, e.added_error, e.valid_as_written, e.parts};
-        files.push_back({std::move(file), std::move(e)});
+      if (!per_piece) {
+        for (Encoded& e : format.encode(context)) keep(e);
+      }
+      for (const Part* piece : per_piece ? pieces : std::vector<const Part*>{}) {
+        const TriangleSoup mesh = scaled(piece->mesh, plan_.export_scale);
+        const std::string suffix = "." + piece->name + std::string(format.file_suffix);
+        const EncodeContext one{
+            common, result_, mesh, plan_.export_scale, left, path_in(plan_.out_dir, common, suffix), piece};
+        for (Encoded& e : format.encode(one)) {
+          e.suffix = suffix;
+          e.parts = {piece->name};
+          if (e.stream) {  // it streams from `mesh`, which does not outlive this turn
+            e.stream([&e](std::string_view bytes) { e.bytes.append(bytes); });
+            e.stream = nullptr;
+          }
+          keep(e);
+        }
       }
     } catch (const OutputError& e) {
       if (common.on_output_error == OutputErrorPolicy::Fail)

@@ -23,7 +23,8 @@ std::vector<OutputFormat> make_table() {
   const KindSet vessels = kinds<VesselDesign>(), countertops = kinds<CountertopDesign>();
   const KindSet every = kinds<CurveDesign, VesselDesign, CountertopDesign, SurfaceDesign>();
   const OutputSource mesh = OutputSource::Meshes, drawing = OutputSource::Drawing;
-  const DesignBlock none = DesignBlock::None, mould = DesignBlock::Mould, cnc = DesignBlock::Cnc;
+  const DesignBlock none = DesignBlock::None, mould = DesignBlock::Mould, cnc = DesignBlock::Cnc,
+                    slab = DesignBlock::Slab;
   return {
       {"stl", "binary STL mesh, in the export unit", mesh, none, meshes, meshes, ".stl", &float32_error,
        &encode_stl_output},
@@ -106,6 +107,12 @@ std::vector<OutputFormat> make_table() {
        OutputSource::Program, cnc, countertops, countertops, ".nc", nullptr, &encode_nc_output},
       {"toolpath_svg", "drawing of the router path over the outline", OutputSource::Program, cnc, countertops,
        countertops, ".toolpath.svg", nullptr, &encode_toolpath_svg_output},
+      {"layout_svg",
+       "a kitchen's slabs at true size with its pieces as nested, their labels and the free area", drawing,
+       slab, countertops, countertops, ".layout.svg", nullptr, &encode_layout_svg_output},
+      {"cutlist",
+       "a kitchen's cut list (CSV): each piece's slab, position, turn, size, area and edge lengths", drawing,
+       slab, countertops, countertops, ".cutlist.csv", nullptr, &encode_cutlist_output},
       {"step",
        "STEP (AP214) of the exact geometry in the design's unit: a countertop's or a vessel's solid, a "
        "curve's wireframe, a surface's patches as B-spline faces sewn into one shell (closed: a thickened "
@@ -161,6 +168,10 @@ bool has_block(const Design& design, DesignBlock block) {
       const auto* c = std::get_if<CountertopDesign>(&design.body);
       return c != nullptr && c->cnc.has_value();
     }
+    case DesignBlock::Slab: {
+      const auto* c = std::get_if<CountertopDesign>(&design.body);
+      return c != nullptr && c->kitchen.has_value();
+    }
   }
   return false;
 }
@@ -206,7 +217,9 @@ std::vector<const OutputFormat*> resolve_outputs(const Design& design) {
                       format->description, kind_list(format->kinds), kind_name(design)));
     }
     if (!has_block(design, format->block)) {
-      const char* needs = format->block == DesignBlock::Mould ? "a `mould:` section" : "a `cnc:` section";
+      const char* needs = format->block == DesignBlock::Mould ? "a `mould:` section"
+                          : format->block == DesignBlock::Cnc ? "a `cnc:` section"
+                                                              : "a `slab:` section (a kitchen)";
       throw FileError(design.common.path, r.line, r.column,
                       fmt::format("{}: {} needs {}", r.where, r.format, needs));
     }

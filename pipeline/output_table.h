@@ -46,6 +46,7 @@ enum class DesignBlock {
   None,
   Mould,  ///< a vessel's `mould:` (the mould's parts)
   Cnc,    ///< a countertop's `cnc:` (the router path)
+  Slab,   ///< a countertop's `slab:` (a kitchen: its pieces on slabs)
 };
 
 /// What a row's output is made of, for the builders: they make a drawing

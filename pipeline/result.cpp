@@ -12,6 +12,8 @@ const char* to_string(PartRole role) {
       return "mould_side";
     case PartRole::MouldBase:
       return "mould_base";
+    case PartRole::Piece:
+      return "piece";
   }
   return "product";
 }

@@ -22,6 +22,8 @@
 #include "geometry/core/stage_timer.h"
 #include "geometry/core/tolerance_budget.h"
 #include "geometry/fairing/build_curve.h"
+#include "geometry/kitchen/nest.h"
+#include "geometry/kitchen/pieces.h"
 #include "geometry/sampling/cut_loop.h"
 #include "geometry/sampling/offset_bezier.h"
 #include "geometry/surfaces/bspline_shell.h"
@@ -39,9 +41,10 @@ enum class PartRole {
   Product,    ///< the design's own mesh: the vessel, the countertop, the surface
   MouldSide,  ///< a side part of a vessel's slip-casting mould
   MouldBase,  ///< the base part of a vessel's mould
+  Piece,      ///< a piece of a kitchen's top, cut at its seams (the product is then the whole top)
 };
 
-/// "product", "mould_side", "mould_base": the role as reports write it.
+/// "product", "mould_side", "mould_base", "piece": the role as reports write it.
 const char* to_string(PartRole role);
 
 /// One mesh of a result, with what its construction proves and its verdict.
@@ -125,12 +128,35 @@ struct VesselProducts {
   std::vector<std::vector<Vec2>> section;
 };
 
+/// A kitchen's top cut into pieces and nested on slabs (a countertop with a
+/// `slab`): the pieces are the result's parts of role Piece, in this order.
+struct KitchenProducts {
+  KitchenSplit split;  ///< the pieces (design frame) and the seams
+  SlabStock stock;     ///< as the design gives it
+  /// Where each piece lies; verified exactly against the stock with the
+  /// margins widened by, and the spacing by twice, the loops' deviation from
+  /// their exact curves, so the exact pieces keep the stock's.
+  SlabNesting nesting;
+  /// With `cnc`: one program per slab (index = slab), every piece on it in
+  /// slab coordinates, each piece's cut-outs before its outline.
+  std::vector<Toolpath> slab_toolpaths;
+  /// Each piece's exact shape, in the pieces' order: its solid (step) and its
+  /// cutting drawing (dxf, svg; when an output draws it), or why it has none.
+  struct Exact {
+    std::optional<ExactSolid> solid;
+    std::vector<CutLoop> drawing;
+    std::string why_not;
+  };
+  std::vector<Exact> exact;
+};
+
 /// What a countertop makes besides its mesh.
 struct CountertopProducts {
   ExactSolid solid;
-  std::vector<CutLoop> cutting;       ///< the outline, then the holes, when an output draws them
-  std::optional<Toolpath> toolpath;   ///< the router path (key `cnc`)
-  std::optional<GcodeOptions> gcode;  ///< how its program is written (with `toolpath`)
+  std::vector<CutLoop> cutting;            ///< the outline, then the holes, when an output draws them
+  std::optional<Toolpath> toolpath;        ///< the router path (key `cnc`)
+  std::optional<GcodeOptions> gcode;       ///< how its program is written (with `toolpath`)
+  std::optional<KitchenProducts> kitchen;  ///< with a `slab`
 };
 
 /// What a surface makes besides its mesh.

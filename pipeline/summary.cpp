@@ -27,6 +27,18 @@ void print_build_facts(const Facts& facts, const std::string& u, std::ostream& o
         std::get<std::vector<Facts>>(*m.find("parts")).size(), m.number("slip_volume"), u,
         m.number("plaster_volume"), u);
   }
+  if (facts.contains("kitchen")) {
+    const Facts& k = facts.group("kitchen");
+    std::string used;
+    for (const double u_slab : std::get<std::vector<double>>(*k.find("utilisation")))
+      used += fmt::format("{}{:.1f}%", used.empty() ? "" : ", ", 100.0 * u_slab);
+    out << fmt::format(
+        "  kitchen: {} pieces at {} seams on {} slabs (no fewer than {} can hold them); usable area "
+        "used {}\n",
+        std::get<std::vector<Facts>>(*k.find("pieces")).size(),
+        std::get<std::vector<Facts>>(*k.find("seams")).size(), static_cast<int>(k.number("slabs")),
+        static_cast<int>(k.number("lower_bound")), used);
+  }
   if (facts.contains("cnc")) {
     const Facts& c = facts.group("cnc");
     out << fmt::format("  router path: {} passes, within {:.3g} {} of the exact offset\n",

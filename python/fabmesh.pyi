@@ -64,6 +64,7 @@ class PartRole(str, enum.Enum):
     product = "product"
     mould_side = "mould_side"
     mould_base = "mould_base"
+    piece = "piece"
 
 class Parameter:
     """One of a design's named parameters (`parameters:`), with the value used."""

@@ -1,12 +1,16 @@
 // The drawings (at true size, in the design's unit), the router program and
 // the pictures of a design.
 
+#include <fmt/format.h>
+
 #include <stdexcept>
 #include <type_traits>
 #include <variant>
 
+#include "geometry/core/errors.h"
 #include "io/cutting/dxf.h"
 #include "io/cutting/gcode.h"
+#include "io/cutting/layout.h"
 #include "io/cutting/svg.h"
 #include "io/cutting/toolpath_svg.h"
 #include "pipeline/encoders/encoding.h"
@@ -36,6 +40,63 @@ const std::vector<CutLoop>& drawing_of(const Result& result) {
       result.products);
 }
 
+// A router program and what it cuts: the countertop's one, or one per slab of a kitchen.
+struct Program {
+  const Toolpath* path = nullptr;
+  std::vector<CutLoop> part;       ///< the loops it cuts, drawn under the path
+  std::string suffix;              ///< ".slab-1" (empty: the design's own file)
+  std::vector<std::string> parts;  ///< the pieces on the slab
+};
+
+// A closed chain of lines through `points`, drawn as cut.
+CutLoop polygon_loop(const std::vector<Vec2>& points, const std::string& label, bool outer) {
+  CutLoop loop;
+  loop.label = label;
+  loop.outer = outer;
+  loop.closed = true;
+  CutEntity chain;  // one polyline, closed by its last point
+  chain.kind = CutKind::Polyline;
+  chain.points = points;
+  chain.points.push_back(points.front());
+  loop.entities.push_back(std::move(chain));
+  return loop;
+}
+
+std::vector<Program> programs_of(const CountertopProducts& countertop) {
+  if (!countertop.kitchen) return {{&*countertop.toolpath, countertop.cutting, "", {}}};
+  const KitchenProducts& k = *countertop.kitchen;
+  std::vector<Program> out;
+  for (std::size_t s = 0; s < k.slab_toolpaths.size(); ++s) {
+    Program p{&k.slab_toolpaths[s], {}, fmt::format(".slab-{}", s + 1), {}};
+    for (const Placement& at : k.nesting.placements) {
+      if (at.slab != s) continue;
+      const KitchenPiece& piece = k.split.pieces[at.piece];
+      p.parts.push_back(piece.name);
+      for (const auto& hole : piece.holes) {
+        std::vector<Vec2> placed;
+        for (const Vec2& q : hole) placed.push_back(place_point(q, at.rotation_deg, at.offset));
+        p.part.push_back(polygon_loop(placed, piece.name + " cut-out", false));
+      }
+      p.part.push_back(polygon_loop(at.outer, piece.name, true));
+    }
+    out.push_back(std::move(p));
+  }
+  return out;
+}
+
+const KitchenProducts& kitchen_of(const EncodeContext& c) {
+  const auto& countertop = std::get<CountertopProducts>(c.result.products);
+  if (!countertop.kitchen) throw std::logic_error("a kitchen output of a countertop without a slab");
+  return *countertop.kitchen;
+}
+
+LayoutOptions layout_options(const EncodeContext& c) {
+  LayoutOptions options;
+  options.units = c.common.units;
+  options.title = c.common.name;
+  return options;
+}
+
 Encoded drawn(std::string bytes, const EncodeContext& c) {
   Encoded e;
   e.bytes = std::move(bytes);
@@ -43,34 +104,78 @@ Encoded drawn(std::string bytes, const EncodeContext& c) {
   return e;
 }
 
+// The design's drawing written by `encode`, or a kitchen's: one file per
+// piece (NAME.piece-1.dxf), its exact outline and cut-outs.
+template <class Encode>
+EncodedFiles each_drawing(const EncodeContext& c, const std::string& format, Encode encode) {
+  const auto* countertop = std::get_if<CountertopProducts>(&c.result.products);
+  if (countertop == nullptr || !countertop->kitchen) return {drawn(encode(drawing_of(c.result)), c)};
+  const KitchenProducts& k = *countertop->kitchen;
+  EncodedFiles files;
+  for (std::size_t i = 0; i < k.exact.size(); ++i) {
+    if (!k.exact[i].solid) throw OutputError(format, format + ": " + k.exact[i].why_not);
+    const std::string& piece = k.split.pieces[i].name;
+    Encoded e = drawn(encode(k.exact[i].drawing), c);
+    e.suffix = "." + piece + "." + format;
+    e.parts = {piece};
+    files.push_back(std::move(e));
+  }
+  return files;
+}
+
 }  // namespace
 
 EncodedFiles encode_dxf_output(const EncodeContext& c) {
   DxfOptions options;
   options.units = c.common.units;
-  return {drawn(encode_dxf(drawing_of(c.result), options), c)};
+  return each_drawing(c, "dxf",
+                      [&](const std::vector<CutLoop>& loops) { return encode_dxf(loops, options); });
 }
 
 EncodedFiles encode_svg_output(const EncodeContext& c) {
   SvgOptions options;
   options.units = c.common.units;
-  return {drawn(encode_svg(drawing_of(c.result), options), c)};
+  return each_drawing(c, "svg",
+                      [&](const std::vector<CutLoop>& loops) { return encode_svg(loops, options); });
 }
 
 EncodedFiles encode_nc_output(const EncodeContext& c) {
   const auto& countertop = std::get<CountertopProducts>(c.result.products);
   const GcodeOptions& options = *countertop.gcode;
-  Encoded e = drawn(encode_gcode(*countertop.toolpath, options), c);
-  e.units = options.units;
-  e.added_error = countertop.toolpath->deviation;
-  return {std::move(e)};
+  EncodedFiles files;
+  for (const Program& p : programs_of(countertop)) {
+    Encoded e = drawn(encode_gcode(*p.path, options), c);
+    e.units = options.units;
+    e.added_error = p.path->deviation;
+    e.suffix = p.suffix.empty() ? "" : p.suffix + ".nc";
+    e.parts = p.parts;
+    files.push_back(std::move(e));
+  }
+  return files;
 }
 
 EncodedFiles encode_toolpath_svg_output(const EncodeContext& c) {
   const auto& countertop = std::get<CountertopProducts>(c.result.products);
   ToolpathSvgOptions options;
   options.units = c.common.units;
-  return {drawn(encode_toolpath_svg(countertop.cutting, *countertop.toolpath, options), c)};
+  EncodedFiles files;
+  for (const Program& p : programs_of(countertop)) {
+    Encoded e = drawn(encode_toolpath_svg(p.part, *p.path, options), c);
+    e.suffix = p.suffix.empty() ? "" : p.suffix + ".toolpath.svg";
+    e.parts = p.parts;
+    files.push_back(std::move(e));
+  }
+  return files;
+}
+
+EncodedFiles encode_layout_svg_output(const EncodeContext& c) {
+  const KitchenProducts& k = kitchen_of(c);
+  return {drawn(encode_layout_svg(k.split.pieces, k.stock, k.nesting, layout_options(c)), c)};
+}
+
+EncodedFiles encode_cutlist_output(const EncodeContext& c) {
+  const KitchenProducts& k = kitchen_of(c);
+  return {drawn(encode_cutlist(k.split.pieces, k.nesting, layout_options(c)), c)};
 }
 
 EncodedFiles encode_plot_output(const EncodeContext& c) {

@@ -24,6 +24,9 @@ struct EncodeContext {
   double export_scale = 1.0;      ///< export units per model unit
   double output_tolerance = 0.0;  ///< tolerance left after the build, model units
   std::string path;               ///< where the file will go (for messages)
+  /// The part a mesh output writes (`exported` is its mesh in the export
+  /// unit): a kitchen's piece; null: the product.
+  const Part* part = nullptr;
 };
 
 /// An encoded output: its bytes, the unit they are in, and the largest
@@ -82,6 +85,8 @@ EncodedFiles encode_dxf_output(const EncodeContext& c);
 EncodedFiles encode_svg_output(const EncodeContext& c);
 EncodedFiles encode_nc_output(const EncodeContext& c);
 EncodedFiles encode_toolpath_svg_output(const EncodeContext& c);
+EncodedFiles encode_layout_svg_output(const EncodeContext& c);
+EncodedFiles encode_cutlist_output(const EncodeContext& c);
 EncodedFiles encode_plot_output(const EncodeContext& c);
 EncodedFiles encode_png_output(const EncodeContext& c);
 // Exact geometry (encoders/step_encoders.cpp).

@@ -28,9 +28,10 @@ double max_abs_coordinate(const TriangleSoup& soup) {
   return m;
 }
 
-// The design's own mesh; the output table gives mesh outputs only to kinds that have one.
+// The part written: the design's own mesh unless the job writes a kitchen's
+// pieces one by one; the output table gives mesh outputs only to kinds that have one.
 const Part& product_of(const EncodeContext& c) {
-  const Part* part = product(c.result);
+  const Part* part = c.part != nullptr ? c.part : product(c.result);
   if (part == nullptr) throw std::logic_error("a mesh output of a design without a mesh");
   return *part;
 }
@@ -175,7 +176,7 @@ GlbOptions glb_options(const EncodeContext& c) {
   return options;
 }
 
-// The mould's parts (every part but the product), in the export unit, in the order built.
+// The mould's parts, in the export unit, in the order built.
 struct ExportedPart {
   const Part* part;
   TriangleSoup mesh;
@@ -184,7 +185,7 @@ struct ExportedPart {
 std::vector<ExportedPart> exported_parts(const EncodeContext& c) {
   std::vector<ExportedPart> parts;
   for (const Part& p : c.result.parts) {
-    if (p.role == PartRole::Product) continue;
+    if (p.role != PartRole::MouldSide && p.role != PartRole::MouldBase) continue;
     ExportedPart e{&p, p.mesh};
     for (Vec3& v : e.mesh.vertices) v *= c.export_scale;
     parts.push_back(std::move(e));

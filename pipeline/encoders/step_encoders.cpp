@@ -136,6 +136,23 @@ EncodedFiles encode_step_output(const EncodeContext& c) {
   StepModel model;
   model.name = c.common.name;
   model.unit = c.common.units;
+  const auto* countertop = std::get_if<CountertopProducts>(&c.result.products);
+  if (countertop != nullptr && countertop->kitchen) {
+    // A kitchen: one file per piece, its exact solid.
+    const KitchenProducts& k = *countertop->kitchen;
+    EncodedFiles files;
+    for (std::size_t i = 0; i < k.exact.size(); ++i) {
+      const std::string& piece = k.split.pieces[i].name;
+      if (!k.exact[i].solid) throw OutputError("step", "step: " + k.exact[i].why_not);
+      StepModel one = model;
+      one.name = c.common.name + " " + piece;
+      Encoded e = solid_step(c, *k.exact[i].solid, std::move(one));
+      e.suffix = "." + piece + ".step";
+      e.parts = {piece};
+      files.push_back(std::move(e));
+    }
+    return files;
+  }
   struct Visitor {
     const EncodeContext& c;
     StepModel& model;

@@ -30,9 +30,10 @@ enum class PartRole {
   Product,    ///< the design's own mesh: the vessel, the countertop, the surface
   MouldSide,  ///< a side part of a vessel's slip-casting mould
   MouldBase,  ///< the base part of a vessel's mould
+  Piece,      ///< a piece of a kitchen's top, cut at its seams
 };
 
-/// The role as the JSON reports name it: "product", "mould_side", "mould_base".
+/// The role as the JSON reports name it: "product", "mould_side", "mould_base", "piece".
 const char* to_string(PartRole role);
 
 /// One mesh of a result: the design's own (its product) or a mould part.

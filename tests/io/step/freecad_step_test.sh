@@ -8,6 +8,9 @@
 # shell of B-spline faces, one per patch, of positive area.
 # The golden solid, designed in cm, must come in at 46.171424531125 cm^3
 # (FreeCAD works in mm): the file's unit is read as written.
+# A kitchen (an example with `slab:`) writes one STEP file per piece: each is
+# one closed solid, and their volumes add up to that of the whole top (the
+# same design without slab, seams and cnc) within 1e-9.
 # A thickened surface is one closed solid too: the bundled basin's 4 patches
 # make 4 faces on each sheet and 8 walls along the rim's sides.
 # Usage: freecad_step_test.sh FABMESH SOURCE_DIR
@@ -21,6 +24,7 @@ fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
 
 files=()
 declare -A mould_parts  # a mould's STEP file name -> its number of parts
+kitchens=()             # "WHOLE.step:PIECE-1.step:PIECE-2.step..." per kitchen example
 for design in "$source"/configs/examples/*.yaml; do
   name=$(basename "$design" .yaml)
   [[ $name == batch_* ]] && continue  # manifests, not designs
@@ -28,7 +32,29 @@ for design in "$source"/configs/examples/*.yaml; do
     >"$work/$name.log" 2>&1; then
     step=$(compgen -G "$work/$name/*.step" | head -n 1)
     [[ -n $step ]] || { fail "$name: exit 0 but no STEP file"; continue; }
-    files+=("$step")
+    if grep -q '^slab:' "$design"; then
+      mapfile -t pieces < <(compgen -G "$work/$name/$name.piece-*.step" | sort -V)
+      ((${#pieces[@]} >= 2)) || fail "$name: a kitchen wrote ${#pieces[@]} piece STEP file(s)"
+      files+=("${pieces[@]}")
+      # The whole top: the same design without its slab and seams (nor its router cut).
+      /usr/bin/python3 - "$design" "$work/$name-whole.yaml" <<'PY'
+import sys, yaml
+d = yaml.safe_load(open(sys.argv[1]))
+for key in ("slab", "seams", "seam_clearance", "cnc"):
+    d.pop(key, None)
+d["outputs"] = ["step"]
+yaml.safe_dump(d, open(sys.argv[2], "w"))
+PY
+      if "$fabmesh" run "$work/$name-whole.yaml" -o "$work/$name-whole/" -q >"$work/$name-whole.log" 2>&1; then
+        files+=("$work/$name-whole/$name.step")
+        kitchens+=("$(IFS=:; echo "$work/$name-whole/$name.step:${pieces[*]}")")
+      else
+        cat "$work/$name-whole.log"
+        fail "$name: the whole top wrote no STEP file"
+      fi
+    else
+      files+=("$step")
+    fi
   else
     cat "$work/$name.log"
     fail "$name: no STEP file"
@@ -88,6 +114,26 @@ PY
   ) || fail "$verdict"
   echo "$verdict"
 done < <(grep '^FABMESH_STEP ' "$work/freecad.log")
+for kitchen in "${kitchens[@]}"; do
+  verdict=$(python3 - "$kitchen" "$work/freecad.log" <<'PY'
+import json, os, sys
+paths = sys.argv[1].split(":")
+volumes = {}
+for line in open(sys.argv[2]):
+    if line.startswith("FABMESH_STEP "):
+        f = json.loads(line[len("FABMESH_STEP "):])
+        volumes[f["path"]] = f.get("volume", 0.0)
+whole, pieces = paths[0], paths[1:]
+total = sum(volumes.get(p, 0.0) for p in pieces)
+name = os.path.basename(whole)
+if whole not in volumes or abs(total / volumes[whole] - 1) > 1e-9:
+    print(f"{name}: pieces' volumes add up to {total}, the whole top's is {volumes.get(whole)}")
+    sys.exit(1)
+print(f"{name}: {len(pieces)} pieces' volumes add up to the whole top's, {volumes[whole]:.6f} mm^3")
+PY
+  ) || fail "$verdict"
+  echo "$verdict"
+done
 if ((checked != ${#files[@]})); then
   cat "$work/freecad.log"
   fail "FreeCAD reported on $checked of ${#files[@]} files"

@@ -1,0 +1,256 @@
+#include "pipeline/build_kitchen.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include "geometry/mesh/halfedge_mesh.h"
+#include "geometry/mesh/slab.h"
+#include "geometry/sampling/cut_loop.h"
+#include "geometry/sampling/offset_bezier.h"
+#include "geometry/toolpath/toolpath.h"
+#include "io/cutting/layout.h"
+
+namespace fabmesh {
+namespace {
+
+// A closed chain of line segments through `points`.
+CompositeCurve polygon_curve(const std::vector<Vec2>& points) {
+  std::vector<Segment> segments;
+  segments.reserve(points.size());
+  for (std::size_t k = 0; k < points.size(); ++k)
+    segments.push_back(Segment::line(points[k], points[(k + 1) % points.size()]));
+  return CompositeCurve(std::move(segments), true);
+}
+
+// A piece as a region of its own: its loops are the top's (proven within
+// `deviation` of the exact curves) and chords of seams (exact lines).
+Region2 piece_region(const KitchenPiece& piece, const Region2& top, const std::string& proof) {
+  Region2 r;
+  r.outer = piece.outer;
+  r.holes = piece.holes;
+  r.max_deviation = top.max_deviation;
+  r.area = piece.area;
+  r.reversed.assign(1 + piece.holes.size(), false);
+  r.proof = proof;
+  return r;
+}
+
+// Appends `from`'s loops and moves to `into` (one program for several pieces).
+void append_program(Toolpath& into, const Toolpath& from) {
+  if (into.moves.empty()) {
+    into = from;
+    return;
+  }
+  const std::size_t loops = into.loops.size();
+  into.loops.insert(into.loops.end(), from.loops.begin(), from.loops.end());
+  into.roughing.insert(into.roughing.end(), from.roughing.begin(), from.roughing.end());
+  for (ToolMove m : from.moves) {
+    m.loop += loops;
+    into.moves.push_back(m);
+  }
+  into.warnings.insert(into.warnings.end(), from.warnings.begin(), from.warnings.end());
+  into.deviation = std::max(into.deviation, from.deviation);
+  into.clearance = std::min(into.clearance, from.clearance);
+  into.fit_replaced += from.fit_replaced;
+  into.fit_arcs += from.fit_arcs;
+  into.fit_lines += from.fit_lines;
+  into.fit_deviation = std::max(into.fit_deviation, from.fit_deviation);
+}
+
+// The router program of slab `slab`: each piece on it, in slab coordinates,
+// its cut-outs before its outline.
+Toolpath slab_program(const KitchenSplit& split, const SlabNesting& nesting, std::size_t slab,
+                      const CncOptions& cnc) {
+  Toolpath program;
+  for (const Placement& p : nesting.placements) {
+    if (p.slab != slab) continue;
+    const KitchenPiece& piece = split.pieces[p.piece];
+    std::vector<RegionHole> holes;
+    for (std::size_t h = 0; h < piece.holes.size(); ++h) {
+      std::vector<Vec2> placed;
+      for (const Vec2& q : piece.holes[h]) placed.push_back(place_point(q, p.rotation_deg, p.offset));
+      std::reverse(placed.begin(),
+                   placed.end());  // a hole's curve runs either way; give it counter-clockwise
+      holes.push_back({polygon_curve(placed), fmt::format("{} holes[{}]", piece.name, piece.hole_index[h]),
+                       fmt::format("holes[{}]", piece.hole_index[h])});
+    }
+    CncOptions options = cnc;
+    options.hole_tabs.clear();
+    for (std::size_t h = 0; h < piece.holes.size(); ++h) {
+      options.hole_tabs.push_back(
+          piece.hole_index[h] < cnc.hole_tabs.size() ? cnc.hole_tabs[piece.hole_index[h]] : no_tabs());
+    }
+    append_program(program, plan_toolpath(polygon_curve(p.outer), holes, options));
+  }
+  return program;
+}
+
+// A piece's lead arcs (and a helix entry's circle) lie in the waste round
+// it, where its neighbours are: the tool must not reach them. The tool's
+// edge lies at most 2r + finish + the loops' deviation from the piece on the
+// path, and the lead's start sqrt(2) R_lead farther (a quarter circle's
+// chord; R_lead = 2 lead_in / pi), a helix's circle 2 h farther still. The
+// lead is shortened to fit `spacing` (with a warning); a helix that cannot
+// fit is bad input.
+void limit_entry(CncOptions& cnc, double spacing, double deviation, std::vector<std::string>& warnings) {
+  const double r = 0.5 * cnc.tool_diameter;
+  const double room = spacing - 2.0 * r - cnc.finish - deviation - cnc.tolerance;
+  const double helix = cnc.entry == EntryKind::Helix ? 2.0 * cnc.helix_radius.value_or(0.5 * r) : 0.0;
+  if (helix > room) {
+    throw GeometryError(
+        ErrorLocation{"slab.spacing"},
+        fmt::format("slab.spacing = {:.6g}: a helix entry of radius {:.6g} beside a piece needs "
+                    "at least {:.6g} between pieces (the tool's diameter, the helix's, the "
+                    "finishing allowance); space the pieces wider or enter by plunge or ramp",
+                    spacing, 0.5 * helix, spacing - room + helix));
+  }
+  const double longest =
+      std::floor(std::max(0.0, (room - helix) / std::sqrt(2.0)) * M_PI / 2.0 * 100.0) / 100.0;
+  if (cnc.lead_in <= longest) return;
+  warnings.push_back(fmt::format(
+      "cnc.lead_in = {:.6g} shortened to {:.6g} on the slabs: a longer lead arc would reach the next piece, "
+      "{:.6g} away (slab.spacing)",
+      cnc.lead_in, longest, spacing));
+  cnc.lead_in = longest;
+}
+
+}  // namespace
+
+KitchenProducts build_kitchen(const CountertopDesign& design, const Region2& region,
+                              const CompositeCurve& outline, const std::vector<RegionHole>& holes,
+                              const BuildContext& context, Result& out) {
+  const KitchenDesign& kitchen = *design.kitchen;
+  KitchenProducts k;
+  k.stock = kitchen.slab;
+  SplitOptions so;
+  so.seam_clearance = kitchen.seam_clearance;
+  so.deviation = region.max_deviation;
+  so.outline = &outline;
+  // The exact outline lies within the deviation of the loops: keep the
+  // stock's margins and spacing for the exact pieces.
+  // Rounded up to a hundredth of the unit, so that positions stay readable.
+  const auto widened = [](double v, double by) { return std::ceil((v + by) * 100.0) / 100.0; };
+  SlabStock nest_stock = kitchen.slab;
+  nest_stock.margin = widened(kitchen.slab.margin, region.max_deviation);
+  nest_stock.spacing = widened(kitchen.slab.spacing, 2.0 * region.max_deviation);
+  const SlabFit fit{nest_stock.length - 2.0 * nest_stock.margin, nest_stock.width - 2.0 * nest_stock.margin,
+                    nest_stock.grain_along};
+  k.split = kitchen.auto_seams ? auto_split(region, fit, so) : split_top(region, kitchen.seams, so);
+  context.watch.lap("seams");
+  SlabOptions slab_options;
+  slab_options.thickness = design.thickness;
+  slab_options.max_edge = design.max_edge;
+  slab_options.max_triangles = design.max_triangles;
+  std::vector<NestPiece> nest;
+  for (const KitchenPiece& piece : k.split.pieces) {
+    const SlabMesh slab = build_slab(piece_region(piece, region, k.split.proof), slab_options);
+    Part part;
+    part.name = piece.name;
+    part.role = PartRole::Piece;
+    part.mesh = to_soup(slab.mesh);
+    part.proofs.embedding = slab.proof;
+    part.proofs.topology = slab.topology;
+    out.parts.push_back(std::move(part));
+    nest.push_back({piece.name, piece.outer});
+  }
+  // Each piece's exact shape: its stretches of the exact outline, its seams
+  // as exact lines, its cut-outs' exact curves.
+  for (const KitchenPiece& piece : k.split.pieces) {
+    KitchenProducts::Exact exact;
+    try {
+      const CompositeCurve boundary = exact_piece_outline(piece, outline, region.reversed[0]);
+      ExactSolid solid;
+      solid.form = ExactSolid::Form::Extrusion;
+      solid.height = design.thickness;
+      solid.loops.push_back(exact_pieces(boundary));
+      for (const std::size_t h : piece.hole_index) solid.loops.push_back(exact_pieces(holes[h].curve));
+      exact.solid = std::move(solid);
+      if (context.wants_cutting) {
+        CutLoopOptions co;
+        co.tolerance = context.tolerance;
+        co.reverse = region.reversed[0];
+        exact.drawing.push_back(cut_loop(boundary, piece.name, true, co));
+        for (const std::size_t h : piece.hole_index) {
+          co.reverse = region.reversed[h + 1];
+          exact.drawing.push_back(cut_loop(holes[h].curve, holes[h].label, false, co));
+        }
+      }
+    } catch (const GeometryError& e) {
+      exact.why_not = fmt::format("{}: {}", piece.name, e.what());
+    }
+    k.exact.push_back(std::move(exact));
+  }
+  context.watch.lap("pieces");
+  k.nesting = nest_pieces(nest, nest_stock);
+  context.watch.lap("nesting");
+  if (design.cnc) {
+    CncOptions cnc = design.cnc->options;
+    cnc.tolerance = context.tolerance;
+    limit_entry(cnc, kitchen.slab.spacing, region.max_deviation, out.warnings);
+    for (std::size_t s = 0; s < k.nesting.slabs; ++s)
+      k.slab_toolpaths.push_back(slab_program(k.split, k.nesting, s, cnc));
+    context.watch.lap("toolpath");
+  }
+  // Facts: the pieces, the seams and the layout.
+  std::vector<Facts> pieces;
+  for (std::size_t i = 0; i < k.split.pieces.size(); ++i) {
+    const KitchenPiece& piece = k.split.pieces[i];
+    const Placement& at = k.nesting.placements[i];
+    const std::array<double, 3> lengths = edge_lengths(piece);
+    std::vector<double> cutouts;
+    for (const std::size_t h : piece.hole_index) cutouts.push_back(static_cast<double>(h));
+    Facts f;
+    f.set("name", piece.name)
+        .set("area", piece.area)
+        .set("holes", std::move(cutouts))
+        .set("slab", at.slab + 1)
+        .set("position", std::vector<double>{at.offset.x(), at.offset.y()})
+        .set("rotation_deg", at.rotation_deg)
+        .set("exposed_length", lengths[0])
+        .set("wall_length", lengths[1])
+        .set("seam_length", lengths[2]);
+    pieces.push_back(std::move(f));
+  }
+  std::vector<Facts> seams;
+  for (const SeamCut& s : k.split.seams) {
+    Facts f;
+    f.set("key", s.key)
+        .set("from", std::vector<double>{s.from.x(), s.from.y()})
+        .set("to", std::vector<double>{s.to.x(), s.to.y()})
+        .set("length", (s.to - s.from).norm());
+    if (s.clearance < std::numeric_limits<double>::infinity()) f.set("clearance", s.clearance);
+    seams.push_back(std::move(f));
+  }
+  std::vector<Facts> programs;
+  for (std::size_t s = 0; s < k.slab_toolpaths.size(); ++s) {
+    const Toolpath& t = k.slab_toolpaths[s];
+    const ToolpathTotals totals = toolpath_totals(t);
+    Facts f;
+    f.set("slab", s + 1)
+        .set("moves", t.moves.size())
+        .set("deviation", t.deviation)
+        .set("clearance", t.clearance)
+        .set("cutting_length", totals.cutting)
+        .set("estimated_minutes", totals.minutes);
+    programs.push_back(std::move(f));
+    for (const std::string& w : t.warnings) out.warnings.push_back(fmt::format("slab {}: {}", s + 1, w));
+    if (s == 0) append_shares(out.tolerance_shares, "cnc: ", t.tolerance_shares);
+  }
+  Facts facts;
+  facts.set("pieces", std::move(pieces))
+      .set("seams", std::move(seams))
+      .set("slabs", k.nesting.slabs)
+      .set("lower_bound", k.nesting.lower_bound)
+      .set("utilisation", k.nesting.utilisation)
+      .set("partition", k.split.proof)
+      .set("nesting", k.nesting.proof);
+  if (!programs.empty()) facts.set("programs", std::move(programs));
+  out.facts.set("kitchen", std::move(facts));
+  return k;
+}
+
+}  // namespace fabmesh

@@ -1,0 +1,272 @@
+// Kitchens: a countertop cut into pieces at seams, nested on slabs and cut
+// one router program per slab; the programs run through the CNCjs
+// interpreter and are measured against the placed pieces.
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "geometry/core/errors.h"
+#include "geometry/mesh/weld.h"
+#include "geometry/section/simple_polygon.h"
+#include "geometry/validation/validate.h"
+#include "io/design/read_design.h"
+#include "io/file.h"
+#include "io/mesh/stl.h"
+#include "tests/io/cutting/interpret.h"
+#include "tests/io/mesh/external_tool.h"
+#include "tests/pipeline/cli_harness.h"
+
+using namespace fabmesh;
+using namespace fabmesh::testing;
+namespace fs = std::filesystem;
+
+namespace {
+
+double segment_distance(const Vec2& a, const Vec2& b, const Vec2& p) {
+  const Vec2 d = b - a;
+  const double len2 = d.squaredNorm();
+  const double t = len2 > 0.0 ? std::clamp((p - a).dot(d) / len2, 0.0, 1.0) : 0.0;
+  return (a + t * d - p).norm();
+}
+
+// Distance from p to a closed loop.
+double loop_distance(const std::vector<Vec2>& loop, const Vec2& p) {
+  double best = INFINITY;
+  for (std::size_t k = 0; k < loop.size(); ++k)
+    best = std::min(best, segment_distance(loop[k], loop[(k + 1) % loop.size()], p));
+  return best;
+}
+
+// A placed piece: its outline and cut-outs in slab coordinates.
+struct Placed {
+  std::string name;
+  std::vector<Vec2> outer;
+  std::vector<std::vector<Vec2>> holes;
+  double perimeter = 0.0;
+};
+
+std::vector<Placed> placed_on(const KitchenProducts& k, std::size_t slab) {
+  std::vector<Placed> out;
+  for (const Placement& p : k.nesting.placements) {
+    if (p.slab != slab) continue;
+    Placed q{k.split.pieces[p.piece].name, p.outer, {}, 0.0};
+    for (const auto& h : k.split.pieces[p.piece].holes) {
+      q.holes.emplace_back();
+      for (const Vec2& v : h) q.holes.back().push_back(place_point(v, p.rotation_deg, p.offset));
+    }
+    for (std::size_t e = 0; e < q.outer.size(); ++e)
+      q.perimeter += (q.outer[(e + 1) % q.outer.size()] - q.outer[e]).norm();
+    out.push_back(std::move(q));
+  }
+  return out;
+}
+
+// Signed distance of the tool centre from a piece's material: < 0 inside it.
+double from_material(const Placed& piece, const Vec2& c) {
+  double d = loop_distance(piece.outer, c);
+  for (const auto& h : piece.holes) d = std::min(d, loop_distance(h, c));
+  bool inside = point_in_polygon(piece.outer, c) > 0;
+  for (const auto& h : piece.holes) inside = inside && point_in_polygon(h, c) < 0;
+  return inside ? -d : d;
+}
+
+}  // namespace
+
+TEST_CASE("kitchen: the L's pieces partition the top, each a valid slab, written one file each",
+          "[pipeline][kitchen]") {
+  const fs::path dir = fresh_dir("kitchen_l");
+  const Design design = read_design(example("kitchen_l.yaml"));
+  const Result r = run_job(design, into(dir));
+  const Part* top = product(r);
+  REQUIRE(top != nullptr);
+  const std::vector<const Part*> pieces = parts_of(r, PartRole::Piece);
+  REQUIRE(pieces.size() == 2);
+  double volume = 0.0;
+  for (const Part* p : pieces) {
+    INFO(p->name);
+    CHECK(p->validation.valid());
+    CHECK(p->validation.genus == std::optional<long>(1));  // each keeps one cut-out
+    volume += p->validation.volume;
+    // Its STL, read back, passes the full 3D validation.
+    const std::string file = (dir / ("kitchen_l." + p->name + ".stl")).string();
+    const ValidationReport full = validate(weld(parse_stl(read_file(file), "stl")).soup);
+    CHECK(full.valid());
+    CHECK(full.self_intersection == IntersectionCheck::Tested);
+  }
+  CHECK(std::abs(volume - top->validation.volume) <= 1e-9 * top->validation.volume);
+  const auto& k = *std::get<CountertopProducts>(r.products).kitchen;
+  CHECK(k.nesting.slabs == 1);
+  CHECK(k.nesting.slabs >= k.nesting.lower_bound);
+  CHECK(k.split.seams.size() == 1);
+  // The whole top is not written: its pieces are.
+  CHECK_FALSE(fs::exists(dir / "kitchen_l.stl"));
+  // The cut list: a header and one line per piece, the slab and the seam length.
+  std::istringstream csv(read_file((dir / "kitchen_l.cutlist.csv").string()));
+  std::string line;
+  std::getline(csv, line);
+  CHECK(line.rfind("piece,slab,x_mm,y_mm,rotation_deg,length_mm,width_mm", 0) == 0);
+  int rows = 0;
+  while (std::getline(csv, line)) {
+    ++rows;
+    CHECK(line.find(",1,") != std::string::npos);
+    CHECK(line.find(",650,") != std::string::npos);  // the seam is the run's depth
+  }
+  CHECK(rows == 2);
+}
+
+TEST_CASE("kitchen: each slab's program, run by CNCjs, cuts every piece through and nothing inside one",
+          "[pipeline][kitchen]") {
+  const fs::path dir = fresh_dir("kitchen_l_nc");
+  const Design design = read_design(example("kitchen_l.yaml"));
+  const Result r = run_job(design, into(dir));
+  const auto& k = *std::get<CountertopProducts>(r.products).kitchen;
+  REQUIRE(k.slab_toolpaths.size() == k.nesting.slabs);
+  const CncOptions& cnc = std::get<CountertopDesign>(design.body).cnc->options;
+  const double radius = 0.5 * cnc.tool_diameter;
+  for (std::size_t s = 0; s < k.nesting.slabs; ++s) {
+    const std::string file = (dir / fmt::format("kitchen_l.slab-{}.nc", s + 1)).string();
+    REQUIRE(fs::exists(file));
+    const std::string problem = test::gcode_interpreter_problem();
+    INFO(problem);
+    REQUIRE(problem.empty());
+    const test::Trace trace = test::interpret_gcode_file(file);
+    CHECK(trace.unknown.empty());
+    const std::vector<Placed> pieces = placed_on(k, s);
+    double lowest = 0.0;
+    for (const test::TraceMotion& m : trace.motions) lowest = std::min({lowest, m.start.z(), m.end.z()});
+    CHECK(lowest <= -(cnc.depth + cnc.breakthrough) + 1e-3);
+    std::vector<double> through(pieces.size(), 0.0);  // length cut at full depth along each piece
+    double closest = INFINITY;
+    for (const test::TraceMotion& m : trace.motions) {
+      if (std::min(m.start.z(), m.end.z()) >= 0.0) continue;  // above the slab
+      const double length = test::motion_length(m);
+      const int steps = std::max(1, static_cast<int>(std::ceil(length / 0.25)));
+      for (int i = 0; i <= steps; ++i) {
+        const Vec3 c = test::motion_point(m, static_cast<double>(i) / steps);
+        for (std::size_t p = 0; p < pieces.size(); ++p) {
+          // Between samples the centre moves at most 0.125: the margin below allows for it.
+          const double d = from_material(pieces[p], c.head<2>());
+          closest = std::min(closest, d);
+          if (i > 0 && c.z() <= lowest + 1e-6 &&
+              std::abs(loop_distance(pieces[p].outer, c.head<2>()) - radius) < 0.1)
+            through[p] += length / steps;
+        }
+      }
+    }
+    // The tool's edge never enters a piece (the path keeps its proven clearance, less the sampling step).
+    CHECK(closest >= radius - cnc.tolerance - 0.125);
+    for (std::size_t p = 0; p < pieces.size(); ++p) {
+      INFO(pieces[p].name);
+      // Cut through all round but the tabs (two of 10 mm, plus the tool's width each).
+      CHECK(through[p] >= pieces[p].perimeter - 2.0 * (10.0 + 2.0 * radius) - 1.0);
+    }
+  }
+}
+
+TEST_CASE("kitchen: the U's given seams, a defect on the slabs, the layout and cut list",
+          "[pipeline][kitchen]") {
+  const fs::path dir = fresh_dir("kitchen_u");
+  const Result r = run_job(read_design(example("kitchen_u.yaml")), into(dir));
+  const auto& k = *std::get<CountertopProducts>(r.products).kitchen;
+  CHECK(k.split.pieces.size() == 3);
+  CHECK(k.split.seams.size() == 2);
+  // Pieces 2600 x 620, 2960 x 620 and 2600 x 620 go two to a 1570-wide usable area at most.
+  CHECK(k.nesting.slabs == 2);
+  for (const Placement& p : k.nesting.placements) {
+    for (const Vec2& v : p.outer) CHECK((v - Vec2(3100, 1500)).norm() >= 40.0 + 16.0);
+  }
+  double area = 0.0;
+  for (const KitchenPiece& p : k.split.pieces) area += p.area;
+  CHECK(std::abs(area - product(r)->validation.volume / 30.0) <= 1e-6 * area);
+  const std::string svg = read_file((dir / "kitchen_u.layout.svg").string());
+  CHECK(svg.find("id=\"slab-2\"") != std::string::npos);
+  CHECK(svg.find("class=\"defect\"") != std::string::npos);
+  for (const char* piece : {"piece-1", "piece-2", "piece-3"})
+    CHECK(svg.find(fmt::format("id=\"{}\"", piece)) != std::string::npos);
+}
+
+TEST_CASE("kitchen: the same design writes the same bytes", "[pipeline][kitchen]") {
+  const fs::path a = fresh_dir("kitchen_same_a"), b = fresh_dir("kitchen_same_b");
+  const Design design = read_design(example("kitchen_l.yaml"));
+  const Result ra = run_job(design, into(a));
+  const Result rb = run_job(design, into(b));
+  REQUIRE(ra.files.size() == rb.files.size());
+  for (const OutputFile& f : ra.files) {
+    const std::string name = fs::path(f.path).filename().string();
+    INFO(name);
+    CHECK(read_file(f.path) == read_file((b / name).string()));
+  }
+}
+
+TEST_CASE("kitchen bad input: exit 2 naming the key, nothing written", "[pipeline][kitchen]") {
+  const fs::path dir = fresh_dir("kitchen_bad");
+  struct Case {
+    const char* find;
+    const char* replace;
+    const char* key;
+    const char* says;
+  };
+  const Case cases[] = {
+      {"\nseams: auto", "\nseams: [{at: [1900, 0], direction: [0, 1]}]", "seams[0]", "runs through holes[0]"},
+      {"\nseams: auto",
+       "\nseams: [{at: [650, 650], direction: [0, -1]}, {at: [650, 300], direction: [0, 1]}]", "seams[1].at",
+       "not on the top"},
+      {"slab: {length: 3000, width: 1400,", "slab: {length: 700, width: 400,", "holes[0]",
+       "cannot fit a slab"},
+      {"grain: along}", "grain: along, defects: [{circle: {center: [1500, 700], radius: 2000}}]}", "slab",
+       "piece-"},
+      {"spacing: 14", "spacing: 8", "slab.spacing", "router bit"},
+      {"margin: 10", "margin: 700", "slab.margin", "no usable area"},
+  };
+  int n = 0;
+  for (const Case& c : cases) {
+    const std::string name = fmt::format("bad{}.yaml", n++);
+    const std::string path = edited_example(dir, "kitchen_l.yaml", c.find, c.replace, name);
+    const fs::path out = dir / (name + "-out");
+    std::string text;
+    INFO(c.replace);
+    CHECK(run_cli({"run", path, "-o", out.string() + "/"}, &text) == 2);
+    INFO(text);
+    CHECK(names_place(text, path, c.key));
+    CHECK(text.find(c.says) != std::string::npos);
+    CHECK((!fs::exists(out) || fs::is_empty(out)));
+  }
+}
+
+TEST_CASE("kitchen: each piece's exact DXF passes ezdxf's audit and keeps its arcs", "[pipeline][kitchen]") {
+  const fs::path dir = fresh_dir("kitchen_u_dxf");
+  Design design = read_design(example("kitchen_u.yaml"));
+  design.common.outputs = {{"dxf", "test", 0, 0}, {"svg", "test", 0, 0}};
+  const Result r = run_job(design, into(dir));
+  REQUIRE(r.files.size() == 6);  // three pieces, two drawings each
+  const std::string script =
+      "import sys, ezdxf\n"
+      "doc = ezdxf.readfile(sys.argv[1])\n"
+      "a = doc.audit()\n"
+      "m = doc.modelspace()\n"
+      "print(len(a.errors), len(a.fixes), len(m.query(\"ARC\")), len(m.query(\"LINE\")))\n";
+  int arcs_total = 0;
+  for (int piece = 1; piece <= 3; ++piece) {
+    const std::string path = (dir / fmt::format("kitchen_u.piece-{}.dxf", piece)).string();
+    INFO(path);
+    const test::ToolRun run = test::run_tool("/usr/bin/python3 -c '" + script + "' " + path);
+    REQUIRE(run.code == 0);
+    INFO(run.output);
+    std::istringstream out(run.output);
+    int errors = -1, fixes = -1, arcs = -1, lines = -1;
+    out >> errors >> fixes >> arcs >> lines;
+    CHECK(errors == 0);
+    CHECK(fixes == 0);
+    CHECK(lines >= 4);
+    arcs_total += arcs;
+    CHECK(fs::exists(dir / fmt::format("kitchen_u.piece-{}.svg", piece)));
+  }
+  // The outline's four 50 mm corner arcs, the sink's and the cooktop's four each, all exact.
+  CHECK(arcs_total == 12);
+}
