@@ -32,10 +32,10 @@ Region2 piece_region(const KitchenPiece& piece, const Region2& top, const std::s
   Region2 r;
   r.outer = piece.outer;
   r.holes = piece.holes;
-  r.max_deviation = top.max_deviation;
+  r.max_deviation = piece.strip ? 0.0 : top.max_deviation;
   r.area = piece.area;
   r.reversed.assign(1 + piece.holes.size(), false);
-  r.proof = proof;
+  r.proof = piece.strip ? "a backsplash strip: a rectangle" : proof;
   return r;
 }
 
@@ -139,7 +139,23 @@ KitchenProducts build_kitchen(const CountertopDesign& design, const Region2& reg
   nest_stock.spacing = widened(kitchen.slab.spacing, 2.0 * region.max_deviation);
   const SlabFit fit{nest_stock.length - 2.0 * nest_stock.margin, nest_stock.width - 2.0 * nest_stock.margin,
                     nest_stock.grain_along};
-  k.split = kitchen.auto_seams ? auto_split(region, fit, so) : split_top(region, kitchen.seams, so);
+  // Walls: the outline's segments marked `edge: wall`.
+  std::vector<bool> wall_segment;
+  if (design.outline.segments.size() == outline.size()) {
+    for (const SegmentSpec& s : design.outline.segments) wall_segment.push_back(s.wall);
+  }
+  const std::vector<EdgeKind> kinds = outline_edge_kinds(region, wall_segment);
+  k.split =
+      kitchen.auto_seams ? auto_split(region, fit, so, kinds) : split_top(region, kitchen.seams, so, kinds);
+  if (kitchen.backsplash_height > 0.0) {
+    std::vector<std::string> curved;
+    std::vector<KitchenPiece> strips =
+        backsplash_strips(k.split.pieces, kitchen.backsplash_height, region.max_deviation, curved);
+    for (const std::string& c : curved)
+      out.warnings.push_back("backsplash: no strip along the curved wall edge of " + c);
+    k.split.pieces.insert(k.split.pieces.end(), std::make_move_iterator(strips.begin()),
+                          std::make_move_iterator(strips.end()));
+  }
   context.watch.lap("seams");
   SlabOptions slab_options;
   slab_options.thickness = design.thickness;
@@ -147,7 +163,9 @@ KitchenProducts build_kitchen(const CountertopDesign& design, const Region2& reg
   slab_options.max_triangles = design.max_triangles;
   std::vector<NestPiece> nest;
   for (const KitchenPiece& piece : k.split.pieces) {
-    const SlabMesh slab = build_slab(piece_region(piece, region, k.split.proof), slab_options);
+    SlabOptions options = slab_options;
+    if (piece.strip) options.thickness = kitchen.backsplash_thickness;
+    const SlabMesh slab = build_slab(piece_region(piece, region, k.split.proof), options);
     Part part;
     part.name = piece.name;
     part.role = PartRole::Piece;
@@ -162,17 +180,18 @@ KitchenProducts build_kitchen(const CountertopDesign& design, const Region2& reg
   for (const KitchenPiece& piece : k.split.pieces) {
     KitchenProducts::Exact exact;
     try {
-      const CompositeCurve boundary = exact_piece_outline(piece, outline, region.reversed[0]);
+      const CompositeCurve boundary =
+          piece.strip ? polygon_curve(piece.outer) : exact_piece_outline(piece, outline, region.reversed[0]);
       ExactSolid solid;
       solid.form = ExactSolid::Form::Extrusion;
-      solid.height = design.thickness;
+      solid.height = piece.strip ? kitchen.backsplash_thickness : design.thickness;
       solid.loops.push_back(exact_pieces(boundary));
       for (const std::size_t h : piece.hole_index) solid.loops.push_back(exact_pieces(holes[h].curve));
       exact.solid = std::move(solid);
       if (context.wants_cutting) {
         CutLoopOptions co;
         co.tolerance = context.tolerance;
-        co.reverse = region.reversed[0];
+        co.reverse = !piece.strip && region.reversed[0];
         exact.drawing.push_back(cut_loop(boundary, piece.name, true, co));
         for (const std::size_t h : piece.hole_index) {
           co.reverse = region.reversed[h + 1];

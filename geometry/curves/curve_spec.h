@@ -49,6 +49,9 @@ struct SegmentSpec {
   /// How messages name it when that says more than the key
   /// ("profile.segments[2] (point 3)" of a polyline); empty: the key.
   std::string name;
+  /// A countertop outline's segment along a wall (`edge: wall`): a kitchen's
+  /// pieces mark its edges `wall`, not exposed, and backsplash strips stand on them.
+  bool wall = false;
 };
 
 struct CurveSpec {

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <optional>
 
 #include "geometry/core/errors.h"
 #include "geometry/section/simple_polygon.h"
@@ -546,6 +547,83 @@ const char* to_string(EdgeKind kind) {
       return "seam";
   }
   return "exposed";
+}
+
+std::vector<EdgeKind> outline_edge_kinds(const Region2& region, const std::vector<bool>& wall_segment) {
+  const std::size_t m = region.outer.size();
+  std::vector<EdgeKind> kinds(m, EdgeKind::Exposed);
+  const double n = static_cast<double>(wall_segment.size());
+  if (wall_segment.empty() || region.outer_along.size() != m) return kinds;
+  for (std::size_t k = 0; k < m; ++k) {
+    const double ga = region.outer_along[k], gb = region.outer_along[(k + 1) % m];
+    double d = std::fmod(gb - ga + n, n);
+    double from = ga;
+    if (d > 0.5 * n) {  // the loop runs against the outline
+      from = gb;
+      d = n - d;
+    }
+    const double mid = std::fmod(from + 0.5 * d, n);
+    const std::size_t segment = std::min(static_cast<std::size_t>(mid), wall_segment.size() - 1);
+    if (wall_segment[segment]) kinds[k] = EdgeKind::Wall;
+  }
+  return kinds;
+}
+
+std::vector<KitchenPiece> backsplash_strips(const std::vector<KitchenPiece>& pieces, double height,
+                                            double tolerance, std::vector<std::string>& curved) {
+  std::vector<KitchenPiece> strips;
+  auto strip = [&](const KitchenPiece& piece, const Vec2& a, const Vec2& b) {
+    const double length = (b - a).norm();
+    if (length < height) {  // a short return, or a piece of a curved wall
+      curved.push_back(fmt::format("{} from {} to {}", piece.name, at_text(a), at_text(b)));
+      return;
+    }
+    KitchenPiece s;
+    s.strip = true;
+    s.outer = {{0.0, 0.0}, {length, 0.0}, {length, height}, {0.0, height}};
+    s.edges = {EdgeKind::Seam, EdgeKind::Exposed, EdgeKind::Exposed, EdgeKind::Exposed};
+    s.along.assign(4, std::numeric_limits<double>::quiet_NaN());
+    s.area = length * height;
+    strips.push_back(std::move(s));
+  };
+  for (const KitchenPiece& piece : pieces) {
+    const std::size_t n = piece.outer.size();
+    // Start after an edge that is not a wall (a piece all wall has no run's start).
+    std::size_t start = n;
+    for (std::size_t k = 0; k < n; ++k) {
+      if (piece.edges[k] != EdgeKind::Wall && piece.edges[(k + 1) % n] == EdgeKind::Wall) start = (k + 1) % n;
+    }
+    if (start == n) continue;
+    // Straight runs of wall edges: a run ends where a point would leave its
+    // chord by more than `tolerance` (a corner), or at an edge that is no wall.
+    auto point = [&](std::size_t step) -> const Vec2& { return piece.outer[(start + step) % n]; };
+    auto straight = [&](std::size_t from, std::size_t to) {
+      const Vec2 a = point(from), b = point(to);
+      const double len = (b - a).norm();
+      for (std::size_t j = from + 1; j < to; ++j) {
+        if (!(len > 0.0) || std::abs(cross2(b - a, point(j) - a)) / len > tolerance) return false;
+      }
+      return len > 0.0;
+    };
+    std::optional<std::size_t> first;  // the open run's first point
+    std::size_t last = 0;              // and its last
+    for (std::size_t step = 0; step < n; ++step) {
+      const bool wall = piece.edges[(start + step) % n] == EdgeKind::Wall;
+      if (wall && first && straight(*first, step + 1)) {
+        last = step + 1;
+        continue;
+      }
+      if (first) strip(piece, point(*first), point(last));
+      first.reset();
+      if (wall) {
+        first = step;
+        last = step + 1;
+      }
+    }
+    if (first) strip(piece, point(*first), point(last));
+  }
+  for (std::size_t i = 0; i < strips.size(); ++i) strips[i].name = fmt::format("backsplash-{}", i + 1);
+  return strips;
 }
 
 bool fits_slab(const std::vector<Vec2>& outer, const SlabFit& slab) {

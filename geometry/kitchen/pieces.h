@@ -43,6 +43,8 @@ struct KitchenPiece {
   std::vector<std::vector<Vec2>> holes;
   std::vector<std::size_t> hole_index;  ///< the design's hole each of `holes` is (index into Region2::holes)
   double area = 0.0;                    ///< outer minus holes
+  /// A backsplash strip (backsplash_strips): a rectangle of its own, not a part of the top.
+  bool strip = false;
 };
 
 /// A seam as cut: the chord between two points of the top's boundary.
@@ -105,6 +107,20 @@ KitchenSplit auto_split(const Region2& region, const SlabFit& slab, const SplitO
 ///        (T-Bézier, H-Bézier, B-spline, NURBS), whose part has no exact
 ///        form of its own here, naming the segment.
 CompositeCurve exact_piece_outline(const KitchenPiece& piece, const CompositeCurve& outline, bool reversed);
+
+/// The edge kinds of `region`'s outer loop: Wall where the exact outline's
+/// segment is marked a wall (`wall_segment[i]`, one per outline segment),
+/// Exposed elsewhere; each edge lies in the segment of its middle parameter.
+std::vector<EdgeKind> outline_edge_kinds(const Region2& region, const std::vector<bool>& wall_segment);
+
+/// Backsplash strips along the pieces' wall edges: one per straight run of
+/// consecutive wall edges of a piece (its points within `tolerance` of the
+/// run's chord), `height` x the run's length, named backsplash-1, ... in the
+/// pieces' order; its long bottom edge, which stands on the top, marked
+/// Seam (a joint, cut straight and square), the rest Exposed. A run that is not straight gets none: its
+/// length goes into `curved` (for a warning).
+std::vector<KitchenPiece> backsplash_strips(const std::vector<KitchenPiece>& pieces, double height,
+                                            double tolerance, std::vector<std::string>& curved);
 
 /// Whether a piece's bounding box fits `slab` in a turn the grain allows.
 bool fits_slab(const std::vector<Vec2>& outer, const SlabFit& slab);

@@ -151,6 +151,10 @@ struct KitchenDesign {
   bool auto_seams = false;      ///< `seams: auto`
   std::vector<SeamSpec> seams;  ///< the seams given (none with auto)
   double seam_clearance = 0.0;  ///< least distance from a seam to a cut-out (default 100 mm)
+  /// Strips along the wall edges (`backsplash: {height, thickness}`), cut
+  /// from the same slabs; height 0: none.
+  double backsplash_height = 0.0;
+  double backsplash_thickness = 0.0;  ///< default: the top's thickness
 };
 
 /// kind: countertop. Outline and holes in the plane; the slab spans z in [0, thickness].

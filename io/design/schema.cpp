@@ -20,7 +20,7 @@ std::vector<KeyGroup> make_groups() {
       {"curve", with_common({"curve"})},
       {"vessel", with_common({"profile", "body", "max_triangles", "shrinkage", "mould"})},
       {"countertop", with_common({"outline", "holes", "thickness", "max_edge", "max_triangles", "cnc", "slab",
-                                  "seams", "seam_clearance"})},
+                                  "seams", "seam_clearance", "backsplash"})},
       {"surface", with_common({"patches", "thickness", "thicken", "max_triangles"})},
       // Vessels.
       {"vessel.body", {"mode", "wall", "base", "rim"}},
@@ -41,6 +41,7 @@ std::vector<KeyGroup> make_groups() {
       {"countertop.slab.defects[]", {"circle", "polygon"}},
       {"countertop.slab.defects[].circle", {"center", "radius"}},
       {"countertop.seams[]", {"at", "direction"}},
+      {"countertop.backsplash", {"height", "thickness"}},
       // Loops from a DXF drawing (an outline, or an outline hole).
       {"dxf_outline", {"dxf", "layer", "max_gap"}},
       // Surfaces.
@@ -51,16 +52,16 @@ std::vector<KeyGroup> make_groups() {
       {"curve.quasi_bspline", {"family", "points", "lambdas", "fair"}},
       {"curve.composite", {"family", "closed", "segments", "fair", "fair_keeps", "closing"}},
       {"curve.closing", {"continuity"}},
-      {"segment.cubic", {"points", "lambda", "mu", "alpha", "join", "continuity", "family"}},
+      {"segment.cubic", {"points", "lambda", "mu", "alpha", "join", "continuity", "family", "edge"}},
       {"segment.join.tbezier", {"continuity", "alpha", "beta"}},
       {"segment.join.hbezier", {"continuity", "k", "m"}},
-      {"segment.line", {"line", "continuity"}},
+      {"segment.line", {"line", "continuity", "edge"}},
       {"segment.line.line", {"from", "to"}},
-      {"segment.ellipse_arc", {"ellipse_arc", "continuity"}},
+      {"segment.ellipse_arc", {"ellipse_arc", "continuity", "edge"}},
       {"segment.ellipse_arc.ellipse_arc", {"center", "a", "b", "rotation_deg", "from_deg", "to_deg"}},
-      {"segment.circle_arc", {"circle_arc", "continuity"}},
+      {"segment.circle_arc", {"circle_arc", "continuity", "edge"}},
       {"segment.circle_arc.circle_arc", {"center", "radius", "from_deg", "to_deg"}},
-      {"segment.polyline", {"polyline", "continuity"}},
+      {"segment.polyline", {"polyline", "continuity", "edge"}},
       {"segment.polyline.file", {"file"}},
   };
 }

@@ -5,9 +5,11 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -85,14 +87,15 @@ TEST_CASE("kitchen: the L's pieces partition the top, each a valid slab, written
   const Result r = run_job(design, into(dir));
   const Part* top = product(r);
   REQUIRE(top != nullptr);
-  const std::vector<const Part*> pieces = parts_of(r, PartRole::Piece);
-  REQUIRE(pieces.size() == 2);
+  const std::vector<const Part*> parts = parts_of(r, PartRole::Piece);
+  REQUIRE(parts.size() == 5);  // two pieces of the top, three backsplash strips
   double volume = 0.0;
-  for (const Part* p : pieces) {
+  for (const Part* p : parts) {
     INFO(p->name);
     CHECK(p->validation.valid());
-    CHECK(p->validation.genus == std::optional<long>(1));  // each keeps one cut-out
-    volume += p->validation.volume;
+    const bool strip = p->name.rfind("backsplash-", 0) == 0;
+    CHECK(p->validation.genus == std::optional<long>(strip ? 0 : 1));  // a piece keeps its cut-out
+    if (!strip) volume += p->validation.volume;
     // Its STL, read back, passes the full 3D validation.
     const std::string file = (dir / ("kitchen_l." + p->name + ".stl")).string();
     const ValidationReport full = validate(weld(parse_stl(read_file(file), "stl")).soup);
@@ -101,23 +104,39 @@ TEST_CASE("kitchen: the L's pieces partition the top, each a valid slab, written
   }
   CHECK(std::abs(volume - top->validation.volume) <= 1e-9 * top->validation.volume);
   const auto& k = *std::get<CountertopProducts>(r.products).kitchen;
-  CHECK(k.nesting.slabs == 1);
+  CHECK(k.nesting.slabs == 2);  // the strips do not fit beside the pieces
   CHECK(k.nesting.slabs >= k.nesting.lower_bound);
   CHECK(k.split.seams.size() == 1);
   // The whole top is not written: its pieces are.
   CHECK_FALSE(fs::exists(dir / "kitchen_l.stl"));
-  // The cut list: a header and one line per piece, the slab and the seam length.
+  // The cut list: a header and one line per piece; the walls and the seam.
   std::istringstream csv(read_file((dir / "kitchen_l.cutlist.csv").string()));
   std::string line;
   std::getline(csv, line);
-  CHECK(line.rfind("piece,slab,x_mm,y_mm,rotation_deg,length_mm,width_mm", 0) == 0);
-  int rows = 0;
-  while (std::getline(csv, line)) {
-    ++rows;
-    CHECK(line.find(",1,") != std::string::npos);
-    CHECK(line.find(",650,") != std::string::npos);  // the seam is the run's depth
+  CHECK(line ==
+        "piece,slab,x_mm,y_mm,rotation_deg,length_mm,width_mm,area_mm2,exposed_length_mm,wall_length_mm,"
+        "seam_length_mm,cutouts");
+  std::size_t rows = 0;
+  while (std::getline(csv, line)) ++rows;
+  REQUIRE(rows == 5);
+  // The leg: 2400 of the left wall and 650 of the back wall; its front 2400 exposed; the seam 650.
+  // The run: 2950 of the back wall; its front 2950 and its end 650 exposed; the seam 650.
+  std::map<std::string, std::array<double, 3>> lengths;
+  std::istringstream again(read_file((dir / "kitchen_l.cutlist.csv").string()));
+  std::getline(again, line);
+  while (std::getline(again, line)) {
+    std::vector<std::string> cells;
+    std::stringstream cell(line);
+    for (std::string c; std::getline(cell, c, ',');) cells.push_back(c);
+    REQUIRE(cells.size() >= 11);
+    lengths[cells[0]] = {std::stod(cells[8]), std::stod(cells[9]), std::stod(cells[10])};
   }
-  CHECK(rows == 2);
+  CHECK(lengths["piece-1"] == std::array<double, 3>{2400, 3050, 650});
+  CHECK(lengths["piece-2"] == std::array<double, 3>{3600, 2950, 650});
+  // A strip per straight wall run, as long as the run, standing on its bottom edge.
+  CHECK(lengths["backsplash-1"] == std::array<double, 3>{2600, 0, 2400});
+  CHECK(lengths["backsplash-2"] == std::array<double, 3>{850, 0, 650});
+  CHECK(lengths["backsplash-3"] == std::array<double, 3>{3150, 0, 2950});
 }
 
 TEST_CASE("kitchen: each slab's program, run by CNCjs, cuts every piece through and nothing inside one",
@@ -223,6 +242,10 @@ TEST_CASE("kitchen bad input: exit 2 naming the key, nothing written", "[pipelin
        "piece-"},
       {"spacing: 14", "spacing: 8", "slab.spacing", "router bit"},
       {"margin: 10", "margin: 700", "slab.margin", "no usable area"},
+      {"backsplash: {height: 100}", "backsplash: {height: 0}", "backsplash.height", "must be > 0"},
+      {"slab: {length: 3000, width: 1400, margin: 10, spacing: 14, grain: along}\nseams: auto\nbacksplash: "
+       "{height: 100}\n",
+       "", "outline.segments[0].edge", "needs a slab"},
   };
   int n = 0;
   for (const Case& c : cases) {
@@ -269,4 +292,18 @@ TEST_CASE("kitchen: each piece's exact DXF passes ezdxf's audit and keeps its ar
   }
   // The outline's four 50 mm corner arcs, the sink's and the cooktop's four each, all exact.
   CHECK(arcs_total == 12);
+}
+
+TEST_CASE("kitchen: edge: wall belongs to a countertop's outline only", "[pipeline][kitchen]") {
+  const std::string curve =
+      "name: c\nkind: curve\ncurve:\n  family: tbezier\n  segments:\n"
+      "    - line: {from: [0, 0], to: [10, 0]}\n      edge: wall\n";
+  try {
+    parse_design(curve, "c.yaml");
+    FAIL("edge: wall on a curve design was accepted");
+  } catch (const InputError& e) {
+    INFO(e.what());
+    CHECK(e.location().key == "curve.segments[0].edge");
+    CHECK(std::string(e.what()).find("countertop's outline") != std::string::npos);
+  }
 }

@@ -230,7 +230,7 @@ TabOptions read_hole_tabs(const yaml::Fields& f, const YAML::Node& n, const std:
 
 // `slab: {length, width, margin, spacing, grain, defects}`, `seams`, `seam_clearance`.
 KitchenDesign read_kitchen(const yaml::Fields& f, const YAML::Node& root, const DesignCommon& common,
-                           const std::optional<CncDesign>& cnc) {
+                           const std::optional<CncDesign>& cnc, double thickness, bool has_wall) {
   const double mm_per_unit = millimetres_per_unit(common.units);
   const YAML::Node n = root["slab"];
   f.require_map(n, "slab", key_group("countertop.slab"));
@@ -315,6 +315,24 @@ KitchenDesign read_kitchen(const yaml::Fields& f, const YAML::Node& root, const 
       }
     }
   }
+  if (root["backsplash"].IsDefined()) {
+    const YAML::Node b = root["backsplash"];
+    f.require_map(b, "backsplash", key_group("countertop.backsplash"));
+    const YAML::Node h = f.required(b, "height", "backsplash");
+    k.backsplash_height = f.number(h, "backsplash.height");
+    if (!(k.backsplash_height > 0.0))
+      f.fail(h, "backsplash.height", fmt::format("height = {} must be > 0", k.backsplash_height));
+    k.backsplash_thickness = f.number_or(b, "thickness", "backsplash.thickness", thickness);
+    if (!(k.backsplash_thickness > 0.0)) {
+      f.fail(b["thickness"], "backsplash.thickness",
+             fmt::format("thickness = {} must be > 0", k.backsplash_thickness));
+    }
+    if (!has_wall) {
+      f.fail(b, "backsplash",
+             "backsplash strips stand on the outline's wall edges: mark the segments along a wall with "
+             "edge: wall");
+    }
+  }
   return k;
 }
 
@@ -355,9 +373,17 @@ CountertopDesign read_countertop(const yaml::Fields& f, const YAML::Node& root, 
     for (const CountertopHole& h : d.holes) d.cnc->options.hole_tabs.push_back(h.tabs);
   }
   if (root["slab"].IsDefined()) {
-    d.kitchen = read_kitchen(f, root, common, d.cnc);
+    const bool has_wall = std::any_of(d.outline.segments.begin(), d.outline.segments.end(),
+                                      [](const SegmentSpec& s) { return s.wall; });
+    d.kitchen = read_kitchen(f, root, common, d.cnc, d.thickness, has_wall);
   } else {
-    for (const char* key : {"seams", "seam_clearance"}) {
+    for (const SegmentSpec& s : d.outline.segments) {
+      if (s.wall) {
+        f.fail(root["outline"], s.key + ".edge",
+               "edge: wall marks the edges of a kitchen's pieces: the design needs a slab ({length, width})");
+      }
+    }
+    for (const char* key : {"seams", "seam_clearance", "backsplash"}) {
       if (root[key].IsDefined()) {
         f.fail(root[key], key,
                fmt::format("{} cuts the top to fit a stone slab: the design needs a slab ({{length, width}})",

@@ -61,8 +61,28 @@ SegmentSpec read_ellipse_arc(const yaml::Fields& f, const YAML::Node& n, const s
   return s;
 }
 
+// `edge: wall | exposed` of a countertop outline's segment.
+bool read_edge(const yaml::Fields& f, const YAML::Node& n, const std::string& field) {
+  if (!n["edge"].IsDefined()) return false;
+  if (field.rfind("outline.", 0) != 0) {
+    f.fail(n["edge"], field + ".edge",
+           "edge (wall or exposed) belongs to the segments of a countertop's outline");
+  }
+  return f.choice(n["edge"], field + ".edge", {"wall", "exposed"}) == "wall";
+}
+
+SegmentSpec read_segment_shape(const yaml::Fields& f, const YAML::Node& n, const std::string& field,
+                               CurveFamily family, bool first);
+
 SegmentSpec read_segment(const yaml::Fields& f, const YAML::Node& n, const std::string& field,
                          CurveFamily family, bool first) {
+  SegmentSpec s = read_segment_shape(f, n, field, family, first);
+  s.wall = read_edge(f, n, field);
+  return s;
+}
+
+SegmentSpec read_segment_shape(const yaml::Fields& f, const YAML::Node& n, const std::string& field,
+                               CurveFamily family, bool first) {
   if (!n.IsMap()) f.fail(n, field, "expected a map describing a segment");
   SegmentSpec s;
   s.key = field;
@@ -175,6 +195,8 @@ void read_polyline(const yaml::Fields& f, const YAML::Node& n, const std::string
   if (n["continuity"].IsDefined())
     out[out.size() - pts.size() + (first ? 1 : 0)].declared =
         read_continuity(f, n["continuity"], field + ".continuity");
+  const bool wall = read_edge(f, n, field);
+  for (std::size_t k = out.size() - pts.size() + (first ? 1 : 0); k < out.size(); ++k) out[k].wall = wall;
 }
 
 }  // namespace
