@@ -84,7 +84,14 @@ Toolpath slab_program(const KitchenSplit& split, const SlabNesting& nesting, std
       options.hole_tabs.push_back(
           piece.hole_index[h] < cnc.hole_tabs.size() ? cnc.hole_tabs[piece.hole_index[h]] : no_tabs());
     }
-    append_program(program, plan_toolpath(polygon_curve(p.outer), holes, options));
+    try {
+      append_program(program, plan_toolpath(polygon_curve(p.outer), holes, options));
+    } catch (const GeometryError& e) {
+      // Name the piece: its loops are in slab coordinates, not the design's.
+      throw GeometryError(ErrorLocation{e.location().key, {}, e.location().point},
+                          fmt::format("{} (on slab {}, turned {} degrees, in slab coordinates): {}",
+                                      piece.name, slab + 1, p.rotation_deg, e.what()));
+    }
   }
   return program;
 }
@@ -137,8 +144,9 @@ KitchenProducts build_kitchen(const CountertopDesign& design, const Region2& reg
   SlabStock nest_stock = kitchen.slab;
   nest_stock.margin = widened(kitchen.slab.margin, region.max_deviation);
   nest_stock.spacing = widened(kitchen.slab.spacing, 2.0 * region.max_deviation);
-  const SlabFit fit{nest_stock.length - 2.0 * nest_stock.margin, nest_stock.width - 2.0 * nest_stock.margin,
-                    nest_stock.grain_along};
+  SlabFit fit{nest_stock.length - 2.0 * nest_stock.margin, nest_stock.width - 2.0 * nest_stock.margin,
+              nest_stock.grain_along};
+  fit.no_inside_corners = design.cnc && design.cnc->options.relief == CornerRelief::None;
   // Walls: the outline's segments marked `edge: wall`.
   std::vector<bool> wall_segment;
   if (design.outline.segments.size() == outline.size()) {

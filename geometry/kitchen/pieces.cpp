@@ -330,6 +330,21 @@ Box2 box_of(const std::vector<Vec2>& pts) {
   return b;
 }
 
+// Whether the turn at outer[k] is an inside corner of 30 degrees or more.
+bool is_inside_corner(const std::vector<Vec2>& o, std::size_t k) {
+  const std::size_t n = o.size();
+  const Vec2 in = o[k] - o[(k + n - 1) % n], out = o[(k + 1) % n] - o[k];
+  if (in.norm() == 0.0 || out.norm() == 0.0) return false;
+  return std::atan2(cross2(in, out), in.dot(out)) <= -M_PI / 6.0;
+}
+
+bool inside_corner(const KitchenPiece& piece) {
+  for (std::size_t k = 0; k < piece.outer.size(); ++k) {
+    if (is_inside_corner(piece.outer, k)) return true;
+  }
+  return false;
+}
+
 // Candidate seams for one piece that does not fit: butt joints at inside
 // corners first, then straight cuts across its long and short sides.
 std::vector<SeamSpec> candidates(const KitchenPiece& piece, const SlabFit& slab,
@@ -338,10 +353,8 @@ std::vector<SeamSpec> candidates(const KitchenPiece& piece, const SlabFit& slab,
   const auto& o = piece.outer;
   const std::size_t n = o.size();
   for (std::size_t k = 0; k < n; ++k) {
+    if (!is_inside_corner(o, k)) continue;
     const Vec2 in = o[k] - o[(k + n - 1) % n], outd = o[(k + 1) % n] - o[k];
-    if (in.norm() == 0.0 || outd.norm() == 0.0) continue;
-    const double turn = std::atan2(cross2(in, outd), in.dot(outd));
-    if (turn > -M_PI / 6.0) continue;  // not an inside corner of 30 degrees or more
     out.push_back({o[k], in.normalized(), "seams (auto)"});
     out.push_back({o[k], outd.normalized(), "seams (auto)"});
   }
@@ -416,29 +429,70 @@ struct Search {
   std::size_t tries = 0;
 };
 
+// The most splits the search for the fewest seams tries before the greedy
+// split takes over (it bounds the search's time on a large top).
+constexpr std::size_t kSearchTries = 6000;
+
+// Splits trial[0] at `seam` unless that fails (too near a cut-out, no chord
+// there, not simple) or leaves a sliver: a piece less than seam_clearance across.
+bool try_split(std::vector<KitchenPiece>& trial, const SeamSpec& seam, const SplitOptions& options,
+               SeamCut& cut) {
+  try {
+    cut = split_piece(trial, 0, seam, options);
+  } catch (const GeometryError&) {
+    return false;
+  }
+  return std::none_of(trial.begin(), trial.end(), [&](const KitchenPiece& p) {
+    const Box2 b = box_of(p.outer);
+    return std::min(b.hi.x() - b.lo.x(), b.hi.y() - b.lo.y()) < options.seam_clearance;
+  });
+}
+
+bool fits(const KitchenPiece& p, const SlabFit& slab) {
+  return fits_slab(p.outer, slab) && !(slab.no_inside_corners && inside_corner(p));
+}
+
+// When the search gives up: each piece that does not fit split at its first
+// candidate that works, until all fit (at most 64 seams).
+bool greedy_split(const KitchenPiece& top, const Search& search, std::vector<KitchenPiece>& done,
+                  std::vector<SeamCut>& seams) {
+  std::vector<KitchenPiece> open{top};
+  while (!open.empty()) {
+    KitchenPiece piece = std::move(open.back());
+    open.pop_back();
+    if (fits(piece, search.slab)) {
+      done.push_back(std::move(piece));
+      continue;
+    }
+    if (seams.size() >= 64) return false;
+    bool split = false;
+    for (const SeamSpec& seam : candidates(piece, search.slab, search.options)) {
+      std::vector<KitchenPiece> trial{piece};
+      SeamCut cut;
+      if (!try_split(trial, seam, search.options, cut)) continue;
+      seams.push_back(cut);
+      for (KitchenPiece& p : trial) open.push_back(std::move(p));
+      split = true;
+      break;
+    }
+    if (!split) return false;
+  }
+  return true;
+}
+
 bool fit_within(Search& search, std::vector<KitchenPiece> pieces, std::size_t budget,
                 std::vector<KitchenPiece>& done, std::vector<SeamCut>& seams) {
   // Pieces that fit are done; the first that does not is split every candidate way.
   std::vector<KitchenPiece> open;
-  for (KitchenPiece& p : pieces) (fits_slab(p.outer, search.slab) ? done : open).push_back(std::move(p));
+  for (KitchenPiece& p : pieces) (fits(p, search.slab) ? done : open).push_back(std::move(p));
   if (open.empty()) return true;
   if (budget < open.size()) return false;  // each open piece needs a seam at least
   const KitchenPiece first = open.front();
   for (const SeamSpec& seam : candidates(first, search.slab, search.options)) {
-    if (++search.tries > 20000) return false;
+    if (++search.tries > kSearchTries) return false;
     std::vector<KitchenPiece> trial{first};
     SeamCut cut;
-    try {
-      cut = split_piece(trial, 0, seam, search.options);
-    } catch (const GeometryError&) {
-      continue;  // too near a cut-out, or no chord there
-    }
-    // No slivers: every piece made at least seam_clearance across.
-    const bool sliver = std::any_of(trial.begin(), trial.end(), [&](const KitchenPiece& p) {
-      const Box2 b = box_of(p.outer);
-      return std::min(b.hi.x() - b.lo.x(), b.hi.y() - b.lo.y()) < search.options.seam_clearance;
-    });
-    if (sliver) continue;
+    if (!try_split(trial, seam, search.options, cut)) continue;
     std::vector<KitchenPiece> rest = trial;
     rest.insert(rest.end(), open.begin() + 1, open.end());
     std::vector<KitchenPiece> done_here = done;
@@ -671,20 +725,26 @@ KitchenSplit auto_split(const Region2& region, const SlabFit& slab, const SplitO
     }
   }
   Search search{region, slab, options};
-  for (std::size_t budget = 0; budget <= 8; ++budget) {
+  for (std::size_t budget = 0; budget <= 8 && search.tries <= kSearchTries; ++budget) {
     std::vector<KitchenPiece> done;
     std::vector<SeamCut> seams;
     if (fit_within(search, {top}, budget, done, seams))
       return finish(std::move(done), std::move(seams), region);
   }
+  // Too many seams, or too many ways, for the search: the greedy split.
+  std::vector<KitchenPiece> done;
+  std::vector<SeamCut> seams;
+  if (greedy_split(top, search, done, seams)) return finish(std::move(done), std::move(seams), region);
   const Box2 b = box_of(region.outer);
   throw GeometryError(
       ErrorLocation{"seams"},
-      fmt::format("seams: auto found no set of up to 8 seams, each {:.6g} from every cut-out, "
-                  "that cuts the {:.6g} x {:.6g} top into pieces of at most {:.6g} x {:.6g} "
-                  "(the slab's usable area); give the seams (seams: [{{at, direction}}]) or "
-                  "a larger slab",
-                  options.seam_clearance, b.hi.x() - b.lo.x(), b.hi.y() - b.lo.y(), slab.length, slab.width));
+      fmt::format(
+          "seams: auto found no seams (neither the fewest, up to 8, nor greedily, up to 64), each {:.6g} "
+          "from every cut-out and leaving no piece narrower, "
+          "that cuts the {:.6g} x {:.6g} top into pieces of at most {:.6g} x {:.6g} "
+          "(the slab's usable area); give the seams (seams: [{{at, direction}}]) or "
+          "a larger slab",
+          options.seam_clearance, b.hi.x() - b.lo.x(), b.hi.y() - b.lo.y(), slab.length, slab.width));
 }
 
 }  // namespace fabmesh

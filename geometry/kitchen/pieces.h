@@ -71,6 +71,9 @@ struct SlabFit {
   double length = 0.0;
   double width = 0.0;
   bool grain_along = true;  ///< the piece's long side along `length` only
+  /// The router cuts no sharp inside corner (cnc without dog-bones): a piece
+  /// with an inside corner of 30 degrees or more must be split there too.
+  bool no_inside_corners = false;
 };
 
 struct KitchenSplit {
@@ -89,10 +92,12 @@ KitchenSplit split_top(const Region2& region, const std::vector<SeamSpec>& seams
                        const std::vector<EdgeKind>& kinds = {});
 
 /// The fewest seams (up to 8) that leave every piece fitting `slab`, each
-/// seam at least seam_clearance from every cut-out: lines on from the
-/// sides of an inside corner (butt joints at an L's or a U's inside corner)
-/// tried first, then cuts across a piece's long (or short) side as far along
-/// as the slab allows.
+/// seam at least seam_clearance from every cut-out and no piece narrower:
+/// lines on from the sides of an inside corner (butt joints at an L's or a
+/// U's inside corner) tried first, then cuts across a piece's long (or
+/// short) side, balanced, then as far along as the slab allows. When the
+/// search finds none within its bound on tries, a greedy split (each piece
+/// at its first candidate that works, up to 64 seams).
 /// \throw GeometryError at key `seams` naming the piece and the dimension
 ///        that no seam can bring within the slab.
 KitchenSplit auto_split(const Region2& region, const SlabFit& slab, const SplitOptions& options,

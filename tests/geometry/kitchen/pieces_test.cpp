@@ -177,8 +177,8 @@ TEST_CASE("pieces: each piece's exact outline cuts the outline's arcs exactly at
       // A seam's ends lie on the exact corner circles (or the straight edges).
       for (const Vec2& q : {seg.point(0.0), seg.point(1.0)}) {
         const double on_arc = std::min((q - Vec2(250, 250)).norm(), (q - Vec2(250, 350)).norm());
-        const bool on_edge = std::abs(q.y()) < 1e-9 || std::abs(q.y() - 600) < 1e-9 || std::abs(q.x()) < 1e-9 ||
-                             std::abs(q.x() - 4000) < 1e-9;
+        const bool on_edge = std::abs(q.y()) < 1e-9 || std::abs(q.y() - 600) < 1e-9 ||
+                             std::abs(q.x()) < 1e-9 || std::abs(q.x() - 4000) < 1e-9;
         CHECK((on_edge || std::abs(on_arc - 250.0) < 1e-9));
       }
     }
@@ -207,4 +207,24 @@ TEST_CASE("pieces: a seam ending inside a free-form segment has no exact piece o
     for (const KitchenPiece& p : s.pieces) exact_piece_outline(p, outline, top.reversed[0]);
   });
   CHECK(m.find("outline segment 1 (tbezier)") != std::string::npos);
+}
+
+TEST_CASE("pieces: a router without dog-bones gets no piece with a sharp inside corner",
+          "[kitchen][pieces]") {
+  // A small L that one slab holds whole.
+  const CompositeCurve outline =
+      test::polygon({{0, 0}, {2000, 0}, {2000, 650}, {650, 650}, {650, 1200}, {0, 1200}});
+  RegionOptions ro;
+  ro.tolerance = 0.05;
+  const Region2 top = build_region(outline, {}, ro);
+  SplitOptions o;
+  o.deviation = top.max_deviation;
+  SlabFit slab{2980, 1380, true};
+  CHECK(auto_split(top, slab, o).pieces.size() == 1);
+  slab.no_inside_corners = true;
+  const KitchenSplit s = auto_split(top, slab, o);
+  REQUIRE(s.seams.size() == 1);  // a butt joint at the inside corner
+  const bool from_corner = s.seams[0].from.isApprox(Vec2(650, 650)) || s.seams[0].to.isApprox(Vec2(650, 650));
+  CHECK(from_corner);
+  CHECK(std::abs(pieces_area(s) - top.area) <= 1e-9 * top.area);
 }
