@@ -58,7 +58,7 @@ if ((test_deps)); then
   )
 fi
 if ((bench_deps)); then
-  packages+=(libbenchmark-dev admesh hyperfine time dxf2gcode occt-misc)
+  packages+=(libbenchmark-dev admesh hyperfine time dxf2gcode occt-misc python3-pynest2d)
 fi
 
 missing=()
