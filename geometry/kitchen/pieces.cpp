@@ -652,7 +652,8 @@ std::vector<KitchenPiece> backsplash_strips(const std::vector<KitchenPiece>& pie
     // chord by more than `tolerance` (a corner), or at an edge that is no wall.
     auto point = [&](std::size_t step) -> const Vec2& { return piece.outer[(start + step) % n]; };
     auto straight = [&](std::size_t from, std::size_t to) {
-      const Vec2 a = point(from), b = point(to);
+      const Vec2& a = point(from);
+      const Vec2& b = point(to);
       const double len = (b - a).norm();
       for (std::size_t j = from + 1; j < to; ++j) {
         if (!(len > 0.0) || std::abs(cross2(b - a, point(j) - a)) / len > tolerance) return false;

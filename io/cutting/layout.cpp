@@ -98,6 +98,7 @@ std::string encode_layout_svg(const std::vector<KitchenPiece>& pieces, const Sla
       std::string d = loop_path(p.outer, shift);
       for (const auto& hole : piece.holes) {
         std::vector<Vec2> placed;
+        placed.reserve(hole.size());
         for (const Vec2& q : hole) placed.push_back(place_point(q, p.rotation_deg, p.offset));
         d += " " + loop_path(placed, shift);
       }

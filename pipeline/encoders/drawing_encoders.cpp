@@ -74,6 +74,7 @@ std::vector<Program> programs_of(const CountertopProducts& countertop) {
       p.parts.push_back(piece.name);
       for (const auto& hole : piece.holes) {
         std::vector<Vec2> placed;
+        placed.reserve(hole.size());
         for (const Vec2& q : hole) placed.push_back(place_point(q, at.rotation_deg, at.offset));
         p.part.push_back(polygon_loop(placed, piece.name + " cut-out", false));
       }
@@ -116,7 +117,7 @@ EncodedFiles each_drawing(const EncodeContext& c, const std::string& format, Enc
     if (!k.exact[i].solid) throw OutputError(format, format + ": " + k.exact[i].why_not);
     const std::string& piece = k.split.pieces[i].name;
     Encoded e = drawn(encode(k.exact[i].drawing), c);
-    e.suffix = "." + piece + "." + format;
+    e.suffix = fmt::format(".{}.{}", piece, format);
     e.parts = {piece};
     files.push_back(std::move(e));
   }
