@@ -8,9 +8,10 @@
 # shell of B-spline faces, one per patch, of positive area.
 # The golden solid, designed in cm, must come in at 46.171424531125 cm^3
 # (FreeCAD works in mm): the file's unit is read as written.
-# A kitchen (an example with `slab:`) writes one STEP file per piece: each is
-# one closed solid, and their volumes add up to that of the whole top (the
-# same design without slab, seams and cnc) within 1e-9.
+# A kitchen (an example with `slab:`) writes one STEP file per piece (and per
+# backsplash strip): each is one closed solid, and the top's pieces' volumes
+# add up to that of the whole top (the same design without its kitchen keys
+# and router cut) within 1e-9.
 # A thickened surface is one closed solid too: the bundled basin's 4 patches
 # make 4 faces on each sheet and 8 walls along the rim's sides.
 # Usage: freecad_step_test.sh FABMESH SOURCE_DIR
@@ -36,12 +37,16 @@ for design in "$source"/configs/examples/*.yaml; do
       mapfile -t pieces < <(compgen -G "$work/$name/$name.piece-*.step" | sort -V)
       ((${#pieces[@]} >= 2)) || fail "$name: a kitchen wrote ${#pieces[@]} piece STEP file(s)"
       files+=("${pieces[@]}")
+      mapfile -t strips < <(compgen -G "$work/$name/$name.backsplash-*.step" | sort -V)
+      files+=("${strips[@]}")  # each one closed solid too, not part of the top
       # The whole top: the same design without its slab and seams (nor its router cut).
       /usr/bin/python3 - "$design" "$work/$name-whole.yaml" <<'PY'
 import sys, yaml
 d = yaml.safe_load(open(sys.argv[1]))
-for key in ("slab", "seams", "seam_clearance", "cnc"):
+for key in ("slab", "seams", "seam_clearance", "backsplash", "cnc"):
     d.pop(key, None)
+for segment in d["outline"].get("segments", []):
+    segment.pop("edge", None)  # walls are a kitchen's
 d["outputs"] = ["step"]
 yaml.safe_dump(d, open(sys.argv[2], "w"))
 PY
