@@ -12,7 +12,6 @@
 #include "geometry/sampling/cut_loop.h"
 #include "geometry/sampling/offset_bezier.h"
 #include "geometry/toolpath/toolpath.h"
-#include "io/cutting/layout.h"
 
 namespace fabmesh {
 namespace {
@@ -71,10 +70,9 @@ Toolpath slab_program(const KitchenSplit& split, const SlabNesting& nesting, std
     const KitchenPiece& piece = split.pieces[p.piece];
     std::vector<RegionHole> holes;
     for (std::size_t h = 0; h < piece.holes.size(); ++h) {
-      std::vector<Vec2> placed;
-      for (const Vec2& q : piece.holes[h]) placed.push_back(place_point(q, p.rotation_deg, p.offset));
-      std::reverse(placed.begin(),
-                   placed.end());  // a hole's curve runs either way; give it counter-clockwise
+      // A hole's curve may run either way; given counter-clockwise.
+      std::vector<Vec2> placed = place_loop(piece.holes[h], p);
+      std::reverse(placed.begin(), placed.end());
       holes.push_back({polygon_curve(placed), fmt::format("{} holes[{}]", piece.name, piece.hole_index[h]),
                        fmt::format("holes[{}]", piece.hole_index[h])});
     }

@@ -567,6 +567,13 @@ Vec2 place_point(const Vec2& p, int rotation_deg, const Vec2& offset) {
   }
 }
 
+std::vector<Vec2> place_loop(const std::vector<Vec2>& loop, const Placement& at) {
+  std::vector<Vec2> placed;
+  placed.reserve(loop.size());
+  for (const Vec2& q : loop) placed.push_back(place_point(q, at.rotation_deg, at.offset));
+  return placed;
+}
+
 SlabNesting nest_pieces(const std::vector<NestPiece>& pieces, const SlabStock& stock) {
   require_stock(stock);
   require_pieces(pieces);

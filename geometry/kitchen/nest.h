@@ -65,6 +65,10 @@ struct SlabNesting {
 /// turn, so exact) about the origin, then moved by `offset`.
 Vec2 place_point(const Vec2& p, int rotation_deg, const Vec2& offset);
 
+/// Every point of `loop` placed as `at` says (place_point): a piece's cut-out
+/// on its slab.
+std::vector<Vec2> place_loop(const std::vector<Vec2>& loop, const Placement& at);
+
 /// Places `pieces` on as few slabs as the search finds (first fit,
 /// largest piece first, bottom-left positions against the slab's margins,
 /// the other pieces' and the defects' bounding boxes), then verifies the

@@ -681,6 +681,15 @@ std::vector<KitchenPiece> backsplash_strips(const std::vector<KitchenPiece>& pie
   return strips;
 }
 
+std::array<double, 3> edge_lengths(const KitchenPiece& piece) {
+  std::array<double, 3> out{0.0, 0.0, 0.0};
+  for (std::size_t e = 0; e < piece.outer.size(); ++e) {
+    const double len = (piece.outer[(e + 1) % piece.outer.size()] - piece.outer[e]).norm();
+    out[static_cast<std::size_t>(piece.edges[e])] += len;
+  }
+  return out;
+}
+
 bool fits_slab(const std::vector<Vec2>& outer, const SlabFit& slab) {
   const Box2 b = box_of(outer);
   const Vec2 size = b.hi - b.lo;

@@ -4,6 +4,7 @@
 // knows which of its edges are seams; with `seams: auto`, the fewest seams
 // that make every piece fit a slab.
 
+#include <array>
 #include <cstddef>
 #include <optional>
 #include <string>
@@ -126,6 +127,9 @@ std::vector<EdgeKind> outline_edge_kinds(const Region2& region, const std::vecto
 /// length goes into `curved` (for a warning).
 std::vector<KitchenPiece> backsplash_strips(const std::vector<KitchenPiece>& pieces, double height,
                                             double tolerance, std::vector<std::string>& curved);
+
+/// The lengths of a piece's exposed, wall and seam edges, in that order.
+std::array<double, 3> edge_lengths(const KitchenPiece& piece);
 
 /// Whether a piece's bounding box fits `slab` in a turn the grain allows.
 bool fits_slab(const std::vector<Vec2>& outer, const SlabFit& slab);

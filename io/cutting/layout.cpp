@@ -41,15 +41,6 @@ std::string shop_number(double v) {
 
 }  // namespace
 
-std::array<double, 3> edge_lengths(const KitchenPiece& piece) {
-  std::array<double, 3> out{0.0, 0.0, 0.0};
-  for (std::size_t e = 0; e < piece.outer.size(); ++e) {
-    const double len = (piece.outer[(e + 1) % piece.outer.size()] - piece.outer[e]).norm();
-    out[static_cast<std::size_t>(piece.edges[e])] += len;
-  }
-  return out;
-}
-
 std::string encode_layout_svg(const std::vector<KitchenPiece>& pieces, const SlabStock& stock,
                               const SlabNesting& nesting, const LayoutOptions& options) {
   const double gap = slab_gap(stock);
@@ -97,10 +88,7 @@ std::string encode_layout_svg(const std::vector<KitchenPiece>& pieces, const Sla
       const KitchenPiece& piece = pieces[p.piece];
       std::string d = loop_path(p.outer, shift);
       for (const auto& hole : piece.holes) {
-        std::vector<Vec2> placed;
-        placed.reserve(hole.size());
-        for (const Vec2& q : hole) placed.push_back(place_point(q, p.rotation_deg, p.offset));
-        d += " " + loop_path(placed, shift);
+        d += " " + loop_path(place_loop(hole, p), shift);
       }
       svg += fmt::format(
           "<path class=\"piece\" id=\"{}\" d=\"{}\" fill=\"white\" fill-rule=\"evenodd\" stroke=\"black\" "

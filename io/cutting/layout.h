@@ -37,7 +37,4 @@ std::string encode_layout_svg(const std::vector<KitchenPiece>& pieces, const Sla
 std::string encode_cutlist(const std::vector<KitchenPiece>& pieces, const SlabNesting& nesting,
                            const LayoutOptions& options);
 
-/// The lengths of a piece's exposed, wall and seam edges, in that order.
-std::array<double, 3> edge_lengths(const KitchenPiece& piece);
-
 }  // namespace fabmesh

@@ -73,10 +73,7 @@ std::vector<Program> programs_of(const CountertopProducts& countertop) {
       const KitchenPiece& piece = k.split.pieces[at.piece];
       p.parts.push_back(piece.name);
       for (const auto& hole : piece.holes) {
-        std::vector<Vec2> placed;
-        placed.reserve(hole.size());
-        for (const Vec2& q : hole) placed.push_back(place_point(q, at.rotation_deg, at.offset));
-        p.part.push_back(polygon_loop(placed, piece.name + " cut-out", false));
+        p.part.push_back(polygon_loop(place_loop(hole, at), piece.name + " cut-out", false));
       }
       p.part.push_back(polygon_loop(at.outer, piece.name, true));
     }

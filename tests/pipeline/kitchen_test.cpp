@@ -58,10 +58,7 @@ std::vector<Placed> placed_on(const KitchenProducts& k, std::size_t slab) {
   for (const Placement& p : k.nesting.placements) {
     if (p.slab != slab) continue;
     Placed q{k.split.pieces[p.piece].name, p.outer, {}, 0.0};
-    for (const auto& h : k.split.pieces[p.piece].holes) {
-      q.holes.emplace_back();
-      for (const Vec2& v : h) q.holes.back().push_back(place_point(v, p.rotation_deg, p.offset));
-    }
+    for (const auto& h : k.split.pieces[p.piece].holes) q.holes.push_back(place_loop(h, p));
     for (std::size_t e = 0; e < q.outer.size(); ++e)
       q.perimeter += (q.outer[(e + 1) % q.outer.size()] - q.outer[e]).norm();
     out.push_back(std::move(q));

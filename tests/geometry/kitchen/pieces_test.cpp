@@ -25,6 +25,22 @@ Region2 l_top(double sink_x = 1900.0) {
   return build_region(outline, holes, o);
 }
 
+// A region sampled within 0.05 of `outline` and `holes`, and split options
+// that carry its deviation (and, when `exact`, its outline).
+struct Top {
+  Region2 region;
+  SplitOptions options;
+};
+
+Top top_of(const CompositeCurve& outline, const std::vector<RegionHole>& holes = {}, bool exact = false) {
+  RegionOptions ro;
+  ro.tolerance = 0.05;
+  Top t{build_region(outline, holes, ro), {}};
+  t.options.deviation = t.region.max_deviation;
+  if (exact) t.options.outline = &outline;
+  return t;
+}
+
 double pieces_area(const KitchenSplit& s) {
   double a = 0.0;
   for (const KitchenPiece& p : s.pieces) a += p.area;
@@ -123,11 +139,9 @@ TEST_CASE("pieces: a straight run longer than two slabs gets two seams clear of 
   const CompositeCurve outline = test::polygon({{0, 0}, {7000, 0}, {7000, 620}, {0, 620}});
   // A sink right where a greedy cut at 2980 would fall.
   std::vector<RegionHole> holes{{test::rounded_rect(2700, 100, 3300, 500, 30), "holes[0]", "holes[0]"}};
-  RegionOptions ro;
-  ro.tolerance = 0.05;
-  const Region2 top = build_region(outline, holes, ro);
-  SplitOptions o;
-  o.deviation = top.max_deviation;
+  const Top t = top_of(outline, holes);
+  const Region2& top = t.region;
+  SplitOptions o = t.options;
   const KitchenSplit s = auto_split(top, {2980, 1380, true}, o);
   CHECK(s.pieces.size() == 3);
   for (const KitchenPiece& p : s.pieces) CHECK(fits_slab(p.outer, {2980, 1380, true}));
@@ -140,11 +154,9 @@ TEST_CASE("pieces: a straight run longer than two slabs gets two seams clear of 
 TEST_CASE("pieces: a cut-out no slab can hold is named with its size", "[kitchen][pieces]") {
   const CompositeCurve outline = test::polygon({{0, 0}, {5000, 0}, {5000, 900}, {0, 900}});
   std::vector<RegionHole> holes{{test::rounded_rect(500, 100, 3700, 800, 30), "holes[0]", "holes[0]"}};
-  RegionOptions ro;
-  ro.tolerance = 0.05;
-  const Region2 top = build_region(outline, holes, ro);
-  SplitOptions o;
-  o.deviation = top.max_deviation;
+  const Top t = top_of(outline, holes);
+  const Region2& top = t.region;
+  SplitOptions o = t.options;
   const std::string m = message_of([&] { auto_split(top, {2980, 1380, true}, o); });
   CHECK(m.find("holes[0] |") == 0);
   CHECK(m.find("3200 x 700") != std::string::npos);
@@ -155,12 +167,9 @@ TEST_CASE("pieces: each piece's exact outline cuts the outline's arcs exactly at
   // A 4000 x 600 top with 250 mm corner arcs: a seam at x = 150 cuts the left
   // arcs, one at x = 2000 the straight edges.
   const CompositeCurve outline = test::rounded_rect(0, 0, 4000, 600, 250);
-  RegionOptions ro;
-  ro.tolerance = 0.05;
-  const Region2 top = build_region(outline, {}, ro);
-  SplitOptions o;
-  o.deviation = top.max_deviation;
-  o.outline = &outline;
+  const Top t = top_of(outline, {}, true);
+  const Region2& top = t.region;
+  SplitOptions o = t.options;
   const KitchenSplit s =
       split_top(top, {{{150, 300}, {0, 1}, "seams[0]"}, {{2000, 0}, {0, 1}, "seams[1]"}}, o);
   REQUIRE(s.pieces.size() == 3);
@@ -195,12 +204,9 @@ TEST_CASE("pieces: a seam ending inside a free-form segment has no exact piece o
        Segment::tbezier({Vec2(3900, 0), Vec2(4000, 0), Vec2(4000, 600), Vec2(3900, 600)}, 0.5, 0.5),
        Segment::line({3900, 600}, {0, 600}), Segment::line({0, 600}, {0, 0})},
       true);
-  RegionOptions ro;
-  ro.tolerance = 0.05;
-  const Region2 top = build_region(outline, {}, ro);
-  SplitOptions o;
-  o.deviation = top.max_deviation;
-  o.outline = &outline;
+  const Top t = top_of(outline, {}, true);
+  const Region2& top = t.region;
+  SplitOptions o = t.options;
   const KitchenSplit s = split_top(top, {{{3950, 300}, {0, 1}, "seams[0]"}}, o);
   REQUIRE(s.pieces.size() == 2);
   const std::string m = message_of([&] {
@@ -214,11 +220,9 @@ TEST_CASE("pieces: a router without dog-bones gets no piece with a sharp inside 
   // A small L that one slab holds whole.
   const CompositeCurve outline =
       test::polygon({{0, 0}, {2000, 0}, {2000, 650}, {650, 650}, {650, 1200}, {0, 1200}});
-  RegionOptions ro;
-  ro.tolerance = 0.05;
-  const Region2 top = build_region(outline, {}, ro);
-  SplitOptions o;
-  o.deviation = top.max_deviation;
+  const Top t = top_of(outline);
+  const Region2& top = t.region;
+  SplitOptions o = t.options;
   SlabFit slab{2980, 1380, true};
   CHECK(auto_split(top, slab, o).pieces.size() == 1);
   slab.no_inside_corners = true;
