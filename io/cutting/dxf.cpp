@@ -50,7 +50,19 @@ int insunits(const std::string& units) {
   return length_unit("mm").dxf_insunits;
 }
 
-void write_tables(DL_Dxf& dxf, DL_WriterA& dw) {
+// TEXT in the style "Standard"; centred: `at` is the middle of its baseline.
+void write_text(DL_Dxf& dxf, DL_WriterA& dw, const Vec2& at, double height, double angle_deg, bool centred,
+                const std::string& text, const DL_Attributes& attr) {
+  dxf.writeText(dw,
+                DL_TextData(at.x(), at.y(), 0.0, at.x(), at.y(), 0.0, height, 1.0, 0, centred ? 1 : 0, 0,
+                            text, "Standard", angle_deg * M_PI / 180.0),
+                attr);
+}
+
+// The name of dimension n's block of geometry (anonymous: *D).
+std::string dimension_block(std::size_t n) { return fmt::format("*D{}", n + 1); }
+
+void write_tables(DL_Dxf& dxf, DL_WriterA& dw, const Sheet& sheet) {
   dw.sectionTables();
   dxf.writeVPort(dw);
   dw.tableLinetypes(3);
@@ -58,10 +70,10 @@ void write_tables(DL_Dxf& dxf, DL_WriterA& dw) {
   dxf.writeLinetype(dw, DL_LinetypeData("BYLAYER", "BYLAYER", 0, 0, 0.0));
   dxf.writeLinetype(dw, DL_LinetypeData("CONTINUOUS", "Continuous", 0, 0, 0.0));
   dw.tableEnd();
-  dw.tableLayers(3);
+  dw.tableLayers(static_cast<int>(sheet.layers.size()) + 1);
   dxf.writeLayer(dw, DL_LayerData("0", 0), DL_Attributes("", DL_Codes::black, 100, "CONTINUOUS", 1.0));
-  dxf.writeLayer(dw, DL_LayerData("OUTLINE", 0), DL_Attributes("", DL_Codes::red, 100, "CONTINUOUS", 1.0));
-  dxf.writeLayer(dw, DL_LayerData("HOLES", 0), DL_Attributes("", DL_Codes::blue, 100, "CONTINUOUS", 1.0));
+  for (const SheetLayer& layer : sheet.layers)
+    dxf.writeLayer(dw, DL_LayerData(layer.name, 0), DL_Attributes("", layer.aci, 100, "CONTINUOUS", 1.0));
   dw.tableEnd();
   dw.tableStyle(1);
   // dxflib records the handle of the style named exactly "Standard" and writes
@@ -74,8 +86,15 @@ void write_tables(DL_Dxf& dxf, DL_WriterA& dw) {
   dw.tableAppid(1);
   dxf.writeAppid(dw, "ACAD");
   dw.tableEnd();
-  dxf.writeDimStyle(dw, 1, 1, 1, 1, 1);
+  // Arrow size, extension line extension, offset and text gap, text height.
+  const double h = sheet.text_height;
+  if (sheet.dimensions.empty()) {
+    dxf.writeDimStyle(dw, 1, 1, 1, 1, 1);
+  } else {
+    dxf.writeDimStyle(dw, h, 0.5 * h, 0.5 * h, 0.4 * h, h);
+  }
   dxf.writeBlockRecord(dw);
+  for (std::size_t i = 0; i < sheet.dimensions.size(); ++i) dxf.writeBlockRecord(dw, dimension_block(i));
   dw.tableEnd();
   dw.sectionEnd();
   dw.sectionBlocks();
@@ -83,7 +102,58 @@ void write_tables(DL_Dxf& dxf, DL_WriterA& dw) {
     dxf.writeBlock(dw, DL_BlockData(block, 0, 0.0, 0.0, 0.0));
     dxf.writeEndBlock(dw, block);
   }
+  // Each dimension's drawing, as a reader shows it: a DIMENSION entity is
+  // read (ezdxf) or drawn (most viewers) through this block.
+  const DL_Attributes by_block("0", 0, -1, "BYBLOCK", 1.0);
+  for (std::size_t i = 0; i < sheet.dimensions.size(); ++i) {
+    const DimensionGraphic g = dimension_graphic(sheet.dimensions[i], h);
+    const std::string name = dimension_block(i);
+    dxf.writeBlock(dw, DL_BlockData(name, 1, 0.0, 0.0, 0.0));
+    for (const auto& l : g.lines)
+      dxf.writeLine(dw, DL_LineData(l[0].x(), l[0].y(), 0.0, l[1].x(), l[1].y(), 0.0), by_block);
+    for (const auto& t : g.arrows) {
+      dxf.writeSolid(dw,
+                     DL_SolidData(t[0].x(), t[0].y(), 0.0, t[1].x(), t[1].y(), 0.0, t[2].x(), t[2].y(), 0.0,
+                                  t[2].x(), t[2].y(), 0.0),
+                     by_block);
+    }
+    write_text(dxf, dw, g.text_at, h, g.text_angle_deg, true, g.text, by_block);
+    dxf.writeEndBlock(dw, name);
+  }
   dw.sectionEnd();
+}
+
+// A linear (rotated) DIMENSION of `d` drawn by block `block`: dxflib's own
+// writer leaves out the block (group 2), without which readers drop the
+// entity. Its measurement (group 42) is the distance drawn.
+void write_dimension(DL_WriterA& dw, const SheetDimension& d, const DimensionGraphic& g,
+                     const std::string& block) {
+  const DL_Attributes attr(d.layer, 256, -1, "BYLAYER", 1.0);
+  const Vec2 u(std::cos(d.angle_deg * M_PI / 180.0), std::sin(d.angle_deg * M_PI / 180.0));
+  const Vec2 n(-u.y(), u.x());
+  // Group 10: where the dimension line meets the second extension line.
+  const Vec2 on_line = d.to + (d.through.dot(n) - d.to.dot(n)) * n;
+  dw.entity("DIMENSION");
+  dw.dxfString(100, "AcDbEntity");
+  dw.entityAttributes(attr);
+  dw.dxfString(100, "AcDbDimension");
+  dw.dxfString(2, block);
+  const auto point = [&](int code, const Vec2& p) {
+    dw.dxfReal(code, p.x());
+    dw.dxfReal(code + 10, p.y());
+    dw.dxfReal(code + 20, 0.0);
+  };
+  point(10, on_line);
+  point(11, g.text_at);
+  dw.dxfInt(70, 32);  // rotated (0), its block used by this dimension only (32)
+  dw.dxfInt(71, 8);   // text attached at its bottom centre
+  dw.dxfReal(42, g.value);
+  dw.dxfString(3, "Standard");
+  dw.dxfString(100, "AcDbAlignedDimension");
+  point(13, d.from);
+  point(14, d.to);
+  dw.dxfReal(50, d.angle_deg);
+  dw.dxfString(100, "AcDbRotatedDimension");
 }
 
 void write_arc(DL_Dxf& dxf, DL_WriterA& dw, const EllipseArcParams& a, const DL_Attributes& attr) {
@@ -205,7 +275,7 @@ std::string with_object_owners(const std::string& text) {
 
 }  // namespace
 
-std::string encode_dxf(const std::vector<CutLoop>& loops, const DxfOptions& options) {
+std::string encode_dxf_sheet(const Sheet& sheet, const DxfOptions& options) {
   const TempFile tmp;
   {
     DL_Dxf dxf;
@@ -215,12 +285,24 @@ std::string encode_dxf(const std::vector<CutLoop>& loops, const DxfOptions& opti
     dw->dxfString(9, "$INSUNITS");
     dw->dxfInt(70, insunits(options.units));
     dw->sectionEnd();
-    write_tables(dxf, *dw);
+    write_tables(dxf, *dw, sheet);
     dw->sectionEntities();
-    for (const CutLoop& loop : loops) {
-      const DL_Attributes attr(loop.outer ? "OUTLINE" : "HOLES", 256, -1, "BYLAYER", 1.0);
-      const bool whole_loop = loop.closed && loop.entities.size() == 1;
-      for (const CutEntity& e : loop.entities) write_entity(dxf, *dw, e, whole_loop, attr);
+    for (const SheetLoop& l : sheet.loops) {
+      const DL_Attributes attr(l.layer, 256, -1, "BYLAYER", 1.0);
+      const bool whole_loop = l.loop.closed && l.loop.entities.size() == 1;
+      for (const CutEntity& e : l.loop.entities) write_entity(dxf, *dw, e, whole_loop, attr);
+    }
+    for (const SheetLine& l : sheet.lines) {
+      dxf.writeLine(*dw, DL_LineData(l.from.x(), l.from.y(), 0.0, l.to.x(), l.to.y(), 0.0),
+                    DL_Attributes(l.layer, 256, -1, "BYLAYER", 1.0));
+    }
+    for (const SheetText& t : sheet.texts) {
+      write_text(dxf, *dw, t.at, t.height, 0.0, t.centred, t.text,
+                 DL_Attributes(t.layer, 256, -1, "BYLAYER", 1.0));
+    }
+    for (std::size_t i = 0; i < sheet.dimensions.size(); ++i) {
+      const SheetDimension& d = sheet.dimensions[i];
+      write_dimension(*dw, d, dimension_graphic(d, sheet.text_height), dimension_block(i));
     }
     dw->sectionEnd();
     dxf.writeObjects(*dw);
@@ -229,6 +311,13 @@ std::string encode_dxf(const std::vector<CutLoop>& loops, const DxfOptions& opti
     dw->close();
   }
   return with_object_owners(read_file(tmp.path()));
+}
+
+std::string encode_dxf(const std::vector<CutLoop>& loops, const DxfOptions& options) {
+  Sheet sheet;
+  sheet.layers = {{"OUTLINE", DL_Codes::red, "red"}, {"HOLES", DL_Codes::blue, "blue"}};
+  for (const CutLoop& loop : loops) sheet.loops.push_back({loop.outer ? "OUTLINE" : "HOLES", loop});
+  return encode_dxf_sheet(sheet, options);
 }
 
 }  // namespace fabmesh

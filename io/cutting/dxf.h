@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "geometry/sampling/cut_loop.h"
+#include "io/cutting/sheet.h"
 
 namespace fabmesh {
 
@@ -20,5 +21,14 @@ struct DxfOptions {
 /// LWPOLYLINE (closed when a loop is one polyline).
 /// \throw FileError when dxflib cannot write its temporary file
 std::string encode_dxf(const std::vector<CutLoop>& loops, const DxfOptions& options = {});
+
+/// The DXF text of `sheet`: its layers (colours as given), loops as
+/// encode_dxf writes them, lines, TEXT entities and each dimension as a
+/// rotated DIMENSION entity with its block of geometry (*D1, *D2, ...:
+/// extension and dimension lines, SOLID arrowheads, the measured text) and
+/// its measurement (group 42); the dimension style's sizes from
+/// `sheet.text_height`.
+/// \throw FileError when dxflib cannot write its temporary file
+std::string encode_dxf_sheet(const Sheet& sheet, const DxfOptions& options = {});
 
 }  // namespace fabmesh
