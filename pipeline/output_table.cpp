@@ -110,6 +110,18 @@ std::vector<OutputFormat> make_table() {
       {"layout_svg",
        "a kitchen's slabs at true size with its pieces as nested, their labels and the free area", drawing,
        slab, countertops, countertops, ".layout.svg", nullptr, &encode_layout_svg_output},
+      {"layout_dxf",
+       "the same layout as DXF: slabs, usable areas, defects, the pieces' exact outlines as placed, seams "
+       "and "
+       "labels on layers of their own",
+       drawing, slab, countertops, countertops, ".layout.dxf", nullptr, &encode_layout_dxf_output},
+      {"shop_dxf",
+       "a kitchen's shop drawing (DXF): every piece with its dimensions as DIMENSION entities (length, "
+       "depth, "
+       "cut-out positions and sizes, seam lengths), its label and its edges marked exposed, wall or seam",
+       drawing, slab, countertops, countertops, ".shop.dxf", nullptr, &encode_shop_dxf_output},
+      {"shop_svg", "the same shop drawing as SVG", drawing, slab, countertops, countertops, ".shop.svg",
+       nullptr, &encode_shop_svg_output},
       {"cutlist",
        "a kitchen's cut list (CSV): each piece's slab, position, turn, size, area and edge lengths", drawing,
        slab, countertops, countertops, ".cutlist.csv", nullptr, &encode_cutlist_output},

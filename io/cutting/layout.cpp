@@ -31,12 +31,30 @@ std::array<Vec2, 2> box_of(const std::vector<Vec2>& loop) {
 
 std::string number(double v) { return svg_number(v); }
 
-// A dimension as a shop reads it: at most three decimals, no trailing zeros.
-std::string shop_number(double v) {
-  std::string s = fmt::format("{:.3f}", v);
-  while (s.back() == '0') s.pop_back();
-  if (s.back() == '.') s.pop_back();
-  return s == "-0" ? "0" : s;
+std::string slab_caption(std::size_t s, const SlabStock& stock, const SlabNesting& nesting, double free_area,
+                         const std::string& units) {
+  return fmt::format("slab {} of {}: {} x {} {}, {:.1f}% of the usable area used, {:.4g} {}^2 free", s + 1,
+                     nesting.slabs, number(stock.length), number(stock.width), units,
+                     100.0 * (s < nesting.utilisation.size() ? nesting.utilisation[s] : 0.0), free_area,
+                     units);
+}
+
+std::string piece_caption(const KitchenPiece& piece, const Placement& p, const std::string& units) {
+  const auto box = box_of(p.outer);
+  return fmt::format("{} ({} x {} {}, turned {})", piece.name, shop_number(box[1].x() - box[0].x()),
+                     shop_number(box[1].y() - box[0].y()), units, p.rotation_deg);
+}
+
+double used_area(const std::vector<KitchenPiece>& pieces, const SlabNesting& nesting, std::size_t s) {
+  double used = 0.0;
+  for (const Placement& p : nesting.placements) used += p.slab == s ? pieces[p.piece].area : 0.0;
+  return used;
+}
+
+CutLoop moved(CutLoop loop, const Vec2& shift) {
+  Placement at;
+  at.offset = shift;
+  return placed_loop(loop, at);
 }
 
 }  // namespace
@@ -54,8 +72,7 @@ std::string encode_layout_svg(const std::vector<KitchenPiece>& pieces, const Sla
   const double usable = (stock.length - 2.0 * stock.margin) * (stock.width - 2.0 * stock.margin);
   for (std::size_t s = 0; s < nesting.slabs; ++s) {
     const Vec2 shift(0.0, static_cast<double>(nesting.slabs - 1 - s) * step);
-    double used = 0.0;
-    for (const Placement& p : nesting.placements) used += p.slab == s ? pieces[p.piece].area : 0.0;
+    const double used = used_area(pieces, nesting, s);
     svg += fmt::format("<g id=\"slab-{}\">\n", s + 1);
     const std::vector<Vec2> rect{
         {0.0, 0.0}, {stock.length, 0.0}, {stock.length, stock.width}, {0.0, stock.width}};
@@ -104,21 +121,99 @@ std::string encode_layout_svg(const std::vector<KitchenPiece>& pieces, const Sla
       const auto box = box_of(p.outer);
       const Vec2 mid = 0.5 * (box[0] + box[1]) + shift;
       svg += fmt::format(
-          "<text x=\"{}\" y=\"{}\" font-size=\"{}\" text-anchor=\"middle\" font-family=\"sans-serif\">{} "
-          "({} x {} {}, turned {})</text>\n",
-          number(mid.x()), number(-mid.y()), number(text), piece.name, shop_number(box[1].x() - box[0].x()),
-          shop_number(box[1].y() - box[0].y()), options.units, p.rotation_deg);
+          "<text x=\"{}\" y=\"{}\" font-size=\"{}\" text-anchor=\"middle\" "
+          "font-family=\"sans-serif\">{}</text>\n",
+          number(mid.x()), number(-mid.y()), number(text), piece_caption(piece, p, options.units));
     }
-    const double free_area = usable - used;
-    svg += fmt::format(
-        "<text x=\"{}\" y=\"{}\" font-size=\"{}\" font-family=\"sans-serif\">slab {} of {}: {} x {} {}, "
-        "{:.1f}% of the usable area used, {:.4g} {}^2 free</text>\n",
-        number(0.0), number(-(shift.y() + stock.width + 0.4 * text)), number(text), s + 1, nesting.slabs,
-        number(stock.length), number(stock.width), options.units,
-        100.0 * (s < nesting.utilisation.size() ? nesting.utilisation[s] : 0.0), free_area, options.units);
+    svg += fmt::format("<text x=\"{}\" y=\"{}\" font-size=\"{}\" font-family=\"sans-serif\">{}</text>\n",
+                       number(0.0), number(-(shift.y() + stock.width + 0.4 * text)), number(text),
+                       slab_caption(s, stock, nesting, usable - used, options.units));
     svg += "</g>\n";
   }
   return svg + "</svg>\n";
+}
+
+std::vector<CutLoop> piece_drawing(const KitchenPiece& piece, const std::vector<CutLoop>& exact) {
+  if (!exact.empty()) return exact;
+  std::vector<CutLoop> loops{polygon_loop(piece.outer, piece.name, true)};
+  for (const auto& hole : piece.holes) loops.push_back(polygon_loop(hole, piece.name + " cut-out", false));
+  return loops;
+}
+
+CutLoop placed_loop(const CutLoop& loop, const Placement& at) {
+  CutLoop out = loop;
+  for (CutEntity& e : out.entities) {
+    for (Vec2& p : e.points) p = place_point(p, at.rotation_deg, at.offset);
+    if (e.kind == CutKind::Arc) {
+      e.arc.center = place_point(e.arc.center, at.rotation_deg, at.offset);
+      e.arc.rotation_deg += at.rotation_deg;
+    }
+  }
+  return out;
+}
+
+Sheet layout_sheet(const std::vector<KitchenPiece>& pieces, const std::vector<std::vector<CutLoop>>& exact,
+                   const SlabStock& stock, const SlabNesting& nesting, const LayoutOptions& options) {
+  const double gap = slab_gap(stock);
+  const double step = stock.width + gap;
+  const double n = static_cast<double>(std::max<std::size_t>(nesting.slabs, 1));
+  Sheet sheet;
+  sheet.layers = {{"SLABS", 8, "#555"},   {"MARGINS", 9, "#999"},    {"DEFECTS", 1, "#d33"},
+                  {"PIECES", 7, "black"}, {"SEAMS", 5, "#06c", 3.0}, {"LABELS", 3, "#070"}};
+  // Captions below each slab: the sheet's box is the slabs and a gap.
+  const double h = readable_text_height(Vec2(0.0, -gap), Vec2(stock.length, n * step - gap), options.units,
+                                        {420.0, 297.0}, 3.0);
+  sheet.text_height = h;
+  const double usable = (stock.length - 2.0 * stock.margin) * (stock.width - 2.0 * stock.margin);
+  const double m = stock.margin;
+  for (std::size_t s = 0; s < nesting.slabs; ++s) {
+    const Vec2 shift(0.0, static_cast<double>(nesting.slabs - 1 - s) * step);
+    sheet.loops.push_back(
+        {"SLABS",
+         moved(
+             polygon_loop({{0.0, 0.0}, {stock.length, 0.0}, {stock.length, stock.width}, {0.0, stock.width}},
+                          fmt::format("slab {}", s + 1), true),
+             shift)});
+    sheet.loops.push_back(
+        {"MARGINS",
+         moved(polygon_loop(
+                   {{m, m}, {stock.length - m, m}, {stock.length - m, stock.width - m}, {m, stock.width - m}},
+                   "usable area", true),
+               shift)});
+    for (const SlabDefect& d : stock.defects) {
+      CutLoop loop;
+      if (d.radius > 0.0) {
+        CutEntity circle;
+        circle.kind = CutKind::Arc;
+        circle.arc = {d.center, d.radius, d.radius, 0.0, 0.0, 360.0};
+        circle.points = {arc_point(circle.arc, 0.0), arc_point(circle.arc, 360.0)};
+        loop.label = "defect";
+        loop.entities = {circle};
+      } else {
+        loop = polygon_loop(d.polygon, "defect", false);
+      }
+      sheet.loops.push_back({"DEFECTS", moved(loop, shift)});
+    }
+    for (const Placement& p : nesting.placements) {
+      if (p.slab != s) continue;
+      const KitchenPiece& piece = pieces[p.piece];
+      Placement at = p;
+      at.offset += shift;
+      for (const CutLoop& loop : piece_drawing(piece, exact[p.piece]))
+        sheet.loops.push_back({"PIECES", placed_loop(loop, at)});
+      for (std::size_t e = 0; e < p.outer.size(); ++e) {
+        if (piece.edges[e] == EdgeKind::Seam)
+          sheet.lines.push_back({"SEAMS", p.outer[e] + shift, p.outer[(e + 1) % p.outer.size()] + shift});
+      }
+      const auto box = box_of(p.outer);
+      sheet.texts.push_back(
+          {"LABELS", 0.5 * (box[0] + box[1]) + shift, h, piece_caption(piece, p, options.units), true});
+    }
+    sheet.texts.push_back(
+        {"LABELS", Vec2(0.0, shift.y() - 1.5 * h), h,
+         slab_caption(s, stock, nesting, usable - used_area(pieces, nesting, s), options.units)});
+  }
+  return sheet;
 }
 
 std::string encode_cutlist(const std::vector<KitchenPiece>& pieces, const SlabNesting& nesting,

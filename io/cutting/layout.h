@@ -12,6 +12,8 @@
 #include "geometry/core/types.h"
 #include "geometry/kitchen/nest.h"
 #include "geometry/kitchen/pieces.h"
+#include "geometry/sampling/cut_loop.h"
+#include "io/cutting/sheet.h"
 
 namespace fabmesh {
 
@@ -27,6 +29,21 @@ struct LayoutOptions {
 /// caption: pieces, utilisation and free area.
 std::string encode_layout_svg(const std::vector<KitchenPiece>& pieces, const SlabStock& stock,
                               const SlabNesting& nesting, const LayoutOptions& options);
+
+/// A piece's drawing: `exact` (its exact outline, then its cut-outs in the
+/// order of piece.holes) when given, else its loops as polygons.
+std::vector<CutLoop> piece_drawing(const KitchenPiece& piece, const std::vector<CutLoop>& exact);
+
+/// `loop` turned and moved as `at` places its piece (place_point): lines,
+/// spline points and arc centres moved, arcs turned with them.
+CutLoop placed_loop(const CutLoop& loop, const Placement& at);
+
+/// The layout as a sheet (layout_dxf): the slabs as encode_layout_svg draws
+/// them, on layers SLABS, MARGINS, DEFECTS, PIECES (each piece's drawing
+/// placed: exact where `exact[i]` is given), SEAMS and LABELS (each piece's
+/// name, size and turn; each slab's caption); text readable at A3.
+Sheet layout_sheet(const std::vector<KitchenPiece>& pieces, const std::vector<std::vector<CutLoop>>& exact,
+                   const SlabStock& stock, const SlabNesting& nesting, const LayoutOptions& options);
 
 /// The cut list: a header line, then one line per piece (in piece order):
 /// piece, slab (1-based), x, y (its placed bounding box's lower-left corner

@@ -11,6 +11,7 @@
 #include "io/cutting/dxf.h"
 #include "io/cutting/gcode.h"
 #include "io/cutting/layout.h"
+#include "io/cutting/shop_drawing.h"
 #include "io/cutting/svg.h"
 #include "io/cutting/toolpath_svg.h"
 #include "pipeline/encoders/encoding.h"
@@ -48,20 +49,6 @@ struct Program {
   std::vector<std::string> parts;  ///< the pieces on the slab
 };
 
-// A closed chain of lines through `points`, drawn as cut.
-CutLoop polygon_loop(const std::vector<Vec2>& points, const std::string& label, bool outer) {
-  CutLoop loop;
-  loop.label = label;
-  loop.outer = outer;
-  loop.closed = true;
-  CutEntity chain;  // one polyline, closed by its last point
-  chain.kind = CutKind::Polyline;
-  chain.points = points;
-  chain.points.push_back(points.front());
-  loop.entities.push_back(std::move(chain));
-  return loop;
-}
-
 std::vector<Program> programs_of(const CountertopProducts& countertop) {
   if (!countertop.kitchen) return {{&*countertop.toolpath, countertop.cutting, "", {}}};
   const KitchenProducts& k = *countertop.kitchen;
@@ -93,6 +80,14 @@ LayoutOptions layout_options(const EncodeContext& c) {
   options.units = c.common.units;
   options.title = c.common.name;
   return options;
+}
+
+// Each piece's exact drawing, or none where its outline has none (the sheets draw its polygons).
+std::vector<std::vector<CutLoop>> exact_drawings(const KitchenProducts& k) {
+  std::vector<std::vector<CutLoop>> out;
+  out.reserve(k.exact.size());
+  for (const KitchenProducts::Exact& e : k.exact) out.push_back(e.solid ? e.drawing : std::vector<CutLoop>{});
+  return out;
 }
 
 Encoded drawn(std::string bytes, const EncodeContext& c) {
@@ -169,6 +164,31 @@ EncodedFiles encode_toolpath_svg_output(const EncodeContext& c) {
 EncodedFiles encode_layout_svg_output(const EncodeContext& c) {
   const KitchenProducts& k = kitchen_of(c);
   return {drawn(encode_layout_svg(k.split.pieces, k.stock, k.nesting, layout_options(c)), c)};
+}
+
+EncodedFiles encode_layout_dxf_output(const EncodeContext& c) {
+  const KitchenProducts& k = kitchen_of(c);
+  DxfOptions options;
+  options.units = c.common.units;
+  return {drawn(
+      encode_dxf_sheet(layout_sheet(k.split.pieces, exact_drawings(k), k.stock, k.nesting, layout_options(c)),
+                       options),
+      c)};
+}
+
+EncodedFiles encode_shop_dxf_output(const EncodeContext& c) {
+  const KitchenProducts& k = kitchen_of(c);
+  DxfOptions options;
+  options.units = c.common.units;
+  return {
+      drawn(encode_dxf_sheet(shop_sheet(k.split.pieces, exact_drawings(k), layout_options(c)), options), c)};
+}
+
+EncodedFiles encode_shop_svg_output(const EncodeContext& c) {
+  const KitchenProducts& k = kitchen_of(c);
+  return {drawn(encode_sheet_svg(shop_sheet(k.split.pieces, exact_drawings(k), layout_options(c)),
+                                 c.common.units, c.common.name + " shop drawing"),
+                c)};
 }
 
 EncodedFiles encode_cutlist_output(const EncodeContext& c) {

@@ -15,6 +15,7 @@
 
 #include "geometry/core/errors.h"
 #include "geometry/mesh/weld.h"
+#include "geometry/sampling/cut_loop.h"
 #include "geometry/section/simple_polygon.h"
 #include "geometry/validation/validate.h"
 #include "io/design/read_design.h"
@@ -302,5 +303,135 @@ TEST_CASE("kitchen: edge: wall belongs to a countertop's outline only", "[pipeli
     INFO(e.what());
     CHECK(e.location().key == "curve.segments[0].edge");
     CHECK(std::string(e.what()).find("countertop's outline") != std::string::npos);
+  }
+}
+
+namespace {
+
+// What ezdxf reads in a DXF drawing (tests/pipeline/dxf_sheet_dump.py).
+nlohmann::json ezdxf_dump(const std::string& path) {
+  const std::string script = std::string(FABMESH_SOURCE_DIR) + "/tests/pipeline/dxf_sheet_dump.py";
+  const test::ToolRun run = test::run_tool("/usr/bin/python3 " + script + " " + path);
+  INFO(run.output);
+  REQUIRE(run.code == 0);
+  return nlohmann::json::parse(run.output);
+}
+
+// The scale (paper mm per model unit, units mm) at which the box lo..hi
+// fits A3 less a 10 mm border, upright or turned.
+double a3_scale(const nlohmann::json& lo, const nlohmann::json& hi) {
+  const double w = hi[0].get<double>() - lo[0].get<double>(), h = hi[1].get<double>() - lo[1].get<double>();
+  return std::max(std::min(400.0 / w, 277.0 / h), std::min(277.0 / w, 400.0 / h));
+}
+
+// The exact box of a loop.
+std::array<double, 2> exact_size(const CutLoop& loop) {
+  const auto [lo, hi] = cut_bounds({loop});
+  return {hi.x() - lo.x(), hi.y() - lo.y()};
+}
+
+// Whether `dims` holds a dimension measuring `value` along x (angle 0) or y (90).
+bool measured(const nlohmann::json& dims, double value, double angle) {
+  for (const auto& d : dims) {
+    if (d["angle"].get<double>() == angle && std::abs(d["measurement"].get<double>() - value) <= 1e-6 * value)
+      return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+TEST_CASE("kitchen: the shop drawing's DIMENSION entities measure the exact pieces, readable on A3",
+          "[pipeline][kitchen]") {
+  for (const char* name : {"kitchen_l", "kitchen_u"}) {
+    INFO(name);
+    const fs::path dir = fresh_dir(std::string(name) + "_shop");
+    Design design = read_design(example(std::string(name) + ".yaml"));
+    design.common.outputs = {{"shop_dxf", "test", 0, 0}, {"shop_svg", "test", 0, 0}};
+    const Result r = run_job(design, into(dir));
+    const auto& k = *std::get<CountertopProducts>(r.products).kitchen;
+    const nlohmann::json dxf = ezdxf_dump((dir / (std::string(name) + ".shop.dxf")).string());
+    CHECK(dxf["errors"].empty());
+    CHECK(dxf["fixes"].empty());
+    const nlohmann::json& dims = dxf["dimensions"];
+    std::size_t least = 0;  // two per piece and four per cut-out; seams besides
+    for (std::size_t i = 0; i < k.split.pieces.size(); ++i) {
+      const KitchenPiece& piece = k.split.pieces[i];
+      INFO(piece.name);
+      REQUIRE(k.exact[i].solid);
+      const std::vector<CutLoop>& loops = k.exact[i].drawing;
+      REQUIRE(loops.size() == piece.holes.size() + 1);
+      const auto size = exact_size(loops.front());
+      CHECK(measured(dims, size[0], 0.0));
+      CHECK(measured(dims, size[1], 90.0));
+      for (std::size_t h = 1; h < loops.size(); ++h) {
+        const auto hole = exact_size(loops[h]);
+        CHECK(measured(dims, hole[0], 0.0));
+        CHECK(measured(dims, hole[1], 90.0));
+      }
+      least += 2 + 4 * piece.holes.size();
+      bool labelled = false;
+      for (const auto& t : dxf["texts"])
+        labelled = labelled || t["text"].get<std::string>().rfind(piece.name + " (", 0) == 0;
+      CHECK(labelled);
+    }
+    CHECK(dims.size() >= least);
+    for (const auto& d : dims) {
+      CHECK(d["layer"] == "DIMENSIONS");
+      CHECK(d["block"].get<bool>());
+      CHECK(d["measurement"].get<double>() > 0.0);
+    }
+    // Every text, a dimension's too, prints at 2.5 mm or more when the whole
+    // drawing is scaled to A3 (the unit is mm).
+    const double scale = a3_scale(dxf["lo"], dxf["hi"]);
+    CHECK(dxf["dimstyle_text"].get<double>() * scale >= 2.5);
+    for (const auto& t : dxf["texts"]) CHECK(t["height"].get<double>() * scale >= 2.5);
+    // The SVG draws the same dimensions.
+    const std::string svg = read_file((dir / (std::string(name) + ".shop.svg")).string());
+    std::size_t drawn = 0;
+    for (std::size_t at = svg.find("class=\"dimension\""); at != std::string::npos;
+         at = svg.find("class=\"dimension\"", at + 1))
+      ++drawn;
+    CHECK(drawn == dims.size());
+  }
+}
+
+TEST_CASE("kitchen: the layout DXF holds every piece, exact, inside its slab's usable area",
+          "[pipeline][kitchen]") {
+  const fs::path dir = fresh_dir("kitchen_u_layout_dxf");
+  Design design = read_design(example("kitchen_u.yaml"));
+  design.common.outputs = {{"layout_dxf", "test", 0, 0}};
+  const Result r = run_job(design, into(dir));
+  const auto& k = *std::get<CountertopProducts>(r.products).kitchen;
+  const nlohmann::json dxf = ezdxf_dump((dir / "kitchen_u.layout.dxf").string());
+  CHECK(dxf["errors"].empty());
+  CHECK(dxf["fixes"].empty());
+  const SlabStock& stock = k.stock;
+  const double step = 1.1 * stock.width;  // slab s lies (slabs - 1 - s) steps up
+  std::map<std::string, int> per_layer;
+  for (const auto& b : dxf["boxes"]) {
+    const std::string layer = b["layer"];
+    ++per_layer[layer];
+    if (layer != "PIECES") continue;
+    const double lx = b["lo"][0], ly = b["lo"][1], hx = b["hi"][0], hy = b["hi"][1];
+    const double s = std::floor(ly / step);  // the slab band it lies in
+    const double y0 = s * step;
+    CHECK(lx >= stock.margin - 1e-6);
+    CHECK(hx <= stock.length - stock.margin + 1e-6);
+    CHECK(ly >= y0 + stock.margin - 1e-6);
+    CHECK(hy <= y0 + stock.width - stock.margin + 1e-6);
+  }
+  // The arcs stay arcs: the outline's four corners and each cut-out's four.
+  std::size_t arcs = 0;
+  for (const auto& b : dxf["boxes"]) arcs += b["layer"] == "PIECES" && b["type"] == "ARC" ? 1 : 0;
+  CHECK(arcs == 12);
+  CHECK(per_layer["SLABS"] == static_cast<int>(k.nesting.slabs));
+  CHECK(per_layer["MARGINS"] == static_cast<int>(k.nesting.slabs));
+  CHECK(per_layer["DEFECTS"] == static_cast<int>(k.nesting.slabs * stock.defects.size()));
+  for (const KitchenPiece& piece : k.split.pieces) {
+    int labels = 0;
+    for (const auto& t : dxf["texts"])
+      labels += t["text"].get<std::string>().rfind(piece.name + " (", 0) == 0 ? 1 : 0;
+    CHECK(labels == 1);
   }
 }
