@@ -406,10 +406,53 @@ double into_design_units(std::vector<DxfPiece>& pieces, double scale, const std:
 
 }  // namespace
 
+// Distance from p to the segment a-b.
+double segment_distance(const Vec2& a, const Vec2& b, const Vec2& p) {
+  const Vec2 d = b - a;
+  const double len2 = d.squaredNorm();
+  const double t = len2 > 0.0 ? std::clamp((p - a).dot(d) / len2, 0.0, 1.0) : 0.0;
+  return (a + t * d - p).norm();
+}
+
+// Marks the lines of `pieces` that lie on a line of the walls layer (`w`'s
+// pieces, in design units): both ends within `near` of it. Every wall line
+// must mark one.
+void mark_walls(std::vector<DxfPiece>& pieces, const std::vector<DxfPiece>& walls, double near,
+                const std::string& path, const std::string& where) {
+  for (const DxfPiece& w : walls) {
+    if (w.arc || w.spline) {
+      throw FileError(
+          path, static_cast<int>(w.order), 1,
+          fmt::format("{}: {}: walls are straight: draw them as LINEs or polyline spans without bulge", where,
+                      w.entity));
+    }
+    bool marks = false;
+    for (DxfPiece& p : pieces) {
+      if (p.arc || p.spline) continue;
+      if (segment_distance(w.start, w.end, p.start) <= near &&
+          segment_distance(w.start, w.end, p.end) <= near) {
+        p.wall = true;
+        marks = true;
+      }
+    }
+    if (!marks) {
+      throw FileError(path, static_cast<int>(w.order), 1,
+                      fmt::format("{}: {} from {} to {} lies on no line of the outline (within {:g}): a wall "
+                                  "marks the outline's edges along it",
+                                  where, w.entity, fmt_point(w.start), fmt_point(w.end), near));
+    }
+  }
+}
+
 DxfLoops parse_dxf_loops(const std::string& bytes, const std::string& path, const DxfLoopQuery& query) {
   const std::string where = query.layer.empty() ? path : fmt::format("{} layer {}", path, query.layer);
   Collector c(query.layer, path, where);
-  const DxfHeader header = read_dxf(bytes, path, [&](const DxfEntity& e) { c.take(e); });
+  const std::string walls_where = fmt::format("{} layer {}", path, query.walls);
+  Collector w(query.walls, path, walls_where);
+  const DxfHeader header = read_dxf(bytes, path, [&](const DxfEntity& e) {
+    c.take(e);
+    if (!query.walls.empty()) w.take(e);
+  });
 
   DxfLoops out;
   const double scale = drawing_scale(header, path, query.units, out.notes);
@@ -437,8 +480,14 @@ DxfLoops parse_dxf_loops(const std::string& bytes, const std::string& path, cons
                     where, flattened, kDxfFlatness));
   }
   if (pieces.empty()) no_loop_entities(c, path, where);
+  if (!query.walls.empty()) {
+    add_polyline_pieces(w.polylines, size, w.pieces);
+    if (w.pieces.empty() && query.walls_required) no_loop_entities(w, path, walls_where);
+    into_design_units(w.pieces, scale, path, walls_where);
+  }
 
   const double extent = into_design_units(pieces, scale, path, where);
+  mark_walls(pieces, w.pieces, std::max(query.max_gap, kDxfFlatness * extent), path, walls_where);
   DxfChains chains;
   try {
     chains = chain_pieces(pieces, query.max_gap, extent, where);

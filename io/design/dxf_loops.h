@@ -17,6 +17,14 @@ struct DxfLoopQuery {
   std::string layer;     ///< the layer's name; empty: the entities of every layer
   double max_gap = 0.0;  ///< ends at most this far apart (design units) are joined; >= 0
   std::string units;     ///< the design's units (mm, cm, m, in): the loops are scaled into them
+  /// A layer of lines marking the loops' wall edges (a kitchen template's
+  /// WALLS): a line of the loops that lies on one of them (both ends within
+  /// max_gap of it, or within the drawing's flatness) is a wall
+  /// (SegmentSpec::wall). Empty: none.
+  std::string walls;
+  /// Whether the walls layer must have lines (the design named it); else a
+  /// drawing without the layer has no walls.
+  bool walls_required = false;
 };
 
 /// One closed loop, in drawing order of its entities.
@@ -54,8 +62,9 @@ inline constexpr double kDxfFlatness = 1e-9;
 /// entries, more than kMaxDxfItems items), an unknown $INSUNITS, a SPLINE it cannot
 /// read (degree above 3, a weight not finite and > 0, fit points only) or an
 /// INSERT on the layer, an entity off the XY plane (kDxfFlatness), a layer with no entity in model
-/// space, an open chain (an end meeting no other end within max_gap), three or
-/// more ends at one point (overlapping or branching entities).
+/// space, a walls layer with an arc or a spline or a line that lies on no line
+/// of the loops, or (walls_required) with no line, an open chain (an end meeting no other end within
+/// max_gap), three or more ends at one point (overlapping or branching entities).
 DxfLoops read_dxf_loops(const std::string& path, const DxfLoopQuery& query);
 
 /// The same from the file's bytes; `path` names it in messages. \throw FileError

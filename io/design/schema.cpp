@@ -43,7 +43,7 @@ std::vector<KeyGroup> make_groups() {
       {"countertop.seams[]", {"at", "direction"}},
       {"countertop.backsplash", {"height", "thickness"}},
       // Loops from a DXF drawing (an outline, or an outline hole).
-      {"dxf_outline", {"dxf", "layer", "max_gap"}},
+      {"dxf_outline", {"dxf", "layer", "max_gap", "walls"}},
       // Surfaces.
       {"surface.patches[]", {"name", "u", "v", "points", "join"}},
       {"surface.patches[].u", {"alpha", "lambda", "mu"}},

@@ -129,6 +129,7 @@ CurveSpec loop_spec(const std::vector<DxfPiece>& q, double bridge, std::size_t& 
     if (!exact(p)) {
       spec.segments.push_back(line_to(
           spec.segments.empty() ? std::vector<Vec2>{from, joint(k)} : std::vector<Vec2>{joint(k)}, p.entity));
+      spec.segments.back().wall = p.wall;
       continue;
     }
     if (k > 0 && exact(q[k - 1]) && (q[k - 1].end - p.start).norm() > bridge) {

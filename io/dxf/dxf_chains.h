@@ -25,6 +25,7 @@ struct DxfPiece {
   std::string entity;                   ///< "LINE #2F", "LWPOLYLINE #30 vertex 4"
   bool closed = false;                  ///< a whole circle, ellipse or closed spline: a loop by itself
   std::size_t order = 0;                ///< its entity's line in the file (file order)
+  bool wall = false;                    ///< a line along a wall (its segment gets SegmentSpec::wall)
 };
 
 /// The closed loops the pieces make.

@@ -435,3 +435,69 @@ TEST_CASE("kitchen: the layout DXF holds every piece, exact, inside its slab's u
     CHECK(labels == 1);
   }
 }
+
+TEST_CASE("kitchen: walls from the template's WALLS layer mark the pieces' edges", "[pipeline][kitchen]") {
+  // The U's outline comes from kitchen_u_template.dxf, its left, back and right walls as LINEs on WALLS.
+  const Result r = run_job(read_design(example("kitchen_u.yaml")), into(fresh_dir("kitchen_u_walls")));
+  const auto& k = *std::get<CountertopProducts>(r.products).kitchen;
+  REQUIRE(k.split.pieces.size() == 3);
+  // Each leg: its wall (2600 less the 50 mm corner arc) and the back wall's 620; the run: 2960 of back wall.
+  const std::array<double, 3> walls{2550.0 + 620.0, 2960.0, 2550.0 + 620.0};
+  for (std::size_t i = 0; i < 3; ++i) {
+    INFO(k.split.pieces[i].name);
+    CHECK(edge_lengths(k.split.pieces[i])[1] == Approx(walls[i]).epsilon(1e-12));
+  }
+
+  const fs::path dir = fresh_dir("kitchen_walls_bad");
+  fs::copy_file(example("kitchen_u_template.dxf"), dir / "kitchen_u_template.dxf");
+  // A wall line off the outline: the template with one more line on WALLS.
+  std::string dxf = read_file(example("kitchen_u_template.dxf"));
+  const std::string entities = "ENTITIES\n";
+  dxf.insert(dxf.find(entities) + entities.size(),
+             "  0\nLINE\n  5\nFFF0\n  8\nWALLS\n 10\n1000.0\n 20\n1000.0\n 30\n0.0\n 11\n1500.0\n "
+             "21\n1000.0\n 31\n0.0\n");
+  write_file_atomically((dir / "stray_wall.dxf").string(), dxf);
+  struct Case {
+    const char* find;
+    const char* replace;
+    const char* key;
+    const char* says;
+  };
+  const Case cases[] = {
+      {"layer: OUTLINE}", "layer: OUTLINE, walls: NOPE}", "outline.dxf", "layer NOPE: no LINE"},
+      {"kitchen_u_template.dxf, layer: OUTLINE}", "stray_wall.dxf, layer: OUTLINE}", "outline.dxf",
+       "LINE #FFF0 from (1000, 1000) to (1500, 1000) lies on no line of the outline"},
+      {"layer: OUTLINE}", "layer: OUTLINE, walls: OUTLINE}", "outline.dxf", "walls are straight"},
+      {"holes:\n", "holes:\n  - outline: {dxf: kitchen_u_template.dxf, layer: OUTLINE, walls: WALLS}\n",
+       "holes[0].outline.walls", "not of a cut-out"},
+  };
+  int n = 0;
+  for (const Case& c : cases) {
+    const std::string name = fmt::format("walls{}.yaml", n++);
+    const std::string path = edited_example(dir, "kitchen_u.yaml", c.find, c.replace, name);
+    std::string text;
+    INFO(c.replace);
+    CHECK(run_cli({"run", path, "-o", (dir / (name + "-out")).string() + "/"}, &text) == 2);
+    INFO(text);
+    CHECK(names_place(text, path, c.key));
+    CHECK(text.find(c.says) != std::string::npos);
+    CHECK(!fs::exists(dir / (name + "-out")));
+  }
+  // `walls` marks a kitchen's edges: not without a slab.
+  const std::string top = read_file(example("kitchen_u.yaml"));
+  const std::string plain = top.substr(0, top.find("slab:")) + "outputs: [stl]\n";
+  std::string text = plain;
+  text.replace(text.find("layer: OUTLINE}"), 15, "layer: OUTLINE, walls: WALLS}");
+  write_file_atomically((dir / "plain.yaml").string(), text);
+  std::string said;
+  CHECK(run_cli({"run", (dir / "plain.yaml").string(), "-o", (dir / "plain-out").string() + "/"}, &said) ==
+        2);
+  INFO(said);
+  CHECK(names_place(said, (dir / "plain.yaml").string(), "outline.walls"));
+  CHECK(said.find("needs a slab") != std::string::npos);
+  // Without a slab the template's WALLS layer is not read: the plain top builds.
+  const std::string path = (dir / "plain_ok.yaml").string();
+  write_file_atomically(path, plain);
+  std::string out;
+  CHECK(run_cli({"run", path, "-o", (dir / "plain-ok-out").string() + "/"}, &out) == 0);
+}

@@ -14,10 +14,13 @@
 namespace fabmesh {
 namespace {
 
-// The loops of `{dxf: FILE, layer: NAME, max_gap: G}` (a map with a `dxf` key,
-// the file relative to the design's folder), keyed at `field`.
+// Where a DXF source is read: whether its `walls` layer may mark wall edges.
+enum class WallsHere { No, OutlineWithoutSlab, Kitchen };
+
+// The loops of `{dxf: FILE, layer: NAME, max_gap: G, walls: LAYER}` (a map
+// with a `dxf` key, the file relative to the design's folder), keyed at `field`.
 std::vector<CurveSpec> read_dxf_source(const yaml::Fields& f, const YAML::Node& n, const std::string& field,
-                                       const DesignCommon& common) {
+                                       const DesignCommon& common, WallsHere walls) {
   const YAML::Node file = n["dxf"];
   const std::filesystem::path name = f.text(file, field + ".dxf");
   const std::filesystem::path path =
@@ -28,6 +31,19 @@ std::vector<CurveSpec> read_dxf_source(const yaml::Fields& f, const YAML::Node& 
   if (query.max_gap < 0.0)
     f.fail(n["max_gap"], field + ".max_gap", fmt::format("max_gap = {} must be >= 0", query.max_gap));
   query.units = common.units;
+  if (n["walls"].IsDefined() && walls != WallsHere::Kitchen) {
+    f.fail(n["walls"], field + ".walls",
+           walls == WallsHere::No
+               ? "walls mark the wall edges of a countertop's outline, not of a cut-out"
+               : "walls mark the edges of a kitchen's pieces: the design needs a slab ({length, "
+                 "width})");
+  }
+  // A kitchen's template marks its walls on layer WALLS unless it says another.
+  if (walls == WallsHere::Kitchen) {
+    query.walls = f.text_or(n, "walls", field + ".walls", "WALLS");
+    query.walls_required = n["walls"].IsDefined();
+    if (query.walls.empty()) f.fail(n["walls"], field + ".walls", "walls names a layer: it is empty");
+  }
   DxfLoops loops;
   f.input(path.string());
   f.checked(file, field + ".dxf", [&] { loops = read_dxf_loops(path.string(), query); });
@@ -47,10 +63,10 @@ std::vector<CurveSpec> read_dxf_source(const yaml::Fields& f, const YAML::Node& 
 
 // One closed curve: a curve map, or the one loop of a DXF source.
 CurveSpec read_closed_curve(const yaml::Fields& f, const YAML::Node& node, const std::string& field,
-                            const DesignCommon& common) {
+                            const DesignCommon& common, WallsHere walls) {
   if (node.IsMap() && node["dxf"].IsDefined()) {
     f.require_map(node, field, key_group("dxf_outline"));
-    std::vector<CurveSpec> loops = read_dxf_source(f, node, field, common);
+    std::vector<CurveSpec> loops = read_dxf_source(f, node, field, common, walls);
     if (loops.size() != 1) {
       f.fail(node["dxf"], field + ".dxf",
              fmt::format("{} closed loops found{}; {} is one loop (holes take a layer of many)", loops.size(),
@@ -81,7 +97,7 @@ std::vector<CountertopHole> read_hole(const yaml::Fields& f, const YAML::Node& n
         f.fail(n[shape], field + "." + shape, fmt::format("a hole with dxf has no {}", shape));
     }
     std::vector<CountertopHole> holes;
-    std::vector<CurveSpec> loops = read_dxf_source(f, n, field, common);
+    std::vector<CurveSpec> loops = read_dxf_source(f, n, field, common, WallsHere::No);
     for (std::size_t i = 0; i < loops.size(); ++i) {
       holes.push_back({fmt::format("dxf loop {} of {}", i + 1, loops.size()), std::move(loops[i])});
     }
@@ -110,7 +126,7 @@ std::vector<CountertopHole> read_hole(const yaml::Fields& f, const YAML::Node& n
     f.checked(r, rf, [&] { hole.curve = rounded_rect_curve(c, size.x(), size.y(), radius, rot); });
   } else {
     hole.shape = "outline";
-    hole.curve = read_closed_curve(f, n["outline"], field + ".outline", common);
+    hole.curve = read_closed_curve(f, n["outline"], field + ".outline", common, WallsHere::No);
   }
   hole.curve.key = field;
   return {hole};
@@ -340,7 +356,9 @@ KitchenDesign read_kitchen(const yaml::Fields& f, const YAML::Node& root, const 
 
 CountertopDesign read_countertop(const yaml::Fields& f, const YAML::Node& root, const DesignCommon& common) {
   CountertopDesign d;
-  d.outline = read_closed_curve(f, f.required(root, "outline", "outline"), "outline", common);
+  d.outline =
+      read_closed_curve(f, f.required(root, "outline", "outline"), "outline", common,
+                        root["slab"].IsDefined() ? WallsHere::Kitchen : WallsHere::OutlineWithoutSlab);
   std::vector<std::size_t> entry_of;  // the `holes` entry each hole comes from
   if (root["holes"].IsDefined()) {
     const YAML::Node holes = root["holes"];

@@ -41,12 +41,15 @@ for design in "$source"/configs/examples/*.yaml; do
       files+=("${strips[@]}")  # each one closed solid too, not part of the top
       # The whole top: the same design without its slab and seams (nor its router cut).
       /usr/bin/python3 - "$design" "$work/$name-whole.yaml" <<'PY'
-import sys, yaml
+import os, sys, yaml
 d = yaml.safe_load(open(sys.argv[1]))
 for key in ("slab", "seams", "seam_clearance", "backsplash", "cnc"):
     d.pop(key, None)
 for segment in d["outline"].get("segments", []):
     segment.pop("edge", None)  # walls are a kitchen's
+if "dxf" in d["outline"]:  # a template's outline: the drawing beside the design, walls a kitchen's
+    d["outline"]["dxf"] = os.path.join(os.path.dirname(os.path.abspath(sys.argv[1])), d["outline"]["dxf"])
+    d["outline"].pop("walls", None)
 d["outputs"] = ["step"]
 yaml.safe_dump(d, open(sys.argv[2], "w"))
 PY
