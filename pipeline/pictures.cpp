@@ -124,7 +124,44 @@ std::string size_caption(const TriangleSoup& soup, const std::string& units) {
   return text;
 }
 
+namespace {
+
+// A kitchen's pieces apart: each top piece moved away from the top's middle
+// by a twentieth of its size (the seams open), the backsplash strips (built
+// at the origin) in a row beyond the top's far edge.
+TriangleSoup kitchen_scene(const Result& result, const KitchenProducts& k) {
+  TriangleSoup scene;
+  const Part* own = product(result);
+  if (own == nullptr) return scene;
+  const BoundingBox top = bounding_box(own->mesh.vertices);
+  const Vec3 middle = 0.5 * (top.lo + top.hi);
+  const double gap = 0.05 * std::max(top.hi.x() - top.lo.x(), top.hi.y() - top.lo.y());
+  double x = top.lo.x();  // where the next strip starts
+  for (const KitchenPiece& piece : k.split.pieces) {
+    const auto part = std::find_if(result.parts.begin(), result.parts.end(), [&](const Part& p) {
+      return p.role == PartRole::Piece && p.name == piece.name;
+    });
+    if (part == result.parts.end()) continue;
+    if (piece.strip) {
+      append_shifted(scene, part->mesh, Vec3(x, top.hi.y() + gap, 0.0));
+      x += bounding_box(part->mesh.vertices).hi.x() + gap;
+      continue;
+    }
+    const BoundingBox box = bounding_box(part->mesh.vertices);
+    const Vec3 out = 0.5 * (box.lo + box.hi) - middle;
+    const Vec3 flat(out.x(), out.y(), 0.0);
+    append_shifted(scene, part->mesh, flat.norm() > 0.0 ? Vec3(gap * flat.normalized()) : Vec3::Zero());
+  }
+  return scene;
+}
+
+}  // namespace
+
 TriangleSoup exploded_scene(const Result& result) {
+  if (const auto* countertop = std::get_if<CountertopProducts>(&result.products);
+      countertop != nullptr && countertop->kitchen) {
+    return kitchen_scene(result, *countertop->kitchen);
+  }
   const Part* own = product(result);
   TriangleSoup scene = own != nullptr ? own->mesh : TriangleSoup{};
   std::vector<const Part*> mould;  // in the order built

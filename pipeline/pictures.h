@@ -55,6 +55,9 @@ std::string size_caption(const TriangleSoup& soup, const std::string& units);
 /// the direction of its vertices' mean), or, for a part centred on the axis
 /// (the base), by half the mould's height down (up when it sits above the
 /// vessel's middle).
+/// A kitchen's scene is its pieces instead: the top's pieces moved apart
+/// from its middle (the seams opened by a twentieth of the top's size), the
+/// backsplash strips in a row beyond its far edge.
 TriangleSoup exploded_scene(const Result& result);
 
 /// A design's preview (the `preview` command and the `png` output): its mesh;

@@ -16,6 +16,7 @@
 #include "geometry/core/units.h"
 #include "geometry/curves/basis.h"
 #include "geometry/fairing/build_curve.h"
+#include "io/cutting/layout.h"
 #include "io/design/edit_values.h"
 #include "io/design/file_references.h"
 #include "io/design/read_design.h"
@@ -453,10 +454,19 @@ StudioResponse StudioSession::build(const std::string& request_body) {
     stages["design"] = elapsed_ms(start);
     std::optional<std::string> glb;
     std::string plot_svg;
+    std::optional<std::string> layout_svg;  // a kitchen's slabs
     std::size_t triangles = 0;
     const auto show = [&](const Result& built) {
       auto lap = std::chrono::steady_clock::now();
       plot_svg = plot_curves_svg(shape_plot(design.common, built));
+      if (const auto* top = std::get_if<CountertopProducts>(&built.products);
+          top != nullptr && top->kitchen) {
+        LayoutOptions layout;
+        layout.units = design.common.units;
+        layout.title = design.common.name;
+        layout_svg =
+            encode_layout_svg(top->kitchen->split.pieces, top->kitchen->stock, top->kitchen->nesting, layout);
+      }
       stages["plot"] = elapsed_ms(lap);
       if (product(built) != nullptr) {
         lap = std::chrono::steady_clock::now();
@@ -495,6 +505,7 @@ StudioResponse StudioSession::build(const std::string& request_body) {
     // Where the draggable points are with these values (a dragged or
     // parameter-driven point has moved from where the file puts it).
     j["control_points"] = draggable_points(design, requested.text);
+    j["layout_svg"] = layout_svg ? Json(*layout_svg) : Json(nullptr);
     j["mesh"] = nullptr;
     if (glb) {
       const std::lock_guard<std::mutex> lock(mutex_);

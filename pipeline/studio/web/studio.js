@@ -450,11 +450,15 @@ function finishLane(kind) {
   if (lane.pending) runLane(kind);
 }
 
-// The plot of an answer, with its draggable points where that answer's values put them.
-function showPlot(svg, controlPoints) {
+// The plot of an answer, with its draggable points where that answer's values
+// put them, and a kitchen's slab layout (its pieces as nested) below the 3D view.
+function showPlot(svg, controlPoints, layoutSvg) {
   state.plotSvg = svg;
   $('plot').innerHTML = svg;
   enableDragging(controlPoints);
+  const layout = $('layout');
+  layout.hidden = !layoutSvg;
+  layout.innerHTML = layoutSvg ?? '';
 }
 
 async function draftBuild() {
@@ -473,7 +477,7 @@ async function draftBuild() {
       return;
     }
     clearErrors();
-    showPlot(json.plot_svg, json.control_points);
+    showPlot(json.plot_svg, json.control_points, json.layout_svg);
     showDraftReport(json);
     placeMesh(object, json.mesh, true);
     state.shownChange = change;
@@ -511,7 +515,7 @@ async function build() {
       if (change >= state.shownChange) {  // a draft of newer values may have come while the mesh loaded
         clearErrors();
         state.error = null;
-        showPlot(json.plot_svg, json.control_points);
+        showPlot(json.plot_svg, json.control_points, json.layout_svg);
         timings.plot = since();
         showReport(json.report, json.build_ms);
         timings.report = since();
@@ -551,7 +555,7 @@ async function build() {
 // A draft of values that do not build: the last proven build's plot, report and mesh again.
 function restoreProven() {
   if (!proven) return;
-  showPlot(proven.plot_svg, proven.control_points);
+  showPlot(proven.plot_svg, proven.control_points, proven.layout_svg);
   showReport(proven.report, proven.build_ms);
   if (view.proven) placeMesh(view.proven, proven.mesh, false);
   state.shownChange = state.provenChange;

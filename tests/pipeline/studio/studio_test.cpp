@@ -355,3 +355,38 @@ TEST_CASE("studio: a T-Bezier curve's given points are draggable, found on the p
   CHECK(after["report"]["bounding_box"]["max"][1].get<double>() >
         before["report"]["bounding_box"]["max"][1].get<double>());
 }
+
+TEST_CASE("studio: a kitchen shows its pieces apart and its slab layout", "[studio]") {
+  const fs::path dir = fresh_dir("studio_kitchen");
+  RunningStudio studio(example("kitchen_l.yaml"), (dir / "out").string());
+  httplib::Client c = studio.client();
+  const Json b = json_of(c.Post("/api/build", studio.token(), "{}", "application/json"));
+  REQUIRE(b["layout_svg"].is_string());
+  const std::string layout = b["layout_svg"];
+  const Json& kitchen = b["report"]["build"]["kitchen"];
+  for (std::size_t s = 1; s <= kitchen["slabs"].get<std::size_t>(); ++s)
+    CHECK(layout.find(fmt::format("id=\"slab-{}\"", s)) != std::string::npos);
+  REQUIRE(b["mesh"].is_string());
+  const auto glb = c.Get(b["mesh"].get<std::string>(), studio.token());
+  REQUIRE(glb->status == 200);
+  write_text(dir / "kitchen.glb", glb->body);
+  const TriangleSoup shown = read_mesh((dir / "kitchen.glb").string());
+  // Every piece's triangles (the top's pieces and the backsplash strips), not the whole top's.
+  std::size_t triangles = 0, pieces = 0;
+  for (const Json& part : b["report"]["parts"]) {
+    if (part["role"] != "piece") continue;
+    triangles += part["triangles"].get<std::size_t>();
+    ++pieces;
+  }
+  CHECK(pieces == kitchen["pieces"].size());
+  CHECK(shown.triangles.size() == triangles);
+  // Apart: wider than the top by the opened seams.
+  const BoundingBox box = bounding_box(shown.vertices);
+  const double top_width = b["report"]["bounding_box"]["size"][0].get<double>() * metres_per_unit("mm");
+  CHECK(box.hi.x() - box.lo.x() > 1.04 * top_width);
+  // Any other design has none.
+  RunningStudio cup(example("vessel_golden_solid.yaml"), (dir / "cup").string());
+  httplib::Client cc = cup.client();
+  const Json v = json_of(cc.Post("/api/build", cup.token(), "{}", "application/json"));
+  CHECK(v["layout_svg"].is_null());
+}
