@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "geometry/core/errors.h"
+#include "geometry/core/units.h"
 #include "geometry/fairing/build_curve.h"
 #include "geometry/mesh/bounding_box.h"
 #include "geometry/mesh/vessel.h"
@@ -103,6 +104,20 @@ ExactMould exact_mould(const Mould& mould, const CompositeCurve& master, const M
   return exact;
 }
 
+// Plaster and water by weight (g) for `millilitres` of set plaster: the mix
+// fills its volume with the plaster's solid (its density) and the water
+// (1 g/ml), at plaster_ratio grams of plaster to each gram of water; air left
+// out, so a lower bound of what the mix needs.
+struct CastingWeights {
+  double plaster = 0.0;
+  double water = 0.0;
+};
+
+CastingWeights casting_weights(const VesselDesign& design, double millilitres) {
+  const double plaster = millilitres / (1.0 / design.plaster_density + 1.0 / design.plaster_ratio);
+  return {plaster, plaster / design.plaster_ratio};
+}
+
 // The mould's parts, each with its proof of embedding, what a workshop
 // needs to know, and the mould as exact solids.
 void add_mould(const VesselDesign& design, const CompositeCurve& fired_profile, const CompositeCurve& master,
@@ -136,8 +151,24 @@ void add_mould(const VesselDesign& design, const CompositeCurve& fired_profile, 
   context.watch.lap("mould");
   out.max_deviation = std::max(out.max_deviation, mould.max_deviation);
   append_shares(out.tolerance_shares, "mould: ", mould.tolerance_shares);
+  // What a potter weighs, from the exact volumes (model units^3 -> ml).
+  const double ml = std::pow(millimetres_per_unit(context.common.units), 3) / 1000.0;
+  const CastingWeights total = casting_weights(design, mould.plaster_volume * ml);
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    // Each part's plaster: its mesh's volume (within the build's deviation of the exact part).
+    const CastingWeights part =
+        casting_weights(design, out.parts[out.parts.size() - parts.size() + i].validation.volume * ml);
+    parts[i].set("plaster_grams", part.plaster).set("water_grams", part.water);
+  }
   Facts facts;
   facts.set("parts", std::move(parts))
+      .set("plaster_ratio", design.plaster_ratio)
+      .set("plaster_density", design.plaster_density)
+      .set("slip_density", design.slip_density)
+      .set("plaster_grams", total.plaster)
+      .set("water_grams", total.water)
+      .set("slip_millilitres", mould.cavity_volume * ml)
+      .set("slip_grams", mould.cavity_volume * ml * design.slip_density)
       .set("slip_volume", mould.cavity_volume)
       .set("plaster_volume", mould.plaster_volume)
       .set("block_volume", mould.block_volume)
@@ -274,9 +305,10 @@ Result build(const VesselDesign& design, const BuildContext& context) {
   if (design.shrinkage > 0.0) {
     const BoundingBox box = bounding_box(product.mesh.vertices);
     Facts shrinkage;
-    shrinkage.set("shrinkage", design.shrinkage)
-        .set("factor", factor)
-        .set("master_size", size_of(box.lo, box.hi))
+    shrinkage.set("shrinkage", design.shrinkage).set("factor", factor);
+    if (design.shrinkage_wet > 0.0)
+      shrinkage.set("measured", std::vector<double>{design.shrinkage_wet, design.shrinkage_fired});
+    shrinkage.set("master_size", size_of(box.lo, box.hi))
         .set("fired_size", size_of(box.lo / factor, box.hi / factor));
     out.facts.set("shrinkage", std::move(shrinkage));
   }

@@ -26,6 +26,11 @@ void print_build_facts(const Facts& facts, const std::string& u, std::ostream& o
         "{:.6g} {}^3\n",
         std::get<std::vector<Facts>>(*m.find("parts")).size(), m.number("slip_volume"), u,
         m.number("plaster_volume"), u);
+    out << fmt::format(
+        "  casting: {:.0f} g of plaster into {:.0f} g of water ({:.3g} : 1 by weight), {:.0f} ml of slip "
+        "({:.0f} g at {:.3g} g/ml) to fill it to the spare\n",
+        m.number("plaster_grams"), m.number("water_grams"), m.number("plaster_ratio"),
+        m.number("slip_millilitres"), m.number("slip_grams"), m.number("slip_density"));
   }
   if (facts.contains("kitchen")) {
     const Facts& k = facts.group("kitchen");

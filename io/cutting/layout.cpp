@@ -51,7 +51,7 @@ double used_area(const std::vector<KitchenPiece>& pieces, const SlabNesting& nes
   return used;
 }
 
-CutLoop moved(CutLoop loop, const Vec2& shift) {
+CutLoop moved(const CutLoop& loop, const Vec2& shift) {
   Placement at;
   at.offset = shift;
   return placed_loop(loop, at);

@@ -123,9 +123,18 @@ struct VesselDesign {
   /// Clay shrinkage from wet to fired, in [0, 1): what is written (the master)
   /// is the designed (fired) vessel scaled by 1 / (1 - shrinkage).
   double shrinkage = 0.0;
+  /// The test bar's lengths the shrinkage was measured from (`shrinkage:
+  /// {wet, fired}`), or 0 when it was given as a fraction.
+  double shrinkage_wet = 0.0, shrinkage_fired = 0.0;
   /// A slip-casting mould around the vessel (key `mould`); its options in
   /// model units, tolerance and shrinkage filled from the design.
   std::optional<MouldOptions> mould;
+  /// What a potter weighs for the mould (keys `mould.plaster_ratio`,
+  /// `mould.plaster_density`, `mould.slip_density`): plaster to water by
+  /// weight, and the dry plaster's and the slip's densities in g/ml.
+  double plaster_ratio = 1.4;
+  double plaster_density = 2.63;
+  double slip_density = 1.75;
 };
 
 /// One cut-out of a countertop (sink, cooktop).

@@ -27,7 +27,8 @@ std::vector<KeyGroup> make_groups() {
       {"vessel.mould",
        {"parts", "wall", "spare", "spare_shape", "spare_taper_deg", "block", "block_radius", "base_part",
         "base_height", "keys", "key_radius", "key_clearance", "key_margin", "key_positions",
-        "allow_undercuts"}},
+        "allow_undercuts", "plaster_ratio", "plaster_density", "slip_density"}},
+      {"vessel.shrinkage", {"wet", "fired"}},
       // Countertops.
       {"countertop.holes[]", {"ellipse", "rounded_rect", "outline", "dxf", "layer", "max_gap", "tabs"}},
       {"countertop.holes[].ellipse", {"center", "a", "b", "rotation_deg"}},

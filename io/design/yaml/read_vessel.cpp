@@ -56,6 +56,38 @@ MouldOptions read_mould(const yaml::Fields& f, const YAML::Node& m, const Design
   return o;
 }
 
+// A density or ratio of the mould's materials: a number > 0, or the default.
+double positive_or(const yaml::Fields& f, const YAML::Node& m, const char* key, double fallback) {
+  const double v = f.number_or(m, key, std::string("mould.") + key, fallback);
+  if (!(v > 0.0)) f.fail(m[key], std::string("mould.") + key, fmt::format("{} = {} must be > 0", key, v));
+  return v;
+}
+
+// `shrinkage: 0.12`, or a test bar's lengths `shrinkage: {wet: 100, fired: 88}`.
+void read_shrinkage(const yaml::Fields& f, const YAML::Node& n, VesselDesign& v) {
+  if (n.IsMap()) {
+    f.require_map(n, "shrinkage", key_group("vessel.shrinkage"));
+    const YAML::Node wet = f.required(n, "wet", "shrinkage");
+    const YAML::Node fired = f.required(n, "fired", "shrinkage");
+    v.shrinkage_wet = f.number(wet, "shrinkage.wet");
+    v.shrinkage_fired = f.number(fired, "shrinkage.fired");
+    if (!(v.shrinkage_wet > 0.0))
+      f.fail(wet, "shrinkage.wet",
+             fmt::format("wet = {} must be > 0 (the bar's length before firing)", wet.Scalar()));
+    if (!(v.shrinkage_fired > 0.0) || v.shrinkage_fired > v.shrinkage_wet) {
+      f.fail(fired, "shrinkage.fired",
+             fmt::format("fired = {} must be in (0, wet = {}]: the bar's length after firing", fired.Scalar(),
+                         wet.Scalar()));
+    }
+    v.shrinkage = 1.0 - v.shrinkage_fired / v.shrinkage_wet;
+    return;
+  }
+  v.shrinkage = f.number(n, "shrinkage");
+  if (v.shrinkage < 0.0 || v.shrinkage >= 1.0) {
+    f.fail(n, "shrinkage", fmt::format("shrinkage = {} must be in [0, 1) (0.12 for 12 %)", n.Scalar()));
+  }
+}
+
 }  // namespace
 
 VesselDesign read_vessel(const yaml::Fields& f, const YAML::Node& root, const DesignCommon& common) {
@@ -82,15 +114,13 @@ VesselDesign read_vessel(const yaml::Fields& f, const YAML::Node& root, const De
     }
   }
   v.max_triangles = f.budget_or(root, "max_triangles", v.max_triangles);
-  if (root["shrinkage"].IsDefined()) {
-    v.shrinkage = f.number(root["shrinkage"], "shrinkage");
-    if (v.shrinkage < 0.0 || v.shrinkage >= 1.0) {
-      f.fail(root["shrinkage"], "shrinkage",
-             fmt::format("shrinkage = {} must be in [0, 1) (0.12 for 12 %)", root["shrinkage"].Scalar()));
-    }
-  }
+  if (root["shrinkage"].IsDefined()) read_shrinkage(f, root["shrinkage"], v);
   if (root["mould"].IsDefined()) {
-    v.mould = read_mould(f, root["mould"], common, v);
+    const YAML::Node m = root["mould"];
+    v.mould = read_mould(f, m, common, v);
+    v.plaster_ratio = positive_or(f, m, "plaster_ratio", v.plaster_ratio);
+    v.plaster_density = positive_or(f, m, "plaster_density", v.plaster_density);
+    v.slip_density = positive_or(f, m, "slip_density", v.slip_density);
   }
   return v;
 }
