@@ -88,8 +88,8 @@ class Encoder {
   std::string run(const GcodeOptions& o);
 
  private:
-  // The tool table's header lines and the drill cycles, before the routing;
-  // ends with the router bit in the spindle, running.
+  // Each drill's tool change and cycle blocks, then the change back to the
+  // router bit; ends with the bit in the spindle, running.
   void drilling(const std::string& u);
   // Retract and stop the spindle if it runs, change to `tool`, start it again.
   void change_tool(int tool, double spindle);
