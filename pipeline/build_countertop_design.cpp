@@ -47,6 +47,33 @@ auto at_loop_keys(const CountertopDesign& design, const std::vector<RegionHole>&
   }
 }
 
+// The design's tap holes as drilled (design coordinates), each with its
+// loop's label, in the design's order.
+std::vector<DrillHole> drill_holes(const CountertopDesign& design, const std::vector<RegionHole>& holes) {
+  std::vector<DrillHole> drills;
+  for (std::size_t i = 0; i < design.holes.size(); ++i) {
+    if (!design.holes[i].drill) continue;
+    const HoleDrill& d = *design.holes[i].drill;
+    drills.push_back({d.center, d.diameter, d.tool, holes[i].label});
+  }
+  return drills;
+}
+
+// The web of material round each tap hole, on the whole top's loops (seams
+// keep seam_clearance from every cut-out besides).
+void check_tap_hole_webs(const CountertopDesign& design, const Region2& region,
+                         const std::vector<RegionHole>& holes, const CncOptions& cnc) {
+  std::vector<const std::vector<Vec2>*> loops{&region.outer};
+  std::vector<std::string> labels{"outline"};
+  std::vector<std::size_t> own;
+  for (std::size_t i = 0; i < holes.size(); ++i) {
+    loops.push_back(&region.holes[i]);
+    labels.push_back(holes[i].label);
+    if (design.holes[i].drill) own.push_back(i + 1);
+  }
+  check_drill_webs(drill_holes(design, holes), own, loops, labels, region.max_deviation, cnc);
+}
+
 }  // namespace
 
 Result build(const CountertopDesign& design, const BuildContext& context) {
@@ -107,6 +134,11 @@ Result build(const CountertopDesign& design, const BuildContext& context) {
     // Between the exact curves (a proven lower bound), not their polylines.
     out.facts.set("min_clearance", region.min_clearance).set("min_clearance_where", region.clearance_where);
   }
+  if (design.cnc) {
+    CncOptions cnc = design.cnc->options;
+    cnc.tolerance = context.tolerance;
+    at_loop_keys(design, holes, [&] { check_tap_hole_webs(design, region, holes, cnc); });
+  }
   if (design.kitchen) {
     // The pieces, each cut on its slab: the whole top is not one program.
     products.kitchen = at_loop_keys(
@@ -118,7 +150,20 @@ Result build(const CountertopDesign& design, const BuildContext& context) {
   } else if (design.cnc) {
     CncOptions cnc = design.cnc->options;
     cnc.tolerance = context.tolerance;
-    products.toolpath = at_loop_keys(design, holes, [&] { return plan_toolpath(outline.curve, holes, cnc); });
+    // Tap holes are drilled, not routed: the router cuts the other holes.
+    std::vector<RegionHole> routed;
+    cnc.hole_tabs.clear();
+    for (std::size_t i = 0; i < holes.size(); ++i) {
+      if (design.holes[i].drill) continue;
+      routed.push_back(holes[i]);
+      cnc.hole_tabs.push_back(i < design.cnc->options.hole_tabs.size() ? design.cnc->options.hole_tabs[i]
+                                                                       : no_tabs());
+    }
+    products.toolpath = at_loop_keys(design, holes, [&] {
+      Toolpath t = plan_toolpath(outline.curve, routed, cnc);
+      t.drills = drilling_order(drill_holes(design, holes), cnc);
+      return t;
+    });
     products.gcode = GcodeOptions{context.common.name, context.common.units, design.cnc->program_units,
                                   design.cnc->decimals};
     context.watch.lap("toolpath");
@@ -148,9 +193,12 @@ Result build(const CountertopDesign& design, const BuildContext& context) {
         .set("finish", cnc.finish)
         .set("direction", to_string(cnc.direction))
         .set("relief", to_string(cnc.relief))
+        .set("drills", t.drills.size())
+        .set("tools", tool_facts(t))
         .set("cutting_length", totals.cutting)
         .set("plunging_length", totals.plunging)
         .set("rapid_length", totals.rapid)
+        .set("drilling_length", totals.drilling)
         .set("estimated_minutes", totals.minutes);
     out.facts.set("cnc", std::move(facts));
   }

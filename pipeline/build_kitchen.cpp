@@ -60,27 +60,34 @@ void append_program(Toolpath& into, const Toolpath& from) {
   into.fit_deviation = std::max(into.fit_deviation, from.fit_deviation);
 }
 
-// The router program of slab `slab`: each piece on it, in slab coordinates,
-// its cut-outs before its outline.
+// The router program of slab `slab`: the tap holes of every piece on it
+// drilled first, then each piece routed, in slab coordinates, its cut-outs
+// before its outline. `design_holes`: the design's holes (which are drilled).
 Toolpath slab_program(const KitchenSplit& split, const SlabNesting& nesting, std::size_t slab,
-                      const CncOptions& cnc) {
+                      const CncOptions& cnc, const std::vector<CountertopHole>& design_holes) {
   Toolpath program;
+  std::vector<DrillHole> drills;
   for (const Placement& p : nesting.placements) {
     if (p.slab != slab) continue;
     const KitchenPiece& piece = split.pieces[p.piece];
     std::vector<RegionHole> holes;
-    for (std::size_t h = 0; h < piece.holes.size(); ++h) {
-      // A hole's curve may run either way; given counter-clockwise.
-      std::vector<Vec2> placed = place_loop(piece.holes[h], p);
-      std::reverse(placed.begin(), placed.end());
-      holes.push_back({polygon_curve(placed), fmt::format("{} holes[{}]", piece.name, piece.hole_index[h]),
-                       fmt::format("holes[{}]", piece.hole_index[h])});
-    }
     CncOptions options = cnc;
     options.hole_tabs.clear();
     for (std::size_t h = 0; h < piece.holes.size(); ++h) {
-      options.hole_tabs.push_back(
-          piece.hole_index[h] < cnc.hole_tabs.size() ? cnc.hole_tabs[piece.hole_index[h]] : no_tabs());
+      const std::size_t index = piece.hole_index[h];
+      if (index < design_holes.size() && design_holes[index].drill) {
+        // A tap hole is drilled at its placed centre, not routed.
+        const HoleDrill& d = *design_holes[index].drill;
+        drills.push_back({place_point(d.center, p.rotation_deg, p.offset), d.diameter, d.tool,
+                          fmt::format("{} holes[{}] (drill)", piece.name, index)});
+        continue;
+      }
+      // A hole's curve may run either way; given counter-clockwise.
+      std::vector<Vec2> placed = place_loop(piece.holes[h], p);
+      std::reverse(placed.begin(), placed.end());
+      holes.push_back({polygon_curve(placed), fmt::format("{} holes[{}]", piece.name, index),
+                       fmt::format("holes[{}]", index)});
+      options.hole_tabs.push_back(index < cnc.hole_tabs.size() ? cnc.hole_tabs[index] : no_tabs());
     }
     try {
       append_program(program, plan_toolpath(polygon_curve(p.outer), holes, options));
@@ -91,6 +98,7 @@ Toolpath slab_program(const KitchenSplit& split, const SlabNesting& nesting, std
                                       piece.name, slab + 1, p.rotation_deg, e.what()));
     }
   }
+  program.drills = drilling_order(std::move(drills), cnc);
   return program;
 }
 
@@ -124,6 +132,24 @@ void limit_entry(CncOptions& cnc, double spacing, double deviation, std::vector<
 }
 
 }  // namespace
+
+std::vector<Facts> tool_facts(const Toolpath& t) {
+  std::vector<Facts> tools;
+  Facts bit;
+  bit.set("number", end_mill_number(t.options))
+      .set("type", to_string(ToolType::EndMill))
+      .set("diameter", t.options.tool_diameter);
+  tools.push_back(std::move(bit));
+  for (std::size_t k = 0; k < t.drills.size(); ++k) {
+    if (k > 0 && t.drills[k].tool == t.drills[k - 1].tool) continue;
+    Facts drill;
+    drill.set("number", t.drills[k].tool)
+        .set("type", to_string(ToolType::Drill))
+        .set("diameter", t.drills[k].diameter);
+    tools.push_back(std::move(drill));
+  }
+  return tools;
+}
 
 KitchenProducts build_kitchen(const CountertopDesign& design, const Region2& region,
                               const CompositeCurve& outline, const std::vector<RegionHole>& holes,
@@ -217,7 +243,7 @@ KitchenProducts build_kitchen(const CountertopDesign& design, const Region2& reg
     cnc.tolerance = context.tolerance;
     limit_entry(cnc, kitchen.slab.spacing, region.max_deviation, out.warnings);
     for (std::size_t s = 0; s < k.nesting.slabs; ++s)
-      k.slab_toolpaths.push_back(slab_program(k.split, k.nesting, s, cnc));
+      k.slab_toolpaths.push_back(slab_program(k.split, k.nesting, s, cnc, design.holes));
     context.watch.lap("toolpath");
   }
   // Facts: the pieces, the seams and the layout.
@@ -259,6 +285,8 @@ KitchenProducts build_kitchen(const CountertopDesign& design, const Region2& reg
         .set("moves", t.moves.size())
         .set("deviation", t.deviation)
         .set("clearance", t.clearance)
+        .set("drills", t.drills.size())
+        .set("tools", tool_facts(t))
         .set("cutting_length", totals.cutting)
         .set("estimated_minutes", totals.minutes);
     programs.push_back(std::move(f));

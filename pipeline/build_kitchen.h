@@ -10,6 +10,10 @@
 
 namespace fabmesh {
 
+/// The tools a router program uses, for the report: the router bit, then
+/// each drill (`number`, `type`, `diameter`).
+std::vector<Facts> tool_facts(const Toolpath& program);
+
 /// Adds the pieces to `out.parts` (after the whole top, which stays the
 /// product), their facts under `kitchen`, and returns the layout.
 /// \throw GeometryError at `seams`, `seams[i]` or `slab` (a piece that fits

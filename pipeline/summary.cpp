@@ -37,17 +37,28 @@ void print_build_facts(const Facts& facts, const std::string& u, std::ostream& o
     std::string used;
     for (const double u_slab : std::get<std::vector<double>>(*k.find("utilisation")))
       used += fmt::format("{}{:.1f}%", used.empty() ? "" : ", ", 100.0 * u_slab);
+    int drills = 0;
+    if (const Facts::Value* programs = k.find("programs")) {
+      for (const Facts& p : std::get<std::vector<Facts>>(*programs))
+        drills += p.contains("drills") ? static_cast<int>(p.number("drills")) : 0;
+    }
     out << fmt::format(
         "  kitchen: {} pieces at {} seams on {} slabs (no fewer than {} can hold them); usable area "
-        "used {}\n",
+        "used {}{}\n",
         std::get<std::vector<Facts>>(*k.find("pieces")).size(),
         std::get<std::vector<Facts>>(*k.find("seams")).size(), static_cast<int>(k.number("slabs")),
-        static_cast<int>(k.number("lower_bound")), used);
+        static_cast<int>(k.number("lower_bound")), used,
+        drills == 0 ? std::string()
+                    : fmt::format("; {} tap hole{} drilled first", drills, drills == 1 ? "" : "s"));
   }
   if (facts.contains("cnc")) {
     const Facts& c = facts.group("cnc");
-    out << fmt::format("  router path: {} passes, within {:.3g} {} of the exact offset\n",
-                       static_cast<int>(c.number("passes")), c.number("deviation"), u);
+    const int drills = c.contains("drills") ? static_cast<int>(c.number("drills")) : 0;
+    out << fmt::format("  router path: {} passes, within {:.3g} {} of the exact offset{}\n",
+                       static_cast<int>(c.number("passes")), c.number("deviation"), u,
+                       drills == 0
+                           ? std::string()
+                           : fmt::format("; {} tap hole{} drilled first", drills, drills == 1 ? "" : "s"));
   }
 }
 

@@ -28,7 +28,52 @@ void validate_tabs(const std::string& field, const TabOptions& tabs, double dept
   if (tabs.min_radius) require_positive(field + ".min_radius", *tabs.min_radius);
 }
 
+// The tool table: numbers in [1, 999] given once, diameters > 0, at most one
+// end mill, of the router bit's diameter.
+void validate_tools(const CncOptions& o) {
+  std::size_t end_mills = 0;
+  for (std::size_t i = 0; i < o.tools.size(); ++i) {
+    const CncTool& t = o.tools[i];
+    const std::string field = fmt::format("cnc.tools[{}]", i);
+    if (t.number < 1 || t.number > 999) {
+      throw RangeError(field + ".number", t.number,
+                       fmt::format("{}.number = {} is outside [1, 999]", field, t.number));
+    }
+    for (std::size_t j = 0; j < i; ++j) {
+      if (o.tools[j].number == t.number) {
+        throw RangeError(
+            field + ".number", t.number,
+            fmt::format("{}.number = {}: cnc.tools[{}] has that number already", field, t.number, j));
+      }
+    }
+    require_positive(field + ".diameter", t.diameter);
+    if (t.type != ToolType::EndMill) continue;
+    if (++end_mills > 1) {
+      throw RangeError(field + ".type", t.number,
+                       fmt::format("{}: a second end_mill; the router cut uses one bit", field));
+    }
+    if (t.diameter != o.tool_diameter) {
+      throw RangeError(field + ".diameter", t.diameter,
+                       fmt::format("{}.diameter = {}: the end mill is the router bit, of "
+                                   "cnc.tool_diameter = {}",
+                                   field, t.diameter, o.tool_diameter));
+    }
+  }
+  if (end_mills == 0 && !o.tools.empty()) {
+    for (std::size_t i = 0; i < o.tools.size(); ++i) {
+      if (o.tools[i].number == 1) {
+        throw RangeError(fmt::format("cnc.tools[{}].number", i), 1,
+                         fmt::format("cnc.tools lists no end_mill, so the router bit is tool 1, but "
+                                     "cnc.tools[{}] is a drill numbered 1: list the router bit",
+                                     i));
+      }
+    }
+  }
+}
+
 }  // namespace
+
+const char* to_string(ToolType t) { return t == ToolType::Drill ? "drill" : "end_mill"; }
 
 const char* to_string(CutDirection d) { return d == CutDirection::Climb ? "climb" : "conventional"; }
 
@@ -87,6 +132,18 @@ void validate_cnc_options(const CncOptions& o) {
                      fmt::format("cnc.helix_radius = {} must be in (0, {}], at most the tool radius",
                                  *o.helix_radius, 0.5 * o.tool_diameter));
   }
+  validate_tools(o);
+  require_non_negative("cnc.drill.peck", o.drill.peck);
+  if (o.drill.feed) require_positive("cnc.drill.feed", *o.drill.feed);
+  if (o.drill.spindle) require_positive("cnc.drill.spindle", *o.drill.spindle);
+  if (o.drill.retract) {
+    require_positive("cnc.drill.retract", *o.drill.retract);
+    if (*o.drill.retract > o.safe_z) {
+      throw RangeError(
+          "cnc.drill.retract", *o.drill.retract,
+          fmt::format("cnc.drill.retract = {} must be at most cnc.safe_z = {}", *o.drill.retract, o.safe_z));
+    }
+  }
 }
 
 double tab_min_radius(const TabOptions& tabs, double tool_diameter) {
@@ -98,5 +155,18 @@ double ramp_length(const CncOptions& o, double drop) {
 }
 
 double min_web(const CncOptions& o) { return o.min_web.value_or(o.tool_diameter); }
+
+int end_mill_number(const CncOptions& o) {
+  for (const CncTool& t : o.tools) {
+    if (t.type == ToolType::EndMill) return t.number;
+  }
+  return 1;
+}
+
+double drill_feed(const CncOptions& o) { return o.drill.feed.value_or(o.plunge); }
+
+double drill_spindle(const CncOptions& o) { return o.drill.spindle.value_or(o.spindle); }
+
+double drill_retract(const CncOptions& o) { return o.drill.retract.value_or(o.safe_z); }
 
 }  // namespace fabmesh

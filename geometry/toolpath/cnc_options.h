@@ -53,6 +53,31 @@ struct TabOptions {
   std::optional<double> min_radius;
 };
 
+/// What a tool of the machine's table is: the router bit or a drill.
+enum class ToolType { EndMill, Drill };
+
+const char* to_string(ToolType t);  ///< "end_mill" | "drill"
+
+/// One tool of the machine's tool table (key `cnc.tools`), selected in the
+/// program by `M6 T<number>`.
+struct CncTool {
+  int number = 1;  ///< in [1, 999], unique in the table
+  ToolType type = ToolType::EndMill;
+  double diameter = 12.0;  ///< > 0; the end mill's is tool_diameter
+};
+
+/// How the drill holes (tap holes) are drilled (key `cnc.drill`): one canned
+/// cycle block per hole, from the retract plane R down to
+/// -(depth + breakthrough), then back to safe height (G98: the level the
+/// cycle started from).
+struct DrillCycle {
+  double peck = 0.0;  ///< > 0: G83, pecks of this depth (Q) from R; 0: G81, one feed down
+  std::optional<double>
+      retract;  ///< R, the height above the top the feed starts from, in (0, safe_z]; unset: safe_z
+  std::optional<double> feed;     ///< feed down, model units per minute, > 0; unset: the plunge feed
+  std::optional<double> spindle;  ///< spindle speed while drilling, rpm, > 0; unset: `spindle`
+};
+
 /// Tab options that ask for no tabs (count 0), the rest at their defaults.
 inline TabOptions no_tabs() {
   TabOptions t;
@@ -108,10 +133,18 @@ struct CncOptions {
   /// outline, two holes), >= 0 (0: no check); unset: one tool diameter.
   std::optional<double> min_web;
   std::size_t max_points = 5000000;  ///< budget of path points over all loops
+  /// The tool table as the design gives it (`cnc.tools`): the router bit
+  /// (at most one EndMill, of tool_diameter) and the drills. Empty: the
+  /// router bit is tool 1 and the drills are numbered by the caller. A
+  /// program changes tools (M6) only when it drills or a table is given.
+  std::vector<CncTool> tools;
+  DrillCycle drill;  ///< the drill holes' cycle
 };
 
-/// Throws RangeError naming the field ("cnc.tool_diameter", "cnc.tabs.height", ...)
-/// and its value when an option is out of range (NaN and infinities included).
+/// Throws RangeError naming the field ("cnc.tool_diameter", "cnc.tabs.height",
+/// "cnc.tools[1].diameter", ...) and its value when an option is out of range
+/// (NaN and infinities included), a tool number is repeated, the table holds
+/// two end mills or one of another diameter than tool_diameter.
 void validate_cnc_options(const CncOptions& options);
 
 /// The tabs' minimum radius of curvature with its default (20 tool
@@ -123,5 +156,15 @@ double ramp_length(const CncOptions& options, double drop);
 
 /// The minimum web with its default resolved.
 double min_web(const CncOptions& options);
+
+/// The router bit's number: the table's end mill, else 1.
+int end_mill_number(const CncOptions& options);
+
+/// The drill cycle's feed and spindle speed with their defaults resolved
+/// (the plunge feed, the router's spindle speed).
+double drill_feed(const CncOptions& options);
+double drill_spindle(const CncOptions& options);
+/// The drill cycle's retract plane R (height above the top), safe_z unless given.
+double drill_retract(const CncOptions& options);
 
 }  // namespace fabmesh

@@ -347,7 +347,14 @@ ToolpathTotals toolpath_totals(const Toolpath& path) {
     }
   }
   const CncOptions& o = path.options;
+  if (!path.drills.empty()) {
+    const DrillingTotals d = drilling_totals(path.drills, o);
+    const Vec3& start = path.moves.front().to;
+    t.rapid += d.rapid + (Vec2(start.x(), start.y()) - path.drills.back().center).norm();
+    t.drilling = d.feeding;
+  }
   t.minutes = t.cutting / o.feed + t.plunging / o.plunge + t.rapid / o.rapid;
+  if (!path.drills.empty()) t.minutes += t.drilling / drill_feed(o);
   return t;
 }
 

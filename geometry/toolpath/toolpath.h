@@ -11,6 +11,7 @@
 #include "geometry/core/tolerance_budget.h"
 #include "geometry/section/region.h"
 #include "geometry/toolpath/cnc_options.h"
+#include "geometry/toolpath/drilling.h"
 #include "geometry/toolpath/loop_path.h"
 #include "geometry/toolpath/manufacturability.h"
 
@@ -78,6 +79,9 @@ struct Toolpath {
   double rounding_allowance = 0.0;
   /// How options.tolerance was divided (see plan_toolpath).
   std::vector<ToleranceShare> tolerance_shares;
+  /// Tap holes drilled before any routing, in the order drilled
+  /// (drilling_order); their loops are not among `loops`.
+  std::vector<DrillHole> drills;
 };
 
 /// A program's moves by how the machine runs them: lengths (model units) and
@@ -85,11 +89,15 @@ struct Toolpath {
 struct ToolpathTotals {
   double cutting = 0.0;   ///< lead-ins, ramps, cuts and lead-outs, at the cutting feed
   double plunging = 0.0;  ///< plunges and moves onto and off tabs, at the plunge feed
-  double rapid = 0.0;     ///< rapids and retracts, at options.rapid
-  double minutes = 0.0;   ///< cutting / feed + plunging / plunge + rapid / rapid
+  double rapid = 0.0;     ///< rapids and retracts (the drill cycles' too), at options.rapid
+  double drilling = 0.0;  ///< the drill cycles' feeds down, at drill_feed(options)
+  /// cutting / feed + plunging / plunge + rapid / rapid (+ drilling / drill feed)
+  double minutes = 0.0;
 };
 
-/// The totals of `path`: arcs by their exact length, from the first move's end.
+/// The totals of `path`: arcs by their exact length, from the first move's
+/// end; the drill cycles by drilling_totals (and the rapid from the last
+/// hole to the first move's end).
 ToolpathTotals toolpath_totals(const Toolpath& path);
 
 /// Plans the cut of the region bounded by `outline` and `holes` (as

@@ -88,6 +88,13 @@ class Encoder {
   std::string run(const GcodeOptions& o);
 
  private:
+  // Each drill's tool change and cycle blocks, then the change back to the
+  // router bit; ends with the bit in the spindle, running.
+  void drilling(const std::string& u);
+  // Retract and stop the spindle if it runs, change to `tool`, start it again.
+  void change_tool(int tool, double spindle);
+  bool spindle_on_ = false;
+
   double feed_of(const ToolMove& m) const {
     switch (m.kind) {
       case MoveKind::Plunge:
@@ -206,14 +213,39 @@ std::string Encoder::run(const GcodeOptions& o) {
   w_.line(fmt::format("(path within {} {} of the exact offset of the exact curves)",
                       w_.num(path_.deviation + w_.resolution()), u));
   const ToolpathTotals totals = toolpath_totals(path_);
+  const std::string drilled = path_.drills.empty()
+                                  ? std::string()
+                                  : fmt::format(", drilling {} {} at {} {}", w_.num(totals.drilling), u,
+                                                w_.num(drill_feed(c)), per_min);
   w_.line(
       fmt::format("(estimated {:.1f} min without acceleration: cutting {} {}, plunging {} {}, rapids {} {} "
-                  "at {} {})",
+                  "at {} {}{})",
                   totals.minutes, w_.num(totals.cutting), u, w_.num(totals.plunging), u, w_.num(totals.rapid),
-                  u, w_.num(c.rapid), per_min));
+                  u, w_.num(c.rapid), per_min, drilled));
+  const bool tool_changes = !path_.drills.empty() || !c.tools.empty();
+  if (tool_changes) {
+    std::string tools = fmt::format("T{} end mill {} {}", end_mill_number(c), w_.num(c.tool_diameter), u);
+    for (std::size_t k = 0; k < path_.drills.size(); ++k) {
+      if (k > 0 && path_.drills[k].tool == path_.drills[k - 1].tool) continue;
+      tools += fmt::format(", T{} drill {} {}", path_.drills[k].tool, w_.num(path_.drills[k].diameter), u);
+    }
+    w_.line(fmt::format("(tools: {})", tools));
+  }
+  if (!path_.drills.empty()) {
+    w_.line(fmt::format("(drilling first: {} {}, {} from R {} to z {}{} at {} {}, spindle {} rpm)",
+                        path_.drills.size(), path_.drills.size() == 1 ? "hole" : "holes",
+                        c.drill.peck > 0.0 ? "G83" : "G81", w_.num(drill_retract(c)),
+                        w_.num(-(c.depth + c.breakthrough)),
+                        c.drill.peck > 0.0 ? fmt::format(" in pecks of {}", w_.num(c.drill.peck)) : "",
+                        w_.num(drill_feed(c)), per_min, w_.plain(drill_spindle(c))));
+  }
   w_.line(std::string(u == "in" ? "G20" : "G21") + " G90 G94 G17");
   w_.line(fmt::format("G0 Z{}", w_.num(c.safe_z)));  // up before the spindle starts
-  w_.line(fmt::format("M3 S{}", w_.plain(c.spindle)));
+  if (tool_changes) {
+    drilling(u);
+  } else {
+    w_.line(fmt::format("M3 S{}", w_.plain(c.spindle)));
+  }
   s_.motion = "G0";
   std::size_t loop = static_cast<std::size_t>(-1);
   std::size_t pass = 0;
@@ -243,6 +275,41 @@ std::string Encoder::run(const GcodeOptions& o) {
   w_.line("M5");
   w_.line("M30");
   return w_.text;
+}
+
+void Encoder::change_tool(int tool, double spindle) {
+  if (spindle_on_) {
+    w_.line(fmt::format("G0 Z{}", w_.num(path_.options.safe_z)));
+    w_.line("M5");
+  }
+  w_.line(fmt::format("M6 T{}", tool));
+  w_.line(fmt::format("M3 S{}", w_.plain(spindle)));
+  spindle_on_ = true;
+}
+
+void Encoder::drilling(const std::string& u) {
+  const CncOptions& c = path_.options;
+  const bool peck = c.drill.peck > 0.0;
+  // Every word on every block: nothing modal is left for a reader to carry over.
+  const std::string cycle =
+      fmt::format(" Z{} R{}{} F{}", w_.num(-(c.depth + c.breakthrough)), w_.num(drill_retract(c)),
+                  peck ? " Q" + w_.num(c.drill.peck) : std::string(), w_.num(drill_feed(c)));
+  for (std::size_t k = 0; k < path_.drills.size(); ++k) {
+    const DrillHole& d = path_.drills[k];
+    if (k == 0 || d.tool != path_.drills[k - 1].tool) {
+      std::size_t holes = 0;
+      for (const DrillHole& e : path_.drills) holes += e.tool == d.tool ? 1 : 0;
+      w_.line(fmt::format("(drill T{}: diameter {} {}, {} {})", d.tool, w_.num(d.diameter), u, holes,
+                          holes == 1 ? "hole" : "holes"));
+      change_tool(d.tool, drill_spindle(c));
+    }
+    w_.line(fmt::format("G98 {} X{} Y{}{} ({})", peck ? "G83" : "G81", w_.num(d.center.x()),
+                        w_.num(d.center.y()), cycle, comment_text(d.label)));
+    if (k + 1 == path_.drills.size() || path_.drills[k + 1].tool != d.tool) w_.line("G80");
+  }
+  w_.line(fmt::format("(routing: T{}, the end mill)", end_mill_number(c)));
+  change_tool(end_mill_number(c), c.spindle);
+  s_.feed = -1.0;  // the cycles set F: the routing's first feed move states its own
 }
 
 }  // namespace

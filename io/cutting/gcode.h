@@ -25,6 +25,13 @@ struct GcodeOptions {
 /// then every move of `path` (G0 rapids and retracts, G1 plunges and tab
 /// steps at the plunge feed, G1/G2/G3 cuts at the cutting feed; a comment on
 /// lead-in, lead-out, tab and dog-bone lines and before every pass), M5, M30.
+/// A path that drills (Toolpath::drills) or has a tool table
+/// (CncOptions::tools) changes tools: the header lists them, and before the
+/// spindle starts, for each drill in turn, `M6 T<n>` and M3 (after G0 to
+/// safe height and M5 when the spindle runs), one canned cycle block per hole
+/// with every word (`G98 G81 X Y Z R F`, or `G98 G83 X Y Z R Q F` with
+/// pecks), G80; then `M6 T<end mill>` and M3 for the routing, whose first
+/// feed move states its F again.
 /// Arcs over 180 degrees are split; an arc whose sagitta is below the
 /// resolution is written as G1. Numbers have fixed decimals with trailing
 /// zeros removed and never read "-0". Deterministic: same path, same bytes.

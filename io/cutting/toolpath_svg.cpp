@@ -80,6 +80,10 @@ std::string encode_toolpath_svg(const std::vector<CutLoop>& part, const Toolpath
     const Vec2 plunge = lp.lead ? lp.lead->from : lp.pieces.front().from;
     box.add(plunge - Vec2(r, r)), box.add(plunge + Vec2(r, r));
   }
+  for (const DrillHole& h : path.drills) {
+    const Vec2 half(0.5 * h.diameter, 0.5 * h.diameter);
+    box.add(h.center - half), box.add(h.center + half);
+  }
   const double m = options.margin;
   const double w = box.hi.x() - box.lo.x() + 2 * m, h = box.hi.y() - box.lo.y() + 2 * m;
   const double stroke = std::max(w, h) / 1500.0;
@@ -131,6 +135,19 @@ std::string encode_toolpath_svg(const std::vector<CutLoop>& part, const Toolpath
           svg_number(-p.to.y()), svg_number(r));
       ++j;
     }
+  }
+  // A drilled hole: the drill's circle and a cross through its centre.
+  for (std::size_t k = 0; k < path.drills.size(); ++k) {
+    const DrillHole& drill = path.drills[k];
+    const double hr = 0.5 * drill.diameter;
+    const Vec2 c = drill.center;
+    out += fmt::format(
+        "  <g id=\"drill-{}\" fill=\"none\" stroke=\"#d02020\" stroke-width=\"{}\"><title>T{} drill "
+        "{}</title>"
+        "<circle cx=\"{}\" cy=\"{}\" r=\"{}\"/><path d=\"M {} L {} M {} L {}\"/></g>\n",
+        k, svg_number(stroke), drill.tool, svg_number(drill.diameter), svg_number(c.x()), svg_number(-c.y()),
+        svg_number(hr), svg_point(c - Vec2(hr, 0.0)), svg_point(c + Vec2(hr, 0.0)),
+        svg_point(c - Vec2(0.0, hr)), svg_point(c + Vec2(0.0, hr)));
   }
   out += "</svg>\n";
   return out;

@@ -1,7 +1,7 @@
 #pragma once
 // An SVG picture of a router toolpath over the part: the part's loops solid
 // (filled, holes open), each loop's tool-centre path dashed, lead-in arcs,
-// plunge points (with the tool's disc), tabs and dog-bones marked. Same
+// plunge points (with the tool's disc), tabs, dog-bones and drilled holes marked. Same
 // conventions as svg.h: coordinates in model units, y written negated so
 // the picture looks as designed (y up).
 
@@ -21,7 +21,9 @@ struct ToolpathSvgOptions {
 /// The SVG document. Element ids: "part" (the loops, even-odd filled),
 /// "path-<i>" (tool-centre path of Toolpath::loops[i], dashed), "lead-<i>",
 /// "plunge-<i>" (a circle of the tool radius where the tool goes down),
-/// "tab-<i>-<j>", "dogbone-<i>-<k>". viewBox spans all of them plus the margin.
+/// "tab-<i>-<j>", "dogbone-<i>-<k>", "drill-<k>" (Toolpath::drills[k]: the
+/// drill's circle and a cross through its centre). viewBox spans all of them
+/// plus the margin.
 /// \throw RangeError for a negative margin
 std::string encode_toolpath_svg(const std::vector<CutLoop>& part, const Toolpath& path,
                                 const ToolpathSvgOptions& options = {});

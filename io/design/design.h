@@ -137,13 +137,26 @@ struct VesselDesign {
   double slip_density = 1.75;
 };
 
-/// One cut-out of a countertop (sink, cooktop).
+/// A tap hole (`drill: {center, diameter, tool}`): drilled with a drill
+/// cycle, not routed round.
+struct HoleDrill {
+  Vec2 center{0.0, 0.0};
+  double diameter = 0.0;
+  /// The drill's number: the one given, else a drill of cnc.tools of this
+  /// diameter, else the number this diameter got (2, 3, ... in order of first
+  /// use); 0 without a cnc section.
+  int tool = 0;
+};
+
+/// One cut-out of a countertop (sink, cooktop, tap hole).
 struct CountertopHole {
-  std::string shape;  ///< ellipse | rounded_rect | outline (for messages)
-  CurveSpec curve;    ///< closed; ellipse and rounded_rect expanded into exact ellipse-arc and line segments
+  std::string shape;  ///< ellipse | rounded_rect | outline | drill (for messages)
+  CurveSpec
+      curve;  ///< closed; ellipse, rounded_rect and drill expanded into exact ellipse-arc and line segments
   /// The hole entry's `tabs` (the router leaves them on this cut-out; width,
   /// height and min_radius default to cnc.tabs'); count 0 when not given.
   TabOptions tabs = no_tabs();
+  std::optional<HoleDrill> drill;  ///< a tap hole: a circle the program drills
 };
 
 /// A CNC router cut of a countertop (key `cnc`): the cut, and how its G-code is written.

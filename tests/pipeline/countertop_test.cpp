@@ -383,7 +383,8 @@ TEST_CASE("countertop from a DXF template: bad drawings exit 2 at the design's k
       {head +
            "outline: {dxf: kitchen_template.dxf, layer: OUTLINE}\nholes: [{ellipse: {center: [1, 1], a: 1, "
            "b: 1}, layer: HOLES}]\n",
-       "holes[0]: a hole is a map with one key: ellipse, rounded_rect or outline (or dxf with its layer)"},
+       "holes[0]: a hole is a map with one key: ellipse, rounded_rect, outline or drill (or dxf with its "
+       "layer)"},
   };
   int i = 0;
   for (const auto& [text, expected] : cases) {
@@ -490,4 +491,94 @@ TEST_CASE("countertop cnc: tabs on cut-outs and a ramp entry from the design, ba
   std::string out;
   CHECK(run_cli({"run", plain, "-o", (dir / "plain").string() + "/"}, &out) == 2);
   CHECK_THAT(out, Catch::Contains("has no cnc section"));
+}
+
+namespace {
+
+// countertop_cnc.yaml with tap holes added after its cooktop (`holes`, hole
+// entries), written to dir/name.
+std::string with_tap_holes(const fs::path& dir, const std::string& name, const std::string& holes) {
+  return edited_example(dir, "countertop_cnc.yaml", "radius: 10}   # cooktop\n",
+                        "radius: 10}   # cooktop\n" + holes, name);
+}
+
+}  // namespace
+
+TEST_CASE("countertop tap holes: the slab keeps them as exact round cut-outs, closed, genus = holes",
+          "[pipeline][countertop][drill]") {
+  const fs::path dir = fresh_dir("countertop_tap_holes");
+  const std::string path = with_tap_holes(dir, "taps.yaml",
+                                          "  - drill: {center: [650, 595], diameter: 35}\n"
+                                          "  - drill: {center: [1150, 595], diameter: 28}\n");
+  Design design = read_design(path);
+  design.common.outputs = {{"stl", "test", 0, 0}, {"dxf", "test", 0, 0}};
+  const auto& c = std::get<CountertopDesign>(design.body);
+  const Result r = run_job(design, into(dir / "out"));
+  CHECK(verdict(r).valid());
+  REQUIRE(verdict(r).genus);
+  CHECK(*verdict(r).genus == 4);  // the sink, the cooktop and the two tap holes
+  // The exact area: each tap hole takes pi r^2 out of the top.
+  for (const double d : {35.0, 28.0}) {
+    const auto hole = std::find_if(c.holes.begin(), c.holes.end(), [&](const CountertopHole& h) {
+      return h.drill && h.drill->diameter == d;
+    });
+    REQUIRE(hole != c.holes.end());
+    CHECK(std::abs(test::exact_area(build_curve(hole->curve).curve)) ==
+          Approx(M_PI * d * d / 4).epsilon(1e-12));
+  }
+  const auto [area, perimeter] = exact_region(c);
+  Design plain = read_design(example("countertop_cnc.yaml"));
+  const auto [area0, perimeter0] = exact_region(std::get<CountertopDesign>(plain.body));
+  CHECK(area == Approx(area0 - M_PI * (35.0 * 35.0 + 28.0 * 28.0) / 4).epsilon(1e-12));
+  CHECK(perimeter == Approx(perimeter0 + M_PI * (35.0 + 28.0)).epsilon(1e-12));
+  CHECK(std::abs(verdict(r).volume - area * c.thickness) <= r.max_deviation * perimeter * c.thickness);
+  CHECK(std::abs(r.facts.number("region_area") - area) <= r.max_deviation * perimeter);
+  // The STL read back passes the full validation, its genus the same.
+  const ValidationReport full = validate(weld(parse_stl(read_file(written_paths(r)[0]), "stl")).soup);
+  CHECK(full.valid());
+  CHECK(full.genus == verdict(r).genus);
+  // The drawing has each tap hole as an exact circle (a point on it: the centre + (r, 0)).
+  std::vector<Vec2> circles;
+  for (const auto& e : parse_dxf(read_file((dir / "out" / "countertop_cnc.dxf").string()), "dxf")) {
+    if (e.type == "CIRCLE" && e.layer == "HOLES") circles.push_back(e.points[0]);
+  }
+  CHECK(circles == std::vector<Vec2>{Vec2(667.5, 595), Vec2(1164, 595)});
+}
+
+TEST_CASE("countertop tap holes: bad ones exit 2 at the hole's key, nothing written",
+          "[pipeline][countertop][drill][errors]") {
+  const fs::path dir = fresh_dir("countertop_bad_taps");
+  struct Bad {
+    std::string holes, cnc, key, says;
+  };
+  // The sink spans x 370..930, y 140..540; the back edge is at y = 650.
+  const std::vector<Bad> bad{
+      // Too close to the sink for the web the router leaves (12 mm: one tool diameter).
+      {"  - drill: {center: [650, 565], diameter: 35}\n", "", "holes[2] (drill)",
+       "the web between it and holes[0] (rounded_rect) is at most 7.5"},
+      // Into the sink; out of the top.
+      {"  - drill: {center: [650, 550], diameter: 35}\n", "", "holes[2]", ""},
+      {"  - drill: {center: [650, 640], diameter: 35}\n", "", "holes[2]", ""},
+      // Located reading errors, from the command line too.
+      {"  - drill: {center: [650, 595], diameter: -35}\n", "", "holes[2].drill.diameter", "must be > 0"},
+      {"  - drill: {center: [650, 595], diameter: 30}\n",
+       "  tools: [{number: 1, type: end_mill, diameter: 12}, {number: 2, type: drill, diameter: 35}]\n",
+       "holes[2].drill.diameter", "no drill of that diameter"},
+      {"  - drill: {center: [650, 595], diameter: 35}\n",
+       "  tools: [{number: 2, type: drill, diameter: 35}, {number: 2, type: end_mill, diameter: 12}]\n",
+       "cnc.tools[1].number", "has that number already"},
+      {"  - drill: {center: [650, 595], diameter: 35}\n", "  drill: {peck: -2}\n", "cnc.drill.peck",
+       "must be >= 0"},
+  };
+  for (std::size_t i = 0; i < bad.size(); ++i) {
+    INFO(bad[i].holes << bad[i].cnc);
+    std::string file = with_tap_holes(dir, fmt::format("bad{}.yaml", i), bad[i].holes);
+    write_text(file, read_file(file) + bad[i].cnc);
+    std::string out;
+    CHECK(run_cli({"run", file, "-o", (dir / fmt::format("bad{}", i)).string() + "/"}, &out) == 2);
+    INFO(out);
+    CHECK(names_place(out, file, bad[i].key));
+    CHECK_THAT(out, Catch::Contains(bad[i].says));
+    CHECK_FALSE(fs::exists(dir / fmt::format("bad{}", i)));
+  }
 }

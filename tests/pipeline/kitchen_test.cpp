@@ -21,6 +21,7 @@
 #include "io/design/read_design.h"
 #include "io/file.h"
 #include "io/mesh/stl.h"
+#include "tests/io/cutting/drill_checks.h"
 #include "tests/io/cutting/interpret.h"
 #include "tests/io/mesh/external_tool.h"
 #include "tests/pipeline/cli_harness.h"
@@ -87,12 +88,21 @@ TEST_CASE("kitchen: the L's pieces partition the top, each a valid slab, written
   REQUIRE(top != nullptr);
   const std::vector<const Part*> parts = parts_of(r, PartRole::Piece);
   REQUIRE(parts.size() == 5);  // two pieces of the top, three backsplash strips
+  const auto& pieces = std::get<CountertopProducts>(r.products).kitchen->split.pieces;
   double volume = 0.0;
+  long genus = 0;
   for (const Part* p : parts) {
     INFO(p->name);
     CHECK(p->validation.valid());
     const bool strip = p->name.rfind("backsplash-", 0) == 0;
-    CHECK(p->validation.genus == std::optional<long>(strip ? 0 : 1));  // a piece keeps its cut-out
+    // A piece keeps its cut-outs: the leg its cooktop, the run its sink and the tap hole behind it.
+    const auto piece =
+        std::find_if(pieces.begin(), pieces.end(), [&](const KitchenPiece& q) { return q.name == p->name; });
+    REQUIRE(piece != pieces.end());
+    CHECK(piece->holes.size() == (strip ? 0u : p->name == "piece-1" ? 1u : 2u));
+    REQUIRE(p->validation.genus);
+    CHECK(*p->validation.genus == static_cast<long>(piece->holes.size()));
+    genus += *p->validation.genus;
     if (!strip) volume += p->validation.volume;
     // Its STL, read back, passes the full 3D validation.
     const std::string file = (dir / ("kitchen_l." + p->name + ".stl")).string();
@@ -101,6 +111,8 @@ TEST_CASE("kitchen: the L's pieces partition the top, each a valid slab, written
     CHECK(full.self_intersection == IntersectionCheck::Tested);
   }
   CHECK(std::abs(volume - top->validation.volume) <= 1e-9 * top->validation.volume);
+  CHECK(genus == 3);  // the sink, the cooktop and the tap hole, each in one piece
+  CHECK(top->validation.genus == std::optional<long>(3));
   const auto& k = *std::get<CountertopProducts>(r.products).kitchen;
   CHECK(k.nesting.slabs == 2);  // the strips do not fit beside the pieces
   CHECK(k.nesting.slabs >= k.nesting.lower_bound);
@@ -144,16 +156,42 @@ TEST_CASE("kitchen: each slab's program, run by CNCjs, cuts every piece through 
   const Result r = run_job(design, into(dir));
   const auto& k = *std::get<CountertopProducts>(r.products).kitchen;
   REQUIRE(k.slab_toolpaths.size() == k.nesting.slabs);
-  const CncOptions& cnc = std::get<CountertopDesign>(design.body).cnc->options;
+  const CountertopDesign& top = std::get<CountertopDesign>(design.body);
+  const CncOptions& cnc = top.cnc->options;
   const double radius = 0.5 * cnc.tool_diameter;
+  std::size_t drilled = 0;
   for (std::size_t s = 0; s < k.nesting.slabs; ++s) {
     const std::string file = (dir / fmt::format("kitchen_l.slab-{}.nc", s + 1)).string();
     REQUIRE(fs::exists(file));
     const std::string problem = test::gcode_interpreter_problem();
     INFO(problem);
     REQUIRE(problem.empty());
-    const test::Trace trace = test::interpret_gcode_file(file);
-    CHECK(trace.unknown.empty());
+    // The tap holes of the pieces on this slab, at their placed centres, drilled first with T2 (35 mm).
+    const std::string program = read_file(file);
+    std::vector<test::ExpectedDrill> holes;
+    for (const Placement& p : k.nesting.placements) {
+      if (p.slab != s) continue;
+      for (const std::size_t h : k.split.pieces[p.piece].hole_index) {
+        if (!top.holes[h].drill) continue;
+        holes.push_back({place_point(top.holes[h].drill->center, p.rotation_deg, p.offset),
+                         top.holes[h].drill->diameter, fmt::format("holes[{}]", h)});
+      }
+    }
+    drilled += holes.size();
+    test::DrillSpec spec;
+    spec.thickness = top.thickness;
+    spec.through = cnc.depth + cnc.breakthrough;
+    spec.safe_z = cnc.safe_z;
+    spec.feed = cnc.plunge;
+    spec.rounding = k.slab_toolpaths[s].rounding_allowance;
+    spec.tools = {{1, {ToolType::EndMill, 12}}, {2, {ToolType::Drill, 35}}};
+    const test::CannedCycles cycles = test::read_canned_cycles(program);
+    test::check_drilling(cycles, holes, spec);
+    // A slab with no tap hole changes no tool: its program is as it was before tap holes.
+    CHECK(cycles.changes.size() == (holes.empty() ? 0u : 2u));
+    // The interpreter skips the cycles; the rest of the program is measured on its trace.
+    const test::Trace trace =
+        test::interpret_around_cycles(program, cycles, fmt::format("kitchen_l.slab-{}.nc", s + 1));
     const std::vector<Placed> pieces = placed_on(k, s);
     double lowest = 0.0;
     for (const test::TraceMotion& m : trace.motions) lowest = std::min({lowest, m.start.z(), m.end.z()});
@@ -184,6 +222,17 @@ TEST_CASE("kitchen: each slab's program, run by CNCjs, cuts every piece through 
       CHECK(through[p] >= pieces[p].perimeter - 2.0 * (10.0 + 2.0 * radius) - 1.0);
     }
   }
+  CHECK(drilled == 1);  // the tap hole behind the sink, on the slab of its piece, once
+  // The report says so per program, with the tools each uses.
+  const auto& programs = std::get<std::vector<Facts>>(*r.facts.group("kitchen").find("programs"));
+  REQUIRE(programs.size() == k.nesting.slabs);
+  double reported = 0.0;
+  for (std::size_t s = 0; s < programs.size(); ++s) {
+    const double n = programs[s].number("drills");
+    reported += n;
+    CHECK(std::get<std::vector<Facts>>(*programs[s].find("tools")).size() == (n > 0 ? 2u : 1u));
+  }
+  CHECK(reported == 1.0);
 }
 
 TEST_CASE("kitchen: the U's given seams, a defect on the slabs, the layout and cut list",

@@ -86,20 +86,24 @@ std::vector<CountertopHole> read_hole(const yaml::Fields& f, const YAML::Node& n
   const bool dxf = n.IsMap() && n["dxf"].IsDefined();
   const std::size_t shape_keys = n.IsMap() ? n.size() - (n["tabs"].IsDefined() ? 1 : 0) : 0;
   if (!n.IsMap() || (!dxf && shape_keys != 1)) {
-    f.fail(n, field,
-           "a hole is a map with one key: ellipse, rounded_rect or outline (or dxf with its layer), and "
-           "optionally its tabs");
+    f.fail(
+        n, field,
+        "a hole is a map with one key: ellipse, rounded_rect, outline or drill (or dxf with its layer), and "
+        "optionally its tabs");
   }
   f.require_map(n, field, key_group("countertop.holes[]"));
   if (dxf) {
-    for (const char* shape : {"ellipse", "rounded_rect", "outline"}) {
+    for (const char* shape : {"ellipse", "rounded_rect", "outline", "drill"}) {
       if (n[shape].IsDefined())
         f.fail(n[shape], field + "." + shape, fmt::format("a hole with dxf has no {}", shape));
     }
     std::vector<CountertopHole> holes;
     std::vector<CurveSpec> loops = read_dxf_source(f, n, field, common, WallsHere::No);
     for (std::size_t i = 0; i < loops.size(); ++i) {
-      holes.push_back({fmt::format("dxf loop {} of {}", i + 1, loops.size()), std::move(loops[i])});
+      CountertopHole hole;
+      hole.shape = fmt::format("dxf loop {} of {}", i + 1, loops.size());
+      hole.curve = std::move(loops[i]);
+      holes.push_back(std::move(hole));
     }
     return holes;
   }
@@ -124,12 +128,103 @@ std::vector<CountertopHole> read_hole(const yaml::Fields& f, const YAML::Node& n
     const double rot = f.number_or(r, "rotation_deg", rf + ".rotation_deg", 0.0);
     hole.shape = "rounded_rect";
     f.checked(r, rf, [&] { hole.curve = rounded_rect_curve(c, size.x(), size.y(), radius, rot); });
+  } else if (n["drill"].IsDefined()) {
+    const YAML::Node d = n["drill"];
+    const std::string df = field + ".drill";
+    f.require_map(d, df, key_group("countertop.holes[].drill"));
+    HoleDrill drill;
+    drill.center = f.point2(f.required(d, "center", df), df + ".center");
+    const YAML::Node diameter = f.required(d, "diameter", df);
+    drill.diameter = f.number(diameter, df + ".diameter");
+    if (!(drill.diameter > 0.0)) {
+      f.fail(diameter, df + ".diameter", fmt::format("diameter = {} must be > 0", drill.diameter));
+    }
+    // The number is checked against cnc.tools once the cnc section is read (resolve_drills).
+    if (d["tool"].IsDefined()) drill.tool = static_cast<int>(f.integer(d["tool"], df + ".tool", 1, 999));
+    if (n["tabs"].IsDefined()) {
+      f.fail(n["tabs"], field + ".tabs",
+             "a drilled hole has no tabs: the drill takes its core out in one cycle, with nothing to hold");
+    }
+    hole.shape = "drill";
+    const double r = 0.5 * drill.diameter;
+    f.checked(d, df, [&] { hole.curve = ellipse_curve(drill.center, r, r, 0.0); });
+    hole.drill = drill;
   } else {
     hole.shape = "outline";
     hole.curve = read_closed_curve(f, n["outline"], field + ".outline", common, WallsHere::No);
   }
   hole.curve.key = field;
   return {hole};
+}
+
+// `cnc.tools`: the machine's tool table: numbers given once, at most one end
+// mill (the router bit), diameters > 0; with no end mill, number 1 is the
+// router bit's.
+std::vector<CncTool> read_tools(const yaml::Fields& f, const YAML::Node& list) {
+  f.require_list(list, "cnc.tools", 1);
+  std::vector<CncTool> tools;
+  std::size_t end_mill = list.size();
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const std::string field = fmt::format("cnc.tools[{}]", i);
+    const YAML::Node t = list[i];
+    f.require_map(t, field, key_group("countertop.cnc.tools[]"));
+    CncTool tool;
+    const YAML::Node number = f.required(t, "number", field);
+    tool.number = static_cast<int>(f.integer(number, field + ".number", 1, 999));
+    for (std::size_t j = 0; j < tools.size(); ++j) {
+      if (tools[j].number == tool.number) {
+        f.fail(number, field + ".number",
+               fmt::format("number = {}: cnc.tools[{}] has that number already", tool.number, j));
+      }
+    }
+    const YAML::Node type = f.required(t, "type", field);
+    tool.type = f.choice(type, field + ".type", {"end_mill", "drill"}) == "drill" ? ToolType::Drill
+                                                                                  : ToolType::EndMill;
+    if (tool.type == ToolType::EndMill && end_mill < list.size()) {
+      f.fail(type, field + ".type",
+             fmt::format("cnc.tools[{}] is the end mill already: the router cut uses one bit", end_mill));
+    }
+    if (tool.type == ToolType::EndMill) end_mill = i;
+    const YAML::Node diameter = f.required(t, "diameter", field);
+    tool.diameter = f.number(diameter, field + ".diameter");
+    if (!(tool.diameter > 0.0)) {
+      f.fail(diameter, field + ".diameter", fmt::format("diameter = {} must be > 0", tool.diameter));
+    }
+    tools.push_back(tool);
+  }
+  if (end_mill == list.size()) {
+    for (std::size_t i = 0; i < tools.size(); ++i) {
+      if (tools[i].number != 1) continue;
+      f.fail(list[i]["number"], fmt::format("cnc.tools[{}].number", i),
+             "number = 1: with no end_mill in cnc.tools the router bit is tool 1; list it (type: end_mill) "
+             "or number the drill otherwise");
+    }
+  }
+  return tools;
+}
+
+// `cnc.drill: {peck, retract, feed, spindle}`: how the tap holes are drilled.
+DrillCycle read_drill_cycle(const yaml::Fields& f, const YAML::Node& n, const CncOptions& o) {
+  f.require_map(n, "cnc.drill", key_group("countertop.cnc.drill"));
+  DrillCycle d;
+  d.peck = f.number_or(n, "peck", "cnc.drill.peck", 0.0);
+  if (!(d.peck >= 0.0)) f.fail(n["peck"], "cnc.drill.peck", fmt::format("peck = {} must be >= 0", d.peck));
+  if (n["retract"].IsDefined()) {
+    d.retract = f.number(n["retract"], "cnc.drill.retract");
+    if (!(*d.retract > 0.0 && *d.retract <= o.safe_z)) {
+      f.fail(n["retract"], "cnc.drill.retract",
+             fmt::format("retract = {} must be in (0, {}]: above the top, at most cnc.safe_z", *d.retract,
+                         o.safe_z));
+    }
+  }
+  for (const char* key : {"feed", "spindle"}) {
+    if (!n[key].IsDefined()) continue;
+    const std::string field = std::string("cnc.drill.") + key;
+    const double v = f.number(n[key], field);
+    if (!(v > 0.0)) f.fail(n[key], field, fmt::format("{} = {} must be > 0", key, v));
+    (std::string(key) == "feed" ? d.feed : d.spindle) = v;
+  }
+  return d;
 }
 
 CncDesign read_cnc(const yaml::Fields& f, const YAML::Node& n, const DesignCommon& common, double thickness) {
@@ -142,7 +237,21 @@ CncDesign read_cnc(const yaml::Fields& f, const YAML::Node& n, const DesignCommo
   auto length = [&](const char* key, double fallback_mm) {
     return f.number_or(n, key, std::string("cnc.") + key, fallback_mm / mm_per_unit);
   };
+  if (n["tools"].IsDefined()) o.tools = read_tools(f, n["tools"]);
+  const auto end_mill = std::find_if(o.tools.begin(), o.tools.end(),
+                                     [](const CncTool& t) { return t.type == ToolType::EndMill; });
   o.tool_diameter = length("tool_diameter", o.tool_diameter);
+  if (end_mill != o.tools.end()) {
+    // The table's end mill is the router bit: its diameter when the design gives none.
+    const std::size_t i = static_cast<std::size_t>(end_mill - o.tools.begin());
+    if (!n["tool_diameter"].IsDefined()) {
+      o.tool_diameter = end_mill->diameter;
+    } else if (end_mill->diameter != o.tool_diameter) {
+      f.fail(n["tools"][i]["diameter"], fmt::format("cnc.tools[{}].diameter", i),
+             fmt::format("diameter = {}: the end mill is the router bit, and cnc.tool_diameter = {}",
+                         end_mill->diameter, o.tool_diameter));
+    }
+  }
   o.depth = f.number_or(n, "depth", "cnc.depth", thickness);
   o.breakthrough = length("breakthrough", o.breakthrough);
   o.step_down = length("step_down", o.step_down);
@@ -206,6 +315,7 @@ CncDesign read_cnc(const yaml::Fields& f, const YAML::Node& n, const DesignCommo
                                                                                      : CornerRelief::None;
   }
   if (n["min_web"].IsDefined()) o.min_web = f.number(n["min_web"], "cnc.min_web");
+  if (n["drill"].IsDefined()) o.drill = read_drill_cycle(f, n["drill"], o);
   d.program_units = common.units == "in" ? "in" : "mm";
   if (n["units"].IsDefined()) d.program_units = f.choice(n["units"], "cnc.units", {"mm", "in"});
   if (n["decimals"].IsDefined())
@@ -213,6 +323,87 @@ CncDesign read_cnc(const yaml::Fields& f, const YAML::Node& n, const DesignCommo
   o.tolerance = common.tolerance;
   f.checked(n, "cnc", [&] { validate_cnc_options(o); });
   return d;
+}
+
+// Each tap hole's drill number, once the cnc section (and its tool table) is
+// read: the one given (a drill of cnc.tools, of the hole's diameter), or the
+// table's lowest-numbered drill of that diameter, or without a table the
+// next number from 2 for each diameter in order of first use.
+void resolve_drills(const yaml::Fields& f, const YAML::Node& entries, std::vector<CountertopHole>& holes,
+                    const std::vector<std::size_t>& entry_of, const std::optional<CncDesign>& cnc) {
+  std::vector<std::pair<double, int>> numbered;  // without a table: diameter -> number
+  for (std::size_t k = 0; k < holes.size(); ++k) {
+    if (!holes[k].drill) continue;
+    HoleDrill& d = *holes[k].drill;
+    const YAML::Node node = entries[entry_of[k]]["drill"];
+    const std::string field = fmt::format("holes[{}].drill", entry_of[k]);
+    if (!cnc) {
+      if (d.tool != 0) {
+        f.fail(node["tool"], field + ".tool",
+               "tool numbers a drill of cnc.tools; the design has no cnc section (a tap hole without one "
+               "is a cut-out of the drawings and solids only)");
+      }
+      continue;
+    }
+    const std::vector<CncTool>& tools = cnc->options.tools;
+    if (tools.empty()) {
+      if (d.tool != 0) {
+        f.fail(node["tool"], field + ".tool",
+               "tool numbers a drill of cnc.tools, and the cnc section gives no tools: list them there, or "
+               "leave the number out (each drill diameter gets the next from 2)");
+      }
+      auto it = std::find_if(numbered.begin(), numbered.end(),
+                             [&](const std::pair<double, int>& e) { return e.first == d.diameter; });
+      if (it == numbered.end()) {
+        numbered.emplace_back(d.diameter, static_cast<int>(numbered.size()) + 2);
+        it = numbered.end() - 1;
+      }
+      d.tool = it->second;
+      continue;
+    }
+    std::string drills;
+    for (const CncTool& t : tools) {
+      if (t.type == ToolType::Drill)
+        drills += fmt::format("{}T{} {}", drills.empty() ? "" : ", ", t.number, t.diameter);
+    }
+    if (drills.empty()) drills = "none";
+    if (d.tool != 0) {
+      const auto t =
+          std::find_if(tools.begin(), tools.end(), [&](const CncTool& c) { return c.number == d.tool; });
+      if (t == tools.end()) {
+        f.fail(node["tool"], field + ".tool",
+               fmt::format("tool = {}: cnc.tools has no tool {} (drills: {})", d.tool, d.tool, drills));
+      }
+      if (t->type != ToolType::Drill) {
+        f.fail(
+            node["tool"], field + ".tool",
+            fmt::format("tool = {}: tool {} is the end mill, the router bit, not a drill", d.tool, d.tool));
+      }
+      if (t->diameter > d.diameter) {
+        f.fail(node["tool"], field + ".tool",
+               fmt::format("tool = {}: a drill of diameter {}, larger than the hole it drills ({})", d.tool,
+                           t->diameter, d.diameter));
+      }
+      if (t->diameter < d.diameter) {
+        f.fail(
+            node["tool"], field + ".tool",
+            fmt::format("tool = {}: a drill of diameter {}, smaller than the hole ({}): the hole would come "
+                        "out {}",
+                        d.tool, t->diameter, d.diameter, t->diameter));
+      }
+      continue;
+    }
+    for (const CncTool& t : tools) {
+      if (t.type == ToolType::Drill && t.diameter == d.diameter && (d.tool == 0 || t.number < d.tool))
+        d.tool = t.number;
+    }
+    if (d.tool == 0) {
+      f.fail(node["diameter"], field + ".diameter",
+             fmt::format("diameter = {}: cnc.tools has no drill of that diameter (drills: {}); add one, or "
+                         "give the hole a drill's diameter",
+                         d.diameter, drills));
+    }
+  }
 }
 
 // A hole entry's `tabs` ({count, width, height, min_radius}); what it does
@@ -390,6 +581,7 @@ CountertopDesign read_countertop(const yaml::Fields& f, const YAML::Node& root, 
   if (d.cnc) {
     for (const CountertopHole& h : d.holes) d.cnc->options.hole_tabs.push_back(h.tabs);
   }
+  resolve_drills(f, root["holes"], d.holes, entry_of, d.cnc);
   if (root["slab"].IsDefined()) {
     const bool has_wall = std::any_of(d.outline.segments.begin(), d.outline.segments.end(),
                                       [](const SegmentSpec& s) { return s.wall; });

@@ -2,11 +2,13 @@
 
 #include <fmt/format.h>
 
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -102,6 +104,146 @@ Trace parse_trace(const std::string& json_text) {
     trace.motions.push_back(t);
   }
   return trace;
+}
+
+namespace {
+
+// The words of a line without its comments: (letter, number text) pairs.
+std::vector<std::pair<char, std::string>> words_of(const std::string& line) {
+  std::string text;
+  int depth = 0;
+  for (char c : line) {
+    if (c == '(') ++depth;
+    if (depth == 0 && c != ';') text += c;
+    if (c == ')') --depth;
+    if (c == ';' && depth == 0) break;
+  }
+  std::vector<std::pair<char, std::string>> words;
+  for (std::size_t i = 0; i < text.size();) {
+    const char c = static_cast<char>(std::toupper(static_cast<unsigned char>(text[i])));
+    if (std::isalpha(static_cast<unsigned char>(c)) == 0) {
+      ++i;
+      continue;
+    }
+    std::size_t j = i + 1;
+    while (j < text.size() && (std::isdigit(static_cast<unsigned char>(text[j])) != 0 || text[j] == '.' ||
+                               text[j] == '-' || text[j] == '+'))
+      ++j;
+    words.emplace_back(c, text.substr(i + 1, j - i - 1));
+    i = j;
+  }
+  return words;
+}
+
+}  // namespace
+
+CannedCycles read_canned_cycles(const std::string& program) {
+  CannedCycles out;
+  std::istringstream in(program);
+  std::string cycle;  // the canned cycle in force ("" after G80 or another motion)
+  bool g98 = false, spindle = false, m5_before = false;
+  int tool = 0, pending_tool = 0, number = 0;
+  double z = 0.0;
+  std::size_t open = 0;                  // the first block no G80 or motion has closed yet
+  std::optional<double> mz, mr, mq, mf;  // modal words of the cycle
+  std::size_t awaiting_start = 0;        // 1 + the tool change whose next line may start the spindle
+  for (std::string line; std::getline(in, line);) {
+    ++number;
+    const auto words = words_of(line);
+    if (words.empty()) {
+      out.without_cycles += line + "\n";
+      continue;
+    }
+    bool motion = false, feed_motion = false, g80 = false, m3 = false, m5 = false, m6 = false;
+    std::string block_cycle;
+    std::optional<double> x, y, bz, br, bq, bf;
+    for (const auto& [letter, value] : words) {
+      const double v = value.empty() ? 0.0 : std::stod(value);
+      if (letter == 'G') {
+        if (v == 98.0) g98 = true;
+        if (v == 99.0) g98 = false;
+        if (v == 20.0 || v == 21.0) out.units = fmt::format("G{}", v);
+        if (v == 80.0) g80 = true;
+        if (v == 0.0 || v == 1.0 || v == 2.0 || v == 3.0) motion = true, feed_motion = v != 0.0;
+        if (v == 81.0 || v == 83.0) block_cycle = fmt::format("G{}", v);
+        if (v == 73.0 || v == 76.0 || v == 82.0 || (v >= 84.0 && v <= 89.0))
+          throw std::runtime_error(fmt::format("line {}: canned cycle G{} is not read here", number, value));
+      } else if (letter == 'M') {
+        m3 = m3 || v == 3.0;
+        m5 = m5 || v == 5.0;
+        m6 = m6 || v == 6.0;
+      } else if (letter == 'T') {
+        pending_tool = static_cast<int>(v);
+      } else if (letter == 'X') {
+        x = v;
+      } else if (letter == 'Y') {
+        y = v;
+      } else if (letter == 'Z') {
+        bz = v;
+      } else if (letter == 'R') {
+        br = v;
+      } else if (letter == 'Q') {
+        bq = v;
+      } else if (letter == 'F') {
+        bf = v;
+      }
+    }
+    if (awaiting_start > 0) out.changes[awaiting_start - 1].started_after = m3, awaiting_start = 0;
+    if (m6) {
+      ToolChange c;
+      c.line = number;
+      c.tool = pending_tool;
+      c.spindle_was_on = spindle;
+      c.stopped_first = m5_before;
+      c.z_before = z;
+      tool = pending_tool;
+      out.changes.push_back(c);
+      awaiting_start = out.changes.size();
+    }
+    if (m3) spindle = true;
+    if (m5) spindle = false;
+    m5_before = m5;
+    if (g80 || motion) {
+      // G80 cancels the cycle (a motion word too, without cancelling it properly).
+      for (std::size_t k = open; k < out.blocks.size(); ++k) out.blocks[k].cancelled = g80;
+      open = out.blocks.size();
+      cycle.clear();
+    }
+    if (motion && feed_motion && out.first_feed_motion == 0) {
+      out.first_feed_motion = number;
+      out.routing_tool = tool;
+    }
+    if (!block_cycle.empty()) cycle = block_cycle;
+    // A block: a cycle word, or X/Y while a cycle is in force.
+    if (cycle.empty() || (block_cycle.empty() && !x && !y)) {
+      if (motion && bz) z = *bz;
+      out.without_cycles += line + "\n";
+      continue;
+    }
+    const DrillBlock* previous = out.blocks.empty() ? nullptr : &out.blocks.back();
+    if (bz) mz = bz;
+    if (br) mr = br;
+    if (bq) mq = bq;
+    if (bf) mf = bf;
+    if ((!x || !y) && !previous)
+      throw std::runtime_error(fmt::format("line {}: a cycle block without X or Y", number));
+    if (!mz || !mr || !mf || (cycle == "G83" && !mq))
+      throw std::runtime_error(fmt::format("line {}: a cycle block missing Z, R, F or Q", number));
+    DrillBlock b;
+    b.line = number;
+    b.cycle = cycle;
+    b.initial_level = g98;
+    b.stated_all = x && y && bz && br && bf && (cycle != "G83" || bq);
+    b.x = x ? *x : previous->x;
+    b.y = y ? *y : previous->y;
+    b.z = *mz, b.r = *mr, b.f = *mf, b.q = mq.value_or(0.0);
+    b.tool = tool;
+    b.spindle_on = spindle;
+    b.start_z = z;  // with G98 the tool is back there after the block
+    if (!g98) z = *mr;
+    out.blocks.push_back(b);
+  }
+  return out;
 }
 
 double motion_length(const TraceMotion& m) {

@@ -49,6 +49,51 @@ Trace interpret_gcode_file(const std::string& file);
 /// The motions of gcode-trace.js's JSON output.
 Trace parse_trace(const std::string& json_text);
 
+/// One canned drilling cycle block of a program (G81, or G83 with pecks),
+/// its words in program units. The CNCjs interpreter has no handler for
+/// canned cycles (it skips their lines and moves nowhere for them), so they
+/// are read here. Z, R, Q and F are modal in a cycle: a block that leaves
+/// one out has the previous block's (fabmesh's writer states them all).
+struct DrillBlock {
+  int line = 0;                ///< 1-based
+  std::string cycle;           ///< G81 | G83
+  bool initial_level = false;  ///< G98 in force: back to the level the cycle started from
+  bool stated_all = false;     ///< the block itself states X, Y, Z, R and F (and Q for G83)
+  double x = 0.0, y = 0.0, z = 0.0, r = 0.0, q = 0.0, f = 0.0;
+  int tool = 0;             ///< the tool in the spindle (the last M6 T<n>; 0 before any)
+  bool spindle_on = false;  ///< M3 in force
+  bool cancelled = false;   ///< a G80 follows before any G0/G1/G2/G3
+  double start_z = 0.0;     ///< the Z the tool was at when the block began (the initial level)
+};
+
+/// A tool change `M6 T<n>` (T on its line or an earlier one).
+struct ToolChange {
+  int line = 0;
+  int tool = 0;
+  bool spindle_was_on = false;  ///< M3 in force before it
+  bool stopped_first = false;   ///< an M5 on the line before it
+  double z_before = 0.0;        ///< the Z of the last motion before it (program units)
+  bool started_after = false;   ///< M3 on the line after it
+};
+
+/// What a program's canned cycles and tool changes are.
+struct CannedCycles {
+  std::vector<DrillBlock> blocks;
+  std::vector<ToolChange> changes;
+  std::string units = "G21";  ///< G21 | G20 (the last given)
+  int first_feed_motion = 0;  ///< the line of the first G1/G2/G3 (0: none)
+  int routing_tool = 0;       ///< the tool in the spindle at that line
+  /// The program without the cycle blocks' lines (G80 kept): what the
+  /// interpreter runs the same as the whole program.
+  std::string without_cycles;
+};
+
+/// Reads the canned drilling cycles (G81, G83; G80 cancels) and the tool
+/// changes of a program, line by line: parenthesised comments dropped,
+/// words as letter + number. \throw std::runtime_error on a cycle block
+/// missing a word no earlier block gave, or a canned cycle other than G81/G83
+CannedCycles read_canned_cycles(const std::string& program);
+
 /// Length of a motion in the XY plane (arcs: radius times the turned angle;
 /// the interpreter's convention: G2 clockwise, G3 counter-clockwise, equal
 /// start and end a full circle).

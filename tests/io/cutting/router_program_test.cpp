@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <map>
@@ -14,13 +15,17 @@
 #include "geometry/toolpath/toolpath.h"
 #include "io/cutting/gcode.h"
 #include "io/design/dxf_loops.h"
+#include "io/design/read_design.h"
 #include "tests/geometry/section/region_shapes.h"
 #include "tests/geometry/toolpath/digitised_worktop.h"
+#include "tests/io/cutting/drill_checks.h"
 #include "tests/io/cutting/interpret.h"
 #include "tests/io/design/nurbs_dxf.h"
+#include "tests/pipeline/cli_harness.h"
 
 using namespace fabmesh;
 using namespace fabmesh::test;
+namespace fs = std::filesystem;
 
 namespace {
 
@@ -700,4 +705,123 @@ TEST_CASE("router program: the digitised example (a CSV of points) is cut in fit
   CHECK(tp.fit_arcs < tp.fit_replaced / 10);
   CHECK(tp.deviation <= 0.5 * region.tolerance);
   CHECK(count_cuts(interpret(encode_gcode(tp, {}), "countertop_digitised.nc")).lines < 60);
+}
+
+namespace {
+
+// countertop_cnc.yaml with three tap holes: 35 mm behind the sink, 28 mm
+// between the sink and the cooktop, 35 mm at the left end; `cnc` goes on in
+// its cnc section. Written to dir/name.
+std::string tap_hole_design(const fs::path& dir, const std::string& name, const std::string& cnc) {
+  std::string text = read_file(testing::example("countertop_cnc.yaml"));
+  const std::string cooktop = "radius: 10}   # cooktop\n";
+  const auto at = text.find(cooktop);
+  REQUIRE(at != std::string::npos);
+  text.insert(at + cooktop.size(),
+              "  - drill: {center: [650, 595], diameter: 35}\n"
+              "  - drill: {center: [1150, 595], diameter: 28}\n"
+              "  - drill: {center: [150, 400], diameter: 35}\n");
+  text += cnc;
+  testing::write_text(dir / name, text);
+  return (dir / name).string();
+}
+
+}  // namespace
+
+TEST_CASE("router program: tap holes are drilled first, one canned cycle each, the routing runs as before",
+          "[io][cutting][gcode][toolpath][countertop][drill]") {
+  const fs::path dir = testing::fresh_dir("router_tap_holes");
+  struct Variant {
+    std::string name, cnc;
+    std::map<int, DrillSpec::Tool> tools;
+    int end_mill = 1;
+    double peck = 0.0, feed = 600.0, retract = 10.0;
+    std::string header;
+  };
+  const std::vector<Variant> variants{
+      // No tool table: the router bit is T1, the 35 mm drill T2, the 28 mm one T3; G81 at the plunge feed.
+      {"numbered.yaml",
+       "",
+       {{1, {ToolType::EndMill, 12}}, {2, {ToolType::Drill, 35}}, {3, {ToolType::Drill, 28}}},
+       1,
+       0.0,
+       600.0,
+       10.0,
+       "(tools: T1 end mill 12 mm, T2 drill 35 mm, T3 drill 28 mm)"},
+      // A table (two 35 mm drills: the lower number drills), pecks, an R plane, an inch program.
+      {"table.yaml",
+       "  tools:\n    - {number: 5, type: end_mill, diameter: 12}\n    - {number: 8, type: drill, diameter: "
+       "35}\n"
+       "    - {number: 7, type: drill, diameter: 35}\n    - {number: 3, type: drill, diameter: 28}\n"
+       "  drill: {peck: 8, retract: 3, feed: 250, spindle: 3000}\n  units: in\n",
+       {{5, {ToolType::EndMill, 12}},
+        {8, {ToolType::Drill, 35}},
+        {7, {ToolType::Drill, 35}},
+        {3, {ToolType::Drill, 28}}},
+       5,
+       8.0,
+       250.0,
+       3.0,
+       "(tools: T5 end mill 0.4724 in, T3 drill 1.1024 in, T7 drill 1.378 in)"},
+  };
+  for (const Variant& v : variants) {
+    INFO(v.name);
+    const std::string path = tap_hole_design(dir, v.name, v.cnc);
+    Design design = read_design(path);
+    design.common.outputs = {{"nc", "test", 0, 0}, {"toolpath_svg", "test", 0, 0}};
+    const fs::path out = dir / (v.name + "-out");
+    const Result r = run_job(design, testing::into(out));
+    const auto& c = std::get<CountertopDesign>(design.body);
+    REQUIRE(std::get<CountertopProducts>(r.products).toolpath);
+    const Toolpath& tp = *std::get<CountertopProducts>(r.products).toolpath;
+    const std::string program = read_file((out / "countertop_cnc.nc").string());
+    // The holes where the design puts them, and what drills them.
+    std::vector<ExpectedDrill> holes;
+    for (std::size_t i = 0; i < c.holes.size(); ++i) {
+      if (c.holes[i].drill)
+        holes.push_back({c.holes[i].drill->center, c.holes[i].drill->diameter, fmt::format("holes[{}]", i)});
+    }
+    REQUIRE(holes.size() == 3);
+    DrillSpec spec;
+    spec.thickness = c.thickness;
+    spec.through = tp.options.depth + tp.options.breakthrough;
+    spec.safe_z = tp.options.safe_z;
+    spec.feed = v.feed;
+    spec.peck = v.peck;
+    spec.rounding = tp.rounding_allowance;
+    spec.tools = v.tools;
+    spec.end_mill = v.end_mill;
+    const CannedCycles cycles = read_canned_cycles(program);
+    check_drilling(cycles, holes, spec);
+    for (const DrillBlock& b : cycles.blocks)
+      CHECK(b.r * (cycles.units == "G20" ? 25.4 : 1.0) == Approx(v.retract).margin(spec.rounding));
+    CHECK(cycles.changes.size() == 3);  // two drills, then the end mill
+    CHECK_THAT(program, Catch::Contains(v.header));
+    CHECK_THAT(program, Catch::Contains(fmt::format("\nM6 T{}\n", v.end_mill)));
+    // The rest of the program, run by CNCjs: the routed loops cut as every program's are.
+    const Trace trace = interpret_around_cycles(program, cycles, v.name + ".nc");
+    ExampleRegion region = load_countertop_example(path);
+    region.holes.erase(
+        std::remove_if(region.holes.begin(), region.holes.end(),
+                       [](const RegionHole& h) { return h.label.find("(drill)") != std::string::npos; }),
+        region.holes.end());
+    REQUIRE(region.holes.size() == 2);
+    REQUIRE(tp.loops.size() == 3);  // the sink, the cooktop, the outline: the tap holes are not routed
+    require_good_program(measure_program(region, tp, trace, 1.0), tp, 1.0);
+    // The estimate counts the cycles: each feeds down from R through the slab.
+    const ToolpathTotals totals = toolpath_totals(tp);
+    CHECK(totals.drilling == Approx(3 * (v.retract + spec.through)));
+    CHECK(totals.minutes == Approx(totals.cutting / tp.options.feed + totals.plunging / tp.options.plunge +
+                                   totals.rapid / tp.options.rapid + totals.drilling / v.feed)
+                                .epsilon(1e-12));
+    // The drawing marks each drilled hole: its circle and a cross.
+    const std::string svg = read_file((out / "countertop_cnc.toolpath.svg").string());
+    for (std::size_t k = 0; k < 3; ++k) {
+      CHECK_THAT(svg, Catch::Contains(fmt::format("<g id=\"drill-{}\"", k)));
+      CHECK_THAT(svg, Catch::Contains(fmt::format("r=\"{}\"/><path d=\"M ", 0.5 * tp.drills[k].diameter)));
+    }
+    // The same design, the same bytes.
+    const Result again = run_job(design, testing::into(dir / (v.name + "-again")));
+    CHECK(read_file((dir / (v.name + "-again") / "countertop_cnc.nc").string()) == program);
+  }
 }

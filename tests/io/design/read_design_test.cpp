@@ -1,5 +1,7 @@
 #include "io/design/read_design.h"
 
+#include <fmt/format.h>
+
 #include <catch2/catch.hpp>
 #include <fstream>
 
@@ -190,4 +192,187 @@ TEST_CASE("design: a polyline can read its points from a CSV file beside the des
   CHECK_THAT(error_of(std::string(kCurveHeader) +
                       "  family: tbezier\n  segments:\n    - polyline: {file: /nonexistent/p.csv}\n"),
              Catch::Contains("cannot open the points file"));
+}
+
+namespace {
+
+// A 1200 x 600 countertop with a sink and three tap holes (35, 28 and 35 mm)
+// behind it, cut on a router; `cnc` goes on in the cnc section.
+std::string tap_hole_design(const std::string& holes_extra = "", const std::string& cnc = "") {
+  return "name: t\nkind: countertop\ntolerance: 0.05\nthickness: 30\n"
+         "outline:\n  family: tbezier\n  closed: true\n  segments:\n"
+         "    - polyline: [[0, 0], [1200, 0], [1200, 600], [0, 600], [0, 0]]\n"
+         "holes:\n"
+         "  - rounded_rect: {center: [600, 330], size: [500, 380], radius: 40}\n"
+         "  - drill: {center: [600, 80], diameter: 35}\n"
+         "  - drill: {center: [300, 80], diameter: 28}\n"
+         "  - drill: {center: [900, 80], diameter: 35}\n" +
+         holes_extra + "cnc:\n  tool_diameter: 12\n" + cnc;
+}
+
+// The FileError that reading `yaml` (as t.yaml) throws: its key, and its
+// message starts at the key's place ("t.yaml:LINE:COLUMN: KEY: ...").
+void check_bad(const std::string& yaml, const std::string& key, const std::string& says) {
+  INFO(yaml);
+  try {
+    parse_design(yaml, "t.yaml");
+    FAIL("accepted");
+  } catch (const FileError& e) {
+    const std::string what = e.what();
+    INFO(what);
+    CHECK(e.location().key == key);
+    CHECK(e.location().line > 0);
+    CHECK(what.rfind("t.yaml:", 0) == 0);
+    CHECK_THAT(what, Catch::Contains(": " + key + ": ") && Catch::Contains(says));
+  }
+}
+
+}  // namespace
+
+TEST_CASE("design: tap holes are circles with a drill, numbered from 2 without a tool table",
+          "[io][design][countertop][drill]") {
+  const Design d = parse_design(tap_hole_design(), "t.yaml");
+  const auto& c = std::get<CountertopDesign>(d.body);
+  REQUIRE(c.holes.size() == 4);
+  CHECK_FALSE(c.holes[0].drill);
+  for (std::size_t i = 1; i < 4; ++i) {
+    INFO(i);
+    REQUIRE(c.holes[i].drill);
+    CHECK(c.holes[i].shape == "drill");
+    CHECK(c.holes[i].curve.key == fmt::format("holes[{}]", i));
+    // The exact circle: one whole ellipse arc of equal semi-axes about the centre.
+    REQUIRE(c.holes[i].curve.segments.size() == 1);
+    const SegmentSpec& s = c.holes[i].curve.segments[0];
+    CHECK(s.kind == SegmentKind::EllipseArc);
+    CHECK(s.ellipse.a == 0.5 * c.holes[i].drill->diameter);
+    CHECK(s.ellipse.b == s.ellipse.a);
+    CHECK(s.ellipse.center == c.holes[i].drill->center);
+    CHECK(s.ellipse.to_deg - s.ellipse.from_deg == 360.0);
+  }
+  // Each diameter the next number from 2, in order of first use.
+  CHECK(c.holes[1].drill->tool == 2);
+  CHECK(c.holes[2].drill->tool == 3);
+  CHECK(c.holes[3].drill->tool == 2);
+  REQUIRE(c.cnc);
+  CHECK(c.cnc->options.tools.empty());
+  CHECK(end_mill_number(c.cnc->options) == 1);
+  CHECK(c.cnc->options.drill.peck == 0.0);
+  CHECK(drill_feed(c.cnc->options) == c.cnc->options.plunge);
+  CHECK(drill_retract(c.cnc->options) == c.cnc->options.safe_z);
+  // Without a cnc section a tap hole is a cut-out of the files only.
+  std::string plain = tap_hole_design();
+  plain.erase(plain.find("cnc:"));
+  const Design p = parse_design(plain, "t.yaml");
+  CHECK(std::get<CountertopDesign>(p.body).holes[1].drill->tool == 0);
+}
+
+TEST_CASE("design: a tool table gives the drills and the router bit, the drill cycle its options",
+          "[io][design][countertop][drill]") {
+  const std::string table =
+      "  tools:\n"
+      "    - {number: 4, type: drill, diameter: 35}\n"
+      "    - {number: 3, type: drill, diameter: 35}\n"
+      "    - {number: 9, type: drill, diameter: 28}\n"
+      "    - {number: 6, type: end_mill, diameter: 12}\n"
+      "  drill: {peck: 8, retract: 2, feed: 250, spindle: 3000}\n";
+  const Design d = parse_design(tap_hole_design("", table), "t.yaml");
+  const auto& c = std::get<CountertopDesign>(d.body);
+  CHECK(c.holes[1].drill->tool == 3);  // the lowest-numbered drill of its diameter
+  CHECK(c.holes[2].drill->tool == 9);
+  CHECK(c.holes[3].drill->tool == 3);
+  const CncOptions& o = c.cnc->options;
+  REQUIRE(o.tools.size() == 4);
+  CHECK(o.tools[3].type == ToolType::EndMill);
+  CHECK(end_mill_number(o) == 6);
+  CHECK(o.drill.peck == 8.0);
+  CHECK(drill_retract(o) == 2.0);
+  CHECK(drill_feed(o) == 250.0);
+  CHECK(drill_spindle(o) == 3000.0);
+  // A hole may name its drill; the table's end mill is the bit when tool_diameter is not given.
+  std::string named = tap_hole_design("", table);
+  named.replace(named.find("center: [900, 80], diameter: 35}"), 32,
+                "center: [900, 80], diameter: 35, tool: 4}");
+  named.replace(named.find("  tool_diameter: 12\n"), 20, "");
+  const Design n = parse_design(named, "t.yaml");
+  CHECK(std::get<CountertopDesign>(n.body).holes[3].drill->tool == 4);
+  CHECK(std::get<CountertopDesign>(n.body).cnc->options.tool_diameter == 12.0);
+}
+
+TEST_CASE("design: bad tap holes and tool tables are FileErrors at their key",
+          "[io][design][countertop][drill][errors]") {
+  const std::string drills =
+      "  tools: [{number: 1, type: end_mill, diameter: 12}, {number: 2, type: drill, diameter: 35}, "
+      "{number: 3, type: drill, diameter: 28}]\n";
+  // A diameter not > 0.
+  {
+    std::string y = tap_hole_design();
+    y.replace(y.find("diameter: 28"), 12, "diameter: 0");
+    check_bad(y, "holes[2].drill.diameter", "must be > 0");
+  }
+  // No drill of the hole's diameter in the table.
+  {
+    std::string y = tap_hole_design("  - drill: {center: [100, 500], diameter: 30}\n", drills);
+    check_bad(y, "holes[4].drill.diameter", "no drill of that diameter (drills: T2 35, T3 28)");
+  }
+  // Two tools of one number; a tool diameter not > 0; a type neither end_mill nor drill.
+  check_bad(tap_hole_design("",
+                            "  tools: [{number: 2, type: drill, diameter: 35}, {number: 2, type: drill, "
+                            "diameter: 28}]\n"),
+            "cnc.tools[1].number", "cnc.tools[0] has that number already");
+  check_bad(tap_hole_design("",
+                            "  tools: [{number: 2, type: drill, diameter: 35}, {number: 3, type: drill, "
+                            "diameter: -28}]\n"),
+            "cnc.tools[1].diameter", "must be > 0");
+  check_bad(tap_hole_design("",
+                            "  tools: [{number: 2, type: drill, diameter: 35}, {number: 3, type: saw, "
+                            "diameter: 28}]\n"),
+            "cnc.tools[1].type", "'saw' is not one of: end_mill, drill");
+  // The end mill is the router bit: of its diameter, and only one.
+  check_bad(tap_hole_design("",
+                            "  tools: [{number: 1, type: end_mill, diameter: 10}, {number: 2, type: drill, "
+                            "diameter: 35}, {number: 3, type: drill, diameter: 28}]\n"),
+            "cnc.tools[0].diameter", "cnc.tool_diameter = 12");
+  check_bad(tap_hole_design("",
+                            "  tools: [{number: 1, type: end_mill, diameter: 12}, {number: 5, type: "
+                            "end_mill, diameter: 12}]\n"),
+            "cnc.tools[1].type", "the router cut uses one bit");
+  // With no end mill listed, tool 1 is the router bit's.
+  check_bad(tap_hole_design("",
+                            "  tools: [{number: 1, type: drill, diameter: 35}, {number: 3, type: drill, "
+                            "diameter: 28}]\n"),
+            "cnc.tools[0].number", "the router bit is tool 1");
+  // A named drill larger (or smaller) than the hole it drills, or the end mill.
+  {
+    const std::string big =
+        "  tools: [{number: 2, type: drill, diameter: 35}, {number: 3, type: drill, diameter: 28}, "
+        "{number: 7, type: drill, diameter: 40}]\n";
+    std::string y = tap_hole_design("", big);
+    y.replace(y.find("diameter: 35}\n  - drill: {center: [300"), 13, "diameter: 35, tool: 7}");
+    check_bad(y, "holes[1].drill.tool", "larger than the hole it drills");
+    std::string small = tap_hole_design("", big);
+    small.replace(small.find("diameter: 35}\n  - drill: {center: [300"), 13, "diameter: 35, tool: 3}");
+    check_bad(small, "holes[1].drill.tool", "smaller than the hole (35): the hole would come out 28");
+    std::string mill = tap_hole_design("", drills);
+    mill.replace(mill.find("diameter: 28}"), 13, "diameter: 28, tool: 1}");
+    check_bad(mill, "holes[2].drill.tool", "the end mill");
+  }
+  // A tool number with no table to number it in, or with no cnc section at all.
+  {
+    std::string y = tap_hole_design();
+    y.replace(y.find("diameter: 28}"), 13, "diameter: 28, tool: 3}");
+    check_bad(y, "holes[2].drill.tool", "gives no tools");
+    y.erase(y.find("cnc:"));
+    check_bad(y, "holes[2].drill.tool", "the design has no cnc section");
+  }
+  // Tabs on a tap hole; a drill with an unknown key or no diameter.
+  check_bad(tap_hole_design("  - drill: {center: [100, 500], diameter: 35}\n    tabs: {count: 2}\n"),
+            "holes[4].tabs", "a drilled hole has no tabs");
+  check_bad(tap_hole_design("  - drill: {center: [100, 500], radius: 17.5}\n"), "holes[4].drill.radius",
+            "unknown key 'radius'");
+  check_bad(tap_hole_design("  - drill: {center: [100, 500]}\n"), "holes[4].drill", "diameter");
+  // The drill cycle's options.
+  check_bad(tap_hole_design("", "  drill: {peck: -1}\n"), "cnc.drill.peck", "must be >= 0");
+  check_bad(tap_hole_design("", "  drill: {retract: 20}\n"), "cnc.drill.retract", "at most cnc.safe_z");
+  check_bad(tap_hole_design("", "  drill: {feed: 0}\n"), "cnc.drill.feed", "must be > 0");
+  check_bad(tap_hole_design("", "  drill: {dwell: 1}\n"), "cnc.drill.dwell", "unknown key 'dwell'");
 }
