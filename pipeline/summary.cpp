@@ -42,13 +42,14 @@ void print_build_facts(const Facts& facts, const std::string& u, std::ostream& o
       for (const Facts& p : std::get<std::vector<Facts>>(*programs))
         drills += p.contains("drills") ? static_cast<int>(p.number("drills")) : 0;
     }
+    const std::size_t pieces = std::get<std::vector<Facts>>(*k.find("pieces")).size();
     const std::size_t seams = std::get<std::vector<Facts>>(*k.find("seams")).size();
     const int slabs = static_cast<int>(k.number("slabs"));
     out << fmt::format(
-        "  kitchen: {} pieces at {} seam{} on {} slab{} (no fewer than {} can hold them); usable area "
+        "  kitchen: {} piece{} at {} seam{} on {} slab{} (no fewer than {} can hold them); usable area "
         "used {}{}\n",
-        std::get<std::vector<Facts>>(*k.find("pieces")).size(), seams, seams == 1 ? "" : "s", slabs,
-        slabs == 1 ? "" : "s", static_cast<int>(k.number("lower_bound")), used,
+        pieces, pieces == 1 ? "" : "s", seams, seams == 1 ? "" : "s", slabs, slabs == 1 ? "" : "s",
+        static_cast<int>(k.number("lower_bound")), used,
         drills == 0 ? std::string()
                     : fmt::format("; {} tap hole{} drilled first", drills, drills == 1 ? "" : "s"));
   }

@@ -126,9 +126,9 @@ Sheet draw(const std::vector<Sheet>& pieces, const LayoutOptions& options, std::
   }
   sheet.texts.push_back(
       {"LABELS", Vec2(0.0, top - h), h,
-       fmt::format("{}: shop drawing, {} pieces, lengths in {}. Edges: exposed black, walls "
+       fmt::format("{}: shop drawing, {} piece{}, lengths in {}. Edges: exposed black, walls "
                    "green (WALLS), seams blue (SEAMS)",
-                   options.title, pieces.size(), options.units)});
+                   options.title, pieces.size(), pieces.size() == 1 ? "" : "s", options.units)});
   return sheet;
 }
 
