@@ -8,6 +8,7 @@
 
 #include "geometry/core/units.h"
 #include "io/cutting/svg_writing.h"
+#include "io/pictures/markup.h"
 
 namespace fabmesh {
 namespace {
@@ -25,33 +26,6 @@ void grow(Vec2& lo, Vec2& hi, const Vec2& p) {
   hi = hi.cwiseMax(p);
 }
 
-// XML text: the five characters markup reserves, escaped.
-std::string xml_text(const std::string& s) {
-  std::string out;
-  for (const char c : s) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      case '\'':
-        out += "&apos;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
-
 std::string svg_text(const Vec2& at, double height, double angle_deg, bool centred, const std::string& text,
                      const std::string& colour) {
   const std::string turn = angle_deg == 0.0
@@ -60,7 +34,7 @@ std::string svg_text(const Vec2& at, double height, double angle_deg, bool centr
                                              svg_number(at.x()) + " " + svg_number(-at.y()));
   return fmt::format("<text x=\"{}\" y=\"{}\" font-size=\"{}\" fill=\"{}\" stroke=\"none\"{}{}>{}</text>\n",
                      svg_number(at.x()), svg_number(-at.y()), svg_number(height), colour,
-                     centred ? " text-anchor=\"middle\"" : "", turn, xml_text(text));
+                     centred ? " text-anchor=\"middle\"" : "", turn, escape_markup(text));
 }
 
 }  // namespace
@@ -168,7 +142,7 @@ std::string encode_sheet_svg(const Sheet& sheet, const std::string& units, const
   const auto [lo, hi] = sheet_bounds(sheet);
   const double h = sheet.text_height;
   std::string svg = svg_start(lo, hi, 2.0 * h, units);
-  svg += fmt::format("<title>{}</title>\n", xml_text(title));
+  svg += fmt::format("<title>{}</title>\n", escape_markup(title));
   for (const SheetLayer& layer : sheet.layers) {
     std::string body;
     const double stroke = layer.weight * h / 8.0;

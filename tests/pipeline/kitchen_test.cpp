@@ -77,6 +77,32 @@ double from_material(const Placed& piece, const Vec2& c) {
   return inside ? -d : d;
 }
 
+// A design edit that must be bad input: `find` replaced by `replace` in an
+// example, exit 2 naming `key` at its place and saying `says`, nothing written.
+struct BadEdit {
+  const char* find;
+  const char* replace;
+  const char* key;
+  const char* says;
+};
+
+void check_bad_edits(const fs::path& dir, const std::string& example_name, const std::string& prefix,
+                     const std::vector<BadEdit>& cases) {
+  int n = 0;
+  for (const BadEdit& c : cases) {
+    const std::string name = fmt::format("{}{}.yaml", prefix, n++);
+    const std::string path = edited_example(dir, example_name, c.find, c.replace, name);
+    const fs::path out = dir / (name + "-out");
+    std::string text;
+    INFO(c.replace);
+    CHECK(run_cli({"run", path, "-o", out.string() + "/"}, &text) == 2);
+    INFO(text);
+    CHECK(names_place(text, path, c.key));
+    CHECK(text.find(c.says) != std::string::npos);
+    CHECK((!fs::exists(out) || fs::is_empty(out)));
+  }
+}
+
 }  // namespace
 
 TEST_CASE("kitchen: the L's pieces partition the top, each a valid slab, written one file each",
@@ -272,13 +298,7 @@ TEST_CASE("kitchen: the same design writes the same bytes", "[pipeline][kitchen]
 
 TEST_CASE("kitchen bad input: exit 2 naming the key, nothing written", "[pipeline][kitchen]") {
   const fs::path dir = fresh_dir("kitchen_bad");
-  struct Case {
-    const char* find;
-    const char* replace;
-    const char* key;
-    const char* says;
-  };
-  const Case cases[] = {
+  const std::vector<BadEdit> cases = {
       {"\nseams: auto", "\nseams: [{at: [1900, 0], direction: [0, 1]}]", "seams[0]", "runs through holes[0]"},
       {"\nseams: auto",
        "\nseams: [{at: [650, 650], direction: [0, -1]}, {at: [650, 300], direction: [0, 1]}]", "seams[1].at",
@@ -294,19 +314,7 @@ TEST_CASE("kitchen bad input: exit 2 naming the key, nothing written", "[pipelin
        "{height: 100}\n",
        "", "outline.segments[0].edge", "needs a slab"},
   };
-  int n = 0;
-  for (const Case& c : cases) {
-    const std::string name = fmt::format("bad{}.yaml", n++);
-    const std::string path = edited_example(dir, "kitchen_l.yaml", c.find, c.replace, name);
-    const fs::path out = dir / (name + "-out");
-    std::string text;
-    INFO(c.replace);
-    CHECK(run_cli({"run", path, "-o", out.string() + "/"}, &text) == 2);
-    INFO(text);
-    CHECK(names_place(text, path, c.key));
-    CHECK(text.find(c.says) != std::string::npos);
-    CHECK((!fs::exists(out) || fs::is_empty(out)));
-  }
+  check_bad_edits(dir, "kitchen_l.yaml", "bad", cases);
 }
 
 TEST_CASE("kitchen: each piece's exact DXF passes ezdxf's audit and keeps its arcs", "[pipeline][kitchen]") {
@@ -506,13 +514,7 @@ TEST_CASE("kitchen: walls from the template's WALLS layer mark the pieces' edges
              "  0\nLINE\n  5\nFFF0\n  8\nWALLS\n 10\n1000.0\n 20\n1000.0\n 30\n0.0\n 11\n1500.0\n "
              "21\n1000.0\n 31\n0.0\n");
   write_file_atomically((dir / "stray_wall.dxf").string(), dxf);
-  struct Case {
-    const char* find;
-    const char* replace;
-    const char* key;
-    const char* says;
-  };
-  const Case cases[] = {
+  const std::vector<BadEdit> cases = {
       {"layer: OUTLINE}", "layer: OUTLINE, walls: NOPE}", "outline.dxf", "layer NOPE: no LINE"},
       {"kitchen_u_template.dxf, layer: OUTLINE}", "stray_wall.dxf, layer: OUTLINE}", "outline.dxf",
        "LINE #FFF0 from (1000, 1000) to (1500, 1000) lies on no line of the outline"},
@@ -520,18 +522,8 @@ TEST_CASE("kitchen: walls from the template's WALLS layer mark the pieces' edges
       {"holes:\n", "holes:\n  - outline: {dxf: kitchen_u_template.dxf, layer: OUTLINE, walls: WALLS}\n",
        "holes[0].outline.walls", "not of a cut-out"},
   };
-  int n = 0;
-  for (const Case& c : cases) {
-    const std::string name = fmt::format("walls{}.yaml", n++);
-    const std::string path = edited_example(dir, "kitchen_u.yaml", c.find, c.replace, name);
-    std::string text;
-    INFO(c.replace);
-    CHECK(run_cli({"run", path, "-o", (dir / (name + "-out")).string() + "/"}, &text) == 2);
-    INFO(text);
-    CHECK(names_place(text, path, c.key));
-    CHECK(text.find(c.says) != std::string::npos);
-    CHECK(!fs::exists(dir / (name + "-out")));
-  }
+  check_bad_edits(dir, "kitchen_u.yaml", "walls", cases);
+  for (std::size_t i = 0; i < cases.size(); ++i) CHECK(!fs::exists(dir / fmt::format("walls{}.yaml-out", i)));
   // `walls` marks a kitchen's edges: not without a slab.
   const std::string top = read_file(example("kitchen_u.yaml"));
   const std::string plain = top.substr(0, top.find("slab:")) + "outputs: [stl]\n";
