@@ -88,7 +88,8 @@ Result build(const CountertopDesign& design, const BuildContext& context) {
   const BuiltCurve& outline = out.curves.front().curve;
   context.watch.lap("curve");
   RegionOptions ro;
-  ro.tolerance = context.tolerance;
+  // A profiled edge's arcs are sampled too: the loops get half the tolerance.
+  ro.tolerance = design.edges.kind == EdgeProfileKind::Square ? context.tolerance : 0.5 * context.tolerance;
   ro.max_points = design.max_triangles / 2;  // every loop point makes two wall triangles
   ro.outline_key = design.outline.key;
   const Region2 region = within_share(ro.max_points, design.max_triangles, "the loops' points",
@@ -120,8 +121,17 @@ Result build(const CountertopDesign& design, const BuildContext& context) {
   product.mesh = to_soup(slab.mesh);
   product.proofs.embedding = slab.proof;    // the region is simple and the slab a prism over it
   product.proofs.topology = slab.topology;  // extrude's pairing of every face's sides
-  out.parts.push_back(std::move(product));
   out.max_deviation = region.max_deviation;
+  if (design.edges.kind != EdgeProfileKind::Square) {
+    // Edges profiled: the top is not a prism; every outline edge is exposed
+    // unless the kitchen's outline marks it a wall.
+    ProfiledPlan plan{region.outer, {}, region.holes, context.common.name};
+    for (const EdgeKind e : top_edge_kinds(design, region, outline.curve))
+      plan.exposed.push_back(e == EdgeKind::Exposed);
+    product.mesh = profiled_mesh(design, plan, design.thickness, region.max_deviation, context, out);
+    product.proofs = {};
+  }
+  out.parts.push_back(std::move(product));
   out.facts.set("holes", holes.size())
       .set("outline_points", region.outer.size())
       .set("boundary_points", boundary_points)
@@ -205,6 +215,11 @@ Result build(const CountertopDesign& design, const BuildContext& context) {
   products.solid.form = ExactSolid::Form::Extrusion;
   products.solid.height = design.thickness;
   for (const NamedBuiltCurve& c : out.curves) products.solid.loops.push_back(exact_pieces(c.curve.curve));
+  products.solid.edges = design.edges;
+  for (std::size_t i = 0; i < products.solid.loops.front().size(); ++i) {
+    const bool wall = design.kitchen && i < design.outline.segments.size() && design.outline.segments[i].wall;
+    products.solid.profiled.push_back(!wall);
+  }
   out.products = std::move(products);
   return out;
 }

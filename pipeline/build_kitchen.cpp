@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 
+#include "geometry/mesh/edge_profile.h"
 #include "geometry/mesh/halfedge_mesh.h"
 #include "geometry/mesh/slab.h"
 #include "geometry/sampling/cut_loop.h"
@@ -36,6 +37,25 @@ Region2 piece_region(const KitchenPiece& piece, const Region2& top, const std::s
   r.reversed.assign(1 + piece.holes.size(), false);
   r.proof = piece.strip ? "a backsplash strip: a rectangle" : proof;
   return r;
+}
+
+// The kind of the piece's edge nearest `p` (a point of its exact outline,
+// which the edges follow within the build's deviation).
+EdgeKind kind_near(const KitchenPiece& piece, const Vec2& p) {
+  double best = std::numeric_limits<double>::infinity();
+  EdgeKind kind = EdgeKind::Exposed;
+  const std::size_t n = piece.outer.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec2& a = piece.outer[i];
+    const Vec2 ab = piece.outer[(i + 1) % n] - a;
+    const double t = std::clamp((p - a).dot(ab) / std::max(ab.squaredNorm(), 1e-300), 0.0, 1.0);
+    const double d = (a + t * ab - p).squaredNorm();
+    if (d < best) {
+      best = d;
+      kind = piece.edges[i];
+    }
+  }
+  return kind;
 }
 
 // Appends `from`'s loops and moves to `into` (one program for several pieces).
@@ -133,6 +153,35 @@ void limit_entry(CncOptions& cnc, double spacing, double deviation, std::vector<
 
 }  // namespace
 
+std::vector<EdgeKind> top_edge_kinds(const CountertopDesign& design, const Region2& region,
+                                     const CompositeCurve& outline) {
+  std::vector<bool> wall_segment;
+  if (design.kitchen && design.outline.segments.size() == outline.size()) {
+    for (const SegmentSpec& s : design.outline.segments) wall_segment.push_back(s.wall);
+  }
+  return outline_edge_kinds(region, wall_segment);
+}
+
+TriangleSoup profiled_mesh(const CountertopDesign& design, const ProfiledPlan& plan, double thickness,
+                           double deviation, const BuildContext& context, Result& out) {
+  // The rings are the sampled plan eroded exactly; between rings the wall
+  // is a chord of the profile's arcs, within the sagitta of them: the
+  // profile gets what the loops left of the tolerance (half or more).
+  ProfiledSlab slab = build_profiled_slab(plan, design.edges, thickness,
+                                          std::max(context.tolerance - deviation, 0.5 * context.tolerance),
+                                          design.max_triangles);
+  out.max_deviation = std::max(out.max_deviation, deviation + slab.sagitta);
+  if (!out.facts.contains("edges")) {
+    Facts f;
+    f.set("exposed", to_string(design.edges.kind))
+        .set("radius", design.edges.radius)
+        .set("rings", slab.levels)
+        .set("sagitta", slab.sagitta);
+    out.facts.set("edges", std::move(f));
+  }
+  return std::move(slab.mesh);
+}
+
 std::vector<Facts> tool_facts(const Toolpath& t) {
   std::vector<Facts> tools;
   Facts bit;
@@ -171,12 +220,7 @@ KitchenProducts build_kitchen(const CountertopDesign& design, const Region2& reg
   SlabFit fit{nest_stock.length - 2.0 * nest_stock.margin, nest_stock.width - 2.0 * nest_stock.margin,
               nest_stock.grain_along};
   fit.no_inside_corners = design.cnc && design.cnc->options.relief == CornerRelief::None;
-  // Walls: the outline's segments marked `edge: wall`.
-  std::vector<bool> wall_segment;
-  if (design.outline.segments.size() == outline.size()) {
-    for (const SegmentSpec& s : design.outline.segments) wall_segment.push_back(s.wall);
-  }
-  const std::vector<EdgeKind> kinds = outline_edge_kinds(region, wall_segment);
+  const std::vector<EdgeKind> kinds = top_edge_kinds(design, region, outline);
   k.split =
       kitchen.auto_seams ? auto_split(region, fit, so, kinds) : split_top(region, kitchen.seams, so, kinds);
   if (kitchen.backsplash_height > 0.0) {
@@ -197,13 +241,19 @@ KitchenProducts build_kitchen(const CountertopDesign& design, const Region2& reg
   for (const KitchenPiece& piece : k.split.pieces) {
     SlabOptions options = slab_options;
     if (piece.strip) options.thickness = kitchen.backsplash_thickness;
-    const SlabMesh slab = build_slab(piece_region(piece, region, k.split.proof), options);
     Part part;
     part.name = piece.name;
     part.role = PartRole::Piece;
-    part.mesh = to_soup(slab.mesh);
-    part.proofs.embedding = slab.proof;
-    part.proofs.topology = slab.topology;
+    if (design.edges.kind != EdgeProfileKind::Square && !piece.strip) {
+      ProfiledPlan plan{piece.outer, {}, piece.holes, piece.name};
+      for (const EdgeKind e : piece.edges) plan.exposed.push_back(e == EdgeKind::Exposed);
+      part.mesh = profiled_mesh(design, plan, options.thickness, region.max_deviation, context, out);
+    } else {
+      const SlabMesh slab = build_slab(piece_region(piece, region, k.split.proof), options);
+      part.mesh = to_soup(slab.mesh);
+      part.proofs.embedding = slab.proof;
+      part.proofs.topology = slab.topology;
+    }
     out.parts.push_back(std::move(part));
     nest.push_back({piece.name, piece.outer});
   }
@@ -218,6 +268,11 @@ KitchenProducts build_kitchen(const CountertopDesign& design, const Region2& reg
       solid.form = ExactSolid::Form::Extrusion;
       solid.height = piece.strip ? kitchen.backsplash_thickness : design.thickness;
       solid.loops.push_back(exact_pieces(boundary));
+      if (!piece.strip) {
+        solid.edges = design.edges;
+        for (const ExactPiece& p : solid.loops.front())
+          solid.profiled.push_back(kind_near(piece, p.segment.point(0.5)) == EdgeKind::Exposed);
+      }
       for (const std::size_t h : piece.hole_index) solid.loops.push_back(exact_pieces(holes[h].curve));
       exact.solid = std::move(solid);
       if (context.wants_cutting) {

@@ -14,6 +14,21 @@ namespace fabmesh {
 /// each drill (`number`, `type`, `diameter`).
 std::vector<Facts> tool_facts(const Toolpath& program);
 
+/// The edge kinds of the top's outer loop: walls where a kitchen's outline
+/// marks its segments (`edge: wall`, a DXF template's WALLS layer), exposed
+/// elsewhere.
+std::vector<EdgeKind> top_edge_kinds(const CountertopDesign& design, const Region2& region,
+                                     const CompositeCurve& outline);
+
+/// A top's or a piece's mesh with its exposed edges profiled as
+/// design.edges says (build_profiled_slab within what the plan's
+/// `deviation` from its exact curves leaves of the build's tolerance), and the
+/// profile's facts under `edges` in `out` (kind, radius, rings, the chords'
+/// sagitta). Validated in full like any mesh without a construction proof.
+/// \throw GeometryError at `edges.radius` (the profile does not fit), BudgetError
+TriangleSoup profiled_mesh(const CountertopDesign& design, const ProfiledPlan& plan, double thickness,
+                           double deviation, const BuildContext& context, Result& out);
+
 /// Adds the pieces to `out.parts` (after the whole top, which stays the
 /// product), their facts under `kitchen`, and returns the layout.
 /// \throw GeometryError at `seams`, `seams[i]` or `slab` (a piece that fits

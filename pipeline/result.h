@@ -24,6 +24,7 @@
 #include "geometry/fairing/build_curve.h"
 #include "geometry/kitchen/nest.h"
 #include "geometry/kitchen/pieces.h"
+#include "geometry/mesh/edge_profile.h"
 #include "geometry/sampling/cut_loop.h"
 #include "geometry/sampling/offset_bezier.h"
 #include "geometry/surfaces/bspline_shell.h"
@@ -80,6 +81,11 @@ struct ExactSolid {
   /// shell's inner wall as arcs of the profile's offset.
   std::vector<std::vector<ExactPiece>> loops;
   double height = 0.0;
+  /// Extrusion: the profile of the top (and bottom) edges over the pieces
+  /// of loops[0] flagged in `profiled` (one flag per piece), as fillets or
+  /// chamfers; Square or no flag set: none.
+  EdgeProfile edges;
+  std::vector<bool> profiled;
 };
 
 /// A vessel's slip-casting mould as exact solids (what `mould_step` writes):

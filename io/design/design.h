@@ -15,6 +15,7 @@
 #include "geometry/curves/curve_spec.h"
 #include "geometry/kitchen/nest.h"
 #include "geometry/kitchen/pieces.h"
+#include "geometry/mesh/edge_profile.h"
 #include "geometry/mesh/thicken.h"
 #include "geometry/mould/mould_options.h"
 #include "geometry/section/vessel_section.h"
@@ -189,6 +190,10 @@ struct CountertopDesign {
   std::size_t max_triangles = kDefaultMaxTriangles;  ///< budget (key `max_triangles`)
   std::optional<CncDesign> cnc;
   std::optional<KitchenDesign> kitchen;  ///< with a `slab`: the top is cut into pieces and nested
+  /// The exposed top edges' profile (key `edges: {exposed, radius}`):
+  /// every outline edge of a plain top, the pieces' exposed edges of a
+  /// kitchen; cut-outs are cut square. Square: none.
+  EdgeProfile edges;
 };
 
 /// kind: surface. Patches of a G0/G1/G2-joined network of generalized

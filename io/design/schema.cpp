@@ -20,7 +20,7 @@ std::vector<KeyGroup> make_groups() {
       {"curve", with_common({"curve"})},
       {"vessel", with_common({"profile", "body", "max_triangles", "shrinkage", "mould"})},
       {"countertop", with_common({"outline", "holes", "thickness", "max_edge", "max_triangles", "cnc", "slab",
-                                  "seams", "seam_clearance", "backsplash"})},
+                                  "seams", "seam_clearance", "backsplash", "edges"})},
       {"surface", with_common({"patches", "thickness", "thicken", "max_triangles"})},
       // Vessels.
       {"vessel.body", {"mode", "wall", "base", "rim"}},
@@ -47,6 +47,7 @@ std::vector<KeyGroup> make_groups() {
       {"countertop.slab.defects[].circle", {"center", "radius"}},
       {"countertop.seams[]", {"at", "direction"}},
       {"countertop.backsplash", {"height", "thickness"}},
+      {"countertop.edges", {"exposed", "radius"}},
       // Loops from a DXF drawing (an outline, or an outline hole).
       {"dxf_outline", {"dxf", "layer", "max_gap", "walls"}},
       // Surfaces.

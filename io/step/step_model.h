@@ -72,11 +72,22 @@ struct StepHemisphere {
   bool added = true;
 };
 
+/// Extrusion: the top edges (and the bottom ones) over the curves of
+/// loops[0] flagged in `profiled` (one flag per curve) rounded with fillets
+/// of radius `top` (`bottom`; 0: none), or chamfered with legs `top`.
+struct StepEdgeRounds {
+  double top = 0.0;
+  double bottom = 0.0;
+  bool chamfer = false;
+  std::vector<bool> profiled;
+};
+
 struct StepBody {
   std::string name;  ///< the product's name in the file
   StepForm form = StepForm::Extrusion;
   std::vector<StepLoop> loops;
   double height = 0.0;                      ///< Extrusion: > 0
+  StepEdgeRounds rounds;                    ///< Extrusion
   StepBlock block;                          ///< Carved
   std::vector<StepHemisphere> hemispheres;  ///< Carved
   std::vector<StepSurface> surfaces;        ///< Sheet, Closed

@@ -6,6 +6,8 @@
 // statics: every call here holds one lock, and sets every setting it relies on.
 
 #include <APIHeaderSection_MakeHeader.hxx>
+#include <BRepAdaptor_Curve.hxx>
+#include <BRepAlgoAPI_Common.hxx>
 #include <BRepAlgoAPI_Cut.hxx>
 #include <BRepAlgoAPI_Fuse.hxx>
 #include <BRepBuilderAPI_MakeEdge.hxx>
@@ -15,10 +17,13 @@
 #include <BRepBuilderAPI_MakeVertex.hxx>
 #include <BRepBuilderAPI_MakeWire.hxx>
 #include <BRepBuilderAPI_Sewing.hxx>
+#include <BRepBuilderAPI_Transform.hxx>
 #include <BRepCheck.hxx>
 #include <BRepCheck_Analyzer.hxx>
 #include <BRepCheck_Result.hxx>
 #include <BRepExtrema_DistShapeShape.hxx>
+#include <BRepFilletAPI_MakeChamfer.hxx>
+#include <BRepFilletAPI_MakeFillet.hxx>
 #include <BRepGProp.hxx>
 #include <BRepLib.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
@@ -41,6 +46,7 @@
 #include <STEPControl_Reader.hxx>
 #include <STEPControl_Writer.hxx>
 #include <ShapeFix_Face.hxx>
+#include <ShapeUpgrade_UnifySameDomain.hxx>
 #include <Standard_Failure.hxx>
 #include <StepAP214.hxx>
 #include <StepAP214_Protocol.hxx>
@@ -66,12 +72,16 @@
 #include <TopoDS_Shell.hxx>
 #include <TopoDS_Wire.hxx>
 #include <UnitsMethods.hxx>
+#include <algorithm>
+#include <cmath>
 #include <gp_Ax1.hxx>
 #include <gp_Ax2.hxx>
 #include <gp_Pln.hxx>
+#include <gp_Trsf.hxx>
 #include <mutex>
 #include <sstream>
 #include <stdexcept>
+#include <vector>
 
 #include "io/step/step_model.h"
 
@@ -402,6 +412,117 @@ TopoDS_Shape make_closed(const StepBody& body) {
   return out;
 }
 
+// The point half way along an edge's parameter range (the same on the
+// curve it was made from and on its copy at the top of a prism).
+gp_Pnt edge_middle(const TopoDS_Edge& e) {
+  const BRepAdaptor_Curve c(e);
+  return c.Value(0.5 * (c.FirstParameter() + c.LastParameter()));
+}
+
+// The plan face extruded from z0 to z1.
+TopoDS_Shape prism_between(const TopoDS_Face& face, double z0, double z1) {
+  gp_Trsf lift;
+  lift.SetTranslation(gp_Vec(0.0, 0.0, z0));
+  const TopoDS_Shape base = BRepBuilderAPI_Transform(face, lift, Standard_True).Shape();
+  BRepPrimAPI_MakePrism prism(base, gp_Vec(0.0, 0.0, z1 - z0));
+  if (!prism.IsDone()) throw std::runtime_error("the extrusion failed");
+  return prism.Shape();
+}
+
+// The edges of `prism` (from z0 to z1) over the profiled curves of the
+// outer loop, at its top (z1) or its bottom (z0), each found by its middle.
+std::vector<TopoDS_Edge> profiled_edges(const TopoDS_Shape& prism, const StepBody& body, double z) {
+  const StepEdgeRounds& r = body.rounds;
+  const StepLoop& outer = body.loops.at(0);
+  if (r.profiled.size() != outer.curves.size())
+    throw std::runtime_error("edge profile: one flag per curve of the outline is needed");
+  std::vector<gp_Pnt> middles;
+  double size = body.height;
+  for (std::size_t i = 0; i < outer.curves.size(); ++i) {
+    for (const Vec2& p : outer.curves[i].poles) size = std::max({size, std::abs(p.x()), std::abs(p.y())});
+    if (r.profiled[i]) middles.push_back(edge_middle(make_edge(outer.curves[i], body.form)));
+  }
+  const double tolerance = 1e-7 * std::max(1.0, size);
+  std::vector<TopoDS_Edge> found;
+  TopTools_IndexedMapOfShape edges;
+  TopExp::MapShapes(prism, TopAbs_EDGE, edges);
+  for (int i = 1; i <= edges.Extent(); ++i) {
+    const TopoDS_Edge& e = TopoDS::Edge(edges(i));
+    if (BRep_Tool::Degenerated(e)) continue;
+    const gp_Pnt m = edge_middle(e);
+    if (std::abs(m.Z() - z) > tolerance) continue;
+    for (const gp_Pnt& c : middles) {
+      if (std::hypot(m.X() - c.X(), m.Y() - c.Y()) > tolerance) continue;
+      found.push_back(e);
+      break;
+    }
+  }
+  if (found.size() != middles.size()) {
+    throw std::runtime_error("edge profile: " + std::to_string(found.size()) +
+                             " edges found at z = " + std::to_string(z) + " for " +
+                             std::to_string(middles.size()) + " profiled curves");
+  }
+  return found;
+}
+
+// `prism` (from z0 to z1) with its profiled top edges rounded (or
+// chamfered) by `top` and its bottom ones rounded by `bottom` (0: none).
+TopoDS_Shape round_edges(const TopoDS_Shape& prism, const StepBody& body, double z0, double z1, double top,
+                         double bottom) {
+  if (body.rounds.chamfer) {
+    BRepFilletAPI_MakeChamfer chamfer(prism);
+    for (const TopoDS_Edge& e : profiled_edges(prism, body, z1)) chamfer.Add(top, e);
+    chamfer.Build();
+    if (!chamfer.IsDone())
+      throw std::runtime_error("edge profile: OpenCASCADE could not bevel the top edges");
+    return chamfer.Shape();
+  }
+  BRepFilletAPI_MakeFillet fillet(prism);
+  if (top > 0.0) {
+    for (const TopoDS_Edge& e : profiled_edges(prism, body, z1)) fillet.Add(top, e);
+  }
+  if (bottom > 0.0) {
+    for (const TopoDS_Edge& e : profiled_edges(prism, body, z0)) fillet.Add(bottom, e);
+  }
+  fillet.Build();
+  if (!fillet.IsDone()) throw std::runtime_error("edge profile: OpenCASCADE could not round the edges");
+  return fillet.Shape();
+}
+
+TopoDS_Shape common_of(const TopoDS_Shape& a, const TopoDS_Shape& b) {
+  TopTools_ListOfShape tools;
+  tools.Append(b);
+  return boolean<BRepAlgoAPI_Common>(a, tools, "keeping the slab's thickness");
+}
+
+// An extrusion with its edge profile. A round (or bevel) shorter than the
+// side face is a fillet (chamfer) of the prism's edges. One as tall as the
+// face (a half bullnose of the full thickness, a full bullnose's two
+// rounds meeting half way) would consume the face, which fillets cannot:
+// then each round is made on a taller prism, cut back to its height, and
+// a full bullnose's two halves are joined. All exact.
+TopoDS_Shape profiled_prism(const TopoDS_Face& face, const StepBody& body) {
+  const double t = body.height, top = body.rounds.top, bottom = body.rounds.bottom;
+  if (bottom <= 0.0) {
+    if (top < t) return round_edges(prism_between(face, 0.0, t), body, 0.0, t, top, 0.0);
+    return common_of(round_edges(prism_between(face, -t, t), body, -t, t, top, 0.0),
+                     prism_between(face, 0.0, t));
+  }
+  if (top + bottom < t) return round_edges(prism_between(face, 0.0, t), body, 0.0, t, top, bottom);
+  const double mid = bottom * t / (top + bottom);
+  const TopoDS_Shape upper = common_of(
+      round_edges(prism_between(face, mid - t, t), body, mid - t, t, top, 0.0), prism_between(face, mid, t));
+  const TopoDS_Shape lower =
+      common_of(round_edges(prism_between(face, 0.0, mid + t), body, 0.0, mid + t, 0.0, bottom),
+                prism_between(face, 0.0, mid));
+  TopTools_ListOfShape tools;
+  tools.Append(lower);
+  ShapeUpgrade_UnifySameDomain unify(
+      boolean<BRepAlgoAPI_Fuse>(upper, tools, "joining the bullnose's halves"));
+  unify.Build();
+  return unify.Shape();
+}
+
 TopoDS_Shape make_body(const StepBody& body) {
   if (body.form == StepForm::Sheet) return make_sheet(body);
   if (body.form == StepForm::Closed) return make_closed(body);
@@ -417,9 +538,13 @@ TopoDS_Shape make_body(const StepBody& body) {
   if (body.form == StepForm::Carved) return make_carved(body);
   TopoDS_Shape shape;
   if (body.form == StepForm::Extrusion) {
-    BRepPrimAPI_MakePrism prism(plane_face(body), gp_Vec(0.0, 0.0, body.height));
-    if (!prism.IsDone()) throw std::runtime_error("the extrusion failed");
-    shape = prism.Shape();
+    if (body.rounds.top > 0.0) {
+      shape = profiled_prism(plane_face(body), body);
+    } else {
+      BRepPrimAPI_MakePrism prism(plane_face(body), gp_Vec(0.0, 0.0, body.height));
+      if (!prism.IsDone()) throw std::runtime_error("the extrusion failed");
+      shape = prism.Shape();
+    }
   } else {
     shape = revolution_of(plane_face(body));
   }

@@ -103,6 +103,10 @@ Encoded solid_step(const EncodeContext& c, const ExactSolid& solid, StepModel mo
   if (solid.form == ExactSolid::Form::Extrusion) {
     body.form = StepForm::Extrusion;
     for (const std::vector<ExactPiece>& loop : solid.loops) body.loops.push_back(loop_of(loop));
+    // One curve per exact piece (step_loop), so the flags carry over.
+    const ProfileEdges e = profile_edges(solid.edges);
+    if (e.top > 0.0 && std::find(solid.profiled.begin(), solid.profiled.end(), true) != solid.profiled.end())
+      body.rounds = {e.top, e.bottom, e.chamfer, solid.profiled};
     model.bodies.push_back(std::move(body));
     return step_file(c, model, loop_of.added());
   }

@@ -313,6 +313,12 @@ TEST_CASE("kitchen bad input: exit 2 naming the key, nothing written", "[pipelin
       {"slab: {length: 3000, width: 1400, margin: 10, spacing: 14, grain: along}\nseams: auto\nbacksplash: "
        "{height: 100}\n",
        "", "outline.segments[0].edge", "needs a slab"},
+      {"\nseams: auto", "\nseams: auto\nedges: {exposed: bullnose, radius: 16}", "edges.radius",
+       "at most 15 for a bullnose edge"},
+      {"\nseams: auto", "\nseams: auto\nedges: {exposed: ogee}", "edges.exposed", "ogee"},
+      {"\nseams: auto", "\nseams: auto\nedges: {exposed: square, radius: 3}", "edges.radius", "no radius"},
+      {"\nseams: auto", "\nseams: auto\nedges: {radius: 3}", "edges", "exposed"},
+      {"\nseams: auto", "\nseams: auto\nedges: {exposed: eased}\nmax_edge: 50", "max_edge", "not refined"},
   };
   check_bad_edits(dir, "kitchen_l.yaml", "bad", cases);
 }
@@ -541,4 +547,40 @@ TEST_CASE("kitchen: walls from the template's WALLS layer mark the pieces' edges
   write_file_atomically(path, plain);
   std::string out;
   CHECK(run_cli({"run", path, "-o", (dir / "plain-ok-out").string() + "/"}, &out) == 0);
+}
+
+TEST_CASE("kitchen: profiled front edges on every piece, square on walls and seams", "[pipeline][kitchen]") {
+  const fs::path dir = fresh_dir("kitchen_profile");
+  const std::string path =
+      edited_example(dir, "kitchen_l.yaml", "\nseams: auto",
+                     "\nseams: auto\nedges: {exposed: half_bullnose, radius: 12}", "profiled.yaml");
+  const Design design = read_design(path);
+  const Result r = run_job(design, into(dir));
+  const Part* top = product(r);
+  REQUIRE(top != nullptr);
+  CHECK(top->validation.valid());
+  const auto& k = *std::get<CountertopProducts>(r.products).kitchen;
+  for (const Part* p : parts_of(r, PartRole::Piece)) {
+    INFO(p->name);
+    const bool strip = p->name.rfind("backsplash-", 0) == 0;
+    // Validated in full: a profiled piece has no construction proof.
+    CHECK(p->validation.valid());
+    CHECK(p->validation.self_intersection ==
+          (strip ? IntersectionCheck::ProvenByConstruction : IntersectionCheck::Tested));
+    const auto piece = std::find_if(k.split.pieces.begin(), k.split.pieces.end(),
+                                    [&](const KitchenPiece& q) { return q.name == p->name; });
+    REQUIRE(piece != k.split.pieces.end());
+    const std::array<double, 3> lengths = edge_lengths(*piece);
+    const double slab_volume = piece->area * 30.0;
+    const ProfileMoments m = profile_moments({EdgeProfileKind::HalfBullnose, 12.0}, 30.0);
+    if (strip) {
+      CHECK(p->validation.volume == Approx(slab_volume).epsilon(1e-12));  // the strips stay square
+      continue;
+    }
+    // Each exposed edge loses about its length times the profile's area (corners aside).
+    const double lost = slab_volume - p->validation.volume;
+    CHECK(lost > 0.9 * lengths[0] * m.area);
+    CHECK(lost < 1.1 * lengths[0] * m.area);
+  }
+  CHECK(r.facts.contains("edges"));
 }

@@ -543,6 +543,47 @@ KitchenDesign read_kitchen(const yaml::Fields& f, const YAML::Node& root, const 
   return k;
 }
 
+// The exposed edges' profile (key `edges`): the kind, and its radius,
+// defaulting to what shops cut (eased 3 mm, bevel 6 mm, the bullnoses half
+// the thickness), at most what the thickness holds.
+EdgeProfile read_edges(const yaml::Fields& f, const YAML::Node& root, const DesignCommon& common,
+                       double thickness, bool refined) {
+  const YAML::Node e = root["edges"];
+  f.require_map(e, "edges", key_group("countertop.edges"));
+  EdgeProfile p;
+  const std::string kind = f.choice(f.required(e, "exposed", "edges"), "edges.exposed",
+                                    {"square", "eased", "half_bullnose", "bullnose", "bevel"});
+  for (const EdgeProfileKind k :
+       {EdgeProfileKind::Square, EdgeProfileKind::Eased, EdgeProfileKind::HalfBullnose,
+        EdgeProfileKind::Bullnose, EdgeProfileKind::Bevel}) {
+    if (kind == to_string(k)) p.kind = k;
+  }
+  const double mm_per_unit = millimetres_per_unit(common.units);
+  const double fallback = p.kind == EdgeProfileKind::Eased   ? 3.0 / mm_per_unit
+                          : p.kind == EdgeProfileKind::Bevel ? std::min(6.0 / mm_per_unit, thickness)
+                                                             : max_profile_radius(p.kind, thickness);
+  p.radius = f.number_or(e, "radius", "edges.radius", fallback);
+  if (p.kind == EdgeProfileKind::Square) {
+    if (e["radius"].IsDefined()) f.fail(e["radius"], "edges.radius", "a square edge has no radius");
+    p.radius = 0.0;
+    return p;
+  }
+  const double most = max_profile_radius(p.kind, thickness);
+  if (!(p.radius > 0.0) || p.radius > most) {
+    f.fail(e["radius"].IsDefined() ? e["radius"] : e, "edges.radius",
+           fmt::format("radius = {} must be > 0 and at most {} for a {} edge on a top {} thick{}", p.radius,
+                       most, kind, thickness,
+                       most < thickness ? " (its top and bottom rounds may meet, not cross)" : ""));
+  }
+  if (refined) {
+    f.fail(root["max_edge"], "max_edge",
+           fmt::format("max_edge refines the faces of a square-edged slab; a top with {} edges is meshed "
+                       "from its profile's rings and is not refined: leave max_edge out",
+                       kind));
+  }
+  return p;
+}
+
 }  // namespace
 
 CountertopDesign read_countertop(const yaml::Fields& f, const YAML::Node& root, const DesignCommon& common) {
@@ -571,6 +612,7 @@ CountertopDesign read_countertop(const yaml::Fields& f, const YAML::Node& root, 
       f.fail(root["max_edge"], "max_edge", fmt::format("max_edge = {} must be > 0", d.max_edge));
   }
   d.max_triangles = f.budget_or(root, "max_triangles", d.max_triangles);
+  if (root["edges"].IsDefined()) d.edges = read_edges(f, root, common, d.thickness, d.max_edge > 0.0);
   if (root["cnc"].IsDefined()) d.cnc = read_cnc(f, root["cnc"], common, d.thickness);
   // Tabs on cut-outs, once the cnc section's tabs give their defaults.
   for (std::size_t k = 0; k < d.holes.size(); ++k) {

@@ -12,6 +12,8 @@
 # backsplash strip): each is one closed solid, and the top's pieces' volumes
 # add up to that of the whole top (the same design without its kitchen keys
 # and router cut) within 1e-9.
+# The island's profiled top (a half bullnose, filleted by OpenCASCADE) must
+# have its exact volume within 1e-9.
 # A thickened surface is one closed solid too: the bundled basin's 4 patches
 # make 4 faces on each sheet and 8 walls along the rim's sides.
 # Usage: freecad_step_test.sh FABMESH SOURCE_DIR
@@ -114,6 +116,14 @@ else:
         problems.append(f"not a shell of 4 faces (one per patch): {f}")
     if name == "surface_basin_shell.step" and (f["solids"] != 1 or f["faces"] != 16):
         problems.append(f"not one solid of 16 faces (4 per sheet, 8 walls): {f}")
+    if name == "countertop_island.step":
+        # The half bullnose's exact volume: the slab less 10 (1 - pi/4) mm^2
+        # along each edge, plus the mitred corners' overlap, less the sink.
+        from math import pi
+        exact = (2400 * 1000 * 30 - 2 * 3400 * 100 * (1 - pi / 4) + 4 * 1000 * (5 / 3 - pi / 2)
+                 - 30 * (760 * 460 - (4 - pi) * 40 ** 2))
+        if abs(f["volume"] / exact - 1) > 1e-9:
+            problems.append(f"volume {f['volume']} mm^3, not the exact {exact}")
     if name == "vessel_golden_solid.step" and abs(f["volume"] / 46171.424531125 - 1) > 1e-7:
         problems.append(f"volume {f['volume']} mm^3, not 46171.424531125 (46.171424531125 cm^3)")
 print(name + (": " + "; ".join(problems) if problems else ": ok"))
