@@ -443,6 +443,25 @@ std::vector<TopoDS_Edge> profiled_edges(const TopoDS_Shape& prism, const StepBod
     if (r.profiled[i]) middles.push_back(edge_middle(make_edge(outer.curves[i], body.form)));
   }
   const double tolerance = 1e-7 * std::max(1.0, size);
+  // OpenCASCADE rounds a whole chain of tangent edges: a profiled curve
+  // that runs on tangentially into an unprofiled one would carry the round
+  // along it. Refused rather than written wrong.
+  const std::size_t n = outer.curves.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t j = (i + 1) % n;
+    if (r.profiled[i] == r.profiled[j]) continue;
+    const BRepAdaptor_Curve a(make_edge(outer.curves[i], body.form)),
+        b(make_edge(outer.curves[j], body.form));
+    gp_Pnt p, q;
+    gp_Vec ta, tb;
+    a.D1(a.LastParameter(), p, ta);
+    b.D1(b.FirstParameter(), q, tb);
+    if (ta.Magnitude() > 0.0 && tb.Magnitude() > 0.0 && ta.Angle(tb) < 1e-6) {
+      throw std::runtime_error("edge profile: at (" + std::to_string(p.X()) + ", " + std::to_string(p.Y()) +
+                               ") an exposed edge runs on tangentially into a wall or a seam; OpenCASCADE's "
+                               "fillet would follow it there, so this solid is not written");
+    }
+  }
   std::vector<TopoDS_Edge> found;
   TopTools_IndexedMapOfShape edges;
   TopExp::MapShapes(prism, TopAbs_EDGE, edges);
