@@ -172,6 +172,11 @@ Result build(const CountertopDesign& design, const BuildContext& context) {
     products.toolpath = at_loop_keys(design, holes, [&] {
       Toolpath t = plan_toolpath(outline.curve, routed, cnc);
       t.drills = drilling_order(drill_holes(design, holes), cnc);
+      t.profiling = profile_passes(design, cnc, 0.0, region.max_deviation, out.warnings);
+      if (t.profiling.depth > 0.0) {
+        t.profiling.runs = profile_runs(region.outer, std::vector<bool>(region.outer.size(), true),
+                                        0.5 * t.profiling.diameter, cnc.tolerance, context.common.name);
+      }
       return t;
     });
     products.gcode = GcodeOptions{context.common.name, context.common.units, design.cnc->program_units,

@@ -84,7 +84,8 @@ void append_program(Toolpath& into, const Toolpath& from) {
 // drilled first, then each piece routed, in slab coordinates, its cut-outs
 // before its outline. `design_holes`: the design's holes (which are drilled).
 Toolpath slab_program(const KitchenSplit& split, const SlabNesting& nesting, std::size_t slab,
-                      const CncOptions& cnc, const std::vector<CountertopHole>& design_holes) {
+                      const CncOptions& cnc, const std::vector<CountertopHole>& design_holes,
+                      const ProfilePasses& profile) {
   Toolpath program;
   std::vector<DrillHole> drills;
   for (const Placement& p : nesting.placements) {
@@ -119,6 +120,20 @@ Toolpath slab_program(const KitchenSplit& split, const SlabNesting& nesting, std
     }
   }
   program.drills = drilling_order(std::move(drills), cnc);
+  if (profile.depth > 0.0) {
+    // The profile bit along each placed piece's exposed edges (strips are square).
+    program.profiling = profile;
+    for (const Placement& p : nesting.placements) {
+      const KitchenPiece& piece = split.pieces[p.piece];
+      if (p.slab != slab || piece.strip) continue;
+      std::vector<bool> exposed;
+      for (const EdgeKind e : piece.edges) exposed.push_back(e == EdgeKind::Exposed);
+      if (std::none_of(exposed.begin(), exposed.end(), [](bool e) { return e; })) continue;
+      for (ProfileRun& run :
+           profile_runs(p.outer, exposed, 0.5 * profile.diameter, cnc.tolerance, piece.name))
+        program.profiling.runs.push_back(std::move(run));
+    }
+  }
   return program;
 }
 
@@ -182,6 +197,55 @@ TriangleSoup profiled_mesh(const CountertopDesign& design, const ProfiledPlan& p
   return std::move(slab.mesh);
 }
 
+ProfilePasses profile_passes(const CountertopDesign& design, const CncOptions& cnc, double spacing,
+                             double deviation, std::vector<std::string>& warnings) {
+  ProfilePasses p;
+  const ProfileEdges e = profile_edges(design.edges);
+  if (e.top <= 0.0) return p;
+  p.depth = e.top;
+  p.profile = fmt::format("{}, radius {:.6g}", to_string(design.edges.kind), design.edges.radius);
+  p.diameter = cnc.tool_diameter;
+  int highest = end_mill_number(cnc);
+  for (const CncTool& t : cnc.tools) {
+    highest = std::max(highest, t.number);
+    if (t.type != ToolType::Profile) continue;
+    p.tool = t.number;
+    p.diameter = t.diameter;
+  }
+  for (const CountertopHole& h : design.holes) {
+    if (h.drill) highest = std::max(highest, h.drill->tool);
+  }
+  if (p.tool == 0) p.tool = highest + 1;
+  const TabOptions& tabs = cnc.tabs;
+  if (tabs.count > 0 && p.depth > cnc.depth - tabs.height) {
+    throw GeometryError(
+        ErrorLocation{"edges.radius"},
+        fmt::format(
+            "edges.radius = {:.6g}: the profile bit's tip would run {:.6g} below the top, through the "
+            "holding tabs ({:.6g} high on a cut {:.6g} deep); lower the tabs (cnc.tabs.height) or take "
+            "a smaller radius",
+            design.edges.radius, p.depth, tabs.height, cnc.depth));
+  }
+  // The bit's widest part (its tip's radius plus the round) reaches that far
+  // beyond the tool's centre path, which keeps its tip's radius off the piece.
+  const double reach = p.diameter + e.top + deviation + cnc.tolerance;
+  if (spacing > 0.0 && reach > spacing) {
+    throw GeometryError(
+        ErrorLocation{"slab.spacing"},
+        fmt::format(
+            "slab.spacing = {:.6g}: the profile bit (diameter {:.6g} at its tip, {} above it) reaches "
+            "{:.6g} from a piece's edge, into its neighbour; space the pieces at least {:.6g} apart",
+            spacing, p.diameter, p.profile, reach, std::ceil(reach * 100.0) / 100.0));
+  }
+  if (e.bottom > 0.0) {
+    warnings.push_back(fmt::format(
+        "edges: the program profiles the top edges; the bottom edges' round (radius {:.6g}) is cut with the "
+        "piece turned over",
+        e.bottom));
+  }
+  return p;
+}
+
 std::vector<Facts> tool_facts(const Toolpath& t) {
   std::vector<Facts> tools;
   Facts bit;
@@ -196,6 +260,15 @@ std::vector<Facts> tool_facts(const Toolpath& t) {
         .set("type", to_string(ToolType::Drill))
         .set("diameter", t.drills[k].diameter);
     tools.push_back(std::move(drill));
+  }
+  if (!t.profiling.runs.empty()) {
+    Facts bit;
+    bit.set("number", t.profiling.tool)
+        .set("type", to_string(ToolType::Profile))
+        .set("diameter", t.profiling.diameter)
+        .set("depth", t.profiling.depth)
+        .set("runs", t.profiling.runs.size());
+    tools.push_back(std::move(bit));
   }
   return tools;
 }
@@ -297,8 +370,10 @@ KitchenProducts build_kitchen(const CountertopDesign& design, const Region2& reg
     CncOptions cnc = design.cnc->options;
     cnc.tolerance = context.tolerance;
     limit_entry(cnc, kitchen.slab.spacing, region.max_deviation, out.warnings);
+    const ProfilePasses profile =
+        profile_passes(design, cnc, kitchen.slab.spacing, region.max_deviation, out.warnings);
     for (std::size_t s = 0; s < k.nesting.slabs; ++s)
-      k.slab_toolpaths.push_back(slab_program(k.split, k.nesting, s, cnc, design.holes));
+      k.slab_toolpaths.push_back(slab_program(k.split, k.nesting, s, cnc, design.holes, profile));
     context.watch.lap("toolpath");
   }
   // Facts: the pieces, the seams and the layout.

@@ -29,6 +29,16 @@ std::vector<EdgeKind> top_edge_kinds(const CountertopDesign& design, const Regio
 TriangleSoup profiled_mesh(const CountertopDesign& design, const ProfiledPlan& plan, double thickness,
                            double deviation, const BuildContext& context, Result& out);
 
+/// The profiling passes' bit and depth for design.edges (no runs yet):
+/// cnc.tools' profile bit, else one of the end mill's diameter numbered
+/// after every other tool; its tip at the top round's (bevel's) height.
+/// `warnings` gets a line when the profile has a bottom round (not cut
+/// from above).
+/// \throw GeometryError at `edges.radius` (the tip would cut the holding
+///        tabs) or `slab.spacing` (> 0: the bit would reach the next piece)
+ProfilePasses profile_passes(const CountertopDesign& design, const CncOptions& cnc, double spacing,
+                             double deviation, std::vector<std::string>& warnings);
+
 /// Adds the pieces to `out.parts` (after the whole top, which stays the
 /// product), their facts under `kitchen`, and returns the layout.
 /// \throw GeometryError at `seams`, `seams[i]` or `slab` (a piece that fits

@@ -73,7 +73,17 @@ void validate_tools(const CncOptions& o) {
 
 }  // namespace
 
-const char* to_string(ToolType t) { return t == ToolType::Drill ? "drill" : "end_mill"; }
+const char* to_string(ToolType t) {
+  switch (t) {
+    case ToolType::Drill:
+      return "drill";
+    case ToolType::Profile:
+      return "profile";
+    case ToolType::EndMill:
+      break;
+  }
+  return "end_mill";
+}
 
 const char* to_string(CutDirection d) { return d == CutDirection::Climb ? "climb" : "conventional"; }
 

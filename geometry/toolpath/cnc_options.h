@@ -53,10 +53,12 @@ struct TabOptions {
   std::optional<double> min_radius;
 };
 
-/// What a tool of the machine's table is: the router bit or a drill.
-enum class ToolType { EndMill, Drill };
+/// What a tool of the machine's table is: the router bit, a drill, or the
+/// profile bit of an edge profile (its `diameter` the smallest cutting
+/// diameter, at its tip).
+enum class ToolType { EndMill, Drill, Profile };
 
-const char* to_string(ToolType t);  ///< "end_mill" | "drill"
+const char* to_string(ToolType t);  ///< "end_mill" | "drill" | "profile"
 
 /// One tool of the machine's tool table (key `cnc.tools`), selected in the
 /// program by `M6 T<number>`.

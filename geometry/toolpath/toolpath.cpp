@@ -353,6 +353,15 @@ ToolpathTotals toolpath_totals(const Toolpath& path) {
     t.rapid += d.rapid + (Vec2(start.x(), start.y()) - path.drills.back().center).norm();
     t.drilling = d.feeding;
   }
+  // The profiling passes: down at the plunge feed, along at the cutting
+  // feed, up and across to the next at the rapid rate.
+  Vec3 end = path.moves.back().to;
+  for (const ProfileRun& run : path.profiling.runs) {
+    for (std::size_t k = 1; k < run.path.size(); ++k) t.cutting += (run.path[k] - run.path[k - 1]).norm();
+    t.plunging += o.safe_z + path.profiling.depth;
+    t.rapid += o.safe_z + path.profiling.depth + (Vec2(end.x(), end.y()) - run.path.front()).norm();
+    end = Vec3(run.path.back().x(), run.path.back().y(), o.safe_z);
+  }
   t.minutes = t.cutting / o.feed + t.plunging / o.plunge + t.rapid / o.rapid;
   if (!path.drills.empty()) t.minutes += t.drilling / drill_feed(o);
   return t;

@@ -14,6 +14,7 @@
 #include "geometry/toolpath/drilling.h"
 #include "geometry/toolpath/loop_path.h"
 #include "geometry/toolpath/manufacturability.h"
+#include "geometry/toolpath/profiling.h"
 
 namespace fabmesh {
 
@@ -82,6 +83,9 @@ struct Toolpath {
   /// Tap holes drilled before any routing, in the order drilled
   /// (drilling_order); their loops are not among `loops`.
   std::vector<DrillHole> drills;
+  /// An edge profile's passes after the routing (profile_runs), with the
+  /// profile bit; no runs: none.
+  ProfilePasses profiling;
 };
 
 /// A program's moves by how the machine runs them: lengths (model units) and

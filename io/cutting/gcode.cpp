@@ -91,6 +91,7 @@ class Encoder {
   // Each drill's tool change and cycle blocks, then the change back to the
   // router bit; ends with the bit in the spindle, running.
   void drilling(const std::string& u);
+  void profile(const std::string& u);
   // Retract and stop the spindle if it runs, change to `tool`, start it again.
   void change_tool(int tool, double spindle);
   bool spindle_on_ = false;
@@ -222,13 +223,16 @@ std::string Encoder::run(const GcodeOptions& o) {
                   "at {} {}{})",
                   totals.minutes, w_.num(totals.cutting), u, w_.num(totals.plunging), u, w_.num(totals.rapid),
                   u, w_.num(c.rapid), per_min, drilled));
-  const bool tool_changes = !path_.drills.empty() || !c.tools.empty();
+  const ProfilePasses& profiling = path_.profiling;
+  const bool tool_changes = !path_.drills.empty() || !c.tools.empty() || !profiling.runs.empty();
   if (tool_changes) {
     std::string tools = fmt::format("T{} end mill {} {}", end_mill_number(c), w_.num(c.tool_diameter), u);
     for (std::size_t k = 0; k < path_.drills.size(); ++k) {
       if (k > 0 && path_.drills[k].tool == path_.drills[k - 1].tool) continue;
       tools += fmt::format(", T{} drill {} {}", path_.drills[k].tool, w_.num(path_.drills[k].diameter), u);
     }
+    if (!profiling.runs.empty())
+      tools += fmt::format(", T{} profile bit {} {}", profiling.tool, w_.num(profiling.diameter), u);
     w_.line(fmt::format("(tools: {})", tools));
   }
   if (!path_.drills.empty()) {
@@ -272,9 +276,29 @@ std::string Encoder::run(const GcodeOptions& o) {
       linear(m, m.to);
     }
   }
+  if (!profiling.runs.empty()) profile(u);
   w_.line("M5");
   w_.line("M30");
   return w_.text;
+}
+
+void Encoder::profile(const std::string& u) {
+  const CncOptions& c = path_.options;
+  const ProfilePasses& p = path_.profiling;
+  w_.line(
+      fmt::format("(profiling: T{}, the profile bit {} {}: {}, along the exposed edges with its tip at z {})",
+                  p.tool, w_.num(p.diameter), u, comment_text(p.profile), w_.num(-p.depth)));
+  change_tool(p.tool, c.spindle);
+  for (const ProfileRun& run : p.runs) {
+    w_.line(fmt::format("({})", comment_text(run.label)));
+    w_.line(fmt::format("G0 X{} Y{}", w_.num(run.path.front().x()), w_.num(run.path.front().y())));
+    w_.line(fmt::format("G1 Z{} F{}", w_.num(-p.depth), w_.num(c.plunge)));
+    for (std::size_t k = 1; k < run.path.size(); ++k) {
+      w_.line(fmt::format("G1 X{} Y{}{}", w_.num(run.path[k].x()), w_.num(run.path[k].y()),
+                          k == 1 ? " F" + w_.num(c.feed) : std::string()));
+    }
+    w_.line(fmt::format("G0 Z{}", w_.num(c.safe_z)));
+  }
 }
 
 void Encoder::change_tool(int tool, double spindle) {

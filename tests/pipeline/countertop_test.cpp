@@ -21,6 +21,7 @@
 #include "pipeline/output_table.h"
 #include "tests/geometry/section/region_shapes.h"
 #include "tests/io/cutting/dxf_read_back.h"
+#include "tests/io/cutting/interpret.h"
 #include "tests/io/design/nurbs_dxf.h"
 #include "tests/pipeline/cli_harness.h"
 
@@ -581,4 +582,55 @@ TEST_CASE("countertop tap holes: bad ones exit 2 at the hole's key, nothing writ
     CHECK_THAT(out, Catch::Contains(bad[i].says));
     CHECK_FALSE(fs::exists(dir / fmt::format("bad{}", i)));
   }
+}
+
+TEST_CASE("countertop: the island's edge profile, meshed, and profiled by the router after the routing",
+          "[pipeline][countertop]") {
+  const fs::path dir = fresh_dir("countertop_island");
+  const Design design = read_design(example("countertop_island.yaml"));
+  const Result r = run_job(design, into(dir));
+  CHECK(verdict(r).valid());
+  CHECK(verdict(r).self_intersection == IntersectionCheck::Tested);
+  CHECK(verdict(r).genus == std::optional<long>(1));
+  CHECK(r.max_deviation <= design.common.tolerance);
+  // The mesh takes off at most the exact profile (the chords of its arcs lie inside them).
+  const double exact = 2400.0 * 1000 * 30 - 2.0 * 3400 * 100 * (1 - M_PI / 4) +
+                       4.0 * 1000 * (5.0 / 3 - M_PI / 2) - 30.0 * (760 * 460 - (4 - M_PI) * 40 * 40);
+  CHECK(verdict(r).volume <= exact * (1 + 1e-12));
+  CHECK(verdict(r).volume >= exact - r.max_deviation * 2 * 3400 * (M_PI / 2 * 10 + 30) - 1.0);
+  // The program: routed with T1, then T2, the profile bit, once round the outline at z -10.
+  const std::string program = read_file((dir / "countertop_island.nc").string());
+  const std::size_t change = program.find("M6 T2");
+  REQUIRE(change != std::string::npos);
+  CHECK(program.find("M6 T1") < change);
+  CHECK(program.find("(countertop_island exposed edges 1)") > change);
+  const test::Trace trace = test::interpret(program, "countertop_island.nc");
+  const int profiling_from =
+      static_cast<int>(std::count(program.begin(), program.begin() + change, '\n')) + 1;
+  const double radius = 6.0;
+  double along = 0.0, cutting = 0.0, plunging = 0.0;
+  for (const test::TraceMotion& m : trace.motions) {
+    if (m.motion == "G0") continue;
+    const double length = std::hypot(test::motion_length(m), m.end.z() - m.start.z());
+    if (m.feed == 3000.0) cutting += length;
+    if (m.feed == 600.0) plunging += length;
+    if (m.line <= profiling_from) continue;  // the routing (its first pass is at z -10 too)
+    if (std::abs(m.start.z() + 10.0) > 1e-6 || std::abs(m.end.z() + 10.0) > 1e-6) continue;
+    const int steps = std::max(1, static_cast<int>(std::ceil(test::motion_length(m) / 0.5)));
+    for (int i = 0; i <= steps; ++i) {
+      const Vec3 c = test::motion_point(m, static_cast<double>(i) / steps);
+      // The tip's radius off the outline, outside it, all the way round.
+      const double dx = std::max({0.0 - c.x(), c.x() - 2400.0, 0.0}),
+                   dy = std::max({0.0 - c.y(), c.y() - 1000.0, 0.0});
+      CHECK(std::hypot(dx, dy) == Approx(radius).margin(0.01));
+    }
+    along += test::motion_length(m);
+  }
+  // Round the outline: its perimeter plus a quarter circle of the tip's radius at each corner.
+  CHECK(along == Approx(2 * 3400 + 2 * M_PI * radius).margin(0.05));
+  // The estimate counts the profiling pass: CNCjs's own lengths at each feed.
+  const Facts& cnc = r.facts.group("cnc");
+  const double slack = 4e-3 * static_cast<double>(trace.motions.size());
+  CHECK(std::abs(cutting - cnc.number("cutting_length")) <= slack);
+  CHECK(std::abs(plunging - cnc.number("plunging_length")) <= slack);
 }

@@ -319,6 +319,10 @@ TEST_CASE("kitchen bad input: exit 2 naming the key, nothing written", "[pipelin
       {"\nseams: auto", "\nseams: auto\nedges: {exposed: square, radius: 3}", "edges.radius", "no radius"},
       {"\nseams: auto", "\nseams: auto\nedges: {radius: 3}", "edges", "exposed"},
       {"\nseams: auto", "\nseams: auto\nedges: {exposed: eased}\nmax_edge: 50", "max_edge", "not refined"},
+      {"\nseams: auto", "\nseams: auto\nedges: {exposed: half_bullnose, radius: 12}", "slab.spacing",
+       "space the pieces at least"},
+      {"\nseams: auto", "\nseams: auto\nedges: {exposed: half_bullnose, radius: 28}", "edges.radius",
+       "through the holding tabs"},
   };
   check_bad_edits(dir, "kitchen_l.yaml", "bad", cases);
 }
@@ -551,9 +555,11 @@ TEST_CASE("kitchen: walls from the template's WALLS layer mark the pieces' edges
 
 TEST_CASE("kitchen: profiled front edges on every piece, square on walls and seams", "[pipeline][kitchen]") {
   const fs::path dir = fresh_dir("kitchen_profile");
-  const std::string path =
-      edited_example(dir, "kitchen_l.yaml", "\nseams: auto",
-                     "\nseams: auto\nedges: {exposed: half_bullnose, radius: 12}", "profiled.yaml");
+  // The pieces 40 apart: the profile bit, 12 mm with a 12 mm round, reaches 24 mm.
+  const std::string path = edited_example(dir, "kitchen_l.yaml", "spacing: 14, grain: along}\nseams: auto",
+                                          "spacing: 40, grain: along}\nseams: auto\nedges: {exposed: "
+                                          "half_bullnose, radius: 12}",
+                                          "profiled.yaml");
   const Design design = read_design(path);
   const Result r = run_job(design, into(dir));
   const Part* top = product(r);
@@ -583,4 +589,91 @@ TEST_CASE("kitchen: profiled front edges on every piece, square on walls and sea
     CHECK(lost < 1.1 * lengths[0] * m.area);
   }
   CHECK(r.facts.contains("edges"));
+}
+
+TEST_CASE(
+    "kitchen: the profile bit runs along every exposed edge, not along walls or seams, nor into a piece",
+    "[pipeline][kitchen]") {
+  const fs::path dir = fresh_dir("kitchen_profile_nc");
+  // A 12 mm bit with a 12 mm round reaches 24 mm from the piece: the pieces 40 apart.
+  const std::string path = edited_example(dir, "kitchen_l.yaml", "spacing: 14, grain: along}\nseams: auto",
+                                          "spacing: 40, grain: along}\nseams: auto\nedges: {exposed: "
+                                          "half_bullnose, radius: 12}",
+                                          "profiled.yaml");
+  const Design design = read_design(path);
+  const Result r = run_job(design, into(dir));
+  const auto& k = *std::get<CountertopProducts>(r.products).kitchen;
+  const CncOptions& cnc = std::get<CountertopDesign>(design.body).cnc->options;
+  const double radius = 0.5 * cnc.tool_diameter;  // the profile bit's tip: the end mill's diameter
+  double exposed_total = 0.0, exposed_run = 0.0, other_run = 0.0;
+  std::size_t runs = 0, slabs_with_tops = 0;
+  for (std::size_t s = 0; s < k.nesting.slabs; ++s) {
+    const std::string program = read_file((dir / fmt::format("kitchen_l.slab-{}.nc", s + 1)).string());
+    // After the routing: M6 T3 (the end mill is T1, the tap hole's drill T2), then the passes; a
+    // slab of backsplash strips only (cut square) has none.
+    bool tops = false;
+    for (const Placement& p : k.nesting.placements)
+      tops = tops || (p.slab == s && !k.split.pieces[p.piece].strip);
+    const std::size_t change = program.find("M6 T3");
+    CHECK((change != std::string::npos) == tops);
+    if (!tops) continue;
+    ++slabs_with_tops;
+    CHECK(program.find("(profiling: T3, the profile bit 12 mm: half_bullnose, radius 12") !=
+          std::string::npos);
+    CHECK(program.rfind("M6 T1") < change);
+    const test::CannedCycles cycles = test::read_canned_cycles(program);
+    const test::Trace trace =
+        test::interpret_around_cycles(program, cycles, fmt::format("profiled-{}.nc", s + 1));
+    const std::vector<Placed> pieces = placed_on(k, s);
+    std::map<std::string, const KitchenPiece*> by_name;
+    for (const KitchenPiece& piece : k.split.pieces) by_name[piece.name] = &piece;
+    for (const Placed& p : pieces) {
+      for (std::size_t e = 0; e < p.outer.size(); ++e) {
+        if (by_name.at(p.name)->edges[e] == EdgeKind::Exposed && !by_name.at(p.name)->strip)
+          exposed_total += (p.outer[(e + 1) % p.outer.size()] - p.outer[e]).norm();
+      }
+    }
+    const int profiling_from =
+        static_cast<int>(std::count(program.begin(), program.begin() + change, '\n')) + 1;
+    for (const test::TraceMotion& m : trace.motions) {
+      if (m.line <= profiling_from) continue;
+      if (std::abs(m.start.z() + 12.0) > 1e-3 || std::abs(m.end.z() + 12.0) > 1e-3) continue;
+      if (m.motion != "G1") continue;
+      runs += 1;
+      const double length = test::motion_length(m);
+      const int steps = std::max(1, static_cast<int>(std::ceil(length / 0.5)));
+      for (int i = 0; i < steps; ++i) {
+        const Vec3 c = test::motion_point(m, (i + 0.5) / steps);
+        for (const Placed& p : pieces) {
+          // The bit's tip never enters a piece.
+          CHECK(from_material(p, c.head<2>()) >= radius - cnc.tolerance - 0.01);
+          if (std::abs(loop_distance(p.outer, c.head<2>()) - radius) > 0.05) continue;
+          // Which edge it runs along: the nearest.
+          std::size_t nearest = 0;
+          double best = INFINITY;
+          for (std::size_t e = 0; e < p.outer.size(); ++e) {
+            const double d = segment_distance(p.outer[e], p.outer[(e + 1) % p.outer.size()], c.head<2>());
+            if (d < best) best = d, nearest = e;
+          }
+          (by_name.at(p.name)->edges[nearest] == EdgeKind::Exposed ? exposed_run : other_run) +=
+              length / steps;
+        }
+      }
+    }
+  }
+  INFO("exposed " << exposed_total << ", profiled along exposed " << exposed_run << ", along walls and seams "
+                  << other_run);
+  CHECK(runs > 0);
+  // Along every exposed edge (the convex corners' arcs add a little), and not along walls or seams.
+  CHECK(exposed_run >= exposed_total - 1.0);
+  CHECK(other_run <= 1.0);
+  // The report lists the profile bit with each program that profiles.
+  const auto& programs = std::get<std::vector<Facts>>(*r.facts.group("kitchen").find("programs"));
+  std::size_t profiling = 0;
+  for (const Facts& p : programs) {
+    const auto& tools = std::get<std::vector<Facts>>(*p.find("tools"));
+    profiling +=
+        std::count_if(tools.begin(), tools.end(), [](const Facts& t) { return t.text("type") == "profile"; });
+  }
+  CHECK(profiling == slabs_with_tops);
 }

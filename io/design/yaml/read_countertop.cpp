@@ -178,8 +178,12 @@ std::vector<CncTool> read_tools(const yaml::Fields& f, const YAML::Node& list) {
       }
     }
     const YAML::Node type = f.required(t, "type", field);
-    tool.type = f.choice(type, field + ".type", {"end_mill", "drill"}) == "drill" ? ToolType::Drill
-                                                                                  : ToolType::EndMill;
+    const std::string kind = f.choice(type, field + ".type", {"end_mill", "drill", "profile"});
+    tool.type = kind == "drill" ? ToolType::Drill : kind == "profile" ? ToolType::Profile : ToolType::EndMill;
+    for (std::size_t j = 0; j < tools.size() && tool.type == ToolType::Profile; ++j) {
+      if (tools[j].type == ToolType::Profile)
+        f.fail(type, field + ".type", fmt::format("cnc.tools[{}] is the profile bit already", j));
+    }
     if (tool.type == ToolType::EndMill && end_mill < list.size()) {
       f.fail(type, field + ".type",
              fmt::format("cnc.tools[{}] is the end mill already: the router cut uses one bit", end_mill));
@@ -375,9 +379,9 @@ void resolve_drills(const yaml::Fields& f, const YAML::Node& entries, std::vecto
                fmt::format("tool = {}: cnc.tools has no tool {} (drills: {})", d.tool, d.tool, drills));
       }
       if (t->type != ToolType::Drill) {
-        f.fail(
-            node["tool"], field + ".tool",
-            fmt::format("tool = {}: tool {} is the end mill, the router bit, not a drill", d.tool, d.tool));
+        f.fail(node["tool"], field + ".tool",
+               fmt::format("tool = {}: tool {} is the {}, not a drill", d.tool, d.tool,
+                           t->type == ToolType::Profile ? "profile bit" : "end mill, the router bit"));
       }
       if (t->diameter > d.diameter) {
         f.fail(node["tool"], field + ".tool",
