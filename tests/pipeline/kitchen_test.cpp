@@ -103,6 +103,16 @@ void check_bad_edits(const fs::path& dir, const std::string& example_name, const
   }
 }
 
+// The L kitchen with a 12 mm half bullnose on its exposed edges, its pieces
+// 40 apart (the profile bit, 12 mm with a 12 mm round, reaches 24 mm): the
+// edited design's path in `dir`.
+std::string profiled_kitchen_l(const fs::path& dir) {
+  return edited_example(
+      dir, "kitchen_l.yaml", "spacing: 14, grain: along}\nseams: auto",
+      "spacing: 40, grain: along}\nseams: auto\nedges: {exposed: half_bullnose, radius: 12}",
+      "profiled.yaml");
+}
+
 }  // namespace
 
 TEST_CASE("kitchen: the L's pieces partition the top, each a valid slab, written one file each",
@@ -555,11 +565,7 @@ TEST_CASE("kitchen: walls from the template's WALLS layer mark the pieces' edges
 
 TEST_CASE("kitchen: profiled front edges on every piece, square on walls and seams", "[pipeline][kitchen]") {
   const fs::path dir = fresh_dir("kitchen_profile");
-  // The pieces 40 apart: the profile bit, 12 mm with a 12 mm round, reaches 24 mm.
-  const std::string path = edited_example(dir, "kitchen_l.yaml", "spacing: 14, grain: along}\nseams: auto",
-                                          "spacing: 40, grain: along}\nseams: auto\nedges: {exposed: "
-                                          "half_bullnose, radius: 12}",
-                                          "profiled.yaml");
+  const std::string path = profiled_kitchen_l(dir);
   const Design design = read_design(path);
   const Result r = run_job(design, into(dir));
   const Part* top = product(r);
@@ -595,11 +601,7 @@ TEST_CASE(
     "kitchen: the profile bit runs along every exposed edge, not along walls or seams, nor into a piece",
     "[pipeline][kitchen]") {
   const fs::path dir = fresh_dir("kitchen_profile_nc");
-  // A 12 mm bit with a 12 mm round reaches 24 mm from the piece: the pieces 40 apart.
-  const std::string path = edited_example(dir, "kitchen_l.yaml", "spacing: 14, grain: along}\nseams: auto",
-                                          "spacing: 40, grain: along}\nseams: auto\nedges: {exposed: "
-                                          "half_bullnose, radius: 12}",
-                                          "profiled.yaml");
+  const std::string path = profiled_kitchen_l(dir);
   const Design design = read_design(path);
   const Result r = run_job(design, into(dir));
   const auto& k = *std::get<CountertopProducts>(r.products).kitchen;
