@@ -262,13 +262,13 @@ std::vector<Facts> tool_facts(const Toolpath& t) {
     tools.push_back(std::move(drill));
   }
   if (!t.profiling.runs.empty()) {
-    Facts bit;
-    bit.set("number", t.profiling.tool)
+    Facts profile;
+    profile.set("number", t.profiling.tool)
         .set("type", to_string(ToolType::Profile))
         .set("diameter", t.profiling.diameter)
         .set("depth", t.profiling.depth)
         .set("runs", t.profiling.runs.size());
-    tools.push_back(std::move(bit));
+    tools.push_back(std::move(profile));
   }
   return tools;
 }
