@@ -14,6 +14,7 @@
 #include "geometry/mesh/vessel.h"
 #include "geometry/mould/mould.h"
 #include "geometry/mould/shrinkage.h"
+#include "geometry/section/print_checks.h"
 #include "geometry/section/vessel_section.h"
 #include "io/design/schema.h"
 #include "pipeline/build_design.h"
@@ -242,6 +243,95 @@ std::optional<ExactSolid> exact_revolution(const CompositeCurve& profile, const 
   return solid;
 }
 
+std::vector<double> coordinates(const Vec2& p) { return {p.x(), p.y()}; }
+
+// The print checks in one line, for the HTML report and the studio.
+std::string print_check_line(const PrintCheck& check, const PrintOptions& options) {
+  const std::string& u = options.units;
+  const auto where = [](const Vec2& p) { return fmt::format("r {:.4g}, z {:.4g}", p.x(), p.y()); };
+  std::string text =
+      fmt::format("printed upright: outer wall overhangs at most {:.3g} degrees", check.outer.angle_deg);
+  if (check.outer.angle_deg > 0.0) text += fmt::format(" (at {})", where(check.outer.at));
+  if (check.inner) {
+    text += fmt::format(", inner wall {:.3g} degrees", check.inner->angle_deg);
+    if (check.inner->angle_deg > 0.0) text += fmt::format(" (at {})", where(check.inner->at));
+  }
+  if (check.rim) text += fmt::format(", rim {:.3g} degrees", check.rim->angle_deg);
+  text += fmt::format(" (limit {:g} degrees)", options.max_overhang_deg);
+  text += check.widest_ledge
+              ? fmt::format("; widest unsupported ledge {:.4g} {}", check.runs[*check.widest_ledge].width, u)
+              : std::string("; no unsupported ledge");
+  if (!std::isnan(check.min_wall)) text += fmt::format("; thinnest wall {:.4g} {}", check.min_wall, u);
+  text += fmt::format("; {:.5g} {} across, {:.5g} {} tall", check.size.x(), u, check.size.z(), u);
+  if (options.bed) {
+    text += fmt::format(", {} the bed {:g} x {:g} x {:g} {}",
+                        check.fits_bed.value_or(false) ? "fits" : "does not fit", options.bed->x(),
+                        options.bed->y(), options.bed->z(), u);
+  }
+  return text;
+}
+
+// The print checks of the vessel as written (the master, printed upright),
+// reported as `build.print`; with the design's `print` limits, what they find
+// is a warning each, or with `print.strict` bad input at the limit's key.
+// The overhangs beyond the limit are kept, at the fired size, for the plot.
+void add_print_checks(const VesselDesign& design, const CompositeCurve& master, const VesselSection& section,
+                      double factor, const BuildContext& context, Result& out, VesselProducts& products) {
+  PrintOptions options = design.print.value_or(PrintOptions{});
+  if (!design.print) options.min_wall /= millimetres_per_unit(context.common.units);  // the default's 1.2 mm
+  options.units = context.common.units;
+  const PrintCheck check = check_print(master, section, options);
+  if (design.print && design.print->strict && !check.findings.empty()) {
+    std::string message =
+        "the vessel does not print upright within print's limits: " + check.findings.front().message;
+    for (std::size_t i = 1; i < check.findings.size(); ++i) message += "; " + check.findings[i].message;
+    throw GeometryError(check.findings.front().key, message);
+  }
+  const auto overhang = [](const Overhang& o) {
+    Facts f;
+    return std::move(f.set("angle_deg", o.angle_deg).set("at", coordinates(o.at)));
+  };
+  Facts facts;
+  facts.set("max_overhang_deg", options.max_overhang_deg).set("outer", overhang(check.outer));
+  if (check.inner) facts.set("inner", overhang(*check.inner));
+  if (check.rim) facts.set("rim", overhang(*check.rim));
+  std::vector<Facts> runs;
+  for (const OverhangRun& r : check.runs) {
+    Facts f;
+    f.set("face", to_string(r.face))
+        .set("from", coordinates(r.from))
+        .set("to", coordinates(r.to))
+        .set("ledge", r.width)
+        .set("max_angle_deg", r.max_angle_deg);
+    runs.push_back(std::move(f));
+    if (!design.print) continue;  // the plot flags them for a design that prints
+    std::vector<Vec2> fired = r.points;
+    for (Vec2& p : fired) p /= factor;
+    products.overhangs.push_back(std::move(fired));
+  }
+  products.overhang_limit_deg = options.max_overhang_deg;
+  facts.set("overhangs", std::move(runs))
+      .set("widest_ledge", check.widest_ledge ? check.runs[*check.widest_ledge].width : 0.0);
+  if (!std::isnan(check.min_wall)) {
+    facts.set("min_wall", check.min_wall).set("min_wall_where", check.min_wall_where);
+    facts.set("min_wall_limit", options.min_wall);
+  }
+  facts.set("size", std::vector<double>{check.size.x(), check.size.y(), check.size.z()});
+  if (options.bed) {
+    facts.set("bed", std::vector<double>{options.bed->x(), options.bed->y(), options.bed->z()})
+        .set("fits_bed", check.fits_bed.value_or(false));
+  }
+  facts.set("summary", print_check_line(check, options));
+  std::vector<std::string> findings;
+  for (const PrintFinding& f : check.findings) findings.push_back(f.message);
+  facts.set("checked", design.print.has_value()).set("findings", findings);
+  if (design.print) {
+    for (const PrintFinding& f : check.findings)
+      out.warnings.push_back(key_label(context.common, f.key) + ": " + f.message);
+  }
+  out.facts.set("print", std::move(facts));
+}
+
 // The section's loops at the fired size (the plot draws the design as fired).
 std::vector<std::vector<Vec2>> fired_loops(std::vector<std::vector<Vec2>> loops, double factor) {
   for (auto& loop : loops) {
@@ -314,6 +404,9 @@ Result build(const VesselDesign& design, const BuildContext& context) {
   }
   out.parts.push_back(std::move(product));
   VesselProducts products;
+  // Before the mould: a strict print check that fails leaves nothing else to build.
+  add_print_checks(design, master, vessel.section, factor, context, out, products);
+  context.watch.lap("print");
   if (context.wants_cutting) {
     products.profile_template.push_back(profile_template(master, context.tolerance));
     context.watch.lap("template");

@@ -6,6 +6,7 @@
 #include <type_traits>
 
 #include "geometry/core/errors.h"
+#include "geometry/section/print_checks.h"
 #include "geometry/section/simple_polygon.h"
 #include "geometry/section/vessel_section.h"
 #include "geometry/surfaces/patch_network.h"
@@ -79,8 +80,8 @@ BuiltCurve curve_as_drawn(const Design& design, const CurveSpec& spec,
 // and base), at the design's tolerance; none when the profile does not make
 // one (a profile across the axis, a wall too thick): the plot shows the
 // profile still, and `run` says what is wrong.
-std::vector<std::vector<Vec2>> section_as_drawn(const VesselDesign& vessel, const CompositeCurve& profile,
-                                                double tolerance) {
+std::optional<VesselSection> section_as_drawn(const VesselDesign& vessel, const CompositeCurve& profile,
+                                              double tolerance) {
   VesselSectionOptions options;
   options.mode = vessel.mode;
   options.wall = vessel.wall;
@@ -88,9 +89,9 @@ std::vector<std::vector<Vec2>> section_as_drawn(const VesselDesign& vessel, cons
   options.rim = vessel.rim;
   options.tolerance = 0.5 * tolerance;
   try {
-    return build_vessel_section(profile, options).loops;
+    return build_vessel_section(profile, options);
   } catch (const InputError&) {
-    return {};
+    return std::nullopt;
   }
 }
 
@@ -104,7 +105,16 @@ BuiltShape build_shape(const Design& design, std::vector<std::string>* contradic
     shape.patches = build_patch_network(surface->patches);
   if (const auto* vessel = std::get_if<VesselDesign>(&design.body)) {
     shape.revolved = true;
-    shape.section = section_as_drawn(*vessel, shape.curves.front().curve.curve, design.common.tolerance);
+    const CompositeCurve& profile = shape.curves.front().curve.curve;
+    if (auto section = section_as_drawn(*vessel, profile, design.common.tolerance)) {
+      shape.section = section->loops;
+      // A design that prints upright flags its overhangs (the angles do not depend on the scale).
+      if (vessel->print) {
+        shape.overhang_limit_deg = vessel->print->max_overhang_deg;
+        for (OverhangRun& run : check_print(profile, *section, *vessel->print).runs)
+          shape.overhangs.push_back(std::move(run.points));
+      }
+    }
   }
   return shape;
 }

@@ -36,6 +36,10 @@ struct BuiltShape {
   /// the rim, a shell's inner wall and base, the axis) in the design's units,
   /// at the fired size (before shrinkage's scaling). Empty when not built.
   std::vector<std::vector<Vec2>> section;
+  /// A vessel with `print`: the stretches overhanging beyond its limit, as
+  /// the plot flags them; empty otherwise.
+  std::vector<std::vector<Vec2>> overhangs;
+  double overhang_limit_deg = 45.0;
 };
 
 /// The design's curves built (build_curve, in design_curves' order) and a

@@ -71,7 +71,8 @@ void add_measures(const MeshFacts& mesh, ReportRow& row) {
 }  // namespace
 
 CurvePlot shape_plot(const DesignCommon& common, const std::vector<NamedBuiltCurve>& curves,
-                     const PatchNetwork* patches, const std::vector<std::vector<Vec2>>* section) {
+                     const PatchNetwork* patches, const std::vector<std::vector<Vec2>>* section,
+                     const std::vector<std::vector<Vec2>>& overhangs, double overhang_limit_deg) {
   CurvePlot plot;
   plot.title = common.name;
   plot.units = common.units;
@@ -82,19 +83,29 @@ CurvePlot shape_plot(const DesignCommon& common, const std::vector<NamedBuiltCur
     plot.axis_names = {"r", "z"};
     for (const auto& loop : *section) plot.outlines.push_back({"section", loop});
   }
+  if (!overhangs.empty()) {
+    plot.flags.push_back(
+        {fmt::format("overhang beyond {:g}\u00b0 from vertical, printed upright (print.max_overhang_deg)",
+                     overhang_limit_deg),
+         overhangs});
+  }
   return plot;
 }
 
 CurvePlot shape_plot(const DesignCommon& common, const BuiltShape& shape) {
   return shape_plot(common, shape.curves, shape.patches ? &*shape.patches : nullptr,
-                    shape.revolved ? &shape.section : nullptr);
+                    shape.revolved ? &shape.section : nullptr, shape.overhangs, shape.overhang_limit_deg);
 }
 
 CurvePlot shape_plot(const DesignCommon& common, const Result& result) {
   const auto* surface = std::get_if<SurfaceProducts>(&result.products);
   const auto* vessel = std::get_if<VesselProducts>(&result.products);
-  return shape_plot(common, result.curves, surface != nullptr ? &surface->patches : nullptr,
-                    vessel != nullptr ? &vessel->section : nullptr);
+  if (vessel == nullptr) {
+    return shape_plot(common, result.curves, surface != nullptr ? &surface->patches : nullptr, nullptr, {},
+                      0.0);
+  }
+  return shape_plot(common, result.curves, nullptr, &vessel->section, vessel->overhangs,
+                    vessel->overhang_limit_deg);
 }
 
 CurvePlot design_plot(const Design& design, std::vector<std::string>* contradicted) {
@@ -235,6 +246,7 @@ ReportRow report_row(const ItemFacts& item, const std::string& base) {
   row.name = item.name;
   row.status = report_status(item.status);
   row.message = item.message;
+  row.remarks = item.remarks;
   if (item.mesh) add_measures(*item.mesh, row);
   for (const auto& [stage, ms] : item.timings_ms) row.timings.push_back({stage, ms / 1000.0});
   for (const std::string& path : item.files) row.files.push_back(page_link(path, base));

@@ -31,9 +31,11 @@ CurvePlot design_plot(const Design& design, std::vector<std::string>* contradict
 
 /// The same plot drawn from curves, patches and a vessel's section already
 /// built (build_shape, or a job's Result): constructs nothing. `section`
-/// null: not a vessel (no axis of revolution).
+/// null: not a vessel (no axis of revolution). `overhangs` (a vessel that
+/// prints upright: its stretches beyond overhang_limit_deg) are flagged red.
 CurvePlot shape_plot(const DesignCommon& common, const std::vector<NamedBuiltCurve>& curves,
-                     const PatchNetwork* patches, const std::vector<std::vector<Vec2>>* section);
+                     const PatchNetwork* patches, const std::vector<std::vector<Vec2>>* section,
+                     const std::vector<std::vector<Vec2>>& overhangs, double overhang_limit_deg);
 /// The plot of a shape build_shape made.
 CurvePlot shape_plot(const DesignCommon& common, const BuiltShape& shape);
 /// The plot of a job's result: its curves and a surface's patches.

@@ -71,6 +71,11 @@ ItemFacts item_facts(const Result& r) {
   set_written_verdict(item, *item.mesh);
   item.files = written_paths(r);
   item.timings_ms = r.timings_ms;
+  if (const Facts::Value* print = r.facts.find("print")) {
+    if (const auto* group = std::get_if<Facts>(print); group != nullptr && group->contains("summary"))
+      item.remarks.push_back(group->text("summary"));
+  }
+  for (const std::string& w : r.warnings) item.remarks.push_back("warning: " + w);
   return item;
 }
 

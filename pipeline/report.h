@@ -47,6 +47,8 @@ struct ItemFacts {
   std::optional<MeshFacts> mesh;   ///< when built (or read)
   std::vector<std::string> files;  ///< written (paths as the job names them)
   StageTimings timings_ms;
+  /// Lines under the verdict: the print checks' summary (a vessel), the warnings.
+  std::vector<std::string> remarks;
 };
 
 /// The words of an item that is valid for fabrication.

@@ -132,6 +132,10 @@ struct VesselProducts {
   /// a shell's inner wall and base, the axis) at the fired size (before
   /// shrinkage's scaling), for the plot.
   std::vector<std::vector<Vec2>> section;
+  /// The stretches overhanging beyond overhang_limit_deg when printed
+  /// upright (print checks), at the fired size, for the plot.
+  std::vector<std::vector<Vec2>> overhangs;
+  double overhang_limit_deg = 45.0;
 };
 
 /// A kitchen's top cut into pieces and nested on slabs (a countertop with a

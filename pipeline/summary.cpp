@@ -32,6 +32,11 @@ void print_build_facts(const Facts& facts, const std::string& u, std::ostream& o
         m.number("plaster_grams"), m.number("water_grams"), m.number("plaster_ratio"),
         m.number("slip_millilitres"), m.number("slip_grams"), m.number("slip_density"));
   }
+  if (facts.contains("print")) {
+    // A design that prints upright (`print:`) hears what the checks found; the others see it in the report.
+    const Facts& p = facts.group("print");
+    if (std::get<bool>(*p.find("checked"))) out << "  " << p.text("summary") << "\n";
+  }
   if (facts.contains("kitchen")) {
     const Facts& k = facts.group("kitchen");
     std::string used;

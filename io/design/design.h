@@ -18,6 +18,7 @@
 #include "geometry/mesh/edge_profile.h"
 #include "geometry/mesh/thicken.h"
 #include "geometry/mould/mould_options.h"
+#include "geometry/section/print_checks.h"
 #include "geometry/section/vessel_section.h"
 #include "geometry/surfaces/patch_network.h"
 #include "geometry/toolpath/cnc_options.h"
@@ -136,6 +137,10 @@ struct VesselDesign {
   double plaster_ratio = 1.4;
   double plaster_density = 2.63;
   double slip_density = 1.75;
+  /// Printing the vessel upright (key `print`): its limits turn the print
+  /// checks into warnings (or, strict, bad input). Without it the checks are
+  /// reported only.
+  std::optional<PrintOptions> print;
 };
 
 /// A tap hole (`drill: {center, diameter, tool}`): drilled with a drill

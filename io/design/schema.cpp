@@ -18,7 +18,7 @@ std::vector<KeyGroup> make_groups() {
       {"parameters.NAME", {"value", "min", "max", "step", "description"}},
       // Kinds (the root map of a design file).
       {"curve", with_common({"curve"})},
-      {"vessel", with_common({"profile", "body", "max_triangles", "shrinkage", "mould"})},
+      {"vessel", with_common({"profile", "body", "max_triangles", "shrinkage", "mould", "print"})},
       {"countertop", with_common({"outline", "holes", "thickness", "max_edge", "max_triangles", "cnc", "slab",
                                   "seams", "seam_clearance", "backsplash", "edges"})},
       {"surface", with_common({"patches", "thickness", "thicken", "max_triangles"})},
@@ -29,6 +29,7 @@ std::vector<KeyGroup> make_groups() {
         "base_height", "keys", "key_radius", "key_clearance", "key_margin", "key_positions",
         "allow_undercuts", "plaster_ratio", "plaster_density", "slip_density"}},
       {"vessel.shrinkage", {"wet", "fired"}},
+      {"vessel.print", {"bed", "max_overhang_deg", "min_wall", "strict"}},
       // Countertops.
       {"countertop.holes[]",
        {"ellipse", "rounded_rect", "outline", "drill", "dxf", "layer", "max_gap", "tabs"}},

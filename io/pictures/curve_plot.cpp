@@ -22,9 +22,10 @@ constexpr const char* kPalette[] = {"#d62728", "#2ca02c", "#8e44ad", "#8c564b",
 constexpr const char* kPolygonBlue = "#1f4fd0";
 constexpr double kTitleBand = 34.0;  // pixels above the panels
 constexpr double kLegendLine = 18.0;
-constexpr double kScaleBand = 48.0;   // pixels under the model: the x coordinates, the scale bar
-constexpr double kTickGutter = 48.0;  // pixels left of the model: the y coordinates
-constexpr double kTickFont = 10.0;    // pixels
+constexpr const char* kFlagColour = "#ff2020";  // flags: red, drawn translucent and wide
+constexpr double kScaleBand = 48.0;             // pixels under the model: the x coordinates, the scale bar
+constexpr double kTickGutter = 48.0;            // pixels left of the model: the y coordinates
+constexpr double kTickFont = 10.0;              // pixels
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 constexpr int kJointLabelRows = 3;  // rows of joint labels above the curvature plot
 
@@ -98,6 +99,13 @@ void validate(const CurvePlot& plot, const CurvePlotOptions& o) {
     for (const Vec2& p : outline.points) {
       if (!p.allFinite())
         throw InputError(fmt::format("curve plot: outline '{}' is not finite", outline.name));
+    }
+  }
+  for (const PlotFlag& flag : plot.flags) {
+    for (const auto& stretch : flag.stretches) {
+      for (const Vec2& p : stretch) {
+        if (!p.allFinite()) throw InputError(fmt::format("curve plot: flag '{}' is not finite", flag.name));
+      }
     }
   }
   for (const auto& line : plot.net_lines) {
@@ -286,6 +294,19 @@ void write_outlines(std::string& out, const CurvePlot& plot, const ModelFrame& f
   }
 }
 
+void write_flags(std::string& out, const CurvePlot& plot, const ModelFrame& f) {
+  for (const PlotFlag& flag : plot.flags) {
+    std::string d;
+    for (const auto& stretch : flag.stretches) {
+      for (std::size_t i = 0; i < stretch.size(); ++i) d += (i == 0 ? " M" : " L") + f.pt(stretch[i]);
+    }
+    out += fmt::format(
+        "<path class=\"flag\" data-name=\"{}\" d=\"{}\" fill=\"none\" stroke=\"{}\" "
+        "stroke-opacity=\"0.45\" stroke-width=\"{}\" stroke-linecap=\"round\" stroke-linejoin=\"round\"/>\n",
+        escape_markup(flag.name), d.empty() ? d : d.substr(1), kFlagColour, f.px_len(9.0));
+  }
+}
+
 void write_comb(std::string& out, const Prepared& c, const ModelFrame& f, const std::string& name) {
   std::string teeth, envelope;
   for (const auto& segment : c.comb) {
@@ -372,6 +393,7 @@ void write_model_panel(std::string& out, const std::vector<Prepared>& curves, co
   write_ticks(out, f, plot);
   if (plot.revolution_axis) write_axis(out, f);
   write_outlines(out, plot, f);
+  write_flags(out, plot, f);
   if (!plot.net_lines.empty()) {
     std::string d;
     for (const auto& line : plot.net_lines) d += "M" + f.pt(line[0]) + " L" + f.pt(line[1]) + " ";
@@ -554,6 +576,13 @@ void write_legend(std::string& out, const std::vector<Prepared>& curves, const C
         escape_markup(name), px(y - 4), px(y - 4), px(y), escape_markup(name));
     y += kLegendLine;
   }
+  for (const PlotFlag& flag : plot.flags) {
+    out += fmt::format(
+        "<g class=\"legend-entry\" data-name=\"{}\"><line x1=\"12\" y1=\"{}\" x2=\"36\" y2=\"{}\" "
+        "stroke=\"{}\" stroke-opacity=\"0.45\" stroke-width=\"9\"/><text x=\"42\" y=\"{}\">{}</text></g>\n",
+        escape_markup(flag.name), px(y - 4), px(y - 4), kFlagColour, px(y), escape_markup(flag.name));
+    y += kLegendLine;
+  }
   for (const Prepared& c : curves) {
     std::string text = escape_markup(c.in->name);
     if (c.in->energy_before && c.in->energy_after) {
@@ -603,6 +632,11 @@ std::string plot_curves_svg(const CurvePlot& plot, const CurvePlotOptions& optio
   for (const PlotOutline& outline : plot.outlines) {
     for (const Vec2& p : outline.points) box.add(p);
   }
+  for (const PlotFlag& flag : plot.flags) {
+    for (const auto& stretch : flag.stretches) {
+      for (const Vec2& p : stretch) box.add(p);
+    }
+  }
   const double diagonal = std::max((box.hi - box.lo).norm(), 1e-9);
   build_combs(curves, diagonal, options);
   for (const Prepared& c : curves) {
@@ -617,7 +651,8 @@ std::string plot_curves_svg(const CurvePlot& plot, const CurvePlotOptions& optio
 
   const double w = options.width, h = options.height;
   const double legend =
-      kLegendLine * static_cast<double>(curves.size() + outline_names(plot).size() + 1) + 10.0;
+      kLegendLine * static_cast<double>(curves.size() + outline_names(plot).size() + plot.flags.size() + 1) +
+      10.0;
   const double panel_h = std::max(60.0, h - kTitleBand - legend);
   const ModelFrame frame = model_frame(box, 8.0, kTitleBand, 0.5 * w - 12.0, panel_h);
   std::string out = fmt::format(

@@ -19,6 +19,14 @@ struct PlotOutline {
   std::vector<Vec2> points;  ///< a closed polyline (the last point joins the first)
 };
 
+/// Stretches of the drawing to flag, drawn wide, red and translucent under
+/// the curves (class "flag"), with one legend line: e.g. a vessel's overhangs
+/// beyond its print limit.
+struct PlotFlag {
+  std::string name;                          ///< data-name, and the legend's words
+  std::vector<std::vector<Vec2>> stretches;  ///< open polylines, model units
+};
+
 /// What one plot shows.
 struct CurvePlot {
   std::string title;
@@ -27,6 +35,7 @@ struct CurvePlot {
   /// Extra straight lines drawn dotted, e.g. a surface's control net in plan (model units).
   std::vector<std::array<Vec2, 2>> net_lines;
   std::vector<PlotOutline> outlines;  ///< drawn under the curves (class "outline")
+  std::vector<PlotFlag> flags;        ///< drawn over the outlines, under the curves (class "flag")
   /// The model panel's coordinates, named on its axes with the units ("r (mm)").
   std::array<std::string, 2> axis_names = {"x", "y"};
   /// A vessel's axis of revolution, the line x = 0: drawn dash-dotted (class

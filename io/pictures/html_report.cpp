@@ -182,13 +182,19 @@ std::string row_html(const ReportRow& r, const HtmlReportOptions& o) {
     if (f.empty()) continue;
     files += fmt::format("<a href=\"{}\">{}</a>", url_path(f, r.name), escape_markup(basename(f)));
   }
+  std::string message = escape_markup(r.message);
+  if (!r.remarks.empty()) {
+    message += "<ul class=\"remarks\">";
+    for (const std::string& line : r.remarks) message += "<li>" + escape_markup(line) + "</li>";
+    message += "</ul>";
+  }
   return fmt::format(
       "<tr>{}{}<td>{}</td><td>{}</td><td data-sort=\"{}\"><span class=\"status "
       "{}\">{}</span></td><td>{}</td>{}{}{}{}"
       "<td class=\"num\" data-sort=\"{}\">{}</td>{}<td class=\"files\">{}</td></tr>\n",
       thumbnail_cell(r.preview_png, "preview", r.name, o), thumbnail_cell(r.plot_svg, "plot", r.name, o),
       escape_markup(r.name), escape_markup(r.kind), static_cast<int>(r.status), status_class(r.status),
-      to_string(r.status), escape_markup(r.message), number_cell(r.max_deviation, units),
+      to_string(r.status), message, number_cell(r.max_deviation, units),
       number_cell(r.volume, units.empty() ? "" : units + "\u00b3"),
       number_cell(r.area, units.empty() ? "" : units + "\u00b2"), bbox_cell(r),
       r.triangles ? std::to_string(*r.triangles) : "", r.triangles ? std::to_string(*r.triangles) : "-",

@@ -29,6 +29,7 @@ struct ReportRow {
   std::string kind;  ///< vessel | countertop | surface | curve
   ReportStatus status = ReportStatus::Ok;
   std::string message;                      ///< the verdict in words
+  std::vector<std::string> remarks;         ///< lines under the verdict (class "remarks")
   std::string units;                        ///< model units of the measures ("mm", "cm", ...)
   std::optional<double> max_deviation;      ///< proven bound, model units
   std::optional<double> volume;             ///< model units cubed

@@ -88,6 +88,35 @@ void read_shrinkage(const yaml::Fields& f, const YAML::Node& n, VesselDesign& v)
   }
 }
 
+// `print: {bed, max_overhang_deg, min_wall, strict}`: lengths in model units,
+// min_wall's default 1.2 mm converted.
+PrintOptions read_print(const yaml::Fields& f, const YAML::Node& n, const DesignCommon& common) {
+  f.require_map(n, "print", key_group("vessel.print"));
+  PrintOptions o;
+  o.units = common.units;
+  o.min_wall = f.number_or(n, "min_wall", "print.min_wall", o.min_wall / millimetres_per_unit(common.units));
+  if (!(o.min_wall > 0.0))
+    f.fail(n["min_wall"], "print.min_wall", fmt::format("min_wall = {} must be > 0", o.min_wall));
+  o.max_overhang_deg = f.number_or(n, "max_overhang_deg", "print.max_overhang_deg", o.max_overhang_deg);
+  if (!(o.max_overhang_deg > 0.0 && o.max_overhang_deg < 90.0)) {
+    f.fail(
+        n["max_overhang_deg"], "print.max_overhang_deg",
+        fmt::format("max_overhang_deg = {} must be in (0, 90): degrees from vertical", o.max_overhang_deg));
+  }
+  if (n["bed"].IsDefined()) {
+    if (!n["bed"].IsSequence() || n["bed"].size() != 3)
+      f.fail(n["bed"], "print.bed", "expected the printer's build volume [X, Y, Z]");
+    o.bed = f.point3(n["bed"], "print.bed");
+    if (!(o.bed->minCoeff() > 0.0)) {
+      f.fail(n["bed"], "print.bed",
+             fmt::format("bed = [{}, {}, {}]: the printer's X, Y and Z must each be > 0", o.bed->x(),
+                         o.bed->y(), o.bed->z()));
+    }
+  }
+  o.strict = f.boolean_or(n, "strict", "print.strict", false);
+  return o;
+}
+
 }  // namespace
 
 VesselDesign read_vessel(const yaml::Fields& f, const YAML::Node& root, const DesignCommon& common) {
@@ -115,6 +144,7 @@ VesselDesign read_vessel(const yaml::Fields& f, const YAML::Node& root, const De
   }
   v.max_triangles = f.budget_or(root, "max_triangles", v.max_triangles);
   if (root["shrinkage"].IsDefined()) read_shrinkage(f, root["shrinkage"], v);
+  if (root["print"].IsDefined()) v.print = read_print(f, root["print"], common);
   if (root["mould"].IsDefined()) {
     const YAML::Node m = root["mould"];
     v.mould = read_mould(f, m, common, v);

@@ -175,6 +175,10 @@ function showReport(report, buildMs) {
     add('clearance', `${Number(facts.min_clearance).toPrecision(4)} ${u}` +
         (facts.min_clearance_where ? ` (${facts.min_clearance_where})` : ''));
   }
+  if (facts.print?.summary) {
+    add('print', facts.print.summary);
+    if (facts.print.checked) for (const f of facts.print.findings ?? []) add('print warning', f, 'not-valid');
+  }
   if (facts.cnc?.clearance !== undefined) add('tool clearance', `${Number(facts.cnc.clearance).toPrecision(4)} ${u}`);
   if (report.triangles !== undefined) add('triangles', String(report.triangles));
   if (report.pending) {

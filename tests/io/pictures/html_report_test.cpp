@@ -94,6 +94,7 @@ TEST_CASE("html report: one table row per design, text escaped, links relative a
                  row("plain", ReportStatus::Invalid, 20),
                  row("no mesh", ReportStatus::BadInput, std::nullopt)};
   report.rows[1].files = {"out/with space#and?query:colon.stl"};
+  report.rows[1].remarks = {"printed upright: <56.3\u00b0>", "warning: print.bed & more"};
   const std::string html = render_report_html(report);
   const auto page = scan_xml(html);
   CHECK(only_text(page, "title") == report.title);
@@ -107,6 +108,12 @@ TEST_CASE("html report: one table row per design, text escaped, links relative a
     CHECK(rows[i][5]->text == report.rows[i].message);
   }
   CHECK(html.find("<b>&amp;</b>") == std::string::npos);
+  // Remarks under a verdict: one list item each, escaped.
+  CHECK(select(page, "ul", "remarks").size() == 1);
+  const auto remarks = select(page, "li");
+  REQUIRE(remarks.size() == 2);
+  CHECK(remarks[0]->text == report.rows[1].remarks[0]);
+  CHECK(remarks[1]->text == report.rows[1].remarks[1]);
   // Thumbnails: lazy, sized, linking to the full image.
   const auto images = select(page, "img");
   CHECK(images.size() == 4);
