@@ -32,6 +32,8 @@ struct BuildContext {
   /// that know their arrays' size in advance refuse larger meshes with it.
   std::size_t memory_limit = std::numeric_limits<std::size_t>::max();
   bool wants_exact = false;  ///< an output writes the exact shape (step)
+  bool wants_master =
+      false;  ///< an output writes a vessel's casting master (master_stl, master_3mf, master_step)
 };
 
 /// The smaller of this machine's physical memory and the process's address

@@ -64,6 +64,7 @@ std::vector<double> size_of(const Vec3& lo, const Vec3& hi) {
 }
 
 void add_line(std::vector<ExactPiece>& loop, const Vec2& a, const Vec2& b);
+std::optional<ExactSolid> exact_revolution(const CompositeCurve& profile, const VesselSection& section);
 
 // The mould as exact solids, from the mould's blocks and keys and the exact
 // master profile (the mesh's cavity is that profile sampled).
@@ -105,6 +106,60 @@ ExactMould exact_mould(const Mould& mould, const CompositeCurve& master, const M
   return exact;
 }
 
+// The master's profile: the vessel's outer profile as written and, with a
+// mould, the spare's wall from the rim up to the spare's top and its top
+// across to the axis, so that it revolves into the master standing on the
+// vessel's base with the spare on its rim (the mould cavity's shape).
+CompositeCurve master_profile(const CompositeCurve& master, const MouldSection* spare) {
+  if (spare == nullptr) return master;
+  std::vector<Segment> segments = master.segments();
+  const Vec2 opening(spare->opening_radius, spare->z_top), top(0.0, spare->z_top);
+  if (segments.back().point(1.0).y() > segments.front().point(0.0).y()) {  // upward: the rim is its end
+    const Vec2 rim = segments.back().point(1.0);
+    segments.push_back(Segment::line(rim, opening));
+    segments.push_back(Segment::line(opening, top));
+  } else {
+    const Vec2 rim = segments.front().point(0.0);
+    segments.insert(segments.begin(), {Segment::line(top, opening), Segment::line(opening, rim)});
+  }
+  return CompositeCurve(std::move(segments), false);
+}
+
+// The casting master (outputs master_stl, master_3mf, master_step): the
+// solid revolution of master_profile, proven like the vessel (a simple
+// section revolved on a closed grid), with its exact solid and its exact
+// volume (Pappus: the mould's cavity volume when it has the spare).
+void add_master(const VesselDesign& design, const CompositeCurve& master, const MouldSection* spare,
+                const BuildContext& context, Result& out, VesselProducts& products) {
+  const CompositeCurve profile = master_profile(master, spare);
+  VesselOptions options;
+  options.mode = BodyMode::Solid;
+  options.tolerance = context.tolerance;
+  options.max_triangles = design.max_triangles;
+  options.max_bytes = context.memory_limit;
+  options.name_key = [&](const std::string& key) { return key_label(context.common, key); };
+  VesselMesh mesh = build_vessel(profile, options);
+  context.watch.lap("master");
+  products.master = exact_revolution(profile, mesh.section);
+  out.max_deviation = std::max(out.max_deviation, mesh.max_deviation);
+  append_shares(out.tolerance_shares, "master: ", mesh.tolerance_shares);
+  const BoundingBox box = bounding_box(mesh.soup.vertices);
+  Facts facts;
+  facts.set("spare", spare != nullptr)
+      .set("volume", solid_of_revolution_volume(profile))
+      .set("size", size_of(box.lo, box.hi))
+      .set("triangles", mesh.soup.triangles.size())
+      .set("max_deviation", mesh.max_deviation);
+  out.facts.set("master", std::move(facts));
+  Part part;
+  part.name = "master";
+  part.role = PartRole::Master;
+  part.mesh = std::move(mesh.soup);
+  part.proofs.topology = std::move(mesh.topology);
+  part.proofs.embedding = std::move(mesh.proof);
+  out.parts.push_back(std::move(part));
+}
+
 // Plaster and water by weight (g) for `millilitres` of set plaster: the mix
 // fills its volume with the plaster's solid (its density) and the water
 // (1 g/ml), at plaster_ratio grams of plaster to each gram of water; air left
@@ -121,8 +176,9 @@ CastingWeights casting_weights(const VesselDesign& design, double millilitres) {
 
 // The mould's parts, each with its proof of embedding, what a workshop
 // needs to know, and the mould as exact solids.
-void add_mould(const VesselDesign& design, const CompositeCurve& fired_profile, const CompositeCurve& master,
-               const BuildContext& context, Result& out, VesselProducts& products) {
+MouldSection add_mould(const VesselDesign& design, const CompositeCurve& fired_profile,
+                       const CompositeCurve& master, const BuildContext& context, Result& out,
+                       VesselProducts& products) {
   MouldOptions options = *design.mould;
   options.tolerance = context.tolerance;
   Mould mould = keyed_in("vessel.mould", "mould.", [&] { return build_mould(fired_profile, options); });
@@ -180,6 +236,7 @@ void add_mould(const VesselDesign& design, const CompositeCurve& fired_profile, 
       .set("release", mould.release_proof)
       .set("warnings", mould.warnings);
   out.facts.set("mould", std::move(facts));
+  return std::move(mould.section);
 }
 
 // Appends the line from `a` to `b`, unless they are one point.
@@ -411,7 +468,9 @@ Result build(const VesselDesign& design, const BuildContext& context) {
     products.profile_template.push_back(profile_template(master, context.tolerance));
     context.watch.lap("template");
   }
-  if (design.mould) add_mould(design, profile.curve, master, context, out, products);
+  std::optional<MouldSection> spare;
+  if (design.mould) spare = add_mould(design, profile.curve, master, context, out, products);
+  if (context.wants_master) add_master(design, master, spare ? &*spare : nullptr, context, out, products);
   out.curves.push_back({"profile", profile});
   products.section = fired_loops(vessel.section.loops, factor);
   products.solid = exact_revolution(master, vessel.section);

@@ -61,10 +61,17 @@ std::string either(const std::vector<std::string>& names) {
   return text;
 }
 
+// Whether `format` is made from the design's `block`: the mould's formats,
+// and the casting master's (its spare is the mould's); the router's.
+bool made_from(const OutputFormat& format, DesignBlock block) {
+  return format.block == block || (block == DesignBlock::Mould && format.name.substr(0, 7) == "master_");
+}
+
 // Warnings about the design's own `outputs` list: a `mould:` or `cnc:` block
-// for which it asks for no output, so that block is not built ("cup.yaml:12:1:
-// mould: ... add mould_stl, mould_3mf or mould_step to `outputs`"). None when
-// the formats come from the command line or are the kind's defaults.
+// for which it asks for no output, so nothing made from it is written
+// ("cup.yaml:12:1: mould: ... add mould_stl, mould_3mf, mould_step, ... to
+// `outputs`"). None when the formats come from the command line or are the
+// kind's defaults.
 std::vector<std::string> unused_block_warnings(const Design& design, const JobOptions& options,
                                                const std::vector<const OutputFormat*>& formats) {
   std::vector<std::string> warnings;
@@ -74,15 +81,15 @@ std::vector<std::string> unused_block_warnings(const Design& design, const JobOp
     const char* key;
     const char* what;
   };
-  for (const Block& block : {Block{DesignBlock::Mould, "mould", "the mould is not built"},
+  for (const Block& block : {Block{DesignBlock::Mould, "mould", "no part of the mould is written"},
                              Block{DesignBlock::Cnc, "cnc", "the router path is not planned"}}) {
     if (!has_block(design, block.block)) continue;
     const bool used = std::any_of(formats.begin(), formats.end(),
-                                  [&](const OutputFormat* f) { return f->block == block.block; });
+                                  [&](const OutputFormat* f) { return made_from(*f, block.block); });
     if (used) continue;
     std::vector<std::string> users;
     for (const OutputFormat& f : output_formats()) {
-      if (f.block == block.block && f.kinds.test(design.body.index())) users.emplace_back(f.name);
+      if (made_from(f, block.block) && f.kinds.test(design.body.index())) users.emplace_back(f.name);
     }
     warnings.push_back(
         fmt::format("{}: `outputs` asks for no output made from it, so {}: add {} to `outputs` "
@@ -331,6 +338,8 @@ Result build_job(const Design& design, const JobPlan& plan) {
   BuildContext context{plan.common, (1.0 - kOutputShare) * plan.common.tolerance, plan.wants_drawing, watch,
                        process_memory_limit()};
   context.wants_exact = plan.wants_exact;
+  context.wants_master = std::any_of(plan.formats.begin(), plan.formats.end(),
+                                     [](const OutputFormat* f) { return f->name.substr(0, 7) == "master_"; });
   result = build_within_budget(design, plan, context);
   validate_parts(result, watch);
   set_identity(result, plan.common);

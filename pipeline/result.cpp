@@ -14,6 +14,8 @@ const char* to_string(PartRole role) {
       return "mould_base";
     case PartRole::Piece:
       return "piece";
+    case PartRole::Master:
+      return "master";
   }
   return "product";
 }

@@ -43,9 +43,10 @@ enum class PartRole {
   MouldSide,  ///< a side part of a vessel's slip-casting mould
   MouldBase,  ///< the base part of a vessel's mould
   Piece,      ///< a piece of a kitchen's top, cut at its seams (the product is then the whole top)
+  Master,     ///< a vessel's casting master: its outer solid as written, with the mould's spare on its rim
 };
 
-/// "product", "mould_side", "mould_base", "piece": the role as reports write it.
+/// "product", "mould_side", "mould_base", "piece", "master": the role as reports write it.
 const char* to_string(PartRole role);
 
 /// One mesh of a result, with what its construction proves and its verdict.
@@ -128,6 +129,9 @@ struct VesselProducts {
   std::optional<ExactSolid> solid;
   std::vector<CutLoop> profile_template;  ///< the profile closed along the axis, when an output draws it
   std::optional<ExactMould> mould;        ///< when the design has a mould
+  /// The casting master as an exact solid of revolution (master_step), when
+  /// an output asked for the master.
+  std::optional<ExactSolid> master;
   /// The section as the builder made it: closed loops (the profile, the rim,
   /// a shell's inner wall and base, the axis) at the fired size (before
   /// shrinkage's scaling), for the plot.

@@ -38,12 +38,13 @@ void bind_enums(py::module_& m) {
   add_text_enum(m, "DefectKind", defects,
                 "A kind of defect a mesh can have (docs/validity.md), named as the JSON reports name it.");
   std::vector<std::pair<std::string, std::string>> roles;
-  for (const fabmesh::PartRole r : {fabmesh::PartRole::Product, fabmesh::PartRole::MouldSide,
-                                    fabmesh::PartRole::MouldBase, fabmesh::PartRole::Piece})
+  for (const fabmesh::PartRole r :
+       {fabmesh::PartRole::Product, fabmesh::PartRole::MouldSide, fabmesh::PartRole::MouldBase,
+        fabmesh::PartRole::Piece, fabmesh::PartRole::Master})
     roles.emplace_back(fabmesh::to_string(r), fabmesh::to_string(r));
   add_text_enum(m, "PartRole", roles,
                 "What a part of a Result is: the design's own mesh (product), a mould's side or base part, a "
-                "kitchen's piece.");
+                "kitchen's piece, a vessel's casting master.");
 }
 
 }  // namespace fabmesh_python

@@ -65,6 +65,7 @@ class PartRole(str, enum.Enum):
     mould_side = "mould_side"
     mould_base = "mould_base"
     piece = "piece"
+    master = "master"
 
 class Parameter:
     """One of a design's named parameters (`parameters:`), with the value used."""

@@ -30,6 +30,16 @@ void pappus(const CompositeCurve& profile, double* volume, double* lateral_area)
   *lateral_area = a;
 }
 
+}  // namespace
+
+double solid_of_revolution_volume(const CompositeCurve& profile) {
+  double volume = 0.0, area = 0.0;
+  pappus(profile, &volume, &area);
+  return volume;
+}
+
+namespace {
+
 MouldSizes sizes_of(const MouldSection& s, double factor) {
   MouldSizes z;
   z.factor = factor;

@@ -72,4 +72,9 @@ struct Mould {
 ///        parts, where = "key_clearance"), BudgetError (max_triangles).
 Mould build_mould(const CompositeCurve& profile, const MouldOptions& options = {});
 
+/// The volume of the solid that `profile` (in the (r, z) half-plane, an open
+/// profile closed to the axis at its ends' heights) sweeps about the axis:
+/// Pappus, pi |int r^2 dz|, by 40-point Gauss-Legendre on each segment.
+double solid_of_revolution_volume(const CompositeCurve& profile);
+
 }  // namespace fabmesh

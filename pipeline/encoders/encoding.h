@@ -80,6 +80,9 @@ EncodedFiles encode_glb_draco_output(const EncodeContext& c);
 // The mould's parts (encoders/mesh_encoders.cpp).
 EncodedFiles encode_mould_stl_output(const EncodeContext& c);
 EncodedFiles encode_mould_3mf_output(const EncodeContext& c);
+// A vessel's casting master (encoders/mesh_encoders.cpp, encoders/step_encoders.cpp).
+EncodedFiles encode_master_stl_output(const EncodeContext& c);
+EncodedFiles encode_master_3mf_output(const EncodeContext& c);
 // Drawings, programs and pictures (encoders/drawing_encoders.cpp).
 EncodedFiles encode_dxf_output(const EncodeContext& c);
 EncodedFiles encode_svg_output(const EncodeContext& c);
@@ -95,5 +98,6 @@ EncodedFiles encode_png_output(const EncodeContext& c);
 // Exact geometry (encoders/step_encoders.cpp).
 EncodedFiles encode_step_output(const EncodeContext& c);
 EncodedFiles encode_mould_step_output(const EncodeContext& c);
+EncodedFiles encode_master_step_output(const EncodeContext& c);
 
 }  // namespace fabmesh

@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
+#include <optional>
 #include <stdexcept>
 
 #include "geometry/core/errors.h"
@@ -182,15 +184,57 @@ struct ExportedPart {
   TriangleSoup mesh;
 };
 
-std::vector<ExportedPart> exported_parts(const EncodeContext& c) {
+std::vector<ExportedPart> exported_parts(const EncodeContext& c, std::initializer_list<PartRole> roles) {
   std::vector<ExportedPart> parts;
   for (const Part& p : c.result.parts) {
-    if (p.role != PartRole::MouldSide && p.role != PartRole::MouldBase) continue;
+    if (std::find(roles.begin(), roles.end(), p.role) == roles.end()) continue;
     ExportedPart e{&p, p.mesh};
     for (Vec3& v : e.mesh.vertices) v *= c.export_scale;
     parts.push_back(std::move(e));
   }
   return parts;
+}
+
+// Parts as separate objects of one 3MF, named "NAME GROUP PART" ("NAME PART"
+// without a group), each proven valid as the file stores it.
+Encoded parts_3mf(const EncodeContext& c, const std::vector<ExportedPart>& parts, const std::string& group,
+                  const char* format) {
+  std::vector<ThreeMfObject> objects;
+  double largest = 0.0;
+  const std::string prefix = c.common.name + (group.empty() ? "" : " " + group);
+  for (const ExportedPart& p : parts) {
+    largest = std::max(largest, max_abs_coordinate(p.mesh));
+    objects.push_back({prefix + " " + p.part->name, p.mesh});
+  }
+  ThreeMfOptions options;
+  options.units = c.common.export_units;
+  options.title = group.empty() ? c.common.name + " " + parts.front().part->name : prefix;
+  Encoded e = unitless(encode_3mf(objects, options), c, threemf_max_error(largest) / c.export_scale);
+  for (const ExportedPart& p : parts) e.parts.push_back(p.part->name);
+  // Each part as the file stores it: its own object, read back (once, when a part needs it).
+  std::optional<std::vector<TriangleSoup>> stored;
+  for (std::size_t i = 0; i < objects.size(); ++i) {
+    prove_as_stored(e, c, format,
+                    {parts[i].part->validation, objects[i].soup, c.export_scale,
+                     [&, i] {
+                       if (!stored) stored = stored_3mf_objects(e.bytes);
+                       if (stored->size() != objects.size())
+                         throw std::logic_error(std::string(format) + ": the file lost a part");
+                       return (*stored)[i];
+                     },
+                     MeshPurpose::Fabrication});
+  }
+  return e;
+}
+
+// One part as STL, proven valid as stored.
+Encoded part_stl(const EncodeContext& c, const ExportedPart& p, const char* format) {
+  Encoded e = unitless(encode_stl(p.mesh), c, float32_bound(max_abs_coordinate(p.mesh), c.export_scale));
+  e.parts = {p.part->name};
+  prove_as_stored(e, c, format,
+                  {p.part->validation, p.mesh, c.export_scale, [&p] { return soup_in_float32(p.mesh); },
+                   MeshPurpose::Fabrication});
+  return e;
 }
 
 }  // namespace
@@ -289,45 +333,28 @@ EncodedFiles encode_glb_draco_output(const EncodeContext& c) {
 
 EncodedFiles encode_mould_stl_output(const EncodeContext& c) {
   EncodedFiles files;
-  for (const ExportedPart& p : exported_parts(c)) {
-    Encoded e = unitless(encode_stl(p.mesh), c, float32_bound(max_abs_coordinate(p.mesh), c.export_scale));
+  for (const ExportedPart& p : exported_parts(c, {PartRole::MouldSide, PartRole::MouldBase})) {
+    Encoded e = part_stl(c, p, "mould_stl");
     e.suffix = ".mould-" + p.part->name + ".stl";
-    e.parts = {p.part->name};
-    prove_as_stored(e, c, "mould_stl",
-                    {p.part->validation, p.mesh, c.export_scale, [&p] { return soup_in_float32(p.mesh); },
-                     MeshPurpose::Fabrication});
     files.push_back(std::move(e));
   }
   return files;
 }
 
+EncodedFiles encode_master_stl_output(const EncodeContext& c) {
+  const std::vector<ExportedPart> master = exported_parts(c, {PartRole::Master});
+  if (master.size() != 1) throw std::logic_error("master_stl: the master was not built");
+  return {part_stl(c, master.front(), "master_stl")};
+}
+
 EncodedFiles encode_mould_3mf_output(const EncodeContext& c) {
-  const std::vector<ExportedPart> parts = exported_parts(c);
-  std::vector<ThreeMfObject> objects;
-  double largest = 0.0;
-  for (const ExportedPart& p : parts) {
-    largest = std::max(largest, max_abs_coordinate(p.mesh));
-    objects.push_back({c.common.name + " mould " + p.part->name, p.mesh});
-  }
-  ThreeMfOptions options;
-  options.units = c.common.export_units;
-  options.title = c.common.name + " mould";
-  Encoded e = unitless(encode_3mf(objects, options), c, threemf_max_error(largest) / c.export_scale);
-  for (const ExportedPart& p : parts) e.parts.push_back(p.part->name);
-  // Each part as the file stores it: its own object, read back (once, when a part needs it).
-  std::optional<std::vector<TriangleSoup>> stored;
-  for (std::size_t i = 0; i < objects.size(); ++i) {
-    prove_as_stored(e, c, "mould_3mf",
-                    {parts[i].part->validation, objects[i].soup, c.export_scale,
-                     [&, i] {
-                       if (!stored) stored = stored_3mf_objects(e.bytes);
-                       if (stored->size() != objects.size())
-                         throw std::logic_error("mould_3mf: the file lost a part");
-                       return (*stored)[i];
-                     },
-                     MeshPurpose::Fabrication});
-  }
-  return {std::move(e)};
+  return {parts_3mf(c, exported_parts(c, {PartRole::MouldSide, PartRole::MouldBase}), "mould", "mould_3mf")};
+}
+
+EncodedFiles encode_master_3mf_output(const EncodeContext& c) {
+  const std::vector<ExportedPart> master = exported_parts(c, {PartRole::Master});
+  if (master.size() != 1) throw std::logic_error("master_3mf: the master was not built");
+  return {parts_3mf(c, master, "", "master_3mf")};
 }
 
 }  // namespace fabmesh

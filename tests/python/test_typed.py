@@ -115,3 +115,15 @@ def test_the_names_of_0_3_still_work_and_warn():
         assert fabmesh.EnvironmentError is fabmesh.MachineError
     with pytest.raises(AttributeError):
         fabmesh.no_such_name  # noqa: B018
+
+
+def test_the_casting_master_is_a_part_of_its_own(tmp_path):
+    # Asked for, the master (vessel and spare) is one more part, role master, the cavity's volume.
+    design = fabmesh.read_design(example("mould_golden.yaml"), overrides={"outputs": ["mould_stl", "master_stl"]})
+    result = fabmesh.build(design)
+    masters = [p for p in result.parts if p.role is fabmesh.PartRole.master]
+    assert len(masters) == 1 and masters[0].name == "master" and masters[0].valid
+    report = result.to_dict()
+    assert report["build"]["master"]["spare"] is True
+    assert report["build"]["master"]["volume"] == pytest.approx(report["build"]["mould"]["slip_volume"], rel=1e-12)
+    assert [f.parts for f in result.files if f.format == "master_stl"] == [["master"]]

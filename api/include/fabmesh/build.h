@@ -31,9 +31,10 @@ enum class PartRole {
   MouldSide,  ///< a side part of a vessel's slip-casting mould
   MouldBase,  ///< the base part of a vessel's mould
   Piece,      ///< a piece of a kitchen's top, cut at its seams
+  Master,     ///< a vessel's casting master (outputs master_stl, master_3mf, master_step)
 };
 
-/// The role as the JSON reports name it: "product", "mould_side", "mould_base", "piece".
+/// The role as the JSON reports name it: "product", "mould_side", "mould_base", "piece", "master".
 const char* to_string(PartRole role);
 
 /// One mesh of a result: the design's own (its product) or a mould part.

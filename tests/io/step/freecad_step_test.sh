@@ -6,6 +6,8 @@
 # for a mould (`mould_step`, every example with a `mould:`) one closed solid
 # per part, as many as the mould's STL parts; for an open surface one open
 # shell of B-spline faces, one per patch, of positive area.
+# A casting master (`master_step`, every example with a `mould:`) is one
+# closed solid of the exact volume its report gives (vessel and spare).
 # The golden solid, designed in cm, must come in at 46.171424531125 cm^3
 # (FreeCAD works in mm): the file's unit is read as written.
 # A kitchen (an example with `slab:`) writes one STEP file per piece (and per
@@ -27,6 +29,7 @@ fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
 
 files=()
 declare -A mould_parts  # a mould's STEP file name -> its number of parts
+declare -A master_volume  # a casting master's STEP file name -> its exact volume in mm^3 (run --json)
 kitchens=()             # "WHOLE.step:PIECE-1.step:PIECE-2.step..." per kitchen example
 for design in "$source"/configs/examples/*.yaml; do
   name=$(basename "$design" .yaml)
@@ -81,6 +84,22 @@ PY
     cat "$work/$name-mould.log"
     fail "$name: no mould STEP file"
   fi
+  # The casting master with the mould's spare: one closed solid of the exact volume the report gives.
+  if (cd "$source/configs/examples" && "$fabmesh" run "$design" --export-format master_step -o "$work/$name-master/" \
+      --json) >"$work/$name-master.json" 2>"$work/$name-master.log"; then
+    step=$(compgen -G "$work/$name-master/*.master.step" | head -n 1)
+    [[ -n $step ]] || { fail "$name: exit 0 but no master STEP file"; continue; }
+    files+=("$step")
+    master_volume[$(basename "$step")]=$(python3 -c '
+import json, sys
+d = json.load(open(sys.argv[1]))
+d = d[0] if isinstance(d, list) else d
+mm = {"mm": 1.0, "cm": 10.0, "m": 1000.0, "in": 25.4}[d["units"]]
+print(repr(d["build"]["master"]["volume"] * mm ** 3))' "$work/$name-master.json")
+  else
+    cat "$work/$name-master.log"
+    fail "$name: no master STEP file"
+  fi
 done
 ((${#files[@]} >= 5)) || fail "only ${#files[@]} STEP files written"
 
@@ -91,10 +110,11 @@ while IFS= read -r line; do
   json=${line#FABMESH_STEP }
   checked=$((checked + 1))
   step_name=$(python3 -c 'import json, os, sys; print(os.path.basename(json.loads(sys.argv[1])["path"]))' "$json")
-  verdict=$(python3 - "$json" "${mould_parts[$step_name]:-1}" <<'PY'
+  verdict=$(python3 - "$json" "${mould_parts[$step_name]:-1}" "${master_volume[$step_name]:-}" <<'PY'
 import json, os, sys
 f = json.loads(sys.argv[1])
 solids = int(sys.argv[2])
+master_volume = float(sys.argv[3]) if sys.argv[3] else None
 name = os.path.basename(f["path"])
 problems = []
 if not f.get("read"):
@@ -124,6 +144,8 @@ else:
                  - 30 * (760 * 460 - (4 - pi) * 40 ** 2))
         if abs(f["volume"] / exact - 1) > 1e-9:
             problems.append(f"volume {f['volume']} mm^3, not the exact {exact}")
+    if master_volume is not None and abs(f["volume"] / master_volume - 1) > 1e-7:
+        problems.append(f"volume {f['volume']} mm^3, not the master's exact {master_volume}")
     if name == "vessel_golden_solid.step" and abs(f["volume"] / 46171.424531125 - 1) > 1e-7:
         problems.append(f"volume {f['volume']} mm^3, not 46171.424531125 (46.171424531125 cm^3)")
 print(name + (": " + "; ".join(problems) if problems else ": ok"))
