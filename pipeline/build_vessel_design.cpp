@@ -150,6 +150,22 @@ void add_master(const VesselDesign& design, const CompositeCurve& master, const 
       .set("size", size_of(box.lo, box.hi))
       .set("triangles", mesh.soup.triangles.size())
       .set("max_deviation", mesh.max_deviation);
+  if (design.print && design.print->bed) {
+    // A master larger than the printer would be printed in sections with pins: not made yet, so said.
+    const Vec3& bed = *design.print->bed;
+    const Vec3 size = box.hi - box.lo;
+    const bool fits = std::max(size.x(), size.y()) <= std::min(bed.x(), bed.y()) && size.z() <= bed.z();
+    facts.set("fits_bed", fits);
+    if (!fits) {
+      out.warnings.push_back(fmt::format(
+          "{}: the master ({:.6g} {} across, {:.6g} {} tall with its spare) does not fit the bed {:g} x {:g} "
+          "x "
+          "{:g} {}; fabmesh does not split a master into sections yet: print it on a larger printer or cut "
+          "it",
+          key_label(context.common, "print.bed"), std::max(size.x(), size.y()), context.common.units,
+          size.z(), context.common.units, bed.x(), bed.y(), bed.z(), context.common.units));
+    }
+  }
   out.facts.set("master", std::move(facts));
   Part part;
   part.name = "master";

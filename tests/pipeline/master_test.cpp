@@ -62,7 +62,8 @@ TEST_CASE("master: the vessel with the mould's spare, the cavity's shape and vol
   CHECK(stl.triangles.size() == master.mesh.triangles.size());
 }
 
-TEST_CASE("master: without a mould the vessel's outer solid, built only when asked for", "[pipeline][master]") {
+TEST_CASE("master: without a mould the vessel's outer solid, built only when asked for",
+          "[pipeline][master]") {
   // A shell's master is solid: its outer profile closed to the axis, the same solid as the solid vessel.
   Design shell = read_design(example("vessel_golden_shell.yaml"));
   Design solid = read_design(example("vessel_golden_solid.yaml"));
@@ -77,4 +78,19 @@ TEST_CASE("master: without a mould the vessel's outer solid, built only when ask
   // Not asked for, not built: no part, no facts.
   CHECK(parts_of(b, PartRole::Master).empty());
   CHECK_FALSE(b.facts.contains("master"));
+}
+
+TEST_CASE("master: one larger than the print bed is said so, at print.bed", "[pipeline][master]") {
+  const std::string path = example("mould_golden.yaml");  // the master stands 7.05 cm with its spare
+  Design design =
+      parse_design(read_file(path), path, {{"print", "{bed: [22, 22, 6]}", "print={bed: [22, 22, 6]}"}});
+  design.common.outputs = {{"master_stl", "test", 0, 0}};
+  const Result r = run_job(design, into(fresh_dir("master_bed")));
+  CHECK_FALSE(std::get<bool>(*r.facts.group("master").find("fits_bed")));
+  REQUIRE_FALSE(r.warnings.empty());
+  CHECK(
+      r.warnings.back().find("print.bed: the master (5.89853 cm across, 7.04545 cm tall with its spare) does "
+                             "not fit the bed 22 x 22 x 6 cm") != std::string::npos);
+  // The vessel alone (4.55 cm) fits: the print checks find nothing.
+  CHECK(std::get<bool>(*r.facts.group("print").find("fits_bed")));
 }

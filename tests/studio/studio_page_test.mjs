@@ -154,6 +154,9 @@ try {
     assert.ok(shown.meshSignature.length > 0);
     assert.equal(await page.$eval('#plot svg', (e) => e.tagName.toLowerCase()), 'svg');
     assert.match(await page.$eval('#report', (e) => e.textContent), /valid for fabrication/);
+    // The print checks of the vessel printed upright: the cup flares out at 56 degrees from its foot.
+    assert.match(await page.$eval('#report', (e) => e.textContent),
+                 /printed upright: outer wall overhangs at most 56\.3 degrees/);
     assert.equal(await page.$$eval('#parameters .control', (l) => l.length), 2);
     assert.deepEqual(consoleErrors, []);
     console.log(`  3D view rendered with WebGL: ${shown.rendered}`);
