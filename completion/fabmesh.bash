@@ -3,7 +3,7 @@
 # tests/packaging/cli_docs_test.sh checks that it offers every option of
 # `fabmesh COMMAND --help`.
 
-_fabmesh_commands="run plot preview check repair optimize sample batch studio"
+_fabmesh_commands="run plot preview check repair optimize sample params batch studio"
 _fabmesh_global_options="-h --help --version -q --quiet -v --verbose"
 
 _fabmesh_options() {
@@ -15,6 +15,7 @@ _fabmesh_options() {
     repair) echo "-o --output --max-deviation --wrap --weld-distance --no-fill --max-seconds --dry-run --json" ;;
     optimize) echo "-D --define --json" ;;
     sample) echo "-D --define --csv --tolerance" ;;
+    params) echo "-D --define --json" ;;
     studio) echo "--port --host --no-open -o --output" ;;
     batch) echo "-o --output --jobs --shard --force --json --slurm --array-size --report --merge" ;;
   esac

@@ -51,7 +51,7 @@ if ((test_deps)); then
   packages+=(
     catch2
     clang clang-tidy libclang-rt-14-dev
-    python3-ezdxf python3-pytest python3-meshio python3-open3d python3-yaml
+    python3-ezdxf python3-pytest python3-meshio python3-open3d python3-yaml python3-jsonschema
     prusa-slicer chromium draco openscad freecad
     slurm-wlm munge
     groff-base man-db

@@ -55,6 +55,7 @@ int run_app(int argc, const char* const* argv, Streams streams) {
   // --- commands ---
   add(&add_check_command);
   add(&add_sample_command);
+  add(&add_params_command);
   add(&add_optimize_command);
   add(&add_run_command);
   add(&add_plot_command);

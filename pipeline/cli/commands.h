@@ -77,6 +77,7 @@ inline bool names_a_file(const std::string& out) {
 // --- commands ---
 Runner add_check_command(CLI::App& app);  ///< `fabmesh check MESH... [--json] [--weld-tolerance X]`
 Runner add_sample_command(CLI::App& app);
+Runner add_params_command(CLI::App& app);
 Runner add_optimize_command(CLI::App& app);
 Runner add_run_command(CLI::App& app);
 Runner add_plot_command(CLI::App& app);     ///< `fabmesh plot DESIGN... [-o FILE.svg | DIR]`

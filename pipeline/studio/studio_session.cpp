@@ -28,6 +28,7 @@
 #include "pipeline/job.h"
 #include "pipeline/load_design.h"
 #include "pipeline/output_table.h"
+#include "pipeline/parameter_schema.h"
 #include "pipeline/pictures.h"
 #include "pipeline/report.h"
 #include "pipeline/validate_parts.h"
@@ -435,6 +436,7 @@ StudioResponse StudioSession::design() const {
     Json j = {{"path", options_.design_path}, {"name", design.common.name}, {"kind", kind_name(design)},
               {"units", design.common.units}, {"version", version},         {"text", text}};
     j["parameters"] = parameters_json(design);
+    j["schema"] = parameter_schema(design);
     j["shape_parameters"] = shape_parameters(design);
     j["control_points"] = draggable_points(design, text);
     j["out_dir"] = options_.out_dir;

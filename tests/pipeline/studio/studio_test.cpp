@@ -126,6 +126,16 @@ TEST_CASE("studio: the design, a build, its mesh, and bad requests", "[studio]")
                                     {"step", 0.1},
                                     {"description", "foot to rim"}}));
   CHECK(d["parameters"][2]["min"].is_null());
+  // The same parameters as a JSON Schema, as `fabmesh params --json` prints it.
+  CHECK(d["schema"]["$schema"] == "https://json-schema.org/draft/2020-12/schema");
+  CHECK(d["schema"]["additionalProperties"] == false);
+  CHECK(d["schema"]["properties"]["height"] == Json({{"type", "number"},
+                                                     {"default", 4.0},
+                                                     {"minimum", 2.0},
+                                                     {"maximum", 10.0},
+                                                     {"multipleOf", 0.1},
+                                                     {"description", "foot to rim"}}));
+  CHECK(d["schema"]["properties"].size() == 3);
   REQUIRE(d["shape_parameters"].size() == 3);
   CHECK(d["shape_parameters"][1] ==
         Json({{"key", "profile.lambdas[1]"}, {"value", 0.0}, {"min", -8.0}, {"max", 1.0}, {"step", 0.01}}));

@@ -1,0 +1,61 @@
+// fabmesh params DESIGN [-D ...] [--json]: the design's named parameters, as
+// a table or as a JSON Schema (draft 2020-12) of the overrides it takes.
+
+#include <fmt/format.h>
+
+#include <memory>
+
+#include "pipeline/cli/commands.h"
+#include "pipeline/load_design.h"
+#include "pipeline/parameter_schema.h"
+
+namespace fabmesh::cli {
+namespace {
+
+struct ParamsArgs {
+  std::string design;
+  std::vector<std::string> defines;
+  bool json = false;
+};
+
+int run_params(const ParamsArgs& args, Streams io) {
+  const Design design = load_design(args.design, parse_overrides(args.defines));
+  if (args.json) {
+    io.out << parameter_schema(design).dump(2) << "\n";
+    return 0;
+  }
+  const std::vector<DesignParameter>& parameters = design.common.parameters;
+  if (parameters.empty()) {
+    io.out << fmt::format("# {}: no named parameters (`parameters:` in the design declares them)\n",
+                          design.common.name);
+    return 0;
+  }
+  io.out << fmt::format("# {}: {} named parameter(s), set with -D NAME=VALUE\n", design.common.name,
+                        parameters.size());
+  for (const DesignParameter& p : parameters) {
+    std::string range;
+    if (p.min || p.max) {
+      range = fmt::format(" in [{}, {}]", p.min ? fmt::format("{:g}", *p.min) : std::string("-inf"),
+                          p.max ? fmt::format("{:g}", *p.max) : std::string("inf"));
+    }
+    if (p.step) range += fmt::format(", step {:g}", *p.step);
+    io.out << fmt::format("{} = {:g}{}{}\n", p.name, p.value, range,
+                          p.description.empty() ? std::string() : ": " + p.description);
+  }
+  return 0;
+}
+
+}  // namespace
+
+Runner add_params_command(CLI::App& app) {
+  auto args = std::make_shared<ParamsArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "params", "Print a design's named parameters, or with --json their JSON Schema (draft 2020-12)");
+  cmd->add_option("design", args->design, "Design file (YAML)")->required();
+  add_define_option(cmd, args->defines);
+  cmd->add_flag("--json", args->json,
+                "Print a JSON Schema of the overrides the design takes by parameter name, for web forms");
+  return [args](Streams io) { return run_params(*args, io); };
+}
+
+}  // namespace fabmesh::cli

@@ -1,0 +1,42 @@
+#include "pipeline/parameter_schema.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+namespace fabmesh {
+namespace {
+
+// Whether `x` is a whole multiple of `step` as decimals written in the
+// shortest round-trip form: the quotient, rounded, times the step gives x back.
+bool multiple_of(double x, double step) {
+  const double q = std::round(x / step);
+  return std::abs(q * step - x) <= 1e-9 * std::max(std::abs(x), step);
+}
+
+}  // namespace
+
+nlohmann::ordered_json parameter_schema(const Design& design) {
+  using Json = nlohmann::ordered_json;
+  Json properties = Json::object();
+  for (const DesignParameter& p : design.common.parameters) {
+    Json j = {{"type", "number"}, {"default", p.value}};
+    if (p.min) j["minimum"] = *p.min;
+    if (p.max) j["maximum"] = *p.max;
+    if (p.step && *p.step > 0.0 && multiple_of(p.min.value_or(0.0), *p.step)) j["multipleOf"] = *p.step;
+    if (!p.description.empty()) j["description"] = p.description;
+    properties[p.name] = std::move(j);
+  }
+  Json schema = {
+      {"$schema", "https://json-schema.org/draft/2020-12/schema"},
+      {"title", design.common.name},
+      {"description", fmt::format("The named parameters of the {} design {} ({}); each is set by name, "
+                                  "as `fabmesh run -D NAME=VALUE` does",
+                                  kind_name(design), design.common.path, design.common.units)},
+      {"type", "object"},
+      {"properties", std::move(properties)},
+      {"additionalProperties", false}};
+  return schema;
+}
+
+}  // namespace fabmesh
