@@ -81,7 +81,8 @@ TEST_CASE("a sphere's lower half overhangs up to the 45-degree latitude, a ledge
   const PrintCheck c = check(sphere, section_of(sphere));
   REQUIRE(c.runs.size() == 1);
   // From the bed (where the face turns horizontal) to where it leans 45 degrees. Places within 1e-12 of
-  // the height of the lowest one stand on the bed: a sphere touches it at a point, so within ~sqrt(2 R 1e-12 H) in r.
+  // the height of the lowest one stand on the bed: a sphere touches it at a point, so within ~sqrt(2 R 1e-12
+  // H) in r.
   CHECK(c.runs[0].from.x() == Approx(0.0).margin(1e-4));
   CHECK(c.runs[0].to.x() == Approx(10.0 * std::sqrt(0.5)).epsilon(1e-9));
   CHECK(c.runs[0].to.y() == Approx(10.0 - 10.0 * std::sqrt(0.5)).epsilon(1e-9));
