@@ -61,10 +61,13 @@ std::string either(const std::vector<std::string>& names) {
   return text;
 }
 
+// Whether `format` writes a vessel's casting master (master_stl, master_3mf, master_step).
+bool writes_master(const OutputFormat& format) { return format.name.substr(0, 7) == "master_"; }
+
 // Whether `format` is made from the design's `block`: the mould's formats,
 // and the casting master's (its spare is the mould's); the router's.
 bool made_from(const OutputFormat& format, DesignBlock block) {
-  return format.block == block || (block == DesignBlock::Mould && format.name.substr(0, 7) == "master_");
+  return format.block == block || (block == DesignBlock::Mould && writes_master(format));
 }
 
 // Warnings about the design's own `outputs` list: a `mould:` or `cnc:` block
@@ -339,7 +342,7 @@ Result build_job(const Design& design, const JobPlan& plan) {
                        process_memory_limit()};
   context.wants_exact = plan.wants_exact;
   context.wants_master = std::any_of(plan.formats.begin(), plan.formats.end(),
-                                     [](const OutputFormat* f) { return f->name.substr(0, 7) == "master_"; });
+                                     [](const OutputFormat* f) { return writes_master(*f); });
   result = build_within_budget(design, plan, context);
   validate_parts(result, watch);
   set_identity(result, plan.common);

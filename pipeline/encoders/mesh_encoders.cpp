@@ -227,6 +227,13 @@ Encoded parts_3mf(const EncodeContext& c, const std::vector<ExportedPart>& parts
   return e;
 }
 
+// The casting master, the one part of its role, in the export unit (for `format`).
+std::vector<ExportedPart> the_master(const EncodeContext& c, const char* format) {
+  std::vector<ExportedPart> master = exported_parts(c, {PartRole::Master});
+  if (master.size() != 1) throw std::logic_error(std::string(format) + ": the master was not built");
+  return master;
+}
+
 // One part as STL, proven valid as stored.
 Encoded part_stl(const EncodeContext& c, const ExportedPart& p, const char* format) {
   Encoded e = unitless(encode_stl(p.mesh), c, float32_bound(max_abs_coordinate(p.mesh), c.export_scale));
@@ -342,9 +349,7 @@ EncodedFiles encode_mould_stl_output(const EncodeContext& c) {
 }
 
 EncodedFiles encode_master_stl_output(const EncodeContext& c) {
-  const std::vector<ExportedPart> master = exported_parts(c, {PartRole::Master});
-  if (master.size() != 1) throw std::logic_error("master_stl: the master was not built");
-  return {part_stl(c, master.front(), "master_stl")};
+  return {part_stl(c, the_master(c, "master_stl").front(), "master_stl")};
 }
 
 EncodedFiles encode_mould_3mf_output(const EncodeContext& c) {
@@ -352,9 +357,7 @@ EncodedFiles encode_mould_3mf_output(const EncodeContext& c) {
 }
 
 EncodedFiles encode_master_3mf_output(const EncodeContext& c) {
-  const std::vector<ExportedPart> master = exported_parts(c, {PartRole::Master});
-  if (master.size() != 1) throw std::logic_error("master_3mf: the master was not built");
-  return {parts_3mf(c, master, "", "master_3mf")};
+  return {parts_3mf(c, the_master(c, "master_3mf"), "", "master_3mf")};
 }
 
 }  // namespace fabmesh
