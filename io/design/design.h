@@ -65,6 +65,13 @@ struct DesignParameter {
   std::string description;               ///< empty when none
 };
 
+/// One of a design's named parameter sets (`parameter_sets:`): values for
+/// some of its parameters, each as written (a number or an expression "=...").
+struct ParameterSet {
+  std::string name;
+  std::vector<std::pair<std::string, std::string>> values;  ///< (parameter, value), in file order
+};
+
 /// Keys every design has.
 struct DesignCommon {
   std::string path;  ///< the file it was read from
@@ -89,6 +96,11 @@ struct DesignCommon {
   std::vector<std::string> notes;
   /// The design's `parameters`, in the order declared, with the values used.
   std::vector<DesignParameter> parameters;
+  /// The parameter set whose values were used (`parameter_set`, `run -P`),
+  /// "" when none; `-D NAME=VALUE` still wins over a set's value.
+  std::string parameter_set;
+  /// Every set the design declares (`parameter_sets`), in file order.
+  std::vector<ParameterSet> parameter_sets;
   /// The other files the design reads (DXF drawings, CSV point lists), as
   /// opened (relative to the working folder or absolute), in reading order:
   /// what `run --watch` watches besides the design.

@@ -49,6 +49,17 @@ std::string DesignSource::name() const {
   return std::filesystem::path(impl_->path).stem().string();
 }
 
+std::vector<std::string> DesignSource::parameter_set_names() const {
+  std::lock_guard<std::mutex> lock(impl_->copying);
+  std::vector<std::string> names;
+  const YAML::Node sets = impl_->root["parameter_sets"];
+  if (!sets.IsDefined() || !sets.IsMap()) return names;
+  for (const auto& kv : sets) {
+    if (kv.first.IsScalar()) names.push_back(kv.first.Scalar());
+  }
+  return names;
+}
+
 std::string DesignSource::canonical(const std::vector<Override>& overrides) const {
   YAML::Node root = yaml::load_design_tree(impl_->text, impl_->path);
   yaml::apply_overrides(root, impl_->path, overrides);

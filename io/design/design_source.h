@@ -29,6 +29,9 @@ class DesignSource {
   const std::string& path() const;
   /// The design's `name:` as written when it is a plain scalar, else the file's stem.
   std::string name() const;
+  /// The names of the design's parameter sets (`parameter_sets:` keys), in
+  /// file order; empty when it declares none (a malformed map too: resolving fails on it).
+  std::vector<std::string> parameter_set_names() const;
 
   /// The design with `overrides` applied in order, read and validated as
   /// read_design does (the same errors, naming the overrides).

@@ -182,6 +182,68 @@ std::string flow_text(const YAML::Node& value) {
   return "null";
 }
 
+// `text`, and a line break at its end when it has none.
+std::string ends_with_newline(const std::string& text) {
+  return text.empty() || text.back() == '\n' ? text : text + "\n";
+}
+
+// `edited`, when it reads as `expected`; else a FileError: the edit would
+// change more than it should (an edit fabmesh cannot place in this layout).
+std::string checked_edit(const std::string& edited, const YAML::Node& expected, const std::string& file,
+                         const std::string& what) {
+  try {
+    if (same_value(YAML::Load(edited), expected)) return edited;
+  } catch (const YAML::Exception&) {
+    // it breaks the file: refused below
+  }
+  throw FileError(file, 0, 0,
+                  fmt::format("{}: {}: the value cannot be added in this file's layout; edit it in the file",
+                              file, what));
+}
+
+// Where the flow map that starts at `begin` ('{') closes: the offset of its
+// '}' (quotes, nested brackets and comments skipped); npos when it does not.
+std::size_t flow_map_close(const std::string& text, std::size_t begin) {
+  int depth = 0;
+  for (std::size_t i = begin; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '"' || c == '\'') {
+      i = quoted_end(text, i);
+      if (i == std::string::npos) return i;
+      --i;
+    } else if (c == '#' && i > 0 && (text[i - 1] == ' ' || text[i - 1] == '\t' || text[i - 1] == '\n')) {
+      i = text.find('\n', i);
+      if (i == std::string::npos) return i;
+    } else if (c == '{' || c == '[') {
+      ++depth;
+    } else if ((c == '}' || c == ']') && --depth == 0) {
+      return c == '}' ? i : std::string::npos;
+    }
+  }
+  return std::string::npos;
+}
+
+// The offset just after the last line of the block map whose first key is
+// at (line, column), 0-based: its entries and their values are the lines
+// indented at least `column` (blank and comment lines between them too).
+std::size_t block_map_end(const std::string& text, int line, int column) {
+  std::size_t at = *offset_of(text, line, 0);
+  std::size_t end = text.find('\n', at);
+  end = end == std::string::npos ? text.size() : end + 1;
+  for (std::size_t next = end; next < text.size();) {
+    std::size_t stop = text.find('\n', next);
+    stop = stop == std::string::npos ? text.size() : stop + 1;
+    const std::size_t content = text.find_first_not_of(" \t\r\n", next);
+    const bool blank = content == std::string::npos || content >= stop;
+    if (!blank && text[content] != '#') {
+      if (static_cast<int>(content - next) < column) break;
+      end = stop;
+    }
+    next = stop;
+  }
+  return end;
+}
+
 // `text` with the value at `o.path` replaced by `o.value`: as the user wrote
 // it when the file then reads back as the old tree with that value at the
 // path, else in flow_text's form (an expression "=max(w, 5)" goes into a flow
@@ -190,13 +252,30 @@ std::string edit_value(const std::string& text, const std::string& file, const O
   if (o.value.find_first_of("\r\n") != std::string::npos) {
     throw FileError(file, 0, 0, fmt::format("{}: {}: the new value is not one line", file, o.path));
   }
-  const ValueSpan span = value_span(text, file, o.path);
   YAML::Node wanted;
   try {
     wanted = YAML::Load(o.value);
   } catch (const YAML::Exception& e) {
     throw FileError(file, 0, 0, fmt::format("-D {}: the value is not valid YAML: {}", o.text, e.msg));
   }
+  // A top-level key the design does not write yet (`parameter_set`): a new last line.
+  if (o.path.find_first_of(".[") == std::string::npos) {
+    const YAML::Node root = load_text(text, file);
+    if (root.IsMap() && !root[o.path].IsDefined() && value_path(root, o.path) == o.path) {
+      YAML::Node expected = YAML::Clone(root);
+      expected[o.path] = wanted;
+      // As given when it reads back so, else in flow_text's form.
+      const std::string as_given = ends_with_newline(text) + o.path + ": " + o.value + "\n";
+      try {
+        if (same_value(YAML::Load(as_given), expected)) return as_given;
+      } catch (const YAML::Exception&) {
+        // not as given: below
+      }
+      return checked_edit(ends_with_newline(text) + o.path + ": " + flow_text(wanted) + "\n", expected, file,
+                          o.path);
+    }
+  }
+  const ValueSpan span = value_span(text, file, o.path);
   // The tree the edited text must read as.
   const YAML::Node expected = YAML::Clone(load_text(text, file));
   YAML::Node at = node_at(expected, value_path(expected, o.path));
@@ -241,6 +320,48 @@ ValueSpan value_span(const std::string& text, const std::string& file, const std
         fmt::format("{}: {}: the value is not written on one line; edit it in the file", where, full));
   }
   return ValueSpan{*begin, end, mark.line + 1, mark.column + 1};
+}
+
+std::string add_parameter_set(const std::string& text, const std::string& file, const std::string& name,
+                              const std::vector<std::pair<std::string, std::string>>& values) {
+  const YAML::Node root = load_text(text, file);
+  if (!root.IsMap()) throw FileError(file, 0, 0, fmt::format("{}: the design is not a YAML map", file));
+  std::string entry;
+  for (const auto& [parameter, value] : values)
+    entry += (entry.empty() ? "" : ", ") + parameter + ": " + value;
+  entry = name + ": {" + entry + "}";
+  YAML::Node added;
+  try {
+    added = YAML::Load("{" + entry + "}");
+  } catch (const YAML::Exception& e) {
+    throw FileError(file, 0, 0, fmt::format("{}: parameter set '{}': not YAML: {}", file, name, e.msg));
+  }
+  const YAML::Node sets = root["parameter_sets"];
+  if (sets.IsDefined() && sets.IsMap() && sets[name].IsDefined()) {
+    const YAML::Mark m = sets[name].Mark();
+    throw FileError(
+        file, m.line + 1, m.column + 1,
+        fmt::format("{}:{}:{}: parameter_sets.{}: the design has this set already: choose another "
+                    "name, or edit the set in the file",
+                    file, m.line + 1, m.column + 1, name));
+  }
+  YAML::Node expected = YAML::Clone(root);
+  expected["parameter_sets"][name] = added[name];
+  std::string edited;
+  if (!sets.IsDefined()) {
+    edited = ends_with_newline(text) + "parameter_sets:\n  " + entry + "\n";
+  } else if (sets.IsMap() && sets.Style() == YAML::EmitterStyle::Flow) {  // defined: not the first branch
+    const std::optional<std::size_t> open = offset_of(text, sets.Mark().line, sets.Mark().column);
+    const std::size_t close = open ? flow_map_close(text, *open) : std::string::npos;
+    if (close != std::string::npos)
+      edited = text.substr(0, close) + (sets.size() == 0 ? "" : ", ") + entry + text.substr(close);
+  } else if (sets.IsMap() && sets.size() > 0) {
+    const std::size_t end = block_map_end(text, sets.Mark().line, sets.Mark().column);
+    const std::string before = ends_with_newline(text.substr(0, end));
+    edited = before + std::string(static_cast<std::size_t>(sets.Mark().column), ' ') + entry + "\n" +
+             text.substr(end);
+  }
+  return checked_edit(edited, expected, file, "parameter_sets." + name);
 }
 
 std::string edit_values(const std::string& text, const std::string& file,

@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "io/design/overrides.h"
@@ -31,7 +32,19 @@ ValueSpan value_span(const std::string& text, const std::string& file, const std
 /// value text as given (Override::value: a number, or YAML such as "\"=w / 2\"").
 /// Everything else is left as it was. Two overrides of one value: the last wins.
 /// \throw FileError as value_span, or when a value text is not one line
+/// A value at a top-level key the text does not write yet (`parameter_set`)
+/// is added as a new last line `key: value`.
 std::string edit_values(const std::string& text, const std::string& file,
                         const std::vector<Override>& values);
+
+/// `text` with the parameter set `name` added to its `parameter_sets`, its
+/// values (parameter, value as YAML on one line) in order: as the map's last
+/// entry, on its own line in a block map or before the closing brace of a
+/// flow map, or as a new `parameter_sets:` at the end. Everything else is
+/// left as it was; the result reads as the old design plus the set.
+/// 	hrow FileError when the design has a set of that name already, or the
+///        set cannot be added in the file's layout
+std::string add_parameter_set(const std::string& text, const std::string& file, const std::string& name,
+                              const std::vector<std::pair<std::string, std::string>>& values);
 
 }  // namespace fabmesh

@@ -261,7 +261,8 @@ bool is_expression(const YAML::Node& node) {
 // One entry of `parameters:` while it is resolved.
 struct Parameter {
   std::string name;
-  std::string field;  // "parameters.height"
+  std::string field;        // "parameters.height"
+  std::string value_field;  // where the value is given: `field`, or "parameter_sets.tall.height"
   YAML::Mark key_mark;
   YAML::Node value;
   std::optional<YAML::Node> min, max, step;  // when the entry is a map that gives them
@@ -361,9 +362,23 @@ class Resolver {
         f_.fail(entry, p.field,
                 "expected a number, an expression \"=...\" or a map {value, min, max, step, description}");
       }
+      p.value_field = set_field(root, p);
       index_.emplace(p.name, parameters_.size());
       parameters_.push_back(std::move(p));
     }
+  }
+
+  // Where `p`'s value is given: in the chosen parameter set (apply_parameter_set
+  // put that set's node there), or in `parameters`.
+  static std::string set_field(const YAML::Node& root, const Parameter& p) {
+    const YAML::Node chosen = root["parameter_set"];
+    const YAML::Node sets = root["parameter_sets"];
+    if (!chosen.IsDefined() || !chosen.IsScalar() || !sets.IsDefined() || !sets.IsMap()) return p.field;
+    const YAML::Node set = sets[chosen.Scalar()];
+    if (!set.IsDefined() || !set.IsMap()) return p.field;
+    const YAML::Node given = set[p.name];
+    return given.IsDefined() && given.is(p.value) ? "parameter_sets." + chosen.Scalar() + "." + p.name
+                                                  : p.field;
   }
 
   // The number `node` holds, its expression evaluated (and the node set to the result).
@@ -419,7 +434,7 @@ class Resolver {
     DesignParameter& r = p.resolved;
     r.name = p.name;
     r.description = p.description;
-    r.value = number(p.value, p.field);
+    r.value = number(p.value, p.value_field);
     r.min = optional_number(p.min, p.field + ".min");
     r.max = optional_number(p.max, p.field + ".max");
     r.step = optional_number(p.step, p.field + ".step");
@@ -428,11 +443,11 @@ class Resolver {
     if (p.max && r.min && r.max && *r.min > *r.max)
       f_.fail(*p.max, p.field + ".max", fmt::format("max = {} is below min = {}", *r.max, *r.min));
     if (r.min && r.max && (r.value < *r.min || r.value > *r.max))
-      f_.fail(p.value, p.field, fmt::format("{} is outside [{}, {}]", r.value, *r.min, *r.max));
+      f_.fail(p.value, p.value_field, fmt::format("{} is outside [{}, {}]", r.value, *r.min, *r.max));
     if (r.min && r.value < *r.min)
-      f_.fail(p.value, p.field, fmt::format("{} is below the minimum {}", r.value, *r.min));
+      f_.fail(p.value, p.value_field, fmt::format("{} is below the minimum {}", r.value, *r.min));
     if (r.max && r.value > *r.max)
-      f_.fail(p.value, p.field, fmt::format("{} is above the maximum {}", r.value, *r.max));
+      f_.fail(p.value, p.value_field, fmt::format("{} is above the maximum {}", r.value, *r.max));
     evaluator_.define(p.name, r.value);
     resolving_.pop_back();
     p.state = Parameter::State::Done;

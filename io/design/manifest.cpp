@@ -105,7 +105,8 @@ struct Form {
 };
 
 const KeyGroup& manifest_keys() {
-  static const KeyGroup keys{"manifest", {"design", "name", "set", "variants", "table", "zip", "grid"}};
+  static const KeyGroup keys{"manifest",
+                             {"design", "name", "set", "sets", "variants", "table", "zip", "grid"}};
   return keys;
 }
 
@@ -163,6 +164,7 @@ class ManifestReader {
             node.IsScalar() ? node.Scalar() : yaml_text(node)};
   }
 
+  Form read_sets(const YAML::Node& node, const BatchManifest& m);
   Form read_variants(const YAML::Node& node);
   Form read_table(const YAML::Node& node);
   Form read_zip(const YAML::Node& node);
@@ -228,6 +230,60 @@ void ManifestReader::parameters_of(const YAML::Node& map, const std::string& fie
     const std::string path = parameter(kv.first, field, form);
     each(path, kv.second, fmt::format("{}.{}", field, path));
   }
+}
+
+// `sets: all` or `sets: [NAME, ...]`: one variant per parameter set of the
+// base designs (the override parameter_set=NAME, as `run -P NAME`). Every
+// base declares each set named; with `all`, every base the same sets.
+Form ManifestReader::read_sets(const YAML::Node& node, const BatchManifest& m) {
+  const std::string owner = "sets";
+  const auto [it, fresh] = owner_.emplace("parameter_set", owner);
+  if (!fresh)
+    f_.fail(node, "sets", fmt::format("'parameter_set' is also set by `{}`: give it one place", it->second));
+  std::vector<std::string> names;
+  if (node.IsScalar() && node.Scalar() == "all") {
+    names = m.bases.front().parameter_set_names();
+    if (names.empty()) {
+      f_.fail(node, "sets",
+              fmt::format("`all`: the design {} declares no parameter_sets", m.base_labels.front()));
+    }
+  } else if (node.IsSequence()) {
+    f_.require_list(node, "sets", 1);
+    for (std::size_t i = 0; i < node.size(); ++i) {
+      const std::string name = f_.text(node[i], fmt::format("sets[{}]", i));
+      if (std::find(names.begin(), names.end(), name) != names.end())
+        f_.fail(node[i], fmt::format("sets[{}]", i), fmt::format("set '{}' is named twice", name));
+      names.push_back(name);
+    }
+  } else {
+    f_.fail(node, "sets", "expected `all` (every parameter set of the design) or a list of set names");
+  }
+  for (std::size_t b = 0; b < m.bases.size(); ++b) {
+    const std::vector<std::string> declared = m.bases[b].parameter_set_names();
+    const auto list = [](const std::vector<std::string>& v) {
+      std::string out;
+      for (const std::string& s : v) out += (out.empty() ? "" : ", ") + s;
+      return out.empty() ? std::string("none") : out;
+    };
+    for (const std::string& name : names) {
+      if (std::find(declared.begin(), declared.end(), name) == declared.end()) {
+        f_.fail(node, "sets",
+                fmt::format("the design {} has no parameter set '{}' (its sets: {})", m.base_labels[b], name,
+                            list(declared)));
+      }
+    }
+    if (node.IsScalar() && declared.size() != names.size()) {
+      f_.fail(node, "sets",
+              fmt::format("`all`: the designs declare different sets ({}: {}; {}: {}); list the sets to use",
+                          m.base_labels.front(), list(names), m.base_labels[b], list(declared)));
+    }
+  }
+  Form form;
+  for (const std::string& name : names) {
+    form.sets.push_back(
+        {{{"parameter_set", name, fmt::format("parameter_set={} ({}, `sets`)", name, where(node))}, name}});
+  }
+  return form;
 }
 
 Form ManifestReader::read_variants(const YAML::Node& node) {
@@ -382,7 +438,13 @@ std::vector<TemplatePart> ManifestReader::name_template(const YAML::Node& root, 
   if (node.IsDefined()) {
     text = f_.text(node, "name");
   } else {
+    const bool sets = owner_.count("parameter_set") != 0 && owner_.at("parameter_set") == "sets";
+    const bool only_sets = sets && std::all_of(owner_.begin(), owner_.end(), [](const auto& entry) {
+                             return entry.second == "sets" || entry.second == "set";
+                           });
     text = owner_.count("name")               ? "{name}"
+           : only_sets                        ? "{design}_{set}"
+           : sets                             ? "{design}_{set}_{index}"
            : m.bases.size() > 1 || count != 1 ? "{design}_{index}"
                                               : "{design}";
   }
@@ -397,9 +459,11 @@ std::vector<TemplatePart> ManifestReader::name_template(const YAML::Node& root, 
     const std::size_t close = text.find('}', open);
     if (close == std::string::npos)
       f_.fail(node.IsDefined() ? node : root, "name", fmt::format("'{{' at {} is never closed", open));
-    const std::string key = text.substr(open + 1, close - open - 1);
+    std::string key = text.substr(open + 1, close - open - 1);
+    // {set}: the parameter set (`sets`, or parameter_set in another form).
+    if (key == "set" && owner_.count("parameter_set") != 0) key = "parameter_set";
     if (key != "index" && key != "design" && owner_.count(key) == 0) {
-      std::string known = "index, design";
+      std::string known = owner_.count("parameter_set") != 0 ? "index, design, set" : "index, design";
       for (const auto& [path, form] : owner_) known += ", " + path;
       f_.fail(node.IsDefined() ? node : root, "name",
               fmt::format("{{{}}} is not a parameter of the variants (known: {})", key, known));
@@ -493,6 +557,8 @@ BatchManifest ManifestReader::read(const YAML::Node& root) {
                   });
   }
   std::vector<Form> forms;
+  // The sets vary slowest: each set's variants together.
+  if (root["sets"].IsDefined()) forms.push_back(read_sets(root["sets"], m));
   if (root["variants"].IsDefined()) forms.push_back(read_variants(root["variants"]));
   if (root["table"].IsDefined()) forms.push_back(read_table(root["table"]));
   if (root["zip"].IsDefined()) forms.push_back(read_zip(root["zip"]));

@@ -14,6 +14,7 @@
 #include "io/design/yaml/design_tree.h"
 #include "io/design/yaml/fields.h"
 #include "io/design/yaml/node_budget.h"
+#include "io/design/yaml/parameter_sets.h"
 #include "io/design/yaml/read_countertop.h"
 #include "io/design/yaml/read_curve.h"
 #include "io/design/yaml/read_surface.h"
@@ -380,17 +381,20 @@ YAML::Node load_design_tree(const std::string& text, const std::string& path) {
 // NOLINTNEXTLINE(performance-unnecessary-value-param): a handle, the tree is changed through it
 std::vector<OverrideOrigin> apply_overrides(YAML::Node root, const std::string& path,
                                             const std::vector<Override>& overrides) {
-  std::vector<OverrideOrigin> origins;
+  std::vector<YAML::Node> values;
+  values.reserve(overrides.size());
   for (const Override& o : overrides) {
     require_utf8(o.text, path, o.text);
     require_printable(o, path);
-    YAML::Node value;
     try {
       yaml::require_node_budget(o.value, path, kMaxDesignNodes, o.text);
-      value = YAML::Load(o.value);
+      values.push_back(YAML::Load(o.value));
     } catch (const YAML::Exception& e) {
       throw FileError(path, 0, 0, fmt::format("-D {}: the value is not valid YAML: {}", o.text, e.msg));
     }
+  }
+  std::vector<OverrideOrigin> origins;
+  const auto apply = [&](const Override& o, const YAML::Node& value) {
     // The kind decides which keys exist: changing it would only be reported as the
     // old kind's keys being unknown to the new one.
     if (o.path == "kind" &&
@@ -407,6 +411,17 @@ std::vector<OverrideOrigin> apply_overrides(YAML::Node root, const std::string& 
       throw FileError(path, 0, 0, e.what());
     }
     origins.push_back({value, o.text});
+  };
+  // The sets as edited, then the set chosen (the last `-D parameter_set=NAME`,
+  // else the design's own `parameter_set`), then every other override: a
+  // `-D NAME=VALUE` wins over the set's value, whatever the order given.
+  const auto choosing = [](const Override& o) { return o.path == "parameter_set"; };
+  for (std::size_t i = 0; i < overrides.size(); ++i) {
+    if (edits_parameter_sets(overrides[i].path) || choosing(overrides[i])) apply(overrides[i], values[i]);
+  }
+  apply_parameter_set(root, Fields(path, origins));
+  for (std::size_t i = 0; i < overrides.size(); ++i) {
+    if (!edits_parameter_sets(overrides[i].path) && !choosing(overrides[i])) apply(overrides[i], values[i]);
   }
   return origins;
 }
@@ -414,6 +429,7 @@ std::vector<OverrideOrigin> apply_overrides(YAML::Node root, const std::string& 
 Design read_design_tree(const YAML::Node& root, const std::string& path,
                         std::vector<OverrideOrigin> origins) {
   const Fields f(path, std::move(origins));
+  std::vector<ParameterSet> sets = parameter_sets_of(root);  // as written, before evaluation
   std::vector<DesignParameter> parameters = resolve_parameters(root, f);
   const std::string kind = f.text(f.required(root, "kind", "kind"), "kind");
   Design d;
@@ -429,6 +445,9 @@ Design read_design_tree(const YAML::Node& root, const std::string& path,
                           fmt::format("{}, or a parameter of the design: {}", e.what(), names));
   }
   d.common.parameters = std::move(parameters);
+  d.common.parameter_sets = std::move(sets);
+  if (root["parameter_set"].IsDefined() && root["parameter_set"].IsScalar())
+    d.common.parameter_set = root["parameter_set"].Scalar();
   d.common.notes = f.notes();
   d.common.inputs = f.inputs();
   // Where each key is given (the design is valid by now: keys are scalars).
@@ -443,6 +462,19 @@ Design parse_design(const std::string& text, const std::string& path,
   YAML::Node root = yaml::load_design_tree(text, path);
   std::vector<yaml::OverrideOrigin> origins = yaml::apply_overrides(root, path, overrides);
   return yaml::read_design_tree(root, path, std::move(origins));
+}
+
+std::string parameter_set_name_problem(const std::string& name) {
+  constexpr std::size_t kMaxSetNameBytes = 64;
+  const bool plain = !name.empty() && name.size() <= kMaxSetNameBytes && name.front() != '-' &&
+                     std::all_of(name.begin(), name.end(), [](char c) {
+                       return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+                              c == '_' || c == '-';
+                     });
+  if (plain) return "";
+  return fmt::format(
+      "{:?} is not a parameter set's name: 1 to {} letters, digits, _ and -, not starting with -", name,
+      kMaxSetNameBytes);
 }
 
 std::string read_design_text(const std::string& path) {

@@ -59,4 +59,9 @@ Design parse_design(const std::string& yaml_text, const std::string& path,
 /// not starting with '.', '-' or a space, not ending with a space or '.'.
 std::string plain_name_problem(const std::string& name);
 
+/// Why `name` is not a parameter set's name (empty when it is): 1 to 64
+/// letters, digits, _ and -, not starting with - (names go into file names
+/// and onto command lines: `run -P NAME`, `{set}` in a batch's names).
+std::string parameter_set_name_problem(const std::string& name);
+
 }  // namespace fabmesh

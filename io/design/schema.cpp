@@ -6,8 +6,9 @@ namespace fabmesh {
 namespace {
 
 std::vector<std::string> with_common(std::vector<std::string> keys) {
-  std::vector<std::string> all{"name",         "kind",    "units",           "tolerance", "outputs",
-                               "export_units", "purpose", "on_output_error", "parameters"};
+  std::vector<std::string> all{"name",       "kind",           "units",        "tolerance",
+                               "outputs",    "export_units",   "purpose",      "on_output_error",
+                               "parameters", "parameter_sets", "parameter_set"};
   all.insert(all.end(), keys.begin(), keys.end());
   return all;
 }
