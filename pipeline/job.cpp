@@ -150,6 +150,7 @@ void set_identity(Result& result, const DesignCommon& common) {
   result.units = common.units;
   result.export_units = common.export_units;
   result.parameters = common.parameters;
+  result.parameter_set = common.parameter_set;
   result.tolerance = common.tolerance;
   result.notes = common.notes;
 }

@@ -16,7 +16,8 @@ bool multiple_of(double x, double step) {
 
 }  // namespace
 
-nlohmann::ordered_json parameter_schema(const Design& design) {
+nlohmann::ordered_json parameter_schema(
+    const Design& design, const std::function<std::optional<Design>(const std::string& set)>& with_set) {
   using Json = nlohmann::ordered_json;
   Json properties = Json::object();
   for (const DesignParameter& p : design.common.parameters) {
@@ -27,6 +28,29 @@ nlohmann::ordered_json parameter_schema(const Design& design) {
     if (!p.description.empty()) j["description"] = p.description;
     properties[p.name] = std::move(j);
   }
+  Json examples = Json::array();
+  if (!design.common.parameter_sets.empty()) {
+    Json names = Json::array();
+    for (const ParameterSet& set : design.common.parameter_sets) {
+      names.push_back(set.name);
+      const std::optional<Design> resolved = with_set(set.name);
+      if (!resolved) continue;
+      Json example = {{"parameter_set", set.name}};
+      for (const auto& [name, written] : set.values) {
+        for (const DesignParameter& p : resolved->common.parameters) {
+          if (p.name == name) example[name] = p.value;
+        }
+      }
+      examples.push_back(std::move(example));
+    }
+    Json j = {{"type", "string"},
+              {"enum", std::move(names)},
+              {"description",
+               "a parameter set of the design (parameter_sets): its values apply, and the "
+               "other properties given win over them"}};
+    if (!design.common.parameter_set.empty()) j["default"] = design.common.parameter_set;
+    properties["parameter_set"] = std::move(j);
+  }
   Json schema = {
       {"$schema", "https://json-schema.org/draft/2020-12/schema"},
       {"title", design.common.name},
@@ -36,6 +60,7 @@ nlohmann::ordered_json parameter_schema(const Design& design) {
       {"type", "object"},
       {"properties", std::move(properties)},
       {"additionalProperties", false}};
+  if (!examples.empty()) schema["examples"] = std::move(examples);
   return schema;
 }
 

@@ -71,6 +71,7 @@ ItemFacts item_facts(const Result& r) {
   set_written_verdict(item, *item.mesh);
   item.files = written_paths(r);
   item.timings_ms = r.timings_ms;
+  if (!r.parameter_set.empty()) item.remarks.push_back("parameter set: " + r.parameter_set);
   if (const Facts::Value* print = r.facts.find("print")) {
     if (const auto* group = std::get_if<Facts>(print); group != nullptr && group->contains("summary"))
       item.remarks.push_back(group->text("summary"));
@@ -249,6 +250,7 @@ nlohmann::ordered_json to_json(const Result& r) {
     for (const DesignParameter& p : r.parameters) parameters[p.name] = p.value;
     j["parameters"] = std::move(parameters);
   }
+  if (!r.parameter_set.empty()) j["parameter_set"] = r.parameter_set;
   j["tolerance"] = mesh.tolerance;
   j["max_deviation"] = mesh.max_deviation;
   j["tolerance_split"] = {{"build", r.build_tolerance}, {"outputs", r.tolerance - r.build_tolerance}};

@@ -213,6 +213,7 @@ struct Result {
   std::string units;        ///< model units of every length below
   std::string export_units;
   std::vector<DesignParameter> parameters;  ///< the named parameters with the values used
+  std::string parameter_set;                ///< the parameter set they came from, "" for none
   double tolerance = 0.0;
   /// The share of the tolerance the build was given (the rest is kept for
   /// writing the outputs), model units.

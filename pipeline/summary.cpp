@@ -115,7 +115,8 @@ void print_summary(const Result& r, std::ostream& out) {
     std::string values;
     for (const DesignParameter& p : r.parameters)
       values += fmt::format("{}{} = {:.6g}", values.empty() ? "" : ", ", p.name, p.value);
-    out << "  parameters: " << values << "\n";
+    out << "  parameters: " << values
+        << (r.parameter_set.empty() ? std::string() : " (set " + r.parameter_set + ")") << "\n";
   }
   const Vec3 size = r.bbox_max - r.bbox_min;
   const double extent =

@@ -95,6 +95,11 @@ void bind_designs(py::module_& m) {
       .def_property_readonly("outputs", &fabmesh::Design::outputs, "The formats `fabmesh run` writes for it")
       .def_property_readonly("parameters", &fabmesh::Design::parameters,
                              "The design's named parameters (a list of Parameter), in the order declared")
+      .def_property_readonly("parameter_set", &fabmesh::Design::parameter_set,
+                             "The parameter set whose values were used ('' for none): the design's "
+                             "`parameter_set`, or the override {'parameter_set': NAME}")
+      .def_property_readonly("parameter_sets", &fabmesh::Design::parameter_sets,
+                             "The names of the design's parameter sets (`parameter_sets:`), in file order")
       .def("__repr__", [](const fabmesh::Design& d) {
         return "<fabmesh.Design " + d.kind() + " '" + d.name() + "' from " + d.path().string() + ">";
       });

@@ -43,6 +43,14 @@ std::vector<Parameter> Design::parameters() const {
   return out;
 }
 
+std::string Design::parameter_set() const { return data_->design.common.parameter_set; }
+
+std::vector<std::string> Design::parameter_sets() const {
+  std::vector<std::string> names;
+  for (const fabmesh::ParameterSet& s : data_->design.common.parameter_sets) names.push_back(s.name);
+  return names;
+}
+
 Design read_design(const std::filesystem::path& path, const Overrides& overrides) {
   return detail::translated(
       [&] { return handle(fabmesh::load_design(path.string(), command_line_overrides(overrides))); });

@@ -22,13 +22,20 @@ struct Streams {
 /// Runs a parsed command; returns the process exit code (0 to 5, pipeline/failure.h).
 using Runner = std::function<int(Streams)>;
 
-/// Registers `-D path=value` (repeatable) on a command that reads designs.
+/// Registers `-D path=value` (repeatable) and `-P NAME` on a command that
+/// reads designs. `-P NAME` is `-D parameter_set=NAME`: the design's
+/// parameter set NAME, under every `-D` (a `-D` of a parameter wins).
 inline void add_define_option(CLI::App* cmd, std::vector<std::string>& defines) {
   cmd->add_option(
          "-D,--define", defines,
          "Override a design field, e.g. -D body.wall=2.5 -D profile.points[1]=[1,5] (the value is YAML; "
          "repeatable)")
       ->allow_extra_args(false);
+  cmd->add_option_function<std::string>(
+         "-P,--parameter-set",
+         [&defines](const std::string& name) { defines.push_back("parameter_set=" + name); },
+         "Use the design's parameter set NAME (parameter_sets:); -D values win over the set's")
+      ->type_name("NAME");
 }
 
 /// A check of a number option that is at least 0: a finite number, its

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <memory>
+#include <optional>
 
 #include "pipeline/cli/commands.h"
 #include "pipeline/load_design.h"
@@ -19,9 +20,17 @@ struct ParamsArgs {
 };
 
 int run_params(const ParamsArgs& args, Streams io) {
-  const Design design = load_design(args.design, parse_overrides(args.defines));
+  const std::vector<Override> overrides = parse_overrides(args.defines);
+  const Design design = load_design(args.design, overrides);
+  // The design with one of its sets alone (no -D: the set's own values),
+  // which checks them and gives them resolved.
+  const auto with_set = [&](const std::string& set) {
+    return load_design(args.design, {make_override("parameter_set", set)});
+  };
   if (args.json) {
-    io.out << parameter_schema(design).dump(2) << "\n";
+    io.out << parameter_schema(design, [&](const std::string& set) { return std::optional(with_set(set)); })
+                  .dump(2)
+           << "\n";
     return 0;
   }
   const std::vector<DesignParameter>& parameters = design.common.parameters;
@@ -41,6 +50,24 @@ int run_params(const ParamsArgs& args, Streams io) {
     if (p.step) range += fmt::format(", step {:g}", *p.step);
     io.out << fmt::format("{} = {:g}{}{}\n", p.name, p.value, range,
                           p.description.empty() ? std::string() : ": " + p.description);
+  }
+  if (!design.common.parameter_sets.empty()) {
+    io.out << fmt::format("# {} parameter set(s), used with -P NAME{}\n", design.common.parameter_sets.size(),
+                          design.common.parameter_set.empty()
+                              ? std::string()
+                              : fmt::format(" (the values above use set '{}')", design.common.parameter_set));
+    for (const ParameterSet& set : design.common.parameter_sets) {
+      const Design resolved = with_set(set.name);
+      std::string values;
+      for (const auto& [name, written] : set.values) {
+        for (const DesignParameter& p : resolved.common.parameters) {
+          if (p.name != name) continue;
+          values += fmt::format("{}{}={:g}", values.empty() ? "" : ", ", name, p.value);
+          if (!written.empty() && written.front() == '=') values += " (" + written + ")";
+        }
+      }
+      io.out << fmt::format("{}: {}\n", set.name, values);
+    }
   }
   return 0;
 }

@@ -25,7 +25,7 @@ def test_the_schema_is_valid_draft_2020_12_and_describes_each_parameter():
     jsonschema.Draft202012Validator.check_schema(schema)
     assert schema["$schema"] == "https://json-schema.org/draft/2020-12/schema"
     assert schema["additionalProperties"] is False
-    assert list(schema["properties"]) == ["height", "width"]
+    assert list(schema["properties"]) == ["height", "width", "parameter_set"]
     height = schema["properties"]["height"]
     assert height == {"type": "number", "default": 4, "minimum": 2, "maximum": 10, "multipleOf": Decimal("0.1"),
                       "description": "from the foot (at 2) to the rim"}
@@ -63,3 +63,27 @@ def test_a_design_without_parameters_has_an_empty_schema_and_a_table_says_so():
     assert "height = 4 in [2, 10], step 0.1: from the foot (at 2) to the rim" in out
     code, _ = cli("params", example("no_such_design.yaml"))
     assert code == 2
+
+
+def test_the_sets_are_an_enum_and_examples_that_validate_and_build_as_the_schema_says(tmp_path):
+    design = example("vessel_golden_solid.yaml")
+    schema = schema_of(design)
+    assert schema["properties"]["parameter_set"]["enum"] == ["small", "tall", "wide"]
+    assert "default" not in schema["properties"]["parameter_set"]  # the file picks none
+    # One example per set, its values resolved (wide's width is "=height * 2.5").
+    assert schema["examples"] == [{"parameter_set": "small", "height": 3, "width": 5},
+                                  {"parameter_set": "tall", "height": 8},
+                                  {"parameter_set": "wide", "width": 10}]
+    for instance in schema["examples"]:
+        assert errors(schema, instance) == []
+    assert any("is not one of" in m for m in errors(schema, {"parameter_set": "huge"}))
+    # What the schema accepts, the program builds with those values; what it refuses, it refuses.
+    code, out = cli("run", design, "-o", str(tmp_path / "tall"), "--json", "-P", "tall", "-D", "width=7")
+    assert code == 0
+    item = json.loads(out)
+    item = item[0] if isinstance(item, list) else item
+    assert item["parameter_set"] == "tall" and item["parameters"] == {"height": 8, "width": 7}
+    code, _ = cli("run", design, "-o", str(tmp_path / "huge"), "-q", "-P", "huge")
+    assert code == 2 and not (tmp_path / "huge").exists()
+    # The set used is the schema's default.
+    assert schema_of(design, "-P", "wide")["properties"]["parameter_set"]["default"] == "wide"

@@ -52,6 +52,11 @@ class Design {
   std::vector<std::string> outputs() const;  ///< the formats `run` writes for it: "stl", "3mf", ...
   /// The design's named parameters, in the order declared (empty when it declares none).
   std::vector<Parameter> parameters() const;
+  /// The parameter set whose values were used (`parameter_set`, or the
+  /// override {"parameter_set": NAME}), "" when none.
+  std::string parameter_set() const;
+  /// The names of the design's parameter sets (`parameter_sets:`), in file order.
+  std::vector<std::string> parameter_sets() const;
 
   /// For the library's own implementation.
   const detail::DesignData& data() const { return *data_; }
