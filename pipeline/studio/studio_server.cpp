@@ -238,6 +238,7 @@ struct StudioServer::Impl {
       if (path == "/api/export") return answer(session.export_outputs(req.body));
       if (path == "/api/fairest") return answer(session.fairest(req.body));
       if (path == "/api/save") return answer(session.save(req.body));
+      if (path == "/api/save_set") return answer(session.save_set(req.body));
     }
     return json_answer(404, error_body(fmt::format("no such request: {} {}", req.method, path)));
   }

@@ -167,6 +167,8 @@ Request parse_request(const std::string& body, RequestFields fields = RequestFie
       text = value.get<std::string>();
       if (text.empty() || text.find_first_of("\r\n") != std::string::npos)
         throw BadRequest{field, fmt::format("{}: the value must be a number or a one-line text", field)};
+    } else if (value.is_null() && name == "parameter_set") {
+      text = "null";  // no parameter set, whatever the file's `parameter_set`
     } else {
       throw BadRequest{field, fmt::format("{}: the value must be a number or a text", field)};
     }
@@ -179,10 +181,11 @@ Request parse_request(const std::string& body, RequestFields fields = RequestFie
   return request;
 }
 
-// Plain names must be declared parameters (a -D path has a '.' or a '[').
+// Plain names must be declared parameters (a -D path has a '.' or a '['),
+// or `parameter_set` (the design judges the set's name).
 void require_known_names(const Request& request, const std::vector<std::string>& declared) {
   for (const Override& o : request.overrides) {
-    if (o.path.find_first_of(".[") != std::string::npos) continue;
+    if (o.path.find_first_of(".[") != std::string::npos || o.path == "parameter_set") continue;
     bool known = false;
     std::string names;
     for (const std::string& name : declared) {
@@ -436,7 +439,20 @@ StudioResponse StudioSession::design() const {
     Json j = {{"path", options_.design_path}, {"name", design.common.name}, {"kind", kind_name(design)},
               {"units", design.common.units}, {"version", version},         {"text", text}};
     j["parameters"] = parameters_json(design);
-    j["schema"] = parameter_schema(design);
+    // A set that does not make a design with the file's values now (an
+    // expression out of its range) has no example: the page still opens,
+    // and picking the set shows the error.
+    j["schema"] = parameter_schema(design, [&](const std::string& set) -> std::optional<Design> {
+      try {
+        return load_design_text(text, options_.design_path, {make_override("parameter_set", set)});
+      } catch (const InputError&) {
+        return std::nullopt;
+      }
+    });
+    j["parameter_set"] = design.common.parameter_set;
+    Json sets = Json::array();
+    for (const ParameterSet& set : design.common.parameter_sets) sets.push_back(set.name);
+    j["parameter_sets"] = std::move(sets);
     j["shape_parameters"] = shape_parameters(design);
     j["control_points"] = draggable_points(design, text);
     j["out_dir"] = options_.out_dir;
@@ -557,6 +573,33 @@ StudioResponse StudioSession::save(const std::string& request_body) {
     for (const Override& o : request.overrides) changed.push_back(o.path);
     return json_response(200, {{"saved", options_.design_path},
                                {"changed", changed},
+                               {"version", file_version(options_.design_path)}});
+  });
+}
+
+StudioResponse StudioSession::save_set(const std::string& request_body) {
+  return answered(options_.design_path, [&] {
+    const Json body = parse_body(request_body);
+    if (!body.is_object() || !body.contains("name") || !body["name"].is_string())
+      throw BadRequest{"name", "name: the set's name, a text, is required"};
+    const std::string name = body["name"].get<std::string>();
+    if (const std::string problem = parameter_set_name_problem(name); !problem.empty())
+      throw BadRequest{"name", "name: " + problem};
+    Json rest = body;
+    rest.erase("name");
+    const Request request = parse_request(rest.dump());
+    const Requested requested = read_requested(request, options_.design_path, names_);
+    if (requested.design.common.parameters.empty())
+      throw BadRequest{"name", "name: the design declares no parameters: a set gives values to `parameters`"};
+    // Every parameter's value as the page shows it: the set reproduces this design.
+    std::vector<std::pair<std::string, std::string>> values;
+    for (const DesignParameter& p : requested.design.common.parameters)
+      values.emplace_back(p.name, number_text(p.value));
+    const std::string edited = add_parameter_set(requested.text, options_.design_path, name, values);
+    (void)load_design_text(edited, options_.design_path);
+    write_file_atomically(options_.design_path, edited);
+    return json_response(200, {{"saved", options_.design_path},
+                               {"parameter_set", name},
                                {"version", file_version(options_.design_path)}});
   });
 }

@@ -80,6 +80,13 @@ class StudioSession {
   /// place of the old ones (edit_values), everything else kept.
   StudioResponse save(const std::string& request_body);
 
+  /// POST /api/save_set with {"name": NAME, "overrides": {...}}: adds the
+  /// parameter set NAME to the design file's `parameter_sets`, holding every
+  /// parameter's value with the overrides applied (add_parameter_set),
+  /// everything else kept. 400 for a name that is not a set's name, 422 when
+  /// the design has that set already or the values do not make a design.
+  StudioResponse save_set(const std::string& request_body);
+
   /// POST /api/fairest with {"overrides": {...}, "energy": "strain" or
   /// "curvature_variation"}: the fairest shape parameters of the design's
   /// curves for their control points as the overrides place them (the

@@ -275,6 +275,28 @@ try {
                                before.meshSignature);
   });
 
+  await check('picking a parameter set builds it and shows its values; save as set adds one', async () => {
+    // The golden cup's sets: small, tall, wide (and the file's own values first).
+    assert.deepEqual(await page.$$eval('#parameter-set option', (l) => l.map((o) => o.value)),
+                     ['', 'small', 'tall', 'wide']);
+    const before = await state();
+    await page.select('#parameter-set', 'tall');
+    await waitBuilds(before.builds + 1);
+    await page.waitForFunction(() => document.querySelector('#field-height input[type=number]').value === '8',
+                               {timeout: 120000});
+    assert.equal((await state()).overrides.parameter_set, 'tall');
+    assert.match(await page.$eval('#report', (e) => e.textContent), /parameter set\s*tall/);
+    // A field moved on top of the set, then saved as a new set: the file gains it, the page picks it.
+    await setField('width', 'number', 7);
+    await waitBuilds(before.builds + 2);
+    page.once('dialog', (d) => d.accept('tall_wide'));
+    await page.click('#save-set');
+    await page.waitForFunction(() => window.statuses.some((t) => /saved set tall_wide/.test(t)), {timeout: 120000});
+    assert.match(fs.readFileSync(design, 'utf8'), /\n  tall_wide: \{height: 8, width: 7\}\n/);
+    await page.waitForFunction(() => document.querySelector('#parameter-set').value === 'tall_wide',
+                               {timeout: 120000});
+  });
+
   await check('the section view clips the vessel by the plane through its axis', async () => {
     await page.click('#section');
     assert.ok(await page.$eval('#section', (e) => e.checked));

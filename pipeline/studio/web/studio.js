@@ -16,6 +16,7 @@ const state = {
   meshSignature: '',   // a digest of the shown mesh's positions
   plotSvg: '',
   version: null,
+  syncParameters: false,  // a parameter set was picked: the next valid build's values go into the fields
   error: null,         // the last build's error object, or null
   // The last valid build's times in the page, ms from the request (the bench
   // reads them, bench/studio_latency.mjs): answer (the JSON in), plot, report,
@@ -99,6 +100,7 @@ function showControls(design) {
   $('design-name').textContent = design.name;
   $('design-kind').textContent = `${design.kind}, ${design.units}`;
   document.title = `${design.name} - fabmesh studio`;
+  showSets(design);
   const params = $('parameters');
   params.replaceChildren();
   if (design.parameters.length === 0) params.textContent = 'The design declares no parameters.';
@@ -113,6 +115,69 @@ function showControls(design) {
     addControl(shapes, {name: s.key, label: s.key, value: s.value, min: s.min, max: s.max, step: s.step,
                         exclusiveMin: s.min_exclusive});
   }
+}
+
+// The preset picker: the design's parameter sets (parameter_sets:). The first
+// entry is the design as the file has it (its own `parameter_set`, if any);
+// "no set" is offered when the file names one.
+const kNoSet = '\u0000none';
+function showSets(design) {
+  const sets = design.parameter_sets ?? [];
+  $('sets').hidden = (design.parameters ?? []).length === 0;
+  const select = $('parameter-set');
+  select.replaceChildren();
+  const add = (value, label) => {
+    const option = document.createElement('option');
+    option.value = value;
+    option.textContent = label;
+    select.append(option);
+  };
+  add('', design.parameter_set ? `(as the file says: ${design.parameter_set})` : '(as the file says)');
+  if (design.parameter_set) add(kNoSet, '(no set)');
+  for (const name of sets) add(name, name);
+  select.disabled = sets.length === 0;
+  const picked = state.overrides.parameter_set;
+  select.value = picked === undefined ? '' : picked === null ? kNoSet : picked;
+}
+
+// A set picked: its values replace the fields' (the fields' own changes are
+// dropped, as they would win over the set's values), then built.
+function pickSet() {
+  const value = $('parameter-set').value;
+  for (const p of state.design.parameters) delete state.overrides[p.name];
+  if (value === '') delete state.overrides.parameter_set;
+  else state.overrides.parameter_set = value === kNoSet ? null : value;
+  state.syncParameters = true;
+  state.lastChanged = 'parameter_set';
+  requestBuild();
+}
+
+// The values of a build in the parameters' fields (after a set was picked).
+function syncFields(parameters) {
+  for (const [name, value] of Object.entries(parameters ?? {})) {
+    const box = document.getElementById(fieldId(name));
+    if (!box) continue;
+    for (const input of box.querySelectorAll('input')) input.value = String(Number(value.toPrecision(10)));
+  }
+}
+
+async function saveSet() {
+  const name = window.prompt('Name of the new parameter set (letters, digits, _ and -):');
+  if (!name) return;
+  const {status, json} = await api('POST', '/api/save_set', {name, overrides: state.overrides});
+  if (status !== 200) {
+    showError(json.error);
+    return;
+  }
+  // The file changed: read it again, with the new set picked.
+  state.version = json.version;
+  if (await loadDesign()) {
+    state.overrides.parameter_set = json.parameter_set;
+    showSets(state.design);
+    state.syncParameters = true;
+    requestBuild();
+  }
+  setStatus(`saved set ${json.parameter_set} in ${json.saved}`);
 }
 
 // --- errors: pinned to the field that caused them ---
@@ -166,6 +231,7 @@ function showReport(report, buildMs) {
     const proofs = [report.topology_proof, report.self_intersection_proof].filter((x) => x);
     if (proofs.length) add('proof', proofs.join('; '));
   }
+  if (report.parameter_set) add('parameter set', report.parameter_set);
   add('deviation bound', `${Number(report.max_deviation).toPrecision(3)} ${u} (tolerance ${report.tolerance} ${u})`);
   if (report.volume !== undefined) add('volume', `${Number(report.volume).toPrecision(6)} ${u}³`);
   const box = report.bounding_box;
@@ -522,6 +588,10 @@ async function build() {
         showPlot(json.plot_svg, json.control_points, json.layout_svg);
         timings.plot = since();
         showReport(json.report, json.build_ms);
+        if (state.syncParameters) {
+          syncFields(json.report.parameters);
+          state.syncParameters = false;
+        }
         timings.report = since();
         view.closed = json.report.purpose === 'fabrication' && json.report.valid === true;
         updateMaterial();
@@ -643,6 +713,8 @@ async function watch() {
 }
 
 $('save').addEventListener('click', save);
+$('parameter-set').addEventListener('change', pickSet);
+$('save-set').addEventListener('click', saveSet);
 $('section').addEventListener('change', updateSection);
 $('fair-strain').addEventListener('click', () => fairest('strain'));
 $('fair-cv').addEventListener('click', () => fairest('curvature_variation'));

@@ -400,3 +400,58 @@ TEST_CASE("studio: a kitchen shows its pieces apart and its slab layout", "[stud
   const Json v = json_of(cc.Post("/api/build", cup.token(), "{}", "application/json"));
   CHECK(v["layout_svg"].is_null());
 }
+
+TEST_CASE("studio: parameter sets are listed, picked by override, and saved as a new set", "[studio]") {
+  const fs::path design = cup_file("studio_sets");
+  const std::string text = kCommentedCup + "parameter_sets:\n  tall: {height: 8}   # a preset\n";
+  write_text(design, text);
+  RunningStudio studio(design.string(), (design.parent_path() / "out").string());
+  httplib::Client c = studio.client();
+  const auto post = [&](const char* path, const std::string& body) {
+    return c.Post(path, studio.token(), body, "application/json");
+  };
+
+  const Json d = json_of(c.Get("/api/design", studio.token()));
+  CHECK(d["parameter_sets"] == Json::array({"tall"}));
+  CHECK(d["parameter_set"] == "");
+  CHECK(d["schema"]["properties"]["parameter_set"]["enum"] == Json::array({"tall"}));
+  CHECK(d["schema"]["examples"] == Json::array({{{"parameter_set", "tall"}, {"height", 8.0}}}));
+
+  // Picked: the set's values, and the report names the set.
+  const Json tall = json_of(post("/api/build", R"({"overrides": {"parameter_set": "tall"}})"));
+  CHECK(tall["report"]["parameter_set"] == "tall");
+  CHECK(tall["report"]["parameters"]["height"] == 8.0);
+  // A field moved on top of the set wins.
+  const Json moved = json_of(post("/api/build", R"({"overrides": {"parameter_set": "tall", "height": 7}})"));
+  CHECK(moved["report"]["parameters"]["height"] == 7.0);
+  const auto huge = post("/api/build", R"({"overrides": {"parameter_set": "huge"}})");
+  REQUIRE(huge);
+  CHECK(huge->status == 422);
+  CHECK(Json::parse(huge->body)["error"]["message"].get<std::string>().find(
+            "no parameter set 'huge' (the sets are: tall)") != std::string::npos);
+
+  // Save as set: every parameter's value, a new line of the block map.
+  const Json saved = json_of(post("/api/save_set", R"({"name": "mine", "overrides": {"height": 5.5}})"));
+  CHECK(saved["parameter_set"] == "mine");
+  const std::string with_mine = text + "  mine: {height: 5.5, width: 6, wall: 0.3}\n";
+  CHECK(file_text(design) == with_mine);
+  const auto again = post("/api/save_set", R"({"name": "mine", "overrides": {}})");
+  REQUIRE(again);
+  CHECK(again->status == 422);
+  const auto bad = post("/api/save_set", R"({"name": "my set"})");
+  REQUIRE(bad);
+  CHECK(bad->status == 400);
+  CHECK(Json::parse(bad->body)["error"]["field"] == "name");
+  CHECK(file_text(design) == with_mine);
+
+  // Save with a set picked: the file's parameter_set, as its new last line.
+  (void)json_of(post("/api/save", R"({"overrides": {"parameter_set": "mine"}})"));
+  CHECK(file_text(design) == with_mine + "parameter_set: mine\n");
+  const Design read_back = load_design(design.string());
+  CHECK(read_back.common.parameter_set == "mine");
+  CHECK(read_back.common.parameters[0].value == 5.5);
+  // No set: null, in place of the name.
+  (void)json_of(post("/api/save", R"({"overrides": {"parameter_set": null}})"));
+  CHECK(file_text(design) == with_mine + "parameter_set: null\n");
+  CHECK(load_design(design.string()).common.parameters[0].value == 4.0);
+}
