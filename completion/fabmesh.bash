@@ -8,14 +8,14 @@ _fabmesh_global_options="-h --help --version -q --quiet -v --verbose"
 
 _fabmesh_options() {
   case "$1" in
-    run) echo "-o --output --export-format --export-units --json --report --watch -D --define" ;;
-    plot) echo "-o --output --width --height -D --define" ;;
-    preview) echo "-o --output --views --width --height -D --define" ;;
+    run) echo "-o --output --export-format --export-units --json --report --watch -D --define -P --parameter-set" ;;
+    plot) echo "-o --output --width --height -D --define -P --parameter-set" ;;
+    preview) echo "-o --output --views --width --height -D --define -P --parameter-set" ;;
     check) echo "--json --weld-tolerance --max-seconds --max-locations --mark" ;;
     repair) echo "-o --output --max-deviation --wrap --weld-distance --no-fill --max-seconds --dry-run --json" ;;
-    optimize) echo "-D --define --json" ;;
-    sample) echo "-D --define --csv --tolerance" ;;
-    params) echo "-D --define --json" ;;
+    optimize) echo "-D --define -P --parameter-set --json" ;;
+    sample) echo "-D --define -P --parameter-set --csv --tolerance" ;;
+    params) echo "-D --define -P --parameter-set --json" ;;
     studio) echo "--port --host --no-open -o --output" ;;
     batch) echo "-o --output --jobs --shard --force --json --slurm --array-size --report --merge" ;;
   esac
@@ -75,7 +75,7 @@ _fabmesh() {
     -o | --output)
       _fabmesh_files "" "$cur"
       return ;;
-    -D | --define | --width | --height | --jobs | --shard | --array-size | --weld-tolerance | --max-seconds | --max-locations | --tolerance)
+    -D | --define | -P | --parameter-set | --width | --height | --jobs | --shard | --array-size | --weld-tolerance | --max-seconds | --max-locations | --tolerance)
       return ;;
   esac
 
