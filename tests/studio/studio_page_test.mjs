@@ -297,6 +297,47 @@ try {
                                {timeout: 120000});
   });
 
+  await check('undo, redo and reset: Ctrl-Z, Ctrl-Shift-Z and the file\'s values', async () => {
+    // Waits for what a build shows, not for a count of builds: one may still be on its way.
+    const shows = (values, error = false) => page.waitForFunction((v, e) => {
+      const s = window.fabmeshStudio;
+      const shown = (name) => document.querySelector(`#field-${name} input[type=number]`).value;
+      return s.change === s.settledChange && (s.error !== null) === e &&
+             Object.entries(v).every(([name, value]) => shown(name) === value);
+    }, {timeout: 120000}, values, error);
+    const keys = async (...pressed) => {
+      for (const k of pressed.slice(0, -1)) await page.keyboard.down(k);
+      await page.keyboard.press(pressed[pressed.length - 1]);
+      for (const k of pressed.slice(0, -1).reverse()) await page.keyboard.up(k);
+    };
+    await shows({height: '8', width: '7'});  // the set tall_wide, picked above
+    const depth = (await state()).undoDepth;
+    await setField('height', 'number', 5);
+    await shows({height: '5'});
+    assert.equal((await state()).undoDepth, depth + 1);
+    // A value that breaks the design is a change too: undone, the last good values build again.
+    await setField('width', 'number', 99);
+    await shows({width: '99'}, true);
+    await keys('Control', 'z');
+    await shows({height: '5', width: '7'});
+    await keys('Control', 'z');
+    await shows({height: '8', width: '7'});
+    assert.equal((await state()).overrides.height, undefined);
+    assert.equal((await state()).redoDepth, 2);
+    await keys('Control', 'Shift', 'z');
+    await shows({height: '5'});
+    assert.equal((await state()).overrides.height, 5);
+    // Reset: the file's values (height 7.5 since the editor's edit, no set), itself undoable.
+    await page.click('#reset');
+    await shows({height: '7.5', width: '6'});
+    assert.deepEqual((await state()).overrides, {});
+    assert.equal(await page.$eval('#parameter-set', (e) => e.value), '');
+    await page.click('#undo');
+    await shows({height: '5', width: '7'});
+    assert.equal((await state()).overrides.parameter_set, 'tall_wide');
+    assert.equal(await page.$eval('#parameter-set', (e) => e.value), 'tall_wide');
+  });
+
   await check('the section view clips the vessel by the plane through its axis', async () => {
     await page.click('#section');
     assert.ok(await page.$eval('#section', (e) => e.checked));

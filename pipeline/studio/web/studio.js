@@ -17,6 +17,9 @@ const state = {
   plotSvg: '',
   version: null,
   syncParameters: false,  // a parameter set was picked: the next valid build's values go into the fields
+  settledChange: 0,       // the newest change whose proven build is answered and shown (or its error)
+  undoDepth: 0,           // changes that undo can take back, and redo bring again
+  redoDepth: 0,
   error: null,         // the last build's error object, or null
   // The last valid build's times in the page, ms from the request (the bench
   // reads them, bench/studio_latency.mjs): answer (the JSON in), plot, report,
@@ -76,12 +79,18 @@ function addControl(parent, {name, label, value, min, max, step, description, ex
     other.value = source.value;
     const v = Number(source.value);
     if (source.value === '' || !Number.isFinite(v)) return;
+    remember(name);
     state.overrides[name] = v;
     state.lastChanged = name;
     requestBuild();
   };
   slider.addEventListener('input', () => changed(slider, number));
-  number.addEventListener('change', () => changed(number, slider));
+  // A slider's drag is one change for undo: it ends when the slider is let go.
+  slider.addEventListener('change', () => { history.gesture = null; });
+  number.addEventListener('change', () => {
+    changed(number, slider);
+    history.gesture = null;
+  });
   row.append(slider, number);
   box.append(row);
   if (description) {
@@ -143,6 +152,7 @@ function showSets(design) {
 // A set picked: its values replace the fields' (the fields' own changes are
 // dropped, as they would win over the set's values), then built.
 function pickSet() {
+  remember();
   const value = $('parameter-set').value;
   for (const p of state.design.parameters) delete state.overrides[p.name];
   if (value === '') delete state.overrides.parameter_set;
@@ -178,6 +188,94 @@ async function saveSet() {
     requestBuild();
   }
   setStatus(`saved set ${json.parameter_set} in ${json.saved}`);
+}
+
+// --- undo, redo and reset ---
+
+// Every change of the values (a field, a dragged point, fairest, a set
+// picked, reset) can be undone and redone, back to the file's values as
+// last read; an edit that breaks the design is a change like any other.
+const history = {past: [], future: [], gesture: null};
+
+function showHistory() {
+  state.undoDepth = history.past.length;
+  state.redoDepth = history.future.length;
+  $('undo').disabled = history.past.length === 0;
+  $('redo').disabled = history.future.length === 0;
+}
+
+// Before a change: the values as they are, for undo. A slider's drag (the
+// same field, until it is let go) is remembered once.
+function remember(gesture = null) {
+  if (gesture !== null && history.gesture === gesture) return;
+  history.gesture = gesture;
+  history.past.push(JSON.stringify(state.overrides));
+  history.future = [];
+  showHistory();
+}
+
+function forgetHistory() {
+  history.past = [];
+  history.future = [];
+  history.gesture = null;
+  showHistory();
+}
+
+// The fields as `overrides` set them, the file's values elsewhere; the
+// parameters' values a set gives come with the build (syncParameters).
+function showValues() {
+  const values = new Map();
+  for (const p of state.design.parameters) values.set(p.name, p.value);
+  for (const s of state.design.shape_parameters) values.set(s.key, s.value);
+  for (const [key, value] of Object.entries(state.overrides)) if (values.has(key)) values.set(key, value);
+  for (const [key, value] of values) {
+    const box = document.getElementById(fieldId(key));
+    if (!box) continue;
+    for (const input of box.querySelectorAll('input')) input.value = String(Number(Number(value).toPrecision(10)));
+  }
+  showSets(state.design);
+}
+
+function restore(overrides) {
+  state.overrides = overrides;
+  history.gesture = null;
+  showValues();
+  showHistory();
+  state.syncParameters = true;
+  state.lastChanged = null;
+  requestBuild();
+}
+
+function undo() {
+  if (history.past.length === 0) return;
+  history.future.push(JSON.stringify(state.overrides));
+  restore(JSON.parse(history.past.pop()));
+}
+
+function redo() {
+  if (history.future.length === 0) return;
+  history.past.push(JSON.stringify(state.overrides));
+  restore(JSON.parse(history.future.pop()));
+}
+
+// Back to the file's values (undoable).
+function resetValues() {
+  if (Object.keys(state.overrides).length === 0) return;
+  remember();
+  restore({});
+}
+
+// Ctrl-Z undoes, Ctrl-Shift-Z (or Ctrl-Y) redoes; in a text or number field
+// the browser's own undo of the typing applies.
+function onKey(event) {
+  if (!(event.ctrlKey || event.metaKey) || event.altKey) return;
+  const target = event.target;
+  if (target instanceof HTMLInputElement && target.type !== 'range' && target.type !== 'checkbox') return;
+  const key = event.key.toLowerCase();
+  if (key === 'z' && !event.shiftKey) undo();
+  else if ((key === 'z' && event.shiftKey) || key === 'y') redo();
+  else return;
+  event.preventDefault();
 }
 
 // --- errors: pinned to the field that caused them ---
@@ -463,6 +561,7 @@ function drag(event, circle) {
     circle.removeEventListener('pointerup', drop);
     const p = model(e);
     const round = (v) => Number(v.toPrecision(6));
+    remember();
     state.overrides[circle.dataset.key] = `[${round(p.x)}, ${round(p.y)}]`;
     state.lastChanged = circle.dataset.key;
     requestBuild();
@@ -620,6 +719,7 @@ async function build() {
     state.errors += 1;
     showError({message: String(e)});
   } finally {
+    state.settledChange = Math.max(state.settledChange, change);
     state.builds += 1;
     document.body.dataset.builds = String(state.builds);
     finishLane('proven');
@@ -673,6 +773,7 @@ async function fairest(energy) {
     showError(json.error);
     return;
   }
+  remember();
   for (const [key, value] of Object.entries(json.overrides)) {
     state.overrides[key] = value;
     const box = document.getElementById(fieldId(key));
@@ -695,6 +796,7 @@ async function loadDesign() {
   state.design = json;
   state.version = json.version;
   state.overrides = {};
+  forgetHistory();
   showControls(json);
   return true;
 }
@@ -713,6 +815,10 @@ async function watch() {
 }
 
 $('save').addEventListener('click', save);
+$('undo').addEventListener('click', undo);
+$('redo').addEventListener('click', redo);
+$('reset').addEventListener('click', resetValues);
+document.addEventListener('keydown', onKey);
 $('parameter-set').addEventListener('change', pickSet);
 $('save-set').addEventListener('click', saveSet);
 $('section').addEventListener('change', updateSection);

@@ -158,7 +158,7 @@ body: {mode: solid}
       "-D parameter_set=tall: parameter_set: no parameter set 'tall': the design declares no parameter_sets");
 }
 
-TEST_CASE("parameter sets: a design source lists its sets; a manifest builds them", "[io][design][sets]") {
+TEST_CASE("parameter sets: a design source lists its sets, a manifest builds them", "[io][design][sets]") {
   const std::filesystem::path dir = std::filesystem::path(FABMESH_TEST_TMP) / "parameter_sets";
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
