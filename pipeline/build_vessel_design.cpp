@@ -321,7 +321,12 @@ std::vector<double> coordinates(const Vec2& p) { return {p.x(), p.y()}; }
 // The print checks in one line, for the HTML report and the studio.
 std::string print_check_line(const PrintCheck& check, const PrintOptions& options) {
   const std::string& u = options.units;
-  const auto where = [](const Vec2& p) { return fmt::format("r {:.4g}, z {:.4g}", p.x(), p.y()); };
+  // To 4 significant digits of the size: a refined point 1e-7 above the foot is at z 0.
+  const double extent = check.size.maxCoeff();
+  const auto shown = [extent](double x) { return std::abs(x) < 1e-4 * extent ? 0.0 : x; };
+  const auto where = [&](const Vec2& p) {
+    return fmt::format("r {:.4g}, z {:.4g}", shown(p.x()), shown(p.y()));
+  };
   std::string text =
       fmt::format("printed upright: outer wall overhangs at most {:.3g} degrees", check.outer.angle_deg);
   if (check.outer.angle_deg > 0.0) text += fmt::format(" (at {})", where(check.outer.at));

@@ -18,7 +18,13 @@ constexpr int kSamples = 128;     // per piece, before refining
 constexpr int kRefineSteps = 80;  // golden section / bisection: far below a double's resolution of [0, 1]
 constexpr int kDrawSamples = 24;  // per piece of a run
 
-std::string at(const Vec2& p) { return fmt::format("(r {:.6g}, z {:.6g})", p.x(), p.y()); }
+// A point of the profile to 6 significant digits of the vessel's size
+// `extent`: a coordinate below them (a refined maximum 1e-7 above the
+// foot) is written 0, not in exponent form.
+std::string at(const Vec2& p, double extent) {
+  const auto shown = [extent](double x) { return std::abs(x) < 1e-6 * extent ? 0.0 : x; };
+  return fmt::format("(r {:.6g}, z {:.6g})", shown(p.x()), shown(p.y()));
+}
 
 // One piece of the boundary, walked from u = 0 to 1 (s from s0 to s1).
 struct Piece {
@@ -259,6 +265,7 @@ PrintCheck check_print(const CompositeCurve& profile, const VesselSection& secti
 
   // The findings against the limits.
   const std::string& u = options.units;
+  const double extent = out.size.maxCoeff();
   if (!out.runs.empty()) {
     std::size_t steepest_run = 0;
     for (std::size_t i = 1; i < out.runs.size(); ++i) {
@@ -273,9 +280,9 @@ PrintCheck check_print(const CompositeCurve& profile, const VesselSection& secti
         {"print.max_overhang_deg",
          fmt::format("the {} overhangs {:.4g} degrees from vertical at {}, beyond max_overhang_deg {:g} "
                      "({} unsupported {}; the widest ledge {:.4g} {} on the {}, from {} to {})",
-                     to_string(s.face), at_most.angle_deg, at(at_most.at), options.max_overhang_deg,
+                     to_string(s.face), at_most.angle_deg, at(at_most.at, extent), options.max_overhang_deg,
                      out.runs.size(), out.runs.size() == 1 ? "stretch" : "stretches", w.width, u,
-                     to_string(w.face), at(w.from), at(w.to))});
+                     to_string(w.face), at(w.from, extent), at(w.to, extent))});
   }
   if (!std::isnan(out.min_wall) && out.min_wall < options.min_wall) {
     out.findings.push_back(

@@ -104,6 +104,9 @@ TEST_CASE("print checks: the example vase prints, and bad keys are placed", "[pi
   CHECK(p.group("outer").number("angle_deg") < 45.0);
   CHECK(p.group("inner").number("angle_deg") < 45.0);
   CHECK(p.number("min_wall") >= 1.2);
+  // The steepest point is refined to within 1e-7 of the foot: the line says z 0, to its digits.
+  CHECK(p.text("summary").find("outer wall overhangs at most 26.6 degrees (at r 35, z 0)") !=
+        std::string::npos);
 
   const fs::path dir = fresh_dir("print_bad_keys");
   const auto fails_at = [&](const std::string& find, const std::string& replace, const std::string& words) {
