@@ -265,7 +265,8 @@ std::string edit_value(const std::string& text, const std::string& file, const O
       YAML::Node expected = YAML::Clone(root);
       expected[o.path] = wanted;
       // As given when it reads back so, else in flow_text's form.
-      const std::string as_given = ends_with_newline(text) + o.path + ": " + o.value + "\n";
+      std::string as_given = ends_with_newline(text);
+      as_given.append(o.path).append(": ").append(o.value).append("\n");
       try {
         if (same_value(YAML::Load(as_given), expected)) return as_given;
       } catch (const YAML::Exception&) {
@@ -328,7 +329,7 @@ std::string add_parameter_set(const std::string& text, const std::string& file, 
   if (!root.IsMap()) throw FileError(file, 0, 0, fmt::format("{}: the design is not a YAML map", file));
   std::string entry;
   for (const auto& [parameter, value] : values)
-    entry += (entry.empty() ? "" : ", ") + parameter + ": " + value;
+    entry.append(entry.empty() ? "" : ", ").append(parameter).append(": ").append(value);
   entry = name + ": {" + entry + "}";
   YAML::Node added;
   try {

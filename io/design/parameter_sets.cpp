@@ -47,7 +47,7 @@ void check_sets(const YAML::Node& root, const Fields& f) {
     }
     for (const auto& entry : set.second) {
       const std::string name = entry.first.IsScalar() ? entry.first.Scalar() : std::string();
-      const std::string at = field + "." + name;
+      const std::string at = fmt::format("{}.{}", field, name);
       if (name.empty() || !parameters[name].IsDefined()) {
         f.fail_key(entry.first, entry.second, at,
                    fmt::format("{:?} is not a parameter of the design (the parameters are: {})", name,
