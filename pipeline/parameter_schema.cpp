@@ -4,6 +4,8 @@
 
 #include <cmath>
 
+#include "pipeline/report.h"
+
 namespace fabmesh {
 namespace {
 
@@ -21,6 +23,14 @@ nlohmann::ordered_json parameter_schema(
   using Json = nlohmann::ordered_json;
   Json properties = Json::object();
   for (const DesignParameter& p : design.common.parameters) {
+    if (p.kind != ParameterKind::Number) {
+      Json j = p.kind == ParameterKind::Choice
+                   ? Json{{"type", "string"}, {"enum", p.choices}, {"default", p.text}}
+                   : Json{{"type", "boolean"}, {"default", p.value != 0.0}};
+      if (!p.description.empty()) j["description"] = p.description;
+      properties[p.name] = std::move(j);
+      continue;
+    }
     Json j = {{"type", "number"}, {"default", p.value}};
     if (p.min) j["minimum"] = *p.min;
     if (p.max) j["maximum"] = *p.max;
@@ -38,7 +48,7 @@ nlohmann::ordered_json parameter_schema(
       Json example = {{"parameter_set", set.name}};
       for (const auto& [name, written] : set.values) {
         for (const DesignParameter& p : resolved->common.parameters) {
-          if (p.name == name) example[name] = p.value;
+          if (p.name == name) example[name] = parameter_json(p);
         }
       }
       examples.push_back(std::move(example));

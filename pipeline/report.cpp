@@ -238,6 +238,18 @@ nlohmann::ordered_json part_json(const Part& part) {
   return j;
 }
 
+nlohmann::ordered_json parameter_json(const DesignParameter& p) {
+  switch (p.kind) {
+    case ParameterKind::Choice:
+      return p.text;
+    case ParameterKind::Switch:
+      return p.value != 0.0;
+    case ParameterKind::Number:
+      break;
+  }
+  return p.value;
+}
+
 nlohmann::ordered_json to_json(const Result& r) {
   const MeshFacts mesh = mesh_facts(r);
   nlohmann::ordered_json j;
@@ -247,7 +259,7 @@ nlohmann::ordered_json to_json(const Result& r) {
   j["export_units"] = r.export_units;
   if (!r.parameters.empty()) {
     nlohmann::ordered_json parameters = nlohmann::ordered_json::object();
-    for (const DesignParameter& p : r.parameters) parameters[p.name] = p.value;
+    for (const DesignParameter& p : r.parameters) parameters[p.name] = parameter_json(p);
     j["parameters"] = std::move(parameters);
   }
   if (!r.parameter_set.empty()) j["parameter_set"] = r.parameter_set;

@@ -106,6 +106,9 @@ nlohmann::ordered_json part_json(const Part& part);
 /// builder facts and timings. The one serializer of a Result.
 nlohmann::ordered_json to_json(const Result& result);
 
+/// A parameter's value as reports give it: a number, a choice's text, or true / false.
+nlohmann::ordered_json parameter_json(const DesignParameter& p);
+
 /// A design's `run --json` item: the design file it was read from, then its result (to_json).
 nlohmann::ordered_json design_item(const std::string& design_file, const Result& result);
 

@@ -114,7 +114,8 @@ void print_summary(const Result& r, std::ostream& out) {
   if (!r.parameters.empty()) {
     std::string values;
     for (const DesignParameter& p : r.parameters)
-      values += fmt::format("{}{} = {:.6g}", values.empty() ? "" : ", ", p.name, p.value);
+      values += fmt::format("{}{} = {}", values.empty() ? "" : ", ", p.name,
+                            p.kind == ParameterKind::Number ? fmt::format("{:.6g}", p.value) : p.text);
     out << "  parameters: " << values
         << (r.parameter_set.empty() ? std::string() : " (set " + r.parameter_set + ")") << "\n";
   }

@@ -74,9 +74,14 @@ void bind_designs(py::module_& m) {
       .def_readonly("max", &fabmesh::Parameter::max, "The declared maximum, or None")
       .def_readonly("step", &fabmesh::Parameter::step, "The declared step, or None")
       .def_readonly("description", &fabmesh::Parameter::description, "'' when none")
+      .def_readonly("kind", &fabmesh::Parameter::kind, "'number', 'choice' or 'switch'")
+      .def_readonly("text", &fabmesh::Parameter::text,
+                    "A choice's value, or 'true' / 'false' for a switch; '' for a number")
+      .def_readonly("choices", &fabmesh::Parameter::choices, "A choice's values (a list), [] otherwise")
       .def("__repr__", [](const fabmesh::Parameter& p) {
-        return "<fabmesh.Parameter " + p.name + " = " + py::repr(py::float_(p.value)).cast<std::string>() +
-               ">";
+        const std::string shown =
+            p.kind == "number" ? py::repr(py::float_(p.value)).cast<std::string>() : p.text;
+        return "<fabmesh.Parameter " + p.name + " = " + shown + ">";
       });
 
   py::class_<fabmesh::Design>(m, "Design",

@@ -39,7 +39,11 @@ std::vector<std::string> Design::outputs() const {
 std::vector<Parameter> Design::parameters() const {
   std::vector<Parameter> out;
   for (const fabmesh::DesignParameter& p : data_->design.common.parameters)
-    out.push_back({p.name, p.value, p.min, p.max, p.step, p.description});
+    out.push_back({p.name, p.value, p.min, p.max, p.step, p.description,
+                   p.kind == fabmesh::ParameterKind::Choice   ? "choice"
+                   : p.kind == fabmesh::ParameterKind::Switch ? "switch"
+                                                              : "number",
+                   p.text, p.choices});
   return out;
 }
 

@@ -56,11 +56,19 @@ struct KeySource {
   std::string override_text;  ///< "body.wall=2.5" when an override gave it
 };
 
+/// What a parameter holds: a number, one of its named choices
+/// (`{value: shell, choices: [shell, solid]}`), or a switch (`true`, `false`).
+enum class ParameterKind { Number, Choice, Switch };
+
 /// One of a design's named parameters (`parameters:`), its value resolved
 /// (an expression evaluated, a `-D NAME=VALUE` applied).
 struct DesignParameter {
   std::string name;
+  ParameterKind kind = ParameterKind::Number;
+  /// A number's value; a choice's index in `choices`; a switch's 1 or 0 (its value in expressions).
   double value = 0.0;
+  std::string text;                      ///< a choice's value, or "true" / "false"; empty for a number
+  std::vector<std::string> choices;      ///< a choice's values, in the order declared
   std::optional<double> min, max, step;  ///< as declared (resolved), when declared
   std::string description;               ///< empty when none
 };

@@ -38,8 +38,8 @@ constexpr std::size_t kMaxExpressionBytes = 4096;
 
 // The allowed grammar in words, appended to every refusal.
 std::string allowed_text() {
-  return "expressions use numbers, parameter names, + - * / ^, parentheses, pi and the functions min, max, "
-         "abs, sqrt, sin, cos, tan, atan2";
+  return "expressions use numbers, parameter names, + - * / ^, parentheses, a ? b : c, pi and the functions "
+         "min, max, abs, sqrt, sin, cos, tan, atan2";
 }
 
 // Each step of an evaluation stays finite: a later step could hide an
@@ -83,14 +83,15 @@ bool is_name_start(char c) { return c == '_' || (c >= 'a' && c <= 'z') || (c >= 
 bool is_digit(char c) { return c >= '0' && c <= '9'; }
 bool is_name_char(char c) { return is_name_start(c) || is_digit(c); }
 bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; }
+// `?` and `:` are muparser's conditional, which is not among the built-in
+// operators cleared here: `a ? b : c` is b when a is not 0 (a switch is 1 or 0).
 bool is_structure(char c) {
-  return c == '+' || c == '-' || c == '*' || c == '/' || c == '^' || c == '(' || c == ')' || c == ',';
+  return c == '+' || c == '-' || c == '*' || c == '/' || c == '^' || c == '(' || c == ')' || c == ',' ||
+         c == '?' || c == ':';
 }
 
 // Why the run of characters `run` (none allowed) is refused.
 std::string refusal(const std::string& run) {
-  if (run.find_first_of("?:") != std::string::npos)
-    return fmt::format("the conditional operator '?:' is not allowed: {}", allowed_text());
   static const std::set<std::string> operators{
       "&&", "||", "<", "<=", ">", ">=", "==", "!=", "!", "=", "%", "&", "|"};
   if (operators.count(run) != 0)
@@ -253,6 +254,7 @@ namespace {
 // recurses along their references.
 constexpr std::size_t kMaxParameters = 1000;
 constexpr std::size_t kMaxParameterNameBytes = 64;
+constexpr std::size_t kMaxChoices = 100;
 
 bool is_expression(const YAML::Node& node) {
   return node.IsScalar() && !node.Scalar().empty() && node.Scalar().front() == '=';
@@ -261,8 +263,10 @@ bool is_expression(const YAML::Node& node) {
 // One entry of `parameters:` while it is resolved.
 struct Parameter {
   std::string name;
-  std::string field;        // "parameters.height"
-  std::string value_field;  // where the value is given: `field`, or "parameter_sets.tall.height"
+  ParameterKind kind = ParameterKind::Number;
+  std::vector<std::string> choices;  // a choice's, as declared
+  std::string field;                 // "parameters.height"
+  std::string value_field;           // where the value is given: `field`, or "parameter_sets.tall.height"
   YAML::Mark key_mark;
   YAML::Node value;
   std::optional<YAML::Node> min, max, step;  // when the entry is a map that gives them
@@ -356,16 +360,98 @@ class Resolver {
         }
         if (entry["description"].IsDefined())
           p.description = f_.text(entry["description"], p.field + ".description");
+        if (entry["choices"].IsDefined()) {
+          p.kind = ParameterKind::Choice;
+          p.choices = choice_list(entry["choices"], p.field + ".choices");
+        }
       } else if (entry.IsScalar()) {
         p.value = entry;
       } else {
         f_.fail(entry, p.field,
-                "expected a number, an expression \"=...\" or a map {value, min, max, step, description}");
+                "expected a number, an expression \"=...\", true or false, or a map {value, min, max, step, "
+                "choices, description}");
+      }
+      if (p.kind == ParameterKind::Number && is_switch_value(p.value)) p.kind = ParameterKind::Switch;
+      if (p.kind != ParameterKind::Number) {
+        for (auto [key, bound] :
+             {std::pair{"min", &p.min}, std::pair{"max", &p.max}, std::pair{"step", &p.step}}) {
+          if (*bound)
+            f_.fail(**bound, p.field + "." + key,
+                    fmt::format("a {} has no {}: it takes {}",
+                                p.kind == ParameterKind::Choice ? "choice" : "switch", key,
+                                p.kind == ParameterKind::Choice ? "one of its choices" : "true or false"));
+        }
       }
       p.value_field = set_field(root, p);
       index_.emplace(p.name, parameters_.size());
       parameters_.push_back(std::move(p));
     }
+  }
+
+  // A choice's values: at least two different plain texts.
+  std::vector<std::string> choice_list(const YAML::Node& node, const std::string& field) const {
+    f_.require_list(node, field, 2);
+    if (node.size() > kMaxChoices)
+      f_.fail(node, field, fmt::format("{} choices; a choice has at most {}", node.size(), kMaxChoices));
+    std::vector<std::string> out;
+    for (std::size_t i = 0; i < node.size(); ++i) {
+      const std::string at = fmt::format("{}[{}]", field, i);
+      const std::string text = f_.text(node[i], at);
+      if (text.empty() || text.front() == '=' || text.find_first_of("\r\n") != std::string::npos)
+        f_.fail(node[i], at,
+                fmt::format("{:?} is not a choice: a plain text on one line, not an expression", text));
+      if (std::find(out.begin(), out.end(), text) != out.end())
+        f_.fail(node[i], at, fmt::format("the choice '{}' is given twice", text));
+      out.push_back(text);
+    }
+    return out;
+  }
+
+  static std::string joined(const std::vector<std::string>& texts) {
+    std::string out;
+    for (const std::string& t : texts) out += (out.empty() ? "" : ", ") + t;
+    return out;
+  }
+
+  // The parameter an expression names alone ("=mode"), if any.
+  Parameter* named_alone(const YAML::Node& node) {
+    std::string text = node.Scalar().substr(1);
+    const std::size_t first = text.find_first_not_of(" \t");
+    const std::size_t last = text.find_last_not_of(" \t");
+    if (first == std::string::npos) return nullptr;
+    text = text.substr(first, last - first + 1);
+    return is_identifier(text) ? find(text) : nullptr;
+  }
+
+  // A choice's or a switch's value, checked: the text it stands for.
+  void resolve_named(Parameter& p) {
+    DesignParameter& r = p.resolved;
+    r.name = p.name;
+    r.description = p.description;
+    r.kind = p.kind;
+    r.choices = p.choices;
+    const bool choice = p.kind == ParameterKind::Choice;
+    const std::string allowed =
+        choice ? "one of the choices: " + joined(p.choices) : std::string("true or false");
+    if (!p.value.IsScalar() || is_expression(p.value))
+      f_.fail(p.value, p.value_field,
+              fmt::format("{} is a {}: expected {}", p.name, choice ? "choice" : "switch", allowed));
+    const std::string text = p.value.Scalar();
+    if (choice) {
+      const auto it = std::find(p.choices.begin(), p.choices.end(), text);
+      if (it == p.choices.end())
+        f_.fail(p.value, p.value_field, fmt::format("{:?} is not {}", text, allowed));
+      r.text = text;
+      r.value = static_cast<double>(it - p.choices.begin());
+    } else {
+      if (!is_switch_value(p.value))
+        f_.fail(p.value, p.value_field, fmt::format("{:?}: {} is a switch: {}", text, p.name, allowed));
+      const bool on = text == "true" || text == "True" || text == "TRUE";
+      r.text = on ? "true" : "false";
+      r.value = on ? 1.0 : 0.0;
+      evaluator_.define(p.name, r.value);
+    }
+    p.state = Parameter::State::Done;
   }
 
   // Where `p`'s value is given: in the chosen parameter set (apply_parameter_set
@@ -407,6 +493,12 @@ class Resolver {
         fail(node, field, fmt::format("the parameters refer to each other in a cycle: {}{}", chain, name));
       }
       resolve(*p);
+      if (p->kind == ParameterKind::Choice) {
+        fail(node, field,
+             fmt::format("'{}' is a choice ({}): write \"={}\" alone where the design takes a text, not in a "
+                         "formula",
+                         name, joined(p->choices), name));
+      }
     }
     double value = 0.0;
     try {
@@ -429,6 +521,10 @@ class Resolver {
 
   void resolve(Parameter& p) {
     if (p.state == Parameter::State::Done) return;
+    if (p.kind != ParameterKind::Number) {
+      resolve_named(p);
+      return;
+    }
     p.state = Parameter::State::Resolving;
     resolving_.push_back(p.name);
     DesignParameter& r = p.resolved;
@@ -459,6 +555,14 @@ class Resolver {
   void walk(const YAML::Node& node, std::string& field) {
     const std::size_t length = field.size();
     if (is_expression(node)) {
+      // "=mode" alone, a choice or a switch: its text where the design takes one.
+      if (Parameter* p = named_alone(node); p != nullptr && p->kind != ParameterKind::Number) {
+        resolve(*p);
+        YAML::Node handle = node;  // in place: the node keeps its mark, its override origin
+        handle = p->resolved.text;
+        handle.SetTag(kChosenTag);
+        return;
+      }
       number(node, field);
     } else if (node.IsSequence()) {
       for (std::size_t i = 0; i < node.size(); ++i) {
@@ -486,6 +590,12 @@ class Resolver {
 };
 
 }  // namespace
+
+bool is_switch_value(const YAML::Node& node) {
+  if (!node.IsDefined() || !node.IsScalar() || node.Tag() == "!") return false;  // "true" quoted is a text
+  static const std::set<std::string> texts{"true", "True", "TRUE", "false", "False", "FALSE"};
+  return texts.count(node.Scalar()) != 0;
+}
 
 std::vector<DesignParameter> resolve_parameters(const YAML::Node& root, const Fields& f) {
   return Resolver(f).run(root);

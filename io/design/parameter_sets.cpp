@@ -7,6 +7,7 @@
 #include <string>
 
 #include "io/design/read_design.h"
+#include "io/design/yaml/design_tree.h"
 
 namespace fabmesh::yaml {
 namespace {
@@ -56,6 +57,12 @@ void check_sets(const YAML::Node& root, const Fields& f) {
       if (!entry.second.IsScalar()) {
         f.fail(entry.second, at, "expected a number or an expression \"=...\", the parameter's value");
       }
+      const YAML::Node declared = parameters[name].IsMap() ? parameters[name]["value"] : parameters[name];
+      const bool choice = parameters[name].IsMap() && parameters[name]["choices"].IsDefined();
+      if (is_switch_value(declared) && !is_switch_value(entry.second))
+        f.fail(entry.second, at, fmt::format("{} is a switch: true or false", name));
+      if (!choice && !is_switch_value(declared) && is_switch_value(entry.second))
+        f.fail(entry.second, at, fmt::format("{} is a number, not a switch", name));
     }
   }
 }

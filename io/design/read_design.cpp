@@ -405,8 +405,29 @@ std::vector<OverrideOrigin> apply_overrides(YAML::Node root, const std::string& 
                       "of that kind",
                       o.text, root["kind"].IsScalar() ? " (" + root["kind"].Scalar() + ")" : std::string()));
     }
+    const Override target = parameter_path(root, o);
+    // The design declares what a parameter is: a switch stays a switch (`-D
+    // hollow=1` is refused, not read as the number 1), a number a number.
+    if (target.path != o.path) {
+      const YAML::Node entry = root["parameters"][o.path];
+      const bool choice = entry.IsMap() && entry["choices"].IsDefined();
+      const YAML::Node current = entry.IsMap() ? entry["value"] : entry;
+      const bool was_switch = is_switch_value(current), is_switch = is_switch_value(value);
+      if (was_switch != is_switch && (was_switch || !choice)) {
+        const std::string field = "parameters." + o.path;
+        ErrorLocation at;
+        at.key = field;
+        at.place = "-D " + o.text;
+        at.file = path;
+        at.override_text = o.text;
+        throw FileError(path, 0, 0,
+                        fmt::format("-D {}: {}: {} is {}", o.text, field, o.path,
+                                    was_switch ? "a switch: true or false" : "a number, not a switch"),
+                        at);
+      }
+    }
     try {
-      apply_override(root, parameter_path(root, o), value);
+      apply_override(root, target, value);
     } catch (const FileError& e) {
       throw FileError(path, 0, 0, e.what());
     }

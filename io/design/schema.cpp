@@ -16,7 +16,7 @@ std::vector<std::string> with_common(std::vector<std::string> keys) {
 std::vector<KeyGroup> make_groups() {
   return {
       {"common", with_common({})},
-      {"parameters.NAME", {"value", "min", "max", "step", "description"}},
+      {"parameters.NAME", {"value", "min", "max", "step", "choices", "description"}},
       // Kinds (the root map of a design file).
       {"curve", with_common({"curve"})},
       {"vessel", with_common({"profile", "body", "max_triangles", "shrinkage", "mould", "print"})},

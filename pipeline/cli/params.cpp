@@ -48,7 +48,15 @@ int run_params(const ParamsArgs& args, Streams io) {
                           p.max ? fmt::format("{:g}", *p.max) : std::string("inf"));
     }
     if (p.step) range += fmt::format(", step {:g}", *p.step);
-    io.out << fmt::format("{} = {:g}{}{}\n", p.name, p.value, range,
+    if (p.kind == ParameterKind::Choice) {
+      std::string choices;
+      for (const std::string& c : p.choices) choices += (choices.empty() ? "" : ", ") + c;
+      range = fmt::format(", one of {}", choices);
+    } else if (p.kind == ParameterKind::Switch) {
+      range = ", true or false";
+    }
+    const std::string value = p.kind == ParameterKind::Number ? fmt::format("{:g}", p.value) : p.text;
+    io.out << fmt::format("{} = {}{}{}\n", p.name, value, range,
                           p.description.empty() ? std::string() : ": " + p.description);
   }
   if (!design.common.parameter_sets.empty()) {
@@ -62,7 +70,8 @@ int run_params(const ParamsArgs& args, Streams io) {
       for (const auto& [name, written] : set.values) {
         for (const DesignParameter& p : resolved.common.parameters) {
           if (p.name != name) continue;
-          values += fmt::format("{}{}={:g}", values.empty() ? "" : ", ", name, p.value);
+          values += fmt::format("{}{}={}", values.empty() ? "" : ", ", name,
+                                p.kind == ParameterKind::Number ? fmt::format("{:g}", p.value) : p.text);
           if (!written.empty() && written.front() == '=') values += " (" + written + ")";
         }
       }

@@ -167,6 +167,8 @@ Request parse_request(const std::string& body, RequestFields fields = RequestFie
       text = value.get<std::string>();
       if (text.empty() || text.find_first_of("\r\n") != std::string::npos)
         throw BadRequest{field, fmt::format("{}: the value must be a number or a one-line text", field)};
+    } else if (value.is_boolean()) {
+      text = value.get<bool>() ? "true" : "false";  // a switch
     } else if (value.is_null() && name == "parameter_set") {
       text = "null";  // no parameter set, whatever the file's `parameter_set`
     } else {
@@ -316,6 +318,11 @@ Json parameters_json(const Design& design) {
   Json out = Json::array();
   for (const DesignParameter& p : design.common.parameters) {
     Json j = {{"name", p.name}, {"value", p.value}};
+    j["kind"] = p.kind == ParameterKind::Choice   ? "choice"
+                : p.kind == ParameterKind::Switch ? "switch"
+                                                  : "number";
+    if (p.kind != ParameterKind::Number) j["text"] = p.text;
+    if (p.kind == ParameterKind::Choice) j["choices"] = p.choices;
     j["min"] = p.min ? Json(*p.min) : Json(nullptr);
     j["max"] = p.max ? Json(*p.max) : Json(nullptr);
     j["step"] = p.step ? Json(*p.step) : Json(nullptr);

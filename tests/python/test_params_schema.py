@@ -87,3 +87,38 @@ def test_the_sets_are_an_enum_and_examples_that_validate_and_build_as_the_schema
     assert code == 2 and not (tmp_path / "huge").exists()
     # The set used is the schema's default.
     assert schema_of(design, "-P", "wide")["properties"]["parameter_set"]["default"] == "wide"
+
+
+CHOSEN_CUP = """name: chosen_cup
+kind: vessel
+units: cm
+tolerance: 0.005
+parameters:
+  mode: {value: shell, choices: [shell, solid], description: "hollow or full"}
+  thick: false
+  wall: "=thick ? 0.4 : 0.3"
+profile:
+  family: quasi_bspline
+  points: [[1.5, 6], [1, 5], [2, 4], [3, 3], [1.5, 2]]
+body: {mode: "=mode", wall: "=wall"}
+"""
+
+
+def test_a_choice_is_a_string_enum_and_a_switch_a_boolean_as_the_program_takes_them(tmp_path):
+    design = tmp_path / "cup.yaml"
+    design.write_text(CHOSEN_CUP)
+    schema = schema_of(str(design))
+    jsonschema.Draft202012Validator.check_schema(schema)
+    assert schema["properties"]["mode"] == {"type": "string", "enum": ["shell", "solid"], "default": "shell",
+                                            "description": "hollow or full"}
+    assert schema["properties"]["thick"] == {"type": "boolean", "default": False}
+    assert errors(schema, {"mode": "solid", "thick": True}) == []
+    assert any("is not one of" in m for m in errors(schema, {"mode": "glass"}))
+    assert any("is not of type 'boolean'" in m for m in errors(schema, {"thick": 1}))
+    code, out = cli("run", str(design), "-o", str(tmp_path / "solid"), "--json", "-D", "mode=solid", "-D", "thick=true")
+    assert code == 0
+    item = json.loads(out)[0]
+    assert item["parameters"] == {"mode": "solid", "thick": True, "wall": 0.4}
+    for bad in ("mode=glass", "thick=1"):
+        code, _ = cli("run", str(design), "-o", str(tmp_path / "bad"), "-q", "-D", bad)
+        assert code == 2 and not (tmp_path / "bad").exists(), bad

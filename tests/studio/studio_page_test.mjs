@@ -456,6 +456,50 @@ try {
     }
   });
 
+  await check('a choice is a list and a switch a checkbox; each change builds, and undoes', async () => {
+    const chosen = path.join(workDir, 'chosen.yaml');
+    fs.writeFileSync(chosen, [
+      'name: chosen_cup', 'kind: vessel', 'units: cm', 'tolerance: 0.005', 'parameters:',
+      '  mode: {value: shell, choices: [shell, solid], description: "hollow or full"}',
+      '  thick: false', '  wall: "=thick ? 0.4 : 0.3"', 'profile:', '  family: quasi_bspline',
+      '  points: [[1.5, 6], [1, 5], [2, 4], [3, 3], [1.5, 2]]', 'body: {mode: "=mode", wall: "=wall"}', ''].join('\n'));
+    const fourth = startStudio(chosen, path.join(workDir, 'chosen-out'));
+    try {
+      const {page: page4, errors: errors4} = await newPage();
+      await page4.goto(await fourth.url, {waitUntil: 'load'});
+      await page4.waitForFunction(() => window.fabmeshStudio?.validBuilds >= 1, {timeout: 120000});
+      assert.deepEqual(await page4.$$eval('#field-mode select option', (l) => l.map((o) => o.value)), ['shell', 'solid']);
+      assert.equal(await page4.$eval('#field-mode select', (e) => e.value), 'shell');
+      assert.equal(await page4.$eval('#field-thick input[type=checkbox]', (e) => e.checked), false);
+      const volume = () => page4.evaluate(() => window.fabmeshStudio.lastReport?.volume);
+      const settled = () => page4.waitForFunction(() => window.fabmeshStudio.change === window.fabmeshStudio.settledChange,
+                                                  {timeout: 120000});
+      const shell = await volume();
+      await page4.select('#field-mode select', 'solid');
+      await settled();
+      assert.equal((await page4.evaluate(() => window.fabmeshStudio.overrides)).mode, 'solid');
+      assert.equal((await page4.evaluate(() => window.fabmeshStudio.lastReport)).parameters.mode, 'solid');
+      assert.ok(await volume() > shell, 'the solid holds more than the shell');
+      await page4.select('#field-mode select', 'shell');
+      await settled();
+      await page4.click('#field-thick input[type=checkbox]');
+      assert.equal((await page4.evaluate(() => window.fabmeshStudio.overrides)).thick, true);
+      await settled();
+      const report = await page4.evaluate(() => window.fabmeshStudio.lastReport);
+      assert.equal(report.parameters.thick, true);
+      assert.equal(report.parameters.wall, 0.4);
+      await page4.click('#undo');
+      await settled();
+      assert.equal(await page4.$eval('#field-thick input[type=checkbox]', (e) => e.checked), false);
+      assert.equal((await page4.evaluate(() => window.fabmeshStudio.lastReport)).parameters.wall, 0.3);
+      assert.deepEqual(errors4, []);
+      await page4.close();
+    } finally {
+      fourth.child.kill('SIGTERM');
+      assert.equal(await fourth.exit, 0);
+    }
+  });
+
   await check('no console error in the whole session but the browser\'s notes of the 422 answers', async () => {
     // Chromium logs every 4xx answer to fetch() as an error; the 422s of the
     // value that broke the design are expected, nothing else is.

@@ -33,6 +33,10 @@ struct Parameter {
   std::optional<double> min, max;  ///< the range the design declares, when it does
   std::optional<double> step;      ///< the step a slider would take, when declared
   std::string description;         ///< empty when none
+  /// "number", "choice" ({value: shell, choices: [shell, solid]}) or "switch" (true / false).
+  std::string kind = "number";
+  std::string text;                  ///< a choice's value, or "true" / "false"; empty for a number
+  std::vector<std::string> choices;  ///< a choice's values, in the order declared
 };
 
 namespace detail {

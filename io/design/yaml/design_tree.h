@@ -33,6 +33,14 @@ std::vector<OverrideOrigin> apply_overrides(YAML::Node root, const std::string& 
 ///        of a bad parameter or expression
 std::vector<DesignParameter> resolve_parameters(const YAML::Node& root, const Fields& f);
 
+/// The tag of a node whose text a choice or a switch put there ("=mode"):
+/// readers may tell a value the design varies from one it writes.
+inline constexpr const char* kChosenTag = "!fabmesh-chosen";
+
+/// Whether `node` is a switch's value: plain true or false (YAML 1.2's
+/// spellings: true, True, TRUE, ...); a quoted "true" is a text.
+bool is_switch_value(const YAML::Node& node);
+
 /// Reads and validates the design of a tree with overrides applied (see
 /// read_design): resolves its parameters and expressions (resolve_parameters),
 /// then reads it.

@@ -6,6 +6,7 @@
 
 #include "geometry/mould/mould_section.h"
 #include "geometry/mould/release.h"
+#include "io/design/yaml/design_tree.h"
 #include "io/design/yaml/read_curve.h"
 
 namespace fabmesh {
@@ -137,16 +138,24 @@ VesselDesign read_vessel(const yaml::Fields& f, const YAML::Node& root, const De
       v.rim = rim == "level" ? RimCut::Level : RimCut::Square;
     }
   } else {
+    // A mode a choice or an override gives may leave the shell's keys in
+    // place for the shell it also makes: they are not used, and a note says so.
+    const YAML::Node given = body["mode"];
+    const bool varied = given.Tag() == yaml::kChosenTag || !f.source(given).override_text.empty();
     for (const char* key : {"wall", "base", "rim"}) {
-      if (body[key].IsDefined())
-        f.fail(body[key], std::string("body.") + key, "a solid body has no wall, base or rim");
+      if (!body[key].IsDefined()) continue;
+      if (!varied) f.fail(body[key], std::string("body.") + key, "a solid body has no wall, base or rim");
+      f.note(fmt::format("body.{} is not used: the body is solid ({})", key, f.location(given)));
     }
   }
   v.max_triangles = f.budget_or(root, "max_triangles", v.max_triangles);
   if (root["shrinkage"].IsDefined()) read_shrinkage(f, root["shrinkage"], v);
   if (root["print"].IsDefined()) v.print = read_print(f, root["print"], common);
-  if (root["mould"].IsDefined()) {
-    const YAML::Node m = root["mould"];
+  // `mould: false` (a switch, "=with_mould") is none; `mould: true` the mould of every default.
+  const bool mould_off = root["mould"].IsDefined() && root["mould"].IsScalar() &&
+                         f.boolean_or(root, "mould", "mould", true) == false;
+  if (root["mould"].IsDefined() && !mould_off) {
+    const YAML::Node m = root["mould"].IsScalar() ? YAML::Node(YAML::NodeType::Map) : root["mould"];
     v.mould = read_mould(f, m, common, v);
     v.plaster_ratio = positive_or(f, m, "plaster_ratio", v.plaster_ratio);
     v.plaster_density = positive_or(f, m, "plaster_density", v.plaster_density);

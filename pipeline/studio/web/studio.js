@@ -18,6 +18,7 @@ const state = {
   version: null,
   syncParameters: false,  // a parameter set was picked: the next valid build's values go into the fields
   settledChange: 0,       // the newest change whose proven build is answered and shown (or its error)
+  lastReport: null,       // the last valid build's report (run --json's item)
   undoDepth: 0,           // changes that undo can take back, and redo bring again
   redoDepth: 0,
   error: null,         // the last build's error object, or null
@@ -105,6 +106,51 @@ function addControl(parent, {name, label, value, min, max, step, description, ex
   parent.append(box);
 }
 
+// A choice's select or a switch's checkbox: the value is sent as the text
+// (a choice) or true / false (a switch).
+function addChoiceControl(parent, p) {
+  const box = document.createElement('div');
+  box.className = 'control';
+  box.id = fieldId(p.name);
+  box.dataset.name = p.name;
+  const title = document.createElement('label');
+  title.textContent = p.name;
+  box.append(title);
+  let input;
+  if (p.kind === 'choice') {
+    input = document.createElement('select');
+    for (const c of p.choices) {
+      const option = document.createElement('option');
+      option.value = c;
+      option.textContent = c;
+      input.append(option);
+    }
+    input.value = p.text;
+  } else {
+    input = document.createElement('input');
+    input.type = 'checkbox';
+    input.checked = p.text === 'true';
+  }
+  input.setAttribute('aria-label', p.name);
+  input.addEventListener('change', () => {
+    remember();
+    state.overrides[p.name] = p.kind === 'choice' ? input.value : input.checked;
+    state.lastChanged = p.name;
+    requestBuild();
+  });
+  box.append(input);
+  if (p.description) {
+    const d = document.createElement('div');
+    d.className = 'description';
+    d.textContent = p.description;
+    box.append(d);
+  }
+  const err = document.createElement('div');
+  err.className = 'field-error';
+  box.append(err);
+  parent.append(box);
+}
+
 function showControls(design) {
   $('design-name').textContent = design.name;
   $('design-kind').textContent = `${design.kind}, ${design.units}`;
@@ -114,6 +160,10 @@ function showControls(design) {
   params.replaceChildren();
   if (design.parameters.length === 0) params.textContent = 'The design declares no parameters.';
   for (const p of design.parameters) {
+    if (p.kind === 'choice' || p.kind === 'switch') {
+      addChoiceControl(params, p);
+      continue;
+    }
     addControl(params, {name: p.name, label: p.name, value: p.value, min: p.min, max: p.max, step: p.step,
                         description: p.description});
   }
@@ -164,11 +214,19 @@ function pickSet() {
 
 // The values of a build in the parameters' fields (after a set was picked).
 function syncFields(parameters) {
-  for (const [name, value] of Object.entries(parameters ?? {})) {
-    const box = document.getElementById(fieldId(name));
-    if (!box) continue;
-    for (const input of box.querySelectorAll('input')) input.value = String(Number(value.toPrecision(10)));
-  }
+  for (const [name, value] of Object.entries(parameters ?? {})) putValue(name, value);
+}
+
+// A value into its field: a number's slider and number field, a choice's
+// select, a switch's checkbox.
+function putValue(name, value) {
+  const box = document.getElementById(fieldId(name));
+  if (!box) return;
+  const select = box.querySelector('select');
+  const check = box.querySelector('input[type=checkbox]');
+  if (select) select.value = String(value);
+  else if (check) check.checked = value === true || value === 'true';
+  else for (const input of box.querySelectorAll('input')) input.value = String(Number(Number(value).toPrecision(10)));
 }
 
 async function saveSet() {
@@ -225,14 +283,10 @@ function forgetHistory() {
 // parameters' values a set gives come with the build (syncParameters).
 function showValues() {
   const values = new Map();
-  for (const p of state.design.parameters) values.set(p.name, p.value);
+  for (const p of state.design.parameters) values.set(p.name, p.kind === 'choice' || p.kind === 'switch' ? p.text : p.value);
   for (const s of state.design.shape_parameters) values.set(s.key, s.value);
   for (const [key, value] of Object.entries(state.overrides)) if (values.has(key)) values.set(key, value);
-  for (const [key, value] of values) {
-    const box = document.getElementById(fieldId(key));
-    if (!box) continue;
-    for (const input of box.querySelectorAll('input')) input.value = String(Number(Number(value).toPrecision(10)));
-  }
+  for (const [key, value] of values) putValue(key, value);
   showSets(state.design);
 }
 
@@ -687,6 +741,7 @@ async function build() {
         showPlot(json.plot_svg, json.control_points, json.layout_svg);
         timings.plot = since();
         showReport(json.report, json.build_ms);
+        state.lastReport = json.report;
         if (state.syncParameters) {
           syncFields(json.report.parameters);
           state.syncParameters = false;

@@ -122,7 +122,10 @@ TEST_CASE("expressions: what they do not allow, and results that are not numbers
   CHECK_THAT(eval_error("_pi"), Catch::StartsWith("the constant '_pi' is not allowed"));
   CHECK_THAT(eval_error("sin"), Catch::StartsWith("'sin' is a function: write sin(...)"));
   CHECK_THAT(eval_error("h > 1 ? 2 : 3"), Catch::StartsWith("the operator '>' is not allowed"));
-  CHECK_THAT(eval_error("1 ? 2 : 3"), Catch::StartsWith("the conditional operator '?:' is not allowed"));
+  // The conditional is allowed (a switch is 1 or 0); comparisons stay out of it.
+  CHECK(eval("1 ? 2 : 3") == 2);
+  CHECK(eval("0 ? 2 : 3") == 3);
+  CHECK(eval("0 ? 1 / 0 : 3") == 3);  // the branch not taken is not evaluated
   CHECK_THAT(eval_error("h && w"), Catch::StartsWith("the operator '&&' is not allowed"));
   CHECK_THAT(eval_error("h || w"), Catch::StartsWith("the operator '||' is not allowed"));
   CHECK_THAT(eval_error("h == w"), Catch::StartsWith("the operator '==' is not allowed"));
@@ -205,10 +208,8 @@ TEST_CASE("parameters: a bad name, reference or value is bad input at the expres
         error_of(replaced(kParamCup, "\"=1 + height\"", "\"=height > 4 ? 5 : 4\"")),
         Catch::StartsWith("cup.yaml:11:38: profile.points[1][1]: \"=height > 4 ? 5 : 4\": the operator "
                           "'>' is not allowed"));
-    CHECK_THAT(
-        error_of(replaced(kParamCup, "\"=1 + height\"", "\"=1 ? 5 : 4\"")),
-        Catch::StartsWith("cup.yaml:11:38: profile.points[1][1]: \"=1 ? 5 : 4\": the conditional operator "
-                          "'?:' is not allowed"));
+    CHECK_THAT(error_of(replaced(kParamCup, "\"=1 + height\"", "\"=1 ? 5 :\"")),
+               Catch::StartsWith("cup.yaml:11:38: profile.points[1][1]: \"=1 ? 5 :\": syntax error"));
     CHECK_THAT(
         error_of(replaced(kParamCup, "\"=wall\"", "\"=wall && 1\"")),
         Catch::StartsWith("cup.yaml:13:27: body.wall: \"=wall && 1\": the operator '&&' is not allowed"));

@@ -120,6 +120,7 @@ TEST_CASE("studio: the design, a build, its mesh, and bad requests", "[studio]")
   CHECK(d["kind"] == "vessel");
   REQUIRE(d["parameters"].size() == 3);
   CHECK(d["parameters"][0] == Json({{"name", "height"},
+                                    {"kind", "number"},
                                     {"value", 4.0},
                                     {"min", 2.0},
                                     {"max", 10.0},
@@ -182,7 +183,15 @@ TEST_CASE("studio: the design, a build, its mesh, and bad requests", "[studio]")
   CHECK(bad("[1]")["field"] == "");
   CHECK(bad(R"({"overides": {}})")["field"] == "overides");
   CHECK(bad(R"({"overrides": [1]})")["field"] == "overrides");
-  CHECK(bad(R"({"overrides": {"height": true}})")["field"] == "overrides.height");
+  // true and false are values (a switch's): given to a number, the design refuses them at the field.
+  const auto for_number =
+      c.Post("/api/build", studio.token(), R"({"overrides": {"height": true}})", "application/json");
+  REQUIRE(for_number);
+  CHECK(for_number->status == 422);
+  CHECK(Json::parse(for_number->body)["error"]["request_field"] == "overrides.height");
+  CHECK(Json::parse(for_number->body)["error"]["message"].get<std::string>().find(
+            "height is a number, not a switch") != std::string::npos);
+  CHECK(bad(R"({"overrides": {"height": [1]}})")["field"] == "overrides.height");
   CHECK(bad(R"({"overrides": {"height": "5\n"}})")["field"] == "overrides.height");
   const Json unknown = bad(R"({"overrides": {"heigth": 5}})");
   CHECK(unknown["field"] == "overrides.heigth");
