@@ -9,8 +9,12 @@
 
 #include "geometry/core/errors.h"
 #include "io/design/read_design.h"
+#include "tests/io/design/design_text.h"
 
 using namespace fabmesh;
+using fabmesh::test::read_error;
+using fabmesh::test::read_text;
+using fabmesh::test::replaced;
 
 namespace {
 
@@ -34,27 +38,6 @@ body: {mode: "=mode", wall: "=wall"}
 mould: "=with_mould"
 )";
 
-Design read(const std::string& text, const std::vector<std::string>& defines = {}) {
-  std::vector<Override> overrides;
-  for (const std::string& d : defines) overrides.push_back(parse_override(d));
-  return parse_design(text, "cup.yaml", overrides);
-}
-
-std::string error_of(const std::string& text, const std::vector<std::string>& defines = {}) {
-  try {
-    read(text, defines);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "no error";
-}
-
-std::string replaced(std::string text, const std::string& find, const std::string& replace) {
-  const std::size_t at = text.find(find);
-  REQUIRE(at != std::string::npos);
-  return text.replace(at, find.size(), replace);
-}
-
 const DesignParameter& parameter(const Design& d, const std::string& name) {
   for (const DesignParameter& p : d.common.parameters) {
     if (p.name == name) return p;
@@ -68,7 +51,7 @@ const VesselDesign& vessel(const Design& d) { return std::get<VesselDesign>(d.bo
 }  // namespace
 
 TEST_CASE("parameter choices: a choice and switches, resolved and put in place", "[io][design][choices]") {
-  const Design d = read(kChoiceCup);
+  const Design d = read_text(kChoiceCup);
   const DesignParameter& mode = parameter(d, "mode");
   CHECK(mode.kind == ParameterKind::Choice);
   CHECK(mode.text == "shell");
@@ -87,7 +70,7 @@ TEST_CASE("parameter choices: a choice and switches, resolved and put in place",
   CHECK(parameter(d, "wall").value == 0.3);
   CHECK(vessel(d).wall == 0.3);
 
-  const Design other = read(kChoiceCup, {"mode=solid", "thick=true", "with_mould=true"});
+  const Design other = read_text(kChoiceCup, {"mode=solid", "thick=true", "with_mould=true"});
   CHECK(vessel(other).mode == BodyMode::Solid);
   CHECK(parameter(other, "thick").value == 1);
   CHECK(parameter(other, "wall").value == 0.4);
@@ -96,40 +79,40 @@ TEST_CASE("parameter choices: a choice and switches, resolved and put in place",
   CHECK(other.common.notes ==
         std::vector<std::string>{"body.wall is not used: the body is solid (cup.yaml:15:14)"});
   // Written as solid in the file, the wall is an error as ever.
-  CHECK(error_of(replaced(kChoiceCup, "body: {mode: \"=mode\"", "body: {mode: solid")) ==
+  CHECK(read_error(replaced(kChoiceCup, "body: {mode: \"=mode\"", "body: {mode: solid")) ==
         "cup.yaml:15:27: body.wall: a solid body has no wall, base or rim");
   // A set gives choices and switches too.
-  const Design full = read(kChoiceCup, {"parameter_set=full"});
+  const Design full = read_text(kChoiceCup, {"parameter_set=full"});
   CHECK(vessel(full).mode == BodyMode::Solid);
   CHECK(parameter(full, "wall").value == 0.4);
   // YAML's other spellings of a switch.
-  CHECK(parameter(read(kChoiceCup, {"thick=True"}), "thick").text == "true");
+  CHECK(parameter(read_text(kChoiceCup, {"thick=True"}), "thick").text == "true");
 }
 
 TEST_CASE("parameter choices: bad values name the parameter and what it takes", "[io][design][choices]") {
-  CHECK(error_of(kChoiceCup, {"mode=glass"}) ==
+  CHECK(read_error(kChoiceCup, {"mode=glass"}) ==
         "-D mode=glass: parameters.mode: \"glass\" is not one of the choices: shell, solid");
-  CHECK(error_of(kChoiceCup, {"thick=1"}) ==
+  CHECK(read_error(kChoiceCup, {"thick=1"}) ==
         "-D thick=1: parameters.thick: thick is a switch: true or false");
-  CHECK(error_of(kChoiceCup, {"wall=true"}) ==
+  CHECK(read_error(kChoiceCup, {"wall=true"}) ==
         "-D wall=true: parameters.wall: wall is a number, not a switch");
-  CHECK(error_of(replaced(kChoiceCup, "{value: shell,", "{value: glass,")) ==
+  CHECK(read_error(replaced(kChoiceCup, "{value: shell,", "{value: glass,")) ==
         "cup.yaml:5:17: parameters.mode: \"glass\" is not one of the choices: shell, solid");
-  CHECK(error_of(replaced(kChoiceCup, "full: {mode: solid, thick: true}", "full: {thick: 3}")) ==
+  CHECK(read_error(replaced(kChoiceCup, "full: {mode: solid, thick: true}", "full: {thick: 3}")) ==
         "cup.yaml:10:17: parameter_sets.full.thick: thick is a switch: true or false");
   // A choice is a text: not in a formula.
-  CHECK(error_of(replaced(kChoiceCup, "\"=thick ? 0.4 : 0.3\"", "\"=mode * 2\"")) ==
+  CHECK(read_error(replaced(kChoiceCup, "\"=thick ? 0.4 : 0.3\"", "\"=mode * 2\"")) ==
         "cup.yaml:7:9: parameters.wall: \"=mode * 2\": 'mode' is a choice (shell, solid): write \"=mode\" "
         "alone "
         "where the design takes a text, not in a formula");
-  CHECK(error_of(replaced(kChoiceCup, "choices: [shell, solid]", "choices: [shell, shell]"))
+  CHECK(read_error(replaced(kChoiceCup, "choices: [shell, solid]", "choices: [shell, shell]"))
             .find("parameters.mode.choices[1]: the choice 'shell' is given twice") != std::string::npos);
-  CHECK(error_of(replaced(kChoiceCup, "choices: [shell, solid]", "choices: [shell]"))
+  CHECK(read_error(replaced(kChoiceCup, "choices: [shell, solid]", "choices: [shell]"))
             .find("parameters.mode.choices") != std::string::npos);
-  CHECK(error_of(replaced(kChoiceCup, "choices: [shell, solid]", "choices: [shell, solid], min: 1"))
+  CHECK(read_error(replaced(kChoiceCup, "choices: [shell, solid]", "choices: [shell, solid], min: 1"))
             .find("parameters.mode.min: a choice has no min: it takes one of its choices") !=
         std::string::npos);
-  CHECK(error_of(replaced(kChoiceCup, "with_mould: {value: false}", "with_mould: {value: false, max: 2}"))
+  CHECK(read_error(replaced(kChoiceCup, "with_mould: {value: false}", "with_mould: {value: false, max: 2}"))
             .find("parameters.with_mould.max: a switch has no max: it takes true or false") !=
         std::string::npos);
 }

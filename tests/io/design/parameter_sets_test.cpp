@@ -14,8 +14,12 @@
 #include "io/design/edit_values.h"
 #include "io/design/manifest.h"
 #include "io/design/read_design.h"
+#include "tests/io/design/design_text.h"
 
 using namespace fabmesh;
+using fabmesh::test::read_error;
+using fabmesh::test::read_text;
+using fabmesh::test::replaced;
 
 namespace {
 
@@ -38,12 +42,6 @@ profile:
 body: {mode: solid}
 )";
 
-Design read(const std::string& text, const std::vector<std::string>& defines = {}) {
-  std::vector<Override> overrides;
-  for (const std::string& d : defines) overrides.push_back(parse_override(d));
-  return parse_design(text, "cup.yaml", overrides);
-}
-
 double value_of(const Design& d, const std::string& name) {
   for (const DesignParameter& p : d.common.parameters) {
     if (p.name == name) return p.value;
@@ -52,26 +50,11 @@ double value_of(const Design& d, const std::string& name) {
   return 0.0;
 }
 
-std::string error_of(const std::string& text, const std::vector<std::string>& defines = {}) {
-  try {
-    read(text, defines);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "no error";
-}
-
-std::string replaced(std::string text, const std::string& find, const std::string& replace) {
-  const std::size_t at = text.find(find);
-  REQUIRE(at != std::string::npos);
-  return text.replace(at, find.size(), replace);
-}
-
 }  // namespace
 
 TEST_CASE("parameter sets: a set's values replace its parameters', the others keep theirs",
           "[io][design][sets]") {
-  const Design plain = read(kSetCup);
+  const Design plain = read_text(kSetCup);
   CHECK(plain.common.parameter_set.empty());
   REQUIRE(plain.common.parameter_sets.size() == 3);
   CHECK(plain.common.parameter_sets[0].name == "tall");
@@ -79,82 +62,82 @@ TEST_CASE("parameter sets: a set's values replace its parameters', the others ke
         std::vector<std::pair<std::string, std::string>>{{"width", "=height * 2.5"}});
   CHECK(value_of(plain, "height") == 4);
 
-  const Design tall = read(kSetCup, {"parameter_set=tall"});
+  const Design tall = read_text(kSetCup, {"parameter_set=tall"});
   CHECK(tall.common.parameter_set == "tall");
   CHECK(value_of(tall, "height") == 8);
   CHECK(value_of(tall, "width") == 6);
   // The set's values reach the geometry: the rim is at 2 + height.
-  const Design small = read(kSetCup, {"parameter_set=small"});
+  const Design small = read_text(kSetCup, {"parameter_set=small"});
   CHECK(value_of(small, "height") == 3);
   CHECK(value_of(small, "width") == 5);
   // An expression in a set is evaluated over the design's parameters.
-  CHECK(value_of(read(kSetCup, {"parameter_set=wide"}), "width") == 10);
-  CHECK(value_of(read(kSetCup, {"parameter_set=wide", "height=3"}), "width") == 7.5);
+  CHECK(value_of(read_text(kSetCup, {"parameter_set=wide"}), "width") == 10);
+  CHECK(value_of(read_text(kSetCup, {"parameter_set=wide", "height=3"}), "width") == 7.5);
 }
 
 TEST_CASE("parameter sets: -D wins over the set's value, in any order", "[io][design][sets]") {
   for (const auto& defines : {std::vector<std::string>{"parameter_set=tall", "height=9"},
                               std::vector<std::string>{"height=9", "parameter_set=tall"}}) {
-    const Design d = read(kSetCup, defines);
+    const Design d = read_text(kSetCup, defines);
     CHECK(d.common.parameter_set == "tall");
     CHECK(value_of(d, "height") == 9);
   }
   // The last set named is the one used.
-  CHECK(read(kSetCup, {"parameter_set=tall", "parameter_set=small"}).common.parameter_set == "small");
+  CHECK(read_text(kSetCup, {"parameter_set=tall", "parameter_set=small"}).common.parameter_set == "small");
   // An edit of a set applies before the set does.
-  CHECK(value_of(read(kSetCup, {"parameter_set=tall", "parameter_sets.tall.height=7"}), "height") == 7);
+  CHECK(value_of(read_text(kSetCup, {"parameter_set=tall", "parameter_sets.tall.height=7"}), "height") == 7);
 }
 
 TEST_CASE("parameter sets: the file's own parameter_set, and null for none", "[io][design][sets]") {
   const std::string chosen = kSetCup + "parameter_set: small\n";
-  CHECK(value_of(read(chosen), "height") == 3);
-  CHECK(read(chosen).common.parameter_set == "small");
-  CHECK(value_of(read(chosen, {"parameter_set=tall"}), "height") == 8);
+  CHECK(value_of(read_text(chosen), "height") == 3);
+  CHECK(read_text(chosen).common.parameter_set == "small");
+  CHECK(value_of(read_text(chosen, {"parameter_set=tall"}), "height") == 8);
   // The set a -P picks replaces the file's whole: small's width does not stay.
-  CHECK(value_of(read(chosen, {"parameter_set=tall"}), "width") == 6);
-  const Design none = read(chosen, {"parameter_set=null"});
+  CHECK(value_of(read_text(chosen, {"parameter_set=tall"}), "width") == 6);
+  const Design none = read_text(chosen, {"parameter_set=null"});
   CHECK(none.common.parameter_set.empty());
   CHECK(value_of(none, "height") == 4);
 }
 
 TEST_CASE("parameter sets: bad sets and bad choices are bad input at their place", "[io][design][sets]") {
-  CHECK(error_of(kSetCup, {"parameter_set=huge"}) ==
+  CHECK(read_error(kSetCup, {"parameter_set=huge"}) ==
         "-D parameter_set=huge: parameter_set: no parameter set 'huge' (the sets are: tall, small, wide)");
   // A set's value out of its parameter's range: at the set's line and column.
-  CHECK(error_of(replaced(kSetCup, "tall: {height: 8}", "tall: {height: 12}"), {"parameter_set=tall"}) ==
+  CHECK(read_error(replaced(kSetCup, "tall: {height: 8}", "tall: {height: 12}"), {"parameter_set=tall"}) ==
         "cup.yaml:8:18: parameter_sets.tall.height: 12 is outside [2, 10]");
   // Checked whether the set is used or not.
-  CHECK(error_of(replaced(kSetCup, "tall: {height: 8}", "tall: {heigth: 8}")) ==
+  CHECK(read_error(replaced(kSetCup, "tall: {height: 8}", "tall: {heigth: 8}")) ==
         "cup.yaml:8:10: parameter_sets.tall.heigth: \"heigth\" is not a parameter of the design (the "
         "parameters are: height, width)");
-  CHECK(error_of(replaced(kSetCup, "tall: {height: 8}", "tall: {height: [8]}")) ==
+  CHECK(read_error(replaced(kSetCup, "tall: {height: 8}", "tall: {height: [8]}")) ==
         "cup.yaml:8:18: parameter_sets.tall.height: expected a number or an expression \"=...\", the "
         "parameter's value");
   CHECK(
-      error_of(replaced(kSetCup, "tall: {height: 8}", "\"tall one\": {height: 8}")) ==
+      read_error(replaced(kSetCup, "tall: {height: 8}", "\"tall one\": {height: 8}")) ==
       "cup.yaml:8:3: parameter_sets: \"tall one\" is not a parameter set's name: 1 to 64 letters, digits, _ "
       "and -, not starting with -");
-  CHECK(error_of(replaced(kSetCup, "tall: {height: 8}", "tall: {}")) ==
+  CHECK(read_error(replaced(kSetCup, "tall: {height: 8}", "tall: {}")) ==
         "cup.yaml:8:9: parameter_sets.tall: expected a map of parameters to values, e.g. {height: 14, wall: "
         "0.4} (at least one)");
-  CHECK(error_of(replaced(kSetCup, "tall: {height: 8}", "tall: 8"))
+  CHECK(read_error(replaced(kSetCup, "tall: {height: 8}", "tall: 8"))
             .find("parameter_sets.tall: expected a map") != std::string::npos);
   const std::string no_parameters = R"(kind: vessel
 parameter_sets: {tall: {height: 8}}
 profile: {family: quasi_bspline, points: [[1.5, 6], [1, 4], [2, 3], [3, 2.5], [1.5, 2]]}
 body: {mode: solid}
 )";
-  CHECK(error_of(no_parameters).find("cup.yaml:2:17: parameter_sets: the design declares no parameters") ==
+  CHECK(read_error(no_parameters).find("cup.yaml:2:17: parameter_sets: the design declares no parameters") ==
         0);
-  CHECK(error_of(no_parameters, {"parameter_set=tall"}).find("parameter_sets: the design declares no") !=
+  CHECK(read_error(no_parameters, {"parameter_set=tall"}).find("parameter_sets: the design declares no") !=
         std::string::npos);
   const std::string no_sets = replaced(kSetCup, "parameter_sets:", "other_sets:");
   CHECK(
-      error_of(replaced(no_sets,
-                        "other_sets:\n  tall: {height: 8}\n  small: {height: 3, width: 5}\n  wide: "
-                        "{width: \"=height * 2.5\"}\n",
-                        ""),
-               {"parameter_set=tall"}) ==
+      read_error(replaced(no_sets,
+                          "other_sets:\n  tall: {height: 8}\n  small: {height: 3, width: 5}\n  wide: "
+                          "{width: \"=height * 2.5\"}\n",
+                          ""),
+                 {"parameter_set=tall"}) ==
       "-D parameter_set=tall: parameter_set: no parameter set 'tall': the design declares no parameter_sets");
 }
 
@@ -213,7 +196,7 @@ TEST_CASE("parameter sets: a set is added to a design's text, everything else ke
   const std::string block = add_parameter_set(kSetCup, "cup.yaml", "mine", values);
   CHECK(block == replaced(kSetCup, "  wide: {width: \"=height * 2.5\"}\n",
                           "  wide: {width: \"=height * 2.5\"}\n  mine: {height: 7, width: 6.5}\n"));
-  CHECK(value_of(read(block, {"parameter_set=mine"}), "width") == 6.5);
+  CHECK(value_of(read_text(block, {"parameter_set=mine"}), "width") == 6.5);
   // A flow map: a new last entry before its closing brace, comments kept.
   const std::string flow_cup =
       replaced(kSetCup,

@@ -12,8 +12,12 @@
 #include "io/design/expression.h"
 #include "io/design/read_design.h"
 #include "tests/io/design/cup_design.h"
+#include "tests/io/design/design_text.h"
 
 using namespace fabmesh;
+using fabmesh::test::read_error;
+using fabmesh::test::read_text;
+using fabmesh::test::replaced;
 
 namespace {
 
@@ -48,28 +52,6 @@ std::string eval_error(const std::string& text) {
   try {
     eval(text);
   } catch (const InputError& e) {
-    return e.what();
-  }
-  return "no error";
-}
-
-std::string replaced(std::string text, const std::string& find, const std::string& replace) {
-  const std::size_t at = text.find(find);
-  REQUIRE(at != std::string::npos);
-  return text.replace(at, find.size(), replace);
-}
-
-Design read(const std::string& text, const std::vector<std::string>& defines = {}) {
-  std::vector<Override> overrides;
-  for (const std::string& d : defines) overrides.push_back(parse_override(d));
-  return parse_design(text, "cup.yaml", overrides);
-}
-
-// The message of the FileError reading `text` throws; also checks that it is a FileError.
-std::string error_of(const std::string& text, const std::vector<std::string>& defines = {}) {
-  try {
-    read(text, defines);
-  } catch (const FileError& e) {
     return e.what();
   }
   return "no error";
@@ -153,7 +135,7 @@ TEST_CASE("expressions: what they do not allow, and results that are not numbers
 
 TEST_CASE("parameters: a design's parameters and expressions read as the numbers they stand for",
           "[io][design][parameters]") {
-  const Design d = read(kParamCup);
+  const Design d = read_text(kParamCup);
   const VesselDesign& v = vessel(d);
   CHECK(v.profile.bspline_points[0] == Vec2(1.5, 6));
   CHECK(v.profile.bspline_points[1] == Vec2(1, 5));
@@ -172,14 +154,14 @@ TEST_CASE("parameters: a design's parameters and expressions read as the numbers
   CHECK(d.common.parameters[2].name == "base");
   CHECK(d.common.parameters[2].value == 0.3 + 0.1);
   // The same design with the literals the expressions give reads the same.
-  const Design literal = read(test::kCup);  // the golden shell cup, as the other reading tests share it
+  const Design literal = read_text(test::kCup);  // the golden shell cup, as the other reading tests share it
   CHECK(vessel(literal).profile.bspline_points == v.profile.bspline_points);
   CHECK(vessel(literal).base == v.base);
   CHECK(literal.common.parameters.empty());
   // A parameter may use one declared after it; any number may be an expression, parameters or not.
   const Design later =
-      read(replaced(replaced(kParamCup, "  wall: 0.3\n", "  wall: \"=thick / 2\"\n  thick: 0.6\n"),
-                    "tolerance: 0.005", "tolerance: \"=1 / 200\""));
+      read_text(replaced(replaced(kParamCup, "  wall: 0.3\n", "  wall: \"=thick / 2\"\n  thick: 0.6\n"),
+                         "tolerance: 0.005", "tolerance: \"=1 / 200\""));
   CHECK(vessel(later).wall == 0.3);
   CHECK(later.common.tolerance == 0.005);
   CHECK(later.common.parameters[1].value == 0.3);
@@ -188,113 +170,113 @@ TEST_CASE("parameters: a design's parameters and expressions read as the numbers
 TEST_CASE("parameters: a bad name, reference or value is bad input at the expression's line and column",
           "[io][design][parameters][errors]") {
   SECTION("an unknown name") {
-    CHECK(error_of(replaced(kParamCup, "\"=1 + height\"", "\"=1 + heigth\"")) ==
+    CHECK(read_error(replaced(kParamCup, "\"=1 + height\"", "\"=1 + heigth\"")) ==
           "cup.yaml:11:38: profile.points[1][1]: \"=1 + heigth\": unknown name 'heigth' (the parameters are: "
           "height, wall, base)");
-    CHECK(error_of(replaced(kParamCup, "base: \"=wall + 0.1\"", "base: \"=wal + 0.1\"")) ==
+    CHECK(read_error(replaced(kParamCup, "base: \"=wall + 0.1\"", "base: \"=wal + 0.1\"")) ==
           "cup.yaml:8:9: parameters.base: \"=wal + 0.1\": unknown name 'wal' (the parameters are: height, "
           "wall, "
           "base)");
   }
   SECTION("a function, a constant or an operator expressions do not allow") {
     CHECK_THAT(
-        error_of(replaced(kParamCup, "\"=1 + height\"", "\"=ln(height)\"")),
+        read_error(replaced(kParamCup, "\"=1 + height\"", "\"=ln(height)\"")),
         Catch::StartsWith("cup.yaml:11:38: profile.points[1][1]: \"=ln(height)\": the function 'ln' is not "
                           "allowed: expressions use numbers"));
     CHECK_THAT(
-        error_of(replaced(kParamCup, "\"=1 + height\"", "\"=rint(height)\"")),
+        read_error(replaced(kParamCup, "\"=1 + height\"", "\"=rint(height)\"")),
         Catch::StartsWith("cup.yaml:11:38: profile.points[1][1]: \"=rint(height)\": the function 'rint'"));
     CHECK_THAT(
-        error_of(replaced(kParamCup, "\"=1 + height\"", "\"=height > 4 ? 5 : 4\"")),
+        read_error(replaced(kParamCup, "\"=1 + height\"", "\"=height > 4 ? 5 : 4\"")),
         Catch::StartsWith("cup.yaml:11:38: profile.points[1][1]: \"=height > 4 ? 5 : 4\": the operator "
                           "'>' is not allowed"));
-    CHECK_THAT(error_of(replaced(kParamCup, "\"=1 + height\"", "\"=1 ? 5 :\"")),
+    CHECK_THAT(read_error(replaced(kParamCup, "\"=1 + height\"", "\"=1 ? 5 :\"")),
                Catch::StartsWith("cup.yaml:11:38: profile.points[1][1]: \"=1 ? 5 :\": syntax error"));
     CHECK_THAT(
-        error_of(replaced(kParamCup, "\"=wall\"", "\"=wall && 1\"")),
+        read_error(replaced(kParamCup, "\"=wall\"", "\"=wall && 1\"")),
         Catch::StartsWith("cup.yaml:13:27: body.wall: \"=wall && 1\": the operator '&&' is not allowed"));
-    CHECK_THAT(error_of(replaced(kParamCup, "\"=wall\"", "\"=_e\"")),
+    CHECK_THAT(read_error(replaced(kParamCup, "\"=wall\"", "\"=_e\"")),
                Catch::StartsWith("cup.yaml:13:27: body.wall: \"=_e\": the constant '_e' is not allowed"));
   }
   SECTION("a cycle") {
     CHECK(
-        error_of(replaced(kParamCup, "  wall: 0.3\n", "  wall: 0.3\n  a: \"=b + 1\"\n  b: \"=a * 2\"\n")) ==
+        read_error(replaced(kParamCup, "  wall: 0.3\n", "  wall: 0.3\n  a: \"=b + 1\"\n  b: \"=a * 2\"\n")) ==
         "cup.yaml:9:6: parameters.b: \"=a * 2\": the parameters refer to each other in a cycle: a -> b -> a");
-    CHECK(error_of(replaced(kParamCup, "base: \"=wall + 0.1\"", "base: \"=base + 0.1\"")) ==
+    CHECK(read_error(replaced(kParamCup, "base: \"=wall + 0.1\"", "base: \"=base + 0.1\"")) ==
           "cup.yaml:8:9: parameters.base: \"=base + 0.1\": the parameters refer to each other in a cycle: "
           "base -> "
           "base");
     // Through a range bound too.
-    CHECK(error_of(replaced(replaced(kParamCup, "min: 2,", "min: \"=base\","), "\"=wall + 0.1\"",
-                            "\"=height / 10\"")) ==
+    CHECK(read_error(replaced(replaced(kParamCup, "min: 2,", "min: \"=base\","), "\"=wall + 0.1\"",
+                              "\"=height / 10\"")) ==
           "cup.yaml:8:9: parameters.base: \"=height / 10\": the parameters refer to each other in a cycle: "
           "height -> base -> height");
   }
   SECTION(
       "a division by zero, a square root of a negative number, a result that is not finite or too large") {
-    CHECK(error_of(replaced(kParamCup, "\"=wall + 0.1\"", "\"=wall / (height - 4)\"")) ==
+    CHECK(read_error(replaced(kParamCup, "\"=wall + 0.1\"", "\"=wall / (height - 4)\"")) ==
           "cup.yaml:8:9: parameters.base: \"=wall / (height - 4)\": division by zero (0.3 / 0) (with wall = "
           "0.3, "
           "height = 4)");
-    CHECK(error_of(replaced(kParamCup, "\"=wall + 0.1\"", "\"=sqrt(wall - 1)\"")) ==
+    CHECK(read_error(replaced(kParamCup, "\"=wall + 0.1\"", "\"=sqrt(wall - 1)\"")) ==
           "cup.yaml:8:9: parameters.base: \"=sqrt(wall - 1)\": sqrt(-0.7): the square root of a negative "
           "number "
           "(with wall = 0.3)");
-    CHECK_THAT(error_of(replaced(kParamCup, "\"=wall + 0.1\"", "\"=wall * 10 ^ 200 * 10 ^ 200\"")),
+    CHECK_THAT(read_error(replaced(kParamCup, "\"=wall + 0.1\"", "\"=wall * 10 ^ 200 * 10 ^ 200\"")),
                Catch::StartsWith("cup.yaml:8:9: parameters.base: \"=wall * 10 ^ 200 * 10 ^ 200\": ") &&
                    Catch::EndsWith(" is not a finite number (with wall = 0.3)"));
-    CHECK(error_of(replaced(kParamCup, "\"=2 + height\"", "\"=height * 1e12\"")) ==
+    CHECK(read_error(replaced(kParamCup, "\"=2 + height\"", "\"=height * 1e12\"")) ==
           "cup.yaml:11:18: profile.points[0][1]: \"=height * 1e12\": the result 4000000000000 is too large: "
           "numbers "
           "in a design are at most 1e+12 in magnitude (with height = 4)");
   }
   SECTION("a value outside its range, or a bad range") {
-    CHECK(error_of(replaced(kParamCup, "value: 4,", "value: 15,")) ==
+    CHECK(read_error(replaced(kParamCup, "value: 4,", "value: 15,")) ==
           "cup.yaml:6:19: parameters.height: 15 is outside [2, 10]");
-    CHECK(error_of(replaced(kParamCup, "value: 4,", "value: \"=wall\",")) ==
+    CHECK(read_error(replaced(kParamCup, "value: 4,", "value: \"=wall\",")) ==
           "cup.yaml:6:19: parameters.height: 0.3 is outside [2, 10]");
-    CHECK(error_of(replaced(kParamCup, "max: 10,", "max: 1,")) ==
+    CHECK(read_error(replaced(kParamCup, "max: 10,", "max: 1,")) ==
           "cup.yaml:6:35: parameters.height.max: max = 1 is below min = 2");
-    CHECK(error_of(replaced(kParamCup, "step: 0.1,", "step: 0,")) ==
+    CHECK(read_error(replaced(kParamCup, "step: 0.1,", "step: 0,")) ==
           "cup.yaml:6:45: parameters.height.step: step = 0 must be > 0");
-    CHECK(error_of(replaced(kParamCup, "{value: 4, min: 2, max: 10,", "{value: 4, min: 5,")) ==
+    CHECK(read_error(replaced(kParamCup, "{value: 4, min: 2, max: 10,", "{value: 4, min: 5,")) ==
           "cup.yaml:6:19: parameters.height: 4 is below the minimum 5");
-    CHECK(error_of(replaced(kParamCup, "{value: 4, min: 2, max: 10,", "{value: 4, max: 3,")) ==
+    CHECK(read_error(replaced(kParamCup, "{value: 4, min: 2, max: 10,", "{value: 4, max: 3,")) ==
           "cup.yaml:6:19: parameters.height: 4 is above the maximum 3");
-    CHECK(error_of(replaced(kParamCup, "value: 4, ", "")) ==
+    CHECK(read_error(replaced(kParamCup, "value: 4, ", "")) ==
           "cup.yaml:6:11: parameters.height: missing required key 'value'");
-    CHECK_THAT(error_of(replaced(kParamCup, "step: 0.1,", "stpe: 0.1,")),
+    CHECK_THAT(read_error(replaced(kParamCup, "step: 0.1,", "stpe: 0.1,")),
                Catch::StartsWith("cup.yaml:6:39: parameters.height.stpe: unknown key 'stpe'"));
   }
   SECTION("a bad name, a name taken by designs or by expressions, a name declared twice") {
-    CHECK_THAT(error_of(replaced(kParamCup, "  wall: 0.3\n", "  wall: 0.3\n  2x: 1\n")),
+    CHECK_THAT(read_error(replaced(kParamCup, "  wall: 0.3\n", "  wall: 0.3\n  2x: 1\n")),
                Catch::StartsWith("cup.yaml:8:3: parameters.2x: '2x' is not a parameter name"));
-    CHECK_THAT(error_of(replaced(kParamCup, "  wall: 0.3\n", "  wall: 0.3\n  wall-2: 1\n")),
+    CHECK_THAT(read_error(replaced(kParamCup, "  wall: 0.3\n", "  wall: 0.3\n  wall-2: 1\n")),
                Catch::StartsWith("cup.yaml:8:3: parameters.wall-2: 'wall-2' is not a parameter name"));
     CHECK(
-        error_of(replaced(kParamCup, "  wall: 0.3\n", "  wall: 0.3\n  thickness: 1\n")) ==
+        read_error(replaced(kParamCup, "  wall: 0.3\n", "  wall: 0.3\n  thickness: 1\n")) ==
         "cup.yaml:8:3: parameters.thickness: 'thickness' is a top-level key of designs: choose another name");
-    CHECK(error_of(replaced(kParamCup, "  wall: 0.3\n", "  wall: 0.3\n  profile: 1\n")) ==
+    CHECK(read_error(replaced(kParamCup, "  wall: 0.3\n", "  wall: 0.3\n  profile: 1\n")) ==
           "cup.yaml:8:3: parameters.profile: 'profile' is a top-level key of designs: choose another name");
     CHECK(
-        error_of(replaced(kParamCup, "  wall: 0.3\n", "  wall: 0.3\n  pi: 3\n")) ==
+        read_error(replaced(kParamCup, "  wall: 0.3\n", "  wall: 0.3\n  pi: 3\n")) ==
         "cup.yaml:8:3: parameters.pi: 'pi' names a function or constant of expressions: choose another name");
-    CHECK_THAT(error_of(replaced(kParamCup, "  wall: 0.3\n", "  wall: 0.3\n  ln: 3\n")),
+    CHECK_THAT(read_error(replaced(kParamCup, "  wall: 0.3\n", "  wall: 0.3\n  ln: 3\n")),
                Catch::Contains("'ln' names a function or constant of expressions"));
-    CHECK(error_of(replaced(kParamCup, "  wall: 0.3\n", "  wall: 0.3\n  wall: 0.4\n")) ==
+    CHECK(read_error(replaced(kParamCup, "  wall: 0.3\n", "  wall: 0.3\n  wall: 0.4\n")) ==
           "cup.yaml:8:3: parameters.wall: parameter 'wall' is declared twice (first at line 7, column 3)");
-    CHECK_THAT(error_of(replaced(kParamCup, "  wall: 0.3\n", "  wall: [0.3]\n")),
+    CHECK_THAT(read_error(replaced(kParamCup, "  wall: 0.3\n", "  wall: [0.3]\n")),
                Catch::StartsWith("cup.yaml:7:9: parameters.wall: expected a number, an expression"));
-    CHECK_THAT(error_of(replaced(kParamCup, "  wall: 0.3\n", "  wall: thick\n")),
+    CHECK_THAT(read_error(replaced(kParamCup, "  wall: 0.3\n", "  wall: thick\n")),
                Catch::StartsWith("cup.yaml:7:9: parameters.wall: 'thick' is not a number"));
   }
   SECTION("a value the expression gives that is wrong for its key is reported at the expression") {
-    CHECK_THAT(error_of(replaced(kParamCup, "\"=wall\"", "\"=wall - 1\"")),
+    CHECK_THAT(read_error(replaced(kParamCup, "\"=wall\"", "\"=wall - 1\"")),
                Catch::StartsWith("cup.yaml:13:27: body.wall: "));
   }
   SECTION("every error is a FileError at the expression's line and column") {
     try {
-      read(replaced(kParamCup, "\"=1 + height\"", "\"=1 + heigth\""));
+      read_text(replaced(kParamCup, "\"=1 + height\"", "\"=1 + heigth\""));
       FAIL("no error");
     } catch (const FileError& e) {
       CHECK(e.line() == 11);
@@ -307,7 +289,7 @@ TEST_CASE("parameters: a bad name, reference or value is bad input at the expres
 
 TEST_CASE("parameters: -D NAME=VALUE sets a declared parameter, its range still applies",
           "[io][design][parameters][overrides]") {
-  const Design d = read(kParamCup, {"height=5", "wall=0.25"});
+  const Design d = read_text(kParamCup, {"height=5", "wall=0.25"});
   CHECK(vessel(d).profile.bspline_points[0] == Vec2(1.5, 7));
   CHECK(vessel(d).profile.bspline_points[1] == Vec2(1, 6));
   CHECK(vessel(d).wall == 0.25);
@@ -315,17 +297,17 @@ TEST_CASE("parameters: -D NAME=VALUE sets a declared parameter, its range still 
   CHECK(d.common.parameters[0].min == 2.0);  // the range is kept
   CHECK(d.common.parameters[2].value == 0.25 + 0.1);
   // The value may be an expression; the full path works too.
-  CHECK(read(kParamCup, {"height==wall * 20"}).common.parameters[0].value == 6.0);
-  CHECK(read(kParamCup, {"parameters.height.value=7"}).common.parameters[0].value == 7.0);
+  CHECK(read_text(kParamCup, {"height==wall * 20"}).common.parameters[0].value == 6.0);
+  CHECK(read_text(kParamCup, {"parameters.height.value=7"}).common.parameters[0].value == 7.0);
   // An expression in an override of any field.
-  CHECK(vessel(read(kParamCup, {"body.wall==wall / 2"})).wall == 0.15);
+  CHECK(vessel(read_text(kParamCup, {"body.wall==wall / 2"})).wall == 0.15);
   // Out of range: the override is named.
-  CHECK(error_of(kParamCup, {"height=15"}) == "-D height=15: parameters.height: 15 is outside [2, 10]");
+  CHECK(read_error(kParamCup, {"height=15"}) == "-D height=15: parameters.height: 15 is outside [2, 10]");
   CHECK(
-      error_of(kParamCup, {"height==heigth"}) ==
+      read_error(kParamCup, {"height==heigth"}) ==
       "-D height==heigth: parameters.height: \"=heigth\": unknown name 'heigth' (the parameters are: height, "
       "wall, base)");
-  CHECK(error_of(kParamCup, {"body.wall==wall / 0"}) ==
+  CHECK(read_error(kParamCup, {"body.wall==wall / 0"}) ==
         "-D body.wall==wall / 0: body.wall: \"=wall / 0\": division by zero (0.3 / 0) (with wall = 0.3)");
   // A design without parameters: -D of a plain name is a top-level key as ever.
   const std::string plain = R"(name: cup
@@ -336,12 +318,12 @@ profile:
   points: [[1.5, 6], [1, 5], [2, 4], [3, 3], [1.5, 2]]
 body: {mode: shell, wall: 0.3, base: 0.4}
 )";
-  CHECK_THAT(error_of(plain, {"tolerance=0.01", "height=5"}),
+  CHECK_THAT(read_error(plain, {"tolerance=0.01", "height=5"}),
              Catch::StartsWith("-D height=5: height: unknown key 'height' (expected one of: ") &&
                  Catch::EndsWith(")"));
   // A name the design does not declare is an unknown key, the parameters listed.
   try {
-    read(kParamCup, {"heigth=5"});
+    read_text(kParamCup, {"heigth=5"});
     FAIL("no error");
   } catch (const UnknownKeyError& e) {
     CHECK(e.field() == "heigth");
@@ -382,7 +364,7 @@ TEST_CASE("parameters: designs read on several threads at once give identical re
   constexpr int kRounds = 25;
   std::vector<std::vector<double>> expected;
   for (int t = 0; t < kThreads; ++t) {
-    expected.push_back(facts(read(kParamCup, {"height=" + std::to_string(3 + t)})));
+    expected.push_back(facts(read_text(kParamCup, {"height=" + std::to_string(3 + t)})));
   }
   std::vector<int> mismatches(kThreads, 0);
   std::vector<std::thread> threads;
@@ -391,7 +373,8 @@ TEST_CASE("parameters: designs read on several threads at once give identical re
       const std::string height = "height=" + std::to_string(3 + t);
       for (int i = 0; i < kRounds; ++i) {
         // Every other round from the shared source, as a batch resolves its variants.
-        const Design d = i % 2 == 0 ? read(kParamCup, {height}) : source.resolve({parse_override(height)});
+        const Design d =
+            i % 2 == 0 ? read_text(kParamCup, {height}) : source.resolve({parse_override(height)});
         if (facts(d) != expected[static_cast<std::size_t>(t)]) ++mismatches[static_cast<std::size_t>(t)];
       }
     });
