@@ -62,6 +62,13 @@ struct CurveSpec {
   Continuity closing_declared = Continuity::G0;
   std::vector<Vec2> bspline_points;     ///< quasi_bspline: p0..pn, n >= 2
   std::vector<double> bspline_lambdas;  ///< quasi_bspline: lambda_1..lambda_{n-1}; empty = all 0
+  /// quasi_bspline given by `through:`: the points q0..qn the curve passes
+  /// through at its joints (bspline_points then holds the control points
+  /// solved from them, quasi_bspline_through); empty for `points:`.
+  std::vector<Vec2> bspline_through;
+  /// With bspline_through: the proven largest distance from a through point
+  /// to its joint of the curve the control points make.
+  double bspline_through_deviation = 0.0;
   FairMode fair = FairMode::None;
   /// The continuity every joint must keep after fairing (design key
   /// `fair_keeps`): a joint declared higher may drop to this, not below.

@@ -105,6 +105,8 @@ BuiltCurve build_curve(const CurveSpec& spec, const JointTolerances& tol) {
     }
   }
   out.joints = out.curve.joints(tol);
+  out.through = spec.bspline_through;
+  out.through_deviation = spec.bspline_through_deviation;
   if (spec.fair != FairMode::None) {
     require_kept_continuity(spec, before, out);
     out.fairing = fairing_effect(spec, before, out);

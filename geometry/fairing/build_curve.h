@@ -31,6 +31,11 @@ struct BuiltCurve {
   std::vector<SegmentFairing> segments;   ///< T-Bézier fairing results (when faired)
   std::optional<BSplineFairing> bspline;  ///< quasi-B-spline fairing result (when faired)
   std::optional<FairingEffect> fairing;   ///< set when the spec asked for fairing
+  /// A quasi-B-spline given by `through:`: the points it passes through at its
+  /// joints (CurveSpec::bspline_through) and the proven largest distance
+  /// from one to its joint; empty for control points given.
+  std::vector<Vec2> through;
+  double through_deviation = 0.0;
 };
 
 /// Constructs the curve, verifies declared continuity on the constructed

@@ -57,7 +57,7 @@ std::vector<KeyGroup> make_groups() {
       {"surface.patches[].u", {"alpha", "lambda", "mu"}},
       {"surface.patches[].join", {"to", "side", "continuity", "gamma", "k", "m"}},
       // Curves (under curve, profile, outline and holes[].outline).
-      {"curve.quasi_bspline", {"family", "points", "lambdas", "fair"}},
+      {"curve.quasi_bspline", {"family", "points", "through", "lambdas", "fair"}},
       {"curve.composite", {"family", "closed", "segments", "fair", "fair_keeps", "closing"}},
       {"curve.closing", {"continuity"}},
       {"segment.cubic", {"points", "lambda", "mu", "alpha", "join", "continuity", "family", "edge"}},

@@ -35,6 +35,7 @@ PlotCurve plot_curve(const BuiltCurve& built, const std::string& name) {
   out.control_polygons = control_polygons(built.curve);
   out.joints = built.joints;
   out.declared = built.declared;
+  out.through = built.through;
   if (!built.fairing) return out;
   out.before_fairing = built.fairing->before;
   out.energy_before = built.fairing->energy_before;

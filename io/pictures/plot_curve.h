@@ -27,6 +27,9 @@ struct PlotCurve {
   std::optional<CompositeCurve> before_fairing;
   std::optional<double> energy_before, energy_after;  ///< fairing energy (energy_name), model units
   std::string energy_name;                            ///< e.g. "curvature variation", "strain"
+  /// Points the curve is given to pass through (BuiltCurve::through), drawn
+  /// as dots in the curve's colour on its joints.
+  std::vector<Vec2> through;
 };
 
 /// The control polygons of `curve` as PlotCurve::control_polygons describes.

@@ -65,6 +65,16 @@ int run_sample(const SampleArgs& args, Streams io) {
                             design.common.name, nc.name, built.curve.closed() ? "closed" : "open",
                             built.curve.size(), line.points.size(), line.max_deviation, options.tolerance);
       for (std::size_t i = 0; i < built.joints.size(); ++i) io.out << "# " << joint_line(built, i) << "\n";
+      if (!built.through.empty()) {
+        io.out << fmt::format(
+            "# {}: through {} points; the control points solved from them (each through point within {:.3g} "
+            "of its joint, proven):\n",
+            nc.name, built.through.size(), built.through_deviation);
+        for (std::size_t i = 0; i < nc.spec.bspline_points.size(); ++i) {
+          const Vec2& p = nc.spec.bspline_points[i];
+          io.out << fmt::format("#   p{} = [{}, {}]\n", i, p.x(), p.y());
+        }
+      }
       for (const Vec2& p : line.points) io.out << fmt::format("{} {}\n", p.x(), p.y());
     }
   });

@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "geometry/core/error_checks.h"
+#include "geometry/curves/quasi_bspline_through.h"
 #include "io/design/points_csv.h"
 
 namespace fabmesh {
@@ -211,12 +212,24 @@ CurveSpec read_curve(const yaml::Fields& f, const YAML::Node& node, const std::s
   if (family == "quasi_bspline") {
     f.require_map(node, field, key_group("curve.quasi_bspline"));
     spec.family = CurveFamily::QuasiBSpline;
-    const YAML::Node pts = f.required(node, "points", field);
-    spec.bspline_points = f.points2(pts, field + ".points");
+    // Either the control points, or the points the curve passes through.
+    const bool through = node["through"].IsDefined();
+    if (through && node["points"].IsDefined()) {
+      f.fail(node["through"], field + ".through",
+             "give either points (the control points) or through (points on the curve), not both");
+    }
+    const std::string points_key = through ? "through" : "points";
+    const YAML::Node pts = through ? node["through"] : f.required(node, "points", field);
+    spec.bspline_points = f.points2(pts, field + "." + points_key);
     if (spec.bspline_points.size() < 3) {
-      f.fail(pts, field + ".points",
-             fmt::format("a quasi-cubic B-spline needs at least 3 points p0..pn (n >= 2), got {}",
-                         spec.bspline_points.size()));
+      f.fail(pts, field + "." + points_key,
+             fmt::format("a quasi-cubic B-spline needs at least 3 points {} (n >= 2), got {}",
+                         through ? "q0..qn" : "p0..pn", spec.bspline_points.size()));
+    }
+    if (through && spec.fair != FairMode::None) {
+      f.fail(node["fair"], field + ".fair",
+             "fair keeps the control points and changes the lambdas, which moves the curve off its through "
+             "points; fair a curve given by its control points (points:)");
     }
     const std::size_t n = spec.bspline_points.size() - 1;
     if (node["lambdas"].IsDefined()) {
@@ -233,6 +246,14 @@ CurveSpec read_curve(const yaml::Fields& f, const YAML::Node& node, const std::s
         f.checked(l[i], name, [&] { require_in_range(fmt::format("lambda_{}", i + 1), v, -8.0, 1.0); });
         spec.bspline_lambdas.push_back(v);
       }
+    }
+    if (through) {
+      spec.bspline_through = spec.bspline_points;
+      f.checked(pts, field + ".through", [&] {
+        QuasiBSplineThrough solved = quasi_bspline_through(spec.bspline_through, spec.bspline_lambdas);
+        spec.bspline_points = std::move(solved.points);
+        spec.bspline_through_deviation = solved.deviation;
+      });
     }
     return spec;
   }

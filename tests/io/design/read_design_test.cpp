@@ -7,6 +7,7 @@
 
 #include "geometry/core/error_checks.h"
 #include "geometry/fairing/build_curve.h"
+#include "io/design/overrides.h"
 
 using namespace fabmesh;
 
@@ -101,6 +102,34 @@ TEST_CASE("design: quasi_bspline counts and ranges", "[io][design][errors]") {
   CHECK_THAT(error_of(head + "  points: [[0,0],[1,1],[2,0]]\n  lambdas: [-9]\n"),
              Catch::Contains("curve.lambdas[0]") && Catch::Contains("lambda_1 = -9 is outside [-8, 1]"));
   CHECK_THAT(error_of(head + "  points: [[0,0],[1,1],[2,0]]\n  fair: best\n"), Catch::Contains("curve.fair"));
+}
+
+TEST_CASE("design: a quasi_bspline through points", "[io][design]") {
+  const std::string head = std::string(kCurveHeader) + "  family: quasi_bspline\n";
+  const Design d = parse_design(head + "  through: [[0, 0], [3, 6], [6, 0]]\n", "d.yaml");
+  const CurveSpec& spec = std::get<CurveDesign>(d.body).curve;
+  REQUIRE(spec.bspline_through.size() == 3);
+  REQUIRE(spec.bspline_points.size() == 3);
+  CHECK(spec.bspline_points[1].y() == Approx(9.0));  // (0 + 4 y + 0) / 6 = 6
+  CHECK(spec.bspline_through_deviation < 1e-15);
+  const BuiltCurve built = build_curve(spec);
+  CHECK(built.through == spec.bspline_through);
+  CHECK((built.curve.segments()[1].point(0.0) - Vec2(3, 6)).norm() < 1e-14);
+
+  // Where a through curve goes wrong: at the key, line and column.
+  CHECK_THAT(
+      error_of(head + "  through: [[0,0],[1,1],[2,0]]\n  points: [[0,0],[1,1],[2,0]]\n"),
+      Catch::Contains("d.yaml:5:12: curve.through: give either points") && Catch::Contains("not both"));
+  CHECK_THAT(error_of(head + "  through: [[0,0],[1,1],[2,0]]\n  fair: strain\n"),
+             Catch::Contains("d.yaml:6:9: curve.fair:") && Catch::Contains("off its through points"));
+  CHECK_THAT(error_of(head + "  through: [[0,0],[1,1],[2,0]]\n  lambdas: [-8]\n"),
+             Catch::Contains("d.yaml:5:12: curve.through:") && Catch::Contains("singular"));
+  CHECK_THAT(error_of(head + "  through: [[0,0],[1,1]]\n"),
+             Catch::Contains("curve.through") && Catch::Contains("at least 3 points q0..qn"));
+  // -D moves a through point as it moves a control point.
+  const Design moved = parse_design(head + "  through: [[0, 0], [3, 6], [6, 0]]\n", "d.yaml",
+                                    {parse_override("curve.through[1]=[3, 12]")});
+  CHECK(std::get<CurveDesign>(moved.body).curve.bspline_points[1].y() == Approx(18.0));
 }
 
 TEST_CASE("design: hbezier parameters are range checked against lambda*(alpha)", "[io][design][errors]") {
