@@ -5,7 +5,10 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <limits>
+#include <string>
 #include <type_traits>
+#include <vector>
 
 #include "geometry/core/errors.h"
 #include "geometry/core/stage_timer.h"
@@ -68,6 +71,66 @@ void add_measures(const MeshFacts& mesh, ReportRow& row) {
   row.bbox = std::array<Vec3, 2>{mesh.bbox_min, mesh.bbox_max};
 }
 
+// A vessel's overall height and widest diameter, measured on its section
+// (the profile closed as the builder makes it): the height beside the
+// widest point, the diameter as the radius from the axis at its height.
+// The point of `curve` farthest from the axis x = 0, as (|x|, y): the best
+// of 64 samples per segment, refined by golden-section search between its
+// neighbours to the last bits (|x| is unimodal there for a sampled profile).
+Vec2 farthest_from_axis(const CompositeCurve& curve) {
+  Vec2 best(-1.0, 0.0);
+  for (const Segment& seg : curve.segments()) {
+    const auto r = [&](double t) { return std::abs(seg.point(t).x()); };
+    constexpr int kSamples = 64;
+    int at = 0;
+    for (int i = 1; i <= kSamples; ++i) {
+      if (r(static_cast<double>(i) / kSamples) > r(static_cast<double>(at) / kSamples)) at = i;
+    }
+    double lo = std::max(0, at - 1) / static_cast<double>(kSamples);
+    double hi = std::min(kSamples, at + 1) / static_cast<double>(kSamples);
+    const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+    for (int k = 0; k < 80 && hi - lo > 1e-16; ++k) {
+      const double a = hi - g * (hi - lo), b = lo + g * (hi - lo);
+      if (r(a) < r(b)) {
+        lo = a;
+      } else {
+        hi = b;
+      }
+    }
+    for (const double t : {lo, hi, static_cast<double>(at) / kSamples}) {
+      const Vec2 p = seg.point(t);
+      if (std::abs(p.x()) > best.x()) best = Vec2(std::abs(p.x()), p.y());
+    }
+  }
+  return best;
+}
+
+void add_vessel_dimensions(const std::vector<std::vector<Vec2>>& section, const CompositeCurve* profile,
+                           const std::string& units, CurvePlot& plot) {
+  constexpr double kInfinity = std::numeric_limits<double>::infinity();
+  double z_lo = kInfinity, z_hi = -kInfinity;
+  Vec2 widest(-kInfinity, 0.0);
+  for (const auto& loop : section) {
+    for (const Vec2& p : loop) {
+      z_lo = std::min(z_lo, p.y());
+      z_hi = std::max(z_hi, p.y());
+      if (std::abs(p.x()) > widest.x()) widest = Vec2(std::abs(p.x()), p.y());
+    }
+  }
+  // The section is sampled: between its points the profile (its outer wall) may reach farther.
+  if (profile != nullptr) {
+    const Vec2 exact = farthest_from_axis(*profile);
+    if (exact.x() > widest.x() && exact.y() >= z_lo && exact.y() <= z_hi) widest = exact;
+  }
+  if (!(z_hi > z_lo) || !(widest.x() > 0.0)) return;
+  const auto text = [&](const char* what, double v) { return fmt::format("{}{:.4g} {}", what, v, units); };
+  // Downwards at the widest radius, set off to its right.
+  plot.dimensions.push_back({"height", Vec2(widest.x(), z_hi), Vec2(widest.x(), z_lo), z_hi - z_lo,
+                             text("height ", z_hi - z_lo), 18.0});
+  plot.dimensions.push_back({"widest diameter", Vec2(0.0, widest.y()), widest, 2.0 * widest.x(),
+                             text("\u00d8 ", 2.0 * widest.x()), 0.0});
+}
+
 }  // namespace
 
 CurvePlot shape_plot(const DesignCommon& common, const std::vector<NamedBuiltCurve>& curves,
@@ -82,6 +145,8 @@ CurvePlot shape_plot(const DesignCommon& common, const std::vector<NamedBuiltCur
     plot.revolution_axis = true;
     plot.axis_names = {"r", "z"};
     for (const auto& loop : *section) plot.outlines.push_back({"section", loop});
+    add_vessel_dimensions(*section, curves.empty() ? nullptr : &curves.front().curve.curve, common.units,
+                          plot);
   }
   if (!overhangs.empty()) {
     plot.flags.push_back(

@@ -120,20 +120,36 @@ void add_curve(Box& box, const CompositeCurve& curve) {
   }
 }
 
-// The comb of every curve at one shared scale (longest tooth = comb_fraction * diagonal).
+// A circular arc: its curvature is constant (the curvature panel gives it),
+// and a small corner arc's comb would dwarf every free-form curve's.
+bool circular_arc(const Segment& seg) {
+  return seg.kind() == SegmentKind::EllipseArc && seg.ellipse() && seg.ellipse()->a == seg.ellipse()->b;
+}
+
+// The comb of every curve at one shared scale: the longest tooth of the
+// free-form segments (all segments when there are none) is comb_fraction
+// of the diagonal. A circular arc more curved than that scale allows gets
+// no comb rather than teeth out of scale.
 void build_combs(std::vector<Prepared>& curves, double diagonal, const CurvePlotOptions& o) {
-  double k_max = 0.0;
+  double k_free = 0.0, k_all = 0.0;
   for (const Prepared& c : curves) {
     for (const Segment& seg : c.in->curve.segments()) {
       for (int j = 0; j <= o.comb_teeth; ++j) {
         const double k = drawn_curvature(seg, static_cast<double>(j) / o.comb_teeth);
-        if (std::isfinite(k)) k_max = std::max(k_max, std::abs(k));
+        if (!std::isfinite(k)) continue;
+        k_all = std::max(k_all, std::abs(k));
+        if (!circular_arc(seg)) k_free = std::max(k_free, std::abs(k));
       }
     }
   }
+  const double k_max = k_free > 0.0 ? k_free : k_all;
   const double scale = k_max > 0.0 ? o.comb_fraction * diagonal / k_max : 0.0;
   for (Prepared& c : curves) {
     for (const Segment& seg : c.in->curve.segments()) {
+      if (circular_arc(seg) && std::abs(drawn_curvature(seg, 0.0)) > k_max) {
+        c.comb.emplace_back();  // no teeth
+        continue;
+      }
       std::vector<std::pair<Vec2, Vec2>> teeth;
       bool bent = false;
       for (int j = 0; j <= o.comb_teeth; ++j) {
@@ -307,6 +323,39 @@ void write_flags(std::string& out, const CurvePlot& plot, const ModelFrame& f) {
   }
 }
 
+void write_dimensions(std::string& out, const CurvePlot& plot, const ModelFrame& f) {
+  for (const PlotDimension& dim : plot.dimensions) {
+    const Vec2 span = dim.to - dim.from;
+    if (!(span.norm() > 0.0)) continue;
+    const Vec2 d = span.normalized(), n(-d.y(), d.x());
+    const Vec2 shift = n * (dim.offset_px * f.unit);
+    const Vec2 a = dim.from + shift, b = dim.to + shift;
+    std::string path = "M" + f.pt(a) + " L" + f.pt(b);
+    if (dim.offset_px != 0.0) {  // extension lines, a little past the dimension line
+      const Vec2 past = n * (std::copysign(3.0, dim.offset_px) * f.unit);
+      path += " M" + f.pt(dim.from) + " L" + f.pt(a + past) + " M" + f.pt(dim.to) + " L" + f.pt(b + past);
+    }
+    // Arrowheads 7 pixels long, pointing out to the ends.
+    const double len = 7.0 * f.unit, half = 2.5 * f.unit;
+    const auto head = [&](const Vec2& tip, const Vec2& inward) {
+      return "M" + f.pt(tip) + " L" + f.pt(tip + inward * len + n * half) + " L" +
+             f.pt(tip + inward * len - n * half) + " Z";
+    };
+    const std::string heads = head(a, d) + " " + head(b, -d);
+    // The text beside the middle: right of an upright dimension, above a level one.
+    const Vec2 mid = 0.5 * (a + b);
+    const bool upright = std::abs(d.y()) > std::abs(d.x());
+    const Vec2 at = upright ? mid + Vec2(5.0 * f.unit, 0.0) : mid + Vec2(0.0, 5.0 * f.unit);
+    out += fmt::format(
+        "<g class=\"dimension\" data-name=\"{}\" data-value=\"{}\"><path d=\"{}\" fill=\"none\" "
+        "stroke=\"#222\" stroke-width=\"{}\"/><path d=\"{}\" fill=\"#222\"/><text x=\"{}\" y=\"{}\" "
+        "font-size=\"{}\" text-anchor=\"{}\" dominant-baseline=\"{}\" fill=\"#222\">{}</text></g>\n",
+        escape_markup(dim.name), short_number(dim.value, 12), path, f.px_len(0.8), heads, f.num(at.x()),
+        f.num(-at.y()), f.px_len(kTickFont), upright ? "start" : "middle", upright ? "middle" : "auto",
+        escape_markup(dim.text));
+  }
+}
+
 void write_comb(std::string& out, const Prepared& c, const ModelFrame& f, const std::string& name) {
   std::string teeth, envelope;
   for (const auto& segment : c.comb) {
@@ -339,6 +388,20 @@ void write_control_polygon(std::string& out, const PlotCurve& c, const ModelFram
       "fill=\"none\" "
       "stroke=\"{}\" stroke-width=\"{}\" stroke-dasharray=\"{} {}\"/>\n{}\n</g>\n",
       name, points, kPolygonBlue, d, kPolygonBlue, f.px_len(1.0), f.px_len(2.0), f.px_len(3.0), dots);
+}
+
+// Points the curve is given to pass through: dots in its colour, drawn over
+// the joint markers they sit on.
+void write_through_points(std::string& out, const Prepared& c, const ModelFrame& f, const std::string& name) {
+  if (c.in->through.empty()) return;
+  std::string dots;
+  for (const Vec2& p : c.in->through) {
+    dots += fmt::format("<circle class=\"through-point\" cx=\"{}\" cy=\"{}\" r=\"{}\"/>", f.num(p.x()),
+                        f.num(-p.y()), f.px_len(2.5));
+  }
+  out +=
+      fmt::format("<g class=\"through-points\" data-name=\"{}\" data-points=\"{}\" fill=\"{}\">\n{}\n</g>\n",
+                  name, c.in->through.size(), c.colour, dots);
 }
 
 const char* joint_label(Continuity c) { return c == Continuity::None ? "gap" : to_string(c); }
@@ -394,6 +457,7 @@ void write_model_panel(std::string& out, const std::vector<Prepared>& curves, co
   if (plot.revolution_axis) write_axis(out, f);
   write_outlines(out, plot, f);
   write_flags(out, plot, f);
+  write_dimensions(out, plot, f);
   if (!plot.net_lines.empty()) {
     std::string d;
     for (const auto& line : plot.net_lines) d += "M" + f.pt(line[0]) + " L" + f.pt(line[1]) + " ";
@@ -418,6 +482,7 @@ void write_model_panel(std::string& out, const std::vector<Prepared>& curves, co
         name, c.in->curve.size(), curve_path(c.in->curve, tolerance, f), c.colour, f.px_len(2.0));
   }
   for (const Prepared& c : curves) write_joints(out, c, f, escape_markup(c.in->name));
+  for (const Prepared& c : curves) write_through_points(out, c, f, escape_markup(c.in->name));
   out += "</svg>\n";
 }
 
@@ -557,6 +622,10 @@ void write_curvature_panel(std::string& out, const std::vector<Prepared>& curves
   out += "</g>\n";
 }
 
+bool any_through(const std::vector<Prepared>& curves) {
+  return std::any_of(curves.begin(), curves.end(), [](const Prepared& c) { return !c.in->through.empty(); });
+}
+
 // The outlines' names, each once, in order: the legend's lines for them.
 std::vector<std::string> outline_names(const CurvePlot& plot) {
   std::vector<std::string> names;
@@ -601,8 +670,16 @@ void write_legend(std::string& out, const std::vector<Prepared>& curves, const C
   out += fmt::format(
       "<text x=\"12\" y=\"{}\" fill=\"#555\">dotted blue: control polygon; light strokes: curvature comb "
       "(teeth \u2212k n, away from the centre of curvature); \u25cb joint with its measured continuity; "
-      "\u25c6 declared continuity lost{}</text>\n</g>\n",
+      "\u25c6 declared continuity lost{}</text>\n",
       px(y), plot.revolution_axis ? "; dash-dotted: the axis of revolution" : "");
+  if (any_through(curves)) {
+    out += fmt::format(
+        "<text x=\"12\" y=\"{}\" fill=\"#555\">\u25cf on a joint, in the curve's colour: a point the curve "
+        "is "
+        "given to pass through (through:)</text>\n",
+        px(y + kLegendLine));
+  }
+  out += "</g>\n";
 }
 
 }  // namespace
@@ -644,6 +721,16 @@ std::string plot_curves_svg(const CurvePlot& plot, const CurvePlotOptions& optio
       for (const auto& tooth : seg) box.add(tooth.second);
     }
   }
+  bool upright_dimension = false;
+  for (const PlotDimension& dim : plot.dimensions) {
+    box.add(dim.from);
+    box.add(dim.to);
+    upright_dimension =
+        upright_dimension || std::abs(dim.to.y() - dim.from.y()) > std::abs(dim.to.x() - dim.from.x());
+  }
+  if (upright_dimension && !box.empty()) {  // room on the right for an upright dimension's line and text
+    box.add(Vec2(box.hi.x() + 0.18 * (box.hi - box.lo).norm(), box.lo.y()));
+  }
   if (plot.revolution_axis && !box.empty()) {  // the axis in view, beside the profile or across it
     box.add(Vec2(0.0, box.lo.y()));
     box.add(Vec2(0.0, box.hi.y()));
@@ -651,7 +738,8 @@ std::string plot_curves_svg(const CurvePlot& plot, const CurvePlotOptions& optio
 
   const double w = options.width, h = options.height;
   const double legend =
-      kLegendLine * static_cast<double>(curves.size() + outline_names(plot).size() + plot.flags.size() + 1) +
+      kLegendLine * static_cast<double>(curves.size() + outline_names(plot).size() + plot.flags.size() + 1 +
+                                        (any_through(curves) ? 1 : 0)) +
       10.0;
   const double panel_h = std::max(60.0, h - kTitleBand - legend);
   const ModelFrame frame = model_frame(box, 8.0, kTitleBand, 0.5 * w - 12.0, panel_h);

@@ -27,6 +27,18 @@ struct PlotFlag {
   std::vector<std::vector<Vec2>> stretches;  ///< open polylines, model units
 };
 
+/// A dimension as a drawing gives one: the span from `from` to `to` (model
+/// units) between arrowheads, with its text, set off `offset_px` pixels to
+/// the left of the direction from -> to (extension lines back to the points
+/// measured when set off). Class "dimension", data-name, data-value.
+struct PlotDimension {
+  std::string name;  ///< "height", "widest diameter"
+  Vec2 from = Vec2::Zero(), to = Vec2::Zero();
+  double value = 0.0;  ///< what the text says, model units
+  std::string text;    ///< "height 22 cm"
+  double offset_px = 0.0;
+};
+
 /// What one plot shows.
 struct CurvePlot {
   std::string title;
@@ -41,6 +53,7 @@ struct CurvePlot {
   /// A vessel's axis of revolution, the line x = 0: drawn dash-dotted (class
   /// "axis") and always in view, so that a point at negative radius shows.
   bool revolution_axis = false;
+  std::vector<PlotDimension> dimensions;  ///< drawn over the outlines, under the curves
 };
 
 struct CurvePlotOptions {

@@ -1,9 +1,13 @@
+#include <algorithm>
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "tests/pipeline/cli_harness.h"
 
@@ -95,4 +99,45 @@ TEST_CASE("cli optimize: a design without curves is bad input", "[pipeline][cli]
   const CliResult r = run_fabmesh({"optimize", example("surface_basin_shell.yaml")});
   CHECK(r.code == 2);
   CHECK_THAT(r.err, Catch::Contains("surface_basin_shell.yaml") && Catch::Contains("no curves to optimize"));
+}
+
+TEST_CASE("cli sample and plot: a profile through points", "[pipeline][cli][through]") {
+  const std::string design = example("vessel_through_shell.yaml");
+  const CliResult r = run_fabmesh({"sample", design});
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  // The control points solved, each given exactly (the ends are the through points).
+  CHECK_THAT(r.out, Catch::Contains("# profile: through 5 points; the control points solved from them") &&
+                        Catch::Contains("#   p0 = [3.2, 22]") && Catch::Contains("#   p4 = [3.6, 0]") &&
+                        Catch::Contains("#   p2 = ["));
+  // The through points are on the sampled curve: the samples include the joints.
+  const std::vector<std::pair<double, double>> through{{3.2, 22}, {2.6, 18}, {4.6, 13}, {5.8, 7}, {3.6, 0}};
+  std::istringstream lines(r.out);
+  std::vector<std::pair<double, double>> samples;
+  for (std::string line; std::getline(lines, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream xy(line);
+    double x = 0, y = 0;
+    xy >> x >> y;
+    samples.emplace_back(x, y);
+  }
+  for (const auto& [x, y] : through) {
+    double nearest = 1e9;
+    for (const auto& [sx, sy] : samples) nearest = std::min(nearest, std::hypot(sx - x, sy - y));
+    CHECK(nearest < 1e-9);
+  }
+  // The plot draws them as dots on the curve.
+  const auto dir = fresh_dir("through_plot");
+  REQUIRE(run_fabmesh({"plot", design, "-o", (dir / "p.svg").string()}).code == 0);
+  const std::string svg = read_file((dir / "p.svg").string());
+  CHECK_THAT(svg, Catch::Contains("<g class=\"through-points\" data-name=\"profile\" data-points=\"5\"") &&
+                      Catch::Contains("a point the curve is given to pass through"));
+  // -D moves a through point; a singular system is bad input at its key.
+  const CliResult moved = run_fabmesh({"sample", design, "-D", "profile.through[2]=[5, 13]"});
+  CHECK(moved.code == 0);
+  CHECK(moved.out != r.out);
+  const CliResult singular = run_fabmesh({"sample", design, "-D", "profile.lambdas=[-8, -8, -8]"});
+  CHECK(singular.code == 2);
+  CHECK_THAT(singular.err,
+             Catch::Contains("vessel_through_shell.yaml:13:") && Catch::Contains("profile.through"));
 }

@@ -110,11 +110,29 @@ TEST_CASE("plot: a vessel's axis, coordinates and section as built, a shell's in
     }
     CHECK(high - low == Approx(0.4).epsilon(1e-9));
   }
+  // The overall height and the widest diameter, as dimensions: those of the mesh the builder makes.
+  const Result built = build_preview(shell);
+  const Vec3 size = built.bbox_max - built.bbox_min;
+  const CurvePlot plot = shape_plot(shell.common, built);
+  REQUIRE(plot.dimensions.size() == 2);
+  CHECK(plot.dimensions[0].name == "height");
+  CHECK(plot.dimensions[0].value == Approx(size.z()).epsilon(1e-12));
+  CHECK(plot.dimensions[1].name == "widest diameter");
+  // The mesh's vertices lie on the exact surface, so no wider than the exact
+  // widest diameter, and short of it by less than the proven deviation.
+  CHECK(plot.dimensions[1].value >= std::max(size.x(), size.y()));
+  CHECK(plot.dimensions[1].value - std::max(size.x(), size.y()) <= 2.0 * built.max_deviation);
+  std::vector<std::string> dimensions;
+  for (const XmlElement* g : select(svg, "g", "dimension")) dimensions.push_back(g->attr("data-name"));
+  CHECK(dimensions == std::vector<std::string>{"height", "widest diameter"});
+  CHECK_THAT(read_file((dir / "vessel_golden_shell.plot.svg").string()),
+             Catch::Contains(">height 4.134 cm</text>") && Catch::Contains(">\u00d8 5.193 cm</text>"));
   // A countertop has no axis; its coordinates are x and y.
   REQUIRE(run_cli({"plot", example("countertop_g1.yaml"), "-o", dir.string()}) == 0);
   const auto top = scan_xml(read_file((dir / "countertop_g1.plot.svg").string()));
   CHECK(select(top, "g", "axis").empty());
   CHECK(select(top, "text", "tick").size() >= 4);
+  CHECK(select(top, "g", "dimension").empty());
 }
 
 TEST_CASE("plot: one file for one design, overrides apply, a bad design writes nothing",

@@ -1,5 +1,6 @@
 #include "io/pictures/curve_plot.h"
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
@@ -491,4 +492,34 @@ TEST_CASE("curve plot: curvature below rounding draws no comb and plots as zero"
     if (both[i].has_class("comb-teeth") && !both[i].attr("d").empty()) ++drawn;
   }
   CHECK(drawn == 1);
+}
+
+TEST_CASE("curve plot: a tight corner arc does not set the comb's scale", "[io][pictures][plot]") {
+  // A gentle T-Bezier bulge (curvature well under 1) and a corner arc of radius 0.05 (curvature 20).
+  EllipseArcParams corner;
+  corner.center = {4, 0.95};
+  corner.a = corner.b = 0.05;
+  corner.from_deg = -90;
+  corner.to_deg = 0;
+  const CompositeCurve top({Segment::tbezier({Vec2(0, 0), Vec2(1, 1), Vec2(3, 1), Vec2(4, 0)}, 0, 0),
+                            Segment::line({4, 0}, {4, 0.9}), Segment::ellipse_arc(corner)},
+                           false);
+  const auto teeth_of = [](const CompositeCurve& curve) {
+    CurvePlot plot;
+    plot.title = "corner";
+    PlotCurve c;
+    c.name = "top";
+    c.curve = curve;
+    plot.curves.push_back(c);
+    const auto svg = scan_xml(plot_curves_svg(plot));
+    return select(svg, "path", "comb-teeth").at(0)->attr("d");
+  };
+  // One tooth per comb sample of the bulge: the arc, 400 times more curved than the
+  // comb's scale allows, has none (its constant curvature is on the right panel).
+  const std::string d = teeth_of(top);
+  const auto count = [](const std::string& s) { return std::count(s.begin(), s.end(), 'M'); };
+  CHECK(count(d) == 33);
+  // Alone, an arc sets the scale itself and has its comb.
+  const CompositeCurve arc_only({Segment::ellipse_arc(corner)}, false);
+  CHECK(count(teeth_of(arc_only)) == 33);
 }
