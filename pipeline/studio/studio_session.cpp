@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <exception>
@@ -289,16 +290,22 @@ Json draggable_points(const Design& design, const std::string& text) {
   for (const NamedCurve& c : design_curves(design)) {
     Json points = Json::array();
     if (c.spec.family == CurveFamily::QuasiBSpline) {
-      for (std::size_t i = 0; i < c.spec.bspline_points.size(); ++i) {
-        const std::string key = fmt::format("{}.points[{}]", c.name, i);
-        const Vec2& p = c.spec.bspline_points[i];
+      // A curve through points: those points (the plot's dots on its joints).
+      const bool through = !c.spec.bspline_through.empty();
+      const std::vector<Vec2>& given = through ? c.spec.bspline_through : c.spec.bspline_points;
+      for (std::size_t i = 0; i < given.size(); ++i) {
+        const std::string key = fmt::format("{}.{}[{}]", c.name, through ? "through" : "points", i);
         if (!written(key)) {
           points.clear();
           break;
         }
-        points.push_back({{"key", key}, {"x", p.x()}, {"y", p.y()}});
+        points.push_back({{"key", key}, {"x", given[i].x()}, {"y", given[i].y()}});
       }
-      if (!points.empty()) out.push_back({{"curve", c.name}, {"points", points}});
+      if (!points.empty()) {
+        out.push_back({{"curve", c.name},
+                       {"group", through ? "through-points" : "control-polygon"},
+                       {"points", points}});
+      }
       continue;
     }
     for (const SegmentSpec& s : c.spec.segments) {
@@ -310,6 +317,38 @@ Json draggable_points(const Design& design, const std::string& text) {
       }
     }
     if (!points.empty()) out.push_back({{"curve", c.name}, {"by", "position"}, {"points", points}});
+  }
+  return out;
+}
+
+// Why fairing for `mode` leaves curve `c` as it is; empty when it fairs it:
+// a quasi-B-spline given by control points (either energy), or a T-Bézier
+// composite whose cubic segments have shape parameters (curvature variation).
+std::string not_faired(const CurveSpec& c, FairMode mode) {
+  if (c.family == CurveFamily::QuasiBSpline) {
+    return c.bspline_through.empty() ? ""
+                                     : "a curve through points keeps them; fairing its lambdas with its "
+                                       "control points fixed would move it off them";
+  }
+  if (c.family != CurveFamily::TBezier || mode == FairMode::Strain) {
+    return fmt::format(
+        "{} fairing applies to {}", to_string(mode),
+        mode == FairMode::Strain ? "quasi_bspline curves" : "tbezier and quasi_bspline curves");
+  }
+  const bool cubic = std::any_of(c.segments.begin(), c.segments.end(), [](const SegmentSpec& s) {
+    return s.kind == SegmentKind::TBezier && !s.key.empty();
+  });
+  return cubic ? "" : "its segments are lines and arcs, which have no shape parameters";
+}
+
+// The energies the page's "fairest" buttons can minimise for this design.
+Json fair_energies(const Design& design) {
+  Json out = Json::array();
+  for (const FairMode mode : {FairMode::Strain, FairMode::CurvatureVariation}) {
+    const auto curves = design_curves(design);
+    if (std::any_of(curves.begin(), curves.end(),
+                    [&](const NamedCurve& c) { return not_faired(c.spec, mode).empty(); }))
+      out.push_back(to_string(mode));
   }
   return out;
 }
@@ -462,6 +501,7 @@ StudioResponse StudioSession::design() const {
     j["parameter_sets"] = std::move(sets);
     j["shape_parameters"] = shape_parameters(design);
     j["control_points"] = draggable_points(design, text);
+    j["fair_energies"] = fair_energies(design);
     j["out_dir"] = options_.out_dir;
     return json_response(200, j);
   } catch (...) {
@@ -620,12 +660,9 @@ StudioResponse StudioSession::fairest(const std::string& request_body) {
     Json skipped = Json::array();
     for (const NamedCurve& c : design_curves(design)) {
       const bool bspline = c.spec.family == CurveFamily::QuasiBSpline;
-      if (!bspline && (c.spec.family != CurveFamily::TBezier || mode == FairMode::Strain)) {
-        skipped.push_back(
-            {{"curve", c.name},
-             {"reason", fmt::format("{} fairing applies to {}", to_string(mode),
-                                    mode == FairMode::Strain ? "quasi_bspline curves"
-                                                             : "tbezier and quasi_bspline curves")}});
+      const std::string reason = not_faired(c.spec, mode);
+      if (!reason.empty()) {
+        skipped.push_back({{"curve", c.name}, {"reason", reason}});
         continue;
       }
       CurveSpec spec = c.spec;

@@ -418,6 +418,39 @@ try {
     }
   });
 
+  await check('dragging a point a profile passes through moves the curve through it', async () => {
+    const through = path.join(workDir, 'through.yaml');
+    fs.copyFileSync(path.join(sourceDir, 'configs/examples/vessel_through_shell.yaml'), through);
+    const studio = startStudio(through, path.join(workDir, 'through-out'));
+    try {
+      const {page: tp, errors: terrors} = await newPage();
+      await tp.goto(await studio.url, {waitUntil: 'load'});
+      await tp.waitForFunction(() => window.fabmeshStudio?.validBuilds >= 1, {timeout: 120000});
+      const key = 'profile.through[3]';
+      const selector = `#plot g.through-points[data-name="profile"] circle.draggable[data-key="${key}"]`;
+      assert.equal((await tp.$$(selector)).length, 1);
+      const before = await tp.evaluate(() => ({...window.fabmeshStudio, design: undefined}));
+      const [cx] = await tp.$eval(selector, (c) => [Number(c.getAttribute('cx'))]);
+      const box = await (await tp.$(selector)).boundingBox();
+      await tp.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
+      await tp.mouse.down();
+      await tp.mouse.move(box.x + box.width / 2 + 20, box.y + box.height / 2, {steps: 4});
+      await tp.mouse.up();
+      await tp.waitForFunction((n) => window.fabmeshStudio.validBuilds > n, {timeout: 120000}, before.validBuilds);
+      const after = await tp.evaluate(() => ({...window.fabmeshStudio, design: undefined}));
+      assert.equal(after.error, null);
+      assert.match(after.overrides[key], /^\[[-0-9.e]+, [-0-9.e]+\]$/);
+      // The new plot draws the through point where it was dropped: farther out.
+      const [newCx] = await tp.$eval(selector, (c) => [Number(c.getAttribute('cx'))]);
+      assert.ok(newCx > cx, `${newCx} > ${cx}`);
+      assert.deepEqual(terrors, []);
+      await tp.close();
+    } finally {
+      studio.child.kill('SIGTERM');
+      assert.equal(await studio.exit, 0);
+    }
+  });
+
   await check('dragging a T-Bezier segment\'s given point on the plot moves it', async () => {
     // A closed T-Bezier outline whose segments each give their end point (G2 joins all round).
     const outline = path.join(workDir, 'outline.yaml');
@@ -428,6 +461,10 @@ try {
       const {page: page3, errors: errors3} = await newPage();
       await page3.goto(outlineUrl, {waitUntil: 'load'});
       await page3.waitForFunction(() => window.fabmeshStudio?.validBuilds >= 1, {timeout: 120000});
+      // A curve, not a vessel: no section toggle; T-Bezier segments fair by curvature variation only.
+      const shown = await page3.evaluate(
+          () => ['fair-strain', 'fair-cv', 'section-toggle'].map((id) => !document.getElementById(id).hidden));
+      assert.deepEqual(shown, [false, true, false]);
       const key = 'curve.segments[1].points[0]';
       const selector = `#plot g.control-polygon[data-name="curve"] circle.draggable[data-key="${key}"]`;
       // The point (100, 60) ends segment 1 and starts segment 2: a circle of each, both draggable.

@@ -155,6 +155,13 @@ function showControls(design) {
   $('design-name').textContent = design.name;
   $('design-kind').textContent = `${design.kind}, ${design.units}`;
   document.title = `${design.name} - fabmesh studio`;
+  // Only what applies to this design: "fairest" for the energies its curves
+  // have (GET /api/design's fair_energies), the section for a vessel.
+  const energies = design.fair_energies ?? [];
+  $('fair-strain').hidden = !energies.includes('strain');
+  $('fair-cv').hidden = !energies.includes('curvature_variation');
+  $('section-toggle').hidden = design.kind !== 'vessel';
+  if (design.kind !== 'vessel') $('section').checked = false;
   showSets(design);
   const params = $('parameters');
   params.replaceChildren();
@@ -559,16 +566,19 @@ function placeMesh(object, url, draft) {
 // --- control points dragged on the plot ---
 
 // The plot's control-point circles of each curve whose points the design
-// writes one by one (GET /api/design's control_points), made draggable: a
-// drop sets the point's -D path ("profile.points[2]",
+// writes one by one (GET /api/design's control_points; for a curve given
+// `through:` points, the dots on its joints), made draggable: a drop sets
+// the point's -D path ("profile.points[2]", "profile.through[1]",
 // "outline.segments[1].points[0]") and builds.
 function enableDragging(controlPoints) {
   const svg = $('plot').querySelector('svg');
   if (!svg || !state.design) return;
   for (const curve of controlPoints ?? state.design.control_points) {
-    const group = svg.querySelector(`g.control-polygon[data-name="${CSS.escape(curve.curve)}"]`);
+    // A curve's control polygon, or the dots of the points it passes through.
+    const kind = curve.group ?? 'control-polygon';
+    const group = svg.querySelector(`g.${kind}[data-name="${CSS.escape(curve.curve)}"]`);
     if (!group) continue;
-    const circles = [...group.querySelectorAll('circle.control-point')];
+    const circles = [...group.querySelectorAll('circle.control-point, circle.through-point')];
     // Each circle with the point it draws: one to one in order, or (a
     // segment curve's given points) every circle drawn where the point is.
     const pairs = [];

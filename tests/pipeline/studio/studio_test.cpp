@@ -145,6 +145,7 @@ TEST_CASE("studio: the design, a build, its mesh, and bad requests", "[studio]")
   CHECK(d["control_points"][0]["curve"] == "profile");
   REQUIRE(d["control_points"][0]["points"].size() == 5);
   CHECK(d["control_points"][0]["points"][2] == Json({{"key", "profile.points[2]"}, {"x", 2.0}, {"y", 4.0}}));
+  CHECK(d["fair_energies"] == Json::array({"strain", "curvature_variation"}));
 
   const auto built =
       c.Post("/api/build", studio.token(), R"({"overrides": {"height": 5}})", "application/json");
@@ -362,6 +363,7 @@ TEST_CASE("studio: a T-Bezier curve's given points are draggable, found on the p
   const Json& curve = d["control_points"][0];
   CHECK(curve["curve"] == "curve");
   CHECK(curve["by"] == "position");
+  CHECK(d["fair_energies"] == Json::array({"curvature_variation"}));  // T-Bezier: not strain
   // Each segment gives its end point only (G2 joins all round): four points, each where the text writes it.
   REQUIRE(curve["points"].size() == 4);
   CHECK(curve["points"][1] == Json({{"key", "curve.segments[1].points[0]"}, {"x", 100.0}, {"y", 60.0}}));
@@ -373,6 +375,29 @@ TEST_CASE("studio: a T-Bezier curve's given points are draggable, found on the p
   CHECK(after["plot_svg"] != before["plot_svg"]);
   CHECK(after["report"]["bounding_box"]["max"][1].get<double>() >
         before["report"]["bounding_box"]["max"][1].get<double>());
+}
+
+TEST_CASE("studio: a profile through points drags the points it passes through", "[studio]") {
+  const fs::path dir = fresh_dir("studio_through");
+  RunningStudio studio(example("vessel_through_shell.yaml"), (dir / "out").string());
+  httplib::Client c = studio.client();
+  const Json d = json_of(c.Get("/api/design", studio.token()));
+  REQUIRE(d["control_points"].size() == 1);
+  const Json& curve = d["control_points"][0];
+  CHECK(curve["curve"] == "profile");
+  CHECK(curve["group"] == "through-points");   // the plot's dots on the curve, not its control polygon
+  CHECK(d["fair_energies"] == Json::array());  // fairing would move the curve off its points
+  REQUIRE(curve["points"].size() == 5);
+  CHECK(curve["points"][2] == Json({{"key", "profile.through[2]"}, {"x", 4.6}, {"y", 13.0}}));
+  const Json before = json_of(c.Post("/api/build", studio.token(), "{}", "application/json"));
+  CHECK_THAT(before["plot_svg"].get<std::string>(),
+             Catch::Contains("<g class=\"through-points\" data-name=\"profile\" data-points=\"5\""));
+  // Moved out, the belly point takes the curve with it: a wider vase.
+  const Json after =
+      json_of(c.Post("/api/build", studio.token(), R"({"overrides": {"profile.through[3]": "[6.5, 7]"}})",
+                     "application/json"));
+  CHECK(after["report"]["bounding_box"]["size"][0].get<double>() >
+        before["report"]["bounding_box"]["size"][0].get<double>());
 }
 
 TEST_CASE("studio: a kitchen shows its pieces apart and its slab layout", "[studio]") {
