@@ -57,8 +57,8 @@ fuzz_run() {
 
 sanitize_build() {
   local dir=build-sanitize
-  # -g1 (line tables and function names) is all ASan's and UBSan's stacks
-  # need, and builds markedly faster than full debug information. The
+  # Line tables are all ASan's and UBSan's stacks need, and build markedly
+  # faster than full debug information. The
   # program and its test suite only: the shared library and the Python module
   # are the same pipeline code behind a thin layer (an interpreter not built
   # with ASan cannot load an ASan module anyway), and CI's 90 minutes have no
@@ -70,8 +70,13 @@ sanitize_build() {
   # sanitizers through its own test program; its page test, which drives
   # Chromium and node, is left to the main suite. The lazy-libraries check
   # reads the shared library, which this build leaves out.
+  #
+  # Built with clang, as the fuzzers are: its ASan and UBSan are the reference
+  # ones, and on this code it compiles them 2.3 times faster than g++ does
+  # (alpha_wrap.cpp, -O2 and line tables: 50 s against 115 s of CPU time;
+  # g++'s UBSan at -O2 is the cost), at the same optimisation level.
   cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFABMESH_SANITIZE=ON -DFABMESH_PYTHON=OFF \
-    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG"
+    -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -gline-tables-only -DNDEBUG"
   cmake --build "$dir" -j"$JOBS" --target fabmesh fabmesh_tests fabmesh_studio_tests fabmesh_cnc_bench
 }
 
