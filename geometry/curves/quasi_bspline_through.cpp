@@ -70,14 +70,66 @@ Rows rows_of(const std::vector<double>& lam) {
   return r;
 }
 
-// Whether the (n-1) x (n-1) system is singular, decided exactly: its
-// determinant by the continuant recurrence, in integers (every lambda
-// scaled by one power of two).
-bool singular(const std::vector<double>& lam) {
+// The (n-1) x (n-1) system's determinant is the continuant
+//   D_1 = d_1,  D_k = d_k D_(k-1) - a_k a_(k-1) D_(k-2)
+// of its rows, every lambda scaled to a whole number by one power of two.
+// Whether it is 0 is decided exactly, in three steps that each prove what
+// they say: with every lambda >= -2 the matrix is irreducibly diagonally
+// dominant, so not singular; else a determinant that is not 0 modulo one
+// of three primes is not 0; else (a singular system, or a rare multiple
+// of all three) the continuant in arbitrary-precision integers.
+constexpr std::uint64_t kPrimes[] = {2147483647u, 2147483629u, 2147483587u};
+
+std::uint64_t power_of_two(long e, std::uint64_t p) {
+  std::uint64_t result = 1 % p, base = 2 % p;
+  for (; e > 0; e >>= 1) {
+    if ((e & 1) != 0) result = result * base % p;
+    base = base * base % p;
+  }
+  return result;
+}
+
+// A scaled lambda, m * 2^(exponent + shift), modulo p.
+std::uint64_t modulo(const Dyadic& d, int shift, std::uint64_t p) {
+  const auto sp = static_cast<std::int64_t>(p);
+  const std::int64_t m = ((d.mantissa % sp) + sp) % sp;
+  return static_cast<std::uint64_t>(m) * power_of_two(d.exponent + shift, p) % p;
+}
+
+// Work of the exact continuant: about n^2 / 2 limb products of numbers
+// growing by the scaled rows' bits per step. Above this, refused.
+constexpr double kMaxExactWork = 1e9;
+
+bool singular(const std::vector<double>& lam, const std::string& key) {
   const std::size_t n = lam.size() - 1;
+  if (std::all_of(lam.begin() + 1, lam.end() - 1, [](double l) { return l >= -2.0; })) return false;
   int shift = 0;
   for (std::size_t i = 1; i < n; ++i) {
     if (lam[i] != 0.0) shift = std::max(shift, -dyadic(lam[i]).exponent);
+  }
+  for (const std::uint64_t p : kPrimes) {
+    const std::uint64_t one = power_of_two(shift, p);
+    std::vector<std::uint64_t> a(n), b(n);
+    for (std::size_t i = 1; i < n; ++i) {
+      const std::uint64_t l = lam[i] == 0.0 ? 0 : modulo(dyadic(lam[i]), shift, p);
+      a[i] = (4 * one + p - l) % p;
+      b[i] = (16 * one + 2 * l) % p;
+    }
+    std::uint64_t before = 1, det = b[1];
+    for (std::size_t i = 2; i < n; ++i) {
+      const std::uint64_t next = (b[i] * det % p + p - a[i] * a[i - 1] % p * before % p) % p;
+      before = det;
+      det = next;
+    }
+    if (det != 0) return false;
+  }
+  const double steps = static_cast<double>(n);
+  if (0.5 * steps * steps * (static_cast<double>(shift) + 8.0) / 64.0 > kMaxExactWork) {
+    throw GeometryError(key,
+                        fmt::format("deciding exactly whether these {} through points and lambdas make a "
+                                    "singular system would take too long (lambdas with up to {} binary "
+                                    "digits); lambdas of -2 or more always make a solvable one",
+                                    n + 1, shift));
   }
   const Integer one = Integer(1) << shift;
   auto scaled = [&](double x) {
@@ -202,7 +254,7 @@ QuasiBSplineThrough quasi_bspline_through(const std::vector<Vec2>& through,
     if (!std::isfinite(q.x()) || !std::isfinite(q.y()))
       throw GeometryError(key, "a through point is not finite");
   }
-  if (singular(lam)) {
+  if (singular(lam, key)) {
     throw GeometryError(
         key, fmt::format("no quasi-cubic B-spline with these lambdas passes through these {} points: the "
                          "system for its control points is singular (its determinant is exactly 0; a lambda "

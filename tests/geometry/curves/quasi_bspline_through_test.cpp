@@ -91,6 +91,26 @@ TEST_CASE("through: a long profile of 3000 points", "[curves][through]") {
   CHECK(largest_miss(curve_of(t.points, lambdas), q) <= t.deviation + 1e-12);
 }
 
+TEST_CASE("through: 20000 points with lambdas below -2 are decided at once", "[curves][through]") {
+  // Lambdas of 53 significant bits below -2: the exact continuant would grow by about 60 bits a
+  // row; its residues modulo primes decide that it is not 0.
+  std::vector<Vec2> q;
+  for (int i = 0; i <= 20000; ++i) q.push_back({1.0 + 0.5 * std::sin(i * 0.001), i * 0.001});
+  std::vector<double> lambdas(q.size() - 2);
+  for (std::size_t i = 0; i < lambdas.size(); ++i) lambdas[i] = i % 2 == 0 ? -2.3 : 0.3;
+  const QuasiBSplineThrough t = quasi_bspline_through(q, lambdas);
+  CHECK(t.deviation < 1e-12);
+  // The same rows all at -8 (every residue 0, a singular system) are decided by the exact
+  // continuant, whose whole numbers stay small: lambda = -8 needs no scaling.
+  std::vector<double> eights(q.size() - 2, -8.0);
+  CHECK_THAT(message_of(q, eights), Catch::Contains("determinant is exactly 0"));
+  // An even row's lambda changed keeps the odd-sized system singular (D_odd = -144 D_(odd-2) = 0);
+  // a subnormal lambda there would scale every row by 2^1126: too much work to decide exactly,
+  // refused saying so rather than taking minutes.
+  eights[1] = 1e-310;
+  CHECK_THAT(message_of(q, eights), Catch::Contains("would take too long"));
+}
+
 TEST_CASE("through: a singular system is bad input, decided exactly", "[curves][through]") {
   // n = 2, lambda_1 = -8: the one equation 12 p0 + 12 p2 = 24 q1 has no p1.
   CHECK_THAT(message_of({{0, 0}, {1, 1}, {2, 0}}, {-8}),
