@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <string>
 
 #include "geometry/core/errors.h"
 #include "geometry/fairing/build_curve.h"
@@ -50,6 +51,17 @@ CompositeCurve slot() {
   arc.to_deg = 90;
   return CompositeCurve(
       {Segment::line({0, 0}, {4, 0}), Segment::ellipse_arc(arc), Segment::line({4, 2}, {0, 2})}, false);
+}
+
+// A plot of `curve` alone, drawn as it is (no control polygon, no joints given), titled `name`.
+CurvePlot one_curve_plot(const std::string& name, const CompositeCurve& curve) {
+  CurvePlot plot;
+  plot.title = name;
+  PlotCurve c;
+  c.name = name;
+  c.curve = curve;
+  plot.curves.push_back(c);
+  return plot;
 }
 
 CurvePlot three_curves() {
@@ -470,12 +482,7 @@ TEST_CASE("curve plot: curvature below rounding draws no comb and plots as zero"
   CHECK(noise > 0.0);  // the noise is there to be left out
   CHECK(noise < 1e-10);
   CHECK(drawn_curvature(flat.segments()[0], 0.3) == 0.0);
-  CurvePlot plot;
-  plot.title = "flat";
-  PlotCurve line;
-  line.name = "flat";
-  line.curve = flat;
-  plot.curves.push_back(line);
+  CurvePlot plot = one_curve_plot("flat", flat);
   const auto svg = scan_xml(plot_curves_svg(plot));
   for (std::size_t i = 0; i < svg.size(); ++i) {
     if (svg[i].has_class("comb-teeth")) CHECK(svg[i].attr("d").empty());
@@ -505,13 +512,7 @@ TEST_CASE("curve plot: a tight corner arc does not set the comb's scale", "[io][
                             Segment::line({4, 0}, {4, 0.9}), Segment::ellipse_arc(corner)},
                            false);
   const auto teeth_of = [](const CompositeCurve& curve) {
-    CurvePlot plot;
-    plot.title = "corner";
-    PlotCurve c;
-    c.name = "top";
-    c.curve = curve;
-    plot.curves.push_back(c);
-    const auto svg = scan_xml(plot_curves_svg(plot));
+    const auto svg = scan_xml(plot_curves_svg(one_curve_plot("top", curve)));
     return select(svg, "path", "comb-teeth").at(0)->attr("d");
   };
   // One tooth per comb sample of the bulge: the arc, 400 times more curved than the
