@@ -344,8 +344,8 @@ std::string not_faired(const CurveSpec& c, FairMode mode) {
 // The energies the page's "fairest" buttons can minimise for this design.
 Json fair_energies(const Design& design) {
   Json out = Json::array();
+  const std::vector<NamedCurve> curves = design_curves(design);
   for (const FairMode mode : {FairMode::Strain, FairMode::CurvatureVariation}) {
-    const auto curves = design_curves(design);
     if (std::any_of(curves.begin(), curves.end(),
                     [&](const NamedCurve& c) { return not_faired(c.spec, mode).empty(); }))
       out.push_back(to_string(mode));
