@@ -101,7 +101,7 @@ std::size_t scalar_end(const std::string& text, std::size_t begin, const std::st
 std::string value_path(const YAML::Node& root, const std::string& path) {
   if (path.find_first_of(".[") != std::string::npos) return path;
   const YAML::Node parameters = root["parameters"];
-  if (!parameters.IsMap()) return path;
+  if (!parameters.IsDefined() || !parameters.IsMap()) return path;  // a missing key's node throws on IsMap
   const YAML::Node entry = parameters[path];
   if (!entry.IsDefined()) return path;
   return "parameters." + path + (entry.IsMap() ? ".value" : "");
@@ -244,6 +244,117 @@ std::size_t block_map_end(const std::string& text, int line, int column) {
   return end;
 }
 
+// The top-level items of the flow list `value` ("[a, [b, c], \"d, e\"]"),
+// each as written (trimmed); none when it is not one flow list.
+std::optional<std::vector<std::string>> flow_items(const std::string& value) {
+  const std::size_t open = value.find_first_not_of(" \t");
+  if (open == std::string::npos || value[open] != '[') return std::nullopt;
+  const std::size_t close = flow_sequence_end(value, open);
+  if (close == std::string::npos || value.find_first_not_of(" \t", close) != std::string::npos)
+    return std::nullopt;
+  std::vector<std::string> items;
+  const auto add = [&](std::size_t from, std::size_t to) {
+    const std::size_t b = value.find_first_not_of(" \t", from);
+    const std::size_t e = value.find_last_not_of(" \t", to - 1);
+    if (b != std::string::npos && b < to) items.push_back(value.substr(b, e + 1 - b));
+  };
+  int depth = 0;
+  std::size_t start = open + 1;
+  for (std::size_t i = open + 1; i + 1 < close; ++i) {
+    const char c = value[i];
+    if (c == '"' || c == '\'') {
+      i = quoted_end(value, i) - 1;  // the list ends, so its quotes do
+    } else if (c == '[') {
+      ++depth;
+    } else if (c == ']') {
+      --depth;
+    } else if (c == ',' && depth == 0) {
+      add(start, i);
+      start = i + 1;
+    }
+  }
+  add(start, close - 1);
+  return items;
+}
+
+// The offset where the line holding `offset` starts, and where the next one does.
+std::pair<std::size_t, std::size_t> line_of(const std::string& text, std::size_t offset) {
+  const std::size_t begin = offset == 0 ? 0 : text.rfind('\n', offset - 1) + 1;  // npos + 1 == 0
+  const std::size_t end = text.find('\n', offset);
+  return {begin, end == std::string::npos ? text.size() : end + 1};
+}
+
+// `text` with the block list at `o.path` (`- item` lines) changed into the
+// flow list `o.value` item by item: the items both lists have, in the same
+// order, keep their lines (and comments) as written; the others' lines go,
+// and new items get lines of their own, indented as their neighbours. The
+// edit a designer makes when adding or deleting a control point. Nullopt
+// when the list is not written so (an item over several lines, two on a
+// line): the caller then refuses the edit.
+std::optional<std::string> edit_block_list(const std::string& text, const std::string& file,
+                                           const YAML::Node& old, const YAML::Node& wanted,
+                                           const Override& o) {
+  const std::optional<std::vector<std::string>> given = flow_items(o.value);
+  if (!given || given->size() != wanted.size() || old.size() == 0) return std::nullopt;
+  struct Item {
+    std::size_t line_begin, line_end;  // its line, with its comment
+    std::string prefix;                // the indentation and "- " before it
+  };
+  std::vector<Item> items;
+  for (std::size_t i = 0; i < old.size(); ++i) {
+    ValueSpan span;
+    try {
+      span = value_span(text, file, fmt::format("{}[{}]", o.path, i));
+    } catch (const FileError&) {
+      return std::nullopt;
+    }
+    const auto [begin, end] = line_of(text, span.begin);
+    const std::string prefix = text.substr(begin, span.begin - begin);
+    const std::size_t dash = prefix.find_first_not_of(' ');
+    const bool alone = dash != std::string::npos && prefix[dash] == '-' &&
+                       prefix.find_first_not_of(' ', dash + 1) == std::string::npos &&
+                       prefix.size() > dash + 1;
+    const std::size_t rest = text.find_first_not_of(" \t", span.end);
+    const bool ends = rest == std::string::npos || rest >= end || text[rest] == '#' || text[rest] == '\n';
+    if (!alone || !ends || (!items.empty() && begin < items.back().line_end)) return std::nullopt;
+    items.push_back({begin, end, prefix});
+  }
+  // The longest run of items kept in order (equal values), by dynamic programming.
+  const std::size_t n = old.size(), m = wanted.size();
+  if (n * m > 1000000) return std::nullopt;
+  std::vector<std::vector<std::size_t>> keep(n + 1, std::vector<std::size_t>(m + 1, 0));
+  for (std::size_t i = n; i-- > 0;) {
+    for (std::size_t j = m; j-- > 0;) {
+      keep[i][j] =
+          same_value(old[i], wanted[j]) ? keep[i + 1][j + 1] + 1 : std::max(keep[i + 1][j], keep[i][j + 1]);
+    }
+  }
+  // The last item's line may end the file without a line break.
+  const std::string t = ends_with_newline(text);
+  if (items.back().line_end == text.size()) items.back().line_end = t.size();
+  std::string edited = t.substr(0, items.front().line_begin);
+  std::string prefix = items.front().prefix;
+  std::size_t i = 0, j = 0;
+  while (i < n || j < m) {
+    const bool kept = i < n && j < m && same_value(old[i], wanted[j]) && keep[i][j] == keep[i + 1][j + 1] + 1;
+    if (!kept && j < m && (i == n || keep[i][j + 1] >= keep[i + 1][j])) {
+      edited += prefix + (*given)[j++] + "\n";  // a new item, indented as the one before it
+      continue;
+    }
+    if (kept) {
+      edited += t.substr(items[i].line_begin, items[i].line_end - items[i].line_begin);
+      ++j;
+    }  // else the old item's line goes
+    prefix = items[i].prefix;
+    // What lies between this item and the next (a comment line) stays.
+    if (i + 1 < n) edited += t.substr(items[i].line_end, items[i + 1].line_begin - items[i].line_end);
+    ++i;
+  }
+  edited += t.substr(items.back().line_end);
+  if (t.size() != text.size() && !edited.empty() && edited.back() == '\n') edited.pop_back();
+  return edited;
+}
+
 // `text` with the value at `o.path` replaced by `o.value`: as the user wrote
 // it when the file then reads back as the old tree with that value at the
 // path, else in flow_text's form (an expression "=max(w, 5)" goes into a flow
@@ -274,6 +385,19 @@ std::string edit_value(const std::string& text, const std::string& file, const O
       }
       return checked_edit(ends_with_newline(text) + o.path + ": " + flow_text(wanted) + "\n", expected, file,
                           o.path);
+    }
+  }
+  {
+    // A list written as `- item` lines, changed item by item (a point added or deleted).
+    const YAML::Node root = load_text(text, file);
+    const YAML::Node old = node_at(root, value_path(root, o.path));
+    if (old.IsDefined() && old.IsSequence() && old.Style() == YAML::EmitterStyle::Block &&
+        wanted.IsSequence()) {
+      YAML::Node expected = YAML::Clone(root);
+      YAML::Node at = node_at(expected, value_path(expected, o.path));
+      at = wanted;
+      if (const std::optional<std::string> edited = edit_block_list(text, file, old, wanted, o))
+        return checked_edit(*edited, expected, file, o.path);
     }
   }
   const ValueSpan span = value_span(text, file, o.path);

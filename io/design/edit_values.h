@@ -31,6 +31,10 @@ ValueSpan value_span(const std::string& text, const std::string& file, const std
 /// `text` with the value of each override's path (value_span) replaced by its
 /// value text as given (Override::value: a number, or YAML such as "\"=w / 2\"").
 /// Everything else is left as it was. Two overrides of one value: the last wins.
+/// A list written as `- item` lines (each item a scalar or a [list] on its
+/// own line) is changed item by item into a new list given as one flow list
+/// (a point added or deleted): the items kept keep their lines and comments,
+/// new items get lines of their own indented as their neighbours.
 /// \throw FileError as value_span, or when a value text is not one line
 /// A value at a top-level key the text does not write yet (`parameter_set`)
 /// is added as a new last line `key: value`.

@@ -41,20 +41,14 @@ const std::vector<CutLoop>& drawing_of(const Result& result) {
       result.products);
 }
 
-// A router program and what it cuts: the countertop's one, or one per slab of a kitchen.
-struct Program {
-  const Toolpath* path = nullptr;
-  std::vector<CutLoop> part;       ///< the loops it cuts, drawn under the path
-  std::string suffix;              ///< ".slab-1" (empty: the design's own file)
-  std::vector<std::string> parts;  ///< the pieces on the slab
-};
+}  // namespace
 
-std::vector<Program> programs_of(const CountertopProducts& countertop) {
+std::vector<RouterProgram> router_programs(const CountertopProducts& countertop) {
   if (!countertop.kitchen) return {{&*countertop.toolpath, countertop.cutting, "", {}}};
   const KitchenProducts& k = *countertop.kitchen;
-  std::vector<Program> out;
+  std::vector<RouterProgram> out;
   for (std::size_t s = 0; s < k.slab_toolpaths.size(); ++s) {
-    Program p{&k.slab_toolpaths[s], {}, fmt::format(".slab-{}", s + 1), {}};
+    RouterProgram p{&k.slab_toolpaths[s], {}, fmt::format(".slab-{}", s + 1), {}};
     for (const Placement& at : k.nesting.placements) {
       if (at.slab != s) continue;
       const KitchenPiece& piece = k.split.pieces[at.piece];
@@ -68,6 +62,8 @@ std::vector<Program> programs_of(const CountertopProducts& countertop) {
   }
   return out;
 }
+
+namespace {
 
 const KitchenProducts& kitchen_of(const EncodeContext& c) {
   const auto& countertop = std::get<CountertopProducts>(c.result.products);
@@ -136,7 +132,7 @@ EncodedFiles encode_nc_output(const EncodeContext& c) {
   const auto& countertop = std::get<CountertopProducts>(c.result.products);
   const GcodeOptions& options = *countertop.gcode;
   EncodedFiles files;
-  for (const Program& p : programs_of(countertop)) {
+  for (const RouterProgram& p : router_programs(countertop)) {
     Encoded e = drawn(encode_gcode(*p.path, options), c);
     e.units = options.units;
     e.added_error = p.path->deviation;
@@ -152,7 +148,7 @@ EncodedFiles encode_toolpath_svg_output(const EncodeContext& c) {
   ToolpathSvgOptions options;
   options.units = c.common.units;
   EncodedFiles files;
-  for (const Program& p : programs_of(countertop)) {
+  for (const RouterProgram& p : router_programs(countertop)) {
     Encoded e = drawn(encode_toolpath_svg(p.part, *p.path, options), c);
     e.suffix = p.suffix.empty() ? "" : p.suffix + ".toolpath.svg";
     e.parts = p.parts;

@@ -65,6 +65,20 @@ double decimal_bound(double largest_exported, double export_scale);
 /// 3MF's micro-unit decimals of float32 values, and the scaling.
 double threemf_bound(double largest_exported, double export_scale);
 
+/// A router program and what it cuts: a countertop's one, or one per slab
+/// of a kitchen.
+struct RouterProgram {
+  const Toolpath* path = nullptr;  ///< in the result it was made from
+  std::vector<CutLoop> part;       ///< the loops it cuts, drawn under the path
+  std::string suffix;              ///< ".slab-1" (empty: the design's own file)
+  std::vector<std::string> parts;  ///< the pieces on the slab
+};
+
+/// The countertop's router programs (encoders/drawing_encoders.cpp): its
+/// own, or a kitchen's one per slab. Only for a countertop with `cnc`
+/// (a toolpath, or a kitchen's slab toolpaths).
+std::vector<RouterProgram> router_programs(const CountertopProducts& countertop);
+
 // The encoders of the output table's rows (pipeline/output_table.cpp).
 // Each \throw OutputError when its output cannot be made within the tolerance left.
 

@@ -18,6 +18,7 @@
 #include "geometry/curves/basis.h"
 #include "geometry/fairing/build_curve.h"
 #include "io/cutting/layout.h"
+#include "io/cutting/toolpath_svg.h"
 #include "io/design/edit_values.h"
 #include "io/design/file_references.h"
 #include "io/design/read_design.h"
@@ -25,6 +26,7 @@
 #include "io/mesh/gltf.h"
 #include "io/pictures/curve_plot.h"
 #include "pipeline/design_curves.h"
+#include "pipeline/encoders/encoding.h"
 #include "pipeline/failure.h"
 #include "pipeline/job.h"
 #include "pipeline/load_design.h"
@@ -276,15 +278,20 @@ Json shape_parameters(const Design& design) {
 // free ones after a join), found on the plot by position ("by": "position";
 // a point two segments share is one circle per segment). A point is offered
 // only where the text writes it, as a value save can replace (a point given
-// as an expression becomes the numbers it is dragged to).
+// as an expression becomes the numbers it is dragged to), with its text as
+// written. A quasi-B-spline's whole list (`list`, with its lambdas as
+// written) is what adding or deleting a point replaces.
+constexpr int kLeastBSplinePoints = 3;  // n >= 2, as the reader requires
+
 Json draggable_points(const Design& design, const std::string& text) {
   Json out = Json::array();
-  const auto written = [&](const std::string& key) {
+  // The value at `key` as the text writes it; empty when it does not.
+  const auto written = [&](const std::string& key) -> std::string {
     try {
-      (void)value_span(text, design.common.path, key);
-      return true;
+      const ValueSpan span = value_span(text, design.common.path, key);
+      return text.substr(span.begin, span.end - span.begin);
     } catch (const FileError&) {
-      return false;
+      return {};
     }
   };
   for (const NamedCurve& c : design_curves(design)) {
@@ -293,19 +300,33 @@ Json draggable_points(const Design& design, const std::string& text) {
       // A curve through points: those points (the plot's dots on its joints).
       const bool through = !c.spec.bspline_through.empty();
       const std::vector<Vec2>& given = through ? c.spec.bspline_through : c.spec.bspline_points;
+      const std::string list = c.name + (through ? ".through" : ".points");
       for (std::size_t i = 0; i < given.size(); ++i) {
-        const std::string key = fmt::format("{}.{}[{}]", c.name, through ? "through" : "points", i);
-        if (!written(key)) {
+        const std::string key = fmt::format("{}[{}]", list, i);
+        const std::string as_written = written(key);
+        if (as_written.empty()) {
           points.clear();
           break;
         }
-        points.push_back({{"key", key}, {"x", given[i].x()}, {"y", given[i].y()}});
+        points.push_back({{"key", key}, {"x", given[i].x()}, {"y", given[i].y()}, {"text", as_written}});
       }
-      if (!points.empty()) {
-        out.push_back({{"curve", c.name},
-                       {"group", through ? "through-points" : "control-polygon"},
-                       {"points", points}});
+      if (points.empty()) continue;
+      Json curve = {{"curve", c.name},
+                    {"group", through ? "through-points" : "control-polygon"},
+                    {"points", points},
+                    {"list", list},
+                    {"min_points", kLeastBSplinePoints}};
+      // Its lambdas as written, one per inner point: a point added or
+      // deleted adds or drops one. None when the text writes none (all 0).
+      Json lambdas = Json::array();
+      for (std::size_t i = 0; i < c.spec.bspline_lambdas.size(); ++i) {
+        const std::string as_written = written(fmt::format("{}.lambdas[{}]", c.name, i));
+        if (as_written.empty()) break;
+        lambdas.push_back(as_written);
       }
+      if (lambdas.size() == c.spec.bspline_lambdas.size() && !lambdas.empty())
+        curve["lambdas"] = {{"key", c.name + ".lambdas"}, {"texts", lambdas}};
+      out.push_back(std::move(curve));
       continue;
     }
     for (const SegmentSpec& s : c.spec.segments) {
@@ -313,12 +334,29 @@ Json draggable_points(const Design& design, const std::string& text) {
       for (std::size_t j = 0; j < s.points.size(); ++j) {
         const std::string key = fmt::format("{}.points[{}]", s.key, j);
         const Vec2& p = s.points[j];
-        if (written(key)) points.push_back({{"key", key}, {"x", p.x()}, {"y", p.y()}});
+        const std::string as_written = written(key);
+        if (!as_written.empty())
+          points.push_back({{"key", key}, {"x", p.x()}, {"y", p.y()}, {"text", as_written}});
       }
     }
     if (!points.empty()) out.push_back({{"curve", c.name}, {"by", "position"}, {"points", points}});
   }
   return out;
+}
+
+// The design's text with the request's overrides written in, as save would
+// write them (each one that save can place; the others are left out): where
+// the draggable points of these values are written, and how.
+std::string text_with(const std::string& text, const std::string& path, const Request& request) {
+  std::string edited = text;
+  for (const Override& o : request.overrides) {
+    try {
+      edited = edit_values(edited, path, {o});
+    } catch (const FileError&) {
+      // not a value save can write (a key the file does not have): its points stay as the file has them
+    }
+  }
+  return edited;
 }
 
 // Why fairing for `mode` leaves curve `c` as it is; empty when it fairs it:
@@ -520,6 +558,7 @@ StudioResponse StudioSession::build(const std::string& request_body) {
     std::optional<std::string> glb;
     std::string plot_svg;
     std::optional<std::string> layout_svg;  // a kitchen's slabs
+    Json router_paths = Json::array();      // a countertop's router programs, drawn
     std::size_t triangles = 0;
     const auto show = [&](const Result& built) {
       auto lap = std::chrono::steady_clock::now();
@@ -531,6 +570,18 @@ StudioResponse StudioSession::build(const std::string& request_body) {
         layout.title = design.common.name;
         layout_svg =
             encode_layout_svg(top->kitchen->split.pieces, top->kitchen->stock, top->kitchen->nesting, layout);
+      }
+      // With `cnc`: each program's path over what it cuts, as the toolpath_svg output draws it.
+      if (const auto* top = std::get_if<CountertopProducts>(&built.products);
+          top != nullptr &&
+          (top->kitchen ? !top->kitchen->slab_toolpaths.empty() : top->toolpath.has_value())) {
+        ToolpathSvgOptions drawing;
+        drawing.units = design.common.units;
+        for (const RouterProgram& program : router_programs(*top)) {
+          router_paths.push_back({{"program", design.common.name + program.suffix},
+                                  {"parts", program.parts},
+                                  {"svg", encode_toolpath_svg(program.part, *program.path, drawing)}});
+        }
       }
       stages["plot"] = elapsed_ms(lap);
       if (product(built) != nullptr) {
@@ -569,8 +620,11 @@ StudioResponse StudioSession::build(const std::string& request_body) {
     }
     // Where the draggable points are with these values (a dragged or
     // parameter-driven point has moved from where the file puts it).
-    j["control_points"] = draggable_points(design, requested.text);
+    j["control_points"] = draggable_points(design, text_with(requested.text, options_.design_path, request));
+    // The shape parameters of these values (a point added adds a lambda).
+    j["shape_parameters"] = shape_parameters(design);
     j["layout_svg"] = layout_svg ? Json(*layout_svg) : Json(nullptr);
+    j["router_paths"] = std::move(router_paths);
     j["mesh"] = nullptr;
     if (glb) {
       const std::lock_guard<std::mutex> lock(mutex_);

@@ -493,6 +493,154 @@ try {
     }
   });
 
+  await check('points: add, move, type and delete, then undo four times to the file, and redo', async () => {
+    const cup = path.join(workDir, 'points.yaml');
+    fs.copyFileSync(path.join(sourceDir, 'configs/examples/vessel_golden_solid.yaml'), cup);
+    const fileText = fs.readFileSync(cup, 'utf8');
+    const studio = startStudio(cup, path.join(workDir, 'points-out'));
+    try {
+      const {page: pp, errors: perrors} = await newPage();
+      await pp.goto(await studio.url, {waitUntil: 'load'});
+      await pp.waitForFunction(() => window.fabmeshStudio?.validBuilds >= 1, {timeout: 120000});
+      const st = () => pp.evaluate(() => ({...window.fabmeshStudio, design: undefined}));
+      const settled = () => pp.waitForFunction(
+          () => window.fabmeshStudio.change === window.fabmeshStudio.settledChange, {timeout: 120000});
+      const rows = () => pp.$$eval('#points .control.point', (l) => l.map((r) => r.dataset.key));
+      const lambdaSliders = () => pp.$$eval('#shape-parameters .control', (l) => l.map((r) => r.dataset.name));
+      const circle = (i) => `#plot g.control-polygon[data-name="profile"] circle.draggable[data-key="profile.points[${i}]"]`;
+      const centre = async (i) => {
+        const b = await (await pp.$(circle(i))).boundingBox();
+        return {x: b.x + b.width / 2, y: b.y + b.height / 2};
+      };
+      assert.equal((await rows()).length, 5);
+      assert.deepEqual(await lambdaSliders(), ['profile.lambdas[0]', 'profile.lambdas[1]', 'profile.lambdas[2]']);
+      // 1. Added: a double-click halfway along the polygon's leg from point 1 to point 2.
+      const [a, b] = [await centre(1), await centre(2)];
+      await pp.mouse.click((a.x + b.x) / 2, (a.y + b.y) / 2, {count: 2});
+      await pp.waitForFunction(() => document.querySelectorAll('#points .control.point').length === 6,
+                               {timeout: 120000});
+      await settled();
+      let now = await st();
+      assert.equal(now.error, null);
+      assert.equal(now.undoDepth, 1);
+      assert.match(now.overrides['profile.points'],
+                   /^\[\["=width \/ 4", "=2 \+ height"\], \["=width \/ 6", "=2 \+ height \* 3 \/ 4"\], \[[-0-9.e]+, [-0-9.e]+\], \["=width \/ 3"/);
+      assert.equal(now.overrides['profile.lambdas'], '[0, 0, 0, 0]');
+      assert.equal((await lambdaSliders()).length, 4);
+      const added = now.controlPoints[0].points[2];
+      assert.ok(added.x > now.controlPoints[0].points[1].x && added.x < now.controlPoints[0].points[2 + 1].x,
+                'the new point lies between its neighbours');
+      // 2. Moved: the new point dragged 15 pixels outward.
+      const c2 = await centre(2);
+      await pp.mouse.move(c2.x, c2.y);
+      await pp.mouse.down();
+      await pp.mouse.move(c2.x + 15, c2.y, {steps: 3});
+      await pp.mouse.up();
+      await pp.waitForFunction(() => window.fabmeshStudio.overrides['profile.points[2]'] !== undefined,
+                               {timeout: 120000});
+      await settled();
+      now = await st();
+      assert.ok(now.controlPoints[0].points[2].x > added.x, 'dragged outward');
+      // 3. Typed: point 4's x.
+      await pp.$eval('#field-profile_points_4_ input[aria-label="profile.points[4] x"]', (input) => {
+        input.value = '2.75';
+        input.dispatchEvent(new Event('change'));
+      });
+      await settled();
+      now = await st();
+      assert.equal(now.error, null);
+      assert.match(now.overrides['profile.points[4]'], /^\[2\.75, [-0-9.e]+\]$/);
+      assert.equal(now.controlPoints[0].points[4].x, 2.75);
+      // 4. Deleted: the first point, and the lambda of the point that becomes the end.
+      await pp.click('#field-profile_points_0_ button');
+      await pp.waitForFunction(() => document.querySelectorAll('#points .control.point').length === 5,
+                               {timeout: 120000});
+      await settled();
+      now = await st();
+      assert.equal(now.error, null);
+      assert.equal(now.undoDepth, 4);
+      assert.equal(now.overrides['profile.points[4]'], undefined);  // folded into the list
+      assert.match(now.overrides['profile.points'], /^\[\["=width \/ 6", "=2 \+ height \* 3 \/ 4"\], \[/);
+      assert.match(now.overrides['profile.points'], /\[2\.75, [-0-9.e]+\], \["=width \/ 4", 2\]\]$/);
+      assert.equal(now.overrides['profile.lambdas'], '[0, 0, 0]');
+      const edited = now.overrides;
+      const editedPlot = now.plotSvg;
+      // Undone four times: the file's values, its points and plot; the file itself untouched.
+      for (let k = 0; k < 4; ++k) {
+        await pp.click('#undo');
+        await settled();
+      }
+      now = await st();
+      assert.deepEqual(now.overrides, {});
+      assert.equal(now.undoDepth, 0);
+      assert.equal(now.redoDepth, 4);
+      assert.equal((await rows()).length, 5);
+      assert.deepEqual(now.controlPoints[0].points.map((p) => p.text),
+                       ['["=width / 4", "=2 + height"]', '["=width / 6", "=2 + height * 3 / 4"]',
+                        '["=width / 3", "=2 + height / 2"]', '["=width / 2", "=2 + height / 4"]', '["=width / 4", 2]']);
+      assert.equal((await lambdaSliders()).length, 3);
+      assert.equal(fs.readFileSync(cup, 'utf8'), fileText);
+      // Redone four times: the edited values again, built to the same plot.
+      for (let k = 0; k < 4; ++k) {
+        await pp.keyboard.down('Control');
+        await pp.keyboard.down('Shift');
+        await pp.keyboard.press('z');
+        await pp.keyboard.up('Shift');
+        await pp.keyboard.up('Control');
+        await settled();
+      }
+      now = await st();
+      assert.deepEqual(now.overrides, edited);
+      assert.equal(now.plotSvg, editedPlot);
+      // Saved: the file has the new list, its comments and expressions kept, and runs.
+      await pp.evaluate(() => {
+        window.statuses = [];
+        new MutationObserver(() => window.statuses.push(document.getElementById('status').textContent))
+            .observe(document.getElementById('status'), {childList: true, characterData: true, subtree: true});
+      });
+      await pp.click('#save');
+      await pp.waitForFunction(() => window.statuses.some((t) => /^saved /.test(t)), {timeout: 120000});
+      const saved = fs.readFileSync(cup, 'utf8');
+      assert.ok(saved.includes('# size: '), 'the comments stay');
+      assert.ok(!saved.includes('    - ["=width / 4", "=2 + height"]\n'), 'the first point is gone');
+      assert.ok(saved.includes('    - ["=width / 4", 2]\n'), 'the last point stays as written');
+      assert.match(saved, /\n    - \[2\.75, [-0-9.e]+\]\n/);
+      assert.match(saved, /\n  lambdas: \[0, 0, 0\]\n/);
+      execFileSync(fabmesh, ['run', cup, '-o', path.join(workDir, 'points-run')], {stdio: 'pipe'});
+      assert.deepEqual(perrors, []);
+      await pp.close();
+    } finally {
+      studio.child.kill('SIGTERM');
+      assert.equal(await studio.exit, 0);
+    }
+  });
+
+  await check('a countertop with cnc shows its router path below the 3D view; a vessel none', async () => {
+    assert.equal(await page.$eval('#router', (e) => e.hidden), true);
+    const top = path.join(workDir, 'router.yaml');
+    fs.copyFileSync(path.join(sourceDir, 'configs/examples/countertop_cnc.yaml'), top);
+    const studio = startStudio(top, path.join(workDir, 'router-out'));
+    try {
+      const {page: rp, errors: rerrors} = await newPage();
+      await rp.goto(await studio.url, {waitUntil: 'load'});
+      await rp.waitForFunction(() => window.fabmeshStudio?.validBuilds >= 1, {timeout: 120000});
+      assert.equal(await rp.$eval('#router', (e) => e.hidden), false);
+      assert.deepEqual(await rp.$$eval('#router figure', (l) => l.map((f) => f.dataset.program)), ['countertop_cnc']);
+      assert.match(await rp.$eval('#router figcaption', (e) => e.textContent), /router path: countertop_cnc\.nc/);
+      // The drawing's tool-centre paths: the outline's and each cut-out's, drawn at a real size.
+      const paths = await rp.$$eval('#router svg [id^="path-"]', (l) => l.length);
+      assert.equal(paths, 3);
+      const box = await (await rp.$('#router svg')).boundingBox();
+      // As long as the top is: 2400 x 650 mm and the margins.
+      assert.ok(box.width > 100 && Math.abs(box.width / box.height - 3.5) < 0.3, `drawn ${box.width} x ${box.height}`);
+      assert.deepEqual(rerrors, []);
+      await rp.close();
+    } finally {
+      studio.child.kill('SIGTERM');
+      assert.equal(await studio.exit, 0);
+    }
+  });
+
   await check('a choice is a list and a switch a checkbox; each change builds, and undoes', async () => {
     const chosen = path.join(workDir, 'chosen.yaml');
     fs.writeFileSync(chosen, [

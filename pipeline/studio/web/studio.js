@@ -22,6 +22,7 @@ const state = {
   undoDepth: 0,           // changes that undo can take back, and redo bring again
   redoDepth: 0,
   error: null,         // the last build's error object, or null
+  controlPoints: [],   // the shown answer's control_points: the points listed under Points
   // The last valid build's times in the page, ms from the request (the bench
   // reads them, bench/studio_latency.mjs): answer (the JSON in), plot, report,
   // mesh (fetched and parsed), shown (in the scene, drawn).
@@ -174,10 +175,20 @@ function showControls(design) {
     addControl(params, {name: p.name, label: p.name, value: p.value, min: p.min, max: p.max, step: p.step,
                         description: p.description});
   }
+  $('shape-parameters').dataset.keys = '';  // the file's values, even where the keys are the same
+  showShapes(design.shape_parameters);
+}
+
+// The shape parameters' sliders; a build's list replaces them when it has
+// others (a point added or deleted adds or drops a lambda).
+function showShapes(shapeParameters) {
   const shapes = $('shape-parameters');
+  const keys = JSON.stringify(shapeParameters.map((s) => s.key));
+  if (shapes.dataset.keys === keys) return;
+  shapes.dataset.keys = keys;
   shapes.replaceChildren();
-  $('shape-heading').hidden = design.shape_parameters.length === 0;
-  for (const s of design.shape_parameters) {
+  $('shape-heading').hidden = shapeParameters.length === 0;
+  for (const s of shapeParameters) {
     addControl(shapes, {name: s.key, label: s.key, value: s.value, min: s.min, max: s.max, step: s.step,
                         exclusiveMin: s.min_exclusive});
   }
@@ -563,6 +574,201 @@ function placeMesh(object, url, draft) {
   render();
 }
 
+// --- points typed, added and deleted ---
+//
+// Each curve whose points the plot offers (an answer's control_points) has a
+// row per point: its x and y to type, and for a quasi-B-spline's list a ×
+// that deletes it; a double-click on the plot near a curve's control polygon
+// (or its through points) adds a point there. A point typed or dragged is
+// its own -D path's value (`profile.points[2]`); adding or deleting one
+// replaces the curve's whole list (`profile.points`) and its lambdas (a new
+// inner point gets lambda 0), each point and lambda as the file writes it,
+// expressions kept. Every one is a change that undo takes back.
+
+const round6 = (v) => Number(Number(v).toPrecision(6));
+
+// A point's value as it is now: the field's own override, else the text the
+// answer gives.
+function pointTexts(curve) {
+  return curve.points.map((p) => {
+    const given = state.overrides[p.key];
+    return given === undefined ? p.text : String(given);
+  });
+}
+
+function lambdaTexts(curve) {
+  if (!curve.lambdas) return null;
+  const key = curve.lambdas.key;
+  return curve.lambdas.texts.map((t, k) => {
+    const given = state.overrides[`${key}[${k}]`];
+    return given === undefined ? t : String(given);
+  });
+}
+
+// The override of a whole list (its items' own overrides folded in), put
+// last: an item's override set later applies on top of it.
+function putList(key, texts) {
+  for (const k of Object.keys(state.overrides)) if (k === key || k.startsWith(key + '[')) delete state.overrides[k];
+  state.overrides[key] = `[${texts.join(', ')}]`;
+}
+
+function setPoint(curve, index, x, y) {
+  remember();
+  const key = curve.points[index].key;
+  state.overrides[key] = `[${round6(x)}, ${round6(y)}]`;
+  state.lastChanged = key;
+  requestBuild();
+}
+
+function deletePoint(curve, index) {
+  const n = curve.points.length;
+  if (!curve.list || n <= curve.min_points) return;
+  remember();
+  const texts = pointTexts(curve);
+  const lambdas = lambdaTexts(curve);
+  texts.splice(index, 1);
+  // The lambda of the point that stops being an inner one: its own, or its neighbour's at an end.
+  if (lambdas) lambdas.splice(Math.min(Math.max(index - 1, 0), n - 3), 1);
+  putList(curve.list, texts);
+  if (lambdas) putList(curve.lambdas.key, lambdas);
+  state.lastChanged = curve.list;
+  requestBuild();
+}
+
+function insertPoint(curve, at, x, y) {
+  const n = curve.points.length;
+  remember();
+  const texts = pointTexts(curve);
+  const lambdas = lambdaTexts(curve);
+  texts.splice(at, 0, `[${round6(x)}, ${round6(y)}]`);
+  if (lambdas) lambdas.splice(Math.min(Math.max(at - 1, 0), n - 2), 0, '0');
+  putList(curve.list, texts);
+  if (lambdas) putList(curve.lambdas.key, lambdas);
+  state.lastChanged = curve.list;
+  requestBuild();
+}
+
+function showPoints(controlPoints) {
+  const curves = controlPoints ?? [];
+  state.controlPoints = curves;
+  $('points-heading').hidden = curves.length === 0;
+  $('points-help').hidden = !curves.some((c) => c.list);
+  const box = $('points');
+  const layout = JSON.stringify(curves.map((c) => [c.curve, c.points.map((p) => p.key)]));
+  if (box.dataset.layout === layout) {
+    // The same rows: the new positions, except in a field being typed in.
+    for (const curve of curves) {
+      for (const p of curve.points) {
+        const row = document.getElementById(fieldId(p.key));
+        if (!row) continue;
+        const [x, y] = row.querySelectorAll('input');
+        if (document.activeElement !== x) x.value = String(round6(p.x));
+        if (document.activeElement !== y) y.value = String(round6(p.y));
+      }
+    }
+    return;
+  }
+  box.dataset.layout = layout;
+  box.replaceChildren();
+  for (const curve of curves) {
+    const group = document.createElement('div');
+    group.className = 'control point-list';
+    group.id = fieldId(curve.list ?? curve.curve);  // an error of the whole list is shown here
+    const title = document.createElement('label');
+    title.textContent = curve.group === 'through-points' ? `${curve.curve} (through)` : curve.curve;
+    const err = document.createElement('div');
+    err.className = 'field-error';
+    // The columns: a vessel's profile is drawn in (r, z).
+    const axes = state.design?.kind === 'vessel' ? ['r', 'z'] : ['x', 'y'];
+    const head = document.createElement('div');
+    head.className = 'row axes';
+    head.textContent = `${axes[0]}, ${axes[1]} (${state.design?.units ?? ''})`;
+    group.append(title, err, head);
+    box.append(group);
+    curve.points.forEach((p, i) => {
+      const row = document.createElement('div');
+      row.className = 'control point';
+      row.id = fieldId(p.key);
+      row.dataset.key = p.key;
+      const line = document.createElement('div');
+      line.className = 'row';
+      const label = document.createElement('span');
+      label.textContent = curve.list ? String(i) : p.key.slice(curve.curve.length + 1);
+      label.title = p.key;
+      const inputs = [p.x, p.y].map((v, axis) => {
+        const input = document.createElement('input');
+        input.type = 'number';
+        input.step = 'any';
+        input.value = String(round6(v));
+        input.setAttribute('aria-label', `${p.key} ${axis === 0 ? 'x' : 'y'}`);
+        return input;
+      });
+      const typed = () => {
+        const [x, y] = inputs.map((input) => Number(input.value));
+        if (inputs.some((input) => input.value === '') || !Number.isFinite(x) || !Number.isFinite(y)) return;
+        // The answer's curve, not this closure's: rows stay while the answers change.
+        const now = state.controlPoints.find((c) => c.curve === curve.curve);
+        if (now && now.points[i]) setPoint(now, i, x, y);
+      };
+      for (const input of inputs) input.addEventListener('change', typed);
+      line.append(label, ...inputs);
+      if (curve.list) {
+        const remove = document.createElement('button');
+        remove.type = 'button';
+        remove.textContent = '×';
+        remove.title = `Delete ${p.key}`;
+        remove.setAttribute('aria-label', `delete ${p.key}`);
+        remove.disabled = curve.points.length <= curve.min_points;
+        remove.addEventListener('click', () => {
+          const now = state.controlPoints.find((c) => c.curve === curve.curve);
+          if (now) deletePoint(now, i);
+        });
+        line.append(remove);
+      }
+      const rowErr = document.createElement('div');
+      rowErr.className = 'field-error';
+      row.append(line, rowErr);
+      group.append(row);
+    });
+  }
+}
+
+// A double-click on the plot: a point added to the curve whose polygon (or
+// line of through points) passes nearest, within 40 pixels, on its nearest
+// leg, or before its first or after its last point when the click is beyond
+// that end.
+function addPointAt(event) {
+  const svg = $('plot').querySelector('svg');
+  if (!svg) return;
+  let best = null;
+  for (const curve of state.controlPoints) {
+    if (!curve.list) continue;
+    const group = svg.querySelector(`g.${curve.group}[data-name="${CSS.escape(curve.curve)}"]`);
+    const ctm = group?.getScreenCTM();
+    if (!ctm) continue;
+    const q = new DOMPoint(event.clientX, event.clientY).matrixTransform(ctm.inverse());
+    const at = {x: q.x, y: -q.y};
+    const pixels = Math.hypot(ctm.a, ctm.b);  // screen pixels per plot unit
+    const pts = curve.points;
+    for (let k = 0; k + 1 < pts.length; ++k) {
+      const dx = pts[k + 1].x - pts[k].x, dy = pts[k + 1].y - pts[k].y;
+      const t = ((at.x - pts[k].x) * dx + (at.y - pts[k].y) * dy) / Math.max(dx * dx + dy * dy, 1e-300);
+      const c = Math.min(Math.max(t, 0), 1);
+      const d = Math.hypot(at.x - pts[k].x - c * dx, at.y - pts[k].y - c * dy) * pixels;
+      let index = k + 1;
+      if (k === 0 && t < 0) index = 0;
+      if (k + 2 === pts.length && t > 1) index = pts.length;
+      if (!best || d < best.d) best = {d, curve, index, at};
+    }
+  }
+  if (!best || best.d > 40) {
+    setStatus('double-click nearer a control polygon to add a point');
+    return;
+  }
+  event.preventDefault();
+  insertPoint(best.curve, best.index, best.at.x, best.at.y);
+}
+
 // --- control points dragged on the plot ---
 
 // The plot's control-point circles of each curve whose points the design
@@ -615,6 +821,7 @@ function drag(event, circle) {
     const p = new DOMPoint(e.clientX, e.clientY).matrixTransform(circle.getScreenCTM().inverse());
     return {x: p.x, y: -p.y};
   };
+  const start = {cx: circle.getAttribute('cx'), cy: circle.getAttribute('cy')};
   const move = (e) => {
     const p = model(e);
     circle.setAttribute('cx', String(p.x));
@@ -623,10 +830,15 @@ function drag(event, circle) {
   const drop = (e) => {
     circle.removeEventListener('pointermove', move);
     circle.removeEventListener('pointerup', drop);
+    // A click (a double-click's halves) moves nothing.
+    if (Math.hypot(e.clientX - event.clientX, e.clientY - event.clientY) < 2) {
+      circle.setAttribute('cx', start.cx);
+      circle.setAttribute('cy', start.cy);
+      return;
+    }
     const p = model(e);
-    const round = (v) => Number(v.toPrecision(6));
     remember();
-    state.overrides[circle.dataset.key] = `[${round(p.x)}, ${round(p.y)}]`;
+    state.overrides[circle.dataset.key] = `[${round6(p.x)}, ${round6(p.y)}]`;
     state.lastChanged = circle.dataset.key;
     requestBuild();
   };
@@ -684,14 +896,33 @@ function finishLane(kind) {
 }
 
 // The plot of an answer, with its draggable points where that answer's values
-// put them, and a kitchen's slab layout (its pieces as nested) below the 3D view.
-function showPlot(svg, controlPoints, layoutSvg) {
-  state.plotSvg = svg;
-  $('plot').innerHTML = svg;
-  enableDragging(controlPoints);
+// put them; below the 3D view, a kitchen's slab layout (its pieces as nested)
+// and a countertop's router paths (each program's tool-centre path over the
+// loops it cuts, as the toolpath_svg output draws it).
+function showPlot(answer) {
+  state.plotSvg = answer.plot_svg;
+  $('plot').innerHTML = answer.plot_svg;
+  enableDragging(answer.control_points);
+  showPoints(answer.control_points ?? state.design?.control_points);
   const layout = $('layout');
-  layout.hidden = !layoutSvg;
-  layout.innerHTML = layoutSvg ?? '';
+  layout.hidden = !answer.layout_svg;
+  layout.innerHTML = answer.layout_svg ?? '';
+  const router = $('router');
+  const programs = answer.router_paths ?? [];
+  router.hidden = programs.length === 0;
+  router.replaceChildren();
+  for (const program of programs) {
+    const figure = document.createElement('figure');
+    figure.className = 'router-path';
+    figure.dataset.program = program.program;
+    const caption = document.createElement('figcaption');
+    caption.textContent = `router path: ${program.program}.nc` +
+        (program.parts.length ? ` (${program.parts.join(', ')})` : '');
+    figure.innerHTML = program.svg;
+    figure.prepend(caption);
+    router.append(figure);
+  }
+  state.routerPrograms = programs.map((p) => p.program);
 }
 
 async function draftBuild() {
@@ -710,7 +941,7 @@ async function draftBuild() {
       return;
     }
     clearErrors();
-    showPlot(json.plot_svg, json.control_points, json.layout_svg);
+    showPlot(json);
     showDraftReport(json);
     placeMesh(object, json.mesh, true);
     state.shownChange = change;
@@ -748,9 +979,10 @@ async function build() {
       if (change >= state.shownChange) {  // a draft of newer values may have come while the mesh loaded
         clearErrors();
         state.error = null;
-        showPlot(json.plot_svg, json.control_points, json.layout_svg);
+        showPlot(json);
         timings.plot = since();
         showReport(json.report, json.build_ms);
+        if (json.shape_parameters) showShapes(json.shape_parameters);
         state.lastReport = json.report;
         if (state.syncParameters) {
           syncFields(json.report.parameters);
@@ -794,7 +1026,7 @@ async function build() {
 // A draft of values that do not build: the last proven build's plot, report and mesh again.
 function restoreProven() {
   if (!proven) return;
-  showPlot(proven.plot_svg, proven.control_points, proven.layout_svg);
+  showPlot(proven);
   showReport(proven.report, proven.build_ms);
   if (view.proven) placeMesh(view.proven, proven.mesh, false);
   state.shownChange = state.provenChange;
@@ -887,6 +1119,7 @@ document.addEventListener('keydown', onKey);
 $('parameter-set').addEventListener('change', pickSet);
 $('save-set').addEventListener('click', saveSet);
 $('section').addEventListener('change', updateSection);
+$('plot').addEventListener('dblclick', addPointAt);
 $('fair-strain').addEventListener('click', () => fairest('strain'));
 $('fair-cv').addEventListener('click', () => fairest('curvature_variation'));
 $('export').addEventListener('click', exportOutputs);

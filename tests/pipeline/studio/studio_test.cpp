@@ -58,8 +58,48 @@ TEST_CASE("studio: edit_values refuses a value the file does not write", "[studi
       edit_values(kCommentedCup, "cup.yaml", {parse_override("profile=1")}),
       Catch::Contains(
           "cup.yaml:12:3: profile: the value is not a single number, text or [list] on one line"));
-  CHECK_THROWS_AS(edit_values(kCommentedCup, "cup.yaml", {parse_override("profile.points=[[1, 2]]")}),
-                  FileError);
+  // A list whose items are not each on a line of their own is not changed item by item.
+  const std::string nested = "points:\n  - - 1\n    - 2\n  - [3, 4]\n";
+  CHECK_THROWS_WITH(edit_values(nested, "p.yaml", {parse_override("points=[[1, 2]]")}),
+                    Catch::Contains("p.yaml:2:3: points: the value is not a single number"));
+}
+
+TEST_CASE("studio: edit_values adds and deletes a block list's items, keeping the other lines", "[studio]") {
+  // A point added between the second and the third, with its lambda.
+  const std::string added = edit_values(
+      kCommentedCup, "cup.yaml",
+      {parse_override(
+           R"(profile.points=[["=width / 4", "=2 + height"], ["=width / 6", "=2 + height * 3 / 4"], )"
+           R"([1.75, 4.75], ["=width / 3", "=2 + height / 2"], ["=width / 2", "=2 + height / 4"], )"
+           R"(["=width / 4", 2]])"),
+       parse_override("profile.lambdas=[0, 0, 0, 0]")});
+  std::string expected = kCommentedCup;
+  const std::string third = "    - [\"=width / 3\"";
+  expected.insert(expected.find(third), "    - [1.75, 4.75]\n");
+  expected.replace(expected.find("lambdas: [0, 0, 0]"), 18, "lambdas: [0, 0, 0, 0]");
+  CHECK(added == expected);
+  const Design six = load_design_text(added, "cup.yaml");
+  CHECK(std::get<VesselDesign>(six.body).profile.bspline_points.size() == 6);
+  // The first and the fourth deleted, the last moved: their lines go, a new one comes.
+  const std::string deleted = edit_values(
+      kCommentedCup, "cup.yaml",
+      {parse_override(
+           R"(profile.points=[["=width / 6", "=2 + height * 3 / 4"], ["=width / 3", "=2 + height / 2"], )"
+           R"([1.5, 2]])"),
+       parse_override("profile.lambdas=[0]")});
+  CHECK(deleted.find("    - [\"=width / 4\", \"=2 + height\"]\n") == std::string::npos);
+  CHECK(deleted.find("    - [\"=width / 2\"") == std::string::npos);
+  CHECK(
+      deleted.find("    - [\"=width / 3\", \"=2 + height / 2\"]\n    - [1.5, 2]\n  lambdas: [0]   # shape") !=
+      std::string::npos);
+  CHECK(deleted.find("# keep this comment") != std::string::npos);
+  CHECK(std::get<VesselDesign>(load_design_text(deleted, "cup.yaml").body).profile.bspline_points.size() ==
+        3);
+  // Comments between the items stay, and a list that ends the file without a line break still does.
+  const std::string tail = "a: 1\nlist:\n  - 1   # one\n  # the second\n  - 2";
+  CHECK(edit_values(tail, "t.yaml", {parse_override("list=[0, 1, 2, 3]")}) ==
+        "a: 1\nlist:\n  - 0\n  - 1   # one\n  # the second\n  - 2\n  - 3");
+  CHECK(edit_values(tail, "t.yaml", {parse_override("list=[2]")}) == "a: 1\nlist:\n  # the second\n  - 2");
 }
 
 TEST_CASE("studio: every request without the token, or with a foreign Host, is 403", "[studio]") {
@@ -144,7 +184,10 @@ TEST_CASE("studio: the design, a build, its mesh, and bad requests", "[studio]")
   REQUIRE(d["control_points"].size() == 1);
   CHECK(d["control_points"][0]["curve"] == "profile");
   REQUIRE(d["control_points"][0]["points"].size() == 5);
-  CHECK(d["control_points"][0]["points"][2] == Json({{"key", "profile.points[2]"}, {"x", 2.0}, {"y", 4.0}}));
+  CHECK(d["control_points"][0]["points"][2] == Json({{"key", "profile.points[2]"},
+                                                     {"x", 2.0},
+                                                     {"y", 4.0},
+                                                     {"text", R"(["=width / 3", "=2 + height / 2"])"}}));
   CHECK(d["fair_energies"] == Json::array({"strain", "curvature_variation"}));
 
   const auto built =
@@ -366,7 +409,8 @@ TEST_CASE("studio: a T-Bezier curve's given points are draggable, found on the p
   CHECK(d["fair_energies"] == Json::array({"curvature_variation"}));  // T-Bezier: not strain
   // Each segment gives its end point only (G2 joins all round): four points, each where the text writes it.
   REQUIRE(curve["points"].size() == 4);
-  CHECK(curve["points"][1] == Json({{"key", "curve.segments[1].points[0]"}, {"x", 100.0}, {"y", 60.0}}));
+  CHECK(curve["points"][1] ==
+        Json({{"key", "curve.segments[1].points[0]"}, {"x", 100.0}, {"y", 60.0}, {"text", "[100, 60]"}}));
   // Moved up by its -D path, the curve is built again through it: a new plot, a higher top.
   const Json before = json_of(c.Post("/api/build", studio.token(), "{}", "application/json"));
   const Json after =
@@ -375,6 +419,57 @@ TEST_CASE("studio: a T-Bezier curve's given points are draggable, found on the p
   CHECK(after["plot_svg"] != before["plot_svg"]);
   CHECK(after["report"]["bounding_box"]["max"][1].get<double>() >
         before["report"]["bounding_box"]["max"][1].get<double>());
+}
+
+TEST_CASE("studio: a point added is a list override, and the answer offers the new list", "[studio]") {
+  const fs::path design = cup_file("studio_add_point");
+  RunningStudio studio(design.string(), (design.parent_path() / "out").string());
+  httplib::Client c = studio.client();
+  const Json d = json_of(c.Get("/api/design", studio.token()));
+  REQUIRE(d["control_points"].size() == 1);
+  const Json& cup = d["control_points"][0];
+  CHECK(cup["list"] == "profile.points");
+  CHECK(cup["min_points"] == 3);
+  CHECK(cup["points"][1]["text"] == R"(["=width / 6", "=2 + height * 3 / 4"])");
+  CHECK(cup["lambdas"] == Json({{"key", "profile.lambdas"}, {"texts", {"0", "0", "0"}}}));
+  // A sixth point between the second and the third, and its lambda; the third then moved by its own key.
+  const Json body = {
+      {"overrides",
+       {{"profile.points",
+         R"([["=width / 4", "=2 + height"], ["=width / 6", "=2 + height * 3 / 4"], [1.8, 4.6], )"
+         R"(["=width / 3", "=2 + height / 2"], ["=width / 2", "=2 + height / 4"], ["=width / 4", 2]])"},
+        {"profile.lambdas", "[0, 0, 0, 0]"},
+        {"profile.points[2]", "[1.7, 4.6]"}}}};
+  const Json built = json_of(c.Post("/api/build", studio.token(), body.dump(), "application/json"));
+  REQUIRE(built.contains("report"));
+  const Json& after = built["control_points"][0];
+  REQUIRE(after["points"].size() == 6);
+  CHECK(after["points"][2] ==
+        Json({{"key", "profile.points[2]"}, {"x", 1.7}, {"y", 4.6}, {"text", "[1.7, 4.6]"}}));
+  CHECK(after["points"][5]["text"] == R"(["=width / 4", 2])");  // the expressions stay as written
+  CHECK(after["lambdas"]["texts"].size() == 4);
+  // The new lambda has its slider.
+  std::vector<std::string> keys;
+  for (const Json& s : built["shape_parameters"]) keys.push_back(s["key"]);
+  CHECK(keys == std::vector<std::string>{"profile.lambdas[0]", "profile.lambdas[1]", "profile.lambdas[2]",
+                                         "profile.lambdas[3]"});
+  // Saved, the file has the new line and keeps every comment; it builds as the studio did.
+  REQUIRE(c.Post("/api/save", studio.token(), body.dump(), "application/json")->status == 200);
+  const std::string saved = file_text(design);
+  CHECK(saved.find(
+            "    - [\"=width / 6\", \"=2 + height * 3 / 4\"]\n    - [1.7, 4.6]\n    - [\"=width / 3\"") !=
+        std::string::npos);
+  CHECK(saved.find("lambdas: [0, 0, 0, 0]   # shape parameters, in [-8, 1]") != std::string::npos);
+  const Json reread = json_of(c.Get("/api/design", studio.token()));
+  CHECK(reread["control_points"][0]["points"] == after["points"]);
+  // Two points are too few: 422 with the reader's words, nothing saved.
+  const Json two = {{"overrides", {{"profile.points", "[[1, 6], [1, 2]]"}, {"profile.lambdas", "[]"}}}};
+  const auto refused = c.Post("/api/build", studio.token(), two.dump(), "application/json");
+  REQUIRE(refused->status == 422);
+  CHECK_THAT(Json::parse(refused->body)["error"]["message"].get<std::string>(),
+             Catch::Contains("needs at least 3 points"));
+  CHECK(c.Post("/api/save", studio.token(), two.dump(), "application/json")->status == 422);
+  CHECK(file_text(design) == saved);
 }
 
 TEST_CASE("studio: a profile through points drags the points it passes through", "[studio]") {
@@ -388,7 +483,8 @@ TEST_CASE("studio: a profile through points drags the points it passes through",
   CHECK(curve["group"] == "through-points");   // the plot's dots on the curve, not its control polygon
   CHECK(d["fair_energies"] == Json::array());  // fairing would move the curve off its points
   REQUIRE(curve["points"].size() == 5);
-  CHECK(curve["points"][2] == Json({{"key", "profile.through[2]"}, {"x", 4.6}, {"y", 13.0}}));
+  CHECK(curve["points"][2] ==
+        Json({{"key", "profile.through[2]"}, {"x", 4.6}, {"y", 13.0}, {"text", "[4.6, 13]"}}));
   const Json before = json_of(c.Post("/api/build", studio.token(), "{}", "application/json"));
   CHECK_THAT(before["plot_svg"].get<std::string>(),
              Catch::Contains("<g class=\"through-points\" data-name=\"profile\" data-points=\"5\""));
@@ -428,11 +524,42 @@ TEST_CASE("studio: a kitchen shows its pieces apart and its slab layout", "[stud
   const BoundingBox box = bounding_box(shown.vertices);
   const double top_width = b["report"]["bounding_box"]["size"][0].get<double>() * metres_per_unit("mm");
   CHECK(box.hi.x() - box.lo.x() > 1.04 * top_width);
-  // Any other design has none.
+  // One router path per slab, named as its program file, with the pieces on it.
+  REQUIRE(b["router_paths"].size() == kitchen["slabs"].get<std::size_t>());
+  std::size_t placed = 0;
+  for (std::size_t s = 0; s < b["router_paths"].size(); ++s) {
+    const Json& program = b["router_paths"][s];
+    CHECK(program["program"] == fmt::format("kitchen_l.slab-{}", s + 1));
+    placed += program["parts"].size();
+    CHECK_THAT(program["svg"].get<std::string>(), Catch::Contains("id=\"path-0\""));
+  }
+  CHECK(placed == kitchen["pieces"].size());
+  // Any other design has no layout, and one without `cnc` no router path.
   RunningStudio cup(example("vessel_golden_solid.yaml"), (dir / "cup").string());
   httplib::Client cc = cup.client();
   const Json v = json_of(cc.Post("/api/build", cup.token(), "{}", "application/json"));
   CHECK(v["layout_svg"].is_null());
+  CHECK(v["router_paths"] == Json::array());
+}
+
+TEST_CASE("studio: a countertop with cnc shows its router path, drawn as its toolpath_svg output",
+          "[studio]") {
+  const fs::path dir = fresh_dir("studio_router");
+  RunningStudio studio(example("countertop_cnc.yaml"), (dir / "out").string());
+  httplib::Client c = studio.client();
+  const Json b = json_of(c.Post("/api/build", studio.token(), "{}", "application/json"));
+  REQUIRE(b["router_paths"].size() == 1);
+  const Json& program = b["router_paths"][0];
+  CHECK(program["program"] == "countertop_cnc");
+  CHECK(program["parts"] == Json::array());
+  // The same drawing export writes as the toolpath_svg output.
+  const Json exported = json_of(c.Post("/api/export", studio.token(), "{}", "application/json"));
+  CHECK(program["svg"] == file_text(dir / "out" / "countertop_cnc.toolpath.svg"));
+  // A wider tool moves the path: drawn anew with the override.
+  const Json wider = json_of(c.Post("/api/build", studio.token(),
+                                    R"({"overrides": {"cnc.tool_diameter": 16}})", "application/json"));
+  REQUIRE(wider["router_paths"].size() == 1);
+  CHECK(wider["router_paths"][0]["svg"] != program["svg"]);
 }
 
 TEST_CASE("studio: parameter sets are listed, picked by override, and saved as a new set", "[studio]") {
