@@ -202,11 +202,17 @@ std::string size_caption(const TriangleSoup& soup, const std::string& units) {
 
 namespace {
 
+// `part` moved by `shift` at the end of the scene, under its name.
+void add_part(ExplodedScene& scene, const Part& part, const Vec3& shift) {
+  append_shifted(scene.soup, part.mesh, shift);
+  scene.parts.push_back({part.name, part.mesh.triangles.size()});
+}
+
 // A kitchen's pieces apart: each top piece moved away from the top's middle
 // by a twentieth of its size (the seams open), the backsplash strips (built
 // at the origin) in a row beyond the top's far edge.
-TriangleSoup kitchen_scene(const Result& result, const KitchenProducts& k) {
-  TriangleSoup scene;
+ExplodedScene kitchen_scene(const Result& result, const KitchenProducts& k) {
+  ExplodedScene scene;
   const Part* own = product(result);
   if (own == nullptr) return scene;
   const BoundingBox top = bounding_box(own->mesh.vertices);
@@ -219,32 +225,37 @@ TriangleSoup kitchen_scene(const Result& result, const KitchenProducts& k) {
     });
     if (part == result.parts.end()) continue;
     if (piece.strip) {
-      append_shifted(scene, part->mesh, Vec3(x, top.hi.y() + gap, 0.0));
+      add_part(scene, *part, Vec3(x, top.hi.y() + gap, 0.0));
       x += bounding_box(part->mesh.vertices).hi.x() + gap;
       continue;
     }
     const BoundingBox box = bounding_box(part->mesh.vertices);
     const Vec3 out = 0.5 * (box.lo + box.hi) - middle;
     const Vec3 flat(out.x(), out.y(), 0.0);
-    append_shifted(scene, part->mesh, flat.norm() > 0.0 ? Vec3(gap * flat.normalized()) : Vec3::Zero());
+    add_part(scene, *part, flat.norm() > 0.0 ? Vec3(gap * flat.normalized()) : Vec3::Zero());
   }
   return scene;
 }
 
 }  // namespace
 
-TriangleSoup exploded_scene(const Result& result) {
+TriangleSoup exploded_scene(const Result& result) { return exploded_scene_parts(result).soup; }
+
+ExplodedScene exploded_scene_parts(const Result& result) {
   if (const auto* countertop = std::get_if<CountertopProducts>(&result.products);
       countertop != nullptr && countertop->kitchen) {
     return kitchen_scene(result, *countertop->kitchen);
   }
+  ExplodedScene scene;
   const Part* own = product(result);
-  TriangleSoup scene = own != nullptr ? own->mesh : TriangleSoup{};
+  if (own == nullptr) return scene;
+  scene.soup = own->mesh;  // where it is, unmoved
+  scene.parts.push_back({own->name, own->mesh.triangles.size()});
   std::vector<const Part*> mould;  // in the order built
   for (const Part& p : result.parts) {
     if (p.role == PartRole::MouldSide || p.role == PartRole::MouldBase) mould.push_back(&p);
   }
-  if (mould.empty() || own == nullptr) return scene;
+  if (mould.empty()) return scene;
   // Every part moved away from the vessel by the mould's radius (sides, along
   // their middle's direction from the axis) or half its height (the base).
   const BoundingBox product = bounding_box(own->mesh.vertices);
@@ -265,7 +276,7 @@ TriangleSoup exploded_scene(const Result& result) {
     const Vec3 out(centre.x(), centre.y(), 0.0);
     Vec3 shift(0.0, 0.0, centre.z() < 0.5 * (product.lo.z() + product.hi.z()) ? -0.5 * height : 0.5 * height);
     if (out.norm() > 1e-9 * radius) shift = out.normalized() * radius;
-    append_shifted(scene, part, shift);
+    add_part(scene, *named, shift);
   }
   return scene;
 }

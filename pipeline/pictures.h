@@ -62,6 +62,19 @@ std::string size_caption(const TriangleSoup& soup, const std::string& units);
 /// backsplash strips in a row beyond its far edge.
 TriangleSoup exploded_scene(const Result& result);
 
+/// exploded_scene, and which triangles are whose: the parts in the scene's
+/// order, each its Part::name and how many triangles it has there (the
+/// product, then each mould part; a kitchen's pieces and strips).
+struct ExplodedScene {
+  TriangleSoup soup;
+  struct Range {
+    std::string name;
+    std::size_t triangles = 0;
+  };
+  std::vector<Range> parts;
+};
+ExplodedScene exploded_scene_parts(const Result& result);
+
 /// A design's preview (the `preview` command and the `png` output): its mesh;
 /// with a mould, the mould's parts beside it, exploded apart (exploded_scene),
 /// so each can be seen; a vessel's

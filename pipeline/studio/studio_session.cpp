@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <exception>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -559,6 +560,7 @@ StudioResponse StudioSession::build(const std::string& request_body) {
     std::string plot_svg;
     std::optional<std::string> layout_svg;  // a kitchen's slabs
     Json router_paths = Json::array();      // a countertop's router programs, drawn
+    Json mesh_parts = Json::array();        // the mesh's parts, when it has several
     std::size_t triangles = 0;
     const auto show = [&](const Result& built) {
       auto lap = std::chrono::steady_clock::now();
@@ -589,9 +591,19 @@ StudioResponse StudioSession::build(const std::string& request_body) {
         GlbOptions glb_options;
         glb_options.name = design.common.name;
         glb_options.scale_to_metres = metres_per_unit(design.common.units);
-        const TriangleSoup scene = exploded_scene(built);  // a mould's parts apart, as in the preview
-        triangles = scene.triangles.size();
-        glb = encode_glb(scene, glb_options);
+        // A mould's parts apart, as in the preview; several parts are one
+        // primitive each, named by its material, so the page can hide them.
+        const ExplodedScene scene = exploded_scene_parts(built);
+        triangles = scene.soup.triangles.size();
+        if (scene.parts.size() > 1) {
+          for (const ExplodedScene::Range& part : scene.parts) {
+            glb_options.face_materials.insert(glb_options.face_materials.end(), part.triangles,
+                                              static_cast<std::uint32_t>(glb_options.materials.size()));
+            glb_options.materials.push_back({part.name, {0.8, 0.8, 0.8, 1.0}});
+            mesh_parts.push_back(part.name);
+          }
+        }
+        glb = encode_glb(scene.soup, glb_options);
         stages["mesh"] = elapsed_ms(lap);
       }
     };
@@ -625,6 +637,7 @@ StudioResponse StudioSession::build(const std::string& request_body) {
     j["shape_parameters"] = shape_parameters(design);
     j["layout_svg"] = layout_svg ? Json(*layout_svg) : Json(nullptr);
     j["router_paths"] = std::move(router_paths);
+    j["mesh_parts"] = std::move(mesh_parts);
     j["mesh"] = nullptr;
     if (glb) {
       const std::lock_guard<std::mutex> lock(mutex_);

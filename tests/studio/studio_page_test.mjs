@@ -641,6 +641,39 @@ try {
     }
   });
 
+  await check('a mould\'s parts are hidden one by one, and stay hidden while values change', async () => {
+    assert.equal(await page.$eval('#parts', (e) => e.hidden), true);  // the cup alone: one part
+    const mould = path.join(workDir, 'mould.yaml');
+    fs.copyFileSync(path.join(sourceDir, 'configs/examples/mould_golden.yaml'), mould);
+    const studio = startStudio(mould, path.join(workDir, 'mould-out'));
+    try {
+      const {page: mp, errors: merrors} = await newPage();
+      await mp.goto(await studio.url, {waitUntil: 'load'});
+      await mp.waitForFunction(() => window.fabmeshStudio?.validBuilds >= 1, {timeout: 120000});
+      const names = await mp.$$eval('#parts input', (l) => l.map((c) => c.dataset.part));
+      assert.deepEqual(names, ['mould_golden', 'side-1', 'side-2']);
+      assert.deepEqual(await mp.evaluate(() => window.fabmeshStudio.shownParts), names);
+      await mp.click('#parts input[data-part="side-1"]');
+      assert.deepEqual(await mp.evaluate(() => window.fabmeshStudio.shownParts), ['mould_golden', 'side-2']);
+      // A new build (a lambda moved) keeps it hidden.
+      const before = await mp.evaluate(() => window.fabmeshStudio.validBuilds);
+      await mp.$eval('#field-profile_lambdas_1_ input[type=number]', (input) => {
+        input.value = '-1';
+        input.dispatchEvent(new Event('change'));
+      });
+      await mp.waitForFunction((n) => window.fabmeshStudio.validBuilds > n, {timeout: 120000}, before);
+      assert.deepEqual(await mp.evaluate(() => window.fabmeshStudio.shownParts), ['mould_golden', 'side-2']);
+      assert.equal(await mp.$eval('#parts input[data-part="side-1"]', (c) => c.checked), false);
+      await mp.click('#parts input[data-part="side-1"]');
+      assert.deepEqual(await mp.evaluate(() => window.fabmeshStudio.shownParts), names);
+      assert.deepEqual(merrors, []);
+      await mp.close();
+    } finally {
+      studio.child.kill('SIGTERM');
+      assert.equal(await studio.exit, 0);
+    }
+  });
+
   await check('a choice is a list and a switch a checkbox; each change builds, and undoes', async () => {
     const chosen = path.join(workDir, 'chosen.yaml');
     fs.writeFileSync(chosen, [

@@ -436,6 +436,46 @@ function showDraftReport(answer) {
 
 // --- the 3D view (three.js, loaded on demand: the page works without it) ---
 
+// The parts of a mesh that has several (a mould's, a kitchen's pieces), each
+// shown or hidden with its checkbox; the choice stays while values change.
+state.meshParts = [];    // the shown mesh's parts (an answer's mesh_parts)
+state.hiddenParts = [];  // the names hidden
+
+function showParts(names) {
+  state.meshParts = names ?? [];
+  const box = $('parts');
+  box.hidden = state.meshParts.length < 2;
+  const layout = JSON.stringify(state.meshParts);
+  if (box.dataset.layout === layout) return;
+  box.dataset.layout = layout;
+  box.replaceChildren();
+  for (const name of state.meshParts) {
+    const label = document.createElement('label');
+    const check = document.createElement('input');
+    check.type = 'checkbox';
+    check.checked = !state.hiddenParts.includes(name);
+    check.dataset.part = name;
+    check.addEventListener('change', () => {
+      state.hiddenParts = state.hiddenParts.filter((n) => n !== name);
+      if (!check.checked) state.hiddenParts.push(name);
+      if (view.object) applyHiddenParts(view.object);
+      render();
+    });
+    label.append(check, ` ${name}`);
+    box.append(label);
+  }
+}
+
+function applyHiddenParts(object) {
+  const shown = [];
+  object.traverse((node) => {
+    if (!node.isMesh || !node.userData.part) return;
+    node.visible = !state.hiddenParts.includes(node.userData.part);
+    if (node.visible) shown.push(node.userData.part);
+  });
+  state.shownParts = shown;  // the parts drawn (the tests read it)
+}
+
 // object: the mesh shown; proven: the last proven build's (kept while a draft is shown); closed:
 // the last proven mesh is valid for fabrication (closed, outward), as its draft is taken to be.
 const view = {three: null, renderer: null, scene: null, camera: null, controls: null, loader: null, object: null,
@@ -557,7 +597,13 @@ function placeMesh(object, url, draft) {
   view.object = object;
   for (const o of old) if (o && o !== view.object && o !== view.proven) disposeObject(o);
   if (!view.renderer) return;
-  object.traverse((node) => { if (node.isMesh) node.material = view.material; });
+  object.traverse((node) => {
+    if (!node.isMesh) return;
+    // A part's primitive carries its name as its material's (mesh_parts).
+    node.userData.part = node.material?.name ?? '';
+    node.material = view.material;
+  });
+  applyHiddenParts(object);
   view.scene.add(object);
   if (first) {
     const THREE = view.three;
@@ -943,6 +989,7 @@ async function draftBuild() {
     clearErrors();
     showPlot(json);
     showDraftReport(json);
+    showParts(json.mesh_parts);
     placeMesh(object, json.mesh, true);
     state.shownChange = change;
     state.drafts += 1;
@@ -991,6 +1038,7 @@ async function build() {
         timings.report = since();
         view.closed = json.report.purpose === 'fabrication' && json.report.valid === true;
         updateMaterial();
+        showParts(json.mesh_parts);
         if (object) placeMesh(object, json.mesh, false);
         state.shownChange = change;
         state.provenChange = change;
@@ -1028,6 +1076,7 @@ function restoreProven() {
   if (!proven) return;
   showPlot(proven);
   showReport(proven.report, proven.build_ms);
+  showParts(proven.mesh_parts);
   if (view.proven) placeMesh(view.proven, proven.mesh, false);
   state.shownChange = state.provenChange;
 }

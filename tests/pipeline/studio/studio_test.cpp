@@ -281,6 +281,24 @@ TEST_CASE("studio: a mould's parts are in the mesh, exploded apart beside the ve
   const BoundingBox box = bounding_box(shown.vertices);
   const double vessel_width = report["bounding_box"]["size"][0].get<double>() * metres_per_unit("cm");
   CHECK(box.hi.x() - box.lo.x() > 2.0 * vessel_width);
+  // Each part is a primitive of its own, named by its material, for the page to hide.
+  std::vector<std::string> names{report["name"].get<std::string>()};
+  for (const Json& part : report["build"]["mould"]["parts"]) names.push_back(part["name"]);
+  CHECK(b["mesh_parts"] == Json(names));
+  const std::string& bytes = glb->body;
+  const std::uint32_t json_length = static_cast<unsigned char>(bytes[12]) |
+                                    (static_cast<unsigned char>(bytes[13]) << 8U) |
+                                    (static_cast<unsigned char>(bytes[14]) << 16U);
+  const Json gltf = Json::parse(bytes.substr(20, json_length));
+  REQUIRE(gltf["meshes"][0]["primitives"].size() == names.size());
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    const std::size_t material = gltf["meshes"][0]["primitives"][i]["material"];
+    CHECK(gltf["materials"][material]["name"] == names[i]);
+  }
+  // A vessel alone is one part: no list.
+  RunningStudio cup(example("vessel_golden_solid.yaml"), (dir / "cup").string());
+  httplib::Client cc = cup.client();
+  CHECK(json_of(cc.Post("/api/build", cup.token(), "{}", "application/json"))["mesh_parts"] == Json::array());
 }
 
 TEST_CASE("studio: a value that breaks the design is 422 with the command line's message", "[studio]") {
