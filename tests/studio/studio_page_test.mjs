@@ -153,6 +153,17 @@ try {
     assert.match(shown.plotSvg, /<svg/);
     assert.ok(shown.meshSignature.length > 0);
     assert.equal(await page.$eval('#plot svg', (e) => e.tagName.toLowerCase()), 'svg');
+    // The plot in the page answers questions: the axis, coordinates with units, height and widest diameter.
+    const plotted = await page.$eval('#plot svg', (svg) => ({
+      axis: svg.querySelectorAll('g.axis').length,
+      names: [...svg.querySelectorAll('text.axis-name')].map((t) => t.textContent),
+      dimensions: [...svg.querySelectorAll('g.dimension')].map((g) => [g.dataset.name, Number(g.dataset.value)]),
+    }));
+    assert.equal(plotted.axis, 1);
+    assert.deepEqual(plotted.names, ['r (cm)', 'z (cm)']);
+    assert.deepEqual(plotted.dimensions.map(([name]) => name), ['height', 'widest diameter']);
+    assert.equal(plotted.dimensions[0][1], 4);
+    assert.ok(Math.abs(plotted.dimensions[1][1] - 5.1926) < 1e-3, `widest diameter ${plotted.dimensions[1][1]}`);
     assert.match(await page.$eval('#report', (e) => e.textContent), /valid for fabrication/);
     // The print checks of the vessel printed upright: the cup flares out at 56 degrees from its foot.
     assert.match(await page.$eval('#report', (e) => e.textContent),
@@ -295,6 +306,20 @@ try {
     assert.match(fs.readFileSync(design, 'utf8'), /\n  tall_wide: \{height: 8, width: 7\}\n/);
     await page.waitForFunction(() => document.querySelector('#parameter-set').value === 'tall_wide',
                                {timeout: 120000});
+    // The page's export of the new set is what `fabmesh run -P tall_wide` of the saved file writes, byte for byte.
+    await page.waitForFunction(() => window.fabmeshStudio.change === window.fabmeshStudio.settledChange,
+                               {timeout: 120000});
+    await page.evaluate(() => { window.statuses.length = 0; });
+    await page.click('#export');
+    await page.waitForFunction(() => window.statuses.some((t) => /^exported \d+ files/.test(t)), {timeout: 120000});
+    const files = await page.$$eval('#exported li', (l) => l.map((li) => li.textContent));
+    assert.ok(files.length > 0);
+    const bySet = path.join(workDir, 'by-set');
+    execFileSync(fabmesh, ['run', '-q', design, '-P', 'tall_wide', '-o', bySet]);
+    assert.deepEqual(fs.readdirSync(bySet).sort(), files.map((f) => path.basename(f)).sort());
+    for (const f of files) {
+      assert.ok(fs.readFileSync(path.join(bySet, path.basename(f))).equals(fs.readFileSync(f)), f);
+    }
   });
 
   await check('undo, redo and reset: Ctrl-Z, Ctrl-Shift-Z and the file\'s values', async () => {
