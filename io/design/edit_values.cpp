@@ -175,7 +175,15 @@ std::string flow_text(const YAML::Node& value) {
   }
   if (value.IsMap()) {
     for (const auto& kv : value) {
-      out += (out.empty() ? "" : ", ") + flow_text(kv.first) + ": " + flow_text(kv.second);
+      // A key that is a plain name stays plain ("continuity"), as designs write keys.
+      const std::string& key = kv.first.Scalar();
+      const bool plain =
+          kv.first.IsScalar() && !key.empty() && !is_number(key) &&
+          key.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_") ==
+              std::string::npos &&
+          key != "true" && key != "false" && key != "null" && key != "yes" && key != "no" && key != "on" &&
+          key != "off" && key != "y" && key != "n" && key != "~";
+      out += (out.empty() ? "" : ", ") + (plain ? key : flow_text(kv.first)) + ": " + flow_text(kv.second);
     }
     return "{" + out + "}";
   }
@@ -249,32 +257,37 @@ std::size_t block_map_end(const std::string& text, int line, int column) {
 std::optional<std::vector<std::string>> flow_items(const std::string& value) {
   const std::size_t open = value.find_first_not_of(" \t");
   if (open == std::string::npos || value[open] != '[') return std::nullopt;
-  const std::size_t close = flow_sequence_end(value, open);
-  if (close == std::string::npos || value.find_first_not_of(" \t", close) != std::string::npos)
-    return std::nullopt;
   std::vector<std::string> items;
   const auto add = [&](std::size_t from, std::size_t to) {
     const std::size_t b = value.find_first_not_of(" \t", from);
     const std::size_t e = value.find_last_not_of(" \t", to - 1);
     if (b != std::string::npos && b < to) items.push_back(value.substr(b, e + 1 - b));
   };
-  int depth = 0;
+  int depth = 0;  // of lists and maps
   std::size_t start = open + 1;
-  for (std::size_t i = open + 1; i + 1 < close; ++i) {
+  for (std::size_t i = open; i < value.size(); ++i) {
     const char c = value[i];
     if (c == '"' || c == '\'') {
-      i = quoted_end(value, i) - 1;  // the list ends, so its quotes do
-    } else if (c == '[') {
+      i = quoted_end(value, i);
+      if (i == std::string::npos) return std::nullopt;
+      --i;
+    } else if (c == '[' || c == '{') {
       ++depth;
-    } else if (c == ']') {
-      --depth;
-    } else if (c == ',' && depth == 0) {
+    } else if (c == ']' || c == '}') {
+      if (--depth < 0) return std::nullopt;
+      if (depth == 0) {
+        if (c != ']' || value.find_first_not_of(" \t", i + 1) != std::string::npos) return std::nullopt;
+        add(start, i);
+        return items;
+      }
+    } else if (c == ',' && depth == 1) {
       add(start, i);
       start = i + 1;
+    } else if (c == '#' || c == '\n') {
+      return std::nullopt;
     }
   }
-  add(start, close - 1);
-  return items;
+  return std::nullopt;
 }
 
 // The offset where the line holding `offset` starts, and where the next one does.
@@ -284,40 +297,54 @@ std::pair<std::size_t, std::size_t> line_of(const std::string& text, std::size_t
   return {begin, end == std::string::npos ? text.size() : end + 1};
 }
 
-// `text` with the block list at `o.path` (`- item` lines) changed into the
+// `text` with the block list at `o.path` (`- item` items) changed into the
 // flow list `o.value` item by item: the items both lists have, in the same
-// order, keep their lines (and comments) as written; the others' lines go,
-// and new items get lines of their own, indented as their neighbours. The
-// edit a designer makes when adding or deleting a control point. Nullopt
-// when the list is not written so (an item over several lines, two on a
-// line): the caller then refuses the edit.
+// order, keep their lines (and comments) as written, an item over several
+// lines (a segment's map) all of them; the others' lines go, and new items
+// get a line of their own, in flow style, indented as their neighbours. The
+// edit a designer makes when adding or deleting a control point or a
+// segment. Nullopt when the list is not written so (an item not on its
+// dash's line): the caller then refuses the edit.
 std::optional<std::string> edit_block_list(const std::string& text, const std::string& file,
                                            const YAML::Node& old, const YAML::Node& wanted,
                                            const Override& o) {
   const std::optional<std::vector<std::string>> given = flow_items(o.value);
   if (!given || given->size() != wanted.size() || old.size() == 0) return std::nullopt;
   struct Item {
-    std::size_t line_begin, line_end;  // its line, with its comment
+    std::size_t line_begin, line_end;  // its lines, from its dash to its last, with their comments
     std::string prefix;                // the indentation and "- " before it
+    std::size_t dash;                  // the dash's column
   };
   std::vector<Item> items;
   for (std::size_t i = 0; i < old.size(); ++i) {
-    ValueSpan span;
-    try {
-      span = value_span(text, file, fmt::format("{}[{}]", o.path, i));
-    } catch (const FileError&) {
-      return std::nullopt;
-    }
-    const auto [begin, end] = line_of(text, span.begin);
-    const std::string prefix = text.substr(begin, span.begin - begin);
+    const YAML::Mark mark = old[i].Mark();
+    const std::optional<std::size_t> at = offset_of(text, mark.line, mark.column);
+    if (!at) return std::nullopt;
+    const auto [begin, end] = line_of(text, *at);
+    const std::string prefix = text.substr(begin, *at - begin);
     const std::size_t dash = prefix.find_first_not_of(' ');
-    const bool alone = dash != std::string::npos && prefix[dash] == '-' &&
-                       prefix.find_first_not_of(' ', dash + 1) == std::string::npos &&
-                       prefix.size() > dash + 1;
-    const std::size_t rest = text.find_first_not_of(" \t", span.end);
-    const bool ends = rest == std::string::npos || rest >= end || text[rest] == '#' || text[rest] == '\n';
-    if (!alone || !ends || (!items.empty() && begin < items.back().line_end)) return std::nullopt;
-    items.push_back({begin, end, prefix});
+    // The item starts on its dash's line: "  - item".
+    const bool after_dash = dash != std::string::npos && prefix[dash] == '-' &&
+                            prefix.find_first_not_of(' ', dash + 1) == std::string::npos &&
+                            prefix.size() > dash + 1;
+    if (!after_dash || (!items.empty() && begin < items.back().line_end)) return std::nullopt;
+    items.push_back({begin, end, prefix, dash});
+  }
+  // Each item's last line: the last one before the next item (or the list's
+  // end) indented beyond its dash, comment lines aside (a comment between two
+  // items stays between them).
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    const std::size_t limit = i + 1 < items.size() ? items[i + 1].line_begin : text.size();
+    for (std::size_t next = items[i].line_end; next < limit;) {
+      std::size_t stop = text.find('\n', next);
+      stop = stop == std::string::npos ? text.size() : std::min(stop + 1, limit);
+      const std::size_t content = text.find_first_not_of(" \t\r\n", next);
+      if (content != std::string::npos && content < stop && text[content] != '#') {
+        if (content - next <= items[i].dash) break;  // a line of the block around the list
+        items[i].line_end = stop;
+      }
+      next = stop;
+    }
   }
   // The longest run of items kept in order (equal values), by dynamic programming.
   const std::size_t n = old.size(), m = wanted.size();
@@ -341,13 +368,13 @@ std::optional<std::string> edit_block_list(const std::string& text, const std::s
       edited += prefix + (*given)[j++] + "\n";  // a new item, indented as the one before it
       continue;
     }
+    // What lies between the previous item and this one (a comment line) stays, above it.
+    if (i > 0) edited += t.substr(items[i - 1].line_end, items[i].line_begin - items[i - 1].line_end);
     if (kept) {
       edited += t.substr(items[i].line_begin, items[i].line_end - items[i].line_begin);
       ++j;
-    }  // else the old item's line goes
+    }  // else the old item's lines go
     prefix = items[i].prefix;
-    // What lies between this item and the next (a comment line) stays.
-    if (i + 1 < n) edited += t.substr(items[i].line_end, items[i + 1].line_begin - items[i].line_end);
     ++i;
   }
   edited += t.substr(items.back().line_end);
@@ -445,6 +472,18 @@ ValueSpan value_span(const std::string& text, const std::string& file, const std
         fmt::format("{}: {}: the value is not written on one line; edit it in the file", where, full));
   }
   return ValueSpan{*begin, end, mark.line + 1, mark.column + 1};
+}
+
+std::vector<std::pair<std::string, std::string>> flow_entries(const std::string& text,
+                                                              const std::string& file,
+                                                              const std::string& path) {
+  const YAML::Node root = load_text(text, file);
+  const YAML::Node node = node_at(root, value_path(root, path));
+  if (!node.IsDefined() || !node.IsMap())
+    throw FileError(file, 0, 0, fmt::format("{}: {}: the design writes no map there", file, path));
+  std::vector<std::pair<std::string, std::string>> out;
+  for (const auto& entry : node) out.emplace_back(entry.first.Scalar(), flow_text(entry.second));
+  return out;
 }
 
 std::string add_parameter_set(const std::string& text, const std::string& file, const std::string& name,

@@ -41,6 +41,16 @@ ValueSpan value_span(const std::string& text, const std::string& file, const std
 std::string edit_values(const std::string& text, const std::string& file,
                         const std::vector<Override>& values);
 
+/// The entries of the map at `path` (a -D path, "outline.segments[1]") in
+/// `text`, in the order written, each value as YAML on one line that reads
+/// back the same anywhere (numbers plain, other scalars double-quoted, lists
+/// and maps in flow style): a composite's segment as the studio rewrites it
+/// when a segment is added or deleted.
+/// \throw FileError when the text is not YAML or has no map at the path
+std::vector<std::pair<std::string, std::string>> flow_entries(const std::string& text,
+                                                              const std::string& file,
+                                                              const std::string& path);
+
 /// `text` with the parameter set `name` added to its `parameter_sets`, its
 /// values (parameter, value as YAML on one line) in order: as the map's last
 /// entry, on its own line in a block map or before the closing brace of a

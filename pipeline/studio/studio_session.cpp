@@ -330,17 +330,46 @@ Json draggable_points(const Design& design, const std::string& text) {
       out.push_back(std::move(curve));
       continue;
     }
+    // A composite of cubic segments the file writes whole, each point as a
+    // value: its segments too, which adding or deleting a segment replaces.
+    bool whole = !c.spec.segments.empty();
+    Json segments = Json::array();
     for (const SegmentSpec& s : c.spec.segments) {
-      if ((s.kind != SegmentKind::TBezier && s.kind != SegmentKind::HBezier) || s.key.empty()) continue;
+      if ((s.kind != SegmentKind::TBezier && s.kind != SegmentKind::HBezier) || s.key.empty()) {
+        whole = false;
+        continue;
+      }
+      Json keys = Json::array();
       for (std::size_t j = 0; j < s.points.size(); ++j) {
         const std::string key = fmt::format("{}.points[{}]", s.key, j);
         const Vec2& p = s.points[j];
         const std::string as_written = written(key);
-        if (!as_written.empty())
-          points.push_back({{"key", key}, {"x", p.x()}, {"y", p.y()}, {"text", as_written}});
+        if (as_written.empty()) {
+          whole = false;
+          continue;
+        }
+        points.push_back({{"key", key}, {"x", p.x()}, {"y", p.y()}, {"text", as_written}});
+        keys.push_back(key);
+      }
+      if (!whole) continue;
+      try {
+        Json entries = Json::array();
+        for (const auto& [name, value] : flow_entries(text, design.common.path, s.key))
+          entries.push_back({name, value});
+        segments.push_back(
+            {{"key", s.key}, {"entries", entries}, {"points", keys}, {"joined", s.join.has_value()}});
+      } catch (const FileError&) {
+        whole = false;  // a segment written as an expression: not rewritten
       }
     }
-    if (!points.empty()) out.push_back({{"curve", c.name}, {"by", "position"}, {"points", points}});
+    if (points.empty()) continue;
+    Json curve = {{"curve", c.name}, {"by", "position"}, {"points", points}};
+    if (whole) {
+      const std::string& first = c.spec.segments.front().key;
+      curve["segments"] = {
+          {"key", first.substr(0, first.rfind('['))}, {"closed", c.spec.closed}, {"items", segments}};
+    }
+    out.push_back(std::move(curve));
   }
   return out;
 }

@@ -640,6 +640,85 @@ try {
     }
   });
 
+  await check('a composite\'s segment added by a double-click, deleted, undone and saved', async () => {
+    const top = path.join(workDir, 'segments.yaml');
+    fs.copyFileSync(path.join(sourceDir, 'configs/examples/countertop_g1.yaml'), top);
+    const fileText = fs.readFileSync(top, 'utf8');
+    const studio = startStudio(top, path.join(workDir, 'segments-out'));
+    try {
+      const {page: sp, errors: serrors} = await newPage();
+      await sp.goto(await studio.url, {waitUntil: 'load'});
+      await sp.waitForFunction(() => window.fabmeshStudio?.validBuilds >= 1, {timeout: 120000});
+      const st = () => sp.evaluate(() => ({...window.fabmeshStudio, design: undefined}));
+      const settled = () => sp.waitForFunction(
+          () => window.fabmeshStudio.change === window.fabmeshStudio.settledChange, {timeout: 120000});
+      const segmentsOf = (s) => s.controlPoints.find((c) => c.curve === 'outline').segments.items;
+      let now = await st();
+      assert.equal(segmentsOf(now).length, 8);
+      // A double-click on the front edge at x = 1000 mm: a segment ends there, before the front edge's.
+      const where = await sp.evaluate(() => {
+        const g = document.querySelector('#plot g.control-polygon[data-name="outline"]');
+        const p = new DOMPoint(1000, -0).matrixTransform(g.getScreenCTM());
+        return {x: p.x, y: p.y};
+      });
+      await sp.mouse.click(where.x, where.y, {count: 2});
+      await sp.waitForFunction(
+          () => window.fabmeshStudio.controlPoints.find((c) => c.curve === 'outline')?.segments.items.length === 9,
+          {timeout: 120000});
+      await settled();
+      now = await st();
+      assert.equal(now.error, null);
+      // The new segment: the front edge's join, ending where the page was clicked (within a few pixels).
+      const m = now.overrides['outline.segments'].match(
+          /^\[\{join: \{continuity: "G1", alpha: 1\}, points: \[\[[-0-9.e]+, [-0-9.e]+\], \[([-0-9.e]+), ([-0-9.e]+)\]\]\}, \{join: \{continuity: "G1", alpha: 1\}, points: \[\[2150, 0\], \[2250, 0\]\]\}, /);
+      assert.ok(m, now.overrides['outline.segments']);
+      assert.ok(Math.abs(Number(m[1]) - 1000) < 60 && Math.abs(Number(m[2])) < 30, `ends at ${m[1]}, ${m[2]}`);
+      const addedReport = now.lastReport;
+      assert.equal(addedReport.valid, true);
+      // Its end point's row deletes it again: the eight segments as the file has them.
+      await sp.click('#field-outline_segments_0__points_1_ button');
+      await sp.waitForFunction(
+          () => window.fabmeshStudio.controlPoints.find((c) => c.curve === 'outline')?.segments.items.length === 8,
+          {timeout: 120000});
+      await settled();
+      now = await st();
+      assert.equal(now.error, null);
+      assert.equal(now.undoDepth, 2);
+      // Undone twice: the file's values; redone once: the added segment, then saved.
+      await sp.click('#undo');
+      await settled();
+      await sp.click('#undo');
+      await settled();
+      assert.deepEqual((await st()).overrides, {});
+      await sp.click('#redo');
+      await settled();
+      now = await st();
+      assert.equal(segmentsOf(now).length, 9);
+      assert.equal(fs.readFileSync(top, 'utf8'), fileText);
+      await sp.evaluate(() => {
+        window.statuses = [];
+        new MutationObserver(() => window.statuses.push(document.getElementById('status').textContent))
+            .observe(document.getElementById('status'), {childList: true, characterData: true, subtree: true});
+      });
+      await sp.click('#save');
+      await sp.waitForFunction(() => window.statuses.some((t) => /^saved /.test(t)), {timeout: 120000});
+      const saved = fs.readFileSync(top, 'utf8');
+      // One new line before the front edge's segment; every other line, comments too, as it was.
+      const added = saved.split('\n').filter((line) => !fileText.split('\n').includes(line));
+      assert.equal(added.length, 1, added.join('\n'));
+      assert.match(added[0], /^    - \{join: \{continuity: "G1", alpha: 1\}, points: \[\[[-0-9.e]+, [-0-9.e]+\], \[[-0-9.e]+, [-0-9.e]+\]\]\}$/);
+      assert.equal(saved.replace(added[0] + '\n', ''), fileText);
+      const run = JSON.parse(execFileSync(fabmesh, ['run', '--json', top, '-o', path.join(workDir, 'segments-run')]));
+      assert.equal(run[0].valid, true);
+      assert.equal(run[0].triangles > 0, true);
+      assert.deepEqual(serrors, []);
+      await sp.close();
+    } finally {
+      studio.child.kill('SIGTERM');
+      assert.equal(await studio.exit, 0);
+    }
+  });
+
   await check('a countertop with cnc shows its router path below the 3D view; a vessel none', async () => {
     assert.equal(await page.$eval('#router', (e) => e.hidden), true);
     const top = path.join(workDir, 'router.yaml');

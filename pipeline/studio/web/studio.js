@@ -633,13 +633,15 @@ function placeMesh(object, url, draft) {
 
 const round6 = (v) => Number(Number(v).toPrecision(6));
 
-// A point's value as it is now: the field's own override, else the text the
-// answer gives.
+// A point's value now: its own override, else the text the answer gives.
+function pointText(curve, key) {
+  const given = state.overrides[key];
+  return given === undefined ? curve.points.find((q) => q.key === key).text : String(given);
+}
+
+// Every point's value now, in order.
 function pointTexts(curve) {
-  return curve.points.map((p) => {
-    const given = state.overrides[p.key];
-    return given === undefined ? p.text : String(given);
-  });
+  return curve.points.map((p) => pointText(curve, p.key));
 }
 
 function lambdaTexts(curve) {
@@ -692,6 +694,86 @@ function insertPoint(curve, at, x, y) {
   if (lambdas) putList(curve.lambdas.key, lambdas);
   state.lastChanged = curve.list;
   requestBuild();
+}
+
+// A composite's segments (an answer's `segments`: each one's entries as
+// the file writes them, one-line YAML, and the keys of the points it
+// gives). A segment is deleted from the row of its end point; a
+// double-click near the curve adds a segment that ends there, before the
+// segment it lands on: a copy of that segment's entries (its join, family,
+// shape parameters) whose given points are scaled into the new stretch. The
+// whole list is one override (`outline.segments`), each kept segment as
+// written, its points' and shape parameters' own overrides folded in.
+
+const position = (curve, key) => {
+  const p = curve.points.find((q) => q.key === key);
+  return p ? {x: p.x, y: p.y} : null;
+};
+
+// The segment's entries as a flow map, `points` replaced when given.
+function segmentText(curve, item, points = null) {
+  const parts = item.entries.map(([name, value]) => {
+    if (name === 'points') return `points: [${(points ?? item.points.map((key) => pointText(curve, key))).join(', ')}]`;
+    const given = state.overrides[`${item.key}.${name}`];
+    return `${name}: ${given === undefined ? value : String(given)}`;
+  });
+  return `{${parts.join(', ')}}`;
+}
+
+// Where segment s starts: the end of the one before it (of the last one, on
+// a closed curve), or its own first point when it is explicit.
+function segmentStart(curve, s) {
+  const items = curve.segments.items;
+  const item = items[s];
+  if (!item.joined) return position(curve, item.points[0]);
+  const before = s > 0 ? items[s - 1] : curve.segments.closed ? items[items.length - 1] : null;
+  return before ? position(curve, before.points[before.points.length - 1]) : null;
+}
+
+function putSegments(curve, texts) {
+  putList(curve.segments.key, texts);
+  state.lastChanged = curve.segments.key;
+  requestBuild();
+}
+
+function deleteSegment(curve, s) {
+  const items = curve.segments.items;
+  remember();
+  putSegments(curve, items.filter((_, k) => k !== s).map((item) => segmentText(curve, item)));
+}
+
+// A segment ending at `at`, before segment s (which then starts there).
+function insertSegment(curve, s, at) {
+  const items = curve.segments.items;
+  const item = items[s];
+  const start = segmentStart(curve, s);
+  const end = position(curve, item.points[item.points.length - 1]);
+  if (!start || !end) return;
+  const r = Math.min(Math.max(Math.hypot(at.x - start.x, at.y - start.y) /
+                              Math.max(Math.hypot(end.x - start.x, end.y - start.y), 1e-300), 0.05), 0.95);
+  const given = item.points.map((key) => position(curve, key));
+  const text = (p) => `[${round6(p.x)}, ${round6(p.y)}]`;
+  // The points before the end: a handle near the start keeps its direction
+  // from the start, one near the end its direction to the end, both scaled.
+  const near = (p, from, to, scale) => ({x: to.x + (p.x - from.x) * scale, y: to.y + (p.y - from.y) * scale});
+  const k = given.length;
+  const points = given.map((p, i) => {
+    if (i === k - 1) return text(at);
+    if (!item.joined && i === 0) return text(start);
+    const leading = item.joined ? k === 3 && i === 0 : i === 1;  // Q1 of a G0 join, P1 of an explicit one
+    return text(leading ? near(p, start, start, r) : near(p, end, at, r));
+  });
+  const texts = items.map((it) => segmentText(curve, it));
+  let kept = texts[s];
+  if (!item.joined) {
+    // The explicit segment now starts where the new one ends, at a corner.
+    const moved = item.points.map((key, i) => (i === 0 ? text(at) : pointText(curve, key)));
+    kept = segmentText(curve, {...item, entries: item.entries.filter(([name]) => name !== 'continuity')}, moved);
+  }
+  const added = segmentText(curve, item, points);  // its shape parameters as they are now
+  texts.splice(s, 1, added, kept);
+  remember();
+  putSegments(curve, texts);
 }
 
 function showPoints(controlPoints) {
@@ -758,6 +840,23 @@ function showPoints(controlPoints) {
       };
       for (const input of inputs) input.addEventListener('change', typed);
       line.append(label, ...inputs);
+      const segment = curve.segments?.items.findIndex((item) => item.points[item.points.length - 1] === p.key) ?? -1;
+      if (segment >= 0) {
+        const items = curve.segments.items;
+        const remove = document.createElement('button');
+        remove.type = 'button';
+        remove.textContent = '×';
+        remove.title = `Delete ${items[segment].key}, which ends here`;
+        remove.setAttribute('aria-label', `delete ${items[segment].key}`);
+        // A curve keeps a segment (two when closed); an open curve's first stays explicit.
+        remove.disabled = items.length <= (curve.segments.closed ? 2 : 1) ||
+                          (!curve.segments.closed && segment === 0 && items.length > 1 && items[1].joined);
+        remove.addEventListener('click', () => {
+          const now = state.controlPoints.find((c) => c.curve === curve.curve);
+          if (now?.segments) deleteSegment(now, segment);
+        });
+        line.append(remove);
+      }
       if (curve.list) {
         const remove = document.createElement('button');
         remove.type = 'button';
@@ -779,6 +878,14 @@ function showPoints(controlPoints) {
   }
 }
 
+// How far `p` is from the leg a-b, and where along it (t in [0, 1] on it).
+function distanceToLeg(p, a, b) {
+  const dx = b.x - a.x, dy = b.y - a.y;
+  const t = ((p.x - a.x) * dx + (p.y - a.y) * dy) / Math.max(dx * dx + dy * dy, 1e-300);
+  const c = Math.min(Math.max(t, 0), 1);
+  return {d: Math.hypot(p.x - a.x - c * dx, p.y - a.y - c * dy), t};
+}
+
 // A double-click on the plot: a point added to the curve whose polygon (or
 // line of through points) passes nearest, within 40 pixels, on its nearest
 // leg, or before its first or after its last point when the click is beyond
@@ -788,6 +895,24 @@ function addPointAt(event) {
   if (!svg) return;
   let best = null;
   for (const curve of state.controlPoints) {
+    if (curve.segments) {
+      const group = svg.querySelector(`g.control-polygon[data-name="${CSS.escape(curve.curve)}"]`);
+      const ctm = group?.getScreenCTM();
+      if (!ctm) continue;
+      const q = new DOMPoint(event.clientX, event.clientY).matrixTransform(ctm.inverse());
+      const at = {x: q.x, y: -q.y};
+      const pixels = Math.hypot(ctm.a, ctm.b);
+      curve.segments.items.forEach((item, s) => {
+        // The segment's start, then the points it gives: its polygon as far as the page knows it.
+        const chain = [segmentStart(curve, s), ...item.points.map((key) => position(curve, key))]
+                          .filter((p) => p !== null);
+        for (let k = 0; k + 1 < chain.length; ++k) {
+          const d = distanceToLeg(at, chain[k], chain[k + 1]).d * pixels;
+          if (!best || d < best.d) best = {d, curve, segment: s, at};
+        }
+      });
+      continue;
+    }
     if (!curve.list) continue;
     const group = svg.querySelector(`g.${curve.group}[data-name="${CSS.escape(curve.curve)}"]`);
     const ctm = group?.getScreenCTM();
@@ -797,10 +922,9 @@ function addPointAt(event) {
     const pixels = Math.hypot(ctm.a, ctm.b);  // screen pixels per plot unit
     const pts = curve.points;
     for (let k = 0; k + 1 < pts.length; ++k) {
-      const dx = pts[k + 1].x - pts[k].x, dy = pts[k + 1].y - pts[k].y;
-      const t = ((at.x - pts[k].x) * dx + (at.y - pts[k].y) * dy) / Math.max(dx * dx + dy * dy, 1e-300);
-      const c = Math.min(Math.max(t, 0), 1);
-      const d = Math.hypot(at.x - pts[k].x - c * dx, at.y - pts[k].y - c * dy) * pixels;
+      const leg = distanceToLeg(at, pts[k], pts[k + 1]);
+      const t = leg.t;
+      const d = leg.d * pixels;
       let index = k + 1;
       if (k === 0 && t < 0) index = 0;
       if (k + 2 === pts.length && t > 1) index = pts.length;
@@ -812,7 +936,8 @@ function addPointAt(event) {
     return;
   }
   event.preventDefault();
-  insertPoint(best.curve, best.index, best.at.x, best.at.y);
+  if (best.segment !== undefined) insertSegment(best.curve, best.segment, best.at);
+  else insertPoint(best.curve, best.index, best.at.x, best.at.y);
 }
 
 // --- control points dragged on the plot ---

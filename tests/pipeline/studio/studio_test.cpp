@@ -58,9 +58,9 @@ TEST_CASE("studio: edit_values refuses a value the file does not write", "[studi
       edit_values(kCommentedCup, "cup.yaml", {parse_override("profile=1")}),
       Catch::Contains(
           "cup.yaml:12:3: profile: the value is not a single number, text or [list] on one line"));
-  // A list whose items are not each on a line of their own is not changed item by item.
-  const std::string nested = "points:\n  - - 1\n    - 2\n  - [3, 4]\n";
-  CHECK_THROWS_WITH(edit_values(nested, "p.yaml", {parse_override("points=[[1, 2]]")}),
+  // A list whose item does not start on its dash's line is not changed item by item.
+  const std::string apart = "points:\n  -\n    [1, 2]\n  - [3, 4]\n";
+  CHECK_THROWS_WITH(edit_values(apart, "p.yaml", {parse_override("points=[[1, 2]]")}),
                     Catch::Contains("p.yaml:2:3: points: the value is not a single number"));
 }
 
@@ -100,6 +100,25 @@ TEST_CASE("studio: edit_values adds and deletes a block list's items, keeping th
   CHECK(edit_values(tail, "t.yaml", {parse_override("list=[0, 1, 2, 3]")}) ==
         "a: 1\nlist:\n  - 0\n  - 1   # one\n  # the second\n  - 2\n  - 3");
   CHECK(edit_values(tail, "t.yaml", {parse_override("list=[2]")}) == "a: 1\nlist:\n  # the second\n  - 2");
+  // Items over several lines (a composite's segments): kept whole, with their comments; a new one on a line.
+  const std::string segments =
+      "outline:\n  segments:\n    - join: {continuity: G1}   # front\n      points: [[1, 0], [2, 0]]\n"
+      "    # the corner\n    - join: {continuity: G1}   # right\n      points: [[3, 1], [3, 2]]\n"
+      "      lambda: 0.5\n  closed: true\n";
+  const std::string split = edit_values(
+      segments, "s.yaml",
+      {parse_override(
+          "outline.segments=[{join: {continuity: G1}, points: [[1, 0], [2, 0]]}, {join: {continuity: "
+          "G1}, points: [[2.5, 0.5]]}, {join: {continuity: G1}, points: [[3, 1], [3, 2]], lambda: 0.5}]")});
+  std::string inserted = segments;
+  inserted.insert(inserted.find("    # the corner"),
+                  "    - {join: {continuity: G1}, points: [[2.5, 0.5]]}\n");
+  CHECK(split == inserted);
+  CHECK(edit_values(segments, "s.yaml",
+                    {parse_override("outline.segments=[{join: {continuity: G1}, points: [[3, 1], [3, 2]], "
+                                    "lambda: 0.5}]")}) ==
+        "outline:\n  segments:\n    # the corner\n    - join: {continuity: G1}   # right\n"
+        "      points: [[3, 1], [3, 2]]\n      lambda: 0.5\n  closed: true\n");
 }
 
 TEST_CASE("studio: every request without the token, or with a foreign Host, is 403", "[studio]") {
@@ -488,6 +507,58 @@ TEST_CASE("studio: a point added is a list override, and the answer offers the n
              Catch::Contains("needs at least 3 points"));
   CHECK(c.Post("/api/save", studio.token(), two.dump(), "application/json")->status == 422);
   CHECK(file_text(design) == saved);
+}
+
+TEST_CASE("studio: a composite's segments are offered whole; one added is a list override save writes",
+          "[studio]") {
+  const fs::path dir = fresh_dir("studio_segments");
+  write_text(dir / "top.yaml", file_text(example("countertop_g1.yaml")));
+  const fs::path design = dir / "top.yaml";
+  RunningStudio studio(design.string(), (dir / "out").string());
+  httplib::Client c = studio.client();
+  const Json d = json_of(c.Get("/api/design", studio.token()));
+  REQUIRE(d["control_points"].size() == 1);
+  const Json& segments = d["control_points"][0]["segments"];
+  CHECK(segments["key"] == "outline.segments");
+  CHECK(segments["closed"] == true);
+  REQUIRE(segments["items"].size() == 8);
+  CHECK(segments["items"][1] ==
+        Json({{"key", "outline.segments[1]"},
+              {"entries", Json::array({Json::array({"join", R"({continuity: "G1", alpha: 1})"}),
+                                       Json::array({"points", "[[2400, 50], [2400, 150]]"}),
+                                       Json::array({"lambda", "0.5"}), Json::array({"mu", "0.5"})})},
+              {"points", {"outline.segments[1].points[0]", "outline.segments[1].points[1]"}},
+              {"joined", true}}));
+  // A segment ending at (1000, 0) before the front edge's, as the page writes it.
+  std::string list = "[{join: {continuity: G1, alpha: 1}, points: [[900, 0], [1000, 0]]}";
+  for (const Json& item : segments["items"]) {
+    std::string entries;
+    for (const Json& e : item["entries"])
+      entries += (entries.empty() ? "" : ", ") + e[0].get<std::string>() + ": " + e[1].get<std::string>();
+    list += ", {" + entries + "}";
+  }
+  list += "]";
+  const Json body = {{"overrides", {{"outline.segments", list}}}};
+  const Json built = json_of(c.Post("/api/build", studio.token(), body.dump(), "application/json"));
+  REQUIRE(built.contains("report"));
+  CHECK(built["report"]["valid"] == true);
+  CHECK(built["control_points"][0]["segments"]["items"].size() == 9);
+  CHECK(built["control_points"][0]["points"][1] ==
+        Json({{"key", "outline.segments[0].points[1]"}, {"x", 1000.0}, {"y", 0.0}, {"text", "[1000, 0]"}}));
+  // Saved: one new line, every comment kept.
+  const std::string before = file_text(design);
+  REQUIRE(c.Post("/api/save", studio.token(), body.dump(), "application/json")->status == 200);
+  std::string expected = before;
+  expected.insert(expected.find("    - join: {continuity: G1, alpha: 1}      # front edge"),
+                  "    - {join: {continuity: G1, alpha: 1}, points: [[900, 0], [1000, 0]]}\n");
+  CHECK(file_text(design) == expected);
+  // A curve with a line or an arc among its segments offers its points, not its segments.
+  RunningStudio cnc(example("countertop_asymmetric_line.yaml"), (dir / "cnc").string());
+  httplib::Client cc = cnc.client();
+  const Json mixed = json_of(cc.Get("/api/design", cnc.token()));
+  REQUIRE(mixed["control_points"].size() == 1);
+  CHECK(mixed["control_points"][0]["points"].size() > 0);
+  CHECK_FALSE(mixed["control_points"][0].contains("segments"));
 }
 
 TEST_CASE("studio: a profile through points drags the points it passes through", "[studio]") {
