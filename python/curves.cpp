@@ -170,6 +170,16 @@ py::object fairing_of(const fabmesh::Curve& c) {
   return std::move(d);
 }
 
+py::object through_of(const fabmesh::Curve& c) {
+  const std::optional<fabmesh::Through> t = c.through();
+  if (!t) return py::none();
+  py::dict d;
+  d["points"] = matrix<2>(t->points);
+  d["control_points"] = matrix<2>(t->control_points);
+  d["deviation"] = t->deviation;
+  return std::move(d);
+}
+
 }  // namespace
 
 void bind_curves(py::module_& m) {
@@ -223,6 +233,11 @@ void bind_curves(py::module_& m) {
       .def_property_readonly("fairing", &fairing_of,
                              "For a curve made by fabmesh.fair (or faired by its design): {'energy': "
                              "'strain' or 'curvature_variation', 'before': ..., 'after': ...}; else None")
+      .def_property_readonly("through", &through_of,
+                             "For a curve made to pass through points (fabmesh.quasi_bspline_through, or a "
+                             "design's through:): {'points': (K, 2) the points q0..qn, 'control_points': (K, "
+                             "2) the control points solved from them, 'deviation': the proven largest "
+                             "distance from a point to its joint}; else None")
       .def("__repr__", [](const fabmesh::Curve& c) {
         return "<fabmesh.Curve of " + std::to_string(c.segments()) + " segment" +
                (c.segments() == 1 ? "" : "s") + ">";
@@ -245,6 +260,18 @@ void bind_curves(py::module_& m) {
       py::arg("points"), py::arg("lambdas") = py::none(),
       "A quasi-cubic B-spline with control points p0..pn (shape (n + 1, 2), n >= 2) and shape parameters "
       "lambda_1..lambda_{n-1} in [-8, 1] (None: all 0). Raises InputError.");
+  m.def(
+      "quasi_bspline_through",
+      [](const py::handle& points, const std::optional<std::vector<double>>& lambdas) {
+        const std::vector<fabmesh::Point2> through = plane_points(points);
+        py::gil_scoped_release free;
+        return fabmesh::quasi_bspline_through(through, lambdas.value_or(std::vector<double>{}));
+      },
+      py::arg("points"), py::arg("lambdas") = py::none(),
+      "The quasi-cubic B-spline that passes through points q0..qn (shape (n + 1, 2), n >= 2) at its "
+      "joints, for shape parameters lambda_1..lambda_{n-1} in [-8, 1] (None: all 0): its control points "
+      "solved exactly (docs/math/curves.md 2.3), given with the proven deviation by the result's .through. "
+      "Raises InputError (key 'through': too few points, a singular system; 'lambdas').");
   m.def(
       "hbezier",
       [](const py::handle& points, double alpha, double lam, double mu) {

@@ -211,9 +211,16 @@ class Curve:
     @property
     def fairing(self) -> Optional[dict[str, Any]]:
         """{'energy', 'before', 'after'} for a faired curve, else None."""
+    @property
+    def through(self) -> Optional[dict[str, Any]]:
+        """{'points', 'control_points', 'deviation'} for a curve made to pass through
+        points, else None."""
 
 def tbezier(points: ArrayLike, lam: float = 0.0, mu: float = 0.0) -> Curve: ...
 def quasi_bspline(points: ArrayLike, lambdas: Optional[list[float]] = None) -> Curve: ...
+def quasi_bspline_through(points: ArrayLike, lambdas: Optional[list[float]] = None) -> Curve:
+    """The quasi-cubic B-spline through q0..qn at its joints, its control points solved
+    exactly. Raises InputError (key 'through' or 'lambdas')."""
 def hbezier(points: ArrayLike, alpha: float = 1.0, lam: float = 0.0, mu: float = 0.0) -> Curve: ...
 def composite(segments: list[dict[str, Any]], closed: bool = False, closing: str = "G0") -> Curve:
     """T-Bezier, H-Bezier and line segments with a design file's keys (family, points,

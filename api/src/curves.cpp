@@ -9,6 +9,7 @@
 #include "api/src/detail.h"
 #include "geometry/core/errors.h"
 #include "geometry/curves/curve_spec.h"
+#include "geometry/curves/quasi_bspline_through.h"
 #include "geometry/fairing/build_curve.h"
 #include "geometry/sampling/sample_curve.h"
 
@@ -217,11 +218,61 @@ Curve composite(const std::vector<Segment>& segments, bool closed, Continuity cl
   return constructed(spec);
 }
 
+Curve quasi_bspline_through(const std::vector<Point2>& through, const std::vector<double>& lambdas) {
+  if (through.size() < 3) {
+    detail::bad_argument("through", fmt::format("a quasi-cubic B-spline needs at least 3 points q0..qn "
+                                                "(n >= 2), got {}",
+                                                through.size()));
+  }
+  for (std::size_t i = 0; i < through.size(); ++i) {
+    if (!std::isfinite(through[i][0]) || !std::isfinite(through[i][1]))
+      detail::bad_argument(
+          "through", fmt::format("point q{} = ({}, {}) is not finite", i, through[i][0], through[i][1]));
+  }
+  if (!lambdas.empty() && lambdas.size() != through.size() - 2) {
+    detail::bad_argument("lambdas",
+                         fmt::format("expected n - 1 = {} values lambda_1..lambda_{} for {} points, "
+                                     "got {}",
+                                     through.size() - 2, through.size() - 2, through.size(), lambdas.size()));
+  }
+  fabmesh::CurveSpec spec;
+  spec.family = CurveFamily::QuasiBSpline;
+  spec.key = "through";
+  spec.bspline_through = plane_points(through);
+  spec.bspline_lambdas = lambdas;
+  return detail::translated([&] {
+    fabmesh::QuasiBSplineThrough solved;
+    try {
+      solved = fabmesh::quasi_bspline_through(spec.bspline_through, lambdas, "through");
+    } catch (const fabmesh::RangeError& e) {
+      detail::bad_argument("lambdas", e.what());
+    }
+    spec.bspline_points = std::move(solved.points);
+    spec.bspline_through_deviation = solved.deviation;
+    return detail::curve_handle(fabmesh::build_curve(spec), spec);
+  });
+}
+
+std::optional<Through> Curve::through() const {
+  const fabmesh::CurveSpec& spec = data_->spec;
+  if (spec.bspline_through.empty()) return std::nullopt;
+  Through out;
+  for (const Vec2& q : spec.bspline_through) out.points.push_back(pair(q));
+  for (const Vec2& p : spec.bspline_points) out.control_points.push_back(pair(p));
+  out.deviation = spec.bspline_through_deviation;
+  return out;
+}
+
 Curve fair(const Curve& curve, Energy energy, std::optional<Continuity> keeps) {
   const detail::CurveData& data = curve.data();
   fabmesh::CurveSpec spec = data.spec;
   if (spec.segments.empty() && spec.bspline_points.empty())
     detail::bad_argument("curve", "this curve was not built from control points; it cannot be faired");
+  if (!spec.bspline_through.empty()) {
+    detail::bad_argument("curve",
+                         "a curve through points keeps them; fairing its lambdas with its control points "
+                         "fixed would move it off them");
+  }
   const bool bspline = spec.family == CurveFamily::QuasiBSpline;
   if (!bspline && spec.family == CurveFamily::HBezier) {
     detail::bad_argument("energy",

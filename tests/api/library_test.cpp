@@ -212,6 +212,47 @@ TEST_CASE("curves evaluate exactly and sample within the proven bound", "[api]")
   CHECK(b.sample(1e-4).max_deviation <= 1e-4);
   const fabmesh::Curve hb = fabmesh::hbezier({{0, 0}, {1, 2}, {3, 2}, {4, 0}}, 2.0);
   CHECK(std::isfinite(hb.curvature(0.5)));
+  CHECK_FALSE(b.through());
+}
+
+TEST_CASE("library: a quasi-B-spline through points meets them, and gives its control points", "[library]") {
+  // The golden profile's own joints give back its control points.
+  const fabmesh::Curve golden =
+      fabmesh::quasi_bspline({{1.5, 6}, {1, 5}, {2, 4}, {3, 3}, {1.5, 2}}, {0, 0.5, 0});
+  std::vector<fabmesh::Point2> joints;
+  for (std::size_t i = 0; i <= golden.segments(); ++i) joints.push_back(golden.point(static_cast<double>(i)));
+  const fabmesh::Curve c = fabmesh::quasi_bspline_through(joints, {0, 0.5, 0});
+  REQUIRE(c.through());
+  const fabmesh::Through t = *c.through();
+  CHECK(t.points == joints);
+  const std::vector<fabmesh::Point2> control{{1.5, 6}, {1, 5}, {2, 4}, {3, 3}, {1.5, 2}};
+  REQUIRE(t.control_points.size() == control.size());
+  for (std::size_t i = 0; i < control.size(); ++i) {
+    CHECK(std::abs(t.control_points[i][0] - control[i][0]) < 1e-12);
+    CHECK(std::abs(t.control_points[i][1] - control[i][1]) < 1e-12);
+  }
+  CHECK(t.deviation >= 0.0);
+  CHECK(t.deviation < 1e-13);
+  for (std::size_t i = 0; i < joints.size(); ++i) {
+    const fabmesh::Point2 p = c.point(static_cast<double>(i));
+    CHECK(std::hypot(p[0] - joints[i][0], p[1] - joints[i][1]) <= t.deviation + 1e-14);
+  }
+  // Bad input names the argument: too few points, a singular system (n = 2, lambda_1 = -8), a count.
+  const auto key_of = [](const auto& call) {
+    try {
+      call();
+    } catch (const fabmesh::InputError& e) {
+      return e.key();
+    }
+    return std::string("no error");
+  };
+  CHECK(key_of([] { fabmesh::quasi_bspline_through({{0, 0}, {1, 1}}); }) == "through");
+  CHECK(key_of([] { fabmesh::quasi_bspline_through({{0, 0}, {1, 1}, {2, 0}}, {-8}); }) == "through");
+  CHECK(key_of([] { fabmesh::quasi_bspline_through({{0, 0}, {1, 1}, {2, 0}}, {0, 0}); }) == "lambdas");
+  CHECK(key_of([] { fabmesh::quasi_bspline_through({{0, 0}, {1, 1}, {2, 0}}, {3}); }) == "lambdas");
+  CHECK(key_of([] { fabmesh::quasi_bspline_through({{0, 0}, {NAN, 1}, {2, 0}}); }) == "through");
+  // Fairing would move it off its points.
+  CHECK(key_of([&] { fabmesh::fair(c, fabmesh::Energy::Strain); }) == "curve");
 }
 
 // The one curve of a curve design given as text.

@@ -196,6 +196,33 @@ def test_curves():
     b = fabmesh.quasi_bspline([[1.5, 6], [1, 5], [2, 4], [3, 3], [1.5, 2]])
     assert b.sample(1e-3)[1] <= 1e-3
     assert fabmesh.hbezier([[0, 0], [1, 2], [3, 2], [4, 0]], alpha=2).segments == 1
+    assert b.through is None
+
+
+def test_quasi_bspline_through_points():
+    golden = fabmesh.quasi_bspline([[1.5, 6], [1, 5], [2, 4], [3, 3], [1.5, 2]], [0, 0.5, 0])
+    joints = golden.evaluate(np.arange(golden.segments + 1, dtype=float))
+    c = fabmesh.quasi_bspline_through(joints, [0, 0.5, 0])
+    t = c.through
+    assert np.array_equal(t["points"], joints)
+    assert np.abs(t["control_points"] - [[1.5, 6], [1, 5], [2, 4], [3, 3], [1.5, 2]]).max() < 1e-12
+    assert 0 <= t["deviation"] < 1e-13
+    met = np.hypot(*(c.evaluate(np.arange(5, dtype=float)) - joints).T)
+    assert met.max() <= t["deviation"] + 1e-14
+    # A design's through: curve is the same curve.
+    built = fabmesh.build(fabmesh.parse_design(
+        "name: p\nkind: curve\nunits: cm\ntolerance: 0.005\ncurve:\n  family: quasi_bspline\n"
+        "  through: " + str(joints.tolist()) + "\n  lambdas: [0, 0.5, 0]\n"))
+    assert np.array_equal(built.curves[0].curve.through["control_points"], t["control_points"])
+    with pytest.raises(fabmesh.InputError) as singular:
+        fabmesh.quasi_bspline_through([[0, 0], [1, 1], [2, 0]], [-8])
+    assert singular.value.key == "through" and singular.value.exit_code == 2
+    with pytest.raises(fabmesh.InputError) as count:
+        fabmesh.quasi_bspline_through([[0, 0], [1, 1], [2, 0]], [0, 0])
+    assert count.value.key == "lambdas"
+    with pytest.raises(fabmesh.InputError) as faired:
+        fabmesh.fair(c, "strain")
+    assert faired.value.key == "curve"
 
 
 MIXED_DESIGN = """

@@ -50,6 +50,16 @@ struct Fairing {
   double energy_after = 0.0;   ///< the energy of the faired curve (never larger)
 };
 
+/// A quasi-cubic B-spline made to pass through given points
+/// (quasi_bspline_through, or a design's `through:`).
+struct Through {
+  std::vector<Point2> points;          ///< q0..qn, the points it passes through at its joints
+  std::vector<Point2> control_points;  ///< p0..pn solved from them (p0 = q0, pn = qn)
+  /// Proven: no q_i is farther than this from its joint of the curve the
+  /// control points make, model units (of the order of 1e-16 of the size).
+  double deviation = 0.0;
+};
+
 namespace detail {
 struct CurveData;
 }
@@ -77,6 +87,9 @@ class Curve {
   std::vector<Joint> joints() const;
   /// What fairing did, for a curve made by fair(); empty otherwise.
   std::optional<Fairing> fairing() const;
+  /// The points a curve made to pass through them passes through, and its
+  /// solved control points; empty for any other curve.
+  std::optional<Through> through() const;
 
   /// For the library's own implementation.
   const detail::CurveData& data() const { return *data_; }
@@ -95,6 +108,16 @@ Curve tbezier(const std::vector<Point2>& points, double lambda = 0.0, double mu 
 /// parameters lambda_1..lambda_{n-1} in [-8, 1] (empty: all 0).
 /// \throw InputError ("points", "lambdas")
 Curve quasi_bspline(const std::vector<Point2>& points, const std::vector<double>& lambdas = {});
+
+/// The quasi-cubic B-spline that passes through `through` (q0..qn, n >= 2):
+/// q0 at its start, qn at its end, q_i at joint i, for the shape parameters
+/// lambda_1..lambda_{n-1} in [-8, 1] (empty: all 0). Its control points are
+/// solved from a tridiagonal system whose singularity is decided exactly
+/// (docs/math/curves.md 2.3); Curve::through() gives them and the proven
+/// deviation. Always solvable when every lambda is -2 or more.
+/// \throw InputError ("through": fewer than 3 points, a point not finite, a
+/// singular system; "lambdas": a count other than n - 1, a value out of range)
+Curve quasi_bspline_through(const std::vector<Point2>& through, const std::vector<double>& lambdas = {});
 
 /// Generalized cubic H-Bézier segments through `points` (3n + 1 control
 /// points), alpha in (0, 10], lambda and mu as docs/math/h-bezier.md allows.
@@ -150,8 +173,9 @@ Curve composite(const std::vector<Segment>& segments, bool closed = false,
 /// variation; other segments stay). A joint may not fall below its declared
 /// continuity, or below `keeps` when given.
 /// \throw InputError ("energy": an energy the curve's family has no fairing
-/// for, such as an H-Bézier curve or strain on T-Bézier segments; "keeps": a
-/// joint that fairing lowers below its declared continuity)
+/// for, such as an H-Bézier curve or strain on T-Bézier segments; "curve": a
+/// curve made to pass through points, which fairing would move off them;
+/// "keeps": a joint that fairing lowers below its declared continuity)
 Curve fair(const Curve& curve, Energy energy = Energy::CurvatureVariation,
            std::optional<Continuity> keeps = std::nullopt);
 
