@@ -45,6 +45,21 @@ Vec2 CompositeCurve::point(double g) const {
   return segments_[i].point(g - static_cast<double>(i));
 }
 
+namespace {
+
+// Signed curvature cross(d1, d2) / |d1|^3. A straight stretch (the cross
+// product exactly 0: a line, or a T-Bézier segment's straight end) is that
+// 0 without the power: dividing by the positive, finite or infinite cube
+// would give the same signed zero.
+double curvature_of(const Vec2& d1, const Vec2& d2) {
+  const double c = cross2(d1, d2);
+  const double speed = d1.norm();
+  if (c == 0.0 && speed >= 1e-100) return c;
+  return c / std::pow(speed, 3);
+}
+
+}  // namespace
+
 JointReport measure_joint(const Segment& before, const Segment& after, double extent,
                           const JointTolerances& tol) {
   const CurveJet a = before.jet(1.0);
@@ -52,8 +67,8 @@ JointReport measure_joint(const Segment& before, const Segment& after, double ex
   JointReport r;
   r.gap = (a[0] - b[0]).norm();
   r.tangent_angle = std::atan2(std::abs(cross2(a[1], b[1])), a[1].dot(b[1]));
-  r.curvature_before = cross2(a[1], a[2]) / std::pow(a[1].norm(), 3);
-  r.curvature_after = cross2(b[1], b[2]) / std::pow(b[1].norm(), 3);
+  r.curvature_before = curvature_of(a[1], a[2]);
+  r.curvature_after = curvature_of(b[1], b[2]);
   const double scale = std::max(
       {std::abs(r.curvature_before), std::abs(r.curvature_after), extent > 0.0 ? 1.0 / extent : 1.0});
   r.curvature_jump = std::abs(r.curvature_before - r.curvature_after) / scale;

@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -29,6 +30,39 @@ TEST_CASE("batch: SHA-256 gives the FIPS 180-2 digests, in one piece or many", "
   for (std::size_t i = 0; i < million.size(); i += 999)
     pieces.update(std::string_view(million).substr(i, 999));
   CHECK(pieces.hex_digest() == "cdc76e5c9914fb9281a1c7e284d73e67f1809a48a497200e046d39ccc7112cd0");
+}
+
+TEST_CASE("batch: SHA-256 with the SHA extensions gives the portable code's digests", "[pipeline][batch]") {
+  // The processor's own word: the extensions are used exactly where /proc/cpuinfo lists sha_ni.
+  std::ifstream cpuinfo("/proc/cpuinfo");
+  std::string text((std::istreambuf_iterator<char>(cpuinfo)), std::istreambuf_iterator<char>());
+  const bool listed = text.find(" sha_ni") != std::string::npos;
+#if defined(__x86_64__)
+  CHECK(sha256_hardware() == listed);
+#endif
+  INFO("SHA extensions used: " << sha256_hardware());
+  for (const Sha256::Engine engine : {Sha256::Engine::Fastest, Sha256::Engine::Portable}) {
+    CHECK(Sha256(engine).update("abc").hex_digest() ==
+          "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");
+  }
+  // Every length up to five blocks and a megabyte of varied bytes, whole and in uneven pieces.
+  std::string bytes(1 << 20, '\0');
+  std::uint32_t x = 2463534242U;
+  for (char& c : bytes) {
+    x ^= x << 13;
+    x ^= x >> 17;
+    x ^= x << 5;
+    c = static_cast<char>(x & 0xFFU);
+  }
+  for (std::size_t n = 0; n <= 320; ++n) {
+    const std::string_view m = std::string_view(bytes).substr(0, n);
+    REQUIRE(Sha256(Sha256::Engine::Fastest).update(m).hex_digest() ==
+            Sha256(Sha256::Engine::Portable).update(m).hex_digest());
+  }
+  Sha256 pieces;
+  for (std::size_t at = 0, step = 1; at < bytes.size(); at += step, step = step * 7 % 1021 + 1)
+    pieces.update(std::string_view(bytes).substr(at, step));
+  CHECK(pieces.hex_digest() == Sha256(Sha256::Engine::Portable).update(bytes).hex_digest());
 }
 
 TEST_CASE("batch: a ledger line is committed only whole, with its check", "[pipeline][batch]") {
