@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <exception>
 #include <filesystem>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <set>
@@ -273,6 +274,88 @@ Json shape_parameters(const Design& design) {
   return out;
 }
 
+constexpr int kLeastBSplinePoints = 3;  // n >= 2, as the reader requires
+
+// The value at a key as `text` writes it; empty when it does not write it as one value.
+using WrittenText = std::function<std::string(const std::string&)>;
+
+// A quasi-B-spline's entry: its points (a curve through points: those, the
+// plot's dots on its joints), its whole list and its lambdas as written (a
+// point added or deleted adds or drops one; none when the text writes none:
+// all 0). Null when a point is not written as a value.
+Json quasi_bspline_points(const NamedCurve& c, const WrittenText& written) {
+  const bool through = !c.spec.bspline_through.empty();
+  const std::vector<Vec2>& given = through ? c.spec.bspline_through : c.spec.bspline_points;
+  const std::string list = c.name + (through ? ".through" : ".points");
+  Json points = Json::array();
+  for (std::size_t i = 0; i < given.size(); ++i) {
+    const std::string key = fmt::format("{}[{}]", list, i);
+    const std::string as_written = written(key);
+    if (as_written.empty()) return nullptr;
+    points.push_back({{"key", key}, {"x", given[i].x()}, {"y", given[i].y()}, {"text", as_written}});
+  }
+  Json curve = {{"curve", c.name},
+                {"group", through ? "through-points" : "control-polygon"},
+                {"points", points},
+                {"list", list},
+                {"min_points", kLeastBSplinePoints}};
+  Json lambdas = Json::array();
+  for (std::size_t i = 0; i < c.spec.bspline_lambdas.size(); ++i) {
+    const std::string as_written = written(fmt::format("{}.lambdas[{}]", c.name, i));
+    if (as_written.empty()) break;
+    lambdas.push_back(as_written);
+  }
+  if (lambdas.size() == c.spec.bspline_lambdas.size() && !lambdas.empty())
+    curve["lambdas"] = {{"key", c.name + ".lambdas"}, {"texts", lambdas}};
+  return curve;
+}
+
+// A T- or H-Bézier composite's entry: the points its segments give (the
+// free ones after a join) that the text writes; and when every segment is
+// a cubic the file writes whole, its segments (each one's entries as
+// one-line YAML), which adding or deleting a segment replaces. Null when
+// it gives no point.
+Json composite_points(const NamedCurve& c, const WrittenText& written, const std::string& text,
+                      const std::string& path) {
+  Json points = Json::array();
+  bool whole = !c.spec.segments.empty();
+  Json segments = Json::array();
+  for (const SegmentSpec& s : c.spec.segments) {
+    if ((s.kind != SegmentKind::TBezier && s.kind != SegmentKind::HBezier) || s.key.empty()) {
+      whole = false;
+      continue;
+    }
+    Json keys = Json::array();
+    for (std::size_t j = 0; j < s.points.size(); ++j) {
+      const std::string key = fmt::format("{}.points[{}]", s.key, j);
+      const std::string as_written = written(key);
+      if (as_written.empty()) {
+        whole = false;
+        continue;
+      }
+      points.push_back({{"key", key}, {"x", s.points[j].x()}, {"y", s.points[j].y()}, {"text", as_written}});
+      keys.push_back(key);
+    }
+    if (!whole) continue;
+    try {
+      Json entries = Json::array();
+      for (const auto& [name, value] : flow_entries(text, path, s.key)) entries.push_back({name, value});
+      segments.push_back(
+          {{"key", s.key}, {"entries", entries}, {"points", keys}, {"joined", s.join.has_value()}});
+    } catch (const FileError&) {
+      whole = false;  // a segment written as an expression: not rewritten
+    }
+  }
+  if (points.empty()) return nullptr;
+  Json curve = {{"curve", c.name}, {"by", "position"}, {"points", points}};
+  if (whole) {
+    const std::string& first = c.spec.segments.front().key;
+    curve["segments"] = {
+        {"key", first.substr(0, first.rfind('['))}, {"closed", c.spec.closed}, {"items", segments}};
+  }
+  return curve;
+}
+
 // The control points the page may drag on the plot, each with the -D path
 // save replaces: a quasi-B-spline's points (the plot's circles of its curve,
 // one to one, in order), and the points a T- or H-Bézier segment gives (the
@@ -282,12 +365,8 @@ Json shape_parameters(const Design& design) {
 // as an expression becomes the numbers it is dragged to), with its text as
 // written. A quasi-B-spline's whole list (`list`, with its lambdas as
 // written) is what adding or deleting a point replaces.
-constexpr int kLeastBSplinePoints = 3;  // n >= 2, as the reader requires
-
 Json draggable_points(const Design& design, const std::string& text) {
-  Json out = Json::array();
-  // The value at `key` as the text writes it; empty when it does not.
-  const auto written = [&](const std::string& key) -> std::string {
+  const WrittenText written = [&](const std::string& key) -> std::string {
     try {
       const ValueSpan span = value_span(text, design.common.path, key);
       return text.substr(span.begin, span.end - span.begin);
@@ -295,81 +374,12 @@ Json draggable_points(const Design& design, const std::string& text) {
       return {};
     }
   };
+  Json out = Json::array();
   for (const NamedCurve& c : design_curves(design)) {
-    Json points = Json::array();
-    if (c.spec.family == CurveFamily::QuasiBSpline) {
-      // A curve through points: those points (the plot's dots on its joints).
-      const bool through = !c.spec.bspline_through.empty();
-      const std::vector<Vec2>& given = through ? c.spec.bspline_through : c.spec.bspline_points;
-      const std::string list = c.name + (through ? ".through" : ".points");
-      for (std::size_t i = 0; i < given.size(); ++i) {
-        const std::string key = fmt::format("{}[{}]", list, i);
-        const std::string as_written = written(key);
-        if (as_written.empty()) {
-          points.clear();
-          break;
-        }
-        points.push_back({{"key", key}, {"x", given[i].x()}, {"y", given[i].y()}, {"text", as_written}});
-      }
-      if (points.empty()) continue;
-      Json curve = {{"curve", c.name},
-                    {"group", through ? "through-points" : "control-polygon"},
-                    {"points", points},
-                    {"list", list},
-                    {"min_points", kLeastBSplinePoints}};
-      // Its lambdas as written, one per inner point: a point added or
-      // deleted adds or drops one. None when the text writes none (all 0).
-      Json lambdas = Json::array();
-      for (std::size_t i = 0; i < c.spec.bspline_lambdas.size(); ++i) {
-        const std::string as_written = written(fmt::format("{}.lambdas[{}]", c.name, i));
-        if (as_written.empty()) break;
-        lambdas.push_back(as_written);
-      }
-      if (lambdas.size() == c.spec.bspline_lambdas.size() && !lambdas.empty())
-        curve["lambdas"] = {{"key", c.name + ".lambdas"}, {"texts", lambdas}};
-      out.push_back(std::move(curve));
-      continue;
-    }
-    // A composite of cubic segments the file writes whole, each point as a
-    // value: its segments too, which adding or deleting a segment replaces.
-    bool whole = !c.spec.segments.empty();
-    Json segments = Json::array();
-    for (const SegmentSpec& s : c.spec.segments) {
-      if ((s.kind != SegmentKind::TBezier && s.kind != SegmentKind::HBezier) || s.key.empty()) {
-        whole = false;
-        continue;
-      }
-      Json keys = Json::array();
-      for (std::size_t j = 0; j < s.points.size(); ++j) {
-        const std::string key = fmt::format("{}.points[{}]", s.key, j);
-        const Vec2& p = s.points[j];
-        const std::string as_written = written(key);
-        if (as_written.empty()) {
-          whole = false;
-          continue;
-        }
-        points.push_back({{"key", key}, {"x", p.x()}, {"y", p.y()}, {"text", as_written}});
-        keys.push_back(key);
-      }
-      if (!whole) continue;
-      try {
-        Json entries = Json::array();
-        for (const auto& [name, value] : flow_entries(text, design.common.path, s.key))
-          entries.push_back({name, value});
-        segments.push_back(
-            {{"key", s.key}, {"entries", entries}, {"points", keys}, {"joined", s.join.has_value()}});
-      } catch (const FileError&) {
-        whole = false;  // a segment written as an expression: not rewritten
-      }
-    }
-    if (points.empty()) continue;
-    Json curve = {{"curve", c.name}, {"by", "position"}, {"points", points}};
-    if (whole) {
-      const std::string& first = c.spec.segments.front().key;
-      curve["segments"] = {
-          {"key", first.substr(0, first.rfind('['))}, {"closed", c.spec.closed}, {"items", segments}};
-    }
-    out.push_back(std::move(curve));
+    Json curve = c.spec.family == CurveFamily::QuasiBSpline
+                     ? quasi_bspline_points(c, written)
+                     : composite_points(c, written, text, design.common.path);
+    if (!curve.is_null()) out.push_back(std::move(curve));
   }
   return out;
 }
