@@ -509,7 +509,7 @@ TEST_CASE("studio: a point added is a list override, and the answer offers the n
   CHECK(file_text(design) == saved);
 }
 
-TEST_CASE("studio: a composite's segments are offered whole; one added is a list override save writes",
+TEST_CASE("studio: a composite offers its segments whole, and one added is a list override save writes",
           "[studio]") {
   const fs::path dir = fresh_dir("studio_segments");
   write_text(dir / "top.yaml", file_text(example("countertop_g1.yaml")));
