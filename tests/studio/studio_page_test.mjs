@@ -468,6 +468,21 @@ try {
       // The new plot draws the through point where it was dropped: farther out.
       const [newCx] = await tp.$eval(selector, (c) => [Number(c.getAttribute('cx'))]);
       assert.ok(newCx > cx, `${newCx} > ${cx}`);
+      // A double-click between the second and third through points adds one there, with a lambda of 0,
+      // and the curve is solved through all six.
+      const centre = async (i) => {
+        const b = await (await tp.$(`#plot g.through-points circle.draggable[data-key="profile.through[${i}]"]`)).boundingBox();
+        return {x: b.x + b.width / 2, y: b.y + b.height / 2};
+      };
+      const [p1, p2] = [await centre(1), await centre(2)];
+      await tp.mouse.click((p1.x + p2.x) / 2, (p1.y + p2.y) / 2, {count: 2});
+      await tp.waitForFunction(() => window.fabmeshStudio.change === window.fabmeshStudio.settledChange &&
+                                     window.fabmeshStudio.controlPoints[0]?.points.length === 6, {timeout: 120000});
+      const added = await tp.evaluate(() => ({...window.fabmeshStudio, design: undefined}));
+      assert.equal(added.error, null);
+      assert.match(added.overrides['profile.through'], /^\[\[3\.2, 22\], \[2\.6, 18\], \[[-0-9.e]+, [-0-9.e]+\], \[4\.6, 13\], /);
+      assert.equal(added.overrides['profile.lambdas'], '[0, 0, 0.6, 0]');
+      assert.equal(added.controlPoints[0].group, 'through-points');
       assert.deepEqual(terrors, []);
       await tp.close();
     } finally {
