@@ -354,16 +354,36 @@ try {
     for (const f of files) {
       assert.ok(fs.readFileSync(path.join(bySet, path.basename(f))).equals(fs.readFileSync(f)), f);
     }
+    // The file watcher (every 250 ms) has seen the saved file by now and left the new set picked.
+    await new Promise((resolve) => setTimeout(resolve, 1000));
+    assert.equal(await page.$eval('#parameter-set', (e) => e.value), 'tall_wide');
+    assert.equal(await page.$eval('#field-height input[type=number]', (e) => e.value), '8');
   });
 
   await check('undo, redo and reset: Ctrl-Z, Ctrl-Shift-Z and the file\'s values', async () => {
     // Waits for what a build shows, not for a count of builds: one may still be on its way.
-    const shows = (values, error = false) => page.waitForFunction((v, e) => {
-      const s = window.fabmeshStudio;
-      const shown = (name) => document.querySelector(`#field-${name} input[type=number]`).value;
-      return s.change === s.settledChange && (s.error !== null) === e &&
-             Object.entries(v).every(([name, value]) => shown(name) === value);
-    }, {timeout: 120000}, values, error);
+    const shows = async (values, error = false) => {
+      try {
+        await page.waitForFunction((v, e) => {
+          const s = window.fabmeshStudio;
+          const shown = (name) => document.querySelector(`#field-${name} input[type=number]`).value;
+          return s.change === s.settledChange && (s.error !== null) === e &&
+                 Object.entries(v).every(([name, value]) => shown(name) === value);
+        }, {timeout: 120000}, values, error);
+      } catch (e) {
+        // What the page showed instead, for the log.
+        const seen = await page.evaluate((names) => ({
+          fields: Object.fromEntries(names.map((n) => [n, document.querySelector(`#field-${n} input[type=number]`).value])),
+          set: document.querySelector('#parameter-set').value,
+          overrides: window.fabmeshStudio.overrides,
+          change: window.fabmeshStudio.change,
+          settledChange: window.fabmeshStudio.settledChange,
+          error: window.fabmeshStudio.error,
+        }), Object.keys(values));
+        throw new Error(`the page did not show ${JSON.stringify(values)} (error ${error}): ${JSON.stringify(seen)}`,
+                        {cause: e});
+      }
+    };
     const keys = async (...pressed) => {
       for (const k of pressed.slice(0, -1)) await page.keyboard.down(k);
       await page.keyboard.press(pressed[pressed.length - 1]);
