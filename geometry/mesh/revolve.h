@@ -96,13 +96,15 @@ LoopGrid append_loop_grid(const std::vector<Vec2>& loop, std::size_t ring, std::
 
 /// revolve's triangles of `grid`: loop edge by loop edge (an edge along the
 /// axis has none), angular steps j = 0 .. steps - 1 from sample j to j + 1
-/// (mod ring), face(c0, c1, c2) as for_each_edge_face calls it.
+/// (mod ring), face(c0, c1, c2) as for_each_edge_face calls it; the edge
+/// from loop vertex `skipped` (if any) to the next gets none.
 template <class Face>
-void for_each_grid_face(const LoopGrid& grid, std::size_t steps, Face&& face) {
+void for_each_grid_face(const LoopGrid& grid, std::size_t steps, Face&& face,
+                        std::size_t skipped = static_cast<std::size_t>(-1)) {
   const std::size_t n = grid.first.size();
   for (std::size_t a = 0; a < n; ++a) {
     const std::size_t b = (a + 1) % n;
-    if (grid.on_axis[a] && grid.on_axis[b]) continue;
+    if ((grid.on_axis[a] && grid.on_axis[b]) || a == skipped) continue;
     for (std::size_t j = 0; j < steps; ++j) {
       for_each_edge_face(
           grid.on_axis[a] != 0, grid.on_axis[b] != 0, j,

@@ -16,6 +16,10 @@ void check_section(const SweepSection& section) {
     throw RangeError("on_outline", static_cast<double>(section.on_outline.size()),
                      "on_outline must be empty or have one flag per loop vertex");
   }
+  if (section.open_edge != SweepSection::kNoEdge && section.open_edge >= n) {
+    throw RangeError("open_edge", static_cast<double>(section.open_edge),
+                     fmt::format("open edge {} of a loop of {} vertices", section.open_edge, n));
+  }
   auto outline = [&](std::size_t i) { return !section.on_outline.empty() && section.on_outline[i]; };
   for (std::size_t i = 0; i < n; ++i) {
     const Vec2& p = loop[i];
@@ -35,6 +39,11 @@ void check_section(const SweepSection& section) {
                                                  "is not horizontal",
                                                  p.x(), p.y(), loop[next].x(), loop[next].y()));
     }
+    if (i == section.open_edge && (loop[next].y() != p.y() || p.x() == 0.0 || loop[next].x() == 0.0)) {
+      throw GeometryError("section", fmt::format("the open edge from (r {}, z {}) to (r {}, z {}) is not "
+                                                 "horizontal or has an end on the axis",
+                                                 p.x(), p.y(), loop[next].x(), loop[next].y()));
+    }
     if (!outline(i) && outline(next) && loop[next].y() != p.y()) {
       throw GeometryError("section", fmt::format("the edge from (r {}, z {}) to outline vertex (r {}, z {}) "
                                                  "is not horizontal",
@@ -47,7 +56,9 @@ void check_section(const SweepSection& section) {
 
 std::size_t swept_triangle_count(const SweepSection& section, std::size_t samples, bool closed) {
   const std::size_t steps = closed ? samples : (samples == 0 ? 0 : samples - 1);
-  return revolved_triangles_per_step(section.loop) * steps;
+  const std::size_t open =
+      section.open_edge == SweepSection::kNoEdge ? 0 : 2;  // an open edge is off the axis
+  return (revolved_triangles_per_step(section.loop) - open) * steps;
 }
 
 SweptSurface sweep_section(const SweepSection& section, const SweepPath& path) {
@@ -74,14 +85,24 @@ SweptSurface sweep_section(const SweepSection& section, const SweepPath& path) {
   const std::size_t steps = path.closed ? m : m - 1;
   out.soup.triangles.reserve(swept_triangle_count(section, m, path.closed));
   // revolve's faces, each written from its corner at sample j: (a_j, a_j+1, b_j+1), (a_j, b_j+1, b_j).
-  for_each_grid_face(grid, steps, [&](std::uint32_t c0, std::uint32_t c1, std::uint32_t c2) {
-    out.soup.triangles.push_back({c2, c0, c1});
-  });
+  for_each_grid_face(
+      grid, steps,
+      [&](std::uint32_t c0, std::uint32_t c1, std::uint32_t c2) {
+        out.soup.triangles.push_back({c2, c0, c1});
+      },
+      section.open_edge);
   out.first.resize(loop.size());
   out.last.resize(loop.size());
   for (std::size_t i = 0; i < loop.size(); ++i) {
     out.first[i] = grid.at(i, 0);
     out.last[i] = grid.at(i, path.closed ? 0 : m - 1);
+  }
+  if (section.open_edge != SweepSection::kNoEdge) {
+    const std::size_t a = section.open_edge, b = (a + 1) % loop.size();
+    for (std::size_t j = 0; j < m; ++j) {
+      out.open_from.push_back(grid.at(a, j));
+      out.open_to.push_back(grid.at(b, j));
+    }
   }
   return out;
 }

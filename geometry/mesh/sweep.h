@@ -24,6 +24,11 @@ struct SweepSection {
   /// sample's `outline` point (at its own height) instead of on its circle.
   /// An edge from such a vertex to an ordinary one must be horizontal.
   std::vector<char> on_outline;
+  /// An edge left open (from loop vertex `open_edge` to the next), or none:
+  /// a horizontal edge whose swept face the caller builds itself (a flat
+  /// face with holes), between the two rings SweptSurface::open gives.
+  static constexpr std::size_t kNoEdge = static_cast<std::size_t>(-1);
+  std::size_t open_edge = kNoEdge;
 };
 
 /// Where the section goes: one entry per angular sample, in increasing angle.
@@ -42,6 +47,8 @@ struct SweptSurface {
   /// Per loop vertex: its vertex index at the first and at the last sample
   /// (axis vertices: their single pole vertex).
   std::vector<std::uint32_t> first, last;
+  /// With an open edge: its two ends' vertices at every sample (from, to).
+  std::vector<std::uint32_t> open_from, open_to;
 };
 
 /// Triangles of the lateral surface (without caps).
@@ -56,7 +63,8 @@ std::size_t swept_triangle_count(const SweepSection& section, std::size_t sample
 /// its two samples' half-planes.
 /// \throw RangeError (fewer than 2 samples, 3 when closed; a negative radius;
 ///        size mismatches); GeometryError for an axis vertex without exactly
-///        one axis neighbour or a non-horizontal edge leaving an outline vertex.
+///        one axis neighbour, a non-horizontal edge leaving an outline vertex
+///        or an open edge that is not horizontal or has an end on the axis).
 SweptSurface sweep_section(const SweepSection& section, const SweepPath& path);
 
 }  // namespace fabmesh

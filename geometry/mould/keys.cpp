@@ -60,6 +60,41 @@ std::vector<Vec2> default_centres(const MouldSection& s, int keys, double edge) 
   return out;
 }
 
+// One key per side part on the base cut, at the part's bisector, midway across the plaster of the cut
+// (between the cavity's widest point on the cut and the block); every socket keeps `need` from the
+// cavity above and below the cut, from the block and from the split planes.
+void place_base_keys(KeyLayout& k, const MouldSection& s, const MouldOptions& o, double need) {
+  const double inner = std::max(s.side_cavity.back().x(), s.base_cavity.front().x()) + s.max_deviation;
+  const double r = 0.5 * (inner + s.block_radius);
+  const Vec2 c(r, s.z_cut);
+  Vec2 near_side, near_base;
+  const double to_side = polyline_distance(c, s.side_cavity, false, &near_side) - s.max_deviation;
+  const double to_base = polyline_distance(c, s.base_cavity, false, &near_base) - s.max_deviation;
+  const double to_block = s.block_radius - r;
+  const double to_split = r * std::sin(M_PI / o.parts);
+  const double clearance = std::min({to_side, to_base, to_block, to_split});
+  if (clearance < need) {
+    const std::string what =
+        clearance == to_block ? "the block"
+        : clearance == to_split
+            ? "the split planes"
+            : fmt::format("the cavity near {}", at(clearance == to_side ? near_side : near_base));
+    throw GeometryError(
+        "key_radius",
+        fmt::format("the base part's keys (one per side part on the base cut z = {:.6g}, at radius {:.6g} "
+                    "midway across the plaster): a socket (radius {:.6g} = key_radius {} + key_clearance {}) "
+                    "comes within {:.6g} of {}; keys need {:.6g} (key_margin + mesh sagitta) of plaster "
+                    "around them: use a smaller key_radius, a thicker wall, or keys: 0",
+                    s.z_cut, r, k.socket_radius, o.key_radius, o.key_clearance, clearance - k.socket_radius,
+                    what, need - k.socket_radius));
+  }
+  for (int part = 0; part < o.parts; ++part) {
+    const double angle = 2.0 * M_PI * (part + 0.5) / o.parts;
+    k.base_centres.emplace_back(r * std::cos(angle), r * std::sin(angle));
+    k.base_clearances.push_back(clearance - k.socket_radius);
+  }
+}
+
 }  // namespace
 
 KeyLayout place_keys(const MouldSection& s, const MouldOptions& o, double sagitta) {
@@ -112,6 +147,7 @@ KeyLayout place_keys(const MouldSection& s, const MouldOptions& o, double sagitt
     }
     k.clearances.push_back(clearance - k.socket_radius);
   }
+  if (s.has_cut) place_base_keys(k, s, o, need);
   return k;
 }
 

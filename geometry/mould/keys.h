@@ -23,6 +23,12 @@ struct KeyLayout {
   int segments = 0;
   /// Per key: least distance from its socket to the exact section's boundary.
   std::vector<double> clearances;
+  /// With a base part: keys on the base cut, (x, y) on the plane z = z_cut,
+  /// one per side part on its bisector, midway across the plaster between
+  /// the cavity and the block. Bumps rise from the base into sockets in the
+  /// side parts' bottoms (axes vertical: the base is pulled down first).
+  std::vector<Vec2> base_centres;
+  std::vector<double> base_clearances;  ///< per base key, as `clearances`
 };
 
 /// Places the keys (options.key_positions, or options.keys spread evenly in
@@ -32,8 +38,12 @@ struct KeyLayout {
 /// (the sampled cavity minus its deviation bound) and from the block's
 /// edges, and the sockets that far from each other. `sagitta` is how far the
 /// lateral mesh moves inside the section between angular samples.
+/// With a base part and keys, one key per side part on the base cut too
+/// (KeyLayout::base_centres), with the same margins from the cavity on both
+/// sides of the cut, from the block and from the split planes.
 /// \throw GeometryError with where = "keys[i]" naming the key, its centre,
-///        its clearance and what it comes too close to.
+///        its clearance and what it comes too close to; for a base key
+///        where = "key_radius", naming the base key and the room it has.
 KeyLayout place_keys(const MouldSection& section, const MouldOptions& options, double sagitta);
 
 /// A hemisphere over a circle in a split plane: base circle points

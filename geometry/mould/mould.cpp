@@ -92,8 +92,12 @@ void check_release(Mould& m, const MouldOptions& o) {
   if (m.section.has_cut) {
     m.release_proof +=
         "; base part: the cavity inside it never widens walking from the cut to the axis, so every "
-        "vertical line meets it in one interval up to the cut and the base pulls down; the flat cut "
-        "carries no keys (a side part slides off it horizontally)";
+        "vertical line meets it in one interval up to the cut and the base pulls down";
+    m.release_proof +=
+        m.keys.base_centres.empty()
+            ? "; the flat cut carries no keys (a side part slides off it horizontally)"
+            : "; the keys on the cut have vertical axes, so the base pulls down off them first "
+              "and then the side parts come apart";
   }
   if (!m.warnings.empty())
     m.release_proof = "NOT RELEASABLE as built: " + fmt::format("{}", fmt::join(m.warnings, "; "));
@@ -101,21 +105,42 @@ void check_release(Mould& m, const MouldOptions& o) {
 
 std::string side_proof(const Mould& m, const MouldPart& p, const MouldOptions& o) {
   return fmt::format(
-      "{}; swept from {:.6g} to {:.6g} degrees in {} steps of at most {:.6g} degrees: in each wedge the "
-      "half-plane at angle phi meets the lateral mesh in the section with its revolved vertices scaled "
-      "radially by cos(step/2)/cos(phi - mid) in [cos(step/2), 1]{} (a simple polygon), so slices at "
-      "distinct angles are disjoint simple polygons in disjoint half-planes; the caps are CGAL constrained "
-      "Delaunay triangulations of that section (counter-clockwise by the exact orientation predicate) in "
-      "the two bounding half-planes, with the keys' circles as holes; each socket lies within its radius "
-      "of its centre in every section (|(rho - r_c, z - z_c)| <= |v|), which keeps >= key_margin + sagitta "
-      "{:.3g} from the section's boundary, and within asin(r_s / r_c) < 90 degrees of its plane; each bump "
-      "lies outside the wedge (angles in (b, b + asin(r / r_c)]) and meets the part only along its base "
-      "circle",
-      m.section.proof, p.from_angle * 180.0 / M_PI, p.to_angle * 180.0 / M_PI, p.angular_steps,
-      m.max_angular_step * 180.0 / M_PI,
-      o.block == BlockShape::Box ? " and its block side on the box's flat side (every corner is a sample)"
-                                 : "",
-      chord_sagitta(m.section.block_radius, m.max_angular_step));
+             "{}; swept from {:.6g} to {:.6g} degrees in {} steps of at most {:.6g} degrees: in each wedge "
+             "the "
+             "half-plane at angle phi meets the lateral mesh in the section with its revolved vertices "
+             "scaled "
+             "radially by cos(step/2)/cos(phi - mid) in [cos(step/2), 1]{} (a simple polygon), so slices at "
+             "distinct angles are disjoint simple polygons in disjoint half-planes; the caps are CGAL "
+             "constrained "
+             "Delaunay triangulations of that section (counter-clockwise by the exact orientation predicate) "
+             "in "
+             "the two bounding half-planes, with the keys' circles as holes; each socket lies within its "
+             "radius "
+             "of its centre in every section (|(rho - r_c, z - z_c)| <= |v|), which keeps >= key_margin + "
+             "sagitta "
+             "{:.3g} from the section's boundary, and within asin(r_s / r_c) < 90 degrees of its plane; each "
+             "bump "
+             "lies outside the wedge (angles in (b, b + asin(r / r_c)]) and meets the part only along its "
+             "base "
+             "circle",
+             m.section.proof, p.from_angle * 180.0 / M_PI, p.to_angle * 180.0 / M_PI, p.angular_steps,
+             m.max_angular_step * 180.0 / M_PI,
+             o.block == BlockShape::Box
+                 ? " and its block side on the box's flat side (every corner is a sample)"
+                 : "",
+             chord_sagitta(m.section.block_radius, m.max_angular_step)) +
+         (m.keys.base_centres.empty()
+              ? std::string()
+              : fmt::format(
+                    "; its bottom on the base cut z = {:.6g} is a CGAL constrained Delaunay triangulation "
+                    "of the plaster there (between the block's and the cavity's rings) with the base "
+                    "keys' socket circles as holes, so every half-plane meets it at that height only, "
+                    "between the rings; each socket lies within its radius of its centre in every half-plane "
+                    "and "
+                    "keeps >= {:.3g} from the cavity above and below the cut, from the block and from "
+                    "the split planes",
+                    m.section.z_cut,
+                    *std::min_element(m.keys.base_clearances.begin(), m.keys.base_clearances.end())));
 }
 
 }  // namespace
@@ -160,13 +185,23 @@ Mould build_mould(const CompositeCurve& profile, const MouldOptions& o) {
     m.parts.push_back(std::move(part));
   }
   if (s.has_cut) {
-    MouldPart base = build_base_part(s, o, m.max_angular_step, budget);
+    MouldPart base = build_base_part(s, m.keys, o, m.max_angular_step, budget);
     base.proof.statement = fmt::format(
         "{}; the base section swept all the way round in {} steps of at most {:.6g} degrees: every "
         "half-plane meets it in the section scaled radially about the axis{}, simple, in disjoint "
         "half-planes",
         s.proof, base.angular_steps, m.max_angular_step * 180.0 / M_PI,
         o.block == BlockShape::Box ? " with its block side on the box's flat side" : "");
+    if (!m.keys.base_centres.empty()) {
+      base.proof.statement += fmt::format(
+          "; its top on the cut z = {:.6g} is a CGAL constrained Delaunay triangulation of the annulus "
+          "between "
+          "the block's and the cavity's rings with the keys' circles as holes, so every half-plane meets it "
+          "at that height only, "
+          "between the rings; each bump rises above the cut, where the base section has nothing, "
+          "within its radius of its centre",
+          s.z_cut);
+    }
     m.parts.push_back(std::move(base));
   }
   timer.lap("parts");
@@ -180,7 +215,7 @@ Mould build_mould(const CompositeCurve& profile, const MouldOptions& o) {
   m.cavity_volume = m.vessel_volume + m.spare_volume;
   cavity_area += M_PI * (r1 + r2) * std::hypot(o.spare, r2 - r1);
   const double rs = m.keys.socket_radius, rk = m.keys.radius;
-  const auto keys = static_cast<double>(m.splits.size() * m.keys.centres.size());
+  const auto keys = static_cast<double>(m.splits.size() * m.keys.centres.size() + m.keys.base_centres.size());
   m.key_volume = keys * 2.0 / 3.0 * M_PI * (rk * rk * rk - rs * rs * rs);
   for (const MouldPart& part : m.parts) m.plaster_volume += signed_volume(part.soup);
   // Only curved surfaces deviate: the cavity's, a cylinder's side, the hemispheres (mould.h).

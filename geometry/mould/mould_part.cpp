@@ -87,9 +87,26 @@ std::vector<std::vector<std::uint32_t>> append_cap(TriangleSoup& soup, const std
   return circles;
 }
 
+// A key's hemisphere over its circle (already in the part's soup), recorded as a feature.
+void add_feature(MouldPart& part, const std::vector<std::uint32_t>& circle, const Hemisphere& h,
+                 std::size_t key, bool bump, bool on_base) {
+  const std::size_t first_new = part.soup.vertices.size();
+  append_hemisphere(part.soup, circle, h, bump);
+  KeyFeature f;
+  f.key = key;
+  f.bump = bump;
+  f.on_base = on_base;
+  f.centre = h.centre;
+  f.axis = h.axis;
+  f.radius = h.radius;
+  f.vertices = circle;
+  for (std::size_t v = first_new; v < part.soup.vertices.size(); ++v)
+    f.vertices.push_back(static_cast<std::uint32_t>(v));
+  part.keys.push_back(std::move(f));
+}
+
 void add_features(MouldPart& part, const std::vector<std::vector<std::uint32_t>>& circles,
                   const KeyLayout& keys, const Vec2& dir, bool bump) {
-  const double radius = bump ? keys.radius : keys.socket_radius;
   for (std::size_t i = 0; i < circles.size(); ++i) {
     Hemisphere h;
     const Vec2& c = keys.centres[i];
@@ -97,20 +114,99 @@ void add_features(MouldPart& part, const std::vector<std::vector<std::uint32_t>>
     h.u = Vec3(dir.x(), dir.y(), 0.0);
     h.w = Vec3(0.0, 0.0, 1.0);
     h.axis = Vec3(-dir.y(), dir.x(), 0.0);  // +e_theta: out of the part at its end, into it at its start
-    h.radius = radius;
-    const std::size_t first_new = part.soup.vertices.size();
-    append_hemisphere(part.soup, circles[i], h, bump);
-    KeyFeature f;
-    f.key = i;
-    f.bump = bump;
-    f.centre = h.centre;
-    f.axis = h.axis;
-    f.radius = radius;
-    f.vertices = circles[i];
-    for (std::size_t v = first_new; v < part.soup.vertices.size(); ++v)
-      f.vertices.push_back(static_cast<std::uint32_t>(v));
-    part.keys.push_back(std::move(f));
+    h.radius = bump ? keys.radius : keys.socket_radius;
+    add_feature(part, circles[i], h, i, bump, false);
   }
+}
+
+// A base key's hemisphere: its circle in the plane z = `z` about (x, y) = `c`,
+// its axis up (out of the base's top, into a side part's bottom). The base
+// circle runs centre + radius (cos a u + sin a w) with u x w = -axis, as the
+// split planes' keys do, so the same stitching holds.
+Hemisphere flat_hemisphere(const Vec2& c, double z, double radius) {
+  Hemisphere h;
+  h.centre = Vec3(c.x(), c.y(), z);
+  h.u = Vec3(0.0, 1.0, 0.0);
+  h.w = Vec3(1.0, 0.0, 0.0);
+  h.axis = Vec3(0.0, 0.0, 1.0);
+  h.radius = radius;
+  return h;
+}
+
+// The flat face of the base cut between the open edge's two rings, `outer`
+// on the block's outline and `inner` on the cavity, sample by sample: the
+// whole annulus (closed) or a side part's sector; a hole per key circle of
+// `key_r` about each of `centres` (none when empty). Normal up (the base's
+// top) or down (a side part's bottom). Returns each key's circle as soup
+// indices, in flat_hemisphere's order.
+std::vector<std::vector<std::uint32_t>> append_flat_face(TriangleSoup& soup,
+                                                         const std::vector<std::uint32_t>& outer,
+                                                         const std::vector<std::uint32_t>& inner, bool closed,
+                                                         const std::vector<Vec2>& centres, double key_r,
+                                                         int segments, bool up) {
+  std::map<std::pair<double, double>, std::uint32_t> index;
+  const double z = soup.vertices[outer.front()].z();
+  auto xy = [&](std::uint32_t v) {
+    const Vec2 p(soup.vertices[v].x(), soup.vertices[v].y());
+    index[{p.x(), p.y()}] = v;
+    return p;
+  };
+  Region2 region;
+  for (const std::uint32_t v : outer) region.outer.push_back(xy(v));
+  std::vector<Vec2> in;
+  for (auto v = inner.rbegin(); v != inner.rend(); ++v) in.push_back(xy(*v));
+  if (closed) {
+    region.holes.push_back(in);  // clockwise: the cavity's ring walked back
+  } else {
+    region.outer.insert(region.outer.end(), in.begin(), in.end());
+  }
+  region.area = 0.5 * signed_area2(region.outer);
+  if (closed) region.area += 0.5 * signed_area2(in);
+  std::vector<std::vector<std::uint32_t>> circles;
+  for (const Vec2& c : centres) {
+    const Hemisphere h = flat_hemisphere(c, z, key_r);
+    std::vector<Vec2> pts;
+    std::vector<std::uint32_t> idx;
+    for (int k = 0; k < segments; ++k) {
+      const double a = kTwoPi * k / segments;
+      const Vec3 p = h.centre + key_r * (std::cos(a) * h.u + std::sin(a) * h.w);
+      idx.push_back(static_cast<std::uint32_t>(soup.vertices.size()));
+      soup.vertices.emplace_back(p.x(), p.y(), z);
+      pts.push_back(xy(idx.back()));
+    }
+    circles.push_back(std::move(idx));
+    region.area += 0.5 * signed_area2(pts);  // clockwise (u x w = -z): a hole as it is
+    region.holes.push_back(std::move(pts));
+  }
+  if (const auto c = find_crossing(region_loops(region))) {
+    throw std::logic_error(fmt::format("mould base cut: the key circles meet the face near ({}, {})",
+                                       c->where.x(), c->where.y()));
+  }
+  const PlanarTriangulation t = triangulate(region);
+  if (t.steiner_points != 0) throw std::logic_error("mould base cut: the triangulation added points");
+  for (const auto& f : t.triangles) {
+    std::array<std::uint32_t, 3> tri{};
+    for (int k = 0; k < 3; ++k) {
+      const Vec2& p = t.vertices[f[static_cast<std::size_t>(k)]];
+      const auto it = index.find({p.x(), p.y()});
+      if (it == index.end())
+        throw std::logic_error("mould base cut: a triangulation vertex is not a face vertex");
+      tri[static_cast<std::size_t>(k)] = it->second;
+    }
+    soup.triangles.push_back(up ? tri : std::array<std::uint32_t, 3>{tri[0], tri[2], tri[1]});
+  }
+  return circles;
+}
+
+// The base keys whose centres lie within a part's angular range.
+std::vector<std::size_t> base_keys_within(const KeyLayout& keys, double from, double to) {
+  std::vector<std::size_t> out;
+  for (std::size_t i = 0; i < keys.base_centres.size(); ++i) {
+    double a = std::atan2(keys.base_centres[i].y(), keys.base_centres[i].x());
+    while (a < from) a += kTwoPi;
+    if (a < to) out.push_back(i);
+  }
+  return out;
 }
 
 void check_budget(std::size_t triangles, std::size_t budget, const std::string& name) {
@@ -119,10 +215,10 @@ void check_budget(std::size_t triangles, std::size_t budget, const std::string& 
       "raise max_triangles or the tolerance");
 }
 
-std::size_t key_triangles(const KeyLayout& keys) {
+std::size_t key_triangles(const KeyLayout& keys, std::size_t count) {
   const auto n = static_cast<std::size_t>(keys.segments);
   const auto rings = static_cast<std::size_t>(hemisphere_rings(keys.segments));
-  return keys.centres.size() * (2 * n * (rings - 1) + n + 2 * n);  // hemisphere + cap triangles around it
+  return count * (2 * n * (rings - 1) + n + 2 * n);  // hemisphere + cap triangles around it
 }
 
 }  // namespace
@@ -190,15 +286,29 @@ MouldPart build_side_part(const MouldSection& section, const KeyLayout& keys, co
   const AngularSamples samples =
       angular_samples(from, to, false, options.block, section.block_radius, max_step);
   part.angular_steps = samples.angles.size() - 1;
-  const std::size_t estimate = swept_triangle_count(section.side, samples.angles.size(), false) +
-                               2 * section.side.loop.size() + 2 * key_triangles(keys);
+  const std::vector<std::size_t> base_keys = base_keys_within(keys, part.from_angle, part.to_angle);
+  SweepSection side = section.side;
+  if (!keys.base_centres.empty()) side.open_edge = side.loop.size() - 1;  // its bottom: from the cavity out
+  const std::size_t estimate = swept_triangle_count(side, samples.angles.size(), false) +
+                               2 * side.loop.size() + 2 * key_triangles(keys, keys.centres.size()) +
+                               2 * samples.angles.size() + key_triangles(keys, base_keys.size());
   check_budget(estimate, max_triangles, "side");
 
   SweepPath path;
   path.directions = samples.directions;
   path.outline = samples.outline;
-  SweptSurface swept = sweep_section(section.side, path);
+  SweptSurface swept = sweep_section(side, path);
   part.soup = std::move(swept.soup);
+  if (!keys.base_centres.empty()) {
+    std::vector<Vec2> centres;
+    for (const std::size_t i : base_keys) centres.push_back(keys.base_centres[i]);
+    const auto circles = append_flat_face(part.soup, swept.open_to, swept.open_from, false, centres,
+                                          keys.socket_radius, keys.segments, false);
+    for (std::size_t i = 0; i < circles.size(); ++i) {
+      add_feature(part, circles[i], flat_hemisphere(centres[i], section.z_cut, keys.socket_radius),
+                  base_keys[i], false, true);
+    }
+  }
   const std::vector<Vec2> start = section_at(section.side, options.block, samples.outline.front());
   const std::vector<Vec2> end = section_at(section.side, options.block, samples.outline.back());
   const auto sockets =
@@ -209,8 +319,8 @@ MouldPart build_side_part(const MouldSection& section, const KeyLayout& keys, co
   return part;
 }
 
-MouldPart build_base_part(const MouldSection& section, const MouldOptions& options, double max_step,
-                          std::size_t max_triangles) {
+MouldPart build_base_part(const MouldSection& section, const KeyLayout& keys, const MouldOptions& options,
+                          double max_step, std::size_t max_triangles) {
   MouldPart part;
   part.name = "base";
   part.kind = MouldPartKind::Base;
@@ -219,12 +329,35 @@ MouldPart build_base_part(const MouldSection& section, const MouldOptions& optio
   const AngularSamples samples =
       angular_samples(zero, zero, true, options.block, section.block_radius, max_step);
   part.angular_steps = samples.angles.size();
-  check_budget(swept_triangle_count(section.base, samples.angles.size(), true), max_triangles, "base");
+  SweepSection base = section.base;
+  if (!keys.base_centres.empty()) {
+    base.open_edge = 2;  // its top: from the block in to the cavity (mould_section.h)
+    if (base.loop[3].x() == 0.0) {
+      // The cut runs along a flat floor to the axis: the top's disc keeps its fan about the axis out to
+      // halfway to the keys, and the flat face with the keys is the annulus beyond.
+      double reach = section.block_radius;
+      for (const Vec2& c : keys.base_centres) reach = std::min(reach, c.norm() - keys.radius);
+      base.loop.insert(base.loop.begin() + 3, Vec2(0.5 * reach, section.z_cut));
+      base.on_outline.insert(base.on_outline.begin() + 3, 0);
+    }
+  }
+  check_budget(swept_triangle_count(base, samples.angles.size(), true) + 2 * samples.angles.size() +
+                   key_triangles(keys, keys.base_centres.size()),
+               max_triangles, "base");
   SweepPath path;
   path.directions = samples.directions;
   path.outline = samples.outline;
   path.closed = true;
-  part.soup = sweep_section(section.base, path).soup;
+  SweptSurface swept = sweep_section(base, path);
+  part.soup = std::move(swept.soup);
+  if (!keys.base_centres.empty()) {
+    const auto circles = append_flat_face(part.soup, swept.open_from, swept.open_to, true, keys.base_centres,
+                                          keys.radius, keys.segments, true);
+    for (std::size_t i = 0; i < circles.size(); ++i) {
+      add_feature(part, circles[i], flat_hemisphere(keys.base_centres[i], section.z_cut, keys.radius), i,
+                  true, true);
+    }
+  }
   return part;
 }
 

@@ -3,7 +3,10 @@
 // the mould section swept over its angular range (a partial, or for a box a
 // generalised, revolution) and capped on both split planes by CGAL
 // triangulations of that section, with the keys' hemispheres stitched into
-// the caps; the base part is its section swept all the way round.
+// the caps; the base part is its section swept all the way round. With keys
+// on the base cut, the side parts' bottoms and the base's top are flat
+// triangulations with the keys' circles as holes, their hemispheres
+// stitched in the same way.
 
 #include <cstddef>
 #include <cstdint>
@@ -26,6 +29,7 @@ struct KeyFeature {
   Vec3 axis{0.0, 0.0, 0.0};  ///< unit normal of the split plane, from the plane toward the apex
   double radius = 0.0;
   std::vector<std::uint32_t> vertices;  ///< soup indices of the hemisphere's vertices (base ring first)
+  bool on_base = false;                 ///< on the base cut: `key` indexes KeyLayout::base_centres
 };
 
 /// A split plane: the half-plane through the z axis at `angle` (radians).
@@ -56,9 +60,11 @@ struct MouldPart {
   MouldPartKind kind = MouldPartKind::Side;
   double from_angle = 0.0, to_angle = 0.0;  ///< radians (base: 0 and 2 pi)
   std::size_t angular_steps = 0;
-  TriangleSoup soup;             ///< closed, outward, sharing vertices
-  std::vector<KeyFeature> keys;  ///< sockets on the `from` plane, bumps on the `to` plane
-  EmbeddingProof proof;          ///< why the mesh is embedded: validation replaces the 3D test with it
+  TriangleSoup soup;  ///< closed, outward, sharing vertices
+  /// Sockets on the `from` plane, bumps on the `to` plane; with base keys,
+  /// a side part's socket in its bottom and the base part's bumps on its top.
+  std::vector<KeyFeature> keys;
+  EmbeddingProof proof;  ///< why the mesh is embedded: validation replaces the 3D test with it
 };
 
 /// A side part between two split planes, with sockets on `from` and bumps on `to`.
@@ -68,8 +74,10 @@ MouldPart build_side_part(const MouldSection& section, const KeyLayout& keys, co
                           const SplitPlane& from, const SplitPlane& to, double max_step,
                           std::size_t max_triangles);
 
-/// The base part: the base section swept all the way round (no caps, no keys).
-MouldPart build_base_part(const MouldSection& section, const MouldOptions& options, double max_step,
-                          std::size_t max_triangles);
+/// The base part: the base section swept all the way round; with base keys
+/// its top (the plaster of the cut) is a flat triangulated annulus with the
+/// keys' bumps on it.
+MouldPart build_base_part(const MouldSection& section, const KeyLayout& keys, const MouldOptions& options,
+                          double max_step, std::size_t max_triangles);
 
 }  // namespace fabmesh

@@ -349,11 +349,13 @@ TEST_CASE("step: a box mould with a base part, and a three-part mould, hold the 
   struct Case {
     const char* design;
     std::size_t parts;
-    int planes, keys;
+    int planes, keys, base_keys;
   };
   // The box: two side parts and a base, two keys on each of the two split
-  // planes; three parts: three planes of three keys.
-  for (const Case& c : {Case{"mould_golden_box_base.yaml", 3, 2, 2}, Case{"mould_p1_moved.yaml", 3, 3, 3}}) {
+  // planes and one per side part on the base cut; three parts: three planes
+  // of three keys.
+  for (const Case& c :
+       {Case{"mould_golden_box_base.yaml", 3, 2, 2, 2}, Case{"mould_p1_moved.yaml", 3, 3, 3, 0}}) {
     INFO(c.design);
     const Design design = read_design(example(c.design));
     const MouldOptions& options = *std::get<VesselDesign>(design.body).mould;
@@ -363,8 +365,9 @@ TEST_CASE("step: a box mould with a base part, and a three-part mould, hold the 
     double volume = 0.0;
     for (const StepShapeFacts& part : parts) volume += part.volume;
     const nlohmann::json& mould = w.item["build"]["mould"];
-    const double expected = mould["block_volume"].get<double>() - mould["slip_volume"].get<double>() +
-                            c.planes * keys_volume(c.keys, options.key_radius, options.key_clearance);
+    const double expected =
+        mould["block_volume"].get<double>() - mould["slip_volume"].get<double>() +
+        (c.planes * c.keys + c.base_keys) * keys_volume(1, options.key_radius, options.key_clearance);
     CHECK(volume == Approx(expected).epsilon(1e-7));
   }
 }

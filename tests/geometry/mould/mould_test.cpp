@@ -127,8 +127,10 @@ TEST_CASE(
     const double block_side =
         v.options.block == BlockShape::Box ? 0.0 : 2.0 * M_PI * s.block_radius * (s.z_top - s.z_bottom);
     const double r = m.keys.radius, rs = m.keys.socket_radius;
-    const double hemispheres =
-        static_cast<double>(m.splits.size() * m.keys.centres.size()) * 2.0 * M_PI * (r * r + rs * rs);
+    // Keys on every split plane and, with a base part, one on the base cut per side part.
+    const std::size_t base_keys = s.has_cut && !m.keys.centres.empty() ? m.splits.size() : 0;
+    const double hemispheres = static_cast<double>(m.splits.size() * m.keys.centres.size() + base_keys) *
+                               2.0 * M_PI * (r * r + rs * rs);
     const double curved = exact_cavity_lateral_area(m, profile) + block_side + hemispheres;
     const double bound = v.options.tolerance * curved;
     const double error = plaster + m.cavity_volume - m.block_volume - m.key_volume;
@@ -149,7 +151,33 @@ TEST_CASE("mould: assembled, every bump sits centred in its socket with the clea
     const Mould m = build_mould(profile, v.options);
     const double clearance = v.options.key_clearance;
     const double pit_deviation = 2.0 * m.keys.socket_radius * (1.0 - std::cos(M_PI / m.keys.segments));
-    std::size_t pairs = 0;
+    // A bump on part a in a socket of part b: the same centre and axis, the clearance all round.
+    auto check_pair = [&](const MouldPart& a, const KeyFeature& bump, const MouldPart& b,
+                          const KeyFeature& socket) {
+      CHECK((bump.centre - socket.centre).norm() == 0.0);
+      CHECK((bump.axis - socket.axis).norm() == 0.0);
+      CHECK(socket.radius == Approx(bump.radius + clearance).epsilon(1e-15));
+      // The pit's triangles: those whose corners are all the socket's vertices.
+      std::vector<char> in_pit(b.soup.vertices.size(), 0);
+      for (auto i : socket.vertices) in_pit[i] = 1;
+      std::vector<std::array<Vec3, 3>> pit;
+      for (const auto& t : b.soup.triangles) {
+        if (in_pit[t[0]] && in_pit[t[1]] && in_pit[t[2]]) {
+          pit.push_back({b.soup.vertices[t[0]], b.soup.vertices[t[1]], b.soup.vertices[t[2]]});
+        }
+      }
+      REQUIRE(!pit.empty());
+      for (auto i : bump.vertices) {
+        const Vec3 p = a.soup.vertices[i] - socket.centre;
+        CHECK(p.norm() <= bump.radius * (1 + 1e-12));  // on the bump's sphere, inside the socket's
+        CHECK(p.dot(socket.axis) >= -1e-12);           // on the socket's side of the split plane
+        double gap = std::numeric_limits<double>::infinity();
+        for (const auto& t : pit)
+          gap = std::min(gap, point_triangle_distance(a.soup.vertices[i], t[0], t[1], t[2]));
+        CHECK(gap >= clearance - pit_deviation - 1e-12);
+      }
+    };
+    std::size_t pairs = 0, base_pairs = 0;
     for (int k = 0; k < v.options.parts; ++k) {
       const MouldPart& a = m.parts[static_cast<std::size_t>(k)];
       const MouldPart& b = m.parts[static_cast<std::size_t>((k + 1) % v.options.parts)];
@@ -157,35 +185,40 @@ TEST_CASE("mould: assembled, every bump sits centred in its socket with the clea
         if (!bump.bump) continue;
         const KeyFeature* socket = nullptr;
         for (const KeyFeature& f : b.keys) {
-          if (!f.bump && f.key == bump.key) socket = &f;
+          if (!f.bump && !f.on_base && f.key == bump.key) socket = &f;
         }
         REQUIRE(socket != nullptr);
         ++pairs;
-        CHECK((bump.centre - socket->centre).norm() == 0.0);
-        CHECK((bump.axis - socket->axis).norm() == 0.0);
-        CHECK(socket->radius == Approx(bump.radius + clearance).epsilon(1e-15));
-        // The pit's triangles: those whose corners are all the socket's vertices.
-        std::vector<char> in_pit(b.soup.vertices.size(), 0);
-        for (auto i : socket->vertices) in_pit[i] = 1;
-        std::vector<std::array<Vec3, 3>> pit;
-        for (const auto& t : b.soup.triangles) {
-          if (in_pit[t[0]] && in_pit[t[1]] && in_pit[t[2]]) {
-            pit.push_back({b.soup.vertices[t[0]], b.soup.vertices[t[1]], b.soup.vertices[t[2]]});
-          }
-        }
-        REQUIRE(!pit.empty());
-        for (auto i : bump.vertices) {
-          const Vec3 p = a.soup.vertices[i] - socket->centre;
-          CHECK(p.norm() <= bump.radius * (1 + 1e-12));  // on the bump's sphere, inside the socket's
-          CHECK(p.dot(socket->axis) >= -1e-12);          // on the socket's side of the split plane
-          double gap = std::numeric_limits<double>::infinity();
-          for (const auto& t : pit) {
-            gap = std::min(gap, point_triangle_distance(a.soup.vertices[i], t[0], t[1], t[2]));
-          }
-          CHECK(gap >= clearance - pit_deviation - 1e-12);
-        }
+        check_pair(a, bump, b, *socket);
       }
     }
+    // With a base part: each side part has one socket in its bottom, over a bump on the base's top.
+    if (m.section.has_cut && !m.keys.centres.empty()) {
+      const MouldPart& base = m.parts.back();
+      REQUIRE(base.kind == MouldPartKind::Base);
+      for (int k = 0; k < v.options.parts; ++k) {
+        const MouldPart& side = m.parts[static_cast<std::size_t>(k)];
+        std::size_t sockets = 0;
+        for (const KeyFeature& socket : side.keys) {
+          if (!socket.on_base) continue;
+          ++sockets;
+          CHECK(!socket.bump);
+          CHECK(socket.axis == Vec3(0.0, 0.0, 1.0));
+          CHECK(socket.centre.z() == m.section.z_cut);
+          const KeyFeature* bump = nullptr;
+          for (const KeyFeature& f : base.keys) {
+            if (f.bump && f.on_base && f.key == socket.key) bump = &f;
+          }
+          REQUIRE(bump != nullptr);
+          ++base_pairs;
+          check_pair(base, *bump, side, socket);
+        }
+        CHECK(sockets == 1);
+      }
+      CHECK(base.keys.size() == static_cast<std::size_t>(v.options.parts));
+    }
+    CHECK(base_pairs ==
+          (m.section.has_cut && !m.keys.centres.empty() ? static_cast<std::size_t>(v.options.parts) : 0));
     CHECK(pairs == static_cast<std::size_t>(v.options.parts) * m.keys.centres.size());
   }
 }
