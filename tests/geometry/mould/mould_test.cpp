@@ -296,6 +296,37 @@ TEST_CASE("mould: a cavity widening downward inside the base part is refused, no
   for (const Undercut& u : m.undercuts) CHECK(u.part == MouldPartKind::Base);
 }
 
+TEST_CASE("mould: base keys that do not fit the plaster of the cut are refused naming key_radius",
+          "[mould][keys]") {
+  // Widest at the bottom (r 3 up to z 1), narrowing to the rim (1, 5): the split planes' key sits where
+  // the neck leaves room, but the cut at z 0.5 has only the 0.8 wall between the cavity and the block.
+  const CompositeCurve profile = polyline_profile({{3, 0}, {3, 1}, {1, 5}});
+  MouldOptions o = small_options();
+  o.wall = 0.8;
+  o.base_part = true;
+  o.base_height = 0.5;
+  o.key_positions = {{2.2, 4.0}};
+  try {
+    build_mould(profile, o);
+    FAIL("base keys were placed in too narrow a cut");
+  } catch (const GeometryError& e) {
+    CHECK(e.where() == "key_radius");
+    CHECK_THAT(std::string(e.what()), Catch::Contains("base part's keys"));
+    CHECK_THAT(std::string(e.what()), Catch::Contains("the block"));
+  }
+  // A thicker wall leaves them room: a socket in each side part's bottom over a bump on the base.
+  o.wall = 2.0;
+  const Mould m = build_mould(profile, o);
+  REQUIRE(m.keys.base_centres.size() == 2);
+  for (const MouldPart& part : m.parts) {
+    std::size_t on_base = 0;
+    for (const KeyFeature& k : part.keys) on_base += k.on_base ? 1 : 0;
+    CHECK(on_base == (part.kind == MouldPartKind::Base ? 2u : 1u));
+    CHECK(validate(part.soup).valid());  // the full 3D test, not the part's proof
+  }
+  CHECK_THAT(m.release_proof, Catch::Contains("the base pulls down off them first"));
+}
+
 TEST_CASE("mould: a key too close to the cavity is refused naming the key", "[mould][keys]") {
   const CompositeCurve profile = example_profile("vessel_golden_solid.yaml");
   MouldOptions o = cm_options();
