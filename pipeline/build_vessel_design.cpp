@@ -12,6 +12,7 @@
 #include "geometry/fairing/build_curve.h"
 #include "geometry/mesh/bounding_box.h"
 #include "geometry/mesh/vessel.h"
+#include "geometry/mould/master_sections.h"
 #include "geometry/mould/mould.h"
 #include "geometry/mould/shrinkage.h"
 #include "geometry/section/print_checks.h"
@@ -150,23 +151,67 @@ void add_master(const VesselDesign& design, const CompositeCurve& master, const 
       .set("size", size_of(box.lo, box.hi))
       .set("triangles", mesh.soup.triangles.size())
       .set("max_deviation", mesh.max_deviation);
+  std::optional<MasterSplit> split;
   if (design.print && design.print->bed) {
-    // A master larger than the printer would be printed in sections with pins: not made yet, so said.
+    // A master taller than the bed is cut into sections with pins; one wider than the bed is said.
     const Vec3& bed = *design.print->bed;
     const Vec3 size = box.hi - box.lo;
-    const bool fits = std::max(size.x(), size.y()) <= std::min(bed.x(), bed.y()) && size.z() <= bed.z();
-    facts.set("fits_bed", fits);
-    if (!fits) {
+    const bool wide = std::max(size.x(), size.y()) > std::min(bed.x(), bed.y());
+    facts.set("fits_bed", !wide && size.z() <= bed.z());
+    if (wide) {
       out.warnings.push_back(fmt::format(
-          "{}: the master ({:.6g} {} across, {:.6g} {} tall with its spare) does not fit the bed {:g} x {:g} "
-          "x "
-          "{:g} {}; fabmesh does not split a master into sections yet: print it on a larger printer or cut "
-          "it",
-          key_label(context.common, "print.bed"), std::max(size.x(), size.y()), context.common.units,
-          size.z(), context.common.units, bed.x(), bed.y(), bed.z(), context.common.units));
+          "{}: the master ({:.6g} {} across) is wider than the bed {:g} x {:g} {}; fabmesh cuts a master "
+          "into sections by height only: print it on a larger printer or cut it",
+          key_label(context.common, "print.bed"), std::max(size.x(), size.y()), context.common.units, bed.x(),
+          bed.y(), context.common.units));
+    } else if (size.z() > bed.z()) {
+      if (mesh.section.loops.size() != 1) {
+        throw GeometryError("print.bed",
+                            fmt::format("the master is {} bodies (its profile runs along the axis "
+                                        "between them): fabmesh cuts one body into sections",
+                                        mesh.section.loops.size()));
+      }
+      MasterSplitOptions so;
+      so.bed_height = bed.z();
+      so.pin_diameter = design.print->pin_diameter;
+      so.pin_clearance = design.print->pin_clearance;
+      so.segments = mesh.segments;
+      split = split_master(mesh.section.loops.front(), so);
+      std::vector<Facts> sections;
+      for (const MasterSection& s : split->sections) {
+        Facts f;
+        f.set("name", s.name)
+            .set("z_low", s.z_low)
+            .set("z_high", s.z_high)
+            .set("height", s.z_high - s.z_low + (s.pin ? split->pin_height : 0.0))
+            .set("pin", s.pin)
+            .set("hole", s.hole)
+            .set("volume", s.volume);
+        sections.push_back(std::move(f));
+      }
+      Facts pin;
+      pin.set("diameter", so.pin_diameter)
+          .set("height", split->pin_height)
+          .set("clearance", so.pin_clearance)
+          .set("hole_diameter", 2.0 * split->hole_radius)
+          .set("hole_depth", split->hole_depth);
+      facts.set("sections", std::move(sections)).set("pin", std::move(pin));
     }
   }
   out.facts.set("master", std::move(facts));
+  if (split) {
+    // Each section is a part of its own, in the master's frame (together they are the master).
+    for (MasterSection& s : split->sections) {
+      Part part;
+      part.name = s.name;
+      part.role = PartRole::Master;
+      part.mesh = std::move(s.soup);
+      part.proofs.topology = std::move(s.topology);
+      part.proofs.embedding = std::move(s.proof);
+      out.parts.push_back(std::move(part));
+    }
+    return;
+  }
   Part part;
   part.name = "master";
   part.role = PartRole::Master;

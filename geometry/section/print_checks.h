@@ -30,7 +30,12 @@ struct PrintOptions {
   double min_wall = 1.2;           ///< > 0, model units (the reader converts the 1.2 mm default)
   std::optional<Vec3> bed;         ///< the printer's build volume X, Y, Z, model units (> 0)
   bool strict = false;             ///< findings are bad input rather than warnings
-  std::string units = "mm";        ///< model units, for messages
+  /// A master taller than the bed is printed in sections joined by a pin on
+  /// the axis (geometry/mould/master_sections.h); model units (the reader
+  /// converts the 6 mm and 0.2 mm defaults).
+  double pin_diameter = 6.0;
+  double pin_clearance = 0.2;
+  std::string units = "mm";  ///< model units, for messages
 };
 
 /// Which face of the section a place is on.

@@ -30,7 +30,7 @@ std::vector<KeyGroup> make_groups() {
         "base_height", "keys", "key_radius", "key_clearance", "key_margin", "key_positions",
         "allow_undercuts", "plaster_ratio", "plaster_density", "slip_density"}},
       {"vessel.shrinkage", {"wet", "fired"}},
-      {"vessel.print", {"bed", "max_overhang_deg", "min_wall", "strict"}},
+      {"vessel.print", {"bed", "max_overhang_deg", "min_wall", "strict", "pin_diameter", "pin_clearance"}},
       // Countertops.
       {"countertop.holes[]",
        {"ellipse", "rounded_rect", "outline", "drill", "dxf", "layer", "max_gap", "tabs"}},

@@ -228,9 +228,10 @@ Encoded parts_3mf(const EncodeContext& c, const std::vector<ExportedPart>& parts
 }
 
 // The casting master, the one part of its role, in the export unit (for `format`).
+// The master, whole or in its sections (print.bed).
 std::vector<ExportedPart> the_master(const EncodeContext& c, const char* format) {
   std::vector<ExportedPart> master = exported_parts(c, {PartRole::Master});
-  if (master.size() != 1) throw std::logic_error(std::string(format) + ": the master was not built");
+  if (master.empty()) throw std::logic_error(std::string(format) + ": the master was not built");
   return master;
 }
 
@@ -348,8 +349,17 @@ EncodedFiles encode_mould_stl_output(const EncodeContext& c) {
   return files;
 }
 
+// NAME.master.stl, or one file per section: NAME.master.section-1.stl, ...
 EncodedFiles encode_master_stl_output(const EncodeContext& c) {
-  return {part_stl(c, the_master(c, "master_stl").front(), "master_stl")};
+  const std::vector<ExportedPart> master = the_master(c, "master_stl");
+  if (master.size() == 1) return {part_stl(c, master.front(), "master_stl")};
+  EncodedFiles files;
+  for (const ExportedPart& p : master) {
+    Encoded e = part_stl(c, p, "master_stl");
+    e.suffix = ".master." + p.part->name + ".stl";
+    files.push_back(std::move(e));
+  }
+  return files;
 }
 
 EncodedFiles encode_mould_3mf_output(const EncodeContext& c) {

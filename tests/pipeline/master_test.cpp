@@ -5,10 +5,12 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
+#include <sstream>
 
 #include "io/design/read_design.h"
 #include "io/file.h"
 #include "io/mesh/read_mesh.h"
+#include "tests/io/mesh/external_tool.h"
 #include "tests/pipeline/cli_harness.h"
 
 using namespace fabmesh;
@@ -80,17 +82,108 @@ TEST_CASE("master: without a mould the vessel's outer solid, built only when ask
   CHECK_FALSE(b.facts.contains("master"));
 }
 
-TEST_CASE("master: one larger than the print bed is said so, at print.bed", "[pipeline][master]") {
+TEST_CASE("master: one wider than the print bed is said so, at print.bed", "[pipeline][master]") {
+  const std::string path = example("mould_golden.yaml");  // the master is 5.9 cm across
+  Design design =
+      parse_design(read_file(path), path, {{"print", "{bed: [5, 5, 10]}", "print={bed: [5, 5, 10]}"}});
+  design.common.outputs = {{"master_stl", "test", 0, 0}};
+  const Result r = run_job(design, into(fresh_dir("master_wide")));
+  CHECK_FALSE(std::get<bool>(*r.facts.group("master").find("fits_bed")));
+  REQUIRE_FALSE(r.warnings.empty());
+  CHECK(r.warnings.back().find("print.bed: the master (5.89853 cm across) is wider than the bed 5 x 5 cm") !=
+        std::string::npos);
+  CHECK(parts_of(r, PartRole::Master).size() == 1);
+}
+
+TEST_CASE("master: one taller than the print bed is cut into sections that fit it, joined by pins",
+          "[pipeline][master]") {
   const std::string path = example("mould_golden.yaml");  // the master stands 7.05 cm with its spare
   Design design =
       parse_design(read_file(path), path, {{"print", "{bed: [22, 22, 6]}", "print={bed: [22, 22, 6]}"}});
-  design.common.outputs = {{"master_stl", "test", 0, 0}};
-  const Result r = run_job(design, into(fresh_dir("master_bed")));
-  CHECK_FALSE(std::get<bool>(*r.facts.group("master").find("fits_bed")));
-  REQUIRE_FALSE(r.warnings.empty());
-  CHECK(
-      r.warnings.back().find("print.bed: the master (5.89853 cm across, 7.04545 cm tall with its spare) does "
-                             "not fit the bed 22 x 22 x 6 cm") != std::string::npos);
-  // The vessel alone (4.55 cm) fits: the print checks find nothing.
-  CHECK(std::get<bool>(*r.facts.group("print").find("fits_bed")));
+  design.common.outputs = {{"master_stl", "test", 0, 0}, {"master_3mf", "test", 0, 0}};
+  const fs::path dir = fresh_dir("master_bed");
+  const Result r = run_job(design, into(dir));
+  const Facts& m = r.facts.group("master");
+  CHECK_FALSE(std::get<bool>(*m.find("fits_bed")));
+  // The default pin, 6 mm (0.6 cm), rises 0.6 cm: sections of at most 5.4 cm, so two of 3.52 cm.
+  const std::vector<const Part*> sections = parts_of(r, PartRole::Master);
+  REQUIRE(sections.size() == 2);
+  CHECK(sections[0]->name == "section-1");
+  CHECK(sections[1]->name == "section-2");
+  double volume = 0.0;
+  for (const Part* s : sections) {
+    INFO(s->name);
+    CHECK(s->validation.valid());
+    CHECK(s->validation.genus == 0);
+    CHECK(s->validation.components == 1);
+    const TriangleSoup stl = read_mesh((dir / ("mould_golden.master." + s->name + ".stl")).string());
+    CHECK(stl.triangles.size() == s->mesh.triangles.size());
+    double lo = 1e300, hi = -1e300;
+    for (const Vec3& v : stl.vertices) {
+      lo = std::min(lo, v.z());
+      hi = std::max(hi, v.z());
+    }
+    CHECK(hi - lo <= 60.0 + 1e-4);  // mm: standing on its bottom, pin and all, within the bed's 6 cm
+    volume += s->validation.volume;
+  }
+  // Together the master's volume, plus a pin and minus its hole (0.64 across, 0.62 deep) at the joint.
+  const double pin = M_PI * 0.09 * 0.6, hole = M_PI * 0.32 * 0.32 * 0.62;
+  CHECK(volume == Approx(m.number("volume") + pin - hole).epsilon(2e-3));
+  CHECK_FALSE(fs::exists(dir / "mould_golden.master.stl"));
+  CHECK(fs::exists(dir / "mould_golden.master.3mf"));
+  // The report names the sections and their heights.
+  const auto* listed = m.find("sections");
+  REQUIRE(listed != nullptr);
+  const Facts& pin_facts = m.group("pin");
+  CHECK(pin_facts.number("diameter") == Approx(0.6));
+  CHECK(pin_facts.number("hole_diameter") == Approx(0.64));
+  CHECK(pin_facts.number("hole_depth") == Approx(0.62));
+}
+
+TEST_CASE("master sections: PrusaSlicer slices each to a top within the bed's height, unlike the whole",
+          "[pipeline][master][prusaslicer]") {
+  REQUIRE_PROGRAM("prusa-slicer");
+  const fs::path dir = fresh_dir("master_sections_prusa");
+  const std::string design = example("mould_golden.yaml");
+  REQUIRE(run_cli({"run", design, "-D", "print={bed: [22, 22, 6]}", "-D", "outputs=[master_stl]", "-o",
+                   (dir / "sections").string()}) == 0);
+  REQUIRE(run_cli({"run", design, "-D", "outputs=[master_stl]", "-o", (dir / "whole").string()}) == 0);
+  // The G-code's highest layer (its ";Z:" marks), in mm.
+  const auto sliced_top = [&](const fs::path& stl, const std::string& name) {
+    const fs::path gcode = dir / (name + ".gcode");
+    const test::ToolRun slice =
+        test::prusa_slicer((dir / "home").string(), "--export-gcode --bed-shape 0x0,220x0,220x220,0x220 " +
+                                                        test::quoted(stl.string()) + " --output " +
+                                                        test::quoted(gcode.string()));
+    INFO(slice.output);
+    REQUIRE(slice.code == 0);
+    double top = 0.0;
+    std::istringstream in(read_file(gcode.string()));
+    for (std::string line; std::getline(in, line);) {
+      if (line.rfind(";Z:", 0) == 0) top = std::max(top, std::stod(line.substr(3)));
+    }
+    return top;
+  };
+  for (const char* section : {"section-1", "section-2"}) {
+    INFO(section);
+    const fs::path stl = dir / "sections" / (std::string("mould_golden.master.") + section + ".stl");
+    REQUIRE(fs::exists(stl));
+    const double top = sliced_top(stl, section);
+    CHECK(top > 35.0);   // half the master, 35.2 mm, the pin on the first
+    CHECK(top <= 60.0);  // within the bed's 6 cm
+  }
+  CHECK(sliced_top(dir / "whole" / "mould_golden.master.stl", "whole") > 70.0);  // the master, 70.5 mm
+}
+
+TEST_CASE("master sections: a bed no taller than the pin is bad input at print.bed, nothing written",
+          "[pipeline][master]") {
+  const fs::path dir = fresh_dir("master_bed_pin");
+  std::string said;
+  CHECK(run_cli({"run", example("mould_golden.yaml"), "-D", "print={bed: [22, 22, 0.5]}", "-D",
+                 "outputs=[master_stl]", "-o", (dir / "out").string()},
+                &said) == 2);
+  CHECK_THAT(said,
+             Catch::Contains("-D print={bed: [22, 22, 0.5]}: print.bed: the bed's height 0.5 leaves no room "
+                             "for a section under its registration pin (0.6 tall: pin_diameter)"));
+  CHECK_FALSE(fs::exists(dir / "out"));
 }

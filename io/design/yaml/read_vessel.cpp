@@ -89,8 +89,8 @@ void read_shrinkage(const yaml::Fields& f, const YAML::Node& n, VesselDesign& v)
   }
 }
 
-// `print: {bed, max_overhang_deg, min_wall, strict}`: lengths in model units,
-// min_wall's default 1.2 mm converted.
+// `print: {bed, max_overhang_deg, min_wall, strict, pin_diameter,
+// pin_clearance}`: lengths in model units, the millimetre defaults converted.
 PrintOptions read_print(const yaml::Fields& f, const YAML::Node& n, const DesignCommon& common) {
   f.require_map(n, "print", key_group("vessel.print"));
   PrintOptions o;
@@ -115,6 +115,16 @@ PrintOptions read_print(const yaml::Fields& f, const YAML::Node& n, const Design
     }
   }
   o.strict = f.boolean_or(n, "strict", "print.strict", false);
+  const double mm = millimetres_per_unit(common.units);
+  o.pin_diameter = f.number_or(n, "pin_diameter", "print.pin_diameter", o.pin_diameter / mm);
+  if (!(o.pin_diameter > 0.0))
+    f.fail(n["pin_diameter"], "print.pin_diameter",
+           fmt::format("pin_diameter = {} must be > 0", o.pin_diameter));
+  o.pin_clearance = f.number_or(n, "pin_clearance", "print.pin_clearance", o.pin_clearance / mm);
+  if (!(o.pin_clearance >= 0.0)) {
+    f.fail(n["pin_clearance"], "print.pin_clearance",
+           fmt::format("pin_clearance = {} must be >= 0", o.pin_clearance));
+  }
   return o;
 }
 

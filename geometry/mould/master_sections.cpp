@@ -1,0 +1,235 @@
+#include "geometry/mould/master_sections.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "geometry/core/error_checks.h"
+#include "geometry/core/errors.h"
+#include "geometry/mesh/revolution_margin.h"
+#include "geometry/mesh/revolve.h"
+#include "geometry/section/simple_polygon.h"
+
+namespace fabmesh {
+namespace {
+
+bool on_axis_edge(const Vec2& a, const Vec2& b) { return a.x() == 0.0 && b.x() == 0.0; }
+
+// The radii where the loop's edges off the axis cross the height z (no vertex lies on it).
+std::vector<double> crossings(const std::vector<Vec2>& loop, double z) {
+  std::vector<double> r;
+  for (std::size_t i = 0; i < loop.size(); ++i) {
+    const Vec2 &a = loop[i], &b = loop[(i + 1) % loop.size()];
+    if (on_axis_edge(a, b) || (a.y() - z) * (b.y() - z) >= 0.0) continue;
+    r.push_back(a.x() + (z - a.y()) / (b.y() - a.y()) * (b.x() - a.x()));
+  }
+  std::sort(r.begin(), r.end());
+  return r;
+}
+
+// The part of the loop on the side of the height z that `keep_above` says
+// (Sutherland-Hodgman against one half-plane): one simple polygon when the
+// line crosses the boundary twice (once on the axis).
+std::vector<Vec2> clip(const std::vector<Vec2>& loop, double z, bool keep_above) {
+  auto inside = [&](const Vec2& p) { return keep_above ? p.y() >= z : p.y() <= z; };
+  std::vector<Vec2> out;
+  for (std::size_t i = 0; i < loop.size(); ++i) {
+    const Vec2 &a = loop[i], &b = loop[(i + 1) % loop.size()];
+    if (inside(a)) out.push_back(a);
+    if (inside(a) != inside(b)) {
+      const double t = (z - a.y()) / (b.y() - a.y());
+      out.emplace_back(a.x() + t * (b.x() - a.x()), z);
+    }
+  }
+  return out;
+}
+
+// Whether segments ab and cd cross at a point inside both (touching ends are
+// left to the distance tests, which give 0 for them).
+bool segments_cross(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
+  auto side = [](const Vec2& o, const Vec2& p, const Vec2& q) {
+    return (p - o).x() * (q - o).y() - (p - o).y() * (q - o).x();
+  };
+  const double d1 = side(c, d, a), d2 = side(c, d, b), d3 = side(a, b, c), d4 = side(a, b, d);
+  return ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0)) &&
+         ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0));
+}
+
+// Distance between segment ab and the axis-aligned rectangle [0, w] x [z0, z1].
+double segment_rectangle_distance(const Vec2& a, const Vec2& b, double w, double z0, double z1) {
+  auto point_rect = [&](const Vec2& p) {
+    const double dx = std::max({0.0 - p.x(), 0.0, p.x() - w});
+    const double dz = std::max({z0 - p.y(), 0.0, p.y() - z1});
+    return std::hypot(dx, dz);
+  };
+  auto point_segment = [&](const Vec2& p) {
+    const Vec2 ab = b - a;
+    const double len2 = ab.squaredNorm();
+    const double t = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+    return (a + t * ab - p).norm();
+  };
+  // The segment meets the rectangle when one end is inside or it crosses a side: the end and corner
+  // distances below do not see a crossing, so the four sides are tested first.
+  const Vec2 corners[4] = {{0.0, z0}, {w, z0}, {w, z1}, {0.0, z1}};
+  for (int k = 0; k < 4; ++k) {
+    if (segments_cross(a, b, corners[k], corners[(k + 1) % 4])) return 0.0;
+  }
+  if (point_rect(a) == 0.0 || point_rect(b) == 0.0) return 0.0;
+  double d = std::min(point_rect(a), point_rect(b));
+  for (const Vec2& c : corners) d = std::min(d, point_segment(c));
+  return d;
+}
+
+// V = 2 pi * integral of r over the polygon (Pappus), by the shoelace form of the first moment.
+double revolved_volume(const std::vector<Vec2>& loop) {
+  double moment = 0.0;
+  for (std::size_t i = 0; i < loop.size(); ++i) {
+    const Vec2 &a = loop[i], &b = loop[(i + 1) % loop.size()];
+    moment += (a.x() + b.x()) * (a.x() * b.y() - b.x() * a.y());
+  }
+  return 2.0 * M_PI * moment / 6.0;
+}
+
+// Replaces the cut edge along height z between the axis and the profile by
+// the pin's (above z) or the hole's (into the slab) outline.
+void notch(std::vector<Vec2>& loop, double z, bool pin, double radius, double depth) {
+  for (std::size_t i = 0; i < loop.size(); ++i) {
+    Vec2& p = loop[i];
+    if (p.x() != 0.0 || p.y() != z) continue;
+    const auto at = loop.begin() + static_cast<std::ptrdiff_t>(i);
+    if (pin) {  // the top edge runs in to the axis: out along the pin instead
+      *at = Vec2(radius, z);
+      loop.insert(at + 1, {Vec2(radius, z + depth), Vec2(0.0, z + depth)});
+    } else {  // the bottom edge runs out from the axis: down the hole first
+      *at = Vec2(0.0, z + depth);
+      loop.insert(at + 1, {Vec2(radius, z + depth), Vec2(radius, z)});
+    }
+    return;
+  }
+  throw std::logic_error(fmt::format("master sections: no cut edge on the axis at z = {}", z));
+}
+
+}  // namespace
+
+MasterSplit split_master(const std::vector<Vec2>& loop, const MasterSplitOptions& o) {
+  require_positive("print.pin_diameter", o.pin_diameter);
+  if (!(o.pin_clearance >= 0.0) || !std::isfinite(o.pin_clearance)) {
+    throw RangeError("print.pin_clearance", o.pin_clearance,
+                     fmt::format("pin_clearance {} must be a number >= 0", o.pin_clearance),
+                     ErrorLocation{"print.pin_clearance"});
+  }
+  MasterSplit out;
+  const double pin_r = 0.5 * o.pin_diameter;
+  out.pin_height = o.pin_diameter;
+  out.hole_radius = pin_r + o.pin_clearance;
+  out.hole_depth = out.pin_height + o.pin_clearance;
+  if (!(o.bed_height > out.pin_height)) {
+    throw RangeError(
+        "print.bed", o.bed_height,
+        fmt::format("the bed's height {:.6g} leaves no room for a section under its registration "
+                    "pin ({:.6g} tall: pin_diameter); use a smaller pin_diameter",
+                    o.bed_height, out.pin_height),
+        ErrorLocation{"print.bed"});
+  }
+  double z0 = std::numeric_limits<double>::infinity(), z1 = -z0;
+  for (const Vec2& p : loop) {
+    z0 = std::min(z0, p.y());
+    z1 = std::max(z1, p.y());
+  }
+  const double height = z1 - z0;
+  const int n = std::max(1, static_cast<int>(std::ceil(height / (o.bed_height - out.pin_height) - 1e-12)));
+  const double slab = height / n;
+  if (n > 1 && slab < out.hole_depth + pin_r) {
+    throw GeometryError(
+        "print.bed", fmt::format("the master ({:.6g} tall) would need {} sections of {:.6g}, too short for "
+                                 "the hole of a pin ({:.6g} deep, with {:.6g} of wall over it): use a taller "
+                                 "bed or a smaller pin_diameter",
+                                 height, n, slab, out.hole_depth, pin_r));
+  }
+  for (int k = 1; k < n; ++k) {
+    double z = z0 + slab * k;
+    // A cut through a vertex would leave a degenerate edge: move it up by the least step that misses them.
+    while (std::any_of(loop.begin(), loop.end(), [&](const Vec2& p) { return p.y() == z; }))
+      z = std::nextafter(z, z1);
+    const std::vector<double> r = crossings(loop, z);
+    if (r.size() != 1) {
+      throw GeometryError("print.bed",
+                          fmt::format("the cut at z = {:.6g} (the master in {} sections for the bed's height "
+                                      "{:.6g}) crosses the master's profile {} times: a section would fall "
+                                      "apart; use a bed height that cuts where the profile is crossed once",
+                                      z, n, o.bed_height, r.size()));
+    }
+    if (r.front() < out.hole_radius + pin_r) {
+      throw GeometryError("print.pin_diameter",
+                          fmt::format("the master is {:.6g} in radius at the cut z = {:.6g}, too narrow for "
+                                      "the pin's hole (radius {:.6g} = pin_diameter / 2 + pin_clearance) and "
+                                      "its wall ({:.6g}, the pin's radius): use a smaller pin_diameter",
+                                      r.front(), z, out.hole_radius, pin_r));
+    }
+    out.cuts.push_back(z);
+  }
+
+  RevolveOptions ro;
+  ro.segments = o.segments;
+  for (int k = 0; k < n; ++k) {
+    MasterSection s;
+    s.name = fmt::format("section-{}", k + 1);
+    s.z_low = k == 0 ? z0 : out.cuts[static_cast<std::size_t>(k - 1)];
+    s.z_high = k + 1 == n ? z1 : out.cuts[static_cast<std::size_t>(k)];
+    s.hole = k > 0;
+    s.pin = k + 1 < n;
+    std::vector<Vec2> part = loop;
+    if (s.hole) part = clip(part, s.z_low, true);
+    if (s.pin) part = clip(part, s.z_high, false);
+    if (s.hole) {
+      // The hole keeps the pin's radius of material around it, from the profile and the top cut.
+      double wall = std::numeric_limits<double>::infinity();
+      for (std::size_t i = 0; i < part.size(); ++i) {
+        const Vec2 &a = part[i], &b = part[(i + 1) % part.size()];
+        if (on_axis_edge(a, b) || (a.y() == s.z_low && b.y() == s.z_low)) continue;
+        wall = std::min(wall,
+                        segment_rectangle_distance(a, b, out.hole_radius, s.z_low, s.z_low + out.hole_depth));
+      }
+      if (wall < pin_r) {
+        throw GeometryError(
+            "print.pin_diameter",
+            fmt::format("the hole for the pin in the bottom of {} (radius {:.6g}, {:.6g} deep from "
+                        "z = {:.6g}) comes within {:.6g} of the master's surface; it needs {:.6g} "
+                        "(the pin's radius): use a smaller pin_diameter",
+                        s.name, out.hole_radius, out.hole_depth, s.z_low, wall, pin_r));
+      }
+      notch(part, s.z_low, false, out.hole_radius, out.hole_depth);
+    }
+    if (s.pin) notch(part, s.z_high, true, pin_r, out.pin_height);
+    if (const auto c = find_crossing(part, true)) {
+      throw std::logic_error(fmt::format("master {}: the notched section is not simple near ({}, {})", s.name,
+                                         c->where.x(), c->where.y()));
+    }
+    s.volume = revolved_volume(part);
+    RevolvedSoup revolved = revolve({part}, ro);
+    s.soup = std::move(revolved.soup);
+    s.topology = std::move(revolved.topology);
+    s.proof.statement = fmt::format(
+        "the master's section cut to z in [{:.6g}, {:.6g}], each cut crossing the profile once off the axis, "
+        "so the slab's part of the section is one polygon{}{}; simple (its edges checked pairwise); revolved "
+        "in {} uniform angular steps",
+        s.z_low, s.z_high,
+        s.hole ? fmt::format(
+                     ", notched on the axis by the hole (radius {:.6g}, depth {:.6g}) at least the pin's "
+                     "radius from the profile",
+                     out.hole_radius, out.hole_depth)
+               : std::string(),
+        s.pin ? fmt::format(", with the pin (radius {:.6g}, height {:.6g}) on the axis above the top cut",
+                            pin_r, out.pin_height)
+              : std::string(),
+        o.segments);
+    s.proof.margin = revolution_margin({part}, o.segments);
+    s.loop = std::move(part);
+    out.sections.push_back(std::move(s));
+  }
+  return out;
+}
+
+}  // namespace fabmesh
