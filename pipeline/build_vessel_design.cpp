@@ -196,6 +196,15 @@ void add_master(const VesselDesign& design, const CompositeCurve& master, const 
           .set("hole_diameter", 2.0 * split->hole_radius)
           .set("hole_depth", split->hole_depth);
       facts.set("sections", std::move(sections)).set("pin", std::move(pin));
+      MasterSections cut;
+      for (const MasterSection& s : split->sections)
+        cut.sections.push_back({s.name, s.z_low, s.z_high, s.pin, s.hole});
+      cut.pin_radius = 0.5 * so.pin_diameter;
+      cut.pin_height = split->pin_height;
+      cut.hole_radius = split->hole_radius;
+      cut.hole_depth = split->hole_depth;
+      cut.enclosing_radius = 2.0 * std::max(size.x(), size.y()) + 1.0;
+      products.master_sections = std::move(cut);
     }
   }
   out.facts.set("master", std::move(facts));

@@ -123,6 +123,19 @@ struct CurveProducts {
   std::vector<CutLoop> drawing;  ///< when an output draws it
 };
 
+/// A casting master cut into sections for a printer's bed (print.bed), each
+/// joined to the next by a pin on the axis into a hole (master_sections.h).
+struct MasterSections {
+  struct Section {
+    std::string name;
+    double z_low = 0.0, z_high = 0.0;
+    bool pin = false, hole = false;
+  };
+  std::vector<Section> sections;
+  double pin_radius = 0.0, pin_height = 0.0, hole_radius = 0.0, hole_depth = 0.0;
+  double enclosing_radius = 0.0;  ///< more than the master's largest radius
+};
+
 /// What a vessel makes besides its mesh and mould parts.
 struct VesselProducts {
   /// The exact solid; none for a shell whose profile runs along the axis.
@@ -132,6 +145,7 @@ struct VesselProducts {
   /// The casting master as an exact solid of revolution (master_step), when
   /// an output asked for the master.
   std::optional<ExactSolid> master;
+  std::optional<MasterSections> master_sections;  ///< when the master is cut for print.bed
   /// The section as the builder made it: closed loops (the profile, the rim,
   /// a shell's inner wall and base, the axis) at the fired size (before
   /// shrinkage's scaling), for the plot.

@@ -47,6 +47,10 @@ enum class StepForm {
   Carved,  ///< `block` minus loops[0] (a closed (radius, height) loop) revolved about z, with `hemispheres`
   Sheet,   ///< `surfaces` as faces sewn along their shared borders into one open shell, no solid
   Closed,  ///< `surfaces` as faces sewn into one closed shell: the solid it bounds
+  /// loops[0] (a closed (radius, height) loop) revolved about z and cut to
+  /// the heights of `block` (a cylinder about it), with `cylinders` added or
+  /// taken away: a section of a master, its pin on top and its hole below
+  Slice,
 };
 
 /// A face of a Sheet or a Closed body: a polynomial B-spline surface.
@@ -72,6 +76,16 @@ struct StepHemisphere {
   bool added = true;
 };
 
+/// A solid cylinder: its base circle of `radius` about `base`, extending
+/// `height` along `axis` (a unit vector); added to the body or taken from it.
+struct StepCylinder {
+  Vec3 base{0.0, 0.0, 0.0};
+  Vec3 axis{0.0, 0.0, 1.0};
+  double radius = 0.0;
+  double height = 0.0;
+  bool added = true;
+};
+
 /// Extrusion: the top edges (and the bottom ones) over the curves of
 /// loops[0] flagged in `profiled` (one flag per curve) rounded with fillets
 /// of radius `top` (`bottom`; 0: none), or chamfered with legs `top`.
@@ -88,7 +102,8 @@ struct StepBody {
   std::vector<StepLoop> loops;
   double height = 0.0;                      ///< Extrusion: > 0
   StepEdgeRounds rounds;                    ///< Extrusion
-  StepBlock block;                          ///< Carved
+  StepBlock block;                          ///< Carved, Slice
+  std::vector<StepCylinder> cylinders;      ///< Slice
   std::vector<StepHemisphere> hemispheres;  ///< Carved
   std::vector<StepSurface> surfaces;        ///< Sheet, Closed
   /// Sheet, Closed: faces whose borders are closer than this are sewn (model units; > 0).

@@ -133,7 +133,9 @@ std::string read_in_file_unit(STEPControl_Reader& reader) {
 }
 
 // True for the forms whose loops lie in the (radius, height) half-plane.
-bool revolved(StepForm form) { return form == StepForm::Revolution || form == StepForm::Carved; }
+bool revolved(StepForm form) {
+  return form == StepForm::Revolution || form == StepForm::Carved || form == StepForm::Slice;
+}
 
 // Where a plane point goes: the xy plane (extrusions, wireframes) or the
 // (radius, height) half-plane as x and z (revolutions, carved bodies).
@@ -315,6 +317,27 @@ TopoDS_Shape make_carved(const StepBody& body) {
   for (const StepHemisphere& h : body.hemispheres) (h.added ? added : removed).Append(make_hemisphere(h));
   TopoDS_Shape shape = boolean<BRepAlgoAPI_Cut>(make_block(body.block), removed, "taking the cavity away");
   if (!added.IsEmpty()) shape = boolean<BRepAlgoAPI_Fuse>(shape, added, "adding the keys");
+  TopTools_IndexedMapOfShape solids;
+  TopExp::MapShapes(shape, TopAbs_SOLID, solids);
+  return solids.Extent() == 1 ? solids(1) : shape;  // else facts_of counts the solids
+}
+
+TopoDS_Shape make_cylinder(const StepCylinder& c) {
+  if (!(c.radius > 0.0) || !(c.height > 0.0)) throw std::runtime_error("a cylinder without room");
+  const gp_Ax2 frame(gp_Pnt(c.base.x(), c.base.y(), c.base.z()), gp_Dir(c.axis.x(), c.axis.y(), c.axis.z()));
+  return BRepPrimAPI_MakeCylinder(frame, c.radius, c.height).Shape();
+}
+
+// The revolution cut to the block's heights (their common part), with the
+// cylinders added and then those taken away: one solid when all went well.
+TopoDS_Shape make_slice(const StepBody& body) {
+  TopTools_ListOfShape slab, added, removed;
+  slab.Append(make_block(body.block));
+  for (const StepCylinder& c : body.cylinders) (c.added ? added : removed).Append(make_cylinder(c));
+  TopoDS_Shape shape =
+      boolean<BRepAlgoAPI_Common>(revolution_of(plane_face(body)), slab, "cutting the slice");
+  if (!added.IsEmpty()) shape = boolean<BRepAlgoAPI_Fuse>(shape, added, "adding the pins");
+  if (!removed.IsEmpty()) shape = boolean<BRepAlgoAPI_Cut>(shape, removed, "taking the holes away");
   TopTools_IndexedMapOfShape solids;
   TopExp::MapShapes(shape, TopAbs_SOLID, solids);
   return solids.Extent() == 1 ? solids(1) : shape;  // else facts_of counts the solids
@@ -555,6 +578,7 @@ TopoDS_Shape make_body(const StepBody& body) {
     return compound;
   }
   if (body.form == StepForm::Carved) return make_carved(body);
+  if (body.form == StepForm::Slice) return make_slice(body);
   TopoDS_Shape shape;
   if (body.form == StepForm::Extrusion) {
     if (body.rounds.top > 0.0) {

@@ -203,6 +203,39 @@ EncodedFiles encode_master_step_output(const EncodeContext& c) {
   model.name = c.common.name + " master";
   model.unit = c.common.units;
   StepLoops loop_of(c.output_tolerance);
+  double volume = c.result.facts.group("master").number("volume");
+  if (const auto& cut = vessel.master_sections) {
+    // Cut for the bed: each section the exact master between its heights, its pin added and its hole
+    // taken; together the master plus each joint's pin minus its hole.
+    if (vessel.master->loops.size() != 1)
+      throw std::logic_error("master_step: a cut master of several bodies");
+    const StepLoop loop = loop_of(vessel.master->loops.front());
+    Encoded e;
+    for (const MasterSections::Section& s : cut->sections) {
+      StepBody body;
+      body.name = model.name + " " + s.name;
+      body.form = StepForm::Slice;
+      body.loops = {loop};
+      body.block = {false, cut->enclosing_radius, s.z_low, s.z_high, 0.0, 2.0 * M_PI};
+      if (s.pin)
+        body.cylinders.push_back(
+            {{0.0, 0.0, s.z_high}, {0.0, 0.0, 1.0}, cut->pin_radius, cut->pin_height, true});
+      if (s.hole) {
+        body.cylinders.push_back(
+            {{0.0, 0.0, s.z_low}, {0.0, 0.0, 1.0}, cut->hole_radius, cut->hole_depth, false});
+      }
+      model.bodies.push_back(std::move(body));
+      e.parts.push_back(s.name);
+    }
+    const double joints = static_cast<double>(cut->sections.size() - 1);
+    volume += joints * M_PI *
+              (cut->pin_radius * cut->pin_radius * cut->pin_height -
+               cut->hole_radius * cut->hole_radius * cut->hole_depth);
+    Encoded written = checked_step(c, model, loop_of.added(), volume,
+                                   "the master's sections as OpenCASCADE built them hold");
+    written.parts = std::move(e.parts);
+    return {std::move(written)};
+  }
   for (const std::vector<ExactPiece>& loop : vessel.master->loops) {
     StepBody body;
     body.name = model.name;
@@ -210,8 +243,7 @@ EncodedFiles encode_master_step_output(const EncodeContext& c) {
     body.loops.push_back(loop_of(loop));
     model.bodies.push_back(std::move(body));
   }
-  Encoded e = checked_step(c, model, loop_of.added(), c.result.facts.group("master").number("volume"),
-                           "the master as OpenCASCADE built it holds");
+  Encoded e = checked_step(c, model, loop_of.added(), volume, "the master as OpenCASCADE built it holds");
   e.parts = {"master"};
   return {std::move(e)};
 }

@@ -10,6 +10,7 @@
 #include "io/design/read_design.h"
 #include "io/file.h"
 #include "io/mesh/read_mesh.h"
+#include "io/step/step.h"
 #include "tests/io/mesh/external_tool.h"
 #include "tests/pipeline/cli_harness.h"
 
@@ -186,4 +187,29 @@ TEST_CASE("master sections: a bed no taller than the pin is bad input at print.b
              Catch::Contains("-D print={bed: [22, 22, 0.5]}: print.bed: the bed's height 0.5 leaves no room "
                              "for a section under its registration pin (0.6 tall: pin_diameter)"));
   CHECK_FALSE(fs::exists(dir / "out"));
+}
+
+TEST_CASE("master sections: the STEP holds each section as an exact solid, the master plus pins less holes",
+          "[pipeline][master][step]") {
+  const std::string path = example("mould_golden.yaml");
+  Design design =
+      parse_design(read_file(path), path, {{"print", "{bed: [22, 22, 6]}", "print={bed: [22, 22, 6]}"}});
+  design.common.outputs = {{"master_step", "test", 0, 0}};
+  const fs::path dir = fresh_dir("master_sections_step");
+  const Result r = run_job(design, into(dir));
+  const StepRead read = read_step(read_file((dir / "mould_golden.master.step").string()));
+  REQUIRE(read.error.empty());
+  CHECK(read.length_unit == "centimetre");
+  double volume = 0.0;
+  std::size_t solids = 0;
+  for (const StepShapeFacts& f : read.roots) {
+    CHECK(f.valid);
+    CHECK(f.closed);
+    solids += static_cast<std::size_t>(f.solids);
+    volume += f.volume;
+  }
+  CHECK(solids == 2);
+  // The pin 0.6 cm across and tall, its hole 0.64 across and 0.62 deep.
+  const double joint = M_PI * (0.09 * 0.6 - 0.32 * 0.32 * 0.62);
+  CHECK(volume == Approx(r.facts.group("master").number("volume") + joint).epsilon(1e-7));
 }

@@ -84,18 +84,28 @@ PY
     cat "$work/$name-mould.log"
     fail "$name: no mould STEP file"
   fi
-  # The casting master with the mould's spare: one closed solid of the exact volume the report gives.
+  # The casting master with the mould's spare: one closed solid of the exact volume the report gives;
+  # cut for print.bed, one per section, together that volume plus each joint's pin minus its hole.
   if (cd "$source/configs/examples" && "$fabmesh" run "$design" --export-format master_step -o "$work/$name-master/" \
       --json) >"$work/$name-master.json" 2>"$work/$name-master.log"; then
     step=$(compgen -G "$work/$name-master/*.master.step" | head -n 1)
     [[ -n $step ]] || { fail "$name: exit 0 but no master STEP file"; continue; }
     files+=("$step")
-    master_volume[$(basename "$step")]=$(python3 -c '
-import json, sys
+    read -r volume solids < <(python3 -c '
+import json, math, sys
 d = json.load(open(sys.argv[1]))
 d = d[0] if isinstance(d, list) else d
 mm = {"mm": 1.0, "cm": 10.0, "m": 1000.0, "in": 25.4}[d["units"]]
-print(repr(d["build"]["master"]["volume"] * mm ** 3))' "$work/$name-master.json")
+m = d["build"]["master"]
+volume, solids = m["volume"], 1
+if "sections" in m:
+    joints, pin = len(m["sections"]) - 1, m["pin"]
+    volume += joints * math.pi * ((pin["diameter"] / 2) ** 2 * pin["height"]
+                                  - (pin["hole_diameter"] / 2) ** 2 * pin["hole_depth"])
+    solids = len(m["sections"])
+print(repr(volume * mm ** 3), solids)' "$work/$name-master.json")
+    master_volume[$(basename "$step")]=$volume
+    mould_parts[$(basename "$step")]=$solids
   else
     cat "$work/$name-master.log"
     fail "$name: no master STEP file"
