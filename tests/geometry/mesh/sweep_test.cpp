@@ -82,3 +82,39 @@ TEST_CASE("sweep: an outline vertex joined by a sloping edge is refused", "[mesh
   for (const Vec2& d : p.directions) p.outline.push_back(2.0 * d);
   CHECK_THROWS_AS(sweep_section(s, p), GeometryError);
 }
+
+TEST_CASE("sweep: an open edge gets no faces, and its two rings are given sample by sample", "[mesh][sweep]") {
+  // An annulus section (r 1 to 2, z 0 to 1) with its top edge, from (2, 1) in to (1, 1), left open.
+  SweepSection s;
+  s.loop = {{1, 0}, {2, 0}, {2, 1}, {1, 1}};
+  s.open_edge = 2;
+  const int m = 24;
+  const SweptSurface swept = sweep_section(s, uniform_path(m, true, 2 * M_PI));
+  CHECK(swept.soup.triangles.size() == swept_triangle_count(s, m, true));
+  CHECK(swept.soup.triangles.size() == static_cast<std::size_t>(3 * 2 * m));
+  REQUIRE(swept.open_from.size() == static_cast<std::size_t>(m));
+  REQUIRE(swept.open_to.size() == static_cast<std::size_t>(m));
+  for (int j = 0; j < m; ++j) {
+    const Vec3& from = swept.soup.vertices[swept.open_from[static_cast<std::size_t>(j)]];
+    const Vec3& to = swept.soup.vertices[swept.open_to[static_cast<std::size_t>(j)]];
+    CHECK(std::hypot(from.x(), from.y()) == Approx(2.0));
+    CHECK(std::hypot(to.x(), to.y()) == Approx(1.0));
+    CHECK(from.z() == 1.0);
+    CHECK(to.z() == 1.0);
+  }
+  // The open top: two circles of m boundary edges each, and nothing else open.
+  ValidationOptions untested;
+  untested.check_self_intersections = false;
+  CHECK(validate(swept.soup, untested).boundary_edges == static_cast<std::size_t>(2 * m));
+}
+
+TEST_CASE("sweep: an open edge that slopes, or ends on the axis, is refused", "[mesh][sweep]") {
+  SweepSection s;
+  s.loop = {{0, 0}, {2, 0}, {2, 1}, {1, 2}, {0, 2}};
+  s.open_edge = 2;  // (2, 1) to (1, 2): sloping
+  CHECK_THROWS_AS(sweep_section(s, uniform_path(8, true, 2 * M_PI)), GeometryError);
+  s.open_edge = 3;  // (1, 2) to (0, 2): on the axis
+  CHECK_THROWS_AS(sweep_section(s, uniform_path(8, true, 2 * M_PI)), GeometryError);
+  s.open_edge = 7;  // no such edge
+  CHECK_THROWS_AS(sweep_section(s, uniform_path(8, true, 2 * M_PI)), RangeError);
+}
