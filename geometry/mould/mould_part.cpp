@@ -147,7 +147,7 @@ std::vector<std::vector<std::uint32_t>> append_flat_face(TriangleSoup& soup,
   std::map<std::pair<double, double>, std::uint32_t> index;
   const double z = soup.vertices[outer.front()].z();
   auto xy = [&](std::uint32_t v) {
-    const Vec2 p(soup.vertices[v].x(), soup.vertices[v].y());
+    Vec2 p(soup.vertices[v].x(), soup.vertices[v].y());
     index[{p.x(), p.y()}] = v;
     return p;
   };
@@ -301,6 +301,7 @@ MouldPart build_side_part(const MouldSection& section, const KeyLayout& keys, co
   part.soup = std::move(swept.soup);
   if (!keys.base_centres.empty()) {
     std::vector<Vec2> centres;
+    centres.reserve(base_keys.size());
     for (const std::size_t i : base_keys) centres.push_back(keys.base_centres[i]);
     const auto circles = append_flat_face(part.soup, swept.open_to, swept.open_from, false, centres,
                                           keys.socket_radius, keys.segments, false);
