@@ -83,7 +83,8 @@ TEST_CASE("sweep: an outline vertex joined by a sloping edge is refused", "[mesh
   CHECK_THROWS_AS(sweep_section(s, p), GeometryError);
 }
 
-TEST_CASE("sweep: an open edge gets no faces, and its two rings are given sample by sample", "[mesh][sweep]") {
+TEST_CASE("sweep: an open edge gets no faces, and its two rings are given sample by sample",
+          "[mesh][sweep]") {
   // An annulus section (r 1 to 2, z 0 to 1) with its top edge, from (2, 1) in to (1, 1), left open.
   SweepSection s;
   s.loop = {{1, 0}, {2, 0}, {2, 1}, {1, 1}};
