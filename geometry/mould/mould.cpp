@@ -104,43 +104,33 @@ void check_release(Mould& m, const MouldOptions& o) {
 }
 
 std::string side_proof(const Mould& m, const MouldPart& p, const MouldOptions& o) {
-  return fmt::format(
-             "{}; swept from {:.6g} to {:.6g} degrees in {} steps of at most {:.6g} degrees: in each wedge "
-             "the "
-             "half-plane at angle phi meets the lateral mesh in the section with its revolved vertices "
-             "scaled "
-             "radially by cos(step/2)/cos(phi - mid) in [cos(step/2), 1]{} (a simple polygon), so slices at "
-             "distinct angles are disjoint simple polygons in disjoint half-planes; the caps are CGAL "
-             "constrained "
-             "Delaunay triangulations of that section (counter-clockwise by the exact orientation predicate) "
-             "in "
-             "the two bounding half-planes, with the keys' circles as holes; each socket lies within its "
-             "radius "
-             "of its centre in every section (|(rho - r_c, z - z_c)| <= |v|), which keeps >= key_margin + "
-             "sagitta "
-             "{:.3g} from the section's boundary, and within asin(r_s / r_c) < 90 degrees of its plane; each "
-             "bump "
-             "lies outside the wedge (angles in (b, b + asin(r / r_c)]) and meets the part only along its "
-             "base "
-             "circle",
-             m.section.proof, p.from_angle * 180.0 / M_PI, p.to_angle * 180.0 / M_PI, p.angular_steps,
-             m.max_angular_step * 180.0 / M_PI,
-             o.block == BlockShape::Box
-                 ? " and its block side on the box's flat side (every corner is a sample)"
-                 : "",
-             chord_sagitta(m.section.block_radius, m.max_angular_step)) +
-         (m.keys.base_centres.empty()
-              ? std::string()
-              : fmt::format(
-                    "; its bottom on the base cut z = {:.6g} is a CGAL constrained Delaunay triangulation "
-                    "of the plaster there (between the block's and the cavity's rings) with the base "
-                    "keys' socket circles as holes, so every half-plane meets it at that height only, "
-                    "between the rings; each socket lies within its radius of its centre in every half-plane "
-                    "and "
-                    "keeps >= {:.3g} from the cavity above and below the cut, from the block and from "
-                    "the split planes",
-                    m.section.z_cut,
-                    *std::min_element(m.keys.base_clearances.begin(), m.keys.base_clearances.end())));
+  std::string proof = fmt::format(
+      "{}; swept from {:.6g} to {:.6g} degrees in {} steps of at most {:.6g} degrees: in each wedge the "
+      "half-plane at angle phi meets the lateral mesh in the section with its revolved vertices scaled "
+      "radially by cos(step/2)/cos(phi - mid) in [cos(step/2), 1]{} (a simple polygon), so slices at "
+      "distinct angles are disjoint simple polygons in disjoint half-planes; the caps are CGAL constrained "
+      "Delaunay triangulations of that section (counter-clockwise by the exact orientation predicate) in "
+      "the two bounding half-planes, with the keys' circles as holes; each socket lies within its radius "
+      "of its centre in every section (|(rho - r_c, z - z_c)| <= |v|), which keeps >= key_margin + sagitta "
+      "{:.3g} from the section's boundary, and within asin(r_s / r_c) < 90 degrees of its plane; each bump "
+      "lies outside the wedge (angles in (b, b + asin(r / r_c)]) and meets the part only along its base "
+      "circle",
+      m.section.proof, p.from_angle * 180.0 / M_PI, p.to_angle * 180.0 / M_PI, p.angular_steps,
+      m.max_angular_step * 180.0 / M_PI,
+      o.block == BlockShape::Box ? " and its block side on the box's flat side (every corner is a sample)"
+                                 : "",
+      chord_sagitta(m.section.block_radius, m.max_angular_step));
+  if (m.keys.base_centres.empty()) return proof;
+  return proof +
+         fmt::format(
+             "; its bottom on the base cut z = {:.6g} is a CGAL constrained Delaunay triangulation of "
+             "the plaster there (between the block's and the cavity's rings) with the base keys' "
+             "socket circles as holes, so every half-plane meets it at that height only, between the "
+             "rings; each socket lies within its radius of its centre in every half-plane and keeps "
+             ">= {:.3g} from the cavity above and below the cut, from the block and from the split "
+             "planes",
+             m.section.z_cut,
+             *std::min_element(m.keys.base_clearances.begin(), m.keys.base_clearances.end()));
 }
 
 }  // namespace
@@ -195,11 +185,9 @@ Mould build_mould(const CompositeCurve& profile, const MouldOptions& o) {
     if (!m.keys.base_centres.empty()) {
       base.proof.statement += fmt::format(
           "; its top on the cut z = {:.6g} is a CGAL constrained Delaunay triangulation of the annulus "
-          "between "
-          "the block's and the cavity's rings with the keys' circles as holes, so every half-plane meets it "
-          "at that height only, "
-          "between the rings; each bump rises above the cut, where the base section has nothing, "
-          "within its radius of its centre",
+          "between the block's and the cavity's rings with the keys' circles as holes, so every half-plane "
+          "meets it at that height only, between the rings; each bump rises above the cut, where the base "
+          "section has nothing, within its radius of its centre",
           s.z_cut);
     }
     m.parts.push_back(std::move(base));
