@@ -126,6 +126,67 @@ CompositeCurve master_profile(const CompositeCurve& master, const MouldSection* 
   return CompositeCurve(std::move(segments), false);
 }
 
+// With print.bed: a master taller than the bed cut into sections with pins
+// (their facts in `facts`, their heights in `products`), or a warning for
+// one wider than the bed; nothing when it fits.
+std::optional<MasterSplit> cut_for_bed(const VesselDesign& design, const VesselMesh& mesh,
+                                       const BoundingBox& box, const BuildContext& context, Facts& facts,
+                                       Result& out, VesselProducts& products) {
+  if (!design.print || !design.print->bed) return std::nullopt;
+  const Vec3& bed = *design.print->bed;
+  const Vec3 size = box.hi - box.lo;
+  const bool wide = std::max(size.x(), size.y()) > std::min(bed.x(), bed.y());
+  facts.set("fits_bed", !wide && size.z() <= bed.z());
+  if (wide) {
+    out.warnings.push_back(fmt::format(
+        "{}: the master ({:.6g} {} across) is wider than the bed {:g} x {:g} {}; fabmesh cuts a master "
+        "into sections by height only: print it on a larger printer or cut it",
+        key_label(context.common, "print.bed"), std::max(size.x(), size.y()), context.common.units, bed.x(),
+        bed.y(), context.common.units));
+    return std::nullopt;
+  }
+  if (size.z() <= bed.z()) return std::nullopt;
+  if (mesh.section.loops.size() != 1) {
+    throw GeometryError("print.bed", fmt::format("the master is {} bodies (its profile runs along the axis "
+                                                 "between them): fabmesh cuts one body into sections",
+                                                 mesh.section.loops.size()));
+  }
+  MasterSplitOptions so;
+  so.bed_height = bed.z();
+  so.pin_diameter = design.print->pin_diameter;
+  so.pin_clearance = design.print->pin_clearance;
+  so.segments = mesh.segments;
+  MasterSplit split = split_master(mesh.section.loops.front(), so);
+  std::vector<Facts> sections;
+  MasterSections cut;
+  for (const MasterSection& s : split.sections) {
+    Facts f;
+    f.set("name", s.name)
+        .set("z_low", s.z_low)
+        .set("z_high", s.z_high)
+        .set("height", s.z_high - s.z_low + (s.pin ? split.pin_height : 0.0))
+        .set("pin", s.pin)
+        .set("hole", s.hole)
+        .set("volume", s.volume);
+    sections.push_back(std::move(f));
+    cut.sections.push_back({s.name, s.z_low, s.z_high, s.pin, s.hole});
+  }
+  Facts pin;
+  pin.set("diameter", so.pin_diameter)
+      .set("height", split.pin_height)
+      .set("clearance", so.pin_clearance)
+      .set("hole_diameter", 2.0 * split.hole_radius)
+      .set("hole_depth", split.hole_depth);
+  facts.set("sections", std::move(sections)).set("pin", std::move(pin));
+  cut.pin_radius = 0.5 * so.pin_diameter;
+  cut.pin_height = split.pin_height;
+  cut.hole_radius = split.hole_radius;
+  cut.hole_depth = split.hole_depth;
+  cut.enclosing_radius = 2.0 * std::max(size.x(), size.y()) + 1.0;
+  products.master_sections = std::move(cut);
+  return split;
+}
+
 // The casting master (outputs master_stl, master_3mf, master_step): the
 // solid revolution of master_profile, proven like the vessel (a simple
 // section revolved on a closed grid), with its exact solid and its exact
@@ -151,62 +212,7 @@ void add_master(const VesselDesign& design, const CompositeCurve& master, const 
       .set("size", size_of(box.lo, box.hi))
       .set("triangles", mesh.soup.triangles.size())
       .set("max_deviation", mesh.max_deviation);
-  std::optional<MasterSplit> split;
-  if (design.print && design.print->bed) {
-    // A master taller than the bed is cut into sections with pins; one wider than the bed is said.
-    const Vec3& bed = *design.print->bed;
-    const Vec3 size = box.hi - box.lo;
-    const bool wide = std::max(size.x(), size.y()) > std::min(bed.x(), bed.y());
-    facts.set("fits_bed", !wide && size.z() <= bed.z());
-    if (wide) {
-      out.warnings.push_back(fmt::format(
-          "{}: the master ({:.6g} {} across) is wider than the bed {:g} x {:g} {}; fabmesh cuts a master "
-          "into sections by height only: print it on a larger printer or cut it",
-          key_label(context.common, "print.bed"), std::max(size.x(), size.y()), context.common.units, bed.x(),
-          bed.y(), context.common.units));
-    } else if (size.z() > bed.z()) {
-      if (mesh.section.loops.size() != 1) {
-        throw GeometryError("print.bed",
-                            fmt::format("the master is {} bodies (its profile runs along the axis "
-                                        "between them): fabmesh cuts one body into sections",
-                                        mesh.section.loops.size()));
-      }
-      MasterSplitOptions so;
-      so.bed_height = bed.z();
-      so.pin_diameter = design.print->pin_diameter;
-      so.pin_clearance = design.print->pin_clearance;
-      so.segments = mesh.segments;
-      split = split_master(mesh.section.loops.front(), so);
-      std::vector<Facts> sections;
-      for (const MasterSection& s : split->sections) {
-        Facts f;
-        f.set("name", s.name)
-            .set("z_low", s.z_low)
-            .set("z_high", s.z_high)
-            .set("height", s.z_high - s.z_low + (s.pin ? split->pin_height : 0.0))
-            .set("pin", s.pin)
-            .set("hole", s.hole)
-            .set("volume", s.volume);
-        sections.push_back(std::move(f));
-      }
-      Facts pin;
-      pin.set("diameter", so.pin_diameter)
-          .set("height", split->pin_height)
-          .set("clearance", so.pin_clearance)
-          .set("hole_diameter", 2.0 * split->hole_radius)
-          .set("hole_depth", split->hole_depth);
-      facts.set("sections", std::move(sections)).set("pin", std::move(pin));
-      MasterSections cut;
-      for (const MasterSection& s : split->sections)
-        cut.sections.push_back({s.name, s.z_low, s.z_high, s.pin, s.hole});
-      cut.pin_radius = 0.5 * so.pin_diameter;
-      cut.pin_height = split->pin_height;
-      cut.hole_radius = split->hole_radius;
-      cut.hole_depth = split->hole_depth;
-      cut.enclosing_radius = 2.0 * std::max(size.x(), size.y()) + 1.0;
-      products.master_sections = std::move(cut);
-    }
-  }
+  std::optional<MasterSplit> split = cut_for_bed(design, mesh, box, context, facts, out, products);
   out.facts.set("master", std::move(facts));
   if (split) {
     // Each section is a part of its own, in the master's frame (together they are the master).
