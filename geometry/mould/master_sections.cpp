@@ -15,6 +15,9 @@
 namespace fabmesh {
 namespace {
 
+// More sections than any printer needs: a bed barely taller than the pin.
+constexpr int kMaxSections = 100;
+
 bool on_axis_edge(const Vec2& a, const Vec2& b) { return a.x() == 0.0 && b.x() == 0.0; }
 
 // The radii where the loop's edges off the axis cross the height z (no vertex lies on it).
@@ -139,7 +142,15 @@ MasterSplit split_master(const std::vector<Vec2>& loop, const MasterSplitOptions
     z1 = std::max(z1, p.y());
   }
   const double height = z1 - z0;
-  const int n = std::max(1, static_cast<int>(std::ceil(height / (o.bed_height - out.pin_height) - 1e-12)));
+  const double sections = std::ceil(height / (o.bed_height - out.pin_height) - 1e-12);
+  if (!(sections <= kMaxSections)) {
+    throw GeometryError(
+        "print.bed", fmt::format("the master ({:.6g} tall) would need {:.6g} sections under pins {:.6g} tall "
+                                 "on a bed {:.6g} tall; fabmesh makes at most {}: use a taller bed or a "
+                                 "smaller pin_diameter",
+                                 height, sections, out.pin_height, o.bed_height, kMaxSections));
+  }
+  const int n = std::max(1, static_cast<int>(sections));
   const double slab = height / n;
   if (n > 1 && slab < out.hole_depth + pin_r) {
     throw GeometryError(

@@ -96,6 +96,16 @@ TEST_CASE("master sections: bad beds, pins and cuts are refused naming the key",
       CHECK(e.field() == "print.bed");
     }
   }
+  SECTION("a bed barely taller than the pin: more sections than any printer needs") {
+    o.bed_height = 1.0 + 1e-9;
+    try {
+      split_master(cylinder, o);
+      FAIL("a billion sections were attempted");
+    } catch (const GeometryError& e) {
+      CHECK(e.where() == "print.bed");
+      CHECK_THAT(std::string(e.what()), Catch::Contains("fabmesh makes at most 100"));
+    }
+  }
   SECTION("a pin wider than the master at a cut") {
     // The hole's radius 1.3 + 0.5 and its wall 1.3 need 3.1 of the cylinder's 3.
     o.bed_height = 9.0;  // two sections of 5
