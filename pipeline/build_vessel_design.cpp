@@ -157,6 +157,13 @@ std::optional<MasterSplit> cut_for_bed(const VesselDesign& design, const VesselM
   so.pin_clearance = design.print->pin_clearance;
   so.segments = mesh.segments;
   MasterSplit split = split_master(mesh.section.loops.front(), so);
+  // The print checks' finding that the vessel is taller than the bed: its master is printed in sections.
+  const std::string too_tall = key_label(context.common, "print.bed") + ": the vessel (";
+  for (std::string& w : out.warnings) {
+    if (w.rfind(too_tall, 0) == 0) {
+      w += fmt::format("; its casting master is cut into {} sections that fit it", split.sections.size());
+    }
+  }
   std::vector<Facts> sections;
   MasterSections cut;
   for (const MasterSection& s : split.sections) {

@@ -213,3 +213,20 @@ TEST_CASE("master sections: the STEP holds each section as an exact solid, the m
   const double joint = M_PI * (0.09 * 0.6 - 0.32 * 0.32 * 0.62);
   CHECK(volume == Approx(r.facts.group("master").number("volume") + joint).epsilon(1e-7));
 }
+
+TEST_CASE("master sections: the vase example's set, its bed warning saying the master is cut to fit",
+          "[pipeline][master]") {
+  const fs::path dir = fresh_dir("master_vase_example");
+  std::string said;
+  REQUIRE(run_cli({"run", example("mould_vase_production.yaml"), "-o", dir.string()}, &said) == 0);
+  // The vase itself (318 mm) is taller than the 220 mm bed; its master (343 mm with the spare) is cut.
+  CHECK_THAT(said,
+             Catch::Contains("does not fit the bed 220 x 220 x 220 mm; its casting master is cut into 2 "
+                             "sections that fit it"));
+  for (const char* f :
+       {"mould_vase_production.master.section-1.stl", "mould_vase_production.master.section-2.stl",
+        "mould_vase_production.master.3mf", "mould_vase_production.mould.3mf",
+        "mould_vase_production.mould.step", "mould_vase_production.mould-base.stl"}) {
+    CHECK(fs::exists(dir / f));
+  }
+}
