@@ -1,7 +1,8 @@
 #pragma once
 // Registration keys on the split planes of a mould: hemispherical bumps on
 // one face of each split, matching hemispherical sockets (larger by a
-// clearance) on the other.
+// clearance) on the other; with a base part, one per side part on the base
+// cut too (docs/math/moulds.md 2).
 
 #include <cstddef>
 #include <cstdint>

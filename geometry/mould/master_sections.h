@@ -6,7 +6,8 @@
 // the clearance all round, deeper by it). A solid of revolution needs no
 // more than concentricity to go back together, so one pin per joint does.
 // Each section is the master's section clipped to its slab, notched for the
-// pin and the hole, and revolved: proven like the master.
+// pin and the hole, and revolved: proven like the master
+// (docs/math/moulds.md 4).
 
 #include <string>
 #include <vector>
