@@ -11,6 +11,7 @@
 #include "geometry/mesh/revolution_margin.h"
 #include "geometry/mesh/revolve.h"
 #include "geometry/section/simple_polygon.h"
+#include "geometry/toolpath/boundary_index.h"
 
 namespace fabmesh {
 namespace {
@@ -49,39 +50,14 @@ std::vector<Vec2> clip(const std::vector<Vec2>& loop, double z, bool keep_above)
   return out;
 }
 
-// Whether segments ab and cd cross at a point inside both (touching ends are
-// left to the distance tests, which give 0 for them).
-bool segments_cross(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
-  auto side = [](const Vec2& o, const Vec2& p, const Vec2& q) {
-    return (p - o).x() * (q - o).y() - (p - o).y() * (q - o).x();
-  };
-  const double d1 = side(c, d, a), d2 = side(c, d, b), d3 = side(a, b, c), d4 = side(a, b, d);
-  return ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0)) &&
-         ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0));
-}
-
-// Distance between segment ab and the axis-aligned rectangle [0, w] x [z0, z1].
+// Distance between segment ab and the axis-aligned rectangle [0, w] x [z0, z1]:
+// 0 when an end lies in it, else the least distance to its four sides.
 double segment_rectangle_distance(const Vec2& a, const Vec2& b, double w, double z0, double z1) {
-  auto point_rect = [&](const Vec2& p) {
-    const double dx = std::max({0.0 - p.x(), 0.0, p.x() - w});
-    const double dz = std::max({z0 - p.y(), 0.0, p.y() - z1});
-    return std::hypot(dx, dz);
-  };
-  auto point_segment = [&](const Vec2& p) {
-    const Vec2 ab = b - a;
-    const double len2 = ab.squaredNorm();
-    const double t = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-    return (a + t * ab - p).norm();
-  };
-  // The segment meets the rectangle when one end is inside or it crosses a side: the end and corner
-  // distances below do not see a crossing, so the four sides are tested first.
+  auto inside = [&](const Vec2& p) { return p.x() >= 0.0 && p.x() <= w && p.y() >= z0 && p.y() <= z1; };
+  if (inside(a) || inside(b)) return 0.0;
   const Vec2 corners[4] = {{0.0, z0}, {w, z0}, {w, z1}, {0.0, z1}};
-  for (int k = 0; k < 4; ++k) {
-    if (segments_cross(a, b, corners[k], corners[(k + 1) % 4])) return 0.0;
-  }
-  if (point_rect(a) == 0.0 || point_rect(b) == 0.0) return 0.0;
-  double d = std::min(point_rect(a), point_rect(b));
-  for (const Vec2& c : corners) d = std::min(d, point_segment(c));
+  double d = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < 4; ++k) d = std::min(d, segment_distance(a, b, corners[k], corners[(k + 1) % 4]));
   return d;
 }
 
