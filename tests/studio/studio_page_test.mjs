@@ -684,6 +684,9 @@ try {
     await withExample('countertop_g1.yaml', 'segments', async ({page: sp, file: top, state: st, settled}) => {
       const fileText = fs.readFileSync(top, 'utf8');
       const segmentsOf = (s) => s.controlPoints.find((c) => c.curve === 'outline').segments.items;
+      const segmentsAre = (n) => sp.waitForFunction(
+          (k) => window.fabmeshStudio.controlPoints.find((c) => c.curve === 'outline')?.segments.items.length === k,
+          {timeout: 120000}, n);
       let now = await st();
       assert.equal(segmentsOf(now).length, 8);
       // A double-click on the front edge at x = 1000 mm: a segment ends there, before the front edge's.
@@ -693,9 +696,7 @@ try {
         return {x: p.x, y: p.y};
       });
       await sp.mouse.click(where.x, where.y, {count: 2});
-      await sp.waitForFunction(
-          () => window.fabmeshStudio.controlPoints.find((c) => c.curve === 'outline')?.segments.items.length === 9,
-          {timeout: 120000});
+      await segmentsAre(9);
       await settled();
       now = await st();
       assert.equal(now.error, null);
@@ -708,9 +709,7 @@ try {
       assert.equal(addedReport.valid, true);
       // Its end point's row deletes it again: the eight segments as the file has them.
       await sp.click('#field-outline_segments_0__points_1_ button');
-      await sp.waitForFunction(
-          () => window.fabmeshStudio.controlPoints.find((c) => c.curve === 'outline')?.segments.items.length === 8,
-          {timeout: 120000});
+      await segmentsAre(8);
       await settled();
       now = await st();
       assert.equal(now.error, null);

@@ -16,6 +16,18 @@ namespace {
 // of its area.
 double inscribed_factor(int n) { return n * std::sin(2.0 * M_PI / n) / (2.0 * M_PI); }
 
+// split_master refuses `loop`: a GeometryError at `where` whose message says `says`.
+void refused(const std::vector<Vec2>& loop, const MasterSplitOptions& o, const char* accepted,
+             const std::string& where, const std::string& says) {
+  try {
+    split_master(loop, o);
+    FAIL(accepted);
+  } catch (const GeometryError& e) {
+    CHECK(e.where() == where);
+    CHECK_THAT(std::string(e.what()), Catch::Contains(says));
+  }
+}
+
 }  // namespace
 
 TEST_CASE("master sections: a cylinder taller than the bed in three sections with pins and holes",
@@ -98,49 +110,28 @@ TEST_CASE("master sections: bad beds, pins and cuts are refused naming the key",
   }
   SECTION("a bed barely taller than the pin: more sections than any printer needs") {
     o.bed_height = 1.0 + 1e-9;
-    try {
-      split_master(cylinder, o);
-      FAIL("a billion sections were attempted");
-    } catch (const GeometryError& e) {
-      CHECK(e.where() == "print.bed");
-      CHECK_THAT(std::string(e.what()), Catch::Contains("fabmesh makes at most 100"));
-    }
+    refused(cylinder, o, "a billion sections were attempted", "print.bed", "fabmesh makes at most 100");
   }
   SECTION("a pin wider than the master at a cut") {
     // The hole's radius 1.3 + 0.5 and its wall 1.3 need 3.1 of the cylinder's 3.
     o.bed_height = 9.0;  // two sections of 5
     o.pin_diameter = 2.6;
     o.pin_clearance = 0.5;
-    try {
-      split_master(cylinder, o);
-      FAIL("a hole wider than the master's wall was accepted");
-    } catch (const GeometryError& e) {
-      CHECK(e.where() == "print.pin_diameter");
-      CHECK_THAT(std::string(e.what()), Catch::Contains("too narrow"));
-    }
+    refused(cylinder, o, "a hole wider than the master's wall was accepted", "print.pin_diameter",
+            "too narrow");
   }
   SECTION("a cut crossing the profile three times") {
     // Out to (4, 5), back in and down to (3, 2), then up to the rim (2, 10): z in (2, 5) is crossed thrice.
     o.bed_height = 4.0;  // 10 / 3 -> 4 sections, a cut at z = 2.5
-    try {
-      split_master({{0, 0}, {4, 0}, {4, 5}, {3, 2}, {2, 10}, {0, 10}}, o);
-      FAIL("a section that falls apart was accepted");
-    } catch (const GeometryError& e) {
-      CHECK(e.where() == "print.bed");
-      CHECK_THAT(std::string(e.what()), Catch::Contains("crosses the master's profile 3 times"));
-    }
+    refused({{0, 0}, {4, 0}, {4, 5}, {3, 2}, {2, 10}, {0, 10}}, o, "a section that falls apart was accepted",
+            "print.bed", "crosses the master's profile 3 times");
   }
   SECTION("a neck above the cut too close to the hole") {
     // Radius 3 at the cut z = 5, but the neck of radius 1 starts 0.6 above it: the hole (radius 0.6,
     // 1.1 deep) would leave 0.4 of wall, less than the pin's radius 0.5.
     o.bed_height = 6.0;
     o.pin_clearance = 0.1;
-    try {
-      split_master({{0, 0}, {3, 0}, {3, 5.2}, {1, 5.6}, {1, 10}, {0, 10}}, o);
-      FAIL("a hole breaking through the neck was accepted");
-    } catch (const GeometryError& e) {
-      CHECK(e.where() == "print.pin_diameter");
-      CHECK_THAT(std::string(e.what()), Catch::Contains("comes within 0.4"));
-    }
+    refused({{0, 0}, {3, 0}, {3, 5.2}, {1, 5.6}, {1, 10}, {0, 10}}, o,
+            "a hole breaking through the neck was accepted", "print.pin_diameter", "comes within 0.4");
   }
 }
