@@ -42,13 +42,40 @@ std::vector<Vec2> circle(const Vec2& c, double radius, int n) {
   return pts;
 }
 
+using VertexIndex = std::map<std::pair<double, double>, std::uint32_t>;
+
+// Triangulates `region` (CGAL, no points added) into `soup`: every vertex of
+// the triangulation is one of the soup's, found by its plane coordinates in
+// `index`; `reversed` flips the triangles. `what` names the face in errors.
+void append_triangulation(TriangleSoup& soup, const Region2& region, const VertexIndex& index, bool reversed,
+                          const char* what) {
+  if (const auto c = find_crossing(region_loops(region))) {
+    throw std::logic_error(
+        fmt::format("{}: the key circles meet the face near ({}, {})", what, c->where.x(), c->where.y()));
+  }
+  const PlanarTriangulation t = triangulate(region);
+  if (t.steiner_points != 0) throw std::logic_error(fmt::format("{}: the triangulation added points", what));
+  std::vector<std::uint32_t> to_soup(t.vertices.size());
+  for (std::size_t i = 0; i < t.vertices.size(); ++i) {
+    const auto it = index.find({t.vertices[i].x(), t.vertices[i].y()});
+    if (it == index.end())
+      throw std::logic_error(fmt::format("{}: a triangulation vertex is not a face vertex", what));
+    to_soup[i] = it->second;
+  }
+  for (const auto& f : t.triangles) {
+    const std::uint32_t a = to_soup[f[0]], b = to_soup[f[1]], c = to_soup[f[2]];
+    soup.triangles.push_back(reversed ? std::array<std::uint32_t, 3>{a, c, b}
+                                      : std::array<std::uint32_t, 3>{a, b, c});
+  }
+}
+
 // Triangulates the section at one end with a hole per key (radius `key_r`),
 // appends the cap (end cap: reversed, normal +e_theta) and returns each key's
 // base circle as soup indices (counter-clockwise in (r, z)).
 std::vector<std::vector<std::uint32_t>> append_cap(TriangleSoup& soup, const std::vector<Vec2>& loop,
                                                    const std::vector<std::uint32_t>& ring, const Vec2& dir,
                                                    const KeyLayout& keys, double key_r, bool end_cap) {
-  std::map<std::pair<double, double>, std::uint32_t> index;
+  VertexIndex index;
   for (std::size_t i = 0; i < loop.size(); ++i) index[{loop[i].x(), loop[i].y()}] = ring[i];
   Region2 region;
   region.outer = loop;
@@ -66,24 +93,7 @@ std::vector<std::vector<std::uint32_t>> append_cap(TriangleSoup& soup, const std
     region.area -= 0.5 * signed_area2(pts);
     region.holes.emplace_back(pts.rbegin(), pts.rend());  // holes run clockwise
   }
-  if (const auto c = find_crossing(region_loops(region))) {
-    throw std::logic_error(
-        fmt::format("mould cap: the key circles meet the section near ({}, {})", c->where.x(), c->where.y()));
-  }
-  const PlanarTriangulation t = triangulate(region);
-  if (t.steiner_points != 0) throw std::logic_error("mould cap: the triangulation added points");
-  std::vector<std::uint32_t> to_soup(t.vertices.size());
-  for (std::size_t i = 0; i < t.vertices.size(); ++i) {
-    const auto it = index.find({t.vertices[i].x(), t.vertices[i].y()});
-    if (it == index.end())
-      throw std::logic_error("mould cap: a triangulation vertex is not a section vertex");
-    to_soup[i] = it->second;
-  }
-  for (const auto& f : t.triangles) {
-    const std::uint32_t a = to_soup[f[0]], b = to_soup[f[1]], c = to_soup[f[2]];
-    soup.triangles.push_back(end_cap ? std::array<std::uint32_t, 3>{a, c, b}
-                                     : std::array<std::uint32_t, 3>{a, b, c});
-  }
+  append_triangulation(soup, region, index, end_cap, "mould cap");
   return circles;
 }
 
@@ -144,7 +154,7 @@ std::vector<std::vector<std::uint32_t>> append_flat_face(TriangleSoup& soup,
                                                          const std::vector<std::uint32_t>& inner, bool closed,
                                                          const std::vector<Vec2>& centres, double key_r,
                                                          int segments, bool up) {
-  std::map<std::pair<double, double>, std::uint32_t> index;
+  VertexIndex index;
   const double z = soup.vertices[outer.front()].z();
   auto xy = [&](std::uint32_t v) {
     Vec2 p(soup.vertices[v].x(), soup.vertices[v].y());
@@ -178,23 +188,7 @@ std::vector<std::vector<std::uint32_t>> append_flat_face(TriangleSoup& soup,
     region.area += 0.5 * signed_area2(pts);  // clockwise (u x w = -z): a hole as it is
     region.holes.push_back(std::move(pts));
   }
-  if (const auto c = find_crossing(region_loops(region))) {
-    throw std::logic_error(fmt::format("mould base cut: the key circles meet the face near ({}, {})",
-                                       c->where.x(), c->where.y()));
-  }
-  const PlanarTriangulation t = triangulate(region);
-  if (t.steiner_points != 0) throw std::logic_error("mould base cut: the triangulation added points");
-  for (const auto& f : t.triangles) {
-    std::array<std::uint32_t, 3> tri{};
-    for (int k = 0; k < 3; ++k) {
-      const Vec2& p = t.vertices[f[static_cast<std::size_t>(k)]];
-      const auto it = index.find({p.x(), p.y()});
-      if (it == index.end())
-        throw std::logic_error("mould base cut: a triangulation vertex is not a face vertex");
-      tri[static_cast<std::size_t>(k)] = it->second;
-    }
-    soup.triangles.push_back(up ? tri : std::array<std::uint32_t, 3>{tri[0], tri[2], tri[1]});
-  }
+  append_triangulation(soup, region, index, !up, "mould base cut");
   return circles;
 }
 
