@@ -32,6 +32,7 @@
 #include <BRepPrimAPI_MakeSphere.hxx>
 #include <BRep_Builder.hxx>
 #include <BRep_Tool.hxx>
+#include <GC_MakeArcOfCircle.hxx>
 #include <GProp_GProps.hxx>
 #include <Geom_BSplineCurve.hxx>
 #include <Geom_BSplineSurface.hxx>
@@ -79,6 +80,7 @@
 #include <gp_Pln.hxx>
 #include <gp_Trsf.hxx>
 #include <mutex>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <vector>
@@ -293,20 +295,33 @@ TopoDS_Shape make_hemisphere(const StepHemisphere& h) {
   return BRepPrimAPI_MakeSphere(frame, h.radius, 0.0, 0.5 * M_PI).Shape();
 }
 
-// `object` with `tools` taken away (Cut) or added (Fuse), by OpenCASCADE's
-// general fuse; refused when it reports an error.
+// `object` with `tools` taken away (Cut), added (Fuse) or kept in common, by
+// OpenCASCADE's general fuse: shapes closer than `fuzzy` taken as touching
+// (0: exactly); `glue` when the arguments only share whole faces. Empty
+// when the operation reports an error.
 template <class Operation>
-TopoDS_Shape boolean(const TopoDS_Shape& object, const TopTools_ListOfShape& tools, const char* what) {
+std::optional<TopoDS_Shape> try_boolean(const TopoDS_Shape& object, const TopTools_ListOfShape& tools,
+                                        double fuzzy = 0.0, bool glue = false) {
   Operation operation;
   TopTools_ListOfShape objects;
   objects.Append(object);
   operation.SetArguments(objects);
   operation.SetTools(tools);
   operation.SetRunParallel(Standard_False);
+  if (fuzzy > 0.0) operation.SetFuzzyValue(fuzzy);
+  if (glue) operation.SetGlue(BOPAlgo_GlueShift);
   operation.Build();
-  if (!operation.IsDone() || operation.HasErrors())
-    throw std::runtime_error(std::string("OpenCASCADE's boolean operation failed ") + what);
+  if (!operation.IsDone() || operation.HasErrors()) return std::nullopt;
   return operation.Shape();
+}
+
+// As try_boolean, exactly; refused when it reports an error.
+template <class Operation>
+TopoDS_Shape boolean(const TopoDS_Shape& object, const TopTools_ListOfShape& tools, const char* what,
+                     bool glue = false) {
+  std::optional<TopoDS_Shape> shape = try_boolean<Operation>(object, tools, 0.0, glue);
+  if (!shape) throw std::runtime_error(std::string("OpenCASCADE's boolean operation failed ") + what);
+  return *shape;
 }
 
 // The block minus the revolved section (the mould's cavity) and the
@@ -466,25 +481,6 @@ std::vector<TopoDS_Edge> profiled_edges(const TopoDS_Shape& prism, const StepBod
     if (r.profiled[i]) middles.push_back(edge_middle(make_edge(outer.curves[i], body.form)));
   }
   const double tolerance = 1e-7 * std::max(1.0, size);
-  // OpenCASCADE rounds a whole chain of tangent edges: a profiled curve
-  // that runs on tangentially into an unprofiled one would carry the round
-  // along it. Refused rather than written wrong.
-  const std::size_t n = outer.curves.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::size_t j = (i + 1) % n;
-    if (r.profiled[i] == r.profiled[j]) continue;
-    const BRepAdaptor_Curve a(make_edge(outer.curves[i], body.form)),
-        b(make_edge(outer.curves[j], body.form));
-    gp_Pnt p, q;
-    gp_Vec ta, tb;
-    a.D1(a.LastParameter(), p, ta);
-    b.D1(b.FirstParameter(), q, tb);
-    if (ta.Magnitude() > 0.0 && tb.Magnitude() > 0.0 && ta.Angle(tb) < 1e-6) {
-      throw std::runtime_error("edge profile: at (" + std::to_string(p.X()) + ", " + std::to_string(p.Y()) +
-                               ") an exposed edge runs on tangentially into a wall or a seam; OpenCASCADE's "
-                               "fillet would follow it there, so this solid is not written");
-    }
-  }
   std::vector<TopoDS_Edge> found;
   TopTools_IndexedMapOfShape edges;
   TopExp::MapShapes(prism, TopAbs_EDGE, edges);
@@ -537,6 +533,307 @@ TopoDS_Shape common_of(const TopoDS_Shape& a, const TopoDS_Shape& b) {
   return boolean<BRepAlgoAPI_Common>(a, tools, "keeping the slab's thickness");
 }
 
+// Where a profile stops: the prism minus what a profile bit takes off.
+//
+// OpenCASCADE's fillets follow a whole chain of tangent edges, so where an
+// exposed curve runs on tangentially into a wall or a seam they would round
+// the wall too. There the solid is built as the mesh defines it: the prism
+// minus, for each exposed curve, the points within d(z) of it. That is the
+// profile's section swept along the curve (a prism along a line, a
+// revolution about a circle arc's centre) and, where the round stops (on a
+// wall or a seam met at more than a right angle, or at a reflex corner),
+// the half-section revolved about the vertical through that end. Exact for
+// lines and circle arcs; other curves are refused there.
+
+// Where an edge starts (or ends) as its loop runs, and its direction of travel there.
+void travel(const TopoDS_Edge& e, bool at_end, gp_Pnt& point, gp_Vec& tangent) {
+  const BRepAdaptor_Curve c(e);
+  const bool reversed = e.Orientation() == TopAbs_REVERSED;
+  c.D1(at_end != reversed ? c.LastParameter() : c.FirstParameter(), point, tangent);
+  if (reversed) tangent.Reverse();
+}
+
+// +1 when the loop of `edges` runs counter-clockwise seen from above, -1
+// when clockwise (the shoelace sum of points along them).
+double loop_sense(const std::vector<TopoDS_Edge>& edges) {
+  constexpr int kSamples = 16;
+  std::vector<gp_Pnt> points;
+  for (const TopoDS_Edge& e : edges) {
+    const BRepAdaptor_Curve c(e);
+    const bool reversed = e.Orientation() == TopAbs_REVERSED;
+    for (int k = 0; k < kSamples; ++k) {
+      const double f = static_cast<double>(reversed ? kSamples - k : k) / kSamples;
+      points.push_back(c.Value(c.FirstParameter() + f * (c.LastParameter() - c.FirstParameter())));
+    }
+  }
+  double twice_area = 0.0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const gp_Pnt& a = points[i];
+    const gp_Pnt& b = points[(i + 1) % points.size()];
+    twice_area += a.X() * b.Y() - b.X() * a.Y();
+  }
+  return twice_area >= 0.0 ? 1.0 : -1.0;
+}
+
+// One round (or bevel) of size r, on the top face (at height t) or the
+// bottom one, in the vertical plane through `origin` spanned by `inward`
+// (horizontal, unit, into the plan) and z. In that plane s runs into the
+// plan and w from the face into the slab; the profile takes off s < d(w),
+// the region between the line s = 0 and the round from (0, r) to (r, 0).
+// The section is that region reaching `over` past the face and, unless
+// `half`, `over` back out past the edge, so that it cuts clear of the
+// solid's faces; with `half` it stops at s = 0, the axis a cap turns about.
+TopoDS_Face cut_section(const gp_Pnt& origin, const gp_Vec& inward, double t, double r, bool top,
+                        bool chamfer, double over, bool half) {
+  const auto at = [&](double s, double w) {
+    return gp_Pnt(origin.X() + s * inward.X(), origin.Y() + s * inward.Y(), top ? t - w : w);
+  };
+  BRepBuilderAPI_MakeWire wire;
+  if (chamfer) {
+    wire.Add(BRepBuilderAPI_MakeEdge(at(0.0, r), at(r, 0.0)).Edge());
+  } else {
+    const double m = r * (1.0 - std::sqrt(0.5));
+    const GC_MakeArcOfCircle arc(at(0.0, r), at(m, m), at(r, 0.0));
+    if (!arc.IsDone()) throw std::runtime_error("edge profile: the round's arc could not be made");
+    wire.Add(BRepBuilderAPI_MakeEdge(arc.Value()).Edge());
+  }
+  std::vector<gp_Pnt> corners{at(r, 0.0), at(r, -over)};
+  if (half) {
+    corners.insert(corners.end(), {at(0.0, -over), at(0.0, r)});
+  } else {
+    corners.insert(corners.end(), {at(-over, -over), at(-over, r + over), at(0.0, r)});
+  }
+  for (std::size_t i = 0; i + 1 < corners.size(); ++i)
+    wire.Add(BRepBuilderAPI_MakeEdge(corners[i], corners[i + 1]).Edge());
+  if (!wire.IsDone()) throw std::runtime_error("edge profile: the section's edges do not close");
+  BRepBuilderAPI_MakeFace face(wire.Wire(), Standard_True);
+  if (!face.IsDone()) throw std::runtime_error("edge profile: the section makes no face");
+  return face.Face();
+}
+
+// The rounds a profile cuts: (size, on the top face, a bevel).
+struct ProfileCut {
+  double size;
+  bool top;
+  bool chamfer;
+};
+
+std::vector<ProfileCut> profile_cuts(const StepEdgeRounds& r) {
+  std::vector<ProfileCut> cuts;
+  if (r.top > 0.0) cuts.push_back({r.top, true, r.chamfer});
+  if (r.bottom > 0.0) cuts.push_back({r.bottom, false, false});
+  return cuts;
+}
+
+// The region the profile takes off along one exposed curve of the outline
+// (a line or a circle arc; `sense` the loop's, from loop_sense).
+void add_sweep_cutters(const StepCurve& curve, const TopoDS_Edge& edge, const StepBody& body, double sense,
+                       std::size_t index, TopTools_ListOfShape& cutters) {
+  const double t = body.height;
+  if (curve.kind == StepCurve::Kind::Line) {
+    gp_Pnt a, b;
+    gp_Vec ta, tb;
+    travel(edge, false, a, ta);
+    travel(edge, true, b, tb);
+    const gp_Vec along(a, b);
+    gp_Vec inward(-sense * along.Y(), sense * along.X(), 0.0);
+    inward.Normalize();
+    for (const ProfileCut& c : profile_cuts(body.rounds)) {
+      BRepPrimAPI_MakePrism prism(cut_section(a, inward, t, c.size, c.top, c.chamfer, c.size, false), along);
+      if (!prism.IsDone()) throw std::runtime_error("edge profile: the cutter along a line failed");
+      cutters.Append(prism.Shape());
+    }
+    return;
+  }
+  const StepConic& k = curve.conic;
+  if (curve.kind != StepCurve::Kind::Conic || k.major != k.minor) {
+    throw std::runtime_error(
+        "edge profile: an exposed edge runs on tangentially into a wall or a seam, and curve " +
+        std::to_string(index + 1) +
+        " of the outline, exposed, is neither a line nor a circle arc: the stopped round is cut "
+        "exactly only along those, so this solid is not written");
+  }
+  const double lo = std::min(k.from, k.to), hi = std::max(k.from, k.to), radius = k.major;
+  const double angle = k.axis_angle + lo;
+  const gp_Vec radial(std::cos(angle), std::sin(angle), 0.0);
+  const gp_Pnt centre(k.center.x(), k.center.y(), 0.0);
+  const gp_Pnt start = centre.Translated(radius * radial);
+  // Travelled counter-clockwise about its centre in a counter-clockwise loop
+  // (or both clockwise), the plan lies towards the centre.
+  const bool towards_centre = (k.to > k.from) == (sense > 0.0);
+  const gp_Vec inward = towards_centre ? -radial : radial;
+  for (const ProfileCut& c : profile_cuts(body.rounds)) {
+    const double over = towards_centre ? c.size : std::min(c.size, 0.5 * radius);
+    BRepPrimAPI_MakeRevol revol(cut_section(start, inward, t, c.size, c.top, c.chamfer, over, false),
+                                gp_Ax1(centre, gp::DZ()), std::min(hi - lo, 2.0 * M_PI));
+    if (!revol.IsDone()) throw std::runtime_error("edge profile: the cutter along an arc failed");
+    cutters.Append(revol.Shape());
+  }
+}
+
+// The region within d(z) of the corner `end` and inside the plan there: the
+// half-sections revolved about the vertical through it, from the direction
+// the outline leaves it (`leaving`, unit) by `sweep` radians about z times
+// `sense`, to the direction it came from. The sector's sides lie in the
+// planes of the corner's edges, so no face crosses the revolution's axis.
+void add_cap_cutters(const gp_Pnt& end, const gp_Vec& leaving, double sweep, double sense,
+                     const StepBody& body, TopTools_ListOfShape& cutters) {
+  for (const ProfileCut& c : profile_cuts(body.rounds)) {
+    BRepPrimAPI_MakeRevol revol(
+        cut_section(end, leaving, body.height, c.size, c.top, c.chamfer, c.size, true),
+        gp_Ax1(gp_Pnt(end.X(), end.Y(), 0.0), sense > 0.0 ? gp::DZ() : -gp::DZ()), sweep);
+    if (!revol.IsDone()) throw std::runtime_error("edge profile: the cutter about a stop failed");
+    cutters.Append(revol.Shape());
+  }
+}
+
+double volume_of(const TopoDS_Shape& shape) {
+  GProp_GProps props;
+  BRepGProp::VolumeProperties(shape, props);
+  return props.Mass();
+}
+
+// `object` minus `cutter`, one solid that is valid and smaller than
+// `object`: exactly, or where OpenCASCADE's exact operation fails (a cap's
+// sides lying in the corner's faces, its apex on their common edge), with
+// shapes closer than a fuzzy value taken as touching, the smallest that
+// works of 1e-6, 1e-5 and 1e-4 model units. Refused when none does.
+// `solid` without the closed shells OpenCASCADE's boolean operations can
+// leave where surfaces touch at a point (a bubble of a few faces whose area
+// is 1e-9 of the solid's or less): numerical debris, not geometry.
+TopoDS_Shape without_bubbles(const TopoDS_Shape& solid) {
+  std::vector<std::pair<double, TopoDS_Shell>> shells;
+  double largest = 0.0;
+  for (TopExp_Explorer e(solid, TopAbs_SHELL); e.More(); e.Next()) {
+    GProp_GProps props;
+    BRepGProp::SurfaceProperties(e.Current(), props);
+    shells.emplace_back(props.Mass(), TopoDS::Shell(e.Current()));
+    largest = std::max(largest, props.Mass());
+  }
+  if (shells.size() < 2) return solid;
+  BRepBuilderAPI_MakeSolid kept;
+  for (const auto& [area, shell] : shells) {
+    if (area > 1e-9 * largest) kept.Add(shell);
+  }
+  return kept.IsDone() ? kept.Solid() : solid;
+}
+
+// `object` minus `cutter`: one valid solid, smaller than `object` (of
+// `volume`) by no more than the cutter's volume. Exactly, or where OpenCASCADE's exact operation fails (a
+// cap's sides lying in the corner's faces, its apex on their common edge), with shapes closer than a fuzzy
+// value taken as touching, the smallest that works of 1e-6, 1e-5 and 1e-4 model units. Refused when none
+// does.
+TopoDS_Shape cut_one(const TopoDS_Shape& object, double volume, const TopoDS_Shape& cutter) {
+  TopTools_ListOfShape tools;
+  tools.Append(cutter);
+  const double most = volume_of(cutter) * (1.0 + 1e-9);
+  for (const double fuzzy : {0.0, 1e-6, 1e-5, 1e-4}) {
+    const std::optional<TopoDS_Shape> cut = try_boolean<BRepAlgoAPI_Cut>(object, tools, fuzzy);
+    if (!cut) continue;
+    TopTools_IndexedMapOfShape solids;
+    TopExp::MapShapes(*cut, TopAbs_SOLID, solids);
+    if (solids.Extent() != 1) continue;
+    const TopoDS_Shape result = without_bubbles(solids(1));
+    if (!BRepCheck_Analyzer(result).IsValid()) continue;
+    const double taken = volume - volume_of(result);
+    if (taken > 1e-12 * volume && taken <= most) return result;
+  }
+  throw std::runtime_error(
+      "edge profile: OpenCASCADE's cut of a stopped profile failed or took nothing away, so this "
+      "solid is not written");
+}
+
+// True when an exposed curve of the outline runs on tangentially into one
+// that is not (a wall, a seam), where fillets would not stop.
+bool profile_stops_on_tangent(const StepBody& body, const std::vector<TopoDS_Edge>& edges) {
+  const std::vector<bool>& profiled = body.rounds.profiled;
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    const std::size_t j = (i + 1) % edges.size();
+    if (profiled[i] == profiled[j]) continue;
+    gp_Pnt p, q;
+    gp_Vec ta, tb;
+    travel(edges[i], true, p, ta);
+    travel(edges[j], false, q, tb);
+    if (ta.Magnitude() > 0.0 && tb.Magnitude() > 0.0 && ta.Angle(tb) < 1e-6) return true;
+  }
+  return false;
+}
+
+// The prism of `face` from z_low to the top minus every exposed curve's cutter and a cap at each
+// end where the round stops: at a wall or a seam met at more than a right
+// angle (tangentially included), or at a reflex corner between two exposed
+// curves. Elsewhere the sweeps meet in a mitre, as the mesh's rings do.
+TopoDS_Shape cut_stops(const TopoDS_Face& face, const StepBody& body, const std::vector<TopoDS_Edge>& edges,
+                       double z_low) {
+  const StepLoop& outer = body.loops.at(0);
+  const std::vector<bool>& profiled = body.rounds.profiled;
+  const double sense = loop_sense(edges);
+  TopTools_ListOfShape caps, sweeps;
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    if (profiled[i]) add_sweep_cutters(outer.curves[i], edges[i], body, sense, i, sweeps);
+    const std::size_t j = (i + 1) % edges.size();
+    if (!profiled[i] && !profiled[j]) continue;
+    gp_Pnt p, q;
+    gp_Vec ta, tb;
+    travel(edges[i], true, p, ta);
+    travel(edges[j], false, q, tb);
+    const double turn =
+        sense * std::atan2(ta.X() * tb.Y() - ta.Y() * tb.X(), ta.X() * tb.X() + ta.Y() * tb.Y());
+    const double bound = profiled[i] && profiled[j] ? 0.0 : 0.5 * M_PI;
+    if (turn < bound - 1e-9) add_cap_cutters(p, tb.Normalized(), M_PI - turn, sense, body, caps);
+  }
+  // One cutter at a time, the caps first (each takes material no other has
+  // taken yet), each required to take some: a boolean operation that finds
+  // no intersection where there is one would leave the edge square.
+  ShapeUpgrade_UnifySameDomain flat(prism_between(face, z_low, body.height));
+  flat.Build();
+  TopoDS_Shape shape = flat.Shape();
+  double volume = volume_of(shape);
+  for (const TopTools_ListOfShape* list : {&caps, &sweeps}) {
+    for (TopTools_ListOfShape::Iterator it(*list); it.More(); it.Next()) {
+      shape = cut_one(shape, volume, it.Value());
+      volume = volume_of(shape);
+    }
+  }
+  ShapeUpgrade_UnifySameDomain unify(shape);
+  unify.Build();
+  return unify.Shape();
+}
+
+// The stopped profile: the top round cut on a prism reaching below it (so
+// that no cap's apex lies on a face the cut meets) and cut back to the
+// thickness; a round on both edges (eased, bullnose: the same size, the
+// profile symmetric about mid-thickness) as the upper half so made and its
+// mirror image glued to it.
+TopoDS_Shape stopped_profile(const TopoDS_Face& face, const StepBody& body,
+                             const std::vector<TopoDS_Edge>& edges) {
+  const double t = body.height;
+  const bool both = body.rounds.bottom > 0.0;
+  if (both && body.rounds.bottom != body.rounds.top)
+    throw std::runtime_error(
+        "edge profile: a stopped profile needs the same round at the top and the bottom");
+  StepBody top = body;
+  top.rounds.bottom = 0.0;
+  const double mid = both ? 0.5 * t : 0.0;
+  if (!(body.rounds.top < t - mid)) {
+    throw std::runtime_error(
+        "edge profile: a round as tall as the edge (a half bullnose of the full thickness, a "
+        "bullnose of half of it) that stops on a wall or a seam is not made exactly, so this solid "
+        "is not written");
+  }
+  const TopoDS_Shape upper = common_of(cut_stops(face, top, edges, mid - t), prism_between(face, mid, t));
+  if (!both) return upper;
+  gp_Trsf mirror;
+  mirror.SetMirror(gp_Ax2(gp_Pnt(0.0, 0.0, mid), gp::DZ()));
+  const TopoDS_Shape lower = BRepBuilderAPI_Transform(upper, mirror, Standard_True).Shape();
+  TopTools_ListOfShape tools;
+  tools.Append(lower);
+  const TopoDS_Shape joined = boolean<BRepAlgoAPI_Fuse>(upper, tools, "joining the profile's halves", true);
+  ShapeUpgrade_UnifySameDomain unify(joined);
+  unify.Build();
+  return unify.Shape();
+}
+
 // An extrusion with its edge profile. A round (or bevel) shorter than the
 // side face is a fillet (chamfer) of the prism's edges. One as tall as the
 // face (a half bullnose of the full thickness, a full bullnose's two
@@ -544,6 +841,12 @@ TopoDS_Shape common_of(const TopoDS_Shape& a, const TopoDS_Shape& b) {
 // then each round is made on a taller prism, cut back to its height, and
 // a full bullnose's two halves are joined. All exact.
 TopoDS_Shape profiled_prism(const TopoDS_Face& face, const StepBody& body) {
+  const StepLoop& outer = body.loops.at(0);
+  if (body.rounds.profiled.size() != outer.curves.size())
+    throw std::runtime_error("edge profile: one flag per curve of the outline is needed");
+  std::vector<TopoDS_Edge> edges;
+  for (const StepCurve& c : outer.curves) edges.push_back(make_edge(c, body.form));
+  if (profile_stops_on_tangent(body, edges)) return stopped_profile(face, body, edges);
   const double t = body.height, top = body.rounds.top, bottom = body.rounds.bottom;
   if (bottom <= 0.0) {
     if (top < t) return round_edges(prism_between(face, 0.0, t), body, 0.0, t, top, 0.0);
