@@ -297,11 +297,10 @@ TopoDS_Shape make_hemisphere(const StepHemisphere& h) {
 
 // `object` with `tools` taken away (Cut), added (Fuse) or kept in common, by
 // OpenCASCADE's general fuse: shapes closer than `fuzzy` taken as touching
-// (0: exactly); `glue` when the arguments only share whole faces. Empty
-// when the operation reports an error.
+// (0: exactly). Empty when the operation reports an error.
 template <class Operation>
 std::optional<TopoDS_Shape> try_boolean(const TopoDS_Shape& object, const TopTools_ListOfShape& tools,
-                                        double fuzzy = 0.0, bool glue = false) {
+                                        double fuzzy = 0.0) {
   Operation operation;
   TopTools_ListOfShape objects;
   objects.Append(object);
@@ -309,7 +308,6 @@ std::optional<TopoDS_Shape> try_boolean(const TopoDS_Shape& object, const TopToo
   operation.SetTools(tools);
   operation.SetRunParallel(Standard_False);
   if (fuzzy > 0.0) operation.SetFuzzyValue(fuzzy);
-  if (glue) operation.SetGlue(BOPAlgo_GlueShift);
   operation.Build();
   if (!operation.IsDone() || operation.HasErrors()) return std::nullopt;
   return operation.Shape();
@@ -317,9 +315,8 @@ std::optional<TopoDS_Shape> try_boolean(const TopoDS_Shape& object, const TopToo
 
 // As try_boolean, exactly; refused when it reports an error.
 template <class Operation>
-TopoDS_Shape boolean(const TopoDS_Shape& object, const TopTools_ListOfShape& tools, const char* what,
-                     bool glue = false) {
-  std::optional<TopoDS_Shape> shape = try_boolean<Operation>(object, tools, 0.0, glue);
+TopoDS_Shape boolean(const TopoDS_Shape& object, const TopTools_ListOfShape& tools, const char* what) {
+  std::optional<TopoDS_Shape> shape = try_boolean<Operation>(object, tools);
   if (!shape) throw std::runtime_error(std::string("OpenCASCADE's boolean operation failed ") + what);
   return *shape;
 }
@@ -734,7 +731,7 @@ TopoDS_Shape cut_one(const TopoDS_Shape& object, double volume, const TopoDS_Sha
     TopExp::MapShapes(*cut, TopAbs_SOLID, solids);
     if (solids.Extent() != 1) continue;
     const TopoDS_Shape result = without_bubbles(solids(1));
-    if (!BRepCheck_Analyzer(result).IsValid()) continue;
+    if (!edge_uses(result).all_twice || !BRepCheck_Analyzer(result).IsValid()) continue;
     const double taken = volume - volume_of(result);
     if (taken > 1e-12 * volume && taken <= most) return result;
   }
@@ -759,12 +756,22 @@ bool profile_stops_on_tangent(const StepBody& body, const std::vector<TopoDS_Edg
   return false;
 }
 
-// The prism of `face` from z_low to the top minus every exposed curve's cutter and a cap at each
+// The prism of `face` minus every exposed curve's cutter and a cap at each
 // end where the round stops: at a wall or a seam met at more than a right
 // angle (tangentially included), or at a reflex corner between two exposed
 // curves. Elsewhere the sweeps meet in a mitre, as the mesh's rings do.
-TopoDS_Shape cut_stops(const TopoDS_Face& face, const StepBody& body, const std::vector<TopoDS_Edge>& edges,
-                       double z_low) {
+// Rounds as tall as the edge (a half bullnose of the full thickness, a
+// bullnose's two rounds meeting at mid-height) are refused: their caps come
+// to a point on the bottom face's edge or on each other's apex, where
+// OpenCASCADE's cuts come out unclosed or wrong.
+TopoDS_Shape stopped_profile(const TopoDS_Face& face, const StepBody& body,
+                             const std::vector<TopoDS_Edge>& edges) {
+  if (!(body.rounds.top + body.rounds.bottom < body.height)) {
+    throw std::runtime_error(
+        "edge profile: a round as tall as the edge (a half bullnose of the full thickness, a "
+        "bullnose of half of it) that stops on a wall or a seam is not made exactly, so this solid "
+        "is not written");
+  }
   const StepLoop& outer = body.loops.at(0);
   const std::vector<bool>& profiled = body.rounds.profiled;
   const double sense = loop_sense(edges);
@@ -785,7 +792,7 @@ TopoDS_Shape cut_stops(const TopoDS_Face& face, const StepBody& body, const std:
   // One cutter at a time, the caps first (each takes material no other has
   // taken yet), each required to take some: a boolean operation that finds
   // no intersection where there is one would leave the edge square.
-  ShapeUpgrade_UnifySameDomain flat(prism_between(face, z_low, body.height));
+  ShapeUpgrade_UnifySameDomain flat(prism_between(face, 0.0, body.height));
   flat.Build();
   TopoDS_Shape shape = flat.Shape();
   double volume = volume_of(shape);
@@ -796,40 +803,6 @@ TopoDS_Shape cut_stops(const TopoDS_Face& face, const StepBody& body, const std:
     }
   }
   ShapeUpgrade_UnifySameDomain unify(shape);
-  unify.Build();
-  return unify.Shape();
-}
-
-// The stopped profile: the top round cut on a prism reaching below it (so
-// that no cap's apex lies on a face the cut meets) and cut back to the
-// thickness; a round on both edges (eased, bullnose: the same size, the
-// profile symmetric about mid-thickness) as the upper half so made and its
-// mirror image glued to it.
-TopoDS_Shape stopped_profile(const TopoDS_Face& face, const StepBody& body,
-                             const std::vector<TopoDS_Edge>& edges) {
-  const double t = body.height;
-  const bool both = body.rounds.bottom > 0.0;
-  if (both && body.rounds.bottom != body.rounds.top)
-    throw std::runtime_error(
-        "edge profile: a stopped profile needs the same round at the top and the bottom");
-  StepBody top = body;
-  top.rounds.bottom = 0.0;
-  const double mid = both ? 0.5 * t : 0.0;
-  if (!(body.rounds.top < t - mid)) {
-    throw std::runtime_error(
-        "edge profile: a round as tall as the edge (a half bullnose of the full thickness, a "
-        "bullnose of half of it) that stops on a wall or a seam is not made exactly, so this solid "
-        "is not written");
-  }
-  const TopoDS_Shape upper = common_of(cut_stops(face, top, edges, mid - t), prism_between(face, mid, t));
-  if (!both) return upper;
-  gp_Trsf mirror;
-  mirror.SetMirror(gp_Ax2(gp_Pnt(0.0, 0.0, mid), gp::DZ()));
-  const TopoDS_Shape lower = BRepBuilderAPI_Transform(upper, mirror, Standard_True).Shape();
-  TopTools_ListOfShape tools;
-  tools.Append(lower);
-  const TopoDS_Shape joined = boolean<BRepAlgoAPI_Fuse>(upper, tools, "joining the profile's halves", true);
-  ShapeUpgrade_UnifySameDomain unify(joined);
   unify.Build();
   return unify.Shape();
 }
