@@ -89,11 +89,19 @@ struct StepCylinder {
 /// Extrusion: the top edges (and the bottom ones) over the curves of
 /// loops[0] flagged in `profiled` (one flag per curve) rounded with fillets
 /// of radius `top` (`bottom`; 0: none), or chamfered with legs `top`.
+///
+/// Where an exposed curve runs on tangentially into an unprofiled one (a wall,
+/// a seam), the round stops there on a quarter turn. A round as tall as the
+/// edge (`top` + `bottom` = `height`) that stops is made `slack` smaller (its
+/// two rounds, or the round and the bottom face, then leave a band of that
+/// height between them), so the solid lies within `slack` of the exact one;
+/// with no slack it is refused.
 struct StepEdgeRounds {
   double top = 0.0;
   double bottom = 0.0;
   bool chamfer = false;
   std::vector<bool> profiled;
+  double slack = 0.0;
 };
 
 struct StepBody {
@@ -122,9 +130,12 @@ struct StepShapeFacts {
   bool valid = false;   ///< BRepCheck_Analyzer finds it valid
   bool closed = false;  ///< a solid whose shells are closed (no free edge)
   int solids = 0, shells = 0, faces = 0, edges = 0;
-  int free_edges = 0;    ///< edges (not degenerate) that one face uses once: an open shell's border
-  double volume = 0.0;   ///< BRepGProp, in the file's unit cubed (solids; 0 for a sheet)
-  double area = 0.0;     ///< BRepGProp, the faces' area in the file's unit squared
+  int free_edges = 0;   ///< edges (not degenerate) that one face uses once: an open shell's border
+  double volume = 0.0;  ///< BRepGProp, in the file's unit cubed (solids; 0 for a sheet)
+  double area = 0.0;    ///< BRepGProp, the faces' area in the file's unit squared
+  /// How far the solid may lie from the exact one its body describes: a
+  /// stopped round as tall as the edge made smaller by StepEdgeRounds::slack.
+  double added = 0.0;
   std::string problems;  ///< what BRepCheck_Analyzer objects to, when not valid
 };
 
@@ -156,6 +167,6 @@ struct StepModuleApi {
 };
 
 /// Changes whenever StepModel, StepWritten, StepRead or StepModuleApi change.
-inline constexpr int kStepModuleAbi = 4;
+inline constexpr int kStepModuleAbi = 5;
 
 }  // namespace fabmesh

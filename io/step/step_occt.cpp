@@ -761,16 +761,25 @@ bool profile_stops_on_tangent(const StepBody& body, const std::vector<TopoDS_Edg
 // angle (tangentially included), or at a reflex corner between two exposed
 // curves. Elsewhere the sweeps meet in a mitre, as the mesh's rings do.
 // Rounds as tall as the edge (a half bullnose of the full thickness, a
-// bullnose's two rounds meeting at mid-height) are refused: their caps come
-// to a point on the bottom face's edge or on each other's apex, where
-// OpenCASCADE's cuts come out unclosed or wrong.
+// bullnose's two rounds meeting at mid-height) would bring their caps to a
+// point on the bottom face's edge or on each other's apex, where
+// OpenCASCADE's cuts come out unclosed or wrong: they are made smaller by
+// the rounds' slack (each arc then lies within it of the exact one, the
+// band it leaves too), or refused without one.
 TopoDS_Shape stopped_profile(const TopoDS_Face& face, const StepBody& body,
                              const std::vector<TopoDS_Edge>& edges) {
   if (!(body.rounds.top + body.rounds.bottom < body.height)) {
-    throw std::runtime_error(
-        "edge profile: a round as tall as the edge (a half bullnose of the full thickness, a "
-        "bullnose of half of it) that stops on a wall or a seam is not made exactly, so this solid "
-        "is not written");
+    const double slack = body.rounds.slack;
+    if (!(slack > 0.0) || !(slack < 0.5 * body.rounds.top)) {
+      throw std::runtime_error(
+          "edge profile: a round as tall as the edge (a half bullnose of the full thickness, a "
+          "bullnose of half of it) that stops on a wall or a seam is made exactly only with some "
+          "slack to make it smaller by, and none was given, so this solid is not written");
+    }
+    StepBody smaller = body;
+    smaller.rounds.top -= slack;
+    if (smaller.rounds.bottom > 0.0) smaller.rounds.bottom -= slack;
+    return stopped_profile(face, smaller, edges);
   }
   const StepLoop& outer = body.loops.at(0);
   const std::vector<bool>& profiled = body.rounds.profiled;
@@ -807,6 +816,24 @@ TopoDS_Shape stopped_profile(const TopoDS_Face& face, const StepBody& body,
   return unify.Shape();
 }
 
+// The outer loop's curves as edges, one per profile flag.
+std::vector<TopoDS_Edge> outline_edges(const StepBody& body) {
+  const StepLoop& outer = body.loops.at(0);
+  if (body.rounds.profiled.size() != outer.curves.size())
+    throw std::runtime_error("edge profile: one flag per curve of the outline is needed");
+  std::vector<TopoDS_Edge> edges;
+  for (const StepCurve& c : outer.curves) edges.push_back(make_edge(c, body.form));
+  return edges;
+}
+
+// How far the body's solid lies from the exact one it describes: the slack
+// a stopped round as tall as the edge was made smaller by, else 0.
+double added_by_slack(const StepBody& body) {
+  const StepEdgeRounds& r = body.rounds;
+  if (body.form != StepForm::Extrusion || !(r.top > 0.0) || r.top + r.bottom < body.height) return 0.0;
+  return profile_stops_on_tangent(body, outline_edges(body)) ? r.slack : 0.0;
+}
+
 // An extrusion with its edge profile. A round (or bevel) shorter than the
 // side face is a fillet (chamfer) of the prism's edges. One as tall as the
 // face (a half bullnose of the full thickness, a full bullnose's two
@@ -814,11 +841,7 @@ TopoDS_Shape stopped_profile(const TopoDS_Face& face, const StepBody& body,
 // then each round is made on a taller prism, cut back to its height, and
 // a full bullnose's two halves are joined. All exact.
 TopoDS_Shape profiled_prism(const TopoDS_Face& face, const StepBody& body) {
-  const StepLoop& outer = body.loops.at(0);
-  if (body.rounds.profiled.size() != outer.curves.size())
-    throw std::runtime_error("edge profile: one flag per curve of the outline is needed");
-  std::vector<TopoDS_Edge> edges;
-  for (const StepCurve& c : outer.curves) edges.push_back(make_edge(c, body.form));
+  const std::vector<TopoDS_Edge> edges = outline_edges(body);
   if (profile_stops_on_tangent(body, edges)) return stopped_profile(face, body, edges);
   const double t = body.height, top = body.rounds.top, bottom = body.rounds.bottom;
   if (bottom <= 0.0) {
@@ -997,6 +1020,7 @@ StepWritten write_model(const StepModel& m) {
     for (const StepBody& body : m.bodies) {
       const TopoDS_Shape shape = make_body(body);
       out.bodies.push_back(facts_of(shape));
+      out.bodies.back().added = added_by_slack(body);
       const STEPControl_StepModelType mode = body.form == StepForm::Wireframe ? STEPControl_GeometricCurveSet
                                              : body.form == StepForm::Sheet
                                                  ? STEPControl_ShellBasedSurfaceModel

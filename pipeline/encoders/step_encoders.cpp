@@ -38,10 +38,14 @@ class StepLoops {
 };
 
 Encoded step_file(const EncodeContext& c, const StepModel& model, double added) {
+  StepWritten written = write_step(model);
   Encoded e;
-  e.bytes = write_step(model).bytes;
+  e.bytes = std::move(written.bytes);
   e.units = c.common.units;
-  e.added_error = added;
+  // A body the module made within some slack of its exact solid (a stopped round as tall as the edge).
+  double slack = 0.0;
+  for (const StepShapeFacts& f : written.bodies) slack = std::max(slack, f.added);
+  e.added_error = added + slack;
   return e;
 }
 
@@ -123,10 +127,11 @@ Encoded solid_step(const EncodeContext& c, const ExactSolid& solid, StepModel mo
   if (solid.form == ExactSolid::Form::Extrusion) {
     body.form = StepForm::Extrusion;
     for (const std::vector<ExactPiece>& loop : solid.loops) body.loops.push_back(loop_of(loop));
-    // One curve per exact piece (step_loop), so the flags carry over.
+    // One curve per exact piece (step_loop), so the flags carry over. A round as tall as the edge
+    // that stops on a wall or a seam may be made smaller by half the output's share of the tolerance.
     const ProfileEdges e = profile_edges(solid.edges);
     if (e.top > 0.0 && std::find(solid.profiled.begin(), solid.profiled.end(), true) != solid.profiled.end())
-      body.rounds = {e.top, e.bottom, e.chamfer, solid.profiled};
+      body.rounds = {e.top, e.bottom, e.chamfer, solid.profiled, 0.5 * c.output_tolerance};
     model.bodies.push_back(std::move(body));
     return step_file(c, model, loop_of.added());
   }

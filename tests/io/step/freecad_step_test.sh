@@ -16,7 +16,8 @@
 # and router cut) within 1e-9.
 # The island's profiled top (a half bullnose, filleted by OpenCASCADE) must
 # have its exact volume within 1e-9. The U kitchen's pieces with a half
-# bullnose (its rounds stopping on walls and seams) are closed solids too.
+# bullnose and a full one (the rounds stopping on walls and seams) are
+# closed solids too.
 # A thickened surface is one closed solid too: the bundled basin's 4 patches
 # make 4 faces on each sheet and 8 walls along the rim's sides.
 # Usage: freecad_step_test.sh FABMESH SOURCE_DIR
@@ -112,17 +113,21 @@ print(repr(volume * mm ** 3), solids)' "$work/$name-master.json")
     fail "$name: no master STEP file"
   fi
 done
-# The U kitchen's pieces with a half bullnose: its rounds stop on the walls and at the seams they run
-# on into tangentially, cut as the mesh stops them (not filleted): each one closed solid too.
-if (cd "$source/configs/examples" && "$fabmesh" run kitchen_u.yaml -D 'edges={exposed: half_bullnose, radius: 12}' \
-    -D slab.spacing=40 -D 'outputs=[step]' -o "$work/kitchen_u-profiled/" -q) >"$work/kitchen_u-profiled.log" 2>&1; then
-  mapfile -t profiled < <(compgen -G "$work/kitchen_u-profiled/kitchen_u.piece-*.step" | sort -V)
-  ((${#profiled[@]} == 3)) || fail "kitchen_u with a half bullnose wrote ${#profiled[@]} piece STEP file(s), not 3"
-  files+=("${profiled[@]}")
-else
-  cat "$work/kitchen_u-profiled.log"
-  fail "kitchen_u with a half bullnose: no STEP files"
-fi
+# The U kitchen's pieces with a half bullnose and with a full one (the two rounds meeting at mid-height):
+# the rounds stop on the walls and at the seams they run on into tangentially, cut as the mesh stops them
+# (not filleted): each piece one closed solid too.
+for edges in 'half_bullnose, radius: 12' 'bullnose'; do
+  out="$work/kitchen_u-${edges%%,*}"
+  if (cd "$source/configs/examples" && "$fabmesh" run kitchen_u.yaml -D "edges={exposed: $edges}" \
+      -D slab.spacing=40 -D 'outputs=[step]' -o "$out/" -q) >"$out.log" 2>&1; then
+    mapfile -t profiled < <(compgen -G "$out/kitchen_u.piece-*.step" | sort -V)
+    ((${#profiled[@]} == 3)) || fail "kitchen_u with edges $edges wrote ${#profiled[@]} piece STEP file(s), not 3"
+    files+=("${profiled[@]}")
+  else
+    cat "$out.log"
+    fail "kitchen_u with edges $edges: no STEP files"
+  fi
+done
 ((${#files[@]} >= 5)) || fail "only ${#files[@]} STEP files written"
 
 list=$(IFS=:; echo "${files[*]}")
