@@ -718,6 +718,28 @@ KitchenSplit split_top(const Region2& region, const std::vector<SeamSpec>& seams
   return finish(std::move(pieces), std::move(cuts), region);
 }
 
+namespace {
+
+// The fewest seams (up to 8) that make every piece of `top` fit, or when the
+// search gives up, the greedy split; nothing when neither finds one.
+std::optional<KitchenSplit> search_split(const KitchenPiece& top, const Region2& region, const SlabFit& slab,
+                                         const SplitOptions& options) {
+  Search search{region, slab, options};
+  for (std::size_t budget = 0; budget <= 8 && search.tries <= kSearchTries; ++budget) {
+    std::vector<KitchenPiece> done;
+    std::vector<SeamCut> seams;
+    if (fit_within(search, {top}, budget, done, seams))
+      return finish(std::move(done), std::move(seams), region);
+  }
+  // Too many seams, or too many ways, for the search: the greedy split.
+  std::vector<KitchenPiece> done;
+  std::vector<SeamCut> seams;
+  if (greedy_split(top, search, done, seams)) return finish(std::move(done), std::move(seams), region);
+  return std::nullopt;
+}
+
+}  // namespace
+
 KitchenSplit auto_split(const Region2& region, const SlabFit& slab, const SplitOptions& options,
                         const std::vector<EdgeKind>& kinds) {
   const KitchenPiece top = whole_top(region, kinds);
@@ -734,17 +756,19 @@ KitchenSplit auto_split(const Region2& region, const SlabFit& slab, const SplitO
                       h, size.x(), size.y(), slab.length, slab.width));
     }
   }
-  Search search{region, slab, options};
-  for (std::size_t budget = 0; budget <= 8 && search.tries <= kSearchTries; ++budget) {
-    std::vector<KitchenPiece> done;
-    std::vector<SeamCut> seams;
-    if (fit_within(search, {top}, budget, done, seams))
-      return finish(std::move(done), std::move(seams), region);
+  if (std::optional<KitchenSplit> split = search_split(top, region, slab, options)) return std::move(*split);
+  // A router that leaves inside corners round: say so when that is what no seams can satisfy.
+  std::string hint;
+  if (slab.no_inside_corners) {
+    SlabFit relaxed = slab;
+    relaxed.no_inside_corners = false;
+    if (search_split(top, region, relaxed, options)) {
+      hint =
+          "; seams that fit a slab exist, but each leaves a piece with a sharp inside corner, which "
+          "the router without dog-bones (cnc.relief: none) cannot cut: set cnc.relief: dogbone, keep "
+          "the cut-outs far enough from the inside corners for a butt joint there, or give the seams";
+    }
   }
-  // Too many seams, or too many ways, for the search: the greedy split.
-  std::vector<KitchenPiece> done;
-  std::vector<SeamCut> seams;
-  if (greedy_split(top, search, done, seams)) return finish(std::move(done), std::move(seams), region);
   const Box2 b = box_of(region.outer);
   throw GeometryError(
       ErrorLocation{"seams"},
@@ -753,8 +777,8 @@ KitchenSplit auto_split(const Region2& region, const SlabFit& slab, const SplitO
           "from every cut-out and leaving no piece narrower, "
           "that cuts the {:.6g} x {:.6g} top into pieces of at most {:.6g} x {:.6g} "
           "(the slab's usable area); give the seams (seams: [{{at, direction}}]) or "
-          "a larger slab",
-          options.seam_clearance, b.hi.x() - b.lo.x(), b.hi.y() - b.lo.y(), slab.length, slab.width));
+          "a larger slab{}",
+          options.seam_clearance, b.hi.x() - b.lo.x(), b.hi.y() - b.lo.y(), slab.length, slab.width, hint));
 }
 
 }  // namespace fabmesh

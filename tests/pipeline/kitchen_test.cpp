@@ -333,6 +333,9 @@ TEST_CASE("kitchen bad input: exit 2 naming the key, nothing written", "[pipelin
        "space the pieces at least"},
       {"\nseams: auto", "\nseams: auto\nedges: {exposed: half_bullnose, radius: 28}", "edges.radius",
        "through the holding tabs"},
+      // A 1500 mm leg brings the cooktop within 80 mm of the inside corner: no butt joint clears it,
+      // and the router without dog-bones cannot cut the L-shaped piece any other seams leave.
+      {"leg: {value: 2400,", "leg: {value: 1500,", "seams", "set cnc.relief: dogbone"},
   };
   check_bad_edits(dir, "kitchen_l.yaml", "bad", cases);
 }
