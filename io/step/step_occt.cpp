@@ -690,11 +690,6 @@ double volume_of(const TopoDS_Shape& shape) {
   return props.Mass();
 }
 
-// `object` minus `cutter`, one solid that is valid and smaller than
-// `object`: exactly, or where OpenCASCADE's exact operation fails (a cap's
-// sides lying in the corner's faces, its apex on their common edge), with
-// shapes closer than a fuzzy value taken as touching, the smallest that
-// works of 1e-6, 1e-5 and 1e-4 model units. Refused when none does.
 // `solid` without the closed shells OpenCASCADE's boolean operations can
 // leave where surfaces touch at a point (a bubble of a few faces whose area
 // is 1e-9 of the solid's or less): numerical debris, not geometry.
@@ -715,11 +710,12 @@ TopoDS_Shape without_bubbles(const TopoDS_Shape& solid) {
   return kept.IsDone() ? kept.Solid() : solid;
 }
 
-// `object` minus `cutter`: one valid solid, smaller than `object` (of
-// `volume`) by no more than the cutter's volume. Exactly, or where OpenCASCADE's exact operation fails (a
-// cap's sides lying in the corner's faces, its apex on their common edge), with shapes closer than a fuzzy
-// value taken as touching, the smallest that works of 1e-6, 1e-5 and 1e-4 model units. Refused when none
-// does.
+// `object` minus `cutter`: one valid solid, every edge used twice, smaller
+// than `object` (of `volume`) by no more than the cutter's volume. Exactly,
+// or where OpenCASCADE's exact operation fails (a cap's sides lying in the
+// corner's faces, its apex on their common edge) with shapes closer than a
+// fuzzy value taken as touching: the smallest that works of 1e-6, 1e-5 and
+// 1e-4 model units. Refused when none does.
 TopoDS_Shape cut_one(const TopoDS_Shape& object, double volume, const TopoDS_Shape& cutter) {
   TopTools_ListOfShape tools;
   tools.Append(cutter);
@@ -773,8 +769,8 @@ TopoDS_Shape stopped_profile(const TopoDS_Face& face, const StepBody& body,
     if (!(slack > 0.0) || !(slack < 0.5 * body.rounds.top)) {
       throw std::runtime_error(
           "edge profile: a round as tall as the edge (a half bullnose of the full thickness, a "
-          "bullnose of half of it) that stops on a wall or a seam is made exactly only with some "
-          "slack to make it smaller by, and none was given, so this solid is not written");
+          "bullnose of half of it) that stops on a wall or a seam is made smaller by a slack, and "
+          "none was given, so this solid is not written");
     }
     StepBody smaller = body;
     smaller.rounds.top -= slack;
