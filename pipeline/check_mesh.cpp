@@ -25,9 +25,11 @@ ValidationOptions validation_options(const CheckOptions& args) {
 }
 
 /// The weld hint of an object with boundary edges: a tolerance from the
-/// data, larger than the one used, that closes every boundary edge when tried.
-std::optional<WeldHint> weld_hint(const TriangleSoup& soup, const ObjectCheck& object,
-                                  const CheckOptions& args) {
+/// data, larger than the one used, that closes every boundary edge when tried
+/// on `soup` (the object as read, or as welded when its weld was exact:
+/// `welded_already` then 0, else the vertices that weld merged).
+std::optional<WeldHint> weld_hint(const TriangleSoup& soup, std::size_t welded_already,
+                                  const ObjectCheck& object, const CheckOptions& args) {
   if (object.report.boundary_edges == 0) return std::nullopt;
   const std::optional<WeldCandidate> candidate = weld_candidate(object.welded);
   if (!candidate || candidate->tolerance <= args.weld_tolerance) return std::nullopt;
@@ -43,7 +45,7 @@ std::optional<WeldHint> weld_hint(const TriangleSoup& soup, const ObjectCheck& o
   const ValidationReport after = validate(welded.soup, validation_options(quick));
   if (after.boundary_edges != 0) return std::nullopt;
   return WeldHint{candidate->tolerance, candidate->closing_distance, candidate->mean_edge,
-                  welded.merged_vertices - object.welded_vertices, after.valid()};
+                  welded.merged_vertices - welded_already, after.valid()};
 }
 
 /// One occurrence: its faces, its vertices by the file's numbering, and their coordinates.
@@ -79,11 +81,19 @@ nlohmann::ordered_json locations_json(const ValidationReport& report, const Weld
   return j;
 }
 
+// `soup` checked: welded, then validated. When `owned` is `soup` itself (the
+// caller's copy, read from a file) and only exactly equal vertices merge, it
+// is emptied after the weld: the weld hint can start from the welded soup (a
+// weld by distance merges the same positions whether or not exact copies
+// came first, and keeps the lowest index's), and the raw vertices, three
+// per triangle of an STL, would otherwise stay in memory through validation.
 ObjectCheck check_object(std::string name, const TriangleSoup& soup, const CheckOptions& args,
-                         const StageTimings& before) {
+                         const StageTimings& before, TriangleSoup* owned = nullptr) {
   StageTimings timings = before;
   StageTimer timer(timings);
   WeldResult welded = weld(soup, WeldOptions{args.weld_tolerance});
+  const bool exact = args.weld_tolerance == 0.0;
+  if (exact && owned == &soup) *owned = {};  // `soup` is not used again
   timer.lap("weld");
   ObjectCheck result{
       std::move(name), validate(welded.soup, validation_options(args)), welded.merged_vertices, {}, {},
@@ -93,7 +103,8 @@ ObjectCheck check_object(std::string name, const TriangleSoup& soup, const Check
   result.welded = std::move(welded.soup);
   if (result.report.boundary_edges > 0) {
     StageTimer hint_timer(result.report.timings_ms);
-    result.weld_hint = weld_hint(soup, result, args);
+    result.weld_hint = exact ? weld_hint(result.welded, 0, result, args)
+                             : weld_hint(soup, result.welded_vertices, result, args);
     hint_timer.lap("weld_hint");
   }
   return result;
@@ -206,12 +217,12 @@ FileCheck check_file(const std::string& path, const CheckOptions& args) {
     result.notes = std::move(file.notes);
     timer.lap("read");
     if (file.objects.empty()) {
-      result.objects.push_back(check_object("", file.soup, args, timings));
+      result.objects.push_back(check_object("", file.soup, args, timings, &file.soup));
     } else {
       file.soup = {};  // the objects hold the same triangles
       result.timings_ms = timings;
       for (MeshObject& object : file.objects)
-        result.objects.push_back(check_object(std::move(object.name), object.soup, args, {}));
+        result.objects.push_back(check_object(std::move(object.name), object.soup, args, {}, &object.soup));
       StageTimer assembly(result.timings_ms);
       result.assembly = assembly_pairs(result.objects);
       assembly.lap("assembly");
