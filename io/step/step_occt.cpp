@@ -321,6 +321,14 @@ TopoDS_Shape boolean(const TopoDS_Shape& object, const TopTools_ListOfShape& too
   return *shape;
 }
 
+// The one solid of a boolean operation's result, or the result as it is
+// when it holds several (facts_of then counts them).
+TopoDS_Shape the_solid(const TopoDS_Shape& shape) {
+  TopTools_IndexedMapOfShape solids;
+  TopExp::MapShapes(shape, TopAbs_SOLID, solids);
+  return solids.Extent() == 1 ? solids(1) : shape;
+}
+
 // The block minus the revolved section (the mould's cavity) and the
 // hemispheres taken away, plus those added: one solid when all went well.
 TopoDS_Shape make_carved(const StepBody& body) {
@@ -329,9 +337,7 @@ TopoDS_Shape make_carved(const StepBody& body) {
   for (const StepHemisphere& h : body.hemispheres) (h.added ? added : removed).Append(make_hemisphere(h));
   TopoDS_Shape shape = boolean<BRepAlgoAPI_Cut>(make_block(body.block), removed, "taking the cavity away");
   if (!added.IsEmpty()) shape = boolean<BRepAlgoAPI_Fuse>(shape, added, "adding the keys");
-  TopTools_IndexedMapOfShape solids;
-  TopExp::MapShapes(shape, TopAbs_SOLID, solids);
-  return solids.Extent() == 1 ? solids(1) : shape;  // else facts_of counts the solids
+  return the_solid(shape);
 }
 
 TopoDS_Shape make_cylinder(const StepCylinder& c) {
@@ -350,9 +356,7 @@ TopoDS_Shape make_slice(const StepBody& body) {
       boolean<BRepAlgoAPI_Common>(revolution_of(plane_face(body)), slab, "cutting the slice");
   if (!added.IsEmpty()) shape = boolean<BRepAlgoAPI_Fuse>(shape, added, "adding the pins");
   if (!removed.IsEmpty()) shape = boolean<BRepAlgoAPI_Cut>(shape, removed, "taking the holes away");
-  TopTools_IndexedMapOfShape solids;
-  TopExp::MapShapes(shape, TopAbs_SOLID, solids);
-  return solids.Extent() == 1 ? solids(1) : shape;  // else facts_of counts the solids
+  return the_solid(shape);
 }
 
 // One face of a sheet: the whole B-spline surface, its sides the face's
@@ -464,20 +468,29 @@ TopoDS_Shape prism_between(const TopoDS_Face& face, double z0, double z1) {
   return prism.Shape();
 }
 
-// The edges of `prism` (from z0 to z1) over the profiled curves of the
-// outer loop, at its top (z1) or its bottom (z0), each found by its middle.
-std::vector<TopoDS_Edge> profiled_edges(const TopoDS_Shape& prism, const StepBody& body, double z) {
-  const StepEdgeRounds& r = body.rounds;
-  const StepLoop& outer = body.loops.at(0);
-  if (r.profiled.size() != outer.curves.size())
-    throw std::runtime_error("edge profile: one flag per curve of the outline is needed");
-  std::vector<gp_Pnt> middles;
+// Where the profiled curves of the outer loop lie: their middles, found
+// again on a prism by within `tolerance` (1e-7 of the body's size).
+struct ProfiledMiddles {
+  std::vector<gp_Pnt> points;
+  double tolerance = 0.0;
+};
+
+ProfiledMiddles profiled_middles(const StepBody& body, const std::vector<TopoDS_Edge>& edges) {
+  ProfiledMiddles m;
   double size = body.height;
+  const StepLoop& outer = body.loops.at(0);
   for (std::size_t i = 0; i < outer.curves.size(); ++i) {
     for (const Vec2& p : outer.curves[i].poles) size = std::max({size, std::abs(p.x()), std::abs(p.y())});
-    if (r.profiled[i]) middles.push_back(edge_middle(make_edge(outer.curves[i], body.form)));
+    if (body.rounds.profiled[i]) m.points.push_back(edge_middle(edges[i]));
   }
-  const double tolerance = 1e-7 * std::max(1.0, size);
+  m.tolerance = 1e-7 * std::max(1.0, size);
+  return m;
+}
+
+// The edges of `prism` over the profiled curves, at its top or its bottom
+// (height z), each found by its middle.
+std::vector<TopoDS_Edge> profiled_edges(const TopoDS_Shape& prism, const ProfiledMiddles& middles, double z) {
+  const double tolerance = middles.tolerance;
   std::vector<TopoDS_Edge> found;
   TopTools_IndexedMapOfShape edges;
   TopExp::MapShapes(prism, TopAbs_EDGE, edges);
@@ -486,27 +499,27 @@ std::vector<TopoDS_Edge> profiled_edges(const TopoDS_Shape& prism, const StepBod
     if (BRep_Tool::Degenerated(e)) continue;
     const gp_Pnt m = edge_middle(e);
     if (std::abs(m.Z() - z) > tolerance) continue;
-    for (const gp_Pnt& c : middles) {
+    for (const gp_Pnt& c : middles.points) {
       if (std::hypot(m.X() - c.X(), m.Y() - c.Y()) > tolerance) continue;
       found.push_back(e);
       break;
     }
   }
-  if (found.size() != middles.size()) {
+  if (found.size() != middles.points.size()) {
     throw std::runtime_error("edge profile: " + std::to_string(found.size()) +
                              " edges found at z = " + std::to_string(z) + " for " +
-                             std::to_string(middles.size()) + " profiled curves");
+                             std::to_string(middles.points.size()) + " profiled curves");
   }
   return found;
 }
 
 // `prism` (from z0 to z1) with its profiled top edges rounded (or
 // chamfered) by `top` and its bottom ones rounded by `bottom` (0: none).
-TopoDS_Shape round_edges(const TopoDS_Shape& prism, const StepBody& body, double z0, double z1, double top,
-                         double bottom) {
+TopoDS_Shape round_edges(const TopoDS_Shape& prism, const StepBody& body, const ProfiledMiddles& middles,
+                         double z0, double z1, double top, double bottom) {
   if (body.rounds.chamfer) {
     BRepFilletAPI_MakeChamfer chamfer(prism);
-    for (const TopoDS_Edge& e : profiled_edges(prism, body, z1)) chamfer.Add(top, e);
+    for (const TopoDS_Edge& e : profiled_edges(prism, middles, z1)) chamfer.Add(top, e);
     chamfer.Build();
     if (!chamfer.IsDone())
       throw std::runtime_error("edge profile: OpenCASCADE could not bevel the top edges");
@@ -514,10 +527,10 @@ TopoDS_Shape round_edges(const TopoDS_Shape& prism, const StepBody& body, double
   }
   BRepFilletAPI_MakeFillet fillet(prism);
   if (top > 0.0) {
-    for (const TopoDS_Edge& e : profiled_edges(prism, body, z1)) fillet.Add(top, e);
+    for (const TopoDS_Edge& e : profiled_edges(prism, middles, z1)) fillet.Add(top, e);
   }
   if (bottom > 0.0) {
-    for (const TopoDS_Edge& e : profiled_edges(prism, body, z0)) fillet.Add(bottom, e);
+    for (const TopoDS_Edge& e : profiled_edges(prism, middles, z0)) fillet.Add(bottom, e);
   }
   fillet.Build();
   if (!fillet.IsDone()) throw std::runtime_error("edge profile: OpenCASCADE could not round the edges");
@@ -839,18 +852,20 @@ double added_by_slack(const StepBody& body) {
 TopoDS_Shape profiled_prism(const TopoDS_Face& face, const StepBody& body) {
   const std::vector<TopoDS_Edge> edges = outline_edges(body);
   if (profile_stops_on_tangent(body, edges)) return stopped_profile(face, body, edges);
+  const ProfiledMiddles m = profiled_middles(body, edges);
   const double t = body.height, top = body.rounds.top, bottom = body.rounds.bottom;
   if (bottom <= 0.0) {
-    if (top < t) return round_edges(prism_between(face, 0.0, t), body, 0.0, t, top, 0.0);
-    return common_of(round_edges(prism_between(face, -t, t), body, -t, t, top, 0.0),
+    if (top < t) return round_edges(prism_between(face, 0.0, t), body, m, 0.0, t, top, 0.0);
+    return common_of(round_edges(prism_between(face, -t, t), body, m, -t, t, top, 0.0),
                      prism_between(face, 0.0, t));
   }
-  if (top + bottom < t) return round_edges(prism_between(face, 0.0, t), body, 0.0, t, top, bottom);
+  if (top + bottom < t) return round_edges(prism_between(face, 0.0, t), body, m, 0.0, t, top, bottom);
   const double mid = bottom * t / (top + bottom);
-  const TopoDS_Shape upper = common_of(
-      round_edges(prism_between(face, mid - t, t), body, mid - t, t, top, 0.0), prism_between(face, mid, t));
+  const TopoDS_Shape upper =
+      common_of(round_edges(prism_between(face, mid - t, t), body, m, mid - t, t, top, 0.0),
+                prism_between(face, mid, t));
   const TopoDS_Shape lower =
-      common_of(round_edges(prism_between(face, 0.0, mid + t), body, 0.0, mid + t, 0.0, bottom),
+      common_of(round_edges(prism_between(face, 0.0, mid + t), body, m, 0.0, mid + t, 0.0, bottom),
                 prism_between(face, 0.0, mid));
   TopTools_ListOfShape tools;
   tools.Append(lower);
