@@ -37,16 +37,21 @@ class StepLoops {
   double added_ = 0.0;
 };
 
-Encoded step_file(const EncodeContext& c, const StepModel& model, double added) {
-  StepWritten written = write_step(model);
+// The file written, its added error `added` (the curves' approximation) and
+// the most any body was made within of its exact solid (a stopped round as
+// tall as the edge made smaller by its slack).
+Encoded encoded(const EncodeContext& c, StepWritten written, double added) {
   Encoded e;
   e.bytes = std::move(written.bytes);
   e.units = c.common.units;
-  // A body the module made within some slack of its exact solid (a stopped round as tall as the edge).
   double slack = 0.0;
   for (const StepShapeFacts& f : written.bodies) slack = std::max(slack, f.added);
   e.added_error = added + slack;
   return e;
+}
+
+Encoded step_file(const EncodeContext& c, const StepModel& model, double added) {
+  return encoded(c, write_step(model), added);
 }
 
 // `model` written, its bodies' volume as OpenCASCADE integrates them checked
@@ -55,18 +60,14 @@ Encoded step_file(const EncodeContext& c, const StepModel& model, double added) 
 // message: "the master as OpenCASCADE built it holds".
 Encoded checked_step(const EncodeContext& c, const StepModel& model, double added, double exact,
                      const std::string& holds) {
-  const StepWritten written = write_step(model);
+  StepWritten written = write_step(model);
   double volume = 0.0;
   for (const StepShapeFacts& f : written.bodies) volume += f.volume;
   if (added == 0.0 && !(std::abs(volume - exact) <= 1e-6 * std::abs(exact))) {
     throw OutputError("step", fmt::format("step: {} {:.9g} {}^3, not the exact {:.9g}; nothing is written",
                                           holds, volume, c.common.units, exact));
   }
-  Encoded e;
-  e.bytes = written.bytes;
-  e.units = c.common.units;
-  e.added_error = added;
-  return e;
+  return encoded(c, std::move(written), added);
 }
 
 // A surface's B-spline faces as one body: sewn into an open shell (Sheet) or
@@ -215,7 +216,7 @@ EncodedFiles encode_master_step_output(const EncodeContext& c) {
     if (vessel.master->loops.size() != 1)
       throw std::logic_error("master_step: a cut master of several bodies");
     const StepLoop loop = loop_of(vessel.master->loops.front());
-    Encoded e;
+    std::vector<std::string> parts;
     for (const MasterSections::Section& s : cut->sections) {
       StepBody body;
       body.name = model.name + " " + s.name;
@@ -230,7 +231,7 @@ EncodedFiles encode_master_step_output(const EncodeContext& c) {
             {{0.0, 0.0, s.z_low}, {0.0, 0.0, 1.0}, cut->hole_radius, cut->hole_depth, false});
       }
       model.bodies.push_back(std::move(body));
-      e.parts.push_back(s.name);
+      parts.push_back(s.name);
     }
     const double joints = static_cast<double>(cut->sections.size() - 1);
     volume += joints * M_PI *
@@ -238,7 +239,7 @@ EncodedFiles encode_master_step_output(const EncodeContext& c) {
                cut->hole_radius * cut->hole_radius * cut->hole_depth);
     Encoded written = checked_step(c, model, loop_of.added(), volume,
                                    "the master's sections as OpenCASCADE built them hold");
-    written.parts = std::move(e.parts);
+    written.parts = std::move(parts);
     return {std::move(written)};
   }
   for (const std::vector<ExactPiece>& loop : vessel.master->loops) {
