@@ -83,6 +83,16 @@
 #include <optional>
 #include <sstream>
 #include <stdexcept>
+#if defined(__SANITIZE_ADDRESS__)
+#define FABMESH_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define FABMESH_ASAN 1
+#endif
+#endif
+#ifdef FABMESH_ASAN
+#include <sanitizer/lsan_interface.h>
+#endif
 #include <vector>
 
 #include "io/step/step_model.h"
@@ -295,6 +305,21 @@ TopoDS_Shape make_hemisphere(const StepHemisphere& h) {
   return BRepPrimAPI_MakeSphere(frame, h.radius, 0.0, 0.5 * M_PI).Shape();
 }
 
+// OpenCASCADE 7.6's general fuse loses a few of its own allocations on some
+// inputs: BRepClass3d_SolidExplorer::InitShape binds one new
+// IntCurvesFace_Intersector per face it meets into a map keyed by the face, so
+// a face met twice in one shell (as the caps of a stopped edge profile make
+// in its intermediate shells) leaves the first unfreed; ProjLib_ComputeApprox
+// loses a projected B-spline the same way. Neither can be freed from here. In
+// a build with AddressSanitizer, the allocations made while a boolean
+// operation builds are left out of the leak report (what they hold counts as
+// reachable); everything this module allocates itself is still checked.
+#ifdef FABMESH_ASAN
+using OcctLeaksIgnored = __lsan::ScopedDisabler;
+#else
+struct OcctLeaksIgnored {};
+#endif
+
 // `object` with `tools` taken away (Cut), added (Fuse) or kept in common, by
 // OpenCASCADE's general fuse: shapes closer than `fuzzy` taken as touching
 // (0: exactly). Empty when the operation reports an error.
@@ -308,7 +333,10 @@ std::optional<TopoDS_Shape> try_boolean(const TopoDS_Shape& object, const TopToo
   operation.SetTools(tools);
   operation.SetRunParallel(Standard_False);
   if (fuzzy > 0.0) operation.SetFuzzyValue(fuzzy);
-  operation.Build();
+  {
+    [[maybe_unused]] const OcctLeaksIgnored ignored;
+    operation.Build();
+  }
   if (!operation.IsDone() || operation.HasErrors()) return std::nullopt;
   return operation.Shape();
 }
