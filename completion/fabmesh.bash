@@ -53,7 +53,7 @@ _fabmesh() {
   # The value of the option before the cursor.
   case "$prev" in
     --export-format)
-      _fabmesh_words "stl drc 3mf glb glb_draco obj ply off dxf svg mould_stl mould_3mf mould_step master_stl master_3mf master_step nc toolpath_svg step plot png" "$cur"
+      _fabmesh_words "stl drc 3mf glb glb_draco obj ply off dxf svg mould_stl mould_3mf mould_step master_stl master_3mf master_step case_stl case_3mf case_step nc toolpath_svg step plot png" "$cur"
       return ;;
     --export-units)
       _fabmesh_words "mm cm m in" "$cur"

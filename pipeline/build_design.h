@@ -34,6 +34,7 @@ struct BuildContext {
   bool wants_exact = false;  ///< an output writes the exact shape (step)
   bool wants_master =
       false;  ///< an output writes a vessel's casting master (master_stl, master_3mf, master_step)
+  bool wants_cases = false;  ///< an output writes the mould parts' casting cases (case_stl, case_3mf)
 };
 
 /// The smaller of this machine's physical memory and the process's address

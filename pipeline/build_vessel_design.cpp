@@ -257,6 +257,67 @@ CastingWeights casting_weights(const VesselDesign& design, double millilitres) {
   return {plaster, plaster / design.plaster_ratio};
 }
 
+// The casting case of each of the mould's parts (outputs case_stl, case_3mf),
+// after the parts (the last of `out.parts`): parts of their own, validated
+// in full. A part no one-piece case releases has none, and its reason is
+// kept for the outputs and the report.
+std::vector<Facts> add_cases(const VesselDesign& design, const Mould& mould, const BuildContext& context,
+                             Result& out, VesselProducts& products) {
+  const std::size_t first = out.parts.size() - mould.parts.size();
+  std::vector<Facts> cases;
+  // Written standing on their floors, side by side along x, 10 mm apart.
+  const double gap = 10.0 / millimetres_per_unit(context.common.units);
+  double x = 0.0;
+  for (std::size_t i = 0; i < mould.parts.size(); ++i) {
+    const MouldPart& p = mould.parts[i];
+    const std::string& name = out.parts[first + i].name;
+    const double mid = 0.5 * (p.from_angle + p.to_angle);
+    const Vec3 outward =
+        p.kind == MouldPartKind::Base ? Vec3(0.0, 0.0, -1.0) : Vec3(std::cos(mid), std::sin(mid), 0.0);
+    // The key a point is on, for the reasons a case is refused.
+    const auto what_is_at = [&p](const Vec3& at) -> std::string {
+      for (const KeyFeature& k : p.keys) {
+        if ((at - k.centre).norm() > 1.001 * k.radius) continue;
+        if (k.on_base) return ", on a base key's socket in its bottom,";
+        const double deg = std::atan2(k.centre.y(), k.centre.x()) * 180.0 / M_PI;
+        return fmt::format(", on the {} of a key on its split face at {:.4g} degrees,",
+                           k.bump ? "bump" : "socket", deg < -1e-9 ? deg + 360.0 : std::max(deg, 0.0));
+      }
+      return {};
+    };
+    Facts facts;
+    facts.set("part", name);
+    try {
+      CastingCase c =
+          build_casting_case(out.parts[first + i].mesh, name, outward, design.casting_case, what_is_at);
+      Part part;
+      part.name = "case-" + name;
+      part.role = PartRole::Case;
+      part.mesh = standing(c, Vec3(x, 0.0, 0.0));
+      products.cases.push_back({part.name, i, c.lo, c.hi, c.pull});
+      validate_part(part);
+      const Vec3 printed = bounding_box(part.mesh.vertices).size();
+      facts.set("name", part.name)
+          .set("pull", std::vector<double>{c.pull.x(), c.pull.y(), c.pull.z()})
+          .set("size", std::vector<double>{printed.x(), printed.y(), printed.z()})
+          .set("written_from", std::vector<double>{x, 0.0, 0.0})
+          .set("wall", design.casting_case.wall)
+          .set("opening_area", c.pour_area)
+          .set("triangles", part.mesh.triangles.size())
+          .set("volume", part.validation.volume)
+          .set("release", c.release_proof);
+      out.parts.push_back(std::move(part));
+      x += printed.x() + gap;
+    } catch (const GeometryError& e) {
+      facts.set("refused", e.what());
+      products.case_refusals.push_back(e.what());
+      out.warnings.push_back(fmt::format("case: {}", e.what()));
+    }
+    cases.push_back(std::move(facts));
+  }
+  return cases;
+}
+
 // The mould's parts, each with its proof of embedding, what a workshop
 // needs to know, and the mould as exact solids.
 MouldSection add_mould(const VesselDesign& design, const CompositeCurve& fired_profile,
@@ -318,6 +379,7 @@ MouldSection add_mould(const VesselDesign& design, const CompositeCurve& fired_p
       .set("max_deviation", mould.max_deviation)
       .set("release", mould.release_proof)
       .set("warnings", mould.warnings);
+  if (context.wants_cases) facts.set("cases", add_cases(design, mould, context, out, products));
   out.facts.set("mould", std::move(facts));
   return std::move(mould.section);
 }

@@ -67,7 +67,8 @@ bool writes_master(const OutputFormat& format) { return format.name.substr(0, 7)
 // Whether `format` is made from the design's `block`: the mould's formats,
 // and the casting master's (its spare is the mould's); the router's.
 bool made_from(const OutputFormat& format, DesignBlock block) {
-  return format.block == block || (block == DesignBlock::Mould && writes_master(format));
+  return format.block == block ||
+         (block == DesignBlock::Mould && (writes_master(format) || format.block == DesignBlock::BoxMould));
 }
 
 // Warnings about the design's own `outputs` list: a `mould:` or `cnc:` block
@@ -92,7 +93,7 @@ std::vector<std::string> unused_block_warnings(const Design& design, const JobOp
     if (used) continue;
     std::vector<std::string> users;
     for (const OutputFormat& f : output_formats()) {
-      if (made_from(f, block.block) && f.kinds.test(design.body.index())) users.emplace_back(f.name);
+      if (made_from(f, block.block) && applies_to(f, design)) users.emplace_back(f.name);
     }
     warnings.push_back(
         fmt::format("{}: `outputs` asks for no output made from it, so {}: add {} to `outputs` "
@@ -344,6 +345,8 @@ Result build_job(const Design& design, const JobPlan& plan) {
   context.wants_exact = plan.wants_exact;
   context.wants_master = std::any_of(plan.formats.begin(), plan.formats.end(),
                                      [](const OutputFormat* f) { return writes_master(*f); });
+  context.wants_cases = std::any_of(plan.formats.begin(), plan.formats.end(),
+                                    [](const OutputFormat* f) { return f->name.substr(0, 5) == "case_"; });
   result = build_within_budget(design, plan, context);
   validate_parts(result, watch);
   set_identity(result, plan.common);

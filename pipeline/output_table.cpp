@@ -24,7 +24,7 @@ std::vector<OutputFormat> make_table() {
   const KindSet every = kinds<CurveDesign, VesselDesign, CountertopDesign, SurfaceDesign>();
   const OutputSource mesh = OutputSource::Meshes, drawing = OutputSource::Drawing;
   const DesignBlock none = DesignBlock::None, mould = DesignBlock::Mould, cnc = DesignBlock::Cnc,
-                    slab = DesignBlock::Slab;
+                    slab = DesignBlock::Slab, box_mould = DesignBlock::BoxMould;
   return {
       {"stl", "binary STL mesh, in the export unit", mesh, none, meshes, meshes, ".stl", &float32_error,
        &encode_stl_output},
@@ -132,6 +132,34 @@ std::vector<OutputFormat> make_table() {
        ".master.step",
        nullptr,
        &encode_master_step_output},
+      {"case_stl",
+       "one STL per casting case of the mould's parts (key case): the open box plaster is poured into to "
+       "cast that part, in the export unit",
+       mesh,
+       box_mould,
+       vessels,
+       {},
+       ".case-PART.stl",
+       &float32_error,
+       &encode_case_stl_output},
+      {"case_3mf",
+       "the mould parts' casting cases as separate objects of one 3MF",
+       mesh,
+       box_mould,
+       vessels,
+       {},
+       ".case.3mf",
+       &threemf_error,
+       &encode_case_3mf_output},
+      {"case_step",
+       "STEP (AP214) of each casting case as an exact solid, in the mould's frame and the design's unit",
+       OutputSource::Exact,
+       box_mould,
+       vessels,
+       {},
+       ".case-PART.step",
+       nullptr,
+       &encode_case_step_output},
       {"nc", "RS-274 G-code of the countertop's router path (key cnc), G21/G20 as asked",
        OutputSource::Program, cnc, countertops, countertops, ".nc", nullptr, &encode_nc_output},
       {"toolpath_svg", "drawing of the router path over the outline", OutputSource::Program, cnc, countertops,
@@ -205,6 +233,10 @@ bool has_block(const Design& design, DesignBlock block) {
       const auto* v = std::get_if<VesselDesign>(&design.body);
       return v != nullptr && v->mould.has_value();
     }
+    case DesignBlock::BoxMould: {
+      const auto* v = std::get_if<VesselDesign>(&design.body);
+      return v != nullptr && v->mould.has_value() && v->mould->block == BlockShape::Box;
+    }
     case DesignBlock::Cnc: {
       const auto* c = std::get_if<CountertopDesign>(&design.body);
       return c != nullptr && c->cnc.has_value();
@@ -258,9 +290,14 @@ std::vector<const OutputFormat*> resolve_outputs(const Design& design) {
                       format->description, kind_list(format->kinds), kind_name(design)));
     }
     if (!has_block(design, format->block)) {
-      const char* needs = format->block == DesignBlock::Mould ? "a `mould:` section"
-                          : format->block == DesignBlock::Cnc ? "a `cnc:` section"
-                                                              : "a `slab:` section (a kitchen)";
+      const char* needs =
+          format->block == DesignBlock::Mould ? "a `mould:` section"
+          : format->block == DesignBlock::BoxMould
+              ? "a `mould:` section with `block: box` (plaster poured into a case sets level "
+                "against a flat outer face of the part, and a cylinder block's curved side has "
+                "none)"
+          : format->block == DesignBlock::Cnc ? "a `cnc:` section"
+                                              : "a `slab:` section (a kitchen)";
       throw FileError(design.common.path, r.line, r.column,
                       fmt::format("{}: {} needs {}", r.where, r.format, needs));
     }

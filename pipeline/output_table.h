@@ -45,8 +45,11 @@ KindSet kinds() {
 enum class DesignBlock {
   None,
   Mould,  ///< a vessel's `mould:` (the mould's parts)
-  Cnc,    ///< a countertop's `cnc:` (the router path)
-  Slab,   ///< a countertop's `slab:` (a kitchen: its pieces on slabs)
+  /// a vessel's `mould:` with `block: box` (casting cases: plaster is poured
+  /// level against the box's flat sides; a cylinder's curved side has none)
+  BoxMould,
+  Cnc,   ///< a countertop's `cnc:` (the router path)
+  Slab,  ///< a countertop's `slab:` (a kitchen: its pieces on slabs)
 };
 
 /// What a row's output is made of, for the builders: they make a drawing

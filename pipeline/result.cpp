@@ -16,6 +16,8 @@ const char* to_string(PartRole role) {
       return "piece";
     case PartRole::Master:
       return "master";
+    case PartRole::Case:
+      return "case";
   }
   return "product";
 }

@@ -44,9 +44,10 @@ enum class PartRole {
   MouldBase,  ///< the base part of a vessel's mould
   Piece,      ///< a piece of a kitchen's top, cut at its seams (the product is then the whole top)
   Master,     ///< a vessel's casting master: its outer solid as written, with the mould's spare on its rim
+  Case,       ///< the casting case of a mould part: the open box plaster is poured into to cast that part
 };
 
-/// "product", "mould_side", "mould_base", "piece", "master": the role as reports write it.
+/// "product", "mould_side", "mould_base", "piece", "master", "case": the role as reports write it.
 const char* to_string(PartRole role);
 
 /// One mesh of a result, with what its construction proves and its verdict.
@@ -146,6 +147,18 @@ struct VesselProducts {
   /// an output asked for the master.
   std::optional<ExactSolid> master;
   std::optional<MasterSections> master_sections;  ///< when the master is cut for print.bed
+  /// When an output asked for casting cases: why a mould part has none (one
+  /// line per such part; its case outputs write the others).
+  std::vector<std::string> case_refusals;
+  /// The cases built, in the mould's frame: the box around mould part `part`
+  /// (an index into mould->parts), its opening on the part's flat face.
+  struct CaseBox {
+    std::string name;  ///< "case-side-1"
+    std::size_t part = 0;
+    Vec3 lo{0.0, 0.0, 0.0}, hi{0.0, 0.0, 0.0};
+    Vec3 pull{0.0, 0.0, 1.0};  ///< an axis direction: the opening is the box's side it points to
+  };
+  std::vector<CaseBox> cases;
   /// The section as the builder made it: closed loops (the profile, the rim,
   /// a shell's inner wall and base, the axis) at the fired size (before
   /// shrinkage's scaling), for the plot.

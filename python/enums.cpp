@@ -40,11 +40,11 @@ void bind_enums(py::module_& m) {
   std::vector<std::pair<std::string, std::string>> roles;
   for (const fabmesh::PartRole r :
        {fabmesh::PartRole::Product, fabmesh::PartRole::MouldSide, fabmesh::PartRole::MouldBase,
-        fabmesh::PartRole::Piece, fabmesh::PartRole::Master})
+        fabmesh::PartRole::Piece, fabmesh::PartRole::Master, fabmesh::PartRole::Case})
     roles.emplace_back(fabmesh::to_string(r), fabmesh::to_string(r));
   add_text_enum(m, "PartRole", roles,
                 "What a part of a Result is: the design's own mesh (product), a mould's side or base part, a "
-                "kitchen's piece, a vessel's casting master.");
+                "kitchen's piece, a vessel's casting master, a mould part's casting case.");
 }
 
 }  // namespace fabmesh_python

@@ -25,7 +25,8 @@ static_assert(static_cast<int>(PartRole::Product) == static_cast<int>(fabmesh::P
               static_cast<int>(PartRole::MouldSide) == static_cast<int>(fabmesh::PartRole::MouldSide) &&
               static_cast<int>(PartRole::MouldBase) == static_cast<int>(fabmesh::PartRole::MouldBase) &&
               static_cast<int>(PartRole::Piece) == static_cast<int>(fabmesh::PartRole::Piece) &&
-              static_cast<int>(PartRole::Master) == static_cast<int>(fabmesh::PartRole::Master));
+              static_cast<int>(PartRole::Master) == static_cast<int>(fabmesh::PartRole::Master) &&
+              static_cast<int>(PartRole::Case) == static_cast<int>(fabmesh::PartRole::Case));
 
 // The design's curves as built, sampled within the design's tolerance, each
 // with the spec it was built from (fairing it again starts there).

@@ -17,6 +17,7 @@
 #include "geometry/kitchen/pieces.h"
 #include "geometry/mesh/edge_profile.h"
 #include "geometry/mesh/thicken.h"
+#include "geometry/mould/casting_case.h"
 #include "geometry/mould/mould_options.h"
 #include "geometry/section/print_checks.h"
 #include "geometry/section/vessel_section.h"
@@ -161,6 +162,9 @@ struct VesselDesign {
   /// checks into warnings (or, strict, bad input). Without it the checks are
   /// reported only.
   std::optional<PrintOptions> print;
+  /// The casting cases of the mould's parts (key `case`; outputs case_stl,
+  /// case_3mf): the wall in model units (default 5 mm).
+  CaseOptions casting_case;
 };
 
 /// A tap hole (`drill: {center, diameter, tool}`): drilled with a drill

@@ -19,7 +19,7 @@ std::vector<KeyGroup> make_groups() {
       {"parameters.NAME", {"value", "min", "max", "step", "choices", "description"}},
       // Kinds (the root map of a design file).
       {"curve", with_common({"curve"})},
-      {"vessel", with_common({"profile", "body", "max_triangles", "shrinkage", "mould", "print"})},
+      {"vessel", with_common({"profile", "body", "max_triangles", "shrinkage", "mould", "print", "case"})},
       {"countertop", with_common({"outline", "holes", "thickness", "max_edge", "max_triangles", "cnc", "slab",
                                   "seams", "seam_clearance", "backsplash", "edges"})},
       {"surface", with_common({"patches", "thickness", "thicken", "max_triangles"})},
@@ -30,6 +30,7 @@ std::vector<KeyGroup> make_groups() {
         "base_height", "keys", "key_radius", "key_clearance", "key_margin", "key_positions",
         "allow_undercuts", "plaster_ratio", "plaster_density", "slip_density"}},
       {"vessel.shrinkage", {"wet", "fired"}},
+      {"vessel.case", {"wall"}},
       {"vessel.print", {"bed", "max_overhang_deg", "min_wall", "strict", "pin_diameter", "pin_clearance"}},
       // Countertops.
       {"countertop.holes[]",

@@ -51,6 +51,10 @@ enum class StepForm {
   /// the heights of `block` (a cylinder about it), with `cylinders` added or
   /// taken away: a section of a master, its pin on top and its hole below
   Slice,
+  /// A casting case: the axis-aligned box `case_lo`..`case_hi` minus the
+  /// Carved body the other fields describe (a mould part lying in the box,
+  /// one of its flat faces on the box's side: the case's opening)
+  Case,
 };
 
 /// A face of a Sheet or a Closed body: a polynomial B-spline surface.
@@ -116,6 +120,7 @@ struct StepBody {
   std::vector<StepSurface> surfaces;        ///< Sheet, Closed
   /// Sheet, Closed: faces whose borders are closer than this are sewn (model units; > 0).
   double sewing_tolerance = 0.0;
+  Vec3 case_lo{0.0, 0.0, 0.0}, case_hi{0.0, 0.0, 0.0};  ///< Case
 };
 
 /// One file: its bodies in one unit of length (mm, cm, m or in), the file's own.
@@ -167,6 +172,6 @@ struct StepModuleApi {
 };
 
 /// Changes whenever StepModel, StepWritten, StepRead or StepModuleApi change.
-inline constexpr int kStepModuleAbi = 5;
+inline constexpr int kStepModuleAbi = 6;
 
 }  // namespace fabmesh

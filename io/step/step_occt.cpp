@@ -26,6 +26,7 @@
 #include <BRepFilletAPI_MakeFillet.hxx>
 #include <BRepGProp.hxx>
 #include <BRepLib.hxx>
+#include <BRepPrimAPI_MakeBox.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
 #include <BRepPrimAPI_MakePrism.hxx>
 #include <BRepPrimAPI_MakeRevol.hxx>
@@ -903,6 +904,29 @@ TopoDS_Shape profiled_prism(const TopoDS_Face& face, const StepBody& body) {
   return unify.Shape();
 }
 
+// A casting case: its box minus the mould part. The part fills the box but
+// for the walls, so the cut must take exactly the part's volume: a cut that
+// lost a face or a key would show.
+TopoDS_Shape make_case(const StepBody& body) {
+  const gp_Pnt lo(body.case_lo.x(), body.case_lo.y(), body.case_lo.z());
+  const gp_Pnt hi(body.case_hi.x(), body.case_hi.y(), body.case_hi.z());
+  if (!((body.case_hi - body.case_lo).minCoeff() > 0.0))
+    throw std::runtime_error("a case's box without room");
+  const TopoDS_Shape box = BRepPrimAPI_MakeBox(lo, hi).Shape();
+  StepBody carved = body;  // its loops lie in the (radius, height) half-plane, as a Carved body's
+  carved.form = StepForm::Carved;
+  const TopoDS_Shape part = make_carved(carved);
+  TopTools_ListOfShape tools;
+  tools.Append(part);
+  const TopoDS_Shape shape = the_solid(boolean<BRepAlgoAPI_Cut>(box, tools, "taking the part from its case"));
+  const double expected = volume_of(box) - volume_of(part), got = volume_of(shape);
+  if (!(std::abs(got - expected) <= 1e-7 * volume_of(box))) {
+    throw std::runtime_error("the case as cut holds " + std::to_string(got) +
+                             ", not its box less its part, " + std::to_string(expected));
+  }
+  return shape;
+}
+
 TopoDS_Shape make_body(const StepBody& body) {
   if (body.form == StepForm::Sheet) return make_sheet(body);
   if (body.form == StepForm::Closed) return make_closed(body);
@@ -916,6 +940,7 @@ TopoDS_Shape make_body(const StepBody& body) {
     return compound;
   }
   if (body.form == StepForm::Carved) return make_carved(body);
+  if (body.form == StepForm::Case) return make_case(body);
   if (body.form == StepForm::Slice) return make_slice(body);
   TopoDS_Shape shape;
   if (body.form == StepForm::Extrusion) {

@@ -97,6 +97,10 @@ EncodedFiles encode_mould_3mf_output(const EncodeContext& c);
 // A vessel's casting master (encoders/mesh_encoders.cpp, encoders/step_encoders.cpp).
 EncodedFiles encode_master_stl_output(const EncodeContext& c);
 EncodedFiles encode_master_3mf_output(const EncodeContext& c);
+// The mould parts' casting cases (encoders/mesh_encoders.cpp).
+EncodedFiles encode_case_stl_output(const EncodeContext& c);
+EncodedFiles encode_case_3mf_output(const EncodeContext& c);
+EncodedFiles encode_case_step_output(const EncodeContext& c);  // encoders/step_encoders.cpp
 // Drawings, programs and pictures (encoders/drawing_encoders.cpp).
 EncodedFiles encode_dxf_output(const EncodeContext& c);
 EncodedFiles encode_svg_output(const EncodeContext& c);

@@ -366,6 +366,33 @@ EncodedFiles encode_mould_3mf_output(const EncodeContext& c) {
   return {parts_3mf(c, exported_parts(c, {PartRole::MouldSide, PartRole::MouldBase}), "mould", "mould_3mf")};
 }
 
+// The casting cases that were built; none (every part refused) is an OutputError saying why.
+std::vector<ExportedPart> the_cases(const EncodeContext& c, const char* format) {
+  std::vector<ExportedPart> cases = exported_parts(c, {PartRole::Case});
+  if (cases.empty()) {
+    std::string why;
+    for (const std::string& r : std::get<VesselProducts>(c.result.products).case_refusals)
+      why += (why.empty() ? "" : "; ") + r;
+    throw OutputError(format, fmt::format("{}: no mould part has a casting case: {}", format, why));
+  }
+  return cases;
+}
+
+// NAME.case-side-1.stl, ...: one file per case.
+EncodedFiles encode_case_stl_output(const EncodeContext& c) {
+  EncodedFiles files;
+  for (const ExportedPart& p : the_cases(c, "case_stl")) {
+    Encoded e = part_stl(c, p, "case_stl");
+    e.suffix = "." + p.part->name + ".stl";
+    files.push_back(std::move(e));
+  }
+  return files;
+}
+
+EncodedFiles encode_case_3mf_output(const EncodeContext& c) {
+  return {parts_3mf(c, the_cases(c, "case_3mf"), "", "case_3mf")};
+}
+
 EncodedFiles encode_master_3mf_output(const EncodeContext& c) {
   return {parts_3mf(c, the_master(c, "master_3mf"), "", "master_3mf")};
 }

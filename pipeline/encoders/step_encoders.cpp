@@ -254,6 +254,18 @@ EncodedFiles encode_master_step_output(const EncodeContext& c) {
   return {std::move(e)};
 }
 
+// The mould part `part` as a Carved body (its block, the cavity, its keys).
+StepBody carved_part(const ExactMould& mould, const ExactMould::Part& part, const StepLoop& cavity,
+                     std::string name) {
+  StepBody body;
+  body.name = std::move(name);
+  body.form = StepForm::Carved;
+  body.loops = {cavity};
+  body.block = {mould.box, mould.block_radius, part.z_low, part.z_high, part.from_angle, part.to_angle};
+  for (const ExactMould::Key& k : part.keys) body.hemispheres.push_back({k.centre, k.axis, k.radius, k.bump});
+  return body;
+}
+
 // The mould's parts as exact solids, one product each, in the design's unit:
 // OpenCASCADE takes the revolved cavity and the sockets from each block and
 // adds the bumps. When the cavity is exact, the parts' volumes together must
@@ -269,20 +281,51 @@ EncodedFiles encode_mould_step_output(const EncodeContext& c) {
   const StepLoop cavity = loop_of(mould.cavity);
   Encoded e;
   for (const ExactMould::Part& part : mould.parts) {
-    StepBody body;
-    body.name = c.common.name + " mould " + part.name;
-    body.form = StepForm::Carved;
-    body.loops = {cavity};
-    body.block = {mould.box, mould.block_radius, part.z_low, part.z_high, part.from_angle, part.to_angle};
-    for (const ExactMould::Key& k : part.keys)
-      body.hemispheres.push_back({k.centre, k.axis, k.radius, k.bump});
-    model.bodies.push_back(std::move(body));
+    model.bodies.push_back(carved_part(mould, part, cavity, c.common.name + " mould " + part.name));
     e.parts.push_back(part.name);
   }
   Encoded written = checked_step(c, model, loop_of.added(), mould.volume,
                                  "the mould's parts as OpenCASCADE built them hold");
   written.parts = std::move(e.parts);
   return {std::move(written)};
+}
+
+// Each casting case as an exact solid in the mould's frame (where its part
+// lies in it), one file per case: its box less the exact mould part, the
+// module checking that the cut took exactly the part's volume. The box is
+// the mesh case's; its open side lies on the part's exact flat face.
+EncodedFiles encode_case_step_output(const EncodeContext& c) {
+  const auto& vessel = std::get<VesselProducts>(c.result.products);
+  if (vessel.cases.empty()) {
+    std::string why;
+    for (const std::string& r : vessel.case_refusals) why += (why.empty() ? "" : "; ") + r;
+    throw OutputError("case_step", "case_step: no mould part has a casting case: " + why);
+  }
+  const ExactMould& mould = *vessel.mould;
+  StepLoops loop_of(c.output_tolerance);
+  const StepLoop cavity = loop_of(mould.cavity);
+  EncodedFiles files;
+  for (const VesselProducts::CaseBox& box : vessel.cases) {
+    const ExactMould::Part& part = mould.parts.at(box.part);
+    StepModel model;
+    model.name = c.common.name + " " + box.name;
+    model.unit = c.common.units;
+    StepBody body = carved_part(mould, part, cavity, model.name);
+    body.form = StepForm::Case;
+    body.case_lo = box.lo;
+    body.case_hi = box.hi;
+    // The open side exactly on the part's flat face: a box side, or its top or bottom.
+    for (int k = 0; k < 3; ++k) {
+      if (box.pull[k] > 0.0) body.case_hi[k] = k == 2 ? part.z_high : mould.block_radius;
+      if (box.pull[k] < 0.0) body.case_lo[k] = k == 2 ? part.z_low : -mould.block_radius;
+    }
+    model.bodies.push_back(std::move(body));
+    Encoded e = step_file(c, model, loop_of.added());
+    e.suffix = "." + box.name + ".step";
+    e.parts = {box.name};
+    files.push_back(std::move(e));
+  }
+  return files;
 }
 
 }  // namespace fabmesh

@@ -13,6 +13,7 @@
 #include "io/design/read_design.h"
 #include "io/file.h"
 #include "pipeline/summary.h"
+#include "tests/io/mesh/external_tool.h"
 #include "tests/pipeline/cli_harness.h"
 
 using namespace fabmesh;
@@ -109,5 +110,97 @@ TEST_CASE("casting: shrinkage measured on a test bar, and bad materials", "[pipe
       CHECK(what.find(b.key) != std::string::npos);
       CHECK(what.find(b.says) != std::string::npos);
     }
+  }
+}
+
+TEST_CASE("casting cases: each half of a box mould gets a case, standing on its floor, valid as written",
+          "[pipeline][mould][case]") {
+  const fs::path dir = fresh_dir("casting_cases");
+  Design design = read_design(example("mould_box_cases.yaml"));  // mm, 5 mm walls
+  const Result r = run_job(design, into(dir));
+  const std::vector<Facts>& cases = std::get<std::vector<Facts>>(*r.facts.group("mould").find("cases"));
+  const std::vector<Facts>& parts = std::get<std::vector<Facts>>(*r.facts.group("mould").find("parts"));
+  REQUIRE(cases.size() == 2);
+  double x = 0.0;
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const Facts& c = cases[i];
+    INFO(c.text("part"));
+    CHECK(c.text("name") == "case-" + parts[i].text("name"));
+    CHECK(c.find("refused") == nullptr);
+    // Side 1 lies on +y of the split plane, side 2 on -y: each pulled out through its back.
+    const auto& pull = std::get<std::vector<double>>(*c.find("pull"));
+    CHECK(pull == std::vector<double>{0.0, i == 0 ? 1.0 : -1.0, 0.0});
+    // The case is the box around the part less the part: its volume says so.
+    const auto& size = std::get<std::vector<double>>(*c.find("size"));
+    CHECK(c.number("volume") ==
+          Approx(size[0] * size[1] * size[2] - parts[i].number("volume")).epsilon(1e-9));
+    // Written standing: from z = 0, side by side along x 10 mm apart.
+    const auto& from = std::get<std::vector<double>>(*c.find("written_from"));
+    CHECK(from == std::vector<double>{x, 0.0, 0.0});
+    x += size[0] + 10.0;
+    const std::string stl = (dir / ("mould_box_cases." + c.text("name") + ".stl")).string();
+    REQUIRE(fs::exists(stl));
+    std::string text;
+    CHECK(run_cli({"check", stl}, &text) == 0);
+    CHECK(text.find(": valid") != std::string::npos);
+    CHECK(c.text("release").find("leaves its case along") != std::string::npos);
+  }
+  // Both in one 3MF, apart: checked as an assembly, nothing interpenetrates.
+  std::string text;
+  CHECK(run_cli({"check", (dir / "mould_box_cases.case.3mf").string()}, &text) == 0);
+  CHECK(text.find("2 objects, none interpenetrating") != std::string::npos);
+}
+
+TEST_CASE("casting cases: a cylinder mould is refused, a part no one-piece case releases is named",
+          "[pipeline][mould][case]") {
+  const fs::path dir = fresh_dir("casting_cases_refused");
+  std::string text;
+  CHECK(run_cli({"run", example("mould_golden.yaml"), "-D", "outputs=[case_stl]", "-o", dir.string() + "/"},
+                &text) == 2);
+  CHECK(text.find("case_stl needs a `mould:` section with `block: box`") != std::string::npos);
+  // A box on a base part: the base pours through its bottom; the sides carry
+  // the base keys' sockets under them, which their pull across the split cannot clear.
+  CHECK(run_cli({"run", example("mould_golden_box_base.yaml"), "-D", "outputs=[case_stl]", "-o",
+                 dir.string() + "/"},
+                &text) == 0);
+  CHECK(fs::exists(dir / "mould_golden_box_base.case-base.stl"));
+  CHECK_FALSE(fs::exists(dir / "mould_golden_box_base.case-side-1.stl"));
+  CHECK(text.find("warning: case: no one-piece casting case releases side-1: pulled along +y") !=
+        std::string::npos);
+  CHECK(text.find("on a base key's socket in its bottom") != std::string::npos);
+  // Three parts keyed on planes 120 degrees apart: every part refused, nothing written.
+  CHECK(run_cli({"run", example("mould_golden.yaml"), "-D", "outputs=[case_stl]", "-D", "mould.block=box",
+                 "-D", "mould.parts=3", "-D", "mould.key_clearance=0.1", "-o", dir.string() + "/"},
+                &text) == 2);
+  CHECK(text.find("no mould part has a casting case") != std::string::npos);
+  CHECK(text.find("on the bump of a key on its split face at 120 degrees") != std::string::npos);
+  // A wall of no thickness is bad input at its key.
+  CHECK(run_cli({"run", example("mould_box_cases.yaml"), "-D", "case.wall=0", "-o", dir.string() + "/"},
+                &text) == 2);
+  CHECK(text.find("case.wall") != std::string::npos);
+}
+
+TEST_CASE("casting cases: PrusaSlicer finds each case manifold and slices it standing on its floor",
+          "[pipeline][mould][case][prusaslicer]") {
+  REQUIRE_PROGRAM("prusa-slicer");
+  const fs::path dir = fresh_dir("casting_cases_prusa");
+  REQUIRE(run_cli({"run", example("mould_box_cases.yaml"), "-D", "outputs=[case_stl]", "-o",
+                   dir.string() + "/"}) == 0);
+  for (const char* name : {"case-side-1", "case-side-2"}) {
+    INFO(name);
+    const fs::path stl = dir / (std::string("mould_box_cases.") + name + ".stl");
+    const std::map<std::string, std::string> info = test::prusa_info((dir / "home").string(), stl.string());
+    REQUIRE(info.count("manifold") == 1);
+    CHECK(info.at("manifold") == "yes");
+    // Standing on its floor, its opening up: 124 mm tall (the half's 113 mm depth, a key, the floor).
+    CHECK(std::stod(info.at("size_z")) == Approx(123.988).margin(0.01));
+    const fs::path gcode = dir / (std::string(name) + ".gcode");
+    const test::ToolRun slice =
+        test::prusa_slicer((dir / "home").string(),
+                           "--export-gcode --bed-shape 0x0,400x0,400x400,0x400 --center 200,200 " +
+                               test::quoted(stl.string()) + " --output " + test::quoted(gcode.string()));
+    INFO(slice.output);
+    CHECK(slice.code == 0);
+    CHECK(fs::file_size(gcode) > 0);
   }
 }

@@ -32,9 +32,10 @@ enum class PartRole {
   MouldBase,  ///< the base part of a vessel's mould
   Piece,      ///< a piece of a kitchen's top, cut at its seams
   Master,     ///< a vessel's casting master (outputs master_stl, master_3mf, master_step)
+  Case,       ///< the casting case of a mould part (outputs case_stl, case_3mf)
 };
 
-/// The role as the JSON reports name it: "product", "mould_side", "mould_base", "piece", "master".
+/// The role as the JSON reports name it: "product", "mould_side", "mould_base", "piece", "master", "case".
 const char* to_string(PartRole role);
 
 /// One mesh of a result: the design's own (its product) or a mould part.

@@ -89,6 +89,15 @@ void read_shrinkage(const yaml::Fields& f, const YAML::Node& n, VesselDesign& v)
   }
 }
 
+// `case: {wall}`: the casting cases' wall, in model units (5 mm by default).
+CaseOptions read_case(const yaml::Fields& f, const YAML::Node& n, const DesignCommon& common) {
+  f.require_map(n, "case", key_group("vessel.case"));
+  CaseOptions o;
+  o.wall = f.number_or(n, "wall", "case.wall", o.wall / millimetres_per_unit(common.units));
+  if (!(o.wall > 0.0)) f.fail(n["wall"], "case.wall", fmt::format("wall = {} must be > 0", o.wall));
+  return o;
+}
+
 // `print: {bed, max_overhang_deg, min_wall, strict, pin_diameter,
 // pin_clearance}`: lengths in model units, the millimetre defaults converted.
 PrintOptions read_print(const yaml::Fields& f, const YAML::Node& n, const DesignCommon& common) {
@@ -161,6 +170,8 @@ VesselDesign read_vessel(const yaml::Fields& f, const YAML::Node& root, const De
   v.max_triangles = f.budget_or(root, "max_triangles", v.max_triangles);
   if (root["shrinkage"].IsDefined()) read_shrinkage(f, root["shrinkage"], v);
   if (root["print"].IsDefined()) v.print = read_print(f, root["print"], common);
+  v.casting_case.wall /= millimetres_per_unit(common.units);  // 5 mm
+  if (root["case"].IsDefined()) v.casting_case = read_case(f, root["case"], common);
   // `mould: false` (a switch, "=with_mould") is none; `mould: true` the mould of every default.
   const bool mould_off = root["mould"].IsDefined() && root["mould"].IsScalar() &&
                          f.boolean_or(root, "mould", "mould", true) == false;

@@ -18,6 +18,9 @@
 # have its exact volume within 1e-9. The U kitchen's pieces with a half
 # bullnose and a full one (the rounds stopping on walls and seams) are
 # closed solids too.
+# A casting case (case_step, every example whose mould is a box) is one closed
+# solid that shares no volume with its mould part and together with it fills
+# its box: plaster cast in it is that part.
 # A thickened surface is one closed solid too: the bundled basin's 4 patches
 # make 4 faces on each sheet and 8 walls along the rim's sides.
 # Usage: freecad_step_test.sh FABMESH SOURCE_DIR
@@ -128,6 +131,68 @@ for edges in 'half_bullnose, radius: 12' 'bullnose'; do
     fail "kitchen_u with edges $edges: no STEP files"
   fi
 done
+# Casting cases (`case_step`, every example whose mould is a box): each one
+# closed solid; with its mould part (mould_step) it shares no volume (within
+# 1e-9 of the part's area, in mm) and fills the case's box (within 1e-9); the
+# case's and the part's volumes add up to the box's (within 1e-7, integrated).
+cases=()
+for design in "$source"/configs/examples/*.yaml; do
+  name=$(basename "$design" .yaml)
+  grep -q '^  block: box' "$design" || continue
+  out="$work/$name-cases"
+  if (cd "$source/configs/examples" && "$fabmesh" run "$design" -D 'outputs=[case_step, mould_step]' -o "$out/" \
+      -q) >"$out.log" 2>&1; then
+    mapfile -t written < <(compgen -G "$out/$name.case-*.step" | sort -V)
+    ((${#written[@]} >= 1)) || fail "$name: no case STEP file"
+    parts=$(grep -c '^#[0-9]* = MANIFOLD_SOLID_BREP' "$out/$name.mould.step")
+    for c in "${written[@]}"; do
+      part=${c##*.case-}
+      part=${part%.step}
+      if [[ $part == base ]]; then index=$((parts - 1)); else index=$((${part#side-} - 1)); fi
+      cases+=("$c=$out/$name.mould.step=$index")
+      files+=("$c")
+    done
+  else
+    cat "$out.log"
+    fail "$name: no case STEP files"
+  fi
+done
+((${#cases[@]} >= 3)) || fail "only ${#cases[@]} casting cases written"
+FABMESH_CASES=$(IFS=:; echo "${cases[*]}") timeout 600 freecadcmd "$source/tests/io/step/freecad_case_check.py" \
+  >"$work/freecad-cases.log" 2>&1
+judged=0
+while IFS= read -r line; do
+  judged=$((judged + 1))
+  verdict=$(python3 - "${line#FABMESH_CASE }" <<'PY'
+import json, os, sys
+f = json.loads(sys.argv[1])
+name = os.path.basename(f["path"])
+problems = []
+if "error" in f:
+    problems.append("not read: " + f["error"])
+else:
+    if not f["valid"] or f["solids"] != 1 or not f["closed"]:
+        problems.append(f"not one valid closed solid: {f}")
+    if not f["part_inside"]:
+        problems.append("its part is not inside its box")
+    if f["common"] > 1e-9 * f["part_area"]:
+        problems.append(f"shares {f['common']} mm^3 with its part")
+    if abs(f["fused"] / f["box_volume"] - 1) > 1e-9:
+        problems.append(f"with its part fills {f['fused']} mm^3 of its box's {f['box_volume']}")
+    # Integrated over curved faces (the cavity's B-splines): to 1e-7, as the masters' volumes.
+    if abs((f["volume"] + f["part_volume"]) / f["box_volume"] - 1) > 1e-7:
+        problems.append(f"case {f['volume']} + part {f['part_volume']} is not its box's {f['box_volume']}")
+print(name + (": " + "; ".join(problems) if problems else
+              f": cast, it is its part (in common {f['common']:.3g} mm^3, together its box)"))
+sys.exit(1 if problems else 0)
+PY
+  ) || fail "$verdict"
+  echo "$verdict"
+done < <(grep '^FABMESH_CASE ' "$work/freecad-cases.log")
+if ((judged != ${#cases[@]})); then
+  cat "$work/freecad-cases.log"
+  fail "FreeCAD reported on $judged of ${#cases[@]} casting cases"
+fi
 ((${#files[@]} >= 5)) || fail "only ${#files[@]} STEP files written"
 
 list=$(IFS=:; echo "${files[*]}")

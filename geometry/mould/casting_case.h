@@ -1,0 +1,55 @@
+#pragma once
+// The casting case of a mould part: the open-topped solid into which plaster
+// is poured to cast that part again. Its cavity is the part itself, open
+// through one flat outer face of the part (the pour face), inside a box whose
+// walls are `wall` thick; the part leaves the case by a straight pull out of
+// that face. Built by construction from the part's own closed mesh: the
+// part's triangles but the pour face's, turned inside out, and the box's
+// floor, walls and rim. Nothing is approximated beyond the part's mesh.
+
+#include <functional>
+#include <string>
+
+#include "geometry/core/soup.h"
+#include "geometry/core/types.h"
+
+namespace fabmesh {
+
+struct CaseOptions {
+  double wall = 5.0;  ///< the case's floor and walls around the part (> 0), model units (designs: 5 mm)
+};
+
+struct CastingCase {
+  TriangleSoup soup;  ///< closed, outward, sharing vertices
+  /// Unit axis direction the part leaves the case along; the case's opening
+  /// faces it and the case stands on its opposite face (printed that side down).
+  Vec3 pull{0.0, 0.0, 0.0};
+  Vec3 lo{0.0, 0.0, 0.0}, hi{0.0, 0.0, 0.0};  ///< the case's box
+  double pour_area = 0.0;                      ///< the opening: the part's pour face
+  /// Why the part leaves the case: no face of the part but the pour face
+  /// faces the pull (decided by exact orientation signs).
+  std::string release_proof;
+};
+
+/// The casting case of the mould part `part` (a closed, outward, embedded
+/// mesh; `name` for messages). The pull is the first of the six axis
+/// directions, taken nearest `outward` first, along which the part's extreme
+/// face is one flat rectangle covering its bounding box's face (the pour face)
+/// and out of which it can be pulled: no other face of the part faces that
+/// direction.
+/// \throw GeometryError (where "case") naming the part and, for the direction
+///        nearest `outward`, what holds it: no flat face to pour through, or
+///        the first face that would catch on the case, with its position.
+/// `what_is_at`, when given, names the feature of the part at a point (" (a
+/// key's socket)") for those messages.
+/// \throw RangeError (key "case.wall") unless wall > 0.
+CastingCase build_casting_case(const TriangleSoup& part, const std::string& name, const Vec3& outward,
+                               const CaseOptions& options,
+                               const std::function<std::string(const Vec3&)>& what_is_at = {});
+
+/// `c` as it is printed: turned by quarter turns (exact) so that its pull is
+/// +z (the opening up, standing on its floor), then moved so that its box's
+/// lowest corner is at `corner`.
+TriangleSoup standing(const CastingCase& c, const Vec3& corner);
+
+}  // namespace fabmesh

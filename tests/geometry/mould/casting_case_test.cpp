@@ -1,0 +1,141 @@
+#include "geometry/mould/casting_case.h"
+
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "geometry/core/errors.h"
+#include "geometry/mesh/bounding_box.h"
+#include "geometry/mesh/interpenetration.h"
+#include "geometry/mesh/volume.h"
+#include "geometry/mould/mould.h"
+#include "geometry/validation/validate.h"
+#include "tests/geometry/mould/mould_fixtures.h"
+
+using namespace fabmesh;
+using namespace fabmesh::test;
+
+namespace {
+
+// The outward direction of a mould part: its bisector for a side part, down for the base.
+Vec3 outward_of(const MouldPart& p) {
+  if (p.kind == MouldPartKind::Base) return {0.0, 0.0, -1.0};
+  const double mid = 0.5 * (p.from_angle + p.to_angle);
+  return {std::cos(mid), std::sin(mid), 0.0};
+}
+
+TriangleSoup moved(TriangleSoup soup, const Vec3& by) {
+  for (Vec3& p : soup.vertices) p += by;
+  return soup;
+}
+
+bool interpenetrate(const TriangleSoup& a, const TriangleSoup& b) {
+  return !interpenetrating_pairs({&a, &b}).pairs.empty();
+}
+
+MouldOptions box_options(int parts, int keys, bool base) {
+  MouldOptions o = cm_options();
+  o.block = BlockShape::Box;
+  o.parts = parts;
+  o.keys = keys;
+  o.base_part = base;
+  if (parts == 3) o.key_clearance = 0.1;
+  return o;
+}
+
+}  // namespace
+
+TEST_CASE("casting case: each part of a two-part box mould has a valid case whose cavity is the part",
+          "[mould][case]") {
+  const CompositeCurve profile = example_profile("vessel_golden_solid.yaml");
+  const Mould mould = build_mould(profile, box_options(2, 2, false));
+  REQUIRE(mould.parts.size() == 2);
+  for (const MouldPart& part : mould.parts) {
+    INFO(part.name);
+    const CastingCase c = build_casting_case(part.soup, part.name, outward_of(part), CaseOptions{0.5});
+    // Side 1 lies on +y of the split plane y = 0, side 2 on -y: each pours through its back.
+    CHECK(c.pull == outward_of(part).array().round().matrix());
+    const ValidationReport v = validate(c.soup);
+    CHECK(v.valid());
+    REQUIRE(v.genus);
+    CHECK(*v.genus == 0);
+    // Its surface is the box's and the part's: its volume is the box's less the part's.
+    const Vec3 size = c.hi - c.lo;
+    const double part_volume = signed_volume(part.soup);
+    CHECK(v.volume == Approx(size.prod() - part_volume).epsilon(1e-10));
+    const BoundingBox pb = bounding_box(part.soup.vertices);
+    CHECK(c.pour_area == Approx((pb.hi - pb.lo).prod() / (pb.hi - pb.lo).dot(c.pull.cwiseAbs())));
+    // The walls are 0.5 thick on every side but the opening.
+    CHECK(bounding_box(c.soup.vertices).lo == c.lo);
+    CHECK(bounding_box(c.soup.vertices).hi == c.hi);
+    for (int k = 0; k < 3; ++k) {
+      CHECK(pb.lo[k] - c.lo[k] == Approx(c.pull[k] < 0.0 ? 0.0 : 0.5).margin(1e-12));
+      CHECK(c.hi[k] - pb.hi[k] == Approx(c.pull[k] > 0.0 ? 0.0 : 0.5).margin(1e-12));
+    }
+    // The part sits in its case without overlap; pulled out along the pull it
+    // clears the case, pushed the other way or sideways it runs into it.
+    CHECK_FALSE(interpenetrate(part.soup, c.soup));
+    CHECK_FALSE(interpenetrate(moved(part.soup, 0.3 * c.pull), c.soup));
+    CHECK_FALSE(interpenetrate(moved(part.soup, 3.0 * c.pull), c.soup));
+    CHECK(interpenetrate(moved(part.soup, -0.3 * c.pull), c.soup));
+    CHECK(interpenetrate(moved(part.soup, Vec3(0.3, 0.0, 0.0)), c.soup));
+    CHECK(c.release_proof.find("leaves its case along") != std::string::npos);
+  }
+}
+
+TEST_CASE("casting case: a box mould's base part pours through its bottom, pulled down off the keys",
+          "[mould][case]") {
+  const CompositeCurve profile = example_profile("vessel_golden_solid.yaml");
+  const Mould mould = build_mould(profile, box_options(2, 2, true));
+  REQUIRE(mould.parts.back().kind == MouldPartKind::Base);
+  const MouldPart& base = mould.parts.back();
+  const CastingCase c = build_casting_case(base.soup, base.name, outward_of(base), CaseOptions{0.5});
+  CHECK(c.pull == Vec3(0.0, 0.0, -1.0));
+  const ValidationReport v = validate(c.soup);
+  CHECK(v.valid());
+  CHECK(v.volume == Approx((c.hi - c.lo).prod() - signed_volume(base.soup)).epsilon(1e-10));
+  CHECK_FALSE(interpenetrate(moved(base.soup, 0.3 * c.pull), c.soup));
+  CHECK(interpenetrate(moved(base.soup, -0.3 * c.pull), c.soup));
+
+  // The side parts carry the base keys' sockets in their bottoms: no single
+  // pull clears both those and the split face's keys.
+  const MouldPart& side = mould.parts.front();
+  try {
+    build_casting_case(side.soup, side.name, outward_of(side), CaseOptions{0.5});
+    FAIL("a side part with sockets in its bottom got a one-piece case");
+  } catch (const GeometryError& e) {
+    CHECK(e.where() == "case");
+    CHECK_THAT(e.what(), Catch::Contains("side 1 of 2") && Catch::Contains("pulled along +y") &&
+                             Catch::Contains("would catch on the case"));
+  }
+}
+
+TEST_CASE("casting case: parts no single pull clears, or without a flat face, are refused saying why",
+          "[mould][case]") {
+  const CompositeCurve profile = example_profile("vessel_golden_solid.yaml");
+  SECTION("a cylinder block's curved back") {
+    MouldOptions o = cm_options();
+    const Mould mould = build_mould(profile, o);
+    const MouldPart& side = mould.parts.front();
+    CHECK_THROWS_WITH(build_casting_case(side.soup, side.name, outward_of(side), CaseOptions{0.5}),
+                      Catch::Contains("no flat face across +y") || Catch::Contains("does not cover"));
+  }
+  SECTION("three parts with keys on planes 120 degrees apart") {
+    const Mould mould = build_mould(profile, box_options(3, 2, false));
+    const MouldPart& side = mould.parts.front();
+    CHECK_THROWS_WITH(build_casting_case(side.soup, side.name, outward_of(side), CaseOptions{0.5}),
+                      Catch::Contains("no one-piece casting case releases side 1 of 3"));
+  }
+  SECTION("three parts without keys pour through a box side") {
+    const Mould mould = build_mould(profile, box_options(3, 0, false));
+    for (const MouldPart& side : mould.parts) {
+      const CastingCase c = build_casting_case(side.soup, side.name, outward_of(side), CaseOptions{0.5});
+      CHECK(validate(c.soup).valid());
+      CHECK_FALSE(interpenetrate(moved(side.soup, 0.3 * c.pull), c.soup));
+    }
+  }
+  SECTION("a wall of no thickness") {
+    const Mould mould = build_mould(profile, box_options(2, 0, false));
+    CHECK_THROWS_AS(build_casting_case(mould.parts[0].soup, "side", {0.0, 1.0, 0.0}, CaseOptions{0.0}),
+                    RangeError);
+  }
+}

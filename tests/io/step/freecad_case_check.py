@@ -1,0 +1,34 @@
+# Run by FreeCAD's command line (freecadcmd): for each casting case named in
+# FABMESH_CASES (entries "CASE.step=MOULD.step=INDEX", separated by ':'),
+# imports the case and the mould's part INDEX (the mould's STEP file holds its
+# parts in order) and prints one JSON line: the case's validity and solids,
+# its box's volume, and the volumes of the case and the part in common and
+# fused. Plaster cast in the case is the part when they share no volume and
+# together fill the case's box. The shell test (freecad_step_test.sh) judges them.
+import json
+import os
+
+import Part
+
+for entry in os.environ["FABMESH_CASES"].split(":"):
+    case_path, mould_path, index = entry.split("=")
+    facts = {"path": case_path}
+    try:
+        case = Part.read(case_path)
+        part = Part.read(mould_path).Solids[int(index)]
+        box = case.BoundBox
+        facts.update({
+            "valid": case.isValid(),
+            "solids": len(case.Solids),
+            "closed": all(s.isClosed() for s in case.Shells),
+            "volume": case.Volume,
+            "part_volume": part.Volume,
+            "part_area": part.Area,
+            "box_volume": box.XLength * box.YLength * box.ZLength,
+            "part_inside": box.isInside(part.BoundBox),
+            "common": case.common(part).Volume,
+            "fused": case.fuse(part).Volume,
+        })
+    except Exception as e:  # FreeCAD raises its own Base.FreeCADError
+        facts["error"] = str(e)
+    print("FABMESH_CASE " + json.dumps(facts), flush=True)
