@@ -306,6 +306,21 @@ std::vector<Facts> add_cases(const VesselDesign& design, const Mould& mould, con
           .set("triangles", part.mesh.triangles.size())
           .set("volume", part.validation.volume)
           .set("release", c.release_proof);
+      if (design.print && design.print->bed) {
+        // Standing on its floor, turned about z as the bed allows.
+        const Vec3& bed = *design.print->bed;
+        const bool fits = printed.z() <= bed.z() &&
+                          ((printed.x() <= bed.x() && printed.y() <= bed.y()) ||
+                           (printed.x() <= bed.y() && printed.y() <= bed.x()));
+        facts.set("fits_bed", fits);
+        if (!fits) {
+          out.warnings.push_back(fmt::format(
+              "{}: {} ({:.6g} x {:.6g} x {:.6g} {} standing on its floor) does not fit the bed {:g} x {:g} x "
+              "{:g} {}; fabmesh does not cut casting cases into sections: print it on a larger printer",
+              key_label(context.common, "print.bed"), part.name, printed.x(), printed.y(), printed.z(),
+              context.common.units, bed.x(), bed.y(), bed.z(), context.common.units));
+        }
+      }
       out.parts.push_back(std::move(part));
       x += printed.x() + gap;
     } catch (const GeometryError& e) {

@@ -66,6 +66,7 @@ class PartRole(str, enum.Enum):
     mould_base = "mould_base"
     piece = "piece"
     master = "master"
+    case = "case"
 
 class Parameter:
     """One of a design's named parameters (`parameters:`), with the value used."""
