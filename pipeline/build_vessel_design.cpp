@@ -309,9 +309,8 @@ std::vector<Facts> add_cases(const VesselDesign& design, const Mould& mould, con
       if (design.print && design.print->bed) {
         // Standing on its floor, turned about z as the bed allows.
         const Vec3& bed = *design.print->bed;
-        const bool fits = printed.z() <= bed.z() &&
-                          ((printed.x() <= bed.x() && printed.y() <= bed.y()) ||
-                           (printed.x() <= bed.y() && printed.y() <= bed.x()));
+        const bool fits = printed.z() <= bed.z() && ((printed.x() <= bed.x() && printed.y() <= bed.y()) ||
+                                                     (printed.x() <= bed.y() && printed.y() <= bed.x()));
         facts.set("fits_bed", fits);
         if (!fits) {
           out.warnings.push_back(fmt::format(

@@ -71,7 +71,8 @@ struct Attempt {
 
 // Whether the loop vertex lies on the rectangle's border, and which corner
 // it is (-1: none; 0..3 counter-clockwise from (lo, lo) in the in-plane order).
-int corner_of(const std::array<double, 2>& q, const std::array<double, 2>& lo, const std::array<double, 2>& hi) {
+int corner_of(const std::array<double, 2>& q, const std::array<double, 2>& lo,
+              const std::array<double, 2>& hi) {
   const bool i_lo = q[0] == lo[0], i_hi = q[0] == hi[0], j_lo = q[1] == lo[1], j_hi = q[1] == hi[1];
   if (i_lo && j_lo) return 0;
   if (i_hi && j_lo) return 1;
@@ -80,8 +81,8 @@ int corner_of(const std::array<double, 2>& q, const std::array<double, 2>& lo, c
   return -1;
 }
 
-Attempt attempt(const TriangleSoup& part, const std::string& name, const Axis& axis, const CaseOptions& options,
-                const std::function<std::string(const Vec3&)>& what_is_at) {
+Attempt attempt(const TriangleSoup& part, const std::string& name, const Axis& axis,
+                const CaseOptions& options, const std::function<std::string(const Vec3&)>& what_is_at) {
   const int k = axis.k;
   const BoundingBox box = bounding_box(part.vertices);
   const double extreme = axis.sign > 0 ? box.hi[k] : box.lo[k];
@@ -251,7 +252,8 @@ CastingCase build_casting_case(const TriangleSoup& part, const std::string& name
                                const CaseOptions& options,
                                const std::function<std::string(const Vec3&)>& what_is_at) {
   if (!(options.wall > 0.0) || !std::isfinite(options.wall)) {
-    throw RangeError("wall", options.wall, fmt::format("case.wall = {} must be a length above 0", options.wall),
+    throw RangeError("wall", options.wall,
+                     fmt::format("case.wall = {} must be a length above 0", options.wall),
                      ErrorLocation{"case.wall"});
   }
   if (part.triangles.empty()) throw GeometryError("case", name + " has no triangles to make a case of");

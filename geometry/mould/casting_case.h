@@ -25,7 +25,7 @@ struct CastingCase {
   /// faces it and the case stands on its opposite face (printed that side down).
   Vec3 pull{0.0, 0.0, 0.0};
   Vec3 lo{0.0, 0.0, 0.0}, hi{0.0, 0.0, 0.0};  ///< the case's box
-  double pour_area = 0.0;                      ///< the opening: the part's pour face
+  double pour_area = 0.0;                     ///< the opening: the part's pour face
   /// Why the part leaves the case: no face of the part but the pour face
   /// faces the pull (decided by exact orientation signs).
   std::string release_proof;

@@ -179,8 +179,9 @@ TEST_CASE("casting cases: a cylinder mould is refused, a part no one-piece case 
                  "outputs=[case_stl]", "-o", dir.string() + "/"},
                 &text) == 0);
   CHECK(fs::exists(dir / "mould_box_cases.case-side-1.stl"));
-  CHECK(text.find("print.bed: case-side-1 (383.227 x 235.976 x 123.988 mm standing on its floor) does not fit "
-                  "the bed 250 x 250 x 250 mm") != std::string::npos);
+  CHECK(
+      text.find("print.bed: case-side-1 (383.227 x 235.976 x 123.988 mm standing on its floor) does not fit "
+                "the bed 250 x 250 x 250 mm") != std::string::npos);
   // A wall of no thickness is bad input at its key.
   CHECK(run_cli({"run", example("mould_box_cases.yaml"), "-D", "case.wall=0", "-o", dir.string() + "/"},
                 &text) == 2);
