@@ -31,6 +31,22 @@ void print_build_facts(const Facts& facts, const std::string& u, std::ostream& o
         "({:.0f} g at {:.3g} g/ml) to fill it to the spare\n",
         m.number("plaster_grams"), m.number("water_grams"), m.number("plaster_ratio"),
         m.number("slip_millilitres"), m.number("slip_grams"), m.number("slip_density"));
+    if (const Facts::Value* cases = m.find("cases")) {
+      // Which way each part leaves its case (the refused ones are warnings).
+      const auto& all = std::get<std::vector<Facts>>(*cases);
+      std::string made;
+      std::size_t count = 0;
+      for (const Facts& c : all) {
+        if (c.find("refused") != nullptr) continue;
+        const auto& pull = std::get<std::vector<double>>(*c.find("pull"));
+        int k = 0;
+        while (k < 2 && pull[k] == 0.0) ++k;
+        made += fmt::format("{}{} lifts out along {}{}", count++ == 0 ? "" : ", ", c.text("part"),
+                            pull[k] > 0.0 ? "+" : "-", "xyz"[k]);
+      }
+      out << fmt::format("  casting cases: {} of {} parts ({})\n", count, all.size(),
+                         count == 0 ? "none" : made);
+    }
   }
   if (facts.contains("print")) {
     // A design that prints upright (`print:`) hears what the checks found; the others see it in the report.

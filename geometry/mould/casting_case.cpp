@@ -33,8 +33,8 @@ std::optional<int> orientation_sign(const std::array<double, 2>& a, const std::a
   const double left = ax * by;
   const double right = ay * bx;
   const double det = left - right;
-  constexpr double eps = std::numeric_limits<double>::epsilon() / 2.0;
-  const double bound = (3.0 + 16.0 * eps) * eps * (std::abs(left) + std::abs(right));
+  constexpr double kUnit = std::numeric_limits<double>::epsilon() / 2.0;  // the unit roundoff
+  const double bound = (3.0 + 16.0 * kUnit) * kUnit * (std::abs(left) + std::abs(right));
   if (det > bound) return 1;
   if (-det > bound) return -1;
   const bool left_zero = ax == 0.0 || by == 0.0;

@@ -97,7 +97,9 @@ EncodedFiles encode_mould_3mf_output(const EncodeContext& c);
 // A vessel's casting master (encoders/mesh_encoders.cpp, encoders/step_encoders.cpp).
 EncodedFiles encode_master_stl_output(const EncodeContext& c);
 EncodedFiles encode_master_3mf_output(const EncodeContext& c);
-// The mould parts' casting cases (encoders/mesh_encoders.cpp).
+// The mould parts' casting cases (encoders/mesh_encoders.cpp). When no part
+// has one: an OutputError for `format` with every part's reason.
+void require_cases(const EncodeContext& c, const char* format);
 EncodedFiles encode_case_stl_output(const EncodeContext& c);
 EncodedFiles encode_case_3mf_output(const EncodeContext& c);
 EncodedFiles encode_case_step_output(const EncodeContext& c);  // encoders/step_encoders.cpp

@@ -247,6 +247,14 @@ Encoded part_stl(const EncodeContext& c, const ExportedPart& p, const char* form
 
 }  // namespace
 
+void require_cases(const EncodeContext& c, const char* format) {
+  const VesselProducts& vessel = std::get<VesselProducts>(c.result.products);
+  if (!vessel.cases.empty()) return;
+  std::string why;
+  for (const std::string& r : vessel.case_refusals) why += (why.empty() ? "" : "; ") + r;
+  throw OutputError(format, fmt::format("{}: no mould part has a casting case: {}", format, why));
+}
+
 double float32_bound(double largest_exported, double export_scale) {
   // Rounding each coordinate to float32 moves a vertex by at most sqrt(3) 2^-24 max|x|
   // (export units); scaling by a double adds at most 2^-52 of it. In model units.
@@ -366,16 +374,10 @@ EncodedFiles encode_mould_3mf_output(const EncodeContext& c) {
   return {parts_3mf(c, exported_parts(c, {PartRole::MouldSide, PartRole::MouldBase}), "mould", "mould_3mf")};
 }
 
-// The casting cases that were built; none (every part refused) is an OutputError saying why.
+// The casting cases that were built (require_cases: at least one).
 std::vector<ExportedPart> the_cases(const EncodeContext& c, const char* format) {
-  std::vector<ExportedPart> cases = exported_parts(c, {PartRole::Case});
-  if (cases.empty()) {
-    std::string why;
-    for (const std::string& r : std::get<VesselProducts>(c.result.products).case_refusals)
-      why += (why.empty() ? "" : "; ") + r;
-    throw OutputError(format, fmt::format("{}: no mould part has a casting case: {}", format, why));
-  }
-  return cases;
+  require_cases(c, format);
+  return exported_parts(c, {PartRole::Case});
 }
 
 // NAME.case-side-1.stl, ...: one file per case.

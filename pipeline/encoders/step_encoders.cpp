@@ -295,12 +295,8 @@ EncodedFiles encode_mould_step_output(const EncodeContext& c) {
 // module checking that the cut took exactly the part's volume. The box is
 // the mesh case's; its open side lies on the part's exact flat face.
 EncodedFiles encode_case_step_output(const EncodeContext& c) {
+  require_cases(c, "case_step");
   const auto& vessel = std::get<VesselProducts>(c.result.products);
-  if (vessel.cases.empty()) {
-    std::string why;
-    for (const std::string& r : vessel.case_refusals) why += (why.empty() ? "" : "; ") + r;
-    throw OutputError("case_step", "case_step: no mould part has a casting case: " + why);
-  }
   const ExactMould& mould = *vessel.mould;
   StepLoops loop_of(c.output_tolerance);
   const StepLoop cavity = loop_of(mould.cavity);

@@ -145,6 +145,11 @@ TEST_CASE("casting cases: each half of a box mould gets a case, standing on its 
     CHECK(text.find(": valid") != std::string::npos);
     CHECK(c.text("release").find("leaves its case along") != std::string::npos);
   }
+  std::ostringstream summary;
+  print_summary(r, summary);
+  CHECK_THAT(
+      summary.str(),
+      Catch::Contains("casting cases: 2 of 2 parts (side-1 lifts out along +y, side-2 lifts out along -y)"));
   // Both in one 3MF, apart: checked as an assembly, nothing interpenetrates.
   std::string text;
   CHECK(run_cli({"check", (dir / "mould_box_cases.case.3mf").string()}, &text) == 0);
@@ -168,6 +173,7 @@ TEST_CASE("casting cases: a cylinder mould is refused, a part no one-piece case 
   CHECK(text.find("warning: case: no one-piece casting case releases side-1: pulled along +y") !=
         std::string::npos);
   CHECK(text.find("on a base key's socket in its bottom") != std::string::npos);
+  CHECK(text.find("casting cases: 1 of 3 parts (base lifts out along -z)") != std::string::npos);
   // Three parts keyed on planes 120 degrees apart: every part refused, nothing written.
   CHECK(run_cli({"run", example("mould_golden.yaml"), "-D", "outputs=[case_stl]", "-D", "mould.block=box",
                  "-D", "mould.parts=3", "-D", "mould.key_clearance=0.1", "-o", dir.string() + "/"},
