@@ -69,16 +69,10 @@ struct Attempt {
   std::string why_not;
 };
 
-// Whether the loop vertex lies on the rectangle's border, and which corner
-// it is (-1: none; 0..3 counter-clockwise from (lo, lo) in the in-plane order).
-int corner_of(const std::array<double, 2>& q, const std::array<double, 2>& lo,
-              const std::array<double, 2>& hi) {
-  const bool i_lo = q[0] == lo[0], i_hi = q[0] == hi[0], j_lo = q[1] == lo[1], j_hi = q[1] == hi[1];
-  if (i_lo && j_lo) return 0;
-  if (i_hi && j_lo) return 1;
-  if (i_hi && j_hi) return 2;
-  if (i_lo && j_hi) return 3;
-  return -1;
+// Whether the point is a corner of the rectangle lo..hi.
+bool is_corner(const std::array<double, 2>& q, const std::array<double, 2>& lo,
+               const std::array<double, 2>& hi) {
+  return (q[0] == lo[0] || q[0] == hi[0]) && (q[1] == lo[1] || q[1] == hi[1]);
 }
 
 Attempt attempt(const TriangleSoup& part, const std::string& name, const Axis& axis,
@@ -106,19 +100,22 @@ Attempt attempt(const TriangleSoup& part, const std::string& name, const Axis& a
   for (const Triangle& t : part.triangles) {
     const Vec3 &a = part.vertices[t[0]], &b = part.vertices[t[1]], &c = part.vertices[t[2]];
     const std::optional<int> s = orientation_sign(in_plane(a, k), in_plane(b, k), in_plane(c, k));
-    const Vec3 centroid = (a + b + c) / 3.0;
-    const std::string at = point_text(centroid) + (what_is_at ? what_is_at(centroid) : std::string());
+    // Where the face is, for a refusal only.
+    const auto at = [&] {
+      const Vec3 centroid = (a + b + c) / 3.0;
+      return point_text(centroid) + (what_is_at ? what_is_at(centroid) : std::string());
+    };
     if (in_pour_plane(t)) {
       if (s != axis.sign) {
-        return {std::nullopt, fmt::format("its face at {} in its {} plane does not face {}", at, dir, dir)};
+        return {std::nullopt, fmt::format("its face at {} in its {} plane does not face {}", at(), dir, dir)};
       }
     } else if (!s) {
       return {std::nullopt,
-              fmt::format("whether its face at {} faces {} cannot be decided in floating point", at, dir)};
+              fmt::format("whether its face at {} faces {} cannot be decided in floating point", at(), dir)};
     } else if (*s * axis.sign > 0) {
       return {std::nullopt,
               fmt::format("its face at {} faces {}: pulled that way, the part would catch on the case there",
-                          at, dir)};
+                          at(), dir)};
     } else if (*s == 0) {
       ++parallel;
     }
@@ -149,19 +146,16 @@ Attempt attempt(const TriangleSoup& part, const std::string& name, const Axis& a
   for (const auto& [u, v] : next) {
     const std::array<double, 2> q = in_plane(part.vertices[u], k);
     if (q[0] != lo[0] && q[0] != hi[0] && q[1] != lo[1] && q[1] != hi[1]) return not_rectangle();
-    if (!start && corner_of(q, lo, hi) >= 0) start = u;
+    if (!start && is_corner(q, lo, hi)) start = u;
   }
   if (!start) return not_rectangle();
   // Walk the loop from a corner: the runs between consecutive corners are the sides.
   std::vector<std::vector<Index>> sides;
-  std::vector<int> corners;
   Index u = *start;
   std::size_t walked = 0;
   do {
-    const int c = corner_of(in_plane(part.vertices[u], k), lo, hi);
-    if (c >= 0) {
+    if (is_corner(in_plane(part.vertices[u], k), lo, hi)) {
       if (!sides.empty()) sides.back().push_back(u);
-      corners.push_back(c);
       sides.emplace_back();
     }
     sides.back().push_back(u);
@@ -169,7 +163,7 @@ Attempt attempt(const TriangleSoup& part, const std::string& name, const Axis& a
     if (++walked > next.size()) return not_rectangle();
   } while (u != *start);
   sides.back().push_back(u);
-  if (walked != next.size() || corners.size() != 4) return not_rectangle();
+  if (walked != next.size() || sides.size() != 4) return not_rectangle();
   for (const std::vector<Index>& side : sides) {  // each side straight along the rectangle
     const std::array<double, 2> a = in_plane(part.vertices[side.front()], k);
     const std::array<double, 2> b = in_plane(part.vertices[side.back()], k);
