@@ -14,6 +14,8 @@
 
 #include "geometry/core/errors.h"
 #include "geometry/mesh/bounding_box.h"
+#include "geometry/section/region.h"
+#include "geometry/section/triangulate.h"
 
 namespace fabmesh {
 namespace {
@@ -75,6 +77,177 @@ bool is_corner(const std::array<double, 2>& q, const std::array<double, 2>& lo,
   return (q[0] == lo[0] || q[0] == hi[0]) && (q[1] == lo[1] || q[1] == hi[1]);
 }
 
+constexpr Index kNone = std::numeric_limits<Index>::max();
+
+// The side of its plane a triangle faces: the sign of its normal's
+// component along axis k, exactly, or none when undecidable.
+std::optional<int> facing(const TriangleSoup& part, const Triangle& t, int k) {
+  return orientation_sign(in_plane(part.vertices[t[0]], k), in_plane(part.vertices[t[1]], k),
+                          in_plane(part.vertices[t[2]], k));
+}
+
+// Appends triangles covering the simple polygon `cycle` (indices into
+// soup.vertices, lying in a plane across axis k), facing sign x e_k: a
+// constrained triangulation of its points, none added. False when the
+// points do not make a simple polygon.
+bool fill_polygon(TriangleSoup& soup, const std::vector<Index>& cycle, int k, int sign) {
+  std::map<std::array<double, 2>, Index> at;
+  Region2 region;
+  double twice_area = 0.0;
+  for (std::size_t n = 0; n < cycle.size(); ++n) {
+    const std::array<double, 2> q = in_plane(soup.vertices[cycle[n]], k);
+    if (!at.emplace(q, cycle[n]).second) return false;
+    region.outer.emplace_back(q[0], q[1]);
+    const std::array<double, 2> r = in_plane(soup.vertices[cycle[(n + 1) % cycle.size()]], k);
+    twice_area += q[0] * r[1] - q[1] * r[0];
+  }
+  if (cycle.size() < 3 || twice_area == 0.0) return false;
+  if (twice_area < 0.0) std::reverse(region.outer.begin(), region.outer.end());
+  const PlanarTriangulation t = triangulate(region);
+  if (t.steiner_points != 0 || t.triangles.size() != cycle.size() - 2) return false;
+  for (const auto& tri : t.triangles) {
+    std::array<Index, 3> out{};
+    for (int e = 0; e < 3; ++e) out[e] = at.at({t.vertices[tri[e]].x(), t.vertices[tri[e]].y()});
+    if (sign < 0) std::swap(out[1], out[2]);
+    soup.triangles.push_back(out);
+  }
+  return true;
+}
+
+// The part's triangles as copied into a piece: vertices added on first use.
+struct Copier {
+  const TriangleSoup& from;
+  TriangleSoup& to;
+  std::vector<Index> remap = std::vector<Index>(from.vertices.size(), kNone);
+  Index operator()(Index v) {
+    if (remap[v] == kNone) {
+      remap[v] = static_cast<Index>(to.vertices.size());
+      to.vertices.push_back(from.vertices[v]);
+    }
+    return remap[v];
+  }
+  void flipped(const Triangle& t) { to.triangles.push_back({(*this)(t[0]), (*this)(t[2]), (*this)(t[1])}); }
+};
+
+Index add_vertex(TriangleSoup& soup, const Vec3& p) {
+  soup.vertices.push_back(p);
+  return static_cast<Index>(soup.vertices.size() - 1);
+}
+
+// A plate: the triangles of the part on one side face of its bounding box
+// (axis q, side s) and behind it, and the loop bounding them.
+struct PlateFace {
+  int q = 0;
+  int s = 1;
+  double e = 0.0;            // the face's plane: coordinate q
+  std::vector<bool> member;  // by triangle
+  std::size_t triangles = 0, features = 0, parallel = 0;
+  std::size_t side = 0;     // the pour face's side lying on the face
+  std::vector<Index> path;  // the loop off the pour face: corner `side` to the next corner
+};
+
+// The pour face and the part's triangles, indexed by directed edge.
+struct Faces {
+  const TriangleSoup& part;
+  std::vector<bool> pour;
+  std::map<std::pair<Index, Index>, std::size_t> by_edge;  // directed edge -> triangle
+  std::size_t twin(std::size_t t, int e) const {
+    const Triangle& tri = part.triangles[t];
+    const auto it = by_edge.find({tri[(e + 1) % 3], tri[e]});
+    return it == by_edge.end() ? part.triangles.size() : it->second;
+  }
+};
+
+// The plate on the face (q, s), if its triangles take every one in
+// `blocking`, come off along s e_q and are bounded by one loop meeting the
+// pour face along the pour face's side `side`.
+std::optional<PlateFace> plate_on(const Faces& f, const BoundingBox& box, int q, int s,
+                                  const std::vector<std::size_t>& blocking,
+                                  const std::vector<std::vector<Index>>& sides) {
+  const TriangleSoup& part = f.part;
+  const std::size_t count = part.triangles.size();
+  PlateFace p;
+  p.q = q;
+  p.s = s;
+  p.e = s > 0 ? box.hi[q] : box.lo[q];
+  p.member.assign(count, false);
+  const auto on_face = [&](std::size_t t) {
+    const Triangle& tri = part.triangles[t];
+    return !f.pour[t] && part.vertices[tri[0]][q] == p.e && part.vertices[tri[1]][q] == p.e &&
+           part.vertices[tri[2]][q] == p.e;
+  };
+  for (std::size_t t = 0; t < count; ++t) p.member[t] = on_face(t);
+  if (std::find(p.member.begin(), p.member.end(), true) == p.member.end()) return std::nullopt;
+  // What lies behind the face: the regions of the rest bounded by its
+  // triangles alone (a key's socket or bump), found by flooding across edges.
+  std::vector<int> region(count, -1);
+  int regions = 0;
+  for (std::size_t seed = 0; seed < count; ++seed) {
+    if (f.pour[seed] || p.member[seed] || region[seed] >= 0) continue;
+    std::vector<std::size_t> stack{seed}, found;
+    region[seed] = regions;
+    bool meets_pour = false;
+    while (!stack.empty()) {
+      const std::size_t t = stack.back();
+      stack.pop_back();
+      found.push_back(t);
+      for (int e = 0; e < 3; ++e) {
+        const std::size_t u = f.twin(t, e);
+        if (u == count) return std::nullopt;
+        if (f.pour[u]) meets_pour = true;
+        if (f.pour[u] || on_face(u) || region[u] >= 0) continue;
+        region[u] = regions;
+        stack.push_back(u);
+      }
+    }
+    ++regions;
+    if (!meets_pour) {
+      ++p.features;
+      for (std::size_t t : found) p.member[t] = true;
+    }
+  }
+  for (std::size_t t : blocking) {
+    if (!p.member[t]) return std::nullopt;
+  }
+  // It comes off the part: each of its faces faces s e_q or runs along it.
+  for (std::size_t t = 0; t < count; ++t) {
+    if (!p.member[t]) continue;
+    ++p.triangles;
+    const std::optional<int> sign = facing(part, part.triangles[t], q);
+    if (!sign || *sign * s < 0 || (on_face(t) && *sign != s)) return std::nullopt;
+    if (*sign == 0) ++p.parallel;
+  }
+  // Its border: one loop, part of it on the pour face's side lying on the face.
+  std::map<Index, Index> next;
+  for (std::size_t t = 0; t < count; ++t) {
+    if (!p.member[t]) continue;
+    const Triangle& tri = part.triangles[t];
+    for (int e = 0; e < 3; ++e) {
+      const std::size_t u = f.twin(t, e);
+      if (p.member[u]) continue;
+      if (!next.emplace(tri[e], tri[(e + 1) % 3]).second) return std::nullopt;
+    }
+  }
+  std::optional<std::size_t> side;
+  for (std::size_t n = 0; n < sides.size(); ++n) {
+    if (part.vertices[sides[n].front()][q] == p.e && part.vertices[sides[n].back()][q] == p.e) side = n;
+  }
+  if (!side) return std::nullopt;
+  p.side = *side;
+  // The loop runs the pour face's side backwards, then from its first corner round to its last.
+  const Index from = sides[*side].front(), to = sides[*side].back();
+  Index u = from;
+  p.path.push_back(u);
+  while (u != to) {
+    const auto it = next.find(u);
+    if (it == next.end() || p.path.size() > next.size()) return std::nullopt;
+    u = it->second;
+    p.path.push_back(u);
+  }
+  if (p.path.size() - 1 + sides[*side].size() - 1 != next.size()) return std::nullopt;
+  return p;
+}
+
 Attempt attempt(const TriangleSoup& part, const std::string& name, const Axis& axis,
                 const CaseOptions& options, const std::function<std::string(const Vec3&)>& what_is_at) {
   const int k = axis.k;
@@ -84,38 +257,46 @@ Attempt attempt(const TriangleSoup& part, const std::string& name, const Axis& a
   const std::string dir = axis_name(axis);
 
   // The pour face: the triangles in the extreme plane. Every other triangle
-  // must face away from the pull or along it.
-  const auto in_pour_plane = [&](const Triangle& t) {
-    return part.vertices[t[0]][k] == extreme && part.vertices[t[1]][k] == extreme &&
-           part.vertices[t[2]][k] == extreme;
-  };
-  std::vector<Triangle> pour, rest;
-  for (const Triangle& t : part.triangles) (in_pour_plane(t) ? pour : rest).push_back(t);
+  // must face away from the pull or along it, or lie on a plate.
+  Faces faces{part, std::vector<bool>(part.triangles.size(), false), {}};
+  std::vector<Triangle> pour;
+  for (std::size_t t = 0; t < part.triangles.size(); ++t) {
+    const Triangle& tri = part.triangles[t];
+    faces.pour[t] = part.vertices[tri[0]][k] == extreme && part.vertices[tri[1]][k] == extreme &&
+                    part.vertices[tri[2]][k] == extreme;
+    if (faces.pour[t]) pour.push_back(tri);
+    for (int e = 0; e < 3; ++e) faces.by_edge[{tri[e], tri[(e + 1) % 3]}] = t;
+  }
   if (pour.empty()) {
     return {std::nullopt, fmt::format("it has no flat face across {} to pour through (its outside there is "
                                       "curved or stepped)",
                                       dir)};
   }
   std::size_t parallel = 0;
-  for (const Triangle& t : part.triangles) {
-    const Vec3 &a = part.vertices[t[0]], &b = part.vertices[t[1]], &c = part.vertices[t[2]];
-    const std::optional<int> s = orientation_sign(in_plane(a, k), in_plane(b, k), in_plane(c, k));
+  std::vector<std::size_t> blocking;
+  std::string first_block;
+  for (std::size_t t = 0; t < part.triangles.size(); ++t) {
+    const Triangle& tri = part.triangles[t];
+    const Vec3 &a = part.vertices[tri[0]], &b = part.vertices[tri[1]], &c = part.vertices[tri[2]];
+    const std::optional<int> s = facing(part, tri, k);
     // Where the face is, for a refusal only.
     const auto at = [&] {
       const Vec3 centroid = (a + b + c) / 3.0;
       return point_text(centroid) + (what_is_at ? what_is_at(centroid) : std::string());
     };
-    if (in_pour_plane(t)) {
+    if (faces.pour[t]) {
       if (s != axis.sign) {
         return {std::nullopt, fmt::format("its face at {} in its {} plane does not face {}", at(), dir, dir)};
       }
-    } else if (!s) {
-      return {std::nullopt,
-              fmt::format("whether its face at {} faces {} cannot be decided in floating point", at(), dir)};
-    } else if (*s * axis.sign > 0) {
-      return {std::nullopt,
-              fmt::format("its face at {} faces {}: pulled that way, the part would catch on the case there",
-                          at(), dir)};
+    } else if (!s || *s * axis.sign > 0) {
+      if (first_block.empty()) {
+        first_block =
+            s ? fmt::format(
+                    "its face at {} faces {}: pulled that way, the part would catch on the case there", at(),
+                    dir)
+              : fmt::format("whether its face at {} faces {} cannot be decided in floating point", at(), dir);
+      }
+      blocking.push_back(t);
     } else if (*s == 0) {
       ++parallel;
     }
@@ -174,35 +355,57 @@ Attempt attempt(const TriangleSoup& part, const std::string& name, const Axis& a
     }
   }
 
-  // The case: the part's other triangles turned inside out, the rim in the
-  // pour plane from the face's border out to the box, the walls and the floor.
-  CastingCase out;
-  std::vector<Index> remap(part.vertices.size(), std::numeric_limits<Index>::max());
-  const auto vertex = [&](Index v) {
-    if (remap[v] == std::numeric_limits<Index>::max()) {
-      remap[v] = static_cast<Index>(out.soup.vertices.size());
-      out.soup.vertices.push_back(part.vertices[v]);
-    }
-    return remap[v];
-  };
-  for (const Triangle& t : rest) out.soup.triangles.push_back({vertex(t[0]), vertex(t[2]), vertex(t[1])});
-  const double w = options.wall;
+  // What would catch, on a plate that comes off first: the first side face
+  // of the bounding box whose plate takes it all.
   const int i = (k + 1) % 3, j = (k + 2) % 3;
+  std::optional<PlateFace> plate;
+  if (!blocking.empty()) {
+    for (int q : {i, j}) {
+      for (int s : {-1, 1}) {
+        if (!plate) plate = plate_on(faces, box, q, s, blocking, sides);
+      }
+    }
+    if (!plate) return {std::nullopt, first_block};
+  }
+
+  // The case: the part's other triangles turned inside out, the rim in the
+  // pour plane from the face's border out to the box, the walls and the
+  // floor. A plate's side of the box lies on the part's face instead, and
+  // the face's outline, filled out to the box, is where the plate meets it.
+  CastingCase out;
+  Copier vertex{part, out.soup};
+  for (std::size_t t = 0; t < part.triangles.size(); ++t) {
+    if (!faces.pour[t] && !(plate && plate->member[t])) vertex.flipped(part.triangles[t]);
+  }
+  const double w = options.wall;
+  const double floor_at = axis.sign > 0 ? box.lo[k] - w : box.hi[k] + w;
   std::array<Index, 4> rim{}, floor{};  // by corner, in loop order
   for (std::size_t n = 0; n < 4; ++n) {
     Vec3 o = part.vertices[sides[n].front()];
-    o[i] += o[i] == box.hi[i] ? w : -w;
-    o[j] += o[j] == box.hi[j] ? w : -w;
+    for (int a : {i, j}) {
+      if (!(plate && plate->q == a && o[a] == plate->e)) o[a] += o[a] == box.hi[a] ? w : -w;
+    }
     Vec3 f = o;
-    f[k] = axis.sign > 0 ? box.lo[k] - w : box.hi[k] + w;
-    rim[n] = static_cast<Index>(out.soup.vertices.size());
-    out.soup.vertices.push_back(o);
-    floor[n] = static_cast<Index>(out.soup.vertices.size());
-    out.soup.vertices.push_back(f);
+    f[k] = floor_at;
+    rim[n] = add_vertex(out.soup, o);
+    floor[n] = add_vertex(out.soup, f);
   }
+  const auto fill_failed = [&] {
+    return Attempt{std::nullopt, fmt::format("its face across {}{} does not bound a simple region",
+                                             plate->s > 0 ? "+" : "-", "xyz"[plate->q])};
+  };
+  std::vector<Index> seam;  // the plate's face filled out to the box: its outline in the case
   for (std::size_t n = 0; n < 4; ++n) {
     const std::size_t m = (n + 1) % 4;
     const std::vector<Index>& side = sides[n];  // from corner n to corner m, along the loop
+    if (plate && plate->side == n) {
+      seam = {floor[n], rim[n]};
+      for (Index v : plate->path) seam.push_back(vertex(v));
+      seam.push_back(rim[m]);
+      seam.push_back(floor[m]);
+      if (!fill_polygon(out.soup, seam, plate->q, plate->s)) return fill_failed();
+      continue;
+    }
     // The trapezoid rim[n], rim[m], then the side backwards: a fan from rim[n].
     out.soup.triangles.push_back({rim[n], rim[m], vertex(side.back())});
     for (std::size_t p = side.size() - 1; p > 0; --p) {
@@ -219,28 +422,86 @@ Attempt attempt(const TriangleSoup& part, const std::string& name, const Axis& a
   out.hi = box.hi + Vec3::Constant(w);
   (axis.sign > 0 ? out.hi : out.lo)[k] = extreme;
   out.pour_area = (hi[0] - lo[0]) * (hi[1] - lo[1]);
+  std::string plate_text;
+  if (plate) {
+    const std::string face = std::string(plate->s > 0 ? "+" : "-") + "xyz"[plate->q];
+    // The plate: the slab beyond the face, under the part's triangles on it.
+    CasePlate cp;
+    Copier copy{part, cp.soup};
+    for (std::size_t t = 0; t < part.triangles.size(); ++t) {
+      if (plate->member[t]) copy.flipped(part.triangles[t]);
+    }
+    // The seam's vertices in the plate: floor[n], rim[n], then the part's
+    // loop from corner n to corner m, then rim[m], floor[m].
+    const std::size_t last = seam.size() - 1;
+    std::vector<Index> top(seam.size());
+    for (std::size_t n = 0; n <= last; ++n) {
+      top[n] = n >= 2 && n <= last - 2 ? copy(plate->path[n - 2])
+                                       : add_vertex(cp.soup, out.soup.vertices[seam[n]]);
+    }
+    std::vector<Index> under(top.size());
+    for (std::size_t n : {std::size_t{0}, std::size_t{1}, last - 1, last}) {
+      Vec3 p = cp.soup.vertices[top[n]];
+      p[plate->q] += plate->s * w;
+      under[n] = add_vertex(cp.soup, p);
+    }
+    std::vector<Index> inner;  // the pour plane's run: rim[n], the pour face's side, rim[m]
+    inner.push_back(top[1]);
+    for (Index v : sides[plate->side]) inner.push_back(copy(v));
+    inner.push_back(top[last - 1]);
+    std::vector<Index> end = inner;
+    end.push_back(under[last - 1]);
+    end.push_back(under[1]);
+    const int r = plate->q == i ? j : i;
+    const int r_sign = cp.soup.vertices[top[0]][r] < box.lo[r] ? -1 : 1;
+    const bool filled =
+        fill_polygon(cp.soup, top, plate->q, -plate->s) && fill_polygon(cp.soup, end, k, axis.sign) &&
+        fill_polygon(cp.soup, {top[0], top[1], under[1], under[0]}, r, r_sign) &&
+        fill_polygon(cp.soup, {top[last], top[last - 1], under[last - 1], under[last]}, r, -r_sign) &&
+        fill_polygon(cp.soup, {top[0], top[last], under[last], under[0]}, k, -axis.sign) &&
+        fill_polygon(cp.soup, {under[0], under[1], under[last - 1], under[last]}, plate->q, plate->s);
+    if (!filled) return fill_failed();
+    cp.pull = Vec3::Zero();
+    cp.pull[plate->q] = plate->s;
+    cp.lo = out.lo;
+    cp.hi = out.hi;
+    (plate->s > 0 ? cp.lo : cp.hi)[plate->q] = plate->e;
+    cp.features = plate->features;
+    cp.release_proof = fmt::format(
+        "the plate comes off first along {}: the {} faces of {} on it (its flat face across {} and {} "
+        "feature{} behind it) face {} or run along it ({} do), by exact orientation signs",
+        face, plate->triangles, name, face, plate->features, plate->features == 1 ? "" : "s", face,
+        plate->parallel);
+    plate_text = fmt::format(", once the plate across {} is off,", face);
+    out.plate = std::move(cp);
+  }
   out.release_proof = fmt::format(
       "{} leaves its case along {}: its flat face across {} ({:.6g} x {:.6g}) is the case's opening, and "
-      "none of its other {} faces faces {} ({} run along it), by exact orientation signs",
-      name, dir, dir, hi[0] - lo[0], hi[1] - lo[1], rest.size(), dir, parallel);
+      "none of its other {} faces{} faces {} ({} run along it), by exact orientation signs",
+      name, dir, dir, hi[0] - lo[0], hi[1] - lo[1],
+      part.triangles.size() - pour.size() - (plate ? plate->triangles : 0), plate_text, dir, parallel);
+  if (out.plate) out.release_proof += "; " + out.plate->release_proof;
   return {std::move(out), {}};
 }
 
 }  // namespace
 
-TriangleSoup standing(const CastingCase& c, const Vec3& corner) {
-  // A right-handed frame of axis vectors with z along the pull: coordinates
-  // in it are the old ones permuted and negated, so nothing rounds.
-  const Vec3 ez = c.pull;
+TriangleSoup standing(const TriangleSoup& soup, const Vec3& up, const Vec3& corner) {
+  // A right-handed frame of axis vectors with z along `up`: coordinates in
+  // it are the old ones permuted and negated, so nothing rounds.
+  const Vec3 ez = up;
   const Vec3 ex = std::abs(ez.z()) == 1.0 ? Vec3(1.0, 0.0, 0.0) : Vec3(0.0, 0.0, 1.0);
   const Vec3 ey = ez.cross(ex);
-  const auto turned = [&](const Vec3& p) { return Vec3(p.dot(ex), p.dot(ey), p.dot(ez)); };
-  const Vec3 a = turned(c.lo), b = turned(c.hi);
-  const Vec3 lo = a.cwiseMin(b);
-  TriangleSoup out = c.soup;
-  for (Vec3& p : out.vertices) p = turned(p) - lo + corner;
+  TriangleSoup out = soup;
+  for (Vec3& p : out.vertices) p = Vec3(p.dot(ex), p.dot(ey), p.dot(ez));
+  const Vec3 lo = bounding_box(out.vertices).lo;
+  for (Vec3& p : out.vertices) p = p - lo + corner;
   return out;
 }
+
+TriangleSoup standing(const CastingCase& c, const Vec3& corner) { return standing(c.soup, c.pull, corner); }
+
+TriangleSoup standing(const CasePlate& p, const Vec3& corner) { return standing(p.soup, -p.pull, corner); }
 
 CastingCase build_casting_case(const TriangleSoup& part, const std::string& name, const Vec3& outward,
                                const CaseOptions& options,
@@ -264,9 +525,9 @@ CastingCase build_casting_case(const TriangleSoup& part, const std::string& name
     if (a.built) return std::move(*a.built);
     if (first_reason.empty()) first_reason = fmt::format("pulled along {}, {}", axis_name(axis), a.why_not);
   }
-  throw GeometryError("case", fmt::format("no one-piece casting case releases {}: {}; no other axis "
-                                          "direction has a flat face to pour through that releases it "
-                                          "either",
+  throw GeometryError("case", fmt::format("no casting case of one piece, or of one piece and a plate, "
+                                          "releases {}: {}; no other axis direction has a flat face to "
+                                          "pour through that releases it either",
                                           name, first_reason));
 }
 

@@ -6,8 +6,15 @@
 // that face. Built by construction from the part's own closed mesh: the
 // part's triangles but the pour face's, turned inside out, and the box's
 // floor, walls and rim. Nothing is approximated beyond the part's mesh.
+//
+// Where keys on one flat side face of the part (a side part's bottom, with
+// the sockets of the base part's keys) would catch on a one-piece case, that
+// side of the case is a separate plate: the box's slab beyond that face,
+// with the face's keys, which comes off first, straight away from the face.
 
+#include <cstddef>
 #include <functional>
+#include <optional>
 #include <string>
 
 #include "geometry/core/soup.h"
@@ -19,16 +26,34 @@ struct CaseOptions {
   double wall = 5.0;  ///< the case's floor and walls around the part (> 0), model units (designs: 5 mm)
 };
 
-struct CastingCase {
+/// The plate of a two-piece case: the slab of the case's box beyond one flat
+/// side face of the part, filling that face's sockets (and holding its bumps).
+struct CasePlate {
   TriangleSoup soup;  ///< closed, outward, sharing vertices
+  /// Unit axis direction the plate comes off the part along: the face's
+  /// outward normal. The plate is printed standing on its outer face.
+  Vec3 pull{0.0, 0.0, 0.0};
+  Vec3 lo{0.0, 0.0, 0.0}, hi{0.0, 0.0, 0.0};  ///< the slab's box
+  std::size_t features = 0;                   ///< the face's sockets and bumps the plate fills or holds
+  /// Why the plate comes off: every face of the part on it faces its pull or
+  /// runs along it (exact orientation signs).
+  std::string release_proof;
+};
+
+struct CastingCase {
+  /// The case (with a plate: its main piece, without the slab), closed,
+  /// outward, sharing vertices.
+  TriangleSoup soup;
   /// Unit axis direction the part leaves the case along; the case's opening
   /// faces it and the case stands on its opposite face (printed that side down).
   Vec3 pull{0.0, 0.0, 0.0};
-  Vec3 lo{0.0, 0.0, 0.0}, hi{0.0, 0.0, 0.0};  ///< the case's box
+  Vec3 lo{0.0, 0.0, 0.0}, hi{0.0, 0.0, 0.0};  ///< the case's box (with its plate's slab)
   double pour_area = 0.0;                     ///< the opening: the part's pour face
   /// Why the part leaves the case: no face of the part but the pour face
-  /// faces the pull (decided by exact orientation signs).
+  /// (and the plate's, the plate off first) faces the pull (decided by exact
+  /// orientation signs).
   std::string release_proof;
+  std::optional<CasePlate> plate;  ///< when the case is two pieces
 };
 
 /// The casting case of the mould part `part` (a closed, outward, embedded
@@ -36,7 +61,9 @@ struct CastingCase {
 /// directions, taken nearest `outward` first, along which the part's extreme
 /// face is one flat rectangle covering its bounding box's face (the pour face)
 /// and out of which it can be pulled: no other face of the part faces that
-/// direction.
+/// direction, or every one that does lies on a plate (the part's flat face on
+/// one side of its bounding box, with what lies only behind it: the keys'
+/// sockets and bumps there) none of whose faces faces away from that side.
 /// \throw GeometryError (where "case") naming the part and, for the direction
 ///        nearest `outward`, what holds it: no flat face to pour through, or
 ///        the first face that would catch on the case, with its position.
@@ -47,9 +74,15 @@ CastingCase build_casting_case(const TriangleSoup& part, const std::string& name
                                const CaseOptions& options,
                                const std::function<std::string(const Vec3&)>& what_is_at = {});
 
-/// `c` as it is printed: turned by quarter turns (exact) so that its pull is
-/// +z (the opening up, standing on its floor), then moved so that its box's
-/// lowest corner is at `corner`.
+/// `soup` as it is printed: turned by quarter turns (exact) so that the axis
+/// direction `up` is +z, then moved so that its bounding box's lowest corner
+/// is at `corner`.
+TriangleSoup standing(const TriangleSoup& soup, const Vec3& up, const Vec3& corner);
+
+/// The case as it is printed: its opening up, standing on its floor.
 TriangleSoup standing(const CastingCase& c, const Vec3& corner);
+
+/// The plate as it is printed: standing on its outer face.
+TriangleSoup standing(const CasePlate& p, const Vec3& corner);
 
 }  // namespace fabmesh
