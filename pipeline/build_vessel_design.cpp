@@ -259,18 +259,18 @@ CastingWeights casting_weights(const VesselDesign& design, double millilitres) {
 
 // The casting case of each of the mould's parts (outputs case_stl, case_3mf),
 // after the parts (the last of `out.parts`): parts of their own, validated
-// in full. A part no one-piece case releases has none, and its reason is
-// kept for the outputs and the report.
+// in full, a two-piece case's plate after its case. A part no case releases
+// has none, and its reason is kept for the outputs and the report.
 std::vector<Facts> add_cases(const VesselDesign& design, const Mould& mould, const BuildContext& context,
                              Result& out, VesselProducts& products) {
   const std::size_t first = out.parts.size() - mould.parts.size();
   std::vector<Facts> cases;
-  // Written standing on their floors, side by side along x, 10 mm apart.
+  // Written standing on their floors (plates on their outer faces), side by side along x, 10 mm apart.
   const double gap = 10.0 / millimetres_per_unit(context.common.units);
   double x = 0.0;
   for (std::size_t i = 0; i < mould.parts.size(); ++i) {
     const MouldPart& p = mould.parts[i];
-    const std::string& name = out.parts[first + i].name;
+    const std::string name = out.parts[first + i].name;  // copied: the cases are added to out.parts
     const double mid = 0.5 * (p.from_angle + p.to_angle);
     const Vec3 outward =
         p.kind == MouldPartKind::Base ? Vec3(0.0, 0.0, -1.0) : Vec3(std::cos(mid), std::sin(mid), 0.0);
@@ -288,40 +288,59 @@ std::vector<Facts> add_cases(const VesselDesign& design, const Mould& mould, con
     Facts facts;
     facts.set("part", name);
     try {
-      CastingCase c =
+      const CastingCase c =
           build_casting_case(out.parts[first + i].mesh, name, outward, design.casting_case, what_is_at);
-      Part part;
-      part.name = "case-" + name;
-      part.role = PartRole::Case;
-      part.mesh = standing(c, Vec3(x, 0.0, 0.0));
-      products.cases.push_back({part.name, i, c.lo, c.hi, c.pull});
-      validate_part(part);
-      const Vec3 printed = bounding_box(part.mesh.vertices).size();
-      facts.set("name", part.name)
-          .set("pull", std::vector<double>{c.pull.x(), c.pull.y(), c.pull.z()})
-          .set("size", std::vector<double>{printed.x(), printed.y(), printed.z()})
-          .set("written_from", std::vector<double>{x, 0.0, 0.0})
-          .set("wall", design.casting_case.wall)
-          .set("opening_area", c.pour_area)
-          .set("triangles", part.mesh.triangles.size())
-          .set("volume", part.validation.volume)
-          .set("release", c.release_proof);
-      if (design.print && design.print->bed) {
-        // Standing on its floor, turned about z as the bed allows.
-        const Vec3& bed = *design.print->bed;
-        const bool fits = printed.z() <= bed.z() && ((printed.x() <= bed.x() && printed.y() <= bed.y()) ||
-                                                     (printed.x() <= bed.y() && printed.y() <= bed.x()));
-        facts.set("fits_bed", fits);
-        if (!fits) {
-          out.warnings.push_back(fmt::format(
-              "{}: {} ({:.6g} x {:.6g} x {:.6g} {} standing on its floor) does not fit the bed {:g} x {:g} x "
-              "{:g} {}; fabmesh does not cut casting cases into sections: print it on a larger printer",
-              key_label(context.common, "print.bed"), part.name, printed.x(), printed.y(), printed.z(),
-              context.common.units, bed.x(), bed.y(), bed.z(), context.common.units));
+      VesselProducts::CaseBox box{"case-" + name, i, c.lo, c.hi, c.pull, std::nullopt};
+      // A piece of the case as it is printed, validated in full, its facts.
+      const auto piece = [&](const std::string& piece_name, TriangleSoup printed, const Vec3& pull,
+                             const char* standing_on) {
+        Part part;
+        part.name = piece_name;
+        part.role = PartRole::Case;
+        part.mesh = std::move(printed);
+        validate_part(part);
+        const Vec3 size = bounding_box(part.mesh.vertices).size();
+        Facts f;
+        f.set("name", part.name)
+            .set("pull", std::vector<double>{pull.x(), pull.y(), pull.z()})
+            .set("size", std::vector<double>{size.x(), size.y(), size.z()})
+            .set("written_from", std::vector<double>{x, 0.0, 0.0})
+            .set("triangles", part.mesh.triangles.size())
+            .set("volume", part.validation.volume);
+        if (design.print && design.print->bed) {
+          // Standing as written, turned about z as the bed allows.
+          const Vec3& bed = *design.print->bed;
+          const bool fits = size.z() <= bed.z() && ((size.x() <= bed.x() && size.y() <= bed.y()) ||
+                                                    (size.x() <= bed.y() && size.y() <= bed.x()));
+          f.set("fits_bed", fits);
+          if (!fits) {
+            out.warnings.push_back(fmt::format(
+                "{}: {} ({:.6g} x {:.6g} x {:.6g} {} standing on its {}) does not fit the bed {:g} x {:g} x "
+                "{:g} {}; fabmesh does not cut casting cases into sections: print it on a larger printer",
+                key_label(context.common, "print.bed"), part.name, size.x(), size.y(), size.z(),
+                context.common.units, standing_on, bed.x(), bed.y(), bed.z(), context.common.units));
+          }
         }
+        out.parts.push_back(std::move(part));
+        x += size.x() + gap;
+        return f;
+      };
+      Facts whole = piece(box.name, standing(c, Vec3(x, 0.0, 0.0)), c.pull, "floor");
+      for (const char* fact : {"name", "pull", "size", "written_from"}) facts.set(fact, *whole.find(fact));
+      facts.set("wall", design.casting_case.wall).set("opening_area", c.pour_area);
+      for (const char* fact : {"triangles", "volume"}) facts.set(fact, *whole.find(fact));
+      facts.set("release", c.release_proof);
+      if (const Facts::Value* fits = whole.find("fits_bed")) facts.set("fits_bed", *fits);
+      if (c.plate) {
+        // The plate under the part's keyed face: a piece of its own, off first.
+        box.plate =
+            VesselProducts::CaseBox::Plate{box.name + "-plate", c.plate->lo, c.plate->hi, c.plate->pull};
+        Facts plate =
+            piece(box.plate->name, standing(*c.plate, Vec3(x, 0.0, 0.0)), c.plate->pull, "outer face");
+        plate.set("features", c.plate->features);
+        facts.set("plate", std::move(plate));
       }
-      out.parts.push_back(std::move(part));
-      x += printed.x() + gap;
+      products.cases.push_back(std::move(box));
     } catch (const GeometryError& e) {
       facts.set("refused", e.what());
       products.case_refusals.push_back(e.what());

@@ -157,6 +157,15 @@ struct VesselProducts {
     std::size_t part = 0;
     Vec3 lo{0.0, 0.0, 0.0}, hi{0.0, 0.0, 0.0};
     Vec3 pull{0.0, 0.0, 1.0};  ///< an axis direction: the opening is the box's side it points to
+    /// A two-piece case's plate: the slab `lo`..`hi` of the box beyond the
+    /// part's flat face across `pull` (an axis direction, the way the plate
+    /// comes off), with that face's keys (it fills their sockets).
+    struct Plate {
+      std::string name;  ///< "case-side-1-plate"
+      Vec3 lo{0.0, 0.0, 0.0}, hi{0.0, 0.0, 0.0};
+      Vec3 pull{0.0, 0.0, -1.0};
+    };
+    std::optional<Plate> plate;  ///< none: the case is one piece
   };
   std::vector<CaseBox> cases;
   /// The section as the builder made it: closed loops (the profile, the rim,

@@ -38,11 +38,15 @@ void print_build_facts(const Facts& facts, const std::string& u, std::ostream& o
       std::size_t count = 0;
       for (const Facts& c : all) {
         if (c.find("refused") != nullptr) continue;
-        const auto& pull = std::get<std::vector<double>>(*c.find("pull"));
-        int k = 0;
-        while (k < 2 && pull[k] == 0.0) ++k;
-        made += fmt::format("{}{} lifts out along {}{}", count++ == 0 ? "" : ", ", c.text("part"),
-                            pull[k] > 0.0 ? "+" : "-", "xyz"[k]);
+        const auto along = [](const Facts& piece) {
+          const auto& pull = std::get<std::vector<double>>(*piece.find("pull"));
+          int k = 0;
+          while (k < 2 && pull[k] == 0.0) ++k;
+          return fmt::format("{}{}", pull[k] > 0.0 ? "+" : "-", "xyz"[k]);
+        };
+        made += fmt::format("{}{} lifts out along {}", count++ == 0 ? "" : ", ", c.text("part"), along(c));
+        if (c.contains("plate"))
+          made += fmt::format(" once its plate is off along {}", along(c.group("plate")));
       }
       out << fmt::format("  casting cases: {} of {} parts ({})\n", count, all.size(),
                          count == 0 ? "none" : made);

@@ -55,6 +55,10 @@ enum class StepForm {
   /// Carved body the other fields describe (a mould part lying in the box,
   /// one of its flat faces on the box's side: the case's opening)
   Case,
+  /// The plate of a two-piece casting case: the axis-aligned box
+  /// `case_lo`..`case_hi` with `hemispheres` added to it or taken from it
+  /// (the sockets of the part's face it lies under, filled; its bumps, held)
+  CasePlate,
 };
 
 /// A face of a Sheet or a Closed body: a polynomial B-spline surface.
@@ -116,11 +120,11 @@ struct StepBody {
   StepEdgeRounds rounds;                    ///< Extrusion
   StepBlock block;                          ///< Carved, Slice
   std::vector<StepCylinder> cylinders;      ///< Slice
-  std::vector<StepHemisphere> hemispheres;  ///< Carved
+  std::vector<StepHemisphere> hemispheres;  ///< Carved, CasePlate
   std::vector<StepSurface> surfaces;        ///< Sheet, Closed
   /// Sheet, Closed: faces whose borders are closer than this are sewn (model units; > 0).
   double sewing_tolerance = 0.0;
-  Vec3 case_lo{0.0, 0.0, 0.0}, case_hi{0.0, 0.0, 0.0};  ///< Case
+  Vec3 case_lo{0.0, 0.0, 0.0}, case_hi{0.0, 0.0, 0.0};  ///< Case, CasePlate
 };
 
 /// One file: its bodies in one unit of length (mm, cm, m or in), the file's own.
@@ -172,6 +176,6 @@ struct StepModuleApi {
 };
 
 /// Changes whenever StepModel, StepWritten, StepRead or StepModuleApi change.
-inline constexpr int kStepModuleAbi = 6;
+inline constexpr int kStepModuleAbi = 7;
 
 }  // namespace fabmesh

@@ -732,6 +732,14 @@ double volume_of(const TopoDS_Shape& shape) {
   return props.Mass();
 }
 
+// As volume_of, integrated adaptively to a relative error of 1e-10 (slower):
+// for checks finer than the fixed-order integration's error on curved faces.
+double precise_volume_of(const TopoDS_Shape& shape) {
+  GProp_GProps props;
+  BRepGProp::VolumeProperties(shape, props, 1e-10);
+  return props.Mass();
+}
+
 // `solid` without the closed shells OpenCASCADE's boolean operations can
 // leave where surfaces touch at a point (a bubble of a few faces whose area
 // is 1e-9 of the solid's or less): numerical debris, not geometry.
@@ -907,20 +915,46 @@ TopoDS_Shape profiled_prism(const TopoDS_Face& face, const StepBody& body) {
 // A casting case: its box minus the mould part. The part fills the box but
 // for the walls, so the cut must take exactly the part's volume: a cut that
 // lost a face or a key would show.
-TopoDS_Shape make_case(const StepBody& body) {
+TopoDS_Shape case_box(const StepBody& body) {
   const gp_Pnt lo(body.case_lo.x(), body.case_lo.y(), body.case_lo.z());
   const gp_Pnt hi(body.case_hi.x(), body.case_hi.y(), body.case_hi.z());
   if (!((body.case_hi - body.case_lo).minCoeff() > 0.0))
     throw std::runtime_error("a case's box without room");
-  const TopoDS_Shape box = BRepPrimAPI_MakeBox(lo, hi).Shape();
+  return BRepPrimAPI_MakeBox(lo, hi).Shape();
+}
+
+// A case's plate: its slab with the hemispheres added and taken away, the
+// module checking that its volume is the slab's plus and minus theirs (each
+// meets the slab in its flat disc alone), to 1e-9 of the slab's.
+TopoDS_Shape make_case_plate(const StepBody& body) {
+  TopoDS_Shape shape = case_box(body);
+  TopTools_ListOfShape added, removed;
+  double expected = volume_of(shape);
+  for (const StepHemisphere& h : body.hemispheres) {
+    (h.added ? added : removed).Append(make_hemisphere(h));
+    expected += (h.added ? 2.0 : -2.0) * M_PI * h.radius * h.radius * h.radius / 3.0;
+  }
+  if (!added.IsEmpty()) shape = boolean<BRepAlgoAPI_Fuse>(shape, added, "filling the plate's sockets");
+  if (!removed.IsEmpty()) shape = boolean<BRepAlgoAPI_Cut>(shape, removed, "taking the plate's bumps away");
+  shape = the_solid(shape);
+  const double got = precise_volume_of(shape);
+  if (!(std::abs(got - expected) <= 1e-9 * volume_of(case_box(body)))) {
+    throw std::runtime_error("the case's plate as made holds " + std::to_string(got) +
+                             ", not its slab with its keys, " + std::to_string(expected));
+  }
+  return shape;
+}
+
+TopoDS_Shape make_case(const StepBody& body) {
+  const TopoDS_Shape box = case_box(body);
   StepBody carved = body;  // its loops lie in the (radius, height) half-plane, as a Carved body's
   carved.form = StepForm::Carved;
   const TopoDS_Shape part = make_carved(carved);
   TopTools_ListOfShape tools;
   tools.Append(part);
   const TopoDS_Shape shape = the_solid(boolean<BRepAlgoAPI_Cut>(box, tools, "taking the part from its case"));
-  const double expected = volume_of(box) - volume_of(part), got = volume_of(shape);
-  if (!(std::abs(got - expected) <= 1e-7 * volume_of(box))) {
+  const double expected = volume_of(box) - precise_volume_of(part), got = precise_volume_of(shape);
+  if (!(std::abs(got - expected) <= 1e-9 * volume_of(box))) {
     throw std::runtime_error("the case as cut holds " + std::to_string(got) +
                              ", not its box less its part, " + std::to_string(expected));
   }
@@ -930,6 +964,7 @@ TopoDS_Shape make_case(const StepBody& body) {
 TopoDS_Shape make_body(const StepBody& body) {
   if (body.form == StepForm::Sheet) return make_sheet(body);
   if (body.form == StepForm::Closed) return make_closed(body);
+  if (body.form == StepForm::CasePlate) return make_case_plate(body);
   if (body.loops.empty()) throw std::runtime_error("a body without loops");
   if (body.form == StepForm::Wireframe) {
     TopoDS_Compound compound;

@@ -293,7 +293,11 @@ EncodedFiles encode_mould_step_output(const EncodeContext& c) {
 // Each casting case as an exact solid in the mould's frame (where its part
 // lies in it), one file per case: its box less the exact mould part, the
 // module checking that the cut took exactly the part's volume. The box is
-// the mesh case's; its open side lies on the part's exact flat face.
+// the mesh case's; its open side lies on the part's exact flat face. A
+// two-piece case is written assembled: its main piece (its box to the face
+// its plate lies under, less the part with that face's keys left out) and
+// its plate (the slab beyond that face, with the sockets there filled and
+// the bumps there taken away).
 EncodedFiles encode_case_step_output(const EncodeContext& c) {
   require_cases(c, "case_step");
   const auto& vessel = std::get<VesselProducts>(c.result.products);
@@ -303,6 +307,11 @@ EncodedFiles encode_case_step_output(const EncodeContext& c) {
   EncodedFiles files;
   for (const VesselProducts::CaseBox& box : vessel.cases) {
     const ExactMould::Part& part = mould.parts.at(box.part);
+    // The coordinate of the part's exact flat face across an axis direction.
+    const auto face = [&](int k, double sign) {
+      if (k == 2) return sign > 0.0 ? part.z_high : part.z_low;
+      return sign > 0.0 ? mould.block_radius : -mould.block_radius;
+    };
     StepModel model;
     model.name = c.common.name + " " + box.name;
     model.unit = c.common.units;
@@ -310,15 +319,47 @@ EncodedFiles encode_case_step_output(const EncodeContext& c) {
     body.form = StepForm::Case;
     body.case_lo = box.lo;
     body.case_hi = box.hi;
-    // The open side exactly on the part's flat face: a box side, or its top or bottom.
     for (int k = 0; k < 3; ++k) {
-      if (box.pull[k] > 0.0) body.case_hi[k] = k == 2 ? part.z_high : mould.block_radius;
-      if (box.pull[k] < 0.0) body.case_lo[k] = k == 2 ? part.z_low : -mould.block_radius;
+      if (box.pull[k] != 0.0) (box.pull[k] > 0.0 ? body.case_hi : body.case_lo)[k] = face(k, box.pull[k]);
     }
-    model.bodies.push_back(std::move(body));
-    Encoded e = step_file(c, model, loop_of.added());
+    Encoded e;
+    if (box.plate) {
+      const VesselProducts::CaseBox::Plate& p = *box.plate;
+      const int k = p.pull.x() != 0.0 ? 0 : (p.pull.y() != 0.0 ? 1 : 2);
+      const double at = face(k, p.pull[k]);
+      StepBody plate;
+      plate.name = c.common.name + " " + p.name;
+      plate.form = StepForm::CasePlate;
+      plate.case_lo = p.lo;
+      plate.case_hi = p.hi;
+      // The face between them: the plate beyond it along its pull, the main piece short of it.
+      (p.pull[k] > 0.0 ? plate.case_lo : plate.case_hi)[k] = at;
+      (p.pull[k] > 0.0 ? body.case_hi : body.case_lo)[k] = at;
+      // The keys on that face go with the plate: a socket of the part is
+      // plate, a bump of it a socket in the plate.
+      std::vector<StepHemisphere> kept;
+      for (const StepHemisphere& h : body.hemispheres) {
+        const bool on_face = std::abs(h.centre[k] - at) <= 1e-9 * (1.0 + std::abs(at)) &&
+                             std::abs(h.axis.dot(p.pull) + 1.0) <= 1e-12;
+        if (!on_face) {
+          kept.push_back(h);
+          continue;
+        }
+        StepHemisphere moved = h;
+        moved.added = !h.added;
+        plate.hemispheres.push_back(moved);
+      }
+      body.hemispheres = std::move(kept);
+      model.bodies.push_back(std::move(body));
+      model.bodies.push_back(std::move(plate));
+      e = step_file(c, model, loop_of.added());
+      e.parts = {box.name, p.name};
+    } else {
+      model.bodies.push_back(std::move(body));
+      e = step_file(c, model, loop_of.added());
+      e.parts = {box.name};
+    }
     e.suffix = "." + box.name + ".step";
-    e.parts = {box.name};
     files.push_back(std::move(e));
   }
   return files;

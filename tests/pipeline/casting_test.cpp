@@ -156,24 +156,71 @@ TEST_CASE("casting cases: each half of a box mould gets a case, standing on its 
   CHECK(text.find("2 objects, none interpenetrating") != std::string::npos);
 }
 
-TEST_CASE("casting cases: a cylinder mould is refused, a part no one-piece case releases is named",
+TEST_CASE("casting cases: a side part over a keyed base gets a plate under it, off first",
+          "[pipeline][mould][case]") {
+  const fs::path dir = fresh_dir("casting_cases_plate");
+  Design design = read_design(example("mould_golden_box_base.yaml"));  // cm, 0.5 cm walls
+  design.common.outputs = {{"case_stl", "test", 0, 0}, {"case_3mf", "test", 0, 0}};
+  const Result r = run_job(design, into(dir));
+  const std::vector<Facts>& cases = std::get<std::vector<Facts>>(*r.facts.group("mould").find("cases"));
+  REQUIRE(cases.size() == 3);
+  double x = 0.0;
+  for (std::size_t i = 0; i < 2; ++i) {
+    const Facts& c = cases[i];
+    INFO(c.text("part"));
+    REQUIRE(c.contains("plate"));
+    const Facts& plate = c.group("plate");
+    CHECK(plate.text("name") == c.text("name") + "-plate");
+    CHECK(std::get<std::vector<double>>(*plate.find("pull")) == std::vector<double>{0.0, 0.0, -1.0});
+    CHECK(plate.number("features") == 1);  // the base key's socket in the side's bottom
+    // The plate stands on its outer face: the slab, 0.5 thick, and the socket's
+    // dome (the key's radius) on it; written after its case, 1 cm apart.
+    const auto& size = std::get<std::vector<double>>(*plate.find("size"));
+    CHECK(size[2] > 0.5);
+    CHECK(size[2] < 0.5 + 1.0);
+    x += std::get<std::vector<double>>(*c.find("size"))[0] + 1.0;
+    CHECK(std::get<std::vector<double>>(*plate.find("written_from")) == std::vector<double>{x, 0.0, 0.0});
+    x += size[0] + 1.0;
+    CHECK_THAT(c.text("release"), Catch::Contains("once the plate across -z is off") &&
+                                      Catch::Contains("the plate comes off first along -z"));
+    for (const std::string& name : {c.text("name"), plate.text("name")}) {
+      const std::string stl = (dir / ("mould_golden_box_base." + name + ".stl")).string();
+      REQUIRE(fs::exists(stl));
+      std::string text;
+      CHECK(run_cli({"check", stl}, &text) == 0);
+      CHECK(text.find(": valid") != std::string::npos);
+    }
+  }
+  CHECK_FALSE(cases[2].contains("plate"));  // the base pours through its bottom, its keys up
+  std::ostringstream summary;
+  print_summary(r, summary);
+  CHECK_THAT(summary.str(), Catch::Contains("casting cases: 3 of 3 parts (side-1 lifts out along +y once its "
+                                            "plate is off along -z, side-2 lifts out along -y once its plate "
+                                            "is off along -z, base lifts out along -z)"));
+  std::string text;
+  CHECK(run_cli({"check", (dir / "mould_golden_box_base.case.3mf").string()}, &text) == 0);
+  CHECK(text.find("5 objects, none interpenetrating") != std::string::npos);
+}
+
+TEST_CASE("casting cases: a cylinder mould is refused, a part no case releases is named",
           "[pipeline][mould][case]") {
   const fs::path dir = fresh_dir("casting_cases_refused");
   std::string text;
   CHECK(run_cli({"run", example("mould_golden.yaml"), "-D", "outputs=[case_stl]", "-o", dir.string() + "/"},
                 &text) == 2);
   CHECK(text.find("case_stl needs a `mould:` section with `block: box`") != std::string::npos);
-  // A box on a base part: the base pours through its bottom; the sides carry
-  // the base keys' sockets under them, which their pull across the split cannot clear.
-  CHECK(run_cli({"run", example("mould_golden_box_base.yaml"), "-D", "outputs=[case_stl]", "-o",
-                 dir.string() + "/"},
+  // Three parts keyed on planes 120 degrees apart, on a base: the base pours
+  // through its bottom; each side's keys on its slanted split face catch on
+  // any case pulled along an axis.
+  CHECK(run_cli({"run", example("mould_golden_box_base.yaml"), "-D", "outputs=[case_stl]", "-D",
+                 "mould.parts=3", "-D", "mould.key_clearance=0.1", "-o", dir.string() + "/"},
                 &text) == 0);
   CHECK(fs::exists(dir / "mould_golden_box_base.case-base.stl"));
   CHECK_FALSE(fs::exists(dir / "mould_golden_box_base.case-side-1.stl"));
-  CHECK(text.find("warning: case: no one-piece casting case releases side-1: pulled along +y") !=
-        std::string::npos);
-  CHECK(text.find("on a base key's socket in its bottom") != std::string::npos);
-  CHECK(text.find("casting cases: 1 of 3 parts (base lifts out along -z)") != std::string::npos);
+  CHECK(
+      text.find("warning: case: no casting case of one piece, or of one piece and a plate, releases side-1: "
+                "pulled along") != std::string::npos);
+  CHECK(text.find("casting cases: 1 of 4 parts (base lifts out along -z)") != std::string::npos);
   // Three parts keyed on planes 120 degrees apart: every part refused, nothing written.
   CHECK(run_cli({"run", example("mould_golden.yaml"), "-D", "outputs=[case_stl]", "-D", "mould.block=box",
                  "-D", "mould.parts=3", "-D", "mould.key_clearance=0.1", "-o", dir.string() + "/"},
@@ -200,15 +247,27 @@ TEST_CASE("casting cases: PrusaSlicer finds each case manifold and slices it sta
   const fs::path dir = fresh_dir("casting_cases_prusa");
   REQUIRE(run_cli({"run", example("mould_box_cases.yaml"), "-D", "outputs=[case_stl]", "-o",
                    dir.string() + "/"}) == 0);
-  for (const char* name : {"case-side-1", "case-side-2"}) {
+  REQUIRE(run_cli({"run", example("mould_golden_box_base.yaml"), "-D", "outputs=[case_stl]", "-o",
+                   dir.string() + "/"}) == 0);  // in cm, written in mm
+  struct Piece {
+    const char* name;
+    double height;  // mm, as it stands
+  };
+  // A case stands on its floor, its opening up: 124 mm tall for the big half
+  // (its 113 mm depth, a key, the floor); the golden half's over its base
+  // 70.5. The plate stands on its outer face: 5 mm and the socket's 6.2 mm dome.
+  for (const Piece& piece : {Piece{"mould_box_cases.case-side-1", 123.988},
+                             {"mould_box_cases.case-side-2", 123.988},
+                             {"mould_golden_box_base.case-side-1", 70.520},
+                             {"mould_golden_box_base.case-side-1-plate", 11.2}}) {
+    const std::string name = piece.name;
     INFO(name);
-    const fs::path stl = dir / (std::string("mould_box_cases.") + name + ".stl");
+    const fs::path stl = dir / (name + ".stl");
     const std::map<std::string, std::string> info = test::prusa_info((dir / "home").string(), stl.string());
     REQUIRE(info.count("manifold") == 1);
     CHECK(info.at("manifold") == "yes");
-    // Standing on its floor, its opening up: 124 mm tall (the half's 113 mm depth, a key, the floor).
-    CHECK(std::stod(info.at("size_z")) == Approx(123.988).margin(0.01));
-    const fs::path gcode = dir / (std::string(name) + ".gcode");
+    CHECK(std::stod(info.at("size_z")) == Approx(piece.height).margin(0.01));
+    const fs::path gcode = dir / (name + ".gcode");
     const test::ToolRun slice =
         test::prusa_slicer((dir / "home").string(),
                            "--export-gcode --bed-shape 0x0,400x0,400x400,0x400 --center 200,200 " +

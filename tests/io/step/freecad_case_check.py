@@ -1,25 +1,29 @@
 # Run by FreeCAD's command line (freecadcmd): for each casting case named in
-# FABMESH_CASES (entries "CASE.step=MOULD.step=INDEX", separated by ':'),
+# FABMESH_CASES (entries "CASE.step=MOULD.step=INDEX=PIECES", separated by ':'),
 # imports the case and the mould's part INDEX (the mould's STEP file holds its
-# parts in order) and prints one JSON line: the case's validity and solids,
-# its box's volume, and the volumes of the case and the part in common and
-# fused. Plaster cast in the case is the part when they share no volume and
-# together fill the case's box. The shell test (freecad_step_test.sh) judges them.
+# parts in order) and prints one JSON line: the case's validity and solids
+# (its pieces: a two-piece case's main piece and plate), the volume its
+# pieces share, its box's volume, and the volumes of the case and the part
+# in common and fused. Plaster cast in the case is the part when they share
+# no volume and together fill the case's box. The shell test
+# (freecad_step_test.sh) judges them.
 import json
 import os
 
 import Part
 
 for entry in os.environ["FABMESH_CASES"].split(":"):
-    case_path, mould_path, index = entry.split("=")
-    facts = {"path": case_path}
+    case_path, mould_path, index, pieces = entry.split("=")
+    facts = {"path": case_path, "pieces": int(pieces)}
     try:
         case = Part.read(case_path)
         part = Part.read(mould_path).Solids[int(index)]
         box = case.BoundBox
+        pieces = case.Solids
         facts.update({
-            "valid": case.isValid(),
-            "solids": len(case.Solids),
+            "valid": case.isValid() and all(p.isValid() for p in pieces),
+            "solids": len(pieces),
+            "pieces_common": sum(a.common(b).Volume for i, a in enumerate(pieces) for b in pieces[i + 1:]),
             "closed": all(s.isClosed() for s in case.Shells),
             "volume": case.Volume,
             "part_volume": part.Volume,

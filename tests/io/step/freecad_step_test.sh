@@ -132,16 +132,18 @@ for edges in 'half_bullnose, radius: 12' 'bullnose'; do
   fi
 done
 # Casting cases (`case_step`, every example whose mould is a box): each one
-# closed solid; with its mould part (mould_step) it shares no volume (within
-# 1e-9 of the part's area, in mm) and fills the case's box (within 1e-9); the
-# case's and the part's volumes add up to the box's (within 1e-7, integrated).
+# closed solid, or two (a case and its plate, when the mesh case has a plate)
+# sharing no volume; with its mould part (mould_step) the case shares no
+# volume (within 1e-9 of the part's area, in mm) and fills the case's box
+# (within 1e-9); the case's and the part's volumes add up to the box's
+# (within 1e-6, as FreeCAD integrates them).
 cases=()
 for design in "$source"/configs/examples/*.yaml; do
   name=$(basename "$design" .yaml)
   grep -q '^  block: box' "$design" || continue
   out="$work/$name-cases"
-  if (cd "$source/configs/examples" && "$fabmesh" run "$design" -D 'outputs=[case_step, mould_step]' -o "$out/" \
-      -q) >"$out.log" 2>&1; then
+  if (cd "$source/configs/examples" && "$fabmesh" run "$design" -D 'outputs=[case_step, mould_step, case_stl]' \
+      -o "$out/" -q) >"$out.log" 2>&1; then
     mapfile -t written < <(compgen -G "$out/$name.case-*.step" | sort -V)
     ((${#written[@]} >= 1)) || fail "$name: no case STEP file"
     parts=$(grep -c '^#[0-9]* = MANIFOLD_SOLID_BREP' "$out/$name.mould.step")
@@ -149,7 +151,10 @@ for design in "$source"/configs/examples/*.yaml; do
       part=${c##*.case-}
       part=${part%.step}
       if [[ $part == base ]]; then index=$((parts - 1)); else index=$((${part#side-} - 1)); fi
-      cases+=("$c=$out/$name.mould.step=$index")
+      pieces=1
+      [[ -f $out/$name.case-$part-plate.stl ]] && pieces=2
+      cases+=("$c=$out/$name.mould.step=$index=$pieces")
+      mould_parts[$(basename "$c")]=$pieces
       files+=("$c")
     done
   else
@@ -171,16 +176,23 @@ problems = []
 if "error" in f:
     problems.append("not read: " + f["error"])
 else:
-    if not f["valid"] or f["solids"] != 1 or not f["closed"]:
-        problems.append(f"not one valid closed solid: {f}")
+    if not f["valid"] or f["solids"] != f["pieces"] or not f["closed"]:
+        problems.append(f"not {f['pieces']} valid closed solid(s): {f}")
+    if f["pieces_common"] > 1e-9 * f["part_area"]:
+        problems.append(f"its pieces share {f['pieces_common']} mm^3")
     if not f["part_inside"]:
         problems.append("its part is not inside its box")
     if f["common"] > 1e-9 * f["part_area"]:
         problems.append(f"shares {f['common']} mm^3 with its part")
     if abs(f["fused"] / f["box_volume"] - 1) > 1e-9:
         problems.append(f"with its part fills {f['fused']} mm^3 of its box's {f['box_volume']}")
-    # Integrated over curved faces (the cavity's B-splines): to 1e-7, as the masters' volumes.
-    if abs((f["volume"] + f["part_volume"]) / f["box_volume"] - 1) > 1e-7:
+    # Integrated over curved faces (the cavity's B-splines) by FreeCAD at a
+    # fixed order: on mould_golden_box_base's side 2 its volume of the mould
+    # part is 0.059 mm^3 (1.4e-7) off OpenCASCADE's adaptive integral to
+    # 1e-12, so the sum is held to 1e-6. The exact checks are the common
+    # volume and the fused one above, and the STEP module's own, adaptive to
+    # 1e-10, which holds each case to 1e-9 of its box.
+    if abs((f["volume"] + f["part_volume"]) / f["box_volume"] - 1) > 1e-6:
         problems.append(f"case {f['volume']} + part {f['part_volume']} is not its box's {f['box_volume']}")
 print(name + (": " + "; ".join(problems) if problems else
               f": cast, it is its part (in common {f['common']:.3g} mm^3, together its box)"))
