@@ -27,14 +27,15 @@ struct CaseOptions {
 };
 
 /// The plate of a two-piece case: the slab of the case's box beyond one flat
-/// side face of the part, filling that face's sockets (and holding its bumps).
+/// side face of the part (lying on the part's bounding box), filling what lies
+/// behind that face (the keys' sockets in it).
 struct CasePlate {
   TriangleSoup soup;  ///< closed, outward, sharing vertices
   /// Unit axis direction the plate comes off the part along: the face's
   /// outward normal. The plate is printed standing on its outer face.
   Vec3 pull{0.0, 0.0, 0.0};
   Vec3 lo{0.0, 0.0, 0.0}, hi{0.0, 0.0, 0.0};  ///< the slab's box
-  std::size_t features = 0;                   ///< the face's sockets and bumps the plate fills or holds
+  std::size_t features = 0;                   ///< the regions behind the face it fills (sockets)
   /// Why the plate comes off: every face of the part on it faces its pull or
   /// runs along it (exact orientation signs).
   std::string release_proof;
@@ -63,7 +64,7 @@ struct CastingCase {
 /// and out of which it can be pulled: no other face of the part faces that
 /// direction, or every one that does lies on a plate (the part's flat face on
 /// one side of its bounding box, with what lies only behind it: the keys'
-/// sockets and bumps there) none of whose faces faces away from that side.
+/// sockets there) none of whose faces faces away from that side.
 /// \throw GeometryError (where "case") naming the part and, for the direction
 ///        nearest `outward`, what holds it: no flat face to pour through, or
 ///        the first face that would catch on the case, with its position.

@@ -336,7 +336,8 @@ EncodedFiles encode_case_step_output(const EncodeContext& c) {
       (p.pull[k] > 0.0 ? plate.case_lo : plate.case_hi)[k] = at;
       (p.pull[k] > 0.0 ? body.case_hi : body.case_lo)[k] = at;
       // The keys on that face go with the plate: a socket of the part is
-      // plate, a bump of it a socket in the plate.
+      // plate (the mesh makes plates under sockets only; a bump would be a
+      // socket in the plate).
       std::vector<StepHemisphere> kept;
       for (const StepHemisphere& h : body.hemispheres) {
         const bool on_face = std::abs(h.centre[k] - at) <= 1e-9 * (1.0 + std::abs(at)) &&
