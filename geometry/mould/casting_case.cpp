@@ -489,11 +489,10 @@ Attempt attempt(const TriangleSoup& part, const std::string& name, const Axis& a
 TriangleSoup standing(const TriangleSoup& soup, const Vec3& up, const Vec3& corner) {
   // A right-handed frame of axis vectors with z along `up`: coordinates in
   // it are the old ones permuted and negated, so nothing rounds.
-  const Vec3 ez = up;
-  const Vec3 ex = std::abs(ez.z()) == 1.0 ? Vec3(1.0, 0.0, 0.0) : Vec3(0.0, 0.0, 1.0);
-  const Vec3 ey = ez.cross(ex);
+  const Vec3 ex = std::abs(up.z()) == 1.0 ? Vec3(1.0, 0.0, 0.0) : Vec3(0.0, 0.0, 1.0);
+  const Vec3 ey = up.cross(ex);
   TriangleSoup out = soup;
-  for (Vec3& p : out.vertices) p = Vec3(p.dot(ex), p.dot(ey), p.dot(ez));
+  for (Vec3& p : out.vertices) p = Vec3(p.dot(ex), p.dot(ey), p.dot(up));
   const Vec3 lo = bounding_box(out.vertices).lo;
   for (Vec3& p : out.vertices) p = p - lo + corner;
   return out;
