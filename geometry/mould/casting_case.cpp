@@ -156,6 +156,21 @@ struct Faces {
     const auto it = by_edge.find({tri[(e + 1) % 3], tri[e]});
     return it == by_edge.end() ? part.triangles.size() : it->second;
   }
+  /// The border of the triangles in `member`: each edge whose twin is not
+  /// in it, u -> v; none when a vertex starts two of them (not one simple region).
+  std::optional<std::map<Index, Index>> border(const std::vector<bool>& member) const {
+    std::map<Index, Index> next;
+    for (std::size_t t = 0; t < part.triangles.size(); ++t) {
+      if (!member[t]) continue;
+      const Triangle& tri = part.triangles[t];
+      for (int e = 0; e < 3; ++e) {
+        const std::size_t u = twin(t, e);
+        if (u < member.size() && member[u]) continue;
+        if (!next.emplace(tri[e], tri[(e + 1) % 3]).second) return std::nullopt;
+      }
+    }
+    return next;
+  }
 };
 
 // The plate on the face (q, s), if its triangles take every one in
@@ -180,12 +195,11 @@ std::optional<PlateFace> plate_on(const Faces& f, const BoundingBox& box, int q,
   if (std::find(p.member.begin(), p.member.end(), true) == p.member.end()) return std::nullopt;
   // What lies behind the face: the regions of the rest bounded by its
   // triangles alone (a key's socket or bump), found by flooding across edges.
-  std::vector<int> region(count, -1);
-  int regions = 0;
+  std::vector<bool> seen(count, false);
   for (std::size_t seed = 0; seed < count; ++seed) {
-    if (f.pour[seed] || p.member[seed] || region[seed] >= 0) continue;
+    if (f.pour[seed] || p.member[seed] || seen[seed]) continue;
     std::vector<std::size_t> stack{seed}, found;
-    region[seed] = regions;
+    seen[seed] = true;
     bool meets_pour = false;
     while (!stack.empty()) {
       const std::size_t t = stack.back();
@@ -195,12 +209,11 @@ std::optional<PlateFace> plate_on(const Faces& f, const BoundingBox& box, int q,
         const std::size_t u = f.twin(t, e);
         if (u == count) return std::nullopt;
         if (f.pour[u]) meets_pour = true;
-        if (f.pour[u] || on_face(u) || region[u] >= 0) continue;
-        region[u] = regions;
+        if (f.pour[u] || on_face(u) || seen[u]) continue;
+        seen[u] = true;
         stack.push_back(u);
       }
     }
-    ++regions;
     if (!meets_pour) {
       ++p.features;
       for (std::size_t t : found) p.member[t] = true;
@@ -218,16 +231,9 @@ std::optional<PlateFace> plate_on(const Faces& f, const BoundingBox& box, int q,
     if (*sign == 0) ++p.parallel;
   }
   // Its border: one loop, part of it on the pour face's side lying on the face.
-  std::map<Index, Index> next;
-  for (std::size_t t = 0; t < count; ++t) {
-    if (!p.member[t]) continue;
-    const Triangle& tri = part.triangles[t];
-    for (int e = 0; e < 3; ++e) {
-      const std::size_t u = f.twin(t, e);
-      if (p.member[u]) continue;
-      if (!next.emplace(tri[e], tri[(e + 1) % 3]).second) return std::nullopt;
-    }
-  }
+  const std::optional<std::map<Index, Index>> border = f.border(p.member);
+  if (!border) return std::nullopt;
+  const std::map<Index, Index>& next = *border;
   std::optional<std::size_t> side;
   for (std::size_t n = 0; n < sides.size(); ++n) {
     if (part.vertices[sides[n].front()][q] == p.e && part.vertices[sides[n].back()][q] == p.e) side = n;
@@ -305,18 +311,9 @@ Attempt attempt(const TriangleSoup& part, const std::string& name, const Axis& a
   // The pour face's border: its edges used once, one loop along the
   // bounding rectangle through its four corners (then, the mesh being closed
   // and embedded, the face is the whole rectangle).
-  std::map<std::pair<Index, Index>, int> edges;
-  for (const Triangle& t : pour) {
-    for (int e = 0; e < 3; ++e) edges[{t[e], t[(e + 1) % 3]}] += 1;
-  }
-  std::map<Index, Index> next;  // border: u -> v
-  for (const auto& [e, n] : edges) {
-    if (edges.count({e.second, e.first}) == 0) {
-      if (n != 1 || !next.emplace(e.first, e.second).second) {
-        return {std::nullopt, fmt::format("its face across {} is not one simple region", dir)};
-      }
-    }
-  }
+  const std::optional<std::map<Index, Index>> pour_border = faces.border(faces.pour);
+  if (!pour_border) return {std::nullopt, fmt::format("its face across {} is not one simple region", dir)};
+  const std::map<Index, Index>& next = *pour_border;  // border: u -> v
   const auto not_rectangle = [&] {
     return Attempt{std::nullopt,
                    fmt::format("its flat face across {} does not cover its whole outline there (the outline "
