@@ -26,6 +26,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <limits>
@@ -137,9 +138,15 @@ class Search {
         patches_(patches),
         filter_(filter),
         options_(options) {
-    // The filter's data in the hierarchy's order: neighbours in space are neighbours in memory.
+    // What the filter needs beyond the corners, in the hierarchy's order:
+    // 16 bytes a face, the corners read from the vertices when a pair is
+    // tested (a copy of them would be 88 bytes a face, the largest array of
+    // `check` on a large mesh).
     face_.resize(bvh.size());
-    auto body = [&](std::size_t i) { face_[i] = detail::face_data(soup, bvh.face(i)); };
+    auto body = [&](std::size_t i) {
+      const detail::FaceData d = detail::face_data(soup, bvh.face(i));
+      face_[i] = {d.v, d.certified};
+    };
     if (options.parallel) {
       tbb::parallel_for(std::size_t{0}, face_.size(), body);
     } else {
@@ -164,7 +171,7 @@ class Search {
         r.timed_out = true;
         return;
       }
-      if (filter_.disjoint(face_[i], face_[j])) return;
+      if (filter_.disjoint(corners(face_[i]), corners(face_[j]))) return;
       // The smaller index first: on degenerate faces (not skipped) CGAL's
       // tests are undefined and may depend on the order.
       const std::uint32_t f = std::min(bvh_.face(i), bvh_.face(j));
@@ -285,6 +292,16 @@ class Search {
     return found;
   }
 
+  /// A face's vertices and whether the filter may reason about it.
+  struct FaceRef {
+    std::array<std::uint32_t, 3> v;
+    char certified;
+  };
+
+  detail::FaceData corners(const FaceRef& r) const {
+    return {r.v, r.certified, {soup_.vertices[r.v[0]], soup_.vertices[r.v[1]], soup_.vertices[r.v[2]]}};
+  }
+
   const TriangleSoup& soup_;
   const TriangleBvh& bvh_;
   const TriangleBvh* star_bvh_;  ///< the stars' faces (null when there are none)
@@ -292,7 +309,7 @@ class Search {
   const std::vector<Patch>& patches_;
   const detail::FacePairFilter& filter_;
   const SelfIntersectOptions& options_;
-  std::vector<detail::FaceData> face_;
+  std::vector<FaceRef> face_;
 };
 
 /// Checks the input.
