@@ -132,12 +132,7 @@ void TriangleBvh::build(std::vector<BoxF> box, const std::vector<std::uint32_t>&
     std::sort(key.begin(), key.end());
   }
   faces_.resize(n);
-  boxes_.resize(n);
-  for_range(n, parallel, [&](std::size_t k) {
-    const auto i = static_cast<std::size_t>(key[k] & 0xffffffffu);
-    faces_[k] = active[i];
-    boxes_[k] = box[i];
-  });
+  for_range(n, parallel, [&](std::size_t k) { faces_[k] = active[key[k] & 0xffffffffu]; });
   // Leaves, then each level of the tree from its children.
   const std::size_t leaves = leaf_count();
   leaf_base_ = 1;
@@ -149,7 +144,7 @@ void TriangleBvh::build(std::vector<BoxF> box, const std::vector<std::uint32_t>&
     LeafBoxes& lanes = leaf_boxes_[l];
     for (std::size_t lane = 0; lane < kLeafSize; ++lane) {
       const std::size_t k = l * kLeafSize + lane;
-      const BoxF tri = k < n ? boxes_[k] : empty_box();
+      const BoxF tri = k < n ? box[key[k] & 0xffffffffu] : empty_box();
       grow(b, tri);
       for (int c = 0; c < 3; ++c) {
         lanes.lo[c][lane] = tri.lo[c];

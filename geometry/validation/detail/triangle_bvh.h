@@ -113,7 +113,7 @@ class TriangleBvh {
       }
       const std::size_t first = (n - leaf_base_) * kLeafSize;
       for (std::size_t i = first; i < std::min(first + kLeafSize, faces_.size()); ++i) {
-        if (overlap(boxes_[i], box)) visit(faces_[i]);
+        if (overlap(box_at(i), box)) visit(faces_[i]);
       }
     }
   }
@@ -165,7 +165,7 @@ class TriangleBvh {
     const std::size_t b0 = b * kLeafSize;
     const LeafBoxes& other = leaf_boxes_[b];
     for (std::size_t i = a0; i < a1; ++i) {
-      const BoxF& x = boxes_[i];
+      const BoxF x = box_at(i);
       LaneMask m = (other.lo[0] <= x.hi[0]) & (other.hi[0] >= x.lo[0]) & (other.lo[1] <= x.hi[1]) &
                    (other.hi[1] >= x.lo[1]) & (other.lo[2] <= x.hi[2]) & (other.hi[2] >= x.lo[2]);
       unsigned bits = (m[0] & 1u) | (m[1] & 2u) | (m[2] & 4u) | (m[3] & 8u);
@@ -174,11 +174,19 @@ class TriangleBvh {
     }
   }
 
+  /// The box at sorted position i, from its leaf's lanes (kept once: a
+  /// second array of the boxes would be 24 bytes a face).
+  BoxF box_at(std::size_t i) const {
+    const LeafBoxes& leaf = leaf_boxes_[i / kLeafSize];
+    const std::size_t lane = i % kLeafSize;
+    return {{leaf.lo[0][lane], leaf.lo[1][lane], leaf.lo[2][lane]},
+            {leaf.hi[0][lane], leaf.hi[1][lane], leaf.hi[2][lane]}};
+  }
+
   /// Sorts `box` (box i of face ids[i]) along the Morton curve and builds the tree.
   void build(std::vector<BoxF> box, const std::vector<std::uint32_t>& ids, bool parallel);
 
   std::vector<std::uint32_t> faces_;   ///< face index at each sorted position
-  std::vector<BoxF> boxes_;            ///< box of each sorted position
   std::vector<BoxF> nodes_;            ///< 2 * leaf_base_ node boxes (index 0 unused)
   std::vector<LeafBoxes> leaf_boxes_;  ///< the triangle boxes of each leaf, in lanes
   std::size_t leaf_base_ = 1;          ///< power of two >= leaf_count()
