@@ -1,9 +1,11 @@
 #include "geometry/mesh/weld.h"
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstring>
 #include <functional>
+#include <iterator>
 #include <numeric>
 #include <random>
 
@@ -171,6 +173,52 @@ TEST_CASE("weld: exact and tolerance welds equal the brute-force closure on rand
     require_same_weld(s, 0.0);
     // Tolerances at, between and beyond the grid distances (step, step * sqrt 2, ...).
     for (const double k : {0.5, 1.0, std::sqrt(2.0), 2.0, 3.0, 7.0, 100.0}) require_same_weld(s, k * step);
+  }
+}
+
+TEST_CASE("weld: a mesh of float coordinates (every STL) welds as one of doubles does", "[mesh][weld]") {
+  // The weld keys a mesh whose coordinates are all floats by those floats
+  // (half the memory). One coordinate that is not a float sends the whole
+  // mesh through the doubles: two doubles that round to one float must not merge.
+  TriangleSoup near;
+  near.vertices = {{1, 0, 0}, {1 + std::ldexp(1.0, -30), 0, 0}, {0, 1, 0}, {1, 0, 0}};
+  near.triangles = {{0, 1, 2}, {3, 2, 1}};
+  CHECK(weld(near).merged_vertices == 1);  // only the exact repeat of vertex 0
+  require_same_weld(near, 0.0);
+
+  // Float coordinates of every kind: extremes, subnormals, -0.0, repeats,
+  // non-finite ones; the same groups as the brute force, and the same
+  // again with one vertex that is not a float added at the end.
+  Random rng(7);
+  const float specials[] = {0.0F, -0.0F, 1.0F, -1.0F, 3.0e38F, -3.0e38F, 1.0e-40F, -1.0e-40F, 0.1F, 1e-7F};
+  for (int trial = 0; trial < 200; ++trial) {
+    INFO("trial " << trial);
+    TriangleSoup s;
+    const std::uint32_t n = 3 * (1 + rng.below(40));
+    for (std::uint32_t i = 0; i < n; ++i) {
+      Vec3 p;
+      if (i > 0 && rng.below(3) == 0) {
+        p = s.vertices[rng.below(i)];
+        if (rng.below(4) == 0) p.z() = -0.0 * p.z();
+      } else {
+        for (int k = 0; k < 3; ++k)
+          p[k] = specials[rng.below(static_cast<std::uint32_t>(std::size(specials)))];
+      }
+      if (rng.below(30) == 0) p.y() = rng.below(2) ? std::nan("") : -INFINITY;
+      s.vertices.push_back(p);
+    }
+    for (std::uint32_t i = 0; i + 2 < n; i += 3) s.triangles.push_back({i, i + 1, i + 2});
+    require_same_weld(s, 0.0);
+    TriangleSoup mixed = s;
+    mixed.vertices.push_back({0.1, 0.2, 0.3});  // not floats
+    mixed.vertices.push_back(s.vertices[0]);
+    mixed.vertices.push_back({0.1, 0.2, 0.3});
+    mixed.triangles.push_back({n, n + 1, n + 2});
+    require_same_weld(mixed, 0.0);
+    const WeldResult a = weld(s);
+    const WeldResult b = weld(mixed);
+    REQUIRE(b.soup.triangles.size() == a.soup.triangles.size() + 1);
+    REQUIRE(std::equal(a.soup.triangles.begin(), a.soup.triangles.end(), b.soup.triangles.begin()));
   }
 }
 
