@@ -10,6 +10,7 @@
 #include "geometry/core/errors.h"
 #include "geometry/mesh/revolution_margin.h"
 #include "geometry/mesh/revolve.h"
+#include "geometry/mould/master_sectors.h"
 #include "geometry/section/simple_polygon.h"
 #include "geometry/toolpath/boundary_index.h"
 
@@ -90,6 +91,38 @@ void notch(std::vector<Vec2>& loop, double z, bool pin, double radius, double de
   throw std::logic_error(fmt::format("master sections: no cut edge on the axis at z = {}", z));
 }
 
+// Section `whole` (of `sections`) cut into o.sectors sectors, each a section
+// of its own, appended to `out`.
+void add_sectors(MasterSection whole, int sections, const MasterSplitOptions& o, MasterSplit& out) {
+  SectorOptions so;
+  so.sectors = o.sectors;
+  so.segments = o.segments;
+  so.pin_radius = 0.5 * o.pin_diameter;
+  so.pin_length = out.pin_height;
+  so.hole_radius = out.hole_radius;
+  so.hole_depth = out.hole_depth;
+  const Vec2 pin = place_joint_pin(whole.loop, so, whole.name);
+  const char* piece = o.sectors == 2 ? "half" : "quarter";
+  const double joint = M_PI * (so.pin_radius * so.pin_radius * so.pin_length -
+                               so.hole_radius * so.hole_radius * so.hole_depth);
+  for (MasterSector& c : cut_sectors(whole.loop, pin, so)) {
+    MasterSection s;
+    s.name = sections == 1 ? fmt::format("{}-{}", piece, c.index + 1)
+                           : fmt::format("{}-{}-{}", whole.name, piece, c.index + 1);
+    s.z_low = whole.z_low;
+    s.z_high = whole.z_high;
+    s.pin = whole.pin;
+    s.hole = whole.hole;
+    s.loop = whole.loop;
+    s.from_quadrant = c.from_quadrant;
+    s.to_quadrant = c.to_quadrant;
+    s.joint_pin = pin;
+    s.soup = std::move(c.soup);
+    s.volume = whole.volume / o.sectors + joint;
+    out.sections.push_back(std::move(s));
+  }
+}
+
 }  // namespace
 
 MasterSplit split_master(const std::vector<Vec2>& loop, const MasterSplitOptions& o) {
@@ -99,7 +132,10 @@ MasterSplit split_master(const std::vector<Vec2>& loop, const MasterSplitOptions
                      fmt::format("pin_clearance {} must be a number >= 0", o.pin_clearance),
                      ErrorLocation{"print.pin_clearance"});
   }
+  if (o.sectors != 1 && o.sectors != 2 && o.sectors != 4)
+    throw std::logic_error("split_master: a master is cut into 1, 2 or 4 sectors");
   MasterSplit out;
+  out.sectors = o.sectors;
   const double pin_r = 0.5 * o.pin_diameter;
   out.pin_height = o.pin_diameter;
   out.hole_radius = pin_r + o.pin_clearance;
@@ -198,7 +234,7 @@ MasterSplit split_master(const std::vector<Vec2>& loop, const MasterSplitOptions
     RevolvedSoup revolved = revolve({part}, ro);
     s.soup = std::move(revolved.soup);
     s.topology = std::move(revolved.topology);
-    s.proof.statement = fmt::format(
+    s.proof = EmbeddingProof(fmt::format(
         "the master's section cut to z in [{:.6g}, {:.6g}], each cut crossing the profile once off the axis, "
         "so the slab's part of the section is one polygon{}{}; simple (its edges checked pairwise); revolved "
         "in {} uniform angular steps",
@@ -211,10 +247,14 @@ MasterSplit split_master(const std::vector<Vec2>& loop, const MasterSplitOptions
         s.pin ? fmt::format(", with the pin (radius {:.6g}, height {:.6g}) on the axis above the top cut",
                             pin_r, out.pin_height)
               : std::string(),
-        o.segments);
-    s.proof.margin = revolution_margin({part}, o.segments);
+        o.segments));
+    s.proof->margin = revolution_margin({part}, o.segments);
     s.loop = std::move(part);
-    out.sections.push_back(std::move(s));
+    if (o.sectors == 1) {
+      out.sections.push_back(std::move(s));
+      continue;
+    }
+    add_sectors(std::move(s), n, o, out);
   }
   return out;
 }
