@@ -126,26 +126,45 @@ CompositeCurve master_profile(const CompositeCurve& master, const MouldSection* 
   return CompositeCurve(std::move(segments), false);
 }
 
-// With print.bed: a master taller than the bed cut into sections with pins
-// (their facts in `facts`, their heights in `products`), or a warning for
-// one wider than the bed; nothing when it fits.
+// How many pieces through its axis a master of `radius` needs to stand on a
+// bed `bed` wide (x, y), each standing upright, its joint pin (`pin` long)
+// standing out of one cut face: 1 (whole), 2 (halves), 4 (quarters), or 0
+// when even a quarter is too wide.
+int sectors_for_bed(double radius, double pin, const Vec3& bed) {
+  const auto fits = [&](double a, double b) {
+    return (a <= bed.x() && b <= bed.y()) || (b <= bed.x() && a <= bed.y());
+  };
+  if (fits(2.0 * radius, 2.0 * radius)) return 1;
+  if (fits(2.0 * radius, radius + pin)) return 2;
+  if (fits(radius + pin, radius)) return 4;
+  return 0;
+}
+
+// With print.bed: a master taller than the bed cut into sections with pins,
+// one wider than it into halves or quarters (each section), pinned across
+// each joint (their facts in `facts`, their pieces in `products`); or a
+// warning for one too wide even in quarters; nothing when it fits.
 std::optional<MasterSplit> cut_for_bed(const VesselDesign& design, const VesselMesh& mesh,
                                        const BoundingBox& box, const BuildContext& context, Facts& facts,
                                        Result& out, VesselProducts& products) {
   if (!design.print || !design.print->bed) return std::nullopt;
   const Vec3& bed = *design.print->bed;
   const Vec3 size = box.hi - box.lo;
-  const bool wide = std::max(size.x(), size.y()) > std::min(bed.x(), bed.y());
-  facts.set("fits_bed", !wide && size.z() <= bed.z());
-  if (wide) {
+  double radius = 0.0;
+  for (const auto& loop : mesh.section.loops) {
+    for (const Vec2& p : loop) radius = std::max(radius, p.x());
+  }
+  const int sectors = sectors_for_bed(radius, design.print->pin_diameter, bed);
+  facts.set("fits_bed", sectors == 1 && size.z() <= bed.z());
+  if (sectors == 0) {
     out.warnings.push_back(fmt::format(
-        "{}: the master ({:.6g} {} across) is wider than the bed {:g} x {:g} {}; fabmesh cuts a master "
-        "into sections by height only: print it on a larger printer or cut it",
-        key_label(context.common, "print.bed"), std::max(size.x(), size.y()), context.common.units, bed.x(),
-        bed.y(), context.common.units));
+        "{}: the master ({:.6g} {} across) is wider than the bed {:g} x {:g} {} even in quarters (each "
+        "{:.6g} x {:.6g} {} with its joint's pin); print it on a larger printer",
+        key_label(context.common, "print.bed"), 2.0 * radius, context.common.units, bed.x(), bed.y(),
+        context.common.units, radius + design.print->pin_diameter, radius, context.common.units));
     return std::nullopt;
   }
-  if (size.z() <= bed.z()) return std::nullopt;
+  if (sectors == 1 && size.z() <= bed.z()) return std::nullopt;
   if (mesh.section.loops.size() != 1) {
     throw GeometryError("print.bed", fmt::format("the master is {} bodies (its profile runs along the axis "
                                                  "between them): fabmesh cuts one body into sections",
@@ -156,13 +175,19 @@ std::optional<MasterSplit> cut_for_bed(const VesselDesign& design, const VesselM
   so.pin_diameter = design.print->pin_diameter;
   so.pin_clearance = design.print->pin_clearance;
   so.segments = mesh.segments;
+  so.sectors = sectors;
   MasterSplit split = split_master(mesh.section.loops.front(), so);
-  // The print checks' finding that the vessel is taller than the bed: its master is printed in sections.
-  const std::string too_tall = key_label(context.common, "print.bed") + ": the vessel (";
+  // The print checks' finding that the vessel does not fit the bed: its master is printed in pieces.
+  const std::string too_big = key_label(context.common, "print.bed") + ": the vessel (";
+  const std::size_t levels = split.sections.size() / static_cast<std::size_t>(sectors);
+  const std::string pieces =
+      sectors == 1 ? fmt::format("{} sections", levels)
+                   : fmt::format("{} {}", split.sections.size(),
+                                 levels == 1 ? (sectors == 2 ? "halves" : "quarters")
+                                             : fmt::format("pieces ({} sections, each in {})", levels,
+                                                           sectors == 2 ? "halves" : "quarters"));
   for (std::string& w : out.warnings) {
-    if (w.rfind(too_tall, 0) == 0) {
-      w += fmt::format("; its casting master is cut into {} sections that fit it", split.sections.size());
-    }
+    if (w.rfind(too_big, 0) == 0) w += fmt::format("; its casting master is cut into {} that fit it", pieces);
   }
   std::vector<Facts> sections;
   MasterSections cut;
@@ -173,10 +198,16 @@ std::optional<MasterSplit> cut_for_bed(const VesselDesign& design, const VesselM
         .set("z_high", s.z_high)
         .set("height", s.z_high - s.z_low + (s.pin ? split.pin_height : 0.0))
         .set("pin", s.pin)
-        .set("hole", s.hole)
-        .set("volume", s.volume);
+        .set("hole", s.hole);
+    if (s.sector()) {
+      f.set("from_deg", 90.0 * s.from_quadrant)
+          .set("to_deg", 90.0 * s.to_quadrant)
+          .set("joint_pin", std::vector<double>{s.joint_pin.x(), s.joint_pin.y()});
+    }
+    f.set("volume", s.volume);
     sections.push_back(std::move(f));
-    cut.sections.push_back({s.name, s.z_low, s.z_high, s.pin, s.hole});
+    cut.sections.push_back(
+        {s.name, s.z_low, s.z_high, s.pin, s.hole, s.from_quadrant, s.to_quadrant, s.joint_pin});
   }
   Facts pin;
   pin.set("diameter", so.pin_diameter)
@@ -184,7 +215,7 @@ std::optional<MasterSplit> cut_for_bed(const VesselDesign& design, const VesselM
       .set("clearance", so.pin_clearance)
       .set("hole_diameter", 2.0 * split.hole_radius)
       .set("hole_depth", split.hole_depth);
-  facts.set("sections", std::move(sections)).set("pin", std::move(pin));
+  facts.set("sectors", sectors).set("sections", std::move(sections)).set("pin", std::move(pin));
   cut.pin_radius = 0.5 * so.pin_diameter;
   cut.pin_height = split.pin_height;
   cut.hole_radius = split.hole_radius;

@@ -125,12 +125,16 @@ struct CurveProducts {
 };
 
 /// A casting master cut into sections for a printer's bed (print.bed), each
-/// joined to the next by a pin on the axis into a hole (master_sections.h).
+/// joined to the next by a pin on the axis into a hole, and for a bed too
+/// narrow into halves or quarters through the axis, each joined to the next
+/// by a pin across the joint (master_sections.h, master_sectors.h).
 struct MasterSections {
   struct Section {
     std::string name;
     double z_low = 0.0, z_high = 0.0;
     bool pin = false, hole = false;
+    int from_quadrant = 0, to_quadrant = 4;  ///< its quarter turns (0 .. 4: whole)
+    Vec2 joint_pin{0.0, 0.0};                ///< a sector's joint pins in its caps, (radius, height)
   };
   std::vector<Section> sections;
   double pin_radius = 0.0, pin_height = 0.0, hole_radius = 0.0, hole_depth = 0.0;

@@ -49,7 +49,9 @@ enum class StepForm {
   Closed,  ///< `surfaces` as faces sewn into one closed shell: the solid it bounds
   /// loops[0] (a closed (radius, height) loop) revolved about z and cut to
   /// the heights of `block` (a cylinder about it), with `cylinders` added or
-  /// taken away: a section of a master, its pin on top and its hole below
+  /// taken away, then cut to the block's angles, then `cylinders` across
+  /// added or taken: a section of a master, its pin on top and its hole
+  /// below, or a half or quarter of it with the pin and hole of its joints
   Slice,
   /// A casting case: the axis-aligned box `case_lo`..`case_hi` minus the
   /// Carved body the other fields describe (a mould part lying in the box,
@@ -92,6 +94,10 @@ struct StepCylinder {
   double radius = 0.0;
   double height = 0.0;
   bool added = true;
+  /// Slice: a pin or hole across a joint through the axis, added or taken
+  /// after the slice is cut to its block's angles (the others, on the axis,
+  /// are cut with the slice: a quarter of the slice has a quarter of them).
+  bool across = false;
 };
 
 /// Extrusion: the top edges (and the bottom ones) over the curves of
@@ -176,6 +182,6 @@ struct StepModuleApi {
 };
 
 /// Changes whenever StepModel, StepWritten, StepRead or StepModuleApi change.
-inline constexpr int kStepModuleAbi = 7;
+inline constexpr int kStepModuleAbi = 8;
 
 }  // namespace fabmesh

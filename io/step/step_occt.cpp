@@ -378,13 +378,34 @@ TopoDS_Shape make_cylinder(const StepCylinder& c) {
 // The revolution cut to the block's heights (their common part), with the
 // cylinders added and then those taken away: one solid when all went well.
 TopoDS_Shape make_slice(const StepBody& body) {
-  TopTools_ListOfShape slab, added, removed;
-  slab.Append(make_block(body.block));
-  for (const StepCylinder& c : body.cylinders) (c.added ? added : removed).Append(make_cylinder(c));
+  TopTools_ListOfShape slab, added, removed, across_added, across_removed;
+  StepBlock heights = body.block;
+  heights.from_angle = 0.0;
+  heights.to_angle = 2.0 * M_PI;
+  slab.Append(make_block(heights));
+  for (const StepCylinder& c : body.cylinders) {
+    TopTools_ListOfShape& list =
+        c.across ? (c.added ? across_added : across_removed) : (c.added ? added : removed);
+    list.Append(make_cylinder(c));
+  }
   TopoDS_Shape shape =
       boolean<BRepAlgoAPI_Common>(revolution_of(plane_face(body)), slab, "cutting the slice");
   if (!added.IsEmpty()) shape = boolean<BRepAlgoAPI_Fuse>(shape, added, "adding the pins");
   if (!removed.IsEmpty()) shape = boolean<BRepAlgoAPI_Cut>(shape, removed, "taking the holes away");
+  if (body.block.to_angle - body.block.from_angle < 2.0 * M_PI - 1e-12) {
+    // The wedge between the block's half-planes, tall enough for the pin above and the hole below.
+    StepBlock wedge = body.block;
+    const double room = body.block.z_high - body.block.z_low + body.block.radius;
+    wedge.z_low -= room;
+    wedge.z_high += room;
+    TopTools_ListOfShape tool;
+    tool.Append(make_block(wedge));
+    shape = boolean<BRepAlgoAPI_Common>(shape, tool, "cutting the slice through its axis");
+  }
+  if (!across_added.IsEmpty())
+    shape = boolean<BRepAlgoAPI_Fuse>(shape, across_added, "adding the joint's pin");
+  if (!across_removed.IsEmpty())
+    shape = boolean<BRepAlgoAPI_Cut>(shape, across_removed, "taking the joint's hole away");
   return the_solid(shape);
 }
 
@@ -1045,7 +1066,7 @@ StepShapeFacts facts_of(const TopoDS_Shape& shape) {
   }
   if (f.solids > 0) {
     GProp_GProps props;
-    BRepGProp::VolumeProperties(shape, props);
+    BRepGProp::VolumeProperties(shape, props, 1e-10);
     f.volume = props.Mass();
   }
   return f;

@@ -199,6 +199,20 @@ EncodedFiles encode_step_output(const EncodeContext& c) {
   return {std::visit(Visitor{c, model}, c.result.products)};
 }
 
+// The unit direction at `quadrant` quarter turns from x, exactly.
+Vec2 quadrant_direction(int quadrant) {
+  switch (((quadrant % 4) + 4) % 4) {
+    case 0:
+      return {1.0, 0.0};
+    case 1:
+      return {0.0, 1.0};
+    case 2:
+      return {-1.0, 0.0};
+    default:
+      return {0.0, -1.0};
+  }
+}
+
 // The casting master as an exact solid of revolution. Its volume as
 // OpenCASCADE integrates it must be the exact one (Pappus on the exact
 // profile and spare) when every piece is exact: a lost face would show.
@@ -217,23 +231,38 @@ EncodedFiles encode_master_step_output(const EncodeContext& c) {
       throw std::logic_error("master_step: a cut master of several bodies");
     const StepLoop loop = loop_of(vessel.master->loops.front());
     std::vector<std::string> parts;
+    double joints = 0.0;  // pins (and their holes) across joints: each adds its pin and takes its hole
+    double levels = 0.0;
     for (const MasterSections::Section& s : cut->sections) {
       StepBody body;
       body.name = model.name + " " + s.name;
       body.form = StepForm::Slice;
       body.loops = {loop};
-      body.block = {false, cut->enclosing_radius, s.z_low, s.z_high, 0.0, 2.0 * M_PI};
+      body.block = {false,    cut->enclosing_radius,        s.z_low,
+                    s.z_high, 0.5 * M_PI * s.from_quadrant, 0.5 * M_PI * s.to_quadrant};
       if (s.pin)
         body.cylinders.push_back(
-            {{0.0, 0.0, s.z_high}, {0.0, 0.0, 1.0}, cut->pin_radius, cut->pin_height, true});
+            {{0.0, 0.0, s.z_high}, {0.0, 0.0, 1.0}, cut->pin_radius, cut->pin_height, true, false});
       if (s.hole) {
         body.cylinders.push_back(
-            {{0.0, 0.0, s.z_low}, {0.0, 0.0, 1.0}, cut->hole_radius, cut->hole_depth, false});
+            {{0.0, 0.0, s.z_low}, {0.0, 0.0, 1.0}, cut->hole_radius, cut->hole_depth, false, false});
       }
+      if (s.to_quadrant - s.from_quadrant < 4) {
+        // The pin of the joint at its last half-plane, out across it; the hole of the one at its first, in.
+        const auto across = [&](int quadrant, double radius, double length, bool added) {
+          const Vec2 d = quadrant_direction(quadrant);
+          const Vec3 base(s.joint_pin.x() * d.x(), s.joint_pin.x() * d.y(), s.joint_pin.y());
+          body.cylinders.push_back({base, Vec3(-d.y(), d.x(), 0.0), radius, length, added, true});
+        };
+        across(s.to_quadrant, cut->pin_radius, cut->pin_height, true);
+        across(s.from_quadrant, cut->hole_radius, cut->hole_depth, false);
+        joints += 1.0;
+      }
+      if (s.from_quadrant == 0) levels += 1.0;
       model.bodies.push_back(std::move(body));
       parts.push_back(s.name);
     }
-    const double joints = static_cast<double>(cut->sections.size() - 1);
+    joints += levels - 1.0;
     volume += joints * M_PI *
               (cut->pin_radius * cut->pin_radius * cut->pin_height -
                cut->hole_radius * cut->hole_radius * cut->hole_depth);

@@ -2,9 +2,12 @@
 // shrinkage) with the mould's spare on its rim, as a proven mesh (STL, 3MF)
 // and an exact solid (STEP), the same shape as the mould's cavity.
 
+#include <fmt/format.h>
+
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <sstream>
 
 #include "io/design/read_design.h"
@@ -83,16 +86,80 @@ TEST_CASE("master: without a mould the vessel's outer solid, built only when ask
   CHECK_FALSE(b.facts.contains("master"));
 }
 
-TEST_CASE("master: one wider than the print bed is said so, at print.bed", "[pipeline][master]") {
-  const std::string path = example("mould_golden.yaml");  // the master is 5.9 cm across
+TEST_CASE("master: one wider than the print bed is cut through its axis into halves or quarters that fit it",
+          "[pipeline][master]") {
+  const std::string path = example("mould_golden.yaml");  // the master is 5.9 cm across, 7.05 cm tall
+  // A half stands 5.9 cm along its cut and 2.95 + 0.6 cm (its joint's pin) across it; a quarter 3.55 x 2.95.
+  for (const auto& [bed, sectors] : {std::pair<std::string, int>{"[6.5, 4, 10]", 2}, {"[5, 5, 10]", 4}}) {
+    INFO("bed " << bed);
+    const std::string print = "{bed: " + bed + "}";
+    Design design = parse_design(read_file(path), path, {{"print", print, "print=" + print}});
+    design.common.outputs = {
+        {"master_stl", "test", 0, 0}, {"master_3mf", "test", 0, 0}, {"master_step", "test", 0, 0}};
+    const fs::path dir = fresh_dir("master_wide");
+    const Result r = run_job(design, into(dir));
+    const Facts& m = r.facts.group("master");
+    CHECK_FALSE(std::get<bool>(*m.find("fits_bed")));
+    CHECK(m.number("sectors") == sectors);
+    const std::vector<const Part*> pieces = parts_of(r, PartRole::Master);
+    REQUIRE(pieces.size() == static_cast<std::size_t>(sectors));
+    const double bed_x = bed == "[5, 5, 10]" ? 50.0 : 65.0, bed_y = bed == "[5, 5, 10]" ? 50.0 : 40.0;
+    double volume = 0.0;
+    for (std::size_t k = 0; k < pieces.size(); ++k) {
+      const Part& piece = *pieces[k];
+      INFO(piece.name);
+      CHECK(piece.name == fmt::format("{}-{}", sectors == 2 ? "half" : "quarter", k + 1));
+      CHECK(piece.validation.valid());
+      CHECK(piece.validation.genus == 0);
+      CHECK(piece.validation.components == 1);
+      CHECK(piece.validation.self_intersection == IntersectionCheck::Tested);  // not proven: tested in full
+      // Standing upright as written (mm), turned about z if need be, it fits the bed.
+      const TriangleSoup stl = read_mesh((dir / ("mould_golden.master." + piece.name + ".stl")).string());
+      CHECK(stl.triangles.size() == piece.mesh.triangles.size());
+      Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
+      for (const Vec3& v : stl.vertices) {
+        lo = lo.cwiseMin(v);
+        hi = hi.cwiseMax(v);
+      }
+      const Vec3 size = hi - lo;
+      CHECK(((size.x() <= bed_x && size.y() <= bed_y) || (size.y() <= bed_x && size.x() <= bed_y)));
+      volume += piece.validation.volume;
+    }
+    // Together the master, plus each joint's pin (0.6 across and long) less its hole (0.64 across, 0.62
+    // deep).
+    const double joint = M_PI * (0.09 * 0.6 - 0.32 * 0.32 * 0.62);
+    CHECK(volume == Approx(m.number("volume") + sectors * joint).epsilon(2e-3));
+    // The pieces as assembled in the 3MF: touching at their cut faces, each pin in its hole, none
+    // overlapping.
+    std::string said;
+    CHECK(run_cli({"check", (dir / "mould_golden.master.3mf").string()}, &said) == 0);
+    CHECK_THAT(said, Catch::Contains(fmt::format("assembly: {} objects, none interpenetrating", sectors)));
+    // The STEP: one exact solid per piece, together the master plus its joints' pins less their holes.
+    const StepRead read = read_step(read_file((dir / "mould_golden.master.step").string()));
+    REQUIRE(read.error.empty());
+    double exact = 0.0;
+    std::size_t solids = 0;
+    for (const StepShapeFacts& f : read.roots) {
+      CHECK(f.valid);
+      CHECK(f.closed);
+      solids += static_cast<std::size_t>(f.solids);
+      exact += f.volume;
+    }
+    CHECK(solids == static_cast<std::size_t>(sectors));
+    CHECK(exact == Approx(m.number("volume") + sectors * joint).epsilon(1e-7));
+  }
+}
+
+TEST_CASE("master: one too wide even in quarters is said so, at print.bed", "[pipeline][master]") {
+  const std::string path = example("mould_golden.yaml");  // a quarter is 3.55 x 2.95 cm with its pin
   Design design =
-      parse_design(read_file(path), path, {{"print", "{bed: [5, 5, 10]}", "print={bed: [5, 5, 10]}"}});
+      parse_design(read_file(path), path, {{"print", "{bed: [3, 3, 10]}", "print={bed: [3, 3, 10]}"}});
   design.common.outputs = {{"master_stl", "test", 0, 0}};
-  const Result r = run_job(design, into(fresh_dir("master_wide")));
+  const Result r = run_job(design, into(fresh_dir("master_too_wide")));
   CHECK_FALSE(std::get<bool>(*r.facts.group("master").find("fits_bed")));
   REQUIRE_FALSE(r.warnings.empty());
-  CHECK(r.warnings.back().find("print.bed: the master (5.89853 cm across) is wider than the bed 5 x 5 cm") !=
-        std::string::npos);
+  CHECK_THAT(r.warnings.back(), Catch::Contains("print.bed: the master (5.8997 cm across) is wider than the "
+                                                "bed 3 x 3 cm even in quarters (each 3.54985 x 2.94985 cm"));
   CHECK(parts_of(r, PartRole::Master).size() == 1);
 }
 
@@ -174,6 +241,25 @@ TEST_CASE("master sections: PrusaSlicer slices each to a top within the bed's he
     CHECK(top <= 60.0);  // within the bed's 6 cm
   }
   CHECK(sliced_top(dir / "whole" / "mould_golden.master.stl", "whole") > 70.0);  // the master, 70.5 mm
+  // Wider than a 50 x 50 mm bed: each quarter manifold, and sliced standing upright on that bed.
+  REQUIRE(run_cli({"run", design, "-D", "print={bed: [5, 5, 10]}", "-D", "outputs=[master_stl]", "-o",
+                   (dir / "quarters").string()}) == 0);
+  for (int k = 1; k <= 4; ++k) {
+    const fs::path stl = dir / "quarters" / fmt::format("mould_golden.master.quarter-{}.stl", k);
+    INFO(stl);
+    REQUIRE(fs::exists(stl));
+    const std::map<std::string, std::string> info = test::prusa_info((dir / "home").string(), stl.string());
+    REQUIRE(info.count("manifold") == 1);
+    CHECK(info.at("manifold") == "yes");
+    const fs::path gcode = dir / fmt::format("quarter-{}.gcode", k);
+    const test::ToolRun slice =
+        test::prusa_slicer((dir / "home").string(), "--export-gcode --bed-shape 0x0,50x0,50x50,0x50 " +
+                                                        test::quoted(stl.string()) + " --output " +
+                                                        test::quoted(gcode.string()));
+    INFO(slice.output);
+    CHECK(slice.code == 0);
+    CHECK(fs::exists(gcode));
+  }
 }
 
 TEST_CASE("master sections: a bed no taller than the pin is bad input at print.bed, nothing written",
