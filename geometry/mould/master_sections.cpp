@@ -154,7 +154,9 @@ MasterSplit split_master(const std::vector<Vec2>& loop, const MasterSplitOptions
     z1 = std::max(z1, p.y());
   }
   const double height = z1 - z0;
-  const double sections = std::ceil(height / (o.bed_height - out.pin_height) - 1e-12);
+  // One section needs no pin (a master cut only through its axis); more stand each with its pin on top.
+  const double sections =
+      height <= o.bed_height ? 1.0 : std::ceil(height / (o.bed_height - out.pin_height) - 1e-12);
   if (!(sections <= kMaxSections)) {
     throw GeometryError(
         "print.bed", fmt::format("the master ({:.6g} tall) would need {:.6g} sections under pins {:.6g} tall "

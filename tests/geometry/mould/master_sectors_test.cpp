@@ -1,7 +1,8 @@
 #include "geometry/mould/master_sectors.h"
 
-#include <catch2/catch.hpp>
 #include <fmt/format.h>
+
+#include <catch2/catch.hpp>
 #include <cmath>
 
 #include "geometry/core/errors.h"
@@ -24,7 +25,9 @@ TriangleSoup moved(TriangleSoup soup, const Vec3& by) {
 }
 
 // The volume of a prism over the regular n-gon inscribed in a circle of radius r, `length` long.
-double polygon_prism(double r, int n, double length) { return 0.5 * n * r * r * std::sin(2.0 * M_PI / n) * length; }
+double polygon_prism(double r, int n, double length) {
+  return 0.5 * n * r * r * std::sin(2.0 * M_PI / n) * length;
+}
 
 MasterSplitOptions options(int sectors) {
   MasterSplitOptions o;
@@ -114,11 +117,13 @@ TEST_CASE("master sectors: sections both stacked and cut through the axis", "[mo
   CHECK(exact == Approx(M_PI * 400 * 10 + 2 * (pin - hole) + 12 * (pin - hole)).epsilon(1e-13));
   // The quarters of the axis pin glued back are the pin: the lower section's quarters fill the upper's holes.
   for (std::size_t k = 0; k < 4; ++k) {
-    for (std::size_t l = 4; l < 8; ++l) CHECK_FALSE(interpenetrate(split.sections[k].soup, split.sections[l].soup));
+    for (std::size_t l = 4; l < 8; ++l)
+      CHECK_FALSE(interpenetrate(split.sections[k].soup, split.sections[l].soup));
   }
 }
 
-TEST_CASE("master sectors: a master too thin for a joint's pin is refused at pin_diameter", "[mould][master]") {
+TEST_CASE("master sectors: a master too thin for a joint's pin is refused at pin_diameter",
+          "[mould][master]") {
   // Radius 6 with 4 mm pins: the hole (radius 2.2, 4.2 deep) cannot keep 2 mm of material all round.
   const std::vector<Vec2> loop = {{0, 0}, {6, 0}, {6, 40}, {0, 40}};
   try {
@@ -126,6 +131,23 @@ TEST_CASE("master sectors: a master too thin for a joint's pin is refused at pin
     FAIL("accepted");
   } catch (const GeometryError& e) {
     CHECK(e.where() == "print.pin_diameter");
-    CHECK_THAT(std::string(e.what()), Catch::Contains("no place on its cut faces for the pin of an axial joint"));
+    CHECK_THAT(std::string(e.what()),
+               Catch::Contains("no place on its cut faces for the pin of an axial joint"));
+  }
+}
+
+TEST_CASE("master sectors: a master no taller than the bed is cut only through its axis", "[mould][master]") {
+  // 10 tall on a bed 10.5 tall with 1 mm pins: one section (no joint above it needs a pin), in halves.
+  const std::vector<Vec2> loop = {{0, 0}, {20, 0}, {20, 10}, {0, 10}};
+  MasterSplitOptions o = options(2);
+  o.bed_height = 10.5;
+  o.pin_diameter = 1.0;
+  const MasterSplit split = split_master(loop, o);
+  CHECK(split.cuts.empty());
+  REQUIRE(split.sections.size() == 2);
+  for (const MasterSection& s : split.sections) {
+    CHECK_FALSE(s.pin);
+    CHECK_FALSE(s.hole);
+    CHECK(s.z_high - s.z_low == 10.0);
   }
 }
