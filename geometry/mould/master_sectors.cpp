@@ -92,14 +92,16 @@ class SectorBuilder {
   /// The cap of the loop's vertices at sample j, in direction d, facing
   /// `outward` (d x z for the sector's first cap, its opposite for the
   /// last), with a pin standing out of it or a hole sunk into it at `pin`.
-  void cap(const LoopGrid& grid, std::size_t j, const Direction& d, bool first, const Vec2& pin, bool is_pin) {
+  void cap(const LoopGrid& grid, std::size_t j, const Direction& d, bool first, const Vec2& pin,
+           bool is_pin) {
     const Vec3 outward = first ? Vec3(d[1], -d[0], 0.0) : Vec3(-d[1], d[0], 0.0);
     const double radius = is_pin ? o_.pin_radius : o_.hole_radius;
     const std::vector<Vec2> ring2 = circle(pin, radius, o_.pin_sides);
     std::map<std::pair<double, double>, Index> at;
     Region2 region;
     region.outer = loop_;
-    for (std::size_t i = 0; i < loop_.size(); ++i) at.emplace(std::make_pair(loop_[i].x(), loop_[i].y()), grid.at(i, j));
+    for (std::size_t i = 0; i < loop_.size(); ++i)
+      at.emplace(std::make_pair(loop_[i].x(), loop_[i].y()), grid.at(i, j));
     std::vector<Index> ring;
     for (const Vec2& p : ring2) {
       ring.push_back(static_cast<Index>(soup_.vertices.size()));
@@ -178,7 +180,8 @@ Vec2 place_joint_pin(const std::vector<Vec2>& loop, const SectorOptions& o, cons
                   name, o.hole_radius, o.hole_depth, o.pin_radius));
 }
 
-std::vector<MasterSector> cut_sectors(const std::vector<Vec2>& loop, const Vec2& pin, const SectorOptions& o) {
+std::vector<MasterSector> cut_sectors(const std::vector<Vec2>& loop, const Vec2& pin,
+                                      const SectorOptions& o) {
   if (o.sectors != 2 && o.sectors != 4) throw std::logic_error("master sectors: 2 or 4 sectors");
   const int quadrants = 4 / o.sectors;
   const long steps = std::max<long>(1, (o.segments * quadrants + 3) / 4);
@@ -189,13 +192,16 @@ std::vector<MasterSector> cut_sectors(const std::vector<Vec2>& loop, const Vec2&
     s.from_quadrant = k * quadrants;
     s.to_quadrant = (k + 1) * quadrants;
     std::vector<Direction> d;
-    for (long j = 0; j <= steps; ++j) d.push_back(quarter_direction(s.from_quadrant * steps + quadrants * j, steps));
-    const LoopGrid grid = append_loop_grid(loop, static_cast<std::size_t>(steps) + 1, s.soup.vertices,
-                                           [&](std::size_t i, std::size_t j) { return revolved_point(loop[i], d[j]); });
-    for_each_grid_face(grid, static_cast<std::size_t>(steps),
-                       [&](Index a, Index b, Index c) { s.soup.triangles.push_back({a, b, c}); });
+    for (long j = 0; j <= steps; ++j)
+      d.push_back(quarter_direction(s.from_quadrant * steps + quadrants * j, steps));
+    const LoopGrid grid =
+        append_loop_grid(loop, static_cast<std::size_t>(steps) + 1, s.soup.vertices,
+                         [&](std::size_t i, std::size_t j) { return revolved_point(loop[i], d[j]); });
+    for_each_grid_face(grid, static_cast<std::size_t>(steps), [&](Index a, Index b, Index c) {
+      s.soup.triangles.push_back({a, b, c});
+    });
     SectorBuilder build(loop, o, s.soup);
-    build.cap(grid, 0, d.front(), true, pin, false);                             // the joint before: its hole
+    build.cap(grid, 0, d.front(), true, pin, false);  // the joint before: its hole
     build.cap(grid, static_cast<std::size_t>(steps), d.back(), false, pin, true);  // the joint after: its pin
     sectors.push_back(std::move(s));
   }

@@ -9,6 +9,7 @@
 // and the matching hole in the other's: every sector has the pin of the
 // joint after it (counter-clockwise) and the hole of the joint before it.
 
+#include <string>
 #include <vector>
 
 #include "geometry/core/soup.h"
@@ -43,6 +44,7 @@ Vec2 place_joint_pin(const std::vector<Vec2>& loop, const SectorOptions& options
 /// The sectors of the section `loop` (a simple counter-clockwise loop in
 /// the (radius, height) half-plane along the axis on one or more edges),
 /// each joint's pin and hole at `pin` in its caps.
-std::vector<MasterSector> cut_sectors(const std::vector<Vec2>& loop, const Vec2& pin, const SectorOptions& options);
+std::vector<MasterSector> cut_sectors(const std::vector<Vec2>& loop, const Vec2& pin,
+                                      const SectorOptions& options);
 
 }  // namespace fabmesh
