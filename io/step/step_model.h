@@ -146,7 +146,8 @@ struct StepShapeFacts {
   bool closed = false;  ///< a solid whose shells are closed (no free edge)
   int solids = 0, shells = 0, faces = 0, edges = 0;
   int free_edges = 0;   ///< edges (not degenerate) that one face uses once: an open shell's border
-  double volume = 0.0;  ///< BRepGProp, in the file's unit cubed (solids; 0 for a sheet)
+  double volume = 0.0;  ///< BRepGProp (adaptive to 1e-10 for a file read), in the file's unit cubed (solids;
+                        ///< 0 for a sheet)
   double area = 0.0;    ///< BRepGProp, the faces' area in the file's unit squared
   /// How far the solid may lie from the exact one its body describes: a
   /// stopped round as tall as the edge made smaller by StepEdgeRounds::slack.

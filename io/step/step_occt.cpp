@@ -1020,7 +1020,7 @@ TopoDS_Shape make_body(const StepBody& body) {
   return shape;
 }
 
-StepShapeFacts facts_of(const TopoDS_Shape& shape) {
+StepShapeFacts facts_of(const TopoDS_Shape& shape, bool precise) {
   StepShapeFacts f;
   f.valid = BRepCheck_Analyzer(shape).IsValid() == Standard_True;
   TopTools_IndexedMapOfShape map;
@@ -1066,7 +1066,11 @@ StepShapeFacts facts_of(const TopoDS_Shape& shape) {
   }
   if (f.solids > 0) {
     GProp_GProps props;
-    BRepGProp::VolumeProperties(shape, props, 1e-10);
+    if (precise) {
+      BRepGProp::VolumeProperties(shape, props, 1e-10);  // adaptive: what a reader checks pieces against
+    } else {
+      BRepGProp::VolumeProperties(shape, props);
+    }
     f.volume = props.Mass();
   }
   return f;
@@ -1141,7 +1145,7 @@ StepWritten write_model(const StepModel& m) {
     writer.Model()->SetWriteLengthUnit(millimetres);
     for (const StepBody& body : m.bodies) {
       const TopoDS_Shape shape = make_body(body);
-      out.bodies.push_back(facts_of(shape));
+      out.bodies.push_back(facts_of(shape, false));
       out.bodies.back().added = added_by_slack(body);
       const STEPControl_StepModelType mode = body.form == StepForm::Wireframe ? STEPControl_GeometricCurveSet
                                              : body.form == StepForm::Sheet
@@ -1176,7 +1180,7 @@ StepRead read_bytes(const std::string& bytes) {
         return;
       }
     }
-    for (int i = 1; i <= reader.NbShapes(); ++i) out.roots.push_back(facts_of(reader.Shape(i)));
+    for (int i = 1; i <= reader.NbShapes(); ++i) out.roots.push_back(facts_of(reader.Shape(i), true));
   });
 }
 
