@@ -10,6 +10,40 @@
 namespace fabmesh {
 namespace {
 
+// A casting master cut for the bed: its sections with their heights as
+// printed, what each is cut into, and the order to glue them.
+void print_master_pieces(const Facts& m, const std::string& u, std::ostream& out) {
+  const Facts::Value* listed = m.find("sections");
+  if (listed == nullptr) return;
+  const auto& sections = std::get<std::vector<Facts>>(*listed);
+  const int sectors = static_cast<int>(m.number("sectors"));
+  const char* piece = sectors == 2 ? "halves" : "quarters";
+  std::string levels;
+  std::size_t count = 0;
+  for (const Facts& s : sections) {
+    if (s.find("from_deg") != nullptr && s.number("from_deg") != 0.0) continue;
+    std::string name = s.text("name");
+    const std::size_t cut = name.find(sectors == 2 ? "-half-" : "-quarter-");
+    name = sectors == 1 ? name : cut == std::string::npos ? std::string("the master") : name.substr(0, cut);
+    levels += fmt::format("{}{} {:.4g} {}", count++ == 0 ? "" : ", ", name, s.number("height"), u);
+  }
+  const Facts& pin = m.group("pin");
+  const auto pins = [&](const char* where) {
+    return fmt::format("a {:g} {} pin {} into a {:g} {} hole", pin.number("diameter"), u, where,
+                       pin.number("hole_diameter"), u);
+  };
+  if (sectors == 1) {
+    out << fmt::format("  master: cut for the bed into {} sections ({} tall as printed), {}\n", count, levels,
+                       pins("on the axis at each joint"));
+    return;
+  }
+  out << fmt::format(
+      "  master: cut for the bed into {} pieces, {} in {} ({} tall as printed), {}{}\n", sections.size(),
+      count == 1 ? "the whole height" : fmt::format("{} sections each", count), piece, levels,
+      pins("across every joint"),
+      count == 1 ? "" : "; glue each section's pieces together first, then stack the sections");
+}
+
 // The headline facts of the builder: shrinkage, the mould, the router path.
 void print_build_facts(const Facts& facts, const std::string& u, std::ostream& out) {
   if (facts.contains("shrinkage")) {
@@ -52,6 +86,7 @@ void print_build_facts(const Facts& facts, const std::string& u, std::ostream& o
                          count == 0 ? "none" : made);
     }
   }
+  if (facts.contains("master")) print_master_pieces(facts.group("master"), u, out);
   if (facts.contains("print")) {
     // A design that prints upright (`print:`) hears what the checks found; the others see it in the report.
     const Facts& p = facts.group("print");

@@ -309,6 +309,19 @@ TEST_CASE("master sections: the vase example's set, its bed warning saying the m
   CHECK_THAT(said,
              Catch::Contains("does not fit the bed 220 x 220 x 220 mm; its casting master is cut into 2 "
                              "sections that fit it"));
+  CHECK_THAT(said, Catch::Contains("master: cut for the bed into 2 sections (section-1 177.6 mm, section-2 "
+                                   "171.6 mm tall as printed), a 6 mm pin on the axis at each joint into a "
+                                   "6.4 mm hole"));
+  // On a 150 mm bed each section is also cut through its axis, and the summary says how to glue them.
+  REQUIRE(run_cli({"run", example("mould_vase_production.yaml"), "-D", "print.bed=[150, 150, 220]", "-D",
+                   "outputs=[master_3mf]", "-o", (dir / "quarters").string()},
+                  &said) == 0);
+  CHECK_THAT(said, Catch::Contains("its casting master is cut into 8 pieces (2 sections, each in quarters) "
+                                   "that fit it"));
+  CHECK_THAT(said, Catch::Contains("master: cut for the bed into 8 pieces, 2 sections each in quarters "
+                                   "(section-1 177.6 mm, section-2 171.6 mm tall as printed), a 6 mm pin "
+                                   "across every joint into a 6.4 mm hole; glue each section's pieces "
+                                   "together first, then stack the sections"));
   for (const char* f :
        {"mould_vase_production.master.section-1.stl", "mould_vase_production.master.section-2.stl",
         "mould_vase_production.master.3mf", "mould_vase_production.mould.3mf",
