@@ -233,6 +233,11 @@ MasterSplit split_master(const std::vector<Vec2>& loop, const MasterSplitOptions
                                          c->where.x(), c->where.y()));
     }
     s.volume = revolved_volume(part);
+    if (o.sectors > 1) {  // its pieces are swept and capped from the loop: no whole revolution
+      s.loop = std::move(part);
+      add_sectors(std::move(s), n, o, out);
+      continue;
+    }
     RevolvedSoup revolved = revolve({part}, ro);
     s.soup = std::move(revolved.soup);
     s.topology = std::move(revolved.topology);
@@ -252,11 +257,7 @@ MasterSplit split_master(const std::vector<Vec2>& loop, const MasterSplitOptions
         o.segments));
     s.proof->margin = revolution_margin({part}, o.segments);
     s.loop = std::move(part);
-    if (o.sectors == 1) {
-      out.sections.push_back(std::move(s));
-      continue;
-    }
-    add_sectors(std::move(s), n, o, out);
+    out.sections.push_back(std::move(s));
   }
   return out;
 }

@@ -27,16 +27,8 @@ using Direction = std::array<double, 2>;
 /// quarter turns, where the cut planes are.
 Direction quarter_direction(long num, long den) {
   if (num % den == 0) {
-    switch (((num / den) % 4 + 4) % 4) {
-      case 0:
-        return {1.0, 0.0};
-      case 1:
-        return {0.0, 1.0};
-      case 2:
-        return {-1.0, 0.0};
-      default:
-        return {0.0, -1.0};
-    }
+    const Vec2 d = quadrant_direction(static_cast<int>(num / den));
+    return {d.x(), d.y()};
   }
   const double theta = 0.5 * M_PI * static_cast<double>(num) / static_cast<double>(den);
   return {std::cos(theta), std::sin(theta)};
@@ -146,6 +138,19 @@ class SectorBuilder {
 };
 
 }  // namespace
+
+Vec2 quadrant_direction(int quadrant) {
+  switch (((quadrant % 4) + 4) % 4) {
+    case 0:
+      return {1.0, 0.0};
+    case 1:
+      return {0.0, 1.0};
+    case 2:
+      return {-1.0, 0.0};
+    default:
+      return {0.0, -1.0};
+  }
+}
 
 Vec2 place_joint_pin(const std::vector<Vec2>& loop, const SectorOptions& o, const std::string& name) {
   double z0 = std::numeric_limits<double>::infinity(), z1 = -z0;

@@ -27,6 +27,10 @@ struct SectorOptions {
   double hole_depth = 0.0;   ///< pin length + clearance
 };
 
+/// The unit direction at `quadrant` quarter turns from x, exactly: the cut
+/// planes' directions, which the sectors' sweeps and exact solids share.
+Vec2 quadrant_direction(int quadrant);
+
 /// One sector of a master's section.
 struct MasterSector {
   int index = 0;                           ///< 0 .. sectors - 1, counter-clockwise from angle 0

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "geometry/core/errors.h"
+#include "geometry/mould/master_sectors.h"
 #include "geometry/surfaces/bspline_patch.h"
 #include "geometry/surfaces/bspline_shell.h"
 #include "io/step/step.h"
@@ -197,20 +198,6 @@ EncodedFiles encode_step_output(const EncodeContext& c) {
     }
   };
   return {std::visit(Visitor{c, model}, c.result.products)};
-}
-
-// The unit direction at `quadrant` quarter turns from x, exactly.
-Vec2 quadrant_direction(int quadrant) {
-  switch (((quadrant % 4) + 4) % 4) {
-    case 0:
-      return {1.0, 0.0};
-    case 1:
-      return {0.0, 1.0};
-    case 2:
-      return {-1.0, 0.0};
-    default:
-      return {0.0, -1.0};
-  }
 }
 
 // The casting master as an exact solid of revolution. Its volume as
