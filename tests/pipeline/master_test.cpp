@@ -29,6 +29,23 @@ const Part& master_of(const Result& r) {
   return *masters.front();
 }
 
+/// The solids of a STEP file as read back (each checked valid and closed): how many, and their volume.
+struct StepSolids {
+  std::size_t solids = 0;
+  double volume = 0.0;
+};
+
+StepSolids step_solids(const StepRead& read) {
+  StepSolids out;
+  for (const StepShapeFacts& f : read.roots) {
+    CHECK(f.valid);
+    CHECK(f.closed);
+    out.solids += static_cast<std::size_t>(f.solids);
+    out.volume += f.volume;
+  }
+  return out;
+}
+
 }  // namespace
 
 TEST_CASE("master: the vessel with the mould's spare, the cavity's shape and volume", "[pipeline][master]") {
@@ -137,16 +154,9 @@ TEST_CASE("master: one wider than the print bed is cut through its axis into hal
     // The STEP: one exact solid per piece, together the master plus its joints' pins less their holes.
     const StepRead read = read_step(read_file((dir / "mould_golden.master.step").string()));
     REQUIRE(read.error.empty());
-    double exact = 0.0;
-    std::size_t solids = 0;
-    for (const StepShapeFacts& f : read.roots) {
-      CHECK(f.valid);
-      CHECK(f.closed);
-      solids += static_cast<std::size_t>(f.solids);
-      exact += f.volume;
-    }
-    CHECK(solids == static_cast<std::size_t>(sectors));
-    CHECK(exact == Approx(m.number("volume") + sectors * joint).epsilon(1e-7));
+    const StepSolids pieces_read = step_solids(read);
+    CHECK(pieces_read.solids == static_cast<std::size_t>(sectors));
+    CHECK(pieces_read.volume == Approx(m.number("volume") + sectors * joint).epsilon(1e-7));
   }
 }
 
@@ -286,18 +296,11 @@ TEST_CASE("master sections: the STEP holds each section as an exact solid, the m
   const StepRead read = read_step(read_file((dir / "mould_golden.master.step").string()));
   REQUIRE(read.error.empty());
   CHECK(read.length_unit == "centimetre");
-  double volume = 0.0;
-  std::size_t solids = 0;
-  for (const StepShapeFacts& f : read.roots) {
-    CHECK(f.valid);
-    CHECK(f.closed);
-    solids += static_cast<std::size_t>(f.solids);
-    volume += f.volume;
-  }
-  CHECK(solids == 2);
+  const StepSolids sections = step_solids(read);
+  CHECK(sections.solids == 2);
   // The pin 0.6 cm across and tall, its hole 0.64 across and 0.62 deep.
   const double joint = M_PI * (0.09 * 0.6 - 0.32 * 0.32 * 0.62);
-  CHECK(volume == Approx(r.facts.group("master").number("volume") + joint).epsilon(1e-7));
+  CHECK(sections.volume == Approx(r.facts.group("master").number("volume") + joint).epsilon(1e-7));
 }
 
 TEST_CASE("master sections: the vase example's set, its bed warning saying the master is cut to fit",
