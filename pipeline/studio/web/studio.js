@@ -250,19 +250,20 @@ function putValue(name, value) {
 async function saveSet() {
   const name = window.prompt('Name of the new parameter set (letters, digits, _ and -):');
   if (!name) return;
-  const {status, json} = await api('POST', '/api/save_set', {name, overrides: state.overrides});
+  const {status, json} = await pageWrites(() => api('POST', '/api/save_set', {name, overrides: state.overrides}));
   if (status !== 200) {
     showError(json.error);
     return;
   }
   // The file changed: read it again, with the new set picked.
-  state.version = json.version;
-  if (await loadDesign()) {
-    state.overrides.parameter_set = json.parameter_set;
-    showSets(state.design);
-    state.syncParameters = true;
-    requestBuild();
-  }
+  await designTask(async () => {
+    if (await loadDesign()) {
+      state.overrides.parameter_set = json.parameter_set;
+      showSets(state.design);
+      state.syncParameters = true;
+      requestBuild();
+    }
+  });
   setStatus(`saved set ${json.parameter_set} in ${json.saved}`);
 }
 
@@ -1272,14 +1273,38 @@ async function loadDesign() {
   return true;
 }
 
+// Reading the design file back is one task at a time, whether the watcher
+// saw an edit or the page wrote the file itself. A version the watcher asked
+// for while the page was writing is not taken for an editor's edit: read
+// after the page's own read, it would drop the set the page just picked.
+const designReads = {queue: Promise.resolve(), writing: 0, writes: 0};
+
+function designTask(task) {
+  const run = designReads.queue.then(task);
+  designReads.queue = run.catch(() => {});
+  return run;
+}
+
+async function pageWrites(write) {
+  designReads.writing += 1;
+  try {
+    return await write();
+  } finally {
+    designReads.writing -= 1;
+    designReads.writes += 1;
+  }
+}
+
 // The design file changed (saved here or in an editor): show what it says now.
 async function watch() {
   try {
+    const writes = designReads.writes;
+    if (designReads.writing > 0) return;
     const {status, json} = await api('GET', '/api/version');
-    if (status === 200 && json.version !== state.version) {
-      state.version = json.version;
-      if (await loadDesign()) requestBuild();
-    }
+    if (status !== 200 || designReads.writing > 0 || designReads.writes !== writes) return;
+    await designTask(async () => {
+      if (json.version !== state.version && (await loadDesign())) requestBuild();
+    });
   } finally {
     setTimeout(watch, 250);
   }
