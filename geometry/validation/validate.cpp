@@ -2,6 +2,8 @@
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <fmt/format.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 
 #include <Eigen/Geometry>
@@ -49,13 +51,11 @@ TriangleSoup unit_scaled(const TriangleSoup& soup, int& k) {
   return scaled;
 }
 
-/// Area and signed volume. Where products of coordinates overflow (a mesh of
-/// coordinates near 1e300) or underflow, they are computed on the mesh
-/// scaled by a power of two and scaled back: a measure beyond the range of
-/// doubles is then +-infinity, never NaN.
-void measure_size(const TriangleSoup& soup, ValidationReport& report) {
-  report.area = total_area(soup);
-  report.volume = signed_volume(soup);
+/// Where products of coordinates overflowed (a mesh of coordinates near
+/// 1e300) or underflowed in the area and signed volume of `report`, they are
+/// computed again on the mesh scaled by a power of two and scaled back: a
+/// measure beyond the range of doubles is then +-infinity, never NaN.
+void rescale_sizes(const TriangleSoup& soup, ValidationReport& report) {
   if (std::isfinite(report.area) && std::isfinite(report.volume) &&
       (report.area > 1e-200 || report.area == 0.0))
     return;
@@ -89,25 +89,53 @@ void skip_piled_copies(const TriangleSoup& soup, std::vector<char>& skip) {
   }
 }
 
-/// Area, signed volume and exact degeneracy; marks degenerate faces in `degenerate`.
-void measure(const TriangleSoup& soup, std::size_t max_examples, std::size_t max_locations,
-             ValidationReport& report, DefectCount& degenerate_found, std::vector<char>& degenerate) {
-  for (std::size_t f = 0; f < soup.triangles.size(); ++f) {
-    const auto& t = soup.triangles[f];
-    const Vec3& a = soup.vertices[t[0]];
-    const Vec3& b = soup.vertices[t[1]];
-    const Vec3& c = soup.vertices[t[2]];
-    const bool repeated = t[0] == t[1] || t[1] == t[2] || t[2] == t[0];
-    if (repeated ||
-        CGAL::collinear(Kernel::Point_3(a.x(), a.y(), a.z()), Kernel::Point_3(b.x(), b.y(), b.z()),
-                        Kernel::Point_3(c.x(), c.y(), c.z()))) {
-      degenerate[f] = 1;
-      degenerate_found.add((a + b + c) / 3.0, max_examples, max_locations, [&] {
-        return DefectLocation{{static_cast<std::uint32_t>(f)}, {t[0], t[1], t[2]}};
-      });
-    }
+/// Whether face `f` of `soup` is degenerate: a repeated index, or three
+/// collinear corners (exactly).
+bool degenerate_face(const TriangleSoup& soup, std::size_t f) {
+  const auto& t = soup.triangles[f];
+  if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0]) return true;
+  const Vec3& a = soup.vertices[t[0]];
+  const Vec3& b = soup.vertices[t[1]];
+  const Vec3& c = soup.vertices[t[2]];
+  return CGAL::collinear(Kernel::Point_3(a.x(), a.y(), a.z()), Kernel::Point_3(b.x(), b.y(), b.z()),
+                         Kernel::Point_3(c.x(), c.y(), c.z()));
+}
+
+/// Area, signed volume, the exact sign of the volume and exact degeneracy;
+/// marks degenerate faces in `degenerate`. The faces' flags and the three
+/// sums are independent, so with `parallel` they are found side by side (the
+/// flags by blocks of faces); each sum is taken in face order either way, so
+/// the report is the same. \pre every coordinate finite
+void measure(const TriangleSoup& soup, const ValidationOptions& options, ValidationReport& report,
+             DefectCount& degenerate_found, std::vector<char>& degenerate) {
+  const std::size_t n = soup.triangles.size();
+  const auto flag = [&](std::size_t from, std::size_t to) {
+    for (std::size_t f = from; f < to; ++f) degenerate[f] = degenerate_face(soup, f) ? 1 : 0;
+  };
+  const auto area = [&] { report.area = total_area(soup); };
+  const auto volume = [&] { report.volume = signed_volume(soup); };
+  const auto outward = [&] { report.oriented_outward = total_volume_sign(soup) > 0; };
+  if (options.parallel) {
+    const auto flags = [&] {
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, std::size_t{1} << 14),
+                        [&](const tbb::blocked_range<std::size_t>& r) { flag(r.begin(), r.end()); });
+    };
+    tbb::parallel_invoke(flags, area, volume, outward);
+  } else {
+    flag(0, n);
+    area();
+    volume();
+    outward();
   }
-  measure_size(soup, report);
+  rescale_sizes(soup, report);
+  for (std::size_t f = 0; f < n; ++f) {
+    if (!degenerate[f]) continue;
+    const auto& t = soup.triangles[f];
+    const Vec3 centroid = (soup.vertices[t[0]] + soup.vertices[t[1]] + soup.vertices[t[2]]) / 3.0;
+    degenerate_found.add(centroid, options.max_examples, options.max_locations, [&] {
+      return DefectLocation{{static_cast<std::uint32_t>(f)}, {t[0], t[1], t[2]}};
+    });
+  }
 }
 
 void set_genus(ValidationReport& report, const Topology& topo) {
@@ -307,24 +335,6 @@ void insert_defect(ValidationReport& report, Defect kind, const DefectCount& fou
   report.defects.insert(at, {kind, found.count, found.examples, found.locations});
 }
 
-/// The exact sign of the signed volume of all of `soup`'s faces (but those
-/// with a repeated index) about one of its vertices: the total signed volume
-/// when the mesh is closed (then it does not depend on the point).
-int total_volume_sign(const TriangleSoup& soup) {
-  ComponentLabels all;  // one "component" of every face, about the first face's first vertex
-  all.face_component.assign(soup.triangles.size(), ComponentLabels::kNone);
-  all.faces = {0};
-  for (std::size_t f = 0; f < soup.triangles.size(); ++f) {
-    const auto& t = soup.triangles[f];
-    if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0]) continue;
-    if (all.faces[0]++ == 0) all.lowest_vertex = {t[0]};
-    all.face_component[f] = 0;
-  }
-  if (all.faces[0] == 0) return 0;
-  all.count = 1;
-  return component_volume_signs(soup, all).front();
-}
-
 /// The one shell of a single-component mesh, from the totals: no other
 /// component can contain it, so its orientation is the InsideOut check.
 ComponentShell single_shell(const TriangleSoup& soup, const ValidationReport& report) {
@@ -359,7 +369,7 @@ void add_shells(const TriangleSoup& soup, ValidationReport& report, std::size_t 
   const ComponentLabels labels = label_components(soup);
   std::vector<double> volumes = component_volumes(soup, labels);
   if (!std::all_of(volumes.begin(), volumes.end(), [](double v) { return std::isfinite(v); })) {
-    int k = 0;  // overflow: as measure_size does
+    int k = 0;  // overflow: as rescale_sizes does
     volumes = component_volumes(unit_scaled(soup, k), labels);
     for (double& v : volumes) v = std::ldexp(v, 3 * k);
   }
@@ -496,10 +506,8 @@ PositionFacts position_facts(const TriangleSoup& soup, const ValidationOptions& 
   report.non_finite_vertices = out.non_finite.count;
 
   std::vector<char> degenerate(soup.triangles.size(), 0);
-  if (out.non_finite.count == 0)
-    measure(soup, max_examples, max_locations, report, out.degenerate, degenerate);
+  if (out.non_finite.count == 0) measure(soup, options, report, out.degenerate, degenerate);
   report.degenerate_faces = out.degenerate.count;
-  report.oriented_outward = out.non_finite.count == 0 && total_volume_sign(soup) > 0;
   timer.lap("geometry");
 
   if (options.check_self_intersections && out.non_finite.count == 0) {

@@ -324,21 +324,29 @@ std::vector<double> component_volumes(const TriangleSoup& soup, const ComponentL
   return volume6;
 }
 
-std::vector<int> component_volume_signs(const TriangleSoup& soup, const ComponentLabels& labels) {
+namespace {
+
+/// The exact volume signs of `count` components, `component_of(f)` the
+/// component of face f (or ComponentLabels::kNone), each about its
+/// `lowest_vertex` with `faces` faces.
+template <class ComponentOf>
+std::vector<int> volume_signs(const TriangleSoup& soup, std::size_t count,
+                              const std::vector<std::uint32_t>& lowest_vertex,
+                              const std::vector<std::size_t>& faces, ComponentOf component_of) {
   // Each term t = a . (b x c) (a, b, c the corners less the centre) is
   // computed within 1e-15 times its permanent, the sum of the magnitudes of
   // its six products (a few roundings of relative size 2^-53 each), and a
   // sum of n terms within (n - 1) 2^-53 of the sum of their magnitudes.
-  std::vector<double> sum(labels.count, 0.0);
-  std::vector<double> magnitude(labels.count, 0.0);  // sum of the permanents
+  std::vector<double> sum(count, 0.0);
+  std::vector<double> magnitude(count, 0.0);  // sum of the permanents
   const auto corners = [&](std::size_t f, std::uint32_t c) {
-    const Vec3& centre = soup.vertices[labels.lowest_vertex[c]];
+    const Vec3& centre = soup.vertices[lowest_vertex[c]];
     const auto& t = soup.triangles[f];
     return std::array<Vec3, 3>{soup.vertices[t[0]] - centre, soup.vertices[t[1]] - centre,
                                soup.vertices[t[2]] - centre};
   };
   for (std::size_t f = 0; f < soup.triangles.size(); ++f) {
-    const std::uint32_t c = labels.face_component[f];
+    const std::uint32_t c = component_of(f);
     if (c == ComponentLabels::kNone) continue;
     const auto [a, b, d] = corners(f, c);
     sum[c] += a.dot(b.cross(d));
@@ -346,10 +354,10 @@ std::vector<int> component_volume_signs(const TriangleSoup& soup, const Componen
     magnitude[c] += x[0] * (y[1] * z[2] + y[2] * z[1]) + x[1] * (y[0] * z[2] + y[2] * z[0]) +
                     x[2] * (y[0] * z[1] + y[1] * z[0]);
   }
-  std::vector<int> sign(labels.count, 0);
-  std::vector<char> exact(labels.count, 0);
-  for (std::size_t c = 0; c < labels.count; ++c) {
-    const double n = static_cast<double>(labels.faces[c]);
+  std::vector<int> sign(count, 0);
+  std::vector<char> exact(count, 0);
+  for (std::size_t c = 0; c < count; ++c) {
+    const double n = static_cast<double>(faces[c]);
     const double bound = 1.01 * (1e-15 + n * 0x1p-53) * magnitude[c];  // the terms' own errors included
     if (std::abs(sum[c]) > bound) {
       sign[c] = sum[c] > 0 ? 1 : -1;
@@ -360,11 +368,11 @@ std::vector<int> component_volume_signs(const TriangleSoup& soup, const Componen
   if (std::find(exact.begin(), exact.end(), 1) == exact.end()) return sign;
   // The exact sums, only for the components the bound left open. The
   // differences of corners are exact as Mpzf, and so are their products.
-  std::vector<CGAL::Mpzf> total(labels.count, CGAL::Mpzf(0));
+  std::vector<CGAL::Mpzf> total(count, CGAL::Mpzf(0));
   for (std::size_t f = 0; f < soup.triangles.size(); ++f) {
-    const std::uint32_t c = labels.face_component[f];
+    const std::uint32_t c = component_of(f);
     if (c == ComponentLabels::kNone || !exact[c]) continue;
-    const Vec3& centre = soup.vertices[labels.lowest_vertex[c]];
+    const Vec3& centre = soup.vertices[lowest_vertex[c]];
     std::array<std::array<CGAL::Mpzf, 3>, 3> m;
     for (int i = 0; i < 3; ++i) {
       for (int k = 0; k < 3; ++k) {
@@ -375,10 +383,33 @@ std::vector<int> component_volume_signs(const TriangleSoup& soup, const Componen
                m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
                m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
   }
-  for (std::size_t c = 0; c < labels.count; ++c) {
+  for (std::size_t c = 0; c < count; ++c) {
     if (exact[c]) sign[c] = static_cast<int>(CGAL::sign(total[c]));
   }
   return sign;
+}
+
+}  // namespace
+
+std::vector<int> component_volume_signs(const TriangleSoup& soup, const ComponentLabels& labels) {
+  return volume_signs(soup, labels.count, labels.lowest_vertex, labels.faces,
+                      [&](std::size_t f) { return labels.face_component[f]; });
+}
+
+int total_volume_sign(const TriangleSoup& soup) {
+  std::vector<std::size_t> faces{0};
+  std::vector<std::uint32_t> centre;
+  for (const auto& t : soup.triangles) {
+    if (index_degenerate(t)) continue;
+    if (faces[0]++ == 0) centre = {t[0]};
+  }
+  if (faces[0] == 0) return 0;
+  return volume_signs(soup, 1, centre, faces,
+                      [&](std::size_t f) {
+                        return index_degenerate(soup.triangles[f]) ? ComponentLabels::kNone
+                                                                   : std::uint32_t{0};
+                      })
+      .front();
 }
 
 SegmentMeeting segment_meets_triangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b,

@@ -46,6 +46,14 @@ std::vector<double> component_volumes(const TriangleSoup& soup, const ComponentL
 /// \pre every index in range, every coordinate finite
 std::vector<int> component_volume_signs(const TriangleSoup& soup, const ComponentLabels& labels);
 
+/// The exact sign of the signed volume of all of `soup`'s faces but those
+/// with a repeated index, about the first such face's first vertex, as
+/// component_volume_signs decides it for one component of all those faces:
+/// the total signed volume's sign when the mesh is closed (then it does not
+/// depend on the point). 0 for a soup of no such face.
+/// \pre every index in range, every coordinate finite
+int total_volume_sign(const TriangleSoup& soup);
+
 /// How the components nest.
 struct Nesting {
   std::vector<std::size_t> depth;  ///< per component: how many other components contain it
