@@ -8,6 +8,7 @@
 
 #include "geometry/core/budget.h"
 #include "geometry/core/error_checks.h"
+#include "geometry/core/side_by_side.h"
 #include "geometry/mesh/revolution_margin.h"
 #include "geometry/mesh/revolve.h"
 #include "geometry/sampling/sample_curve.h"
@@ -90,8 +91,10 @@ VesselMesh build_vessel(const CompositeCurve& profile, const VesselOptions& opti
   const double max_deviation = section.max_deviation + sagitta;
   EmbeddingProof proof;
   proof.statement = section.proof + fmt::format("; revolved in {} uniform angular steps", segments);
-  proof.margin = revolution_margin(section.loops, segments);
-  RevolvedSoup revolved = revolve(section.loops, ro);
+  // The margin is computed on the section alone: beside the revolution.
+  RevolvedSoup revolved;
+  side_by_side([&] { proof.margin = revolution_margin(section.loops, segments); },
+               [&] { revolved = revolve(section.loops, ro); });
   return VesselMesh{std::move(revolved.soup),
                     std::move(revolved.topology),
                     std::move(section),
