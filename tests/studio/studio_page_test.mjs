@@ -417,6 +417,48 @@ try {
     assert.equal(await page.$eval('#parameter-set', (e) => e.value), 'tall_wide');
   });
 
+  await check('a set saved while the file watcher\'s question is on its way stays picked', async () => {
+    // The watcher asks for the file's version before the save and is answered
+    // after it, with the version from before: not an editor's edit, so the
+    // page must not read the file again over the set it has just picked.
+    const before = (await state()).version;
+    let held = null;
+    let answer;
+    const answered = new Promise((resolve) => { answer = resolve; });
+    const hold = (request) => {
+      if (held === null && new URL(request.url()).pathname === '/api/version') {
+        held = request;
+        answered.then(() => request.respond({status: 200, contentType: 'application/json',
+                                             body: JSON.stringify({version: before})}));
+      } else {
+        request.continue();
+      }
+    };
+    await page.setRequestInterception(true);
+    page.on('request', hold);
+    try {
+      for (let waited = 0; held === null; waited += 50) {
+        assert.ok(waited < 10000, 'the watcher asked for no version in 10 s');
+        await new Promise((resolve) => setTimeout(resolve, 50));
+      }
+      page.once('dialog', (d) => d.accept('held_set'));
+      await page.click('#save-set');
+      await page.waitForFunction(() => window.statuses.some((t) => /saved set held_set/.test(t)), {timeout: 120000});
+      await page.waitForFunction(() => document.querySelector('#parameter-set').value === 'held_set',
+                                 {timeout: 120000});
+      answer();
+      // Past a few of the watcher's ticks: the set is still picked, its values shown.
+      await new Promise((resolve) => setTimeout(resolve, 1000));
+      assert.equal(await page.$eval('#parameter-set', (e) => e.value), 'held_set');
+      assert.equal((await state()).overrides.parameter_set, 'held_set');
+      assert.match(fs.readFileSync(design, 'utf8'), /\n  held_set: \{height: 5, width: 7\}\n/);
+    } finally {
+      answer();
+      page.off('request', hold);
+      await page.setRequestInterception(false);
+    }
+  });
+
   await check('the section view clips the vessel by the plane through its axis', async () => {
     await page.click('#section');
     assert.ok(await page.$eval('#section', (e) => e.checked));
