@@ -305,9 +305,8 @@ std::pair<std::size_t, std::size_t> line_of(const std::string& text, std::size_t
 // edit a designer makes when adding or deleting a control point or a
 // segment. Nullopt when the list is not written so (an item not on its
 // dash's line): the caller then refuses the edit.
-std::optional<std::string> edit_block_list(const std::string& text, const std::string& file,
-                                           const YAML::Node& old, const YAML::Node& wanted,
-                                           const Override& o) {
+std::optional<std::string> edit_block_list(const std::string& text, const YAML::Node& old,
+                                           const YAML::Node& wanted, const Override& o) {
   const std::optional<std::vector<std::string>> given = flow_items(o.value);
   if (!given || given->size() != wanted.size() || old.size() == 0) return std::nullopt;
   struct Item {
@@ -423,7 +422,7 @@ std::string edit_value(const std::string& text, const std::string& file, const O
       YAML::Node expected = YAML::Clone(root);
       YAML::Node at = node_at(expected, value_path(expected, o.path));
       at = wanted;
-      if (const std::optional<std::string> edited = edit_block_list(text, file, old, wanted, o))
+      if (const std::optional<std::string> edited = edit_block_list(text, old, wanted, o))
         return checked_edit(*edited, expected, file, o.path);
     }
   }

@@ -52,7 +52,7 @@ __attribute__((target("sha,sse4.1,ssse3"))) void compress_sha_ni(std::array<std:
   __m128i cdgh = _mm_blend_epi16(efgh, cdab, 0xF0);
   for (; count > 0; --count, blocks += 64) {
     const __m128i abef_before = abef, cdgh_before = cdgh;
-    std::array<__m128i, 4> w{};  // the last four groups' message words
+    __m128i w[4] = {};  // the last four groups' message words
     for (std::size_t g = 0; g < 16; ++g) {
       __m128i words;
       if (g < 4) {

@@ -132,7 +132,7 @@ struct BodyHeaders {
 BodyHeaders body_headers(std::string_view head) {
   BodyHeaders h;
   std::size_t line = head.find('\n') + 1;  // after the request line
-  while (line < head.size() && h.problem.empty()) {
+  while (line < head.size()) {
     const std::size_t next = head.find('\n', line) + 1;
     const std::string_view header = head.substr(line, next - line);
     const std::size_t colon = header.find(':');
@@ -140,7 +140,7 @@ BodyHeaders body_headers(std::string_view head) {
     const std::string_view value = colon == std::string_view::npos ? "" : trimmed(header.substr(colon + 1));
     if (same_name(name, "Transfer-Encoding")) {
       h.chunked = same_name(value, "chunked");
-      if (!h.chunked) h = {0, false, false, {}, 501, "a Transfer-Encoding other than chunked"};
+      if (!h.chunked) return {0, false, false, {}, 501, "a Transfer-Encoding other than chunked"};
     } else if (same_name(name, "Content-Length")) {
       if (value.empty() || value.size() > 18 || value.find_first_not_of("0123456789") != std::string::npos)
         return {0, false, false, {}, 400, "the Content-Length is not a number"};
