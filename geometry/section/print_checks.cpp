@@ -1,10 +1,15 @@
 #include "geometry/section/print_checks.h"
 
 #include <fmt/format.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
+#include <tuple>
+#include <vector>
 
 #include "geometry/core/errors.h"
 #include "geometry/sampling/offset_bezier.h"
@@ -168,40 +173,52 @@ PrintCheck check_print(const CompositeCurve& profile, const VesselSection& secti
   PrintCheck out;
   out.limit_deg = options.max_overhang_deg;
 
+  // Each piece's own measures are independent of the others': they are
+  // found by blocks of pieces at once, then gathered in the pieces' order,
+  // so what is reported does not depend on how the work was shared.
+  const auto each_piece = [&](const auto& measure) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pieces.size(), 16),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t i = r.begin(); i < r.end(); ++i) measure(i);
+                      });
+  };
+
   // The bed's height (the lowest place) and the extent: exact extremes of r and z.
+  std::vector<std::array<double, 3>> extremes(pieces.size());  // lowest z, highest z, largest r
+  each_piece([&](std::size_t i) {
+    const Piece& p = pieces[i];
+    extremes[i] = {-maximise([&](double u) { return -eval(p, u).point.y(); }).first,
+                   maximise([&](double u) { return eval(p, u).point.y(); }).first,
+                   maximise([&](double u) { return eval(p, u).point.x(); }).first};
+  });
   double z_low = std::numeric_limits<double>::infinity();
   double z_high = -z_low, r_high = 0.0;
-  for (const Piece& p : pieces) {
-    z_low = std::min(z_low, -maximise([&](double u) { return -eval(p, u).point.y(); }).first);
-    z_high = std::max(z_high, maximise([&](double u) { return eval(p, u).point.y(); }).first);
-    r_high = std::max(r_high, maximise([&](double u) { return eval(p, u).point.x(); }).first);
+  for (const auto& [low, high, r] : extremes) {
+    z_low = std::min(z_low, low);
+    z_high = std::max(z_high, high);
+    r_high = std::max(r_high, r);
   }
   // On the bed within the rounding of the heights.
   const double on_bed = z_low + 1e-12 * std::max({1.0, std::abs(z_low), z_high - z_low});
   out.size = Vec3(2.0 * r_high, 2.0 * r_high, z_high - z_low);
 
-  // The steepest place of each face, off the bed.
+  // The steepest place of each piece off the bed, and the stretches beyond
+  // the limit (each piece sampled, their ends bisected).
   const auto lean_off_bed = [&](const Piece& p, double u) {
     const Jet j = eval(p, u);
     return j.point.y() > on_bed ? lean(j) : -1.0;
   };
-  std::optional<Overhang> steepest[3];
-  for (const Piece& p : pieces) {
-    const auto [sine, u] = maximise([&](double v) { return lean_off_bed(p, v); });
-    std::optional<Overhang>& s = steepest[static_cast<int>(p.face)];
-    if (!s) s = Overhang{};
-    const double angle = degrees(sine);
-    if (angle > s->angle_deg) *s = Overhang{angle, eval(p, u).point};
-  }
-  out.outer = steepest[0].value_or(Overhang{});
-  out.rim = steepest[1] && steepest[1]->angle_deg > 0.0 ? steepest[1] : std::nullopt;
-  out.inner = steepest[2];
-
-  // The stretches beyond the limit, each piece's sampled, their ends bisected.
   const double limit = std::sin(options.max_overhang_deg * kPi / 180.0);
-  std::vector<Span> spans;
-  for (std::size_t i = 0; i < pieces.size(); ++i) {
-    const auto beyond = [&](double u) { return lean_off_bed(pieces[i], u) > limit; };
+  struct PieceLean {
+    double sine = 0.0, u = 0.0;
+    std::vector<Span> spans;
+  };
+  std::vector<PieceLean> leans(pieces.size());
+  each_piece([&](std::size_t i) {
+    const Piece& p = pieces[i];
+    PieceLean& l = leans[i];
+    std::tie(l.sine, l.u) = maximise([&](double v) { return lean_off_bed(p, v); });
+    const auto beyond = [&](double u) { return lean_off_bed(p, u) > limit; };
     bool was = beyond(0.0);
     double start = 0.0;
     for (int k = 1; k <= kSamples; ++k) {
@@ -212,13 +229,27 @@ PrintCheck check_print(const CompositeCurve& profile, const VesselSection& secti
         if (is) {
           start = c;
         } else {
-          spans.push_back({i, start, c});
+          l.spans.push_back({i, start, c});
         }
       }
       was = is;
     }
-    if (was) spans.push_back({i, start, 1.0});
+    if (was) l.spans.push_back({i, start, 1.0});
+  });
+  std::optional<Overhang> steepest[3];
+  std::vector<Span> spans;
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    const Piece& p = pieces[i];
+    std::optional<Overhang>& s = steepest[static_cast<int>(p.face)];
+    if (!s) s = Overhang{};
+    const double angle = degrees(leans[i].sine);
+    if (angle > s->angle_deg) *s = Overhang{angle, eval(p, leans[i].u).point};
+    spans.insert(spans.end(), leans[i].spans.begin(), leans[i].spans.end());
   }
+  out.outer = steepest[0].value_or(Overhang{});
+  out.rim = steepest[1] && steepest[1]->angle_deg > 0.0 ? steepest[1] : std::nullopt;
+  out.inner = steepest[2];
+
   // Spans that run on from one piece into the next (or round a closed profile) are one run.
   std::vector<std::vector<Span>> runs;
   for (const Span& s : spans) {
