@@ -23,14 +23,17 @@ set(FABMESH_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/fabmesh CACHE STRING
 set(FABMESH_INSTALL_PYTHONDIR lib/python3/dist-packages CACHE STRING
     "Where the Python module is installed, relative to the prefix")
 
-# Installed programs and modules find libfabmesh relative to themselves,
-# wherever the prefix is.
+# Installed modules that link libfabmesh find it relative to themselves,
+# wherever the prefix is. The program links none of the prefix's libraries
+# (the pipeline is linked in, its optional modules are loaded by their paths:
+# io/module.h), so it has no run path at all: an install run path makes CMake
+# pad the build tree's one with empty entries, which the loader takes for the
+# working folder, where it would then look for every library.
 function(fabmesh_origin_rpath target from_dir)
   file(RELATIVE_PATH rel ${CMAKE_INSTALL_PREFIX}/${from_dir} ${CMAKE_INSTALL_PREFIX}/${CMAKE_INSTALL_LIBDIR})
   string(REGEX REPLACE "/$" "" rel "${rel}")
   set_target_properties(${target} PROPERTIES INSTALL_RPATH "$ORIGIN/${rel}")
 endfunction()
-fabmesh_origin_rpath(fabmesh ${CMAKE_INSTALL_BINDIR})
 
 # --- the library, its headers and its CMake package ---
 # (fabmesh_lib's INSTALL_INTERFACE include folder is the installed include/.)

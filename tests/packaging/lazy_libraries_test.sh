@@ -4,7 +4,11 @@
 # or OpenSSL (the studio), which cost every process start their loading and
 # symbol binding; they are loaded with dlopen when a run needs them
 # (io/module.h, io/mesh/threemf.cpp). A run that does not need them does not
-# map them either. Usage: lazy_libraries_test.sh FABMESH LIBFABMESH
+# map them either. And the loader looks for the libraries the program links
+# only in absolute folders: never in the folder it is started from, where
+# anyone's library of the same name would be loaded (the padding CMake gives
+# a build tree's run path when an install one replaces it did that).
+# Usage: lazy_libraries_test.sh FABMESH LIBFABMESH
 set -uo pipefail
 program=$1 library=$2
 failures=0
@@ -14,12 +18,15 @@ for binary in "$program" "$library"; do
   linked=$(ldd "$binary" | grep -E "$optional")
   [[ -z $linked ]] || fail "$(basename "$binary") links what it should load on demand: $linked"
 done
+work=$(mktemp -d "${TMPDIR:-/tmp}/fabmesh-lazy.XXXXXX")
+trap 'rm -rf "$work"' EXIT
 # What `fabmesh --version` maps (the dynamic loader's own list).
 mapped=$(LD_DEBUG=libs "$program" --version 2>&1 >/dev/null | grep -oE "calling init: [^ ]+" | grep -E "$optional")
 [[ -z $mapped ]] || fail "fabmesh --version loads: $mapped"
+# Where the loader looked, started from an empty folder.
+relative=$(cd "$work" && LD_DEBUG=libs "$program" --version 2>&1 >/dev/null | grep -E "trying file=[^/]" | head -n 3)
+[[ -z $relative ]] || fail "fabmesh looks for its libraries in the working folder: $relative"
 # And a run that writes 3MF and STEP loads both.
-work=$(mktemp -d "${TMPDIR:-/tmp}/fabmesh-lazy.XXXXXX")
-trap 'rm -rf "$work"' EXIT
 source_dir=$(cd "$(dirname "$0")/../.." && pwd)
 LD_DEBUG=libs "$program" run "$source_dir/configs/examples/vessel_golden_solid.yaml" --export-format 3mf \
   -o "$work/3mf/" -q 2>"$work/3mf.log" >/dev/null || fail "the 3MF run failed: $(tail -n 3 "$work/3mf.log")"
