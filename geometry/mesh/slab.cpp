@@ -120,8 +120,7 @@ Mesh extrude(const PlanarTriangulation& t, double thickness) {
   return mesh;
 }
 
-SlabMesh build_slab(const Region2& region, const SlabOptions& options) {
-  require_positive("thickness", options.thickness);
+PlanarTriangulation slab_top(const Region2& region, const SlabOptions& options) {
   TriangulateOptions to;
   to.max_edge = options.max_edge;
   to.max_triangles = options.max_triangles / 2;
@@ -130,6 +129,16 @@ SlabMesh build_slab(const Region2& region, const SlabOptions& options) {
   require_within_budget(
       triangles, options.max_triangles, [&] { return fmt::format("the slab needs {} triangles", triangles); },
       "raise max_triangles, the tolerance or max_edge");
+  return triangulation;
+}
+
+SlabMesh build_slab(const Region2& region, const SlabOptions& options) {
+  require_positive("thickness", options.thickness);
+  return extrude_slab(region, slab_top(region, options), options);
+}
+
+SlabMesh extrude_slab(const Region2& region, PlanarTriangulation triangulation, const SlabOptions& options) {
+  require_positive("thickness", options.thickness);
   EmbeddingProof proof;
   proof.statement =
       region.proof + fmt::format(

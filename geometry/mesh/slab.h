@@ -40,8 +40,20 @@ std::size_t slab_triangle_count(const PlanarTriangulation& t);
 /// \throw RangeError for thickness <= 0.
 Mesh extrude(const PlanarTriangulation& triangulation, double thickness);
 
-/// Triangulates `region` (refined to options.max_edge when > 0) and extrudes it.
+/// Triangulates `region` (refined to options.max_edge when > 0) and extrudes it:
+/// extrude_slab(region, slab_top(region, options), options).
 /// \throw RangeError (thickness, max_edge), BudgetError (over max_triangles)
 SlabMesh build_slab(const Region2& region, const SlabOptions& options);
+
+/// The top face of a slab over `region`: its triangulation, refined to
+/// options.max_edge when > 0, whose slab keeps within options.max_triangles.
+/// The thickness is not read: slabs of every thickness over `region` share it.
+/// \throw RangeError (max_edge), BudgetError (over max_triangles)
+PlanarTriangulation slab_top(const Region2& region, const SlabOptions& options);
+
+/// The slab of options.thickness over `top`, which is slab_top(region,
+/// options) (for any thickness), with the proofs of its construction.
+/// \throw RangeError (thickness)
+SlabMesh extrude_slab(const Region2& region, PlanarTriangulation top, const SlabOptions& options);
 
 }  // namespace fabmesh
