@@ -66,11 +66,18 @@ std::string DesignSource::canonical(const std::vector<Override>& overrides) cons
   return yaml::canonical_tree(root, impl_->path, impl_->folder);
 }
 
-Design DesignSource::resolve(const std::vector<Override>& overrides, std::string* canonical) const {
+Design DesignSource::resolve(const std::vector<Override>& overrides, std::string* canonical,
+                             BlankedText* blanked) const {
   if (canonical != nullptr) canonical->clear();
+  if (blanked != nullptr) blanked->text.clear();
   YAML::Node root = yaml::load_design_tree(impl_->text, impl_->path);
   std::vector<yaml::OverrideOrigin> origins = yaml::apply_overrides(root, impl_->path, overrides);
-  if (canonical != nullptr) *canonical = yaml::canonical_tree(root, impl_->path, impl_->folder);
+  if (blanked != nullptr) {
+    std::string text = yaml::canonical_tree(root, impl_->path, impl_->folder, blanked->keys, blanked->text);
+    if (canonical != nullptr) *canonical = std::move(text);
+  } else if (canonical != nullptr) {
+    *canonical = yaml::canonical_tree(root, impl_->path, impl_->folder);
+  }
   return yaml::read_design_tree(root, impl_->path, std::move(origins));
 }
 

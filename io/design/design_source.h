@@ -11,6 +11,12 @@
 
 namespace fabmesh {
 
+/// A design's canonical text with the values of some root keys left out.
+struct BlankedText {
+  std::vector<std::string> keys;  ///< plain root keys ("thickness")
+  std::string text;               ///< the canonical text, each of their values written as `*`
+};
+
 /// A design's YAML text, parsed once. resolve() gives what
 /// parse_design(text, path, overrides) gives, without parsing again, and the
 /// design's canonical resolved text. Safe to resolve from several threads.
@@ -42,8 +48,12 @@ class DesignSource {
   /// plain), sequences in order; no comments, layout, anchors or file path;
   /// the bytes of every file the design reads (`polyline: {file: ...}`) in
   /// place of its name. Designs with equal canonical texts are equal.
+  /// `blanked`, when given, receives that canonical text with the values of
+  /// the design's root keys `blanked->keys` left out (`blanked->text`): designs
+  /// with equal blanked texts differ at most where those keys' values are read.
   /// \throw FileError naming the file, line, column and field, or the override
-  Design resolve(const std::vector<Override>& overrides, std::string* canonical = nullptr) const;
+  Design resolve(const std::vector<Override>& overrides, std::string* canonical = nullptr,
+                 BlankedText* blanked = nullptr) const;
 
   /// Only the canonical text of the design with `overrides` (see resolve),
   /// without reading it. \throw FileError naming an override that cannot be applied

@@ -20,7 +20,8 @@ constexpr std::size_t kMaxReadFileBytes = 64u << 20;  // as io/design/points_csv
 
 class Writer {
  public:
-  Writer(std::string path, std::string folder) : path_(std::move(path)), folder_(std::move(folder)) {}
+  Writer(std::string path, std::string folder, const std::vector<std::string>* blank = nullptr)
+      : path_(std::move(path)), folder_(std::move(folder)), blank_(blank) {}
 
   void node(const YAML::Node& n, const char* parent_key) {
     check_size();
@@ -47,6 +48,20 @@ class Writer {
   }
 
   std::string take() { return std::move(out_); }
+
+  // The text with the values of the root entries named in `blank` as "*" (the
+  // spans were noted while writing, in order).
+  std::string blanked() const {
+    std::string text;
+    std::size_t from = 0;
+    for (const auto& [begin, end] : blanked_) {
+      text.append(out_, from, begin - from);
+      text += '*';
+      from = end;
+    }
+    text.append(out_, from, std::string::npos);
+    return text;
+  }
 
  private:
   void scalar(const YAML::Node& n) {
@@ -78,6 +93,8 @@ class Writer {
     for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
     std::stable_sort(order.begin(), order.end(),
                      [&](std::size_t a, std::size_t b) { return keys[a] < keys[b]; });
+    const bool root = depth_ == 0;
+    ++depth_;
     out_ += '{';
     for (std::size_t k = 0; k < order.size(); ++k) {
       const std::string& key = keys[order[k]];
@@ -85,14 +102,20 @@ class Writer {
       if (k > 0) out_ += ',';
       out_ += key;
       out_ += ':';
+      const std::size_t begin = out_.size();
+      const std::string plain_key = key_text(key);
       if (is_file_reference(parent_key, key, value)) {
         file(value.Scalar());
       } else {
-        const std::string plain_key = key_text(key);
         node(value, plain_key.empty() ? nullptr : plain_key.c_str());
+      }
+      if (root && blank_ != nullptr && !plain_key.empty() &&
+          std::find(blank_->begin(), blank_->end(), plain_key) != blank_->end()) {
+        blanked_.emplace_back(begin, out_.size());
       }
     }
     out_ += '}';
+    --depth_;
   }
 
   // The text of a plain scalar key as written ("polyline"), or "" for any other key.
@@ -134,6 +157,9 @@ class Writer {
   }
 
   std::string path_, folder_;
+  const std::vector<std::string>* blank_ = nullptr;           // root keys whose values blanked() leaves out
+  std::vector<std::pair<std::size_t, std::size_t>> blanked_;  // their spans in out_
+  int depth_ = 0;                                             // maps being written
   std::string out_;
 };
 
@@ -143,6 +169,14 @@ std::string canonical_tree(const YAML::Node& root, const std::string& path,
                            const std::string& design_folder) {
   Writer w(path, design_folder);
   w.node(root, nullptr);
+  return w.take();
+}
+
+std::string canonical_tree(const YAML::Node& root, const std::string& path, const std::string& design_folder,
+                           const std::vector<std::string>& blank, std::string& blanked) {
+  Writer w(path, design_folder, &blank);
+  w.node(root, nullptr);
+  blanked = w.blanked();
   return w.take();
 }
 

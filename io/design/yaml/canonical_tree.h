@@ -5,6 +5,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <string>
+#include <vector>
 
 namespace fabmesh::yaml {
 
@@ -17,5 +18,12 @@ namespace fabmesh::yaml {
 /// \throw FileError (naming `path`) when the text would exceed 256 MiB (a design
 /// that expands through YAML aliases)
 std::string canonical_tree(const YAML::Node& root, const std::string& path, const std::string& design_folder);
+
+/// canonical_tree, and `blanked` receives the same text with the value of
+/// each entry of the root map whose plain key is in `blank` written as `*`
+/// (a key that is absent stays absent). Two trees with the same blanked text
+/// read into designs that differ at most where those keys' values are read.
+std::string canonical_tree(const YAML::Node& root, const std::string& path, const std::string& design_folder,
+                           const std::vector<std::string>& blank, std::string& blanked);
 
 }  // namespace fabmesh::yaml

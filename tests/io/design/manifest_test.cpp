@@ -8,6 +8,7 @@
 
 #include "geometry/core/errors.h"
 #include "io/design/csv_table.h"
+#include "io/design/design_source.h"
 #include "tests/io/design/cup_design.h"
 
 using namespace fabmesh;
@@ -222,6 +223,37 @@ TEST_CASE("manifest: the canonical text ignores layout, comments, key order and 
   CHECK(a.canonical({wall}) != a.canonical({}));
   // A quoted "0.3" is a string, not the number: it reads differently, so it is another design.
   CHECK(a.canonical({parse_override("body.wall='0.3'")}) != a.canonical({}));
+}
+
+TEST_CASE("manifest: the blanked canonical text leaves out only the values of the root keys named",
+          "[io][design][manifest][batch]") {
+  // The L-shaped kitchen: a countertop with holes, seams, a backsplash and a router program.
+  const DesignSource source = DesignSource::read(FABMESH_SOURCE_DIR "/configs/examples/kitchen_l.yaml");
+  auto blanked = [&](const std::vector<std::string>& overrides, std::string* canonical = nullptr) {
+    std::vector<Override> all;
+    for (const std::string& o : overrides) all.push_back(parse_override(o));
+    BlankedText text{{"name", "thickness"}, {}};
+    std::string whole;
+    source.resolve(all, &whole, &text);
+    CHECK(whole == source.canonical(all));
+    if (canonical != nullptr) *canonical = whole;
+    return text.text;
+  };
+  std::string whole;
+  const std::string base = blanked({}, &whole);
+  CHECK(base != whole);
+  CHECK(base.find("\"thickness\":*") != std::string::npos);
+  CHECK(base.find("\"name\":*") != std::string::npos);
+  CHECK(base.find("kitchen_l") == std::string::npos);
+  CHECK(whole.find("kitchen_l") != std::string::npos);
+  CHECK(blanked({"thickness=40", "name=other"}) == base);
+  CHECK(blanked({"tolerance=0.02"}) != base);
+  CHECK(blanked({"holes[0].rounded_rect.radius=30"}) != base);
+  CHECK(blanked({"backsplash.thickness=20"}) != base);  // a `thickness` below the root stays
+  BlankedText none{{}, {}};
+  std::string canonical;
+  source.resolve({}, &canonical, &none);
+  CHECK(none.text == canonical);
 }
 
 TEST_CASE("manifest: a variant's design keeps the lines and columns of its base design's keys",
