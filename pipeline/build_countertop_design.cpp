@@ -3,12 +3,17 @@
 
 #include <fmt/format.h>
 
+#include <memory>
+#include <string>
+
+#include "geometry/core/error_checks.h"
 #include "geometry/fairing/build_curve.h"
 #include "geometry/mesh/halfedge_mesh.h"
 #include "geometry/mesh/slab.h"
 #include "geometry/toolpath/toolpath.h"
 #include "pipeline/build_design.h"
 #include "pipeline/build_kitchen.h"
+#include "pipeline/plane_memo.h"
 
 namespace fabmesh {
 namespace {
@@ -74,33 +79,62 @@ void check_tap_hole_webs(const CountertopDesign& design, const Region2& region,
   check_drill_webs(drill_holes(design, holes), own, loops, labels, region.max_deviation, cnc);
 }
 
-}  // namespace
-
-Result build(const CountertopDesign& design, const BuildContext& context) {
-  Result out;
-  out.curves.push_back({"outline", build_curve(design.outline)});
-  std::vector<RegionHole> holes;
-  for (std::size_t i = 0; i < design.holes.size(); ++i) {
-    out.curves.push_back({fmt::format("holes[{}]", i), build_curve(design.holes[i].curve)});
-    holes.push_back({out.curves.back().curve.curve, fmt::format("holes[{}] ({})", i, design.holes[i].shape),
-                     design.holes[i].curve.key});
+// The work in the plane: the curves (lap "curve"), the region ("region") and
+// the slab's top, from the context's memo when it holds them for the same
+// design (but its name and thickness) and tolerance, else built and kept there.
+std::shared_ptr<const CountertopPlane> plane_of(const CountertopDesign& design, const BuildContext& context) {
+  std::string key;
+  if (context.reuse != nullptr && context.reuse->memo != nullptr && !context.reuse->key.empty()) {
+    key = fmt::format("{}\ntolerance {:a}", context.reuse->key, context.tolerance);
+    if (std::shared_ptr<const CountertopPlane> kept = context.reuse->memo->find(key)) {
+      context.watch.lap("curve");
+      context.watch.lap("region");
+      return kept;
+    }
   }
-  const BuiltCurve& outline = out.curves.front().curve;
+  auto plane = std::make_shared<CountertopPlane>();
+  plane->curves.push_back({"outline", build_curve(design.outline)});
+  for (std::size_t i = 0; i < design.holes.size(); ++i) {
+    plane->curves.push_back({fmt::format("holes[{}]", i), build_curve(design.holes[i].curve)});
+    plane->holes.push_back({plane->curves.back().curve.curve,
+                            fmt::format("holes[{}] ({})", i, design.holes[i].shape),
+                            design.holes[i].curve.key});
+  }
   context.watch.lap("curve");
   RegionOptions ro;
   // A profiled edge's arcs are sampled too: the loops get half the tolerance.
   ro.tolerance = design.edges.kind == EdgeProfileKind::Square ? context.tolerance : 0.5 * context.tolerance;
   ro.max_points = design.max_triangles / 2;  // every loop point makes two wall triangles
   ro.outline_key = design.outline.key;
-  const Region2 region = within_share(ro.max_points, design.max_triangles, "the loops' points",
-                                      "each point of a loop makes two wall triangles",
-                                      [&] { return build_region(outline.curve, holes, ro); });
+  plane->region = within_share(ro.max_points, design.max_triangles, "the loops' points",
+                               "each point of a loop makes two wall triangles", [&] {
+                                 return build_region(plane->curves.front().curve.curve, plane->holes, ro);
+                               });
   context.watch.lap("region");
   SlabOptions so;
   so.thickness = design.thickness;
   so.max_edge = design.max_edge;
   so.max_triangles = design.max_triangles;
-  const SlabMesh slab = build_slab(region, so);
+  require_positive("thickness", so.thickness);  // refused before the triangulation, as build_slab does
+  plane->top = slab_top(plane->region, so);
+  if (!key.empty()) context.reuse->memo->keep(key, plane);
+  return plane;
+}
+
+}  // namespace
+
+Result build(const CountertopDesign& design, const BuildContext& context) {
+  Result out;
+  const std::shared_ptr<const CountertopPlane> plane = plane_of(design, context);
+  out.curves = plane->curves;
+  const std::vector<RegionHole>& holes = plane->holes;
+  const Region2& region = plane->region;
+  const BuiltCurve& outline = out.curves.front().curve;
+  SlabOptions so;
+  so.thickness = design.thickness;
+  so.max_edge = design.max_edge;
+  so.max_triangles = design.max_triangles;
+  const SlabMesh slab = extrude_slab(region, plane->top, so);
   context.watch.lap("build");
   CountertopProducts products;
   if (context.wants_cutting) {

@@ -22,6 +22,8 @@
 
 namespace fabmesh {
 
+struct PlaneReuse;  // pipeline/plane_memo.h
+
 /// What every builder gets besides its design.
 struct BuildContext {
   const DesignCommon& common;
@@ -35,6 +37,9 @@ struct BuildContext {
   bool wants_master =
       false;  ///< an output writes a vessel's casting master (master_stl, master_3mf, master_step)
   bool wants_cases = false;  ///< an output writes the mould parts' casting cases (case_stl, case_3mf)
+  /// A batch's memo of countertop planes and this design's key in it; null:
+  /// the plane is built and not kept.
+  const PlaneReuse* reuse = nullptr;
 };
 
 /// The smaller of this machine's physical memory and the process's address

@@ -317,6 +317,7 @@ JobPlan plan_job(const Design& design, const JobOptions& options) {
   }
   plan.export_scale = metres_per_unit(plan.common.units) / metres_per_unit(plan.common.export_units);
   plan.on_stage = options.on_stage;
+  plan.reuse = options.reuse;
   return plan;
 }
 
@@ -347,6 +348,7 @@ Result build_job(const Design& design, const JobPlan& plan) {
                                      [](const OutputFormat* f) { return writes_master(*f); });
   context.wants_cases = std::any_of(plan.formats.begin(), plan.formats.end(),
                                     [](const OutputFormat* f) { return f->name.substr(0, 5) == "case_"; });
+  context.reuse = &plan.reuse;
   result = build_within_budget(design, plan, context);
   validate_parts(result, watch);
   set_identity(result, plan.common);

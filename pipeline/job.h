@@ -19,6 +19,7 @@
 #include "io/design/design.h"
 #include "io/file.h"
 #include "pipeline/output_table.h"
+#include "pipeline/plane_memo.h"
 #include "pipeline/result.h"
 
 namespace fabmesh {
@@ -37,6 +38,9 @@ struct JobOptions {
   /// Told after each stage of the job ("curve", "build", "validate", "encode_stl",
   /// "write", ...), from the thread that runs it: progress of a long run.
   StageObserver on_stage;
+  /// Where a countertop may take its work in the plane from a batch's earlier
+  /// variants, and keep it for the later ones (pipeline/plane_memo.h).
+  PlaneReuse reuse;
 };
 
 /// One file a job will write.
@@ -60,6 +64,7 @@ struct JobPlan {
   bool wants_drawing = false;  ///< an output draws the design (the builders make the drawing)
   bool wants_exact = false;    ///< an output writes the exact shape (step)
   StageObserver on_stage;
+  PlaneReuse reuse;  ///< the options'
 };
 
 /// The job of `design` under `options`: its formats (the design's outputs,

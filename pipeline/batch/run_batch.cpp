@@ -175,42 +175,44 @@ BatchOutcome run_batch(const BatchManifest& manifest, const BatchOptions& option
   std::atomic<long long> jobs_us{0};
   std::mutex keeping;  // the kept rows, for the summary of a whole batch
   Tally tally(out.in_shard, options.progress);
+  // Countertops that differ only in thickness share their work in the plane.
+  PlaneMemo planes;
   arena.execute([&] {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, out.in_shard, 1),
-                      [&](const tbb::blocked_range<std::size_t>& r) {
-                        for (std::size_t k = r.begin(); k != r.end(); ++k) {
-                          const std::size_t i = shard.index + k * shard.count;
-                          const std::optional<std::string> earlier = rows.row(i);
-                          std::string why;
-                          if (!options.force && earlier && row_stands(*earlier, options.out_dir, &why)) {
-                            status[k] = rows.status(i);
-                            if (status[k] != VariantStatus::Ok) {
-                              const BatchRow row = summary_row(plan, rows, i);
-                              failed(k, row);
-                            }
-                            tally.finished(true, status[k] == VariantStatus::Ok);
-                            continue;
-                          }
-                          if (!why.empty()) {
-                            std::lock_guard<std::mutex> lock(failing);
-                            rebuilt.push_back({k, {plan.name(i), why}});
-                          }
-                          const BatchRow row = run_variant(manifest, i, plan.variant(i), options.out_dir);
-                          const std::string json = ledger_row_json(row);
-                          const std::uint64_t offset = ledger.append(json);
-                          for (const auto& [stage, ms] : row.timings_ms) {
-                            if (stage == "job") jobs_us += static_cast<long long>(ms * 1000.0);
-                          }
-                          if (shard.count == 1) {
-                            std::lock_guard<std::mutex> lock(keeping);
-                            rows.offer(json, own_ledger, offset);
-                          }
-                          status[k] = row.status;
-                          if (row.status != VariantStatus::Ok) failed(k, row);
-                          ++ran;
-                          tally.finished(false, row.status == VariantStatus::Ok);
-                        }
-                      });
+    tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, out.in_shard, 1), [&](const tbb::blocked_range<std::size_t>& r) {
+          for (std::size_t k = r.begin(); k != r.end(); ++k) {
+            const std::size_t i = shard.index + k * shard.count;
+            const std::optional<std::string> earlier = rows.row(i);
+            std::string why;
+            if (!options.force && earlier && row_stands(*earlier, options.out_dir, &why)) {
+              status[k] = rows.status(i);
+              if (status[k] != VariantStatus::Ok) {
+                const BatchRow row = summary_row(plan, rows, i);
+                failed(k, row);
+              }
+              tally.finished(true, status[k] == VariantStatus::Ok);
+              continue;
+            }
+            if (!why.empty()) {
+              std::lock_guard<std::mutex> lock(failing);
+              rebuilt.push_back({k, {plan.name(i), why}});
+            }
+            const BatchRow row = run_variant(manifest, i, plan.variant(i), options.out_dir, &planes);
+            const std::string json = ledger_row_json(row);
+            const std::uint64_t offset = ledger.append(json);
+            for (const auto& [stage, ms] : row.timings_ms) {
+              if (stage == "job") jobs_us += static_cast<long long>(ms * 1000.0);
+            }
+            if (shard.count == 1) {
+              std::lock_guard<std::mutex> lock(keeping);
+              rows.offer(json, own_ledger, offset);
+            }
+            status[k] = row.status;
+            if (row.status != VariantStatus::Ok) failed(k, row);
+            ++ran;
+            tally.finished(false, row.status == VariantStatus::Ok);
+          }
+        });
   });
   ledger.sync();
   out.ran = ran;

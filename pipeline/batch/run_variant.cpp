@@ -13,6 +13,8 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <set>
+#include <variant>
+#include <vector>
 
 #include "geometry/core/errors.h"
 #include "pipeline/batch/output_links.h"
@@ -112,7 +114,7 @@ std::string variant_folder(const std::string& out_dir, const std::string& name) 
 }
 
 BatchRow run_variant(const BatchManifest& manifest, std::size_t index, const PlannedVariant& planned,
-                     const std::string& out_dir) {
+                     const std::string& out_dir, PlaneMemo* planes) {
   const Variant v = manifest.variant(index);
   BatchRow row;
   row.index = index;
@@ -131,7 +133,9 @@ BatchRow run_variant(const BatchManifest& manifest, std::size_t index, const Pla
   try {
     refuse_link(folder.string(), "variant folder");
     std::string canonical;
-    const Design design = manifest.bases[v.base].resolve(variant_overrides(manifest, v), &canonical);
+    BlankedText plane_text{planes != nullptr ? plane_free_keys() : std::vector<std::string>{}, {}};
+    const Design design = manifest.bases[v.base].resolve(variant_overrides(manifest, v), &canonical,
+                                                         planes != nullptr ? &plane_text : nullptr);
     if (variant_key(canonical) != planned.key) {
       throw std::runtime_error(
           "its design or a file it reads changed while the batch ran (its key differs from the plan's): run "
@@ -141,6 +145,8 @@ BatchRow run_variant(const BatchManifest& manifest, std::size_t index, const Pla
     row.timings_ms.emplace_back("resolve", ms_since(start));
     JobOptions options;
     options.out_dir = folder.string();
+    if (planes != nullptr && std::holds_alternative<CountertopDesign>(design.body))
+      options.reuse = {planes, std::move(plane_text.text)};
     auto [report, job] = prepare_job(design, options);
     const Clock::time_point digest_start = Clock::now();
     for (const EncodedFile& e : job.files) {

@@ -9,6 +9,7 @@
 #include "io/design/manifest.h"
 #include "pipeline/batch/batch_row.h"
 #include "pipeline/batch/plan.h"
+#include "pipeline/plane_memo.h"
 
 namespace fabmesh {
 
@@ -21,9 +22,11 @@ std::string variant_folder(const std::string& out_dir, const std::string& name);
 /// files of earlier runs that are not among them (the folder then holds
 /// exactly the variant's outputs; a failed variant has no folder). Never
 /// throws for the variant's own failures: they are the row's status, exit
-/// code and message (pipeline/failure.h).
+/// code and message (pipeline/failure.h). A countertop takes its work in the
+/// plane from `planes` when an earlier variant of the same design (but its
+/// name and thickness) left it there, and leaves its own there (null: neither).
 BatchRow run_variant(const BatchManifest& manifest, std::size_t index, const PlannedVariant& planned,
-                     const std::string& out_dir);
+                     const std::string& out_dir, PlaneMemo* planes = nullptr);
 
 /// True when the committed `row_json` of a variant can stand for running it
 /// again: its status is final (ok, invalid, bad input; not an internal error
