@@ -6,7 +6,10 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "io/design/manifest.h"
+#include "pipeline/batch/plan.h"
 #include "pipeline/batch/sha256.h"
+#include "pipeline/plane_memo.h"
 #include "tests/pipeline/cli_harness.h"
 
 using namespace fabmesh;
@@ -70,4 +73,34 @@ TEST_CASE("batch: a row naming a file outside the batch folder does not stand, a
     CHECK_FALSE(row_stands(ok_row(nlohmann::json::array({file})), (dir / "out").string(), &why));
     CHECK_THAT(why, Catch::Contains("outside the batch folder"));
   }
+}
+
+TEST_CASE(
+    "batch: countertop variants of other thicknesses take the plane the first one kept, and the same files",
+    "[pipeline][batch][plane_memo]") {
+  const fs::path dir = fabmesh::testing::fresh_dir("batch/plane_memo");
+  fs::copy_file(fabmesh::testing::example("countertop_cnc.yaml"), dir / "top.yaml");
+  std::ofstream(dir / "m.yaml") << "design: top.yaml\nname: top_t{thickness}_{tolerance}\n"
+                                   "grid:\n  thickness: [30, 34, 38]\n  tolerance: [0.05, 0.1]\n";
+  const BatchManifest manifest = read_manifest((dir / "m.yaml").string());
+  const BatchPlan plan = plan_batch(manifest);
+  REQUIRE(plan.size() == 6);
+  PlaneMemo memo;
+  for (std::size_t i = 0; i < plan.size(); ++i) {
+    INFO(plan.name(i));
+    const BatchRow kept = run_variant(manifest, i, plan.variant(i), (dir / "kept").string(), &memo);
+    const BatchRow fresh = run_variant(manifest, i, plan.variant(i), (dir / "fresh").string());
+    REQUIRE(kept.status == VariantStatus::Ok);
+    REQUIRE(fresh.status == VariantStatus::Ok);
+    REQUIRE(kept.files.size() == fresh.files.size());
+    CHECK(kept.files.size() >= 3);  // stl, dxf, nc, toolpath_svg
+    for (std::size_t f = 0; f < kept.files.size(); ++f) {
+      CHECK(kept.files[f].path == fresh.files[f].path);
+      CHECK(kept.files[f].sha256 == fresh.files[f].sha256);
+    }
+  }
+  // The grid's last key varies fastest: the tolerance. Each tolerance's
+  // plane is built by its first thickness and taken by the other two.
+  CHECK(memo.size() == 2);
+  CHECK(memo.reused() == 4);
 }
