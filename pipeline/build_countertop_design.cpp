@@ -251,13 +251,16 @@ Result build(const CountertopDesign& design, const BuildContext& context) {
         .set("estimated_minutes", totals.minutes);
     out.facts.set("cnc", std::move(facts));
   }
-  products.solid.form = ExactSolid::Form::Extrusion;
-  products.solid.height = design.thickness;
-  for (const NamedBuiltCurve& c : out.curves) products.solid.loops.push_back(exact_pieces(c.curve.curve));
-  products.solid.edges = design.edges;
-  for (std::size_t i = 0; i < products.solid.loops.front().size(); ++i) {
-    const bool wall = design.kitchen && i < design.outline.segments.size() && design.outline.segments[i].wall;
-    products.solid.profiled.push_back(!wall);
+  if (context.wants_exact) {
+    products.solid.form = ExactSolid::Form::Extrusion;
+    products.solid.height = design.thickness;
+    for (const NamedBuiltCurve& c : out.curves) products.solid.loops.push_back(exact_pieces(c.curve.curve));
+    products.solid.edges = design.edges;
+    for (std::size_t i = 0; i < products.solid.loops.front().size(); ++i) {
+      const bool wall =
+          design.kitchen && i < design.outline.segments.size() && design.outline.segments[i].wall;
+      products.solid.profiled.push_back(!wall);
+    }
   }
   out.products = std::move(products);
   return out;

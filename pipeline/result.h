@@ -206,7 +206,8 @@ struct KitchenProducts {
 
 /// What a countertop makes besides its mesh.
 struct CountertopProducts {
-  ExactSolid solid;
+  ExactSolid
+      solid;  ///< when an output writes the exact shape (BuildContext::wants_exact); no loops otherwise
   std::vector<CutLoop> cutting;            ///< the outline, then the holes, when an output draws them
   std::optional<Toolpath> toolpath;        ///< the router path (key `cnc`)
   std::optional<GcodeOptions> gcode;       ///< how its program is written (with `toolpath`)

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "geometry/core/errors.h"
 #include "geometry/mould/master_sectors.h"
@@ -188,7 +189,11 @@ EncodedFiles encode_step_output(const EncodeContext& c) {
     const EncodeContext& c;
     StepModel& model;
     Encoded operator()(const CurveProducts&) const { return wireframe_step(c, std::move(model)); }
-    Encoded operator()(const CountertopProducts& p) const { return solid_step(c, p.solid, std::move(model)); }
+    Encoded operator()(const CountertopProducts& p) const {
+      if (p.solid.loops.empty())  // a job that plans a step output builds it (JobPlan::wants_exact)
+        throw std::logic_error("step: the countertop was built without its exact solid");
+      return solid_step(c, p.solid, std::move(model));
+    }
     Encoded operator()(const SurfaceProducts& p) const { return surface_step(c, p, std::move(model)); }
     Encoded operator()(const VesselProducts& p) const {
       if (!p.solid)
