@@ -2,8 +2,10 @@
 
 #include <fmt/format.h>
 
+#include <charconv>
 #include <cmath>
 #include <cstdlib>
+#include <system_error>
 
 #include "geometry/core/errors.h"
 #include "io/design/number_limits.h"
@@ -33,9 +35,18 @@ bool parse_row(std::string_view row, std::vector<Field>& fields, Field& bad) {
     std::size_t j = i;
     while (j < row.size() && !is_separator(row[j])) ++j;
     Field f{0.0, std::string(row.substr(i, j - i)), static_cast<int>(i) + 1};
-    char* end = nullptr;
-    f.value = std::strtod(f.text.c_str(), &end);
-    if (f.text.empty() || end != f.text.c_str() + f.text.size()) {
+    const char* first = f.text.data();
+    const char* last = first + f.text.size();
+    // from_chars reads a decimal number to the same double as strtod (both
+    // round correctly), several times faster; what it does not read whole
+    // ("+1", "0x1p3", a value out of range) is read by strtod, as before.
+    auto [end, error] = std::from_chars(first, last, f.value);
+    if (error != std::errc() || end != last) {
+      char* stop = nullptr;
+      f.value = std::strtod(first, &stop);
+      end = stop;
+    }
+    if (f.text.empty() || end != last) {
       bad = std::move(f);
       return false;
     }

@@ -2,9 +2,15 @@
 // not UTF-8, trees too large for their bytes. Each is bad input (FileError)
 // at its line and column, never a value silently changed.
 
+#include <fmt/format.h>
+
 #include <catch2/catch.hpp>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
+#include <random>
 #include <string>
+#include <vector>
 
 #include "geometry/core/errors.h"
 #include "io/design/overrides.h"
@@ -59,6 +65,54 @@ TEST_CASE("points csv: a coordinate beyond 1e12 is bad input at its row and colu
                     Catch::StartsWith("p.csv:3:4: y = 2e12 is too large"));
   CHECK_THROWS_WITH(parse_points_csv("0,0\n1e999,0\n", "p.csv"),
                     Catch::StartsWith("p.csv:2:1: x = 1e999 is not a finite number"));
+}
+
+TEST_CASE(
+    "points csv: every coordinate reads to the double strtod reads it to, and what it refuses is refused",
+    "[io][design][errors]") {
+  // The reader takes the fast path (from_chars) and falls back on strtod:
+  // the values must be strtod's to the bit, whichever path read them.
+  std::vector<std::string> texts = {"0",
+                                    "-0",
+                                    "1",
+                                    "+1.5",
+                                    ".5",
+                                    "5.",
+                                    "0x1p3",
+                                    "1e-320",
+                                    "-4.9e-324",
+                                    "1e12",
+                                    "999999999999.9999999999999999",
+                                    "2.2250738585072011e-308",
+                                    "0.1000000000000000055511151231257827021181583404541015625",
+                                    "123456789012345678901234567890e-18",
+                                    "7E2",
+                                    "1e+3",
+                                    "00012.5"};
+  std::mt19937_64 random(20261201);
+  std::uniform_real_distribution<double> value(-1e6, 1e6);
+  for (int i = 0; i < 3000; ++i) {
+    const double v = value(random);
+    texts.push_back(fmt::format("{}", v));       // the shortest text that reads back to v
+    texts.push_back(fmt::format("{:.20g}", v));  // more digits than a double holds
+    texts.push_back(fmt::format("{:.3f}", v));   // a digitiser's
+  }
+  std::size_t checked = 0;
+  for (const std::string& text : texts) {
+    INFO(text);
+    const std::vector<Vec2> points = parse_points_csv(text + ",0\n", "p.csv");
+    REQUIRE(points.size() == 1);
+    const double expected = std::strtod(text.c_str(), nullptr);
+    const double read = points[0].x();
+    CHECK(std::memcmp(&read, &expected, sizeof expected) == 0);
+    ++checked;
+  }
+  CHECK(checked == texts.size());
+  for (const std::string& text : {"1p3", "0x", "1e", "--1", "1.2.3", "nan(", "inf0"}) {
+    INFO(text);
+    CHECK_THROWS_AS(parse_points_csv("0,0\n" + std::string(text) + ",0\n", "p.csv"),
+                    FileError);  // not as a header
+  }
 }
 
 TEST_CASE("design: a tolerance below 1e-12 is refused quoting the value as written, never as 0",
