@@ -79,6 +79,15 @@ void check_tap_hole_webs(const CountertopDesign& design, const Region2& region,
   check_drill_webs(drill_holes(design, holes), own, loops, labels, region.max_deviation, cnc);
 }
 
+// The slab the design asks for.
+SlabOptions slab_options(const CountertopDesign& design) {
+  SlabOptions so;
+  so.thickness = design.thickness;
+  so.max_edge = design.max_edge;
+  so.max_triangles = design.max_triangles;
+  return so;
+}
+
 // The work in the plane: the curves (lap "curve"), the region ("region") and
 // the slab's top, from the context's memo when it holds them for the same
 // design (but its name and thickness) and tolerance, else built and kept there.
@@ -111,10 +120,7 @@ std::shared_ptr<const CountertopPlane> plane_of(const CountertopDesign& design, 
                                  return build_region(plane->curves.front().curve.curve, plane->holes, ro);
                                });
   context.watch.lap("region");
-  SlabOptions so;
-  so.thickness = design.thickness;
-  so.max_edge = design.max_edge;
-  so.max_triangles = design.max_triangles;
+  const SlabOptions so = slab_options(design);
   require_positive("thickness", so.thickness);  // refused before the triangulation, as build_slab does
   plane->top = slab_top(plane->region, so);
   if (!key.empty()) context.reuse->memo->keep(key, plane);
@@ -130,11 +136,7 @@ Result build(const CountertopDesign& design, const BuildContext& context) {
   const std::vector<RegionHole>& holes = plane->holes;
   const Region2& region = plane->region;
   const BuiltCurve& outline = out.curves.front().curve;
-  SlabOptions so;
-  so.thickness = design.thickness;
-  so.max_edge = design.max_edge;
-  so.max_triangles = design.max_triangles;
-  const SlabMesh slab = extrude_slab(region, plane->top, so);
+  const SlabMesh slab = extrude_slab(region, plane->top, slab_options(design));
   context.watch.lap("build");
   CountertopProducts products;
   if (context.wants_cutting) {

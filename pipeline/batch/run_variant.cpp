@@ -13,8 +13,6 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <set>
-#include <variant>
-#include <vector>
 
 #include "geometry/core/errors.h"
 #include "pipeline/batch/output_links.h"
@@ -133,7 +131,7 @@ BatchRow run_variant(const BatchManifest& manifest, std::size_t index, const Pla
   try {
     refuse_link(folder.string(), "variant folder");
     std::string canonical;
-    BlankedText plane_text{planes != nullptr ? plane_free_keys() : std::vector<std::string>{}, {}};
+    BlankedText plane_text{plane_free_keys(), {}};
     const Design design = manifest.bases[v.base].resolve(variant_overrides(manifest, v), &canonical,
                                                          planes != nullptr ? &plane_text : nullptr);
     if (variant_key(canonical) != planned.key) {
@@ -145,8 +143,7 @@ BatchRow run_variant(const BatchManifest& manifest, std::size_t index, const Pla
     row.timings_ms.emplace_back("resolve", ms_since(start));
     JobOptions options;
     options.out_dir = folder.string();
-    if (planes != nullptr && std::holds_alternative<CountertopDesign>(design.body))
-      options.reuse = {planes, std::move(plane_text.text)};
+    if (planes != nullptr) options.reuse = {planes, std::move(plane_text.text)};  // read by countertops
     auto [report, job] = prepare_job(design, options);
     const Clock::time_point digest_start = Clock::now();
     for (const EncodedFile& e : job.files) {
