@@ -26,13 +26,37 @@ set(FABMESH_INSTALL_PYTHONDIR lib/python3/dist-packages CACHE STRING
 # Installed modules that link libfabmesh find it relative to themselves,
 # wherever the prefix is. The program links none of the prefix's libraries
 # (the pipeline is linked in, its optional modules are loaded by their paths:
-# io/module.h), so it has no run path at all: an install run path makes CMake
-# pad the build tree's one with empty entries, which the loader takes for the
-# working folder, where it would then look for every library.
+# io/module.h), so it has no run path at all.
+#
+# A module that links libfabmesh is built with a run path of its own making,
+# relative to itself in the build tree, and `cmake --install` changes it to
+# the install one. CMake's own way (a build run path rewritten at install)
+# ends the build one with an empty entry, and pads it with more when the
+# install one is longer: the loader takes each for the working folder, and
+# would load anyone's library of the same name from wherever the module is
+# imported. So the build run path is made long enough with "/." segments
+# (the same folder), never with empty entries, and is changed in place.
 function(fabmesh_origin_rpath target from_dir)
   file(RELATIVE_PATH rel ${CMAKE_INSTALL_PREFIX}/${from_dir} ${CMAKE_INSTALL_PREFIX}/${CMAKE_INSTALL_LIBDIR})
   string(REGEX REPLACE "/$" "" rel "${rel}")
-  set_target_properties(${target} PROPERTIES INSTALL_RPATH "$ORIGIN/${rel}")
+  set(install_rpath "$ORIGIN/${rel}")
+  get_target_property(built_in ${target} LIBRARY_OUTPUT_DIRECTORY)
+  get_target_property(lib_in fabmesh_lib LIBRARY_OUTPUT_DIRECTORY)
+  if(NOT lib_in)
+    get_target_property(lib_in fabmesh_lib BINARY_DIR)
+  endif()
+  file(RELATIVE_PATH build_rel ${built_in} ${lib_in})
+  string(REGEX REPLACE "/$" "" build_rel "${build_rel}")
+  set(build_rpath "$ORIGIN/${build_rel}")
+  string(LENGTH "${install_rpath}" install_length)
+  string(LENGTH "${build_rpath}" build_length)
+  while(build_length LESS install_length)
+    string(APPEND build_rpath "/.")
+    string(LENGTH "${build_rpath}" build_length)
+  endwhile()
+  set_target_properties(${target} PROPERTIES BUILD_WITH_INSTALL_RPATH ON INSTALL_RPATH "${build_rpath}")
+  install(CODE "file(RPATH_CHANGE FILE \"\$ENV{DESTDIR}\${CMAKE_INSTALL_PREFIX}/${from_dir}/$<TARGET_FILE_NAME:${target}>\"
+  OLD_RPATH \"${build_rpath}\" NEW_RPATH \"${install_rpath}\")")
 endfunction()
 
 # --- the library, its headers and its CMake package ---
@@ -71,8 +95,8 @@ install(FILES ${PROJECT_BINARY_DIR}/cmake/fabmesh.pc DESTINATION ${CMAKE_INSTALL
 
 # --- the Python module, beside its type stub ---
 if(TARGET fabmesh_python)
-  fabmesh_origin_rpath(fabmesh_python ${FABMESH_INSTALL_PYTHONDIR})
   install(TARGETS fabmesh_python LIBRARY DESTINATION ${FABMESH_INSTALL_PYTHONDIR})
+  fabmesh_origin_rpath(fabmesh_python ${FABMESH_INSTALL_PYTHONDIR})
   install(FILES ${PROJECT_BINARY_DIR}/python/fabmesh.pyi DESTINATION ${FABMESH_INSTALL_PYTHONDIR})
 endif()
 

@@ -7,10 +7,11 @@
 # map them either. And the loader looks for the libraries the program links
 # only in absolute folders: never in the folder it is started from, where
 # anyone's library of the same name would be loaded (the padding CMake gives
-# a build tree's run path when an install one replaces it did that).
-# Usage: lazy_libraries_test.sh FABMESH LIBFABMESH
+# a build tree's run path when an install one replaces it did that). The
+# same holds for the Python module, when given, imported from an empty folder.
+# Usage: lazy_libraries_test.sh FABMESH LIBFABMESH [PYTHON_MODULE]
 set -uo pipefail
-program=$1 library=$2
+program=$1 library=$2 module=${3:-}
 failures=0
 fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
 optional='lib3MF|libzip|libcrypto|libssl|libcpp-httplib|libTK'
@@ -26,6 +27,25 @@ mapped=$(LD_DEBUG=libs "$program" --version 2>&1 >/dev/null | grep -oE "calling 
 # Where the loader looked, started from an empty folder.
 relative=$(cd "$work" && LD_DEBUG=libs "$program" --version 2>&1 >/dev/null | grep -E "trying file=[^/]" | head -n 3)
 [[ -z $relative ]] || fail "fabmesh looks for its libraries in the working folder: $relative"
+# The Python module's run path: absolute folders or $ORIGIN, no empty entry
+# (one would be the working folder), and importing it from an empty folder
+# makes the loader try no relative file.
+if [[ -n $module ]]; then
+  module_runpath=$(readelf -d "$module" | sed -n 's/.*(RUNPATH).*\[\(.*\)\]/\1/p')
+  [[ -n $module_runpath ]] || fail "the Python module has no run path (it links libfabmesh)"
+  IFS=: read -r -a entries <<<"$module_runpath:"
+  for entry in "${entries[@]}"; do
+    [[ $entry == /* || $entry == '$ORIGIN'* ]] ||
+      fail "the Python module's run path '$module_runpath' has the entry '$entry' (the working folder)"
+  done
+  [[ $module_runpath != *: && $module_runpath != :* && $module_runpath != *::* ]] ||
+    fail "the Python module's run path '$module_runpath' has an empty entry (the working folder)"
+  imported=$(cd "$work" && PYTHONPATH=$(dirname "$module") LD_DEBUG=libs python3 -c "import fabmesh" 2>&1)
+  grep -q "calling init: .*$(basename "$module")" <<<"$imported" ||
+    fail "the Python module was not imported: $(tail -n 3 <<<"$imported")"
+  relative=$(grep -E "trying file=[^/]" <<<"$imported" | head -n 3)
+  [[ -z $relative ]] || fail "importing the Python module looks in the working folder: $relative"
+fi
 # And a run that writes 3MF and STEP loads both.
 source_dir=$(cd "$(dirname "$0")/../.." && pwd)
 LD_DEBUG=libs "$program" run "$source_dir/configs/examples/vessel_golden_solid.yaml" --export-format 3mf \
