@@ -298,6 +298,8 @@ std::vector<Facts> add_cases(const VesselDesign& design, const Mould& mould, con
   std::vector<Facts> cases;
   // Written standing on their floors (plates on their outer faces), side by side along x, 10 mm apart.
   const double gap = 10.0 / millimetres_per_unit(context.common.units);
+  CaseOptions case_options = design.casting_case;
+  case_options.tolerance = context.tolerance;
   double x = 0.0;
   for (std::size_t i = 0; i < mould.parts.size(); ++i) {
     const MouldPart& p = mould.parts[i];
@@ -320,7 +322,7 @@ std::vector<Facts> add_cases(const VesselDesign& design, const Mould& mould, con
     facts.set("part", name);
     try {
       const CastingCase c =
-          build_casting_case(out.parts[first + i].mesh, name, outward, design.casting_case, what_is_at);
+          build_casting_case(out.parts[first + i].mesh, name, outward, case_options, what_is_at);
       VesselProducts::CaseBox box{"case-" + name, i, c.lo, c.hi, c.pull, std::nullopt};
       // A piece of the case as it is printed, validated in full, its facts.
       const auto piece = [&](const std::string& piece_name, TriangleSoup printed, const Vec3& pull,
@@ -358,17 +360,38 @@ std::vector<Facts> add_cases(const VesselDesign& design, const Mould& mould, con
       };
       Facts whole = piece(box.name, standing(c, Vec3(x, 0.0, 0.0)), c.pull, "floor");
       for (const char* fact : {"name", "pull", "size", "written_from"}) facts.set(fact, *whole.find(fact));
-      facts.set("wall", design.casting_case.wall).set("opening_area", c.pour_area);
+      facts.set("wall", design.casting_case.wall)
+          .set("clearance", design.casting_case.clearance)
+          .set("opening_area", c.pour_area);
       for (const char* fact : {"triangles", "volume"}) facts.set(fact, *whole.find(fact));
       facts.set("release", c.release_proof);
       if (const Facts::Value* fits = whole.find("fits_bed")) facts.set("fits_bed", *fits);
       if (c.plate) {
         // The plate under the part's keyed face: a piece of its own, off first.
         box.plate =
-            VesselProducts::CaseBox::Plate{box.name + "-plate", c.plate->lo, c.plate->hi, c.plate->pull};
+            VesselProducts::CaseBox::Plate{box.name + "-plate", c.plate->lo, c.plate->hi, c.plate->pull, {}};
         Facts plate =
             piece(box.plate->name, standing(*c.plate, Vec3(x, 0.0, 0.0)), c.plate->pull, "outer face");
         plate.set("features", c.plate->features);
+        // Its pins, where they stand in the mould's frame (as the STEP file has the case assembled).
+        std::vector<Facts> pins;
+        for (const CasePin& pin : c.plate->pins) {
+          box.plate->pins.push_back(
+              {pin.base, pin.axis, pin.radius, pin.height, pin.hole_radius, pin.hole_depth});
+          pins.push_back(Facts()
+                             .set("at", std::vector<double>{pin.base.x(), pin.base.y(), pin.base.z()})
+                             .set("axis", std::vector<double>{pin.axis.x(), pin.axis.y(), pin.axis.z()}));
+        }
+        if (!c.plate->pins.empty()) {
+          const CasePin& pin = c.plate->pins.front();
+          plate.set("pins", std::move(pins))
+              .set("pin", Facts()
+                              .set("diameter", 2.0 * pin.radius)
+                              .set("height", pin.height)
+                              .set("hole_diameter", 2.0 * pin.hole_radius)
+                              .set("hole_depth", pin.hole_depth)
+                              .set("sides", pin.sides));
+        }
         facts.set("plate", std::move(plate));
       }
       products.cases.push_back(std::move(box));

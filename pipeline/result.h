@@ -168,6 +168,14 @@ struct VesselProducts {
       std::string name;  ///< "case-side-1-plate"
       Vec3 lo{0.0, 0.0, 0.0}, hi{0.0, 0.0, 0.0};
       Vec3 pull{0.0, 0.0, -1.0};
+      /// A registration pin: a cylinder standing on the plate's face at
+      /// `base` along `axis` (into the main piece), in a hole of the main
+      /// piece `hole_radius` across and `hole_depth` deep.
+      struct Pin {
+        Vec3 base{0.0, 0.0, 0.0}, axis{0.0, 0.0, 0.0};
+        double radius = 0.0, height = 0.0, hole_radius = 0.0, hole_depth = 0.0;
+      };
+      std::vector<Pin> pins;
     };
     std::optional<Plate> plate;  ///< none: the case is one piece
   };

@@ -86,25 +86,38 @@ std::optional<int> facing(const TriangleSoup& part, const Triangle& t, int k) {
                           in_plane(part.vertices[t[2]], k));
 }
 
-// Appends triangles covering the simple polygon `cycle` (indices into
+// Appends triangles covering the region bounded by the simple polygon
+// `cycle` less the simple polygons `holes` inside it (indices into
 // soup.vertices, lying in a plane across axis k), facing sign x e_k: a
-// constrained triangulation of its points, none added. False when the
-// points do not make a simple polygon.
-bool fill_polygon(TriangleSoup& soup, const std::vector<Index>& cycle, int k, int sign) {
+// constrained triangulation of their points, none added. False when the
+// points do not bound such a region.
+bool fill_region(TriangleSoup& soup, const std::vector<Index>& cycle,
+                 const std::vector<std::vector<Index>>& holes, int k, int sign) {
   std::map<std::array<double, 2>, Index> at;
   Region2 region;
-  double twice_area = 0.0;
-  for (std::size_t n = 0; n < cycle.size(); ++n) {
-    const std::array<double, 2> q = in_plane(soup.vertices[cycle[n]], k);
-    if (!at.emplace(q, cycle[n]).second) return false;
-    region.outer.emplace_back(q[0], q[1]);
-    const std::array<double, 2> r = in_plane(soup.vertices[cycle[(n + 1) % cycle.size()]], k);
-    twice_area += q[0] * r[1] - q[1] * r[0];
+  std::size_t points = 0;
+  // A loop's points in the plane, counter-clockwise (outer) or clockwise (hole).
+  const auto loop = [&](const std::vector<Index>& c, bool outer, std::vector<Vec2>& into) {
+    double twice_area = 0.0;
+    for (std::size_t n = 0; n < c.size(); ++n) {
+      const std::array<double, 2> q = in_plane(soup.vertices[c[n]], k);
+      if (!at.emplace(q, c[n]).second) return false;
+      into.emplace_back(q[0], q[1]);
+      const std::array<double, 2> r = in_plane(soup.vertices[c[(n + 1) % c.size()]], k);
+      twice_area += q[0] * r[1] - q[1] * r[0];
+    }
+    if (c.size() < 3 || twice_area == 0.0) return false;
+    if ((twice_area < 0.0) == outer) std::reverse(into.begin(), into.end());
+    points += c.size();
+    return true;
+  };
+  if (!loop(cycle, true, region.outer)) return false;
+  for (const std::vector<Index>& hole : holes) {
+    region.holes.emplace_back();
+    if (!loop(hole, false, region.holes.back())) return false;
   }
-  if (cycle.size() < 3 || twice_area == 0.0) return false;
-  if (twice_area < 0.0) std::reverse(region.outer.begin(), region.outer.end());
   const PlanarTriangulation t = triangulate(region);
-  if (t.steiner_points != 0 || t.triangles.size() != cycle.size() - 2) return false;
+  if (t.steiner_points != 0 || t.triangles.size() != points + 2 * holes.size() - 2) return false;
   for (const auto& tri : t.triangles) {
     std::array<Index, 3> out{};
     for (int e = 0; e < 3; ++e) out[e] = at.at({t.vertices[tri[e]].x(), t.vertices[tri[e]].y()});
@@ -112,6 +125,47 @@ bool fill_polygon(TriangleSoup& soup, const std::vector<Index>& cycle, int k, in
     soup.triangles.push_back(out);
   }
   return true;
+}
+
+bool fill_polygon(TriangleSoup& soup, const std::vector<Index>& cycle, int k, int sign) {
+  return fill_region(soup, cycle, {}, k, sign);
+}
+
+// A ring of `sides` points on the circle about `centre` of `radius` in the
+// plane across axis q (the centre's coordinate q), starting on the axis r.
+std::vector<Index> add_ring(TriangleSoup& soup, const Vec3& centre, int q, int r, double radius,
+                            std::size_t sides) {
+  const int t = 3 - q - r;
+  std::vector<Index> ring;
+  for (std::size_t n = 0; n < sides; ++n) {
+    const double angle = 2.0 * M_PI * static_cast<double>(n) / static_cast<double>(sides);
+    Vec3 p = centre;
+    p[r] += radius * std::cos(angle);
+    p[t] += radius * std::sin(angle);
+    soup.vertices.push_back(p);
+    ring.push_back(static_cast<Index>(soup.vertices.size() - 1));
+  }
+  return ring;
+}
+
+// The wall between two rings of the same points moved along an axis, its
+// faces turned away from the rings' centre (`outward`) or toward it.
+void add_tube(TriangleSoup& soup, const std::vector<Index>& from, const std::vector<Index>& to,
+              const Vec3& centre, bool outward) {
+  const std::size_t n = from.size();
+  const Vec3& a = soup.vertices[from[0]];
+  const Vec3 normal = (soup.vertices[from[1]] - a).cross(soup.vertices[to[0]] - a);
+  const bool flip = (normal.dot(a - centre) > 0.0) != outward;
+  for (std::size_t m = 0; m < n; ++m) {
+    const std::size_t l = (m + 1) % n;
+    std::array<Index, 3> one{from[m], from[l], to[m]}, two{from[l], to[l], to[m]};
+    if (flip) {
+      std::swap(one[1], one[2]);
+      std::swap(two[1], two[2]);
+    }
+    soup.triangles.push_back(one);
+    soup.triangles.push_back(two);
+  }
 }
 
 // The part's triangles as copied into a piece: vertices added on first use.
@@ -376,6 +430,35 @@ Attempt attempt(const TriangleSoup& part, const std::string& name, const Axis& a
   }
   const double w = options.wall;
   const double floor_at = axis.sign > 0 ? box.lo[k] - w : box.hi[k] + w;
+  // The plate's pins: centred in the case's walls either side of its face
+  // (beyond the part's box, so each hole has wall all round it and the main
+  // piece's wall behind it), a third of the way from the floor to the
+  // opening, so that the plate goes on one way round only.
+  std::vector<CasePin> pins;
+  const int across = plate ? (plate->q == i ? j : i) : 0;  // the face's other axis but k
+  if (plate) {
+    CasePin pin;
+    pin.axis = Vec3::Zero();
+    pin.axis[plate->q] = -plate->s;
+    pin.radius = w / 4.0;
+    pin.height = w / 2.0;
+    pin.hole_radius = pin.radius + options.clearance;
+    pin.hole_depth = pin.height + options.clearance;
+    const double ratio = 1.0 - options.tolerance / pin.hole_radius;  // cos(pi / sides) at least this
+    const double count = ratio <= -1.0 ? 8.0 : std::ceil(M_PI / std::acos(ratio) / 4.0) * 4.0;
+    pin.sides = static_cast<std::size_t>(std::clamp(count, 8.0, 512.0));
+    const double along = floor_at + (extreme - floor_at) / 3.0;
+    if (!(std::abs(along - floor_at) > pin.hole_radius && std::abs(extreme - along) > pin.hole_radius)) {
+      return {std::nullopt, fmt::format("its case is too shallow along {} for the plate's pins", dir)};
+    }
+    for (double at : {box.lo[across] - w / 2.0, box.hi[across] + w / 2.0}) {
+      pin.base = Vec3::Zero();
+      pin.base[plate->q] = plate->e;
+      pin.base[across] = at;
+      pin.base[k] = along;
+      pins.push_back(pin);
+    }
+  }
   std::array<Index, 4> rim{}, floor{};  // by corner, in loop order
   for (std::size_t n = 0; n < 4; ++n) {
     Vec3 o = part.vertices[sides[n].front()];
@@ -400,7 +483,19 @@ Attempt attempt(const TriangleSoup& part, const std::string& name, const Axis& a
       for (Index v : plate->path) seam.push_back(vertex(v));
       seam.push_back(rim[m]);
       seam.push_back(floor[m]);
-      if (!fill_polygon(out.soup, seam, plate->q, plate->s)) return fill_failed();
+      // The seam faces the plate, with a hole for each pin, `clearance` wider and deeper.
+      std::vector<std::vector<Index>> holes;
+      for (const CasePin& pin : pins) {
+        holes.push_back(add_ring(out.soup, pin.base, plate->q, across, pin.hole_radius, pin.sides));
+      }
+      if (!fill_region(out.soup, seam, holes, plate->q, plate->s)) return fill_failed();
+      for (std::size_t h = 0; h < pins.size(); ++h) {
+        const CasePin& pin = pins[h];
+        const std::vector<Index> bottom = add_ring(out.soup, pin.base + pin.hole_depth * pin.axis, plate->q,
+                                                   across, pin.hole_radius, pin.sides);
+        add_tube(out.soup, holes[h], bottom, pin.base, false);
+        if (!fill_polygon(out.soup, bottom, plate->q, plate->s)) return fill_failed();
+      }
       continue;
     }
     // The trapezoid rim[n], rim[m], then the side backwards: a fan from rim[n].
@@ -449,10 +544,22 @@ Attempt attempt(const TriangleSoup& part, const std::string& name, const Axis& a
     std::vector<Index> end = inner;
     end.push_back(under[last - 1]);
     end.push_back(under[1]);
-    const int r = plate->q == i ? j : i;
+    const int r = across;
     const int r_sign = cp.soup.vertices[top[0]][r] < box.lo[r] ? -1 : 1;
+    // Its face toward the main piece, with the pins standing on it.
+    std::vector<std::vector<Index>> feet, tips;
+    for (const CasePin& pin : pins) {
+      feet.push_back(add_ring(cp.soup, pin.base, plate->q, across, pin.radius, pin.sides));
+      tips.push_back(
+          add_ring(cp.soup, pin.base + pin.height * pin.axis, plate->q, across, pin.radius, pin.sides));
+      add_tube(cp.soup, feet.back(), tips.back(), pin.base, true);
+    }
+    bool pins_filled = true;
+    for (const std::vector<Index>& tip : tips)
+      pins_filled = pins_filled && fill_polygon(cp.soup, tip, plate->q, -plate->s);
     const bool filled =
-        fill_polygon(cp.soup, top, plate->q, -plate->s) && fill_polygon(cp.soup, end, k, axis.sign) &&
+        pins_filled && fill_region(cp.soup, top, feet, plate->q, -plate->s) &&
+        fill_polygon(cp.soup, end, k, axis.sign) &&
         fill_polygon(cp.soup, {top[0], top[1], under[1], under[0]}, r, r_sign) &&
         fill_polygon(cp.soup, {top[last], top[last - 1], under[last - 1], under[last]}, r, -r_sign) &&
         fill_polygon(cp.soup, {top[0], top[last], under[last], under[0]}, k, -axis.sign) &&
@@ -464,11 +571,13 @@ Attempt attempt(const TriangleSoup& part, const std::string& name, const Axis& a
     cp.hi = out.hi;
     (plate->s > 0 ? cp.lo : cp.hi)[plate->q] = plate->e;
     cp.features = plate->features;
+    cp.pins = pins;
     cp.release_proof = fmt::format(
         "the plate comes off first along {}: the {} faces of {} on it (its flat face across {} and {} "
-        "feature{} behind it) face {} or run along it ({} do), by exact orientation signs",
+        "feature{} behind it) face {} or run along it ({} do), by exact orientation signs, and its {} "
+        "pins run along it out of their holes",
         face, plate->triangles, name, face, plate->features, plate->features == 1 ? "" : "s", face,
-        plate->parallel);
+        plate->parallel, pins.size());
     plate_text = fmt::format(", once the plate across {} is off,", face);
     out.plate = std::move(cp);
   }
@@ -506,6 +615,19 @@ CastingCase build_casting_case(const TriangleSoup& part, const std::string& name
     throw RangeError("wall", options.wall,
                      fmt::format("case.wall = {} must be a length above 0", options.wall),
                      ErrorLocation{"case.wall"});
+  }
+  if (!(options.clearance >= 0.0) || !(options.clearance < options.wall / 4.0)) {
+    throw RangeError(
+        "clearance", options.clearance,
+        fmt::format("case.clearance = {} must be at least 0 and below a quarter of case.wall ({}): "
+                    "a plate's pins are a quarter of the wall in radius, and their holes must "
+                    "keep wall all round",
+                    options.clearance, options.wall / 4.0),
+        ErrorLocation{"case.clearance"});
+  }
+  if (!(options.tolerance > 0.0) || !std::isfinite(options.tolerance)) {
+    throw RangeError("tolerance", options.tolerance,
+                     fmt::format("the case's tolerance = {} must be above 0", options.tolerance));
   }
   if (part.triangles.empty()) throw GeometryError("case", name + " has no triangles to make a case of");
   std::vector<Axis> axes;

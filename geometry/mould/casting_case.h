@@ -11,11 +11,15 @@
 // the sockets of the base part's keys) would catch on a one-piece case, that
 // side of the case is a separate plate: the box's slab beyond that face,
 // with the face's keys, which comes off first, straight away from the face.
+// Two pins on the plate, in the case's walls either side of the face, stand
+// in holes of the main piece, so that the plate goes on in one place and
+// one way round.
 
 #include <cstddef>
 #include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "geometry/core/soup.h"
 #include "geometry/core/types.h"
@@ -24,6 +28,24 @@ namespace fabmesh {
 
 struct CaseOptions {
   double wall = 5.0;  ///< the case's floor and walls around the part (> 0), model units (designs: 5 mm)
+  /// How much wider (all round) and deeper a plate pin's hole is than the
+  /// pin (>= 0, below wall / 4), model units (designs: 0.2 mm).
+  double clearance = 0.2;
+  /// Largest distance between a pin's (or hole's) circle and its polygon
+  /// (> 0), model units: the design's tolerance.
+  double tolerance = 0.01;
+};
+
+/// A registration pin of a plate: a cylinder standing on the plate's face
+/// along the way the plate goes on (its pull reversed), into a hole of the
+/// main piece `clearance` wider all round and deeper. Both are polygons
+/// inscribed in their circles (`sides` sides, within the tolerance).
+struct CasePin {
+  Vec3 base{0.0, 0.0, 0.0};  ///< the centre of its foot, on the plate's face
+  Vec3 axis{0.0, 0.0, 0.0};  ///< unit axis direction, from the foot to its top (minus the plate's pull)
+  double radius = 0.0, height = 0.0;
+  double hole_radius = 0.0, hole_depth = 0.0;
+  std::size_t sides = 0;
 };
 
 /// The plate of a two-piece case: the slab of the case's box beyond one flat
@@ -36,6 +58,9 @@ struct CasePlate {
   Vec3 pull{0.0, 0.0, 0.0};
   Vec3 lo{0.0, 0.0, 0.0}, hi{0.0, 0.0, 0.0};  ///< the slab's box
   std::size_t features = 0;                   ///< the regions behind the face it fills (sockets)
+  /// Its two pins (in the case's walls beside the face, a third of the way
+  /// from the floor to the opening, so that it fits one way round).
+  std::vector<CasePin> pins;
   /// Why the plate comes off: every face of the part on it faces its pull or
   /// runs along it (exact orientation signs).
   std::string release_proof;
@@ -70,7 +95,11 @@ struct CastingCase {
 ///        the first face that would catch on the case, with its position.
 /// `what_is_at`, when given, names the feature of the part at a point (" (a
 /// key's socket)") for those messages.
-/// \throw RangeError (key "case.wall") unless wall > 0.
+/// A plate carries two pins (CasePin), `wall / 4` in radius and `wall / 2`
+/// tall, centred in the case's walls on either side of the face.
+/// \throw RangeError (key "case.wall") unless wall > 0; (key
+///        "case.clearance") unless 0 <= clearance < wall / 4 (the hole then
+///        keeps material all round in the wall).
 CastingCase build_casting_case(const TriangleSoup& part, const std::string& name, const Vec3& outward,
                                const CaseOptions& options,
                                const std::function<std::string(const Vec3&)>& what_is_at = {});

@@ -125,7 +125,7 @@ struct StepBody {
   double height = 0.0;                      ///< Extrusion: > 0
   StepEdgeRounds rounds;                    ///< Extrusion
   StepBlock block;                          ///< Carved, Slice
-  std::vector<StepCylinder> cylinders;      ///< Slice
+  std::vector<StepCylinder> cylinders;      ///< Slice; Case (holes), CasePlate (pins)
   std::vector<StepHemisphere> hemispheres;  ///< Carved, CasePlate
   std::vector<StepSurface> surfaces;        ///< Sheet, Closed
   /// Sheet, Closed: faces whose borders are closer than this are sewn (model units; > 0).

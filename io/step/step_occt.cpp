@@ -944,9 +944,10 @@ TopoDS_Shape case_box(const StepBody& body) {
   return BRepPrimAPI_MakeBox(lo, hi).Shape();
 }
 
-// A case's plate: its slab with the hemispheres added and taken away, the
-// module checking that its volume is the slab's plus and minus theirs (each
-// meets the slab in its flat disc alone), to 1e-9 of the slab's.
+// A case's plate: its slab with the hemispheres added and taken away and its
+// pins added, the module checking that its volume is the slab's plus and
+// minus theirs (each meets the slab in its flat disc alone), to 1e-9 of the
+// slab's.
 TopoDS_Shape make_case_plate(const StepBody& body) {
   const TopoDS_Shape slab = case_box(body);
   TopoDS_Shape shape = slab;
@@ -956,6 +957,10 @@ TopoDS_Shape make_case_plate(const StepBody& body) {
   for (const StepHemisphere& h : body.hemispheres) {
     (h.added ? added : removed).Append(make_hemisphere(h));
     expected += (h.added ? 2.0 : -2.0) * M_PI * h.radius * h.radius * h.radius / 3.0;
+  }
+  for (const StepCylinder& c : body.cylinders) {  // the pins, standing on its face
+    added.Append(make_cylinder(c));
+    expected += M_PI * c.radius * c.radius * c.height;
   }
   if (!added.IsEmpty()) shape = boolean<BRepAlgoAPI_Fuse>(shape, added, "filling the plate's sockets");
   if (!removed.IsEmpty()) shape = boolean<BRepAlgoAPI_Cut>(shape, removed, "taking the plate's bumps away");
@@ -968,6 +973,8 @@ TopoDS_Shape make_case_plate(const StepBody& body) {
   return shape;
 }
 
+// A casting case: its box less the part and the holes of its plate's pins
+// (in the walls, apart from the part), to 1e-9 of the box's volume.
 TopoDS_Shape make_case(const StepBody& body) {
   const TopoDS_Shape box = case_box(body);
   StepBody carved = body;  // its loops lie in the (radius, height) half-plane, as a Carved body's
@@ -975,8 +982,13 @@ TopoDS_Shape make_case(const StepBody& body) {
   const TopoDS_Shape part = make_carved(carved);
   TopTools_ListOfShape tools;
   tools.Append(part);
+  double expected = volume_of(box) - precise_volume_of(part);
+  for (const StepCylinder& c : body.cylinders) {  // the holes of a plate's pins, in its walls
+    tools.Append(make_cylinder(c));
+    expected -= M_PI * c.radius * c.radius * c.height;
+  }
   const TopoDS_Shape shape = the_solid(boolean<BRepAlgoAPI_Cut>(box, tools, "taking the part from its case"));
-  const double expected = volume_of(box) - precise_volume_of(part), got = precise_volume_of(shape);
+  const double got = precise_volume_of(shape);
   if (!(std::abs(got - expected) <= 1e-9 * volume_of(box))) {
     throw std::runtime_error("the case as cut holds " + std::to_string(got) +
                              ", not its box less its part, " + std::to_string(expected));

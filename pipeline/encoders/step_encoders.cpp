@@ -316,9 +316,10 @@ EncodedFiles encode_mould_step_output(const EncodeContext& c) {
 // module checking that the cut took exactly the part's volume. The box is
 // the mesh case's; its open side lies on the part's exact flat face. A
 // two-piece case is written assembled: its main piece (its box to the face
-// its plate lies under, less the part with that face's keys left out) and
-// its plate (the slab beyond that face, with the sockets there filled and
-// the bumps there taken away).
+// its plate lies under, less the part with that face's keys left out, and
+// less the holes of the plate's pins) and its plate (the slab beyond that
+// face, with the sockets there filled, the bumps there taken away and the
+// pins standing on it).
 EncodedFiles encode_case_step_output(const EncodeContext& c) {
   require_cases(c, "case_step");
   const auto& vessel = std::get<VesselProducts>(c.result.products);
@@ -372,6 +373,13 @@ EncodedFiles encode_case_step_output(const EncodeContext& c) {
         plate.hemispheres.push_back(moved);
       }
       body.hemispheres = std::move(kept);
+      // The plate's pins stand on that face, in holes of the main piece.
+      for (const VesselProducts::CaseBox::Plate::Pin& pin : p.pins) {
+        Vec3 base = pin.base;
+        base[k] = at;
+        plate.cylinders.push_back({base, pin.axis, pin.radius, pin.height, true, false});
+        body.cylinders.push_back({base, pin.axis, pin.hole_radius, pin.hole_depth, false, false});
+      }
       model.bodies.push_back(std::move(body));
       model.bodies.push_back(std::move(plate));
       e = step_file(c, model, loop_of.added());

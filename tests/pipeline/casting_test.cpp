@@ -173,6 +173,14 @@ TEST_CASE("casting cases: a side part over a keyed base gets a plate under it, o
     CHECK(plate.text("name") == c.text("name") + "-plate");
     CHECK(std::get<std::vector<double>>(*plate.find("pull")) == std::vector<double>{0.0, 0.0, -1.0});
     CHECK(plate.number("features") == 1);  // the base key's socket in the side's bottom
+    // Its two pins, 0.25 cm across and tall (a 0.5 cm wall), in holes 0.2 mm wider and deeper.
+    CHECK(c.number("clearance") == Approx(0.02));
+    CHECK(std::get<std::vector<Facts>>(*plate.find("pins")).size() == 2);
+    const Facts& pin = plate.group("pin");
+    CHECK(pin.number("diameter") == Approx(0.25));
+    CHECK(pin.number("height") == Approx(0.25));
+    CHECK(pin.number("hole_diameter") == Approx(0.29));
+    CHECK(pin.number("hole_depth") == Approx(0.27));
     // The plate stands on its outer face: the slab, 0.5 thick, and the socket's
     // dome (the key's radius) on it; written after its case, 1 cm apart.
     const auto& size = std::get<std::vector<double>>(*plate.find("size"));
@@ -235,10 +243,18 @@ TEST_CASE("casting cases: a cylinder mould is refused, a part no case releases i
   CHECK(
       text.find("print.bed: case-side-1 (383.227 x 235.976 x 123.988 mm standing on its floor) does not fit "
                 "the bed 250 x 250 x 250 mm") != std::string::npos);
-  // A wall of no thickness is bad input at its key.
+  // A wall of no thickness is bad input at its key, and so is a clearance
+  // that would leave the pins' holes no wall: nothing written.
   CHECK(run_cli({"run", example("mould_box_cases.yaml"), "-D", "case.wall=0", "-o", dir.string() + "/"},
                 &text) == 2);
   CHECK(text.find("case.wall") != std::string::npos);
+  const fs::path refused = fresh_dir("casting_cases_clearance");
+  CHECK(run_cli({"run", example("mould_box_cases.yaml"), "-D", "case.clearance=1.25", "-o",
+                 refused.string() + "/"},
+                &text) == 2);
+  CHECK_THAT(text,
+             Catch::Contains("case.clearance") && Catch::Contains("below a quarter of case.wall (1.25)"));
+  CHECK(fs::is_empty(refused));
 }
 
 TEST_CASE("casting cases: PrusaSlicer finds each case manifold and slices it standing on its floor",

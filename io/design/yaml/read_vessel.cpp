@@ -95,6 +95,15 @@ CaseOptions read_case(const yaml::Fields& f, const YAML::Node& n, const DesignCo
   CaseOptions o;
   o.wall = f.number_or(n, "wall", "case.wall", o.wall / millimetres_per_unit(common.units));
   if (!(o.wall > 0.0)) f.fail(n["wall"], "case.wall", fmt::format("wall = {} must be > 0", o.wall));
+  o.clearance =
+      f.number_or(n, "clearance", "case.clearance", o.clearance / millimetres_per_unit(common.units));
+  if (!(o.clearance >= 0.0) || !(o.clearance < o.wall / 4.0)) {
+    f.fail(
+        n["clearance"].IsDefined() ? n["clearance"] : n["wall"], "case.clearance",
+        fmt::format("clearance = {} must be at least 0 and below a quarter of case.wall ({}): a plate's pins "
+                    "are a quarter of the wall in radius, and their holes must keep wall all round",
+                    o.clearance, o.wall / 4.0));
+  }
   return o;
 }
 
@@ -170,7 +179,8 @@ VesselDesign read_vessel(const yaml::Fields& f, const YAML::Node& root, const De
   v.max_triangles = f.budget_or(root, "max_triangles", v.max_triangles);
   if (root["shrinkage"].IsDefined()) read_shrinkage(f, root["shrinkage"], v);
   if (root["print"].IsDefined()) v.print = read_print(f, root["print"], common);
-  v.casting_case.wall /= millimetres_per_unit(common.units);  // 5 mm
+  v.casting_case.wall /= millimetres_per_unit(common.units);       // 5 mm
+  v.casting_case.clearance /= millimetres_per_unit(common.units);  // 0.2 mm
   if (root["case"].IsDefined()) v.casting_case = read_case(f, root["case"], common);
   // `mould: false` (a switch, "=with_mould") is none; `mould: true` the mould of every default.
   const bool mould_off = root["mould"].IsDefined() && root["mould"].IsScalar() &&

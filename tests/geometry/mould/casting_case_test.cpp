@@ -32,6 +32,27 @@ bool interpenetrate(const TriangleSoup& a, const TriangleSoup& b) {
   return !interpenetrating_pairs({&a, &b}).pairs.empty();
 }
 
+// A case in the fixtures' centimetres: walls 0.5, pins' clearance 0.02.
+CaseOptions case_options(double wall = 0.5, double clearance = 0.02) {
+  CaseOptions o;
+  o.wall = wall;
+  o.clearance = clearance;
+  o.tolerance = cm_options().tolerance;
+  return o;
+}
+
+// The soup turned half a turn about the vertical axis through `centre`.
+TriangleSoup half_turned(TriangleSoup soup, const Vec3& centre) {
+  for (Vec3& p : soup.vertices) p = Vec3(2.0 * centre.x() - p.x(), 2.0 * centre.y() - p.y(), p.z());
+  return soup;
+}
+
+// The area of a regular polygon of `sides` sides inscribed in a circle of `radius`.
+double polygon_area(double radius, std::size_t sides) {
+  const double n = static_cast<double>(sides);
+  return 0.5 * n * radius * radius * std::sin(2.0 * M_PI / n);
+}
+
 MouldOptions box_options(int parts, int keys, bool base) {
   MouldOptions o = cm_options();
   o.block = BlockShape::Box;
@@ -51,7 +72,7 @@ TEST_CASE("casting case: each part of a two-part box mould has a valid case whos
   REQUIRE(mould.parts.size() == 2);
   for (const MouldPart& part : mould.parts) {
     INFO(part.name);
-    const CastingCase c = build_casting_case(part.soup, part.name, outward_of(part), CaseOptions{0.5});
+    const CastingCase c = build_casting_case(part.soup, part.name, outward_of(part), case_options());
     // Side 1 lies on +y of the split plane y = 0, side 2 on -y: each pours through its back.
     CHECK(c.pull == outward_of(part).array().round().matrix());
     const ValidationReport v = validate(c.soup);
@@ -88,7 +109,7 @@ TEST_CASE("casting case: a box mould's base part pours through its bottom, pulle
   const Mould mould = build_mould(profile, box_options(2, 2, true));
   REQUIRE(mould.parts.back().kind == MouldPartKind::Base);
   const MouldPart& base = mould.parts.back();
-  const CastingCase c = build_casting_case(base.soup, base.name, outward_of(base), CaseOptions{0.5});
+  const CastingCase c = build_casting_case(base.soup, base.name, outward_of(base), case_options());
   CHECK(c.pull == Vec3(0.0, 0.0, -1.0));
   const ValidationReport v = validate(c.soup);
   CHECK(v.valid());
@@ -109,7 +130,7 @@ TEST_CASE("casting case: a side part over a keyed base gets a plate under it tha
     std::size_t sockets = 0;
     for (const KeyFeature& k : side.keys) sockets += k.on_base && !k.bump ? 1 : 0;
     REQUIRE(sockets > 0);
-    const CastingCase c = build_casting_case(side.soup, side.name, outward_of(side), CaseOptions{0.5});
+    const CastingCase c = build_casting_case(side.soup, side.name, outward_of(side), case_options());
     CHECK(c.pull == outward_of(side).array().round().matrix());
     REQUIRE(c.plate);
     const CasePlate& plate = *c.plate;
@@ -128,10 +149,44 @@ TEST_CASE("casting case: a side part over a keyed base gets a plate under it tha
     REQUIRE(under.genus);
     CHECK(*main.genus == 0);
     CHECK(*under.genus == 0);
-    // Together they are the box less the part.
+    // Two pins stand on the plate's face, up into the case's walls either
+    // side of the part, a third of the way from the floor to the opening.
+    REQUIRE(plate.pins.size() == 2);
+    double pins = 0.0, holes = 0.0;
+    const int across = c.pull.x() != 0.0 ? 1 : 0;
+    for (const CasePin& pin : plate.pins) {
+      CHECK(pin.axis == -plate.pull);
+      CHECK(pin.base.z() == pb.lo.z());
+      CHECK(pin.radius == 0.125);
+      CHECK(pin.height == 0.25);
+      CHECK(pin.hole_radius == Approx(0.145));
+      CHECK(pin.hole_depth == Approx(0.27));
+      CHECK(pin.sides % 4 == 0);
+      // Each polygon within the tolerance of its circle.
+      CHECK(pin.hole_radius * (1.0 - std::cos(M_PI / static_cast<double>(pin.sides))) <= 0.005);
+      const double off =
+          std::min(std::abs(pin.base[across] - pb.lo[across]), std::abs(pin.base[across] - pb.hi[across]));
+      CHECK(off == Approx(0.25));
+      CHECK((pin.base[across] < pb.lo[across] || pin.base[across] > pb.hi[across]));
+      const int k = c.pull.x() != 0.0 ? 0 : 1;
+      const double floor_at = c.pull[k] > 0.0 ? c.lo[k] : c.hi[k],
+                   opening = c.pull[k] > 0.0 ? c.hi[k] : c.lo[k];
+      CHECK(pin.base[k] == Approx(floor_at + (opening - floor_at) / 3.0));
+      pins += polygon_area(pin.radius, pin.sides) * pin.height;
+      holes += polygon_area(pin.hole_radius, pin.sides) * pin.hole_depth;
+    }
+    CHECK(plate.pins[0].base[across] < plate.pins[1].base[across]);
+    // Together they are the box less the part, with the pins' holes less the pins.
     CHECK(main.volume + under.volume ==
-          Approx((c.hi - c.lo).prod() - signed_volume(side.soup)).epsilon(1e-10));
+          Approx((c.hi - c.lo).prod() - signed_volume(side.soup) - holes + pins).epsilon(1e-10));
     CHECK_FALSE(interpenetrate(c.soup, plate.soup));
+    // The pins hold the plate in place: moved across by more than the
+    // clearance, or turned half round, it runs into the main piece.
+    const Vec3 centre = 0.5 * (c.lo + c.hi);
+    CHECK(interpenetrate(moved(plate.soup, Vec3(0.05, 0.0, 0.0)), c.soup));
+    CHECK(interpenetrate(moved(plate.soup, Vec3(0.0, 0.05, 0.0)), c.soup));
+    CHECK_FALSE(interpenetrate(moved(plate.soup, Vec3(0.0, 0.0, -0.01)), c.soup));
+    CHECK(interpenetrate(half_turned(plate.soup, centre), c.soup));
     CHECK_FALSE(interpenetrate(side.soup, c.soup));
     CHECK_FALSE(interpenetrate(side.soup, plate.soup));
     // The plate comes off down; pushed up it runs into the part. With the
@@ -145,7 +200,36 @@ TEST_CASE("casting case: a side part over a keyed base gets a plate under it tha
     CHECK(interpenetrate(moved(side.soup, -0.3 * c.pull), c.soup));
     CHECK(interpenetrate(moved(side.soup, Vec3(0.3, 0.0, 0.0)), c.soup));
     CHECK_THAT(c.release_proof, Catch::Contains("once the plate across -z is off") &&
-                                    Catch::Contains("the plate comes off first along -z"));
+                                    Catch::Contains("the plate comes off first along -z") &&
+                                    Catch::Contains("its 2 pins run along it out of their holes"));
+  }
+}
+
+TEST_CASE("casting case: the plate's pins without clearance, and a clearance the walls cannot hold",
+          "[mould][case]") {
+  const CompositeCurve profile = example_profile("vessel_golden_solid.yaml");
+  const Mould mould = build_mould(profile, box_options(2, 2, true));
+  const MouldPart& side = mould.parts[0];
+  // No clearance: each pin fills its hole, both still valid and apart.
+  const CastingCase c = build_casting_case(side.soup, side.name, outward_of(side), case_options(0.5, 0.0));
+  REQUIRE(c.plate);
+  CHECK(validate(c.soup).valid());
+  CHECK(validate(c.plate->soup).valid());
+  CHECK(c.plate->pins.front().hole_radius == c.plate->pins.front().radius);
+  CHECK(validate(c.soup).volume + validate(c.plate->soup).volume ==
+        Approx((c.hi - c.lo).prod() - signed_volume(side.soup)).epsilon(1e-10));
+  // A clearance of a quarter of the wall would leave the holes no wall.
+  for (double clearance : {0.125, 0.2, -0.01}) {
+    INFO(clearance);
+    try {
+      build_casting_case(side.soup, side.name, outward_of(side), case_options(0.5, clearance));
+      FAIL("accepted");
+    } catch (const RangeError& e) {
+      CHECK(e.field() == "clearance");
+      CHECK(e.value() == clearance);
+      CHECK_THAT(e.what(),
+                 Catch::Contains("case.clearance") && Catch::Contains("quarter of case.wall (0.125)"));
+    }
   }
 }
 
@@ -156,27 +240,27 @@ TEST_CASE("casting case: parts no single pull clears, or without a flat face, ar
     MouldOptions o = cm_options();
     const Mould mould = build_mould(profile, o);
     const MouldPart& side = mould.parts.front();
-    CHECK_THROWS_WITH(build_casting_case(side.soup, side.name, outward_of(side), CaseOptions{0.5}),
+    CHECK_THROWS_WITH(build_casting_case(side.soup, side.name, outward_of(side), case_options()),
                       Catch::Contains("no flat face across +y") || Catch::Contains("does not cover"));
   }
   SECTION("three parts with keys on planes 120 degrees apart") {
     const Mould mould = build_mould(profile, box_options(3, 2, false));
     const MouldPart& side = mould.parts.front();
     CHECK_THROWS_WITH(
-        build_casting_case(side.soup, side.name, outward_of(side), CaseOptions{0.5}),
+        build_casting_case(side.soup, side.name, outward_of(side), case_options()),
         Catch::Contains("no casting case of one piece, or of one piece and a plate, releases side 1 of 3"));
   }
   SECTION("three parts without keys pour through a box side") {
     const Mould mould = build_mould(profile, box_options(3, 0, false));
     for (const MouldPart& side : mould.parts) {
-      const CastingCase c = build_casting_case(side.soup, side.name, outward_of(side), CaseOptions{0.5});
+      const CastingCase c = build_casting_case(side.soup, side.name, outward_of(side), case_options());
       CHECK(validate(c.soup).valid());
       CHECK_FALSE(interpenetrate(moved(side.soup, 0.3 * c.pull), c.soup));
     }
   }
   SECTION("a wall of no thickness") {
     const Mould mould = build_mould(profile, box_options(2, 0, false));
-    CHECK_THROWS_AS(build_casting_case(mould.parts[0].soup, "side", {0.0, 1.0, 0.0}, CaseOptions{0.0}),
+    CHECK_THROWS_AS(build_casting_case(mould.parts[0].soup, "side", {0.0, 1.0, 0.0}, case_options(0.0)),
                     RangeError);
   }
 }

@@ -4,8 +4,9 @@
 # parts in order) and prints one JSON line: the case's validity and solids
 # (its pieces: a two-piece case's main piece and plate), the volume its
 # pieces share, its box's volume, and the volumes of the case and the part
-# in common and fused. Plaster cast in the case is the part when they share
-# no volume and together fill the case's box. The shell test
+# in common and fused (with the gaps round the pins of a two-piece case,
+# voids of its joined pieces, counted in). Plaster cast in the case is the part
+# when they share no volume and together fill the case's box. The shell test
 # (freecad_step_test.sh) judges them.
 import json
 import os
@@ -31,8 +32,17 @@ for entry in os.environ["FABMESH_CASES"].split(":"):
             "box_volume": box.XLength * box.YLength * box.ZLength,
             "part_inside": box.isInside(part.BoundBox),
             "common": case.common(part).Volume,
-            "fused": case.fuse(part).Volume,
         })
+        # The pieces put together: shut in, the gaps the plate's pins leave
+        # in their holes (each a void of the joined pieces, its own shell).
+        whole = pieces[0]
+        for piece in pieces[1:]:
+            whole = whole.fuse(piece)
+        gaps = [sh for s in whole.Solids for sh in s.Shells if not sh.isSame(s.OuterShell)]
+        facts["voids"] = len(gaps)
+        facts["voids_volume"] = sum(abs(Part.Solid(sh).Volume) for sh in gaps)
+        # Case and part together: the box, but for those gaps.
+        facts["fused"] = case.fuse(part).Volume + facts["voids_volume"]
     except Exception as e:  # FreeCAD raises its own Base.FreeCADError
         facts["error"] = str(e)
     print("FABMESH_CASE " + json.dumps(facts), flush=True)

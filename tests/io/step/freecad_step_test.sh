@@ -149,8 +149,9 @@ done
 # closed solid, or two (a case and its plate, when the mesh case has a plate)
 # sharing no volume; with its mould part (mould_step) the case shares no
 # volume (within 1e-9 of the part's area, in mm) and fills the case's box
-# (within 1e-9); the case's and the part's volumes add up to the box's
-# (within 1e-6, as FreeCAD integrates them).
+# (within 1e-9), but for one closed gap round each of a plate's two pins; the
+# case's and the part's volumes and the gaps add up to the box's (within
+# 1e-6, as FreeCAD integrates them).
 cases=()
 for design in "$source"/configs/examples/*.yaml; do
   name=$(basename "$design" .yaml)
@@ -200,14 +201,18 @@ else:
         problems.append(f"shares {f['common']} mm^3 with its part")
     if abs(f["fused"] / f["box_volume"] - 1) > 1e-9:
         problems.append(f"with its part fills {f['fused']} mm^3 of its box's {f['box_volume']}")
+    # A plate's two pins leave a gap each in their holes (the clearance), shut in.
+    if f["voids"] != 2 * (f["pieces"] - 1):
+        problems.append(f"{f['voids']} voids with its part, not the {2 * (f['pieces'] - 1)} round its pins")
     # Integrated over curved faces (the cavity's B-splines) by FreeCAD at a
     # fixed order: on mould_golden_box_base's side 2 its volume of the mould
     # part is 0.059 mm^3 (1.4e-7) off OpenCASCADE's adaptive integral to
     # 1e-12, so the sum is held to 1e-6. The exact checks are the common
     # volume and the fused one above, and the STEP module's own, adaptive to
     # 1e-10, which holds each case to 1e-9 of its box.
-    if abs((f["volume"] + f["part_volume"]) / f["box_volume"] - 1) > 1e-6:
-        problems.append(f"case {f['volume']} + part {f['part_volume']} is not its box's {f['box_volume']}")
+    if abs((f["volume"] + f["part_volume"] + f["voids_volume"]) / f["box_volume"] - 1) > 1e-6:
+        problems.append(f"case {f['volume']} + part {f['part_volume']} + gaps {f['voids_volume']} "
+                        f"is not its box's {f['box_volume']}")
 print(name + (": " + "; ".join(problems) if problems else
               f": cast, it is its part (in common {f['common']:.3g} mm^3, together its box)"))
 sys.exit(1 if problems else 0)
