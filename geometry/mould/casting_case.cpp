@@ -227,12 +227,10 @@ struct Faces {
   }
 };
 
-// The plate on the face (q, s), if its triangles take every one in
-// `blocking`, come off along s e_q and are bounded by one loop meeting the
-// pour face along the pour face's side `side`.
-std::optional<PlateFace> plate_on(const Faces& f, const BoundingBox& box, int q, int s,
-                                  const std::vector<std::size_t>& blocking,
-                                  const std::vector<std::vector<Index>>& sides) {
+// What a plate on the face (q, s) would take: the part's triangles on that
+// side face of its bounding box and the regions behind it bounded by them
+// alone; none when the part has no triangle there.
+std::optional<PlateFace> plate_members(const Faces& f, const BoundingBox& box, int q, int s) {
   const TriangleSoup& part = f.part;
   const std::size_t count = part.triangles.size();
   PlateFace p;
@@ -273,6 +271,22 @@ std::optional<PlateFace> plate_on(const Faces& f, const BoundingBox& box, int q,
       for (std::size_t t : found) p.member[t] = true;
     }
   }
+  return p;
+}
+
+// The plate `p` (plate_members), if its triangles take every one in
+// `blocking`, come off along s e_q and are bounded by one loop meeting the
+// pour face along the pour face's side `side`.
+std::optional<PlateFace> plate_on(const Faces& f, PlateFace p, const std::vector<std::size_t>& blocking,
+                                  const std::vector<std::vector<Index>>& sides) {
+  const TriangleSoup& part = f.part;
+  const std::size_t count = part.triangles.size();
+  const int q = p.q, s = p.s;
+  const auto on_face = [&](std::size_t t) {
+    const Triangle& tri = part.triangles[t];
+    return !f.pour[t] && part.vertices[tri[0]][q] == p.e && part.vertices[tri[1]][q] == p.e &&
+           part.vertices[tri[2]][q] == p.e;
+  };
   for (std::size_t t : blocking) {
     if (!p.member[t]) return std::nullopt;
   }
@@ -332,30 +346,31 @@ Attempt attempt(const TriangleSoup& part, const std::string& name, const Axis& a
                                       "curved or stepped)",
                                       dir)};
   }
+  // Where a face is, for a refusal only.
+  const auto at = [&](std::size_t t) {
+    const Triangle& tri = part.triangles[t];
+    const Vec3 centroid = (part.vertices[tri[0]] + part.vertices[tri[1]] + part.vertices[tri[2]]) / 3.0;
+    return point_text(centroid) + (what_is_at ? what_is_at(centroid) : std::string());
+  };
+  // Why a face that does not face away from the pull holds the part.
+  const auto catches = [&](std::size_t t) {
+    return facing(part, part.triangles[t], k)
+               ? fmt::format(
+                     "its face at {} faces {}: pulled that way, the part would catch on the case there",
+                     at(t), dir)
+               : fmt::format("whether its face at {} faces {} cannot be decided in floating point", at(t),
+                             dir);
+  };
   std::size_t parallel = 0;
   std::vector<std::size_t> blocking;
-  std::string first_block;
   for (std::size_t t = 0; t < part.triangles.size(); ++t) {
-    const Triangle& tri = part.triangles[t];
-    const Vec3 &a = part.vertices[tri[0]], &b = part.vertices[tri[1]], &c = part.vertices[tri[2]];
-    const std::optional<int> s = facing(part, tri, k);
-    // Where the face is, for a refusal only.
-    const auto at = [&] {
-      const Vec3 centroid = (a + b + c) / 3.0;
-      return point_text(centroid) + (what_is_at ? what_is_at(centroid) : std::string());
-    };
+    const std::optional<int> s = facing(part, part.triangles[t], k);
     if (faces.pour[t]) {
       if (s != axis.sign) {
-        return {std::nullopt, fmt::format("its face at {} in its {} plane does not face {}", at(), dir, dir)};
+        return {std::nullopt,
+                fmt::format("its face at {} in its {} plane does not face {}", at(t), dir, dir)};
       }
     } else if (!s || *s * axis.sign > 0) {
-      if (first_block.empty()) {
-        first_block =
-            s ? fmt::format(
-                    "its face at {} faces {}: pulled that way, the part would catch on the case there", at(),
-                    dir)
-              : fmt::format("whether its face at {} faces {} cannot be decided in floating point", at(), dir);
-      }
       blocking.push_back(t);
     } else if (*s == 0) {
       ++parallel;
@@ -411,12 +426,28 @@ Attempt attempt(const TriangleSoup& part, const std::string& name, const Axis& a
   const int i = (k + 1) % 3, j = (k + 2) % 3;
   std::optional<PlateFace> plate;
   if (!blocking.empty()) {
+    std::vector<PlateFace> candidates;
     for (int q : {i, j}) {
       for (int s : {-1, 1}) {
-        if (!plate) plate = plate_on(faces, box, q, s, blocking, sides);
+        if (std::optional<PlateFace> p = plate_members(faces, box, q, s)) candidates.push_back(std::move(*p));
       }
     }
-    if (!plate) return {std::nullopt, first_block};
+    for (const PlateFace& p : candidates) {
+      if (!plate) plate = plate_on(faces, p, blocking, sides);
+    }
+    if (!plate) {
+      // Name the first face no plate would take (a plate would take a base
+      // key's socket, so naming it would send the reader the wrong way).
+      for (std::size_t t : blocking) {
+        const bool taken = std::any_of(candidates.begin(), candidates.end(),
+                                       [t](const PlateFace& p) { return p.member[t]; });
+        if (!taken) {
+          return {std::nullopt,
+                  catches(t) + ", and no plate on a flat side of the part would take that face"};
+        }
+      }
+      return {std::nullopt, catches(blocking.front())};
+    }
   }
 
   // The case: the part's other triangles turned inside out, the rim in the
@@ -451,10 +482,10 @@ Attempt attempt(const TriangleSoup& part, const std::string& name, const Axis& a
     if (!(std::abs(along - floor_at) > pin.hole_radius && std::abs(extreme - along) > pin.hole_radius)) {
       return {std::nullopt, fmt::format("its case is too shallow along {} for the plate's pins", dir)};
     }
-    for (double at : {box.lo[across] - w / 2.0, box.hi[across] + w / 2.0}) {
+    for (double centre : {box.lo[across] - w / 2.0, box.hi[across] + w / 2.0}) {
       pin.base = Vec3::Zero();
       pin.base[plate->q] = plate->e;
-      pin.base[across] = at;
+      pin.base[across] = centre;
       pin.base[k] = along;
       pins.push_back(pin);
     }

@@ -235,6 +235,17 @@ TEST_CASE("casting cases: a cylinder mould is refused, a part no case releases i
                 &text) == 2);
   CHECK(text.find("no mould part has a casting case") != std::string::npos);
   CHECK(text.find("on the bump of a key on its split face at 120 degrees") != std::string::npos);
+  // On a base, the first face that catches is a base key's socket, which a
+  // plate under the part would take: the reason names a split face's key.
+  CHECK(run_cli({"run", example("mould_vase_production.yaml"), "-D", "mould.block=box", "-D",
+                 "outputs=[case_stl]", "-o", dir.string() + "/"},
+                &text) == 0);
+  CHECK_THAT(text,
+             Catch::Contains("releases side-1: pulled along +y, its face at") &&
+                 Catch::Contains("on the bump of a key on its split face at 120 degrees, faces +y: pulled "
+                                 "that way, the part would catch on the case there, and no plate on a flat "
+                                 "side of the part would take that face"));
+  CHECK_THAT(text, !Catch::Contains("on a base key's socket"));
   // A case that does not fit the printer is written, with a warning at print.bed.
   CHECK(run_cli({"run", example("mould_box_cases.yaml"), "-D", "print={bed: [250, 250, 250]}", "-D",
                  "outputs=[case_stl]", "-o", dir.string() + "/"},
