@@ -802,6 +802,11 @@ try {
     await withExample('mould_golden.yaml', 'mould', async ({page: mp}) => {
       const names = await mp.$$eval('#parts input', (l) => l.map((c) => c.dataset.part));
       assert.deepEqual(names, ['mould_golden', 'side-1', 'side-2']);
+      // The report says what to weigh, as `fabmesh run` does.
+      const said = await mp.$eval('#report', (e) => e.textContent);
+      assert.match(said, /mould2 parts, each closed and embedded by construction; slip [0-9.e+]+ cm³/);
+      assert.match(said, /casting\d+ g of plaster into \d+ g of water \(1\.4 : 1 by weight\), \d+ ml of slip/);
+      assert.doesNotMatch(said, /casting cases/);  // a cylinder block has none
       assert.deepEqual(await mp.evaluate(() => window.fabmeshStudio.shownParts), names);
       await mp.click('#parts input[data-part="side-1"]');
       assert.deepEqual(await mp.evaluate(() => window.fabmeshStudio.shownParts), ['mould_golden', 'side-2']);
@@ -816,6 +821,24 @@ try {
       assert.equal(await mp.$eval('#parts input[data-part="side-1"]', (c) => c.checked), false);
       await mp.click('#parts input[data-part="side-1"]');
       assert.deepEqual(await mp.evaluate(() => window.fabmeshStudio.shownParts), names);
+    });
+  });
+
+  await check('a box mould\'s report says which way each part leaves its casting case', async () => {
+    await withExample('mould_box_cases.yaml', 'cases', async ({page: cp}) => {
+      const said = await cp.$eval('#report', (e) => e.textContent);
+      assert.match(said, /casting cases2 of 2 parts \(side-1 lifts out along \+y, side-2 lifts out along -y\)/);
+    });
+    await withExample('mould_vase_production.yaml', 'refused', async ({page: rp, file}) => {
+      // Three keyed parts in a box: the base has its case, the sides are refused, saying why.
+      fs.writeFileSync(file, fs.readFileSync(file, 'utf8').replace(/^outputs: .*$/m,
+          'outputs: [case_stl]').replace('  parts: 3\n', '  parts: 3\n  block: box\n'));
+      await rp.reload({waitUntil: 'load'});
+      await rp.waitForFunction(() => /casting cases/.test(document.getElementById('report').textContent),
+                               {timeout: 120000});
+      const said = await rp.$eval('#report', (e) => e.textContent);
+      assert.match(said, /casting cases1 of 4 parts \(base lifts out along -z\)/);
+      assert.match(said, /case refusedno casting case of one piece, or of one piece and a plate, releases side-1/);
     });
   });
 

@@ -412,6 +412,7 @@ function showReport(report, buildMs) {
     add('clearance', `${Number(facts.min_clearance).toPrecision(4)} ${u}` +
         (facts.min_clearance_where ? ` (${facts.min_clearance_where})` : ''));
   }
+  if (facts.mould) showMould(add, facts.mould, u);
   if (facts.print?.summary) {
     add('print', facts.print.summary);
     if (facts.print.checked) for (const f of facts.print.findings ?? []) add('print warning', f, 'not-valid');
@@ -424,6 +425,27 @@ function showReport(report, buildMs) {
     add('outputs', report.files.map((f) => f.path).join(', '));
   }
   if (buildMs !== undefined) add('build', `${Math.round(buildMs)} ms`);
+}
+
+// A mould's parts, what a potter weighs to make it and cast in it, and which
+// way each part leaves its casting case (as `fabmesh run` says them).
+function showMould(add, m, u) {
+  const g = (x) => String(Number(Number(x).toPrecision(3)));
+  const whole = (x) => String(Math.round(Number(x)));
+  add('mould', `${m.parts.length} parts, each closed and embedded by construction; slip ` +
+      `${Number(m.slip_volume).toPrecision(6)} ${u}³, plaster ${Number(m.plaster_volume).toPrecision(6)} ${u}³`);
+  add('casting', `${whole(m.plaster_grams)} g of plaster into ${whole(m.water_grams)} g of water ` +
+      `(${g(m.plaster_ratio)} : 1 by weight), ${whole(m.slip_millilitres)} ml of slip ` +
+      `(${whole(m.slip_grams)} g at ${g(m.slip_density)} g/ml) to fill it to the spare`);
+  if (!m.cases) return;
+  const along = (pull) => {
+    const k = pull.findIndex((x) => x !== 0);
+    return (pull[k] > 0 ? '+' : '-') + 'xyz'[k];
+  };
+  const made = m.cases.filter((c) => c.refused === undefined).map((c) =>
+    `${c.part} lifts out along ${along(c.pull)}` + (c.plate ? ` once its plate is off along ${along(c.plate.pull)}` : ''));
+  add('casting cases', `${made.length} of ${m.cases.length} parts (${made.length ? made.join(', ') : 'none'})`);
+  for (const c of m.cases) if (c.refused !== undefined) add('case refused', c.refused, 'not-valid');
 }
 
 // A draft's answer: what it is, and no verdict.
