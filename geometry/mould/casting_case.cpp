@@ -516,6 +516,7 @@ Attempt attempt(const TriangleSoup& part, const std::string& name, const Axis& a
       seam.push_back(floor[m]);
       // The seam faces the plate, with a hole for each pin, `clearance` wider and deeper.
       std::vector<std::vector<Index>> holes;
+      holes.reserve(pins.size());
       for (const CasePin& pin : pins) {
         holes.push_back(add_ring(out.soup, pin.base, plate->q, across, pin.hole_radius, pin.sides));
       }
@@ -579,6 +580,8 @@ Attempt attempt(const TriangleSoup& part, const std::string& name, const Axis& a
     const int r_sign = cp.soup.vertices[top[0]][r] < box.lo[r] ? -1 : 1;
     // Its face toward the main piece, with the pins standing on it.
     std::vector<std::vector<Index>> feet, tips;
+    feet.reserve(pins.size());
+    tips.reserve(pins.size());
     for (const CasePin& pin : pins) {
       feet.push_back(add_ring(cp.soup, pin.base, plate->q, across, pin.radius, pin.sides));
       tips.push_back(
