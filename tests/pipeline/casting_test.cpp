@@ -263,8 +263,9 @@ TEST_CASE("casting cases: a cylinder mould is refused, a part no case releases i
   CHECK(run_cli({"run", example("mould_box_cases.yaml"), "-D", "case.clearance=1.25", "-o",
                  refused.string() + "/"},
                 &text) == 2);
-  CHECK_THAT(text,
-             Catch::Contains("case.clearance") && Catch::Contains("below a quarter of case.wall (1.25)"));
+  CHECK_THAT(
+      text, Catch::Contains("case.clearance") && Catch::Contains("clearance = 1.25 mm must be at least 0 and "
+                                                                 "below a quarter of case.wall (1.25 mm)"));
   CHECK(fs::is_empty(refused));
 }
 

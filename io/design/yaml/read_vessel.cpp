@@ -98,11 +98,11 @@ CaseOptions read_case(const yaml::Fields& f, const YAML::Node& n, const DesignCo
   o.clearance =
       f.number_or(n, "clearance", "case.clearance", o.clearance / millimetres_per_unit(common.units));
   if (!(o.clearance >= 0.0) || !(o.clearance < o.wall / 4.0)) {
-    f.fail(
-        n["clearance"].IsDefined() ? n["clearance"] : n["wall"], "case.clearance",
-        fmt::format("clearance = {} must be at least 0 and below a quarter of case.wall ({}): a plate's pins "
-                    "are a quarter of the wall in radius, and their holes must keep wall all round",
-                    o.clearance, o.wall / 4.0));
+    f.fail(n["clearance"].IsDefined() ? n["clearance"] : n["wall"], "case.clearance",
+           fmt::format(
+               "clearance = {} {} must be at least 0 and below a quarter of case.wall ({} {}): a plate's "
+               "pins are a quarter of the wall in radius, and their holes must keep wall all round",
+               o.clearance, common.units, o.wall / 4.0, common.units));
   }
   return o;
 }
