@@ -321,9 +321,9 @@ std::vector<Facts> add_cases(const VesselDesign& design, const Mould& mould, con
     Facts facts;
     facts.set("part", name);
     try {
-      const CastingCase c =
-          build_casting_case(out.parts[first + i].mesh, name, outward, case_options, what_is_at);
-      VesselProducts::CaseBox box{"case-" + name, i, c.lo, c.hi, c.pull, std::nullopt};
+      const CastingCase c = build_casting_case(out.parts[first + i].mesh, name, outward, case_options,
+                                               what_is_at, split_faces(p));
+      VesselProducts::CaseBox box{"case-" + name, i, c.lo, c.hi, c.pull, std::nullopt, c.carved};
       // A piece of the case as it is printed, validated in full, its facts.
       const auto piece = [&](const std::string& piece_name, TriangleSoup printed, const Vec3& pull,
                              const char* standing_on) {
@@ -366,24 +366,19 @@ std::vector<Facts> add_cases(const VesselDesign& design, const Mould& mould, con
       for (const char* fact : {"triangles", "volume"}) facts.set(fact, *whole.find(fact));
       facts.set("release", c.release_proof);
       if (const Facts::Value* fits = whole.find("fits_bed")) facts.set("fits_bed", *fits);
-      if (c.plate) {
-        // The plate under the part's keyed face: a piece of its own, off first.
-        box.plate =
-            VesselProducts::CaseBox::Plate{box.name + "-plate", c.plate->lo, c.plate->hi, c.plate->pull, {}};
-        Facts plate =
-            piece(box.plate->name, standing(*c.plate, Vec3(x, 0.0, 0.0)), c.plate->pull, "outer face");
-        plate.set("features", c.plate->features);
-        // Its pins, where they stand in the mould's frame (as the STEP file has the case assembled).
+      // A piece taken off first: its facts, with its pins where they stand
+      // in the mould's frame (as the STEP file has the case assembled).
+      const auto plate_facts = [&](const CasePlate& cp, const std::string& piece_name) {
+        Facts plate = piece(piece_name, standing(cp, Vec3(x, 0.0, 0.0)), cp.pull, "outer face");
+        plate.set("features", cp.features);
         std::vector<Facts> pins;
-        for (const CasePin& pin : c.plate->pins) {
-          box.plate->pins.push_back(
-              {pin.base, pin.axis, pin.radius, pin.height, pin.hole_radius, pin.hole_depth});
+        for (const CasePin& pin : cp.pins) {
           pins.push_back(Facts()
                              .set("at", std::vector<double>{pin.base.x(), pin.base.y(), pin.base.z()})
                              .set("axis", std::vector<double>{pin.axis.x(), pin.axis.y(), pin.axis.z()}));
         }
-        if (!c.plate->pins.empty()) {
-          const CasePin& pin = c.plate->pins.front();
+        if (!cp.pins.empty()) {
+          const CasePin& pin = cp.pins.front();
           plate.set("pins", std::move(pins))
               .set("pin", Facts()
                               .set("diameter", 2.0 * pin.radius)
@@ -392,7 +387,33 @@ std::vector<Facts> add_cases(const VesselDesign& design, const Mould& mould, con
                               .set("hole_depth", pin.hole_depth)
                               .set("sides", pin.sides));
         }
-        facts.set("plate", std::move(plate));
+        return plate;
+      };
+      if (c.carved) {
+        // Carved in several pieces, taken off in order before the part comes out.
+        if (context.wants_exact) {
+          out.warnings.push_back(
+              fmt::format("case: {} is carved in {} pieces, which fabmesh writes as meshes "
+                          "only (case_stl, case_3mf): case_step leaves it out",
+                          box.name, c.plates.size() + 1));
+        }
+        std::vector<Facts> pieces;
+        for (std::size_t n = 0; n < c.plates.size(); ++n) {
+          const CasePlate& cp = c.plates[n];
+          Facts f = plate_facts(cp, fmt::format("{}-piece-{}", box.name, n + 1));
+          f.set("beyond", cp.face);
+          pieces.push_back(std::move(f));
+        }
+        facts.set("pieces", std::move(pieces));
+      } else if (!c.plates.empty()) {
+        // The plate under the part's keyed face: a piece of its own, off first.
+        const CasePlate& cp = c.plates.front();
+        box.plate = VesselProducts::CaseBox::Plate{box.name + "-plate", cp.lo, cp.hi, cp.pull, {}};
+        for (const CasePin& pin : cp.pins) {
+          box.plate->pins.push_back(
+              {pin.base, pin.axis, pin.radius, pin.height, pin.hole_radius, pin.hole_depth});
+        }
+        facts.set("plate", plate_facts(cp, box.plate->name));
       }
       products.cases.push_back(std::move(box));
     } catch (const GeometryError& e) {

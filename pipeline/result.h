@@ -178,6 +178,8 @@ struct VesselProducts {
       std::vector<Pin> pins;
     };
     std::optional<Plate> plate;  ///< none: the case is one piece
+    /// Carved in several pieces by exact booleans (written as meshes only).
+    bool carved = false;
   };
   std::vector<CaseBox> cases;
   /// The section as the builder made it: closed loops (the profile, the rim,

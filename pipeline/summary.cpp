@@ -81,6 +81,10 @@ void print_build_facts(const Facts& facts, const std::string& u, std::ostream& o
         made += fmt::format("{}{} lifts out along {}", count++ == 0 ? "" : ", ", c.text("part"), along(c));
         if (c.contains("plate"))
           made += fmt::format(" once its plate is off along {}", along(c.group("plate")));
+        if (const Facts::Value* pieces = c.find("pieces")) {
+          const std::size_t n = std::get<std::vector<Facts>>(*pieces).size();
+          made += fmt::format(" once its {} other piece{} off", n, n == 1 ? " is" : "s are");
+        }
       }
       out << fmt::format("  casting cases: {} of {} parts ({})\n", count, all.size(),
                          count == 0 ? "none" : made);

@@ -14,8 +14,11 @@
 
 #include "geometry/core/errors.h"
 #include "geometry/mesh/bounding_box.h"
+#include "geometry/mesh/volume.h"
+#include "geometry/repair/exact_booleans.h"
 #include "geometry/section/region.h"
 #include "geometry/section/triangulate.h"
+#include "geometry/validation/validate.h"
 
 namespace fabmesh {
 namespace {
@@ -69,6 +72,7 @@ std::string point_text(const Vec3& p) { return fmt::format("({:.4g}, {:.4g}, {:.
 struct Attempt {
   std::optional<CastingCase> built;
   std::string why_not;
+  bool catches = false;  // the pour face is fine but faces catch: carving may release it
 };
 
 // Whether the point is a corner of the rectangle lo..hi.
@@ -322,18 +326,31 @@ std::optional<PlateFace> plate_on(const Faces& f, PlateFace p, const std::vector
   return p;
 }
 
-Attempt attempt(const TriangleSoup& part, const std::string& name, const Axis& axis,
-                const CaseOptions& options, const std::function<std::string(const Vec3&)>& what_is_at) {
+// The pour face across an axis direction and what the pull along it
+// meets: the part's faces but the pour face's that face the pull (or whose
+// facing cannot be decided), and those that run along it.
+struct Pour {
+  Faces faces;
+  std::vector<Triangle> pour;
+  std::vector<std::vector<Index>> sides;  // the pour face's border, corner to corner
+  std::vector<std::size_t> blocking;
+  std::size_t parallel = 0;
+};
+
+// The pour face of `part` across `axis`, or why it has none that plaster
+// poured level would reproduce (in `why`).
+std::optional<Pour> analyse(const TriangleSoup& part, const Axis& axis,
+                            const std::function<std::string(std::size_t)>& at, std::string& why) {
   const int k = axis.k;
   const BoundingBox box = bounding_box(part.vertices);
   const double extreme = axis.sign > 0 ? box.hi[k] : box.lo[k];
   const std::array<double, 2> lo = in_plane(box.lo, k), hi = in_plane(box.hi, k);
   const std::string dir = axis_name(axis);
-
   // The pour face: the triangles in the extreme plane. Every other triangle
   // must face away from the pull or along it, or lie on a plate.
-  Faces faces{part, std::vector<bool>(part.triangles.size(), false), {}};
-  std::vector<Triangle> pour;
+  Pour out{Faces{part, std::vector<bool>(part.triangles.size(), false), {}}, {}, {}, {}, 0};
+  Faces& faces = out.faces;
+  std::vector<Triangle>& pour = out.pour;
   for (std::size_t t = 0; t < part.triangles.size(); ++t) {
     const Triangle& tri = part.triangles[t];
     faces.pour[t] = part.vertices[tri[0]][k] == extreme && part.vertices[tri[1]][k] == extreme &&
@@ -342,33 +359,20 @@ Attempt attempt(const TriangleSoup& part, const std::string& name, const Axis& a
     for (int e = 0; e < 3; ++e) faces.by_edge[{tri[e], tri[(e + 1) % 3]}] = t;
   }
   if (pour.empty()) {
-    return {std::nullopt, fmt::format("it has no flat face across {} to pour through (its outside there is "
-                                      "curved or stepped)",
-                                      dir)};
+    why = fmt::format(
+        "it has no flat face across {} to pour through (its outside there is "
+        "curved or stepped)",
+        dir);
+    return std::nullopt;
   }
-  // Where a face is, for a refusal only.
-  const auto at = [&](std::size_t t) {
-    const Triangle& tri = part.triangles[t];
-    const Vec3 centroid = (part.vertices[tri[0]] + part.vertices[tri[1]] + part.vertices[tri[2]]) / 3.0;
-    return point_text(centroid) + (what_is_at ? what_is_at(centroid) : std::string());
-  };
-  // Why a face that does not face away from the pull holds the part.
-  const auto catches = [&](std::size_t t) {
-    return facing(part, part.triangles[t], k)
-               ? fmt::format(
-                     "its face at {} faces {}: pulled that way, the part would catch on the case there",
-                     at(t), dir)
-               : fmt::format("whether its face at {} faces {} cannot be decided in floating point", at(t),
-                             dir);
-  };
-  std::size_t parallel = 0;
-  std::vector<std::size_t> blocking;
+  std::size_t& parallel = out.parallel;
+  std::vector<std::size_t>& blocking = out.blocking;
   for (std::size_t t = 0; t < part.triangles.size(); ++t) {
     const std::optional<int> s = facing(part, part.triangles[t], k);
     if (faces.pour[t]) {
       if (s != axis.sign) {
-        return {std::nullopt,
-                fmt::format("its face at {} in its {} plane does not face {}", at(t), dir, dir)};
+        why = fmt::format("its face at {} in its {} plane does not face {}", at(t), dir, dir);
+        return std::nullopt;
       }
     } else if (!s || *s * axis.sign > 0) {
       blocking.push_back(t);
@@ -381,13 +385,17 @@ Attempt attempt(const TriangleSoup& part, const std::string& name, const Axis& a
   // bounding rectangle through its four corners (then, the mesh being closed
   // and embedded, the face is the whole rectangle).
   const std::optional<std::map<Index, Index>> pour_border = faces.border(faces.pour);
-  if (!pour_border) return {std::nullopt, fmt::format("its face across {} is not one simple region", dir)};
+  if (!pour_border) {
+    why = fmt::format("its face across {} is not one simple region", dir);
+    return std::nullopt;
+  }
   const std::map<Index, Index>& next = *pour_border;  // border: u -> v
-  const auto not_rectangle = [&] {
-    return Attempt{std::nullopt,
-                   fmt::format("its flat face across {} does not cover its whole outline there (the outline "
-                               "is not a rectangle), so plaster poured level would not reproduce it",
-                               dir)};
+  const auto not_rectangle = [&]() -> std::optional<Pour> {
+    why = fmt::format(
+        "its flat face across {} does not cover its whole outline there (the outline "
+        "is not a rectangle), so plaster poured level would not reproduce it",
+        dir);
+    return std::nullopt;
   };
   std::optional<Index> start;
   for (const auto& [u, v] : next) {
@@ -397,7 +405,7 @@ Attempt attempt(const TriangleSoup& part, const std::string& name, const Axis& a
   }
   if (!start) return not_rectangle();
   // Walk the loop from a corner: the runs between consecutive corners are the sides.
-  std::vector<std::vector<Index>> sides;
+  std::vector<std::vector<Index>>& sides = out.sides;
   Index u = *start;
   std::size_t walked = 0;
   do {
@@ -421,6 +429,41 @@ Attempt attempt(const TriangleSoup& part, const std::string& name, const Axis& a
     }
   }
 
+  return out;
+}
+
+Attempt attempt(const TriangleSoup& part, const std::string& name, const Axis& axis,
+                const CaseOptions& options, const std::function<std::string(const Vec3&)>& what_is_at) {
+  const int k = axis.k;
+  const BoundingBox box = bounding_box(part.vertices);
+  const double extreme = axis.sign > 0 ? box.hi[k] : box.lo[k];
+  const std::array<double, 2> lo = in_plane(box.lo, k), hi = in_plane(box.hi, k);
+  const std::string dir = axis_name(axis);
+
+  // Where a face is, for a refusal only.
+  const auto at = [&](std::size_t t) {
+    const Triangle& tri = part.triangles[t];
+    const Vec3 centroid = (part.vertices[tri[0]] + part.vertices[tri[1]] + part.vertices[tri[2]]) / 3.0;
+    return point_text(centroid) + (what_is_at ? what_is_at(centroid) : std::string());
+  };
+  // Why a face that does not face away from the pull holds the part.
+  const auto catches = [&](std::size_t t) {
+    return facing(part, part.triangles[t], k)
+               ? fmt::format(
+                     "its face at {} faces {}: pulled that way, the part would catch on the case there",
+                     at(t), dir)
+               : fmt::format("whether its face at {} faces {} cannot be decided in floating point", at(t),
+                             dir);
+  };
+  std::string why;
+  std::optional<Pour> analysed = analyse(part, axis, at, why);
+  if (!analysed) return {std::nullopt, why};
+  const Faces& faces = analysed->faces;
+  const std::vector<Triangle>& pour = analysed->pour;
+  const std::vector<std::vector<Index>>& sides = analysed->sides;
+  const std::vector<std::size_t>& blocking = analysed->blocking;
+  const std::size_t parallel = analysed->parallel;
+
   // What would catch, on a plate that comes off first: the first side face
   // of the bounding box whose plate takes it all.
   const int i = (k + 1) % 3, j = (k + 2) % 3;
@@ -442,11 +485,11 @@ Attempt attempt(const TriangleSoup& part, const std::string& name, const Axis& a
         const bool taken = std::any_of(candidates.begin(), candidates.end(),
                                        [t](const PlateFace& p) { return p.member[t]; });
         if (!taken) {
-          return {std::nullopt,
-                  catches(t) + ", and no plate on a flat side of the part would take that face"};
+          return {std::nullopt, catches(t) + ", and no plate on a flat side of the part would take that face",
+                  true};
         }
       }
-      return {std::nullopt, catches(blocking.front())};
+      return {std::nullopt, catches(blocking.front()), true};
     }
   }
 
@@ -605,6 +648,7 @@ Attempt attempt(const TriangleSoup& part, const std::string& name, const Axis& a
     cp.hi = out.hi;
     (plate->s > 0 ? cp.lo : cp.hi)[plate->q] = plate->e;
     cp.features = plate->features;
+    cp.face = "its face across " + face;
     cp.pins = pins;
     cp.release_proof = fmt::format(
         "the plate comes off first along {}: the {} faces of {} on it (its flat face across {} and {} "
@@ -613,18 +657,422 @@ Attempt attempt(const TriangleSoup& part, const std::string& name, const Axis& a
         face, plate->triangles, name, face, plate->features, plate->features == 1 ? "" : "s", face,
         plate->parallel, pins.size());
     plate_text = fmt::format(", once the plate across {} is off,", face);
-    out.plate = std::move(cp);
+    out.plates.push_back(std::move(cp));
   }
   out.release_proof = fmt::format(
       "{} leaves its case along {}: its flat face across {} ({:.6g} x {:.6g}) is the case's opening, and "
       "none of its other {} faces{} faces {} ({} run along it), by exact orientation signs",
       name, dir, dir, hi[0] - lo[0], hi[1] - lo[1],
       part.triangles.size() - pour.size() - (plate ? plate->triangles : 0), plate_text, dir, parallel);
-  if (out.plate) out.release_proof += "; " + out.plate->release_proof;
+  if (!out.plates.empty()) out.release_proof += "; " + out.plates.front().release_proof;
   return {std::move(out), {}};
 }
 
+// ---- A case carved in several pieces, by exact booleans ----
+
+// Exact constructions on grids: a point on the 2^-30 grid plus a multiple
+// of 2^-10 times a direction on the 2^-20 grid is again on the 2^-30 grid,
+// and exact while coordinates stay below 2^22.
+constexpr int kPointBits = 30, kDirectionBits = 20, kLengthBits = 10;
+constexpr double kLargest = 4194304.0;  // 2^22
+
+double snapped(double x, int bits) { return std::ldexp(std::round(std::ldexp(x, bits)), -bits); }
+
+Vec3 snapped(const Vec3& p, int bits) {
+  return {snapped(p.x(), bits), snapped(p.y(), bits), snapped(p.z(), bits)};
+}
+
+// A piece taken off before the part leaves the case: what lies in the case
+// beyond the plane through o across d (and, for a side of the part's box,
+// the sockets behind it), coming off along d.
+struct Cut {
+  std::string what;               // "its face across -z", "its split face at 120 degrees"
+  Vec3 d, o, u, v;                // u x v = d exactly; u and v across d exactly
+  std::optional<PlateFace> axis;  // on a side of the part's box: the part's triangles it takes
+  std::size_t features = 0;
+  std::size_t touching = 0, along = 0;  // the part's faces it touches, of which run along d
+  std::vector<CasePin> pins;
+};
+
+// The solid o + a u + b v + c d over the ranges a, b, c (u, v, d
+// right-handed), closed and outward.
+TriangleSoup block_of(const Vec3& o, const Vec3& u, const Vec3& v, const Vec3& d,
+                      const std::array<double, 2>& a, const std::array<double, 2>& b,
+                      const std::array<double, 2>& c) {
+  TriangleSoup s;
+  for (int n = 0; n < 8; ++n)
+    s.vertices.push_back(o + a[n & 1] * u + b[(n >> 1) & 1] * v + c[(n >> 2) & 1] * d);
+  s.triangles = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
+                 {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
+  return s;
+}
+
+// The prism over the ring of `sides` points about `centre` of `radius`
+// across d (in the plane of e1, e2), running `length` along d: its walls run
+// exactly along d (the ring on the point grid, length on the length grid).
+TriangleSoup cylinder(const Vec3& centre, const Vec3& e1, const Vec3& e2, const Vec3& d, double radius,
+                      double length, std::size_t sides) {
+  TriangleSoup s;
+  const auto n = static_cast<Index>(sides);
+  for (Index m = 0; m < n; ++m) {
+    const double angle = 2.0 * M_PI * m / n;
+    s.vertices.push_back(
+        snapped(centre + radius * (std::cos(angle) * e1 + std::sin(angle) * e2), kPointBits));
+  }
+  for (Index m = 0; m < n; ++m) s.vertices.push_back(s.vertices[m] + length * d);
+  for (Index m = 0; m < n; ++m) {
+    const Index l = (m + 1) % n;
+    s.triangles.push_back({m, l, n + m});
+    s.triangles.push_back({l, n + l, n + m});
+  }
+  for (Index m = 1; m + 1 < n; ++m) {
+    s.triangles.push_back({0, m + 1, m});
+    s.triangles.push_back({n, n + m, n + m + 1});
+  }
+  if (signed_volume(s) < 0.0) {
+    for (Triangle& t : s.triangles) std::swap(t[1], t[2]);
+  }
+  return s;
+}
+
+// The sockets behind a plate's face: the part's triangles behind it turned
+// inside out, closed by their rims in the face's plane.
+std::optional<TriangleSoup> socket_fills(const Faces& f, const PlateFace& p) {
+  const TriangleSoup& part = f.part;
+  TriangleSoup fills;
+  Copier copy{part, fills};
+  std::vector<bool> feature(part.triangles.size(), false);
+  for (std::size_t t = 0; t < part.triangles.size(); ++t) {
+    const Triangle& tri = part.triangles[t];
+    if (!p.member[t]) continue;
+    if (part.vertices[tri[0]][p.q] == p.e && part.vertices[tri[1]][p.q] == p.e &&
+        part.vertices[tri[2]][p.q] == p.e)
+      continue;
+    feature[t] = true;
+    copy.flipped(tri);
+  }
+  std::optional<std::map<Index, Index>> border = f.border(feature);
+  if (!border) return std::nullopt;
+  std::map<Index, Index> next = std::move(*border);
+  while (!next.empty()) {
+    std::vector<Index> loop;
+    Index u = next.begin()->first;
+    while (true) {
+      const auto it = next.find(u);
+      if (it == next.end()) break;
+      loop.push_back(copy(u));
+      u = it->second;
+      next.erase(it);
+    }
+    if (!fill_polygon(fills, loop, p.q, p.s)) return std::nullopt;
+  }
+  return fills;
+}
+
+std::string vector_text(const Vec3& d) {
+  const Vec3 n = d.normalized();
+  return fmt::format("({:.4g}, {:.4g}, {:.4g})", n.x(), n.y(), n.z());
+}
+
+// The case of `part` pulled along `axis` in several pieces: the main piece
+// and, taken off before it in order, one per side of the part's box (with
+// the sockets behind it) and one per given face that takes a face of the
+// part the pull would catch on; each with two pins in holes of the main piece.
+Attempt carved(const TriangleSoup& part, const std::string& name, const Axis& axis,
+               const CaseOptions& options, const std::vector<CaseFace>& given,
+               const std::function<std::string(const Vec3&)>& what_is_at) {
+  const int k = axis.k;
+  const BoundingBox box = bounding_box(part.vertices);
+  const double extreme = axis.sign > 0 ? box.hi[k] : box.lo[k];
+  const std::string dir = axis_name(axis);
+  const auto at = [&](std::size_t t) {
+    const Triangle& tri = part.triangles[t];
+    const Vec3 centroid = (part.vertices[tri[0]] + part.vertices[tri[1]] + part.vertices[tri[2]]) / 3.0;
+    return point_text(centroid) + (what_is_at ? what_is_at(centroid) : std::string());
+  };
+  std::string why;
+  const std::optional<Pour> analysed = analyse(part, axis, at, why);
+  if (!analysed) return {std::nullopt, why};
+  const Faces& faces = analysed->faces;
+  const std::vector<std::size_t>& blocking = analysed->blocking;
+  const double w = options.wall;
+  Vec3 lo = box.lo - Vec3::Constant(w), hi = box.hi + Vec3::Constant(w);
+  (axis.sign > 0 ? hi : lo)[k] = extreme;
+  if (4.0 * std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff()) >= kLargest) {
+    return {std::nullopt, "its case lies too far from the origin to be carved exactly"};
+  }
+
+  // The cuts: the sides of the part's box whose plate takes a face that
+  // would catch, then the given faces that do.
+  std::vector<Cut> cuts;
+  const auto takes_blocking = [&](const std::function<bool(std::size_t)>& inside) {
+    return std::any_of(blocking.begin(), blocking.end(), inside);
+  };
+  for (int q = 0; q < 3; ++q) {
+    for (int s : {-1, 1}) {
+      if (q == k) continue;
+      std::optional<PlateFace> p = plate_members(faces, box, q, s);
+      if (!p || !takes_blocking([&](std::size_t t) { return bool(p->member[t]); })) continue;
+      Cut c;
+      c.what = "its face across " + axis_name({q, s});
+      c.d = axis_vector({q, s});
+      c.o = Vec3::Zero();
+      c.o[q] = p->e;
+      c.u = Vec3::Zero();
+      c.u[(q + 1) % 3] = 1.0;
+      c.v = Vec3::Zero();
+      c.v[(q + 2) % 3] = s;
+      c.features = p->features;
+      c.axis = std::move(p);
+      cuts.push_back(std::move(c));
+    }
+  }
+  // Which side of a cut's plane each vertex lies on, exactly.
+  const auto sides_of = [&](const Cut& c, const Triangle& tri) {
+    std::array<int, 3> out{};
+    for (int e = 0; e < 3; ++e) out[e] = exact_side(part.vertices[tri[e]], c.o, c.d);
+    return out;
+  };
+  const auto inside = [&](const Cut& c, std::size_t t) {
+    if (c.axis) return bool(c.axis->member[t]);
+    const std::array<int, 3> side = sides_of(c, part.triangles[t]);
+    return *std::min_element(side.begin(), side.end()) >= 0 &&
+           *std::max_element(side.begin(), side.end()) > 0;
+  };
+  const auto touches = [&](const Cut& c, std::size_t t) {
+    if (c.axis) return bool(c.axis->member[t]);
+    const std::array<int, 3> side = sides_of(c, part.triangles[t]);
+    return *std::max_element(side.begin(), side.end()) > 0;
+  };
+  for (const CaseFace& f : given) {
+    // Vertical planes across no axis; the sides of the box are found above.
+    if (f.normal.z() != 0.0 || f.normal.x() == 0.0 || f.normal.y() == 0.0) continue;
+    Cut c;
+    c.what = f.name;
+    c.d = Vec3(snapped(f.normal.x(), kDirectionBits), snapped(f.normal.y(), kDirectionBits), 0.0);
+    c.o = snapped(f.point - (f.depth + w / 4.0) * f.normal, kPointBits);
+    c.u = Vec3(-c.d.y(), c.d.x(), 0.0);
+    c.v = Vec3(0.0, 0.0, 1.0);
+    c.features = f.features;
+    if (takes_blocking([&](std::size_t t) { return inside(c, t); })) cuts.push_back(std::move(c));
+  }
+  for (std::size_t t : blocking) {
+    if (std::none_of(cuts.begin(), cuts.end(), [&](const Cut& c) { return inside(c, t); })) {
+      return {std::nullopt,
+              fmt::format("its face at {} faces {} and no piece taken off first would take it", at(t), dir)};
+    }
+  }
+
+  // The proof: every face of the part a piece touches faces the way that
+  // piece comes off or runs along it; every face the main piece touches
+  // faces away from the pull or runs along it (the blocking ones all lie
+  // inside a piece, so none does).
+  std::size_t main_faces = 0;
+  for (std::size_t t = 0; t < part.triangles.size(); ++t) {
+    if (faces.pour[t]) continue;
+    const Triangle& tri = part.triangles[t];
+    bool in_one = false;
+    for (Cut& c : cuts) {
+      if (!touches(c, t)) continue;
+      const int f = exact_facing(part.vertices[tri[0]], part.vertices[tri[1]], part.vertices[tri[2]], c.d);
+      if (f < 0) {
+        return {std::nullopt,
+                fmt::format("its face at {} faces away from the way the piece beyond {} comes off {}: that "
+                            "piece would catch on it",
+                            at(t), c.what, vector_text(c.d))};
+      }
+      ++c.touching;
+      if (f == 0) ++c.along;
+      in_one = in_one || inside(c, t);
+    }
+    if (!in_one) ++main_faces;
+  }
+
+  // The pins: two per piece, in the case's walls (centred in a wall that
+  // runs along the piece's way off), where the hole has main piece all
+  // round it and the pin's foot is in its own piece.
+  const double radius = w / 4.0, height = w / 2.0, buried = w / 4.0;
+  const double hole_radius = radius + options.clearance;
+  const double ratio = 1.0 - options.tolerance / hole_radius;
+  const double count = ratio <= -1.0 ? 8.0 : std::ceil(M_PI / std::acos(ratio) / 4.0) * 4.0;
+  const auto sides = static_cast<std::size_t>(std::clamp(count, 8.0, 512.0));
+  const double margin = w / 16.0;
+  const auto in_case = [&](const Vec3& p) {
+    return (p.array() >= lo.array() + margin).all() && (p.array() <= hi.array() - margin).all();
+  };
+  const auto beyond = [&](const Cut& c, const Vec3& p) { return (p - c.o).dot(c.d) / c.d.norm() > -margin; };
+  std::vector<TriangleSoup> holes;
+  std::vector<std::vector<TriangleSoup>> pins(cuts.size()), regions(cuts.size());
+  for (std::size_t i = 0; i < cuts.size(); ++i) {
+    Cut& c = cuts[i];
+    const Vec3 e1 = c.u.normalized(), e2 = c.v.normalized(), n = c.d.normalized();
+    // The samples of a cylinder about the axis through p along n, from `from` to `to` along n.
+    const auto samples = [&](const Vec3& p, double r, double from, double to) {
+      std::vector<Vec3> out;
+      for (double along : {from, to}) {
+        out.push_back(p + along * n);
+        for (int m = 0; m < 16; ++m) {
+          const double angle = M_PI * m / 8.0;
+          out.push_back(p + along * n + r * (std::cos(angle) * e1 + std::sin(angle) * e2));
+        }
+      }
+      return out;
+    };
+    const auto fits = [&](const Vec3& p) {
+      for (const Vec3& q : samples(p, hole_radius + margin, 0.0, -(height + options.clearance + margin))) {
+        if (!in_case(q)) return false;
+        for (const Cut& other : cuts) {
+          if (&other != &c && beyond(other, q)) return false;
+        }
+      }
+      for (const Vec3& q : samples(p, radius + margin, 0.0, buried)) {
+        if (!in_case(q)) return false;
+        for (std::size_t j = 0; j < i; ++j) {
+          if (beyond(cuts[j], q)) return false;
+        }
+      }
+      return true;
+    };
+    std::vector<Vec3> found;
+    for (int a = 0; a < 3; ++a) {
+      for (int sigma : {-1, 1}) {
+        if ((a == k && sigma == axis.sign) || c.d[a] != 0.0) continue;
+        Vec3 p0 = c.o;
+        p0[a] = sigma > 0 ? box.hi[a] + w / 2.0 : box.lo[a] - w / 2.0;
+        const Vec3 line = n.cross(axis_vector({a, 1}));
+        double t0 = -std::numeric_limits<double>::infinity(), t1 = -t0;
+        for (int b = 0; b < 3; ++b) {
+          if (line[b] == 0.0) continue;
+          const double ta = (lo[b] - p0[b]) / line[b], tb = (hi[b] - p0[b]) / line[b];
+          t0 = std::max(t0, std::min(ta, tb));
+          t1 = std::min(t1, std::max(ta, tb));
+        }
+        if (!(t0 < t1)) continue;
+        for (double fraction : {1.0 / 6.0, 1.0 / 3.0, 0.5, 2.0 / 3.0, 5.0 / 6.0}) {
+          const Vec3 p = p0 + (t0 + fraction * (t1 - t0)) * line;
+          if (fits(p)) found.push_back(p);
+        }
+      }
+    }
+    if (found.size() < 2) {
+      return {std::nullopt,
+              fmt::format("its case has no room in its walls for the pins of the piece beyond {}", c.what)};
+    }
+    std::size_t best_a = 0, best_b = 1;
+    for (std::size_t a = 0; a < found.size(); ++a) {
+      for (std::size_t b = a + 1; b < found.size(); ++b) {
+        if ((found[a] - found[b]).norm() > (found[best_a] - found[best_b]).norm()) {
+          best_a = a;
+          best_b = b;
+        }
+      }
+    }
+    const double pin_length = snapped(buried + height, kLengthBits);
+    const double hole_length = snapped(buried + height + options.clearance, kLengthBits);
+    for (std::size_t b : {best_a, best_b}) {
+      const Vec3 foot = found[b] + buried * n;
+      CasePin pin;
+      pin.base = found[b];
+      pin.axis = -n;
+      pin.radius = radius;
+      pin.height = height;
+      pin.hole_radius = hole_radius;
+      pin.hole_depth = height + options.clearance;
+      pin.sides = sides;
+      c.pins.push_back(pin);
+      pins[i].push_back(cylinder(foot, e1, e2, -c.d, radius, pin_length, sides));
+      holes.push_back(cylinder(foot, e1, e2, -c.d, hole_radius, hole_length, sides));
+    }
+    // The region: beyond the plane, well past the case on every other side.
+    const double reach = snapped(4.0 * (hi - lo).norm() + (c.o - lo).norm(), kLengthBits);
+    if (c.axis) {
+      Vec3 rlo = lo - Vec3::Constant(w), rhi = hi + Vec3::Constant(w);
+      const int q = c.axis->q;
+      (c.axis->s > 0 ? rlo : rhi)[q] = c.axis->e;
+      regions[i].push_back(block_of(rlo, Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ(),
+                                    {0.0, rhi.x() - rlo.x()}, {0.0, rhi.y() - rlo.y()},
+                                    {0.0, rhi.z() - rlo.z()}));
+      if (c.features > 0) {
+        std::optional<TriangleSoup> fills = socket_fills(faces, *c.axis);
+        if (!fills) return {std::nullopt, fmt::format("the sockets behind {} do not bound regions", c.what)};
+        regions[i].push_back(std::move(*fills));
+      }
+    } else {
+      regions[i].push_back(block_of(c.o, c.u, c.v, c.d, {-reach, reach}, {-reach, reach}, {0.0, reach}));
+    }
+  }
+
+  TriangleSoup block = block_of(lo, Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ(), {0.0, hi.x() - lo.x()},
+                                {0.0, hi.y() - lo.y()}, {0.0, hi.z() - lo.z()});
+  std::optional<std::vector<TriangleSoup>> pieces = carve_pieces(block, part, regions, pins, holes, &why);
+  if (!pieces) return {std::nullopt, "carving its case failed: " + why};
+  for (std::size_t i = 0; i < pieces->size(); ++i) {
+    const ValidationReport report = validate((*pieces)[i]);
+    if (!report.valid()) {
+      std::string defects;
+      for (const std::string& d : describe_defects(report)) defects += (defects.empty() ? "" : "; ") + d;
+      return {std::nullopt,
+              fmt::format("its carved case's {} is not a valid solid: {}",
+                          i == 0 ? std::string("main piece") : "piece beyond " + cuts[i - 1].what, defects)};
+    }
+  }
+
+  CastingCase out;
+  out.carved = true;
+  out.soup = std::move(pieces->front());
+  out.pull = axis_vector(axis);
+  out.lo = lo;
+  out.hi = hi;
+  const std::array<double, 2> plo = in_plane(box.lo, k), phi = in_plane(box.hi, k);
+  out.pour_area = (phi[0] - plo[0]) * (phi[1] - plo[1]);
+  out.release_proof = fmt::format(
+      "{} leaves its case along {} once the case's {} other piece{} off: its flat face across {} ({:.6g} x "
+      "{:.6g}) is the case's opening, and none of the {} faces of {} against the main piece faces {}, by "
+      "exact orientation signs",
+      name, dir, cuts.size(), cuts.size() == 1 ? " is" : "s are", dir, phi[0] - plo[0], phi[1] - plo[1],
+      main_faces, name, dir);
+  for (std::size_t i = 0; i < cuts.size(); ++i) {
+    const Cut& c = cuts[i];
+    CasePlate plate;
+    plate.soup = std::move((*pieces)[i + 1]);
+    plate.pull = c.d.normalized();
+    const BoundingBox b = bounding_box(plate.soup.vertices);
+    plate.lo = b.lo;
+    plate.hi = b.hi;
+    plate.features = c.features;
+    plate.pins = c.pins;
+    plate.face = c.what;
+    plate.release_proof = fmt::format(
+        "piece {} (beyond {}) comes off{} along {}: the {} faces of {} it touches face that way or run "
+        "along it ({} do), by exact signs; its seam with the pieces left is flat across that way, and its "
+        "{} pins run exactly along it out of their holes",
+        i + 1, c.what, i == 0 ? " first" : " next", vector_text(c.d), c.touching, name, c.along,
+        c.pins.size());
+    out.release_proof += "; " + plate.release_proof;
+    out.plates.push_back(std::move(plate));
+  }
+  return {std::move(out), {}};
+}
 }  // namespace
+
+std::vector<CaseFace> split_faces(const MouldPart& part) {
+  std::vector<CaseFace> out;
+  if (part.kind != MouldPartKind::Side) return out;
+  for (const bool from : {true, false}) {
+    const double angle = from ? part.from_angle : part.to_angle;
+    CaseFace f;
+    f.name = fmt::format("its split face at {:.4g} degrees", std::fmod(angle * 180.0 / M_PI, 360.0));
+    f.normal =
+        from ? Vec3(std::sin(angle), -std::cos(angle), 0.0) : Vec3(-std::sin(angle), std::cos(angle), 0.0);
+    for (const KeyFeature& k : part.keys) {
+      if (k.on_base || k.bump == from) continue;  // sockets on the `from` plane, bumps on the `to` plane
+      ++f.features;
+      if (!k.bump) f.depth = std::max(f.depth, k.radius);
+    }
+    out.push_back(f);
+  }
+  return out;
+}
 
 TriangleSoup standing(const TriangleSoup& soup, const Vec3& up, const Vec3& corner) {
   // A right-handed frame of axis vectors with z along `up`: coordinates in
@@ -640,11 +1088,19 @@ TriangleSoup standing(const TriangleSoup& soup, const Vec3& up, const Vec3& corn
 
 TriangleSoup standing(const CastingCase& c, const Vec3& corner) { return standing(c.soup, c.pull, corner); }
 
-TriangleSoup standing(const CasePlate& p, const Vec3& corner) { return standing(p.soup, -p.pull, corner); }
+TriangleSoup standing(const CasePlate& p, const Vec3& corner) {
+  // On its outer side: the side of the case's box its pull points most toward.
+  Eigen::Index q = 0;
+  p.pull.cwiseAbs().maxCoeff(&q);
+  Vec3 up = Vec3::Zero();
+  up[q] = p.pull[q] > 0.0 ? -1.0 : 1.0;
+  return standing(p.soup, up, corner);
+}
 
 CastingCase build_casting_case(const TriangleSoup& part, const std::string& name, const Vec3& outward,
                                const CaseOptions& options,
-                               const std::function<std::string(const Vec3&)>& what_is_at) {
+                               const std::function<std::string(const Vec3&)>& what_is_at,
+                               const std::vector<CaseFace>& faces) {
   if (!(options.wall > 0.0) || !std::isfinite(options.wall)) {
     throw RangeError("wall", options.wall,
                      fmt::format("case.wall = {} must be a length above 0", options.wall),
@@ -672,15 +1128,26 @@ CastingCase build_casting_case(const TriangleSoup& part, const std::string& name
     return outward[a.k] * a.sign > outward[b.k] * b.sign;
   });
   std::string first_reason;
+  std::vector<Axis> caught;  // the directions with a flat face to pour through, where faces catch
   for (const Axis& axis : axes) {
     Attempt a = attempt(part, name, axis, options, what_is_at);
     if (a.built) return std::move(*a.built);
     if (first_reason.empty()) first_reason = fmt::format("pulled along {}, {}", axis_name(axis), a.why_not);
+    if (a.catches) caught.push_back(axis);
+  }
+  // Then in several pieces, taken off one after the other.
+  std::string carved_reason;
+  for (const Axis& axis : caught) {
+    Attempt a = carved(part, name, axis, options, faces, what_is_at);
+    if (a.built) return std::move(*a.built);
+    if (carved_reason.empty()) {
+      carved_reason = fmt::format("; in several pieces pulled along {}, {}", axis_name(axis), a.why_not);
+    }
   }
   throw GeometryError("case", fmt::format("no casting case of one piece, or of one piece and a plate, "
                                           "releases {}: {}; no other axis direction has a flat face to "
-                                          "pour through that releases it either",
-                                          name, first_reason));
+                                          "pour through that releases it either{}",
+                                          name, first_reason, carved_reason));
 }
 
 }  // namespace fabmesh

@@ -23,6 +23,7 @@
 
 #include "geometry/core/soup.h"
 #include "geometry/core/types.h"
+#include "geometry/mould/mould_part.h"
 
 namespace fabmesh {
 
@@ -48,15 +49,35 @@ struct CasePin {
   std::size_t sides = 0;
 };
 
-/// The plate of a two-piece case: the slab of the case's box beyond one flat
-/// side face of the part (lying on the part's bounding box), filling what lies
-/// behind that face (the keys' sockets in it).
+/// A flat face of a mould part that a piece of its case may be carved
+/// beyond (a side part's split face, with its keys): the plane through
+/// `point` across `normal`.
+struct CaseFace {
+  std::string name;  ///< for the report and messages: "its split face at 120 degrees"
+  Vec3 point{0.0, 0.0, 0.0};
+  Vec3 normal{0.0, 0.0, 0.0};  ///< unit, out of the part
+  double depth = 0.0;          ///< how far its features (key sockets) reach behind it into the part
+  std::size_t features = 0;    ///< its sockets and bumps
+};
+
+/// A side part's two split faces, with their keys (none for the base part).
+std::vector<CaseFace> split_faces(const MouldPart& part);
+
+/// A piece of a case taken off before the part leaves it. A two-piece case's
+/// plate: the slab of the case's box beyond one flat side face of the part
+/// (lying on the part's bounding box), filling what lies behind that face
+/// (the keys' sockets in it). A case carved in several pieces: what lies in
+/// the case beyond a plane near a face of the part (on a side of its box
+/// exactly, with the sockets behind it; along a given face `wall / 4` beyond
+/// its features into the part), less the pieces before it.
 struct CasePlate {
   TriangleSoup soup;  ///< closed, outward, sharing vertices
-  /// Unit axis direction the plate comes off the part along: the face's
-  /// outward normal. The plate is printed standing on its outer face.
+  /// Unit direction the piece comes off the part along: the face's
+  /// outward normal. It is printed standing on its outer side (the side of
+  /// the case's box this points most toward).
   Vec3 pull{0.0, 0.0, 0.0};
-  Vec3 lo{0.0, 0.0, 0.0}, hi{0.0, 0.0, 0.0};  ///< the slab's box
+  std::string face;                           ///< the face it lies beyond: "its face across -z"
+  Vec3 lo{0.0, 0.0, 0.0}, hi{0.0, 0.0, 0.0};  ///< the slab's box (carved: the piece's bounding box)
   std::size_t features = 0;                   ///< the regions behind the face it fills (sockets)
   /// Its two pins (in the case's walls beside the face, a third of the way
   /// from the floor to the opening, so that it fits one way round).
@@ -79,7 +100,11 @@ struct CastingCase {
   /// (and the plate's, the plate off first) faces the pull (decided by exact
   /// orientation signs).
   std::string release_proof;
-  std::optional<CasePlate> plate;  ///< when the case is two pieces
+  /// The pieces taken off before the part leaves the case, in order (none:
+  /// the case is one piece; one on a side of the part's box: a two-piece
+  /// case built by construction; otherwise carved by exact booleans).
+  std::vector<CasePlate> plates;
+  bool carved = false;  ///< cut by exact booleans (rather than built face by face)
 };
 
 /// The casting case of the mould part `part` (a closed, outward, embedded
@@ -100,9 +125,18 @@ struct CastingCase {
 /// \throw RangeError (key "case.wall") unless wall > 0; (key
 ///        "case.clearance") unless 0 <= clearance < wall / 4 (the hole then
 ///        keeps material all round in the wall).
+///
+/// When no such case exists, the case is carved in several pieces by exact
+/// booleans (CGAL's corefinement): the main piece and, taken off before it
+/// in order, a piece beyond each side of the part's box whose plate takes a
+/// face that would catch and one beyond each face in `faces` (vertical
+/// planes across no axis) that does, each with two pins in holes of the
+/// main piece; every face of the part a piece touches is proved to face its
+/// way off, and every piece is validated in full.
 CastingCase build_casting_case(const TriangleSoup& part, const std::string& name, const Vec3& outward,
                                const CaseOptions& options,
-                               const std::function<std::string(const Vec3&)>& what_is_at = {});
+                               const std::function<std::string(const Vec3&)>& what_is_at = {},
+                               const std::vector<CaseFace>& faces = {});
 
 /// `soup` as it is printed: turned by quarter turns (exact) so that the axis
 /// direction `up` is +z, then moved so that its bounding box's lowest corner

@@ -11,7 +11,12 @@
 #include <CGAL/Surface_mesh.h>
 
 #include <array>
+#include <cmath>
 #include <exception>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <vector>
 
 namespace fabmesh {
 namespace {
@@ -121,6 +126,87 @@ std::optional<TriangleSoup> resolve_self_intersections(const TriangleSoup& shell
     say(why, std::string("CGAL's autorefinement failed: ") + e.what());
     return std::nullopt;
   }
+}
+
+std::optional<std::vector<TriangleSoup>> carve_pieces(const TriangleSoup& block, const TriangleSoup& part,
+                                                      const std::vector<std::vector<TriangleSoup>>& regions,
+                                                      const std::vector<std::vector<TriangleSoup>>& added,
+                                                      const std::vector<TriangleSoup>& holes,
+                                                      std::string* why) {
+  try {
+    // One boolean: a fresh copy of each operand, since corefinement refines both.
+    const auto apply = [&](const SurfaceMesh& a, const SurfaceMesh& b, int op, const char* what) {
+      SurfaceMesh x = a, y = b, out;
+      const bool ok = op == 0   ? PMP::corefine_and_compute_difference(x, y, out)
+                      : op == 1 ? PMP::corefine_and_compute_intersection(x, y, out)
+                                : PMP::corefine_and_compute_union(x, y, out);
+      if (!ok) throw std::runtime_error(std::string(what) + " would not be a manifold surface");
+      return out;
+    };
+    SurfaceMesh rest = apply(exact_mesh(block), exact_mesh(part), 0, "the block less the part");
+    std::vector<TriangleSoup> pieces(1);
+    for (std::size_t i = 0; i < regions.size(); ++i) {
+      if (regions[i].empty()) throw std::runtime_error("a region without a solid");
+      SurfaceMesh region = exact_mesh(regions[i].front());
+      for (std::size_t j = 1; j < regions[i].size(); ++j) {
+        region = apply(region, exact_mesh(regions[i][j]), 2, "a region");
+      }
+      SurfaceMesh piece = apply(rest, region, 1, "a piece");
+      rest = apply(rest, region, 0, "the rest of the block");
+      if (i < added.size()) {
+        for (const TriangleSoup& a : added[i]) piece = apply(piece, exact_mesh(a), 2, "a piece with a pin");
+      }
+      if (piece.is_empty() || !CGAL::is_closed(piece)) {
+        say(why, "piece " + std::to_string(i + 1) + " is empty or open");
+        return std::nullopt;
+      }
+      pieces.push_back(rounded(piece));
+    }
+    for (const TriangleSoup& hole : holes) rest = apply(rest, exact_mesh(hole), 0, "the rest less a hole");
+    if (rest.is_empty() || !CGAL::is_closed(rest)) {
+      say(why, "the main piece is empty or open");
+      return std::nullopt;
+    }
+    pieces.front() = rounded(rest);
+    return pieces;
+  } catch (const std::exception& e) {
+    say(why, std::string("CGAL's corefinement failed: ") + e.what());
+    return std::nullopt;
+  }
+}
+
+namespace {
+
+// A floating-point filter for a sum of products: the computed value's sign
+// is exact once it exceeds `bound`; otherwise none.
+int filtered(double value, double bound) {
+  if (value > bound) return 1;
+  if (-value > bound) return -1;
+  return 2;
+}
+
+constexpr double kFilter = 64.0 * std::numeric_limits<double>::epsilon();
+
+}  // namespace
+
+int exact_facing(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  const Vec3 u = b - a, v = c - a;
+  const double value = u.cross(v).dot(d);
+  const double bound = kFilter * u.lpNorm<1>() * v.lpNorm<1>() * d.lpNorm<1>();
+  const int s = filtered(value, bound);
+  if (s != 2) return s;
+  const Point pa(a.x(), a.y(), a.z()), pb(b.x(), b.y(), b.z()), pc(c.x(), c.y(), c.z());
+  const Kernel::Vector_3 vd(d.x(), d.y(), d.z());
+  return static_cast<int>(CGAL::sign(CGAL::cross_product(pb - pa, pc - pa) * vd));
+}
+
+int exact_side(const Vec3& p, const Vec3& o, const Vec3& d) {
+  const double value = (p - o).dot(d);
+  const double bound = kFilter * (p.lpNorm<1>() + o.lpNorm<1>()) * d.lpNorm<1>();
+  const int s = filtered(value, bound);
+  if (s != 2) return s;
+  const Kernel::Vector_3 vd(d.x(), d.y(), d.z());
+  return static_cast<int>(CGAL::sign((Point(p.x(), p.y(), p.z()) - Point(o.x(), o.y(), o.z())) * vd));
 }
 
 }  // namespace fabmesh

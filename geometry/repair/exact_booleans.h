@@ -31,4 +31,26 @@ std::optional<TriangleSoup> unite_shells(const std::vector<TriangleSoup>& shells
 /// tested exactly).
 std::optional<TriangleSoup> resolve_self_intersections(const TriangleSoup& shell, std::string* why = nullptr);
 
+/// Pieces carved from one solid: `block` less `part` (each closed, outward,
+/// manifold and free of self-intersections), cut by `regions` in order
+/// (each the union of its solids): piece i + 1 is what lies in region i and
+/// in none before it,
+/// united with the solids `added[i]`; piece 0 is what lies in no region,
+/// less the solids `holes`. All by CGAL's corefinement over exact
+/// constructions, each piece rounded to double once, at the end. Empty when
+/// CGAL cannot, or a piece is empty or not closed; `why` then says so.
+std::optional<std::vector<TriangleSoup>> carve_pieces(const TriangleSoup& block, const TriangleSoup& part,
+                                                      const std::vector<std::vector<TriangleSoup>>& regions,
+                                                      const std::vector<std::vector<TriangleSoup>>& added,
+                                                      const std::vector<TriangleSoup>& holes,
+                                                      std::string* why = nullptr);
+
+/// The exact sign (-1, 0, +1) of ((b - a) x (c - a)) . d: which way the
+/// triangle (a, b, c) faces along d.
+int exact_facing(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
+
+/// The exact sign of (p - o) . d: the side of the plane through o across d
+/// that p lies on.
+int exact_side(const Vec3& p, const Vec3& o, const Vec3& d);
+
 }  // namespace fabmesh

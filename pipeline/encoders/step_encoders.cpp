@@ -327,7 +327,12 @@ EncodedFiles encode_case_step_output(const EncodeContext& c) {
   StepLoops loop_of(c.output_tolerance);
   const StepLoop cavity = loop_of(mould.cavity);
   EncodedFiles files;
+  std::vector<std::string> carved;
   for (const VesselProducts::CaseBox& box : vessel.cases) {
+    if (box.carved) {
+      carved.push_back(box.name);
+      continue;
+    }
     const ExactMould::Part& part = mould.parts.at(box.part);
     // The coordinate of the part's exact flat face across an axis direction.
     const auto face = [&](int k, double sign) {
@@ -391,6 +396,12 @@ EncodedFiles encode_case_step_output(const EncodeContext& c) {
     }
     e.suffix = "." + box.name + ".step";
     files.push_back(std::move(e));
+  }
+  if (files.empty()) {
+    throw OutputError("case_step",
+                      fmt::format("case_step: every casting case ({}) is carved in several pieces, "
+                                  "which fabmesh writes as meshes only (case_stl, case_3mf)",
+                                  fmt::join(carved, ", ")));
   }
   return files;
 }

@@ -7,6 +7,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "geometry/core/errors.h"
@@ -218,34 +219,51 @@ TEST_CASE("casting cases: a cylinder mould is refused, a part no case releases i
                 &text) == 2);
   CHECK(text.find("case_stl needs a `mould:` section with `block: box`") != std::string::npos);
   // Three parts keyed on planes 120 degrees apart, on a base: the base pours
-  // through its bottom; each side's keys on its slanted split face catch on
-  // any case pulled along an axis.
-  CHECK(run_cli({"run", example("mould_golden_box_base.yaml"), "-D", "outputs=[case_stl]", "-D",
-                 "mould.parts=3", "-D", "mould.key_clearance=0.1", "-o", dir.string() + "/"},
-                &text) == 0);
-  CHECK(fs::exists(dir / "mould_golden_box_base.case-base.stl"));
-  CHECK_FALSE(fs::exists(dir / "mould_golden_box_base.case-side-1.stl"));
-  CHECK(
-      text.find("warning: case: no casting case of one piece, or of one piece and a plate, releases side-1: "
-                "pulled along") != std::string::npos);
-  CHECK(text.find("casting cases: 1 of 4 parts (base lifts out along -z)") != std::string::npos);
-  // Three parts keyed on planes 120 degrees apart: every part refused, nothing written.
+  // through its bottom; each side's keys on its slanted split faces catch on
+  // any case pulled along an axis, so its case is carved in pieces taken off
+  // first: one under the part (the base keys' sockets) and one beyond each
+  // split face whose keys would catch.
+  const fs::path carved = fresh_dir("casting_cases_carved");
+  REQUIRE(
+      run_cli_json({"run", example("mould_golden_box_base.yaml"), "-D", "outputs=[case_stl, case_3mf]", "-D",
+                    "mould.parts=3", "-D", "mould.key_clearance=0.1", "-o", carved.string() + "/", "--json"},
+                   &text) == 0);
+  for (const char* file : {"case-base", "case-side-1", "case-side-1-piece-1", "case-side-1-piece-2",
+                           "case-side-2", "case-side-2-piece-3", "case-side-3-piece-2"}) {
+    CHECK(fs::exists(carved / (std::string("mould_golden_box_base.") + file + ".stl")));
+  }
+  CHECK_FALSE(fs::exists(carved / "mould_golden_box_base.case-side-1-piece-3.stl"));
+  const nlohmann::json report = nlohmann::json::parse(text);
+  const nlohmann::json& cases = report.at(0).at("build").at("mould").at("cases");
+  REQUIRE(cases.size() == 4);
+  const nlohmann::json& side2 = cases.at(1);
+  CHECK(side2.at("pull") == nlohmann::json::array({-1.0, 0.0, 0.0}));
+  REQUIRE(side2.at("pieces").size() == 3);
+  CHECK(side2.at("pieces").at(0).at("beyond") == "its face across -z");
+  CHECK(side2.at("pieces").at(1).at("beyond") == "its split face at 120 degrees");
+  CHECK(side2.at("pieces").at(2).at("beyond") == "its split face at 240 degrees");
+  for (const nlohmann::json& piece : side2.at("pieces")) CHECK(piece.at("pins").size() == 2);
+  CHECK_THAT(
+      side2.at("release").get<std::string>(),
+      Catch::Contains("side-2 leaves its case along -x once the case's 3 other pieces are off") &&
+          Catch::Contains("piece 3 (beyond its split face at 240 degrees) comes off next along (0.866, "
+                          "-0.5, 0)"));
+  std::string checked;
+  CHECK(run_cli({"check", (carved / "mould_golden_box_base.case.3mf").string()}, &checked) == 0);
+  CHECK(checked.find("11 objects, none interpenetrating") != std::string::npos);
+  // Without a base: one piece beyond each slanted split face.
   CHECK(run_cli({"run", example("mould_golden.yaml"), "-D", "outputs=[case_stl]", "-D", "mould.block=box",
-                 "-D", "mould.parts=3", "-D", "mould.key_clearance=0.1", "-o", dir.string() + "/"},
-                &text) == 2);
-  CHECK(text.find("no mould part has a casting case") != std::string::npos);
-  CHECK(text.find("on the bump of a key on its split face at 120 degrees") != std::string::npos);
-  // On a base, the first face that catches is a base key's socket, which a
-  // plate under the part would take: the reason names a split face's key.
-  CHECK(run_cli({"run", example("mould_vase_production.yaml"), "-D", "mould.block=box", "-D",
-                 "outputs=[case_stl]", "-o", dir.string() + "/"},
+                 "-D", "mould.parts=3", "-D", "mould.key_clearance=0.1", "-o", carved.string() + "/"},
                 &text) == 0);
-  CHECK_THAT(text,
-             Catch::Contains("releases side-1: pulled along +y, its face at") &&
-                 Catch::Contains("on the bump of a key on its split face at 120 degrees, faces +y: pulled "
-                                 "that way, the part would catch on the case there, and no plate on a flat "
-                                 "side of the part would take that face"));
-  CHECK_THAT(text, !Catch::Contains("on a base key's socket"));
+  CHECK(text.find(
+            "casting cases: 3 of 3 parts (side-1 lifts out along +y once its 1 other piece is off, side-2 "
+            "lifts out along -x once its 2 other pieces are off, side-3 lifts out along -y once its 1 "
+            "other piece is off)") != std::string::npos);
+  // case_step leaves carved cases out, saying so; with none left it writes nothing.
+  CHECK(run_cli({"run", example("mould_golden.yaml"), "-D", "outputs=[case_step]", "-D", "mould.block=box",
+                 "-D", "mould.parts=3", "-D", "mould.key_clearance=0.1", "-o", dir.string() + "/"},
+                &text) != 0);
+  CHECK(text.find("is carved in several pieces, which fabmesh writes as meshes only") != std::string::npos);
   // A case that does not fit the printer is written, with a warning at print.bed.
   CHECK(run_cli({"run", example("mould_box_cases.yaml"), "-D", "print={bed: [250, 250, 250]}", "-D",
                  "outputs=[case_stl]", "-o", dir.string() + "/"},

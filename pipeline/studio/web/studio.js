@@ -443,7 +443,9 @@ function showMould(add, m, u) {
     return (pull[k] > 0 ? '+' : '-') + 'xyz'[k];
   };
   const made = m.cases.filter((c) => c.refused === undefined).map((c) =>
-    `${c.part} lifts out along ${along(c.pull)}` + (c.plate ? ` once its plate is off along ${along(c.plate.pull)}` : ''));
+    `${c.part} lifts out along ${along(c.pull)}` +
+    (c.plate ? ` once its plate is off along ${along(c.plate.pull)}` : '') +
+    (c.pieces ? ` once its ${c.pieces.length} other piece${c.pieces.length === 1 ? ' is' : 's are'} off` : ''));
   add('casting cases', `${made.length} of ${m.cases.length} parts (${made.length ? made.join(', ') : 'none'})`);
   for (const c of m.cases) if (c.refused !== undefined) add('case refused', c.refused, 'not-valid');
 }
