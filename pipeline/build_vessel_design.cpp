@@ -391,16 +391,26 @@ std::vector<Facts> add_cases(const VesselDesign& design, const Mould& mould, con
       };
       if (c.carved) {
         // Carved in several pieces, taken off in order before the part comes out.
-        if (context.wants_exact) {
-          out.warnings.push_back(
-              fmt::format("case: {} is carved in {} pieces, which fabmesh writes as meshes "
-                          "only (case_stl, case_3mf): case_step leaves it out",
-                          box.name, c.plates.size() + 1));
-        }
         std::vector<Facts> pieces;
         for (std::size_t n = 0; n < c.plates.size(); ++n) {
           const CasePlate& cp = c.plates[n];
           Facts f = plate_facts(cp, fmt::format("{}-piece-{}", box.name, n + 1));
+          VesselProducts::CaseBox::Piece piece{fmt::format("{}-piece-{}", box.name, n + 1),
+                                               cp.corner,
+                                               cp.u,
+                                               cp.v,
+                                               cp.d,
+                                               cp.face_axis,
+                                               cp.face_at,
+                                               {},
+                                               0.0};
+          for (const CasePin& pin : cp.pins) {
+            // The cylinder from its end inside the piece, `buried` behind the seam.
+            piece.pins.push_back({pin.base - pin.buried * pin.axis, pin.axis, pin.radius,
+                                  pin.buried + pin.height, pin.hole_radius, pin.buried + pin.hole_depth});
+            piece.behind = pin.buried;
+          }
+          box.pieces.push_back(std::move(piece));
           f.set("beyond", cp.face);
           pieces.push_back(std::move(f));
         }

@@ -178,8 +178,24 @@ struct VesselProducts {
       std::vector<Pin> pins;
     };
     std::optional<Plate> plate;  ///< none: the case is one piece
-    /// Carved in several pieces by exact booleans (written as meshes only).
+    /// Carved in several pieces by exact booleans.
     bool carved = false;
+    /// A carved case's pieces taken off before the part, in order: each what
+    /// lies in the case in its region (the box `corner` + a u + b v + c d,
+    /// a, b, c in [0, 1]; on a side of the part's box, across `face_axis` at
+    /// `face_at`, with the sockets behind that face) and in none before it.
+    struct Piece {
+      std::string name;  ///< "case-side-1-piece-1"
+      Vec3 corner{0.0, 0.0, 0.0}, u{0.0, 0.0, 0.0}, v{0.0, 0.0, 0.0}, d{0.0, 0.0, 0.0};
+      int face_axis = -1;
+      double face_at = 0.0;
+      /// Its pins: `base` the centre of the cylinder's end inside the piece,
+      /// `height` its whole length (`behind` of it inside the piece), and
+      /// the hole's whole length `hole_depth` from the same end.
+      std::vector<Plate::Pin> pins;
+      double behind = 0.0;
+    };
+    std::vector<Piece> pieces;
   };
   std::vector<CaseBox> cases;
   /// The section as the builder made it: closed loops (the profile, the rim,

@@ -68,6 +68,15 @@ std::array<double, 2> in_plane(const Vec3& p, int k) { return {p[(k + 1) % 3], p
 
 std::string point_text(const Vec3& p) { return fmt::format("({:.4g}, {:.4g}, {:.4g})", p.x(), p.y(), p.z()); }
 
+// Where the part's triangle t is (its centroid), and what feature of the
+// part is there when `what_is_at` says, for a refusal's message.
+std::string where(const TriangleSoup& part, std::size_t t,
+                  const std::function<std::string(const Vec3&)>& what_is_at) {
+  const auto& tri = part.triangles[t];
+  const Vec3 centroid = (part.vertices[tri[0]] + part.vertices[tri[1]] + part.vertices[tri[2]]) / 3.0;
+  return point_text(centroid) + (what_is_at ? what_is_at(centroid) : std::string());
+}
+
 // What holds the part along one direction, or the case when nothing does.
 struct Attempt {
   std::optional<CastingCase> built;
@@ -441,11 +450,7 @@ Attempt attempt(const TriangleSoup& part, const std::string& name, const Axis& a
   const std::string dir = axis_name(axis);
 
   // Where a face is, for a refusal only.
-  const auto at = [&](std::size_t t) {
-    const Triangle& tri = part.triangles[t];
-    const Vec3 centroid = (part.vertices[tri[0]] + part.vertices[tri[1]] + part.vertices[tri[2]]) / 3.0;
-    return point_text(centroid) + (what_is_at ? what_is_at(centroid) : std::string());
-  };
+  const auto at = [&](std::size_t t) { return where(part, t, what_is_at); };
   // Why a face that does not face away from the pull holds the part.
   const auto catches = [&](std::size_t t) {
     return facing(part, part.triangles[t], k)
@@ -692,6 +697,7 @@ struct Cut {
   std::size_t features = 0;
   std::size_t touching = 0, along = 0;  // the part's faces it touches, of which run along d
   std::vector<CasePin> pins;
+  Vec3 corner, ru, rv, rd;  // its region: corner + a ru + b rv + c rd, a, b, c in [0, 1]
 };
 
 // The solid o + a u + b v + c d over the ranges a, b, c (u, v, d
@@ -785,11 +791,7 @@ Attempt carved(const TriangleSoup& part, const std::string& name, const Axis& ax
   const BoundingBox box = bounding_box(part.vertices);
   const double extreme = axis.sign > 0 ? box.hi[k] : box.lo[k];
   const std::string dir = axis_name(axis);
-  const auto at = [&](std::size_t t) {
-    const Triangle& tri = part.triangles[t];
-    const Vec3 centroid = (part.vertices[tri[0]] + part.vertices[tri[1]] + part.vertices[tri[2]]) / 3.0;
-    return point_text(centroid) + (what_is_at ? what_is_at(centroid) : std::string());
-  };
+  const auto at = [&](std::size_t t) { return where(part, t, what_is_at); };
   std::string why;
   const std::optional<Pour> analysed = analyse(part, axis, at, why);
   if (!analysed) return {std::nullopt, why};
@@ -979,6 +981,7 @@ Attempt carved(const TriangleSoup& part, const std::string& name, const Axis& ax
       pin.hole_radius = hole_radius;
       pin.hole_depth = height + options.clearance;
       pin.sides = sides;
+      pin.buried = buried;
       c.pins.push_back(pin);
       pins[i].push_back(cylinder(foot, e1, e2, -c.d, radius, pin_length, sides));
       holes.push_back(cylinder(foot, e1, e2, -c.d, hole_radius, hole_length, sides));
@@ -992,6 +995,15 @@ Attempt carved(const TriangleSoup& part, const std::string& name, const Axis& ax
       regions[i].push_back(block_of(rlo, Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ(),
                                     {0.0, rhi.x() - rlo.x()}, {0.0, rhi.y() - rlo.y()},
                                     {0.0, rhi.z() - rlo.z()}));
+      // As a box with edges along the axes, right-handed (the axes in cyclic order).
+      const Vec3 size = rhi - rlo;
+      c.corner = rlo;
+      c.ru = Vec3::Zero();
+      c.rv = Vec3::Zero();
+      c.rd = Vec3::Zero();
+      c.rd[q] = size[q];
+      c.ru[(q + 1) % 3] = size[(q + 1) % 3];
+      c.rv[(q + 2) % 3] = size[(q + 2) % 3];
       if (c.features > 0) {
         std::optional<TriangleSoup> fills = socket_fills(faces, *c.axis);
         if (!fills) return {std::nullopt, fmt::format("the sockets behind {} do not bound regions", c.what)};
@@ -999,6 +1011,10 @@ Attempt carved(const TriangleSoup& part, const std::string& name, const Axis& ax
       }
     } else {
       regions[i].push_back(block_of(c.o, c.u, c.v, c.d, {-reach, reach}, {-reach, reach}, {0.0, reach}));
+      c.corner = c.o - reach * c.u - reach * c.v;
+      c.ru = 2.0 * reach * c.u;
+      c.rv = 2.0 * reach * c.v;
+      c.rd = reach * c.d;
     }
   }
 
@@ -1042,6 +1058,14 @@ Attempt carved(const TriangleSoup& part, const std::string& name, const Axis& ax
     plate.features = c.features;
     plate.pins = c.pins;
     plate.face = c.what;
+    plate.corner = c.corner;
+    plate.u = c.ru;
+    plate.v = c.rv;
+    plate.d = c.rd;
+    if (c.axis) {
+      plate.face_axis = c.axis->q;
+      plate.face_at = c.axis->e;
+    }
     plate.release_proof = fmt::format(
         "piece {} (beyond {}) comes off{} along {}: the {} faces of {} it touches face that way or run "
         "along it ({} do), by exact signs; its seam with the pieces left is flat across that way, and its "

@@ -47,6 +47,9 @@ struct CasePin {
   double radius = 0.0, height = 0.0;
   double hole_radius = 0.0, hole_depth = 0.0;
   std::size_t sides = 0;
+  /// A carved case's pin runs on `buried` back into its own piece from the
+  /// seam (its hole as far into the piece's side), so that it joins the piece.
+  double buried = 0.0;
 };
 
 /// A flat face of a mould part that a piece of its case may be carved
@@ -76,7 +79,13 @@ struct CasePlate {
   /// outward normal. It is printed standing on its outer side (the side of
   /// the case's box this points most toward).
   Vec3 pull{0.0, 0.0, 0.0};
-  std::string face;                           ///< the face it lies beyond: "its face across -z"
+  std::string face;  ///< the face it lies beyond: "its face across -z"
+  /// A carved case's piece: the region it was cut by, `corner` + a u + b v +
+  /// c d for a, b, c in [0, 1] (d along its pull; on a side of the part's
+  /// box `face_axis` >= 0, the sockets behind that face filled).
+  Vec3 corner{0.0, 0.0, 0.0}, u{0.0, 0.0, 0.0}, v{0.0, 0.0, 0.0}, d{0.0, 0.0, 0.0};
+  int face_axis = -1;
+  double face_at = 0.0;                       ///< that face's coordinate along face_axis
   Vec3 lo{0.0, 0.0, 0.0}, hi{0.0, 0.0, 0.0};  ///< the slab's box (carved: the piece's bounding box)
   std::size_t features = 0;                   ///< the regions behind the face it fills (sockets)
   /// Its two pins (in the case's walls beside the face, a third of the way

@@ -61,6 +61,12 @@ enum class StepForm {
   /// `case_lo`..`case_hi` with `hemispheres` added to it or taken from it
   /// (the sockets of the part's face it lies under, filled; its bumps, held)
   CasePlate,
+  /// A piece of a casting case carved in several: the Case (its box less the
+  /// part) cut by `regions`. Piece `piece` > 0 is what lies in region
+  /// `piece - 1` and in none before it, with `cylinders` (its pins) added;
+  /// piece 0, the main piece, is what lies in no region, less `cylinders`
+  /// (the pins' holes).
+  CasePiece,
 };
 
 /// A face of a Sheet or a Closed body: a polynomial B-spline surface.
@@ -84,6 +90,15 @@ struct StepHemisphere {
   Vec3 axis{0.0, 0.0, 1.0};
   double radius = 0.0;
   bool added = true;
+};
+
+/// A region a casting case is cut by: the box `corner` + a u + b v + c d for
+/// a, b, c in [0, 1] (u, v, d at right angles, right-handed), with the
+/// half-balls `fills` added (the sockets of the part's face it lies beyond).
+struct StepRegion {
+  Vec3 corner{0.0, 0.0, 0.0};
+  Vec3 u{1.0, 0.0, 0.0}, v{0.0, 1.0, 0.0}, d{0.0, 0.0, 1.0};
+  std::vector<StepHemisphere> fills;
 };
 
 /// A solid cylinder: its base circle of `radius` about `base`, extending
@@ -130,7 +145,12 @@ struct StepBody {
   std::vector<StepSurface> surfaces;        ///< Sheet, Closed
   /// Sheet, Closed: faces whose borders are closer than this are sewn (model units; > 0).
   double sewing_tolerance = 0.0;
-  Vec3 case_lo{0.0, 0.0, 0.0}, case_hi{0.0, 0.0, 0.0};  ///< Case, CasePlate
+  Vec3 case_lo{0.0, 0.0, 0.0}, case_hi{0.0, 0.0, 0.0};  ///< Case, CasePlate, CasePiece
+  std::vector<StepRegion> regions;                      ///< CasePiece
+  std::size_t piece = 0;                                ///< CasePiece
+  /// CasePiece: how far each cylinder runs on the near side of its region's
+  /// plane (a pin into its own piece; a hole into the piece beyond, not the main one).
+  double cylinder_behind = 0.0;
 };
 
 /// One file: its bodies in one unit of length (mm, cm, m or in), the file's own.

@@ -996,10 +996,99 @@ TopoDS_Shape make_case(const StepBody& body) {
   return shape;
 }
 
+// A region a carved case is cut by: its box, with its fills.
+TopoDS_Shape make_region(const StepRegion& r) {
+  const double a = r.u.norm(), b = r.v.norm(), c = r.d.norm();
+  if (!(a > 0.0 && b > 0.0 && c > 0.0)) throw std::runtime_error("a case's region without room");
+  const gp_Ax2 frame(gp_Pnt(r.corner.x(), r.corner.y(), r.corner.z()), gp_Dir(r.d.x(), r.d.y(), r.d.z()),
+                     gp_Dir(r.u.x(), r.u.y(), r.u.z()));
+  TopoDS_Shape shape = BRepPrimAPI_MakeBox(frame, a, b, c).Shape();
+  if (!r.fills.empty()) {
+    TopTools_ListOfShape fills;
+    for (const StepHemisphere& h : r.fills) fills.Append(make_hemisphere(h));
+    shape = the_solid(boolean<BRepAlgoAPI_Fuse>(shape, fills, "filling the sockets of a piece's face"));
+  }
+  return shape;
+}
+
+// The largest tolerance of the edges of `shape`: how far OpenCASCADE lets
+// an edge (a curve where faces were cut) stray from the faces it bounds.
+double largest_edge_tolerance(const TopoDS_Shape& shape) {
+  double largest = 0.0;
+  for (TopExp_Explorer e(shape, TopAbs_EDGE); e.More(); e.Next()) {
+    largest = std::max(largest, BRep_Tool::Tolerance(TopoDS::Edge(e.Current())));
+  }
+  return largest;
+}
+
+// `whole` split by `region`: the part in it, the module checking that it and
+// the rest hold `whole`'s volume, to 1e-9 of it plus the new faces' area
+// times the largest edge tolerance of the two (a cut through a curved face
+// follows its approximated section curve; a split that lost a face would
+// show).
+std::pair<TopoDS_Shape, TopoDS_Shape> split_by(const TopoDS_Shape& whole, const TopoDS_Shape& region) {
+  TopTools_ListOfShape tool;
+  tool.Append(region);
+  const TopoDS_Shape in = boolean<BRepAlgoAPI_Common>(whole, tool, "cutting a piece of the case");
+  const TopoDS_Shape out = boolean<BRepAlgoAPI_Cut>(whole, tool, "cutting the rest of the case");
+  const double all = precise_volume_of(whole), got = precise_volume_of(in) + precise_volume_of(out);
+  GProp_GProps surface;
+  BRepGProp::SurfaceProperties(in, surface);
+  const double slack =
+      1e-9 * all + surface.Mass() * std::max(largest_edge_tolerance(in), largest_edge_tolerance(out));
+  if (!(std::abs(got - all) <= slack)) {
+    throw std::runtime_error("a piece of the case and the rest hold " + std::to_string(got) +
+                             ", not the case's " + std::to_string(all));
+  }
+  return {in, out};
+}
+
+// A piece of a carved casting case: the case (its box less the part,
+// checked as make_case checks it) cut by its regions in order, each cut
+// checked; a piece with its pins added (each adding the volume it stands
+// out of the piece), the main piece less their holes (each taking the
+// volume it reaches into it), to 1e-9 of the piece's plus its area times
+// its largest edge tolerance.
+TopoDS_Shape make_case_piece(const StepBody& body) {
+  StepBody whole = body;
+  whole.form = StepForm::Case;
+  whole.cylinders.clear();
+  TopoDS_Shape rest = make_case(whole);
+  TopoDS_Shape piece;
+  const std::size_t last = body.piece == 0 ? body.regions.size() : body.piece;
+  if (last > body.regions.size()) throw std::runtime_error("a piece of a case beyond its regions");
+  for (std::size_t i = 0; i < last; ++i) {
+    auto [in, out] = split_by(rest, make_region(body.regions[i]));
+    piece = std::move(in);
+    rest = std::move(out);
+  }
+  TopoDS_Shape shape = the_solid(body.piece == 0 ? rest : piece);
+  if (body.cylinders.empty()) return shape;
+  TopTools_ListOfShape tools;
+  double expected = precise_volume_of(shape);
+  const double sign = body.piece == 0 ? -1.0 : 1.0;
+  for (const StepCylinder& c : body.cylinders) {
+    tools.Append(make_cylinder(c));
+    expected += sign * M_PI * c.radius * c.radius * (c.height - body.cylinder_behind);
+  }
+  shape = the_solid(body.piece == 0 ? boolean<BRepAlgoAPI_Cut>(shape, tools, "taking the pins' holes away")
+                                    : boolean<BRepAlgoAPI_Fuse>(shape, tools, "adding the piece's pins"));
+  const double got = precise_volume_of(shape);
+  GProp_GProps surface;
+  BRepGProp::SurfaceProperties(shape, surface);
+  if (!(std::abs(got - expected) <=
+        1e-9 * std::abs(expected) + surface.Mass() * largest_edge_tolerance(shape))) {
+    throw std::runtime_error("a piece of the case with its pins or holes holds " + std::to_string(got) +
+                             ", not " + std::to_string(expected));
+  }
+  return shape;
+}
+
 TopoDS_Shape make_body(const StepBody& body) {
   if (body.form == StepForm::Sheet) return make_sheet(body);
   if (body.form == StepForm::Closed) return make_closed(body);
   if (body.form == StepForm::CasePlate) return make_case_plate(body);
+  if (body.form == StepForm::CasePiece) return make_case_piece(body);
   if (body.loops.empty()) throw std::runtime_error("a body without loops");
   if (body.form == StepForm::Wireframe) {
     TopoDS_Compound compound;

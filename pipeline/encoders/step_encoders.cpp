@@ -327,12 +327,7 @@ EncodedFiles encode_case_step_output(const EncodeContext& c) {
   StepLoops loop_of(c.output_tolerance);
   const StepLoop cavity = loop_of(mould.cavity);
   EncodedFiles files;
-  std::vector<std::string> carved;
   for (const VesselProducts::CaseBox& box : vessel.cases) {
-    if (box.carved) {
-      carved.push_back(box.name);
-      continue;
-    }
     const ExactMould::Part& part = mould.parts.at(box.part);
     // The coordinate of the part's exact flat face across an axis direction.
     const auto face = [&](int k, double sign) {
@@ -350,7 +345,61 @@ EncodedFiles encode_case_step_output(const EncodeContext& c) {
       if (box.pull[k] != 0.0) (box.pull[k] > 0.0 ? body.case_hi : body.case_lo)[k] = face(k, box.pull[k]);
     }
     Encoded e;
-    if (box.plate) {
+    if (box.carved) {
+      // Its pieces cut from the exact case by their regions, in order; the
+      // main piece first, less the pins' holes.
+      std::vector<StepRegion> regions;
+      for (const VesselProducts::CaseBox::Piece& p : box.pieces) {
+        StepRegion r{p.corner, p.u, p.v, p.d, {}};
+        if (p.face_axis >= 0) {
+          // Its seam on the part's exact face.
+          const int q = p.face_axis;
+          const double side = p.corner[q] + 0.5 * p.d[q] > p.face_at ? 1.0 : -1.0;
+          const double at = face(q, side);
+          if (side > 0.0) {
+            r.d[q] = p.corner[q] + p.d[q] - at;
+            r.corner[q] = at;
+          } else {
+            r.d[q] = at - p.corner[q];
+          }
+          // The sockets behind that face: the part's hemispheres taken away there, filled.
+          Vec3 way = Vec3::Zero();  // the way the piece comes off
+          way[q] = side;
+          for (const StepHemisphere& h : body.hemispheres) {
+            if (!h.added && std::abs(h.centre[q] - at) <= 1e-9 * (1.0 + std::abs(at)) &&
+                std::abs(h.axis.dot(way) + 1.0) <= 1e-12) {
+              StepHemisphere fill = h;
+              fill.added = true;
+              r.fills.push_back(fill);
+            }
+          }
+        }
+        regions.push_back(std::move(r));
+      }
+      body.form = StepForm::CasePiece;
+      body.regions = regions;
+      e.parts = {box.name};
+      const StepBody whole = body;
+      std::vector<StepBody> pieces;
+      for (std::size_t n = 0; n < box.pieces.size(); ++n) {
+        StepBody piece = whole;
+        piece.name = c.common.name + " " + box.pieces[n].name;
+        piece.piece = n + 1;
+        piece.cylinder_behind = box.pieces[n].behind;
+        for (const VesselProducts::CaseBox::Plate::Pin& pin : box.pieces[n].pins) {
+          piece.cylinders.push_back({pin.base, pin.axis, pin.radius, pin.height, true, false});
+          body.cylinders.push_back({pin.base, pin.axis, pin.hole_radius, pin.hole_depth, false, false});
+        }
+        body.cylinder_behind = box.pieces[n].behind;
+        e.parts.push_back(box.pieces[n].name);
+        pieces.push_back(std::move(piece));
+      }
+      model.bodies.push_back(std::move(body));
+      for (StepBody& piece : pieces) model.bodies.push_back(std::move(piece));
+      std::vector<std::string> names = std::move(e.parts);
+      e = step_file(c, model, loop_of.added());
+      e.parts = std::move(names);
+    } else if (box.plate) {
       const VesselProducts::CaseBox::Plate& p = *box.plate;
       const int k = p.pull.x() != 0.0 ? 0 : (p.pull.y() != 0.0 ? 1 : 2);
       const double at = face(k, p.pull[k]);
@@ -396,12 +445,6 @@ EncodedFiles encode_case_step_output(const EncodeContext& c) {
     }
     e.suffix = "." + box.name + ".step";
     files.push_back(std::move(e));
-  }
-  if (files.empty()) {
-    throw OutputError("case_step",
-                      fmt::format("case_step: every casting case ({}) is carved in several pieces, "
-                                  "which fabmesh writes as meshes only (case_stl, case_3mf)",
-                                  fmt::join(carved, ", ")));
   }
   return files;
 }

@@ -259,11 +259,20 @@ TEST_CASE("casting cases: a cylinder mould is refused, a part no case releases i
             "casting cases: 3 of 3 parts (side-1 lifts out along +y once its 1 other piece is off, side-2 "
             "lifts out along -x once its 2 other pieces are off, side-3 lifts out along -y once its 1 "
             "other piece is off)") != std::string::npos);
-  // case_step leaves carved cases out, saying so; with none left it writes nothing.
+  // case_step writes a carved case's pieces assembled, cut from the exact case.
+  const fs::path step = fresh_dir("casting_cases_carved_step");
   CHECK(run_cli({"run", example("mould_golden.yaml"), "-D", "outputs=[case_step]", "-D", "mould.block=box",
-                 "-D", "mould.parts=3", "-D", "mould.key_clearance=0.1", "-o", dir.string() + "/"},
-                &text) != 0);
-  CHECK(text.find("is carved in several pieces, which fabmesh writes as meshes only") != std::string::npos);
+                 "-D", "mould.parts=3", "-D", "mould.key_clearance=0.1", "-o", step.string() + "/"},
+                &text) == 0);
+  for (const char* part : {"side-1", "side-2", "side-3"}) {
+    const std::string file =
+        read_file((step / (std::string("mould_golden.case-") + part + ".step")).string());
+    std::size_t solids = 0;
+    for (std::size_t at = file.find("MANIFOLD_SOLID_BREP"); at != std::string::npos;
+         at = file.find("MANIFOLD_SOLID_BREP", at + 1))
+      ++solids;
+    CHECK(solids == (std::string(part) == "side-2" ? 3U : 2U));
+  }
   // A case that does not fit the printer is written, with a warning at print.bed.
   CHECK(run_cli({"run", example("mould_box_cases.yaml"), "-D", "print={bed: [250, 250, 250]}", "-D",
                  "outputs=[case_stl]", "-o", dir.string() + "/"},

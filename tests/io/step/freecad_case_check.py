@@ -41,8 +41,10 @@ for entry in os.environ["FABMESH_CASES"].split(":"):
         gaps = [sh for s in whole.Solids for sh in s.Shells if not sh.isSame(s.OuterShell)]
         facts["voids"] = len(gaps)
         facts["voids_volume"] = sum(abs(Part.Solid(sh).Volume) for sh in gaps)
-        # Case and part together: the box, but for those gaps.
-        facts["fused"] = case.fuse(part).Volume + facts["voids_volume"]
+        # Case and part together: the box, but for those gaps (the joined
+        # pieces fused with the part: FreeCAD fuses a compound of several
+        # solids with another less reliably).
+        facts["fused"] = whole.fuse(part).Volume + facts["voids_volume"]
     except Exception as e:  # FreeCAD raises its own Base.FreeCADError
         facts["error"] = str(e)
     print("FABMESH_CASE " + json.dumps(facts), flush=True)

@@ -145,20 +145,21 @@ for edges in 'half_bullnose, radius: 12' 'bullnose'; do
     fail "kitchen_u with edges $edges: no STEP files"
   fi
 done
-# Casting cases (`case_step`, every example whose mould is a box): each one
-# closed solid, or two (a case and its plate, when the mesh case has a plate)
-# sharing no volume; with its mould part (mould_step) the case shares no
+# Casting cases (`case_step`, every example whose mould is a box, and the
+# golden one in three keyed parts): each one closed solid, or two (a case
+# and its plate, when the mesh case has a plate), or as many as the pieces
+# the mesh case is carved in, sharing no volume; with its mould part (mould_step) the case shares no
 # volume (within 1e-9 of the part's area, in mm) and fills the case's box
-# (within 1e-9), but for one closed gap round each of a plate's two pins; the
+# (within 1e-9), but for one closed gap round each of a plate's or piece's two pins; the
 # case's and the part's volumes and the gaps add up to the box's (within
 # 1e-6, as FreeCAD integrates them).
 cases=()
-for design in "$source"/configs/examples/*.yaml; do
-  name=$(basename "$design" .yaml)
-  grep -q '^  block: box' "$design" || continue
-  out="$work/$name-cases"
+# The cases of DESIGN (named NAME, run with the -D overrides after it) written to OUT.
+case_steps() {
+  local design=$1 out=$2 name=$3
+  shift 3
   if (cd "$source/configs/examples" && "$fabmesh" run "$design" -D 'outputs=[case_step, mould_step, case_stl]' \
-      -o "$out/" -q) >"$out.log" 2>&1; then
+      "$@" -o "$out/" -q) >"$out.log" 2>&1; then
     mapfile -t written < <(compgen -G "$out/$name.case-*.step" | sort -V)
     ((${#written[@]} >= 1)) || fail "$name: no case STEP file"
     parts=$(grep -c '^#[0-9]* = MANIFOLD_SOLID_BREP' "$out/$name.mould.step")
@@ -166,8 +167,8 @@ for design in "$source"/configs/examples/*.yaml; do
       part=${c##*.case-}
       part=${part%.step}
       if [[ $part == base ]]; then index=$((parts - 1)); else index=$((${part#side-} - 1)); fi
-      pieces=1
-      [[ -f $out/$name.case-$part-plate.stl ]] && pieces=2
+      # The case, and its plate or the pieces it is carved in (one STL each).
+      pieces=$((1 + $(compgen -G "$out/$name.case-$part-p*.stl" | wc -l)))
       cases+=("$c=$out/$name.mould.step=$index=$pieces")
       mould_parts[$(basename "$c")]=$pieces
       files+=("$c")
@@ -176,7 +177,14 @@ for design in "$source"/configs/examples/*.yaml; do
     cat "$out.log"
     fail "$name: no case STEP files"
   fi
+}
+for design in "$source"/configs/examples/*.yaml; do
+  grep -q '^  block: box' "$design" || continue
+  case_steps "$design" "$work/$(basename "$design" .yaml)-cases" "$(basename "$design" .yaml)"
 done
+# Three keyed parts on a keyed base: each side's case carved in three or four pieces.
+case_steps "$source/configs/examples/mould_golden_box_base.yaml" "$work/golden_three-cases" golden_three \
+  -D name=golden_three -D mould.parts=3 -D mould.key_clearance=0.1
 ((${#cases[@]} >= 3)) || fail "only ${#cases[@]} casting cases written"
 FABMESH_CASES=$(IFS=:; echo "${cases[*]}") timeout 600 freecadcmd "$source/tests/io/step/freecad_case_check.py" \
   >"$work/freecad-cases.log" 2>&1
