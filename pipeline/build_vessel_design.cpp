@@ -323,7 +323,7 @@ std::vector<Facts> add_cases(const VesselDesign& design, const Mould& mould, con
     try {
       const CastingCase c = build_casting_case(out.parts[first + i].mesh, name, outward, case_options,
                                                what_is_at, split_faces(p));
-      VesselProducts::CaseBox box{"case-" + name, i, c.lo, c.hi, c.pull, std::nullopt, c.carved};
+      VesselProducts::CaseBox box{"case-" + name, i, c.lo, c.hi, c.pull, std::nullopt, c.carved, {}};
       // A piece of the case as it is printed, validated in full, its facts.
       const auto piece = [&](const std::string& piece_name, TriangleSoup printed, const Vec3& pull,
                              const char* standing_on) {
@@ -395,22 +395,22 @@ std::vector<Facts> add_cases(const VesselDesign& design, const Mould& mould, con
         for (std::size_t n = 0; n < c.plates.size(); ++n) {
           const CasePlate& cp = c.plates[n];
           Facts f = plate_facts(cp, fmt::format("{}-piece-{}", box.name, n + 1));
-          VesselProducts::CaseBox::Piece piece{fmt::format("{}-piece-{}", box.name, n + 1),
-                                               cp.corner,
-                                               cp.u,
-                                               cp.v,
-                                               cp.d,
-                                               cp.face_axis,
-                                               cp.face_at,
-                                               {},
-                                               0.0};
+          VesselProducts::CaseBox::Piece region{fmt::format("{}-piece-{}", box.name, n + 1),
+                                                cp.corner,
+                                                cp.u,
+                                                cp.v,
+                                                cp.d,
+                                                cp.face_axis,
+                                                cp.face_at,
+                                                {},
+                                                0.0};
           for (const CasePin& pin : cp.pins) {
             // The cylinder from its end inside the piece, `buried` behind the seam.
-            piece.pins.push_back({pin.base - pin.buried * pin.axis, pin.axis, pin.radius,
-                                  pin.buried + pin.height, pin.hole_radius, pin.buried + pin.hole_depth});
-            piece.behind = pin.buried;
+            region.pins.push_back({pin.base - pin.buried * pin.axis, pin.axis, pin.radius,
+                                   pin.buried + pin.height, pin.hole_radius, pin.buried + pin.hole_depth});
+            region.behind = pin.buried;
           }
-          box.pieces.push_back(std::move(piece));
+          box.pieces.push_back(std::move(region));
           f.set("beyond", cp.face);
           pieces.push_back(std::move(f));
         }
