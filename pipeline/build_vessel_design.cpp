@@ -394,16 +394,10 @@ std::vector<Facts> add_cases(const VesselDesign& design, const Mould& mould, con
         std::vector<Facts> pieces;
         for (std::size_t n = 0; n < c.plates.size(); ++n) {
           const CasePlate& cp = c.plates[n];
-          Facts f = plate_facts(cp, fmt::format("{}-piece-{}", box.name, n + 1));
-          VesselProducts::CaseBox::Piece region{fmt::format("{}-piece-{}", box.name, n + 1),
-                                                cp.corner,
-                                                cp.u,
-                                                cp.v,
-                                                cp.d,
-                                                cp.face_axis,
-                                                cp.face_at,
-                                                {},
-                                                0.0};
+          const std::string piece_name = fmt::format("{}-piece-{}", box.name, n + 1);
+          Facts f = plate_facts(cp, piece_name);
+          VesselProducts::CaseBox::Piece region{piece_name,   cp.corner,  cp.u, cp.v, cp.d,
+                                                cp.face_axis, cp.face_at, {},   0.0};
           for (const CasePin& pin : cp.pins) {
             // The cylinder from its end inside the piece, `buried` behind the seam.
             region.pins.push_back({pin.base - pin.buried * pin.axis, pin.axis, pin.radius,

@@ -77,6 +77,14 @@ std::string where(const TriangleSoup& part, std::size_t t,
   return point_text(centroid) + (what_is_at ? what_is_at(centroid) : std::string());
 }
 
+// The sides of a pin's and its hole's polygons: a multiple of 4 (8 to 512)
+// keeping the hole's circle of `radius` within `tolerance` of its polygon.
+std::size_t pin_sides(double radius, double tolerance) {
+  const double ratio = 1.0 - tolerance / radius;  // cos(pi / sides) at least this
+  const double count = ratio <= -1.0 ? 8.0 : std::ceil(M_PI / std::acos(ratio) / 4.0) * 4.0;
+  return static_cast<std::size_t>(std::clamp(count, 8.0, 512.0));
+}
+
 // What holds the part along one direction, or the case when nothing does.
 struct Attempt {
   std::optional<CastingCase> built;
@@ -523,9 +531,7 @@ Attempt attempt(const TriangleSoup& part, const std::string& name, const Axis& a
     pin.height = w / 2.0;
     pin.hole_radius = pin.radius + options.clearance;
     pin.hole_depth = pin.height + options.clearance;
-    const double ratio = 1.0 - options.tolerance / pin.hole_radius;  // cos(pi / sides) at least this
-    const double count = ratio <= -1.0 ? 8.0 : std::ceil(M_PI / std::acos(ratio) / 4.0) * 4.0;
-    pin.sides = static_cast<std::size_t>(std::clamp(count, 8.0, 512.0));
+    pin.sides = pin_sides(pin.hole_radius, options.tolerance);
     const double along = floor_at + (extreme - floor_at) / 3.0;
     if (!(std::abs(along - floor_at) > pin.hole_radius && std::abs(extreme - along) > pin.hole_radius)) {
       return {std::nullopt, fmt::format("its case is too shallow along {} for the plate's pins", dir)};
@@ -895,9 +901,7 @@ Attempt carved(const TriangleSoup& part, const std::string& name, const Axis& ax
   // round it and the pin's foot is in its own piece.
   const double radius = w / 4.0, height = w / 2.0, buried = w / 4.0;
   const double hole_radius = radius + options.clearance;
-  const double ratio = 1.0 - options.tolerance / hole_radius;
-  const double count = ratio <= -1.0 ? 8.0 : std::ceil(M_PI / std::acos(ratio) / 4.0) * 4.0;
-  const auto sides = static_cast<std::size_t>(std::clamp(count, 8.0, 512.0));
+  const std::size_t sides = pin_sides(hole_radius, options.tolerance);
   const double margin = w / 16.0;
   const auto in_case = [&](const Vec3& p) {
     return (p.array() >= lo.array() + margin).all() && (p.array() <= hi.array() - margin).all();

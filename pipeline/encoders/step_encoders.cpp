@@ -377,8 +377,8 @@ EncodedFiles encode_case_step_output(const EncodeContext& c) {
         regions.push_back(std::move(r));
       }
       body.form = StepForm::CasePiece;
-      body.regions = regions;
-      e.parts = {box.name};
+      body.regions = std::move(regions);
+      std::vector<std::string> names{box.name};
       const StepBody whole = body;
       std::vector<StepBody> pieces;
       for (std::size_t n = 0; n < box.pieces.size(); ++n) {
@@ -391,12 +391,11 @@ EncodedFiles encode_case_step_output(const EncodeContext& c) {
           body.cylinders.push_back({pin.base, pin.axis, pin.hole_radius, pin.hole_depth, false, false});
         }
         body.cylinder_behind = box.pieces[n].behind;
-        e.parts.push_back(box.pieces[n].name);
+        names.push_back(box.pieces[n].name);
         pieces.push_back(std::move(piece));
       }
       model.bodies.push_back(std::move(body));
       for (StepBody& piece : pieces) model.bodies.push_back(std::move(piece));
-      std::vector<std::string> names = std::move(e.parts);
       e = step_file(c, model, loop_of.added());
       e.parts = std::move(names);
     } else if (box.plate) {
