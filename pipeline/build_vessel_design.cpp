@@ -6,12 +6,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "geometry/core/errors.h"
 #include "geometry/core/units.h"
 #include "geometry/fairing/build_curve.h"
 #include "geometry/mesh/bounding_box.h"
 #include "geometry/mesh/vessel.h"
+#include "geometry/mould/case_sections.h"
 #include "geometry/mould/master_sections.h"
 #include "geometry/mould/mould.h"
 #include "geometry/mould/shrinkage.h"
@@ -288,6 +290,48 @@ CastingWeights casting_weights(const VesselDesign& design, double millilitres) {
   return {plaster, plaster / design.plaster_ratio};
 }
 
+// A pin's size, for the report.
+Facts pin_facts(const CasePin& pin) {
+  return Facts()
+      .set("diameter", 2.0 * pin.radius)
+      .set("height", pin.height)
+      .set("hole_diameter", 2.0 * pin.hole_radius)
+      .set("hole_depth", pin.hole_depth)
+      .set("sides", pin.sides);
+}
+
+// The sections of a case's piece `name` as parts of their own, validated in
+// full, written side by side along x from `x` (`gap` apart; x moves on past
+// them), and their facts.
+std::vector<Facts> case_sections(SectionedPiece& cut, const std::string& name, double gap, double& x,
+                                 Result& out) {
+  std::vector<Facts> facts;
+  for (std::size_t n = 0; n < cut.sections.size(); ++n) {
+    CaseSection& s = cut.sections[n];
+    Part part;
+    part.name = fmt::format("{}-section-{}", name, n + 1);
+    part.role = PartRole::Case;
+    const BoundingBox box = bounding_box(s.soup.vertices);
+    const Vec3 corner(x, 0.0, 0.0);
+    for (Vec3& p : s.soup.vertices) p = p - box.lo + corner;
+    part.mesh = std::move(s.soup);
+    validate_part(part);
+    const Vec3 size = box.size();
+    facts.push_back(Facts()
+                        .set("name", part.name)
+                        .set("cell", std::vector<double>{s.cell[0] + 1.0, s.cell[1] + 1.0, s.cell[2] + 1.0})
+                        .set("size", std::vector<double>{size.x(), size.y(), size.z()})
+                        .set("written_from", std::vector<double>{x, 0.0, 0.0})
+                        .set("triangles", part.mesh.triangles.size())
+                        .set("volume", part.validation.volume)
+                        .set("pins", s.pins)
+                        .set("holes", s.holes));
+    out.parts.push_back(std::move(part));
+    x += size.x() + gap;
+  }
+  return facts;
+}
+
 // The casting case of each of the mould's parts (outputs case_stl, case_3mf),
 // after the parts (the last of `out.parts`): parts of their own, validated
 // in full, a two-piece case's plate after its case. A part no case releases
@@ -324,7 +368,9 @@ std::vector<Facts> add_cases(const VesselDesign& design, const Mould& mould, con
       const CastingCase c = build_casting_case(out.parts[first + i].mesh, name, outward, case_options,
                                                what_is_at, split_faces(p));
       VesselProducts::CaseBox box{"case-" + name, i, c.lo, c.hi, c.pull, std::nullopt, c.carved, {}};
-      // A piece of the case as it is printed, validated in full, its facts.
+      // A piece of the case as it is printed, validated in full, its facts;
+      // with a bed it does not fit, its sections (each validated in full) in
+      // its place.
       const auto piece = [&](const std::string& piece_name, TriangleSoup printed, const Vec3& pull,
                              const char* standing_on) {
         Part part;
@@ -333,39 +379,53 @@ std::vector<Facts> add_cases(const VesselDesign& design, const Mould& mould, con
         part.mesh = std::move(printed);
         validate_part(part);
         const Vec3 size = bounding_box(part.mesh.vertices).size();
+        const Vec3* bed = design.print && design.print->bed ? &*design.print->bed : nullptr;
+        std::optional<SectionedPiece> cut;
+        if (bed != nullptr && !fits_bed(size, *bed)) {
+          try {
+            cut = cut_case_piece(part.mesh, part.name, *bed, case_options);
+          } catch (const GeometryError& e) {
+            out.warnings.push_back(fmt::format(
+                "{}: {} ({:.6g} x {:.6g} x {:.6g} {} standing on its {}) does not fit the bed {:g} x {:g} x "
+                "{:g} {} and is written whole: {}",
+                key_label(context.common, "print.bed"), part.name, size.x(), size.y(), size.z(),
+                context.common.units, standing_on, bed->x(), bed->y(), bed->z(), context.common.units,
+                e.what()));
+          }
+        }
         Facts f;
         f.set("name", part.name)
             .set("pull", std::vector<double>{pull.x(), pull.y(), pull.z()})
-            .set("size", std::vector<double>{size.x(), size.y(), size.z()})
-            .set("written_from", std::vector<double>{x, 0.0, 0.0})
-            .set("triangles", part.mesh.triangles.size())
-            .set("volume", part.validation.volume);
-        if (design.print && design.print->bed) {
-          // Standing as written, turned about z as the bed allows.
-          const Vec3& bed = *design.print->bed;
-          const bool fits = size.z() <= bed.z() && ((size.x() <= bed.x() && size.y() <= bed.y()) ||
-                                                    (size.x() <= bed.y() && size.y() <= bed.x()));
-          f.set("fits_bed", fits);
-          if (!fits) {
-            out.warnings.push_back(fmt::format(
-                "{}: {} ({:.6g} x {:.6g} x {:.6g} {} standing on its {}) does not fit the bed {:g} x {:g} x "
-                "{:g} {}; fabmesh does not cut casting cases into sections: print it on a larger printer",
-                key_label(context.common, "print.bed"), part.name, size.x(), size.y(), size.z(),
-                context.common.units, standing_on, bed.x(), bed.y(), bed.z(), context.common.units));
-          }
+            .set("size", std::vector<double>{size.x(), size.y(), size.z()});
+        if (!cut) f.set("written_from", std::vector<double>{x, 0.0, 0.0});
+        f.set("triangles", part.mesh.triangles.size()).set("volume", part.validation.volume);
+        if (bed != nullptr) f.set("fits_bed", fits_bed(size, *bed));
+        if (cut) {
+          // Written in its sections instead, side by side from here.
+          f.set("cells",
+                std::vector<double>{static_cast<double>(cut->counts[0]), static_cast<double>(cut->counts[1]),
+                                    static_cast<double>(cut->counts[2])})
+              .set("sections", case_sections(*cut, part.name, gap, x, out))
+              .set("section_pin", pin_facts(cut->pins.front()))
+              .set("sections_volume_error", cut->volume_error);
+          return f;
         }
         out.parts.push_back(std::move(part));
         x += size.x() + gap;
         return f;
       };
       Facts whole = piece(box.name, standing(c, Vec3(x, 0.0, 0.0)), c.pull, "floor");
-      for (const char* fact : {"name", "pull", "size", "written_from"}) facts.set(fact, *whole.find(fact));
+      for (const char* fact : {"name", "pull", "size", "written_from"}) {
+        if (const Facts::Value* v = whole.find(fact)) facts.set(fact, *v);
+      }
       facts.set("wall", design.casting_case.wall)
           .set("clearance", design.casting_case.clearance)
           .set("opening_area", c.pour_area);
       for (const char* fact : {"triangles", "volume"}) facts.set(fact, *whole.find(fact));
       facts.set("release", c.release_proof);
-      if (const Facts::Value* fits = whole.find("fits_bed")) facts.set("fits_bed", *fits);
+      for (const char* fact : {"fits_bed", "cells", "sections", "section_pin", "sections_volume_error"}) {
+        if (const Facts::Value* v = whole.find(fact)) facts.set(fact, *v);
+      }
       // A piece taken off first: its facts, with its pins where they stand
       // in the mould's frame (as the STEP file has the case assembled).
       const auto plate_facts = [&](const CasePlate& cp, const std::string& piece_name) {
@@ -379,13 +439,7 @@ std::vector<Facts> add_cases(const VesselDesign& design, const Mould& mould, con
         }
         if (!cp.pins.empty()) {
           const CasePin& pin = cp.pins.front();
-          plate.set("pins", std::move(pins))
-              .set("pin", Facts()
-                              .set("diameter", 2.0 * pin.radius)
-                              .set("height", pin.height)
-                              .set("hole_diameter", 2.0 * pin.hole_radius)
-                              .set("hole_depth", pin.hole_depth)
-                              .set("sides", pin.sides));
+          plate.set("pins", std::move(pins)).set("pin", pin_facts(pin));
         }
         return plate;
       };

@@ -88,6 +88,31 @@ void print_build_facts(const Facts& facts, const std::string& u, std::ostream& o
       }
       out << fmt::format("  casting cases: {} of {} parts ({})\n", count, all.size(),
                          count == 0 ? "none" : made);
+      // The pieces too big for the bed, written in sections.
+      std::string cut;
+      std::size_t pieces = 0, sections = 0;
+      const Facts* pin = nullptr;
+      for (const Facts& c : all) {
+        std::vector<const Facts*> each{&c};
+        if (const Facts::Value* listed = c.find("pieces")) {
+          for (const Facts& p : std::get<std::vector<Facts>>(*listed)) each.push_back(&p);
+        }
+        for (const Facts* p : each) {
+          const Facts::Value* listed = p->find("sections");
+          if (listed == nullptr) continue;
+          const std::size_t n = std::get<std::vector<Facts>>(*listed).size();
+          cut += fmt::format("{}{} in {}", pieces++ == 0 ? "" : ", ", p->text("name"), n);
+          sections += n;
+          pin = &p->group("section_pin");
+        }
+      }
+      if (pin != nullptr) {
+        out << fmt::format(
+            "  casting cases cut for the bed: {} piece{} in {} sections ({}), two {:g} {} pins "
+            "into {:g} {} holes across every joint\n",
+            pieces, pieces == 1 ? "" : "s", sections, cut, pin->number("diameter"), u,
+            pin->number("hole_diameter"), u);
+      }
     }
   }
   if (facts.contains("master")) print_master_pieces(facts.group("master"), u, out);

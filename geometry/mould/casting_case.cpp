@@ -77,14 +77,6 @@ std::string where(const TriangleSoup& part, std::size_t t,
   return point_text(centroid) + (what_is_at ? what_is_at(centroid) : std::string());
 }
 
-// The sides of a pin's and its hole's polygons: a multiple of 4 (8 to 512)
-// keeping the hole's circle of `radius` within `tolerance` of its polygon.
-std::size_t pin_sides(double radius, double tolerance) {
-  const double ratio = 1.0 - tolerance / radius;  // cos(pi / sides) at least this
-  const double count = ratio <= -1.0 ? 8.0 : std::ceil(M_PI / std::acos(ratio) / 4.0) * 4.0;
-  return static_cast<std::size_t>(std::clamp(count, 8.0, 512.0));
-}
-
 // What holds the part along one direction, or the case when nothing does.
 struct Attempt {
   std::optional<CastingCase> built;
@@ -706,47 +698,6 @@ struct Cut {
   Vec3 corner, ru, rv, rd;  // its region: corner + a ru + b rv + c rd, a, b, c in [0, 1]
 };
 
-// The solid o + a u + b v + c d over the ranges a, b, c (u, v, d
-// right-handed), closed and outward.
-TriangleSoup block_of(const Vec3& o, const Vec3& u, const Vec3& v, const Vec3& d,
-                      const std::array<double, 2>& a, const std::array<double, 2>& b,
-                      const std::array<double, 2>& c) {
-  TriangleSoup s;
-  for (int n = 0; n < 8; ++n)
-    s.vertices.push_back(o + a[n & 1] * u + b[(n >> 1) & 1] * v + c[(n >> 2) & 1] * d);
-  s.triangles = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
-                 {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
-  return s;
-}
-
-// The prism over the ring of `sides` points about `centre` of `radius`
-// across d (in the plane of e1, e2), running `length` along d: its walls run
-// exactly along d (the ring on the point grid, length on the length grid).
-TriangleSoup cylinder(const Vec3& centre, const Vec3& e1, const Vec3& e2, const Vec3& d, double radius,
-                      double length, std::size_t sides) {
-  TriangleSoup s;
-  const auto n = static_cast<Index>(sides);
-  for (Index m = 0; m < n; ++m) {
-    const double angle = 2.0 * M_PI * m / n;
-    s.vertices.push_back(
-        snapped(centre + radius * (std::cos(angle) * e1 + std::sin(angle) * e2), kPointBits));
-  }
-  for (Index m = 0; m < n; ++m) s.vertices.push_back(s.vertices[m] + length * d);
-  for (Index m = 0; m < n; ++m) {
-    const Index l = (m + 1) % n;
-    s.triangles.push_back({m, l, n + m});
-    s.triangles.push_back({l, n + l, n + m});
-  }
-  for (Index m = 1; m + 1 < n; ++m) {
-    s.triangles.push_back({0, m + 1, m});
-    s.triangles.push_back({n, n + m, n + m + 1});
-  }
-  if (signed_volume(s) < 0.0) {
-    for (Triangle& t : s.triangles) std::swap(t[1], t[2]);
-  }
-  return s;
-}
-
 // The sockets behind a plate's face: the part's triangles behind it turned
 // inside out, closed by their rims in the face's plane.
 std::optional<TriangleSoup> socket_fills(const Faces& f, const PlateFace& p) {
@@ -987,8 +938,8 @@ Attempt carved(const TriangleSoup& part, const std::string& name, const Axis& ax
       pin.sides = sides;
       pin.buried = buried;
       c.pins.push_back(pin);
-      pins[i].push_back(cylinder(foot, e1, e2, -c.d, radius, pin_length, sides));
-      holes.push_back(cylinder(foot, e1, e2, -c.d, hole_radius, hole_length, sides));
+      pins[i].push_back(pin_prism(foot, e1, e2, -c.d, radius, pin_length, sides));
+      holes.push_back(pin_prism(foot, e1, e2, -c.d, hole_radius, hole_length, sides));
     }
     // The region: beyond the plane, well past the case on every other side.
     const double reach = snapped(4.0 * (hi - lo).norm() + (c.o - lo).norm(), kLengthBits);
@@ -1082,6 +1033,55 @@ Attempt carved(const TriangleSoup& part, const std::string& name, const Axis& ax
   return {std::move(out), {}};
 }
 }  // namespace
+
+// The sides of a pin's and its hole's polygons: a multiple of 4 (8 to 512)
+// keeping the hole's circle of `radius` within `tolerance` of its polygon.
+std::size_t pin_sides(double radius, double tolerance) {
+  const double ratio = 1.0 - tolerance / radius;  // cos(pi / sides) at least this
+  const double count = ratio <= -1.0 ? 8.0 : std::ceil(M_PI / std::acos(ratio) / 4.0) * 4.0;
+  return static_cast<std::size_t>(std::clamp(count, 8.0, 512.0));
+}
+
+// The solid o + a u + b v + c d over the ranges a, b, c (u, v, d
+// right-handed), closed and outward.
+TriangleSoup block_of(const Vec3& o, const Vec3& u, const Vec3& v, const Vec3& d,
+                      const std::array<double, 2>& a, const std::array<double, 2>& b,
+                      const std::array<double, 2>& c) {
+  TriangleSoup s;
+  for (int n = 0; n < 8; ++n)
+    s.vertices.push_back(o + a[n & 1] * u + b[(n >> 1) & 1] * v + c[(n >> 2) & 1] * d);
+  s.triangles = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
+                 {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
+  return s;
+}
+
+// The prism over the ring of `sides` points about `centre` of `radius`
+// across d (in the plane of e1, e2), running `length` along d: its walls run
+// exactly along d (the ring on the point grid, length on the length grid).
+TriangleSoup pin_prism(const Vec3& centre, const Vec3& e1, const Vec3& e2, const Vec3& d, double radius,
+                       double length, std::size_t sides) {
+  TriangleSoup s;
+  const auto n = static_cast<Index>(sides);
+  for (Index m = 0; m < n; ++m) {
+    const double angle = 2.0 * M_PI * m / n;
+    s.vertices.push_back(
+        snapped(centre + radius * (std::cos(angle) * e1 + std::sin(angle) * e2), kPointBits));
+  }
+  for (Index m = 0; m < n; ++m) s.vertices.push_back(s.vertices[m] + length * d);
+  for (Index m = 0; m < n; ++m) {
+    const Index l = (m + 1) % n;
+    s.triangles.push_back({m, l, n + m});
+    s.triangles.push_back({l, n + l, n + m});
+  }
+  for (Index m = 1; m + 1 < n; ++m) {
+    s.triangles.push_back({0, m + 1, m});
+    s.triangles.push_back({n, n + m, n + m + 1});
+  }
+  if (signed_volume(s) < 0.0) {
+    for (Triangle& t : s.triangles) std::swap(t[1], t[2]);
+  }
+  return s;
+}
 
 std::vector<CaseFace> split_faces(const MouldPart& part) {
   std::vector<CaseFace> out;

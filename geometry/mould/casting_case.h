@@ -15,6 +15,7 @@
 // in holes of the main piece, so that the plate goes on in one place and
 // one way round.
 
+#include <array>
 #include <cstddef>
 #include <functional>
 #include <optional>
@@ -146,6 +147,23 @@ CastingCase build_casting_case(const TriangleSoup& part, const std::string& name
                                const CaseOptions& options,
                                const std::function<std::string(const Vec3&)>& what_is_at = {},
                                const std::vector<CaseFace>& faces = {});
+
+/// The sides of a pin's and its hole's polygons: a multiple of 4 (8 to 512)
+/// keeping the hole's circle of `radius` within `tolerance` of its polygon.
+std::size_t pin_sides(double radius, double tolerance);
+
+/// The solid o + a u + b v + c d for a, b, c over the given ranges (u, v, d
+/// right-handed), closed and outward.
+TriangleSoup block_of(const Vec3& o, const Vec3& u, const Vec3& v, const Vec3& d,
+                      const std::array<double, 2>& a, const std::array<double, 2>& b,
+                      const std::array<double, 2>& c);
+
+/// A pin or its hole: the prism over the ring of `sides` points about
+/// `centre` of `radius` across d (in the plane of the unit vectors e1, e2;
+/// the points on the 2^-30 grid), running `length` along d, so that its
+/// walls run exactly along d; closed and outward.
+TriangleSoup pin_prism(const Vec3& centre, const Vec3& e1, const Vec3& e2, const Vec3& d, double radius,
+                       double length, std::size_t sides);
 
 /// `soup` as it is printed: turned by quarter turns (exact) so that the axis
 /// direction `up` is +z, then moved so that its bounding box's lowest corner

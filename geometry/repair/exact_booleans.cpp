@@ -128,33 +128,41 @@ std::optional<TriangleSoup> resolve_self_intersections(const TriangleSoup& shell
   }
 }
 
+namespace {
+
+// One boolean (0 difference, 1 intersection, 2 union) on fresh copies of
+// both operands, since corefinement refines them; throws when the result
+// would not be a manifold surface, naming `what`.
+SurfaceMesh boolean_of(const SurfaceMesh& a, const SurfaceMesh& b, int op, const char* what) {
+  SurfaceMesh x = a, y = b, out;
+  const bool ok = op == 0   ? PMP::corefine_and_compute_difference(x, y, out)
+                  : op == 1 ? PMP::corefine_and_compute_intersection(x, y, out)
+                            : PMP::corefine_and_compute_union(x, y, out);
+  if (!ok) throw std::runtime_error(std::string(what) + " would not be a manifold surface");
+  return out;
+}
+
+}  // namespace
+
 std::optional<std::vector<TriangleSoup>> carve_pieces(const TriangleSoup& block, const TriangleSoup& part,
                                                       const std::vector<std::vector<TriangleSoup>>& regions,
                                                       const std::vector<std::vector<TriangleSoup>>& added,
                                                       const std::vector<TriangleSoup>& holes,
                                                       std::string* why) {
   try {
-    // One boolean: a fresh copy of each operand, since corefinement refines both.
-    const auto apply = [&](const SurfaceMesh& a, const SurfaceMesh& b, int op, const char* what) {
-      SurfaceMesh x = a, y = b, out;
-      const bool ok = op == 0   ? PMP::corefine_and_compute_difference(x, y, out)
-                      : op == 1 ? PMP::corefine_and_compute_intersection(x, y, out)
-                                : PMP::corefine_and_compute_union(x, y, out);
-      if (!ok) throw std::runtime_error(std::string(what) + " would not be a manifold surface");
-      return out;
-    };
-    SurfaceMesh rest = apply(exact_mesh(block), exact_mesh(part), 0, "the block less the part");
+    SurfaceMesh rest = boolean_of(exact_mesh(block), exact_mesh(part), 0, "the block less the part");
     std::vector<TriangleSoup> pieces(1);
     for (std::size_t i = 0; i < regions.size(); ++i) {
       if (regions[i].empty()) throw std::runtime_error("a region without a solid");
       SurfaceMesh region = exact_mesh(regions[i].front());
       for (std::size_t j = 1; j < regions[i].size(); ++j) {
-        region = apply(region, exact_mesh(regions[i][j]), 2, "a region");
+        region = boolean_of(region, exact_mesh(regions[i][j]), 2, "a region");
       }
-      SurfaceMesh piece = apply(rest, region, 1, "a piece");
-      rest = apply(rest, region, 0, "the rest of the block");
+      SurfaceMesh piece = boolean_of(rest, region, 1, "a piece");
+      rest = boolean_of(rest, region, 0, "the rest of the block");
       if (i < added.size()) {
-        for (const TriangleSoup& a : added[i]) piece = apply(piece, exact_mesh(a), 2, "a piece with a pin");
+        for (const TriangleSoup& a : added[i])
+          piece = boolean_of(piece, exact_mesh(a), 2, "a piece with a pin");
       }
       if (piece.is_empty() || !CGAL::is_closed(piece)) {
         say(why, "piece " + std::to_string(i + 1) + " is empty or open");
@@ -162,13 +170,48 @@ std::optional<std::vector<TriangleSoup>> carve_pieces(const TriangleSoup& block,
       }
       pieces.push_back(rounded(piece));
     }
-    for (const TriangleSoup& hole : holes) rest = apply(rest, exact_mesh(hole), 0, "the rest less a hole");
+    for (const TriangleSoup& hole : holes)
+      rest = boolean_of(rest, exact_mesh(hole), 0, "the rest less a hole");
     if (rest.is_empty() || !CGAL::is_closed(rest)) {
       say(why, "the main piece is empty or open");
       return std::nullopt;
     }
     pieces.front() = rounded(rest);
     return pieces;
+  } catch (const std::exception& e) {
+    say(why, std::string("CGAL's corefinement failed: ") + e.what());
+    return std::nullopt;
+  }
+}
+
+std::optional<std::vector<TriangleSoup>> cut_cells(const TriangleSoup& solid,
+                                                   const std::vector<TriangleSoup>& cells,
+                                                   const std::vector<std::vector<TriangleSoup>>& added,
+                                                   const std::vector<std::vector<TriangleSoup>>& removed,
+                                                   std::string* why) {
+  try {
+    const SurfaceMesh whole = exact_mesh(solid);
+    std::vector<TriangleSoup> out;
+    for (std::size_t i = 0; i < cells.size(); ++i) {
+      SurfaceMesh cell = boolean_of(whole, exact_mesh(cells[i]), 1, "a cell");
+      if (cell.is_empty()) {
+        out.emplace_back();
+        continue;
+      }
+      if (i < added.size()) {
+        for (const TriangleSoup& a : added[i]) cell = boolean_of(cell, exact_mesh(a), 2, "a cell with a pin");
+      }
+      if (i < removed.size()) {
+        for (const TriangleSoup& r : removed[i])
+          cell = boolean_of(cell, exact_mesh(r), 0, "a cell less a hole");
+      }
+      if (!CGAL::is_closed(cell)) {
+        say(why, "cell " + std::to_string(i + 1) + " is open");
+        return std::nullopt;
+      }
+      out.push_back(rounded(cell));
+    }
+    return out;
   } catch (const std::exception& e) {
     say(why, std::string("CGAL's corefinement failed: ") + e.what());
     return std::nullopt;

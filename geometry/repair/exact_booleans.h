@@ -45,6 +45,18 @@ std::optional<std::vector<TriangleSoup>> carve_pieces(const TriangleSoup& block,
                                                       const std::vector<TriangleSoup>& holes,
                                                       std::string* why = nullptr);
 
+/// The cells of one solid `solid` (closed, outward, manifold and free of
+/// self-intersections): cell i is what of it lies in `cells[i]` (a closed
+/// solid), united with the solids `added[i]` and less the solids
+/// `removed[i]`. All by CGAL's corefinement over exact constructions, each
+/// cell rounded to double once, at the end; a cell the solid does not reach
+/// is empty. None when CGAL cannot or a cell is not closed; `why` then says so.
+std::optional<std::vector<TriangleSoup>> cut_cells(const TriangleSoup& solid,
+                                                   const std::vector<TriangleSoup>& cells,
+                                                   const std::vector<std::vector<TriangleSoup>>& added,
+                                                   const std::vector<std::vector<TriangleSoup>>& removed,
+                                                   std::string* why = nullptr);
+
 /// The exact sign (-1, 0, +1) of ((b - a) x (c - a)) . d: which way the
 /// triangle (a, b, c) faces along d.
 int exact_facing(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);

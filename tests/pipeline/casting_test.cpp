@@ -273,14 +273,26 @@ TEST_CASE("casting cases: a cylinder mould is refused, a part no case releases i
       ++solids;
     CHECK(solids == (std::string(part) == "side-2" ? 3U : 2U));
   }
-  // A case that does not fit the printer is written, with a warning at print.bed.
+  // A case that does not fit the printer is cut into sections that do; one
+  // whose bed is too small even for that is written whole, with a warning
+  // at print.bed saying why.
+  const fs::path bed = fresh_dir("casting_cases_bed");
   CHECK(run_cli({"run", example("mould_box_cases.yaml"), "-D", "print={bed: [250, 250, 250]}", "-D",
+                 "outputs=[case_stl]", "-o", bed.string() + "/"},
+                &text) == 0);
+  CHECK_FALSE(fs::exists(bed / "mould_box_cases.case-side-1.stl"));
+  CHECK(fs::exists(bed / "mould_box_cases.case-side-1-section-1.stl"));
+  CHECK(fs::exists(bed / "mould_box_cases.case-side-1-section-2.stl"));
+  CHECK(text.find("written whole") == std::string::npos);
+  CHECK(run_cli({"run", example("mould_box_cases.yaml"), "-D", "print={bed: [2, 2, 250]}", "-D",
                  "outputs=[case_stl]", "-o", dir.string() + "/"},
                 &text) == 0);
   CHECK(fs::exists(dir / "mould_box_cases.case-side-1.stl"));
-  CHECK(
-      text.find("print.bed: case-side-1 (383.227 x 235.976 x 123.988 mm standing on its floor) does not fit "
-                "the bed 250 x 250 x 250 mm") != std::string::npos);
+  CHECK_THAT(text, Catch::Contains("print.bed: case-side-1 (383.227 x 235.976 x 123.988 mm standing on its "
+                                   "floor) does not fit the bed 2 x 2 x 250 mm and is written whole: "
+                                   "case-side-1 (383.227 x 235.976 x 123.988 standing) cannot be cut into "
+                                   "sections that fit the bed 2 x 2 x 250: the bed is no longer than a "
+                                   "section's pin (2.5 tall)"));
   // A wall of no thickness is bad input at its key, and so is a clearance
   // that would leave the pins' holes no wall: nothing written.
   CHECK(run_cli({"run", example("mould_box_cases.yaml"), "-D", "case.wall=0", "-o", dir.string() + "/"},
@@ -331,4 +343,128 @@ TEST_CASE("casting cases: PrusaSlicer finds each case manifold and slices it sta
     CHECK(slice.code == 0);
     CHECK(fs::file_size(gcode) > 0);
   }
+}
+
+namespace {
+
+// The production vase in a box mould, its cases cut for its 220 mm bed (mm).
+const char* const kVaseBox[] = {"-D", "mould.block=box", "-D", "outputs=[case_stl]"};
+
+}  // namespace
+
+TEST_CASE("casting cases: cases too big for the bed are written in pinned sections that fit it",
+          "[pipeline][mould][case][sections]") {
+  const fs::path dir = fresh_dir("casting_case_sections");
+  const std::vector<std::string> args{"run",
+                                      example("mould_vase_production.yaml"),
+                                      kVaseBox[0],
+                                      kVaseBox[1],
+                                      kVaseBox[2],
+                                      kVaseBox[3],
+                                      "--json",
+                                      "-o",
+                                      dir.string() + "/"};
+  std::string text;
+  REQUIRE(run_cli_json(args, &text) == 0);
+  const nlohmann::json report = nlohmann::json::parse(text);
+  for (const std::string warning : report[0]["warnings"]) {
+    CHECK(warning.find("case-") == std::string::npos);  // no case left whole for want of a bed
+  }
+  const nlohmann::json& cases = report[0]["build"]["mould"]["cases"];
+  REQUIRE(cases.size() == 4);
+  std::size_t sections = 0;
+  for (const nlohmann::json& c : cases) {
+    std::vector<nlohmann::json> pieces{c};
+    for (const nlohmann::json& p : c.value("pieces", nlohmann::json::array())) pieces.push_back(p);
+    for (const nlohmann::json& p : pieces) {
+      const std::string name = p["name"];
+      INFO(name);
+      const std::vector<double> size = p["size"];
+      if (p["fits_bed"].get<bool>()) {
+        CHECK(fs::exists(dir / ("mould_vase_production." + name + ".stl")));
+        CHECK_FALSE(p.contains("sections"));
+        continue;
+      }
+      // Cut: not written whole; every section written, fitting the bed, the
+      // volumes adding up to the piece's with the pins and their holes.
+      CHECK_FALSE(fs::exists(dir / ("mould_vase_production." + name + ".stl")));
+      REQUIRE(p.contains("sections"));
+      const nlohmann::json& pin = p["section_pin"];
+      CHECK(pin["diameter"] == 2.5);  // a quarter of the 5 mm wall in radius
+      CHECK(pin["hole_diameter"].get<double>() == Approx(2.5 + 2 * 0.2));
+      const double stud = M_PI * 1.25 * 1.25 * pin["height"].get<double>();
+      const double hole = M_PI * 1.45 * 1.45 * pin["hole_depth"].get<double>();
+      double volume = 0.0, pins = 0.0, holes = 0.0;
+      for (const nlohmann::json& s : p["sections"]) {
+        const std::vector<double> part = s["size"];
+        CHECK(part[2] <= 220.0);
+        CHECK(std::min(part[0], part[1]) <= 220.0);
+        CHECK(std::max(part[0], part[1]) <= 220.0);
+        CHECK(s["pins"].get<double>() + s["holes"].get<double>() >= 2.0);
+        volume += s["volume"].get<double>();
+        pins += s["pins"].get<double>();
+        holes += s["holes"].get<double>();
+        CHECK(fs::exists(dir / ("mould_vase_production." + s["name"].get<std::string>() + ".stl")));
+        ++sections;
+      }
+      CHECK(pins == holes);
+      // The pins' polygons are within the tolerance of their circles: their
+      // volumes within a few percent of the circles'.
+      CHECK(volume == Approx(p["volume"].get<double>() + pins * (stud - hole)).margin(0.05 * pins * hole));
+      CHECK(p["sections_volume_error"].get<double>() <= 1e-9 * p["volume"].get<double>());
+    }
+  }
+  CHECK(sections >= 20);
+  // fabmesh's own check of every file written: each valid.
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    INFO(entry.path().string());
+    std::string checked;
+    CHECK(run_cli({"check", entry.path().string()}, &checked) == 0);
+    CHECK(checked.find(": valid") != std::string::npos);
+  }
+}
+
+TEST_CASE(
+    "casting cases: PrusaSlicer finds each section of a cut case manifold, within the bed, and slices it",
+    "[pipeline][mould][case][sections][prusaslicer]") {
+  REQUIRE_PROGRAM("prusa-slicer");
+  const fs::path dir = fresh_dir("casting_case_sections_prusa");
+  std::string text;
+  REQUIRE(run_cli({"run", example("mould_vase_production.yaml"), kVaseBox[0], kVaseBox[1], kVaseBox[2],
+                   kVaseBox[3], "-o", dir.string() + "/"},
+                  &text) == 0);
+  CHECK_THAT(text,
+             Catch::Contains("casting cases cut for the bed: 9 pieces in 24 sections (case-side-1 in 2, "
+                             "case-side-1-piece-2 in 2, case-side-2 in 6, ") &&
+                 Catch::Contains("case-base in 4), two 2.5 mm pins into 2.9 mm holes across every joint"));
+  // The side part pulled along -x: its main piece falls into six sections
+  // (two cells hold a wall apart from the rest); the base's case into four.
+  std::size_t sliced = 0;
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    const std::string file = entry.path().filename().string();
+    if (file.find("case-side-2-section-") == std::string::npos &&
+        file.find("case-base-section-") == std::string::npos)
+      continue;
+    INFO(file);
+    const std::map<std::string, std::string> info =
+        test::prusa_info((dir / "home").string(), entry.path().string());
+    REQUIRE(info.count("manifold") == 1);
+    CHECK(info.at("manifold") == "yes");
+    const double x = std::stod(info.at("size_x")), y = std::stod(info.at("size_y"));
+    CHECK(std::max(x, y) <= 220.0);
+    CHECK(std::stod(info.at("size_z")) <= 220.0);
+    // Placed from the bed's corner (PrusaSlicer's --center refuses some
+    // objects written far along x); it refuses one that does not fit.
+    const fs::path gcode = dir / (file + ".gcode");
+    const test::ToolRun slice = test::prusa_slicer((dir / "home").string(),
+                                                   "--export-gcode --bed-shape 0x0,220x0,220x220,0x220 "
+                                                   "--align-xy 0,0 " +
+                                                       test::quoted(entry.path().string()) + " --output " +
+                                                       test::quoted(gcode.string()));
+    INFO(slice.output);
+    CHECK(slice.code == 0);
+    CHECK(fs::file_size(gcode) > 0);
+    ++sliced;
+  }
+  CHECK(sliced == 10);
 }

@@ -841,6 +841,10 @@ try {
                                     'pieces are off, side-2 lifts out along -x once its 3 other pieces are off, ' +
                                     'side-3 lifts out along -y once its 2 other pieces are off, base lifts out ' +
                                     'along -z\\)'));
+      // Too big for its 220 mm bed, each case piece is cut into sections.
+      assert.match(said, new RegExp('casting cases cut for the bed9 pieces in 24 sections \\(case-side-1 in 2, ' +
+                                    'case-side-1-piece-2 in 2, case-side-2 in 6, [^)]*, case-base in 4\\), two ' +
+                                    '2\\.5 mm pins into 2\\.9 mm holes across every joint'));
       assert.doesNotMatch(said, /case refused/);
     });
   });

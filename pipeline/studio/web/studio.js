@@ -447,6 +447,15 @@ function showMould(add, m, u) {
     (c.plate ? ` once its plate is off along ${along(c.plate.pull)}` : '') +
     (c.pieces ? ` once its ${c.pieces.length} other piece${c.pieces.length === 1 ? ' is' : 's are'} off` : ''));
   add('casting cases', `${made.length} of ${m.cases.length} parts (${made.length ? made.join(', ') : 'none'})`);
+  // The pieces too big for the bed, written in sections.
+  const cut = m.cases.flatMap((c) => [c, ...(c.pieces || [])]).filter((p) => p.sections);
+  if (cut.length) {
+    const pin = cut[0].section_pin;
+    const sections = cut.reduce((n, p) => n + p.sections.length, 0);
+    add('casting cases cut for the bed', `${cut.length} piece${cut.length === 1 ? '' : 's'} in ${sections} ` +
+        `sections (${cut.map((p) => `${p.name} in ${p.sections.length}`).join(', ')}), two ` +
+        `${g(pin.diameter)} ${u} pins into ${g(pin.hole_diameter)} ${u} holes across every joint`);
+  }
   for (const c of m.cases) if (c.refused !== undefined) add('case refused', c.refused, 'not-valid');
 }
 
