@@ -300,34 +300,62 @@ Facts pin_facts(const CasePin& pin) {
       .set("sides", pin.sides);
 }
 
+// Where the casting cases' pieces are written: side by side along x, `gap`
+// apart, in rows no wider than `width` (a wider piece has a row of its
+// own), the rows `gap` apart along y, so that the coordinates stay small
+// for the files' single-precision floats.
+class Shelf {
+ public:
+  Shelf(double gap, double width) : gap_(gap), width_(width) {}
+
+  /// The corner a piece of `size` is written from.
+  Vec3 place(const Vec3& size) {
+    if (x_ > 0.0 && x_ + size.x() > width_) {
+      y_ += depth_ + gap_;
+      x_ = 0.0;
+      depth_ = 0.0;
+    }
+    const Vec3 corner(x_, y_, 0.0);
+    x_ += size.x() + gap_;
+    depth_ = std::max(depth_, size.y());
+    return corner;
+  }
+
+ private:
+  double gap_, width_;
+  double x_ = 0.0, y_ = 0.0, depth_ = 0.0;
+};
+
+// `soup` moved so that its bounding box's lowest corner is `corner`.
+void move_to(TriangleSoup& soup, const Vec3& corner) {
+  const Vec3 lo = bounding_box(soup.vertices).lo;
+  for (Vec3& p : soup.vertices) p = p - lo + corner;
+}
+
 // The sections of a case's piece `name` as parts of their own, validated in
-// full, written side by side along x from `x` (`gap` apart; x moves on past
-// them), and their facts.
-std::vector<Facts> case_sections(SectionedPiece& cut, const std::string& name, double gap, double& x,
-                                 Result& out) {
+// full, written where `shelf` places them, and their facts.
+std::vector<Facts> case_sections(SectionedPiece& cut, const std::string& name, Shelf& shelf, Result& out) {
   std::vector<Facts> facts;
   for (std::size_t n = 0; n < cut.sections.size(); ++n) {
     CaseSection& s = cut.sections[n];
     Part part;
     part.name = fmt::format("{}-section-{}", name, n + 1);
     part.role = PartRole::Case;
-    const BoundingBox box = bounding_box(s.soup.vertices);
-    const Vec3 corner(x, 0.0, 0.0);
-    for (Vec3& p : s.soup.vertices) p = p - box.lo + corner;
+    const Vec3 size = bounding_box(s.soup.vertices).size();
+    const Vec3 corner = shelf.place(size);
+    move_to(s.soup, corner);
     part.mesh = std::move(s.soup);
     validate_part(part);
-    const Vec3 size = box.size();
     facts.push_back(Facts()
                         .set("name", part.name)
                         .set("cell", std::vector<double>{s.cell[0] + 1.0, s.cell[1] + 1.0, s.cell[2] + 1.0})
                         .set("size", std::vector<double>{size.x(), size.y(), size.z()})
-                        .set("written_from", std::vector<double>{x, 0.0, 0.0})
+                        .set("written_from", std::vector<double>{corner.x(), corner.y(), corner.z()})
                         .set("triangles", part.mesh.triangles.size())
                         .set("volume", part.validation.volume)
                         .set("pins", s.pins)
                         .set("holes", s.holes));
     out.parts.push_back(std::move(part));
-    x += size.x() + gap;
   }
   return facts;
 }
@@ -340,11 +368,12 @@ std::vector<Facts> add_cases(const VesselDesign& design, const Mould& mould, con
                              Result& out, VesselProducts& products) {
   const std::size_t first = out.parts.size() - mould.parts.size();
   std::vector<Facts> cases;
-  // Written standing on their floors (plates on their outer faces), side by side along x, 10 mm apart.
-  const double gap = 10.0 / millimetres_per_unit(context.common.units);
+  // Written standing on their floors (plates on their outer faces), side by
+  // side along x 10 mm apart, in rows of at most a metre.
+  const double mm = millimetres_per_unit(context.common.units);
+  Shelf shelf(10.0 / mm, 1000.0 / mm);
   CaseOptions case_options = design.casting_case;
   case_options.tolerance = context.tolerance;
-  double x = 0.0;
   for (std::size_t i = 0; i < mould.parts.size(); ++i) {
     const MouldPart& p = mould.parts[i];
     const std::string name = out.parts[first + i].name;  // copied: the cases are added to out.parts
@@ -368,22 +397,22 @@ std::vector<Facts> add_cases(const VesselDesign& design, const Mould& mould, con
       const CastingCase c = build_casting_case(out.parts[first + i].mesh, name, outward, case_options,
                                                what_is_at, split_faces(p));
       VesselProducts::CaseBox box{"case-" + name, i, c.lo, c.hi, c.pull, std::nullopt, c.carved, {}};
-      // A piece of the case as it is printed, validated in full, its facts;
-      // with a bed it does not fit, its sections (each validated in full) in
-      // its place.
+      // A piece of the case as it is printed (standing at the origin),
+      // validated in full where it is written, its facts; with a bed it does
+      // not fit, its sections (each validated in full) in its place.
       const auto piece = [&](const std::string& piece_name, TriangleSoup printed, const Vec3& pull,
                              const char* standing_on) {
         Part part;
         part.name = piece_name;
         part.role = PartRole::Case;
         part.mesh = std::move(printed);
-        validate_part(part);
         const Vec3 size = bounding_box(part.mesh.vertices).size();
         const Vec3* bed = design.print && design.print->bed ? &*design.print->bed : nullptr;
         std::optional<SectionedPiece> cut;
         if (bed != nullptr && !fits_bed(size, *bed)) {
+          validate_part(part);  // the cut needs a valid solid; an invalid one is reported whole
           try {
-            cut = cut_case_piece(part.mesh, part.name, *bed, case_options);
+            if (part.validation.valid()) cut = cut_case_piece(part.mesh, part.name, *bed, case_options);
           } catch (const GeometryError& e) {
             out.warnings.push_back(fmt::format(
                 "{}: {} ({:.6g} x {:.6g} x {:.6g} {} standing on its {}) does not fit the bed {:g} x {:g} x "
@@ -397,24 +426,28 @@ std::vector<Facts> add_cases(const VesselDesign& design, const Mould& mould, con
         f.set("name", part.name)
             .set("pull", std::vector<double>{pull.x(), pull.y(), pull.z()})
             .set("size", std::vector<double>{size.x(), size.y(), size.z()});
-        if (!cut) f.set("written_from", std::vector<double>{x, 0.0, 0.0});
+        if (!cut) {
+          const Vec3 corner = shelf.place(size);
+          move_to(part.mesh, corner);
+          validate_part(part);
+          f.set("written_from", std::vector<double>{corner.x(), corner.y(), corner.z()});
+        }
         f.set("triangles", part.mesh.triangles.size()).set("volume", part.validation.volume);
         if (bed != nullptr) f.set("fits_bed", fits_bed(size, *bed));
         if (cut) {
-          // Written in its sections instead, side by side from here.
+          // Written in its sections instead.
           f.set("cells",
                 std::vector<double>{static_cast<double>(cut->counts[0]), static_cast<double>(cut->counts[1]),
                                     static_cast<double>(cut->counts[2])})
-              .set("sections", case_sections(*cut, part.name, gap, x, out))
+              .set("sections", case_sections(*cut, part.name, shelf, out))
               .set("section_pin", pin_facts(cut->pins.front()))
               .set("sections_volume_error", cut->volume_error);
           return f;
         }
         out.parts.push_back(std::move(part));
-        x += size.x() + gap;
         return f;
       };
-      Facts whole = piece(box.name, standing(c, Vec3(x, 0.0, 0.0)), c.pull, "floor");
+      Facts whole = piece(box.name, standing(c, Vec3::Zero()), c.pull, "floor");
       for (const char* fact : {"name", "pull", "size", "written_from"}) {
         if (const Facts::Value* v = whole.find(fact)) facts.set(fact, *v);
       }
@@ -429,7 +462,7 @@ std::vector<Facts> add_cases(const VesselDesign& design, const Mould& mould, con
       // A piece taken off first: its facts, with its pins where they stand
       // in the mould's frame (as the STEP file has the case assembled).
       const auto plate_facts = [&](const CasePlate& cp, const std::string& piece_name) {
-        Facts plate = piece(piece_name, standing(cp, Vec3(x, 0.0, 0.0)), cp.pull, "outer face");
+        Facts plate = piece(piece_name, standing(cp, Vec3::Zero()), cp.pull, "outer face");
         plate.set("features", cp.features);
         std::vector<Facts> pins;
         for (const CasePin& pin : cp.pins) {

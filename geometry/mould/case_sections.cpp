@@ -64,7 +64,8 @@ double farthest_from(const std::vector<double>& levels, double from, double to) 
   };
   double best = 0.5 * (from + to), best_distance = distance(best);
   std::vector<double> candidates{from, to};
-  for (auto it = std::lower_bound(levels.begin(), levels.end(), from); it != levels.end() && *it <= to; ++it) {
+  for (auto it = std::lower_bound(levels.begin(), levels.end(), from); it != levels.end() && *it <= to;
+       ++it) {
     if (it + 1 != levels.end()) candidates.push_back(std::clamp(0.5 * (*it + *(it + 1)), from, to));
     if (it != levels.begin()) candidates.push_back(std::clamp(0.5 * (*(it - 1) + *it), from, to));
   }
@@ -181,7 +182,8 @@ Slice slice(const TriangleSoup& s, int a, double at) {
     out.loop.push_back(it->second);
     std::array<double, 4>& box = boxes[it->second];
     for (const Vec2& p : {out.segments[n].first, out.segments[n].second}) {
-      box = {std::min(box[0], p.x()), std::min(box[1], p.y()), std::max(box[2], p.x()), std::max(box[3], p.y())};
+      box = {std::min(box[0], p.x()), std::min(box[1], p.y()), std::max(box[2], p.x()),
+             std::max(box[3], p.y())};
     }
   }
   for (const auto& box : boxes) out.loop_extent.push_back((box[2] - box[0]) * (box[3] - box[1]));
@@ -269,13 +271,26 @@ bool reaches(const Slice& section, const Vec2& lo, const Vec2& hi) {
   });
 }
 
+// The smallest height of a triangle of `s` over its longest side: how thin
+// its thinnest sliver is.
+double thinnest(const TriangleSoup& s) {
+  double least = std::numeric_limits<double>::infinity();
+  for (const auto& t : s.triangles) {
+    const Vec3 &a = s.vertices[t[0]], &b = s.vertices[t[1]], &c = s.vertices[t[2]];
+    const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+    if (longest > 0.0) least = std::min(least, (b - a).cross(c - a).norm() / longest);
+  }
+  return least;
+}
+
 std::string size_text(const Vec3& s) { return fmt::format("{:.6g} x {:.6g} x {:.6g}", s.x(), s.y(), s.z()); }
 
 // The piece cut into the cells between the planes `at` (each axis: the
 // box's ends and the cuts), as cut_case_piece promises, `out` holding the
 // cells' counts.
 SectionedPiece cut_at(const TriangleSoup& printed, const std::string& name, const Vec3& bed,
-                      const CaseOptions& options, SectionedPiece out, const std::array<std::vector<double>, 3>& at) {
+                      const CaseOptions& options, SectionedPiece out,
+                      const std::array<std::vector<double>, 3>& at) {
   const BoundingBox box = bounding_box(printed.vertices);
   const Vec3 size = box.size();
   const PinSize pin = pin_size(options);
@@ -299,8 +314,8 @@ SectionedPiece cut_at(const TriangleSoup& printed, const std::string& name, cons
           // Past the piece on its outer sides, so that only the cuts cut.
           range[i] = {c[i] == 0 ? s.lo[i] - w : s.lo[i], c[i] + 1 == out.counts[i] ? s.hi[i] + w : s.hi[i]};
         }
-        solids[index(c)] = block_of(Vec3::Zero(), Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ(), range[0],
-                                    range[1], range[2]);
+        solids[index(c)] =
+            block_of(Vec3::Zero(), Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ(), range[0], range[1], range[2]);
       }
     }
   }
@@ -353,6 +368,19 @@ SectionedPiece cut_at(const TriangleSoup& printed, const std::string& name, cons
               try_at(fixed == 0 ? Vec2(value, t) : Vec2(t, value));
             }
           }
+          // And half a wall inside every face the cut crosses (a wall's
+          // middle, wherever the piece's walls run).
+          for (const auto& [u, v] : section.segments) {
+            const double length = (v - u).norm();
+            if (!(length > 0.0)) continue;
+            const Vec2 along = (v - u) / length, across(-along.y(), along.x());
+            const auto count = static_cast<int>(std::floor(length / step));
+            for (int m = 0; m <= count; ++m) {
+              const Vec2 q = u + (count == 0 ? 0.5 * length : length * m / count) * along;
+              try_at(q + w / 2.0 * across);
+              try_at(q - w / 2.0 * across);
+            }
+          }
           // Two pins in each region with room for them, as far apart as it allows.
           std::vector<Vec2> chosen;
           for (const auto& [region, points] : found) {
@@ -370,12 +398,12 @@ SectionedPiece cut_at(const TriangleSoup& printed, const std::string& name, cons
             chosen.push_back(points[p1]);
           }
           if (chosen.empty()) {
-            throw GeometryError("print.bed",
-                                fmt::format("{} ({} standing) has no room for two pins across its cut at {} "
-                                            "= {:.6g} (between {:.6g} and {:.6g} along {}, {:.6g} and {:.6g} "
-                                            "along {}), which its sections for the bed {} need",
-                                            name, size_text(size), "xyz"[a], h, lo.x(), hi.x(), "xyz"[b],
-                                            lo.y(), hi.y(), "xyz"[c], size_text(bed)));
+            throw GeometryError(
+                "print.bed", fmt::format("{} ({} standing) has no room for two pins across its cut at {} "
+                                         "= {:.6g} (between {:.6g} and {:.6g} along {}, {:.6g} and {:.6g} "
+                                         "along {}), which its sections for the bed {} need",
+                                         name, size_text(size), "xyz"[a], h, lo.x(), hi.x(), "xyz"[b], lo.y(),
+                                         hi.y(), "xyz"[c], size_text(bed)));
           }
           std::array<int, 3> lower{}, upper{};
           lower[a] = k - 1;
@@ -390,15 +418,17 @@ SectionedPiece cut_at(const TriangleSoup& printed, const std::string& name, cons
             base[b] = at_pin.x();
             base[c] = at_pin.y();
             const Vec3 foot = base - pin.buried * e_a;
-            TriangleSoup stud = pin_prism(foot, e_b, e_c, e_a, pin.radius, pin.buried + pin.height, pin.sides);
+            TriangleSoup stud =
+                pin_prism(foot, e_b, e_c, e_a, pin.radius, pin.buried + pin.height, pin.sides);
             TriangleSoup hole =
                 pin_prism(foot, e_b, e_c, e_a, pin.hole_radius, pin.buried + pin.hole_depth, pin.sides);
             extra += signed_volume(stud) * pin.height / (pin.buried + pin.height) -
                      signed_volume(hole) * pin.hole_depth / (pin.buried + pin.hole_depth);
             added[index(lower)].push_back(std::move(stud));
             removed[index(upper)].push_back(std::move(hole));
-            placed.push_back({index(lower), index(upper), base - 0.5 * pin.buried * e_a,
-                              base + 0.5 * pin.hole_depth * e_a + (pin.hole_radius + 0.5 * pin.margin) * e_b});
+            placed.push_back(
+                {index(lower), index(upper), base - 0.5 * pin.buried * e_a,
+                 base + 0.5 * pin.hole_depth * e_a + (pin.hole_radius + 0.5 * pin.margin) * e_b});
             CasePin p;
             p.base = base;
             p.axis = e_a;
@@ -418,10 +448,12 @@ SectionedPiece cut_at(const TriangleSoup& printed, const std::string& name, cons
   std::string why;
   std::optional<std::vector<TriangleSoup>> cut = cut_cells(printed, solids, added, removed, &why);
   if (!cut) {
-    throw GeometryError("print.bed", fmt::format("{} could not be cut into sections for the bed: {}", name, why));
+    throw GeometryError("print.bed",
+                        fmt::format("{} could not be cut into sections for the bed: {}", name, why));
   }
   out.volume = signed_volume(printed);
   double sum = 0.0;
+  const double sliver = std::min(1e-6 * size.maxCoeff(), 0.5 * thinnest(printed));
   for (std::size_t i = 0; i < cell_count; ++i) {
     const CaseSection& cell = cells[i];
     const auto cell_text = [&] {
@@ -431,6 +463,15 @@ SectionedPiece cut_at(const TriangleSoup& printed, const std::string& name, cons
     for (TriangleSoup& solid : solids_of((*cut)[i])) {
       CaseSection s = cell;
       s.soup = std::move(solid);
+      // A sliver the cut left (a cut plane near an edge of the piece, two
+      // planes crossing near one) would fold when the section is moved or
+      // written in single precision: the cut is tried elsewhere.
+      if (thinnest(s.soup) < sliver) {
+        throw GeometryError("print.bed",
+                            fmt::format("{}: a section of its cell {} for the bed {} has a sliver "
+                                        "{:.3g} thin",
+                                        name, cell_text(), size_text(bed), thinnest(s.soup)));
+      }
       if (!validate(s.soup).valid()) {
         throw GeometryError("print.bed", fmt::format("{}: a section of its cell {} for the bed {} is not a "
                                                      "valid solid once its points are rounded",
@@ -442,10 +483,10 @@ SectionedPiece cut_at(const TriangleSoup& printed, const std::string& name, cons
       }
       const double volume = signed_volume(s.soup);
       if (s.pins + s.holes < 2) {
-        throw GeometryError("print.bed",
-                            fmt::format("{}: a section of its cell {} for the bed {} (of volume {:.4g}) has {} "
-                                        "pins or holes to register it, where it needs two",
-                                        name, cell_text(), size_text(bed), volume, s.pins + s.holes));
+        throw GeometryError(
+            "print.bed", fmt::format("{}: a section of its cell {} for the bed {} (of volume {:.4g}) has {} "
+                                     "pins or holes to register it, where it needs two",
+                                     name, cell_text(), size_text(bed), volume, s.pins + s.holes));
       }
       sum += volume;
       out.sections.push_back(std::move(s));
@@ -457,9 +498,10 @@ SectionedPiece cut_at(const TriangleSoup& printed, const std::string& name, cons
     holes += s.holes;
   }
   if (pins != placed.size() || holes != placed.size()) {
-    throw GeometryError("print.bed", fmt::format("{}: its sections carry {} pins and {} holes of its {} joints' "
-                                                 "pins",
-                                                 name, pins, holes, placed.size()));
+    throw GeometryError("print.bed",
+                        fmt::format("{}: its sections carry {} pins and {} holes of its {} joints' "
+                                    "pins",
+                                    name, pins, holes, placed.size()));
   }
   out.volume_error = std::abs(sum - (out.volume + extra));
   if (!(out.volume_error <= 1e-9 * std::abs(out.volume))) {
@@ -471,9 +513,10 @@ SectionedPiece cut_at(const TriangleSoup& printed, const std::string& name, cons
   for (const CaseSection& s : out.sections) {
     const Vec3 section_size = bounding_box(s.soup.vertices).size();
     if (!fits_bed(section_size, bed)) {
-      throw GeometryError("print.bed", fmt::format("{}: its section [{}, {}, {}] ({}) does not fit the bed {}",
-                                                   name, s.cell[0] + 1, s.cell[1] + 1, s.cell[2] + 1,
-                                                   size_text(section_size), size_text(bed)));
+      throw GeometryError(
+          "print.bed",
+          fmt::format("{}: its section [{}, {}, {}] ({}) does not fit the bed {}", name, s.cell[0] + 1,
+                      s.cell[1] + 1, s.cell[2] + 1, size_text(section_size), size_text(bed)));
     }
   }
   return out;
@@ -530,7 +573,7 @@ SectionedPiece cut_case_piece(const TriangleSoup& printed, const std::string& na
     std::sort(levels[i].begin(), levels[i].end());
   }
   std::optional<GeometryError> first;
-  for (double shift : {0.0, -0.75, 0.75, -0.375, 0.375}) {
+  for (double shift : {0.0, -0.75, 0.75, -0.375, 0.375, -0.5625, 0.5625, -0.1875, 0.1875}) {
     std::array<std::vector<double>, 3> at;
     for (int i = 0; i < 3; ++i) {
       at[i].push_back(box.lo[i]);
@@ -538,7 +581,8 @@ SectionedPiece cut_case_piece(const TriangleSoup& printed, const std::string& na
       const double slack = std::clamp(room[i] * (1.0 - 1e-9) - pin.height - share, 0.0, share / 2.0) / 2.0;
       // Near the share moved by `shift` of the room, within a quarter of it.
       for (int k = 1; k < out.counts[i]; ++k) {
-        const double centre = box.lo[i] + share * k + shift * slack;
+        // (each axis moved a different share, so that no two cuts cross on a diagonal of the piece)
+        const double centre = box.lo[i] + share * k + shift * (1.0 - 0.25 * i) * slack;
         at[i].push_back(farthest_from(levels[i], centre - slack / 4.0, centre + slack / 4.0));
       }
       at[i].push_back(box.hi[i]);

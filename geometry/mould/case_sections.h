@@ -6,15 +6,23 @@
 // about z when that takes fewer cells. Each cell is what of the piece lies in
 // it, cut by CGAL's corefinement over exact constructions.
 //
-// Every joint (the face two neighbouring cells share) is registered by two
-// pins in the piece's material, as far apart as the joint allows: a pin of
-// the lower cell (along the cut axis) stands up into a hole of the upper one,
-// as the carved pieces' pins do (a quarter of the case wall in radius, half
-// of it tall, buried a quarter of it into its own cell; the hole wider all
-// round and deeper by the case's clearance). Where a pin may stand is found
-// on lines half a wall inside the piece's box (the middle of the case's
-// walls): the hole and the pin's foot, with a sixteenth of the wall more all
-// round, must meet no face of the piece and lie inside it.
+// Every joint (each region of the face two neighbouring cells share) is
+// registered by two pins in the piece's material, as far apart as the
+// region allows: a pin of the lower cell (along the cut axis) stands up into
+// a hole of the upper one, as the carved pieces' pins do (a quarter of the
+// case wall in radius, half of it tall, buried a quarter of it into its own
+// cell; the hole wider all round and deeper by the case's clearance). Where
+// a pin may stand is looked for half a wall inside the piece's box and half
+// a wall inside every face the cut crosses (the middle of the case's walls):
+// the hole and the pin's foot, with a sixteenth of the wall more all round,
+// must meet no face of the piece and lie inside it. A cell in which the
+// piece lies in several solids gives a section for each.
+//
+// Each cut lies near its equal share, moved within the room the bed leaves
+// as far as it can from the piece's corners. Where that leaves a sliver
+// (thinner than 1e-6 of the piece, which moving the section or writing it in
+// single precision could fold), or a joint has no room for its pins, or a
+// section no pins, the cuts are tried again at other places in that room.
 //
 // Proven: every section is a valid solid (validated in full) of one piece;
 // the sections' volumes add up to the piece's, plus what the pins stand out
@@ -56,13 +64,12 @@ struct SectionedPiece {
 /// The piece `printed` (closed, outward, free of self-intersections; as it
 /// is printed, +z up) cut into cells that fit `bed` (x, y, z) with their
 /// pins. `name` names the piece in messages.
-/// The cuts lie near equal shares of the piece, each moved within the bed's
-/// room as far from the piece's vertices as it can.
 /// \throw GeometryError (where "print.bed") when the bed is no larger than a
 ///        pin along an axis the piece exceeds, when it would take more than
-///        64 sections, when a joint has no room for two pins, when a section
-///        is not valid or falls apart into several solids, or when the exact
-///        cut or its volume proof fails.
+///        64 sections, or when no place tried for the cuts gives valid
+///        sections without slivers, each with its pins or holes (the
+///        reason is the first place's: a joint without room for two pins, a
+///        sliver, an exact cut or volume proof that failed).
 SectionedPiece cut_case_piece(const TriangleSoup& printed, const std::string& name, const Vec3& bed,
                               const CaseOptions& options);
 
