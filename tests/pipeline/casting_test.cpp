@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
@@ -425,7 +426,8 @@ TEST_CASE("casting cases: cases too big for the bed are written in pinned sectio
 }
 
 TEST_CASE(
-    "casting cases: PrusaSlicer finds each section of a cut case manifold, within the bed, and slices it",
+    "casting cases: PrusaSlicer finds every case file of the production vase manifold, within its bed, and "
+    "slices it",
     "[pipeline][mould][case][sections][prusaslicer]") {
   REQUIRE_PROGRAM("prusa-slicer");
   const fs::path dir = fresh_dir("casting_case_sections_prusa");
@@ -437,17 +439,19 @@ TEST_CASE(
              Catch::Contains("casting cases cut for the bed: 9 pieces in 24 sections (case-side-1 in 2, "
                              "case-side-1-piece-2 in 2, case-side-2 in 6, ") &&
                  Catch::Contains("case-base in 4), two 2.5 mm pins into 2.9 mm holes across every joint"));
-  // The side part pulled along -x: its main piece falls into six sections
-  // (two cells hold a wall apart from the rest); the base's case into four.
-  std::size_t sliced = 0;
+  // Every file: the 24 sections (the side part pulled along -x has its main
+  // piece in six, two cells holding a wall apart from the rest) and the two
+  // plates that fit the bed whole.
+  std::vector<fs::path> files;
   for (const auto& entry : fs::directory_iterator(dir)) {
-    const std::string file = entry.path().filename().string();
-    if (file.find("case-side-2-section-") == std::string::npos &&
-        file.find("case-base-section-") == std::string::npos)
-      continue;
+    if (entry.path().extension() == ".stl") files.push_back(entry.path());
+  }
+  std::sort(files.begin(), files.end());
+  std::size_t sliced = 0;
+  for (const fs::path& path : files) {
+    const std::string file = path.filename().string();
     INFO(file);
-    const std::map<std::string, std::string> info =
-        test::prusa_info((dir / "home").string(), entry.path().string());
+    const std::map<std::string, std::string> info = test::prusa_info((dir / "home").string(), path.string());
     REQUIRE(info.count("manifold") == 1);
     CHECK(info.at("manifold") == "yes");
     const double x = std::stod(info.at("size_x")), y = std::stod(info.at("size_y"));
@@ -456,15 +460,15 @@ TEST_CASE(
     // Placed from the bed's corner (PrusaSlicer's --center refuses some
     // objects written far along x); it refuses one that does not fit.
     const fs::path gcode = dir / (file + ".gcode");
-    const test::ToolRun slice = test::prusa_slicer((dir / "home").string(),
-                                                   "--export-gcode --bed-shape 0x0,220x0,220x220,0x220 "
-                                                   "--align-xy 0,0 " +
-                                                       test::quoted(entry.path().string()) + " --output " +
-                                                       test::quoted(gcode.string()));
+    const test::ToolRun slice =
+        test::prusa_slicer((dir / "home").string(),
+                           "--export-gcode --bed-shape 0x0,220x0,220x220,0x220 "
+                           "--align-xy 0,0 " +
+                               test::quoted(path.string()) + " --output " + test::quoted(gcode.string()));
     INFO(slice.output);
     CHECK(slice.code == 0);
     CHECK(fs::file_size(gcode) > 0);
     ++sliced;
   }
-  CHECK(sliced == 10);
+  CHECK(sliced == 26);
 }
