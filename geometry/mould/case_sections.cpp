@@ -385,15 +385,7 @@ SectionedPiece cut_at(const TriangleSoup& printed, const std::string& name, cons
           std::vector<Vec2> chosen;
           for (const auto& [region, points] : found) {
             if (points.size() < 2) continue;
-            std::size_t p0 = 0, p1 = 1;
-            for (std::size_t i = 0; i < points.size(); ++i) {
-              for (std::size_t j = i + 1; j < points.size(); ++j) {
-                if ((points[i] - points[j]).norm() > (points[p0] - points[p1]).norm()) {
-                  p0 = i;
-                  p1 = j;
-                }
-              }
-            }
+            const auto [p0, p1] = farthest_pair(points);
             chosen.push_back(points[p0]);
             chosen.push_back(points[p1]);
           }
@@ -429,16 +421,8 @@ SectionedPiece cut_at(const TriangleSoup& printed, const std::string& name, cons
             placed.push_back(
                 {index(lower), index(upper), base - 0.5 * pin.buried * e_a,
                  base + 0.5 * pin.hole_depth * e_a + (pin.hole_radius + 0.5 * pin.margin) * e_b});
-            CasePin p;
-            p.base = base;
-            p.axis = e_a;
-            p.radius = pin.radius;
-            p.height = pin.height;
-            p.hole_radius = pin.hole_radius;
-            p.hole_depth = pin.hole_depth;
-            p.sides = pin.sides;
-            p.buried = pin.buried;
-            out.pins.push_back(p);
+            out.pins.push_back(CasePin{base, e_a, pin.radius, pin.height, pin.hole_radius, pin.hole_depth,
+                                       pin.sides, pin.buried});
           }
         }
       }

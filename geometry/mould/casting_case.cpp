@@ -915,15 +915,7 @@ Attempt carved(const TriangleSoup& part, const std::string& name, const Axis& ax
       return {std::nullopt,
               fmt::format("its case has no room in its walls for the pins of the piece beyond {}", c.what)};
     }
-    std::size_t best_a = 0, best_b = 1;
-    for (std::size_t a = 0; a < found.size(); ++a) {
-      for (std::size_t b = a + 1; b < found.size(); ++b) {
-        if ((found[a] - found[b]).norm() > (found[best_a] - found[best_b]).norm()) {
-          best_a = a;
-          best_b = b;
-        }
-      }
-    }
+    const auto [best_a, best_b] = farthest_pair(found);
     const double pin_length = snapped(buried + height, kLengthBits);
     const double hole_length = snapped(buried + height + options.clearance, kLengthBits);
     for (std::size_t b : {best_a, best_b}) {

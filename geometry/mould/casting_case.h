@@ -165,6 +165,19 @@ TriangleSoup block_of(const Vec3& o, const Vec3& u, const Vec3& v, const Vec3& d
 TriangleSoup pin_prism(const Vec3& centre, const Vec3& e1, const Vec3& e2, const Vec3& d, double radius,
                        double length, std::size_t sides);
 
+/// The indices of the two of `points` (at least two) farthest apart: the
+/// first such pair in their order.
+template <class Point>
+std::array<std::size_t, 2> farthest_pair(const std::vector<Point>& points) {
+  std::array<std::size_t, 2> best{0, 1};
+  for (std::size_t a = 0; a < points.size(); ++a) {
+    for (std::size_t b = a + 1; b < points.size(); ++b) {
+      if ((points[a] - points[b]).norm() > (points[best[0]] - points[best[1]]).norm()) best = {a, b};
+    }
+  }
+  return best;
+}
+
 /// `soup` as it is printed: turned by quarter turns (exact) so that the axis
 /// direction `up` is +z, then moved so that its bounding box's lowest corner
 /// is at `corner`.
