@@ -315,7 +315,7 @@ class Shelf {
       x_ = 0.0;
       depth_ = 0.0;
     }
-    const Vec3 corner(x_, y_, 0.0);
+    Vec3 corner(x_, y_, 0.0);
     x_ += size.x() + gap_;
     depth_ = std::max(depth_, size.y());
     return corner;

@@ -295,10 +295,12 @@ SectionedPiece cut_at(const TriangleSoup& printed, const std::string& name, cons
   const Vec3 size = box.size();
   const PinSize pin = pin_size(options);
   const double w = options.wall;
+  const auto cells_on = [&](int i) { return static_cast<std::size_t>(out.counts[i]); };
   const auto index = [&](const std::array<int, 3>& c) {
-    return static_cast<std::size_t>((c[2] * out.counts[1] + c[1]) * out.counts[0] + c[0]);
+    return (static_cast<std::size_t>(c[2]) * cells_on(1) + static_cast<std::size_t>(c[1])) * cells_on(0) +
+           static_cast<std::size_t>(c[0]);
   };
-  const auto cell_count = static_cast<std::size_t>(out.counts[0] * out.counts[1] * out.counts[2]);
+  const std::size_t cell_count = cells_on(0) * cells_on(1) * cells_on(2);
   std::vector<CaseSection> cells(cell_count);
   std::vector<TriangleSoup> solids(cell_count);
   for (int z = 0; z < out.counts[2]; ++z) {
