@@ -326,12 +326,6 @@ class Shelf {
   double x_ = 0.0, y_ = 0.0, depth_ = 0.0;
 };
 
-// `soup` moved so that its bounding box's lowest corner is `corner`.
-void move_to(TriangleSoup& soup, const Vec3& corner) {
-  const Vec3 lo = bounding_box(soup.vertices).lo;
-  for (Vec3& p : soup.vertices) p = p - lo + corner;
-}
-
 // The sections of a case's piece `name` as parts of their own, validated in
 // full, written where `shelf` places them, and their facts.
 std::vector<Facts> case_sections(SectionedPiece& cut, const std::string& name, Shelf& shelf, Result& out) {
@@ -343,8 +337,7 @@ std::vector<Facts> case_sections(SectionedPiece& cut, const std::string& name, S
     part.role = PartRole::Case;
     const Vec3 size = bounding_box(s.soup.vertices).size();
     const Vec3 corner = shelf.place(size);
-    move_to(s.soup, corner);
-    part.mesh = std::move(s.soup);
+    part.mesh = standing(s.soup, Vec3::UnitZ(), corner);  // as it stands, moved to its corner
     validate_part(part);
     facts.push_back(Facts()
                         .set("name", part.name)
@@ -428,7 +421,7 @@ std::vector<Facts> add_cases(const VesselDesign& design, const Mould& mould, con
             .set("size", std::vector<double>{size.x(), size.y(), size.z()});
         if (!cut) {
           const Vec3 corner = shelf.place(size);
-          move_to(part.mesh, corner);
+          part.mesh = standing(part.mesh, Vec3::UnitZ(), corner);  // as it stands, moved to its corner
           validate_part(part);
           f.set("written_from", std::vector<double>{corner.x(), corner.y(), corner.z()});
         }

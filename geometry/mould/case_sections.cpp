@@ -452,11 +452,11 @@ SectionedPiece cut_at(const TriangleSoup& printed, const std::string& name, cons
       // A sliver the cut left (a cut plane near an edge of the piece, two
       // planes crossing near one) would fold when the section is moved or
       // written in single precision: the cut is tried elsewhere.
-      if (thinnest(s.soup) < sliver) {
+      if (const double thin = thinnest(s.soup); thin < sliver) {
         throw GeometryError("print.bed",
                             fmt::format("{}: a section of its cell {} for the bed {} has a sliver "
                                         "{:.3g} thin",
-                                        name, cell_text(), size_text(bed), thinnest(s.soup)));
+                                        name, cell_text(), size_text(bed), thin));
       }
       if (!validate(s.soup).valid()) {
         throw GeometryError("print.bed", fmt::format("{}: a section of its cell {} for the bed {} is not a "
