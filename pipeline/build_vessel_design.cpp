@@ -13,6 +13,7 @@
 #include "geometry/fairing/build_curve.h"
 #include "geometry/mesh/bounding_box.h"
 #include "geometry/mesh/vessel.h"
+#include "geometry/mesh/volume.h"
 #include "geometry/mould/case_sections.h"
 #include "geometry/mould/master_sections.h"
 #include "geometry/mould/mould.h"
@@ -367,6 +368,14 @@ std::vector<Facts> add_cases(const VesselDesign& design, const Mould& mould, con
   Shelf shelf(10.0 / mm, 1000.0 / mm);
   CaseOptions case_options = design.casting_case;
   case_options.tolerance = context.tolerance;
+  // The mould's outside: a part's flat faces on it touch no other part, and lean by the draft.
+  BoundingBox outside;
+  for (std::size_t i = 0; i < mould.parts.size(); ++i) {
+    const BoundingBox b = bounding_box(out.parts[first + i].mesh.vertices);  // the parts' meshes moved there
+    outside.lo = outside.lo.cwiseMin(b.lo);
+    outside.hi = outside.hi.cwiseMax(b.hi);
+  }
+  case_options.outside = outside;
   for (std::size_t i = 0; i < mould.parts.size(); ++i) {
     const MouldPart& p = mould.parts[i];
     const std::string name = out.parts[first + i].name;  // copied: the cases are added to out.parts
@@ -389,7 +398,7 @@ std::vector<Facts> add_cases(const VesselDesign& design, const Mould& mould, con
     try {
       const CastingCase c = build_casting_case(out.parts[first + i].mesh, name, outward, case_options,
                                                what_is_at, split_faces(p));
-      VesselProducts::CaseBox box{"case-" + name, i, c.lo, c.hi, c.pull, std::nullopt, c.carved, {}};
+      VesselProducts::CaseBox box{"case-" + name, i, c.lo, c.hi, c.pull, std::nullopt, c.carved, {}, {}};
       // A piece of the case as it is printed (standing at the origin),
       // validated in full where it is written, its facts; with a bed it does
       // not fit, its sections (each validated in full) in its place.
@@ -447,6 +456,20 @@ std::vector<Facts> add_cases(const VesselDesign& design, const Mould& mould, con
       facts.set("wall", design.casting_case.wall)
           .set("clearance", design.casting_case.clearance)
           .set("opening_area", c.pour_area);
+      // The part as the case casts it: its free faces along the pull leaned.
+      std::vector<std::string> leaned;
+      for (const CaseDraft& d : c.drafts) {
+        leaned.push_back(d.face);
+        box.drafts.push_back({d.section, d.along});
+      }
+      facts.set("draft", Facts()
+                             .set("deg", design.casting_case.draft_deg)
+                             .set("faces", std::move(leaned))
+                             .set("volume", c.draft_volume)
+                             .set("volume_error", c.draft_volume_error)
+                             .set("part_volume", signed_volume(out.parts[first + i].mesh) - c.draft_volume)
+                             .set("not_leaned", c.undrafted));
+
       for (const char* fact : {"triangles", "volume"}) facts.set(fact, *whole.find(fact));
       facts.set("release", c.release_proof);
       for (const char* fact : {"fits_bed", "cells", "sections", "section_pin", "sections_volume_error"}) {

@@ -88,6 +88,32 @@ void print_build_facts(const Facts& facts, const std::string& u, std::ostream& o
       }
       out << fmt::format("  casting cases: {} of {} parts ({})\n", count, all.size(),
                          count == 0 ? "none" : made);
+      // The faces the draft leans, part by part.
+      std::string leaned;
+      std::size_t faces = 0, stay = 0;
+      double taken = 0.0, deg = 0.0;
+      for (const Facts& c : all) {
+        if (!c.contains("draft")) continue;
+        const Facts& d = c.group("draft");
+        deg = d.number("deg");
+        const auto& named = std::get<std::vector<std::string>>(*d.find("faces"));
+        stay += std::get<std::vector<std::string>>(*d.find("not_leaned")).size();
+        taken += d.number("volume");
+        if (named.empty()) continue;
+        leaned += fmt::format("{}{}", faces == 0 ? "" : ", ", c.text("part"));
+        for (const std::string& f : named)
+          leaned += " " + f.substr(f.rfind(' ') + 1);  // "its face across +x"
+        faces += named.size();
+      }
+      if (faces + stay > 0) {
+        out << fmt::format(
+            "  casting cases' draft: {:g} degree{} on {} face{}{}{}{}\n", deg, deg == 1.0 ? "" : "s", faces,
+            faces == 1 ? "" : "s", faces == 0 ? "" : fmt::format(" ({})", leaned),
+            faces == 0 ? "" : fmt::format(", taking {:.4g} {}^3 from the parts as cast", taken, u),
+            stay == 0 ? ""
+                      : fmt::format("; {} more do{} not lean (the report's draft.not_leaned says why)", stay,
+                                    stay == 1 ? "es" : ""));
+      }
       // The pieces too big for the bed, written in sections.
       std::string cut;
       std::size_t pieces = 0, sections = 0;

@@ -1024,6 +1024,134 @@ Attempt carved(const TriangleSoup& part, const std::string& name, const Axis& ax
   }
   return {std::move(out), {}};
 }
+
+// ---- The draft: the part's free faces along the pull, leaned ----
+
+// The part with its free faces along the pull (flat, on a side of the
+// mould's outside, across an axis q other than the pull's) leaned by the
+// draft: each point of such a face moved into the part along q by
+// tan(draft) times its depth behind the pour face, so that the face lies in
+// the plane through its edge on the pour face leaning in by the draft. That
+// is the part less the prism beyond that plane (CaseDraft, as the STEP case
+// cuts it) when every face of the part meeting the face is flat across q
+// (it slides in its own plane) and every other point lies inside the plane
+// by more than the tolerance (nothing folds): else the face stays as it is.
+struct Drafted {
+  TriangleSoup part;
+  std::vector<CaseDraft> drafts;
+  std::vector<std::string> undrafted;
+  double meeting_area = 0.0;  ///< of the faces meeting a leaned face that may be curved (leaned)
+};
+
+Drafted drafted(const TriangleSoup& part, const Axis& axis, const CaseOptions& options,
+                const std::function<std::string(const Vec3&)>& what_is_at) {
+  Drafted out{part, {}, {}};
+  if (options.draft_deg == 0.0 || !options.outside) return out;
+  const int k = axis.k;
+  const BoundingBox box = bounding_box(part.vertices);
+  const double pour = axis.sign > 0 ? box.hi[k] : box.lo[k];
+  const double depth = box.hi[k] - box.lo[k];
+  const double tangent = std::tan(options.draft_deg * M_PI / 180.0);
+  const double w = options.wall;
+  // How far into the part a point's face moves: by its depth behind the pour face.
+  const auto inset = [&](const Vec3& p) { return tangent * std::abs(pour - p[k]); };
+  std::vector<Vec3>& moved = out.part.vertices;
+  for (const int q : {(k + 1) % 3, (k + 2) % 3}) {
+    const int j = 3 - k - q;
+    Vec3 across = Vec3::Zero();
+    across[q] = 1.0;
+    for (const int s : {-1, 1}) {
+      const double at = s > 0 ? box.hi[q] : box.lo[q];
+      if (at != (s > 0 ? options.outside->hi[q] : options.outside->lo[q])) continue;
+      const std::string name = fmt::format("its face across {}{}", s > 0 ? "+" : "-", "xyz"[q]);
+      const auto on = [&](Index v) { return part.vertices[v][q] == at; };
+      const auto touching = [&](const Triangle& tri) {
+        return static_cast<int>(on(tri[0])) + on(tri[1]) + on(tri[2]);
+      };
+      if (std::none_of(part.triangles.begin(), part.triangles.end(),
+                       [&](const Triangle& tri) { return touching(tri) == 3; })) {
+        continue;  // no flat face there
+      }
+      std::string why;
+      for (std::size_t t = 0; t < part.triangles.size() && why.empty(); ++t) {
+        const Triangle& tri = part.triangles[t];
+        if (touching(tri) == 0 || touching(tri) == 3) continue;
+        // It meets the face: it must slide in its own plane, flat across q.
+        const std::optional<int> sign = facing(part, tri, q);
+        const Vec3 &a = part.vertices[tri[0]], &b = part.vertices[tri[1]], &c = part.vertices[tri[2]];
+        if ((sign ? *sign : exact_facing(a, b, c, across)) != 0) {
+          why = fmt::format("its face at {} meets it and is not flat across {}", where(part, t, what_is_at),
+                            "xyz"[q]);
+        }
+      }
+      for (std::size_t v = 0; v < part.vertices.size() && why.empty(); ++v) {
+        const Vec3& p = part.vertices[v];
+        if (p[q] != at && s * (p[q] - at) + inset(p) > -options.tolerance) {
+          why = fmt::format("its point at {}{} lies within {:.3g} of where it would lean to", point_text(p),
+                            what_is_at ? what_is_at(p) : std::string(), options.tolerance);
+        }
+      }
+      if (!why.empty()) {
+        out.undrafted.push_back(fmt::format("{} does not lean: {}", name, why));
+        continue;
+      }
+      for (std::size_t v = 0; v < part.vertices.size(); ++v) {
+        if (part.vertices[v][q] == at) moved[v][q] = at - s * inset(part.vertices[v]);
+      }
+      // The faces meeting it that may be curved: those not in a plane across
+      // an axis (a mould part's faces in such planes are its exact flat
+      // ones: the block's sides, top and bottom, the cuts, split planes on
+      // the axes).
+      const auto in_axis_plane = [&](const Triangle& tri) {
+        for (int a = 0; a < 3; ++a) {
+          const double x = part.vertices[tri[0]][a];
+          if (part.vertices[tri[1]][a] == x && part.vertices[tri[2]][a] == x) return true;
+        }
+        return false;
+      };
+      for (const Triangle& tri : part.triangles) {
+        if ((touching(tri) == 1 || touching(tri) == 2) && !in_axis_plane(tri)) {
+          out.meeting_area +=
+              0.5 * (moved[tri[1]] - moved[tri[0]]).cross(moved[tri[2]] - moved[tri[0]]).norm();
+        }
+      }
+      // Its prism, in the plane across j: the edge on the pour face, the
+      // point a wall behind the part's far side on the leaned plane, and two
+      // points a wall outside the face; swept past the part both ways.
+      const double far = pour - axis.sign * (depth + w);
+      const auto point = [&](double along_q, double along_k) {
+        Vec3 p = Vec3::Zero();
+        p[q] = along_q;
+        p[k] = along_k;
+        p[j] = box.lo[j] - w;
+        return p;
+      };
+      CaseDraft d;
+      d.face = name;
+      d.section = {point(at, pour), point(at - s * tangent * (depth + w), far), point(at + s * w, far),
+                   point(at + s * w, pour)};
+      d.along[j] = box.hi[j] - box.lo[j] + 2.0 * w;
+      out.drafts.push_back(std::move(d));
+    }
+  }
+  // Nothing folded: every triangle faces as it did (a safeguard; the
+  // conditions above keep each point on its side of the planes).
+  for (const Triangle& tri : out.part.triangles) {
+    const Vec3 before =
+        (part.vertices[tri[1]] - part.vertices[tri[0]]).cross(part.vertices[tri[2]] - part.vertices[tri[0]]);
+    const Vec3 after = (moved[tri[1]] - moved[tri[0]]).cross(moved[tri[2]] - moved[tri[0]]);
+    if (!(before.dot(after) > 0.0)) {
+      for (const CaseDraft& d : out.drafts) {
+        out.undrafted.push_back(fmt::format("{} does not lean: a face of the part would fold", d.face));
+      }
+      out.drafts.clear();
+      out.part = part;
+      return out;
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 // The sides of a pin's and its hole's polygons: a multiple of 4 (8 to 512)
@@ -1139,7 +1267,32 @@ CastingCase build_casting_case(const TriangleSoup& part, const std::string& name
     throw RangeError("tolerance", options.tolerance,
                      fmt::format("the case's tolerance = {} must be above 0", options.tolerance));
   }
+  if (!(options.draft_deg >= 0.0 && options.draft_deg <= 10.0)) {
+    throw RangeError(
+        "draft_deg", options.draft_deg,
+        fmt::format("case.draft_deg = {} must be an angle from 0 to 10 degrees", options.draft_deg),
+        ErrorLocation{"case.draft_deg"});
+  }
   if (part.triangles.empty()) throw GeometryError("case", name + " has no triangles to make a case of");
+  // The case that `build` makes around the part with its free faces leaned
+  // (`d`), or none when no face leans or the leaned part has no case that
+  // way (each face then named in d.undrafted).
+  const auto leaned = [&](Drafted& d, const auto& build) -> std::optional<CastingCase> {
+    if (d.drafts.empty()) return std::nullopt;
+    Attempt a = build(d.part);
+    if (!a.built) {
+      for (const CaseDraft& f : d.drafts) {
+        d.undrafted.push_back(
+            fmt::format("{} does not lean: leaned, the part has no case that way ({})", f.face, a.why_not));
+      }
+      return std::nullopt;
+    }
+    a.built->draft_volume = signed_volume(part) - signed_volume(d.part);
+    a.built->draft_volume_error = options.tolerance * d.meeting_area;
+    a.built->drafts = std::move(d.drafts);
+    a.built->undrafted = std::move(d.undrafted);
+    return a.built;
+  };
   std::vector<Axis> axes;
   for (int k = 0; k < 3; ++k) {
     for (int sign : {1, -1}) axes.push_back({k, sign});
@@ -1151,15 +1304,30 @@ CastingCase build_casting_case(const TriangleSoup& part, const std::string& name
   std::vector<Axis> caught;  // the directions with a flat face to pour through, where faces catch
   for (const Axis& axis : axes) {
     Attempt a = attempt(part, name, axis, options, what_is_at);
-    if (a.built) return std::move(*a.built);
+    if (a.built) {
+      Drafted d = drafted(part, axis, options, what_is_at);
+      const auto build = [&](const TriangleSoup& p) { return attempt(p, name, axis, options, what_is_at); };
+      if (std::optional<CastingCase> c = leaned(d, build)) return std::move(*c);
+      a.built->undrafted = std::move(d.undrafted);
+      return std::move(*a.built);
+    }
     if (first_reason.empty()) first_reason = fmt::format("pulled along {}, {}", axis_name(axis), a.why_not);
     if (a.catches) caught.push_back(axis);
   }
   // Then in several pieces, taken off one after the other.
   std::string carved_reason;
   for (const Axis& axis : caught) {
-    Attempt a = carved(part, name, axis, options, faces, what_is_at);
-    if (a.built) return std::move(*a.built);
+    // Leaned first: carving is costly, and a part carved one way leaned mostly is too.
+    Drafted d = drafted(part, axis, options, what_is_at);
+    const auto build = [&](const TriangleSoup& p) {
+      return carved(p, name, axis, options, faces, what_is_at);
+    };
+    if (std::optional<CastingCase> c = leaned(d, build)) return std::move(*c);
+    Attempt a = build(part);
+    if (a.built) {
+      a.built->undrafted = std::move(d.undrafted);
+      return std::move(*a.built);
+    }
     if (carved_reason.empty()) {
       carved_reason = fmt::format("; in several pieces pulled along {}, {}", axis_name(axis), a.why_not);
     }

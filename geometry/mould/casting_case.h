@@ -24,6 +24,7 @@
 
 #include "geometry/core/soup.h"
 #include "geometry/core/types.h"
+#include "geometry/mesh/bounding_box.h"
 #include "geometry/mould/mould_part.h"
 
 namespace fabmesh {
@@ -36,6 +37,26 @@ struct CaseOptions {
   /// Largest distance between a pin's (or hole's) circle and its polygon
   /// (> 0), model units: the design's tolerance.
   double tolerance = 0.01;
+  /// How far the part's free faces that run along the pull lean, degrees
+  /// (0 to 10): each such face is cut back along a plane through its edge on
+  /// the pour face, leaning into the part by this angle from the pull, so
+  /// that the cast part separates from the case at once as it is pulled
+  /// rather than sliding along it. A face is free when it lies on `outside`.
+  double draft_deg = 1.0;
+  /// The mould's outside (its bounding box): a flat face of the part on a side
+  /// of it touches no other part, so leaning it changes no joint. None: no
+  /// face leans.
+  std::optional<BoundingBox> outside;
+};
+
+/// A face of the part leaned by the draft: the part less the prism swept
+/// from the quadrilateral `section` (in a plane across the face, its first
+/// edge the face's edge on the pour face) along `along` (the face's other
+/// axis, past the part both ways).
+struct CaseDraft {
+  std::string face;  ///< "its face across +x"
+  std::array<Vec3, 4> section{};
+  Vec3 along{0.0, 0.0, 0.0};
 };
 
 /// A registration pin of a plate: a cylinder standing on the plate's face
@@ -115,6 +136,19 @@ struct CastingCase {
   /// case built by construction; otherwise carved by exact booleans).
   std::vector<CasePlate> plates;
   bool carved = false;  ///< cut by exact booleans (rather than built face by face)
+  /// The faces of the part leaned by the draft (its cavity is the part less
+  /// their prisms, cut by exact booleans), and the volume they take from it.
+  std::vector<CaseDraft> drafts;
+  double draft_volume = 0.0;
+  /// How far draft_volume may lie from the exact part's: only a curved face
+  /// meeting a leaned face (a spare's wall) makes them differ, by at most
+  /// the tolerance over the triangles that meet it and lie in no plane
+  /// across an axis (every other point of the part lies beyond the leaned
+  /// planes by more than the tolerance).
+  double draft_volume_error = 0.0;
+  /// The free faces along the pull that do not lean, and why ("its face
+  /// across +x: ..."): a feature of the part the draft would cut into.
+  std::vector<std::string> undrafted;
 };
 
 /// The casting case of the mould part `part` (a closed, outward, embedded
@@ -134,7 +168,17 @@ struct CastingCase {
 /// tall, centred in the case's walls on either side of the face.
 /// \throw RangeError (key "case.wall") unless wall > 0; (key
 ///        "case.clearance") unless 0 <= clearance < wall / 4 (the hole then
-///        keeps material all round in the wall).
+///        keeps material all round in the wall); (key "case.draft_deg")
+///        unless 0 <= draft_deg <= 10.
+///
+/// With a draft and `options.outside`, once the pull is found, each flat
+/// face of the part on a side of `outside` that runs along the pull leans
+/// (CaseDraft): the part less a prism beyond the plane through the face's
+/// edge on the pour face, by exact booleans, and the case is built around
+/// that. A face is left as it is (named in `undrafted`) when a face of the
+/// part within the draft's reach of it (its depth times the draft's
+/// tangent) is not flat across it: the draft would cut into a key or the
+/// cavity there.
 ///
 /// When no such case exists, the case is carved in several pieces by exact
 /// booleans (CGAL's corefinement): the main piece and, taken off before it

@@ -30,7 +30,7 @@ std::vector<KeyGroup> make_groups() {
         "base_height", "keys", "key_radius", "key_clearance", "key_margin", "key_positions",
         "allow_undercuts", "plaster_ratio", "plaster_density", "slip_density"}},
       {"vessel.shrinkage", {"wet", "fired"}},
-      {"vessel.case", {"wall", "clearance"}},
+      {"vessel.case", {"wall", "clearance", "draft_deg"}},
       {"vessel.print", {"bed", "max_overhang_deg", "min_wall", "strict", "pin_diameter", "pin_clearance"}},
       // Countertops.
       {"countertop.holes[]",

@@ -101,6 +101,12 @@ struct StepRegion {
   std::vector<StepHemisphere> fills;
 };
 
+/// A prism: the planar polygon `section` swept along `along`.
+struct StepPrism {
+  std::vector<Vec3> section;
+  Vec3 along{0.0, 0.0, 0.0};
+};
+
 /// A solid cylinder: its base circle of `radius` about `base`, extending
 /// `height` along `axis` (a unit vector); added to the body or taken from it.
 struct StepCylinder {
@@ -147,7 +153,10 @@ struct StepBody {
   double sewing_tolerance = 0.0;
   Vec3 case_lo{0.0, 0.0, 0.0}, case_hi{0.0, 0.0, 0.0};  ///< Case, CasePlate, CasePiece
   std::vector<StepRegion> regions;                      ///< CasePiece
-  std::size_t piece = 0;                                ///< CasePiece
+  /// Case, CasePiece: prisms taken from the part before it is taken from the
+  /// box (its free faces leaned by the case's draft).
+  std::vector<StepPrism> drafts;
+  std::size_t piece = 0;  ///< CasePiece
   /// CasePiece: how far each cylinder runs on the near side of its region's
   /// plane (a pin into its own piece; a hole into the piece beyond, not the main one).
   double cylinder_behind = 0.0;

@@ -973,13 +973,32 @@ TopoDS_Shape make_case_plate(const StepBody& body) {
   return shape;
 }
 
-// A casting case: its box less the part and the holes of its plate's pins
-// (in the walls, apart from the part), to 1e-9 of the box's volume.
+// A prism: its section's polygon swept along its vector.
+TopoDS_Shape make_prism(const StepPrism& p) {
+  BRepBuilderAPI_MakePolygon polygon;
+  for (const Vec3& v : p.section) polygon.Add(gp_Pnt(v.x(), v.y(), v.z()));
+  polygon.Close();
+  if (!polygon.IsDone()) throw std::runtime_error("a prism's section is not a polygon");
+  BRepBuilderAPI_MakeFace face(polygon.Wire(), true);
+  if (!face.IsDone()) throw std::runtime_error("a prism's section is not a plane face");
+  BRepPrimAPI_MakePrism prism(face.Face(), gp_Vec(p.along.x(), p.along.y(), p.along.z()));
+  if (!prism.IsDone()) throw std::runtime_error("a prism failed");
+  return prism.Shape();
+}
+
+// A casting case: its box less the part (less its drafts' prisms) and the
+// holes of its plate's pins (in the walls, apart from the part), to 1e-9 of
+// the box's volume.
 TopoDS_Shape make_case(const StepBody& body) {
   const TopoDS_Shape box = case_box(body);
   StepBody carved = body;  // its loops lie in the (radius, height) half-plane, as a Carved body's
   carved.form = StepForm::Carved;
-  const TopoDS_Shape part = make_carved(carved);
+  TopoDS_Shape part = make_carved(carved);
+  if (!body.drafts.empty()) {
+    TopTools_ListOfShape prisms;
+    for (const StepPrism& p : body.drafts) prisms.Append(make_prism(p));
+    part = the_solid(boolean<BRepAlgoAPI_Cut>(part, prisms, "leaning the part's free faces"));
+  }
   TopTools_ListOfShape tools;
   tools.Append(part);
   double expected = volume_of(box) - precise_volume_of(part);

@@ -341,6 +341,9 @@ EncodedFiles encode_case_step_output(const EncodeContext& c) {
     body.form = StepForm::Case;
     body.case_lo = box.lo;
     body.case_hi = box.hi;
+    for (const VesselProducts::CaseBox::Draft& d : box.drafts) {
+      body.drafts.push_back({{d.section.begin(), d.section.end()}, d.along});
+    }
     for (int k = 0; k < 3; ++k) {
       if (box.pull[k] != 0.0) (box.pull[k] > 0.0 ? body.case_hi : body.case_lo)[k] = face(k, box.pull[k]);
     }

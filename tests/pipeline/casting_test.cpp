@@ -132,10 +132,21 @@ TEST_CASE("casting cases: each half of a box mould gets a case, standing on its 
     // Side 1 lies on +y of the split plane, side 2 on -y: each pulled out through its back.
     const auto& pull = std::get<std::vector<double>>(*c.find("pull"));
     CHECK(pull == std::vector<double>{0.0, i == 0 ? 1.0 : -1.0, 0.0});
-    // The case is the box around the part less the part: its volume says so.
+    // The part's ends and top lean by the default 1 degree draft (its
+    // bottom too: no base part), each taking a wedge from the part as the
+    // case casts it; its split face touches the other part and does not.
+    const Facts& draft = c.group("draft");
+    CHECK(draft.number("deg") == 1.0);
+    CHECK(std::get<std::vector<std::string>>(*draft.find("faces")) ==
+          std::vector<std::string>{"its face across -z", "its face across +z", "its face across -x",
+                                   "its face across +x"});
+    CHECK(std::get<std::vector<std::string>>(*draft.find("not_leaned")).empty());
+    CHECK(draft.number("volume") > 0.0);
+    CHECK(draft.number("part_volume") == Approx(parts[i].number("volume") - draft.number("volume")));
+    // The case is the box around the part less the part as cast: its volume says so.
     const auto& size = std::get<std::vector<double>>(*c.find("size"));
     CHECK(c.number("volume") ==
-          Approx(size[0] * size[1] * size[2] - parts[i].number("volume")).epsilon(1e-9));
+          Approx(size[0] * size[1] * size[2] - draft.number("part_volume")).epsilon(1e-9));
     // Written standing: from z = 0, side by side along x 10 mm apart.
     const auto& from = std::get<std::vector<double>>(*c.find("written_from"));
     CHECK(from == std::vector<double>{x, 0.0, 0.0});
@@ -151,7 +162,10 @@ TEST_CASE("casting cases: each half of a box mould gets a case, standing on its 
   print_summary(r, summary);
   CHECK_THAT(
       summary.str(),
-      Catch::Contains("casting cases: 2 of 2 parts (side-1 lifts out along +y, side-2 lifts out along -y)"));
+      Catch::Contains("casting cases: 2 of 2 parts (side-1 lifts out along +y, side-2 lifts out along -y)") &&
+          Catch::Contains(
+              "casting cases' draft: 1 degree on 8 faces (side-1 -z +z -x +x, side-2 -z +z -x +x), "
+              "taking 2.474e+05 mm^3 from the parts as cast\n"));
   // Both in one 3MF, apart: checked as an assembly, nothing interpenetrates.
   std::string text;
   CHECK(run_cli({"check", (dir / "mould_box_cases.case.3mf").string()}, &text) == 0);
@@ -307,6 +321,30 @@ TEST_CASE("casting cases: a cylinder mould is refused, a part no case releases i
       text, Catch::Contains("case.clearance") && Catch::Contains("clearance = 1.25 mm must be at least 0 and "
                                                                  "below a quarter of case.wall (1.25 mm)"));
   CHECK(fs::is_empty(refused));
+  // A draft beyond 10 degrees, or negative, likewise.
+  for (const char* draft : {"case.draft_deg=12", "case.draft_deg=-1"}) {
+    INFO(draft);
+    CHECK(run_cli({"run", example("mould_box_cases.yaml"), "-D", draft, "-o", refused.string() + "/"},
+                  &text) == 2);
+    CHECK_THAT(text, Catch::Contains("-D " + std::string(draft)) && Catch::Contains("case.draft_deg") &&
+                         Catch::Contains("must be an angle from 0 to 10 degrees"));
+    CHECK(fs::is_empty(refused));
+  }
+  // No draft: the case is the box less the part exactly, and says no face leans.
+  const fs::path plain = fresh_dir("casting_cases_no_draft");
+  std::string json;
+  REQUIRE(run_cli_json({"run", example("mould_box_cases.yaml"), "-D", "case.draft_deg=0", "-D",
+                        "outputs=[case_stl]", "-o", plain.string() + "/", "--json"},
+                       &json) == 0);
+  const nlohmann::json mould = nlohmann::json::parse(json)[0]["build"]["mould"];
+  for (std::size_t i = 0; i < 2; ++i) {
+    const nlohmann::json& c = mould["cases"][i];
+    CHECK(c["draft"]["faces"].empty());
+    CHECK(c["draft"]["volume"] == 0.0);
+    const auto size = c["size"].get<std::vector<double>>();
+    CHECK(c["volume"].get<double>() ==
+          Approx(size[0] * size[1] * size[2] - mould["parts"][i]["volume"].get<double>()).epsilon(1e-9));
+  }
 }
 
 TEST_CASE("casting cases: PrusaSlicer finds each case manifold and slices it standing on its floor",

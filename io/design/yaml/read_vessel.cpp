@@ -89,7 +89,8 @@ void read_shrinkage(const yaml::Fields& f, const YAML::Node& n, VesselDesign& v)
   }
 }
 
-// `case: {wall}`: the casting cases' wall, in model units (5 mm by default).
+// `case: {wall, clearance, draft_deg}`: the casting cases' wall and pins'
+// clearance, in model units (5 and 0.2 mm by default), and their draft (1 degree).
 CaseOptions read_case(const yaml::Fields& f, const YAML::Node& n, const DesignCommon& common) {
   f.require_map(n, "case", key_group("vessel.case"));
   CaseOptions o;
@@ -103,6 +104,13 @@ CaseOptions read_case(const yaml::Fields& f, const YAML::Node& n, const DesignCo
                "clearance = {} {} must be at least 0 and below a quarter of case.wall ({} {}): a plate's "
                "pins are a quarter of the wall in radius, and their holes must keep wall all round",
                o.clearance, common.units, o.wall / 4.0, common.units));
+  }
+  o.draft_deg = f.number_or(n, "draft_deg", "case.draft_deg", o.draft_deg);
+  if (!(o.draft_deg >= 0.0 && o.draft_deg <= 10.0)) {
+    f.fail(n["draft_deg"], "case.draft_deg",
+           fmt::format("draft_deg = {} must be an angle from 0 to 10 degrees (0: the part's free faces do "
+                       "not lean)",
+                       o.draft_deg));
   }
   return o;
 }

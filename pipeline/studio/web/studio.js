@@ -447,6 +447,18 @@ function showMould(add, m, u) {
     (c.plate ? ` once its plate is off along ${along(c.plate.pull)}` : '') +
     (c.pieces ? ` once its ${c.pieces.length} other piece${c.pieces.length === 1 ? ' is' : 's are'} off` : ''));
   add('casting cases', `${made.length} of ${m.cases.length} parts (${made.length ? made.join(', ') : 'none'})`);
+  // The faces the draft leans, part by part.
+  const drafted = m.cases.filter((c) => c.draft);
+  const faces = drafted.reduce((n, c) => n + c.draft.faces.length, 0);
+  const stay = drafted.reduce((n, c) => n + c.draft.not_leaned.length, 0);
+  if (faces + stay > 0) {
+    const leaned = drafted.filter((c) => c.draft.faces.length)
+      .map((c) => [c.part, ...c.draft.faces.map((f) => f.slice(f.lastIndexOf(' ') + 1))].join(' '));
+    const taken = drafted.reduce((v, c) => v + c.draft.volume, 0);
+    add("casting cases' draft", `${drafted[0].draft.deg} degree${drafted[0].draft.deg === 1 ? '' : 's'} on ${faces} face${faces === 1 ? '' : 's'}` +
+        (faces ? ` (${leaned.join(', ')}), taking ${Number(taken.toPrecision(4))} ${u}³ from the parts as cast` : '') +
+        (stay ? `; ${stay} more do${stay === 1 ? 'es' : ''} not lean (the report's draft.not_leaned says why)` : ''));
+  }
   // The pieces too big for the bed, written in sections.
   const cut = m.cases.flatMap((c) => [c, ...(c.pieces || [])]).filter((p) => p.sections);
   if (cut.length) {

@@ -2,6 +2,9 @@
 
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstdint>
+#include <utility>
+#include <vector>
 
 #include "geometry/core/errors.h"
 #include "geometry/mesh/bounding_box.h"
@@ -320,4 +323,120 @@ TEST_CASE("casting case: parts no single pull clears, or without a flat face, ar
     CHECK_THROWS_AS(build_casting_case(mould.parts[0].soup, "side", {0.0, 1.0, 0.0}, case_options(0.0)),
                     RangeError);
   }
+}
+
+namespace {
+
+// The convex polygon `outline` in the (x, y) plane swept from z = 0 to
+// `height`: closed, outward.
+TriangleSoup swept_xy(const std::vector<Vec2>& outline, double height) {
+  TriangleSoup s;
+  const auto n = static_cast<std::uint32_t>(outline.size());
+  for (double z : {0.0, height}) {
+    for (const Vec2& p : outline) s.vertices.emplace_back(p.x(), p.y(), z);
+  }
+  for (std::uint32_t m = 1; m + 1 < n; ++m) {
+    s.triangles.push_back({0, m, m + 1});
+    s.triangles.push_back({n, n + m + 1, n + m});
+  }
+  for (std::uint32_t m = 0; m < n; ++m) {
+    const std::uint32_t l = (m + 1) % n;
+    s.triangles.push_back({m, n + m, l});
+    s.triangles.push_back({l, n + m, n + l});
+  }
+  if (signed_volume(s) < 0.0) {
+    for (auto& t : s.triangles) std::swap(t[1], t[2]);
+  }
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("casting case: the part's free faces along the pull lean by the draft, exactly",
+          "[mould][case][draft]") {
+  // A 4 x 2 x 3 block poured through its back (+y), on the mould's outside
+  // across +x and +z only: those two faces lean, each by a wedge of
+  // tan(draft) D^2 / 2 times its width, less the corner both take.
+  const TriangleSoup part = swept_xy({{0.0, 0.0}, {4.0, 0.0}, {4.0, 2.0}, {0.0, 2.0}}, 3.0);
+  CaseOptions o = case_options();
+  o.outside = BoundingBox{Vec3(-1.0, -1.0, -1.0), Vec3(4.0, 3.0, 3.0)};
+  for (double deg : {1.0, 5.0}) {
+    INFO(deg);
+    o.draft_deg = deg;
+    const CastingCase c = build_casting_case(part, "a block", Vec3(0.0, 1.0, 0.0), o);
+    CHECK(c.pull == Vec3(0.0, 1.0, 0.0));
+    REQUIRE(c.drafts.size() == 2);
+    CHECK(c.drafts[0].face == "its face across +z");
+    CHECK(c.drafts[1].face == "its face across +x");
+    CHECK(c.undrafted.empty());
+    const double t = std::tan(deg * M_PI / 180.0), d = 2.0;
+    const double wedges = 0.5 * t * d * d * (3.0 + 4.0) - t * t * d * d * d / 3.0;
+    CHECK(c.draft_volume == Approx(wedges).epsilon(1e-12));
+    const ValidationReport v = validate(c.soup);
+    CHECK(v.valid());
+    CHECK(v.volume == Approx((c.hi - c.lo).prod() - (24.0 - wedges)).epsilon(1e-12));
+    // The cavity is the block leaned: no point of the case within the
+    // block's box lies beyond either leaned plane (x <= 4 - t (2 - y),
+    // z <= 3 - t (2 - y)), and the leaned faces reach them at the far side.
+    bool far_x = false, far_z = false;
+    for (const Vec3& p : c.soup.vertices) {
+      if (p.x() < 0.0 || p.x() > 4.0 || p.y() < 0.0 || p.y() > 2.0 || p.z() < 0.0 || p.z() > 3.0) continue;
+      const double inset = t * (2.0 - p.y());
+      CHECK(p.x() <= 4.0 - inset + 1e-12);
+      CHECK(p.z() <= 3.0 - inset + 1e-12);
+      far_x = far_x || (p.y() == 0.0 && p.x() == Approx(4.0 - 2.0 * t).margin(1e-12));
+      far_z = far_z || (p.y() == 0.0 && p.z() == Approx(3.0 - 2.0 * t).margin(1e-12));
+    }
+    CHECK(far_x);
+    CHECK(far_z);
+    // Pulled the least bit, the leaned faces come away from the case: the
+    // block as cast (the case's cavity) is the block less the wedges, so
+    // the block itself overlaps the case, and moved back by its wedges'
+    // reach it does not.
+    CHECK(interpenetrate(part, c.soup));
+    TriangleSoup cast = part;
+    for (Vec3& p : cast.vertices) {
+      const double inset = t * (2.0 - p.y());
+      if (p.x() == 4.0) p.x() -= inset;
+      if (p.z() == 3.0) p.z() -= inset;
+    }
+    CHECK(signed_volume(cast) == Approx(24.0 - wedges).epsilon(1e-12));
+    CHECK_FALSE(interpenetrate(moved(cast, 1e-3 * c.pull), c.soup));
+  }
+  // No draft, or no outside given: nothing leans.
+  o.draft_deg = 0.0;
+  CHECK(build_casting_case(part, "a block", Vec3(0.0, 1.0, 0.0), o).drafts.empty());
+  o.draft_deg = 1.0;
+  o.outside.reset();
+  CHECK(build_casting_case(part, "a block", Vec3(0.0, 1.0, 0.0), o).drafts.empty());
+  // Out of range.
+  for (double deg : {-1.0, 10.5, std::nan("")}) {
+    o.draft_deg = deg;
+    CHECK_THROWS_AS(build_casting_case(part, "a block", Vec3(0.0, 1.0, 0.0), o), RangeError);
+  }
+}
+
+TEST_CASE("casting case: a face with a slanted feature within the draft's reach does not lean, saying where",
+          "[mould][case][draft]") {
+  // The block with the edge of its floor and its +x end chamfered 0.05:
+  // the chamfer meets the end and is not flat across x, so the end does
+  // not lean; it runs up along z, so the top still does.
+  const TriangleSoup part = swept_xy({{0.0, 0.0}, {3.95, 0.0}, {4.0, 0.05}, {4.0, 2.0}, {0.0, 2.0}}, 3.0);
+  CaseOptions o = case_options();
+  o.outside = BoundingBox{Vec3(-1.0, -1.0, -1.0), Vec3(4.0, 3.0, 3.0)};
+  const CastingCase c = build_casting_case(part, "a block", Vec3(0.0, 1.0, 0.0), o);
+  CHECK(c.pull == Vec3(0.0, 1.0, 0.0));
+  REQUIRE(c.drafts.size() == 1);
+  CHECK(c.drafts.front().face == "its face across +z");
+  REQUIRE(c.undrafted.size() == 1);
+  CHECK_THAT(c.undrafted.front(), Catch::StartsWith("its face across +x does not lean: its face at (3.9") &&
+                                      Catch::EndsWith("meets it and is not flat across x"));
+  // The top's wedge alone: tan(1 degree) 2^2 / 2 over the top's width
+  // along x, 4, less what the chamfer leaves out: the integral over
+  // y in [0, 0.05] of the wedge's depth t (2 - y) times 0.05 - y.
+  const double t = std::tan(M_PI / 180.0), e = 0.05;
+  const double chamfer = t * (e * e - e * e * e / 6.0);
+  CHECK(c.draft_volume == Approx(0.5 * t * 2.0 * 2.0 * 4.0 - chamfer).epsilon(1e-12));
+  CHECK(validate(c.soup).volume ==
+        Approx((c.hi - c.lo).prod() - signed_volume(part) + c.draft_volume).epsilon(1e-12));
 }

@@ -1,21 +1,23 @@
 # Run by FreeCAD's command line (freecadcmd): for each casting case named in
-# FABMESH_CASES (entries "CASE.step=MOULD.step=INDEX=PIECES", separated by ':'),
+# FABMESH_CASES (entries "CASE.step=MOULD.step=INDEX=PIECES=DRAFT=ERROR", separated by ':'),
 # imports the case and the mould's part INDEX (the mould's STEP file holds its
 # parts in order) and prints one JSON line: the case's validity and solids
 # (its pieces: a two-piece case's main piece and plate), the volume its
 # pieces share, its box's volume, and the volumes of the case and the part
 # in common and fused (with the gaps round the pins of a two-piece case,
-# voids of its joined pieces, counted in). Plaster cast in the case is the part
-# when they share no volume and together fill the case's box. The shell test
-# (freecad_step_test.sh) judges them.
+# voids of its joined pieces, counted in), with DRAFT, the volume the report
+# says its draft leans off the part (mm^3) and ERROR, how far that may lie
+# from the exact part's. Plaster cast in the case is the
+# part less those wedges when they share just that volume and together fill
+# the case's box. The shell test (freecad_step_test.sh) judges them.
 import json
 import os
 
 import Part
 
 for entry in os.environ["FABMESH_CASES"].split(":"):
-    case_path, mould_path, index, pieces = entry.split("=")
-    facts = {"path": case_path, "pieces": int(pieces)}
+    case_path, mould_path, index, pieces, draft, draft_error = entry.split("=")
+    facts = {"path": case_path, "pieces": int(pieces), "draft": float(draft), "draft_error": float(draft_error)}
     try:
         case = Part.read(case_path)
         part = Part.read(mould_path).Solids[int(index)]
