@@ -13,7 +13,6 @@
 #include "geometry/fairing/build_curve.h"
 #include "geometry/mesh/bounding_box.h"
 #include "geometry/mesh/vessel.h"
-#include "geometry/mesh/volume.h"
 #include "geometry/mould/case_sections.h"
 #include "geometry/mould/master_sections.h"
 #include "geometry/mould/mould.h"
@@ -467,9 +466,8 @@ std::vector<Facts> add_cases(const VesselDesign& design, const Mould& mould, con
                              .set("faces", std::move(leaned))
                              .set("volume", c.draft_volume)
                              .set("volume_error", c.draft_volume_error)
-                             .set("part_volume", signed_volume(out.parts[first + i].mesh) - c.draft_volume)
+                             .set("part_volume", out.parts[first + i].validation.volume - c.draft_volume)
                              .set("not_leaned", c.undrafted));
-
       for (const char* fact : {"triangles", "volume"}) facts.set(fact, *whole.find(fact));
       facts.set("release", c.release_proof);
       for (const char* fact : {"fits_bed", "cells", "sections", "section_pin", "sections_volume_error"}) {

@@ -38,8 +38,8 @@ struct CaseOptions {
   /// (> 0), model units: the design's tolerance.
   double tolerance = 0.01;
   /// How far the part's free faces that run along the pull lean, degrees
-  /// (0 to 10): each such face is cut back along a plane through its edge on
-  /// the pour face, leaning into the part by this angle from the pull, so
+  /// (0 to 10): each such face is moved back onto the plane through its edge
+  /// on the pour face, leaning into the part by this angle from the pull, so
   /// that the cast part separates from the case at once as it is pulled
   /// rather than sliding along it. A face is free when it lies on `outside`.
   double draft_deg = 1.0;
@@ -137,7 +137,8 @@ struct CastingCase {
   std::vector<CasePlate> plates;
   bool carved = false;  ///< cut by exact booleans (rather than built face by face)
   /// The faces of the part leaned by the draft (its cavity is the part less
-  /// their prisms, cut by exact booleans), and the volume they take from it.
+  /// their prisms: the faces' points moved onto the leaned planes), and the
+  /// volume they take from it.
   std::vector<CaseDraft> drafts;
   double draft_volume = 0.0;
   /// How far draft_volume may lie from the exact part's: only a curved face
@@ -147,7 +148,8 @@ struct CastingCase {
   /// planes by more than the tolerance).
   double draft_volume_error = 0.0;
   /// The free faces along the pull that do not lean, and why ("its face
-  /// across +x: ..."): a feature of the part the draft would cut into.
+  /// across +x does not lean: ..."): a face meeting it that is not flat
+  /// across it, or a point of the part within the tolerance of the leaned plane.
   std::vector<std::string> undrafted;
 };
 
@@ -173,12 +175,13 @@ struct CastingCase {
 ///
 /// With a draft and `options.outside`, once the pull is found, each flat
 /// face of the part on a side of `outside` that runs along the pull leans
-/// (CaseDraft): the part less a prism beyond the plane through the face's
-/// edge on the pour face, by exact booleans, and the case is built around
+/// (CaseDraft): its points move into the part in their planes, by the
+/// draft's tangent times their depth behind the pour face, onto the plane
+/// through the face's edge on the pour face, and the case is built around
 /// that. A face is left as it is (named in `undrafted`) when a face of the
-/// part within the draft's reach of it (its depth times the draft's
-/// tangent) is not flat across it: the draft would cut into a key or the
-/// cavity there.
+/// part meeting it is not flat across it, or another point of the part lies
+/// within the tolerance of (or beyond) its leaned plane: the moved mesh
+/// would then not be the part less the prism beyond that plane.
 ///
 /// When no such case exists, the case is carved in several pieces by exact
 /// booleans (CGAL's corefinement): the main piece and, taken off before it
