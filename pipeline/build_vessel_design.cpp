@@ -457,10 +457,8 @@ std::vector<Facts> add_cases(const VesselDesign& design, const Mould& mould, con
           .set("opening_area", c.pour_area);
       // The part as the case casts it: its free faces along the pull leaned.
       std::vector<std::string> leaned;
-      for (const CaseDraft& d : c.drafts) {
-        leaned.push_back(d.face);
-        box.drafts.push_back({d.section, d.along});
-      }
+      for (const CaseDraft& d : c.drafts) leaned.push_back(d.face);
+      box.drafts = c.drafts;
       facts.set("draft", Facts()
                              .set("deg", design.casting_case.draft_deg)
                              .set("faces", std::move(leaned))

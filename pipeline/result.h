@@ -11,7 +11,6 @@
 // mesh first (role Product), then a vessel's mould parts; a job of many
 // parts (a kitchen's pieces, a ceramic set's cases) adds roles here.
 
-#include <array>
 #include <cstddef>
 #include <optional>
 #include <string>
@@ -197,13 +196,8 @@ struct VesselProducts {
       double behind = 0.0;
     };
     std::vector<Piece> pieces;
-    /// The part's faces leaned by the draft: the prism swept from each
-    /// quadrilateral along its `along` is taken from the part.
-    struct Draft {
-      std::array<Vec3, 4> section{};
-      Vec3 along{0.0, 0.0, 0.0};
-    };
-    std::vector<Draft> drafts;
+    /// The part's faces leaned by the draft: each prism is taken from the part.
+    std::vector<CaseDraft> drafts;
   };
   std::vector<CaseBox> cases;
   /// The section as the builder made it: closed loops (the profile, the rim,

@@ -341,7 +341,7 @@ EncodedFiles encode_case_step_output(const EncodeContext& c) {
     body.form = StepForm::Case;
     body.case_lo = box.lo;
     body.case_hi = box.hi;
-    for (const VesselProducts::CaseBox::Draft& d : box.drafts) {
+    for (const CaseDraft& d : box.drafts) {
       body.drafts.push_back({{d.section.begin(), d.section.end()}, d.along});
     }
     for (int k = 0; k < 3; ++k) {
