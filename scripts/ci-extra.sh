@@ -5,7 +5,9 @@
 #      and the batch readers (manifests, ledgers) with libFuzzer (clang,
 #      ASan+UBSan) for a fixed time on the seeds in tests/data/fuzz-seeds/;
 #      any finding fails;
-#  (b) build everything with FABMESH_SANITIZE=ON (ASan+UBSan) and run ctest.
+#  (b) run the whole suite under the same sanitizers.
+# Both use one clang tree, build-sanitize: the fuzz targets are built first,
+# the program and the suite after them on the same library.
 # Usage: scripts/ci-extra.sh [fuzz|sanitize|all]   (default all); CI runs the
 # halves of each apart (fuzz-build, fuzz-run, sanitize-build, sanitize-test).
 # Environment: FUZZ_SECONDS (per reader, default 20), JOBS (default 2).
@@ -16,21 +18,31 @@ what="${1:-all}"
 FUZZ_SECONDS="${FUZZ_SECONDS:-20}"
 JOBS="${JOBS:-2}"
 readers=(stl obj ply off draco 3mf gltf design csv dxf manifest ledger)
+dir=build-sanitize
+
+# One clang tree for both halves: the library built once with ASan and UBSan,
+# libFuzzer's coverage on the readers only (fuzz/CMakeLists.txt), and linked
+# into the fuzz targets, the program and its test suite. Line tables are all
+# ASan's and UBSan's stacks need, and build markedly faster than full debug
+# information. clang's ASan and UBSan are the reference ones, and on this code
+# it compiles them 2.3 times faster than g++ does (alpha_wrap.cpp, -O2 and
+# line tables: 50 s against 115 s of CPU time; g++'s UBSan at -O2 is the cost).
+# The shared library and the Python module are the same pipeline code behind
+# a thin layer (an interpreter not built with ASan cannot load an ASan module
+# anyway), and are left out.
+configure() {
+  cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -gline-tables-only -DNDEBUG" \
+    -DCMAKE_CXX_COMPILER=clang++ -DFABMESH_SANITIZE=ON -DFABMESH_BUILD_FUZZERS=ON \
+    -DFABMESH_BUILD_TESTS=ON -DFABMESH_PYTHON=OFF
+}
 
 fuzz_build() {
-  local dir=build-fuzz
-  # Line tables are all a sanitizer report needs; full debug information of
-  # the CGAL translation units costs minutes on two cores.
-  cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only -DNDEBUG" \
-    -DCMAKE_CXX_COMPILER=clang++ \
-    -DCMAKE_CXX_FLAGS="-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer" \
-    -DFABMESH_BUILD_FUZZERS=ON -DFABMESH_BUILD_TESTS=OFF -DFABMESH_PYTHON=OFF
+  configure
   cmake --build "$dir" -j"$JOBS" --target "${readers[@]/#/fuzz_}"
 }
 
 fuzz_run() {
-  local dir=build-fuzz
   for r in "${readers[@]}"; do
     # New inputs go to a scratch corpus; the committed seeds are only read.
     local corpus
@@ -56,32 +68,19 @@ fuzz_run() {
 }
 
 sanitize_build() {
-  local dir=build-sanitize
-  # Line tables are all ASan's and UBSan's stacks need, and build markedly
-  # faster than full debug information. The
-  # program and its test suite only: the shared library and the Python module
-  # are the same pipeline code behind a thin layer (an interpreter not built
-  # with ASan cannot load an ASan module anyway), and CI's 90 minutes have no
-  # room for a second sanitized build of them. The "router program" tests are
-  # left to the main suite: their time goes to the CNCjs interpreter and to
-  # the test's own exact-distance measurements, while the planning they
-  # measure runs under the sanitizers in the toolpath tests. The studio's
-  # server (its session, routes and HTTP module, in-process) runs under the
-  # sanitizers through its own test program; its page test, which drives
-  # Chromium and node, is left to the main suite. The lazy-libraries check
-  # reads the shared library, which this build leaves out.
-  #
-  # Built with clang, as the fuzzers are: its ASan and UBSan are the reference
-  # ones, and on this code it compiles them 2.3 times faster than g++ does
-  # (alpha_wrap.cpp, -O2 and line tables: 50 s against 115 s of CPU time;
-  # g++'s UBSan at -O2 is the cost), at the same optimisation level.
-  cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFABMESH_SANITIZE=ON -DFABMESH_PYTHON=OFF \
-    -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -gline-tables-only -DNDEBUG"
+  # The program and its test suite, on the fuzz targets' library. The "router
+  # program" tests are left to the main suite: their time goes to the CNCjs
+  # interpreter and to the test's own exact-distance measurements, while the
+  # planning they measure runs under the sanitizers in the toolpath tests. The
+  # studio's server (its session, routes and HTTP module, in-process) runs
+  # under the sanitizers through its own test program; its page test, which
+  # drives Chromium and node, is left to the main suite. The lazy-libraries
+  # check reads the shared library, which this build leaves out.
+  configure
   cmake --build "$dir" -j"$JOBS" --target fabmesh fabmesh_tests fabmesh_studio_tests fabmesh_cnc_bench
 }
 
 sanitize_test() {
-  local dir=build-sanitize
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     ctest --test-dir "$dir" --output-on-failure -j"$JOBS" \
     -E '^fabmesh_api_tests_NOT_BUILT|^studio_page$|^docs\.library_example_|^python$|^install_prefix$|^lazy_libraries$|^router program: '
