@@ -16,31 +16,12 @@
 #include "geometry/core/errors.h"
 #include "geometry/mesh/bounding_box.h"
 #include "geometry/mesh/volume.h"
+#include "geometry/mould/case_pins.h"
 #include "geometry/repair/exact_booleans.h"
 #include "geometry/validation/validate.h"
 
 namespace fabmesh {
 namespace {
-
-// A joint's pins and holes, for a case of wall `w` (as the carved pieces').
-struct PinSize {
-  double radius = 0.0, height = 0.0, buried = 0.0, hole_radius = 0.0, hole_depth = 0.0;
-  double margin = 0.0;  // kept clear all round the hole and the pin's foot
-  std::size_t sides = 0;
-};
-
-PinSize pin_size(const CaseOptions& options) {
-  const double w = options.wall;
-  PinSize p;
-  p.radius = w / 4.0;
-  p.height = w / 2.0;
-  p.buried = w / 4.0;
-  p.hole_radius = p.radius + options.clearance;
-  p.hole_depth = p.height + options.clearance;
-  p.margin = w / 16.0;
-  p.sides = pin_sides(p.hole_radius, options.tolerance);
-  return p;
-}
 
 // The fewest equal cells of `length` that each fit `bed` with a pin of
 // `pin` on one end (when cut); 0 when none do.
@@ -293,7 +274,8 @@ SectionedPiece cut_at(const TriangleSoup& printed, const std::string& name, cons
                       const std::array<std::vector<double>, 3>& at) {
   const BoundingBox box = bounding_box(printed.vertices);
   const Vec3 size = box.size();
-  const PinSize pin = pin_size(options);
+  const CasePin pin = case_pin(options);
+  const double margin = case_pin_margin(options);
   const double w = options.wall;
   const auto cells_on = [&](int i) { return static_cast<std::size_t>(out.counts[i]); };
   const auto index = [&](const std::array<int, 3>& c) {
@@ -331,15 +313,15 @@ SectionedPiece cut_at(const TriangleSoup& printed, const std::string& name, cons
   std::vector<Placed> placed;
   std::vector<std::vector<TriangleSoup>> added(cell_count), removed(cell_count);
   double extra = 0.0;  // what the pins stand out, less the holes
-  const double keep = pin.hole_radius + pin.hole_depth + 2.0 * pin.margin;
-  const double clear = pin.hole_radius + pin.margin;
+  const double keep = pin.hole_radius + pin.hole_depth + 2.0 * margin;
+  const double clear = pin.hole_radius + margin;
   const double step = w / 8.0;
   for (int a = 0; a < 3; ++a) {
     const int b = (a + 1) % 3, c = (a + 2) % 3;
     for (int k = 1; k < out.counts[a]; ++k) {
       const double h = at[a][k];
       const std::vector<Polygon> near =
-          seen_along(printed, a, h - pin.buried - pin.margin, h + pin.hole_depth + pin.margin);
+          seen_along(printed, a, h - pin.buried - margin, h + pin.hole_depth + margin);
       const auto section = slice(printed, a, h);
       for (int ic = 0; ic < out.counts[c]; ++ic) {
         for (int ib = 0; ib < out.counts[b]; ++ib) {
@@ -420,11 +402,12 @@ SectionedPiece cut_at(const TriangleSoup& printed, const std::string& name, cons
                      signed_volume(hole) * pin.hole_depth / (pin.buried + pin.hole_depth);
             added[index(lower)].push_back(std::move(stud));
             removed[index(upper)].push_back(std::move(hole));
-            placed.push_back(
-                {index(lower), index(upper), base - 0.5 * pin.buried * e_a,
-                 base + 0.5 * pin.hole_depth * e_a + (pin.hole_radius + 0.5 * pin.margin) * e_b});
-            out.pins.push_back(CasePin{base, e_a, pin.radius, pin.height, pin.hole_radius, pin.hole_depth,
-                                       pin.sides, pin.buried});
+            placed.push_back({index(lower), index(upper), base - 0.5 * pin.buried * e_a,
+                              base + 0.5 * pin.hole_depth * e_a + (pin.hole_radius + 0.5 * margin) * e_b});
+            CasePin joint = pin;
+            joint.base = base;
+            joint.axis = e_a;
+            out.pins.push_back(joint);
           }
         }
       }
@@ -519,7 +502,7 @@ SectionedPiece cut_case_piece(const TriangleSoup& printed, const std::string& na
                               const CaseOptions& options) {
   const BoundingBox box = bounding_box(printed.vertices);
   const Vec3 size = box.size();
-  const PinSize pin = pin_size(options);
+  const CasePin pin = case_pin(options);
 
   // The fewest cells, the bed as it is or turned a quarter.
   SectionedPiece out;

@@ -15,6 +15,7 @@
 #include "geometry/core/errors.h"
 #include "geometry/mesh/bounding_box.h"
 #include "geometry/mesh/volume.h"
+#include "geometry/mould/case_pins.h"
 #include "geometry/repair/exact_booleans.h"
 #include "geometry/section/region.h"
 #include "geometry/section/triangulate.h"
@@ -516,14 +517,9 @@ Attempt attempt(const TriangleSoup& part, const std::string& name, const Axis& a
   std::vector<CasePin> pins;
   const int across = plate ? (plate->q == i ? j : i) : 0;  // the face's other axis but k
   if (plate) {
-    CasePin pin;
-    pin.axis = Vec3::Zero();
+    CasePin pin = case_pin(options);
+    pin.buried = 0.0;  // it stands on the plate's face
     pin.axis[plate->q] = -plate->s;
-    pin.radius = w / 4.0;
-    pin.height = w / 2.0;
-    pin.hole_radius = pin.radius + options.clearance;
-    pin.hole_depth = pin.height + options.clearance;
-    pin.sides = pin_sides(pin.hole_radius, options.tolerance);
     const double along = floor_at + (extreme - floor_at) / 3.0;
     if (!(std::abs(along - floor_at) > pin.hole_radius && std::abs(extreme - along) > pin.hole_radius)) {
       return {std::nullopt, fmt::format("its case is too shallow along {} for the plate's pins", dir)};
@@ -850,10 +846,11 @@ Attempt carved(const TriangleSoup& part, const std::string& name, const Axis& ax
   // The pins: two per piece, in the case's walls (centred in a wall that
   // runs along the piece's way off), where the hole has main piece all
   // round it and the pin's foot is in its own piece.
-  const double radius = w / 4.0, height = w / 2.0, buried = w / 4.0;
-  const double hole_radius = radius + options.clearance;
-  const std::size_t sides = pin_sides(hole_radius, options.tolerance);
-  const double margin = w / 16.0;
+  const CasePin sized = case_pin(options);
+  const double radius = sized.radius, height = sized.height, buried = sized.buried;
+  const double hole_radius = sized.hole_radius;
+  const std::size_t sides = sized.sides;
+  const double margin = case_pin_margin(options);
   const auto in_case = [&](const Vec3& p) {
     return (p.array() >= lo.array() + margin).all() && (p.array() <= hi.array() - margin).all();
   };
@@ -920,15 +917,9 @@ Attempt carved(const TriangleSoup& part, const std::string& name, const Axis& ax
     const double hole_length = snapped(buried + height + options.clearance, kLengthBits);
     for (std::size_t b : {best_a, best_b}) {
       const Vec3 foot = found[b] + buried * n;
-      CasePin pin;
+      CasePin pin = sized;
       pin.base = found[b];
       pin.axis = -n;
-      pin.radius = radius;
-      pin.height = height;
-      pin.hole_radius = hole_radius;
-      pin.hole_depth = height + options.clearance;
-      pin.sides = sides;
-      pin.buried = buried;
       c.pins.push_back(pin);
       pins[i].push_back(pin_prism(foot, e1, e2, -c.d, radius, pin_length, sides));
       holes.push_back(pin_prism(foot, e1, e2, -c.d, hole_radius, hole_length, sides));
@@ -1156,6 +1147,20 @@ Drafted drafted(const TriangleSoup& part, const Axis& axis, const CaseOptions& o
 
 // The sides of a pin's and its hole's polygons: a multiple of 4 (8 to 512)
 // keeping the hole's circle of `radius` within `tolerance` of its polygon.
+CasePin case_pin(const CaseOptions& options) {
+  const double w = options.wall;
+  CasePin pin;
+  pin.radius = w / 4.0;
+  pin.height = w / 2.0;
+  pin.buried = w / 4.0;
+  pin.hole_radius = pin.radius + options.clearance;
+  pin.hole_depth = pin.height + options.clearance;
+  pin.sides = pin_sides(pin.hole_radius, options.tolerance);
+  return pin;
+}
+
+double case_pin_margin(const CaseOptions& options) { return options.wall / 16.0; }
+
 std::size_t pin_sides(double radius, double tolerance) {
   const double ratio = 1.0 - tolerance / radius;  // cos(pi / sides) at least this
   const double count = ratio <= -1.0 ? 8.0 : std::ceil(M_PI / std::acos(ratio) / 4.0) * 4.0;
