@@ -1145,8 +1145,6 @@ Drafted drafted(const TriangleSoup& part, const Axis& axis, const CaseOptions& o
 
 }  // namespace
 
-// The sides of a pin's and its hole's polygons: a multiple of 4 (8 to 512)
-// keeping the hole's circle of `radius` within `tolerance` of its polygon.
 CasePin case_pin(const CaseOptions& options) {
   const double w = options.wall;
   CasePin pin;
@@ -1161,6 +1159,8 @@ CasePin case_pin(const CaseOptions& options) {
 
 double case_pin_margin(const CaseOptions& options) { return options.wall / 16.0; }
 
+// The sides of a pin's and its hole's polygons: a multiple of 4 (8 to 512)
+// keeping the hole's circle of `radius` within `tolerance` of its polygon.
 std::size_t pin_sides(double radius, double tolerance) {
   const double ratio = 1.0 - tolerance / radius;  // cos(pi / sides) at least this
   const double count = ratio <= -1.0 ? 8.0 : std::ceil(M_PI / std::acos(ratio) / 4.0) * 4.0;
