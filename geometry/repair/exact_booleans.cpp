@@ -3,6 +3,7 @@
 #include "geometry/repair/exact_booleans.h"
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
 #include <CGAL/Polygon_mesh_processing/orientation.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
@@ -10,13 +11,21 @@
 #include <CGAL/Side_of_triangle_mesh.h>
 #include <CGAL/Surface_mesh.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <exception>
+#include <functional>
 #include <limits>
+#include <map>
+#include <set>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
+
+#include "geometry/section/region.h"
+#include "geometry/section/triangulate.h"
 
 namespace fabmesh {
 namespace {
@@ -38,14 +47,24 @@ SurfaceMesh exact_mesh(const TriangleSoup& soup) {
   return mesh;
 }
 
-/// The mesh with its exact points rounded to the nearest doubles.
+/// A coordinate as a double, from its exact value: the lazy number's
+/// interval is made tight first. (Without that, to_double takes the middle
+/// of whatever interval the number has, which is tight only where a
+/// predicate needed its exact value: a history that differs between runs
+/// and threads, so the same input gave other points.)
+double nearest(const Kernel::FT& x) {
+  CGAL::exact(x);
+  return CGAL::to_double(x);
+}
+
+/// The mesh with its exact points rounded to doubles (each within an ulp).
 TriangleSoup rounded(const SurfaceMesh& mesh) {
   TriangleSoup soup;
   std::vector<std::uint32_t> index(mesh.number_of_vertices() + mesh.number_of_removed_vertices(), 0);
   for (const auto v : mesh.vertices()) {
     const Point& p = mesh.point(v);
     index[v.idx()] = static_cast<std::uint32_t>(soup.vertices.size());
-    soup.vertices.emplace_back(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
+    soup.vertices.emplace_back(nearest(p.x()), nearest(p.y()), nearest(p.z()));
   }
   for (const auto f : mesh.faces()) {
     std::array<std::uint32_t, 3> t{};
@@ -70,6 +89,192 @@ bool keeps_all(const SurfaceMesh& solid, const std::vector<TriangleSoup>& shells
     }
   }
   return true;
+}
+
+// One planar region of a piece (coplanar triangles joined by edges) as
+// loops, re-triangulated without CGAL's history: the loops start at their
+// least point and are sorted, so the same region gives the same triangles.
+// False (the triangles kept) when the region is not a polygon with holes
+// that triangulates with its own points alone.
+bool retriangulate(const TriangleSoup& soup, const std::vector<std::size_t>& group,
+                   std::vector<std::array<std::uint32_t, 3>>& out) {
+  const auto& tri0 = soup.triangles[group.front()];
+  const Vec3 n = (soup.vertices[tri0[1]] - soup.vertices[tri0[0]])
+                     .cross(soup.vertices[tri0[2]] - soup.vertices[tri0[0]]);
+  int k = 0;
+  for (int a = 1; a < 3; ++a) {
+    if (std::abs(n[a]) > std::abs(n[k])) k = a;
+  }
+  const bool flip = n[k] < 0.0;
+  // Its border: edges used once within it, u -> v (reversed when it faces -e_k).
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> used;
+  for (std::size_t t : group) {
+    const auto& tri = soup.triangles[t];
+    for (int e = 0; e < 3; ++e)
+      ++used[{std::min(tri[e], tri[(e + 1) % 3]), std::max(tri[e], tri[(e + 1) % 3])}];
+  }
+  std::map<std::uint32_t, std::uint32_t> next;
+  for (std::size_t t : group) {
+    const auto& tri = soup.triangles[t];
+    for (int e = 0; e < 3; ++e) {
+      std::uint32_t u = tri[e], v = tri[(e + 1) % 3];
+      if (used[{std::min(u, v), std::max(u, v)}] != 1) continue;
+      if (flip) std::swap(u, v);
+      if (!next.emplace(u, v).second) return false;  // a vertex where the border touches itself
+    }
+  }
+  const auto before = [&](std::uint32_t a, std::uint32_t b) {
+    const Vec3 &p = soup.vertices[a], &q = soup.vertices[b];
+    return std::lexicographical_compare(p.data(), p.data() + 3, q.data(), q.data() + 3);
+  };
+  std::vector<std::vector<std::uint32_t>> loops;
+  std::set<std::uint32_t> left;
+  for (const auto& [u, v] : next) left.insert(u);
+  while (!left.empty()) {
+    std::vector<std::uint32_t> loop;
+    std::uint32_t u = *left.begin();
+    while (left.erase(u) == 1) {
+      loop.push_back(u);
+      u = next.at(u);
+    }
+    if (u != loop.front()) return false;
+    std::rotate(loop.begin(), std::min_element(loop.begin(), loop.end(), before), loop.end());
+    loops.push_back(std::move(loop));
+  }
+  std::sort(loops.begin(), loops.end(),
+            [&](const auto& a, const auto& b) { return before(a.front(), b.front()); });
+  // In the plane across k: the outer loop counter-clockwise (largest area), the holes clockwise.
+  const auto at = [&](std::uint32_t v) {
+    const Vec3& p = soup.vertices[v];
+    return Vec2(p[(k + 1) % 3], p[(k + 2) % 3]);
+  };
+  const auto area = [&](const std::vector<std::uint32_t>& loop) {
+    double twice = 0.0;
+    for (std::size_t i = 0; i < loop.size(); ++i) {
+      const Vec2 a = at(loop[i]), b = at(loop[(i + 1) % loop.size()]);
+      twice += a.x() * b.y() - a.y() * b.x();
+    }
+    return 0.5 * twice;
+  };
+  std::size_t outer = 0;
+  for (std::size_t i = 1; i < loops.size(); ++i) {
+    if (area(loops[i]) > area(loops[outer])) outer = i;
+  }
+  Region2 region;
+  std::map<std::pair<double, double>, std::uint32_t> vertex_at;
+  std::size_t points = 0;
+  for (std::size_t i = 0; i < loops.size(); ++i) {
+    std::vector<Vec2> ring;
+    for (std::uint32_t v : loops[i]) {
+      ring.push_back(at(v));
+      if (!vertex_at.emplace(std::make_pair(ring.back().x(), ring.back().y()), v).second) return false;
+    }
+    points += ring.size();
+    if (i == outer) {
+      if (!(area(loops[i]) > 0.0)) return false;
+      region.outer = std::move(ring);
+    } else {
+      if (!(area(loops[i]) < 0.0)) return false;
+      region.holes.push_back(std::move(ring));
+    }
+  }
+  PlanarTriangulation t;
+  try {
+    t = triangulate(region);
+  } catch (const std::exception&) {
+    return false;
+  }
+  if (t.steiner_points != 0 || t.triangles.size() != points + 2 * region.holes.size() - 2) return false;
+  for (const auto& tri : t.triangles) {
+    std::array<std::uint32_t, 3> mapped{};
+    for (int e = 0; e < 3; ++e) {
+      const auto it = vertex_at.find({t.vertices[tri[e]].x(), t.vertices[tri[e]].y()});
+      if (it == vertex_at.end()) return false;
+      mapped[e] = it->second;
+    }
+    if (flip) std::swap(mapped[1], mapped[2]);
+    out.push_back(mapped);
+  }
+  return true;
+}
+
+/// `soup` (closed, from CGAL) in a form its history does not change: each
+/// planar region re-triangulated from its own points (CGAL's corefinement
+/// breaks ties between cocircular points by an order that differs between
+/// runs and threads), the points sorted, each triangle starting at its
+/// least point, the triangles sorted. The same solid gives the same bytes.
+TriangleSoup canonical(const TriangleSoup& soup) {
+  using Epick = CGAL::Exact_predicates_inexact_constructions_kernel;
+  const auto point = [&](std::uint32_t v) {
+    const Vec3& p = soup.vertices[v];
+    return Epick::Point_3(p.x(), p.y(), p.z());
+  };
+  const std::size_t count = soup.triangles.size();
+  // Coplanar triangles across an edge, joined (union-find).
+  std::vector<std::size_t> parent(count);
+  for (std::size_t t = 0; t < count; ++t) parent[t] = t;
+  const std::function<std::size_t(std::size_t)> root = [&](std::size_t t) {
+    while (parent[t] != t) t = parent[t] = parent[parent[t]];
+    return t;
+  };
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::size_t> by_edge;
+  for (std::size_t t = 0; t < count; ++t) {
+    const auto& tri = soup.triangles[t];
+    for (int e = 0; e < 3; ++e) by_edge[{tri[e], tri[(e + 1) % 3]}] = t;
+  }
+  for (std::size_t t = 0; t < count; ++t) {
+    const auto& tri = soup.triangles[t];
+    for (int e = 0; e < 3; ++e) {
+      const auto it = by_edge.find({tri[(e + 1) % 3], tri[e]});
+      if (it == by_edge.end() || it->second < t) continue;
+      const auto& other = soup.triangles[it->second];
+      std::uint32_t far = other[0];
+      for (std::uint32_t v : other) {
+        if (v != tri[e] && v != tri[(e + 1) % 3]) far = v;
+      }
+      if (CGAL::orientation(point(tri[0]), point(tri[1]), point(tri[2]), point(far)) == CGAL::COPLANAR) {
+        parent[root(it->second)] = root(t);
+      }
+    }
+  }
+  std::map<std::size_t, std::vector<std::size_t>> groups;
+  for (std::size_t t = 0; t < count; ++t) groups[root(t)].push_back(t);
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+  triangles.reserve(count);
+  for (const auto& [first, group] : groups) {
+    std::vector<std::array<std::uint32_t, 3>> made;
+    if (group.size() > 1 && retriangulate(soup, group, made)) {
+      triangles.insert(triangles.end(), made.begin(), made.end());
+    } else {
+      for (std::size_t t : group) triangles.push_back(soup.triangles[t]);
+    }
+  }
+  // The points used, sorted; each triangle from its least point; the triangles sorted.
+  std::vector<std::uint32_t> order;
+  std::vector<bool> used(soup.vertices.size(), false);
+  for (const auto& tri : triangles) {
+    for (std::uint32_t v : tri) used[v] = true;
+  }
+  for (std::uint32_t v = 0; v < soup.vertices.size(); ++v) {
+    if (used[v]) order.push_back(v);
+  }
+  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+    const Vec3 &p = soup.vertices[a], &q = soup.vertices[b];
+    return std::lexicographical_compare(p.data(), p.data() + 3, q.data(), q.data() + 3);
+  });
+  TriangleSoup out;
+  std::vector<std::uint32_t> index(soup.vertices.size(), 0);
+  for (std::uint32_t v : order) {
+    index[v] = static_cast<std::uint32_t>(out.vertices.size());
+    out.vertices.push_back(soup.vertices[v]);
+  }
+  for (auto tri : triangles) {
+    for (std::uint32_t& v : tri) v = index[v];
+    std::rotate(tri.begin(), std::min_element(tri.begin(), tri.end()), tri.end());
+    out.triangles.push_back(tri);
+  }
+  std::sort(out.triangles.begin(), out.triangles.end());
+  return out;
 }
 
 void say(std::string* why, const std::string& text) {
@@ -168,7 +373,7 @@ std::optional<std::vector<TriangleSoup>> carve_pieces(const TriangleSoup& block,
         say(why, "piece " + std::to_string(i + 1) + " is empty or open");
         return std::nullopt;
       }
-      pieces.push_back(rounded(piece));
+      pieces.push_back(canonical(rounded(piece)));
     }
     for (const TriangleSoup& hole : holes)
       rest = boolean_of(rest, exact_mesh(hole), 0, "the rest less a hole");
@@ -176,7 +381,7 @@ std::optional<std::vector<TriangleSoup>> carve_pieces(const TriangleSoup& block,
       say(why, "the main piece is empty or open");
       return std::nullopt;
     }
-    pieces.front() = rounded(rest);
+    pieces.front() = canonical(rounded(rest));
     return pieces;
   } catch (const std::exception& e) {
     say(why, std::string("CGAL's corefinement failed: ") + e.what());
@@ -209,7 +414,7 @@ std::optional<std::vector<TriangleSoup>> cut_cells(const TriangleSoup& solid,
         say(why, "cell " + std::to_string(i + 1) + " is open");
         return std::nullopt;
       }
-      out.push_back(rounded(cell));
+      out.push_back(canonical(rounded(cell)));
     }
     return out;
   } catch (const std::exception& e) {
