@@ -9,6 +9,7 @@
 #include <limits>
 #include <map>
 #include <optional>
+#include <set>
 #include <utility>
 #include <vector>
 
@@ -336,20 +337,25 @@ std::optional<PlateFace> plate_on(const Faces& f, PlateFace p, const std::vector
   return p;
 }
 
-// The pour face across an axis direction and what the pull along it
-// meets: the part's faces but the pour face's that face the pull (or whose
-// facing cannot be decided), and those that run along it.
+// The pour face across an axis direction and what the pull meets: the
+// part's faces but the pour face's that face the pull (or whose facing
+// cannot be decided), and those that run along it.
 struct Pour {
   Faces faces;
   std::vector<Triangle> pour;
-  std::vector<std::vector<Index>> sides;  // the pour face's border, corner to corner
+  std::vector<std::vector<Index>> sides;  // the pour face's border, corner to corner (a rectangle's)
   std::vector<std::size_t> blocking;
   std::size_t parallel = 0;
+  double area = 0.0;  // the pour face's
 };
 
 // The pour face of `part` across `axis`, or why it has none that plaster
-// poured level would reproduce (in `why`).
-std::optional<Pour> analyse(const TriangleSoup& part, const Axis& axis,
+// poured level would reproduce (in `why`), and what pulling the part along
+// `pull` meets. With `rectangle`, the face must cover the part's outline
+// there (a box mould's parts: the case's rim is then the rectangle between
+// the part's box and the case's); else it may be any one region (a
+// cylinder mould's: the rim is cut around it).
+std::optional<Pour> analyse(const TriangleSoup& part, const Axis& axis, const Axis& pull, bool rectangle,
                             const std::function<std::string(std::size_t)>& at, std::string& why) {
   const int k = axis.k;
   const BoundingBox box = bounding_box(part.vertices);
@@ -358,7 +364,7 @@ std::optional<Pour> analyse(const TriangleSoup& part, const Axis& axis,
   const std::string dir = axis_name(axis);
   // The pour face: the triangles in the extreme plane. Every other triangle
   // must face away from the pull or along it, or lie on a plate.
-  Pour out{Faces{part, std::vector<bool>(part.triangles.size(), false), {}}, {}, {}, {}, 0};
+  Pour out{Faces{part, std::vector<bool>(part.triangles.size(), false), {}}, {}, {}, {}, 0, 0.0};
   Faces& faces = out.faces;
   std::vector<Triangle>& pour = out.pour;
   for (std::size_t t = 0; t < part.triangles.size(); ++t) {
@@ -378,13 +384,19 @@ std::optional<Pour> analyse(const TriangleSoup& part, const Axis& axis,
   std::size_t& parallel = out.parallel;
   std::vector<std::size_t>& blocking = out.blocking;
   for (std::size_t t = 0; t < part.triangles.size(); ++t) {
-    const std::optional<int> s = facing(part, part.triangles[t], k);
     if (faces.pour[t]) {
-      if (s != axis.sign) {
+      if (facing(part, part.triangles[t], k) != axis.sign) {
         why = fmt::format("its face at {} in its {} plane does not face {}", at(t), dir, dir);
         return std::nullopt;
       }
-    } else if (!s || *s * axis.sign > 0) {
+      const Triangle& tri = part.triangles[t];
+      out.area += 0.5 * (part.vertices[tri[1]] - part.vertices[tri[0]])
+                            .cross(part.vertices[tri[2]] - part.vertices[tri[0]])
+                            .norm();
+      continue;
+    }
+    const std::optional<int> s = facing(part, part.triangles[t], pull.k);
+    if (!s || *s * pull.sign > 0) {
       blocking.push_back(t);
     } else if (*s == 0) {
       ++parallel;
@@ -400,6 +412,7 @@ std::optional<Pour> analyse(const TriangleSoup& part, const Axis& axis,
     return std::nullopt;
   }
   const std::map<Index, Index>& next = *pour_border;  // border: u -> v
+  if (!rectangle) return out;
   const auto not_rectangle = [&]() -> std::optional<Pour> {
     why = fmt::format(
         "its flat face across {} does not cover its whole outline there (the outline "
@@ -462,7 +475,7 @@ Attempt attempt(const TriangleSoup& part, const std::string& name, const Axis& a
                              dir);
   };
   std::string why;
-  std::optional<Pour> analysed = analyse(part, axis, at, why);
+  std::optional<Pour> analysed = analyse(part, axis, axis, true, at, why);
   if (!analysed) return {std::nullopt, why};
   const Faces& faces = analysed->faces;
   const std::vector<Triangle>& pour = analysed->pour;
@@ -584,6 +597,7 @@ Attempt attempt(const TriangleSoup& part, const std::string& name, const Axis& a
   out.soup.triangles.push_back({floor[0], floor[2], floor[1]});
 
   out.pull = axis_vector(axis);
+  out.opening = out.pull;
   out.lo = box.lo - Vec3::Constant(w);
   out.hi = box.hi + Vec3::Constant(w);
   (axis.sign > 0 ? out.hi : out.lo)[k] = extreme;
@@ -692,7 +706,35 @@ struct Cut {
   std::size_t touching = 0, along = 0;  // the part's faces it touches, of which run along d
   std::vector<CasePin> pins;
   Vec3 corner, ru, rv, rd;  // its region: corner + a ru + b rv + c rd, a, b, c in [0, 1]
+  // A lid: the region is that box less the prism over `hollow` along
+  // `hollow_along` (the block's inside, `inner` the least distance of its
+  // sides from the axis, `back` the block's radius).
+  bool lid = false;
+  int k = 2;  // a lid's axis (the opening's)
+  std::vector<Vec3> hollow;
+  Vec3 hollow_along = Vec3::Zero();
+  double inner = 0.0, back = 0.0, inside = 0.0;
+  std::vector<TriangleSoup> regions;  // a lid's region, built with it
+  /// A lid's: whether the part's triangle t lies on the back, the only
+  /// faces of the part it touches: its corners all on the block's cylinder,
+  /// one off the split plane, not all in one plane across the axis.
+  bool back_triangle(const TriangleSoup& part, std::size_t t) const;
 };
+
+// The distance of p from the axis along e_k through the origin (the mould's axis).
+double radial(const Vec3& p, int k) { return std::hypot(p[(k + 1) % 3], p[(k + 2) % 3]); }
+
+bool Cut::back_triangle(const TriangleSoup& part, std::size_t t) const {
+  const Triangle& tri = part.triangles[t];
+  bool off = false, level = true;
+  for (int e = 0; e < 3; ++e) {
+    const Vec3& p = part.vertices[tri[e]];
+    if (radial(p, k) < back * (1.0 - 1e-9)) return false;
+    off = off || exact_side(p, o, d) > 0;
+    level = level && p[k] == part.vertices[tri[0]][k];
+  }
+  return off && !level;
+}
 
 // The sockets behind a plate's face: the part's triangles behind it turned
 // inside out, closed by their rims in the face's plane.
@@ -733,26 +775,420 @@ std::string vector_text(const Vec3& d) {
   return fmt::format("({:.4g}, {:.4g}, {:.4g})", n.x(), n.y(), n.z());
 }
 
+// The pour face's outline, one loop, its vertices as `copy` copies them; none
+// when it is not one loop.
+std::optional<std::vector<Index>> pour_loop(const Faces& faces, Copier& copy) {
+  const std::optional<std::map<Index, Index>> border = faces.border(faces.pour);
+  if (!border || border->empty()) return std::nullopt;
+  std::vector<Index> loop;
+  Index u = border->begin()->first;
+  do {
+    loop.push_back(copy(u));
+    const auto it = border->find(u);
+    if (it == border->end() || loop.size() > border->size()) return std::nullopt;
+    u = it->second;
+  } while (u != border->begin()->first);
+  if (loop.size() != border->size()) return std::nullopt;  // more than one loop
+  return loop;
+}
+
+// The block's face across `opening` (its two triangles) replaced by the
+// rim around the part's pour face, filled out to the face's corners, and
+// then the pour face's own triangles (`with_part` false: the block less the
+// part then takes the pour face's outline as it is, adding no point on the
+// part's edges there) or the part's other triangles turned inside out (true:
+// the block less the part itself, built face by face). False when the rim
+// cannot be filled so.
+bool open_through(TriangleSoup& block, const Axis& opening, const Faces& faces, bool with_part) {
+  const int k = opening.k;
+  double extreme = block.vertices.front()[k];
+  for (const Vec3& p : block.vertices)
+    extreme = opening.sign > 0 ? std::max(extreme, p[k]) : std::min(extreme, p[k]);
+  std::vector<Index> corners;
+  for (Index v = 0; v < block.vertices.size(); ++v) {
+    if (block.vertices[v][k] == extreme) corners.push_back(v);
+  }
+  const auto on_face = [&](const Triangle& t) {
+    return block.vertices[t[0]][k] == extreme && block.vertices[t[1]][k] == extreme &&
+           block.vertices[t[2]][k] == extreme;
+  };
+  block.triangles.erase(std::remove_if(block.triangles.begin(), block.triangles.end(), on_face),
+                        block.triangles.end());
+  // The corners in turn about the face's centre.
+  Vec3 centre = Vec3::Zero();
+  for (Index v : corners) centre += block.vertices[v] / 4.0;
+  const auto turn = [&](Index v) {
+    const std::array<double, 2> q = in_plane(block.vertices[v] - centre, k);
+    return std::atan2(q[1], q[0]);
+  };
+  std::sort(corners.begin(), corners.end(), [&](Index a, Index b) { return turn(a) < turn(b); });
+  Copier copy{faces.part, block};
+  for (std::size_t t = 0; t < faces.part.triangles.size(); ++t) {
+    const Triangle& tri = faces.part.triangles[t];
+    if (faces.pour[t] && !with_part) block.triangles.push_back({copy(tri[0]), copy(tri[1]), copy(tri[2])});
+    if (!faces.pour[t] && with_part) copy.flipped(tri);
+  }
+  const std::optional<std::vector<Index>> hole = pour_loop(faces, copy);
+  return hole && fill_region(block, corners, {*hole}, k, opening.sign);
+}
+
+// A triangle of `soup` turned so that its normal has a positive component along `outward`.
+void facet(TriangleSoup& soup, Index a, Index b, Index c, const Vec3& outward) {
+  const Vec3 n = (soup.vertices[b] - soup.vertices[a]).cross(soup.vertices[c] - soup.vertices[a]);
+  if (n.dot(outward) < 0.0) std::swap(b, c);
+  soup.triangles.push_back({a, b, c});
+}
+
+// The planar quadrilateral a b c d (in turn) as two triangles facing `outward`.
+void quad(TriangleSoup& soup, Index a, Index b, Index c, Index d, const Vec3& outward) {
+  facet(soup, a, b, c, outward);
+  facet(soup, a, c, d, outward);
+}
+
+// The corners of a lidded case's box and of its lid's region: the box
+// lo..hi with its walls split where the lid meets the rest (the split plane
+// through the axis across `pull`, and the plane of the part's far face
+// `far` across the opening's axis k), and the region's top `to` beyond the
+// opening. Built alike for both, so that their walls share triangles.
+struct LidFrame {
+  int k = 2, q = 1, a = 0;  // the opening's axis, the pull's, the other
+  Vec3 lo, hi;
+  double far = 0.0, extreme = 0.0, to = 0.0;
+  double beyond = 0.0;  // the box's side on the pull's side of the split plane, along q
+  // The point with coordinates x (along a), y (along q), z (along k).
+  Vec3 at(double x, double y, double z) const {
+    Vec3 p;
+    p[a] = x;
+    p[q] = y;
+    p[k] = z;
+    return p;
+  }
+};
+
+// The frame of a lid over the back of a part pulled along `pull` out of the
+// case lo..hi open across `opening`, the part's far face at `far`.
+LidFrame lid_frame(const Vec3& lo, const Vec3& hi, const Axis& opening, const Axis& pull, double far,
+                   double w) {
+  LidFrame f;
+  f.k = opening.k;
+  f.q = pull.k;
+  f.a = 3 - f.k - f.q;
+  f.lo = lo;
+  f.hi = hi;
+  f.far = far;
+  f.extreme = opening.sign > 0 ? hi[f.k] : lo[f.k];
+  f.to = f.extreme + opening.sign * w;
+  f.beyond = pull.sign > 0 ? hi[f.q] : lo[f.q];
+  return f;
+}
+
+// Adds a point to `soup` once, by position.
+struct Points {
+  TriangleSoup& soup;
+  std::map<std::array<double, 3>, Index> made;
+  Index operator()(const Vec3& p) {
+    const auto [it, added] = made.emplace(std::array<double, 3>{p.x(), p.y(), p.z()}, 0);
+    if (added) it->second = add_vertex(soup, p);
+    return it->second;
+  }
+};
+
+// The walls of the box of `f` on the side `side` (-1: lo, +1: hi) across the
+// axis a, from y0 to y1 along q and z0 to z1 along k: one quadrilateral.
+void wall_a(TriangleSoup& soup, Points& point, const LidFrame& f, int side, double y0, double y1, double z0,
+            double z1) {
+  const double x = side > 0 ? f.hi[f.a] : f.lo[f.a];
+  Vec3 out = Vec3::Zero();
+  out[f.a] = side;
+  quad(soup, point(f.at(x, y0, z0)), point(f.at(x, y1, z0)), point(f.at(x, y1, z1)), point(f.at(x, y0, z1)),
+       out);
+}
+
+// The wall of the box of `f` across q at y, from z0 to z1 along k, facing `side` along q.
+void wall_q(TriangleSoup& soup, Points& point, const LidFrame& f, double y, int side, double z0, double z1) {
+  Vec3 out = Vec3::Zero();
+  out[f.q] = side;
+  quad(soup, point(f.at(f.lo[f.a], y, z0)), point(f.at(f.hi[f.a], y, z0)), point(f.at(f.hi[f.a], y, z1)),
+       point(f.at(f.lo[f.a], y, z1)), out);
+}
+
+// The case's box for a lid (LidFrame), open through the part's pour face:
+// its walls split at the split plane and at the far face's plane, its
+// floor (across k, away from the opening), and its face across the opening
+// less the pour face, with the pour face's own triangles. False when that
+// face cannot be filled without adding a point.
+std::optional<TriangleSoup> lidded_block(const LidFrame& f, const Faces& faces, int opening_sign) {
+  TriangleSoup soup;
+  Points point{soup, {}};
+  const double ys[3] = {f.lo[f.q], 0.0, f.hi[f.q]};
+  const double floor_at = opening_sign > 0 ? f.lo[f.k] : f.hi[f.k];
+  const double zs[2][2] = {{std::min(floor_at, f.far), std::max(floor_at, f.far)},
+                           {std::min(f.far, f.extreme), std::max(f.far, f.extreme)}};
+  for (int side : {-1, 1}) {
+    for (int y = 0; y < 2; ++y) {
+      for (const auto& z : zs) wall_a(soup, point, f, side, ys[y], ys[y + 1], z[0], z[1]);
+    }
+  }
+  for (const auto& z : zs) {
+    wall_q(soup, point, f, f.lo[f.q], -1, z[0], z[1]);
+    wall_q(soup, point, f, f.hi[f.q], 1, z[0], z[1]);
+  }
+  // The two faces across k: six corners each, the split plane's two among them.
+  const auto ring = [&](double z) {
+    return std::vector<Index>{point(f.at(f.lo[f.a], f.lo[f.q], z)), point(f.at(f.hi[f.a], f.lo[f.q], z)),
+                              point(f.at(f.hi[f.a], 0.0, z)),       point(f.at(f.hi[f.a], f.hi[f.q], z)),
+                              point(f.at(f.lo[f.a], f.hi[f.q], z)), point(f.at(f.lo[f.a], 0.0, z))};
+  };
+  if (!fill_polygon(soup, ring(floor_at), f.k, -opening_sign)) return std::nullopt;
+  Copier copy{faces.part, soup};
+  for (std::size_t t = 0; t < faces.part.triangles.size(); ++t) {
+    if (!faces.pour[t]) continue;
+    const Triangle& tri = faces.part.triangles[t];
+    soup.triangles.push_back({copy(tri[0]), copy(tri[1]), copy(tri[2])});
+  }
+  std::optional<std::vector<Index>> hole = pour_loop(faces, copy);
+  if (!hole || !fill_region(soup, ring(f.extreme), {*hole}, f.k, opening_sign)) return std::nullopt;
+  return soup;
+}
+
+// The mesh of a lid's region (the cut `c` across its pull through the axis
+// k of the opening, LidFrame `f`): what lies in the case's box on the
+// pull's side of the split plane, from the part's far face on (and beyond
+// the opening, to f.to), outside the part's back: the back's own triangles
+// turned inside out, walls straight on from its edge on the opening's face,
+// the split plane's two strips, the caps and the box's walls (split as the
+// box's are, so that they share triangles). None, with `why`, when the back
+// is not one band from the far face to the opening's between the split
+// plane's two sides.
+std::optional<TriangleSoup> lid_region(const TriangleSoup& part, const Cut& c, const LidFrame& f,
+                                       std::string& why) {
+  const int k = f.k;
+  const Vec3 ek = axis_vector({k, 1}), across = c.d.cross(ek);
+  TriangleSoup soup;
+  Copier copy{part, soup};
+  for (std::size_t t = 0; t < part.triangles.size(); ++t) {
+    if (c.back_triangle(part, t)) copy.flipped(part.triangles[t]);
+  }
+  // The back's border: its edges used once, each vertex on the far face,
+  // on the opening's face, or on the split plane.
+  std::map<std::pair<Index, Index>, int> uses;
+  for (std::size_t t = 0; t < part.triangles.size(); ++t) {
+    if (!c.back_triangle(part, t)) continue;
+    const Triangle& tri = part.triangles[t];
+    for (int e = 0; e < 3; ++e) {
+      const Index u = tri[e], v = tri[(e + 1) % 3];
+      ++uses[{std::min(u, v), std::max(u, v)}];
+    }
+  }
+  // The angle of a point about the axis, from `across` toward the pull.
+  const auto angle = [&](const Vec3& p) { return std::atan2((p - c.o).dot(c.d), (p - c.o).dot(across)); };
+  std::vector<std::pair<double, Index>> far_arc, open_arc, right, left;  // left: at a half turn
+  std::set<Index> seen;
+  const double sign = f.extreme > f.far ? 1.0 : -1.0;
+  for (const auto& [edge, n] : uses) {
+    if (n != 1) continue;
+    for (const Index v : {edge.first, edge.second}) {
+      if (!seen.insert(v).second) continue;
+      const Vec3& p = part.vertices[v];
+      const bool split = exact_side(p, c.o, c.d) == 0;
+      if (p[k] == f.far) far_arc.emplace_back(angle(p), v);
+      if (p[k] == f.extreme) open_arc.emplace_back(angle(p), v);
+      if (split) ((p - c.o).dot(across) > 0.0 ? right : left).emplace_back(sign * (p[k] - f.far), v);
+      if (p[k] != f.far && p[k] != f.extreme && !split) {
+        why = fmt::format("its back's edge at {} lies off its split plane and flat faces", point_text(p));
+        return std::nullopt;
+      }
+    }
+  }
+  for (auto* run : {&far_arc, &open_arc, &right, &left}) std::sort(run->begin(), run->end());
+  if (far_arc.size() < 2 || open_arc.size() < 2 || right.size() < 2 || left.size() < 2) {
+    why = "its back is not one band between its split plane's two sides";
+    return std::nullopt;
+  }
+  Points point{soup, {}};
+  for (Index v = 0; v < soup.vertices.size(); ++v) {
+    const Vec3& p = soup.vertices[v];
+    point.made.emplace(std::array<double, 3>{p.x(), p.y(), p.z()}, v);
+  }
+  // The box's walls on the pull's side, from the far face to the opening and on beyond it.
+  const double beyond = f.beyond;
+  const double y0 = std::min(0.0, beyond), y1 = std::max(0.0, beyond);
+  const double levels[2][2] = {{std::min(f.far, f.extreme), std::max(f.far, f.extreme)},
+                               {std::min(f.extreme, f.to), std::max(f.extreme, f.to)}};
+  for (const auto& z : levels) {
+    for (int side : {-1, 1}) wall_a(soup, point, f, side, y0, y1, z[0], z[1]);
+    wall_q(soup, point, f, beyond, beyond > 0.0 ? 1 : -1, z[0], z[1]);
+  }
+  // The walls beyond the opening's face: the back's edge there moved on to `to`.
+  std::vector<Index> lifted;
+  for (const auto& [turn, v] : open_arc) {
+    Vec3 p = part.vertices[v];
+    p[k] = f.to;
+    lifted.push_back(point(p));
+  }
+  for (std::size_t n = 0; n + 1 < open_arc.size(); ++n) {
+    Vec3 inward = -0.5 * (part.vertices[open_arc[n].second] + part.vertices[open_arc[n + 1].second]);
+    inward[k] = 0.0;
+    quad(soup, copy(open_arc[n].second), copy(open_arc[n + 1].second), lifted[n + 1], lifted[n], inward);
+  }
+  // The caps: the box's section on the pull's side less the back's.
+  const double right_x = across[f.a] > 0.0 ? f.hi[f.a] : f.lo[f.a];
+  const double left_x = across[f.a] > 0.0 ? f.lo[f.a] : f.hi[f.a];
+  const auto corners = [&](double z) {
+    return std::vector<Index>{point(f.at(right_x, 0.0, z)), point(f.at(right_x, beyond, z)),
+                              point(f.at(left_x, beyond, z)), point(f.at(left_x, 0.0, z))};
+  };
+  std::vector<Index> low = corners(f.far), high = corners(f.to);
+  for (auto it = far_arc.rbegin(); it != far_arc.rend(); ++it) low.push_back(copy(it->second));
+  for (auto it = lifted.rbegin(); it != lifted.rend(); ++it) high.push_back(*it);
+  // The split plane's strips: from the back's side edge out to the box's walls.
+  std::vector<Index> right_strip{point(f.at(right_x, 0.0, f.far)), point(f.at(right_x, 0.0, f.extreme)),
+                                 point(f.at(right_x, 0.0, f.to)), lifted.front()};
+  std::vector<Index> left_strip{point(f.at(left_x, 0.0, f.far)), point(f.at(left_x, 0.0, f.extreme)),
+                                point(f.at(left_x, 0.0, f.to)), lifted.back()};
+  for (auto it = right.rbegin(); it != right.rend(); ++it) right_strip.push_back(copy(it->second));
+  for (auto it = left.rbegin(); it != left.rend(); ++it) left_strip.push_back(copy(it->second));
+  const int pull_sign = c.d[f.q] > 0.0 ? 1 : -1;
+  const int up = f.to > f.far ? 1 : -1;
+  if (!fill_polygon(soup, low, k, -up) || !fill_polygon(soup, high, k, up) ||
+      !fill_polygon(soup, right_strip, f.q, -pull_sign) || !fill_polygon(soup, left_strip, f.q, -pull_sign)) {
+    why = "its lid's region could not be closed";
+    return std::nullopt;
+  }
+  return soup;
+}
+
+// The lid over a cylinder block's back of `back` radius (about the axis k
+// of the opening, through the origin): what lies in the case on the pull's
+// side of the split plane through the axis, from the part's far face (across
+// the opening) on, outside the prism over a polygon inscribed in the circle
+// between the part's inside (every point of it but its back's, the
+// sockets' and the cavity's) and its back. None, with `why`, when a face of
+// the part reaches from its inside to its back off the split plane, the far
+// face and the opening (the lid would then cut it).
+std::optional<Cut> lid_cut(const TriangleSoup& part, const Faces& faces, const Axis& axis,
+                           const Axis& opening, double back, const BoundingBox& box, const Vec3& hi,
+                           const Vec3& lo, double w, std::string& why) {
+  const int k = opening.k;
+  const double far = opening.sign > 0 ? box.lo[k] : box.hi[k];
+  const double to = opening.sign > 0 ? hi[k] + w : lo[k] - w;
+  Cut c;
+  c.lid = true;
+  c.k = k;
+  c.back = back;
+  c.what = "its curved back";
+  c.d = axis_vector(axis);
+  c.o = Vec3::Zero();
+  c.o[k] = far;
+  double inside = 0.0;
+  for (const Vec3& p : part.vertices) {
+    const double r = radial(p, k);
+    if (r > back * (1.0 + 1e-9)) {
+      why =
+          fmt::format("its point {} lies outside the block's cylinder of radius {:.6g}", point_text(p), back);
+      return std::nullopt;
+    }
+    if (r < back * (1.0 - 1e-9)) inside = std::max(inside, r);
+  }
+  for (std::size_t t = 0; t < part.triangles.size(); ++t) {
+    const Triangle& tri = part.triangles[t];
+    bool reaches = false, split = true, far_face = true;
+    for (int e = 0; e < 3; ++e) {
+      const Vec3& p = part.vertices[tri[e]];
+      reaches = reaches || radial(p, k) >= back * (1.0 - 1e-9);
+      split = split && exact_side(p, c.o, c.d) == 0;
+      far_face = far_face && p[k] == far;
+    }
+    const bool all_back = radial(part.vertices[tri[0]], k) >= back * (1.0 - 1e-9) &&
+                          radial(part.vertices[tri[1]], k) >= back * (1.0 - 1e-9) &&
+                          radial(part.vertices[tri[2]], k) >= back * (1.0 - 1e-9);
+    if (reaches && !all_back && !split && !far_face && !faces.pour[t]) {
+      why = fmt::format(
+          "its face at {} reaches from its inside to its back off its split plane and its flat "
+          "faces, where no lid can be cut",
+          where(part, t, {}));
+      return std::nullopt;
+    }
+  }
+  // The polygon: half a regular polygon of `sides` sides, its corners on
+  // the circle halfway between the inside and the back, its sides beyond
+  // the inside by at least half that gap.
+  const double middle = 0.5 * (inside + back);
+  std::size_t sides = 8;
+  while (middle * std::cos(M_PI / (2.0 * static_cast<double>(sides))) - inside <= 0.5 * (middle - inside)) {
+    sides *= 2;
+    if (sides > 4096 || !(middle > inside)) {
+      why = "its back is too close to its inside for a lid";
+      return std::nullopt;
+    }
+  }
+  c.inside = inside;
+  c.inner = middle * std::cos(M_PI / (2.0 * static_cast<double>(sides)));
+  const Vec3 ek = axis_vector({k, 1}), across = c.d.cross(ek);
+  const double reach = snapped(4.0 * (hi - lo).norm() + back, kLengthBits);
+  const auto at = [&](double a, double b) { return Vec3(c.o + a * across + b * c.d); };
+  std::vector<Vec3> arc;  // from angle 0 to a half turn, about the axis from `across` to the pull
+  arc.push_back(at(middle, 0.0));
+  for (std::size_t i = 1; i < sides; ++i) {
+    const double angle = M_PI * static_cast<double>(i) / static_cast<double>(sides);
+    arc.push_back(at(middle * std::cos(angle), middle * std::sin(angle)));
+  }
+  arc.push_back(at(-middle, 0.0));
+  // The region's mesh: outside the part's own back, so that it cuts the
+  // case where the back bounds it and adds no point on the part's faces.
+  std::optional<TriangleSoup> region = lid_region(part, c, lid_frame(lo, hi, opening, axis, far, w), why);
+  if (!region) return std::nullopt;
+  const ValidationReport checked = validate(*region);
+  if (!checked.valid()) {
+    std::string defects;
+    for (const std::string& d : describe_defects(checked)) defects += (defects.empty() ? "" : "; ") + d;
+    why = "its lid's region is not a valid solid: " + defects;
+    return std::nullopt;
+  }
+  c.regions.push_back(std::move(*region));
+  // For the exact case: the box of the region less the prism over the half polygon, closed behind the split
+  // plane.
+  c.corner = at(-reach, 0.0);
+  c.corner[k] = std::min(far, to);
+  c.ru = std::abs(to - far) * ek;
+  c.rv = 2.0 * reach * across;
+  c.rd = reach * c.d;
+  c.hollow.push_back(at(middle, -w));
+  c.hollow.insert(c.hollow.end(), arc.begin(), arc.end());
+  c.hollow.push_back(at(-middle, -w));
+  for (Vec3& p : c.hollow) p[k] = far - opening.sign * w;
+  c.hollow_along = (to - far + 2.0 * opening.sign * w) * ek;
+  // Its pins lie across the pull, in the plane of the pin's rings.
+  c.u = ek;
+  c.v = across;
+  return c;
+}
+
 // The case of `part` pulled along `axis` in several pieces: the main piece
 // and, taken off before it in order, one per side of the part's box (with
-// the sockets behind it) and one per given face that takes a face of the
-// part the pull would catch on; each with two pins in holes of the main piece.
-Attempt carved(const TriangleSoup& part, const std::string& name, const Axis& axis,
-               const CaseOptions& options, const std::vector<CaseFace>& given,
+// the sockets behind it), the lid over a cylinder block's back (`lid`: the
+// block's radius; the split plane through the axis across the pull) and one
+// per given face that takes a face of the part the pull would catch on;
+// each with two pins in holes of the main piece. The case is open across
+// `opening` (the pull, but for a lidded case), on a face of the part that
+// covers its outline there when `rectangle`.
+Attempt carved(const TriangleSoup& part, const std::string& name, const Axis& axis, const Axis& opening,
+               bool rectangle, std::optional<double> lid, const CaseOptions& options,
+               const std::vector<CaseFace>& given,
                const std::function<std::string(const Vec3&)>& what_is_at) {
-  const int k = axis.k;
+  const int k = opening.k;
   const BoundingBox box = bounding_box(part.vertices);
-  const double extreme = axis.sign > 0 ? box.hi[k] : box.lo[k];
-  const std::string dir = axis_name(axis);
+  const double extreme = opening.sign > 0 ? box.hi[k] : box.lo[k];
+  const std::string dir = axis_name(axis), open_dir = axis_name(opening);
   const auto at = [&](std::size_t t) { return where(part, t, what_is_at); };
   std::string why;
-  const std::optional<Pour> analysed = analyse(part, axis, at, why);
+  const std::optional<Pour> analysed = analyse(part, opening, axis, rectangle, at, why);
   if (!analysed) return {std::nullopt, why};
   const Faces& faces = analysed->faces;
   const std::vector<std::size_t>& blocking = analysed->blocking;
   const double w = options.wall;
   Vec3 lo = box.lo - Vec3::Constant(w), hi = box.hi + Vec3::Constant(w);
-  (axis.sign > 0 ? hi : lo)[k] = extreme;
+  (opening.sign > 0 ? hi : lo)[k] = extreme;
   if (4.0 * std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff()) >= kLargest) {
     return {std::nullopt, "its case lies too far from the origin to be carved exactly"};
   }
@@ -765,7 +1201,7 @@ Attempt carved(const TriangleSoup& part, const std::string& name, const Axis& ax
   };
   for (int q = 0; q < 3; ++q) {
     for (int s : {-1, 1}) {
-      if (q == k) continue;
+      if (q == axis.k || (q == k && s == opening.sign)) continue;
       std::optional<PlateFace> p = plate_members(faces, box, q, s);
       if (!p || !takes_blocking([&](std::size_t t) { return bool(p->member[t]); })) continue;
       Cut c;
@@ -789,16 +1225,23 @@ Attempt carved(const TriangleSoup& part, const std::string& name, const Axis& ax
     return out;
   };
   const auto inside = [&](const Cut& c, std::size_t t) {
+    if (c.lid) return c.back_triangle(part, t);
     if (c.axis) return bool(c.axis->member[t]);
     const std::array<int, 3> side = sides_of(c, part.triangles[t]);
     return *std::min_element(side.begin(), side.end()) >= 0 &&
            *std::max_element(side.begin(), side.end()) > 0;
   };
   const auto touches = [&](const Cut& c, std::size_t t) {
+    if (c.lid) return c.back_triangle(part, t);
     if (c.axis) return bool(c.axis->member[t]);
     const std::array<int, 3> side = sides_of(c, part.triangles[t]);
     return *std::max_element(side.begin(), side.end()) > 0;
   };
+  if (lid) {
+    std::optional<Cut> c = lid_cut(part, faces, axis, opening, *lid, box, hi, lo, w, why);
+    if (!c) return {std::nullopt, why};
+    cuts.push_back(std::move(*c));
+  }
   for (const CaseFace& f : given) {
     // Vertical planes across no axis; the sides of the box are found above.
     if (f.normal.z() != 0.0 || f.normal.x() == 0.0 || f.normal.y() == 0.0) continue;
@@ -854,7 +1297,17 @@ Attempt carved(const TriangleSoup& part, const std::string& name, const Axis& ax
   const auto in_case = [&](const Vec3& p) {
     return (p.array() >= lo.array() + margin).all() && (p.array() <= hi.array() - margin).all();
   };
-  const auto beyond = [&](const Cut& c, const Vec3& p) { return (p - c.o).dot(c.d) / c.d.norm() > -margin; };
+  // Whether p lies in the region of c or within the margin of it.
+  const auto beyond = [&](const Cut& c, const Vec3& p) {
+    if (!((p - c.o).dot(c.d) / c.d.norm() > -margin)) return false;
+    return !c.lid || (p[k] > c.corner[k] - margin && p[k] < c.corner[k] + c.ru[k] + margin &&
+                      radial(p, k) > c.inner - margin);
+  };
+  // Whether a lid's pin foot at p lies in the lid, clear of its edges.
+  const auto in_lid = [&](const Cut& c, const Vec3& p) {
+    return p[k] >= c.corner[k] + margin && p[k] <= c.corner[k] + c.ru[k] - margin &&
+           radial(p, k) >= c.back + margin;
+  };
   std::vector<TriangleSoup> holes;
   std::vector<std::vector<TriangleSoup>> pins(cuts.size()), regions(cuts.size());
   for (std::size_t i = 0; i < cuts.size(); ++i) {
@@ -880,7 +1333,7 @@ Attempt carved(const TriangleSoup& part, const std::string& name, const Axis& ax
         }
       }
       for (const Vec3& q : samples(p, radius + margin, 0.0, buried)) {
-        if (!in_case(q)) return false;
+        if (!in_case(q) || (c.lid && !in_lid(c, q))) return false;
         for (std::size_t j = 0; j < i; ++j) {
           if (beyond(cuts[j], q)) return false;
         }
@@ -890,7 +1343,7 @@ Attempt carved(const TriangleSoup& part, const std::string& name, const Axis& ax
     std::vector<Vec3> found;
     for (int a = 0; a < 3; ++a) {
       for (int sigma : {-1, 1}) {
-        if ((a == k && sigma == axis.sign) || c.d[a] != 0.0) continue;
+        if ((a == k && sigma == opening.sign) || c.d[a] != 0.0) continue;
         Vec3 p0 = c.o;
         p0[a] = sigma > 0 ? box.hi[a] + w / 2.0 : box.lo[a] - w / 2.0;
         const Vec3 line = n.cross(axis_vector({a, 1}));
@@ -926,7 +1379,9 @@ Attempt carved(const TriangleSoup& part, const std::string& name, const Axis& ax
     }
     // The region: beyond the plane, well past the case on every other side.
     const double reach = snapped(4.0 * (hi - lo).norm() + (c.o - lo).norm(), kLengthBits);
-    if (c.axis) {
+    if (c.lid) {
+      regions[i] = std::move(c.regions);
+    } else if (c.axis) {
       Vec3 rlo = lo - Vec3::Constant(w), rhi = hi + Vec3::Constant(w);
       const int q = c.axis->q;
       (c.axis->s > 0 ? rlo : rhi)[q] = c.axis->e;
@@ -958,7 +1413,22 @@ Attempt carved(const TriangleSoup& part, const std::string& name, const Axis& ax
 
   TriangleSoup block = block_of(lo, Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ(), {0.0, hi.x() - lo.x()},
                                 {0.0, hi.y() - lo.y()}, {0.0, hi.z() - lo.z()});
-  std::optional<std::vector<TriangleSoup>> pieces = carve_pieces(block, part, regions, pins, holes, &why);
+  const auto no_rim = [&] {
+    return Attempt{std::nullopt, fmt::format("its face across {} does not bound a simple region", open_dir)};
+  };
+  if (lid) {
+    const double far = opening.sign > 0 ? box.lo[k] : box.hi[k];
+    std::optional<TriangleSoup> lidded =
+        lidded_block(lid_frame(lo, hi, opening, axis, far, w), faces, opening.sign);
+    if (!lidded) return no_rim();
+    block = std::move(*lidded);
+  } else if (!rectangle && !open_through(block, opening, faces, cuts.empty())) {
+    return no_rim();
+  }
+  // Nothing to cut: the case is the block less the part, built face by face.
+  std::optional<std::vector<TriangleSoup>> pieces =
+      cuts.empty() && !rectangle ? std::optional<std::vector<TriangleSoup>>({std::move(block)})
+                                 : carve_pieces(block, part, regions, pins, holes, &why);
   if (!pieces) return {std::nullopt, "carving its case failed: " + why};
   for (std::size_t i = 0; i < pieces->size(); ++i) {
     const ValidationReport report = validate((*pieces)[i]);
@@ -972,19 +1442,24 @@ Attempt carved(const TriangleSoup& part, const std::string& name, const Axis& ax
   }
 
   CastingCase out;
-  out.carved = true;
+  out.carved = !cuts.empty() || rectangle;
   out.soup = std::move(pieces->front());
   out.pull = axis_vector(axis);
+  out.opening = axis_vector(opening);
   out.lo = lo;
   out.hi = hi;
   const std::array<double, 2> plo = in_plane(box.lo, k), phi = in_plane(box.hi, k);
-  out.pour_area = (phi[0] - plo[0]) * (phi[1] - plo[1]);
+  out.pour_area = rectangle ? (phi[0] - plo[0]) * (phi[1] - plo[1]) : analysed->area;
+  const std::string opened =
+      rectangle ? fmt::format("({:.6g} x {:.6g})", phi[0] - plo[0], phi[1] - plo[1])
+                : fmt::format("({:.6g} in area, the case's rim cut round it)", analysed->area);
+  const std::string after = cuts.empty() ? std::string()
+                                         : fmt::format(" once the case's {} other piece{} off", cuts.size(),
+                                                       cuts.size() == 1 ? " is" : "s are");
   out.release_proof = fmt::format(
-      "{} leaves its case along {} once the case's {} other piece{} off: its flat face across {} ({:.6g} x "
-      "{:.6g}) is the case's opening, and none of the {} faces of {} against the main piece faces {}, by "
-      "exact orientation signs",
-      name, dir, cuts.size(), cuts.size() == 1 ? " is" : "s are", dir, phi[0] - plo[0], phi[1] - plo[1],
-      main_faces, name, dir);
+      "{} leaves its case along {}{}: its flat face across {} {} is the case's opening, and none of the {} "
+      "faces of {} against the main piece faces {}, by exact orientation signs",
+      name, dir, after, open_dir, opened, main_faces, name, dir);
   for (std::size_t i = 0; i < cuts.size(); ++i) {
     const Cut& c = cuts[i];
     CasePlate plate;
@@ -1003,6 +1478,21 @@ Attempt carved(const TriangleSoup& part, const std::string& name, const Axis& ax
     if (c.axis) {
       plate.face_axis = c.axis->q;
       plate.face_at = c.axis->e;
+    }
+    plate.hollow = c.hollow;
+    plate.hollow_along = c.hollow_along;
+    if (c.lid) {
+      plate.release_proof = fmt::format(
+          "piece {} (the lid over {}) comes off{} along {}: it touches {} only on the {} faces of its back "
+          "(every other face lies within {:.6g} of the axis, or on its split plane or its flat faces), "
+          "which face that way or run along it ({} do), by exact signs; its seams with the pieces left are "
+          "the split plane across that way and the plane of the part's far face along it, and its {} pins "
+          "run exactly along it out of their holes",
+          i + 1, name, i == 0 ? " first" : " next", vector_text(c.d), name, c.touching, c.inside, c.along,
+          c.pins.size());
+      out.release_proof += "; " + plate.release_proof;
+      out.plates.push_back(std::move(plate));
+      continue;
     }
     plate.release_proof = fmt::format(
         "piece {} (beyond {}) comes off{} along {}: the {} faces of {} it touches face that way or run "
@@ -1141,6 +1631,71 @@ Drafted drafted(const TriangleSoup& part, const Axis& axis, const CaseOptions& o
     }
   }
   return out;
+}
+
+// The case of a part of a cylinder mould (CaseOptions::cylinder_radius),
+// carved: a side part's (its split faces one plane through the axis) poured
+// through its flat top or bottom, its back under a lid that comes off first
+// along the split face's normal, and the part then pulled that way; a base
+// part's poured through a flat face across the axis that it leaves by.
+CastingCase cylinder_case(const TriangleSoup& part, const std::string& name, const std::vector<Axis>& axes,
+                          const CaseOptions& options,
+                          const std::function<std::string(const Vec3&)>& what_is_at,
+                          const std::vector<CaseFace>& faces) {
+  const double radius = *options.cylinder_radius;
+  if (!(radius > 0.0) || !std::isfinite(radius)) {
+    throw GeometryError("case",
+                        fmt::format("{}: its block's radius {} is not a length above 0", name, radius));
+  }
+  const std::string undrafted =
+      "no face leans: the draft leans a box mould's flat faces along the pull, and this part's back is the "
+      "block's cylinder";
+  std::string reasons;
+  const auto refused = [&](const Axis& pull, const Axis& opening, const std::string& why) {
+    reasons += fmt::format("{}poured through {} and pulled along {}, {}", reasons.empty() ? "" : "; ",
+                           axis_name(opening), axis_name(pull), why);
+  };
+  if (faces.empty()) {
+    for (const Axis& axis : axes) {
+      if (axis.k != 2) continue;  // across the axis: a curved side cannot be poured level
+      Attempt a = carved(part, name, axis, axis, false, std::nullopt, options, {}, what_is_at);
+      if (a.built) {
+        a.built->undrafted = {undrafted};
+        return std::move(*a.built);
+      }
+      refused(axis, axis, a.why_not);
+    }
+    throw GeometryError("case", fmt::format("no casting case releases {}: {}", name, reasons));
+  }
+  // The side part's split faces: one plane through the axis, across x or y.
+  const Vec3 n = faces.front().normal;
+  std::optional<Axis> pull;
+  for (int q = 0; q < 2; ++q) {
+    if (std::abs(std::abs(n[q]) - 1.0) <= 1e-12 && std::abs(n[1 - q]) <= 1e-12 && n.z() == 0.0) {
+      pull = Axis{q, n[q] > 0.0 ? -1 : 1};
+    }
+  }
+  const bool one_plane = std::all_of(faces.begin(), faces.end(), [&](const CaseFace& f) {
+    return (f.normal - n).norm() <= 1e-12 && std::abs(f.point.dot(n)) <= 1e-9 * (1.0 + f.point.norm());
+  });
+  if (!pull || !one_plane) {
+    throw GeometryError(
+        "case",
+        fmt::format("no casting case is made yet for {}: its split faces are not one plane through the axis "
+                    "(a cylinder mould in more than 2 parts), so the lid over its curved back would come off "
+                    "between two boards, each with its keys; use 2 parts or `block: box`",
+                    name));
+  }
+  for (int sign : {1, -1}) {
+    const Axis opening{2, sign};
+    Attempt a = carved(part, name, *pull, opening, false, radius, options, {}, what_is_at);
+    if (a.built) {
+      a.built->undrafted = {undrafted};
+      return std::move(*a.built);
+    }
+    refused(*pull, opening, a.why_not);
+  }
+  throw GeometryError("case", fmt::format("no casting case with a lid releases {}: {}", name, reasons));
 }
 
 }  // namespace
@@ -1305,6 +1860,7 @@ CastingCase build_casting_case(const TriangleSoup& part, const std::string& name
   std::stable_sort(axes.begin(), axes.end(), [&](const Axis& a, const Axis& b) {
     return outward[a.k] * a.sign > outward[b.k] * b.sign;
   });
+  if (options.cylinder_radius) return cylinder_case(part, name, axes, options, what_is_at, faces);
   std::string first_reason;
   std::vector<Axis> caught;  // the directions with a flat face to pour through, where faces catch
   for (const Axis& axis : axes) {
@@ -1325,7 +1881,7 @@ CastingCase build_casting_case(const TriangleSoup& part, const std::string& name
     // Leaned first: carving is costly, and a part carved one way leaned mostly is too.
     Drafted d = drafted(part, axis, options, what_is_at);
     const auto build = [&](const TriangleSoup& p) {
-      return carved(p, name, axis, options, faces, what_is_at);
+      return carved(p, name, axis, axis, true, std::nullopt, options, faces, what_is_at);
     };
     if (std::optional<CastingCase> c = leaned(d, build)) return std::move(*c);
     Attempt a = build(part);

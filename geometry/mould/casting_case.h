@@ -47,6 +47,13 @@ struct CaseOptions {
   /// of it touches no other part, so leaning it changes no joint. None: no
   /// face leans.
   std::optional<BoundingBox> outside;
+  /// The radius of the mould's cylinder block about the z axis, when the
+  /// part is a part of such a mould (none: a box block). Its back is then
+  /// that cylinder, which plaster poured level cannot form: a side part's
+  /// case is poured through the part's flat top (or bottom), its back held by
+  /// a lid that comes off first (CasePlate::hollow), and the part then
+  /// leaves the main piece along its split face's normal.
+  std::optional<double> cylinder_radius;
 };
 
 /// A face of the part leaned by the draft: the part less the prism swept
@@ -107,7 +114,13 @@ struct CasePlate {
   /// box `face_axis` >= 0, the sockets behind that face filled).
   Vec3 corner{0.0, 0.0, 0.0}, u{0.0, 0.0, 0.0}, v{0.0, 0.0, 0.0}, d{0.0, 0.0, 0.0};
   int face_axis = -1;
-  double face_at = 0.0;                       ///< that face's coordinate along face_axis
+  double face_at = 0.0;  ///< that face's coordinate along face_axis
+  /// A lid over a cylinder block's back: its region less the prism over the
+  /// polygon `hollow` (in the plane across the case's opening through the
+  /// region's corner, inscribed in the block's circle and holding all of the
+  /// part but its back) swept along `hollow_along` through the region.
+  std::vector<Vec3> hollow;
+  Vec3 hollow_along{0.0, 0.0, 0.0};
   Vec3 lo{0.0, 0.0, 0.0}, hi{0.0, 0.0, 0.0};  ///< the slab's box (carved: the piece's bounding box)
   std::size_t features = 0;                   ///< the regions behind the face it fills (sockets)
   /// Its two pins (in the case's walls beside the face, a third of the way
@@ -125,8 +138,13 @@ struct CastingCase {
   /// Unit axis direction the part leaves the case along; the case's opening
   /// faces it and the case stands on its opposite face (printed that side down).
   Vec3 pull{0.0, 0.0, 0.0};
+  /// Unit axis direction of the case's opening, through which plaster is
+  /// poured (the case's box is open on that side): the pull, but for a
+  /// lidded case (a cylinder mould's side part), poured through the part's
+  /// flat top and pulled along its split face's normal once the lid is off.
+  Vec3 opening{0.0, 0.0, 0.0};
   Vec3 lo{0.0, 0.0, 0.0}, hi{0.0, 0.0, 0.0};  ///< the case's box (with its plate's slab)
-  double pour_area = 0.0;                     ///< the opening: the part's pour face
+  double pour_area = 0.0;                     ///< the opening: the part's pour face's area
   /// Why the part leaves the case: no face of the part but the pour face
   /// (and the plate's, the plate off first) faces the pull (decided by exact
   /// orientation signs).

@@ -66,6 +66,49 @@ MouldOptions box_options(int parts, int keys, bool base) {
   return o;
 }
 
+// A carved case: every piece a valid solid with two pins, together filling
+// the case's box less the part, plus the pins standing out of the pieces,
+// less their holes.
+void check_pieces_fill_box(const CastingCase& c, const TriangleSoup& part, const CaseOptions& options) {
+  const ValidationReport main = validate(c.soup);
+  CHECK(main.valid());
+  double pieces = main.volume, pins = 0.0;
+  for (const CasePlate& p : c.plates) {
+    INFO(p.face);
+    const ValidationReport v = validate(p.soup);
+    CHECK(v.valid());
+    pieces += v.volume;
+    REQUIRE(p.pins.size() == 2);
+    for (const CasePin& pin : p.pins) {
+      pins += polygon_area(pin.radius, pin.sides) * pin.height -
+              polygon_area(pin.hole_radius, pin.sides) * pin.hole_depth;
+    }
+  }
+  const double expected = (c.hi - c.lo).prod() - signed_volume(part) + pins;
+  CHECK(pieces == Approx(expected).margin(1e-3 * polygon_area(options.wall / 4.0, 8)));
+}
+
+// Taken off in order, each piece of a carved case clears what is left as
+// soon as it moves (a slanted seam's points are rounded to doubles, so
+// assembled the pieces may cross by a rounding, which the volumes bound),
+// and not the other way; then the part leaves the main piece along the
+// pull, and not against it.
+void check_pieces_come_off(const CastingCase& c, const TriangleSoup& part) {
+  for (std::size_t i = 0; i < c.plates.size(); ++i) {
+    INFO(c.plates[i].face);
+    std::vector<const TriangleSoup*> left{&part, &c.soup};
+    for (std::size_t j = i + 1; j < c.plates.size(); ++j) left.push_back(&c.plates[j].soup);
+    for (double by : {1e-6, 0.05}) {
+      const TriangleSoup off = moved(c.plates[i].soup, by * c.plates[i].pull);
+      for (const TriangleSoup* other : left) CHECK_FALSE(interpenetrate(off, *other));
+    }
+    CHECK(interpenetrate(moved(c.plates[i].soup, -0.05 * c.plates[i].pull), part));
+  }
+  CHECK_FALSE(interpenetrate(moved(part, 1e-6 * c.pull), c.soup));
+  CHECK_FALSE(interpenetrate(moved(part, 0.3 * c.pull), c.soup));
+  CHECK(interpenetrate(moved(part, -0.3 * c.pull), c.soup));
+}
+
 }  // namespace
 
 TEST_CASE("casting case: each part of a two-part box mould has a valid case whose cavity is the part",
@@ -254,42 +297,71 @@ TEST_CASE(
     REQUIRE(c.plates.size() >= 2);
     CHECK(c.plates.front().face == "its face across -z");
     CHECK(c.plates.front().pull == Vec3(0.0, 0.0, -1.0));
-    // Every piece a valid solid; together they fill the box less the part,
-    // plus the pins standing out of the pieces, less their holes.
-    const ValidationReport main = validate(c.soup);
-    CHECK(main.valid());
-    double pieces = main.volume, pins = 0.0;
-    for (const CasePlate& p : c.plates) {
-      INFO(p.face);
-      const ValidationReport v = validate(p.soup);
-      CHECK(v.valid());
-      pieces += v.volume;
-      REQUIRE(p.pins.size() == 2);
-      for (const CasePin& pin : p.pins) {
-        pins += polygon_area(pin.radius, pin.sides) * pin.height -
-                polygon_area(pin.hole_radius, pin.sides) * pin.hole_depth;
-      }
-    }
-    const double expected = (c.hi - c.lo).prod() - signed_volume(side.soup) + pins;
-    CHECK(pieces == Approx(expected).margin(1e-3 * polygon_area(options.wall / 4.0, 8)));
-    // Taken off in order, each piece clears what is left, as soon as it
-    // moves (a slanted seam's points are rounded to doubles, so assembled
-    // the pieces may cross by a rounding, which the volumes above bound);
-    // then the part leaves the main piece along the pull, and not against it.
-    for (std::size_t i = 0; i < c.plates.size(); ++i) {
-      INFO(c.plates[i].face);
-      std::vector<const TriangleSoup*> left{&side.soup, &c.soup};
-      for (std::size_t j = i + 1; j < c.plates.size(); ++j) left.push_back(&c.plates[j].soup);
-      for (double by : {1e-6, 0.05}) {
-        const TriangleSoup off = moved(c.plates[i].soup, by * c.plates[i].pull);
-        for (const TriangleSoup* other : left) CHECK_FALSE(interpenetrate(off, *other));
-      }
-      CHECK(interpenetrate(moved(c.plates[i].soup, -0.05 * c.plates[i].pull), side.soup));
-    }
-    CHECK_FALSE(interpenetrate(moved(side.soup, 1e-6 * c.pull), c.soup));
-    CHECK_FALSE(interpenetrate(moved(side.soup, 0.3 * c.pull), c.soup));
-    CHECK(interpenetrate(moved(side.soup, -0.3 * c.pull), c.soup));
+    check_pieces_fill_box(c, side.soup, options);
+    check_pieces_come_off(c, side.soup);
     CHECK(c.release_proof.find("comes off first") != std::string::npos);
+  }
+}
+
+TEST_CASE(
+    "casting case: a cylinder mould's side parts are cast upright under a lid, its base part in one piece",
+    "[mould][case][carved][lid]") {
+  const CompositeCurve profile = example_profile("vessel_golden_solid.yaml");
+  for (const bool base : {false, true}) {
+    MouldOptions o = cm_options();
+    o.keys = 2;
+    o.base_part = base;
+    const Mould mould = build_mould(profile, o);
+    CaseOptions options = case_options();
+    options.cylinder_radius = mould.section.block_radius;
+    for (const MouldPart& part : mould.parts) {
+      INFO(part.name << (base ? " over a base part" : ""));
+      const CastingCase c =
+          build_casting_case(part.soup, part.name, outward_of(part), options, {}, split_faces(part));
+      INFO(c.release_proof);
+      // Carved by exact booleans but for the base part's, built face by face.
+      CHECK(c.carved == (part.kind == MouldPartKind::Side));
+      check_pieces_fill_box(c, part.soup, options);
+      if (part.kind == MouldPartKind::Base) {
+        // Poured through its flat bottom, and pulled out that way off its keys.
+        CHECK(c.plates.empty());
+        CHECK(c.pull == Vec3(0.0, 0.0, -1.0));
+        CHECK(c.opening == c.pull);
+        const double r = options.cylinder_radius.value();
+        CHECK(c.pour_area == Approx(M_PI * r * r).epsilon(1e-3));
+        CHECK_FALSE(interpenetrate(moved(part.soup, 0.3 * c.pull), c.soup));
+        CHECK(interpenetrate(moved(part.soup, -0.3 * c.pull), c.soup));
+        continue;
+      }
+      // Poured through its flat top; the lid over its back (after the plate
+      // under it, over a base part) comes off along the split face's normal,
+      // and the part then leaves the main piece that way.
+      CHECK(c.opening == Vec3(0.0, 0.0, 1.0));
+      const Vec3 out = outward_of(part);
+      CHECK(c.pull == Vec3(0.0, out.y() > 0.0 ? 1.0 : -1.0, 0.0));
+      REQUIRE(c.plates.size() == (base ? 2U : 1U));
+      const CasePlate& lid = c.plates.back();
+      CHECK(lid.face == "its curved back");
+      CHECK(lid.pull == c.pull);
+      CHECK(lid.hollow.size() > 8);
+      if (base) CHECK(c.plates.front().face == "its face across -z");
+      CHECK(c.pour_area < 0.5 * M_PI * options.cylinder_radius.value() * options.cylinder_radius.value());
+      check_pieces_come_off(c, part.soup);
+      CHECK(c.release_proof.find("the lid over") != std::string::npos);
+      // Built again, the same triangles in the same order: the carved
+      // pieces do not depend on what CGAL did before.
+      if (part.name == "side 1 of 2") {
+        const CastingCase again =
+            build_casting_case(part.soup, part.name, outward_of(part), options, {}, split_faces(part));
+        CHECK(again.soup.vertices == c.soup.vertices);
+        CHECK(again.soup.triangles == c.soup.triangles);
+        REQUIRE(again.plates.size() == c.plates.size());
+        for (std::size_t i = 0; i < c.plates.size(); ++i) {
+          CHECK(again.plates[i].soup.vertices == c.plates[i].soup.vertices);
+          CHECK(again.plates[i].soup.triangles == c.plates[i].soup.triangles);
+        }
+      }
+    }
   }
 }
 
@@ -302,6 +374,18 @@ TEST_CASE("casting case: parts no single pull clears, or without a flat face, ar
     const MouldPart& side = mould.parts.front();
     CHECK_THROWS_WITH(build_casting_case(side.soup, side.name, outward_of(side), case_options()),
                       Catch::Contains("no flat face across +y") || Catch::Contains("does not cover"));
+  }
+  SECTION("a cylinder mould in three parts: its split faces are not one plane") {
+    MouldOptions o = cm_options();
+    o.parts = 3;
+    o.keys = 0;
+    const Mould mould = build_mould(profile, o);
+    CaseOptions options = case_options();
+    options.cylinder_radius = mould.section.block_radius;
+    const MouldPart& side = mould.parts.front();
+    CHECK_THROWS_WITH(
+        build_casting_case(side.soup, side.name, outward_of(side), options, {}, split_faces(side)),
+        Catch::Contains("not one plane through the axis"));
   }
   SECTION("three parts with keys on planes 120 degrees apart") {
     const Mould mould = build_mould(profile, box_options(3, 2, false));
