@@ -375,6 +375,8 @@ std::vector<Facts> add_cases(const VesselDesign& design, const Mould& mould, con
     outside.hi = outside.hi.cwiseMax(b.hi);
   }
   case_options.outside = outside;
+  // A cylinder block's back is curved: its side parts' cases are lidded.
+  if (design.mould->block == BlockShape::Cylinder) case_options.cylinder_radius = mould.section.block_radius;
   for (std::size_t i = 0; i < mould.parts.size(); ++i) {
     const MouldPart& p = mould.parts[i];
     const std::string name = out.parts[first + i].name;  // copied: the cases are added to out.parts
@@ -397,7 +399,8 @@ std::vector<Facts> add_cases(const VesselDesign& design, const Mould& mould, con
     try {
       const CastingCase c = build_casting_case(out.parts[first + i].mesh, name, outward, case_options,
                                                what_is_at, split_faces(p));
-      VesselProducts::CaseBox box{"case-" + name, i, c.lo, c.hi, c.pull, std::nullopt, c.carved, {}, {}};
+      VesselProducts::CaseBox box{"case-" + name, i,        c.lo, c.hi, c.pull, c.opening,
+                                  std::nullopt,   c.carved, {},   {}};
       // A piece of the case as it is printed (standing at the origin),
       // validated in full where it is written, its facts; with a bed it does
       // not fit, its sections (each validated in full) in its place.
@@ -454,6 +457,7 @@ std::vector<Facts> add_cases(const VesselDesign& design, const Mould& mould, con
       }
       facts.set("wall", design.casting_case.wall)
           .set("clearance", design.casting_case.clearance)
+          .set("opening", std::vector<double>{c.opening.x(), c.opening.y(), c.opening.z()})
           .set("opening_area", c.pour_area);
       // The part as the case casts it: its free faces along the pull leaned.
       std::vector<std::string> leaned;
@@ -495,8 +499,9 @@ std::vector<Facts> add_cases(const VesselDesign& design, const Mould& mould, con
           const CasePlate& cp = c.plates[n];
           const std::string piece_name = fmt::format("{}-piece-{}", box.name, n + 1);
           Facts f = plate_facts(cp, piece_name);
-          VesselProducts::CaseBox::Piece region{piece_name,   cp.corner,  cp.u, cp.v, cp.d,
-                                                cp.face_axis, cp.face_at, {},   0.0};
+          VesselProducts::CaseBox::Piece region{
+              piece_name, cp.corner,       cp.u, cp.v, cp.d, cp.face_axis, cp.face_at,
+              cp.hollow,  cp.hollow_along, {},   0.0};
           for (const CasePin& pin : cp.pins) {
             // The cylinder from its end inside the piece, `buried` behind the seam.
             region.pins.push_back({pin.base - pin.buried * pin.axis, pin.axis, pin.radius,

@@ -24,7 +24,7 @@ std::vector<OutputFormat> make_table() {
   const KindSet every = kinds<CurveDesign, VesselDesign, CountertopDesign, SurfaceDesign>();
   const OutputSource mesh = OutputSource::Meshes, drawing = OutputSource::Drawing;
   const DesignBlock none = DesignBlock::None, mould = DesignBlock::Mould, cnc = DesignBlock::Cnc,
-                    slab = DesignBlock::Slab, box_mould = DesignBlock::BoxMould;
+                    slab = DesignBlock::Slab, case_mould = DesignBlock::CaseMould;
   return {
       {"stl", "binary STL mesh, in the export unit", mesh, none, meshes, meshes, ".stl", &float32_error,
        &encode_stl_output},
@@ -136,7 +136,7 @@ std::vector<OutputFormat> make_table() {
        "one STL per casting case of the mould's parts (key case): the open box plaster is poured into to "
        "cast that part, in the export unit",
        mesh,
-       box_mould,
+       case_mould,
        vessels,
        {},
        ".case-PART.stl",
@@ -145,7 +145,7 @@ std::vector<OutputFormat> make_table() {
       {"case_3mf",
        "the mould parts' casting cases as separate objects of one 3MF",
        mesh,
-       box_mould,
+       case_mould,
        vessels,
        {},
        ".case.3mf",
@@ -154,7 +154,7 @@ std::vector<OutputFormat> make_table() {
       {"case_step",
        "STEP (AP214) of each casting case as an exact solid, in the mould's frame and the design's unit",
        OutputSource::Exact,
-       box_mould,
+       case_mould,
        vessels,
        {},
        ".case-PART.step",
@@ -233,9 +233,10 @@ bool has_block(const Design& design, DesignBlock block) {
       const auto* v = std::get_if<VesselDesign>(&design.body);
       return v != nullptr && v->mould.has_value();
     }
-    case DesignBlock::BoxMould: {
+    case DesignBlock::CaseMould: {
       const auto* v = std::get_if<VesselDesign>(&design.body);
-      return v != nullptr && v->mould.has_value() && v->mould->block == BlockShape::Box;
+      return v != nullptr && v->mould.has_value() &&
+             (v->mould->block == BlockShape::Box || v->mould->parts == 2);
     }
     case DesignBlock::Cnc: {
       const auto* c = std::get_if<CountertopDesign>(&design.body);
@@ -292,10 +293,10 @@ std::vector<const OutputFormat*> resolve_outputs(const Design& design) {
     if (!has_block(design, format->block)) {
       const char* needs =
           format->block == DesignBlock::Mould ? "a `mould:` section"
-          : format->block == DesignBlock::BoxMould
-              ? "a `mould:` section with `block: box` (plaster poured into a case sets level "
-                "against a flat outer face of the part, and a cylinder block's curved side has "
-                "none)"
+          : format->block == DesignBlock::CaseMould
+              ? "a `mould:` section with `block: box` or `parts: 2` (a cylinder mould's 3 parts have split "
+                "faces 120 degrees apart, and the lid that holds a part's curved back while plaster sets "
+                "comes off across one split plane only)"
           : format->block == DesignBlock::Cnc ? "a `cnc:` section"
                                               : "a `slab:` section (a kitchen)";
       throw FileError(design.common.path, r.line, r.column,

@@ -45,9 +45,10 @@ KindSet kinds() {
 enum class DesignBlock {
   None,
   Mould,  ///< a vessel's `mould:` (the mould's parts)
-  /// a vessel's `mould:` with `block: box` (casting cases: plaster is poured
-  /// level against the box's flat sides; a cylinder's curved side has none)
-  BoxMould,
+  /// a vessel's `mould:` with `block: box`, or in 2 parts (casting cases:
+  /// a cylinder mould's 3 parts have split faces 120 degrees apart, and the
+  /// lid over a curved back comes off across one split plane only)
+  CaseMould,
   Cnc,   ///< a countertop's `cnc:` (the router path)
   Slab,  ///< a countertop's `slab:` (a kitchen: its pieces on slabs)
 };

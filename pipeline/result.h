@@ -160,7 +160,8 @@ struct VesselProducts {
     std::string name;  ///< "case-side-1"
     std::size_t part = 0;
     Vec3 lo{0.0, 0.0, 0.0}, hi{0.0, 0.0, 0.0};
-    Vec3 pull{0.0, 0.0, 1.0};  ///< an axis direction: the opening is the box's side it points to
+    Vec3 pull{0.0, 0.0, 1.0};     ///< an axis direction: the way the part leaves the case
+    Vec3 opening{0.0, 0.0, 1.0};  ///< an axis direction: the open side of the box, where plaster is poured
     /// A two-piece case's plate: the slab `lo`..`hi` of the box beyond the
     /// part's flat face across `pull` (an axis direction, the way the plate
     /// comes off), with that face's keys (it fills their sockets).
@@ -189,6 +190,9 @@ struct VesselProducts {
       Vec3 corner{0.0, 0.0, 0.0}, u{0.0, 0.0, 0.0}, v{0.0, 0.0, 0.0}, d{0.0, 0.0, 0.0};
       int face_axis = -1;
       double face_at = 0.0;
+      /// A lid: its region less the prism over `hollow` swept along `hollow_along` (CasePlate).
+      std::vector<Vec3> hollow;
+      Vec3 hollow_along{0.0, 0.0, 0.0};
       /// Its pins: `base` the centre of the cylinder's end inside the piece,
       /// `height` its whole length (`behind` of it inside the piece), and
       /// the hole's whole length `hole_depth` from the same end.

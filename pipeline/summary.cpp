@@ -82,8 +82,15 @@ void print_build_facts(const Facts& facts, const std::string& u, std::ostream& o
         if (c.contains("plate"))
           made += fmt::format(" once its plate is off along {}", along(c.group("plate")));
         if (const Facts::Value* pieces = c.find("pieces")) {
-          const std::size_t n = std::get<std::vector<Facts>>(*pieces).size();
-          made += fmt::format(" once its {} other piece{} off", n, n == 1 ? " is" : "s are");
+          const auto& list = std::get<std::vector<Facts>>(*pieces);
+          const bool lid = std::any_of(list.begin(), list.end(),
+                                       [](const Facts& p) { return p.text("beyond") == "its curved back"; });
+          const std::size_t n = list.size() - (lid ? 1 : 0);
+          if (lid && n == 0) made += " once its lid is off";
+          if (lid && n > 0)
+            made += fmt::format(" once its {} other piece{} and its lid are off", n, n == 1 ? "" : "s");
+          if (!lid && n > 0)
+            made += fmt::format(" once its {} other piece{} off", n, n == 1 ? " is" : "s are");
         }
       }
       out << fmt::format("  casting cases: {} of {} parts ({})\n", count, all.size(),

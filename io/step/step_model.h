@@ -92,19 +92,21 @@ struct StepHemisphere {
   bool added = true;
 };
 
-/// A region a casting case is cut by: the box `corner` + a u + b v + c d for
-/// a, b, c in [0, 1] (u, v, d at right angles, right-handed), with the
-/// half-balls `fills` added (the sockets of the part's face it lies beyond).
-struct StepRegion {
-  Vec3 corner{0.0, 0.0, 0.0};
-  Vec3 u{1.0, 0.0, 0.0}, v{0.0, 1.0, 0.0}, d{0.0, 0.0, 1.0};
-  std::vector<StepHemisphere> fills;
-};
-
 /// A prism: the planar polygon `section` swept along `along`.
 struct StepPrism {
   std::vector<Vec3> section;
   Vec3 along{0.0, 0.0, 0.0};
+};
+
+/// A region a casting case is cut by: the box `corner` + a u + b v + c d for
+/// a, b, c in [0, 1] (u, v, d at right angles, right-handed), with the
+/// half-balls `fills` added (the sockets of the part's face it lies beyond)
+/// and the prisms `hollows` taken away (a lid's: the cylinder block's inside).
+struct StepRegion {
+  Vec3 corner{0.0, 0.0, 0.0};
+  Vec3 u{1.0, 0.0, 0.0}, v{0.0, 1.0, 0.0}, d{0.0, 0.0, 1.0};
+  std::vector<StepHemisphere> fills;
+  std::vector<StepPrism> hollows;
 };
 
 /// A solid cylinder: its base circle of `radius` about `base`, extending

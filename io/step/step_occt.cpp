@@ -1015,7 +1015,7 @@ TopoDS_Shape make_case(const StepBody& body) {
   return shape;
 }
 
-// A region a carved case is cut by: its box, with its fills.
+// A region a carved case is cut by: its box, with its fills, less its hollows.
 TopoDS_Shape make_region(const StepRegion& r) {
   const double a = r.u.norm(), b = r.v.norm(), c = r.d.norm();
   if (!(a > 0.0 && b > 0.0 && c > 0.0)) throw std::runtime_error("a case's region without room");
@@ -1026,6 +1026,11 @@ TopoDS_Shape make_region(const StepRegion& r) {
     TopTools_ListOfShape fills;
     for (const StepHemisphere& h : r.fills) fills.Append(make_hemisphere(h));
     shape = the_solid(boolean<BRepAlgoAPI_Fuse>(shape, fills, "filling the sockets of a piece's face"));
+  }
+  if (!r.hollows.empty()) {
+    TopTools_ListOfShape hollows;
+    for (const StepPrism& p : r.hollows) hollows.Append(make_prism(p));
+    shape = the_solid(boolean<BRepAlgoAPI_Cut>(shape, hollows, "taking the block's inside from a lid"));
   }
   return shape;
 }

@@ -345,7 +345,9 @@ EncodedFiles encode_case_step_output(const EncodeContext& c) {
       body.drafts.push_back({{d.section.begin(), d.section.end()}, d.along});
     }
     for (int k = 0; k < 3; ++k) {
-      if (box.pull[k] != 0.0) (box.pull[k] > 0.0 ? body.case_hi : body.case_lo)[k] = face(k, box.pull[k]);
+      if (box.opening[k] != 0.0) {
+        (box.opening[k] > 0.0 ? body.case_hi : body.case_lo)[k] = face(k, box.opening[k]);
+      }
     }
     Encoded e;
     if (box.carved) {
@@ -353,7 +355,8 @@ EncodedFiles encode_case_step_output(const EncodeContext& c) {
       // main piece first, less the pins' holes.
       std::vector<StepRegion> regions;
       for (const VesselProducts::CaseBox::Piece& p : box.pieces) {
-        StepRegion r{p.corner, p.u, p.v, p.d, {}};
+        StepRegion r{p.corner, p.u, p.v, p.d, {}, {}};
+        if (!p.hollow.empty()) r.hollows.push_back({p.hollow, p.hollow_along});
         if (p.face_axis >= 0) {
           // Its seam on the part's exact face.
           const int q = p.face_axis;

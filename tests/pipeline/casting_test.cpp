@@ -226,13 +226,66 @@ TEST_CASE("casting cases: a side part over a keyed base gets a plate under it, o
   CHECK(text.find("5 objects, none interpenetrating") != std::string::npos);
 }
 
-TEST_CASE("casting cases: a cylinder mould is refused, a part no case releases is named",
-          "[pipeline][mould][case]") {
+TEST_CASE("casting cases: a cylinder mould's halves are cast upright under lids, its base in one piece",
+          "[pipeline][mould][case][lid]") {
+  const fs::path dir = fresh_dir("casting_cases_cylinder");
+  std::string text;
+  REQUIRE(run_cli_json({"run", example("mould_golden.yaml"), "-D", "outputs=[case_stl, case_3mf]", "-D",
+                        "mould.base_part=true", "-D", "mould.keys=2", "-o", dir.string() + "/", "--json"},
+                       &text) == 0);
+  const nlohmann::json report = nlohmann::json::parse(text);
+  const nlohmann::json& cases = report.at(0).at("build").at("mould").at("cases");
+  REQUIRE(cases.size() == 3);
+  for (int side = 0; side < 2; ++side) {
+    const nlohmann::json& c = cases.at(side);
+    INFO(c.dump());
+    const double y = side == 0 ? 1.0 : -1.0;
+    CHECK(c.at("pull") == nlohmann::json::array({0.0, y, 0.0}));
+    CHECK(c.at("opening") == nlohmann::json::array({0.0, 0.0, 1.0}));
+    // The plate under it (the base keys' sockets), then the lid over its back.
+    REQUIRE(c.at("pieces").size() == 2);
+    CHECK(c.at("pieces").at(0).at("beyond") == "its face across -z");
+    CHECK(c.at("pieces").at(1).at("beyond") == "its curved back");
+    CHECK(c.at("pieces").at(1).at("pull") == nlohmann::json::array({0.0, y, 0.0}));
+    for (const nlohmann::json& piece : c.at("pieces")) CHECK(piece.at("pins").size() == 2);
+    CHECK_THAT(c.at("release").get<std::string>(),
+               Catch::Contains("its flat face across +z") &&
+                   Catch::Contains("comes off next along (0, " + std::string(side == 0 ? "1" : "-1") +
+                                   ", 0): it touches side-" + std::to_string(side + 1) + " only on the"));
+    CHECK(c.at("draft").at("not_leaned").size() == 1);
+  }
+  CHECK(cases.at(2).at("pull") == nlohmann::json::array({0.0, 0.0, -1.0}));
+  const bool base_pieces = cases.at(2).contains("pieces") && !cases.at(2).at("pieces").empty();
+  CHECK_FALSE(base_pieces);
+  for (const char* file : {"case-base", "case-side-1", "case-side-1-piece-1", "case-side-1-piece-2",
+                           "case-side-2", "case-side-2-piece-2"}) {
+    const std::string stl = (dir / (std::string("mould_golden.") + file + ".stl")).string();
+    INFO(stl);
+    REQUIRE(fs::exists(stl));
+    std::string checked;
+    CHECK(run_cli({"check", stl}, &checked) == 0);
+    CHECK(checked.find(": valid") != std::string::npos);
+  }
+  std::string checked;
+  CHECK(run_cli({"check", (dir / "mould_golden.case.3mf").string()}, &checked) == 0);
+  CHECK(checked.find("7 objects, none interpenetrating") != std::string::npos);
+  // Without a base part: the lid alone, and the summary says so.
+  CHECK(run_cli({"run", example("mould_golden.yaml"), "-D", "outputs=[case_stl]", "-o", dir.string() + "/"},
+                &text) == 0);
+  CHECK(text.find(
+            "casting cases: 2 of 2 parts (side-1 lifts out along +y once its lid is off, side-2 lifts out "
+            "along -y once its lid is off)") != std::string::npos);
+  // In three parts the split faces are 120 degrees apart: bad input, saying why, nothing written.
+  CHECK(run_cli({"run", example("mould_golden.yaml"), "-D", "outputs=[case_stl]", "-D", "mould.parts=3", "-D",
+                 "mould.keys=0", "-o", (dir / "three").string() + "/"},
+                &text) == 2);
+  CHECK(text.find("case_stl needs a `mould:` section with `block: box` or `parts: 2`") != std::string::npos);
+  CHECK_FALSE(fs::exists(dir / "three" / "mould_golden.case-side-1.stl"));
+}
+
+TEST_CASE("casting cases: a part no case releases is named", "[pipeline][mould][case]") {
   const fs::path dir = fresh_dir("casting_cases_refused");
   std::string text;
-  CHECK(run_cli({"run", example("mould_golden.yaml"), "-D", "outputs=[case_stl]", "-o", dir.string() + "/"},
-                &text) == 2);
-  CHECK(text.find("case_stl needs a `mould:` section with `block: box`") != std::string::npos);
   // Three parts keyed on planes 120 degrees apart, on a base: the base pours
   // through its bottom; each side's keys on its slanted split faces catch on
   // any case pulled along an axis, so its case is carved in pieces taken off
@@ -355,6 +408,8 @@ TEST_CASE("casting cases: PrusaSlicer finds each case manifold and slices it sta
                    dir.string() + "/"}) == 0);
   REQUIRE(run_cli({"run", example("mould_golden_box_base.yaml"), "-D", "outputs=[case_stl]", "-o",
                    dir.string() + "/"}) == 0);  // in cm, written in mm
+  REQUIRE(run_cli({"run", example("mould_golden.yaml"), "-D", "outputs=[case_stl]", "-o",
+                   dir.string() + "/"}) == 0);  // a cylinder mould, in cm
   struct Piece {
     const char* name;
     double height;  // mm, as it stands
@@ -362,10 +417,14 @@ TEST_CASE("casting cases: PrusaSlicer finds each case manifold and slices it sta
   // A case stands on its floor, its opening up: 124 mm tall for the big half
   // (its 113 mm depth, a key, the floor); the golden half's over its base
   // 70.5. The plate stands on its outer face: 5 mm and the socket's 6.2 mm dome.
+  // A cylinder mould's half stands on its board, 75.5 mm (its 59.5 mm radius,
+  // a key's 6 mm bump and two 5 mm walls); its lid on its back, 67.0 mm.
   for (const Piece& piece : {Piece{"mould_box_cases.case-side-1", 123.988},
                              {"mould_box_cases.case-side-2", 123.988},
                              {"mould_golden_box_base.case-side-1", 70.520},
-                             {"mould_golden_box_base.case-side-1-plate", 11.2}}) {
+                             {"mould_golden_box_base.case-side-1-plate", 11.2},
+                             {"mould_golden.case-side-1", 75.520},
+                             {"mould_golden.case-side-1-piece-1", 67.020}}) {
     const std::string name = piece.name;
     INFO(name);
     const fs::path stl = dir / (name + ".stl");

@@ -110,7 +110,8 @@ mould: {parts: 2, wall: 3, spare: 2.5, key_radius: 0.6, key_clearance: 0.02}
   for (const auto& [name, place, users] :
        {std::tuple<std::string, std::string, std::string>{"cut", ":12:6: cnc", "add nc or toolpath_svg"},
         {"cup", ":10:8: mould",
-         "add mould_stl, mould_3mf, mould_step, master_stl, master_3mf or master_step"}}) {
+         "add mould_stl, mould_3mf, mould_step, master_stl, master_3mf, master_step, case_stl, case_3mf or "
+         "case_step"}}) {
     const std::string design = (dir / (name + ".yaml")).string();
     const std::string key = design + place;
     const LimitedRun text = run_limited({"run", design, "-o", (dir / "out").string()}, kSeconds, kMemory);

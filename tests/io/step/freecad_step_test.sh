@@ -195,6 +195,9 @@ done
 # Three keyed parts on a keyed base: each side's case carved in three or four pieces.
 case_steps "$source/configs/examples/mould_golden_box_base.yaml" "$work/golden_three-cases" golden_three \
   -D name=golden_three -D mould.parts=3 -D mould.key_clearance=0.1
+# The golden cylinder mould (two keyed parts): each side's case lidded, its base's in one piece.
+case_steps "$source/configs/examples/mould_golden.yaml" "$work/golden_cylinder-cases" golden_cylinder \
+  -D name=golden_cylinder
 ((${#cases[@]} >= 3)) || fail "only ${#cases[@]} casting cases written"
 FABMESH_CASES=$(IFS=:; echo "${cases[*]}") timeout 600 freecadcmd "$source/tests/io/step/freecad_case_check.py" \
   >"$work/freecad-cases.log" 2>&1
