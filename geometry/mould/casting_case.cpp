@@ -1092,17 +1092,15 @@ std::optional<Cut> lid_cut(const TriangleSoup& part, const Faces& faces, const A
   }
   for (std::size_t t = 0; t < part.triangles.size(); ++t) {
     const Triangle& tri = part.triangles[t];
-    bool reaches = false, split = true, far_face = true;
+    int on_back = 0;  // its corners on the block's cylinder
+    bool split = true, far_face = true;
     for (int e = 0; e < 3; ++e) {
       const Vec3& p = part.vertices[tri[e]];
-      reaches = reaches || radial(p, k) >= back * (1.0 - 1e-9);
+      if (radial(p, k) >= back * (1.0 - 1e-9)) ++on_back;
       split = split && exact_side(p, c.o, c.d) == 0;
       far_face = far_face && p[k] == far;
     }
-    const bool all_back = radial(part.vertices[tri[0]], k) >= back * (1.0 - 1e-9) &&
-                          radial(part.vertices[tri[1]], k) >= back * (1.0 - 1e-9) &&
-                          radial(part.vertices[tri[2]], k) >= back * (1.0 - 1e-9);
-    if (reaches && !all_back && !split && !far_face && !faces.pour[t]) {
+    if (on_back > 0 && on_back < 3 && !split && !far_face && !faces.pour[t]) {
       why = fmt::format(
           "its face at {} reaches from its inside to its back off its split plane and its flat "
           "faces, where no lid can be cut",

@@ -91,6 +91,11 @@ bool keeps_all(const SurfaceMesh& solid, const std::vector<TriangleSoup>& shells
   return true;
 }
 
+// Whether p comes before q, coordinates compared in turn.
+bool before(const Vec3& p, const Vec3& q) {
+  return std::lexicographical_compare(p.data(), p.data() + 3, q.data(), q.data() + 3);
+}
+
 // One planar region of a piece (coplanar triangles joined by edges) as
 // loops, re-triangulated without CGAL's history: the loops start at their
 // least point and are sorted, so the same region gives the same triangles.
@@ -123,9 +128,8 @@ bool retriangulate(const TriangleSoup& soup, const std::vector<std::size_t>& gro
       if (!next.emplace(u, v).second) return false;  // a vertex where the border touches itself
     }
   }
-  const auto before = [&](std::uint32_t a, std::uint32_t b) {
-    const Vec3 &p = soup.vertices[a], &q = soup.vertices[b];
-    return std::lexicographical_compare(p.data(), p.data() + 3, q.data(), q.data() + 3);
+  const auto earlier = [&](std::uint32_t a, std::uint32_t b) {
+    return before(soup.vertices[a], soup.vertices[b]);
   };
   std::vector<std::vector<std::uint32_t>> loops;
   std::set<std::uint32_t> left;
@@ -138,11 +142,11 @@ bool retriangulate(const TriangleSoup& soup, const std::vector<std::size_t>& gro
       u = next.at(u);
     }
     if (u != loop.front()) return false;
-    std::rotate(loop.begin(), std::min_element(loop.begin(), loop.end(), before), loop.end());
+    std::rotate(loop.begin(), std::min_element(loop.begin(), loop.end(), earlier), loop.end());
     loops.push_back(std::move(loop));
   }
   std::sort(loops.begin(), loops.end(),
-            [&](const auto& a, const auto& b) { return before(a.front(), b.front()); });
+            [&](const auto& a, const auto& b) { return earlier(a.front(), b.front()); });
   // In the plane across k: the outer loop counter-clockwise (largest area), the holes clockwise.
   const auto at = [&](std::uint32_t v) {
     const Vec3& p = soup.vertices[v];
@@ -258,10 +262,8 @@ TriangleSoup canonical(const TriangleSoup& soup) {
   for (std::uint32_t v = 0; v < soup.vertices.size(); ++v) {
     if (used[v]) order.push_back(v);
   }
-  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
-    const Vec3 &p = soup.vertices[a], &q = soup.vertices[b];
-    return std::lexicographical_compare(p.data(), p.data() + 3, q.data(), q.data() + 3);
-  });
+  std::sort(order.begin(), order.end(),
+            [&](std::uint32_t a, std::uint32_t b) { return before(soup.vertices[a], soup.vertices[b]); });
   TriangleSoup out;
   std::vector<std::uint32_t> index(soup.vertices.size(), 0);
   for (std::uint32_t v : order) {
