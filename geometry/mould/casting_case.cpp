@@ -695,6 +695,83 @@ Vec3 snapped(const Vec3& p, int bits) {
   return {snapped(p.x(), bits), snapped(p.y(), bits), snapped(p.z(), bits)};
 }
 
+// A lid's frame, across the opening's axis k: coordinates u along `across`
+// (d x e_k) and v along the lid's pull d, both along axes, so that the point
+// (u, v, z) is exact; the case's box (its section umin..umax, vmin..vmax,
+// its floor at `floor_at`), the part's far face at `far`, the opening's face
+// at `extreme` and the lid's top `to` beyond it. The lid's two sides (right:
+// toward angle 0 from `across` to d, left: toward a half turn) are rays
+// from the axis: the split plane through it across d, or a split face of
+// the part off that plane (a mould in more than 2 parts). Each leaves the
+// box at its exit, where the box's walls are split, so that the lid's region
+// and the box share their triangles.
+struct LidFrame {
+  using P2 = std::array<double, 2>;
+  int k = 2;
+  Vec3 across = Vec3::UnitX(), d = Vec3::UnitY();
+  double umin = 0.0, umax = 0.0, vmin = 0.0, vmax = 0.0;
+  double far = 0.0, extreme = 0.0, to = 0.0, floor_at = 0.0;
+  std::array<P2, 2> ray{P2{1.0, 0.0}, P2{-1.0, 0.0}};  // unit directions: right, left
+  std::array<bool, 2> split{true, true};               // whether that side is the split plane
+  std::array<P2, 2> exit{};
+
+  Vec3 at(const P2& p, double z) const {
+    Vec3 out = p[0] * across + p[1] * d;
+    out[k] = z;
+    return out;
+  }
+  P2 of(const Vec3& p) const { return {p.dot(across), p.dot(d)}; }
+  // How far p lies outside side s (0: right, 1: left), across its ray:
+  // above 0 outside the lid's wedge.
+  double outside(const Vec3& p, int s) const {
+    const P2 q = of(p);
+    return s == 0 ? q[0] * ray[0][1] - q[1] * ray[0][0] : q[1] * ray[1][0] - q[0] * ray[1][1];
+  }
+  // The outward normal of side s of the lid, out of the wedge.
+  Vec3 side_normal(int s) const {
+    return s == 0 ? Vec3(ray[0][1] * across - ray[0][0] * d) : Vec3(ray[1][0] * d - ray[1][1] * across);
+  }
+  // Where on the box's outline p lies, counter-clockwise from (umin, vmin).
+  double perimeter(const P2& p) const {
+    const double w = umax - umin, h = vmax - vmin;
+    if (p[1] == vmin) return p[0] - umin;
+    if (p[0] == umax) return w + (p[1] - vmin);
+    if (p[1] == vmax) return w + h + (umax - p[0]);
+    return 2.0 * w + h + (vmax - p[1]);
+  }
+  // The box's outline with the exits, counter-clockwise.
+  std::vector<P2> outline() const {
+    std::vector<P2> out{{umin, vmin}, {umax, vmin}, {umax, vmax}, {umin, vmax}, exit[0], exit[1]};
+    std::sort(out.begin(), out.end(), [&](const P2& a, const P2& b) { return perimeter(a) < perimeter(b); });
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+  }
+  // The lid's part of the outline: from the right side's exit counter-clockwise to the left's.
+  std::vector<P2> lid_path() const {
+    const double from = perimeter(exit[0]), all = 2.0 * (umax - umin + vmax - vmin);
+    const auto after = [&](const P2& p) {
+      const double s = perimeter(p) - from;
+      return s < 0.0 ? s + all : s;
+    };
+    const double end = after(exit[1]);
+    std::vector<P2> corners;
+    for (const P2& c : {P2{umin, vmin}, P2{umax, vmin}, P2{umax, vmax}, P2{umin, vmax}}) {
+      if (after(c) > 0.0 && after(c) < end) corners.push_back(c);
+    }
+    std::sort(corners.begin(), corners.end(), [&](const P2& a, const P2& b) { return after(a) < after(b); });
+    std::vector<P2> out{exit[0]};
+    out.insert(out.end(), corners.begin(), corners.end());
+    out.push_back(exit[1]);
+    return out;
+  }
+  // The outward normal of the box's side through outline points a and b.
+  Vec3 wall_normal(const P2& a, const P2& b) const {
+    if (a[0] == umax && b[0] == umax) return across;
+    if (a[0] == umin && b[0] == umin) return -across;
+    return a[1] == vmax && b[1] == vmax ? d : Vec3(-d);
+  }
+};
+
 // A piece taken off before the part leaves the case: what lies in the case
 // beyond the plane through o across d (and, for a side of the part's box,
 // the sockets behind it), coming off along d.
@@ -715,6 +792,15 @@ struct Cut {
   Vec3 hollow_along = Vec3::Zero();
   double inner = 0.0, back = 0.0, inside = 0.0;
   std::vector<TriangleSoup> regions;  // a lid's region, built with it
+  LidFrame frame;                     // a lid's
+  double middle = 0.0;                // a lid's polygon's radius
+  std::size_t steps = 8;              // its sides over a half turn
+  // A piece that takes the core too: the prism over `core` (the axis, then
+  // chords of the circle of radius `middle` from angle core_from to core_to
+  // about it, `steps` to a half turn).
+  std::vector<Vec3> core;
+  double core_from = 0.0, core_to = 0.0;
+  bool in_core(const Vec3& p, double margin) const;
   /// A lid's: whether the part's triangle t lies on the back, the only
   /// faces of the part it touches: its corners all on the block's cylinder,
   /// one off the split plane, not all in one plane across the axis.
@@ -723,6 +809,18 @@ struct Cut {
 
 // The distance of p from the axis along e_k through the origin (the mould's axis).
 double radial(const Vec3& p, int k) { return std::hypot(p[(k + 1) % 3], p[(k + 2) % 3]); }
+
+// Whether p lies in the core's prism, `margin` inside it (outside, below 0),
+// from its floor up (the axis along z: a cylinder mould's).
+bool Cut::in_core(const Vec3& p, double margin) const {
+  if (core.empty() || !(p.z() >= core.front().z() + margin)) return false;
+  if (p.x() == 0.0 && p.y() == 0.0) return margin <= 0.0;  // the axis: the sector's apex
+  const double turn = std::atan2(p.y(), p.x());
+  const double a = turn < core_from ? turn + 2.0 * M_PI : turn;
+  const double r = std::hypot(p.x(), p.y());
+  return a >= core_from && a <= core_to && r * std::sin(std::min(a - core_from, core_to - a)) >= margin &&
+         r <= middle * std::cos(M_PI / (2.0 * static_cast<double>(steps))) - margin;
+}
 
 bool Cut::back_triangle(const TriangleSoup& part, std::size_t t) const {
   const Triangle& tri = part.triangles[t];
@@ -845,41 +943,47 @@ void quad(TriangleSoup& soup, Index a, Index b, Index c, Index d, const Vec3& ou
   facet(soup, a, c, d, outward);
 }
 
-// The corners of a lidded case's box and of its lid's region: the box
-// lo..hi with its walls split where the lid meets the rest (the split plane
-// through the axis across `pull`, and the plane of the part's far face
-// `far` across the opening's axis k), and the region's top `to` beyond the
-// opening. Built alike for both, so that their walls share triangles.
-struct LidFrame {
-  int k = 2, q = 1, a = 0;  // the opening's axis, the pull's, the other
-  Vec3 lo, hi;
-  double far = 0.0, extreme = 0.0, to = 0.0;
-  double beyond = 0.0;  // the box's side on the pull's side of the split plane, along q
-  // The point with coordinates x (along a), y (along q), z (along k).
-  Vec3 at(double x, double y, double z) const {
-    Vec3 p;
-    p[a] = x;
-    p[q] = y;
-    p[k] = z;
-    return p;
-  }
-};
-
 // The frame of a lid over the back of a part pulled along `pull` out of the
-// case lo..hi open across `opening`, the part's far face at `far`.
+// case lo..hi open across `opening`, the part's far face at `far`; its sides
+// the split plane's two halves until set_side() says otherwise.
 LidFrame lid_frame(const Vec3& lo, const Vec3& hi, const Axis& opening, const Axis& pull, double far,
                    double w) {
   LidFrame f;
   f.k = opening.k;
-  f.q = pull.k;
-  f.a = 3 - f.k - f.q;
-  f.lo = lo;
-  f.hi = hi;
+  f.d = axis_vector(pull);
+  f.across = f.d.cross(axis_vector({f.k, 1}));
+  const int a = 3 - f.k - pull.k;
+  const double sa = f.across[a], sq = f.d[pull.k];
+  f.umin = std::min(sa * lo[a], sa * hi[a]);
+  f.umax = std::max(sa * lo[a], sa * hi[a]);
+  f.vmin = std::min(sq * lo[pull.k], sq * hi[pull.k]);
+  f.vmax = std::max(sq * lo[pull.k], sq * hi[pull.k]);
   f.far = far;
   f.extreme = opening.sign > 0 ? hi[f.k] : lo[f.k];
   f.to = f.extreme + opening.sign * w;
-  f.beyond = pull.sign > 0 ? hi[f.q] : lo[f.q];
+  f.floor_at = opening.sign > 0 ? lo[f.k] : hi[f.k];
+  for (int s = 0; s < 2; ++s) f.exit[s] = {s == 0 ? f.umax : f.umin, 0.0};
   return f;
+}
+
+// Sets side s of the lid to the ray from the axis through p (the split plane's
+// half when `split`), and its exit from the box: the coordinate of the wall it
+// leaves through exact, the other rounded.
+void set_side(LidFrame& f, int s, const Vec3& p, bool split) {
+  f.split[s] = split;
+  if (split) {
+    f.ray[s] = {s == 0 ? 1.0 : -1.0, 0.0};
+    f.exit[s] = {s == 0 ? f.umax : f.umin, 0.0};
+    return;
+  }
+  const LidFrame::P2 q = f.of(p);
+  const double n = std::hypot(q[0], q[1]);
+  const LidFrame::P2 r{q[0] / n, q[1] / n};
+  f.ray[s] = r;
+  const double tu = r[0] > 0.0 ? f.umax / r[0] : r[0] < 0.0 ? f.umin / r[0] : HUGE_VAL;
+  const double tv = r[1] > 0.0 ? f.vmax / r[1] : r[1] < 0.0 ? f.vmin / r[1] : HUGE_VAL;
+  f.exit[s] = tu <= tv ? LidFrame::P2{r[0] > 0.0 ? f.umax : f.umin, tu * r[1]}
+                       : LidFrame::P2{tv * r[0], r[1] > 0.0 ? f.vmax : f.vmin};
 }
 
 // Adds a point to `soup` once, by position.
@@ -893,53 +997,33 @@ struct Points {
   }
 };
 
-// The walls of the box of `f` on the side `side` (-1: lo, +1: hi) across the
-// axis a, from y0 to y1 along q and z0 to z1 along k: one quadrilateral.
-void wall_a(TriangleSoup& soup, Points& point, const LidFrame& f, int side, double y0, double y1, double z0,
-            double z1) {
-  const double x = side > 0 ? f.hi[f.a] : f.lo[f.a];
-  Vec3 out = Vec3::Zero();
-  out[f.a] = side;
-  quad(soup, point(f.at(x, y0, z0)), point(f.at(x, y1, z0)), point(f.at(x, y1, z1)), point(f.at(x, y0, z1)),
-       out);
-}
-
-// The wall of the box of `f` across q at y, from z0 to z1 along k, facing `side` along q.
-void wall_q(TriangleSoup& soup, Points& point, const LidFrame& f, double y, int side, double z0, double z1) {
-  Vec3 out = Vec3::Zero();
-  out[f.q] = side;
-  quad(soup, point(f.at(f.lo[f.a], y, z0)), point(f.at(f.hi[f.a], y, z0)), point(f.at(f.hi[f.a], y, z1)),
-       point(f.at(f.lo[f.a], y, z1)), out);
+// The wall of the box of `f` between its outline's points a and b, from z0 to z1 along k.
+void wall(TriangleSoup& soup, Points& point, const LidFrame& f, const LidFrame::P2& a, const LidFrame::P2& b,
+          double z0, double z1) {
+  quad(soup, point(f.at(a, z0)), point(f.at(b, z0)), point(f.at(b, z1)), point(f.at(a, z1)),
+       f.wall_normal(a, b));
 }
 
 // The case's box for a lid (LidFrame), open through the part's pour face:
-// its walls split at the split plane and at the far face's plane, its
-// floor (across k, away from the opening), and its face across the opening
-// less the pour face, with the pour face's own triangles. False when that
-// face cannot be filled without adding a point.
+// its walls split at the lid's exits and at the far face's plane, its floor
+// (across k, away from the opening), and its face across the opening less
+// the pour face, with the pour face's own triangles. None when that face
+// cannot be filled without adding a point.
 std::optional<TriangleSoup> lidded_block(const LidFrame& f, const Faces& faces, int opening_sign) {
   TriangleSoup soup;
   Points point{soup, {}};
-  const double ys[3] = {f.lo[f.q], 0.0, f.hi[f.q]};
-  const double floor_at = opening_sign > 0 ? f.lo[f.k] : f.hi[f.k];
-  const double zs[2][2] = {{std::min(floor_at, f.far), std::max(floor_at, f.far)},
+  const std::vector<LidFrame::P2> ring = f.outline();
+  const double zs[2][2] = {{std::min(f.floor_at, f.far), std::max(f.floor_at, f.far)},
                            {std::min(f.far, f.extreme), std::max(f.far, f.extreme)}};
-  for (int side : {-1, 1}) {
-    for (int y = 0; y < 2; ++y) {
-      for (const auto& z : zs) wall_a(soup, point, f, side, ys[y], ys[y + 1], z[0], z[1]);
-    }
+  for (std::size_t i = 0; i < ring.size(); ++i) {
+    for (const auto& z : zs) wall(soup, point, f, ring[i], ring[(i + 1) % ring.size()], z[0], z[1]);
   }
-  for (const auto& z : zs) {
-    wall_q(soup, point, f, f.lo[f.q], -1, z[0], z[1]);
-    wall_q(soup, point, f, f.hi[f.q], 1, z[0], z[1]);
-  }
-  // The two faces across k: six corners each, the split plane's two among them.
-  const auto ring = [&](double z) {
-    return std::vector<Index>{point(f.at(f.lo[f.a], f.lo[f.q], z)), point(f.at(f.hi[f.a], f.lo[f.q], z)),
-                              point(f.at(f.hi[f.a], 0.0, z)),       point(f.at(f.hi[f.a], f.hi[f.q], z)),
-                              point(f.at(f.lo[f.a], f.hi[f.q], z)), point(f.at(f.lo[f.a], 0.0, z))};
+  const auto level = [&](double z) {
+    std::vector<Index> out;
+    for (const LidFrame::P2& p : ring) out.push_back(point(f.at(p, z)));
+    return out;
   };
-  if (!fill_polygon(soup, ring(floor_at), f.k, -opening_sign)) return std::nullopt;
+  if (!fill_polygon(soup, level(f.floor_at), f.k, -opening_sign)) return std::nullopt;
   Copier copy{faces.part, soup};
   for (std::size_t t = 0; t < faces.part.triangles.size(); ++t) {
     if (!faces.pour[t]) continue;
@@ -947,30 +1031,35 @@ std::optional<TriangleSoup> lidded_block(const LidFrame& f, const Faces& faces, 
     soup.triangles.push_back({copy(tri[0]), copy(tri[1]), copy(tri[2])});
   }
   std::optional<std::vector<Index>> hole = pour_loop(faces, copy);
-  if (!hole || !fill_region(soup, ring(f.extreme), {*hole}, f.k, opening_sign)) return std::nullopt;
+  if (!hole || !fill_region(soup, level(f.extreme), {*hole}, f.k, opening_sign)) return std::nullopt;
   return soup;
 }
 
-// The mesh of a lid's region (the cut `c` across its pull through the axis
-// k of the opening, LidFrame `f`): what lies in the case's box on the
-// pull's side of the split plane, from the part's far face on (and beyond
-// the opening, to f.to), outside the part's back: the back's own triangles
-// turned inside out, walls straight on from its edge on the opening's face,
-// the split plane's two strips, the caps and the box's walls (split as the
-// box's are, so that they share triangles). None, with `why`, when the back
-// is not one band from the far face to the opening's between the split
-// plane's two sides.
-std::optional<TriangleSoup> lid_region(const TriangleSoup& part, const Cut& c, const LidFrame& f,
-                                       std::string& why) {
+// Whether p lies on the plane of one of `given` (split faces through the
+// axis, whose points were rounded from their angle: within 1e-9 relative).
+bool on_given(const std::vector<CaseFace>& given, const Vec3& p) {
+  return std::any_of(given.begin(), given.end(), [&](const CaseFace& f) {
+    return std::abs((p - f.point).dot(f.normal)) <= 1e-9 * (1.0 + p.norm() + f.point.norm());
+  });
+}
+
+// The border of a lid's back (the cut `c`): its edges used once, each
+// vertex on the far face, on the opening's face, or on a side (the split
+// plane, or a given split face off it); the part's vertex indices, the
+// arcs by angle about the axis from `across` toward the pull, the sides by
+// height from the far face.
+struct BackBorder {
+  using Run = std::vector<std::pair<double, Index>>;
+  Run far_arc, open_arc;
+  std::array<Run, 2> side;  // right, left
+};
+
+// The back's border, with the lid's sides set in `f` from it. None, with
+// `why`, when the back is not one band from the far face to the opening's
+// between two sides.
+std::optional<BackBorder> back_border(const TriangleSoup& part, const Cut& c, LidFrame& f,
+                                      const std::vector<CaseFace>& given, std::string& why) {
   const int k = f.k;
-  const Vec3 ek = axis_vector({k, 1}), across = c.d.cross(ek);
-  TriangleSoup soup;
-  Copier copy{part, soup};
-  for (std::size_t t = 0; t < part.triangles.size(); ++t) {
-    if (c.back_triangle(part, t)) copy.flipped(part.triangles[t]);
-  }
-  // The back's border: its edges used once, each vertex on the far face,
-  // on the opening's face, or on the split plane.
   std::map<std::pair<Index, Index>, int> uses;
   for (std::size_t t = 0; t < part.triangles.size(); ++t) {
     if (!c.back_triangle(part, t)) continue;
@@ -980,9 +1069,12 @@ std::optional<TriangleSoup> lid_region(const TriangleSoup& part, const Cut& c, c
       ++uses[{std::min(u, v), std::max(u, v)}];
     }
   }
-  // The angle of a point about the axis, from `across` toward the pull.
-  const auto angle = [&](const Vec3& p) { return std::atan2((p - c.o).dot(c.d), (p - c.o).dot(across)); };
-  std::vector<std::pair<double, Index>> far_arc, open_arc, right, left;  // left: at a half turn
+  const auto angle = [&](const Vec3& p) {
+    const LidFrame::P2 q = f.of(p);
+    return std::atan2(q[1], q[0]);
+  };
+  BackBorder b;
+  std::array<int, 2> splits{0, 0};
   std::set<Index> seen;
   const double sign = f.extreme > f.far ? 1.0 : -1.0;
   for (const auto& [edge, n] : uses) {
@@ -991,69 +1083,109 @@ std::optional<TriangleSoup> lid_region(const TriangleSoup& part, const Cut& c, c
       if (!seen.insert(v).second) continue;
       const Vec3& p = part.vertices[v];
       const bool split = exact_side(p, c.o, c.d) == 0;
-      if (p[k] == f.far) far_arc.emplace_back(angle(p), v);
-      if (p[k] == f.extreme) open_arc.emplace_back(angle(p), v);
-      if (split) ((p - c.o).dot(across) > 0.0 ? right : left).emplace_back(sign * (p[k] - f.far), v);
-      if (p[k] != f.far && p[k] != f.extreme && !split) {
-        why = fmt::format("its back's edge at {} lies off its split plane and flat faces", point_text(p));
+      const bool given_face = !split && on_given(given, p);
+      if (p[k] == f.far) b.far_arc.emplace_back(angle(p), v);
+      if (p[k] == f.extreme) b.open_arc.emplace_back(angle(p), v);
+      if (split || given_face) {
+        const int s = split ? (f.of(p)[0] > 0.0 ? 0 : 1) : (angle(p) < 0.5 * M_PI ? 0 : 1);
+        b.side[s].emplace_back(sign * (p[k] - f.far), v);
+        splits[s] += split ? 1 : 0;
+      }
+      if (p[k] != f.far && p[k] != f.extreme && !split && !given_face) {
+        why = fmt::format("its back's edge at {} lies off its split faces and flat faces", point_text(p));
         return std::nullopt;
       }
     }
   }
-  for (auto* run : {&far_arc, &open_arc, &right, &left}) std::sort(run->begin(), run->end());
-  if (far_arc.size() < 2 || open_arc.size() < 2 || right.size() < 2 || left.size() < 2) {
-    why = "its back is not one band between its split plane's two sides";
+  for (BackBorder::Run* run : {&b.far_arc, &b.open_arc, &b.side[0], &b.side[1]}) {
+    std::sort(run->begin(), run->end());
+  }
+  for (int s = 0; s < 2; ++s) {
+    const std::size_t n = b.side[s].size();
+    if (n < 2 || (splits[s] != 0 && static_cast<std::size_t>(splits[s]) != n)) {
+      why = "its back is not one band between two sides, each on its split plane or on a split face";
+      return std::nullopt;
+    }
+    set_side(f, s, part.vertices[b.side[s].front().second], splits[s] != 0);
+  }
+  if (b.far_arc.size() < 2 || b.open_arc.size() < 2 ||
+      f.outside(part.vertices[b.side[1].front().second], 0) > 0.0) {
+    why = "its back is not one band between two sides";
     return std::nullopt;
+  }
+  return b;
+}
+
+// The mesh of a lid's region (the cut `c`, its frame `f`, its back's
+// border `b`): what lies in the case's box between its two sides, from the
+// part's far face on (and beyond the opening, to f.to), outside the part's
+// back: the back's own triangles turned inside out, walls straight on from
+// its edge on the opening's face, each side's strip from the back out to its
+// exit, the caps and the box's walls (split as the box's are, so that they
+// share triangles). `seams`: the strips' triangles, by index.
+std::optional<TriangleSoup> lid_region(const TriangleSoup& part, const Cut& c, const LidFrame& f,
+                                       const BackBorder& b, std::vector<std::size_t>& seams,
+                                       std::string& why) {
+  const int k = f.k;
+  TriangleSoup soup;
+  Copier copy{part, soup};
+  for (std::size_t t = 0; t < part.triangles.size(); ++t) {
+    if (c.back_triangle(part, t)) copy.flipped(part.triangles[t]);
   }
   Points point{soup, {}};
   for (Index v = 0; v < soup.vertices.size(); ++v) {
     const Vec3& p = soup.vertices[v];
     point.made.emplace(std::array<double, 3>{p.x(), p.y(), p.z()}, v);
   }
-  // The box's walls on the pull's side, from the far face to the opening and on beyond it.
-  const double beyond = f.beyond;
-  const double y0 = std::min(0.0, beyond), y1 = std::max(0.0, beyond);
+  // The box's walls between the sides' exits, from the far face to the opening and on beyond it.
+  const std::vector<LidFrame::P2> path = f.lid_path();
   const double levels[2][2] = {{std::min(f.far, f.extreme), std::max(f.far, f.extreme)},
                                {std::min(f.extreme, f.to), std::max(f.extreme, f.to)}};
   for (const auto& z : levels) {
-    for (int side : {-1, 1}) wall_a(soup, point, f, side, y0, y1, z[0], z[1]);
-    wall_q(soup, point, f, beyond, beyond > 0.0 ? 1 : -1, z[0], z[1]);
+    for (std::size_t i = 0; i + 1 < path.size(); ++i) wall(soup, point, f, path[i], path[i + 1], z[0], z[1]);
   }
   // The walls beyond the opening's face: the back's edge there moved on to `to`.
   std::vector<Index> lifted;
-  for (const auto& [turn, v] : open_arc) {
+  for (const auto& [turn, v] : b.open_arc) {
     Vec3 p = part.vertices[v];
     p[k] = f.to;
     lifted.push_back(point(p));
   }
-  for (std::size_t n = 0; n + 1 < open_arc.size(); ++n) {
-    Vec3 inward = -0.5 * (part.vertices[open_arc[n].second] + part.vertices[open_arc[n + 1].second]);
+  for (std::size_t n = 0; n + 1 < b.open_arc.size(); ++n) {
+    Vec3 inward = -0.5 * (part.vertices[b.open_arc[n].second] + part.vertices[b.open_arc[n + 1].second]);
     inward[k] = 0.0;
-    quad(soup, copy(open_arc[n].second), copy(open_arc[n + 1].second), lifted[n + 1], lifted[n], inward);
+    quad(soup, copy(b.open_arc[n].second), copy(b.open_arc[n + 1].second), lifted[n + 1], lifted[n], inward);
   }
-  // The caps: the box's section on the pull's side less the back's.
-  const double right_x = across[f.a] > 0.0 ? f.hi[f.a] : f.lo[f.a];
-  const double left_x = across[f.a] > 0.0 ? f.lo[f.a] : f.hi[f.a];
-  const auto corners = [&](double z) {
-    return std::vector<Index>{point(f.at(right_x, 0.0, z)), point(f.at(right_x, beyond, z)),
-                              point(f.at(left_x, beyond, z)), point(f.at(left_x, 0.0, z))};
+  // The caps: the box's section between the sides less the back's.
+  const auto cap = [&](double z) {
+    std::vector<Index> out;
+    for (const LidFrame::P2& p : path) out.push_back(point(f.at(p, z)));
+    return out;
   };
-  std::vector<Index> low = corners(f.far), high = corners(f.to);
-  for (auto it = far_arc.rbegin(); it != far_arc.rend(); ++it) low.push_back(copy(it->second));
+  std::vector<Index> low = cap(f.far), high = cap(f.to);
+  for (auto it = b.far_arc.rbegin(); it != b.far_arc.rend(); ++it) low.push_back(copy(it->second));
   for (auto it = lifted.rbegin(); it != lifted.rend(); ++it) high.push_back(*it);
-  // The split plane's strips: from the back's side edge out to the box's walls.
-  std::vector<Index> right_strip{point(f.at(right_x, 0.0, f.far)), point(f.at(right_x, 0.0, f.extreme)),
-                                 point(f.at(right_x, 0.0, f.to)), lifted.front()};
-  std::vector<Index> left_strip{point(f.at(left_x, 0.0, f.far)), point(f.at(left_x, 0.0, f.extreme)),
-                                point(f.at(left_x, 0.0, f.to)), lifted.back()};
-  for (auto it = right.rbegin(); it != right.rend(); ++it) right_strip.push_back(copy(it->second));
-  for (auto it = left.rbegin(); it != left.rend(); ++it) left_strip.push_back(copy(it->second));
-  const int pull_sign = c.d[f.q] > 0.0 ? 1 : -1;
   const int up = f.to > f.far ? 1 : -1;
-  if (!fill_polygon(soup, low, k, -up) || !fill_polygon(soup, high, k, up) ||
-      !fill_polygon(soup, right_strip, f.q, -pull_sign) || !fill_polygon(soup, left_strip, f.q, -pull_sign)) {
+  if (!fill_polygon(soup, low, k, -up) || !fill_polygon(soup, high, k, up)) {
     why = "its lid's region could not be closed";
     return std::nullopt;
+  }
+  // The sides' strips: from the back's side edge out to the exit, facing out of the wedge.
+  for (int s = 0; s < 2; ++s) {
+    std::vector<Index> strip{point(f.at(f.exit[s], f.far)), point(f.at(f.exit[s], f.extreme)),
+                             point(f.at(f.exit[s], f.to)), s == 0 ? lifted.front() : lifted.back()};
+    for (auto it = b.side[s].rbegin(); it != b.side[s].rend(); ++it) strip.push_back(copy(it->second));
+    const Vec3 out = f.side_normal(s);
+    int axis = 0;
+    for (int q = 1; q < 3; ++q) {
+      if (std::abs(out[q]) > std::abs(out[axis])) axis = q;
+    }
+    const std::size_t first = soup.triangles.size();
+    if (!fill_polygon(soup, strip, axis, out[axis] > 0.0 ? 1 : -1)) {
+      why = "its lid's region could not be closed at a side";
+      return std::nullopt;
+    }
+    for (std::size_t t = first; t < soup.triangles.size(); ++t) seams.push_back(t);
   }
   return soup;
 }
@@ -1061,14 +1193,18 @@ std::optional<TriangleSoup> lid_region(const TriangleSoup& part, const Cut& c, c
 // The lid over a cylinder block's back of `back` radius (about the axis k
 // of the opening, through the origin): what lies in the case on the pull's
 // side of the split plane through the axis, from the part's far face (across
-// the opening) on, outside the prism over a polygon inscribed in the circle
-// between the part's inside (every point of it but its back's, the
-// sockets' and the cavity's) and its back. None, with `why`, when a face of
-// the part reaches from its inside to its back off the split plane, the far
-// face and the opening (the lid would then cut it).
+// the opening) on, between the lid's two sides (the split plane, or the
+// planes of `given` split faces off it, beyond the back), outside the back.
+// For the exact case, the region's box less the prism over a polygon
+// between the part's inside (every point of it but its back's, the sockets'
+// and the cavity's) and its back, out along the sides. None, with `why`,
+// when a face of the part reaches from its inside to its back off its split
+// faces, the far face and the opening (the lid would then cut it), or a
+// side's seam faces the way the lid comes off.
 std::optional<Cut> lid_cut(const TriangleSoup& part, const Faces& faces, const Axis& axis,
-                           const Axis& opening, double back, const BoundingBox& box, const Vec3& hi,
-                           const Vec3& lo, double w, std::string& why) {
+                           const Axis& opening, double back, const std::vector<CaseFace>& given,
+                           const BoundingBox& box, const Vec3& hi, const Vec3& lo, double w,
+                           std::string& why) {
   const int k = opening.k;
   const double far = opening.sign > 0 ? box.lo[k] : box.hi[k];
   const double to = opening.sign > 0 ? hi[k] + w : lo[k] - w;
@@ -1093,24 +1229,25 @@ std::optional<Cut> lid_cut(const TriangleSoup& part, const Faces& faces, const A
   for (std::size_t t = 0; t < part.triangles.size(); ++t) {
     const Triangle& tri = part.triangles[t];
     int on_back = 0;  // its corners on the block's cylinder
-    bool split = true, far_face = true;
+    bool split = true, far_face = true, side = true;
     for (int e = 0; e < 3; ++e) {
       const Vec3& p = part.vertices[tri[e]];
       if (radial(p, k) >= back * (1.0 - 1e-9)) ++on_back;
       split = split && exact_side(p, c.o, c.d) == 0;
       far_face = far_face && p[k] == far;
+      side = side && on_given(given, p);
     }
-    if (on_back > 0 && on_back < 3 && !split && !far_face && !faces.pour[t]) {
+    if (on_back > 0 && on_back < 3 && !split && !far_face && !side && !faces.pour[t]) {
       why = fmt::format(
-          "its face at {} reaches from its inside to its back off its split plane and its flat "
+          "its face at {} reaches from its inside to its back off its split faces and its flat "
           "faces, where no lid can be cut",
           where(part, t, {}));
       return std::nullopt;
     }
   }
-  // The polygon: half a regular polygon of `sides` sides, its corners on
-  // the circle halfway between the inside and the back, its sides beyond
-  // the inside by at least half that gap.
+  // The polygon: its corners on the circle halfway between the inside and
+  // the back, a step at most a half turn over `sides`, its sides beyond the
+  // inside by at least half that gap.
   const double middle = 0.5 * (inside + back);
   std::size_t sides = 8;
   while (middle * std::cos(M_PI / (2.0 * static_cast<double>(sides))) - inside <= 0.5 * (middle - inside)) {
@@ -1122,19 +1259,13 @@ std::optional<Cut> lid_cut(const TriangleSoup& part, const Faces& faces, const A
   }
   c.inside = inside;
   c.inner = middle * std::cos(M_PI / (2.0 * static_cast<double>(sides)));
-  const Vec3 ek = axis_vector({k, 1}), across = c.d.cross(ek);
-  const double reach = snapped(4.0 * (hi - lo).norm() + back, kLengthBits);
-  const auto at = [&](double a, double b) { return Vec3(c.o + a * across + b * c.d); };
-  std::vector<Vec3> arc;  // from angle 0 to a half turn, about the axis from `across` to the pull
-  arc.push_back(at(middle, 0.0));
-  for (std::size_t i = 1; i < sides; ++i) {
-    const double angle = M_PI * static_cast<double>(i) / static_cast<double>(sides);
-    arc.push_back(at(middle * std::cos(angle), middle * std::sin(angle)));
-  }
-  arc.push_back(at(-middle, 0.0));
+  LidFrame f = lid_frame(lo, hi, opening, axis, far, w);
+  const std::optional<BackBorder> border = back_border(part, c, f, given, why);
+  if (!border) return std::nullopt;
   // The region's mesh: outside the part's own back, so that it cuts the
   // case where the back bounds it and adds no point on the part's faces.
-  std::optional<TriangleSoup> region = lid_region(part, c, lid_frame(lo, hi, opening, axis, far, w), why);
+  std::vector<std::size_t> seams;
+  std::optional<TriangleSoup> region = lid_region(part, c, f, *border, seams, why);
   if (!region) return std::nullopt;
   const ValidationReport checked = validate(*region);
   if (!checked.valid()) {
@@ -1143,17 +1274,62 @@ std::optional<Cut> lid_cut(const TriangleSoup& part, const Faces& faces, const A
     why = "its lid's region is not a valid solid: " + defects;
     return std::nullopt;
   }
+  // Its seams with the pieces beyond its sides face away from its way off, exactly.
+  for (const std::size_t t : seams) {
+    const Triangle& tri = region->triangles[t];
+    // The region's triangles face out of it: into the piece beyond, which the lid leaves along d.
+    if (exact_facing(region->vertices[tri[0]], region->vertices[tri[1]], region->vertices[tri[2]], c.d) > 0) {
+      why = fmt::format("its lid's seam at {} faces the way the lid comes off",
+                        point_text(region->vertices[tri[0]]));
+      return std::nullopt;
+    }
+  }
   c.regions.push_back(std::move(*region));
-  // For the exact case: the box of the region less the prism over the half polygon, closed behind the split
-  // plane.
+  c.frame = f;
+  c.middle = middle;
+  c.steps = sides;
+  // For the exact case: the box of the region (beyond the split plane) less the prism over the polygon,
+  // out along a side off the split plane past the region's box, and round behind the axis.
+  const Vec3 ek = axis_vector({k, 1}), across = f.across;
+  const double reach = snapped(4.0 * (hi - lo).norm() + back, kLengthBits);
+  const auto at = [&](double a, double b) { return Vec3(c.o + a * across + b * c.d); };
+  const double from = f.split[0] ? 0.0 : std::atan2(f.ray[0][1], f.ray[0][0]);
+  const double until = f.split[1] ? M_PI : std::atan2(f.ray[1][1], f.ray[1][0]);
+  const auto steps =
+      static_cast<std::size_t>(std::ceil((until - from) / (M_PI / static_cast<double>(sides)) - 1e-9));
+  if (f.split[0]) {
+    c.hollow.push_back(at(middle, -w));
+    c.hollow.push_back(at(middle, 0.0));
+  } else {
+    c.hollow.push_back(at(2.0 * reach * f.ray[0][0], 2.0 * reach * f.ray[0][1]));
+    c.hollow.push_back(at(middle * f.ray[0][0], middle * f.ray[0][1]));
+  }
+  for (std::size_t i = 1; i < steps; ++i) {
+    const double angle = from + (until - from) * static_cast<double>(i) / static_cast<double>(steps);
+    c.hollow.push_back(at(middle * std::cos(angle), middle * std::sin(angle)));
+  }
+  if (f.split[1]) {
+    c.hollow.push_back(at(-middle, 0.0));
+    c.hollow.push_back(at(-middle, -w));
+  } else {
+    c.hollow.push_back(at(middle * f.ray[1][0], middle * f.ray[1][1]));
+    c.hollow.push_back(at(2.0 * reach * f.ray[1][0], 2.0 * reach * f.ray[1][1]));
+  }
+  if (!f.split[0] || !f.split[1]) {
+    // Round behind the axis at twice the reach, a step at most a sixth of a turn.
+    const double behind = 2.0 * M_PI + from - until;
+    const auto around = static_cast<std::size_t>(std::ceil(behind / (M_PI / 3.0)));
+    for (std::size_t i = 1; i < around; ++i) {
+      const double angle = until + behind * static_cast<double>(i) / static_cast<double>(around);
+      c.hollow.push_back(at(2.0 * reach * std::cos(angle), 2.0 * reach * std::sin(angle)));
+    }
+  }
+  // The region's box: beyond the split plane, well past the case.
   c.corner = at(-reach, 0.0);
   c.corner[k] = std::min(far, to);
   c.ru = std::abs(to - far) * ek;
   c.rv = 2.0 * reach * across;
   c.rd = reach * c.d;
-  c.hollow.push_back(at(middle, -w));
-  c.hollow.insert(c.hollow.end(), arc.begin(), arc.end());
-  c.hollow.push_back(at(-middle, -w));
   for (Vec3& p : c.hollow) p[k] = far - opening.sign * w;
   c.hollow_along = (to - far + 2.0 * opening.sign * w) * ek;
   // Its pins lie across the pull, in the plane of the pin's rings.
@@ -1162,16 +1338,46 @@ std::optional<Cut> lid_cut(const TriangleSoup& part, const Faces& faces, const A
   return c;
 }
 
+// The prism over the convex polygon `ring` (across z, counter-clockwise
+// seen from +z), running `height` up z.
+TriangleSoup prism_over(const std::vector<Vec3>& ring, double height) {
+  TriangleSoup s;
+  const auto n = static_cast<Index>(ring.size());
+  for (const Vec3& p : ring) s.vertices.push_back(p);
+  for (const Vec3& p : ring) s.vertices.push_back(p + Vec3(0.0, 0.0, height));
+  for (Index m = 0; m < n; ++m) {
+    const Index l = (m + 1) % n;
+    s.triangles.push_back({m, l, n + l});
+    s.triangles.push_back({m, n + l, n + m});
+  }
+  for (Index m = 1; m + 1 < n; ++m) {
+    s.triangles.push_back({0, m + 1, m});
+    s.triangles.push_back({n, n + m, n + m + 1});
+  }
+  return s;
+}
+
+// A lid over a cylinder block's back: the block's radius, and the way the
+// lid comes off (across the split plane through the axis it is cut by).
+struct Lid {
+  double radius = 0.0;
+  Axis way;
+  // Whether the last piece beyond a slanted split face also takes the core
+  // (what lies between the split faces near the axis: the vessel's slice),
+  // so that the part then lifts off the floor through the opening.
+  bool core = false;
+};
+
 // The case of `part` pulled along `axis` in several pieces: the main piece
 // and, taken off before it in order, one per side of the part's box (with
-// the sockets behind it), the lid over a cylinder block's back (`lid`: the
-// block's radius; the split plane through the axis across the pull) and one
-// per given face that takes a face of the part the pull would catch on;
-// each with two pins in holes of the main piece. The case is open across
-// `opening` (the pull, but for a lidded case), on a face of the part that
-// covers its outline there when `rectangle`.
+// the sockets behind it), the lid over a cylinder block's back (`lid`) and
+// one per given face that takes a face of the part the pull would catch on
+// (under a lid, these before the sides of the part's box); each with two pins
+// in holes of the main piece or of a piece taken off after it. The case is
+// open across `opening` (the pull, but for a lidded case pulled across it),
+// on a face of the part that covers its outline there when `rectangle`.
 Attempt carved(const TriangleSoup& part, const std::string& name, const Axis& axis, const Axis& opening,
-               bool rectangle, std::optional<double> lid, const CaseOptions& options,
+               bool rectangle, std::optional<Lid> lid, const CaseOptions& options,
                const std::vector<CaseFace>& given,
                const std::function<std::string(const Vec3&)>& what_is_at) {
   const int k = opening.k;
@@ -1222,21 +1428,28 @@ Attempt carved(const TriangleSoup& part, const std::string& name, const Axis& ax
     for (int e = 0; e < 3; ++e) out[e] = exact_side(part.vertices[tri[e]], c.o, c.d);
     return out;
   };
+  // Whether the part's triangle t lies in a core's prism (its faces round the vessel's slice).
+  const auto cored = [&](const Cut& c, std::size_t t) {
+    const Triangle& tri = part.triangles[t];
+    return !c.core.empty() &&
+           std::all_of(tri.begin(), tri.end(), [&](Index v) { return c.in_core(part.vertices[v], 0.0); });
+  };
   const auto inside = [&](const Cut& c, std::size_t t) {
     if (c.lid) return c.back_triangle(part, t);
     if (c.axis) return bool(c.axis->member[t]);
     const std::array<int, 3> side = sides_of(c, part.triangles[t]);
-    return *std::min_element(side.begin(), side.end()) >= 0 &&
-           *std::max_element(side.begin(), side.end()) > 0;
+    return (*std::min_element(side.begin(), side.end()) >= 0 &&
+            *std::max_element(side.begin(), side.end()) > 0) ||
+           cored(c, t);
   };
   const auto touches = [&](const Cut& c, std::size_t t) {
     if (c.lid) return c.back_triangle(part, t);
     if (c.axis) return bool(c.axis->member[t]);
     const std::array<int, 3> side = sides_of(c, part.triangles[t]);
-    return *std::max_element(side.begin(), side.end()) > 0;
+    return *std::max_element(side.begin(), side.end()) > 0 || cored(c, t);
   };
   if (lid) {
-    std::optional<Cut> c = lid_cut(part, faces, axis, opening, *lid, box, hi, lo, w, why);
+    std::optional<Cut> c = lid_cut(part, faces, lid->way, opening, lid->radius, given, box, hi, lo, w, why);
     if (!c) return {std::nullopt, why};
     cuts.push_back(std::move(*c));
   }
@@ -1250,7 +1463,54 @@ Attempt carved(const TriangleSoup& part, const std::string& name, const Axis& ax
     c.u = Vec3(-c.d.y(), c.d.x(), 0.0);
     c.v = Vec3(0.0, 0.0, 1.0);
     c.features = f.features;
-    if (takes_blocking([&](std::size_t t) { return inside(c, t); })) cuts.push_back(std::move(c));
+    // Under a lid that leaves the vessel's slice to them, every such face has its piece.
+    if (takes_blocking([&](std::size_t t) { return inside(c, t); }) || (lid && lid->core)) {
+      cuts.push_back(std::move(c));
+    }
+  }
+  // Under a lid, the pieces beyond slanted split faces come off before the
+  // plates on the part's box (the plate under it, over a base part): they
+  // keep the floor beyond their seams, where their pins stand.
+  if (lid && std::any_of(cuts.begin(), cuts.end(), [](const Cut& c) { return !c.axis && !c.lid; })) {
+    std::stable_partition(cuts.begin(), cuts.end(), [](const Cut& c) { return !c.axis; });
+  }
+  if (lid && lid->core) {
+    // The core goes with the last piece beyond a slanted split face: its
+    // prism over the sector between the lid's sides, 25 degrees more each
+    // way, into the pieces beyond them (their half-spaces hold those rays
+    // from the axis; its sides cross their seams steeply, leaving no thin
+    // sliver), of the lid's polygon's radius, from the far face up past the
+    // opening.
+    constexpr double kOver = 25.0 * M_PI / 180.0;
+    const auto first = std::find_if(cuts.begin(), cuts.end(), [](const Cut& c) { return c.lid; });
+    const auto last =
+        std::find_if(cuts.rbegin(), cuts.rend(), [](const Cut& c) { return !c.lid && !c.axis; });
+    if (first == cuts.end() || last == cuts.rend() || k != 2 || opening.sign < 0) {
+      return {std::nullopt, "no piece beyond a slanted split face takes the vessel's slice from below"};
+    }
+    const LidFrame& f = first->frame;
+    const auto world = [&](int s) { return Vec3(f.ray[s][0] * f.across + f.ray[s][1] * f.d); };
+    const Vec3 from = world(0), until = world(1);
+    double a0 = std::atan2(from.y(), from.x()) - kOver, a1 = std::atan2(until.y(), until.x()) + kOver;
+    if (a1 < a0) a1 += 2.0 * M_PI;
+    last->core_from = a0;
+    last->core_to = a1;
+    last->middle = first->middle;
+    last->steps = first->steps;
+    // From halfway up the part's bottom below the vessel, so that the
+    // prism's floor lies in the part and marks nothing on the case's floor.
+    double above = f.to;
+    for (const Vec3& p : part.vertices) {
+      if (p.z() != f.far && radial(p, k) < first->inner) above = std::min(above, p.z());
+    }
+    const double z = 0.5 * (f.far + above);
+    last->core.push_back(Vec3(0.0, 0.0, z));
+    const auto n =
+        static_cast<std::size_t>(std::ceil((a1 - a0) / (M_PI / static_cast<double>(first->steps))));
+    for (std::size_t i = 0; i <= n; ++i) {
+      const double a = a0 + (a1 - a0) * static_cast<double>(i) / static_cast<double>(n);
+      last->core.push_back(Vec3(first->middle * std::cos(a), first->middle * std::sin(a), z));
+    }
   }
   for (std::size_t t : blocking) {
     if (std::none_of(cuts.begin(), cuts.end(), [&](const Cut& c) { return inside(c, t); })) {
@@ -1269,6 +1529,8 @@ Attempt carved(const TriangleSoup& part, const std::string& name, const Axis& ax
     const Triangle& tri = part.triangles[t];
     bool in_one = false;
     for (Cut& c : cuts) {
+      // A face inside a piece taken off before has that piece across it.
+      if (in_one) break;
       if (!touches(c, t)) continue;
       const int f = exact_facing(part.vertices[tri[0]], part.vertices[tri[1]], part.vertices[tri[2]], c.d);
       if (f < 0) {
@@ -1295,19 +1557,26 @@ Attempt carved(const TriangleSoup& part, const std::string& name, const Axis& ax
   const auto in_case = [&](const Vec3& p) {
     return (p.array() >= lo.array() + margin).all() && (p.array() <= hi.array() - margin).all();
   };
-  // Whether p lies in the region of c or within the margin of it.
+  // Whether p lies in the region of c or within the margin of it (a lid's:
+  // between its sides, from its far face to its top, beyond its polygon).
   const auto beyond = [&](const Cut& c, const Vec3& p) {
-    if (!((p - c.o).dot(c.d) / c.d.norm() > -margin)) return false;
-    return !c.lid || (p[k] > c.corner[k] - margin && p[k] < c.corner[k] + c.ru[k] + margin &&
-                      radial(p, k) > c.inner - margin);
+    if (!c.lid) return (p - c.o).dot(c.d) / c.d.norm() > -margin || c.in_core(p, -margin);
+    return c.frame.outside(p, 0) < margin && c.frame.outside(p, 1) < margin && p[k] > c.corner[k] - margin &&
+           p[k] < c.corner[k] + c.ru[k] + margin && radial(p, k) > c.inner - margin;
   };
-  // Whether a lid's pin foot at p lies in the lid, clear of its edges.
-  const auto in_lid = [&](const Cut& c, const Vec3& p) {
+  // Whether a lid's pin foot at p lies in the lid, clear of its edges (of
+  // its sides too at the foot's end's centre, `deep`: a pin across a side's
+  // slanted seam lies partly beyond it, in its hole in the piece there).
+  const auto in_lid = [&](const Cut& c, const Vec3& p, bool deep) {
     return p[k] >= c.corner[k] + margin && p[k] <= c.corner[k] + c.ru[k] - margin &&
-           radial(p, k) >= c.back + margin;
+           radial(p, k) >= c.back + margin &&
+           (!deep || (c.frame.outside(p, 0) <= -margin && c.frame.outside(p, 1) <= -margin));
   };
-  std::vector<TriangleSoup> holes;
-  std::vector<std::vector<TriangleSoup>> pins(cuts.size()), regions(cuts.size());
+  // Whether p lies clear of the part's box: in the case's walls.
+  const auto clear_of_part = [&](const Vec3& p) {
+    return !((p.array() > box.lo.array() - margin).all() && (p.array() < box.hi.array() + margin).all());
+  };
+  std::vector<std::vector<TriangleSoup>> pins(cuts.size()), holes(cuts.size()), regions(cuts.size());
   for (std::size_t i = 0; i < cuts.size(); ++i) {
     Cut& c = cuts[i];
     const Vec3 e1 = c.u.normalized(), e2 = c.v.normalized(), n = c.d.normalized();
@@ -1323,42 +1592,74 @@ Attempt carved(const TriangleSoup& part, const std::string& name, const Axis& ax
       }
       return out;
     };
-    const auto fits = [&](const Vec3& p) {
+    // Whether a pin from p fits: its hole in the main piece (or, not
+    // `strict`, in pieces taken off after this one: the pin leaves it first),
+    // its foot in its own piece.
+    const auto fits = [&](const Vec3& p, bool strict) {
       for (const Vec3& q : samples(p, hole_radius + margin, 0.0, -(height + options.clearance + margin))) {
-        if (!in_case(q)) return false;
-        for (const Cut& other : cuts) {
-          if (&other != &c && beyond(other, q)) return false;
+        if (!in_case(q) || !clear_of_part(q)) return false;
+        for (std::size_t j = 0; j < (strict ? cuts.size() : i); ++j) {
+          if (j != i && beyond(cuts[j], q)) return false;
         }
       }
-      for (const Vec3& q : samples(p, radius + margin, 0.0, buried)) {
-        if (!in_case(q) || (c.lid && !in_lid(c, q))) return false;
+      const std::vector<Vec3> foot = samples(p, radius + margin, 0.0, buried);
+      for (std::size_t m = 0; m < foot.size(); ++m) {
+        const Vec3& q = foot[m];
+        if (!in_case(q) || !clear_of_part(q) || (c.lid && !in_lid(c, q, m == foot.size() / 2))) return false;
         for (std::size_t j = 0; j < i; ++j) {
           if (beyond(cuts[j], q)) return false;
         }
       }
       return true;
     };
-    std::vector<Vec3> found;
-    for (int a = 0; a < 3; ++a) {
-      for (int sigma : {-1, 1}) {
-        if ((a == k && sigma == opening.sign) || c.d[a] != 0.0) continue;
-        Vec3 p0 = c.o;
-        p0[a] = sigma > 0 ? box.hi[a] + w / 2.0 : box.lo[a] - w / 2.0;
-        const Vec3 line = n.cross(axis_vector({a, 1}));
-        double t0 = -std::numeric_limits<double>::infinity(), t1 = -t0;
-        for (int b = 0; b < 3; ++b) {
-          if (line[b] == 0.0) continue;
-          const double ta = (lo[b] - p0[b]) / line[b], tb = (hi[b] - p0[b]) / line[b];
-          t0 = std::max(t0, std::min(ta, tb));
-          t1 = std::min(t1, std::max(ta, tb));
-        }
-        if (!(t0 < t1)) continue;
-        for (double fraction : {1.0 / 6.0, 1.0 / 3.0, 0.5, 2.0 / 3.0, 5.0 / 6.0}) {
-          const Vec3 p = p0 + (t0 + fraction * (t1 - t0)) * line;
-          if (fits(p)) found.push_back(p);
+    // Along a line in the middle of each wall that runs along the piece's way
+    // off: through its plane (a lid's split plane), or, for a lid, where
+    // each side off the split plane crosses that line; and, `across` (when
+    // those give no two), in the middle of a wall across the way off of a
+    // piece with an upright slanted seam, where the seam crosses it.
+    const auto found_where = [&](bool strict, bool across) {
+      std::vector<Vec3> found;
+      for (int a = 0; a < 3; ++a) {
+        for (int sigma : {-1, 1}) {
+          if (a == k && sigma == opening.sign) continue;
+          Vec3 p0 = c.o;
+          p0[a] = sigma > 0 ? box.hi[a] + w / 2.0 : box.lo[a] - w / 2.0;
+          std::vector<Vec3> starts;
+          Vec3 line = n.cross(axis_vector({a, 1}));
+          if (c.d[a] == 0.0) {
+            starts.push_back(p0);
+            for (int s = 0; c.lid && s < 2; ++s) {
+              const double u = p0.dot(c.frame.across), ru = c.frame.ray[s][0];
+              if (c.frame.split[s] || !(u * ru > 0.0)) continue;
+              starts.push_back(p0 + (u / ru) * c.frame.ray[s][1] * c.frame.d);
+            }
+          } else if (across && !c.lid && a != k && c.d[k] == 0.0 && c.d[3 - a - k] != 0.0) {
+            const int b = 3 - a - k;
+            p0[b] = c.o[b] - c.d[a] * (p0[a] - c.o[a]) / c.d[b];
+            starts.push_back(p0);
+            line = axis_vector({k, 1});
+          }
+          for (const Vec3& start : starts) {
+            double t0 = -std::numeric_limits<double>::infinity(), t1 = -t0;
+            for (int b = 0; b < 3; ++b) {
+              if (line[b] == 0.0) continue;
+              const double ta = (lo[b] - start[b]) / line[b], tb = (hi[b] - start[b]) / line[b];
+              t0 = std::max(t0, std::min(ta, tb));
+              t1 = std::min(t1, std::max(ta, tb));
+            }
+            if (!(t0 < t1)) continue;
+            for (double fraction : {1.0 / 6.0, 1.0 / 3.0, 0.5, 2.0 / 3.0, 5.0 / 6.0}) {
+              const Vec3 p = start + (t0 + fraction * (t1 - t0)) * line;
+              if (fits(p, strict)) found.push_back(p);
+            }
+          }
         }
       }
-    }
+      return found;
+    };
+    std::vector<Vec3> found = found_where(true, false);
+    if (found.size() < 2) found = found_where(true, true);
+    if (found.size() < 2) found = found_where(false, true);
     if (found.size() < 2) {
       return {std::nullopt,
               fmt::format("its case has no room in its walls for the pins of the piece beyond {}", c.what)};
@@ -1373,7 +1674,7 @@ Attempt carved(const TriangleSoup& part, const std::string& name, const Axis& ax
       pin.axis = -n;
       c.pins.push_back(pin);
       pins[i].push_back(pin_prism(foot, e1, e2, -c.d, radius, pin_length, sides));
-      holes.push_back(pin_prism(foot, e1, e2, -c.d, hole_radius, hole_length, sides));
+      holes[i].push_back(pin_prism(foot, e1, e2, -c.d, hole_radius, hole_length, sides));
     }
     // The region: beyond the plane, well past the case on every other side.
     const double reach = snapped(4.0 * (hi - lo).norm() + (c.o - lo).norm(), kLengthBits);
@@ -1402,6 +1703,7 @@ Attempt carved(const TriangleSoup& part, const std::string& name, const Axis& ax
       }
     } else {
       regions[i].push_back(block_of(c.o, c.u, c.v, c.d, {-reach, reach}, {-reach, reach}, {0.0, reach}));
+      if (!c.core.empty()) regions[i].push_back(prism_over(c.core, hi[k] + w - c.core.front().z()));
       c.corner = c.o - reach * c.u - reach * c.v;
       c.ru = 2.0 * reach * c.u;
       c.rv = 2.0 * reach * c.v;
@@ -1415,9 +1717,8 @@ Attempt carved(const TriangleSoup& part, const std::string& name, const Axis& ax
     return Attempt{std::nullopt, fmt::format("its face across {} does not bound a simple region", open_dir)};
   };
   if (lid) {
-    const double far = opening.sign > 0 ? box.lo[k] : box.hi[k];
-    std::optional<TriangleSoup> lidded =
-        lidded_block(lid_frame(lo, hi, opening, axis, far, w), faces, opening.sign);
+    const auto c = std::find_if(cuts.begin(), cuts.end(), [](const Cut& x) { return x.lid; });
+    std::optional<TriangleSoup> lidded = lidded_block(c->frame, faces, opening.sign);
     if (!lidded) return no_rim();
     block = std::move(*lidded);
   } else if (!rectangle && !open_through(block, opening, faces, cuts.empty())) {
@@ -1479,15 +1780,25 @@ Attempt carved(const TriangleSoup& part, const std::string& name, const Axis& ax
     }
     plate.hollow = c.hollow;
     plate.hollow_along = c.hollow_along;
+    plate.core = c.core;
+    if (!c.core.empty()) plate.core_along = Vec3(0.0, 0.0, hi[k] + w - c.core.front().z());
     if (c.lid) {
+      const int slanted = (c.frame.split[0] ? 0 : 1) + (c.frame.split[1] ? 0 : 1);
+      const std::string seams =
+          slanted == 0 ? "the split plane across that way"
+          : slanted == 1
+              ? "the split plane across that way and the plane of its other split face beyond its back, "
+                "whose triangles face away from that way by exact signs,"
+              : "the planes of its two split faces beyond its back, whose triangles face away from that way "
+                "by exact signs,";
       plate.release_proof = fmt::format(
           "piece {} (the lid over {}) comes off{} along {}: it touches {} only on the {} faces of its back "
-          "(every other face lies within {:.6g} of the axis, or on its split plane or its flat faces), "
+          "(every other face lies within {:.6g} of the axis, or on its split faces or its flat faces), "
           "which face that way or run along it ({} do), by exact signs; its seams with the pieces left are "
-          "the split plane across that way and the plane of the part's far face along it, and its {} pins "
-          "run exactly along it out of their holes",
+          "{} and the plane of the part's far face along it, and its {} pins run exactly along it out of "
+          "their holes",
           i + 1, name, i == 0 ? " first" : " next", vector_text(c.d), name, c.touching, c.inside, c.along,
-          c.pins.size());
+          seams, c.pins.size());
       out.release_proof += "; " + plate.release_proof;
       out.plates.push_back(std::move(plate));
       continue;
@@ -1665,33 +1976,56 @@ CastingCase cylinder_case(const TriangleSoup& part, const std::string& name, con
     }
     throw GeometryError("case", fmt::format("no casting case releases {}: {}", name, reasons));
   }
-  // The side part's split faces: one plane through the axis, across x or y.
-  const Vec3 n = faces.front().normal;
-  std::optional<Axis> pull;
+  // The pull: across x or y, with the part's back (its points on the
+  // cylinder) on its side of the plane through the axis across it (exactly;
+  // the keys' bumps may cross it), a split face on that plane when one is. The lid comes off that way over
+  // the back; the split faces off the plane (a mould in more than 2 parts) each have a piece of their own,
+  // taken off across them before the part leaves the main piece.
+  const auto on_plane = [](const CaseFace& f, const Axis& a) {
+    return std::abs(f.normal[a.k] + a.sign) <= 1e-12 && std::abs(f.normal[1 - a.k]) <= 1e-12 &&
+           f.normal.z() == 0.0 && f.point.norm() <= 1e-9;
+  };
+  std::vector<Axis> pulls;
   for (int q = 0; q < 2; ++q) {
-    if (std::abs(std::abs(n[q]) - 1.0) <= 1e-12 && std::abs(n[1 - q]) <= 1e-12 && n.z() == 0.0) {
-      pull = Axis{q, n[q] > 0.0 ? -1 : 1};
+    for (int sign : {1, -1}) {
+      const Axis a{q, sign};
+      if (std::any_of(part.vertices.begin(), part.vertices.end(), [&](const Vec3& p) {
+            return sign * p[q] < 0.0 && radial(p, 2) >= radius * (1.0 - 1e-9);
+          })) {
+        continue;
+      }
+      const bool split =
+          std::any_of(faces.begin(), faces.end(), [&](const CaseFace& f) { return on_plane(f, a); });
+      pulls.insert(split ? pulls.begin() : pulls.end(), a);
     }
   }
-  const bool one_plane = std::all_of(faces.begin(), faces.end(), [&](const CaseFace& f) {
-    return (f.normal - n).norm() <= 1e-12 && std::abs(f.point.dot(n)) <= 1e-9 * (1.0 + f.point.norm());
-  });
-  if (!pull || !one_plane) {
+  if (pulls.empty()) {
     throw GeometryError(
         "case",
-        fmt::format("no casting case is made yet for {}: its split faces are not one plane through the axis "
-                    "(a cylinder mould in more than 2 parts), so the lid over its curved back would come off "
-                    "between two boards, each with its keys; use 2 parts or `block: box`",
+        fmt::format("no casting case is made for {}: it lies on both sides of every plane through the "
+                    "axis across x or y, so no lid over its curved back comes off across one",
                     name));
   }
-  for (int sign : {1, -1}) {
-    const Axis opening{2, sign};
-    Attempt a = carved(part, name, *pull, opening, false, radius, options, {}, what_is_at);
-    if (a.built) {
-      a.built->undrafted = {undrafted};
-      return std::move(*a.built);
+  for (const Axis& pull : pulls) {
+    std::vector<CaseFace> given;
+    for (const CaseFace& f : faces) {
+      if (!on_plane(f, pull)) given.push_back(f);
     }
-    refused(*pull, opening, a.why_not);
+    // With no split face on the lid's plane (the middle side of 3), the
+    // piece beyond its last split face takes the vessel's slice too, and the
+    // part lifts off the floor (over a base part, off its keys) through the
+    // opening.
+    const bool lifted = given.size() == faces.size();
+    for (int sign : {1, -1}) {
+      const Axis opening{2, sign};
+      Attempt a = carved(part, name, lifted ? opening : pull, opening, false, Lid{radius, pull, lifted},
+                         options, given, what_is_at);
+      if (a.built) {
+        a.built->undrafted = {undrafted};
+        return std::move(*a.built);
+      }
+      refused(pull, opening, a.why_not);
+    }
   }
   throw GeometryError("case", fmt::format("no casting case with a lid releases {}: {}", name, reasons));
 }

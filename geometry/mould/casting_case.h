@@ -118,9 +118,15 @@ struct CasePlate {
   /// A lid over a cylinder block's back: its region less the prism over the
   /// polygon `hollow` (in the plane across the case's opening through the
   /// region's corner, inscribed in the block's circle and holding all of the
-  /// part but its back) swept along `hollow_along` through the region.
+  /// part but its back; out along a side's split face off the split plane
+  /// past the region) swept along `hollow_along` through the region.
   std::vector<Vec3> hollow;
   Vec3 hollow_along{0.0, 0.0, 0.0};
+  /// A piece that also takes the vessel's slice between a cylinder part's
+  /// split faces: its region with the prism over the polygon `core` (across
+  /// the opening, round the axis) swept along `core_along` added.
+  std::vector<Vec3> core;
+  Vec3 core_along{0.0, 0.0, 0.0};
   Vec3 lo{0.0, 0.0, 0.0}, hi{0.0, 0.0, 0.0};  ///< the slab's box (carved: the piece's bounding box)
   std::size_t features = 0;                   ///< the regions behind the face it fills (sockets)
   /// Its two pins (in the case's walls beside the face, a third of the way

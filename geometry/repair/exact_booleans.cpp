@@ -354,7 +354,7 @@ SurfaceMesh boolean_of(const SurfaceMesh& a, const SurfaceMesh& b, int op, const
 std::optional<std::vector<TriangleSoup>> carve_pieces(const TriangleSoup& block, const TriangleSoup& part,
                                                       const std::vector<std::vector<TriangleSoup>>& regions,
                                                       const std::vector<std::vector<TriangleSoup>>& added,
-                                                      const std::vector<TriangleSoup>& holes,
+                                                      const std::vector<std::vector<TriangleSoup>>& holes,
                                                       std::string* why) {
   try {
     SurfaceMesh rest = boolean_of(exact_mesh(block), exact_mesh(part), 0, "the block less the part");
@@ -376,9 +376,11 @@ std::optional<std::vector<TriangleSoup>> carve_pieces(const TriangleSoup& block,
         return std::nullopt;
       }
       pieces.push_back(canonical(rounded(piece)));
+      if (i < holes.size()) {
+        for (const TriangleSoup& hole : holes[i])
+          rest = boolean_of(rest, exact_mesh(hole), 0, "the rest less a hole");
+      }
     }
-    for (const TriangleSoup& hole : holes)
-      rest = boolean_of(rest, exact_mesh(hole), 0, "the rest less a hole");
     if (rest.is_empty() || !CGAL::is_closed(rest)) {
       say(why, "the main piece is empty or open");
       return std::nullopt;

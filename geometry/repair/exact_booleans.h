@@ -35,14 +35,15 @@ std::optional<TriangleSoup> resolve_self_intersections(const TriangleSoup& shell
 /// manifold and free of self-intersections), cut by `regions` in order
 /// (each the union of its solids): piece i + 1 is what lies in region i and
 /// in none before it,
-/// united with the solids `added[i]`; piece 0 is what lies in no region,
-/// less the solids `holes`. All by CGAL's corefinement over exact
+/// united with the solids `added[i]`; the solids `holes[i]` are then taken
+/// from what is left (from the pieces after it and from piece 0, what lies
+/// in no region). All by CGAL's corefinement over exact
 /// constructions, each piece rounded to double once, at the end. Empty when
 /// CGAL cannot, or a piece is empty or not closed; `why` then says so.
 std::optional<std::vector<TriangleSoup>> carve_pieces(const TriangleSoup& block, const TriangleSoup& part,
                                                       const std::vector<std::vector<TriangleSoup>>& regions,
                                                       const std::vector<std::vector<TriangleSoup>>& added,
-                                                      const std::vector<TriangleSoup>& holes,
+                                                      const std::vector<std::vector<TriangleSoup>>& holes,
                                                       std::string* why = nullptr);
 
 /// The cells of one solid `solid` (closed, outward, manifold and free of
