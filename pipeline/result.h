@@ -194,10 +194,13 @@ struct VesselProducts {
       std::vector<Vec3> hollow;
       Vec3 hollow_along{0.0, 0.0, 0.0};
       /// Its pins: `base` the centre of the cylinder's end inside the piece,
-      /// `height` its whole length (`behind` of it inside the piece), and
-      /// the hole's whole length `hole_depth` from the same end.
+      /// `height` its whole length, and the hole's whole length `hole_depth`
+      /// from the same end.
       std::vector<Plate::Pin> pins;
-      double behind = 0.0;
+      /// A piece that takes the vessel's slice too: its region with the prism
+      /// over `core` swept along `core_along` added (CasePlate).
+      std::vector<Vec3> core;
+      Vec3 core_along{0.0, 0.0, 0.0};
     };
     std::vector<Piece> pieces;
     /// The part's faces leaned by the draft: each prism is taken from the part.

@@ -100,13 +100,15 @@ struct StepPrism {
 
 /// A region a casting case is cut by: the box `corner` + a u + b v + c d for
 /// a, b, c in [0, 1] (u, v, d at right angles, right-handed), with the
-/// half-balls `fills` added (the sockets of the part's face it lies beyond)
-/// and the prisms `hollows` taken away (a lid's: the cylinder block's inside).
+/// half-balls `fills` added (the sockets of the part's face it lies beyond),
+/// the prisms `hollows` taken away (a lid's: the cylinder block's inside)
+/// and then the prisms `adds` added.
 struct StepRegion {
   Vec3 corner{0.0, 0.0, 0.0};
   Vec3 u{1.0, 0.0, 0.0}, v{0.0, 1.0, 0.0}, d{0.0, 0.0, 1.0};
   std::vector<StepHemisphere> fills;
   std::vector<StepPrism> hollows;
+  std::vector<StepPrism> adds;  ///< prisms added after the hollows (a piece's vessel slice)
 };
 
 /// A solid cylinder: its base circle of `radius` about `base`, extending
@@ -159,9 +161,6 @@ struct StepBody {
   /// box (its free faces leaned by the case's draft).
   std::vector<StepPrism> drafts;
   std::size_t piece = 0;  ///< CasePiece
-  /// CasePiece: how far each cylinder runs on the near side of its region's
-  /// plane (a pin into its own piece; a hole into the piece beyond, not the main one).
-  double cylinder_behind = 0.0;
 };
 
 /// One file: its bodies in one unit of length (mm, cm, m or in), the file's own.

@@ -1032,6 +1032,11 @@ TopoDS_Shape make_region(const StepRegion& r) {
     for (const StepPrism& p : r.hollows) hollows.Append(make_prism(p));
     shape = the_solid(boolean<BRepAlgoAPI_Cut>(shape, hollows, "taking the block's inside from a lid"));
   }
+  if (!r.adds.empty()) {
+    TopTools_ListOfShape adds;
+    for (const StepPrism& p : r.adds) adds.Append(make_prism(p));
+    shape = the_solid(boolean<BRepAlgoAPI_Fuse>(shape, adds, "adding the vessel's slice to a piece"));
+  }
   return shape;
 }
 
@@ -1069,10 +1074,9 @@ std::pair<TopoDS_Shape, TopoDS_Shape> split_by(const TopoDS_Shape& whole, const 
 
 // A piece of a carved casting case: the case (its box less the part,
 // checked as make_case checks it) cut by its regions in order, each cut
-// checked; a piece with its pins added (each adding the volume it stands
-// out of the piece), the main piece less their holes (each taking the
-// volume it reaches into it), to 1e-9 of the piece's plus its area times
-// its largest edge tolerance.
+// checked; with its pins added and the holes of the pieces' before it (the
+// main piece: all of them) taken away, the volume checked to 1e-9 of the
+// piece's plus its area times its largest edge tolerance.
 TopoDS_Shape make_case_piece(const StepBody& body) {
   StepBody whole = body;
   whole.form = StepForm::Case;
@@ -1088,15 +1092,24 @@ TopoDS_Shape make_case_piece(const StepBody& body) {
   }
   TopoDS_Shape shape = the_solid(body.piece == 0 ? rest : piece);
   if (body.cylinders.empty()) return shape;
-  TopTools_ListOfShape tools;
+  // Each pin adds what of it stands out of the piece, each hole (of a pin of
+  // a piece taken off before) takes what of it reaches into the piece: both
+  // measured on the piece before either, by exact common parts.
+  TopTools_ListOfShape added, removed;
   double expected = precise_volume_of(shape);
-  const double sign = body.piece == 0 ? -1.0 : 1.0;
   for (const StepCylinder& c : body.cylinders) {
-    tools.Append(make_cylinder(c));
-    expected += sign * M_PI * c.radius * c.radius * (c.height - body.cylinder_behind);
+    const TopoDS_Shape cylinder = make_cylinder(c);
+    TopTools_ListOfShape one;
+    one.Append(cylinder);
+    const double within =
+        precise_volume_of(boolean<BRepAlgoAPI_Common>(shape, one, "measuring a pin or hole"));
+    expected += c.added ? precise_volume_of(cylinder) - within : -within;
+    (c.added ? added : removed).Append(cylinder);
   }
-  shape = the_solid(body.piece == 0 ? boolean<BRepAlgoAPI_Cut>(shape, tools, "taking the pins' holes away")
-                                    : boolean<BRepAlgoAPI_Fuse>(shape, tools, "adding the piece's pins"));
+  if (!added.IsEmpty()) shape = the_solid(boolean<BRepAlgoAPI_Fuse>(shape, added, "adding the piece's pins"));
+  if (!removed.IsEmpty()) {
+    shape = the_solid(boolean<BRepAlgoAPI_Cut>(shape, removed, "taking the pins' holes away"));
+  }
   const double got = precise_volume_of(shape);
   GProp_GProps surface;
   BRepGProp::SurfaceProperties(shape, surface);

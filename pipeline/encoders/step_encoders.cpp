@@ -355,8 +355,9 @@ EncodedFiles encode_case_step_output(const EncodeContext& c) {
       // main piece first, less the pins' holes.
       std::vector<StepRegion> regions;
       for (const VesselProducts::CaseBox::Piece& p : box.pieces) {
-        StepRegion r{p.corner, p.u, p.v, p.d, {}, {}};
+        StepRegion r{p.corner, p.u, p.v, p.d, {}, {}, {}};
         if (!p.hollow.empty()) r.hollows.push_back({p.hollow, p.hollow_along});
+        if (!p.core.empty()) r.adds.push_back({p.core, p.core_along});
         if (p.face_axis >= 0) {
           // Its seam on the part's exact face.
           const int q = p.face_axis;
@@ -391,12 +392,12 @@ EncodedFiles encode_case_step_output(const EncodeContext& c) {
         StepBody piece = whole;
         piece.name = c.common.name + " " + box.pieces[n].name;
         piece.piece = n + 1;
-        piece.cylinder_behind = box.pieces[n].behind;
+        // The holes of the pieces before it (in it where their pins reach in), then its own pins.
+        piece.cylinders = body.cylinders;
         for (const VesselProducts::CaseBox::Plate::Pin& pin : box.pieces[n].pins) {
           piece.cylinders.push_back({pin.base, pin.axis, pin.radius, pin.height, true, false});
           body.cylinders.push_back({pin.base, pin.axis, pin.hole_radius, pin.hole_depth, false, false});
         }
-        body.cylinder_behind = box.pieces[n].behind;
         names.push_back(box.pieces[n].name);
         pieces.push_back(std::move(piece));
       }
