@@ -236,7 +236,7 @@ bool has_block(const Design& design, DesignBlock block) {
     case DesignBlock::CaseMould: {
       const auto* v = std::get_if<VesselDesign>(&design.body);
       return v != nullptr && v->mould.has_value() &&
-             (v->mould->block == BlockShape::Box || v->mould->parts == 2);
+             (v->mould->block == BlockShape::Box || v->mould->parts == 2 || !v->mould->base_part);
     }
     case DesignBlock::Cnc: {
       const auto* c = std::get_if<CountertopDesign>(&design.body);
@@ -294,9 +294,11 @@ std::vector<const OutputFormat*> resolve_outputs(const Design& design) {
       const char* needs =
           format->block == DesignBlock::Mould ? "a `mould:` section"
           : format->block == DesignBlock::CaseMould
-              ? "a `mould:` section with `block: box` or `parts: 2` (a cylinder mould's 3 parts have split "
-                "faces 120 degrees apart, and the lid that holds a part's curved back while plaster sets "
-                "comes off across one split plane only)"
+              ? "a `mould:` section with `block: box`, `parts: 2` or no `base_part` (over a base part, "
+                "the middle side of a cylinder mould's 3 parts has no case yet: the plate under it, holding "
+                "the base keys' sockets, comes off last, and every wall above it belongs to its lid or to "
+                "the "
+                "pieces beyond its split faces, which come off before it, so its pins have nowhere to stand)"
           : format->block == DesignBlock::Cnc ? "a `cnc:` section"
                                               : "a `slab:` section (a kitchen)";
       throw FileError(design.common.path, r.line, r.column,

@@ -5,11 +5,13 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <string>
 
 #include "geometry/core/errors.h"
 #include "io/design/read_design.h"
@@ -275,12 +277,63 @@ TEST_CASE("casting cases: a cylinder mould's halves are cast upright under lids,
   CHECK(text.find(
             "casting cases: 2 of 2 parts (side-1 lifts out along +y once its lid is off, side-2 lifts out "
             "along -y once its lid is off)") != std::string::npos);
-  // In three parts the split faces are 120 degrees apart: bad input, saying why, nothing written.
-  CHECK(run_cli({"run", example("mould_golden.yaml"), "-D", "outputs=[case_stl]", "-D", "mould.parts=3", "-D",
-                 "mould.keys=0", "-o", (dir / "three").string() + "/"},
-                &text) == 2);
-  CHECK(text.find("case_stl needs a `mould:` section with `block: box` or `parts: 2`") != std::string::npos);
+  // Over a base part, a cylinder mould in three parts has no cases yet: bad
+  // input, saying why, nothing written.
+  CHECK(
+      run_cli({"run", example("mould_golden.yaml"), "-D", "outputs=[case_stl]", "-D", "mould.parts=3", "-D",
+               "mould.key_clearance=0.1", "-D", "mould.base_part=true", "-o", (dir / "three").string() + "/"},
+              &text) == 2);
+  CHECK(text.find("case_stl needs a `mould:` section with `block: box`, `parts: 2` or no `base_part`") !=
+        std::string::npos);
   CHECK_FALSE(fs::exists(dir / "three" / "mould_golden.case-side-1.stl"));
+}
+
+TEST_CASE(
+    "casting cases: a cylinder mould in three parts: a lid over each back, a piece beyond each slanted face",
+    "[pipeline][mould][case][lid]") {
+  const fs::path dir = fresh_dir("casting_cases_cylinder_three");
+  std::string text;
+  REQUIRE(run_cli_json({"run", example("mould_golden.yaml"), "-D", "outputs=[case_stl, case_3mf]", "-D",
+                        "mould.parts=3", "-D", "mould.key_clearance=0.1", "-o", dir.string() + "/", "--json"},
+                       &text) == 0);
+  const nlohmann::json report = nlohmann::json::parse(text);
+  const nlohmann::json& cases = report.at(0).at("build").at("mould").at("cases");
+  REQUIRE(cases.size() == 3);
+  // Sides 1 and 3 have a split face on the plane across y: their lids come
+  // off across it, then the piece beyond the other split face, and the part
+  // leaves the main piece the lid's way. Side 2 has none: its lid comes off
+  // along -x, the pieces beyond its split faces (the last with the vessel's
+  // slice), and the part lifts off the floor.
+  const std::array<nlohmann::json, 3> lids{nlohmann::json::array({0.0, 1.0, 0.0}),
+                                           nlohmann::json::array({-1.0, 0.0, 0.0}),
+                                           nlohmann::json::array({0.0, -1.0, 0.0})};
+  for (std::size_t side = 0; side < 3; ++side) {
+    const nlohmann::json& c = cases.at(side);
+    INFO(c.dump());
+    CHECK(c.at("pull") == (side == 1 ? nlohmann::json::array({0.0, 0.0, 1.0}) : lids.at(side)));
+    CHECK(c.at("opening") == nlohmann::json::array({0.0, 0.0, 1.0}));
+    REQUIRE(c.at("pieces").size() == (side == 1 ? 3U : 2U));
+    CHECK(c.at("pieces").at(0).at("beyond") == "its curved back");
+    CHECK(c.at("pieces").at(0).at("pull") == lids.at(side));
+    for (std::size_t n = 1; n < c.at("pieces").size(); ++n) {
+      CHECK_THAT(c.at("pieces").at(n).at("beyond").get<std::string>(),
+                 Catch::StartsWith("its split face at"));
+    }
+    for (const nlohmann::json& piece : c.at("pieces")) CHECK(piece.at("pins").size() == 2);
+  }
+  for (const char* file : {"case-side-1", "case-side-2", "case-side-2-piece-1", "case-side-2-piece-2",
+                           "case-side-2-piece-3", "case-side-3-piece-2"}) {
+    const std::string stl = (dir / (std::string("mould_golden.") + file + ".stl")).string();
+    INFO(stl);
+    REQUIRE(fs::exists(stl));
+    std::string checked;
+    CHECK(run_cli({"check", stl}, &checked) == 0);
+    CHECK(checked.find(": valid") != std::string::npos);
+    CHECK(checked.find(" 1 component,") != std::string::npos);
+  }
+  std::string checked;
+  CHECK(run_cli({"check", (dir / "mould_golden.case.3mf").string()}, &checked) == 0);
+  CHECK(checked.find("10 objects, none interpenetrating") != std::string::npos);
 }
 
 TEST_CASE("casting cases: a part no case releases is named", "[pipeline][mould][case]") {

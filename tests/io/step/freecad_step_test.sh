@@ -147,8 +147,9 @@ for edges in 'half_bullnose, radius: 12' 'bullnose'; do
   fi
 done
 # Casting cases (`case_step`, every example whose mould is a box, and the
-# golden one in three keyed parts): each one closed solid, or two (a case
-# and its plate, when the mesh case has a plate), or as many as the pieces
+# golden ones in three keyed parts, as a box and as a cylinder): each one
+# closed solid, or two (a case and its plate, when the mesh case has a
+# plate), or as many as the pieces
 # the mesh case is carved in, sharing no volume; with its mould part (mould_step) the case shares
 # the draft's wedges (the report's draft.volume, within its volume_error, 1e-6 of it and 1e-9 of
 # the part's area, in mm) and nothing more, and fills the case's box
@@ -198,6 +199,9 @@ case_steps "$source/configs/examples/mould_golden_box_base.yaml" "$work/golden_t
 # The golden cylinder mould (two keyed parts): each side's case lidded, its base's in one piece.
 case_steps "$source/configs/examples/mould_golden.yaml" "$work/golden_cylinder-cases" golden_cylinder \
   -D name=golden_cylinder
+# The golden cylinder mould in three keyed parts: each lid, the pieces beyond the slanted split faces.
+case_steps "$source/configs/examples/mould_golden.yaml" "$work/golden_cylinder_three-cases" golden_cylinder_three \
+  -D name=golden_cylinder_three -D mould.parts=3 -D mould.key_clearance=0.1
 ((${#cases[@]} >= 3)) || fail "only ${#cases[@]} casting cases written"
 FABMESH_CASES=$(IFS=:; echo "${cases[*]}") timeout 600 freecadcmd "$source/tests/io/step/freecad_case_check.py" \
   >"$work/freecad-cases.log" 2>&1
