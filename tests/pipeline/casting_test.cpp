@@ -14,8 +14,10 @@
 #include <string>
 
 #include "geometry/core/errors.h"
+#include "geometry/mesh/bounding_box.h"
 #include "io/design/read_design.h"
 #include "io/file.h"
+#include "io/mesh/read_mesh.h"
 #include "pipeline/summary.h"
 #include "tests/io/mesh/external_tool.h"
 #include "tests/pipeline/cli_harness.h"
@@ -486,6 +488,31 @@ TEST_CASE("casting cases: PrusaSlicer finds each case manifold and slices it sta
     CHECK(info.at("manifold") == "yes");
     CHECK(std::stod(info.at("size_z")) == Approx(piece.height).margin(0.01));
     const fs::path gcode = dir / (name + ".gcode");
+    const test::ToolRun slice =
+        test::prusa_slicer((dir / "home").string(),
+                           "--export-gcode --bed-shape 0x0,400x0,400x400,0x400 --center 200,200 " +
+                               test::quoted(stl.string()) + " --output " + test::quoted(gcode.string()));
+    INFO(slice.output);
+    CHECK(slice.code == 0);
+    CHECK(fs::file_size(gcode) > 0);
+  }
+  // The middle side of the golden mould in 3 parts: its floor (the main
+  // piece, one 5 mm wall), its lid, and the pieces beyond its split faces
+  // (the last with the vessel's slice), each as tall as fabmesh reads it.
+  const fs::path three = dir / "three";
+  REQUIRE(run_cli({"run", example("mould_golden.yaml"), "-D", "outputs=[case_stl]", "-D", "mould.parts=3",
+                   "-D", "mould.key_clearance=0.1", "-o", three.string() + "/"}) == 0);
+  for (const char* name : {"mould_golden.case-side-2", "mould_golden.case-side-2-piece-1",
+                           "mould_golden.case-side-2-piece-2", "mould_golden.case-side-2-piece-3"}) {
+    INFO(name);
+    const fs::path stl = three / (std::string(name) + ".stl");
+    const BoundingBox box = bounding_box(read_mesh(stl.string()).vertices);
+    if (std::string(name) == "mould_golden.case-side-2") CHECK(box.hi.z() - box.lo.z() == Approx(5.0));
+    const std::map<std::string, std::string> info = test::prusa_info((dir / "home").string(), stl.string());
+    REQUIRE(info.count("manifold") == 1);
+    CHECK(info.at("manifold") == "yes");
+    CHECK(std::stod(info.at("size_z")) == Approx(box.hi.z() - box.lo.z()).margin(0.01));
+    const fs::path gcode = three / (std::string(name) + ".gcode");
     const test::ToolRun slice =
         test::prusa_slicer((dir / "home").string(),
                            "--export-gcode --bed-shape 0x0,400x0,400x400,0x400 --center 200,200 " +
