@@ -295,10 +295,8 @@ std::vector<const OutputFormat*> resolve_outputs(const Design& design) {
           format->block == DesignBlock::Mould ? "a `mould:` section"
           : format->block == DesignBlock::CaseMould
               ? "a `mould:` section with `block: box`, `parts: 2` or no `base_part` (over a base part, "
-                "the middle side of a cylinder mould's 3 parts has no case yet: the plate under it, holding "
-                "the base keys' sockets, comes off last, and every wall above it belongs to its lid or to "
-                "the "
-                "pieces beyond its split faces, which come off before it, so its pins have nowhere to stand)"
+                "the middle side of a cylinder mould's 3 parts has no case yet: the piece that takes the "
+                "vessel's slice from between its split faces would take the base keys' sockets with it)"
           : format->block == DesignBlock::Cnc ? "a `cnc:` section"
                                               : "a `slab:` section (a kitchen)";
       throw FileError(design.common.path, r.line, r.column,
