@@ -1338,21 +1338,24 @@ std::optional<Cut> lid_cut(const TriangleSoup& part, const Faces& faces, const A
   return c;
 }
 
-// The prism over the convex polygon `ring` (across z, counter-clockwise
-// seen from +z), running `height` up z.
-TriangleSoup prism_over(const std::vector<Vec3>& ring, double height) {
+// The prism over the convex polygon `ring` swept along `along` (across
+// it), facing out.
+TriangleSoup prism_over(const std::vector<Vec3>& ring, const Vec3& along) {
   TriangleSoup s;
   const auto n = static_cast<Index>(ring.size());
-  for (const Vec3& p : ring) s.vertices.push_back(p);
-  for (const Vec3& p : ring) s.vertices.push_back(p + Vec3(0.0, 0.0, height));
+  s.vertices = ring;
+  for (Index m = 0; m < n; ++m) s.vertices.push_back(ring[m] + along);
   for (Index m = 0; m < n; ++m) {
     const Index l = (m + 1) % n;
-    s.triangles.push_back({m, l, n + l});
-    s.triangles.push_back({m, n + l, n + m});
+    s.triangles.push_back({m, l, n + m});
+    s.triangles.push_back({l, n + l, n + m});
   }
   for (Index m = 1; m + 1 < n; ++m) {
     s.triangles.push_back({0, m + 1, m});
     s.triangles.push_back({n, n + m, n + m + 1});
+  }
+  if (signed_volume(s) < 0.0) {
+    for (Triangle& t : s.triangles) std::swap(t[1], t[2]);
   }
   return s;
 }
@@ -1703,7 +1706,8 @@ Attempt carved(const TriangleSoup& part, const std::string& name, const Axis& ax
       }
     } else {
       regions[i].push_back(block_of(c.o, c.u, c.v, c.d, {-reach, reach}, {-reach, reach}, {0.0, reach}));
-      if (!c.core.empty()) regions[i].push_back(prism_over(c.core, hi[k] + w - c.core.front().z()));
+      if (!c.core.empty())
+        regions[i].push_back(prism_over(c.core, Vec3(0.0, 0.0, hi[k] + w - c.core.front().z())));
       c.corner = c.o - reach * c.u - reach * c.v;
       c.ru = 2.0 * reach * c.u;
       c.rv = 2.0 * reach * c.v;
@@ -2072,27 +2076,12 @@ TriangleSoup block_of(const Vec3& o, const Vec3& u, const Vec3& v, const Vec3& d
 // exactly along d (the ring on the point grid, length on the length grid).
 TriangleSoup pin_prism(const Vec3& centre, const Vec3& e1, const Vec3& e2, const Vec3& d, double radius,
                        double length, std::size_t sides) {
-  TriangleSoup s;
-  const auto n = static_cast<Index>(sides);
-  for (Index m = 0; m < n; ++m) {
-    const double angle = 2.0 * M_PI * m / n;
-    s.vertices.push_back(
-        snapped(centre + radius * (std::cos(angle) * e1 + std::sin(angle) * e2), kPointBits));
+  std::vector<Vec3> ring;
+  for (std::size_t m = 0; m < sides; ++m) {
+    const double angle = 2.0 * M_PI * static_cast<double>(m) / static_cast<double>(sides);
+    ring.push_back(snapped(centre + radius * (std::cos(angle) * e1 + std::sin(angle) * e2), kPointBits));
   }
-  for (Index m = 0; m < n; ++m) s.vertices.push_back(s.vertices[m] + length * d);
-  for (Index m = 0; m < n; ++m) {
-    const Index l = (m + 1) % n;
-    s.triangles.push_back({m, l, n + m});
-    s.triangles.push_back({l, n + l, n + m});
-  }
-  for (Index m = 1; m + 1 < n; ++m) {
-    s.triangles.push_back({0, m + 1, m});
-    s.triangles.push_back({n, n + m, n + m + 1});
-  }
-  if (signed_volume(s) < 0.0) {
-    for (Triangle& t : s.triangles) std::swap(t[1], t[2]);
-  }
-  return s;
+  return prism_over(ring, length * d);
 }
 
 std::vector<CaseFace> split_faces(const MouldPart& part) {

@@ -9,9 +9,11 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
+#include <initializer_list>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "geometry/core/errors.h"
 #include "geometry/mesh/bounding_box.h"
@@ -230,15 +232,39 @@ TEST_CASE("casting cases: a side part over a keyed base gets a plate under it, o
   CHECK(text.find("5 objects, none interpenetrating") != std::string::npos);
 }
 
+namespace {
+
+// The report's casting cases of the golden mould run with `overrides`,
+// its case STL and 3MF written to `dir`.
+nlohmann::json golden_cases(const fs::path& dir, const std::vector<std::string>& overrides) {
+  std::vector<std::string> args{"run", example("mould_golden.yaml"), "-D", "outputs=[case_stl, case_3mf]"};
+  args.insert(args.end(), overrides.begin(), overrides.end());
+  args.insert(args.end(), {"-o", dir.string() + "/", "--json"});
+  std::string text;
+  REQUIRE(run_cli_json(args, &text) == 0);
+  return nlohmann::json::parse(text).at(0).at("build").at("mould").at("cases");
+}
+
+// `check` finds each of the golden mould's case STL `files` in `dir` valid and one body.
+void check_golden_stls(const fs::path& dir, std::initializer_list<const char*> files) {
+  for (const char* file : files) {
+    const std::string stl = (dir / (std::string("mould_golden.") + file + ".stl")).string();
+    INFO(stl);
+    REQUIRE(fs::exists(stl));
+    std::string checked;
+    CHECK(run_cli({"check", stl}, &checked) == 0);
+    CHECK(checked.find(": valid") != std::string::npos);
+    CHECK(checked.find(" 1 component,") != std::string::npos);
+  }
+}
+
+}  // namespace
+
 TEST_CASE("casting cases: a cylinder mould's halves are cast upright under lids, its base in one piece",
           "[pipeline][mould][case][lid]") {
   const fs::path dir = fresh_dir("casting_cases_cylinder");
   std::string text;
-  REQUIRE(run_cli_json({"run", example("mould_golden.yaml"), "-D", "outputs=[case_stl, case_3mf]", "-D",
-                        "mould.base_part=true", "-D", "mould.keys=2", "-o", dir.string() + "/", "--json"},
-                       &text) == 0);
-  const nlohmann::json report = nlohmann::json::parse(text);
-  const nlohmann::json& cases = report.at(0).at("build").at("mould").at("cases");
+  const nlohmann::json cases = golden_cases(dir, {"-D", "mould.base_part=true", "-D", "mould.keys=2"});
   REQUIRE(cases.size() == 3);
   for (int side = 0; side < 2; ++side) {
     const nlohmann::json& c = cases.at(side);
@@ -261,15 +287,8 @@ TEST_CASE("casting cases: a cylinder mould's halves are cast upright under lids,
   CHECK(cases.at(2).at("pull") == nlohmann::json::array({0.0, 0.0, -1.0}));
   const bool base_pieces = cases.at(2).contains("pieces") && !cases.at(2).at("pieces").empty();
   CHECK_FALSE(base_pieces);
-  for (const char* file : {"case-base", "case-side-1", "case-side-1-piece-1", "case-side-1-piece-2",
-                           "case-side-2", "case-side-2-piece-2"}) {
-    const std::string stl = (dir / (std::string("mould_golden.") + file + ".stl")).string();
-    INFO(stl);
-    REQUIRE(fs::exists(stl));
-    std::string checked;
-    CHECK(run_cli({"check", stl}, &checked) == 0);
-    CHECK(checked.find(": valid") != std::string::npos);
-  }
+  check_golden_stls(dir, {"case-base", "case-side-1", "case-side-1-piece-1", "case-side-1-piece-2",
+                          "case-side-2", "case-side-2-piece-2"});
   std::string checked;
   CHECK(run_cli({"check", (dir / "mould_golden.case.3mf").string()}, &checked) == 0);
   CHECK(checked.find("7 objects, none interpenetrating") != std::string::npos);
@@ -294,12 +313,7 @@ TEST_CASE(
     "casting cases: a cylinder mould in three parts: a lid over each back, a piece beyond each slanted face",
     "[pipeline][mould][case][lid]") {
   const fs::path dir = fresh_dir("casting_cases_cylinder_three");
-  std::string text;
-  REQUIRE(run_cli_json({"run", example("mould_golden.yaml"), "-D", "outputs=[case_stl, case_3mf]", "-D",
-                        "mould.parts=3", "-D", "mould.key_clearance=0.1", "-o", dir.string() + "/", "--json"},
-                       &text) == 0);
-  const nlohmann::json report = nlohmann::json::parse(text);
-  const nlohmann::json& cases = report.at(0).at("build").at("mould").at("cases");
+  const nlohmann::json cases = golden_cases(dir, {"-D", "mould.parts=3", "-D", "mould.key_clearance=0.1"});
   REQUIRE(cases.size() == 3);
   // Sides 1 and 3 have a split face on the plane across y: their lids come
   // off across it, then the piece beyond the other split face, and the part
@@ -323,16 +337,8 @@ TEST_CASE(
     }
     for (const nlohmann::json& piece : c.at("pieces")) CHECK(piece.at("pins").size() == 2);
   }
-  for (const char* file : {"case-side-1", "case-side-2", "case-side-2-piece-1", "case-side-2-piece-2",
-                           "case-side-2-piece-3", "case-side-3-piece-2"}) {
-    const std::string stl = (dir / (std::string("mould_golden.") + file + ".stl")).string();
-    INFO(stl);
-    REQUIRE(fs::exists(stl));
-    std::string checked;
-    CHECK(run_cli({"check", stl}, &checked) == 0);
-    CHECK(checked.find(": valid") != std::string::npos);
-    CHECK(checked.find(" 1 component,") != std::string::npos);
-  }
+  check_golden_stls(dir, {"case-side-1", "case-side-2", "case-side-2-piece-1", "case-side-2-piece-2",
+                          "case-side-2-piece-3", "case-side-3-piece-2"});
   std::string checked;
   CHECK(run_cli({"check", (dir / "mould_golden.case.3mf").string()}, &checked) == 0);
   CHECK(checked.find("10 objects, none interpenetrating") != std::string::npos);
