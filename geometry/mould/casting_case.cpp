@@ -1004,6 +1004,15 @@ void wall(TriangleSoup& soup, Points& point, const LidFrame& f, const LidFrame::
        f.wall_normal(a, b));
 }
 
+// The points of `f`'s outline points `ring` at z along k, as `point` adds them.
+std::vector<Index> at_level(Points& point, const LidFrame& f, const std::vector<LidFrame::P2>& ring,
+                            double z) {
+  std::vector<Index> out;
+  out.reserve(ring.size());
+  for (const LidFrame::P2& p : ring) out.push_back(point(f.at(p, z)));
+  return out;
+}
+
 // The case's box for a lid (LidFrame), open through the part's pour face:
 // its walls split at the lid's exits and at the far face's plane, its floor
 // (across k, away from the opening), and its face across the opening less
@@ -1018,12 +1027,7 @@ std::optional<TriangleSoup> lidded_block(const LidFrame& f, const Faces& faces, 
   for (std::size_t i = 0; i < ring.size(); ++i) {
     for (const auto& z : zs) wall(soup, point, f, ring[i], ring[(i + 1) % ring.size()], z[0], z[1]);
   }
-  const auto level = [&](double z) {
-    std::vector<Index> out;
-    for (const LidFrame::P2& p : ring) out.push_back(point(f.at(p, z)));
-    return out;
-  };
-  if (!fill_polygon(soup, level(f.floor_at), f.k, -opening_sign)) return std::nullopt;
+  if (!fill_polygon(soup, at_level(point, f, ring, f.floor_at), f.k, -opening_sign)) return std::nullopt;
   Copier copy{faces.part, soup};
   for (std::size_t t = 0; t < faces.part.triangles.size(); ++t) {
     if (!faces.pour[t]) continue;
@@ -1031,7 +1035,9 @@ std::optional<TriangleSoup> lidded_block(const LidFrame& f, const Faces& faces, 
     soup.triangles.push_back({copy(tri[0]), copy(tri[1]), copy(tri[2])});
   }
   std::optional<std::vector<Index>> hole = pour_loop(faces, copy);
-  if (!hole || !fill_region(soup, level(f.extreme), {*hole}, f.k, opening_sign)) return std::nullopt;
+  if (!hole || !fill_region(soup, at_level(point, f, ring, f.extreme), {*hole}, f.k, opening_sign)) {
+    return std::nullopt;
+  }
   return soup;
 }
 
@@ -1157,12 +1163,7 @@ std::optional<TriangleSoup> lid_region(const TriangleSoup& part, const Cut& c, c
     quad(soup, copy(b.open_arc[n].second), copy(b.open_arc[n + 1].second), lifted[n + 1], lifted[n], inward);
   }
   // The caps: the box's section between the sides less the back's.
-  const auto cap = [&](double z) {
-    std::vector<Index> out;
-    for (const LidFrame::P2& p : path) out.push_back(point(f.at(p, z)));
-    return out;
-  };
-  std::vector<Index> low = cap(f.far), high = cap(f.to);
+  std::vector<Index> low = at_level(point, f, path, f.far), high = at_level(point, f, path, f.to);
   for (auto it = b.far_arc.rbegin(); it != b.far_arc.rend(); ++it) low.push_back(copy(it->second));
   for (auto it = lifted.rbegin(); it != lifted.rend(); ++it) high.push_back(*it);
   const int up = f.to > f.far ? 1 : -1;
@@ -1482,8 +1483,7 @@ Attempt carved(const TriangleSoup& part, const std::string& name, const Axis& ax
     // prism over the sector between the lid's sides, 25 degrees more each
     // way, into the pieces beyond them (their half-spaces hold those rays
     // from the axis; its sides cross their seams steeply, leaving no thin
-    // sliver), of the lid's polygon's radius, from the far face up past the
-    // opening.
+    // sliver), of the lid's polygon's radius, up past the opening.
     constexpr double kOver = 25.0 * M_PI / 180.0;
     const auto first = std::find_if(cuts.begin(), cuts.end(), [](const Cut& c) { return c.lid; });
     const auto last =
@@ -1561,7 +1561,8 @@ Attempt carved(const TriangleSoup& part, const std::string& name, const Axis& ax
     return (p.array() >= lo.array() + margin).all() && (p.array() <= hi.array() - margin).all();
   };
   // Whether p lies in the region of c or within the margin of it (a lid's:
-  // between its sides, from its far face to its top, beyond its polygon).
+  // between its sides, from its far face to its top, beyond its polygon; a
+  // piece's with the vessel's slice: in that too).
   const auto beyond = [&](const Cut& c, const Vec3& p) {
     if (!c.lid) return (p - c.o).dot(c.d) / c.d.norm() > -margin || c.in_core(p, -margin);
     return c.frame.outside(p, 0) < margin && c.frame.outside(p, 1) < margin && p[k] > c.corner[k] - margin &&
@@ -2077,6 +2078,7 @@ TriangleSoup block_of(const Vec3& o, const Vec3& u, const Vec3& v, const Vec3& d
 TriangleSoup pin_prism(const Vec3& centre, const Vec3& e1, const Vec3& e2, const Vec3& d, double radius,
                        double length, std::size_t sides) {
   std::vector<Vec3> ring;
+  ring.reserve(sides);
   for (std::size_t m = 0; m < sides; ++m) {
     const double angle = 2.0 * M_PI * static_cast<double>(m) / static_cast<double>(sides);
     ring.push_back(snapped(centre + radius * (std::cos(angle) * e1 + std::sin(angle) * e2), kPointBits));
