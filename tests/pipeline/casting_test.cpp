@@ -475,6 +475,22 @@ TEST_CASE("casting cases: PrusaSlicer finds each case manifold and slices it sta
     const char* name;
     double height;  // mm, as it stands
   };
+  // PrusaSlicer finds the STL manifold, `height` tall, and slices it on a 400 mm bed.
+  const auto sliced = [&dir](const fs::path& stl, double height) {
+    const std::map<std::string, std::string> info = test::prusa_info((dir / "home").string(), stl.string());
+    REQUIRE(info.count("manifold") == 1);
+    CHECK(info.at("manifold") == "yes");
+    CHECK(std::stod(info.at("size_z")) == Approx(height).margin(0.01));
+    fs::path gcode = stl;
+    gcode.replace_extension(".gcode");
+    const test::ToolRun slice =
+        test::prusa_slicer((dir / "home").string(),
+                           "--export-gcode --bed-shape 0x0,400x0,400x400,0x400 --center 200,200 " +
+                               test::quoted(stl.string()) + " --output " + test::quoted(gcode.string()));
+    INFO(slice.output);
+    CHECK(slice.code == 0);
+    CHECK(fs::file_size(gcode) > 0);
+  };
   // A case stands on its floor, its opening up: 124 mm tall for the big half
   // (its 113 mm depth, a key, the floor); the golden half's over its base
   // 70.5. The plate stands on its outer face: 5 mm and the socket's 6.2 mm dome.
@@ -486,21 +502,8 @@ TEST_CASE("casting cases: PrusaSlicer finds each case manifold and slices it sta
                              {"mould_golden_box_base.case-side-1-plate", 11.2},
                              {"mould_golden.case-side-1", 75.520},
                              {"mould_golden.case-side-1-piece-1", 67.020}}) {
-    const std::string name = piece.name;
-    INFO(name);
-    const fs::path stl = dir / (name + ".stl");
-    const std::map<std::string, std::string> info = test::prusa_info((dir / "home").string(), stl.string());
-    REQUIRE(info.count("manifold") == 1);
-    CHECK(info.at("manifold") == "yes");
-    CHECK(std::stod(info.at("size_z")) == Approx(piece.height).margin(0.01));
-    const fs::path gcode = dir / (name + ".gcode");
-    const test::ToolRun slice =
-        test::prusa_slicer((dir / "home").string(),
-                           "--export-gcode --bed-shape 0x0,400x0,400x400,0x400 --center 200,200 " +
-                               test::quoted(stl.string()) + " --output " + test::quoted(gcode.string()));
-    INFO(slice.output);
-    CHECK(slice.code == 0);
-    CHECK(fs::file_size(gcode) > 0);
+    INFO(piece.name);
+    sliced(dir / (std::string(piece.name) + ".stl"), piece.height);
   }
   // The middle side of the golden mould in 3 parts: its floor (the main
   // piece, one 5 mm wall), its lid, and the pieces beyond its split faces
@@ -514,18 +517,7 @@ TEST_CASE("casting cases: PrusaSlicer finds each case manifold and slices it sta
     const fs::path stl = three / (std::string(name) + ".stl");
     const BoundingBox box = bounding_box(read_mesh(stl.string()).vertices);
     if (std::string(name) == "mould_golden.case-side-2") CHECK(box.hi.z() - box.lo.z() == Approx(5.0));
-    const std::map<std::string, std::string> info = test::prusa_info((dir / "home").string(), stl.string());
-    REQUIRE(info.count("manifold") == 1);
-    CHECK(info.at("manifold") == "yes");
-    CHECK(std::stod(info.at("size_z")) == Approx(box.hi.z() - box.lo.z()).margin(0.01));
-    const fs::path gcode = three / (std::string(name) + ".gcode");
-    const test::ToolRun slice =
-        test::prusa_slicer((dir / "home").string(),
-                           "--export-gcode --bed-shape 0x0,400x0,400x400,0x400 --center 200,200 " +
-                               test::quoted(stl.string()) + " --output " + test::quoted(gcode.string()));
-    INFO(slice.output);
-    CHECK(slice.code == 0);
-    CHECK(fs::file_size(gcode) > 0);
+    sliced(stl, box.hi.z() - box.lo.z());
   }
 }
 
