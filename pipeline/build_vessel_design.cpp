@@ -500,8 +500,8 @@ std::vector<Facts> add_cases(const VesselDesign& design, const Mould& mould, con
           const std::string piece_name = fmt::format("{}-piece-{}", box.name, n + 1);
           Facts f = plate_facts(cp, piece_name);
           VesselProducts::CaseBox::Piece region{
-              piece_name, cp.corner,       cp.u, cp.v,    cp.d,         cp.face_axis, cp.face_at,
-              cp.hollow,  cp.hollow_along, {},   cp.core, cp.core_along};
+              piece_name, cp.corner,       cp.u, cp.v,    cp.d, cp.face_axis, cp.face_at,
+              cp.hollow,  cp.hollow_along, {},   cp.cores};
           for (const CasePin& pin : cp.pins) {
             // The cylinder from its end inside the piece, `buried` behind the seam.
             region.pins.push_back({pin.base - pin.buried * pin.axis, pin.axis, pin.radius,

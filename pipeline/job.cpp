@@ -65,11 +65,10 @@ std::string either(const std::vector<std::string>& names) {
 bool writes_master(const OutputFormat& format) { return format.name.substr(0, 7) == "master_"; }
 
 // Whether `format` is made from the design's `block`: the mould's formats
-// (with its casting cases), and the casting master's (its spare is the
+// (its casting cases too), and the casting master's (its spare is the
 // mould's); the router's.
 bool made_from(const OutputFormat& format, DesignBlock block) {
-  return format.block == block ||
-         (block == DesignBlock::Mould && (writes_master(format) || format.block == DesignBlock::CaseMould));
+  return format.block == block || (block == DesignBlock::Mould && writes_master(format));
 }
 
 // Warnings about the design's own `outputs` list: a `mould:` or `cnc:` block

@@ -24,7 +24,7 @@ std::vector<OutputFormat> make_table() {
   const KindSet every = kinds<CurveDesign, VesselDesign, CountertopDesign, SurfaceDesign>();
   const OutputSource mesh = OutputSource::Meshes, drawing = OutputSource::Drawing;
   const DesignBlock none = DesignBlock::None, mould = DesignBlock::Mould, cnc = DesignBlock::Cnc,
-                    slab = DesignBlock::Slab, case_mould = DesignBlock::CaseMould;
+                    slab = DesignBlock::Slab;
   return {
       {"stl", "binary STL mesh, in the export unit", mesh, none, meshes, meshes, ".stl", &float32_error,
        &encode_stl_output},
@@ -136,7 +136,7 @@ std::vector<OutputFormat> make_table() {
        "one STL per casting case of the mould's parts (key case): the open box plaster is poured into to "
        "cast that part, in the export unit",
        mesh,
-       case_mould,
+       mould,
        vessels,
        {},
        ".case-PART.stl",
@@ -145,7 +145,7 @@ std::vector<OutputFormat> make_table() {
       {"case_3mf",
        "the mould parts' casting cases as separate objects of one 3MF",
        mesh,
-       case_mould,
+       mould,
        vessels,
        {},
        ".case.3mf",
@@ -154,7 +154,7 @@ std::vector<OutputFormat> make_table() {
       {"case_step",
        "STEP (AP214) of each casting case as an exact solid, in the mould's frame and the design's unit",
        OutputSource::Exact,
-       case_mould,
+       mould,
        vessels,
        {},
        ".case-PART.step",
@@ -233,11 +233,6 @@ bool has_block(const Design& design, DesignBlock block) {
       const auto* v = std::get_if<VesselDesign>(&design.body);
       return v != nullptr && v->mould.has_value();
     }
-    case DesignBlock::CaseMould: {
-      const auto* v = std::get_if<VesselDesign>(&design.body);
-      return v != nullptr && v->mould.has_value() &&
-             (v->mould->block == BlockShape::Box || v->mould->parts == 2 || !v->mould->base_part);
-    }
     case DesignBlock::Cnc: {
       const auto* c = std::get_if<CountertopDesign>(&design.body);
       return c != nullptr && c->cnc.has_value();
@@ -291,14 +286,9 @@ std::vector<const OutputFormat*> resolve_outputs(const Design& design) {
                       format->description, kind_list(format->kinds), kind_name(design)));
     }
     if (!has_block(design, format->block)) {
-      const char* needs =
-          format->block == DesignBlock::Mould ? "a `mould:` section"
-          : format->block == DesignBlock::CaseMould
-              ? "a `mould:` section with `block: box`, `parts: 2` or no `base_part` (over a base part, "
-                "the middle side of a cylinder mould's 3 parts has no case yet: the piece that takes the "
-                "vessel's slice from between its split faces would take the base keys' sockets with it)"
-          : format->block == DesignBlock::Cnc ? "a `cnc:` section"
-                                              : "a `slab:` section (a kitchen)";
+      const char* needs = format->block == DesignBlock::Mould ? "a `mould:` section"
+                          : format->block == DesignBlock::Cnc ? "a `cnc:` section"
+                                                              : "a `slab:` section (a kitchen)";
       throw FileError(design.common.path, r.line, r.column,
                       fmt::format("{}: {} needs {}", r.where, r.format, needs));
     }

@@ -44,13 +44,9 @@ KindSet kinds() {
 /// A section of a design an output is made from, beyond its kind.
 enum class DesignBlock {
   None,
-  Mould,  ///< a vessel's `mould:` (the mould's parts)
-  /// a vessel's `mould:` with `block: box`, or in 2 parts (casting cases:
-  /// a cylinder mould's 3 parts have split faces 120 degrees apart, and the
-  /// lid over a curved back comes off across one split plane only)
-  CaseMould,
-  Cnc,   ///< a countertop's `cnc:` (the router path)
-  Slab,  ///< a countertop's `slab:` (a kitchen: its pieces on slabs)
+  Mould,  ///< a vessel's `mould:` (the mould's parts, their casting cases)
+  Cnc,    ///< a countertop's `cnc:` (the router path)
+  Slab,   ///< a countertop's `slab:` (a kitchen: its pieces on slabs)
 };
 
 /// What a row's output is made of, for the builders: they make a drawing

@@ -197,10 +197,9 @@ struct VesselProducts {
       /// `height` its whole length, and the hole's whole length `hole_depth`
       /// from the same end.
       std::vector<Plate::Pin> pins;
-      /// A piece that takes the vessel's slice too: its region with the prism
-      /// over `core` swept along `core_along` added (CasePlate).
-      std::vector<Vec3> core;
-      Vec3 core_along{0.0, 0.0, 0.0};
+      /// A piece that takes the vessel's slice too: its region with these
+      /// prisms added (CasePlate).
+      std::vector<CasePrism> cores;
     };
     std::vector<Piece> pieces;
     /// The part's faces leaned by the draft: each prism is taken from the part.

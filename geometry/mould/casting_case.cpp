@@ -772,6 +772,40 @@ struct LidFrame {
   }
 };
 
+// A prism about the axis along z (a cylinder mould's): over the polygon of
+// the axis, then chords of the circle of `radius` from angle `from` to `to`
+// about it (`steps` to a half turn), from z `floor` up to `top`.
+struct Sector {
+  double radius = 0.0, from = 0.0, to = 0.0, floor = 0.0, top = 0.0;
+  std::size_t steps = 8;
+  std::size_t chords = 0;  // more than the fewest chords for `steps`, if above that
+  // The least distance of the chords from the axis.
+  double inscribed() const { return radius * std::cos(M_PI / (2.0 * static_cast<double>(steps))); }
+  std::size_t fewest() const {
+    return static_cast<std::size_t>(std::ceil((to - from) / (M_PI / static_cast<double>(steps))));
+  }
+  std::vector<Vec3> ring() const {
+    std::vector<Vec3> out{Vec3(0.0, 0.0, floor)};
+    const std::size_t n = std::max(chords, fewest());
+    for (std::size_t i = 0; i <= n; ++i) {
+      const double a = from + (to - from) * static_cast<double>(i) / static_cast<double>(n);
+      out.emplace_back(radius * std::cos(a), radius * std::sin(a), floor);
+    }
+    return out;
+  }
+  CasePrism prism() const { return {ring(), Vec3(0.0, 0.0, top - floor)}; }
+  // Whether p lies in it, `margin` inside it (outside, below 0).
+  bool holds(const Vec3& p, double margin) const {
+    if (!(p.z() >= floor + margin && p.z() <= top - margin)) return false;
+    if (p.x() == 0.0 && p.y() == 0.0) return margin <= 0.0;  // the axis: the sector's apex
+    const double turn = std::atan2(p.y(), p.x());
+    const double a = turn < from ? turn + 2.0 * M_PI : turn;
+    const double r = std::hypot(p.x(), p.y());
+    return a >= from && a <= to && r * std::sin(std::min(a - from, to - a)) >= margin &&
+           r <= inscribed() - margin;
+  }
+};
+
 // A piece taken off before the part leaves the case: what lies in the case
 // beyond the plane through o across d (and, for a side of the part's box,
 // the sockets behind it), coming off along d.
@@ -795,11 +829,8 @@ struct Cut {
   LidFrame frame;                     // a lid's
   double middle = 0.0;                // a lid's polygon's radius
   std::size_t steps = 8;              // its sides over a half turn
-  // A piece that takes the core too: the prism over `core` (the axis, then
-  // chords of the circle of radius `middle` from angle core_from to core_to
-  // about it, `steps` to a half turn).
-  std::vector<Vec3> core;
-  double core_from = 0.0, core_to = 0.0;
+  // A piece that takes the core too: the prisms over these sectors.
+  std::vector<Sector> core;
   bool in_core(const Vec3& p, double margin) const;
   /// A lid's: whether the part's triangle t lies on the back, the only
   /// faces of the part it touches: its corners all on the block's cylinder,
@@ -810,16 +841,9 @@ struct Cut {
 // The distance of p from the axis along e_k through the origin (the mould's axis).
 double radial(const Vec3& p, int k) { return std::hypot(p[(k + 1) % 3], p[(k + 2) % 3]); }
 
-// Whether p lies in the core's prism, `margin` inside it (outside, below 0),
-// from its floor up (the axis along z: a cylinder mould's).
+// Whether p lies in one of the core's prisms, `margin` inside it (outside, below 0).
 bool Cut::in_core(const Vec3& p, double margin) const {
-  if (core.empty() || !(p.z() >= core.front().z() + margin)) return false;
-  if (p.x() == 0.0 && p.y() == 0.0) return margin <= 0.0;  // the axis: the sector's apex
-  const double turn = std::atan2(p.y(), p.x());
-  const double a = turn < core_from ? turn + 2.0 * M_PI : turn;
-  const double r = std::hypot(p.x(), p.y());
-  return a >= core_from && a <= core_to && r * std::sin(std::min(a - core_from, core_to - a)) >= margin &&
-         r <= middle * std::cos(M_PI / (2.0 * static_cast<double>(steps))) - margin;
+  return std::any_of(core.begin(), core.end(), [&](const Sector& s) { return s.holds(p, margin); });
 }
 
 bool Cut::back_triangle(const TriangleSoup& part, std::size_t t) const {
@@ -1361,6 +1385,153 @@ TriangleSoup prism_over(const std::vector<Vec3>& ring, const Vec3& along) {
   return s;
 }
 
+// How far behind a given face (a plane through `point` across `normal`)
+// its piece's seam lies: `from` at least, and no point of the part within
+// `gap` of it. A seam passing a hair from one of the part's points cuts
+// slivers beside it that fold when a file rounds the points.
+double seam_depth(const TriangleSoup& part, const Vec3& point, const Vec3& normal, double from, double gap) {
+  std::vector<double> behind;
+  behind.reserve(part.vertices.size());
+  for (const Vec3& p : part.vertices) behind.push_back((point - p).dot(normal));
+  std::sort(behind.begin(), behind.end());
+  double depth = from;
+  for (auto it = std::lower_bound(behind.begin(), behind.end(), depth - gap);
+       it != behind.end() && *it < depth + gap; ++it) {
+    depth = *it + gap;
+  }
+  return depth;
+}
+
+// A sector whose floor lies on the part's far face (at `far`): the edges
+// fanning out from the axis across its floor cut the part's edges there,
+// so they pass its points there by `gap` at least (a point a hair from one
+// of the part's would fold when a file rounds them). Its chords are more
+// than the fewest if that takes them clear; the inscribed circle stays.
+void fan_clear(Sector& sector, const TriangleSoup& part, double far, double gap) {
+  std::vector<std::pair<double, double>> on_floor;  // angle from `from`, distance from the axis
+  for (const Vec3& p : part.vertices) {
+    const double r = std::hypot(p.x(), p.y());
+    if (p.z() != far || !(r > 0.0) || r > sector.radius) continue;
+    double a = std::atan2(p.y(), p.x());
+    while (a < sector.from) a += 2.0 * M_PI;
+    on_floor.emplace_back(a - sector.from, r);
+  }
+  const auto clear = [&](std::size_t n) {
+    const double step = (sector.to - sector.from) / static_cast<double>(n);
+    return std::all_of(on_floor.begin(), on_floor.end(), [&](const std::pair<double, double>& q) {
+      const double i = std::round(q.first / step);
+      return i <= 0.0 || i >= static_cast<double>(n) || q.second * std::abs(q.first - i * step) >= gap;
+    });
+  };
+  for (std::size_t n = sector.fewest(); n < sector.fewest() + 64; ++n) {
+    if (clear(n)) {
+      sector.chords = n;
+      return;
+    }
+  }
+}
+
+// The prisms that take the vessel's slice between a cylinder part's split
+// faces (the lid `lid` over its back; from angle a0 to a1 about the axis, up
+// to `top`), so that the part lifts off the floor through the opening.
+// Under a part with a bottom across the axis: one, of the lid's polygon's
+// radius, from halfway up that bottom below the vessel (its floor lies in
+// the part and marks nothing on the case's floor). Over a base part (the
+// part's far face a ring round the cavity's edge): from that face up; where
+// the base keys' sockets are in it, a narrower one up past their tops
+// (round the cavity there, inside the sockets' rims: their bumps stay on
+// the floor, which the part lifts off) under the full one.
+std::optional<std::vector<Sector>> core_sectors(const TriangleSoup& part, const std::vector<CaseFace>& given,
+                                                const Cut& lid, double a0, double a1, double top, double gap,
+                                                std::string& why) {
+  const LidFrame& f = lid.frame;
+  constexpr int k = 2;
+  const auto off_back = [&](const Vec3& p) { return radial(p, k) < lid.back * (1.0 - 1e-9); };
+  Sector full;
+  full.radius = lid.middle;
+  full.from = a0;
+  full.to = a1;
+  full.steps = lid.steps;
+  full.top = top;
+  double edge = std::numeric_limits<double>::infinity();  // the far face's least distance from the axis
+  for (const Vec3& p : part.vertices) {
+    if (p.z() == f.far) edge = std::min(edge, radial(p, k));
+  }
+  if (!(edge > 1e-9 * lid.back)) {
+    double above = f.to;
+    for (const Vec3& p : part.vertices) {
+      if (p.z() != f.far && radial(p, k) < lid.inner) above = std::min(above, p.z());
+    }
+    full.floor = 0.5 * (f.far + above);
+    return std::vector<Sector>{full};
+  }
+  full.floor = f.far;
+  // The sockets' rims: the far face's points off the split faces between the cavity's edge and the back.
+  double rim_lo = std::numeric_limits<double>::infinity(), rim_hi = 0.0;
+  for (const Vec3& p : part.vertices) {
+    const double r = radial(p, k);
+    if (p.z() == f.far && r > edge * (1.0 + 1e-9) && off_back(p) && !on_given(given, p)) {
+      rim_lo = std::min(rim_lo, r);
+      rim_hi = std::max(rim_hi, r);
+    }
+  }
+  if (!(rim_hi > 0.0)) {
+    fan_clear(full, part, f.far, gap);
+    return std::vector<Sector>{full};
+  }
+  // The sockets' tops (no deeper than their rims are wide), the next point
+  // of the part above them, and the narrower prism's top between the two.
+  double tops = f.far, next = f.to;
+  for (const Vec3& p : part.vertices) {
+    const double r = radial(p, k);
+    if (p.z() > f.far && p.z() <= f.far + (rim_hi - rim_lo) && r >= rim_lo * (1.0 - 1e-9) &&
+        r <= rim_hi * (1.0 + 1e-9) && !on_given(given, p)) {
+      tops = std::max(tops, p.z());
+    }
+  }
+  for (const Vec3& p : part.vertices) {
+    if (p.z() > tops && off_back(p)) next = std::min(next, p.z());
+  }
+  const double between = 0.5 * (tops + next);
+  // The cavity's widest up to the first of its points at or above that top
+  // (its faces there run between its points at and below it).
+  double wall_top = f.to;
+  for (const Vec3& p : part.vertices) {
+    if (p.z() >= between && radial(p, k) < rim_lo && !on_given(given, p)) {
+      wall_top = std::min(wall_top, p.z());
+    }
+  }
+  double widest = edge;
+  for (const Vec3& p : part.vertices) {
+    const double r = radial(p, k);
+    if (on_given(given, p) || p.z() > wall_top || (p.z() <= tops && r >= rim_lo * (1.0 - 1e-9)) ||
+        !off_back(p)) {
+      continue;
+    }
+    widest = std::max(widest, r);
+  }
+  if (!(widest < rim_lo)) {
+    why = fmt::format(
+        "the vessel's wall reaches {:.6g} from the axis below z = {:.6g}, past the rims of the base keys' "
+        "sockets at {:.6g}: no prism takes the vessel's slice there and leaves the keys' bumps on the floor",
+        widest, wall_top, rim_lo);
+    return std::nullopt;
+  }
+  Sector narrow = full;
+  narrow.radius = 0.5 * (widest + rim_lo);
+  narrow.top = between;
+  while (narrow.inscribed() - widest <= 0.5 * (narrow.radius - widest)) {
+    narrow.steps *= 2;
+    if (narrow.steps > 4096) {
+      why = "the vessel's wall comes too close to the base keys' sockets for a prism between them";
+      return std::nullopt;
+    }
+  }
+  fan_clear(narrow, part, f.far, gap);
+  full.floor = between;
+  return std::vector<Sector>{narrow, full};
+}
+
 // A lid over a cylinder block's back: the block's radius, and the way the
 // lid comes off (across the split plane through the axis it is cut by).
 struct Lid {
@@ -1457,13 +1628,21 @@ Attempt carved(const TriangleSoup& part, const std::string& name, const Axis& ax
     if (!c) return {std::nullopt, why};
     cuts.push_back(std::move(*c));
   }
+  // The seams of pieces beyond two faces mirrored about a line of the
+  // part's edges (the middle side's split faces, about its bisector) would
+  // meet on that line: each seam after the first lies deeper by a step, so
+  // that they meet off it.
+  std::size_t seams = 0;
   for (const CaseFace& f : given) {
     // Vertical planes across no axis; the sides of the box are found above.
     if (f.normal.z() != 0.0 || f.normal.x() == 0.0 || f.normal.y() == 0.0) continue;
     Cut c;
     c.what = f.name;
     c.d = Vec3(snapped(f.normal.x(), kDirectionBits), snapped(f.normal.y(), kDirectionBits), 0.0);
-    c.o = snapped(f.point - (f.depth + w / 4.0) * f.normal, kPointBits);
+    const double step = static_cast<double>(seams++) * w / 250.0;
+    c.o = snapped(
+        f.point - seam_depth(part, f.point, f.normal, f.depth + w / 4.0 + step, w / 1000.0) * f.normal,
+        kPointBits);
     c.u = Vec3(-c.d.y(), c.d.x(), 0.0);
     c.v = Vec3(0.0, 0.0, 1.0);
     c.features = f.features;
@@ -1496,24 +1675,10 @@ Attempt carved(const TriangleSoup& part, const std::string& name, const Axis& ax
     const Vec3 from = world(0), until = world(1);
     double a0 = std::atan2(from.y(), from.x()) - kOver, a1 = std::atan2(until.y(), until.x()) + kOver;
     if (a1 < a0) a1 += 2.0 * M_PI;
-    last->core_from = a0;
-    last->core_to = a1;
-    last->middle = first->middle;
-    last->steps = first->steps;
-    // From halfway up the part's bottom below the vessel, so that the
-    // prism's floor lies in the part and marks nothing on the case's floor.
-    double above = f.to;
-    for (const Vec3& p : part.vertices) {
-      if (p.z() != f.far && radial(p, k) < first->inner) above = std::min(above, p.z());
-    }
-    const double z = 0.5 * (f.far + above);
-    last->core.push_back(Vec3(0.0, 0.0, z));
-    const auto n =
-        static_cast<std::size_t>(std::ceil((a1 - a0) / (M_PI / static_cast<double>(first->steps))));
-    for (std::size_t i = 0; i <= n; ++i) {
-      const double a = a0 + (a1 - a0) * static_cast<double>(i) / static_cast<double>(n);
-      last->core.push_back(Vec3(first->middle * std::cos(a), first->middle * std::sin(a), z));
-    }
+    std::optional<std::vector<Sector>> core =
+        core_sectors(part, given, *first, a0, a1, hi[k] + w, w / 1000.0, why);
+    if (!core) return {std::nullopt, why};
+    last->core = std::move(*core);
   }
   for (std::size_t t : blocking) {
     if (std::none_of(cuts.begin(), cuts.end(), [&](const Cut& c) { return inside(c, t); })) {
@@ -1707,8 +1872,10 @@ Attempt carved(const TriangleSoup& part, const std::string& name, const Axis& ax
       }
     } else {
       regions[i].push_back(block_of(c.o, c.u, c.v, c.d, {-reach, reach}, {-reach, reach}, {0.0, reach}));
-      if (!c.core.empty())
-        regions[i].push_back(prism_over(c.core, Vec3(0.0, 0.0, hi[k] + w - c.core.front().z())));
+      for (const Sector& sector : c.core) {
+        const CasePrism p = sector.prism();
+        regions[i].push_back(prism_over(p.ring, p.along));
+      }
       c.corner = c.o - reach * c.u - reach * c.v;
       c.ru = 2.0 * reach * c.u;
       c.rv = 2.0 * reach * c.v;
@@ -1785,8 +1952,7 @@ Attempt carved(const TriangleSoup& part, const std::string& name, const Axis& ax
     }
     plate.hollow = c.hollow;
     plate.hollow_along = c.hollow_along;
-    plate.core = c.core;
-    if (!c.core.empty()) plate.core_along = Vec3(0.0, 0.0, hi[k] + w - c.core.front().z());
+    for (const Sector& sector : c.core) plate.cores.push_back(sector.prism());
     if (c.lid) {
       const int slanted = (c.frame.split[0] ? 0 : 1) + (c.frame.split[1] ? 0 : 1);
       const std::string seams =

@@ -60,6 +60,12 @@ struct CaseOptions {
 /// from the quadrilateral `section` (in a plane across the face, its first
 /// edge the face's edge on the pour face) along `along` (the face's other
 /// axis, past the part both ways).
+/// A prism: the polygon `ring` swept along `along`.
+struct CasePrism {
+  std::vector<Vec3> ring;
+  Vec3 along{0.0, 0.0, 0.0};
+};
+
 struct CaseDraft {
   std::string face;  ///< "its face across +x"
   std::array<Vec3, 4> section{};
@@ -123,10 +129,10 @@ struct CasePlate {
   std::vector<Vec3> hollow;
   Vec3 hollow_along{0.0, 0.0, 0.0};
   /// A piece that also takes the vessel's slice between a cylinder part's
-  /// split faces: its region with the prism over the polygon `core` (across
-  /// the opening, round the axis) swept along `core_along` added.
-  std::vector<Vec3> core;
-  Vec3 core_along{0.0, 0.0, 0.0};
+  /// split faces: its region with these prisms added (over polygons across
+  /// the opening round the axis, swept along it; over a base part, a
+  /// narrower one below the base keys' bumps and the full one above them).
+  std::vector<CasePrism> cores;
   Vec3 lo{0.0, 0.0, 0.0}, hi{0.0, 0.0, 0.0};  ///< the slab's box (carved: the piece's bounding box)
   std::size_t features = 0;                   ///< the regions behind the face it fills (sockets)
   /// Its two pins (in the case's walls beside the face, a third of the way

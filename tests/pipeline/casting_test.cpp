@@ -298,15 +298,6 @@ TEST_CASE("casting cases: a cylinder mould's halves are cast upright under lids,
   CHECK(text.find(
             "casting cases: 2 of 2 parts (side-1 lifts out along +y once its lid is off, side-2 lifts out "
             "along -y once its lid is off)") != std::string::npos);
-  // Over a base part, a cylinder mould in three parts has no cases yet: bad
-  // input, saying why, nothing written.
-  CHECK(
-      run_cli({"run", example("mould_golden.yaml"), "-D", "outputs=[case_stl]", "-D", "mould.parts=3", "-D",
-               "mould.key_clearance=0.1", "-D", "mould.base_part=true", "-o", (dir / "three").string() + "/"},
-              &text) == 2);
-  CHECK(text.find("case_stl needs a `mould:` section with `block: box`, `parts: 2` or no `base_part`") !=
-        std::string::npos);
-  CHECK_FALSE(fs::exists(dir / "three" / "mould_golden.case-side-1.stl"));
 }
 
 TEST_CASE(
@@ -342,6 +333,38 @@ TEST_CASE(
   std::string checked;
   CHECK(run_cli({"check", (dir / "mould_golden.case.3mf").string()}, &checked) == 0);
   CHECK(checked.find("10 objects, none interpenetrating") != std::string::npos);
+}
+
+TEST_CASE("casting cases: a cylinder mould in three parts over a keyed base: every part's case",
+          "[pipeline][mould][case][lid]") {
+  const fs::path dir = fresh_dir("casting_cases_cylinder_three_base");
+  const nlohmann::json cases = golden_cases(dir, {"-D", "mould.parts=3", "-D", "mould.key_clearance=0.1",
+                                                  "-D", "mould.base_part=true", "-D", "mould.keys=2"});
+  REQUIRE(cases.size() == 4);
+  // Sides 1 and 3: the lid, the piece beyond the slanted face, the plate
+  // under the part (the base key's socket); the part leaves the lid's way.
+  // Side 2: the lid, the pieces beyond its split faces (the last with the
+  // vessel's slice, the base key's bump left on the floor); the part lifts
+  // off the floor. The base: one piece.
+  for (std::size_t side = 0; side < 3; ++side) {
+    const nlohmann::json& c = cases.at(side);
+    INFO(c.dump());
+    REQUIRE(c.at("pieces").size() == 3U);
+    CHECK(c.at("pull") == (side == 1 ? nlohmann::json::array({0.0, 0.0, 1.0})
+                                     : nlohmann::json::array({0.0, side == 0 ? 1.0 : -1.0, 0.0})));
+    CHECK(c.at("pieces").at(0).at("beyond") == "its curved back");
+    CHECK_THAT(c.at("pieces").at(1).at("beyond").get<std::string>(), Catch::StartsWith("its split face at"));
+    CHECK_THAT(c.at("pieces").at(2).at("beyond").get<std::string>(),
+               Catch::StartsWith(side == 1 ? "its split face at" : "its face across -z"));
+    for (const nlohmann::json& piece : c.at("pieces")) CHECK(piece.at("pins").size() == 2);
+  }
+  const bool base_pieces = cases.at(3).contains("pieces") && !cases.at(3).at("pieces").empty();
+  CHECK_FALSE(base_pieces);
+  check_golden_stls(
+      dir, {"case-base", "case-side-2", "case-side-2-piece-1", "case-side-2-piece-2", "case-side-2-piece-3"});
+  std::string checked;
+  CHECK(run_cli({"check", (dir / "mould_golden.case.3mf").string()}, &checked) == 0);
+  CHECK(checked.find("13 objects, none interpenetrating") != std::string::npos);
 }
 
 TEST_CASE("casting cases: a part no case releases is named", "[pipeline][mould][case]") {
