@@ -202,6 +202,10 @@ case_steps "$source/configs/examples/mould_golden.yaml" "$work/golden_cylinder-c
 # The golden cylinder mould in three keyed parts: each lid, the pieces beyond the slanted split faces.
 case_steps "$source/configs/examples/mould_golden.yaml" "$work/golden_cylinder_three-cases" golden_cylinder_three \
   -D name=golden_cylinder_three -D mould.parts=3 -D mould.key_clearance=0.1
+# The production vase's default mould: three keyed sides on a keyed base, the middle side's slice
+# taken from the floor up past its base key's bump (on a bed its pieces fit whole, one STL each).
+case_steps "$source/configs/examples/mould_vase_production.yaml" "$work/vase_round-cases" vase_round \
+  -D name=vase_round -D 'print.bed=[400,400,400]'
 ((${#cases[@]} >= 3)) || fail "only ${#cases[@]} casting cases written"
 FABMESH_CASES=$(IFS=:; echo "${cases[*]}") timeout 600 freecadcmd "$source/tests/io/step/freecad_case_check.py" \
   >"$work/freecad-cases.log" 2>&1
