@@ -838,6 +838,9 @@ struct Cut {
   bool back_triangle(const TriangleSoup& part, std::size_t t) const;
 };
 
+// A cylinder mould's axis: along z.
+constexpr int kAxis = 2;
+
 // The distance of p from the axis along e_k through the origin (the mould's axis).
 double radial(const Vec3& p, int k) { return std::hypot(p[(k + 1) % 3], p[(k + 2) % 3]); }
 
@@ -1445,8 +1448,7 @@ std::optional<std::vector<Sector>> core_sectors(const TriangleSoup& part, const 
                                                 const Cut& lid, double a0, double a1, double top, double gap,
                                                 std::string& why) {
   const LidFrame& f = lid.frame;
-  constexpr int k = 2;
-  const auto off_back = [&](const Vec3& p) { return radial(p, k) < lid.back * (1.0 - 1e-9); };
+  const auto off_back = [&](const Vec3& p) { return radial(p, kAxis) < lid.back * (1.0 - 1e-9); };
   Sector full;
   full.radius = lid.middle;
   full.from = a0;
@@ -1455,12 +1457,12 @@ std::optional<std::vector<Sector>> core_sectors(const TriangleSoup& part, const 
   full.top = top;
   double edge = std::numeric_limits<double>::infinity();  // the far face's least distance from the axis
   for (const Vec3& p : part.vertices) {
-    if (p.z() == f.far) edge = std::min(edge, radial(p, k));
+    if (p.z() == f.far) edge = std::min(edge, radial(p, kAxis));
   }
   if (!(edge > 1e-9 * lid.back)) {
     double above = f.to;
     for (const Vec3& p : part.vertices) {
-      if (p.z() != f.far && radial(p, k) < lid.inner) above = std::min(above, p.z());
+      if (p.z() != f.far && radial(p, kAxis) < lid.inner) above = std::min(above, p.z());
     }
     full.floor = 0.5 * (f.far + above);
     return std::vector<Sector>{full};
@@ -1469,7 +1471,7 @@ std::optional<std::vector<Sector>> core_sectors(const TriangleSoup& part, const 
   // The sockets' rims: the far face's points off the split faces between the cavity's edge and the back.
   double rim_lo = std::numeric_limits<double>::infinity(), rim_hi = 0.0;
   for (const Vec3& p : part.vertices) {
-    const double r = radial(p, k);
+    const double r = radial(p, kAxis);
     if (p.z() == f.far && r > edge * (1.0 + 1e-9) && off_back(p) && !on_given(given, p)) {
       rim_lo = std::min(rim_lo, r);
       rim_hi = std::max(rim_hi, r);
@@ -1483,7 +1485,7 @@ std::optional<std::vector<Sector>> core_sectors(const TriangleSoup& part, const 
   // of the part above them, and the narrower prism's top between the two.
   double tops = f.far, next = f.to;
   for (const Vec3& p : part.vertices) {
-    const double r = radial(p, k);
+    const double r = radial(p, kAxis);
     if (p.z() > f.far && p.z() <= f.far + (rim_hi - rim_lo) && r >= rim_lo * (1.0 - 1e-9) &&
         r <= rim_hi * (1.0 + 1e-9) && !on_given(given, p)) {
       tops = std::max(tops, p.z());
@@ -1497,13 +1499,13 @@ std::optional<std::vector<Sector>> core_sectors(const TriangleSoup& part, const 
   // (its faces there run between its points at and below it).
   double wall_top = f.to;
   for (const Vec3& p : part.vertices) {
-    if (p.z() >= between && radial(p, k) < rim_lo && !on_given(given, p)) {
+    if (p.z() >= between && radial(p, kAxis) < rim_lo && !on_given(given, p)) {
       wall_top = std::min(wall_top, p.z());
     }
   }
   double widest = edge;
   for (const Vec3& p : part.vertices) {
-    const double r = radial(p, k);
+    const double r = radial(p, kAxis);
     if (on_given(given, p) || p.z() > wall_top || (p.z() <= tops && r >= rim_lo * (1.0 - 1e-9)) ||
         !off_back(p)) {
       continue;
@@ -1632,14 +1634,14 @@ Attempt carved(const TriangleSoup& part, const std::string& name, const Axis& ax
   // part's edges (the middle side's split faces, about its bisector) would
   // meet on that line: each seam after the first lies deeper by a step, so
   // that they meet off it.
-  std::size_t seams = 0;
+  std::size_t given_seams = 0;
   for (const CaseFace& f : given) {
     // Vertical planes across no axis; the sides of the box are found above.
     if (f.normal.z() != 0.0 || f.normal.x() == 0.0 || f.normal.y() == 0.0) continue;
     Cut c;
     c.what = f.name;
     c.d = Vec3(snapped(f.normal.x(), kDirectionBits), snapped(f.normal.y(), kDirectionBits), 0.0);
-    const double step = static_cast<double>(seams++) * w / 250.0;
+    const double step = static_cast<double>(given_seams++) * w / 250.0;
     c.o = snapped(
         f.point - seam_depth(part, f.point, f.normal, f.depth + w / 4.0 + step, w / 1000.0) * f.normal,
         kPointBits);
