@@ -365,6 +365,20 @@ TEST_CASE("casting cases: a cylinder mould in three parts over a keyed base: eve
   std::string checked;
   CHECK(run_cli({"check", (dir / "mould_golden.case.3mf").string()}, &checked) == 0);
   CHECK(checked.find("13 objects, none interpenetrating") != std::string::npos);
+  // Without keys the middle side's two slanted seams are mirror images: they
+  // meet off the edge along its bisector, and its floor is valid as written.
+  const std::array<std::array<const char*, 3>, 2> keyless{
+      {{"mould.base_part=false", "alone", "8 objects"}, {"mould.base_part=true", "base", "9 objects"}}};
+  for (const auto& [base, folder, objects] : keyless) {
+    INFO(base);
+    const fs::path out = dir / folder;
+    std::string text;
+    REQUIRE(run_cli({"run", example("mould_golden.yaml"), "-D", "outputs=[case_3mf]", "-D", "mould.parts=3",
+                     "-D", "mould.keys=0", "-D", base, "-o", out.string() + "/"},
+                    &text) == 0);
+    CHECK(run_cli({"check", (out / "mould_golden.case.3mf").string()}, &checked) == 0);
+    CHECK(checked.find(std::string(objects) + ", none interpenetrating") != std::string::npos);
+  }
 }
 
 TEST_CASE("casting cases: a part no case releases is named", "[pipeline][mould][case]") {
