@@ -357,7 +357,7 @@ EncodedFiles encode_case_step_output(const EncodeContext& c) {
       for (const VesselProducts::CaseBox::Piece& p : box.pieces) {
         StepRegion r{p.corner, p.u, p.v, p.d, {}, {}, {}};
         if (!p.hollow.empty()) r.hollows.push_back({p.hollow, p.hollow_along});
-        for (const CasePrism& c : p.cores) r.adds.push_back({c.ring, c.along});
+        for (const CasePrism& prism : p.cores) r.adds.push_back({prism.ring, prism.along});
         if (p.face_axis >= 0) {
           // Its seam on the part's exact face.
           const int q = p.face_axis;
