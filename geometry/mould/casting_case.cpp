@@ -794,12 +794,16 @@ struct Sector {
     return out;
   }
   CasePrism prism() const { return {ring(), Vec3(0.0, 0.0, top - floor)}; }
+  // The angle of p about the axis, from `from` on (at least `from`).
+  double turn(const Vec3& p) const {
+    const double a = std::atan2(p.y(), p.x());
+    return a < from ? a + 2.0 * M_PI : a;
+  }
   // Whether p lies in it, `margin` inside it (outside, below 0).
   bool holds(const Vec3& p, double margin) const {
     if (!(p.z() >= floor + margin && p.z() <= top - margin)) return false;
     if (p.x() == 0.0 && p.y() == 0.0) return margin <= 0.0;  // the axis: the sector's apex
-    const double turn = std::atan2(p.y(), p.x());
-    const double a = turn < from ? turn + 2.0 * M_PI : turn;
+    const double a = turn(p);
     const double r = std::hypot(p.x(), p.y());
     return a >= from && a <= to && r * std::sin(std::min(a - from, to - a)) >= margin &&
            r <= inscribed() - margin;
@@ -1413,11 +1417,9 @@ double seam_depth(const TriangleSoup& part, const Vec3& point, const Vec3& norma
 void fan_clear(Sector& sector, const TriangleSoup& part, double far, double gap) {
   std::vector<std::pair<double, double>> on_floor;  // angle from `from`, distance from the axis
   for (const Vec3& p : part.vertices) {
-    const double r = std::hypot(p.x(), p.y());
+    const double r = radial(p, kAxis);
     if (p.z() != far || !(r > 0.0) || r > sector.radius) continue;
-    double a = std::atan2(p.y(), p.x());
-    while (a < sector.from) a += 2.0 * M_PI;
-    on_floor.emplace_back(a - sector.from, r);
+    on_floor.emplace_back(sector.turn(p) - sector.from, r);
   }
   const auto clear = [&](std::size_t n) {
     const double step = (sector.to - sector.from) / static_cast<double>(n);
