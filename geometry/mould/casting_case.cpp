@@ -15,6 +15,7 @@
 
 #include "geometry/core/errors.h"
 #include "geometry/mesh/bounding_box.h"
+#include "geometry/mesh/short_edges.h"
 #include "geometry/mesh/volume.h"
 #include "geometry/mould/case_pins.h"
 #include "geometry/repair/exact_booleans.h"
@@ -1536,6 +1537,24 @@ std::optional<std::vector<Sector>> core_sectors(const TriangleSoup& part, const 
   return std::vector<Sector>{narrow, full};
 }
 
+// A carved piece's edges shorter than this share of the tolerance collapse:
+// a cut that passes a hair from one of the part's vertices crosses its edges
+// points apart that float32 files round to one (faces folded), and nothing
+// a printer makes is that fine.
+constexpr double kHairShare = 0.01;
+
+// The validation of `piece` with its hair-short edges collapsed, when there
+// were some and the piece is valid without them (it then takes their place);
+// none otherwise, the piece as it was.
+std::optional<ValidationReport> without_hairs(TriangleSoup& piece, double tolerance) {
+  TriangleSoup collapsed = piece;
+  if (collapse_short_edges(collapsed, kHairShare * tolerance) == 0) return std::nullopt;
+  ValidationReport report = validate(collapsed);
+  if (!report.valid()) return std::nullopt;
+  piece = std::move(collapsed);
+  return report;
+}
+
 // A lid over a cylinder block's back: the block's radius, and the way the
 // lid comes off (across the split plane through the axis it is cut by).
 struct Lid {
@@ -1905,8 +1924,11 @@ Attempt carved(const TriangleSoup& part, const std::string& name, const Axis& ax
       cuts.empty() && !rectangle ? std::optional<std::vector<TriangleSoup>>({std::move(block)})
                                  : carve_pieces(block, part, regions, pins, holes, &why);
   if (!pieces) return {std::nullopt, "carving its case failed: " + why};
+  const bool by_booleans = !cuts.empty() || rectangle;
   for (std::size_t i = 0; i < pieces->size(); ++i) {
-    const ValidationReport report = validate((*pieces)[i]);
+    std::optional<ValidationReport> collapsed;
+    if (by_booleans) collapsed = without_hairs((*pieces)[i], options.tolerance);
+    const ValidationReport report = collapsed ? std::move(*collapsed) : validate((*pieces)[i]);
     if (!report.valid()) {
       std::string defects;
       for (const std::string& d : describe_defects(report)) defects += (defects.empty() ? "" : "; ") + d;

@@ -381,6 +381,36 @@ TEST_CASE("casting cases: a cylinder mould in three parts over a keyed base: eve
   }
 }
 
+TEST_CASE("casting cases: a cut a hair from one of the part's vertices leaves no edge float32 folds",
+          "[pipeline][mould][case][lid]") {
+  // The golden solid's keyless mould in three parts over a base part: the
+  // middle side's two slanted seams meet on a line that passes a hair from a
+  // vertex of its cavity, crossing two of the cavity's edges 2.6e-7 cm
+  // apart. Rounded to float32 (STL, 3MF) the two points were one and their
+  // faces folded, and no case file was written; the hair now collapses.
+  const fs::path dir = fresh_dir("casting_cases_hair");
+  std::string text;
+  REQUIRE(run_cli_json(
+              {"run", example("vessel_golden_solid.yaml"), "-D", "mould={parts: 3, base_part: true, keys: 0}",
+               "-D", "outputs=[case_stl, case_3mf]", "-o", dir.string() + "/", "--json"},
+              &text) == 0);
+  const nlohmann::json item = nlohmann::json::parse(text).at(0);
+  const nlohmann::json& files = item.at("files");
+  CHECK(files.size() == 10);  // nine case pieces' STL files and the 3MF
+  for (const nlohmann::json& f : files) {
+    INFO(f.dump());
+    CHECK(f.at("valid_as_written") == true);
+    if (f.at("format") == "case_stl") {
+      std::string checked;
+      CHECK(run_cli({"check", f.at("path").get<std::string>()}, &checked) == 0);
+      CHECK(checked.find(" 1 component,") != std::string::npos);
+    }
+  }
+  std::string checked;
+  CHECK(run_cli({"check", (dir / "vessel_golden_solid.case.3mf").string()}, &checked) == 0);
+  CHECK(checked.find("9 objects, none interpenetrating") != std::string::npos);
+}
+
 TEST_CASE("casting cases: a part no case releases is named", "[pipeline][mould][case]") {
   const fs::path dir = fresh_dir("casting_cases_refused");
   std::string text;
