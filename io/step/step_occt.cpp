@@ -10,6 +10,7 @@
 #include <BRepAlgoAPI_Common.hxx>
 #include <BRepAlgoAPI_Cut.hxx>
 #include <BRepAlgoAPI_Fuse.hxx>
+#include <BRepBndLib.hxx>
 #include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepBuilderAPI_MakePolygon.hxx>
@@ -22,6 +23,8 @@
 #include <BRepCheck_Analyzer.hxx>
 #include <BRepCheck_Result.hxx>
 #include <BRepExtrema_DistShapeShape.hxx>
+#include <BRepExtrema_ExtPC.hxx>
+#include <BRepExtrema_ExtPF.hxx>
 #include <BRepFilletAPI_MakeChamfer.hxx>
 #include <BRepFilletAPI_MakeFillet.hxx>
 #include <BRepGProp.hxx>
@@ -33,6 +36,7 @@
 #include <BRepPrimAPI_MakeSphere.hxx>
 #include <BRep_Builder.hxx>
 #include <BRep_Tool.hxx>
+#include <Bnd_Box.hxx>
 #include <GC_MakeArcOfCircle.hxx>
 #include <GProp_GProps.hxx>
 #include <Geom_BSplineCurve.hxx>
@@ -80,6 +84,8 @@
 #include <gp_Ax2.hxx>
 #include <gp_Pln.hxx>
 #include <gp_Trsf.hxx>
+#include <limits>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <sstream>
@@ -94,6 +100,7 @@
 #ifdef FABMESH_ASAN
 #include <sanitizer/lsan_interface.h>
 #endif
+#include <utility>
 #include <vector>
 
 #include "io/step/step_model.h"
@@ -1322,28 +1329,120 @@ StepRead read_bytes(const std::string& bytes) {
   });
 }
 
+// A face's or an edge's extremum search, set up once, and the box that holds
+// the shape (from its geometry, enlarged by its tolerance).
+template <typename Search>
+struct Searched {
+  TopoDS_Shape shape;
+  std::unique_ptr<Search> search;
+  Bnd_Box box;
+  // The square of the distance from `p` to the box: no point of the shape is nearer.
+  double box_distance2(const gp_Pnt& p) const {
+    if (box.IsVoid()) return 0.0;  // no box: always searched
+    double lo[3], hi[3];
+    box.Get(lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]);
+    const double at[3] = {p.X(), p.Y(), p.Z()};
+    double d2 = 0.0;
+    for (int i = 0; i < 3; ++i) {
+      const double out = std::max({lo[i] - at[i], at[i] - hi[i], 0.0});
+      d2 += out * out;
+    }
+    return d2;
+  }
+};
+
+template <typename Search>
+Searched<Search> searched(const TopoDS_Shape& shape) {
+  Searched<Search> s{shape, std::make_unique<Search>(), {}};
+  BRepBndLib::Add(shape, s.box, false);  // the geometry's own box, not a triangulation's
+  return s;
+}
+
+// The indices of `shapes`, the nearest box to `p` first.
+template <typename Search>
+std::vector<std::size_t> nearest_first(const std::vector<Searched<Search>>& shapes, const gp_Pnt& p) {
+  std::vector<std::pair<double, std::size_t>> order;
+  for (std::size_t i = 0; i < shapes.size(); ++i) order.emplace_back(shapes[i].box_distance2(p), i);
+  std::sort(order.begin(), order.end());
+  std::vector<std::size_t> indices;
+  for (const auto& o : order) indices.push_back(o.second);
+  return indices;
+}
+
 StepDistances distances_to(const std::string& bytes, const std::vector<Vec3>& points) {
   return with_occt<StepDistances>([&bytes, &points](StepDistances& out) {
     STEPControl_Reader reader;
     if (!read_into(reader, bytes, out.error, nullptr)) return;
     reader.TransferRoots();
     const TopoDS_Shape shape = reader.OneShape();
-    // Distances to the faces (or, for a wireframe, the edges).
-    TopoDS_Compound targets;
-    BRep_Builder builder;
-    builder.MakeCompound(targets);
+    // Distances to the faces (or, for a wireframe, the edges): the least of
+    // those to the faces' insides, to the edges' insides and to the
+    // vertices. Each face's and edge's extremum search is set up once and
+    // kept from point to point, where BRepExtrema_DistShapeShape sets them
+    // up again for every point; nearest boxes first, and a face or edge
+    // whose box is no nearer than the least distance yet is not searched.
     const bool has_faces = TopExp_Explorer(shape, TopAbs_FACE).More();
-    for (TopExp_Explorer e(shape, has_faces ? TopAbs_FACE : TopAbs_EDGE); e.More(); e.Next())
-      builder.Add(targets, e.Current());
-    BRepExtrema_DistShapeShape extrema;
-    extrema.LoadS2(targets);
+    TopTools_IndexedMapOfShape face_map, edge_map, vertex_map;
+    if (has_faces) TopExp::MapShapes(shape, TopAbs_FACE, face_map);
+    TopExp::MapShapes(shape, TopAbs_EDGE, edge_map);
+    TopExp::MapShapes(shape, TopAbs_VERTEX, vertex_map);
+    std::vector<Searched<BRepExtrema_ExtPF>> faces;
+    for (int i = 1; i <= face_map.Extent(); ++i) {
+      faces.push_back(searched<BRepExtrema_ExtPF>(face_map(i)));
+      faces.back().search->Initialize(TopoDS::Face(face_map(i)), Extrema_ExtFlag_MIN);
+    }
+    std::vector<Searched<BRepExtrema_ExtPC>> edges;
+    for (int i = 1; i <= edge_map.Extent(); ++i) {
+      const TopoDS_Edge edge = TopoDS::Edge(edge_map(i));
+      if (BRep_Tool::Degenerated(edge)) continue;
+      edges.push_back(searched<BRepExtrema_ExtPC>(edge));
+      edges.back().search->Initialize(edge);
+    }
+    std::vector<gp_Pnt> vertices;
+    for (int i = 1; i <= vertex_map.Extent(); ++i)
+      vertices.push_back(BRep_Tool::Pnt(TopoDS::Vertex(vertex_map(i))));
+    if (vertices.empty()) {
+      out.error = "no distance found: the file has no vertices";
+      return;
+    }
     for (const Vec3& p : points) {
-      extrema.LoadS1(BRepBuilderAPI_MakeVertex(gp_Pnt(p.x(), p.y(), p.z())).Vertex());
-      if (!extrema.Perform() || !extrema.IsDone()) {
-        out.error = "no distance found";
-        return;
+      const gp_Pnt at(p.x(), p.y(), p.z());
+      const TopoDS_Vertex vertex = BRepBuilderAPI_MakeVertex(at).Vertex();
+      double least = std::numeric_limits<double>::infinity();
+      for (const gp_Pnt& v : vertices) least = std::min(least, at.SquareDistance(v));
+      for (const std::size_t e : nearest_first(edges, at)) {
+        if (!(edges[e].box_distance2(at) < least)) break;
+        BRepExtrema_ExtPC& edge = *edges[e].search;
+        edge.Perform(vertex);
+        if (!edge.IsDone()) continue;  // parallel or degenerate: its ends are vertices
+        for (int n = 1; n <= edge.NbExt(); ++n) {
+          if (edge.IsMin(n)) least = std::min(least, edge.SquareDistance(n));
+        }
       }
-      out.max_distance = std::max(out.max_distance, extrema.Value());
+      bool found = true;
+      for (const std::size_t f : nearest_first(faces, at)) {
+        if (!(faces[f].box_distance2(at) < least)) break;
+        BRepExtrema_ExtPF& face = *faces[f].search;
+        face.Perform(vertex, TopoDS::Face(faces[f].shape));
+        if (!face.IsDone()) {
+          found = false;
+          break;
+        }
+        for (int n = 1; n <= face.NbExt(); ++n) least = std::min(least, face.SquareDistance(n));
+      }
+      if (!found) {  // a face's search failed: OpenCASCADE's own measure for this point
+        TopoDS_Compound targets;
+        BRep_Builder builder;
+        builder.MakeCompound(targets);
+        for (const auto& face : faces) builder.Add(targets, face.shape);
+        BRepExtrema_DistShapeShape extrema(vertex, targets);
+        if (!extrema.IsDone()) {
+          out.error = "no distance found";
+          return;
+        }
+        least = std::min(least, extrema.Value() * extrema.Value());
+      }
+      out.max_distance = std::max(out.max_distance, std::sqrt(least));
     }
   });
 }
