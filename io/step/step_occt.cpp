@@ -1382,10 +1382,18 @@ StepDistances distances_to(const std::string& bytes, const std::vector<Vec3>& po
     // up again for every point; nearest boxes first, and a face or edge
     // whose box is no nearer than the least distance yet is not searched.
     const bool has_faces = TopExp_Explorer(shape, TopAbs_FACE).More();
+    // The faces' own edges and vertices (with faces, a free edge is not a target).
     TopTools_IndexedMapOfShape face_map, edge_map, vertex_map;
-    if (has_faces) TopExp::MapShapes(shape, TopAbs_FACE, face_map);
-    TopExp::MapShapes(shape, TopAbs_EDGE, edge_map);
-    TopExp::MapShapes(shape, TopAbs_VERTEX, vertex_map);
+    if (has_faces) {
+      TopExp::MapShapes(shape, TopAbs_FACE, face_map);
+      for (int i = 1; i <= face_map.Extent(); ++i) {
+        TopExp::MapShapes(face_map(i), TopAbs_EDGE, edge_map);
+        TopExp::MapShapes(face_map(i), TopAbs_VERTEX, vertex_map);
+      }
+    } else {
+      TopExp::MapShapes(shape, TopAbs_EDGE, edge_map);
+      TopExp::MapShapes(shape, TopAbs_VERTEX, vertex_map);
+    }
     std::vector<Searched<BRepExtrema_ExtPF>> faces;
     for (int i = 1; i <= face_map.Extent(); ++i) {
       faces.push_back(searched<BRepExtrema_ExtPF>(face_map(i)));
