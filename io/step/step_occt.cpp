@@ -1362,9 +1362,11 @@ Searched<Search> searched(const TopoDS_Shape& shape) {
 template <typename Search>
 std::vector<std::size_t> nearest_first(const std::vector<Searched<Search>>& shapes, const gp_Pnt& p) {
   std::vector<std::pair<double, std::size_t>> order;
+  order.reserve(shapes.size());
   for (std::size_t i = 0; i < shapes.size(); ++i) order.emplace_back(shapes[i].box_distance2(p), i);
   std::sort(order.begin(), order.end());
   std::vector<std::size_t> indices;
+  indices.reserve(order.size());
   for (const auto& o : order) indices.push_back(o.second);
   return indices;
 }
