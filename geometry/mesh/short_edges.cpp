@@ -70,8 +70,8 @@ class Collapser {
     const auto admissible = [&](std::optional<double> off) {
       return off && (!keep_shape || *off <= 1e-6 * length) ? off : std::nullopt;
     };
-    const std::optional<double> keep_a = admissible(turn(b, a, edge_faces, length));
-    const std::optional<double> keep_b = admissible(turn(a, b, edge_faces, length));
+    const std::optional<double> keep_a = admissible(off_planes(b, a, edge_faces, length));
+    const std::optional<double> keep_b = admissible(off_planes(a, b, edge_faces, length));
     if (!keep_a && !keep_b) return false;
     const bool a_stays = keep_a && (!keep_b || *keep_a <= *keep_b);
     const Index stays = a_stays ? a : b, goes = a_stays ? b : a;
@@ -144,11 +144,11 @@ class Collapser {
   }
 
   // How far `stays` lies off the planes of the faces of `goes` that move onto
-  // it (none: the surface keeps its shape), or none when one of them would
+  // it (0: the surface keeps its shape), or none when one of them would
   // turn over or flatten, or when `goes` or a vertex whose place it took is
   // `length` or more from `stays`.
-  std::optional<double> turn(Index goes, Index stays, const std::vector<std::size_t>& edge_faces,
-                             double length) const {
+  std::optional<double> off_planes(Index goes, Index stays, const std::vector<std::size_t>& edge_faces,
+                                   double length) const {
     const Vec3& to = soup_.vertices[stays];
     if (!((soup_.vertices[goes] - to).norm() < length)) return std::nullopt;
     for (const Index v : took_[goes]) {
