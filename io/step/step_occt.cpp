@@ -1397,7 +1397,11 @@ StepDistances distances_to(const std::string& bytes, const std::vector<Vec3>& po
       TopExp::MapShapes(shape, TopAbs_VERTEX, vertex_map);
     }
     std::vector<Searched<BRepExtrema_ExtPF>> faces;
+    TopoDS_Compound all_faces;  // for a point a face's search fails on
+    BRep_Builder builder;
+    builder.MakeCompound(all_faces);
     for (int i = 1; i <= face_map.Extent(); ++i) {
+      builder.Add(all_faces, face_map(i));
       faces.push_back(searched<BRepExtrema_ExtPF>(face_map(i)));
       faces.back().search->Initialize(TopoDS::Face(face_map(i)), Extrema_ExtFlag_MIN);
     }
@@ -1441,11 +1445,7 @@ StepDistances distances_to(const std::string& bytes, const std::vector<Vec3>& po
         for (int n = 1; n <= face.NbExt(); ++n) least = std::min(least, face.SquareDistance(n));
       }
       if (!found) {  // a face's search failed: OpenCASCADE's own measure for this point
-        TopoDS_Compound targets;
-        BRep_Builder builder;
-        builder.MakeCompound(targets);
-        for (const auto& face : faces) builder.Add(targets, face.shape);
-        BRepExtrema_DistShapeShape extrema(vertex, targets);
+        BRepExtrema_DistShapeShape extrema(vertex, all_faces);
         if (!extrema.IsDone()) {
           out.error = "no distance found";
           return;
