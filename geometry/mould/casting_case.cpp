@@ -96,10 +96,15 @@ bool is_corner(const std::array<double, 2>& q, const std::array<double, 2>& lo,
 constexpr Index kNone = std::numeric_limits<Index>::max();
 
 // The side of its plane a triangle faces: the sign of its normal's
-// component along axis k, exactly, or none when undecidable.
-std::optional<int> facing(const TriangleSoup& part, const Triangle& t, int k) {
-  return orientation_sign(in_plane(part.vertices[t[0]], k), in_plane(part.vertices[t[1]], k),
-                          in_plane(part.vertices[t[2]], k));
+// component along axis k, exactly (the filter first; a face along the axis
+// but across none other, whose two products cancel, decided exactly).
+int facing(const TriangleSoup& part, const Triangle& t, int k) {
+  const Vec3 &a = part.vertices[t[0]], &b = part.vertices[t[1]], &c = part.vertices[t[2]];
+  if (const std::optional<int> s = orientation_sign(in_plane(a, k), in_plane(b, k), in_plane(c, k)))
+    return *s;
+  Vec3 along = Vec3::Zero();
+  along[k] = 1.0;
+  return exact_facing(a, b, c, along);
 }
 
 // Appends triangles covering the region bounded by the simple polygon
@@ -310,9 +315,9 @@ std::optional<PlateFace> plate_on(const Faces& f, PlateFace p, const std::vector
   for (std::size_t t = 0; t < count; ++t) {
     if (!p.member[t]) continue;
     ++p.triangles;
-    const std::optional<int> sign = facing(part, part.triangles[t], q);
-    if (!sign || *sign * s < 0 || (on_face(t) && *sign != s)) return std::nullopt;
-    if (*sign == 0) ++p.parallel;
+    const int sign = facing(part, part.triangles[t], q);
+    if (sign * s < 0 || (on_face(t) && sign != s)) return std::nullopt;
+    if (sign == 0) ++p.parallel;
   }
   // Its border: one loop, part of it on the pour face's side lying on the face.
   const std::optional<std::map<Index, Index>> border = f.border(p.member);
@@ -396,10 +401,10 @@ std::optional<Pour> analyse(const TriangleSoup& part, const Axis& axis, const Ax
                             .norm();
       continue;
     }
-    const std::optional<int> s = facing(part, part.triangles[t], pull.k);
-    if (!s || *s * pull.sign > 0) {
+    const int s = facing(part, part.triangles[t], pull.k);
+    if (s * pull.sign > 0) {
       blocking.push_back(t);
-    } else if (*s == 0) {
+    } else if (s == 0) {
       ++parallel;
     }
   }
@@ -468,12 +473,8 @@ Attempt attempt(const TriangleSoup& part, const std::string& name, const Axis& a
   const auto at = [&](std::size_t t) { return where(part, t, what_is_at); };
   // Why a face that does not face away from the pull holds the part.
   const auto catches = [&](std::size_t t) {
-    return facing(part, part.triangles[t], k)
-               ? fmt::format(
-                     "its face at {} faces {}: pulled that way, the part would catch on the case there",
-                     at(t), dir)
-               : fmt::format("whether its face at {} faces {} cannot be decided in floating point", at(t),
-                             dir);
+    return fmt::format("its face at {} faces {}: pulled that way, the part would catch on the case there",
+                       at(t), dir);
   };
   std::string why;
   std::optional<Pour> analysed = analyse(part, axis, axis, true, at, why);
@@ -2030,6 +2031,27 @@ struct Drafted {
   double meeting_area = 0.0;  ///< of the faces meeting a leaned face that may be curved (leaned)
 };
 
+// Nothing folded: every triangle of the leaned part faces as it did (a
+// safeguard; the conditions for leaning keep each point on its side of the
+// leaned faces). Else nothing leans, each face saying why.
+void unfolded(const TriangleSoup& part, Drafted& d) {
+  const std::vector<Vec3>& moved = d.part.vertices;
+  for (const Triangle& tri : part.triangles) {
+    const Vec3 before =
+        (part.vertices[tri[1]] - part.vertices[tri[0]]).cross(part.vertices[tri[2]] - part.vertices[tri[0]]);
+    const Vec3 after = (moved[tri[1]] - moved[tri[0]]).cross(moved[tri[2]] - moved[tri[0]]);
+    if (!(before.dot(after) > 0.0)) {
+      for (const CaseDraft& f : d.drafts) {
+        d.undrafted.push_back(fmt::format("{} does not lean: a face of the part would fold", f.face));
+      }
+      d.drafts.clear();
+      d.part = part;
+      d.meeting_area = 0.0;
+      return;
+    }
+  }
+}
+
 Drafted drafted(const TriangleSoup& part, const Axis& axis, const CaseOptions& options,
                 const std::function<std::string(const Vec3&)>& what_is_at) {
   Drafted out{part, {}, {}};
@@ -2045,8 +2067,6 @@ Drafted drafted(const TriangleSoup& part, const Axis& axis, const CaseOptions& o
   std::vector<Vec3>& moved = out.part.vertices;
   for (const int q : {(k + 1) % 3, (k + 2) % 3}) {
     const int j = 3 - k - q;
-    Vec3 across = Vec3::Zero();
-    across[q] = 1.0;
     for (const int s : {-1, 1}) {
       const double at = s > 0 ? box.hi[q] : box.lo[q];
       if (at != (s > 0 ? options.outside->hi[q] : options.outside->lo[q])) continue;
@@ -2064,9 +2084,7 @@ Drafted drafted(const TriangleSoup& part, const Axis& axis, const CaseOptions& o
         const Triangle& tri = part.triangles[t];
         if (touching(tri) == 0 || touching(tri) == 3) continue;
         // It meets the face: it must slide in its own plane, flat across q.
-        const std::optional<int> sign = facing(part, tri, q);
-        const Vec3 &a = part.vertices[tri[0]], &b = part.vertices[tri[1]], &c = part.vertices[tri[2]];
-        if ((sign ? *sign : exact_facing(a, b, c, across)) != 0) {
+        if (facing(part, tri, q) != 0) {
           why = fmt::format("its face at {} meets it and is not flat across {}", where(part, t, what_is_at),
                             "xyz"[q]);
         }
@@ -2121,22 +2139,110 @@ Drafted drafted(const TriangleSoup& part, const Axis& axis, const CaseOptions& o
       out.drafts.push_back(std::move(d));
     }
   }
-  // Nothing folded: every triangle faces as it did (a safeguard; the
-  // conditions above keep each point on its side of the planes).
-  for (const Triangle& tri : out.part.triangles) {
-    const Vec3 before =
-        (part.vertices[tri[1]] - part.vertices[tri[0]]).cross(part.vertices[tri[2]] - part.vertices[tri[0]]);
-    const Vec3 after = (moved[tri[1]] - moved[tri[0]]).cross(moved[tri[2]] - moved[tri[0]]);
-    if (!(before.dot(after) > 0.0)) {
-      for (const CaseDraft& d : out.drafts) {
-        out.undrafted.push_back(fmt::format("{} does not lean: a face of the part would fold", d.face));
-      }
-      out.drafts.clear();
-      out.part = part;
-      return out;
+  unfolded(part, out);
+  return out;
+}
+
+// A cylinder mould's base part (poured through its flat face across the
+// axis, `axis`) with its wall on the block's cylinder leaned into a cone:
+// each point of the wall moved toward the axis along its radius by
+// tan(draft) times its height above the pour face, so that the wall lies on
+// the cone through its edge on the pour face narrowing by the draft. That is
+// the part less the ring beyond the cone (CaseDraft::about_axis) when every
+// face meeting the wall is level (it slides in its own plane) and every
+// other point lies inside the cone by more than the tolerance.
+Drafted cone_drafted(const TriangleSoup& part, const Axis& axis, double radius, const CaseOptions& options,
+                     const std::function<std::string(const Vec3&)>& what_is_at) {
+  Drafted out{part, {}, {}};
+  if (options.draft_deg == 0.0 || axis.k != 2) return out;
+  const BoundingBox box = bounding_box(part.vertices);
+  const double pour = axis.sign > 0 ? box.hi.z() : box.lo.z();
+  const double depth = box.hi.z() - box.lo.z();
+  const double tangent = std::tan(options.draft_deg * M_PI / 180.0);
+  const double w = options.wall;
+  const auto inset = [&](const Vec3& p) { return tangent * std::abs(pour - p.z()); };
+  const std::string name = "its cylinder";
+  std::vector<char> on(part.vertices.size(), 0);
+  for (std::size_t v = 0; v < on.size(); ++v) on[v] = radial(part.vertices[v], 2) >= radius * (1.0 - 1e-9);
+  const auto touching = [&](const Triangle& tri) { return on[tri[0]] + on[tri[1]] + on[tri[2]]; };
+  if (std::none_of(part.triangles.begin(), part.triangles.end(),
+                   [&](const Triangle& tri) { return touching(tri) == 3; })) {
+    return out;  // no wall on the cylinder
+  }
+  std::string why;
+  if (!(radius - tangent * (depth + w) > 0.0)) {
+    why = fmt::format("leaned by {} degrees over its height, it would pass the axis", options.draft_deg);
+  }
+  for (std::size_t t = 0; t < part.triangles.size() && why.empty(); ++t) {
+    const Triangle& tri = part.triangles[t];
+    if (touching(tri) == 0 || touching(tri) == 3) continue;
+    const double z = part.vertices[tri[0]].z();
+    if (part.vertices[tri[1]].z() != z || part.vertices[tri[2]].z() != z) {
+      why = fmt::format("its face at {} meets it and is not level", where(part, t, what_is_at));
     }
   }
+  for (std::size_t v = 0; v < part.vertices.size() && why.empty(); ++v) {
+    const Vec3& p = part.vertices[v];
+    if (on[v] == 0 && radial(p, 2) + inset(p) > radius - options.tolerance) {
+      why = fmt::format("its point at {}{} lies within {:.3g} of where it would lean to", point_text(p),
+                        what_is_at ? what_is_at(p) : std::string(), options.tolerance);
+    }
+  }
+  if (!why.empty()) {
+    out.undrafted.push_back(fmt::format("{} does not lean: {}", name, why));
+    return out;
+  }
+  for (std::size_t v = 0; v < part.vertices.size(); ++v) {
+    const Vec3& p = part.vertices[v];
+    const double by = inset(p);
+    if (on[v] == 0 || by == 0.0) continue;
+    const double keep = 1.0 - by / radial(p, 2);
+    out.part.vertices[v].x() = p.x() * keep;
+    out.part.vertices[v].y() = p.y() * keep;
+  }
+  // The wall (its faces not level) is inscribed in the exact cylinder, now
+  // in the exact cone: its own area bounds how far the wedge's volume may
+  // lie from the exact one.
+  for (const Triangle& tri : part.triangles) {
+    const double z = part.vertices[tri[0]].z();
+    if (touching(tri) != 3 || (part.vertices[tri[1]].z() == z && part.vertices[tri[2]].z() == z)) continue;
+    const std::vector<Vec3>& m = out.part.vertices;
+    out.meeting_area += 0.5 * (m[tri[1]] - m[tri[0]]).cross(m[tri[2]] - m[tri[0]]).norm();
+  }
+  // The ring's section in the half-plane y = 0: the edge on the pour face,
+  // the point a wall beyond the part's far side on the cone, and two points
+  // a wall outside the cylinder.
+  const double far = pour - axis.sign * (depth + w);
+  CaseDraft d;
+  d.face = name;
+  d.section = {Vec3(radius, 0.0, pour), Vec3(radius - tangent * (depth + w), 0.0, far),
+               Vec3(radius + w, 0.0, far), Vec3(radius + w, 0.0, pour)};
+  d.about_axis = true;
+  out.drafts.push_back(std::move(d));
+  unfolded(part, out);
   return out;
+}
+
+// The case that `build` makes around the part with its free faces leaned
+// (`d`), or none when no face leans or the leaned part has no case that way
+// (each face then named in d.undrafted).
+template <typename Build>
+std::optional<CastingCase> leaned(const TriangleSoup& part, Drafted& d, const Build& build,
+                                  const CaseOptions& options) {
+  if (d.drafts.empty()) return std::nullopt;
+  Attempt a = build(d.part);
+  if (!a.built) {
+    for (const CaseDraft& f : d.drafts) {
+      d.undrafted.push_back(
+          fmt::format("{} does not lean: leaned, the part has no case that way ({})", f.face, a.why_not));
+    }
+    return std::nullopt;
+  }
+  a.built->draft_volume = signed_volume(part) - signed_volume(d.part);
+  a.built->draft_volume_error = options.tolerance * d.meeting_area;
+  a.built->drafts = std::move(d.drafts);
+  a.built->undrafted = std::move(d.undrafted);
+  return std::move(a.built);
 }
 
 // The case of a part of a cylinder mould (CaseOptions::cylinder_radius),
@@ -2154,8 +2260,8 @@ CastingCase cylinder_case(const TriangleSoup& part, const std::string& name, con
                         fmt::format("{}: its block's radius {} is not a length above 0", name, radius));
   }
   const std::string undrafted =
-      "no face leans: the draft leans a box mould's flat faces along the pull, and this part's back is the "
-      "block's cylinder";
+      "no face leans: this part's back is the block's cylinder, and its bottom stands on the table or on "
+      "the base part";
   std::string reasons;
   const auto refused = [&](const Axis& pull, const Axis& opening, const std::string& why) {
     reasons += fmt::format("{}poured through {} and pulled along {}, {}", reasons.empty() ? "" : "; ",
@@ -2164,9 +2270,14 @@ CastingCase cylinder_case(const TriangleSoup& part, const std::string& name, con
   if (faces.empty()) {
     for (const Axis& axis : axes) {
       if (axis.k != 2) continue;  // across the axis: a curved side cannot be poured level
-      Attempt a = carved(part, name, axis, axis, false, std::nullopt, options, {}, what_is_at);
+      const auto build = [&](const TriangleSoup& p) {
+        return carved(p, name, axis, axis, false, std::nullopt, options, {}, what_is_at);
+      };
+      Drafted d = cone_drafted(part, axis, radius, options, what_is_at);
+      if (std::optional<CastingCase> c = leaned(part, d, build, options)) return std::move(*c);
+      Attempt a = build(part);
       if (a.built) {
-        a.built->undrafted = {undrafted};
+        a.built->undrafted = std::move(d.undrafted);
         return std::move(*a.built);
       }
       refused(axis, axis, a.why_not);
@@ -2349,25 +2460,6 @@ CastingCase build_casting_case(const TriangleSoup& part, const std::string& name
         ErrorLocation{"case.draft_deg"});
   }
   if (part.triangles.empty()) throw GeometryError("case", name + " has no triangles to make a case of");
-  // The case that `build` makes around the part with its free faces leaned
-  // (`d`), or none when no face leans or the leaned part has no case that
-  // way (each face then named in d.undrafted).
-  const auto leaned = [&](Drafted& d, const auto& build) -> std::optional<CastingCase> {
-    if (d.drafts.empty()) return std::nullopt;
-    Attempt a = build(d.part);
-    if (!a.built) {
-      for (const CaseDraft& f : d.drafts) {
-        d.undrafted.push_back(
-            fmt::format("{} does not lean: leaned, the part has no case that way ({})", f.face, a.why_not));
-      }
-      return std::nullopt;
-    }
-    a.built->draft_volume = signed_volume(part) - signed_volume(d.part);
-    a.built->draft_volume_error = options.tolerance * d.meeting_area;
-    a.built->drafts = std::move(d.drafts);
-    a.built->undrafted = std::move(d.undrafted);
-    return a.built;
-  };
   std::vector<Axis> axes;
   for (int k = 0; k < 3; ++k) {
     for (int sign : {1, -1}) axes.push_back({k, sign});
@@ -2383,7 +2475,7 @@ CastingCase build_casting_case(const TriangleSoup& part, const std::string& name
     if (a.built) {
       Drafted d = drafted(part, axis, options, what_is_at);
       const auto build = [&](const TriangleSoup& p) { return attempt(p, name, axis, options, what_is_at); };
-      if (std::optional<CastingCase> c = leaned(d, build)) return std::move(*c);
+      if (std::optional<CastingCase> c = leaned(part, d, build, options)) return std::move(*c);
       a.built->undrafted = std::move(d.undrafted);
       return std::move(*a.built);
     }
@@ -2398,7 +2490,7 @@ CastingCase build_casting_case(const TriangleSoup& part, const std::string& name
     const auto build = [&](const TriangleSoup& p) {
       return carved(p, name, axis, axis, true, std::nullopt, options, faces, what_is_at);
     };
-    if (std::optional<CastingCase> c = leaned(d, build)) return std::move(*c);
+    if (std::optional<CastingCase> c = leaned(part, d, build, options)) return std::move(*c);
     Attempt a = build(part);
     if (a.built) {
       a.built->undrafted = std::move(d.undrafted);

@@ -59,7 +59,10 @@ struct CaseOptions {
 /// A face of the part leaned by the draft: the part less the prism swept
 /// from the quadrilateral `section` (in a plane across the face, its first
 /// edge the face's edge on the pour face) along `along` (the face's other
-/// axis, past the part both ways).
+/// axis, past the part both ways); or, `about_axis`, less the ring that
+/// `section` (in the half-plane y = 0, x > 0; its first edge on the pour
+/// face) sweeps in a whole turn about the z axis: a cylinder mould's base
+/// part, its wall leaned into a cone.
 /// A prism: the polygon `ring` swept along `along`.
 struct CasePrism {
   std::vector<Vec3> ring;
@@ -67,9 +70,10 @@ struct CasePrism {
 };
 
 struct CaseDraft {
-  std::string face;  ///< "its face across +x"
+  std::string face;  ///< "its face across +x", "its cylinder"
   std::array<Vec3, 4> section{};
   Vec3 along{0.0, 0.0, 0.0};
+  bool about_axis = false;
 };
 
 /// A registration pin of a plate: a cylinder standing on the plate's face
@@ -212,6 +216,12 @@ struct CastingCase {
 /// part meeting it is not flat across it, or another point of the part lies
 /// within the tolerance of (or beyond) its leaned plane: the moved mesh
 /// would then not be the part less the prism beyond that plane.
+/// A cylinder mould's base part (`options.cylinder_radius`, no `faces`)
+/// leans its wall on the block's cylinder into a cone narrowing away from
+/// its pour face, by the same tangent times the height, its points moved
+/// toward the axis along their radii; under the same conditions, the faces
+/// meeting the wall level. A side part's faces do not lean: its back is the
+/// block's cylinder and its bottom stands on the table or the base part.
 ///
 /// When no such case exists, the case is carved in several pieces by exact
 /// booleans (CGAL's corefinement): the main piece and, taken off before it

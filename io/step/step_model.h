@@ -92,10 +92,12 @@ struct StepHemisphere {
   bool added = true;
 };
 
-/// A prism: the planar polygon `section` swept along `along`.
+/// A prism: the planar polygon `section` swept along `along`; or, with
+/// `about_axis`, the ring it sweeps in a whole turn about the z axis.
 struct StepPrism {
   std::vector<Vec3> section;
   Vec3 along{0.0, 0.0, 0.0};
+  bool about_axis = false;
 };
 
 /// A region a casting case is cut by: the box `corner` + a u + b v + c d for

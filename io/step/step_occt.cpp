@@ -980,7 +980,8 @@ TopoDS_Shape make_case_plate(const StepBody& body) {
   return shape;
 }
 
-// A prism: its section's polygon swept along its vector.
+// A prism: its section's polygon swept along its vector, or in a whole
+// turn about the z axis.
 TopoDS_Shape make_prism(const StepPrism& p) {
   BRepBuilderAPI_MakePolygon polygon;
   for (const Vec3& v : p.section) polygon.Add(gp_Pnt(v.x(), v.y(), v.z()));
@@ -988,6 +989,11 @@ TopoDS_Shape make_prism(const StepPrism& p) {
   if (!polygon.IsDone()) throw std::runtime_error("a prism's section is not a polygon");
   BRepBuilderAPI_MakeFace face(polygon.Wire(), true);
   if (!face.IsDone()) throw std::runtime_error("a prism's section is not a plane face");
+  if (p.about_axis) {
+    BRepPrimAPI_MakeRevol ring(face.Face(), gp_Ax1(gp::Origin(), gp::DZ()), 2.0 * M_PI);
+    if (!ring.IsDone()) throw std::runtime_error("a section's turn about the axis failed");
+    return ring.Shape();
+  }
   BRepPrimAPI_MakePrism prism(face.Face(), gp_Vec(p.along.x(), p.along.y(), p.along.z()));
   if (!prism.IsDone()) throw std::runtime_error("a prism failed");
   return prism.Shape();

@@ -342,7 +342,7 @@ EncodedFiles encode_case_step_output(const EncodeContext& c) {
     body.case_lo = box.lo;
     body.case_hi = box.hi;
     for (const CaseDraft& d : box.drafts) {
-      body.drafts.push_back({{d.section.begin(), d.section.end()}, d.along});
+      body.drafts.push_back({{d.section.begin(), d.section.end()}, d.along, d.about_axis});
     }
     for (int k = 0; k < 3; ++k) {
       if (box.opening[k] != 0.0) {

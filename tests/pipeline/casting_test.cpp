@@ -287,6 +287,13 @@ TEST_CASE("casting cases: a cylinder mould's halves are cast upright under lids,
   CHECK(cases.at(2).at("pull") == nlohmann::json::array({0.0, 0.0, -1.0}));
   const bool base_pieces = cases.at(2).contains("pieces") && !cases.at(2).at("pieces").empty();
   CHECK_FALSE(base_pieces);
+  // The base's wall on the cylinder leans into a cone by the default draft;
+  // what it takes is bounded closer than its own size.
+  const nlohmann::json& draft = cases.at(2).at("draft");
+  CHECK(draft.at("faces") == nlohmann::json::array({"its cylinder"}));
+  CHECK(draft.at("not_leaned").empty());
+  CHECK(draft.at("volume").get<double>() > 0.0);
+  CHECK(draft.at("volume_error").get<double>() < draft.at("volume").get<double>());
   check_golden_stls(dir, {"case-base", "case-side-1", "case-side-1-piece-1", "case-side-1-piece-2",
                           "case-side-2", "case-side-2-piece-2"});
   std::string checked;

@@ -89,7 +89,8 @@ void check_pieces_fill_box(const CastingCase& c, const TriangleSoup& part, const
               polygon_area(pin.hole_radius, pin.sides) * pin.hole_depth;
     }
   }
-  const double expected = (c.hi - c.lo).prod() - signed_volume(part) + pins;
+  // The part as the case casts it: less what its draft leans off.
+  const double expected = (c.hi - c.lo).prod() - (signed_volume(part) - c.draft_volume) + pins;
   CHECK(pieces == Approx(expected).margin(1e-3 * polygon_area(options.wall / 4.0, 8)));
 }
 
@@ -334,8 +335,26 @@ TEST_CASE(
         CHECK(c.opening == c.pull);
         const double r = options.cylinder_radius.value();
         CHECK(c.pour_area == Approx(M_PI * r * r).epsilon(1e-3));
-        CHECK_FALSE(interpenetrate(moved(part.soup, 0.3 * c.pull), c.soup));
-        CHECK(interpenetrate(moved(part.soup, -0.3 * c.pull), c.soup));
+        // Its wall on the cylinder leans by the draft: as designed the
+        // part does not fit the cavity, as cast it does.
+        REQUIRE(c.drafts.size() == 1);
+        CHECK(c.drafts.front().face == "its cylinder");
+        CHECK(c.draft_volume > 0.0);
+        CHECK(interpenetrate(part.soup, c.soup));
+        TriangleSoup cast = part.soup;
+        const double low = bounding_box(part.soup.vertices).lo.z();
+        const double t = std::tan(options.draft_deg * M_PI / 180.0);
+        for (Vec3& p : cast.vertices) {
+          const double at = std::hypot(p.x(), p.y());
+          if (at < r * (1.0 - 1e-9) || p.z() == low) continue;
+          const double keep = 1.0 - t * (p.z() - low) / at;
+          p.x() *= keep;
+          p.y() *= keep;
+        }
+        CHECK(signed_volume(cast) == Approx(signed_volume(part.soup) - c.draft_volume).epsilon(1e-12));
+        CHECK_FALSE(interpenetrate(moved(cast, 1e-6 * c.pull), c.soup));
+        CHECK_FALSE(interpenetrate(moved(cast, 0.3 * c.pull), c.soup));
+        CHECK(interpenetrate(moved(cast, -0.3 * c.pull), c.soup));
         continue;
       }
       // Poured through its flat top; the lid over its back (after the plate
@@ -594,4 +613,84 @@ TEST_CASE("casting case: a face with a slanted feature within the draft's reach 
   CHECK(c.draft_volume == Approx(0.5 * t * 2.0 * 2.0 * 4.0 - chamfer).epsilon(1e-12));
   CHECK(validate(c.soup).volume ==
         Approx((c.hi - c.lo).prod() - signed_volume(part) + c.draft_volume).epsilon(1e-12));
+}
+
+TEST_CASE("casting case: a cylinder mould's base part leans its wall into a cone by the draft, exactly",
+          "[mould][case][draft]") {
+  // A 64-sided prism inscribed in the block's cylinder of radius 3, from
+  // z = 0 to 1, poured through its bottom: its wall leans into the cone
+  // r = 3 - tan(draft) z, its top ring moved toward the axis, so the part as
+  // cast is a frustum of the prism.
+  const double r = 3.0, height = 1.0;
+  const std::size_t sides = 64;
+  std::vector<Vec2> outline;
+  for (std::size_t i = 0; i < sides; ++i) {
+    const double a = 2.0 * M_PI * static_cast<double>(i) / static_cast<double>(sides);
+    outline.emplace_back(r * std::cos(a), r * std::sin(a));
+  }
+  const TriangleSoup part = swept_xy(outline, height);
+  CaseOptions o = case_options();
+  o.cylinder_radius = r;
+  const Vec3 down(0.0, 0.0, -1.0);
+  for (double deg : {1.0, 5.0}) {
+    INFO(deg);
+    o.draft_deg = deg;
+    const CastingCase c = build_casting_case(part, "a base", down, o);
+    CHECK(c.pull == down);
+    REQUIRE(c.drafts.size() == 1);
+    CHECK(c.drafts.front().face == "its cylinder");
+    CHECK(c.drafts.front().about_axis);
+    CHECK(c.undrafted.empty());
+    const double t = std::tan(deg * M_PI / 180.0);
+    const double bottom = polygon_area(r, sides), top = bottom * std::pow(1.0 - t * height / r, 2);
+    const double frustum = height / 3.0 * (bottom + top + std::sqrt(bottom * top));
+    CHECK(c.draft_volume == Approx(bottom * height - frustum).epsilon(1e-12));
+    // The exact wedge, between the cylinder and the cone, lies within the
+    // bound the report gives: the tolerance over the leaned wall's area.
+    const double exact = M_PI * (r * t * height * height - t * t * height * height * height / 3.0);
+    CHECK(std::abs(c.draft_volume - exact) <= c.draft_volume_error);
+    CHECK(c.draft_volume_error < 2.0 * M_PI * r * height * o.tolerance);
+    const ValidationReport v = validate(c.soup);
+    CHECK(v.valid());
+    CHECK(v.volume == Approx((c.hi - c.lo).prod() - frustum).epsilon(1e-12));
+    // No point of the case beside the part lies inside the cone, and the
+    // cavity reaches it at the part's top.
+    bool reached = false;
+    for (const Vec3& p : c.soup.vertices) {
+      if (p.z() < 0.0 || p.z() > height) continue;
+      const double at = std::hypot(p.x(), p.y());
+      CHECK(at >= r - t * p.z() - 1e-12);
+      reached = reached || (p.z() == height && at == Approx(r - t * height).margin(1e-12));
+    }
+    CHECK(reached);
+    // The part as designed does not fit the cavity; as cast it does, and
+    // pulled the least bit it comes away.
+    CHECK(interpenetrate(part, c.soup));
+    TriangleSoup cast = part;
+    for (Vec3& p : cast.vertices) {
+      if (p.z() != height) continue;
+      const double keep = 1.0 - t * height / std::hypot(p.x(), p.y());
+      p.x() *= keep;
+      p.y() *= keep;
+    }
+    CHECK(signed_volume(cast) == Approx(frustum).epsilon(1e-12));
+    CHECK_FALSE(interpenetrate(moved(cast, 1e-3 * c.pull), c.soup));
+  }
+  // A corner pulled in off the cylinder: the faces beside it meet the wall
+  // and are not level, so the wall stays as it is, saying where.
+  std::vector<Vec2> dented = outline;
+  dented.front() *= 0.999;
+  const CastingCase d = build_casting_case(swept_xy(dented, height), "a base", down, o);
+  CHECK(d.drafts.empty());
+  CHECK(d.draft_volume == 0.0);
+  REQUIRE(d.undrafted.size() == 1);
+  CHECK_THAT(d.undrafted.front(), Catch::StartsWith("its cylinder does not lean: its face at") &&
+                                      Catch::EndsWith("meets it and is not level"));
+  // No draft: nothing leans, and there is nothing to say.
+  o.draft_deg = 0.0;
+  const CastingCase none = build_casting_case(part, "a base", down, o);
+  CHECK(none.drafts.empty());
+  CHECK(none.undrafted.empty());
+  CHECK(validate(none.soup).volume ==
+        Approx((none.hi - none.lo).prod() - signed_volume(part)).epsilon(1e-12));
 }
