@@ -1,7 +1,11 @@
 #pragma once
-// The pins that join a casting case's pieces and sections, sized to its wall.
+// What a casting case's pieces and sections share: the pins that join
+// them, sized to its wall, and the hair-short edges their cuts leave.
+
+#include <optional>
 
 #include "geometry/mould/casting_case.h"
+#include "geometry/validation/validate.h"
 
 namespace fabmesh {
 
@@ -16,5 +20,13 @@ CasePin case_pin(const CaseOptions& options);
 /// How far a pin's hole and its foot keep from the case's outside and from
 /// other cuts all round: w / 16.
 double case_pin_margin(const CaseOptions& options);
+
+/// The validation of `piece` with its edges shorter than a hundredth of
+/// `tolerance` collapsed (collapse_short_edges: no point moves), when it had
+/// some and is valid without them; it then takes their place. None
+/// otherwise, the piece as it was. A cut by exact booleans that passes a
+/// hair from a vertex (of the part, of another cut, of a pin) leaves such
+/// edges, which float32 files could fold.
+std::optional<ValidationReport> without_hairs(TriangleSoup& piece, double tolerance);
 
 }  // namespace fabmesh

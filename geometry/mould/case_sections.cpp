@@ -435,6 +435,10 @@ SectionedPiece cut_at(const TriangleSoup& printed, const std::string& name, cons
       // A sliver the cut left (a cut plane near an edge of the piece, two
       // planes crossing near one) would fold when the section is moved or
       // written in single precision: the cut is tried elsewhere.
+      // Hair-short edges (two cuts' points, or a cut's and a pin's, a hair
+      // apart) collapse, when the section stays valid without them: no
+      // point moves, and the sections' volumes are checked below as before.
+      if (thinnest(s.soup) < sliver) without_hairs(s.soup, options.tolerance);
       if (const double thin = thinnest(s.soup); thin < sliver) {
         throw GeometryError("print.bed",
                             fmt::format("{}: a section of its cell {} for the bed {} has a sliver "

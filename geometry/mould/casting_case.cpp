@@ -1538,24 +1538,6 @@ std::optional<std::vector<Sector>> core_sectors(const TriangleSoup& part, const 
   return std::vector<Sector>{narrow, full};
 }
 
-// A carved piece's edges shorter than this share of the tolerance collapse:
-// a cut that passes a hair from one of the part's vertices crosses its edges
-// points apart that float32 files round to one (faces folded), and nothing
-// a printer makes is that fine.
-constexpr double kHairShare = 0.01;
-
-// The validation of `piece` with its hair-short edges collapsed, when there
-// were some and the piece is valid without them (it then takes their place);
-// none otherwise, the piece as it was.
-std::optional<ValidationReport> without_hairs(TriangleSoup& piece, double tolerance) {
-  TriangleSoup collapsed = piece;
-  if (collapse_short_edges(collapsed, kHairShare * tolerance) == 0) return std::nullopt;
-  ValidationReport report = validate(collapsed);
-  if (!report.valid()) return std::nullopt;
-  piece = std::move(collapsed);
-  return report;
-}
-
 // A lid over a cylinder block's back: the block's radius, and the way the
 // lid comes off (across the split plane through the axis it is cut by).
 struct Lid {
@@ -2353,6 +2335,20 @@ CasePin case_pin(const CaseOptions& options) {
 }
 
 double case_pin_margin(const CaseOptions& options) { return options.wall / 16.0; }
+
+std::optional<ValidationReport> without_hairs(TriangleSoup& piece, double tolerance) {
+  // Edges shorter than this share of the tolerance: a cut that passes a
+  // hair from one of the part's vertices crosses its edges points apart
+  // that float32 files round to one (faces folded), and nothing a printer
+  // makes is that fine.
+  constexpr double kHairShare = 0.01;
+  TriangleSoup collapsed = piece;
+  if (collapse_short_edges(collapsed, kHairShare * tolerance) == 0) return std::nullopt;
+  ValidationReport report = validate(collapsed);
+  if (!report.valid()) return std::nullopt;
+  piece = std::move(collapsed);
+  return report;
+}
 
 // The sides of a pin's and its hole's polygons: a multiple of 4 (8 to 512)
 // keeping the hole's circle of `radius` within `tolerance` of its polygon.

@@ -674,6 +674,48 @@ TEST_CASE("casting cases: cases too big for the bed are written in pinned sectio
   }
 }
 
+TEST_CASE("casting cases: for a small bed, cuts a hair from a pin or another cut leave no piece whole",
+          "[pipeline][mould][case][sections]") {
+  // The production vase's round mould for a 100 mm bed: its cuts, 2 to 4
+  // along a piece, meet pins and each other a hair apart (edges 2e-5 mm to
+  // 3e-4 mm long), which float32 could fold; those edges collapse, and every
+  // piece is cut into sections that fit the bed.
+  const fs::path dir = fresh_dir("casting_case_sections_small_bed");
+  std::string text;
+  REQUIRE(run_cli_json({"run", example("mould_vase_production.yaml"), "-D", "print.bed=[100,100,100]", "-D",
+                        "outputs=[case_3mf]", "--json", "-o", dir.string() + "/"},
+                       &text) == 0);
+  const nlohmann::json report = nlohmann::json::parse(text);
+  for (const std::string warning : report[0]["warnings"]) {
+    CHECK(warning.find("case-") == std::string::npos);  // no piece left whole
+  }
+  std::size_t sections = 0, whole = 0;
+  for (const nlohmann::json& c : report[0]["build"]["mould"]["cases"]) {
+    std::vector<nlohmann::json> pieces{c};
+    for (const nlohmann::json& p : c.value("pieces", nlohmann::json::array())) pieces.push_back(p);
+    for (const nlohmann::json& p : pieces) {
+      INFO(p["name"]);
+      if (p["fits_bed"].get<bool>()) {
+        ++whole;
+        continue;
+      }
+      REQUIRE(p.contains("sections"));
+      CHECK(p["sections_volume_error"].get<double>() <= 1e-9 * p["volume"].get<double>());
+      for (const nlohmann::json& s : p["sections"]) {
+        const std::vector<double> size = s["size"];
+        CHECK(std::max({size[0], size[1], size[2]}) <= 100.0);
+        CHECK(s["pins"].get<double>() + s["holes"].get<double>() >= 2.0);
+        ++sections;
+      }
+    }
+  }
+  CHECK(sections >= 90);
+  std::string checked;
+  CHECK(run_cli({"check", (dir / "mould_vase_production.case.3mf").string()}, &checked) == 0);
+  CHECK(checked.find(std::to_string(sections + whole) + " objects, none interpenetrating") !=
+        std::string::npos);
+}
+
 TEST_CASE(
     "casting cases: PrusaSlicer finds every case file of the production vase manifold, within its bed, and "
     "slices it",
