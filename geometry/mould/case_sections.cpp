@@ -432,13 +432,13 @@ SectionedPiece cut_at(const TriangleSoup& printed, const std::string& name, cons
     for (TriangleSoup& solid : solids_of((*cut)[i])) {
       CaseSection s = cell;
       s.soup = std::move(solid);
-      // A sliver the cut left (a cut plane near an edge of the piece, two
-      // planes crossing near one) would fold when the section is moved or
-      // written in single precision: the cut is tried elsewhere.
       // Hair-short edges (two cuts' points, or a cut's and a pin's, a hair
       // apart) collapse, when the section stays valid without them: no
       // point moves, and the sections' volumes are checked below as before.
       if (thinnest(s.soup) < sliver) without_hairs(s.soup, options.tolerance);
+      // A sliver the cut still left (a cut plane near an edge of the piece,
+      // two planes crossing near one) would fold when the section is moved
+      // or written in single precision: the cut is tried elsewhere.
       if (const double thin = thinnest(s.soup); thin < sliver) {
         throw GeometryError("print.bed",
                             fmt::format("{}: a section of its cell {} for the bed {} has a sliver "
