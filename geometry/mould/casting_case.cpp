@@ -2145,7 +2145,9 @@ Drafted cone_drafted(const TriangleSoup& part, const Axis& axis, double radius, 
   const auto inset = [&](const Vec3& p) { return tangent * std::abs(pour - p.z()); };
   const std::string name = "its cylinder";
   std::vector<char> on(part.vertices.size(), 0);
-  for (std::size_t v = 0; v < on.size(); ++v) on[v] = radial(part.vertices[v], 2) >= radius * (1.0 - 1e-9);
+  for (std::size_t v = 0; v < on.size(); ++v) {
+    on[v] = radial(part.vertices[v], 2) >= radius * (1.0 - 1e-9) ? 1 : 0;
+  }
   const auto touching = [&](const Triangle& tri) { return on[tri[0]] + on[tri[1]] + on[tri[2]]; };
   if (std::none_of(part.triangles.begin(), part.triangles.end(),
                    [&](const Triangle& tri) { return touching(tri) == 3; })) {
