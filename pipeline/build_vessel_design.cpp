@@ -158,6 +158,17 @@ std::optional<MasterSplit> cut_for_bed(const VesselDesign& design, const VesselM
   }
   const int sectors = sectors_for_bed(radius, design.print->pin_diameter, bed);
   facts.set("fits_bed", sectors == 1 && size.z() <= bed.z());
+  const double across = std::min(bed.x(), bed.y());
+  if (!(sectors == 1 && size.z() <= bed.z()) && !(across > design.print->pin_diameter)) {
+    // Cut, its sections could not hold their pins.
+    throw RangeError(
+        "print.bed", across,
+        fmt::format("the bed's width {:.6g} leaves no room for a section beside its "
+                    "registration pin ({:.6g} across: pin_diameter), and the master ({:.6g} x "
+                    "{:.6g} {}) does not fit it whole; use a smaller pin_diameter",
+                    across, design.print->pin_diameter, 2.0 * radius, size.z(), context.common.units),
+        ErrorLocation{"print.bed"});
+  }
   if (sectors == 0) {
     out.warnings.push_back(fmt::format(
         "{}: the master ({:.6g} {} across) is wider than the bed {:g} x {:g} {} even in quarters (each "

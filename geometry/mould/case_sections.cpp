@@ -523,10 +523,17 @@ SectionedPiece cut_case_piece(const TriangleSoup& printed, const std::string& na
     }
   }
   if (best == 0) {
-    throw GeometryError("print.bed", fmt::format("{} ({} standing) cannot be cut into sections that fit the "
-                                                 "bed {}: the bed is no longer than a section's pin ({:.4g} "
-                                                 "tall) along an axis the piece exceeds it",
-                                                 name, size_text(size), size_text(bed), pin.height));
+    // Bad input, not a piece to write whole: no section could hold a pin.
+    double shortest = bed.minCoeff();
+    for (int i = 0; i < 3; ++i) {
+      if (cells_along(size[i], bed[i], pin.height) == 0) shortest = bed[i];
+    }
+    throw RangeError("print.bed", shortest,
+                     fmt::format("{} ({} standing) cannot be cut into sections that fit the bed {}: the bed "
+                                 "is no longer than a section's pin ({:.4g} tall: half of case.wall) along "
+                                 "an axis the piece exceeds it; use a larger bed or a thinner case.wall",
+                                 name, size_text(size), size_text(bed), pin.height),
+                     ErrorLocation{"print.bed"});
   }
   if (best > kMostSections) {
     throw GeometryError("print.bed", fmt::format("{} ({} standing) would take {} sections to fit the bed {} "

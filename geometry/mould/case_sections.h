@@ -64,8 +64,9 @@ struct SectionedPiece {
 /// The piece `printed` (closed, outward, free of self-intersections; as it
 /// is printed, +z up) cut into cells that fit `bed` (x, y, z) with their
 /// pins. `name` names the piece in messages.
-/// \throw GeometryError (where "print.bed") when the bed is no larger than a
-///        pin along an axis the piece exceeds, when it would take more than
+/// \throw RangeError (key "print.bed", bad input) when the bed is no
+///        larger than a pin along an axis the piece exceeds.
+/// \throw GeometryError (where "print.bed") when it would take more than
 ///        64 sections, or when no place tried for the cuts gives valid
 ///        sections without slivers, each with its pins or holes (the
 ///        reason is the first place's: a joint without room for two pins, a

@@ -476,9 +476,9 @@ TEST_CASE("casting cases: a part no case releases is named", "[pipeline][mould][
       ++solids;
     CHECK(solids == (std::string(part) == "side-2" ? 3U : 2U));
   }
-  // A case that does not fit the printer is cut into sections that do; one
-  // whose bed is too small even for that is written whole, with a warning
-  // at print.bed saying why.
+  // A case that does not fit the printer is cut into sections that do; a
+  // bed no longer than a section's pin is bad input at print.bed, nothing
+  // written.
   const fs::path bed = fresh_dir("casting_cases_bed");
   CHECK(run_cli({"run", example("mould_box_cases.yaml"), "-D", "print={bed: [250, 250, 250]}", "-D",
                  "outputs=[case_stl]", "-o", bed.string() + "/"},
@@ -487,15 +487,16 @@ TEST_CASE("casting cases: a part no case releases is named", "[pipeline][mould][
   CHECK(fs::exists(bed / "mould_box_cases.case-side-1-section-1.stl"));
   CHECK(fs::exists(bed / "mould_box_cases.case-side-1-section-2.stl"));
   CHECK(text.find("written whole") == std::string::npos);
+  const fs::path small = fresh_dir("casting_cases_bed_small");
   CHECK(run_cli({"run", example("mould_box_cases.yaml"), "-D", "print={bed: [2, 2, 250]}", "-D",
-                 "outputs=[case_stl]", "-o", dir.string() + "/"},
-                &text) == 0);
-  CHECK(fs::exists(dir / "mould_box_cases.case-side-1.stl"));
-  CHECK_THAT(text, Catch::Contains("print.bed: case-side-1 (383.227 x 235.976 x 123.988 mm standing on its "
-                                   "floor) does not fit the bed 2 x 2 x 250 mm and is written whole: "
-                                   "case-side-1 (383.227 x 235.976 x 123.988 standing) cannot be cut into "
-                                   "sections that fit the bed 2 x 2 x 250: the bed is no longer than a "
-                                   "section's pin (2.5 tall)"));
+                 "outputs=[case_stl]", "-o", small.string() + "/"},
+                &text) == 2);
+  CHECK_FALSE(fs::exists(small / "mould_box_cases.case-side-1.stl"));
+  CHECK(fs::is_empty(small));
+  CHECK_THAT(text, Catch::Contains("-D print={bed: [2, 2, 250]}: print.bed: case-side-1 (383.227 x 235.976 x "
+                                   "123.988 standing) cannot be cut into sections that fit the bed 2 x 2 x "
+                                   "250: the bed is no longer than a section's pin (2.5 tall: half of "
+                                   "case.wall) along an axis the piece exceeds it"));
   // A wall of no thickness is bad input at its key, and so is a clearance
   // that would leave the pins' holes no wall: nothing written.
   CHECK(run_cli({"run", example("mould_box_cases.yaml"), "-D", "case.wall=0", "-o", dir.string() + "/"},

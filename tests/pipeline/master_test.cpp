@@ -283,6 +283,16 @@ TEST_CASE("master sections: a bed no taller than the pin is bad input at print.b
              Catch::Contains("-D print={bed: [22, 22, 0.5]}: print.bed: the bed's height 0.5 leaves no room "
                              "for a section under its registration pin (0.6 tall: pin_diameter)"));
   CHECK_FALSE(fs::exists(dir / "out"));
+  // As narrow as the pin: no section could hold one beside it, however the
+  // master is cut.
+  CHECK(run_cli({"run", example("mould_golden.yaml"), "-D", "print={bed: [0.6, 0.6, 0.6]}", "-D",
+                 "outputs=[master_stl]", "-o", (dir / "out").string()},
+                &said) == 2);
+  CHECK_THAT(said,
+             Catch::Contains("-D print={bed: [0.6, 0.6, 0.6]}: print.bed: the bed's width 0.6 leaves no "
+                             "room for a section beside its registration pin (0.6 across: "
+                             "pin_diameter)"));
+  CHECK_FALSE(fs::exists(dir / "out"));
 }
 
 TEST_CASE("master sections: the STEP holds each section as an exact solid, the master plus pins less holes",
