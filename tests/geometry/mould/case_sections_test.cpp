@@ -160,14 +160,22 @@ TEST_CASE("case sections: a tray too long for the bed is cut in two, pinned in i
     for (const CasePin& p : cut.pins) CHECK(p.axis == Vec3(0.0, 0.0, 1.0));
     check_cut(printed, cut, bed, o);
   }
-  SECTION("a bed no longer than a pin, or one that would take too many sections") {
+  SECTION("a bed no longer than a pin (bad input), or one that would take too many sections") {
     CHECK_THROWS_WITH(cut_case_piece(printed, "case-box", Vec3(2.0, 2.0, 60.0), o),
                       Catch::Contains("case-box (110 x 50 x 35 standing) cannot be cut") &&
-                          Catch::Contains("no longer than a section's pin (2.5 tall)"));
+                          Catch::Contains("no longer than a section's pin (2.5 tall: half of case.wall)"));
+    try {
+      cut_case_piece(printed, "case-box", Vec3(2.0, 2.0, 60.0), o);
+      FAIL("a bed no longer than a pin was taken");
+    } catch (const RangeError& e) {
+      CHECK(e.field() == "print.bed");
+      CHECK(e.value() == 2.0);  // the bed's length along x, which the piece exceeds
+    }
     CHECK_THROWS_WITH(cut_case_piece(printed, "case-box", Vec3(10.0, 10.0, 10.0), o),
                       Catch::Contains("would take 525 sections"));
     try {
-      cut_case_piece(printed, "case-box", Vec3(2.0, 2.0, 60.0), o);
+      cut_case_piece(printed, "case-box", Vec3(10.0, 10.0, 10.0), o);
+      FAIL("a bed taking 525 sections was taken");
     } catch (const GeometryError& e) {
       CHECK(e.where() == "print.bed");
     }
