@@ -23,20 +23,38 @@ Corners corners_of(const TriangleSoup& soup, std::size_t f) {
   return {soup.vertices[t[0]], soup.vertices[t[1]], soup.vertices[t[2]]};
 }
 
+/// A point for the distance queries' own arithmetic. A query visits tens of
+/// tree nodes and triangles; written with Eigen's expression templates, this
+/// kernel relies on the compiler inlining dozens of small functions, which a
+/// sanitized build does not do (the repair tests' proofs ran there five times
+/// slower than on plain coordinates). The operations and their order are
+/// Eigen's for a 3-vector, so every result is the same to the bit.
+struct P3 {
+  double x, y, z;
+};
+P3 p3(const Vec3& v) {
+  const double* d = v.data();
+  return {d[0], d[1], d[2]};
+}
+P3 operator-(const P3& a, const P3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+P3 operator+(const P3& a, const P3& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+P3 operator*(double s, const P3& a) { return {s * a.x, s * a.y, s * a.z}; }
+double dot(const P3& a, const P3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+
 /// The point of triangle (a, b, c) nearest to p (Ericson, Real-Time Collision
 /// Detection 5.1.5), always formed as a + v (b - a) + w (c - a) with
 /// v, w >= 0, v + w <= 1: a point of the triangle up to its rounding.
-Vec3 closest_point(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const Vec3 ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+P3 closest_point(const P3& p, const P3& a, const P3& b, const P3& c) {
+  const P3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = dot(ab, ap), d2 = dot(ac, ap);
   if (d1 <= 0.0 && d2 <= 0.0) return a;
-  const Vec3 bp = p - b;
-  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  const P3 bp = p - b;
+  const double d3 = dot(ab, bp), d4 = dot(ac, bp);
   if (d3 >= 0.0 && d4 <= d3) return b;
   const double vc = d1 * d4 - d3 * d2;
   if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return a + std::clamp(d1 / (d1 - d3), 0.0, 1.0) * ab;
-  const Vec3 cp = p - c;
-  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  const P3 cp = p - c;
+  const double d5 = dot(ab, cp), d6 = dot(ac, cp);
   if (d6 >= 0.0 && d5 <= d6) return c;
   const double vb = d5 * d2 - d1 * d6;
   if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return a + std::clamp(d2 / (d2 - d6), 0.0, 1.0) * ac;
@@ -47,11 +65,12 @@ Vec3 closest_point(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
   }
   const double sum = va + vb + vc;
   if (!(sum > 0.0)) {  // a degenerate triangle: the nearest of its edges' points
-    const Vec3 e1 = a + std::clamp(ab.dot(ap) / std::max(ab.squaredNorm(), 1e-300), 0.0, 1.0) * ab;
-    const Vec3 e2 = a + std::clamp(ac.dot(ap) / std::max(ac.squaredNorm(), 1e-300), 0.0, 1.0) * ac;
-    const Vec3 bc = c - b;
-    const Vec3 e3 = b + std::clamp(bc.dot(bp) / std::max(bc.squaredNorm(), 1e-300), 0.0, 1.0) * bc;
-    const double n1 = (p - e1).squaredNorm(), n2 = (p - e2).squaredNorm(), n3 = (p - e3).squaredNorm();
+    const P3 e1 = a + std::clamp(dot(ab, ap) / std::max(dot(ab, ab), 1e-300), 0.0, 1.0) * ab;
+    const P3 e2 = a + std::clamp(dot(ac, ap) / std::max(dot(ac, ac), 1e-300), 0.0, 1.0) * ac;
+    const P3 bc = c - b;
+    const P3 e3 = b + std::clamp(dot(bc, bp) / std::max(dot(bc, bc), 1e-300), 0.0, 1.0) * bc;
+    const P3 f1 = p - e1, f2 = p - e2, f3 = p - e3;
+    const double n1 = dot(f1, f1), n2 = dot(f2, f2), n3 = dot(f3, f3);
     return n1 <= n2 && n1 <= n3 ? e1 : n2 <= n3 ? e2 : e3;
   }
   double v = std::clamp(vb / sum, 0.0, 1.0), w = std::clamp(vc / sum, 0.0, 1.0);
@@ -63,9 +82,10 @@ Vec3 closest_point(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
   return a + v * ab + w * ac;
 }
 
-double box_distance2(const Vec3& p, const Vec3& lo, const Vec3& hi) {
-  const Vec3 d = (lo - p).cwiseMax(p - hi).cwiseMax(Vec3::Zero());
-  return d.squaredNorm();
+double box_distance2(const P3& p, const P3& lo, const P3& hi) {
+  const P3 d{std::max(std::max(lo.x - p.x, p.x - hi.x), 0.0), std::max(std::max(lo.y - p.y, p.y - hi.y), 0.0),
+             std::max(std::max(lo.z - p.z, p.z - hi.z), 0.0)};
+  return dot(d, d);
 }
 
 /// A bounding-volume hierarchy over the triangles of a soup, for nearest-point queries.
@@ -77,14 +97,19 @@ class TriangleTree {
   }
 
   /// The nearest triangle to p: its index and an upper bound of the distance (computed, not yet padded).
-  std::pair<std::uint32_t, double> nearest(const Vec3& p, std::uint32_t hint) const {
+  std::pair<std::uint32_t, double> nearest(const Vec3& point, std::uint32_t hint) const {
+    const P3 p = p3(point);
     double best2 = std::numeric_limits<double>::infinity();
     std::uint32_t best = hint;
     if (hint != kNone) best2 = distance2(p, hint);
-    std::vector<std::uint32_t> stack{0};
-    while (!stack.empty()) {
-      const Node& n = nodes_[stack.back()];
-      stack.pop_back();
+    // The tree splits at the median, so it is at most 32 levels deep and the
+    // stack (the siblings of one path, and the root) never holds more than 33:
+    // no allocation per query.
+    std::array<std::uint32_t, 64> stack;
+    std::size_t size = 0;
+    stack[size++] = 0;
+    while (size > 0) {
+      const Node& n = nodes_[stack[--size]];
       if (box_distance2(p, n.lo, n.hi) >= best2) continue;
       if (n.count > 0) {
         for (std::uint32_t i = n.first; i < n.first + n.count; ++i) {
@@ -99,27 +124,29 @@ class TriangleTree {
       const Node& l = nodes_[n.first];
       const Node& r = nodes_[n.second];
       const bool left_first = box_distance2(p, l.lo, l.hi) <= box_distance2(p, r.lo, r.hi);
-      stack.push_back(left_first ? n.second : n.first);
-      stack.push_back(left_first ? n.first : n.second);
+      stack[size++] = left_first ? n.second : n.first;
+      stack[size++] = left_first ? n.first : n.second;
     }
     return {best, std::sqrt(best2)};
   }
 
-  double distance(const Vec3& p, std::uint32_t f) const { return std::sqrt(distance2(p, f)); }
+  double distance(const Vec3& p, std::uint32_t f) const { return std::sqrt(distance2(p3(p), f)); }
 
   static constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
 
  private:
   struct Node {
-    Vec3 lo, hi;
+    P3 lo, hi;
     std::uint32_t first = 0;   ///< leaf: first index into order_; inner: the left child
     std::uint32_t second = 0;  ///< inner: the right child
     std::uint32_t count = 0;   ///< leaf: triangles; 0 for an inner node
   };
 
-  double distance2(const Vec3& p, std::uint32_t f) const {
-    const Corners c = corners_of(soup_, f);
-    return (p - closest_point(p, c[0], c[1], c[2])).squaredNorm();
+  double distance2(const P3& p, std::uint32_t f) const {
+    const auto& t = soup_.triangles[f];
+    const P3 d =
+        p - closest_point(p, p3(soup_.vertices[t[0]]), p3(soup_.vertices[t[1]]), p3(soup_.vertices[t[2]]));
+    return dot(d, d);
   }
 
   std::uint32_t build(std::size_t begin, std::size_t end) {
@@ -137,8 +164,8 @@ class TriangleTree {
       clo = clo.cwiseMin(centre);
       chi = chi.cwiseMax(centre);
     }
-    nodes_[index].lo = lo;
-    nodes_[index].hi = hi;
+    nodes_[index].lo = p3(lo);
+    nodes_[index].hi = p3(hi);
     if (end - begin <= 4) {
       nodes_[index].first = static_cast<std::uint32_t>(begin);
       nodes_[index].count = static_cast<std::uint32_t>(end - begin);
