@@ -6,10 +6,12 @@ be checked again.
 The key covers the file as clang sees it: the translation unit preprocessed
 by clang++ with the build's own flags, comments kept (NOLINT lives in them),
 with the checkout's and the build folder's paths replaced by placeholders;
-the flags themselves (paths likewise); every .clang-tidy of the tree; and
+the flags themselves (paths likewise) except those of debug information
+(-g, -g1, -gline-tables-only...), which change neither the source clang-tidy
+reads nor what it reports; every .clang-tidy of the tree; and
 `clang-tidy --version`. Any change to the file, to a header it includes
-(fabmesh's, CGAL's, the system's), to its flags, to the configuration or to
-the tool changes the key.
+(fabmesh's, CGAL's, the system's), to its other flags, to the configuration
+or to the tool changes the key.
 
 Usage: clang_tidy_keys.py BUILD_DIR FILE...   prints "KEY  FILE" per file
        (FILE relative to the checkout), in the order given.
@@ -18,6 +20,7 @@ import concurrent.futures
 import hashlib
 import json
 import os
+import re
 import shlex
 import subprocess
 import sys
@@ -40,6 +43,8 @@ def key(entry, build, common):
             continue
         if a in ("-o", "-c"):
             skip = a == "-o"
+            continue
+        if re.fullmatch(r"-g(gdb)?[0-3]?|-gline-tables-only", a):
             continue
         flags.append(a)
     source = os.path.realpath(entry["file"])
