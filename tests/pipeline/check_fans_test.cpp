@@ -60,8 +60,11 @@ void write_fan_cylinder(const fs::path& path, std::uint32_t n) {
   }
 }
 
-fs::path fan_cylinder(std::uint32_t n) {
-  const fs::path path = fs::path(FABMESH_TEST_TMP) / ("fan-cylinder-" + std::to_string(n) + ".obj");
+/// The fan cylinder of `n` rim vertices in a file named for `test`: ctest runs
+/// the test cases as parallel processes, and a file two of them shared was
+/// read by one while the other rewrote it.
+fs::path fan_cylinder(std::uint32_t n, const std::string& test) {
+  const fs::path path = fs::path(FABMESH_TEST_TMP) / (test + "-fan-cylinder-" + std::to_string(n) + ".obj");
   write_fan_cylinder(path, n);
   return path;
 }
@@ -71,7 +74,7 @@ fs::path fan_cylinder(std::uint32_t n) {
 TEST_CASE(
     "check: a cylinder with fan caps of tens of thousands of faces is valid within a hang guard of 30 s",
     "[mesh][check][cli][time-bounded]") {
-  const fs::path obj = fan_cylinder(kRim);
+  const fs::path obj = fan_cylinder(kRim, "check-hang-guard");
   const LimitedRun r = run_limited({"check", obj.string()}, 30.0, kMemory);
   INFO(r.describe());
   REQUIRE_FALSE(r.timed_out);
@@ -81,7 +84,7 @@ TEST_CASE(
 
 TEST_CASE("check: --max-seconds reports an unfinished self-intersection test as undetermined, exit 6",
           "[mesh][check][cli][time-bounded]") {
-  const fs::path obj = fan_cylinder(20000);
+  const fs::path obj = fan_cylinder(20000, "check-undetermined");
   const LimitedRun r = run_limited({"check", obj.string(), "--max-seconds", "1e-9", "--json"}, 30.0, kMemory);
   INFO(r.describe());
   REQUIRE_FALSE(r.timed_out);
@@ -99,14 +102,14 @@ TEST_CASE("check: --max-seconds reports an unfinished self-intersection test as 
 
 TEST_CASE("check: a defect found before the time budget ran out is invalid (exit 1), not undetermined",
           "[mesh][check][cli][time-bounded]") {
-  const fs::path obj = fan_cylinder(20000);
+  const fs::path obj = fan_cylinder(20000, "check-invalid-first");
+  const fs::path open = fs::path(FABMESH_TEST_TMP) / "check-invalid-first-fan-cylinder-open.obj";
   {  // one face less: boundary edges, found by the connectivity analysis whatever the clock says
     std::ifstream in(obj);
     std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     text.erase(text.rfind("f "));
-    std::ofstream(fs::path(FABMESH_TEST_TMP) / "fan-cylinder-open.obj") << text;
+    std::ofstream(open) << text;
   }
-  const fs::path open = fs::path(FABMESH_TEST_TMP) / "fan-cylinder-open.obj";
   const LimitedRun r =
       run_limited({"check", open.string(), "--max-seconds", "1e-9", obj.string()}, 30.0, kMemory);
   INFO(r.describe());

@@ -1,6 +1,7 @@
 #include "tests/io/cutting/gcode_checks.h"
 
 #include <fmt/format.h>
+#include <unistd.h>
 
 #include <cctype>
 #include <cmath>
@@ -66,13 +67,18 @@ std::string gcode_interpreter_problem() {
 }
 
 Trace interpret_gcode(const std::string& gcode, const std::string& name) {
-  const std::filesystem::path file = std::filesystem::path(FABMESH_TEST_TMP) / name;
+  // Named for this process too: ctest runs test cases as parallel processes,
+  // and two of them interpret programs of the same example.
+  const std::filesystem::path file =
+      std::filesystem::path(FABMESH_TEST_TMP) / ("gcode-" + std::to_string(::getpid()) + "-" + name);
   {
     std::ofstream out(file, std::ios::binary);
     out << gcode;
     if (!out.good()) throw std::runtime_error("cannot write " + file.string());
   }
-  return interpret_gcode_file(file.string());
+  Trace trace = interpret_gcode_file(file.string());
+  std::filesystem::remove(file);  // kept only when the interpreter failed on it
+  return trace;
 }
 
 Trace interpret_gcode_file(const std::string& file) {

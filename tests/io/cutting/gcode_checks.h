@@ -38,8 +38,9 @@ struct Trace {
 /// what is missing and how to install it (tests REQUIRE it to be empty).
 std::string gcode_interpreter_problem();
 
-/// Writes `gcode` to a scratch file named `name` (in the test build folder)
-/// and interprets it. \throw std::runtime_error naming what failed
+/// Writes `gcode` to a scratch file named `name` after this process (in the
+/// test build folder), interprets it and removes it; a file the interpreter
+/// failed on is kept. \throw std::runtime_error naming what failed
 Trace interpret_gcode(const std::string& gcode, const std::string& name);
 
 /// Runs a .nc file through gcode-toolpath 3.0.0 with node (gcode-trace.js).
