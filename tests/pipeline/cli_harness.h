@@ -21,12 +21,13 @@ inline std::string example(const std::string& name) {
   return std::string(FABMESH_SOURCE_DIR) + "/configs/examples/" + name;
 }
 
-/// An empty folder under the test build folder, named for the test.
 /// Writes `text` to `path` as it is (binary: no line-end translation).
 inline void write_text(const std::filesystem::path& path, const std::string& text) {
   std::ofstream(path, std::ios::binary) << text;
 }
 
+/// An empty folder under the test build folder, named for the test: ctest
+/// runs test cases as parallel processes, so no two may share a name.
 inline std::filesystem::path fresh_dir(const std::string& name) {
   const std::filesystem::path dir = std::filesystem::path(FABMESH_TEST_TMP) / name;
   std::filesystem::remove_all(dir);
